@@ -1,0 +1,89 @@
+"""Strict JSON at the edge: bounded bodies, no NaN or Infinity, finite numbers out.
+
+Python's json module accepts ``NaN`` and ``Infinity`` by default, and a client could send a body
+of any size: this route class reads the body with a byte limit and rejects the non-standard
+constants as a JSON error. Responses are serialised with orjson after a check that every number
+is finite (a non-finite value in a response is a defect, never sent as null).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Coroutine
+from typing import Any
+
+import numpy as np
+import orjson
+from fastapi import Request, Response
+from fastapi.routing import APIRoute
+from starlette.exceptions import HTTPException
+
+MAX_BODY_BYTES = 1_000_000
+
+
+def _reject_constant(name: str) -> Any:
+    raise json.JSONDecodeError(f"{name} is not a number in JSON; send finite numbers only", name, 0)
+
+
+class StrictJSONRequest(Request):
+    """A request whose body is bounded and whose JSON has finite numbers only."""
+
+    async def body(self) -> bytes:
+        if not hasattr(self, "_body"):
+            declared = self.headers.get("content-length", "")
+            if declared.isdigit() and int(declared) > MAX_BODY_BYTES:
+                raise HTTPException(413, f"the body of {declared} bytes exceeds the limit of "
+                                         f"{MAX_BODY_BYTES} bytes")
+            chunks, size = [], 0
+            async for chunk in self.stream():
+                size += len(chunk)
+                if size > MAX_BODY_BYTES:
+                    raise HTTPException(413, f"the body exceeds the limit of {MAX_BODY_BYTES} "
+                                             "bytes")
+                chunks.append(chunk)
+            self._body = b"".join(chunks)
+        return self._body
+
+    async def json(self) -> Any:
+        if not hasattr(self, "_json"):
+            self._json = json.loads(await self.body(), parse_constant=_reject_constant)
+        return self._json
+
+
+class StrictJSONRoute(APIRoute):
+    def get_route_handler(self) -> Callable[[Request], Coroutine[Any, Any, Response]]:
+        handler = super().get_route_handler()
+
+        async def strict(request: Request) -> Response:
+            return await handler(StrictJSONRequest(request.scope, request.receive))
+
+        return strict
+
+
+class NonFiniteResult(RuntimeError):
+    """The solver produced NaN or infinity: a defect, answered as a 500 problem."""
+
+
+def _check_finite(value: Any, path: str) -> None:
+    if isinstance(value, float):
+        if value != value or value in (float("inf"), float("-inf")):
+            raise NonFiniteResult(f"non-finite value at {path}")
+    elif isinstance(value, np.ndarray):
+        if value.dtype.kind == "f" and not np.all(np.isfinite(value)):
+            raise NonFiniteResult(f"non-finite value in {path}")
+    elif isinstance(value, dict):
+        for key, item in value.items():
+            _check_finite(item, f"{path}.{key}")
+    elif isinstance(value, list | tuple):
+        for index, item in enumerate(value):
+            _check_finite(item, f"{path}[{index}]")
+
+
+class FiniteJSONResponse(Response):
+    """JSON via orjson (numpy arrays natively), after checking every number is finite."""
+
+    media_type = "application/json"
+
+    def render(self, content: Any) -> bytes:
+        _check_finite(content, "response")
+        return orjson.dumps(content, option=orjson.OPT_SERIALIZE_NUMPY)

@@ -1,0 +1,91 @@
+"""Every error as RFC 9457 problem+json with a stable ``code``, from one place.
+
+The solver's exceptions, the framework's validation errors, unknown routes and oversize bodies
+all end here; an unexpected exception is answered as a 500 problem (and is a defect to fix).
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+from starlette.exceptions import HTTPException
+
+from solver.errors import InvalidExpression, KinematicsError, LimitExceeded, SingularConfiguration
+
+PROBLEM = "application/problem+json"
+TITLES = {
+    "invalid_scene": "Invalid scene",
+    "invalid_expression": "Invalid expression",
+    "not_assemblable": "Linkage cannot be assembled",
+    "singular_configuration": "Singular configuration (dead centre)",
+    "limit_exceeded": "Request too large",
+    "no_event": "The event does not occur",
+    "not_found": "Not found",
+    "method_not_allowed": "Method not allowed",
+    "internal_error": "Internal error",
+}
+log = logging.getLogger("kinematics")
+
+
+class BodyTooLarge(LimitExceeded):
+    """The request body exceeds the server's byte limit (answered with 413)."""
+
+
+def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
+    body = {"type": f"/problems/{code}", "title": TITLES.get(code, code), "status": status,
+            "detail": detail, "code": code, **extra}
+    return JSONResponse(body, status_code=status, media_type=PROBLEM)
+
+
+def _status(error: KinematicsError) -> int:
+    return 413 if isinstance(error, BodyTooLarge) else 422
+
+
+async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
+    assert isinstance(error, KinematicsError)
+    extra: dict[str, Any] = {}
+    if isinstance(error, InvalidExpression):
+        extra = {"position": error.position, "expression": error.expression}
+    elif isinstance(error, SingularConfiguration):
+        extra = {"condition_number": error.condition_number
+                 if error.condition_number < float("inf") else None}
+    return problem(_status(error), error.code, error.message, **extra)
+
+
+def _location(loc: tuple[Any, ...]) -> str:
+    parts = [str(p) for p in loc if p != "body"]
+    return ".".join(parts) or "body"
+
+
+async def validation_error(_: Request, error: Exception) -> JSONResponse:
+    assert isinstance(error, RequestValidationError)
+    messages = []
+    for e in error.errors()[:10]:
+        reason = e.get("ctx", {}).get("error", "")
+        messages.append(f"{_location(tuple(e['loc']))}: {e['msg']}" + (f" ({reason})" if reason
+                                                                       else ""))
+    return problem(422, "invalid_scene", "; ".join(messages) or "invalid request")
+
+
+async def http_error(_: Request, error: Exception) -> JSONResponse:
+    assert isinstance(error, HTTPException)
+    code = {404: "not_found", 405: "method_not_allowed", 413: "limit_exceeded"}.get(
+        error.status_code, "invalid_scene")
+    return problem(error.status_code, code, str(error.detail))
+
+
+async def unexpected_error(_: Request, error: Exception) -> JSONResponse:
+    log.exception("unexpected error", exc_info=error)
+    return problem(500, "internal_error", "an unexpected error occurred; this is a defect")
+
+
+def install(app: FastAPI) -> None:
+    """Register the handlers: the single place where errors become responses."""
+    app.add_exception_handler(KinematicsError, kinematics_error)
+    app.add_exception_handler(RequestValidationError, validation_error)
+    app.add_exception_handler(HTTPException, http_error)
+    app.add_exception_handler(Exception, unexpected_error)

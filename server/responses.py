@@ -1,0 +1,137 @@
+"""Solver results to the JSON shapes of the scene-v1 spec (plus documented extra outputs).
+
+Only the requested quantities appear. Vectors are [x, y] (or [x, y, z]); a pole that does not
+exist is null; sweep arrays follow ``driver_angle`` sample by sample.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from solver.analysis import LinkageAnalysis
+from solver.spatial import SpatialAnalysis
+from solver.sweep import Sweep
+
+JSON = dict[str, Any]
+
+
+def vector(value: np.ndarray | None) -> list[float] | None:
+    return None if value is None else [float(x) for x in value]
+
+
+def array(value: np.ndarray | None) -> np.ndarray | None:
+    """A C-contiguous float array (what orjson serialises natively), or None."""
+    return None if value is None else np.ascontiguousarray(value, dtype=float)
+
+
+def _point(position: Any, velocity: Any, acceleration: Any, wanted: frozenset[str]) -> JSON:
+    out: JSON = {}
+    for key, value in (("position", position), ("velocity", velocity),
+                       ("acceleration", acceleration)):
+        if key in wanted:
+            out[key] = value
+    return out
+
+
+def analysis_response(result: LinkageAnalysis) -> JSON:
+    """The /analyze body of a linkage."""
+    wanted = result.quantities
+    body: JSON = {
+        "points": {name: _point(vector(p.position), vector(p.velocity), vector(p.acceleration),
+                                wanted) for name, p in result.points.items()},
+        "links": {},
+    }
+    for name, link in result.links.items():
+        out: JSON = {}
+        if "position" in wanted:
+            out["angle"] = link.angle
+        if "velocity" in wanted or "poles" in wanted:
+            out["omega"] = link.omega
+        if "acceleration" in wanted or "poles" in wanted:
+            out["alpha"] = link.alpha
+        if "poles" in wanted:
+            out["velocity_pole"] = vector(link.velocity_pole)
+            out["acceleration_pole"] = vector(link.acceleration_pole)
+        body["links"][name] = out
+    if "components" in wanted:
+        body["joints"] = [{
+            "point": j.point, "type": j.type, "links": list(j.links), "omega_guide": j.omega_guide,
+            "transport_velocity": vector(j.transport_velocity),
+            "relative_velocity": vector(j.relative_velocity), "velocity": vector(j.velocity),
+            "transport_acceleration": vector(j.transport_acceleration),
+            "relative_acceleration": vector(j.relative_acceleration),
+            "coriolis_acceleration": vector(j.coriolis_acceleration),
+            "acceleration": vector(j.acceleration),
+        } for j in result.joints]
+    if "poles" in wanted:
+        body["instant_centres"] = [{"links": list(c.links), "position": vector(c.position),
+                                    "direction_at_infinity": vector(c.direction)}
+                                   for c in result.instant_centres]
+    body["four_bar_loops"] = [{
+        "links": dict(zip(("ground", "crank", "coupler", "rocker"), loop.links, strict=True)),
+        "lengths": dict(zip(("ground", "crank", "coupler", "rocker"), loop.lengths, strict=True)),
+        "grashof": loop.grashof, "transmission_angle": loop.transmission_angle,
+        "transmission_angle_deg": math.degrees(loop.transmission_angle),
+    } for loop in result.four_bar_loops]
+    d = result.diagnostics
+    body["diagnostics"] = {
+        "condition_number": d.condition_number,
+        "position_method": "closed-form dyads" if d.closed_form else "dyads and Newton-Raphson",
+        "newton": [{"links": list(r.links), "converged": bool(np.all(r.converged)),
+                    "iterations": r.iterations, "residual_norm": r.residual_norm,
+                    "tolerance": r.tolerance} for r in d.newton],
+        "driver_angles_deg": d.driver_angles,
+    }
+    return body
+
+
+def spatial_response(result: SpatialAnalysis, wanted: frozenset[str]) -> JSON:
+    """The /analyze body of a spatial chain (with the five acceleration terms as an extra)."""
+    body: JSON = {"bodies": {}, "points": {}}
+    for name, b in result.bodies.items():
+        out: JSON = {}
+        if "velocity" in wanted:
+            out["omega"] = vector(b.omega)
+        if "acceleration" in wanted:
+            out["alpha"] = vector(b.alpha)
+        body["bodies"][name] = out
+    for name, p in result.points.items():
+        out = _point(vector(p.position), vector(p.velocity), vector(p.acceleration), wanted)
+        if "components" in wanted:
+            out["acceleration_terms"] = {
+                "origin": vector(p.a_origin), "tangential": vector(p.tangential),
+                "centripetal": vector(p.centripetal), "coriolis": vector(p.coriolis),
+                "relative": vector(p.relative)}
+        body["points"][name] = out
+    return body
+
+
+def sweep_response(result: Sweep) -> JSON:
+    """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
+    wanted = result.quantities
+    motion = result.motion
+    points = {}
+    for name, p in motion.points.items():
+        if name in result.scene.points:
+            points[name] = _point(array(p.p), array(p.v), array(p.a), wanted)
+    links: JSON = {}
+    for name in result.scene.moving_links:
+        link, on_link = motion.links[name], result.scene.links[name].points
+        out: JSON = {}
+        if "position" in wanted:
+            out["angle"] = None
+            if len(on_link) >= 2:
+                d = motion.points[on_link[1]].p - motion.points[on_link[0]].p
+                out["angle"] = array(np.arctan2(d[:, 1], d[:, 0]))
+        if "velocity" in wanted:
+            out["omega"] = array(link.omega)
+        if "acceleration" in wanted:
+            out["alpha"] = array(link.alpha)
+        links[name] = out
+    return {"driver": result.driver, "driver_angle": array(result.driver_angle), "samples":
+            int(result.driver_angle.size), "points": points, "links": links,
+            "feasible": result.feasible, "limits": list(result.limits),
+            "singular_samples": [int(k) for k in result.singular_samples]}

@@ -1,0 +1,1 @@
+"""Thin routes: validate, convert, call one solver function, convert back."""

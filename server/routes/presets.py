@@ -1,0 +1,58 @@
+"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes.
+
+Each preset gets its own POST route with a request model built from its parameters, so the
+OpenAPI page documents every parameter with its unit, default and bounds.
+"""
+
+
+from typing import Any
+
+from fastapi import APIRouter
+from pydantic import BaseModel, ConfigDict, Field, create_model
+
+from server.edge import FiniteJSONResponse, StrictJSONRoute
+from solver.errors import InvalidScene
+from solver.presets import PRESETS, Preset
+
+router = APIRouter(prefix="/presets", tags=["presets"], route_class=StrictJSONRoute,
+                   default_response_class=FiniteJSONResponse)
+
+
+@router.get("", summary="The textbook mechanisms and their parameters")
+def list_presets() -> FiniteJSONResponse:
+    return FiniteJSONResponse({"presets": [{
+        "name": p.name, "title": p.title, "description": p.description,
+        "parameters": [{"name": q.name, "default": q.default, "unit": q.unit,
+                        "description": q.description, "minimum": q.minimum,
+                        "maximum": q.maximum,
+                        "choices": None if q.choices is None else list(q.choices)}
+                       for q in p.parameters]} for p in PRESETS.values()]})
+
+
+def _parameters_model(preset: Preset) -> type[BaseModel]:
+    fields: dict[str, Any] = {
+        q.name: (float | None, Field(None, description=f"{q.description} [{q.unit or '-'}]; "
+                                     f"default {q.default:g}", ge=q.minimum, le=q.maximum))
+        for q in preset.parameters}
+    config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    return create_model(f"{preset.name}_parameters", __config__=config, **fields)
+
+
+def _route(preset: Preset) -> None:
+    model = _parameters_model(preset)
+
+    def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]
+        given = {} if parameters is None else parameters.model_dump(exclude_none=True)
+        return FiniteJSONResponse(preset.build(given))
+
+    router.add_api_route(f"/{preset.name}", build, methods=["POST"], summary=preset.title,
+                         description=preset.description, name=f"preset_{preset.name}")
+
+
+for _preset in PRESETS.values():
+    _route(_preset)
+
+
+@router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
+def unknown_preset(name: str) -> FiniteJSONResponse:
+    raise InvalidScene(f"unknown preset '{name[:64]}'; available: {', '.join(PRESETS)}")

@@ -1,0 +1,296 @@
+"""One instant of a planar linkage in full: ``analyze(scene, quantities)``.
+
+Positions, velocities and accelerations of every point and link, poles, the transport / relative /
+Coriolis split at every slider and prismatic joint, instant centres, four-bar loops and the
+condition number of the velocity equations. Only the requested quantities are computed (a
+position-only request never differentiates anything).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from itertools import combinations
+
+import numpy as np
+
+from solver import newton
+from solver.assembly import DriverInput, Motion, assemble, require_feasible
+from solver.errors import InvalidScene, SingularConfiguration
+from solver.laws import parse_time_law
+from solver.poles import (
+    FourBarLoop,
+    InstantCentre,
+    acceleration_pole,
+    grashof_class,
+    instant_centre,
+    transmission_angle,
+    velocity_pole,
+)
+from solver.rigid import Array, LinkMotion, PointMotion, perp
+from solver.scene import Driver, LinkageScene
+from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, build_plan
+
+QUANTITIES = ("position", "velocity", "acceleration", "poles", "components")
+# cond(J) above this: the velocity equations are singular to within rounding (a dead centre).
+SINGULAR_CONDITION = 1e12
+# Newton groups reach a driver angle far from the drawn one in steps no larger than this.
+CONTINUATION_STEP = math.radians(5.0)
+
+
+@dataclass(frozen=True)
+class PointResult:
+    position: Array | None = None
+    velocity: Array | None = None
+    acceleration: Array | None = None
+
+
+@dataclass(frozen=True)
+class LinkResult:
+    """A moving link: absolute angle (first to second point; None with one point), rates, poles."""
+
+    angle: float | None = None
+    omega: float | None = None
+    alpha: float | None = None
+    velocity_pole: Array | None = None
+    acceleration_pole: Array | None = None
+
+
+@dataclass(frozen=True)
+class SlidingJoint:
+    """Velocity and acceleration of the follower's point P of a slider or prismatic joint.
+
+    v = v_transport + v_relative;  a = a_transport + a_relative + a_coriolis, with the transport
+    terms those of the guide's point coinciding with P, and a_coriolis = 2 omega_guide x v_rel.
+    """
+
+    point: str
+    type: str
+    links: tuple[str, str]
+    omega_guide: float
+    transport_velocity: Array
+    relative_velocity: Array
+    velocity: Array
+    transport_acceleration: Array | None
+    relative_acceleration: Array | None
+    coriolis_acceleration: Array | None
+    acceleration: Array | None
+
+
+@dataclass(frozen=True)
+class Diagnostics:
+    """How the answer was obtained and how much to trust it."""
+
+    condition_number: float | None
+    closed_form: bool
+    newton: tuple[newton.NewtonReport, ...]
+    driver_angles: dict[str, float]
+
+
+@dataclass(frozen=True)
+class LinkageAnalysis:
+    quantities: frozenset[str]
+    points: dict[str, PointResult]
+    links: dict[str, LinkResult]
+    joints: list[SlidingJoint]
+    instant_centres: list[InstantCentre]
+    four_bar_loops: list[FourBarLoop]
+    diagnostics: Diagnostics
+    plan: Plan
+    motion: Motion = field(repr=False)
+
+
+def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
+    if quantities is None:
+        return frozenset(QUANTITIES)
+    chosen = frozenset(quantities)
+    unknown = sorted(chosen - set(QUANTITIES))
+    if unknown:
+        raise InvalidScene(f"quantities: unknown {unknown}; allowed: {', '.join(QUANTITIES)}")
+    return chosen
+
+
+def required_order(quantities: frozenset[str]) -> int:
+    """0 for positions, 1 to velocities, 2 to accelerations (poles and components need both)."""
+    if quantities & {"acceleration", "poles", "components"}:
+        return 2
+    return 1 if "velocity" in quantities else 0
+
+
+def drawn_angle(scene: LinkageScene, link: str) -> float:
+    points = scene.links[link].points
+    d = scene.drawn(points[1]) - scene.drawn(points[0])
+    return math.atan2(d[1], d[0])
+
+
+def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[float, float, float]:
+    """(rotation from the drawn pose, omega, alpha) of a driver at ``time``."""
+    if driver.angle_law is not None:
+        value, rate, rate_dot = parse_time_law(driver.angle_law).evaluate(time)
+        return float(value), float(rate), float(rate_dot)
+    if driver.angle_deg is None:
+        return 0.0, driver.omega, driver.alpha
+    if len(scene.links[driver.link].points) < 2:
+        raise InvalidScene(f"drivers: angle_deg needs two points on link '{driver.link}' to "
+                           "define its angle")
+    turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
+    turn = math.atan2(math.sin(turn), math.cos(turn))
+    return turn, driver.omega, driver.alpha
+
+
+def solve_instant(scene: LinkageScene, plan: Plan, order: int,
+                  time: float | None = None) -> tuple[Motion, dict[str, float]]:
+    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion)."""
+    t = scene.time if time is None else time
+    given = [driver_input(scene, d, t) for d in scene.drivers]
+    steps = 1
+    if not plan.closed_form:
+        steps = 1 + int(max((abs(g[0]) for g in given), default=0.0) / CONTINUATION_STEP)
+    inputs = []
+    for turn, omega, alpha in given:
+        ramp = np.linspace(turn, 0.0, steps + 1)[::-1] if steps > 1 else np.array([turn])
+        inputs.append(DriverInput(ramp, np.full(ramp.size, omega), np.full(ramp.size, alpha)))
+    motion = assemble(scene, plan, inputs, order, continuation=steps > 1)
+    if steps > 1:
+        motion = _last_sample(motion)
+    angles = {d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
+              for d, g in zip(scene.drivers, given, strict=True)
+              if len(scene.links[d.link].points) >= 2}
+    where = "at " + ", ".join(f"{k} angle {v:.6g} deg" for k, v in angles.items())
+    if not angles:
+        where = "at the drawn pose"
+    require_feasible(motion, where)
+    return motion, angles
+
+
+def _last_sample(motion: Motion) -> Motion:
+    def cut(a: Array | None) -> Array | None:
+        return None if a is None else a[-1:]
+
+    def point(m: PointMotion) -> PointMotion:
+        return PointMotion(m.p[-1:], cut(m.v), cut(m.a))
+
+    links = {k: LinkMotion(m.anchor0, point(m.anchor), m.theta[-1:], cut(m.omega), cut(m.alpha))
+             for k, m in motion.links.items()}
+    return Motion(links, {k: point(m) for k, m in motion.points.items()}, motion.feasible[-1:],
+                  motion.conditioning[-1:], motion.failures, motion.newton)
+
+
+def _sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:
+    joints = []
+    for joint in scene.joints:
+        if joint.type == "revolute":
+            continue
+        guide = motion.links[joint.guide]
+        P = motion.points[joint.point]
+        assert P.v is not None and guide.omega is not None and guide.anchor.v is not None
+        omega_g = float(guide.omega[0])
+        r = P.p[0] - guide.anchor.p[0]
+        v_tr = guide.anchor.v[0] + omega_g * perp(r)
+        v_rel = P.v[0] - v_tr
+        a_tr = a_rel = a_cor = a = None
+        if order >= 2:
+            assert P.a is not None and guide.alpha is not None and guide.anchor.a is not None
+            alpha_g = float(guide.alpha[0])
+            a_tr = guide.anchor.a[0] + alpha_g * perp(r) - omega_g**2 * r
+            a_cor = 2.0 * omega_g * perp(v_rel)
+            a = P.a[0]
+            a_rel = a - a_tr - a_cor
+        joints.append(SlidingJoint(joint.point, joint.type, joint.links, omega_g, v_tr, v_rel,
+                                   P.v[0], a_tr, a_rel, a_cor, a))
+    return joints
+
+
+def _link_results(scene: LinkageScene, motion: Motion, quantities: frozenset[str]
+                  ) -> dict[str, LinkResult]:
+    results = {}
+    size = scene.size
+    for name in scene.moving_links:
+        link = motion.links[name]
+        points = scene.links[name].points
+        angle = None
+        if len(points) >= 2 and "position" in quantities:
+            d = motion.points[points[1]].p[0] - motion.points[points[0]].p[0]
+            angle = math.atan2(d[1], d[0])
+        omega = None if link.omega is None else float(link.omega[0])
+        alpha = None if link.alpha is None else float(link.alpha[0])
+        v_pole = a_pole = None
+        if "poles" in quantities:
+            assert omega is not None and alpha is not None
+            X = link.anchor
+            assert X.v is not None and X.a is not None
+            v_pole = velocity_pole(X.p[0], X.v[0], omega, size)
+            a_pole = acceleration_pole(X.p[0], X.a[0], omega, alpha, size)
+        results[name] = LinkResult(
+            angle, omega if "velocity" in quantities or "poles" in quantities else None,
+            alpha if "acceleration" in quantities or "poles" in quantities else None,
+            v_pole, a_pole)
+    return results
+
+
+def _instant_centres(scene: LinkageScene, motion: Motion) -> list[InstantCentre]:
+    """Instant centres of every pair of links (ground included), from the velocity fields."""
+    fields = {}
+    for name in scene.links:
+        link = motion.links[name]
+        assert link.anchor.v is not None and link.omega is not None
+        omega = float(link.omega[0])
+        fields[name] = (link.anchor.v[0] - omega * perp(link.anchor.p[0]), omega)
+    return [instant_centre(i, *fields[i], j, *fields[j], scene.size)
+            for i, j in combinations(scene.links, 2)]
+
+
+def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[FourBarLoop]:
+    """RRR dyads closing a loop ground - driven crank - coupler - rocker - ground."""
+    cranks = {s.link: s.pivot for s in plan.steps if isinstance(s, DriverStep)}
+    ground_points = set(scene.links[scene.ground].points)
+    loops = []
+    for step in plan.steps:
+        if not (isinstance(step, DyadStep) and all(isinstance(c, CircleSpec) for c in step.loci)):
+            continue
+        first, second = step.loci
+        assert isinstance(first, CircleSpec) and isinstance(second, CircleSpec)
+        if first.center in ground_points:
+            first, second = second, first
+        crank = next((c for c, pivot in cranks.items()
+                      if first.center in scene.links[c].points and first.center != pivot), None)
+        if crank is None or second.center not in ground_points:
+            continue
+        A, B = scene.drawn(cranks[crank]), scene.drawn(first.center)
+        D = scene.drawn(second.center)
+        lengths = (float(np.hypot(*(D - A))), float(np.hypot(*(B - A))), first.radius,
+                   second.radius)
+        p = motion.points
+        mu = transmission_angle(p[first.center].p[0], p[step.point].p[0], p[second.center].p[0])
+        loops.append(FourBarLoop((scene.ground, crank, first.link, second.link), lengths,
+                                 grashof_class(*lengths), mu))
+    return loops
+
+
+def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> LinkageAnalysis:
+    """The linkage at its drivers' angles (drawn pose, ``angle_deg`` or ``angle_law`` at ``time``)."""
+    wanted = normalise_quantities(quantities)
+    order = required_order(wanted)
+    plan = build_plan(scene)
+    motion, angles = solve_instant(scene, plan, order)
+    condition = None
+    if order >= 1:
+        condition = newton.velocity_condition_number(scene, motion.links, 0)
+        if condition > SINGULAR_CONDITION or float(motion.conditioning[0]) == 0.0:
+            where = ", ".join(f"{k} at {v:.6g} deg" for k, v in angles.items())
+            raise SingularConfiguration(
+                f"dead centre{' with ' + where if where else ''}: the velocity equations are "
+                f"singular (condition number {condition:.3g}), so the driver cannot move the "
+                "linkage here", condition)
+    points = {
+        name: PointResult(
+            m.p[0] if "position" in wanted else None,
+            m.v[0] if "velocity" in wanted and m.v is not None else None,
+            m.a[0] if "acceleration" in wanted and m.a is not None else None)
+        for name, m in motion.points.items() if name in scene.points}
+    joints = _sliding_joints(scene, motion, order) if "components" in wanted else []
+    centres = _instant_centres(scene, motion) if "poles" in wanted else []
+    diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
+    return LinkageAnalysis(wanted, points, _link_results(scene, motion, wanted), joints, centres,
+                           four_bar_loops(scene, plan, motion), diagnostics, plan, motion)

@@ -1,0 +1,234 @@
+"""Closed-form solutions of the two-joint groups (dyads) a linkage decomposes into.
+
+A joint point X whose two constraints involve only known links lies on two *loci*: a circle (X and
+a known point C are on one link, so |CX| is fixed) or a line (X slides in a slot of a known
+link). RRR is circle-circle, RRP (pin or block in a slot) circle-line, a pin in two slots
+line-line. Where a link pivots on a known point and its slot must pass through a known pin
+(inverted slider-crank, slotted lever), the unknown is the link's angle: ``slotted_lever``.
+
+Each solution has two branches (the orientation of the dyad's triangle), chosen by ``sign``. The
+velocities and accelerations come from differentiating the same two constraints: a 2-by-2 linear
+system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.rigid import Array, PointMotion, cross, dot, perp, scale
+
+# |h^2| below this fraction of r^2 is a tangency within rounding: the two branches meet (h = 0).
+TANGENCY_TOLERANCE = 1e-12
+
+
+@dataclass(frozen=True)
+class Circle:
+    """X is on a link that carries the known point ``center``: |X - C| = radius."""
+
+    center: PointMotion
+    radius: float
+    center_name: str
+    link: str
+
+
+@dataclass(frozen=True)
+class Line:
+    """X slides on the line through Q with unit direction w, fixed in a known guide link."""
+
+    through: PointMotion
+    direction: Array
+    omega: Array | None
+    alpha: Array | None
+    guide: str
+
+
+Locus = Circle | Line
+
+
+@dataclass(frozen=True)
+class Intersection:
+    """X = base + sign * h * offset for the two branches; ``gap2`` = h^2 / scale^2 (negative: none)."""
+
+    base: Array
+    offset: Array
+    h: Array
+    gap2: Array
+    message: list[str]
+
+    def point(self, sign: Array) -> Array:
+        return self.base + scale(sign * self.h, self.offset)
+
+    @property
+    def feasible(self) -> Array:
+        return self.gap2 >= -TANGENCY_TOLERANCE
+
+
+def _root(gap2: Array, h2: Array) -> Array:
+    """sqrt(h^2), with a tangency within rounding snapped to zero and no root taken of a negative."""
+    return np.sqrt(np.where(gap2 > TANGENCY_TOLERANCE, h2, 0.0))
+
+
+def intersect(first: Locus, second: Locus, name: str) -> Intersection:
+    """Both candidate positions of the point ``name`` on the two loci."""
+    if isinstance(first, Line) and isinstance(second, Circle):
+        first, second = second, first
+    if isinstance(first, Circle) and isinstance(second, Circle):
+        return _circle_circle(first, second, name)
+    if isinstance(first, Circle) and isinstance(second, Line):
+        return _circle_line(first, second, name)
+    assert isinstance(first, Line) and isinstance(second, Line)
+    return _line_line(first, second, name)
+
+
+def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
+    """RRR: d = |C1C2|, a = (r1^2 - r2^2 + d^2) / 2d along C1C2, h^2 = r1^2 - a^2 across."""
+    d_vec = c2.center.p - c1.center.p
+    d = np.sqrt(dot(d_vec, d_vec))
+    safe_d = np.where(d > 0.0, d, 1.0)
+    u = d_vec / safe_d[:, None]
+    a = (c1.radius**2 - c2.radius**2 + d**2) / (2.0 * safe_d)
+    h2 = c1.radius**2 - a**2
+    gap2 = np.where(d > 0.0, h2 / c1.radius**2, -1.0)
+    first = int(np.argmax(gap2 < -TANGENCY_TOLERANCE)) if np.any(gap2 < -TANGENCY_TOLERANCE) else 0
+    dk, total, diff = float(d[first]), c1.radius + c2.radius, abs(c1.radius - c2.radius)
+    pair = f"|{c1.center_name}{c2.center_name}|"
+    lengths = (f"|{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.6g} + "
+               f"{c2.radius:.6g} = {total:.6g} m")
+    if dk > total:
+        message = [f"{pair} = {dk:.6g} m > {lengths}"]
+    else:
+        message = [f"{pair} = {dk:.6g} m < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| "
+                   f"= {diff:.6g} m"]
+    return Intersection(c1.center.p + scale(a, u), perp(u), _root(gap2, h2), gap2, message)
+
+
+def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
+    """RRP: X = Q + t w with |X - C| = r: t = -b +/- sqrt(b^2 - c), b = w.(Q - C)."""
+    q_c = line.through.p - c.center.p
+    b = dot(line.direction, q_c)
+    h2 = b**2 - (dot(q_c, q_c) - c.radius**2)
+    gap2 = h2 / c.radius**2
+    k = int(np.argmin(gap2))
+    distance = abs(float(cross(line.direction[k], q_c[k])))
+    message = [f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
+               f"{distance:.6g} m > |{c.center_name}{name}| = {c.radius:.6g} m"]
+    base = line.through.p - scale(b, line.direction)
+    return Intersection(base, line.direction, _root(gap2, h2), gap2, message)
+
+
+def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
+    """A pin in two slots: X = Q1 + t w1 with w2 x (X - Q2) = 0."""
+    denominator = cross(l2.direction, l1.direction)
+    parallel = np.abs(denominator) <= 1e-12
+    t = cross(l2.direction, l2.through.p - l1.through.p) / np.where(parallel, 1.0, denominator)
+    gap2 = np.where(parallel, -1.0, 0.0)
+    message = [f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"]
+    base = l1.through.p + scale(t, l1.direction)
+    return Intersection(base, l1.direction, np.zeros_like(t), gap2, message)
+
+
+def drawn_sign(first: Locus, second: Locus, X0: Array, base0: Array, offset0: Array) -> float:
+    """The branch of the drawn pose: which side of the base the drawn point lies on (+1 or -1)."""
+    del first, second
+    side = float(dot(X0 - base0, offset0))
+    return 1.0 if side >= 0.0 else -1.0
+
+
+def _constraint_row(locus: Locus, X: Array) -> Array:
+    """Gradient of the constraint: (X - C) for a circle, the slot normal n = k x w for a line."""
+    return X - locus.center.p if isinstance(locus, Circle) else perp(locus.direction)
+
+
+def _velocity_rhs(locus: Locus, X: Array) -> Array:
+    """Circle: (X-C).v_X = (X-C).v_C.   Line: n.v_X = n.v_Q + omega w.(X - Q)."""
+    if isinstance(locus, Circle):
+        assert locus.center.v is not None
+        return dot(X - locus.center.p, locus.center.v)
+    assert locus.through.v is not None and locus.omega is not None
+    n, w = perp(locus.direction), locus.direction
+    return dot(n, locus.through.v) + locus.omega * dot(w, X - locus.through.p)
+
+
+def _acceleration_rhs(locus: Locus, X: Array, v_X: Array) -> Array:
+    """Circle: (X-C).a_X = (X-C).a_C - |v_X - v_C|^2.
+    Line: n.a_X = n.a_Q + 2 omega w.(v_X - v_Q) + alpha w.(X - Q)."""
+    if isinstance(locus, Circle):
+        assert locus.center.v is not None and locus.center.a is not None
+        v_rel = v_X - locus.center.v
+        return dot(X - locus.center.p, locus.center.a) - dot(v_rel, v_rel)
+    Q = locus.through
+    assert Q.v is not None and Q.a is not None
+    assert locus.omega is not None and locus.alpha is not None
+    n, w = perp(locus.direction), locus.direction
+    return (dot(n, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v)
+            + locus.alpha * dot(w, X - Q.p))
+
+
+def solve_2x2(row1: Array, row2: Array, rhs1: Array, rhs2: Array) -> Array:
+    """Cramer's rule for [row1; row2] x = [rhs1; rhs2]: x = (|b r2|, |r1 b|) / |r1 r2|."""
+    det = cross(row1, row2)
+    safe = np.where(det != 0.0, det, np.inf)
+    return np.stack(((rhs1 * row2[:, 1] - rhs2 * row1[:, 1]) / safe,
+                     (row1[:, 0] * rhs2 - row2[:, 0] * rhs1) / safe), axis=-1)
+
+
+def relative_determinant(first: Locus, second: Locus, X: Array) -> Array:
+    """|det G| / (|g1| |g2|): the sine of the angle between the constraint gradients (0: dead centre)."""
+    g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
+    norms = np.sqrt(dot(g1, g1) * dot(g2, g2))
+    return np.abs(cross(g1, g2)) / np.where(norms > 0.0, norms, 1.0)
+
+
+def point_motion(first: Locus, second: Locus, X: Array, order: int) -> PointMotion:
+    """Velocity and acceleration of X from the differentiated constraints (2x2, Cramer)."""
+    if order < 1:
+        return PointMotion(X)
+    g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
+    v = solve_2x2(g1, g2, _velocity_rhs(first, X), _velocity_rhs(second, X))
+    if order < 2:
+        return PointMotion(X, v)
+    a = solve_2x2(g1, g2, _acceleration_rhs(first, X, v), _acceleration_rhs(second, X, v))
+    return PointMotion(X, v, a)
+
+
+@dataclass(frozen=True)
+class LeverSolution:
+    """Angle and rates of a slotted lever; ``gap2`` = (|AP|^2 - e^2) / |AP|^2 (negative: none)."""
+
+    beta: Array
+    omega: Array | None
+    alpha: Array | None
+    gap2: Array
+    conditioning: Array
+
+
+def slotted_lever(pivot: PointMotion, pin: PointMotion, offset: float, sign: Array,
+                  order: int) -> LeverSolution:
+    """The direction beta of a slot through ``pin``, in a lever turning about ``pivot``.
+
+    The slot line keeps the signed offset e = u x (P - A) from the pivot, u = (cos beta,
+    sin beta). With r = P - A: beta = atan2(r) - atan2(e, sign sqrt(|r|^2 - e^2)).
+    Differentiating u x r = e once and twice:
+    omega = (u x v_rel) / (u.r),  alpha = (u x a_rel - 2 omega u.v_rel - omega^2 e) / (u.r).
+    """
+    r = pin.p - pivot.p
+    r2 = dot(r, r)
+    gap2 = (r2 - offset**2) / np.where(r2 > 0.0, r2, 1.0)
+    along = sign * np.sqrt(np.where(gap2 > TANGENCY_TOLERANCE, r2 - offset**2, 0.0))
+    beta = np.arctan2(r[:, 1], r[:, 0]) - np.arctan2(offset, along)
+    u = np.stack((np.cos(beta), np.sin(beta)), axis=-1)
+    u_r = dot(u, r)
+    safe = np.where(u_r != 0.0, u_r, np.inf)
+    omega = alpha = None
+    if order >= 1:
+        assert pin.v is not None and pivot.v is not None
+        v_rel = pin.v - pivot.v
+        omega = cross(u, v_rel) / safe
+        if order >= 2:
+            assert pin.a is not None and pivot.a is not None
+            a_rel = pin.a - pivot.a
+            alpha = (cross(u, a_rel) - 2.0 * omega * dot(u, v_rel) - omega**2 * offset) / safe
+    conditioning = np.abs(u_r) / np.sqrt(np.where(r2 > 0.0, r2, 1.0))
+    return LeverSolution(beta, omega, alpha, gap2, conditioning)

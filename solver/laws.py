@@ -1,0 +1,394 @@
+"""Time laws: the expressions in ``t`` that drive a crank angle or a moving point's arc length.
+
+A scene may give a driver's motion as a string such as ``6*pi*t^2``. This module turns that
+untrusted text into a sympy expression with its exact first and second derivatives, and into fast
+numpy closures for value, rate and rate_dot. Nothing is ever evaluated as Python: a character-level
+scanner rejects bad characters, names and shapes first (so hostile input costs microseconds), then
+Python's ``ast`` parses the text and a strict whitelist walk builds the sympy objects directly.
+Every rejection is an ``InvalidExpression`` pointing at the offending character of the original.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+import math
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, NoReturn, overload
+
+import numpy as np
+import numpy.typing as npt
+import sympy
+
+from solver.errors import InvalidExpression
+
+MAX_LENGTH = 500  # characters of the law text
+MAX_DEPTH = 50  # nesting of parentheses and of the syntax tree
+MAX_LITERAL = 1e12  # magnitude of a number written in the law
+MAX_EXPONENT = 100  # magnitude of a constant exponent
+MAX_CONSTANT_DIGITS = 100  # a t-free part or constant power may not exceed 1e100
+
+T = sympy.Symbol("t")
+CONSTANTS: dict[str, sympy.Expr] = {"t": T, "pi": sympy.pi, "e": sympy.E}
+FUNCTIONS: dict[str, Any] = {
+    "sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan, "asin": sympy.asin,
+    "acos": sympy.acos, "atan": sympy.atan, "sinh": sympy.sinh, "cosh": sympy.cosh,
+    "tanh": sympy.tanh, "exp": sympy.exp, "log": sympy.log, "sqrt": sympy.sqrt,
+}  # fmt: skip
+_ALLOWED = "allowed: t, pi, e and the functions " + ", ".join(FUNCTIONS)
+# The numpy ufunc for every sympy function that a law or its derivatives can contain.
+_UFUNCS: dict[Any, Callable[[Any], Any]] = {
+    sympy.sin: np.sin, sympy.cos: np.cos, sympy.tan: np.tan, sympy.asin: np.arcsin,
+    sympy.acos: np.arccos, sympy.atan: np.arctan, sympy.sinh: np.sinh, sympy.cosh: np.cosh,
+    sympy.tanh: np.tanh, sympy.exp: np.exp, sympy.log: np.log,
+}  # fmt: skip
+
+_TOKEN = re.compile(
+    r"(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
+    r"|(?P<op>\*\*|[-+*/^])|(?P<open>\()|(?P<close>\))|(?P<space>[ \t]+)",
+    re.ASCII,
+)
+_CHAR_HINTS = {
+    ",": "a function takes exactly one argument", "=": "a law is an expression, not an equation",
+    "<": "comparisons are not allowed", ">": "comparisons are not allowed",
+    "'": "text in quotes is not allowed", '"': "text in quotes is not allowed",
+    "[": "use round parentheses ( )", "]": "use round parentheses ( )",
+    ".": "a point may only appear inside a number such as 0.5", "\n": "write the law on one line",
+}  # fmt: skip
+_OPERAND_END = {"num", "name", "close"}
+_OPERAND_START = {"num", "name", "func", "open"}
+
+_Fn = Callable[[Any], Any]  # float64 scalar or array in, the same out
+
+
+def _error(text: str, pos: int, what: str, detail: str = "") -> InvalidExpression:
+    """The error for ``text`` with message '<what> at character <pos><detail>'."""
+    return InvalidExpression(f"{what} at character {pos}{detail}", pos, text)
+
+
+def _needs_parentheses(name: str) -> str:
+    """Message detail for a function name that is not followed by '('."""
+    return f": {name} needs its argument in parentheses, e.g. {name}(t)"
+
+
+def _scan(text: str) -> None:
+    """Check characters, names, parentheses and juxtaposition before Python's parser runs.
+
+    Python's own messages ("invalid decimal literal") would puzzle a student, and its parser
+    should never see a character outside the expression language.
+    """
+    opened: list[int] = []
+    prev_kind, prev_text, pos = "", "", 0
+    while pos < len(text):
+        match = _TOKEN.match(text, pos)
+        if match is None:
+            hint = _CHAR_HINTS.get(text[pos], _ALLOWED)
+            raise _error(text, pos, f"{text[pos]!r} is not allowed", f"; {hint}")
+        start, pos, kind, tok = pos, match.end(), str(match.lastgroup), match.group()
+        if kind == "space":
+            continue
+        if kind == "name" and tok in FUNCTIONS:
+            kind = "func"
+        elif kind == "name" and tok not in CONSTANTS:
+            raise _error(text, start, f"unknown name {tok!r}", f"; {_ALLOWED}")
+        if prev_kind == "func" and kind != "open":
+            raise _error(text, start, f"unexpected {tok!r}", _needs_parentheses(prev_text))
+        if prev_kind == "num" and kind == "num":
+            raise _error(text, start, f"missing operator between {prev_text} and {tok}")
+        if prev_kind in _OPERAND_END and kind in _OPERAND_START:
+            left = "(...)" if prev_kind == "close" else prev_text
+            right = {"open": "(...)", "func": f"{tok}(...)"}.get(kind, tok)
+            detail = f": implicit multiplication is not allowed: write {left}*{right}"
+            raise _error(text, start, "missing '*'", detail)
+        if kind == "open":
+            opened.append(start)
+            if len(opened) > MAX_DEPTH:
+                raise _error(text, start, f"more than {MAX_DEPTH} nested parentheses")
+        elif kind == "close":
+            if prev_kind == "open":
+                raise _error(text, start, "empty parentheses")
+            if not opened:
+                raise _error(text, start, "unbalanced parenthesis", ": this ')' has no '('")
+            opened.pop()
+        prev_kind, prev_text = kind, tok
+    if prev_kind == "func":
+        raise _error(text, len(text), "the law ends", _needs_parentheses(prev_text))
+    if opened:
+        raise _error(text, opened[-1], "unbalanced parenthesis", ": this '(' is never closed")
+
+
+class _Builder:
+    """Walks a Python AST under a strict whitelist and builds the sympy expression."""
+
+    def __init__(self, text: str, origin: list[int]) -> None:
+        self.text, self.origin = text, origin  # origin[i]: original index of rewritten char i
+        self.values: dict[sympy.Expr, float] = {}  # validated value of every t-free part
+
+    def position(self, node: ast.AST) -> int:
+        """Original index of the first character of ``node``."""
+        return self.origin[getattr(node, "col_offset", 0)]
+
+    def fail(self, message: str, node: ast.AST) -> InvalidExpression:
+        """An error located at the first character of ``node``."""
+        return _error(self.text, self.position(node), message)
+
+    def source(self, node: ast.AST) -> str:
+        """The original text of ``node``, for messages."""
+        end = self.origin[max(getattr(node, "end_col_offset", 1) - 1, 0)] + 1
+        return self.text[self.position(node) : end]
+
+    def checked(self, expr: sympy.Expr, node: ast.AST) -> sympy.Expr:
+        """Return ``expr``; a t-free one must be a finite real of moderate size (it is recorded)."""
+        if expr.free_symbols or expr in self.values:
+            return expr
+        approximation = expr.evalf(20)
+        value = complex(approximation)  # zoo and nan become nan here
+        if math.isnan(value.real) or math.isnan(value.imag):
+            raise self.fail(f"{self.source(node)} is not defined", node)
+        if math.isinf(value.real) or math.isinf(value.imag):
+            raise self.fail(f"{self.source(node)} is too large", node)
+        if abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
+            raise self.fail(f"{self.source(node)} is not a real number", node)
+        # Beyond 1e100 the exact integers sympy keeps grow costly; below 1e-308 a float is 0.
+        if abs(value.real) > 10.0**MAX_CONSTANT_DIGITS or (value.real == 0) != (approximation == 0):
+            raise self.fail(f"{self.source(node)} is too large or too close to zero", node)
+        self.values[expr] = value.real
+        return expr
+
+    def build(self, node: ast.AST, depth: int) -> sympy.Expr:
+        """Translate one whitelisted node (recursively) into sympy."""
+        if depth > MAX_DEPTH:
+            raise self.fail(f"the expression is nested too deeply (at most {MAX_DEPTH})", node)
+        result: sympy.Expr
+        if (
+            isinstance(node, ast.Constant)
+            and isinstance(node.value, int | float)
+            and not isinstance(node.value, bool)
+        ):
+            if not math.isfinite(node.value) or abs(node.value) > MAX_LITERAL:
+                raise self.fail(f"the number {self.source(node)} is larger than 1e12", node)
+            is_int = isinstance(node.value, int)
+            result = sympy.Integer(node.value) if is_int else sympy.Float(node.value)
+        elif isinstance(node, ast.Name) and node.id in CONSTANTS:
+            result = CONSTANTS[node.id]
+        elif isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.UAdd | ast.USub):
+            operand = self.build(node.operand, depth + 1)
+            result = -operand if isinstance(node.op, ast.USub) else operand
+        elif isinstance(node, ast.BinOp):
+            result = self.binop(node, depth)
+        elif isinstance(node, ast.Call):
+            result = self.call(node, depth)
+        else:
+            raise self.fail(f"{self.source(node)!r} is not allowed in a law; {_ALLOWED}", node)
+        return self.checked(result, node)
+
+    def binop(self, node: ast.BinOp, depth: int) -> sympy.Expr:
+        """Arithmetic; powers and divisions are checked before sympy computes anything."""
+        left = self.build(node.left, depth + 1)
+        right = self.build(node.right, depth + 1)
+        lv, rv = self.values.get(left), self.values.get(right)
+        if isinstance(node.op, ast.Add):
+            return self.checked(sympy.Add(left, right), node)
+        if isinstance(node.op, ast.Sub):
+            return self.checked(sympy.Add(left, -right), node)
+        if isinstance(node.op, ast.Mult):
+            return self.checked(sympy.Mul(left, right), node)
+        if isinstance(node.op, ast.Div):
+            if rv == 0:
+                raise self.fail("division by zero", node.right)
+            return self.checked(sympy.Mul(left, sympy.Pow(right, -1)), node)
+        if isinstance(node.op, ast.Pow):
+            # Guard the size of the result so that 9**9**9 is never computed.
+            if rv is not None and abs(rv) > MAX_EXPONENT:
+                msg = (
+                    f"the exponent {self.source(node.right)} is too large (at most {MAX_EXPONENT})"
+                )
+                raise self.fail(msg, node.right)
+            if lv is not None and lv <= 0 and rv is None:
+                msg = "a power with t in its exponent needs a positive base"
+                raise self.fail(msg, node.left)
+            if lv == 0 and rv is not None and rv < 0:
+                raise self.fail("division by zero: 0 to a negative power", node)
+            if lv and rv is not None and abs(rv * math.log10(abs(lv))) > MAX_CONSTANT_DIGITS:
+                raise self.fail(f"{self.source(node)} is too large or too close to zero", node)
+            return self.checked(sympy.Pow(left, right), node)
+        # Only '//' gets this far (the scanner refuses % @ & | ~ < >); point at it.
+        after = self.text[self.origin[node.left.end_col_offset or 0] :]
+        pos = len(self.text) - len(after.lstrip(" \t)"))
+        message = f"the operator {self.text[pos : pos + 2]!r} is not allowed"
+        raise _error(self.text, pos, message, "; use + - * / ^ (** also works for powers)")
+
+    def call(self, node: ast.Call, depth: int) -> sympy.Expr:
+        """One of the twelve functions, called by bare name with exactly one argument."""
+        if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
+            raise self.fail(f"only these functions can be called: {', '.join(FUNCTIONS)}", node)
+        name = node.func.id
+        if node.keywords or len(node.args) != 1 or isinstance(node.args[0], ast.Starred):
+            raise self.fail(f"{name}() takes exactly one argument, e.g. {name}(t)", node)
+        return self.checked(FUNCTIONS[name](self.build(node.args[0], depth + 1)), node)
+
+
+def _to_sympy(text: str) -> sympy.Expr:
+    """Validate ``text`` and build its sympy expression (no derivatives yet)."""
+    if len(text) > MAX_LENGTH:
+        msg = f"the law is too long: {len(text)} characters, at most {MAX_LENGTH}"
+        raise InvalidExpression(msg, MAX_LENGTH, text)
+    if not text.strip():
+        raise InvalidExpression("the law is empty; write an expression in t, e.g. 2*t", 0, text)
+    _scan(text)
+    # '^' means power, but Python reads it as xor with lower precedence than '*': rewrite it
+    # to '**' and remember where every rewritten character came from. Leading blanks are
+    # dropped because Python's parser calls them an indent.
+    rewritten: list[str] = []
+    origin: list[int] = []
+    for index, char in enumerate(text):
+        if char in " \t" and not rewritten:
+            continue
+        rewritten.append("**" if char == "^" else char)
+        origin.extend([index] * len(rewritten[-1]))
+    origin.append(len(text))
+    source = "".join(rewritten)
+    try:
+        tree = ast.parse(source, mode="eval")
+    except SyntaxError as exc:
+        pos = origin[exc.offset - 1] if exc.offset and exc.offset <= len(source) else len(text)
+        where = "the law ends too early" if pos >= len(text) else f"unexpected {text[pos]!r}"
+        raise _error(text, pos, where) from None
+    except (RecursionError, MemoryError, ValueError):
+        raise InvalidExpression("the law is too complicated to read", 0, text) from None
+    expr = _Builder(text, origin).build(tree.body, 0)
+    if expr.has(sympy.zoo, sympy.nan, sympy.oo, sympy.I):
+        raise InvalidExpression("the law is not a real, finite expression", 0, text)
+    return expr
+
+
+def _identity(t: Any) -> Any:
+    """The closure for ``t`` itself."""
+    return t
+
+
+def _apply(ufunc: Callable[[Any], Any], inner: _Fn) -> _Fn:
+    """The closure ``t -> ufunc(inner(t))``."""
+    return lambda t: ufunc(inner(t))
+
+
+def _compile(expr: sympy.Expr, table: dict[sympy.Expr, _Fn]) -> _Fn:
+    """Turn a sympy tree into a tree of numpy closures; ``table`` records each non-constant node."""
+    if not expr.free_symbols:
+        value = complex(expr.evalf(20))
+        if not math.isfinite(abs(value)) or abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
+            raise InvalidExpression(f"{expr} in the law or its derivatives is not a real number", 0)
+        constant = np.float64(value.real)
+        return lambda t: constant
+    fn: _Fn
+    if expr == T:
+        fn = _identity
+    elif isinstance(expr, sympy.Add | sympy.Mul):
+        # Fold the t-free factors or terms (6*pi in 6*pi*t**2) into one constant.
+        constants = [a for a in expr.args if not a.free_symbols]
+        parts = [_compile(a, table) for a in expr.args if a.free_symbols]
+        if constants:
+            parts.insert(0, _compile(expr.func(*constants), table))
+        combine = np.add if isinstance(expr, sympy.Add) else np.multiply
+        first, rest = parts[0], parts[1:]
+
+        def fn(t: Any) -> Any:
+            result = first(t)
+            for part in rest:
+                result = combine(result, part(t))
+            return result
+    elif isinstance(expr, sympy.Pow):
+        base, exponent = _compile(expr.base, table), expr.exp
+        if exponent == 2:
+            fn = _apply(np.square, base)
+        elif exponent == sympy.Rational(1, 2):
+            fn = _apply(np.sqrt, base)
+        elif exponent == -1:
+            fn = _apply(np.reciprocal, base)
+        else:
+            power = _compile(exponent, table)
+            fn = lambda t: np.power(base(t), power(t))  # noqa: E731
+    elif expr.func in _UFUNCS and len(expr.args) == 1:
+        fn = _apply(_UFUNCS[expr.func], _compile(expr.args[0], table))
+    else:  # unreachable for the grammar above; kept so a sympy rewrite cannot slip through
+        raise InvalidExpression(f"cannot evaluate {expr} numerically", 0)
+    table[expr] = fn
+    return fn
+
+
+@dataclass(frozen=True)
+class TimeLaw:
+    """A parsed time law with its exact derivatives and compiled numeric evaluators."""
+
+    text: str
+    expression: sympy.Expr
+    first_derivative: sympy.Expr
+    second_derivative: sympy.Expr
+    _functions: tuple[_Fn, _Fn, _Fn] = field(repr=False, compare=False)
+    _nodes: dict[sympy.Expr, _Fn] = field(repr=False, compare=False)
+
+    @overload
+    def evaluate(self, t: float) -> tuple[float, float, float]: ...
+    @overload
+    def evaluate(
+        self, t: npt.NDArray[np.float64]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+    def evaluate(self, t: Any) -> Any:
+        """Value, rate and rate_dot at ``t`` (floats for a number, arrays shaped like an array).
+
+        Raises ``InvalidExpression`` naming the time when any of them is undefined or infinite.
+        """
+        scalar = not isinstance(t, np.ndarray)
+        x = np.float64(t) if scalar else np.asarray(t, dtype=np.float64)
+        with np.errstate(all="ignore"):
+            results = [fn(x) for fn in self._functions]
+        if scalar:
+            if all(math.isfinite(r) for r in results):
+                return float(results[0]), float(results[1]), float(results[2])
+        else:
+            arrays = tuple(np.broadcast_to(r, x.shape).astype(np.float64) for r in results)
+            if all(np.isfinite(a).all() for a in arrays):
+                return arrays
+        self._raise_undefined(x, results)
+
+    def _raise_undefined(self, x: Any, results: list[Any]) -> NoReturn:
+        """Find the first bad time and the innermost subexpression to blame, and raise."""
+        bad = [~np.isfinite(np.broadcast_to(r, np.shape(x))) for r in results]
+        order = next(i for i, b in enumerate(bad) if b.any())
+        t0 = float(np.asarray(x).flat[int(np.argmax(bad[order]))])
+        if not math.isfinite(t0):
+            raise InvalidExpression(f"the time t = {t0} is not a finite number", 0, self.text)
+        expr = culprit = (self.expression, self.first_derivative, self.second_derivative)[order]
+        with np.errstate(all="ignore"):  # descend while some argument is itself non-finite
+            while bad_args := [
+                a
+                for a in culprit.args
+                if a in self._nodes and not np.isfinite(self._nodes[a](np.float64(t0)))
+            ]:
+                culprit = bad_args[0]
+            infinite = np.isinf(self._nodes[culprit](np.float64(t0)))
+        message = f"{sympy.sstr(culprit)} is not defined at t = {t0:.6g} s"
+        if infinite:
+            message += " (its value is infinite or too large)"
+        if order:
+            which = ("first", "second")[order - 1]
+            message += f" (in the {which} derivative of {self.text}: {sympy.sstr(expr)})"
+        raise InvalidExpression(message, 0, self.text)
+
+
+@functools.lru_cache(maxsize=256)
+def parse_time_law(text: str) -> TimeLaw:
+    """Parse and check a time law, differentiate it exactly and compile it for numpy."""
+    if not isinstance(text, str):
+        raise InvalidExpression("a time law must be a string", 0, str(text))
+    expression = _to_sympy(text)
+    first = sympy.diff(expression, T)
+    second = sympy.diff(first, T)
+    nodes: dict[sympy.Expr, _Fn] = {}
+    try:
+        functions = (_compile(expression, nodes), _compile(first, nodes), _compile(second, nodes))
+    except InvalidExpression as exc:  # _compile does not know the text
+        raise InvalidExpression(exc.message, exc.position, text) from None
+    return TimeLaw(text, expression, first, second, functions, nodes)

@@ -1,0 +1,111 @@
+"""Planar vectors and the motion of points and rigid links, vectorised over samples.
+
+Every array has a leading sample axis: points are ``(N, 2)``, link angles and rates ``(N,)``. A
+quantity that was not asked for is ``None``: the solver computes only the requested orders
+(0 position, 1 velocity, 2 acceleration).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+Array = np.ndarray
+
+
+def cross(a: Array, b: Array) -> Array:
+    """z-component of a x b for planar vectors (the 2-by-2 determinant |a b|)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def dot(a: Array, b: Array) -> Array:
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def perp(a: Array) -> Array:
+    """k x a: the vector a turned 90 degrees counter-clockwise."""
+    return np.stack((-a[..., 1], a[..., 0]), axis=-1)
+
+
+def rotate(vector: Array, angle: Array) -> Array:
+    """R(angle) vector for each sample: ``vector`` is (2,) or (N, 2), ``angle`` (N,)."""
+    c, s = np.cos(angle), np.sin(angle)
+    x, y = vector[..., 0], vector[..., 1]
+    return np.stack((c * x - s * y, s * x + c * y), axis=-1)
+
+
+def scale(factor: Array, vector: Array) -> Array:
+    """factor[i] * vector[i] for each sample."""
+    return factor[..., None] * vector
+
+
+@dataclass(frozen=True)
+class PointMotion:
+    """Position, velocity and acceleration of a point; orders not computed are ``None``."""
+
+    p: Array
+    v: Array | None = None
+    a: Array | None = None
+
+
+@dataclass(frozen=True)
+class LinkMotion:
+    """Motion of a rigid link: an anchor point's motion and the rotation from the drawn pose.
+
+    ``theta`` is the rotation of the link from its drawn pose (not its absolute angle), so a
+    point drawn at ``X0`` is at ``anchor.p + R(theta) (X0 - anchor0)``.
+    """
+
+    anchor0: Array
+    anchor: PointMotion
+    theta: Array
+    omega: Array | None = None
+    alpha: Array | None = None
+
+    def point(self, drawn: Array) -> PointMotion:
+        """Motion of the link's point drawn at ``drawn``: rigid-body velocity and acceleration."""
+        r = rotate(np.asarray(drawn, dtype=float) - self.anchor0, self.theta)
+        p = self.anchor.p + r
+        v = a = None
+        if self.omega is not None and self.anchor.v is not None:
+            v = rigid_body_velocity(self.anchor.v, self.omega, r)
+        if self.alpha is not None and self.anchor.a is not None and self.omega is not None:
+            a = rigid_body_acceleration(self.anchor.a, self.omega, self.alpha, r)
+        return PointMotion(p, v, a)
+
+
+def rigid_body_velocity(v_A: Array, omega: Array, r_AB: Array) -> Array:
+    """v_B = v_A + omega x r_AB."""
+    return v_A + scale(omega, perp(r_AB))
+
+
+def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array) -> Array:
+    """a_B = a_A + alpha x r_AB - omega^2 r_AB (tangential plus normal term)."""
+    return a_A + scale(alpha, perp(r_AB)) - scale(omega**2, r_AB)
+
+
+def link_from_two_points(P0: Array, Q0: Array, P: PointMotion, Q: PointMotion) -> LinkMotion:
+    """The motion of a link from two of its points P, Q (drawn at P0, Q0).
+
+    theta = angle(PQ) - angle(P0Q0); omega = (r x v_rel) / |r|^2; alpha = (r x a_rel) / |r|^2,
+    from v_rel = omega x r and a_rel = alpha x r - omega^2 r with r = Q - P.
+    """
+    r = Q.p - P.p
+    r0 = Q0 - P0
+    theta = np.arctan2(r[:, 1], r[:, 0]) - np.arctan2(r0[1], r0[0])
+    r2 = dot(r, r)
+    omega = alpha = None
+    if P.v is not None and Q.v is not None:
+        omega = cross(r, Q.v - P.v) / r2
+    if P.a is not None and Q.a is not None:
+        alpha = cross(r, Q.a - P.a) / r2
+    return LinkMotion(P0, P, theta, omega, alpha)
+
+
+def fixed_link(anchor0: Array, samples: int) -> LinkMotion:
+    """The ground: at rest in its drawn pose."""
+    zeros2 = np.zeros((samples, 2))
+    zeros = np.zeros(samples)
+    anchor = PointMotion(np.broadcast_to(anchor0, (samples, 2)).copy(), zeros2, zeros2)
+    return LinkMotion(anchor0, anchor, zeros, zeros, zeros)

@@ -1,0 +1,151 @@
+"""A sweep of the first driver through one revolution, or through its feasible range.
+
+The whole sweep is one vectorised run of the plan with branch continuation. Where the linkage
+cannot turn fully, the feasible interval around the starting angle is found on a probe grid,
+its ends (the limit positions) are refined by bisection, and the samples are spread strictly
+inside it (at a limit position itself the velocity equations are singular). Samples that land
+exactly on a change point (a parallelogram's crossing: the velocity equations singular, the
+motion smooth) take their rates from their two neighbours and are listed in
+``singular_samples``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.analysis import drawn_angle, driver_input, normalise_quantities, required_order
+from solver.assembly import DriverInput, Motion, assemble, require_feasible
+from solver.errors import InvalidScene, LimitExceeded
+from solver.rigid import Array
+from solver.scene import LinkageScene
+from solver.topology import Plan, build_plan
+
+MAX_SAMPLES = 100_000
+PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
+BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
+SINGULAR_CONDITIONING = 1e-12  # sine of the angle between a group's constraint gradients
+SWEEP_QUANTITIES = frozenset({"position", "velocity", "acceleration"})
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle."""
+
+    scene: LinkageScene
+    driver: str
+    driver_angle: Array
+    motion: Motion
+    feasible: bool
+    limits: tuple[float, ...]
+    singular_samples: Array
+    quantities: frozenset[str]
+
+
+class _Driven:
+    """Assembles the linkage with the first driver turned by given angles, the others held."""
+
+    def __init__(self, scene: LinkageScene, plan: Plan) -> None:
+        self.scene, self.plan = scene, plan
+        self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
+
+    def inputs(self, turns: Array) -> list[DriverInput]:
+        n = turns.size
+        first = self.given[0]
+        inputs = [DriverInput(turns, np.full(n, first[1]), np.full(n, first[2]))]
+        for turn, omega, alpha in self.given[1:]:
+            inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
+        return inputs
+
+    def run(self, turns: Array, order: int) -> Motion:
+        return assemble(self.scene, self.plan, self.inputs(turns), order, continuation=True)
+
+    def closes(self, turn: float) -> bool:
+        motion = assemble(self.scene, self.plan, self.inputs(np.array([turn])), 0)
+        return bool(motion.feasible[0])
+
+
+def _limit(driven: _Driven, inside: float, outside: float) -> float:
+    """Bisection for the limit position between a closing and a non-closing driver turn."""
+    for _ in range(BISECTION_STEPS):
+        middle = 0.5 * (inside + outside)
+        if driven.closes(middle):
+            inside = middle
+        else:
+            outside = middle
+    return inside
+
+
+def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
+    """None if the driver turns fully, else the (low, high) turns bounding the start's interval."""
+    step = 2.0 * math.pi / PROBE_SAMPLES
+    turns = start + direction * step * np.arange(PROBE_SAMPLES + 1)
+    motion = assemble(driven.scene, driven.plan, driven.inputs(turns), 0, continuation=True)
+    if np.all(motion.feasible):
+        return None
+    ahead = int(np.argmin(motion.feasible))
+    behind_turns = start - direction * step * np.arange(PROBE_SAMPLES + 1)
+    behind = assemble(driven.scene, driven.plan, driven.inputs(behind_turns), 0,
+                      continuation=True)
+    back = int(np.argmin(behind.feasible))
+    end = _limit(driven, turns[ahead - 1], turns[ahead])
+    begin = _limit(driven, behind_turns[back - 1], behind_turns[back])
+    return (min(begin, end), max(begin, end))
+
+
+def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
+    """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
+    n = motion.feasible.size
+    rates: list[Array | None] = []
+    for point in motion.points.values():
+        rates += [point.v, point.a]
+    for link in motion.links.values():
+        rates += [link.omega, link.alpha, link.anchor.v, link.anchor.a]
+    for k in singular:
+        before, after = (k - 1) % n, (k + 1) % n
+        if not cyclic:
+            before, after = max(k - 1, 0), min(k + 1, n - 1)
+        for values in rates:
+            if values is not None:
+                values[k] = 0.5 * (values[before] + values[after])
+
+
+def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = None) -> Sweep:
+    """Turn the first driver through a revolution (or its feasible range) from its start angle."""
+    if not scene.drivers:
+        raise InvalidScene("drivers: a sweep needs a driver")
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    wanted = normalise_quantities(["position"] if quantities is None else quantities)
+    if wanted - SWEEP_QUANTITIES:
+        raise InvalidScene(f"quantities: a sweep gives {', '.join(sorted(SWEEP_QUANTITIES))}")
+    plan = build_plan(scene)
+    driven = _Driven(scene, plan)
+    start, omega, _ = driven.given[0]
+    direction = -1.0 if omega < 0 else 1.0
+    if not driven.closes(start):
+        require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
+    span = _feasible_range(driven, start, direction)
+    if span is None:
+        turns = start + direction * 2.0 * math.pi * np.arange(samples) / samples
+        limits: tuple[float, ...] = ()
+    else:
+        low, high = span
+        turns = low + (high - low) * (np.arange(samples) + 0.5) / samples
+        if direction < 0:
+            turns = turns[::-1]
+        limits = span
+    order = required_order(wanted)
+    motion = driven.run(turns, order)
+    require_feasible(motion, "during the sweep")
+    singular = np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING) if order else \
+        np.array([], dtype=int)
+    if singular.size:
+        _smooth_singular_samples(motion, singular, cyclic=span is None)
+    drawn = drawn_angle(scene, scene.drivers[0].link) if len(
+        scene.links[scene.drivers[0].link].points) >= 2 else 0.0
+    return Sweep(scene, scene.drivers[0].link, drawn + turns, motion, span is None,
+                 tuple(drawn + limit for limit in limits), singular, wanted)

@@ -1,0 +1,103 @@
+// api.js: the only place that talks to the server.
+//
+// Every call goes to the same origin under /api/v1. Failures are turned into one error type,
+// ApiError {code, detail, position, status, title}, whatever went wrong: an RFC 9457
+// problem+json answer from the server, a plain 404 from an endpoint that does not exist yet,
+// or the network. The views only ever show `detail` next to the field or panel concerned, so
+// they never need to know which of those it was.
+
+const BASE = '/api/v1';
+
+export class ApiError extends Error {
+  constructor({ code, detail, position = null, status = 0, title = '' }) {
+    super(detail);
+    this.name = 'ApiError';
+    this.code = code;
+    this.detail = detail;
+    this.position = position;
+    this.status = status;
+    this.title = title;
+  }
+
+  /** True when the endpoint is simply not there (the server is still being built). */
+  get missing() {
+    return this.code === 'not_implemented';
+  }
+}
+
+async function problemFrom(response, path) {
+  const type = response.headers.get('content-type') || '';
+  let body = null;
+  if (type.includes('json')) {
+    try {
+      body = await response.json();
+    } catch {
+      body = null;
+    }
+  }
+  if (body && typeof body === 'object' && (body.code || body.detail)) {
+    // FastAPI's own validation errors may carry `detail` as a list of {loc, msg}; flatten it
+    // so a student reads one sentence instead of a JSON dump.
+    let detail = body.detail;
+    if (Array.isArray(detail)) {
+      detail = detail.map((d) => (d.loc ? `${d.loc.join('.')}: ${d.msg}` : d.msg || String(d))).join('; ');
+    }
+    return new ApiError({
+      code: body.code || (response.status === 404 ? 'not_implemented' : 'http_' + response.status),
+      detail: String(detail || body.title || response.statusText),
+      position: body.position ?? null,
+      status: response.status,
+      title: body.title || '',
+    });
+  }
+  if (response.status === 404 || response.status === 405) {
+    return new ApiError({
+      code: 'not_implemented',
+      detail: `The server does not offer ${path} yet (HTTP ${response.status}).`,
+      status: response.status,
+    });
+  }
+  return new ApiError({
+    code: 'http_' + response.status,
+    detail: `The server answered HTTP ${response.status} ${response.statusText} for ${path}.`,
+    status: response.status,
+  });
+}
+
+async function call(method, path, body) {
+  let response;
+  try {
+    response = await fetch(BASE + path, {
+      method,
+      headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+  } catch (err) {
+    throw new ApiError({ code: 'network', detail: `The server cannot be reached (${err.message}).` });
+  }
+  if (!response.ok) throw await problemFrom(response, path);
+  return response.json();
+}
+
+export const getPresets = () => call('GET', '/presets');
+export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
+export const analyze = (scene, quantities) =>
+  call('POST', '/analyze', quantities ? { scene, quantities } : { scene });
+export const sweep = (scene, samples, quantities, timeRange) =>
+  call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
+export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
+
+/** Static example scenes shipped with the page (not part of the API). */
+export async function getExample(file) {
+  const response = await fetch(`examples/${encodeURIComponent(file)}`);
+  if (!response.ok) {
+    throw new ApiError({ code: 'http_' + response.status, detail: `Example ${file} is missing.`, status: response.status });
+  }
+  return response.json();
+}
+
+export async function getExampleIndex() {
+  const response = await fetch('examples/index.json');
+  if (!response.ok) return { examples: [] };
+  return response.json();
+}

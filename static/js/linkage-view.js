@@ -1,0 +1,582 @@
+// linkage-view.js: the #linkage SVG of a planar linkage.
+//
+// Built once per geometry (rebuild) and then only moved (draw): every frame of the animation
+// sets a few attributes on existing elements, which is what keeps the page at 60 fps. The view
+// draws what it is given (a frame of positions, optionally velocities and accelerations, and the
+// server's analysis of the analysed instant); it never computes motion itself.
+
+import { svgEl, setAttrs, clear, arrowMarker, hatchPattern } from './svg.js';
+import { COLOURS } from './theme.js';
+import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawnAngle } from './scene.js';
+import { extent, maxNorm } from './track.js';
+import { show } from './units.js';
+
+const WIDTH = 1000;
+const MARGIN = 70;
+const BLOCK = [30, 18]; // slider block, px along and across the slot
+
+export class LinkageView {
+  /**
+   * @param {SVGSVGElement} svg
+   * @param {{onDrag?: (linkAngle: number) => void, onDragEnd?: () => void}} callbacks
+   */
+  constructor(svg, callbacks = {}) {
+    this.svg = svg;
+    this.callbacks = callbacks;
+    this.options = { showVelocity: true, showAcceleration: false, showPoles: true, trace: null, units: 'si' };
+    this.scene = null;
+    this.track = null;
+    this.analysis = null;
+    this.lastFrame = null;
+    this.dragging = false;
+    this.installPointer();
+  }
+
+  setScene(scene, track) {
+    this.scene = scene;
+    this.track = track;
+    this.analysis = null;
+    this.rebuild();
+  }
+
+  setOptions(options) {
+    this.options = { ...this.options, ...options };
+    if (this.scene) {
+      this.rebuild();
+      if (this.lastFrame) this.draw(this.lastFrame);
+    }
+  }
+
+  /** The server's answer for the analysed instant (poles, slider parts); null while playing. */
+  setAnalysis(analysis) {
+    this.analysis = analysis;
+    if (this.scene) {
+      this.rebuildVectors();
+      if (this.lastFrame) this.draw(this.lastFrame);
+    }
+  }
+
+  // ---- geometry of the picture -------------------------------------------------------------
+
+  computeBox() {
+    const [x0, y0, x1, y1] = extent(this.track);
+    const dx = Math.max(x1 - x0, 1e-6);
+    const dy = Math.max(y1 - y0, 1e-6);
+    const size = Math.max(dx, dy);
+    // Room for arrows and labels around the mechanism.
+    const pad = size * 0.12;
+    const box = [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
+    const w = box[2] - box[0];
+    const h = box[3] - box[1];
+    const height = Math.min(Math.max((WIDTH * h) / w, WIDTH * 0.5), WIDTH * 0.9);
+    const k = Math.min((WIDTH - 2 * MARGIN) / w, (height - 2 * MARGIN) / h);
+    // Centre the drawing in the viewBox.
+    const ox = (WIDTH - k * w) / 2;
+    const oy = (height - k * h) / 2;
+    this.map = { box, k, ox, oy, height, size };
+    this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${Math.round(height)}`);
+  }
+
+  /** World (m, y up) to viewBox (px, y down). */
+  px(p) {
+    const { box, k, ox, oy, height } = this.map;
+    return [ox + (p[0] - box[0]) * k, height - (oy + (p[1] - box[1]) * k)];
+  }
+
+  world(x, y) {
+    const { box, k, ox, oy, height } = this.map;
+    return [(x - ox) / k + box[0], (height - y - oy) / k + box[1]];
+  }
+
+  inView(p) {
+    const [x, y] = this.px(p);
+    return x >= 0 && x <= WIDTH && y >= 0 && y <= this.map.height;
+  }
+
+  // ---- building ----------------------------------------------------------------------------
+
+  rebuild() {
+    const svg = this.svg;
+    clear(svg);
+    this.computeBox();
+    const scene = this.scene;
+    const colours = linkColours(scene);
+    this.colours = colours;
+
+    const defs = svgEl('defs', {}, svg);
+    this.hatch = hatchPattern(defs, 'lk-hatch', COLOURS.ground);
+    this.markers = {};
+    for (const key of ['velocity', 'acceleration', 'transport', 'relative', 'coriolis', 'normal', 'tangential']) {
+      this.markers[key] = arrowMarker(defs, `lk-arrow-${key}`, COLOURS[key]);
+    }
+    svgEl('title', {}, svg).textContent = `${scene.title || 'Mechanism'}: drawing of the linkage`;
+
+    this.layers = {};
+    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'joints', 'vectors', 'poles', 'labels', 'handle', 'notes']) {
+      this.layers[name] = svgEl('g', { class: `layer-${name}` }, svg);
+    }
+    this.buildGround();
+    this.buildTrace();
+    this.buildPaths();
+    this.buildLinks();
+    this.buildJoints();
+    this.buildLabels();
+    this.buildHandle();
+    this.rebuildVectors();
+  }
+
+  buildGround() {
+    const scene = this.scene;
+    const g = this.layers.ground;
+    const ground = groundLink(scene);
+    const gpts = scene.links[ground]?.points || [];
+    // The frame line between ground points, dashed: it is the fixed link, not a bar.
+    for (let i = 0; i + 1 < gpts.length; i++) {
+      const [a, b] = [this.px(scene.points[gpts[i]]), this.px(scene.points[gpts[i + 1]])];
+      svgEl('line', { x1: a[0], y1: a[1], x2: b[0], y2: b[1], stroke: COLOURS.ground, 'stroke-width': 1.5, 'stroke-dasharray': '6 5', class: 'frame-line' }, g);
+    }
+    for (const j of scene.joints || []) {
+      if (j.type === 'revolute' && j.links.includes(ground)) this.drawPivot(g, this.px(scene.points[j.point]));
+      if ((j.type === 'slider' || j.type === 'prismatic') && j.links[0] === ground) this.drawFixedGuide(g, j);
+    }
+  }
+
+  drawPivot(g, [x, y]) {
+    svgEl('path', { d: `M${x},${y} L${x - 13},${y + 20} L${x + 13},${y + 20} Z`, fill: '#eef0f3', stroke: COLOURS.ground, 'stroke-width': 1.5, class: 'ground-pivot' }, g);
+    svgEl('rect', { x: x - 20, y: y + 20, width: 40, height: 8, fill: this.hatch, stroke: 'none', class: 'ground-hatch' }, g);
+    svgEl('line', { x1: x - 20, y1: y + 20, x2: x + 20, y2: y + 20, stroke: COLOURS.ground, 'stroke-width': 1.5 }, g);
+  }
+
+  /** A straight guide fixed in the ground, drawn along the slot axis over the swept range. */
+  drawFixedGuide(g, joint) {
+    const axis = unit(joint.axis || [1, 0]);
+    const base = this.scene.points[joint.point];
+    const positions = this.track.points[joint.point]?.position || [base];
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (const p of positions) {
+      if (!p) continue;
+      const s = (p[0] - base[0]) * axis[0] + (p[1] - base[1]) * axis[1];
+      lo = Math.min(lo, s);
+      hi = Math.max(hi, s);
+    }
+    const pad = (BLOCK[0] / this.map.k) * 1.2;
+    const a = this.px([base[0] + (lo - pad) * axis[0], base[1] + (lo - pad) * axis[1]]);
+    const b = this.px([base[0] + (hi + pad) * axis[0], base[1] + (hi + pad) * axis[1]]);
+    const d = unit([b[0] - a[0], b[1] - a[1]]);
+    const n = [-d[1], d[0]];
+    const h = BLOCK[1] / 2 + 1.5;
+    // Two walls of the slot; hatching behind the lower one (the side of the "ground").
+    for (const s of [h, -h]) {
+      svgEl('line', { x1: a[0] + n[0] * s, y1: a[1] + n[1] * s, x2: b[0] + n[0] * s, y2: b[1] + n[1] * s, stroke: COLOURS.ground, 'stroke-width': 1.5, class: 'guide' }, g);
+    }
+    const s1 = h;
+    const s2 = h + 8;
+    const poly = [
+      [a[0] + n[0] * s1, a[1] + n[1] * s1],
+      [b[0] + n[0] * s1, b[1] + n[1] * s1],
+      [b[0] + n[0] * s2, b[1] + n[1] * s2],
+      [a[0] + n[0] * s2, a[1] + n[1] * s2],
+    ];
+    svgEl('polygon', { points: poly.map((p) => p.join(',')).join(' '), fill: this.hatch, stroke: 'none', class: 'guide-hatch' }, g);
+  }
+
+  buildTrace() {
+    const name = this.options.trace;
+    const positions = name && this.track.points[name]?.position;
+    if (!positions || positions.length < 2) return;
+    const pts = positions.filter(Boolean).map((p) => this.px(p).join(',')).join(' ');
+    svgEl('polyline', { points: pts, fill: 'none', stroke: COLOURS.trace, 'stroke-width': 1.8, 'stroke-dasharray': '5 4', class: 'coupler-curve' }, this.layers.trace);
+  }
+
+  buildPaths() {
+    // The groove of a moving point, fixed in its link: redrawn each frame where the link is.
+    this.paths = movingPoints(this.scene).map((m) => {
+      const node = m.path?.type === 'arc'
+        ? svgEl('circle', { fill: 'none', stroke: this.colours[m.link] || COLOURS.ink, 'stroke-width': 2, 'stroke-dasharray': '3 4', class: 'groove' }, this.layers.paths)
+        : svgEl('line', { stroke: this.colours[m.link] || COLOURS.ink, 'stroke-width': 2, 'stroke-dasharray': '3 4', class: 'groove' }, this.layers.paths);
+      return { m, node };
+    });
+  }
+
+  buildLinks() {
+    const scene = this.scene;
+    this.linkNodes = [];
+    for (const name of movingLinks(scene)) {
+      const pts = scene.links[name].points;
+      const colour = this.colours[name];
+      if (pts.length === 2) {
+        const outer = svgEl('line', { stroke: colour, 'stroke-width': 11, 'stroke-linecap': 'round', class: 'link', 'data-link': name }, this.layers.links);
+        const inner = svgEl('line', { stroke: '#ffffff', 'stroke-opacity': 0.35, 'stroke-width': 3, 'stroke-linecap': 'round' }, this.layers.links);
+        this.linkNodes.push({ name, pts, kind: 'bar', nodes: [outer, inner] });
+      } else if (pts.length > 2) {
+        const poly = svgEl('polygon', { fill: colour, 'fill-opacity': 0.22, stroke: colour, 'stroke-width': 5, 'stroke-linejoin': 'round', class: 'link', 'data-link': name }, this.layers.links);
+        this.linkNodes.push({ name, pts, kind: 'plate', nodes: [poly] });
+      }
+      const label = svgEl('text', { class: 'link-label', fill: colour, 'text-anchor': 'middle' }, this.layers.labels);
+      label.textContent = name;
+      this.linkNodes.push({ name, pts, kind: 'label', nodes: [label] });
+    }
+    // Slots in moving guides and blocks of sliders.
+    this.slotNodes = [];
+    this.blockNodes = [];
+    const ground = groundLink(scene);
+    for (const j of scene.joints || []) {
+      if (j.type !== 'slider' && j.type !== 'prismatic') continue;
+      const [guide, follower] = j.links;
+      if (guide !== ground) {
+        const slot = svgEl('line', { stroke: '#ffffff', 'stroke-width': 6, 'stroke-linecap': 'round', class: 'slot' }, this.layers.slots);
+        const edge = svgEl('line', { stroke: this.colours[guide], 'stroke-width': 1.2, 'stroke-linecap': 'round', 'stroke-dasharray': '2 3' }, this.layers.slots);
+        this.slotNodes.push({ joint: j, guide, nodes: [slot, edge] });
+      }
+      const colour = this.colours[follower] || COLOURS.ink;
+      const rect = svgEl('rect', { width: BLOCK[0], height: BLOCK[1], x: -BLOCK[0] / 2, y: -BLOCK[1] / 2, rx: 3, fill: '#ffffff', stroke: colour, 'stroke-width': 2.5, class: 'slider-block' }, this.layers.blocks);
+      this.blockNodes.push({ joint: j, guide, node: rect });
+    }
+  }
+
+  buildJoints() {
+    const scene = this.scene;
+    this.jointNodes = [];
+    const jointPoints = new Set((scene.joints || []).filter((j) => j.type === 'revolute').map((j) => j.point));
+    const sliderPoints = new Set((scene.joints || []).filter((j) => j.type !== 'revolute').map((j) => j.point));
+    for (const name of Object.keys(scene.points)) {
+      const isJoint = jointPoints.has(name);
+      const node = svgEl('circle', {
+        r: isJoint ? 5.5 : sliderPoints.has(name) ? 3.5 : 3.5,
+        fill: isJoint ? '#ffffff' : COLOURS.ink,
+        stroke: COLOURS.ink,
+        'stroke-width': isJoint ? 2.2 : 1,
+        class: isJoint ? 'joint' : 'point',
+      }, this.layers.joints);
+      this.jointNodes.push({ name, node });
+    }
+    for (const m of movingPoints(scene)) {
+      const node = svgEl('circle', { r: 7, fill: COLOURS.trace, stroke: '#ffffff', 'stroke-width': 2, class: 'moving-point' }, this.layers.joints);
+      this.jointNodes.push({ name: m.name, node });
+    }
+  }
+
+  buildLabels() {
+    this.labelNodes = [];
+    const names = [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)];
+    for (const name of names) {
+      const t = svgEl('text', { class: 'point-label' }, this.layers.labels);
+      t.textContent = name;
+      this.labelNodes.push({ name, node: t });
+    }
+  }
+
+  buildHandle() {
+    this.handle = null;
+    if (this.track.param !== 'angle' || this.track.n < 2) return;
+    const h = driverHandle(this.scene);
+    if (!h) return;
+    const node = svgEl('circle', { r: 17, fill: 'transparent', stroke: COLOURS.ink, 'stroke-opacity': 0.35, 'stroke-width': 1.5, 'stroke-dasharray': '3 3', class: 'crank-handle' }, this.layers.handle);
+    svgEl('title', {}, node).textContent = 'Drag to turn the crank (or use the crank-angle slider)';
+    this.handle = { ...h, node };
+  }
+
+  /** Vectors and poles: rebuilt when the analysis or the options change, moved per frame. */
+  rebuildVectors() {
+    clear(this.layers.vectors);
+    clear(this.layers.poles);
+    clear(this.layers.notes);
+    this.vectorNodes = [];
+    const opt = this.options;
+    const names = [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)];
+    // Scale arrows so that the largest over the cycle (or at this instant) is a fifth of the picture.
+    const vmax = Math.max(maxNorm(this.track, 'velocity'), analysisMax(this.analysis, 'velocity'));
+    const amax = Math.max(maxNorm(this.track, 'acceleration'), analysisMax(this.analysis, 'acceleration'));
+    const reach = this.map.size * 0.22;
+    this.scale = { velocity: vmax > 0 ? reach / vmax : 0, acceleration: amax > 0 ? reach / amax : 0 };
+    const add = (kind, quantity, point, extra = {}) => {
+      const node = svgEl('line', { stroke: COLOURS[kind], 'stroke-width': extra.width || 2.6, 'marker-end': this.markers[kind], 'stroke-dasharray': extra.dash || null, class: `vector vector-${kind}` }, this.layers.vectors);
+      this.vectorNodes.push({ kind, quantity, point, node, from: extra.from || null });
+    };
+    if (opt.showVelocity) for (const n of names) add('velocity', 'velocity', n);
+    if (opt.showAcceleration) for (const n of names) add('acceleration', 'acceleration', n);
+
+    // Slider and moving-point parts (transport, relative, Coriolis) come from the analysis only.
+    const notes = [];
+    if (this.analysis) {
+      const parts = componentSources(this.analysis);
+      for (const part of parts) {
+        if (opt.showVelocity) {
+          add('transport', { vec: part.transport_velocity }, part.point, { width: 2, dash: '5 3' });
+          add('relative', { vec: part.relative_velocity, fromVec: part.transport_velocity }, part.point, { width: 2 });
+        }
+        if (opt.showAcceleration) {
+          add('transport', { vec: part.transport_acceleration, accel: true }, part.point, { width: 2, dash: '5 3' });
+          add('coriolis', { vec: part.coriolis_acceleration, fromVec: part.transport_acceleration, accel: true }, part.point, { width: 2 });
+          add('relative', { vec: part.relative_acceleration, fromVec: sum(part.transport_acceleration, part.coriolis_acceleration), accel: true }, part.point, { width: 2 });
+        }
+      }
+      if (opt.showPoles) notes.push(...this.buildPoles());
+    }
+    this.buildNotes(notes);
+  }
+
+  buildPoles() {
+    const offView = [];
+    const colourOf = (link) => this.colours[link] || COLOURS.pole;
+    for (const [name, l] of Object.entries(this.analysis.links || {})) {
+      for (const [key, letter, shape] of [['velocity_pole', 'P', 'circle'], ['acceleration_pole', 'G', 'diamond']]) {
+        const p = l[key];
+        if (!p) continue;
+        const label = `${letter}${name}`;
+        if (!this.inView(p)) {
+          offView.push(`${label} (${show('length', p[0], this.options.units, 3)}, ${show('length', p[1], this.options.units, 3)})`);
+          continue;
+        }
+        const [x, y] = this.px(p);
+        const g = svgEl('g', { class: `pole pole-${key}`, transform: `translate(${x},${y})` }, this.layers.poles);
+        if (shape === 'circle') {
+          svgEl('circle', { r: 6, fill: '#ffffff', stroke: COLOURS.velocity, 'stroke-width': 2 }, g);
+          svgEl('path', { d: 'M-4,0 L4,0 M0,-4 L0,4', stroke: COLOURS.velocity, 'stroke-width': 1.5 }, g);
+        } else {
+          svgEl('path', { d: 'M0,-7 L7,0 L0,7 L-7,0 Z', fill: '#ffffff', stroke: COLOURS.acceleration, 'stroke-width': 2 }, g);
+        }
+        const t = svgEl('text', { x: 9, y: 16, class: 'pole-label', fill: colourOf(name) }, g);
+        t.textContent = label;
+        svgEl('title', {}, g).textContent = `${key === 'velocity_pole' ? 'velocity pole' : 'acceleration pole'} of link ${name}`;
+      }
+    }
+    return offView.length ? [`Poles outside the picture: ${offView.join(', ')}`] : [];
+  }
+
+  buildNotes(notes) {
+    const lines = [...notes];
+    if (this.options.showVelocity && this.scale.velocity) lines.push(`velocity arrows: ${show('velocity', (this.map.size * 0.22) / this.scale.velocity, this.options.units, 3)} per ${fmtLen(this.map.size * 0.22 * this.map.k)} px`);
+    if (this.options.showAcceleration && this.scale.acceleration) lines.push(`acceleration arrows: ${show('acceleration', (this.map.size * 0.22) / this.scale.acceleration, this.options.units, 3)} per ${fmtLen(this.map.size * 0.22 * this.map.k)} px`);
+    lines.forEach((line, i) => {
+      const t = svgEl('text', { x: 12, y: this.map.height - 12 - (lines.length - 1 - i) * 18, class: 'view-note' }, this.layers.notes);
+      t.textContent = line;
+    });
+  }
+
+  // ---- drawing one frame -------------------------------------------------------------------
+
+  /** Move everything to the frame {position, velocity, acceleration} (world units, SI). */
+  draw(frame) {
+    this.lastFrame = frame;
+    if (!this.map) return;
+    const P = (name) => frame.position[name];
+    for (const { pts, kind, nodes } of this.linkNodes) {
+      const ps = pts.map(P).filter(Boolean).map((p) => this.px(p));
+      if (ps.length < (kind === 'label' ? 1 : 2)) continue;
+      if (kind === 'bar') {
+        for (const n of nodes) setAttrs(n, { x1: ps[0][0], y1: ps[0][1], x2: ps[1][0], y2: ps[1][1] });
+      } else if (kind === 'plate') {
+        setAttrs(nodes[0], { points: hullOrder(ps).map((p) => p.join(',')).join(' ') });
+      } else {
+        // Link name beside its middle, pushed off the bar so it does not sit on a label.
+        const c = centroid(ps);
+        const d = ps.length > 1 ? unit([ps[1][0] - ps[0][0], ps[1][1] - ps[0][1]]) : [1, 0];
+        setAttrs(nodes[0], { x: c[0] - d[1] * 18, y: c[1] + d[0] * 18 + 4 });
+      }
+    }
+    for (const { joint, guide, nodes } of this.slotNodes) {
+      const p = P(joint.point);
+      if (!p) continue;
+      const axis = this.axisAt(joint, guide, frame);
+      const gp = (this.scene.links[guide]?.points || []).map(P).filter(Boolean);
+      let lo = 0;
+      let hi = 0;
+      for (const q of [...gp, p]) {
+        const s = (q[0] - p[0]) * axis[0] + (q[1] - p[1]) * axis[1];
+        lo = Math.min(lo, s);
+        hi = Math.max(hi, s);
+      }
+      const a = this.px([p[0] + lo * axis[0], p[1] + lo * axis[1]]);
+      const b = this.px([p[0] + hi * axis[0], p[1] + hi * axis[1]]);
+      for (const n of nodes) setAttrs(n, { x1: a[0], y1: a[1], x2: b[0], y2: b[1] });
+    }
+    for (const { joint, guide, node } of this.blockNodes) {
+      const p = P(joint.point);
+      if (!p) continue;
+      const axis = this.axisAt(joint, guide, frame);
+      const [x, y] = this.px(p);
+      const deg = (-Math.atan2(axis[1], axis[0]) * 180) / Math.PI;
+      setAttrs(node, { transform: `translate(${x.toFixed(2)},${y.toFixed(2)}) rotate(${deg.toFixed(2)})` });
+    }
+    for (const { m, node } of this.paths) {
+      const path = m.path || {};
+      if (path.type === 'arc') {
+        const c = P(path.center);
+        const s = P(path.start);
+        if (!c || !s) continue;
+        const [cx, cy] = this.px(c);
+        setAttrs(node, { cx, cy, r: Math.hypot(s[0] - c[0], s[1] - c[1]) * this.map.k });
+      } else {
+        const a = P(path.start);
+        const b = P(path.through);
+        if (!a || !b) continue;
+        const [x1, y1] = this.px(a);
+        const [x2, y2] = this.px(b);
+        setAttrs(node, { x1, y1, x2, y2 });
+      }
+    }
+    for (const { name, node } of this.jointNodes) {
+      const p = P(name);
+      if (!p) {
+        node.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const [cx, cy] = this.px(p);
+      setAttrs(node, { cx, cy, visibility: null });
+    }
+    for (const { name, node } of this.labelNodes) {
+      const p = P(name);
+      if (!p) continue;
+      const [x, y] = this.px(p);
+      setAttrs(node, { x: x + 10, y: y - 10 });
+    }
+    if (this.handle) {
+      const p = P(this.handle.handle);
+      if (p) {
+        const [cx, cy] = this.px(p);
+        setAttrs(this.handle.node, { cx, cy });
+      }
+    }
+    this.drawVectors(frame);
+  }
+
+  drawVectors(frame) {
+    for (const v of this.vectorNodes) {
+      const p = frame.position[v.point];
+      let vec;
+      let from = [0, 0];
+      let scale;
+      if (typeof v.quantity === 'string') {
+        vec = frame[v.quantity]?.[v.point];
+        scale = this.scale[v.quantity];
+      } else {
+        // Slider parts belong to the analysed instant only.
+        vec = frame.exact ? v.quantity.vec : null;
+        from = v.quantity.fromVec || [0, 0];
+        scale = v.quantity.accel ? this.scale.acceleration : this.scale.velocity;
+      }
+      if (!p || !vec || !scale || Math.hypot(vec[0], vec[1]) * scale * this.map.k < 2) {
+        v.node.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const a = this.px([p[0] + from[0] * scale, p[1] + from[1] * scale]);
+      const b = this.px([p[0] + (from[0] + vec[0]) * scale, p[1] + (from[1] + vec[1]) * scale]);
+      setAttrs(v.node, { x1: a[0], y1: a[1], x2: b[0], y2: b[1], visibility: null });
+    }
+    this.layers.poles.setAttribute('visibility', frame.exact ? 'visible' : 'hidden');
+  }
+
+  /** Slot axis at this frame: the drawn axis turned with the guide link. */
+  axisAt(joint, guide, frame) {
+    const axis0 = unit(joint.axis || [1, 0]);
+    const pts = this.scene.links[guide]?.points || [];
+    if (guide === groundLink(this.scene) || pts.length < 2) return axis0;
+    const a = frame.position[pts[0]];
+    const b = frame.position[pts[1]];
+    if (!a || !b) return axis0;
+    const turn = Math.atan2(b[1] - a[1], b[0] - a[0]) - drawnAngle(this.scene, guide);
+    const c = Math.cos(turn);
+    const s = Math.sin(turn);
+    return [axis0[0] * c - axis0[1] * s, axis0[0] * s + axis0[1] * c];
+  }
+
+  // ---- dragging the crank ------------------------------------------------------------------
+
+  installPointer() {
+    const svg = this.svg;
+    const toWorld = (ev) => {
+      const pt = svg.createSVGPoint();
+      pt.x = ev.clientX;
+      pt.y = ev.clientY;
+      const q = pt.matrixTransform(svg.getScreenCTM().inverse());
+      return this.world(q.x, q.y);
+    };
+    svg.addEventListener('pointerdown', (ev) => {
+      if (!this.handle || !this.lastFrame) return;
+      const target = ev.target;
+      if (!(target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link)) return;
+      this.dragging = true;
+      svg.setPointerCapture(ev.pointerId);
+      svg.classList.add('dragging');
+      ev.preventDefault();
+    });
+    svg.addEventListener('pointermove', (ev) => {
+      if (!this.dragging) return;
+      const frame = this.lastFrame;
+      const pivot = frame.position[this.handle.pivot];
+      const handle = frame.position[this.handle.handle];
+      const pts = this.scene.links[this.handle.link].points;
+      const a = frame.position[pts[0]];
+      const b = frame.position[pts[1]];
+      if (!pivot || !handle || !a || !b) return;
+      const w = toWorld(ev);
+      // The link angle is measured first point -> second point; the hand turns the handle about
+      // the pivot. Both turn by the same amount.
+      const pointer = Math.atan2(w[1] - pivot[1], w[0] - pivot[0]);
+      const now = Math.atan2(handle[1] - pivot[1], handle[0] - pivot[0]);
+      const linkAngle = Math.atan2(b[1] - a[1], b[0] - a[0]);
+      this.callbacks.onDrag?.(linkAngle + wrap(pointer - now));
+    });
+    const end = (ev) => {
+      if (!this.dragging) return;
+      this.dragging = false;
+      svg.classList.remove('dragging');
+      if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
+      this.callbacks.onDragEnd?.();
+    };
+    svg.addEventListener('pointerup', end);
+    svg.addEventListener('pointercancel', end);
+  }
+}
+
+// ---- small geometry helpers for drawing ------------------------------------------------------
+
+function unit(v) {
+  const n = Math.hypot(v[0], v[1]) || 1;
+  return [v[0] / n, v[1] / n];
+}
+
+function sum(a, b) {
+  return [(a?.[0] || 0) + (b?.[0] || 0), (a?.[1] || 0) + (b?.[1] || 0)];
+}
+
+function wrap(a) {
+  return Math.atan2(Math.sin(a), Math.cos(a));
+}
+
+function centroid(ps) {
+  const s = ps.reduce((acc, p) => [acc[0] + p[0], acc[1] + p[1]], [0, 0]);
+  return [s[0] / ps.length, s[1] / ps.length];
+}
+
+/** Order the corners of a plate around its centre so the polygon never crosses itself. */
+function hullOrder(ps) {
+  const c = centroid(ps);
+  return [...ps].sort((a, b) => Math.atan2(a[1] - c[1], a[0] - c[0]) - Math.atan2(b[1] - c[1], b[0] - c[0]));
+}
+
+function fmtLen(px) {
+  return Math.round(px);
+}
+
+function analysisMax(analysis, quantity) {
+  if (!analysis) return 0;
+  let m = 0;
+  for (const group of [analysis.points, analysis.moving_points]) {
+    for (const q of Object.values(group || {})) {
+      const v = q[quantity];
+      if (v) m = Math.max(m, Math.hypot(v[0], v[1]));
+    }
+  }
+  return m;
+}
+
+/** Joints and moving points of the analysis that carry transport/relative/Coriolis parts. */
+export function componentSources(analysis) {
+  const out = [];
+  for (const j of analysis.joints || []) if (j.transport_velocity || j.transport_acceleration) out.push(j);
+  for (const [name, m] of Object.entries(analysis.moving_points || {})) out.push({ ...m, point: name });
+  return out;
+}

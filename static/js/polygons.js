@@ -1,0 +1,274 @@
+// polygons.js: the velocity and acceleration polygons (Plotly, equal axis scales).
+//
+// Drawn as a textbook draws them: every absolute vector from the pole of the polygon, labelled
+// with the lowercase name of its point (b for B); the image of each link joins the tips of its
+// points. In the acceleration polygon each link's relative acceleration is split into the normal
+// part (along the link, towards the base point) and the tangential part (across it), and every
+// slider or moving point into transport + Coriolis + relative, head to tail.
+//
+// All vectors are the server's. The normal/tangential split is a projection of the server's
+// relative acceleration a_Q - a_B onto the direction B->Q (for a rigid link that projection is
+// exactly -omega^2 r and the remainder exactly alpha x r): drawing, not recomputing.
+
+import { COLOURS } from './theme.js';
+import { linkColours, solvingOrder, movingLinks } from './scene.js';
+import { toDisplay, unitLabel, fmt } from './units.js';
+
+const TINY = 1e-12;
+
+const lower = (name) => name.toLowerCase();
+
+function plotly() {
+  return globalThis.Plotly || null;
+}
+
+/** A trace of arrows: segments [from, to, label] drawn as lines with an arrowhead at `to`. */
+function arrows(name, segments, colour, { dash = 'solid', width = 2.4, group = name, showlegend = true } = {}) {
+  const x = [];
+  const y = [];
+  const size = [];
+  const text = [];
+  for (const [a, b, label] of segments) {
+    x.push(a[0], b[0], null);
+    y.push(a[1], b[1], null);
+    size.push(0, 11, 0);
+    text.push(label, label, null);
+  }
+  return {
+    type: 'scatter',
+    mode: 'lines+markers',
+    name,
+    legendgroup: group,
+    showlegend: showlegend && segments.length > 0,
+    x,
+    y,
+    text,
+    hoverinfo: 'text',
+    line: { color: colour, width, dash },
+    marker: { symbol: 'arrow', angleref: 'previous', size, color: colour },
+    cliponaxis: false,
+  };
+}
+
+function labels(entries, colour = COLOURS.ink) {
+  return {
+    type: 'scatter',
+    mode: 'text',
+    showlegend: false,
+    hoverinfo: 'skip',
+    x: entries.map((e) => e[0][0]),
+    y: entries.map((e) => e[0][1]),
+    text: entries.map((e) => e[1]),
+    textposition: entries.map((e) => e[2] || 'top right'),
+    textfont: { size: 14, color: colour },
+    cliponaxis: false,
+  };
+}
+
+function vecText(symbol, v, kind, units) {
+  const u = unitLabel(kind, units);
+  return `${symbol} = (${fmt(v[0])}, ${fmt(v[1])}) ${u}, |${symbol}| = ${fmt(Math.hypot(v[0], v[1]))} ${u}`;
+}
+
+const add = (a, b) => [a[0] + b[0], a[1] + b[1]];
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1]];
+const mul = (a, k) => [a[0] * k, a[1] * k];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
+const norm = (a) => Math.hypot(a[0], a[1]);
+
+function baseLayout(title, kind, units, revision) {
+  const u = unitLabel(kind, units);
+  const sym = kind === 'velocity' ? 'v' : 'a';
+  return {
+    title: { text: title, font: { size: 15 }, x: 0.02, xanchor: 'left' },
+    margin: { l: 56, r: 16, t: 40, b: 40 },
+    xaxis: { title: { text: `${sym}<sub>x</sub> [${u}]` }, zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
+    yaxis: { title: { text: `${sym}<sub>y</sub> [${u}]` }, zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
+    legend: { orientation: 'h', y: -0.18, font: { size: 11 } },
+    paper_bgcolor: '#ffffff',
+    plot_bgcolor: '#ffffff',
+    font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink },
+    hovermode: 'closest',
+    uirevision: revision,
+    annotations: [],
+  };
+}
+
+const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
+
+/** Points of the analysis with their vectors, converted to display units. */
+function collect(scene, analysis, quantity, units) {
+  const kind = quantity;
+  const out = {};
+  for (const group of [analysis.points, analysis.moving_points]) {
+    for (const [name, q] of Object.entries(group || {})) {
+      if (q[quantity]) out[name] = q[quantity].map((c) => toDisplay(kind, c, units));
+    }
+  }
+  return out;
+}
+
+function linkImages(scene, analysis, tips, quantity) {
+  const colours = linkColours(scene);
+  const traces = [];
+  for (const name of movingLinks(scene)) {
+    const pts = scene.links[name].points.filter((p) => tips[p]);
+    if (pts.length < 2) continue;
+    // Same corner order as the drawn plate, so the image reads as the link turned and scaled.
+    const pos = (p) => analysis.points?.[p]?.position || scene.points[p];
+    const c = pts.reduce((acc, p) => add(acc, pos(p)), [0, 0]).map((v) => v / pts.length);
+    const ordered = pts.length > 2 ? [...pts].sort((a, b) => Math.atan2(pos(a)[1] - c[1], pos(a)[0] - c[0]) - Math.atan2(pos(b)[1] - c[1], pos(b)[0] - c[0])) : pts;
+    const loop = [...ordered, ordered[0]];
+    traces.push({
+      type: 'scatter',
+      mode: 'lines',
+      name: `${quantity} image of link ${name}`,
+      legendgroup: `image-${name}`,
+      x: loop.map((p) => tips[p][0]),
+      y: loop.map((p) => tips[p][1]),
+      fill: pts.length > 2 ? 'toself' : 'none',
+      fillcolor: hexAlpha(colours[name], 0.14),
+      line: { color: colours[name], width: pts.length > 2 ? 1.5 : 3, dash: pts.length > 2 ? 'solid' : 'dot' },
+      hoverinfo: 'name',
+    });
+  }
+  return traces;
+}
+
+function hexAlpha(hex, alpha) {
+  const n = parseInt(hex.slice(1), 16);
+  return `rgba(${(n >> 16) & 255},${(n >> 8) & 255},${n & 255},${alpha})`;
+}
+
+/** Joints and moving points that carry transport / relative / Coriolis parts. */
+function parts(analysis) {
+  const out = [];
+  for (const j of analysis.joints || []) if (j.transport_velocity || j.transport_acceleration) out.push(j);
+  for (const [name, m] of Object.entries(analysis.moving_points || {})) out.push({ ...m, point: name });
+  return out;
+}
+
+function poleLabel(pole, tips) {
+  const atPole = Object.entries(tips).filter(([, v]) => norm(v) < TINY).map(([n]) => lower(n));
+  return atPole.length ? `${pole} ≡ ${atPole.join(', ')}` : pole;
+}
+
+export function velocityFigure(scene, analysis, units) {
+  const tips = collect(scene, analysis, 'velocity', units);
+  const traces = [...linkImages(scene, analysis, tips, 'velocity')];
+  const abs = [];
+  const lab = [];
+  for (const [name, v] of Object.entries(tips)) {
+    if (norm(v) < TINY) continue;
+    abs.push([[0, 0], v, vecText(`v_${name}`, v, 'velocity', units)]);
+    lab.push([v, lower(name)]);
+  }
+  traces.push(arrows('absolute velocity', abs, COLOURS.velocity));
+  const tr = [];
+  const rel = [];
+  for (const j of parts(analysis)) {
+    if (!j.transport_velocity || !j.relative_velocity) continue;
+    const vt = j.transport_velocity.map((c) => toDisplay('velocity', c, units));
+    const vr = j.relative_velocity.map((c) => toDisplay('velocity', c, units));
+    if (norm(vt) > TINY) {
+      tr.push([[0, 0], vt, vecText(`v_${j.point},tr`, vt, 'velocity', units)]);
+      lab.push([vt, `${lower(j.point)}′`, 'bottom left']);
+    }
+    if (norm(vr) > TINY) rel.push([vt, add(vt, vr), vecText(`v_${j.point},rel`, vr, 'velocity', units)]);
+  }
+  traces.push(arrows('transport velocity', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
+  traces.push(arrows('relative velocity', rel, COLOURS.relative, { width: 2 }));
+  lab.push([[0, 0], poleLabel('p', tips), 'bottom left']);
+  traces.push(labels(lab));
+  return { traces, layout: baseLayout('Velocity polygon', 'velocity', units, `v-${scene.title || ''}`) };
+}
+
+export function accelerationFigure(scene, analysis, units) {
+  const tips = collect(scene, analysis, 'acceleration', units);
+  const traces = [...linkImages(scene, analysis, tips, 'acceleration')];
+  const abs = [];
+  const lab = [];
+  for (const [name, a] of Object.entries(tips)) {
+    if (norm(a) < TINY) continue;
+    abs.push([[0, 0], a, vecText(`a_${name}`, a, 'acceleration', units)]);
+    lab.push([a, lower(name)]);
+  }
+  // Normal and tangential parts, link by link, in the order a textbook solves them.
+  const normal = [];
+  const tangential = [];
+  for (const { link, base } of solvingOrder(scene)) {
+    const aBase = tips[base];
+    const rBase = analysis.points?.[base]?.position;
+    if (!aBase || !rBase) continue;
+    for (const q of scene.links[link].points) {
+      if (q === base || !tips[q] || !analysis.points?.[q]?.position) continue;
+      const r = sub(analysis.points[q].position, rBase);
+      const rn = norm(r);
+      if (rn < TINY) continue;
+      const e = mul(r, 1 / rn);
+      const relA = sub(tips[q], aBase);
+      const an = mul(e, dot(relA, e));
+      const at = sub(relA, an);
+      const tag = `${q}${base}`;
+      if (norm(an) > TINY) normal.push([aBase, add(aBase, an), vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);
+      if (norm(at) > TINY) tangential.push([add(aBase, an), tips[q], vecText(`aᵗ_${tag}`, at, 'acceleration', units)]);
+    }
+  }
+  traces.push(arrows('normal part −ω²r', normal, COLOURS.normal, { width: 1.8 }));
+  traces.push(arrows('tangential part α×r', tangential, COLOURS.tangential, { width: 1.8 }));
+  traces.push(arrows('absolute acceleration', abs, COLOURS.acceleration));
+
+  const tr = [];
+  const cor = [];
+  const rel = [];
+  const zeroCoriolis = [];
+  for (const j of parts(analysis)) {
+    if (!j.transport_acceleration) continue;
+    const conv = (v) => (v || [0, 0]).map((c) => toDisplay('acceleration', c, units));
+    const at = conv(j.transport_acceleration);
+    const ac = conv(j.coriolis_acceleration);
+    const ar = conv(j.relative_acceleration);
+    if (norm(at) > TINY) {
+      tr.push([[0, 0], at, vecText(`a_${j.point},tr`, at, 'acceleration', units)]);
+      lab.push([at, `${lower(j.point)}′`, 'bottom left']);
+    }
+    if (norm(ac) > TINY) cor.push([at, add(at, ac), vecText(`a_${j.point},Cor = 2ω×v_rel`, ac, 'acceleration', units)]);
+    else zeroCoriolis.push(j.point);
+    if (norm(ar) > TINY) rel.push([add(at, ac), add(add(at, ac), ar), vecText(`a_${j.point},rel`, ar, 'acceleration', units)]);
+  }
+  traces.push(arrows('transport', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
+  traces.push(arrows('Coriolis 2ω×v_rel', cor, COLOURS.coriolis, { width: 2.2 }));
+  traces.push(arrows('relative', rel, COLOURS.relative, { width: 2 }));
+  lab.push([[0, 0], poleLabel('π', tips), 'bottom left']);
+  traces.push(labels(lab));
+  const layout = baseLayout('Acceleration polygon', 'acceleration', units, `a-${scene.title || ''}`);
+  if (zeroCoriolis.length) {
+    layout.annotations.push({
+      xref: 'paper', yref: 'paper', x: 0.99, y: 0.99, xanchor: 'right', yanchor: 'top', showarrow: false,
+      text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (the guide does not rotate)`,
+      font: { size: 11, color: COLOURS.coriolis }, bgcolor: 'rgba(255,255,255,0.85)',
+    });
+  }
+  return { traces, layout };
+}
+
+/** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
+export function renderPolygons(velDiv, accDiv, scene, analysis, units) {
+  const P = plotly();
+  if (!P) return false;
+  if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
+    const v = velocityFigure(scene, analysis, units);
+    P.react(velDiv, v.traces, v.layout, CONFIG);
+  }
+  if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
+    const a = accelerationFigure(scene, analysis, units);
+    P.react(accDiv, a.traces, a.layout, CONFIG);
+  }
+  return true;
+}
+
+export function clearPolygons(...divs) {
+  const P = plotly();
+  if (!P) return;
+  for (const d of divs) P.purge(d);
+}

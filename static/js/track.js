@@ -1,0 +1,124 @@
+// track.js: one sweep, normalised, and read at a fractional sample index.
+//
+// The animation plays back a single /sweep answer: a "track" of samples over one revolution of
+// the driver (or over a time range for relative-motion scenes). Between two samples the pose is
+// interpolated linearly for display only; the analysed instant is always asked of the server,
+// so no number a student reads comes from this interpolation.
+
+/** Build a track from a /sweep response. `param` is 'angle' (driver_angle) or 'time'. */
+export function trackFromSweep(response, scene) {
+  const timeBased = Array.isArray(response.time) && !Array.isArray(response.driver_angle);
+  const values = timeBased ? response.time : response.driver_angle;
+  if (!Array.isArray(values) || values.length === 0) {
+    throw new Error('The sweep answer has no samples.');
+  }
+  const points = {};
+  const addPoints = (group) => {
+    for (const [name, q] of Object.entries(group || {})) points[name] = q;
+  };
+  addPoints(response.points);
+  addPoints(response.moving_points);
+  // Ground points never move; a sweep may leave them out, the scene has them.
+  for (const [name, xy] of Object.entries(scene.points || {})) {
+    if (!points[name]) points[name] = { position: values.map(() => xy), fixed: true };
+  }
+  const span = values[values.length - 1] - values[0];
+  return {
+    param: timeBased ? 'time' : 'angle',
+    values,
+    n: values.length,
+    points,
+    links: response.links || {},
+    feasible: response.feasible !== false,
+    limits: response.limits || [],
+    // A full revolution loops; a rocking driver (infeasible) or a time range plays back and forth
+    // or restarts (see main.js).
+    closed: !timeBased && response.feasible !== false && Math.abs(Math.abs(span) - 2 * Math.PI) < 0.2,
+    static: false,
+  };
+}
+
+/** A one-sample track from the drawn pose, used when the server has no /sweep to offer. */
+export function staticTrack(scene, param = 'angle', value = 0) {
+  const points = {};
+  for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [xy] };
+  return { param, values: [value], n: 1, points, links: {}, feasible: true, limits: [], closed: false, static: true };
+}
+
+function lerp2(a, b, f) {
+  if (!a) return null;
+  if (!b || f === 0) return a;
+  return [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f];
+}
+
+function split(track, u) {
+  const max = track.n - 1;
+  const clamped = Math.min(Math.max(u, 0), max);
+  const i = Math.min(Math.floor(clamped), Math.max(max - 1, 0));
+  return [i, Math.min(i + 1, max), clamped - i];
+}
+
+/** Positions (and velocities/accelerations when the sweep has them) at fractional index u. */
+export function frameAt(track, u) {
+  const [i, j, f] = split(track, u);
+  const frame = { position: {}, velocity: {}, acceleration: {}, u };
+  for (const [name, q] of Object.entries(track.points)) {
+    if (q.position) frame.position[name] = lerp2(q.position[i], q.position[j], f);
+    if (q.velocity) frame.velocity[name] = lerp2(q.velocity[i], q.velocity[j], f);
+    if (q.acceleration) frame.acceleration[name] = lerp2(q.acceleration[i], q.acceleration[j], f);
+  }
+  return frame;
+}
+
+export function valueAt(track, u) {
+  const [i, j, f] = split(track, u);
+  return track.values[i] + (track.values[j] - track.values[i]) * f;
+}
+
+/** Fractional index of a driver angle or time (values are monotonic, either direction). */
+export function indexOfValue(track, value) {
+  const v = track.values;
+  if (track.n === 1) return 0;
+  const rising = v[v.length - 1] >= v[0];
+  let target = value;
+  if (track.param === 'angle' && track.closed) {
+    // Bring the angle into the swept revolution so that 370 deg finds 10 deg.
+    const lo = Math.min(v[0], v[v.length - 1]);
+    target = lo + ((((value - lo) % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI));
+  }
+  const key = (x) => (rising ? x : -x);
+  const t = key(target);
+  if (t <= key(v[0])) return 0;
+  if (t >= key(v[v.length - 1])) return v.length - 1;
+  let lo = 0;
+  let hi = v.length - 1;
+  while (hi - lo > 1) {
+    const mid = (lo + hi) >> 1;
+    if (key(v[mid]) <= t) lo = mid;
+    else hi = mid;
+  }
+  const d = v[hi] - v[lo];
+  return lo + (d === 0 ? 0 : (target - v[lo]) / d);
+}
+
+/** Bounding box of every position in the track: [xmin, ymin, xmax, ymax]. */
+export function extent(track) {
+  let box = [Infinity, Infinity, -Infinity, -Infinity];
+  for (const q of Object.values(track.points)) {
+    for (const p of q.position || []) {
+      if (!p) continue;
+      box = [Math.min(box[0], p[0]), Math.min(box[1], p[1]), Math.max(box[2], p[0]), Math.max(box[3], p[1])];
+    }
+  }
+  if (!Number.isFinite(box[0])) box = [-1, -1, 1, 1];
+  return box;
+}
+
+/** Largest magnitude of a per-point quantity over the track (for arrow scaling). */
+export function maxNorm(track, quantity) {
+  let m = 0;
+  for (const q of Object.values(track.points)) {
+    for (const v of q[quantity] || []) if (v) m = Math.max(m, Math.hypot(v[0], v[1]));
+  }
+  return m;
+}

@@ -1,0 +1,82 @@
+// units.js: display units.
+//
+// The scene and every server answer stay in SI (spec: "SI units everywhere"). The units switch
+// only changes how numbers are shown and typed: SI (m, rad, rad/s) or workshop units (mm, deg,
+// rpm). Converting at the edge of the display keeps a single source of truth and means a
+// shared link never depends on the unit setting of whoever made it.
+
+const SYSTEMS = {
+  si: {
+    length: ['m', 1],
+    angle: ['rad', 1],
+    omega: ['rad/s', 1],
+    alpha: ['rad/s²', 1],
+    velocity: ['m/s', 1],
+    acceleration: ['m/s²', 1],
+    time: ['s', 1],
+  },
+  mm: {
+    length: ['mm', 1000],
+    angle: ['deg', 180 / Math.PI],
+    omega: ['rpm', 60 / (2 * Math.PI)],
+    alpha: ['rad/s²', 1],
+    velocity: ['mm/s', 1000],
+    acceleration: ['mm/s²', 1000],
+    time: ['s', 1],
+  },
+};
+
+export const UNIT_SYSTEMS = [
+  { value: 'si', label: 'SI (m, rad, rad/s)' },
+  { value: 'mm', label: 'mm, deg, rpm' },
+];
+
+/** Which physical kind a unit string of the API (preset parameters) denotes, or null. */
+export function kindOfUnit(unit) {
+  const u = String(unit || '').replace(/\s/g, '').replace('²', '^2');
+  if (u === 'm') return 'length';
+  if (u === 'rad') return 'angle';
+  if (u === 'rad/s') return 'omega';
+  if (u === 'rad/s^2' || u === 'rad/s2') return 'alpha';
+  if (u === 'm/s') return 'velocity';
+  if (u === 'm/s^2' || u === 'm/s2') return 'acceleration';
+  if (u === 's') return 'time';
+  return null;
+}
+
+function entry(kind, system) {
+  const table = SYSTEMS[system] || SYSTEMS.si;
+  return table[kind] || null;
+}
+
+export function unitLabel(kind, system, fallback = '') {
+  const e = entry(kind, system);
+  return e ? e[0] : fallback;
+}
+
+export function toDisplay(kind, value, system) {
+  const e = entry(kind, system);
+  return e && value !== null && value !== undefined ? value * e[1] : value;
+}
+
+export function fromDisplay(kind, value, system) {
+  const e = entry(kind, system);
+  return e && value !== null && value !== undefined ? value / e[1] : value;
+}
+
+/** A number with `digits` significant digits, without exponent for everyday magnitudes. */
+export function fmt(value, digits = 4) {
+  if (value === null || value === undefined || Number.isNaN(value)) return '—';
+  if (value === 0) return '0';
+  const abs = Math.abs(value);
+  if (abs >= 1e-3 && abs < 1e6) {
+    const decimals = Math.max(0, digits - 1 - Math.floor(Math.log10(abs)));
+    return Number(value.toFixed(Math.min(decimals, 10))).toString();
+  }
+  return value.toExponential(digits - 1);
+}
+
+/** "1.234 m/s" in the chosen system. */
+export function show(kind, value, system, digits = 4) {
+  return `${fmt(toDisplay(kind, value, system), digits)} ${unitLabel(kind, system)}`;
+}
