@@ -7,13 +7,17 @@ exist is null; sweep arrays follow ``driver_angle`` sample by sample.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
 from solver.analysis import LinkageAnalysis
+from solver.assembly import Motion
+from solver.relative_motion import MovingPointMotion
+from solver.scene import LinkageScene
 from solver.spatial import SpatialAnalysis
-from solver.sweep import Sweep
+from solver.sweep import Sweep, TimeSweep
 
 JSON = dict[str, Any]
 
@@ -33,6 +37,28 @@ def _point(position: Any, velocity: Any, acceleration: Any, wanted: frozenset[st
                        ("acceleration", acceleration)):
         if key in wanted:
             out[key] = value
+    return out
+
+
+MOVING_POINT_FIELDS = {
+    "position": ("position",),
+    "velocity": ("velocity", "transport_velocity", "relative_velocity"),
+    "acceleration": ("acceleration", "transport_acceleration", "relative_acceleration",
+                     "coriolis_acceleration"),
+    "components": ("transport_tangential", "transport_normal", "relative_tangential",
+                   "relative_normal", "omega_carrier", "alpha_carrier", "s", "s_dot", "s_ddot"),
+}
+
+
+def moving_point_fields(motion: MovingPointMotion, wanted: frozenset[str],
+                        convert: Callable[[Any], Any]) -> JSON:
+    """The requested fields of a moving point (scalars as numbers, vectors converted)."""
+    out: JSON = {}
+    for quantity, names in MOVING_POINT_FIELDS.items():
+        if quantity in wanted:
+            for name in names:
+                value = getattr(motion, name)
+                out[name] = float(value) if np.ndim(value) == 0 else convert(value)
     return out
 
 
@@ -66,6 +92,9 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
             "coriolis_acceleration": vector(j.coriolis_acceleration),
             "acceleration": vector(j.acceleration),
         } for j in result.joints]
+    if result.moving_points:
+        body["moving_points"] = {name: moving_point_fields(m, wanted, vector)
+                                 for name, m in result.moving_points.items()}
     if "poles" in wanted:
         body["instant_centres"] = [{"links": list(c.links), "position": vector(c.position),
                                     "direction_at_infinity": vector(c.direction)}
@@ -109,17 +138,13 @@ def spatial_response(result: SpatialAnalysis, wanted: frozenset[str]) -> JSON:
     return body
 
 
-def sweep_response(result: Sweep) -> JSON:
-    """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
-    wanted = result.quantities
-    motion = result.motion
-    points = {}
-    for name, p in motion.points.items():
-        if name in result.scene.points:
-            points[name] = _point(array(p.p), array(p.v), array(p.a), wanted)
+def _motion_arrays(scene: LinkageScene, motion: Motion, wanted: frozenset[str]) -> JSON:
+    """Points and links of a vectorised motion, as the sweep arrays of the spec."""
+    points = {name: _point(array(p.p), array(p.v), array(p.a), wanted)
+              for name, p in motion.points.items() if name in scene.points}
     links: JSON = {}
-    for name in result.scene.moving_links:
-        link, on_link = motion.links[name], result.scene.links[name].points
+    for name in scene.moving_links:
+        link, on_link = motion.links[name], scene.links[name].points
         out: JSON = {}
         if "position" in wanted:
             out["angle"] = None
@@ -131,7 +156,24 @@ def sweep_response(result: Sweep) -> JSON:
         if "acceleration" in wanted:
             out["alpha"] = array(link.alpha)
         links[name] = out
-    return {"driver": result.driver, "driver_angle": array(result.driver_angle), "samples":
-            int(result.driver_angle.size), "points": points, "links": links,
+    return {"points": points, "links": links}
+
+
+def sweep_response(result: Sweep) -> JSON:
+    """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
+    return {"driver": result.driver, "driver_angle": array(result.driver_angle),
+            "samples": int(result.driver_angle.size),
+            **_motion_arrays(result.scene, result.motion, result.quantities),
             "feasible": result.feasible, "limits": list(result.limits),
             "singular_samples": [int(k) for k in result.singular_samples]}
+
+
+def time_sweep_response(result: TimeSweep) -> JSON:
+    """The /sweep body for a time range: arrays follow ``time``."""
+    wanted = result.quantities
+    return {"time": array(result.time), "driver_angle": array(result.driver_angle),
+            "samples": int(result.time.size),
+            **_motion_arrays(result.scene, result.motion, wanted),
+            "moving_points": {name: moving_point_fields(m, wanted, array)
+                              for name, m in result.moving_points.items()},
+            "feasible": True, "limits": []}

@@ -40,8 +40,22 @@ class SweepRequest(Strict):
     scene: dict[str, Any] = Field(description="A scene-v1 'linkage' document.",
                                   examples=[_example("S000-T1")])
     samples: int = Field(360, description="Samples over the revolution (or feasible range).")
-    quantities: list[Literal["position", "velocity", "acceleration"]] | None = Field(
-        None, description="Default: position only.")
+    quantities: list[Literal["position", "velocity", "acceleration", "components"]] | None = (
+        Field(None, description="Default: position only. 'components' (time sweeps): the "
+              "moving points' transport, relative and Coriolis parts."))
     time_range: list[float] | None = Field(
         None, description="[t0, t1] (s): sweep in time through the scene's time laws instead "
         "of a driver revolution.")
+
+
+class EventSpec(Strict):
+    moving_point: str = Field(description="The name of a moving point of the scene.")
+    reaches: str = Field(description="The name of the point it should coincide with.")
+    occurrence: int = Field(1, description="Which meeting after t = 0 (1 = the first).")
+    t_max: float = Field(60.0, description="Search 0 < t <= t_max (s).")
+
+
+class EventsRequest(Strict):
+    scene: dict[str, Any] = Field(description="A scene-v1 'linkage' with moving_points.",
+                                  examples=[_example("S003-T2-rotating-carrier")])
+    event: EventSpec

@@ -19,6 +19,7 @@ from solver import newton
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
 from solver.errors import InvalidScene, SingularConfiguration
 from solver.laws import parse_time_law
+from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.poles import (
     FourBarLoop,
     InstantCentre,
@@ -99,6 +100,7 @@ class LinkageAnalysis:
     diagnostics: Diagnostics
     plan: Plan
     motion: Motion = field(repr=False)
+    moving_points: dict[str, MovingPointMotion] = field(default_factory=dict)
 
 
 def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
@@ -111,9 +113,11 @@ def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
     return chosen
 
 
-def required_order(quantities: frozenset[str]) -> int:
-    """0 for positions, 1 to velocities, 2 to accelerations (poles and components need both)."""
-    if quantities & {"acceleration", "poles", "components"}:
+def required_order(quantities: frozenset[str], moving_points: bool = False) -> int:
+    """0 for positions, 1 to velocities, 2 to accelerations (poles and components need both;
+    so do moving points, whose velocity parts and acceleration parts come together)."""
+    if quantities & {"acceleration", "poles", "components"} or (
+            moving_points and quantities - {"position"}):
         return 2
     return 1 if "velocity" in quantities else 0
 
@@ -125,18 +129,40 @@ def drawn_angle(scene: LinkageScene, link: str) -> float:
 
 
 def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[float, float, float]:
-    """(rotation from the drawn pose, omega, alpha) of a driver at ``time``."""
+    """(rotation from the drawn pose, omega, alpha) of a driver at ``time``.
+
+    With an ``angle_law`` the law gives all three. A driver with constant ``alpha`` turns from
+    its starting angle (drawn, or ``angle_deg``) as phi = omega t + alpha t^2 / 2, so at the
+    default time 0 it is exactly where the scene puts it, with the given omega and alpha.
+    """
     if driver.angle_law is not None:
         value, rate, rate_dot = parse_time_law(driver.angle_law).evaluate(time)
         return float(value), float(rate), float(rate_dot)
-    if driver.angle_deg is None:
-        return 0.0, driver.omega, driver.alpha
-    if len(scene.links[driver.link].points) < 2:
-        raise InvalidScene(f"drivers: angle_deg needs two points on link '{driver.link}' to "
-                           "define its angle")
-    turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
-    turn = math.atan2(math.sin(turn), math.cos(turn))
-    return turn, driver.omega, driver.alpha
+    turn = 0.0
+    if driver.angle_deg is not None:
+        if len(scene.links[driver.link].points) < 2:
+            raise InvalidScene(f"drivers: angle_deg needs two points on link '{driver.link}' "
+                               "to define its angle")
+        turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
+        turn = math.atan2(math.sin(turn), math.cos(turn))
+    if time == 0.0:
+        return turn, driver.omega, driver.alpha
+    return (turn + driver.omega * time + 0.5 * driver.alpha * time**2,
+            driver.omega + driver.alpha * time, driver.alpha)
+
+
+def driver_inputs_over_time(scene: LinkageScene, times: Array) -> list[DriverInput]:
+    """Every driver's rotation from the drawn pose and its rates at each of ``times``."""
+    inputs = []
+    for driver in scene.drivers:
+        if driver.angle_law is not None:
+            inputs.append(DriverInput(*parse_time_law(driver.angle_law).evaluate(times)))
+            continue
+        turn = driver_input(scene, driver, 0.0)[0]
+        inputs.append(DriverInput(turn + driver.omega * times + 0.5 * driver.alpha * times**2,
+                                  driver.omega + driver.alpha * times,
+                                  np.full(times.size, driver.alpha)))
+    return inputs
 
 
 def solve_instant(scene: LinkageScene, plan: Plan, order: int,
@@ -271,7 +297,7 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
 def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> LinkageAnalysis:
     """The linkage at its drivers' angles (drawn pose, ``angle_deg`` or ``angle_law`` at ``time``)."""
     wanted = normalise_quantities(quantities)
-    order = required_order(wanted)
+    order = required_order(wanted, bool(scene.moving_points))
     plan = build_plan(scene)
     motion, angles = solve_instant(scene, plan, order)
     condition = None
@@ -292,5 +318,14 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
     joints = _sliding_joints(scene, motion, order) if "components" in wanted else []
     centres = _instant_centres(scene, motion) if "poles" in wanted else []
     diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
+    moving = {}
+    if scene.moving_points:
+        carriers = motion.links
+        if order < 2:  # a position-only request: M's position comes with its parts
+            carriers = solve_instant(scene, plan, 2)[0].links
+        moving = {mp.name: moving_point_motion(scene, mp, carriers[mp.link],
+                                               np.array([scene.time])).at(0)
+                  for mp in scene.moving_points}
     return LinkageAnalysis(wanted, points, _link_results(scene, motion, wanted), joints, centres,
-                           four_bar_loops(scene, plan, motion), diagnostics, plan, motion)
+                           four_bar_loops(scene, plan, motion), diagnostics, plan, motion,
+                           moving)

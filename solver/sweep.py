@@ -17,9 +17,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.analysis import drawn_angle, driver_input, normalise_quantities, required_order
+from solver.analysis import (
+    drawn_angle,
+    driver_input,
+    driver_inputs_over_time,
+    normalise_quantities,
+    required_order,
+)
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
 from solver.errors import InvalidScene, LimitExceeded
+from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
 from solver.scene import LinkageScene
 from solver.topology import Plan, build_plan
@@ -149,3 +156,45 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
         scene.links[scene.drivers[0].link].points) >= 2 else 0.0
     return Sweep(scene, scene.drivers[0].link, drawn + turns, motion, span is None,
                  tuple(drawn + limit for limit in limits), singular, wanted)
+
+
+@dataclass(frozen=True)
+class TimeSweep:
+    """The linkage and its moving points over ``time`` (for animating time laws)."""
+
+    scene: LinkageScene
+    time: Array
+    driver_angle: Array
+    motion: Motion
+    moving_points: dict[str, MovingPointMotion]
+    quantities: frozenset[str]
+
+
+def sweep_time(scene: LinkageScene, t0: float, t1: float, samples: int,
+               quantities: Iterable[str] | None = None) -> TimeSweep:
+    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws)."""
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
+        raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
+    wanted = normalise_quantities(["position"] if quantities is None else quantities)
+    if wanted - SWEEP_QUANTITIES - {"components"}:
+        raise InvalidScene("quantities: a time sweep gives position, velocity, acceleration "
+                           "and components")
+    times = np.linspace(t0, t1, samples)
+    plan = build_plan(scene)
+    inputs = driver_inputs_over_time(scene, times)
+    order = required_order(wanted, bool(scene.moving_points))
+    motion = assemble(scene, plan, inputs, order, continuation=True)
+    require_feasible(motion, f"during t = {t0:g} .. {t1:g} s")
+    if scene.moving_points and order < 2:
+        motion_for_points = assemble(scene, plan, inputs, 2, continuation=True)
+    else:
+        motion_for_points = motion
+    moving = {mp.name: moving_point_motion(scene, mp, motion_for_points.links[mp.link], times)
+              for mp in scene.moving_points}
+    first = scene.drivers[0].link if scene.drivers else None
+    angle = np.zeros(samples)
+    if first is not None and len(scene.links[first].points) >= 2:
+        angle = drawn_angle(scene, first) + inputs[0].theta
+    return TimeSweep(scene, times, angle, motion, moving, wanted)

@@ -1,17 +1,25 @@
-"""POST /api/v1/analyze and POST /api/v1/sweep."""
+"""POST /api/v1/analyze, POST /api/v1/sweep and POST /api/v1/events."""
 
 from __future__ import annotations
 
 from fastapi import APIRouter
 
 from server.edge import FiniteJSONResponse, StrictJSONRoute
-from server.responses import analysis_response, spatial_response, sweep_response
+from server.responses import (
+    analysis_response,
+    spatial_response,
+    sweep_response,
+    time_sweep_response,
+    vector,
+)
 from server.routes.scenes import parse_linkage_only, parse_scene
-from server.schemas import AnalyzeRequest, SweepRequest
+from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
 from solver.analysis import analyze, normalise_quantities
 from solver.scene import LinkageScene
 from solver.spatial import analyze_spatial_chain
-from solver.sweep import sweep
+from solver.errors import InvalidScene
+from solver.events import find_event
+from solver.sweep import sweep, sweep_time
 
 router = APIRouter(tags=["kinematics"], route_class=StrictJSONRoute,
                    default_response_class=FiniteJSONResponse)
@@ -31,4 +39,21 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
              "feasible range)")
 def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/sweep")
-    return FiniteJSONResponse(sweep_response(sweep(scene, request.samples, request.quantities)))
+    if request.time_range is None:
+        return FiniteJSONResponse(sweep_response(sweep(scene, request.samples,
+                                                       request.quantities)))
+    if len(request.time_range) != 2:
+        raise InvalidScene("time_range: expected [t0, t1]")
+    t0, t1 = request.time_range
+    return FiniteJSONResponse(time_sweep_response(sweep_time(scene, t0, t1, request.samples,
+                                                             request.quantities)))
+
+
+@router.post("/events", summary="The instant at which a moving point reaches a named point")
+def events_route(request: EventsRequest) -> FiniteJSONResponse:
+    scene = parse_linkage_only(request.scene, "/events")
+    e = request.event
+    event = find_event(scene, e.moving_point, e.reaches, e.occurrence, e.t_max)
+    return FiniteJSONResponse({"time": event.time, "position": vector(event.position),
+                               "moving_point": e.moving_point, "reaches": e.reaches,
+                               "occurrence": e.occurrence})

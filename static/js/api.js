@@ -8,6 +8,9 @@
 
 const BASE = '/api/v1';
 
+/** Error codes of the contract (spec scene-v1, "Errors"). */
+const SPEC_CODES = new Set(['invalid_scene', 'invalid_expression', 'not_assemblable', 'singular_configuration', 'limit_exceeded']);
+
 export class ApiError extends Error {
   constructor({ code, detail, position = null, status = 0, title = '' }) {
     super(detail);
@@ -35,6 +38,15 @@ async function problemFrom(response, path) {
       body = null;
     }
   }
+  // A route that does not exist yet answers 404/405 with no code of the contract (FastAPI's
+  // plain {"detail": ...}, or a generic not_found/method_not_allowed problem).
+  if ((response.status === 404 || response.status === 405) && !SPEC_CODES.has(body?.code)) {
+    return new ApiError({
+      code: 'not_implemented',
+      detail: `The server does not offer ${path} yet (HTTP ${response.status}).`,
+      status: response.status,
+    });
+  }
   if (body && typeof body === 'object' && (body.code || body.detail)) {
     // FastAPI's own validation errors may carry `detail` as a list of {loc, msg}; flatten it
     // so a student reads one sentence instead of a JSON dump.
@@ -43,18 +55,11 @@ async function problemFrom(response, path) {
       detail = detail.map((d) => (d.loc ? `${d.loc.join('.')}: ${d.msg}` : d.msg || String(d))).join('; ');
     }
     return new ApiError({
-      code: body.code || (response.status === 404 ? 'not_implemented' : 'http_' + response.status),
+      code: body.code || 'http_' + response.status,
       detail: String(detail || body.title || response.statusText),
       position: body.position ?? null,
       status: response.status,
       title: body.title || '',
-    });
-  }
-  if (response.status === 404 || response.status === 405) {
-    return new ApiError({
-      code: 'not_implemented',
-      detail: `The server does not offer ${path} yet (HTTP ${response.status}).`,
-      status: response.status,
     });
   }
   return new ApiError({

@@ -107,7 +107,8 @@ export class Controls {
       sel.appendChild(el('option', { value }, 'Shared scene'));
     }
     sel.value = value;
-    this.el.description.textContent = description;
+    // The first paragraph of a preset's description; the rest is for the API documentation.
+    this.el.description.textContent = String(description || '').split(/\n\s*\n/)[0].replace(/\s*\n\s*/g, ' ');
   }
 
   // ---- dimension fields ----------------------------------------------------------------------
@@ -341,12 +342,12 @@ export class Controls {
       s.step = '1';
     } else {
       this.el.sliderLabel.textContent = 'Crank angle';
-      // Whole degrees so that one arrow key press is one degree.
+      // Steps of one degree from the start of the sweep: one arrow key press is one degree.
       const a = (lo * 180) / Math.PI;
       const b = (hi * 180) / Math.PI;
       s.min = String(Math.min(a, b));
       s.max = String(Math.max(a, b));
-      s.step = 'any';
+      s.step = '1';
     }
     s.disabled = !enabled;
   }

@@ -319,12 +319,14 @@ export class LinkageView {
 
   buildPoles() {
     const offView = [];
+    // A link turning about a fixed pivot has both poles there; marking them only hides the pivot.
+    const atFixed = (p) => this.isGroundPoint(p);
     const colourOf = (link) => this.colours[link] || COLOURS.pole;
     for (const [name, l] of Object.entries(this.analysis.links || {})) {
       for (const [key, letter, shape] of [['velocity_pole', 'P', 'circle'], ['acceleration_pole', 'G', 'diamond']]) {
         const p = l[key];
-        if (!p) continue;
-        const label = `${letter}${name}`;
+        if (!p || atFixed(p)) continue;
+        const label = name.length <= 2 ? `${letter}${name}` : `${letter}(${name})`;
         if (!this.inView(p)) {
           offView.push(`${label} (${show('length', p[0], this.options.units, 3)}, ${show('length', p[1], this.options.units, 3)})`);
           continue;
@@ -343,6 +345,14 @@ export class LinkageView {
       }
     }
     return offView.length ? [`Poles outside the picture: ${offView.join(', ')}`] : [];
+  }
+
+  isGroundPoint(p) {
+    const ground = groundLink(this.scene);
+    return (this.scene.links[ground]?.points || []).some((n) => {
+      const q = this.scene.points[n];
+      return Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9 * (1 + this.map.size);
+    });
   }
 
   buildNotes(notes) {

@@ -77,14 +77,14 @@ const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
 const norm = (a) => Math.hypot(a[0], a[1]);
 
 function baseLayout(title, kind, units, revision) {
+  // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
-  const sym = kind === 'velocity' ? 'v' : 'a';
   return {
-    title: { text: title, font: { size: 15 }, x: 0.02, xanchor: 'left' },
-    margin: { l: 56, r: 16, t: 40, b: 40 },
-    xaxis: { title: { text: `${sym}<sub>x</sub> [${u}]` }, zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
-    yaxis: { title: { text: `${sym}<sub>y</sub> [${u}]` }, zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
-    legend: { orientation: 'h', y: -0.18, font: { size: 11 } },
+    title: { text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left' },
+    margin: { l: 44, r: 12, t: 38, b: 28 },
+    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
+    yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
+    legend: { orientation: 'h', y: -0.08, yanchor: 'top', font: { size: 11 } },
     paper_bgcolor: '#ffffff',
     plot_bgcolor: '#ffffff',
     font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink },
@@ -111,6 +111,7 @@ function collect(scene, analysis, quantity, units) {
 function linkImages(scene, analysis, tips, quantity) {
   const colours = linkColours(scene);
   const traces = [];
+  let first = true;
   for (const name of movingLinks(scene)) {
     const pts = scene.links[name].points.filter((p) => tips[p]);
     if (pts.length < 2) continue;
@@ -122,15 +123,19 @@ function linkImages(scene, analysis, tips, quantity) {
     traces.push({
       type: 'scatter',
       mode: 'lines',
-      name: `${quantity} image of link ${name}`,
-      legendgroup: `image-${name}`,
+      // One legend entry for all images keeps the legend short; hover names the link.
+      name: 'images of the links',
+      legendgroup: 'images',
+      showlegend: first,
+      text: `${quantity} image of link ${name}`,
       x: loop.map((p) => tips[p][0]),
       y: loop.map((p) => tips[p][1]),
       fill: pts.length > 2 ? 'toself' : 'none',
       fillcolor: hexAlpha(colours[name], 0.14),
       line: { color: colours[name], width: pts.length > 2 ? 1.5 : 3, dash: pts.length > 2 ? 'solid' : 'dot' },
-      hoverinfo: 'name',
+      hoverinfo: 'text',
     });
+    first = false;
   }
   return traces;
 }

@@ -6,9 +6,17 @@
 // so no number a student reads comes from this interpolation.
 
 /** Build a track from a /sweep response. `param` is 'angle' (driver_angle) or 'time'. */
-export function trackFromSweep(response, scene) {
-  const timeBased = Array.isArray(response.time) && !Array.isArray(response.driver_angle);
-  const values = timeBased ? response.time : response.driver_angle;
+export function trackFromSweep(response, scene, timeRange = null) {
+  let timeBased = Array.isArray(response.time);
+  let values = timeBased ? response.time : response.driver_angle;
+  if (timeRange && !timeBased && !Array.isArray(response.driver_angle)) {
+    // Asked for a time range but given samples without their times: they are evenly spaced.
+    const n = firstSeriesLength(response);
+    if (n > 1) {
+      values = Array.from({ length: n }, (_, i) => timeRange[0] + ((timeRange[1] - timeRange[0]) * i) / (n - 1));
+      timeBased = true;
+    }
+  }
   if (!Array.isArray(values) || values.length === 0) {
     throw new Error('The sweep answer has no samples.');
   }
@@ -36,6 +44,13 @@ export function trackFromSweep(response, scene) {
     closed: !timeBased && response.feasible !== false && Math.abs(Math.abs(span) - 2 * Math.PI) < 0.2,
     static: false,
   };
+}
+
+function firstSeriesLength(response) {
+  for (const group of [response.points, response.moving_points]) {
+    for (const q of Object.values(group || {})) if (Array.isArray(q.position)) return q.position.length;
+  }
+  return 0;
 }
 
 /** A one-sample track from the drawn pose, used when the server has no /sweep to offer. */
@@ -81,24 +96,29 @@ export function indexOfValue(track, value) {
   if (track.n === 1) return 0;
   const rising = v[v.length - 1] >= v[0];
   let target = value;
+  const lo = Math.min(v[0], v[v.length - 1]);
+  const hi = Math.max(v[0], v[v.length - 1]);
   if (track.param === 'angle' && track.closed) {
     // Bring the angle into the swept revolution so that 370 deg finds 10 deg.
-    const lo = Math.min(v[0], v[v.length - 1]);
     target = lo + ((((value - lo) % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI));
+  } else if (track.param === 'angle') {
+    // A rocking crank: the turn of 2 pi nearest to its range (atan2 gives -pi..pi).
+    const mid = (lo + hi) / 2;
+    target = value + 2 * Math.PI * Math.round((mid - value) / (2 * Math.PI));
   }
   const key = (x) => (rising ? x : -x);
   const t = key(target);
   if (t <= key(v[0])) return 0;
   if (t >= key(v[v.length - 1])) return v.length - 1;
-  let lo = 0;
-  let hi = v.length - 1;
-  while (hi - lo > 1) {
-    const mid = (lo + hi) >> 1;
-    if (key(v[mid]) <= t) lo = mid;
-    else hi = mid;
+  let a = 0;
+  let b = v.length - 1;
+  while (b - a > 1) {
+    const mid = (a + b) >> 1;
+    if (key(v[mid]) <= t) a = mid;
+    else b = mid;
   }
-  const d = v[hi] - v[lo];
-  return lo + (d === 0 ? 0 : (target - v[lo]) / d);
+  const d = v[b] - v[a];
+  return a + (d === 0 ? 0 : (target - v[a]) / d);
 }
 
 /** Bounding box of every position in the track: [xmin, ymin, xmax, ymax]. */

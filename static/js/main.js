@@ -1,0 +1,721 @@
+// main.js: wiring. Owns the state of the page and decides when to ask the server.
+//
+// Requests are made per decision, never per frame:
+//   geometry change (preset, dimension, driver, law) -> one /sweep for the whole cycle
+//   pause, drag end, slider, edit (debounced)         -> one /analyze + one /solution
+// The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
+
+import * as api from './api.js';
+import { Controls } from './controls.js';
+import { LinkageView } from './linkage-view.js';
+import { SpatialView } from './spatial-view.js';
+import { renderPolygons, clearPolygons } from './polygons.js';
+import { renderPlots, moveCursor, available } from './plots.js';
+import { renderSolution, renderMessage } from './steps.js';
+import { readHash, writeHash } from './share.js';
+import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue } from './track.js';
+import * as S from './scene.js';
+import { fmt, show } from './units.js';
+
+const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
+const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
+const DEBOUNCE_MS = 250; // analysis after the last slider/drag movement
+const QUANTITIES = ['position', 'velocity', 'acceleration'];
+
+const $ = (id) => document.getElementById(id);
+
+class App {
+  constructor() {
+    this.presets = new Map();
+    this.examples = [];
+    this.source = null; // {type: 'preset', name, params} | {type: 'example', file} | {type: 'shared'}
+    this.scene = null;
+    this.track = null;
+    this.u = 0;
+    this.direction = 1;
+    this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
+    this.speed = 1;
+    this.units = 'si';
+    this.method = 'vector';
+    this.plot = { links: [], point: null };
+    this.camera = { yaw: -35, pitch: 22 };
+    this.driverEdits = {};
+    this.analysis = null;
+    this.analysisU = null;
+    this.geometrySeq = 0;
+    this.analysisSeq = 0;
+    this.solutionSeq = 0;
+    this.dirty = true;
+    this.firstFrame = false;
+    this.lastTime = null;
+    this.lastHash = null;
+  }
+
+  async start() {
+    this.controls = new Controls({
+      preset: (v) => this.onSource(v),
+      instant: (v, final) => this.onInstant(v, final),
+      play: (p) => this.setPlaying(p),
+      speed: (s) => { this.speed = s; this.saveHash(); },
+      units: (u) => this.onUnits(u),
+      options: (o) => this.onOptions(o),
+      plot: (sel) => { this.plot = sel; this.drawPlots(); this.saveHash(); },
+      method: (m) => { this.method = m; this.requestSolution(); this.saveHash(); },
+      share: () => this.onShare(),
+    });
+    this.controls.setPlaying(this.playing);
+    this.linkage = new LinkageView($('linkage'), {
+      onDrag: (angle) => this.onDrag(angle),
+      onDragEnd: () => this.scheduleAnalysis(0),
+    });
+    this.spatial = new SpatialView($('spatial'), {
+      onRotate: (yaw, pitch) => { this.camera = { yaw, pitch }; this.saveHash(); },
+    });
+    requestAnimationFrame((t) => this.tick(t));
+
+    const [presets, examples, shared] = await Promise.allSettled([api.getPresets(), api.getExampleIndex(), readHash()]);
+    if (presets.status === 'fulfilled') {
+      for (const p of presets.value.presets || []) this.presets.set(p.name, p);
+    } else {
+      this.status(`Textbook mechanisms are not available: ${presets.reason.detail || presets.reason.message}`, 'error');
+    }
+    this.examples = examples.status === 'fulfilled' ? examples.value.examples || [] : [];
+    this.controls.setPresetChoices([...this.presets.values()], this.examples);
+
+    const state = shared.status === 'fulfilled' ? shared.value : null;
+    if (state && !state.error) await this.restore(state);
+    else {
+      if (state?.error) this.status(state.error, 'error');
+      await this.openDefault();
+    }
+    window.addEventListener('hashchange', async () => {
+      if (location.hash === this.lastHash) return;
+      const s = await readHash();
+      if (s && !s.error) await this.restore(s);
+    });
+  }
+
+  // ---- choosing a mechanism --------------------------------------------------------------------
+
+  async openDefault() {
+    if (this.presets.has('four_bar')) return this.openPreset('four_bar', {});
+    if (this.presets.size) return this.openPreset(this.presets.keys().next().value, {});
+    const four = this.examples.find((x) => x.file === 'S000-T1.json') || this.examples[0];
+    if (four) return this.openExample(four.file);
+    this.status('No mechanism could be loaded.', 'error');
+  }
+
+  async onSource(value) {
+    const [type, name] = [value.slice(0, value.indexOf(':')), value.slice(value.indexOf(':') + 1)];
+    this.driverEdits = {};
+    // A newly chosen mechanism starts moving, as the page does on opening.
+    this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
+    this.controls.setPlaying(this.playing);
+    if (type === 'preset') await this.openPreset(name, {});
+    else if (type === 'example') await this.openExample(name);
+  }
+
+  async openPreset(name, params, view = null) {
+    const meta = this.presets.get(name);
+    this.controls.selectSource(`preset:${name}`, meta?.description || '');
+    let scene;
+    try {
+      scene = view?.scene || await api.buildPreset(name, params);
+    } catch (err) {
+      this.status(`The preset ${name} could not be built: ${err.detail}`, 'error');
+      return;
+    }
+    this.source = { type: 'preset', name, params: { ...params } };
+    this.controls.setPresetFields(meta?.parameters || [], params, (p, v) => this.onParam(p, v));
+    this.setDriverFields(scene);
+    await this.commitOrReport(scene, null, view);
+  }
+
+  async openExample(file, view = null) {
+    const entry = this.examples.find((x) => x.file === file);
+    this.controls.selectSource(`example:${file}`, entry?.description || entry?.title || '');
+    let scene;
+    try {
+      scene = view?.scene || await api.getExample(file);
+    } catch (err) {
+      this.status(err.detail, 'error');
+      return;
+    }
+    this.source = { type: 'example', file };
+    this.setExampleFields(scene);
+    await this.commitOrReport(scene, null, view);
+  }
+
+  setExampleFields(scene) {
+    if (S.isSpatial(scene)) {
+      this.controls.setSpatialFields(scene, (joint, field, v) => this.onJoint(joint, field, v));
+      return;
+    }
+    const ground = S.groundLink(scene);
+    const fixed = new Set(scene.links[ground]?.points || []);
+    this.controls.setPointFields(scene, fixed, (p, i, v) => this.onPoint(p, i, v));
+    this.setDriverFields(scene);
+  }
+
+  setDriverFields(scene) {
+    if (S.isSpatial(scene)) return;
+    this.controls.setDriverFields(scene, (f, v) => this.onDriver(f, v), (kind, name, text) => this.onLaw(kind, name, text));
+  }
+
+  /** Load a scene; an error here has no field to sit next to, so it goes to the status line. */
+  async commitOrReport(scene, fieldKey, view) {
+    try {
+      await this.loadScene(scene, view ? { instant: view.view?.instant } : {});
+    } catch (err) {
+      if (!fieldKey || !this.controls.showFieldError(fieldKey, err.detail, err.position)) {
+        this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
+      }
+    }
+  }
+
+  // ---- edits: each one is validated by the server before it replaces what is shown ---------------
+
+  async edit(fieldKey, valueSI, makeScene, onAccept = null) {
+    try {
+      const scene = await makeScene();
+      await this.loadScene(scene, { keepInstant: true });
+    } catch (err) {
+      this.controls.showFieldError(fieldKey, err.detail || err.message, err.position);
+      this.controls.revertField(fieldKey);
+      return false;
+    }
+    this.controls.acceptField(fieldKey, valueSI);
+    onAccept?.();
+    return true;
+  }
+
+  onParam(name, value) {
+    const params = { ...this.source.params, [name]: value };
+    return this.edit(
+      `param:${name}`,
+      value,
+      async () => this.withDriverEdits(await api.buildPreset(this.source.name, params)),
+      () => { this.source = { ...this.source, params }; this.saveHash(); },
+    );
+  }
+
+  onPoint(name, index, value) {
+    return this.edit(`point:${name}:${index}`, value, async () => {
+      const scene = structuredClone(this.scene);
+      scene.points[name][index] = value;
+      return scene;
+    });
+  }
+
+  onDriver(field, value) {
+    const edits = { ...this.driverEdits, [field]: value };
+    return this.edit(
+      `driver:${field}`,
+      value,
+      async () => {
+        const scene = structuredClone(this.scene);
+        scene.drivers[0] = { ...scene.drivers[0], ...edits };
+        return scene;
+      },
+      () => { this.driverEdits = edits; },
+    );
+  }
+
+  onLaw(kind, name, text) {
+    const key = kind === 'angle' ? 'law:angle' : `law:s:${name}`;
+    return this.edit(key, text, async () => {
+      const scene = structuredClone(this.scene);
+      if (kind === 'angle') scene.drivers[0].angle_law = text;
+      else if (Array.isArray(scene.moving_points)) scene.moving_points.find((m) => m.name === name).s_law = text;
+      else scene.moving_points[name].s_law = text;
+      return scene;
+    });
+  }
+
+  onJoint(name, field, value) {
+    return this.edit(`joint:${name}:${field}`, value, async () => {
+      const scene = structuredClone(this.scene);
+      scene.joints.find((j) => j.name === name)[field] = value;
+      return scene;
+    });
+  }
+
+  withDriverEdits(scene) {
+    if (scene.drivers?.length && Object.keys(this.driverEdits).length) {
+      scene.drivers[0] = { ...scene.drivers[0], ...this.driverEdits };
+    }
+    return scene;
+  }
+
+  // ---- geometry: one sweep per change ---------------------------------------------------------
+
+  /**
+   * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
+   * server's error (and leaves the page as it was) when the scene is not acceptable.
+   */
+  async loadScene(scene, { keepInstant = false, instant = null } = {}) {
+    const seq = ++this.geometrySeq;
+    if (S.isSpatial(scene)) return this.loadSpatial(scene, seq);
+    const timeDriven = S.isTimeDriven(scene);
+    const previous = keepInstant && this.track ? valueAt(this.track, this.u) : null;
+    let track;
+    let note = null;
+    try {
+      track = await this.fetchTrack(scene, timeDriven);
+    } catch (err) {
+      // Not-assemblable and friends are answers about the scene: report them to the caller.
+      // An endpoint that is missing, or (for time laws) a sweep that cannot do time ranges yet,
+      // only costs the animation: check the scene with /analyze and show it still.
+      const soft = err.missing || err.code === 'network' || (timeDriven && err.code !== 'invalid_expression');
+      if (!soft) throw err;
+      const probeScene = timeDriven ? S.sceneAt(scene, 'time', scene.time ?? 0) : scene;
+      try {
+        await api.analyze(probeScene, ['position']);
+      } catch (probe) {
+        if (!probe.missing && probe.code !== 'network') throw probe;
+      }
+      track = staticTrack(scene, timeDriven ? 'time' : 'angle', timeDriven ? scene.time ?? 0 : S.drawnAngle(scene, scene.drivers?.[0]?.link));
+      note = timeDriven
+        ? `No animation over time: ${err.detail} The instant t = ${fmt(scene.time ?? 0)} s is analysed.`
+        : `No animation: ${err.detail} The drawn pose is analysed.`;
+    }
+    if (seq !== this.geometrySeq) return; // a newer edit won
+    this.commitPlanar(scene, track, note, previous ?? instant);
+  }
+
+  async fetchTrack(scene, timeDriven) {
+    const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
+    let response;
+    try {
+      response = await api.sweep(scene, SAMPLES, QUANTITIES, range);
+    } catch (err) {
+      // A server that can only sweep positions still animates; plots then show angles only.
+      if (err.code !== 'invalid_scene') throw err;
+      response = await api.sweep(scene, SAMPLES, ['position'], range);
+    }
+    const track = trackFromSweep(response, scene, range);
+    if (timeDriven && track.param !== 'time') {
+      // The server turned the driver instead of running the clock: its sweep has no time range yet.
+      throw new api.ApiError({ code: 'not_implemented', detail: 'The server\'s /sweep does not run over a time range yet (its answer has no "time").' });
+    }
+    return track;
+  }
+
+  commitPlanar(scene, track, note, instant) {
+    this.scene = scene;
+    this.track = track;
+    this.analysis = null;
+    this.analysisU = null;
+    showView('linkage');
+    $('view-title').textContent = scene.title || 'Mechanism';
+
+    const v = track.values;
+    this.controls.setInstantRange(track.param, Math.min(v[0], v[v.length - 1]), Math.max(v[0], v[v.length - 1]), track.n > 1);
+    this.u = instant === null || instant === undefined ? 0 : indexOfValue(track, instant);
+    this.direction = 1;
+    if (track.n < 2 && this.playing) {
+      this.playing = false;
+      this.controls.setPlaying(false);
+    }
+
+    const names = S.pointNames(scene);
+    const opts = this.controls.options();
+    const trace = names.includes(opts.trace) ? opts.trace : defaultTrace(scene);
+    const plotPoint = names.includes(this.plot.point) ? this.plot.point : trace || names[names.length - 1];
+    this.controls.setPointChoices(names, trace, plotPoint);
+    const links = S.movingLinks(scene);
+    const chosen = this.plot.links.filter((l) => links.includes(l));
+    this.plot = { links: chosen.length ? chosen : links.slice(0, 3), point: plotPoint };
+    this.controls.setLinkChoices(links, S.linkColours(scene), this.plot.links);
+
+    this.linkage.options = { ...this.linkage.options, ...this.controls.options(), units: this.units };
+    this.linkage.setScene(scene, track);
+
+    const messages = [];
+    if (note) messages.push(note);
+    if (!track.feasible) {
+      const [a, b] = [v[0], v[v.length - 1]];
+      messages.push(`The crank cannot turn fully: it rocks between ${show('angle', Math.min(a, b), this.units)} and ${show('angle', Math.max(a, b), this.units)} (limit positions).`);
+    }
+    this.viewMessage(messages.join(' '));
+    this.drawPlots();
+    this.dirty = true;
+    this.scheduleAnalysis(0);
+    this.saveHash();
+  }
+
+  async loadSpatial(scene, seq) {
+    let analysis = null;
+    let note = null;
+    try {
+      analysis = await api.analyze(scene);
+    } catch (err) {
+      if (!err.missing && err.code !== 'network') throw err;
+      note = `The server cannot analyse this spatial chain: ${err.detail}`;
+    }
+    if (seq !== this.geometrySeq) return;
+    this.scene = scene;
+    this.track = null;
+    this.analysis = analysis;
+    showView('spatial');
+    $('view-title').textContent = scene.title || 'Spatial chain';
+    $('instant-readout').textContent = '';
+    this.controls.setInstantRange('angle', 0, 0, false);
+    this.setPlaying(false, { analyse: false });
+    this.spatial.setOptions({ ...this.controls.options(), units: this.units });
+    this.spatial.setCamera(this.camera.yaw, this.camera.pitch);
+    this.spatial.setScene(scene);
+    this.spatial.setAnalysis(analysis);
+    this.paintSpatialInfo();
+    this.viewMessage(note || '');
+    clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
+    this.polygonMessage('The polygons are drawn for planar linkages. The vectors of this spatial chain are listed under its drawing.');
+    clearPolygons($('plots'));
+    this.plotsMessage('A spatial chain is analysed at one instant: there is no cycle to plot.');
+    this.markFirstFrame();
+    this.requestSolution();
+    this.saveHash();
+  }
+
+  paintSpatialInfo() {
+    const ul = $('spatial-info');
+    ul.replaceChildren(...this.spatial.summary().map((line) => Object.assign(document.createElement('li'), { textContent: line })));
+    ul.hidden = !ul.children.length;
+  }
+
+  // ---- the analysed instant -------------------------------------------------------------------
+
+  instantValue(u = this.u) {
+    return this.track ? valueAt(this.track, u) : null;
+  }
+
+  instantScene(u = this.u) {
+    const t = this.track;
+    if (!t) return this.scene;
+    if (t.param === 'time') return S.sceneAt(this.scene, 'time', valueAt(t, u));
+    // A static track (no sweep) analyses the drawn pose itself.
+    return t.static ? this.scene : S.sceneAt(this.scene, 'angle', valueAt(t, u));
+  }
+
+  scheduleAnalysis(delay = DEBOUNCE_MS) {
+    clearTimeout(this.analysisTimer);
+    this.analysisTimer = setTimeout(() => this.analyzeNow(), delay);
+  }
+
+  async analyzeNow() {
+    if (!this.scene || S.isSpatial(this.scene)) return;
+    const seq = ++this.analysisSeq;
+    const u = this.u;
+    const scene = this.instantScene(u);
+    let analysis = null;
+    try {
+      analysis = await api.analyze(scene);
+    } catch (err) {
+      if (seq !== this.analysisSeq) return;
+      this.analysis = null;
+      this.linkage.setAnalysis(null);
+      this.polygonMessage(err.missing ? `Polygons unavailable: ${err.detail}` : `At this instant the server reports: ${err.detail}`);
+    }
+    if (seq !== this.analysisSeq) return;
+    if (analysis) {
+      this.analysis = analysis;
+      this.analysisU = u;
+      this.linkage.setAnalysis(analysis);
+      this.drawPolygons();
+      const missing = S.movingPoints(this.scene).map((m) => m.name).filter((n) => !analysis.moving_points?.[n]);
+      if (missing.length) this.polygonMessage(`The server's analysis has no moving point ${missing.join(', ')} yet, so it is not drawn.`);
+      moveCursor($('plots'), this.track, this.instantValue(u), this.units);
+      $('linkage').dataset.analysed = String(this.instantValue(u));
+    }
+    this.dirty = true;
+    this.requestSolution(scene);
+    this.saveHash();
+  }
+
+  async requestSolution(scene = null) {
+    if (!this.scene) return;
+    const seq = ++this.solutionSeq;
+    const target = scene || (S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u));
+    try {
+      const sol = await api.solution(target, this.method, 4);
+      if (seq !== this.solutionSeq) return;
+      const failures = renderSolution($('steps'), $('mistakes'), sol);
+      if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
+    } catch (err) {
+      if (seq !== this.solutionSeq) return;
+      renderMessage($('steps'), err.missing ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
+      $('mistakes').replaceChildren();
+    }
+  }
+
+  drawPolygons() {
+    if (!this.analysis) return;
+    const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.units);
+    this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
+    const v = this.instantValue(this.analysisU ?? this.u);
+    if (this.track && !this.track.static && v !== null) {
+      const label = this.track.param === 'time' ? `t = ${fmt(v)} s` : `θ = ${show('angle', v, this.units)}`;
+      $('instant-readout').textContent = `analysed instant: ${label}`;
+    } else {
+      $('instant-readout').textContent = '';
+    }
+  }
+
+  drawPlots() {
+    const div = $('plots');
+    const t = this.track;
+    if (!t || t.n < 2) {
+      clearPolygons(div);
+      this.plotsMessage(t ? 'No sweep from the server, so there is no cycle to plot.' : '');
+      return;
+    }
+    const ok = renderPlots(div, this.scene, t, { links: this.plot.links, point: this.plot.point, units: this.units, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
+    const have = available(t);
+    this.plotsMessage(!ok ? 'The sweep has nothing to plot.' : !have.omega ? 'The server swept positions only: angular velocities and accelerations are not plotted.' : '');
+  }
+
+  // ---- interaction ---------------------------------------------------------------------------
+
+  setPlaying(playing, { analyse = true } = {}) {
+    const animatable = this.track && this.track.n > 1;
+    this.playing = playing && !!animatable;
+    this.controls.setPlaying(this.playing);
+    if (!this.playing && analyse) this.scheduleAnalysis(0);
+    this.dirty = true;
+    this.saveHash();
+  }
+
+  onInstant(valueSI, final) {
+    if (!this.track || this.track.n < 2) return;
+    if (this.playing) this.setPlaying(false, { analyse: false });
+    this.u = indexOfValue(this.track, valueSI);
+    this.dirty = true;
+    this.scheduleAnalysis(final ? 0 : DEBOUNCE_MS);
+  }
+
+  onDrag(linkAngle) {
+    if (!this.track || this.track.param !== 'angle') return;
+    if (this.playing) this.setPlaying(false, { analyse: false });
+    this.u = indexOfValue(this.track, linkAngle);
+    this.dirty = true;
+    this.scheduleAnalysis();
+  }
+
+  onUnits(units) {
+    this.units = units;
+    this.controls.setUnits(units);
+    this.linkage.setOptions({ units });
+    this.spatial.setOptions({ units });
+    if (S.isSpatial(this.scene)) this.paintSpatialInfo();
+    this.drawPolygons();
+    this.drawPlots();
+    this.dirty = true;
+    this.saveHash();
+  }
+
+  onOptions(options) {
+    this.linkage.setOptions(options);
+    this.spatial.setOptions(options);
+    this.dirty = true;
+    this.saveHash();
+  }
+
+  // ---- animation -----------------------------------------------------------------------------
+
+  tick(now) {
+    const dt = this.lastTime === null ? 0 : Math.min((now - this.lastTime) / 1000, 0.1);
+    this.lastTime = now;
+    const t = this.track;
+    if (this.playing && t && t.n > 1) {
+      this.advance(t, dt);
+      this.dirty = true;
+    }
+    if (this.dirty && t) {
+      this.drawFrame();
+      this.dirty = false;
+    }
+    requestAnimationFrame((x) => this.tick(x));
+  }
+
+  advance(t, dt) {
+    const last = t.n - 1;
+    // Angle scenes: one revolution per CYCLE_SECONDS at 1x. Time scenes: real time.
+    const rate = t.param === 'time'
+      ? (this.speed * last) / Math.max(t.values[last] - t.values[0], 1e-9)
+      : (this.speed * last) / CYCLE_SECONDS;
+    let u = this.u + this.direction * rate * dt;
+    if (t.closed) u = ((u % last) + last) % last;
+    else if (t.param === 'time') u = u > last ? 0 : u;
+    else if (u > last || u < 0) {
+      // A crank that cannot turn fully rocks between its limit positions.
+      this.direction = -this.direction;
+      u = Math.min(Math.max(u, 0), last);
+    }
+    this.u = u;
+  }
+
+  drawFrame() {
+    const exact = !this.playing && this.analysis && this.analysisU === this.u;
+    const frame = exact ? frameFromAnalysis(this.analysis) : frameAt(this.track, this.u);
+    this.linkage.draw(frame);
+    const value = this.instantValue();
+    this.controls.setInstant(value);
+    $('linkage').dataset.instant = String(value);
+    this.markFirstFrame();
+  }
+
+  markFirstFrame() {
+    if (this.firstFrame) return;
+    this.firstFrame = true;
+    performance.mark('first-frame');
+  }
+
+  // ---- share ---------------------------------------------------------------------------------
+
+  shareState() {
+    return {
+      scene: this.scene,
+      source: this.source,
+      view: {
+        instant: this.track && !this.track.static ? this.instantValue() : null,
+        playing: this.playing,
+        speed: this.speed,
+        units: this.units,
+        options: this.controls.options(),
+        plot: this.plot,
+        method: this.method,
+        camera: this.camera,
+      },
+    };
+  }
+
+  saveHash() {
+    clearTimeout(this.hashTimer);
+    this.hashTimer = setTimeout(async () => {
+      if (!this.scene) return;
+      await writeHash(this.shareState());
+      this.lastHash = location.hash;
+    }, 300);
+  }
+
+  async onShare() {
+    clearTimeout(this.hashTimer);
+    const url = await writeHash(this.shareState());
+    this.lastHash = location.hash;
+    this.controls.showShareUrl(url);
+    try {
+      await navigator.clipboard.writeText(url);
+      this.status('Link copied: it opens this mechanism at this instant with these settings.');
+    } catch {
+      this.status('Link ready: copy it from the field next to the button.');
+    }
+  }
+
+  async restore(state) {
+    const view = state.view || {};
+    this.units = view.units === 'mm' ? 'mm' : 'si';
+    this.controls.setUnits(this.units);
+    this.speed = view.speed || 1;
+    this.controls.setSpeed(this.speed);
+    this.method = view.method === 'loop' ? 'loop' : 'vector';
+    this.controls.setMethod(this.method);
+    if (view.camera) this.camera = view.camera;
+    if (view.plot) this.plot = view.plot;
+    this.driverEdits = {};
+    this.playing = view.playing !== false;
+    this.controls.setPlaying(this.playing);
+    if (view.options) {
+      this.controls.setPointChoices(S.isSpatial(state.scene) ? [] : S.pointNames(state.scene), view.options.trace, null);
+      this.controls.setOptions(view.options);
+    }
+    const src = state.source || {};
+    if (src.type === 'preset' && this.presets.has(src.name)) {
+      await this.openPreset(src.name, src.params || {}, { scene: state.scene, view });
+    } else if (src.type === 'example' && this.examples.some((x) => x.file === src.file)) {
+      await this.openExample(src.file, { scene: state.scene, view });
+    } else {
+      this.source = { type: 'shared' };
+      this.controls.selectSource('shared', 'A mechanism opened from a link.');
+      this.setExampleFields(state.scene);
+      await this.commitOrReport(state.scene, null, { view });
+    }
+    if (this.track) this.controls.setOptions(view.options || {});
+    this.linkage.setOptions(this.controls.options());
+    if (!this.playing) this.scheduleAnalysis(0);
+  }
+
+  // ---- messages ------------------------------------------------------------------------------
+
+  status(text, level = 'info') {
+    const el = $('status');
+    el.textContent = text;
+    el.dataset.level = level;
+    clearTimeout(this.statusTimer);
+    if (level === 'info') this.statusTimer = setTimeout(() => { el.textContent = ''; }, 6000);
+  }
+
+  viewMessage(text) {
+    setMessage($('view-message'), text);
+  }
+
+  polygonMessage(text) {
+    setMessage($('polygon-message'), text);
+  }
+
+  plotsMessage(text) {
+    setMessage($('plots-message'), text);
+  }
+}
+
+/** Show one of the two drawings. SVG elements have no `hidden` property: use the attribute. */
+function showView(which) {
+  $('linkage').toggleAttribute('hidden', which !== 'linkage');
+  $('spatial').toggleAttribute('hidden', which !== 'spatial');
+  $('spatial-info').toggleAttribute('hidden', which !== 'spatial');
+  // A spatial chain is one instant: no motion controls, no dimensions to edit.
+  document.querySelector('.motion').toggleAttribute('hidden', which === 'spatial');
+  $('dimensions').toggleAttribute('hidden', which === 'spatial');
+  $('plot-choices').toggleAttribute('hidden', which === 'spatial');
+}
+
+function setMessage(el, text) {
+  el.textContent = text;
+  el.hidden = !text;
+}
+
+/** The analysed instant drawn exactly as the server placed it. */
+function frameFromAnalysis(analysis) {
+  const frame = { position: {}, velocity: {}, acceleration: {}, exact: true };
+  for (const group of [analysis.points, analysis.moving_points]) {
+    for (const [name, q] of Object.entries(group || {})) {
+      if (q.position) frame.position[name] = q.position;
+      if (q.velocity) frame.velocity[name] = q.velocity;
+      if (q.acceleration) frame.acceleration[name] = q.acceleration;
+    }
+  }
+  return frame;
+}
+
+/** Trace the coupler point if there is one (a point of a link that is no joint), else a moving point. */
+function defaultTrace(scene) {
+  const mp = S.movingPoints(scene);
+  if (mp.length) return mp[0].name;
+  const jointPoints = new Set((scene.joints || []).map((j) => j.point));
+  const ground = S.groundLink(scene);
+  for (const [name, l] of Object.entries(scene.links)) {
+    if (name === ground) continue;
+    const free = l.points.find((p) => !jointPoints.has(p));
+    if (free) return free;
+  }
+  // A four-bar without a coupler point: trace the coupler's far joint.
+  const coupler = S.movingLinks(scene).find((l) => !(scene.joints || []).some((j) => j.links.includes(l) && j.links.includes(ground)));
+  return coupler ? scene.links[coupler].points[scene.links[coupler].points.length - 1] : null;
+}
+
+new App().start().catch((err) => {
+  // A defect in the page itself: say so where a person looks.
+  const el = $('status');
+  el.textContent = `The page failed to start: ${err.message}`;
+  el.dataset.level = 'error';
+  throw err;
+});
