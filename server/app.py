@@ -34,10 +34,12 @@ def create_app() -> FastAPI:
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:
         return get_swagger_ui_html(
-            openapi_url=f"{API_PREFIX}/openapi.json", title="Kinematics API",
+            openapi_url=f"{API_PREFIX}/openapi.json",
+            title="Kinematics API",
             swagger_js_url="/vendor/swagger-ui/swagger-ui-bundle.js",
             swagger_css_url="/vendor/swagger-ui/swagger-ui.css",
-            swagger_favicon_url="/favicon.svg")
+            swagger_favicon_url="/favicon.svg",
+        )
 
     @app.get("/health", include_in_schema=False)
     def health() -> dict[str, str]:

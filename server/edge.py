@@ -32,14 +32,16 @@ class StrictJSONRequest(Request):
         if not hasattr(self, "_body"):
             declared = self.headers.get("content-length", "")
             if declared.isdigit() and int(declared) > MAX_BODY_BYTES:
-                raise HTTPException(413, f"the body of {declared} bytes exceeds the limit of "
-                                         f"{MAX_BODY_BYTES} bytes")
+                raise HTTPException(
+                    413, f"the body of {declared} bytes exceeds the limit of {MAX_BODY_BYTES} bytes"
+                )
             chunks, size = [], 0
             async for chunk in self.stream():
                 size += len(chunk)
                 if size > MAX_BODY_BYTES:
-                    raise HTTPException(413, f"the body exceeds the limit of {MAX_BODY_BYTES} "
-                                             "bytes")
+                    raise HTTPException(
+                        413, f"the body exceeds the limit of {MAX_BODY_BYTES} bytes"
+                    )
                 chunks.append(chunk)
             self._body = b"".join(chunks)
         return self._body
@@ -60,17 +62,17 @@ class StrictJSONRoute(APIRoute):
         return strict
 
 
-class NonFiniteResult(RuntimeError):
+class NonFiniteResultError(RuntimeError):
     """The solver produced NaN or infinity: a defect, answered as a 500 problem."""
 
 
 def _check_finite(value: Any, path: str) -> None:
     if isinstance(value, float):
         if value != value or value in (float("inf"), float("-inf")):
-            raise NonFiniteResult(f"non-finite value at {path}")
+            raise NonFiniteResultError(f"non-finite value at {path}")
     elif isinstance(value, np.ndarray):
         if value.dtype.kind == "f" and not np.all(np.isfinite(value)):
-            raise NonFiniteResult(f"non-finite value in {path}")
+            raise NonFiniteResultError(f"non-finite value in {path}")
     elif isinstance(value, dict):
         for key, item in value.items():
             _check_finite(item, f"{path}.{key}")

@@ -36,8 +36,14 @@ class BodyTooLarge(LimitExceeded):
 
 
 def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
-    body = {"type": f"/problems/{code}", "title": TITLES.get(code, code), "status": status,
-            "detail": detail, "code": code, **extra}
+    body = {
+        "type": f"/problems/{code}",
+        "title": TITLES.get(code, code),
+        "status": status,
+        "detail": detail,
+        "code": code,
+        **extra,
+    }
     return JSONResponse(body, status_code=status, media_type=PROBLEM)
 
 
@@ -51,8 +57,11 @@ async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
     if isinstance(error, InvalidExpression):
         extra = {"position": error.position, "expression": error.expression}
     elif isinstance(error, SingularConfiguration):
-        extra = {"condition_number": error.condition_number
-                 if error.condition_number < float("inf") else None}
+        extra = {
+            "condition_number": error.condition_number
+            if error.condition_number < float("inf")
+            else None
+        }
     return problem(_status(error), error.code, error.message, **extra)
 
 
@@ -66,15 +75,17 @@ async def validation_error(_: Request, error: Exception) -> JSONResponse:
     messages = []
     for e in error.errors()[:10]:
         reason = e.get("ctx", {}).get("error", "")
-        messages.append(f"{_location(tuple(e['loc']))}: {e['msg']}" + (f" ({reason})" if reason
-                                                                       else ""))
+        messages.append(
+            f"{_location(tuple(e['loc']))}: {e['msg']}" + (f" ({reason})" if reason else "")
+        )
     return problem(422, "invalid_scene", "; ".join(messages) or "invalid request")
 
 
 async def http_error(_: Request, error: Exception) -> JSONResponse:
     assert isinstance(error, HTTPException)
     code = {404: "not_found", 405: "method_not_allowed", 413: "limit_exceeded"}.get(
-        error.status_code, "invalid_scene")
+        error.status_code, "invalid_scene"
+    )
     return problem(error.status_code, code, str(error.detail))
 
 

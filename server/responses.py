@@ -33,8 +33,11 @@ def array(value: np.ndarray | None) -> np.ndarray | None:
 
 def _point(position: Any, velocity: Any, acceleration: Any, wanted: frozenset[str]) -> JSON:
     out: JSON = {}
-    for key, value in (("position", position), ("velocity", velocity),
-                       ("acceleration", acceleration)):
+    for key, value in (
+        ("position", position),
+        ("velocity", velocity),
+        ("acceleration", acceleration),
+    ):
         if key in wanted:
             out[key] = value
     return out
@@ -43,15 +46,29 @@ def _point(position: Any, velocity: Any, acceleration: Any, wanted: frozenset[st
 MOVING_POINT_FIELDS = {
     "position": ("position",),
     "velocity": ("velocity", "transport_velocity", "relative_velocity"),
-    "acceleration": ("acceleration", "transport_acceleration", "relative_acceleration",
-                     "coriolis_acceleration"),
-    "components": ("transport_tangential", "transport_normal", "relative_tangential",
-                   "relative_normal", "omega_carrier", "alpha_carrier", "s", "s_dot", "s_ddot"),
+    "acceleration": (
+        "acceleration",
+        "transport_acceleration",
+        "relative_acceleration",
+        "coriolis_acceleration",
+    ),
+    "components": (
+        "transport_tangential",
+        "transport_normal",
+        "relative_tangential",
+        "relative_normal",
+        "omega_carrier",
+        "alpha_carrier",
+        "s",
+        "s_dot",
+        "s_ddot",
+    ),
 }
 
 
-def moving_point_fields(motion: MovingPointMotion, wanted: frozenset[str],
-                        convert: Callable[[Any], Any]) -> JSON:
+def moving_point_fields(
+    motion: MovingPointMotion, wanted: frozenset[str], convert: Callable[[Any], Any]
+) -> JSON:
     """The requested fields of a moving point (scalars as numbers, vectors converted)."""
     out: JSON = {}
     for quantity, names in MOVING_POINT_FIELDS.items():
@@ -66,8 +83,10 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
     """The /analyze body of a linkage."""
     wanted = result.quantities
     body: JSON = {
-        "points": {name: _point(vector(p.position), vector(p.velocity), vector(p.acceleration),
-                                wanted) for name, p in result.points.items()},
+        "points": {
+            name: _point(vector(p.position), vector(p.velocity), vector(p.acceleration), wanted)
+            for name, p in result.points.items()
+        },
         "links": {},
     }
     for name, link in result.links.items():
@@ -83,35 +102,61 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
             out["acceleration_pole"] = vector(link.acceleration_pole)
         body["links"][name] = out
     if "components" in wanted:
-        body["joints"] = [{
-            "point": j.point, "type": j.type, "links": list(j.links), "omega_guide": j.omega_guide,
-            "transport_velocity": vector(j.transport_velocity),
-            "relative_velocity": vector(j.relative_velocity), "velocity": vector(j.velocity),
-            "transport_acceleration": vector(j.transport_acceleration),
-            "relative_acceleration": vector(j.relative_acceleration),
-            "coriolis_acceleration": vector(j.coriolis_acceleration),
-            "acceleration": vector(j.acceleration),
-        } for j in result.joints]
+        body["joints"] = [
+            {
+                "point": j.point,
+                "type": j.type,
+                "links": list(j.links),
+                "omega_guide": j.omega_guide,
+                "transport_velocity": vector(j.transport_velocity),
+                "relative_velocity": vector(j.relative_velocity),
+                "velocity": vector(j.velocity),
+                "transport_acceleration": vector(j.transport_acceleration),
+                "relative_acceleration": vector(j.relative_acceleration),
+                "coriolis_acceleration": vector(j.coriolis_acceleration),
+                "acceleration": vector(j.acceleration),
+            }
+            for j in result.joints
+        ]
     if result.moving_points:
-        body["moving_points"] = {name: moving_point_fields(m, wanted, vector)
-                                 for name, m in result.moving_points.items()}
+        body["moving_points"] = {
+            name: moving_point_fields(m, wanted, vector) for name, m in result.moving_points.items()
+        }
     if "poles" in wanted:
-        body["instant_centres"] = [{"links": list(c.links), "position": vector(c.position),
-                                    "direction_at_infinity": vector(c.direction)}
-                                   for c in result.instant_centres]
-    body["four_bar_loops"] = [{
-        "links": dict(zip(("ground", "crank", "coupler", "rocker"), loop.links, strict=True)),
-        "lengths": dict(zip(("ground", "crank", "coupler", "rocker"), loop.lengths, strict=True)),
-        "grashof": loop.grashof, "transmission_angle": loop.transmission_angle,
-        "transmission_angle_deg": math.degrees(loop.transmission_angle),
-    } for loop in result.four_bar_loops]
+        body["instant_centres"] = [
+            {
+                "links": list(c.links),
+                "position": vector(c.position),
+                "direction_at_infinity": vector(c.direction),
+            }
+            for c in result.instant_centres
+        ]
+    body["four_bar_loops"] = [
+        {
+            "links": dict(zip(("ground", "crank", "coupler", "rocker"), loop.links, strict=True)),
+            "lengths": dict(
+                zip(("ground", "crank", "coupler", "rocker"), loop.lengths, strict=True)
+            ),
+            "grashof": loop.grashof,
+            "transmission_angle": loop.transmission_angle,
+            "transmission_angle_deg": math.degrees(loop.transmission_angle),
+        }
+        for loop in result.four_bar_loops
+    ]
     d = result.diagnostics
     body["diagnostics"] = {
         "condition_number": d.condition_number,
         "position_method": "closed-form dyads" if d.closed_form else "dyads and Newton-Raphson",
-        "newton": [{"links": list(r.links), "converged": bool(np.all(r.converged)),
-                    "iterations": r.iterations, "residual_norm": r.residual_norm,
-                    "tolerance": r.tolerance} for r in d.newton],
+        "newton": [
+            {
+                "links": list(r.links),
+                "converged": bool(np.all(r.converged)),
+                "iterations": r.iterations,
+                "residual_norm": r.residual_norm,
+                "tolerance": r.tolerance,
+            }
+            for r in d.newton
+        ],
         "driver_angles_deg": d.driver_angles,
     }
     return body
@@ -131,17 +176,23 @@ def spatial_response(result: SpatialAnalysis, wanted: frozenset[str]) -> JSON:
         out = _point(vector(p.position), vector(p.velocity), vector(p.acceleration), wanted)
         if "components" in wanted:
             out["acceleration_terms"] = {
-                "origin": vector(p.a_origin), "tangential": vector(p.tangential),
-                "centripetal": vector(p.centripetal), "coriolis": vector(p.coriolis),
-                "relative": vector(p.relative)}
+                "origin": vector(p.a_origin),
+                "tangential": vector(p.tangential),
+                "centripetal": vector(p.centripetal),
+                "coriolis": vector(p.coriolis),
+                "relative": vector(p.relative),
+            }
         body["points"][name] = out
     return body
 
 
 def _motion_arrays(scene: LinkageScene, motion: Motion, wanted: frozenset[str]) -> JSON:
     """Points and links of a vectorised motion, as the sweep arrays of the spec."""
-    points = {name: _point(array(p.p), array(p.v), array(p.a), wanted)
-              for name, p in motion.points.items() if name in scene.points}
+    points = {
+        name: _point(array(p.p), array(p.v), array(p.a), wanted)
+        for name, p in motion.points.items()
+        if name in scene.points
+    }
     links: JSON = {}
     for name in scene.moving_links:
         link, on_link = motion.links[name], scene.links[name].points
@@ -161,19 +212,28 @@ def _motion_arrays(scene: LinkageScene, motion: Motion, wanted: frozenset[str]) 
 
 def sweep_response(result: Sweep) -> JSON:
     """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
-    return {"driver": result.driver, "driver_angle": array(result.driver_angle),
-            "samples": int(result.driver_angle.size),
-            **_motion_arrays(result.scene, result.motion, result.quantities),
-            "feasible": result.feasible, "limits": list(result.limits),
-            "singular_samples": [int(k) for k in result.singular_samples]}
+    return {
+        "driver": result.driver,
+        "driver_angle": array(result.driver_angle),
+        "samples": int(result.driver_angle.size),
+        **_motion_arrays(result.scene, result.motion, result.quantities),
+        "feasible": result.feasible,
+        "limits": list(result.limits),
+        "singular_samples": [int(k) for k in result.singular_samples],
+    }
 
 
 def time_sweep_response(result: TimeSweep) -> JSON:
     """The /sweep body for a time range: arrays follow ``time``."""
     wanted = result.quantities
-    return {"time": array(result.time), "driver_angle": array(result.driver_angle),
-            "samples": int(result.time.size),
-            **_motion_arrays(result.scene, result.motion, wanted),
-            "moving_points": {name: moving_point_fields(m, wanted, array)
-                              for name, m in result.moving_points.items()},
-            "feasible": True, "limits": []}
+    return {
+        "time": array(result.time),
+        "driver_angle": array(result.driver_angle),
+        "samples": int(result.time.size),
+        **_motion_arrays(result.scene, result.motion, wanted),
+        "moving_points": {
+            name: moving_point_fields(m, wanted, array) for name, m in result.moving_points.items()
+        },
+        "feasible": True,
+        "limits": [],
+    }

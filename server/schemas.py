@@ -31,21 +31,28 @@ class Strict(BaseModel):
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
-        examples=[_example("S000-T1"), _example("S002-spatial-arm")])
+        examples=[_example("S000-T1"), _example("S002-spatial-arm")],
+    )
     quantities: list[Quantity] | None = Field(
-        None, description="What to compute (default: all). The server computes only these.")
+        None, description="What to compute (default: all). The server computes only these."
+    )
 
 
 class SweepRequest(Strict):
-    scene: dict[str, Any] = Field(description="A scene-v1 'linkage' document.",
-                                  examples=[_example("S000-T1")])
+    scene: dict[str, Any] = Field(
+        description="A scene-v1 'linkage' document.", examples=[_example("S000-T1")]
+    )
     samples: int = Field(360, description="Samples over the revolution (or feasible range).")
-    quantities: list[Literal["position", "velocity", "acceleration", "components"]] | None = (
-        Field(None, description="Default: position only. 'components' (time sweeps): the "
-              "moving points' transport, relative and Coriolis parts."))
+    quantities: list[Literal["position", "velocity", "acceleration", "components"]] | None = Field(
+        None,
+        description="Default: position only. 'components' (time sweeps): the "
+        "moving points' transport, relative and Coriolis parts.",
+    )
     time_range: list[float] | None = Field(
-        None, description="[t0, t1] (s): sweep in time through the scene's time laws instead "
-        "of a driver revolution.")
+        None,
+        description="[t0, t1] (s): sweep in time through the scene's time laws instead "
+        "of a driver revolution.",
+    )
 
 
 class EventSpec(Strict):
@@ -56,6 +63,8 @@ class EventSpec(Strict):
 
 
 class EventsRequest(Strict):
-    scene: dict[str, Any] = Field(description="A scene-v1 'linkage' with moving_points.",
-                                  examples=[_example("S003-T2-rotating-carrier")])
+    scene: dict[str, Any] = Field(
+        description="A scene-v1 'linkage' with moving_points.",
+        examples=[_example("S003-T2-rotating-carrier")],
+    )
     event: EventSpec

@@ -19,7 +19,6 @@ from solver import newton
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
 from solver.errors import InvalidScene, SingularConfiguration
 from solver.laws import parse_time_law
-from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.poles import (
     FourBarLoop,
     InstantCentre,
@@ -29,6 +28,7 @@ from solver.poles import (
     transmission_angle,
     velocity_pole,
 )
+from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array, LinkMotion, PointMotion, perp
 from solver.scene import Driver, LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, build_plan
@@ -117,7 +117,8 @@ def required_order(quantities: frozenset[str], moving_points: bool = False) -> i
     """0 for positions, 1 to velocities, 2 to accelerations (poles and components need both;
     so do moving points, whose velocity parts and acceleration parts come together)."""
     if quantities & {"acceleration", "poles", "components"} or (
-            moving_points and quantities - {"position"}):
+        moving_points and quantities - {"position"}
+    ):
         return 2
     return 1 if "velocity" in quantities else 0
 
@@ -141,14 +142,18 @@ def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[floa
     turn = 0.0
     if driver.angle_deg is not None:
         if len(scene.links[driver.link].points) < 2:
-            raise InvalidScene(f"drivers: angle_deg needs two points on link '{driver.link}' "
-                               "to define its angle")
+            raise InvalidScene(
+                f"drivers: angle_deg needs two points on link '{driver.link}' to define its angle"
+            )
         turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
         turn = math.atan2(math.sin(turn), math.cos(turn))
     if time == 0.0:
         return turn, driver.omega, driver.alpha
-    return (turn + driver.omega * time + 0.5 * driver.alpha * time**2,
-            driver.omega + driver.alpha * time, driver.alpha)
+    return (
+        turn + driver.omega * time + 0.5 * driver.alpha * time**2,
+        driver.omega + driver.alpha * time,
+        driver.alpha,
+    )
 
 
 def driver_inputs_over_time(scene: LinkageScene, times: Array) -> list[DriverInput]:
@@ -159,14 +164,19 @@ def driver_inputs_over_time(scene: LinkageScene, times: Array) -> list[DriverInp
             inputs.append(DriverInput(*parse_time_law(driver.angle_law).evaluate(times)))
             continue
         turn = driver_input(scene, driver, 0.0)[0]
-        inputs.append(DriverInput(turn + driver.omega * times + 0.5 * driver.alpha * times**2,
-                                  driver.omega + driver.alpha * times,
-                                  np.full(times.size, driver.alpha)))
+        inputs.append(
+            DriverInput(
+                turn + driver.omega * times + 0.5 * driver.alpha * times**2,
+                driver.omega + driver.alpha * times,
+                np.full(times.size, driver.alpha),
+            )
+        )
     return inputs
 
 
-def solve_instant(scene: LinkageScene, plan: Plan, order: int,
-                  time: float | None = None) -> tuple[Motion, dict[str, float]]:
+def solve_instant(
+    scene: LinkageScene, plan: Plan, order: int, time: float | None = None
+) -> tuple[Motion, dict[str, float]]:
     """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion)."""
     t = scene.time if time is None else time
     given = [driver_input(scene, d, t) for d in scene.drivers]
@@ -180,9 +190,11 @@ def solve_instant(scene: LinkageScene, plan: Plan, order: int,
     motion = assemble(scene, plan, inputs, order, continuation=steps > 1)
     if steps > 1:
         motion = _last_sample(motion)
-    angles = {d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
-              for d, g in zip(scene.drivers, given, strict=True)
-              if len(scene.links[d.link].points) >= 2}
+    angles = {
+        d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
+        for d, g in zip(scene.drivers, given, strict=True)
+        if len(scene.links[d.link].points) >= 2
+    }
     where = "at " + ", ".join(f"{k} angle {v:.6g} deg" for k, v in angles.items())
     if not angles:
         where = "at the drawn pose"
@@ -197,10 +209,18 @@ def _last_sample(motion: Motion) -> Motion:
     def point(m: PointMotion) -> PointMotion:
         return PointMotion(m.p[-1:], cut(m.v), cut(m.a))
 
-    links = {k: LinkMotion(m.anchor0, point(m.anchor), m.theta[-1:], cut(m.omega), cut(m.alpha))
-             for k, m in motion.links.items()}
-    return Motion(links, {k: point(m) for k, m in motion.points.items()}, motion.feasible[-1:],
-                  motion.conditioning[-1:], motion.failures, motion.newton)
+    links = {
+        k: LinkMotion(m.anchor0, point(m.anchor), m.theta[-1:], cut(m.omega), cut(m.alpha))
+        for k, m in motion.links.items()
+    }
+    return Motion(
+        links,
+        {k: point(m) for k, m in motion.points.items()},
+        motion.feasible[-1:],
+        motion.conditioning[-1:],
+        motion.failures,
+        motion.newton,
+    )
 
 
 def _sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:
@@ -223,13 +243,27 @@ def _sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[Sli
             a_cor = 2.0 * omega_g * perp(v_rel)
             a = P.a[0]
             a_rel = a - a_tr - a_cor
-        joints.append(SlidingJoint(joint.point, joint.type, joint.links, omega_g, v_tr, v_rel,
-                                   P.v[0], a_tr, a_rel, a_cor, a))
+        joints.append(
+            SlidingJoint(
+                joint.point,
+                joint.type,
+                joint.links,
+                omega_g,
+                v_tr,
+                v_rel,
+                P.v[0],
+                a_tr,
+                a_rel,
+                a_cor,
+                a,
+            )
+        )
     return joints
 
 
-def _link_results(scene: LinkageScene, motion: Motion, quantities: frozenset[str]
-                  ) -> dict[str, LinkResult]:
+def _link_results(
+    scene: LinkageScene, motion: Motion, quantities: frozenset[str]
+) -> dict[str, LinkResult]:
     results = {}
     size = scene.size
     for name in scene.moving_links:
@@ -249,9 +283,12 @@ def _link_results(scene: LinkageScene, motion: Motion, quantities: frozenset[str
             v_pole = velocity_pole(X.p[0], X.v[0], omega, size)
             a_pole = acceleration_pole(X.p[0], X.a[0], omega, alpha, size)
         results[name] = LinkResult(
-            angle, omega if "velocity" in quantities or "poles" in quantities else None,
+            angle,
+            omega if "velocity" in quantities or "poles" in quantities else None,
             alpha if "acceleration" in quantities or "poles" in quantities else None,
-            v_pole, a_pole)
+            v_pole,
+            a_pole,
+        )
     return results
 
 
@@ -263,8 +300,10 @@ def _instant_centres(scene: LinkageScene, motion: Motion) -> list[InstantCentre]
         assert link.anchor.v is not None and link.omega is not None
         omega = float(link.omega[0])
         fields[name] = (link.anchor.v[0] - omega * perp(link.anchor.p[0]), omega)
-    return [instant_centre(i, *fields[i], j, *fields[j], scene.size)
-            for i, j in combinations(scene.links, 2)]
+    return [
+        instant_centre(i, *fields[i], j, *fields[j], scene.size)
+        for i, j in combinations(scene.links, 2)
+    ]
 
 
 def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[FourBarLoop]:
@@ -279,23 +318,36 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
         assert isinstance(first, CircleSpec) and isinstance(second, CircleSpec)
         if first.center in ground_points:
             first, second = second, first
-        crank = next((c for c, pivot in cranks.items()
-                      if first.center in scene.links[c].points and first.center != pivot), None)
+        crank = next(
+            (
+                c
+                for c, pivot in cranks.items()
+                if first.center in scene.links[c].points and first.center != pivot
+            ),
+            None,
+        )
         if crank is None or second.center not in ground_points:
             continue
         A, B = scene.drawn(cranks[crank]), scene.drawn(first.center)
         D = scene.drawn(second.center)
-        lengths = (float(np.hypot(*(D - A))), float(np.hypot(*(B - A))), first.radius,
-                   second.radius)
+        lengths = (
+            float(np.hypot(*(D - A))),
+            float(np.hypot(*(B - A))),
+            first.radius,
+            second.radius,
+        )
         p = motion.points
         mu = transmission_angle(p[first.center].p[0], p[step.point].p[0], p[second.center].p[0])
-        loops.append(FourBarLoop((scene.ground, crank, first.link, second.link), lengths,
-                                 grashof_class(*lengths), mu))
+        loops.append(
+            FourBarLoop(
+                (scene.ground, crank, first.link, second.link), lengths, grashof_class(*lengths), mu
+            )
+        )
     return loops
 
 
 def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> LinkageAnalysis:
-    """The linkage at its drivers' angles (drawn pose, ``angle_deg`` or ``angle_law`` at ``time``)."""
+    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``."""
     wanted = normalise_quantities(quantities)
     order = required_order(wanted, bool(scene.moving_points))
     plan = build_plan(scene)
@@ -308,13 +360,18 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
             raise SingularConfiguration(
                 f"dead centre{' with ' + where if where else ''}: the velocity equations are "
                 f"singular (condition number {condition:.3g}), so the driver cannot move the "
-                "linkage here", condition)
+                "linkage here",
+                condition,
+            )
     points = {
         name: PointResult(
             m.p[0] if "position" in wanted else None,
             m.v[0] if "velocity" in wanted and m.v is not None else None,
-            m.a[0] if "acceleration" in wanted and m.a is not None else None)
-        for name, m in motion.points.items() if name in scene.points}
+            m.a[0] if "acceleration" in wanted and m.a is not None else None,
+        )
+        for name, m in motion.points.items()
+        if name in scene.points
+    }
     joints = _sliding_joints(scene, motion, order) if "components" in wanted else []
     centres = _instant_centres(scene, motion) if "poles" in wanted else []
     diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
@@ -323,9 +380,19 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
         carriers = motion.links
         if order < 2:  # a position-only request: M's position comes with its parts
             carriers = solve_instant(scene, plan, 2)[0].links
-        moving = {mp.name: moving_point_motion(scene, mp, carriers[mp.link],
-                                               np.array([scene.time])).at(0)
-                  for mp in scene.moving_points}
-    return LinkageAnalysis(wanted, points, _link_results(scene, motion, wanted), joints, centres,
-                           four_bar_loops(scene, plan, motion), diagnostics, plan, motion,
-                           moving)
+        moving = {
+            mp.name: moving_point_motion(scene, mp, carriers[mp.link], np.array([scene.time])).at(0)
+            for mp in scene.moving_points
+        }
+    return LinkageAnalysis(
+        wanted,
+        points,
+        _link_results(scene, motion, wanted),
+        joints,
+        centres,
+        four_bar_loops(scene, plan, motion),
+        diagnostics,
+        plan,
+        motion,
+        moving,
+    )

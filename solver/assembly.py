@@ -1,4 +1,4 @@
-"""Assemble a linkage at given driver inputs: positions, and velocities and accelerations on request.
+"""Assemble a linkage at given driver inputs: positions, velocities, accelerations on request.
 
 Runs a ``Plan`` (see ``topology``) vectorised over samples. The branch of each two-branch group is
 either the drawn one (``continuation=False``: the same orientation of the dyad's triangle, as the
@@ -23,7 +23,6 @@ from solver.topology import (
     DyadStep,
     GuidedStep,
     LeverStep,
-    LineSpec,
     LocusSpec,
     NewtonStep,
     Plan,
@@ -87,8 +86,9 @@ def continuous_sign(candidate: Callable[[Array], Array], drawn: float, samples: 
 class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``)."""
 
-    def __init__(self, scene: LinkageScene, inputs: Sequence[DriverInput], order: int,
-                 continuation: bool) -> None:
+    def __init__(
+        self, scene: LinkageScene, inputs: Sequence[DriverInput], order: int, continuation: bool
+    ) -> None:
         self.scene = scene
         self.inputs = inputs
         self.order = order
@@ -125,19 +125,30 @@ class _Assembler:
         pivot0 = self.scene.drawn(step.pivot)
         zeros = np.zeros((self.samples, 2))
         anchor = PointMotion(np.broadcast_to(pivot0, (self.samples, 2)).copy(), zeros, zeros)
-        self.know(step.link, LinkMotion(pivot0, anchor, given.theta,
-                                        given.omega if self.order >= 1 else None,
-                                        given.alpha if self.order >= 2 else None))
+        self.know(
+            step.link,
+            LinkMotion(
+                pivot0,
+                anchor,
+                given.theta,
+                given.omega if self.order >= 1 else None,
+                given.alpha if self.order >= 2 else None,
+            ),
+        )
 
     def dyad(self, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)
         cut = dyads.intersect(first, second, step.point)
         self.fail(cut.feasible, cut.message[0])
-        sign = (continuous_sign(cut.point, step.sign, self.samples) if self.continuation
-                else np.full(self.samples, step.sign))
+        sign = (
+            continuous_sign(cut.point, step.sign, self.samples)
+            if self.continuation
+            else np.full(self.samples, step.sign)
+        )
         X = cut.point(sign)
-        self.conditioning = np.minimum(self.conditioning,
-                                       dyads.relative_determinant(first, second, X))
+        self.conditioning = np.minimum(
+            self.conditioning, dyads.relative_determinant(first, second, X)
+        )
         self.points[step.point] = dyads.point_motion(first, second, X, self.order)
 
     def lever(self, step: LeverStep) -> None:
@@ -147,16 +158,23 @@ class _Assembler:
             beta = dyads.slotted_lever(pivot, pin, step.offset, sign, 0).beta
             return np.stack((np.cos(beta), np.sin(beta)), axis=-1)
 
-        sign = (continuous_sign(direction, step.sign, self.samples) if self.continuation
-                else np.full(self.samples, step.sign))
+        sign = (
+            continuous_sign(direction, step.sign, self.samples)
+            if self.continuation
+            else np.full(self.samples, step.sign)
+        )
         solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
-        self.fail(solution.gap2 >= -dyads.TANGENCY_TOLERANCE,
-                  f"|{step.pivot}{step.pin}| is shorter than the offset {abs(step.offset):.6g} m "
-                  f"of the slot of '{step.link}' from its pivot {step.pivot}")
+        self.fail(
+            solution.gap2 >= -dyads.TANGENCY_TOLERANCE,
+            f"|{step.pivot}{step.pin}| is shorter than the offset {abs(step.offset):.6g} m "
+            f"of the slot of '{step.link}' from its pivot {step.pivot}",
+        )
         self.conditioning = np.minimum(self.conditioning, solution.conditioning)
         theta = solution.beta - np.arctan2(step.direction0[1], step.direction0[0])
-        self.know(step.link, LinkMotion(self.scene.drawn(step.pivot), pivot, theta,
-                                        solution.omega, solution.alpha))
+        self.know(
+            step.link,
+            LinkMotion(self.scene.drawn(step.pivot), pivot, theta, solution.omega, solution.alpha),
+        )
 
     def run(self, plan: Plan) -> Motion:
         ground = self.scene.links[self.scene.ground]
@@ -169,30 +187,50 @@ class _Assembler:
             elif isinstance(step, LeverStep):
                 self.lever(step)
             elif isinstance(step, TwoPointStep):
-                self.know(step.link, link_from_two_points(
-                    self.scene.drawn(step.first), self.scene.drawn(step.second),
-                    self.points[step.first], self.points[step.second]))
+                self.know(
+                    step.link,
+                    link_from_two_points(
+                        self.scene.drawn(step.first),
+                        self.scene.drawn(step.second),
+                        self.points[step.first],
+                        self.points[step.second],
+                    ),
+                )
             elif isinstance(step, GuidedStep):
                 guide = self.links[step.guide]
-                self.know(step.link, LinkMotion(self.scene.drawn(step.point),
-                                                self.points[step.point], guide.theta,
-                                                guide.omega, guide.alpha))
+                self.know(
+                    step.link,
+                    LinkMotion(
+                        self.scene.drawn(step.point),
+                        self.points[step.point],
+                        guide.theta,
+                        guide.omega,
+                        guide.alpha,
+                    ),
+                )
             else:
                 self.newton_group(step)
-        return Motion(self.links, self.points, self.feasible, self.conditioning, self.failures,
-                      self.reports)
+        return Motion(
+            self.links, self.points, self.feasible, self.conditioning, self.failures, self.reports
+        )
 
     def newton_group(self, step: NewtonStep) -> None:
-        solved, report = newton.solve_group(self.scene, step.links, self.links, self.samples,
-                                            self.order)
+        solved, report = newton.solve_group(
+            self.scene, step.links, self.links, self.samples, self.order
+        )
         self.reports.append(report)
         self.fail(report.converged, report.message)
         for link, motion in solved.items():
             self.know(link, motion)
 
 
-def assemble(scene: LinkageScene, plan: Plan, inputs: Sequence[DriverInput], order: int,
-             continuation: bool = False) -> Motion:
+def assemble(
+    scene: LinkageScene,
+    plan: Plan,
+    inputs: Sequence[DriverInput],
+    order: int,
+    continuation: bool = False,
+) -> Motion:
     """Positions (order 0), velocities (1) and accelerations (2) of every link and point."""
     return _Assembler(scene, inputs, order, continuation).run(plan)
 

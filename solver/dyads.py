@@ -49,7 +49,7 @@ Locus = Circle | Line
 
 @dataclass(frozen=True)
 class Intersection:
-    """X = base + sign * h * offset for the two branches; ``gap2`` = h^2 / scale^2 (negative: none)."""
+    """X = base + sign h offset for the two branches; ``gap2`` = h^2 / r^2 (negative: none)."""
 
     base: Array
     offset: Array
@@ -66,7 +66,7 @@ class Intersection:
 
 
 def _root(gap2: Array, h2: Array) -> Array:
-    """sqrt(h^2), with a tangency within rounding snapped to zero and no root taken of a negative."""
+    """sqrt(h^2), a tangency within rounding snapped to zero, no root taken of a negative."""
     return np.sqrt(np.where(gap2 > TANGENCY_TOLERANCE, h2, 0.0))
 
 
@@ -94,13 +94,17 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     first = int(np.argmax(gap2 < -TANGENCY_TOLERANCE)) if np.any(gap2 < -TANGENCY_TOLERANCE) else 0
     dk, total, diff = float(d[first]), c1.radius + c2.radius, abs(c1.radius - c2.radius)
     pair = f"|{c1.center_name}{c2.center_name}|"
-    lengths = (f"|{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.6g} + "
-               f"{c2.radius:.6g} = {total:.6g} m")
+    lengths = (
+        f"|{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.6g} + "
+        f"{c2.radius:.6g} = {total:.6g} m"
+    )
     if dk > total:
         message = [f"{pair} = {dk:.6g} m > {lengths}"]
     else:
-        message = [f"{pair} = {dk:.6g} m < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| "
-                   f"= {diff:.6g} m"]
+        message = [
+            f"{pair} = {dk:.6g} m < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| "
+            f"= {diff:.6g} m"
+        ]
     return Intersection(c1.center.p + scale(a, u), perp(u), _root(gap2, h2), gap2, message)
 
 
@@ -112,8 +116,10 @@ def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
     gap2 = h2 / c.radius**2
     k = int(np.argmin(gap2))
     distance = abs(float(cross(line.direction[k], q_c[k])))
-    message = [f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
-               f"{distance:.6g} m > |{c.center_name}{name}| = {c.radius:.6g} m"]
+    message = [
+        f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
+        f"{distance:.6g} m > |{c.center_name}{name}| = {c.radius:.6g} m"
+    ]
     base = line.through.p - scale(b, line.direction)
     return Intersection(base, line.direction, _root(gap2, h2), gap2, message)
 
@@ -162,20 +168,24 @@ def _acceleration_rhs(locus: Locus, X: Array, v_X: Array) -> Array:
     assert Q.v is not None and Q.a is not None
     assert locus.omega is not None and locus.alpha is not None
     n, w = perp(locus.direction), locus.direction
-    return (dot(n, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v)
-            + locus.alpha * dot(w, X - Q.p))
+    return dot(n, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v) + locus.alpha * dot(w, X - Q.p)
 
 
 def solve_2x2(row1: Array, row2: Array, rhs1: Array, rhs2: Array) -> Array:
     """Cramer's rule for [row1; row2] x = [rhs1; rhs2]: x = (|b r2|, |r1 b|) / |r1 r2|."""
     det = cross(row1, row2)
     safe = np.where(det != 0.0, det, np.inf)
-    return np.stack(((rhs1 * row2[:, 1] - rhs2 * row1[:, 1]) / safe,
-                     (row1[:, 0] * rhs2 - row2[:, 0] * rhs1) / safe), axis=-1)
+    return np.stack(
+        (
+            (rhs1 * row2[:, 1] - rhs2 * row1[:, 1]) / safe,
+            (row1[:, 0] * rhs2 - row2[:, 0] * rhs1) / safe,
+        ),
+        axis=-1,
+    )
 
 
 def relative_determinant(first: Locus, second: Locus, X: Array) -> Array:
-    """|det G| / (|g1| |g2|): the sine of the angle between the constraint gradients (0: dead centre)."""
+    """|det G| / (|g1| |g2|): sine of the angle between the gradients (0: dead centre)."""
     g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
     norms = np.sqrt(dot(g1, g1) * dot(g2, g2))
     return np.abs(cross(g1, g2)) / np.where(norms > 0.0, norms, 1.0)
@@ -204,8 +214,9 @@ class LeverSolution:
     conditioning: Array
 
 
-def slotted_lever(pivot: PointMotion, pin: PointMotion, offset: float, sign: Array,
-                  order: int) -> LeverSolution:
+def slotted_lever(
+    pivot: PointMotion, pin: PointMotion, offset: float, sign: Array, order: int
+) -> LeverSolution:
     """The direction beta of a slot through ``pin``, in a lever turning about ``pivot``.
 
     The slot line keeps the signed offset e = u x (P - A) from the pivot, u = (cos beta,

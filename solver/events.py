@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -47,23 +48,26 @@ def _path_levels(scene: LinkageScene, mp: MovingPoint, target: str) -> tuple[flo
         u = u / math.hypot(*u)
         off = abs(u[0] * (point - start)[1] - u[1] * (point - start)[0])
         if off > ON_PATH_TOLERANCE * max(math.hypot(*(point - start)), scene.size):
-            raise NoEvent(f"{target} is {off:.6g} m off the line along which {mp.name} moves, "
-                          f"so {mp.name} never reaches it")
+            raise NoEvent(
+                f"{target} is {off:.6g} m off the line along which {mp.name} moves, "
+                f"so {mp.name} never reaches it"
+            )
         return float(u @ (point - start)), 0.0
     assert route.center is not None
     center = scene.drawn(route.center)
     radius = math.hypot(*(start - center))
     distance = math.hypot(*(point - center))
     if abs(distance - radius) > ON_PATH_TOLERANCE * radius:
-        raise NoEvent(f"{target} is not on the arc of {mp.name}: |{route.center}{target}| = "
-                      f"{distance:.6g} m, radius {radius:.6g} m")
+        raise NoEvent(
+            f"{target} is not on the arc of {mp.name}: |{route.center}{target}| = "
+            f"{distance:.6g} m, radius {radius:.6g} m"
+        )
     turn = 1.0 if route.direction == "ccw" else -1.0
     angle = turn * (math.atan2(*(point - center)[::-1]) - math.atan2(*(start - center)[::-1]))
     return radius * (angle % (2.0 * math.pi)), 2.0 * math.pi * radius
 
 
-def _crossings_of_levels(mp: MovingPoint, level: float, period: float, t_max: float
-                         ) -> list[float]:
+def _crossings_of_levels(mp: MovingPoint, level: float, period: float, t_max: float) -> list[float]:
     """All t in [0, t_max] with s(t) = level + k period (any integer k; k = 0 for a line)."""
     law = parse_time_law(mp.s_law)
 
@@ -74,40 +78,47 @@ def _crossings_of_levels(mp: MovingPoint, level: float, period: float, t_max: fl
         return float(law.evaluate(t)[1])
 
     grid = np.linspace(0.0, t_max, GRID + 1)
-    values, rates, _ = law.evaluate(grid)
+    rates = law.evaluate(grid)[1]
     breaks = [0.0]
-    for k in np.flatnonzero(np.sign(rates[:-1]) * np.sign(rates[1:]) < 0):
-        breaks.append(brentq(s_dot, grid[k], grid[k + 1], xtol=1e-15 * max(t_max, 1.0)))
+    for i in np.flatnonzero(np.sign(rates[:-1]) * np.sign(rates[1:]) < 0):
+        breaks.append(brentq(s_dot, grid[i], grid[i + 1], xtol=1e-15 * max(t_max, 1.0)))
     breaks.append(t_max)
     times = []
-    for a, b in zip(breaks[:-1], breaks[1:], strict=True):
+    for a, b in pairwise(breaks):
         sa, sb = s(a), s(b)
         low, high = min(sa, sb), max(sa, sb)
         if period > 0.0:
-            ks = range(math.ceil((low - level) / period), math.floor((high - level) / period) + 1)
+            turns = range(
+                math.ceil((low - level) / period), math.floor((high - level) / period) + 1
+            )
         else:
-            ks = range(1) if low <= level <= high else range(0)
-        for k in ks:
+            turns = range(int(low <= level <= high))
+        for k in turns:
             target = level + k * period
             if sa == target:
                 times.append(a)
             elif sb == target:
                 times.append(b)
             else:
-                times.append(brentq(lambda t, c=target: s(t) - c, a, b,
-                                    xtol=1e-15 * max(t_max, 1.0), rtol=1e-15))
+                times.append(
+                    brentq(
+                        lambda t, c=target: s(t) - c, a, b, xtol=1e-15 * max(t_max, 1.0), rtol=1e-15
+                    )
+                )
     return times
 
 
-def _meetings_off_carrier(scene: LinkageScene, mp: MovingPoint, target: str, t_max: float
-                          ) -> list[float]:
+def _meetings_off_carrier(
+    scene: LinkageScene, mp: MovingPoint, target: str, t_max: float
+) -> list[float]:
     """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance)."""
     plan = build_plan(scene)
     law = parse_time_law(mp.s_law)
 
     def gap(times: Array) -> Array:
-        motion = assemble(scene, plan, driver_inputs_over_time(scene, times), 0,
-                          continuation=times.size > 2)
+        motion = assemble(
+            scene, plan, driver_inputs_over_time(scene, times), 0, continuation=times.size > 2
+        )
         require_feasible(motion, "while searching for the event")
         drawn = path_geometry(scene, mp, law.evaluate(times)[0]).point
         m = motion.links[mp.link].point(drawn).p
@@ -118,9 +129,12 @@ def _meetings_off_carrier(scene: LinkageScene, mp: MovingPoint, target: str, t_m
     times = []
     tolerance = COINCIDENCE_TOLERANCE * scene.size
     for k in np.flatnonzero((d[1:-1] <= d[:-2]) & (d[1:-1] <= d[2:])) + 1:
-        found = minimize_scalar(lambda t: float(gap(np.array([t]))[0]),
-                                bounds=(grid[k - 1], grid[k + 1]), method="bounded",
-                                options={"xatol": 1e-13 * max(t_max, 1.0)})
+        found = minimize_scalar(
+            lambda t: float(gap(np.array([t]))[0]),
+            bounds=(grid[k - 1], grid[k + 1]),
+            method="bounded",
+            options={"xatol": 1e-13 * max(t_max, 1.0)},
+        )
         if found.fun <= tolerance:
             times.append(float(found.x))
     if d[-1] <= tolerance:
@@ -128,8 +142,9 @@ def _meetings_off_carrier(scene: LinkageScene, mp: MovingPoint, target: str, t_m
     return times
 
 
-def find_event(scene: LinkageScene, moving_point: str, reaches: str, occurrence: int,
-               t_max: float) -> Event:
+def find_event(
+    scene: LinkageScene, moving_point: str, reaches: str, occurrence: int, t_max: float
+) -> Event:
     """The ``occurrence``-th instant after t = 0 at which ``moving_point`` coincides with
     ``reaches`` (t = 0 itself does not count)."""
     mp = next((m for m in scene.moving_points if m.name == moving_point), None)
@@ -147,11 +162,14 @@ def find_event(scene: LinkageScene, moving_point: str, reaches: str, occurrence:
     else:
         times = _meetings_off_carrier(scene, mp, reaches, t_max)
     after_start = sorted({t for t in times if t > 1e-12 * t_max})
-    distinct = [t for i, t in enumerate(after_start)
-                if i == 0 or t - after_start[i - 1] > 1e-10 * t_max]
+    distinct = [
+        t for i, t in enumerate(after_start) if i == 0 or t - after_start[i - 1] > 1e-10 * t_max
+    ]
     if len(distinct) < occurrence:
-        raise NoEvent(f"{moving_point} reaches {reaches} {len(distinct)} time(s) in "
-                      f"0 < t <= {t_max:g} s, not {occurrence}")
+        raise NoEvent(
+            f"{moving_point} reaches {reaches} {len(distinct)} time(s) in "
+            f"0 < t <= {t_max:g} s, not {occurrence}"
+        )
     time = distinct[occurrence - 1]
     plan = build_plan(scene)
     motion = assemble(scene, plan, driver_inputs_over_time(scene, np.array([time])), 0)

@@ -30,7 +30,7 @@ NEWTON_MAX_ITERATIONS = 50
 
 @dataclass(frozen=True)
 class NewtonReport:
-    """How Newton-Raphson went: worst sample's iterations and residual, and whether all converged."""
+    """How Newton-Raphson went: the worst sample's iterations and residual; which converged."""
 
     links: tuple[str, ...]
     converged: Array
@@ -64,11 +64,13 @@ class ConstraintSystem:
         self.unknown = tuple(unknown)
         self.column = {link: 3 * k for k, link in enumerate(self.unknown)}
         self.joints: tuple[Joint, ...] = tuple(
-            j for j in scene.joints if j.links[0] in self.column or j.links[1] in self.column)
+            j for j in scene.joints if j.links[0] in self.column or j.links[1] in self.column
+        )
         self.drivers = tuple(d.link for d in scene.drivers) if drivers else ()
         self.anchor0 = {name: scene.drawn(link.points[0]) for name, link in scene.links.items()}
-        self.rows = (sum({"revolute": 2, "slider": 1, "prismatic": 2}[j.type] for j in self.joints)
-                     + len(self.drivers))
+        self.rows = sum(
+            {"revolute": 2, "slider": 1, "prismatic": 2}[j.type] for j in self.joints
+        ) + len(self.drivers)
 
     def _r(self, pose: _Pose, link: str, point: str) -> Array:
         """R(theta) (X0 - A0): the anchor-to-point vector of ``link``'s point."""
@@ -105,7 +107,7 @@ class ConstraintSystem:
             if order == 1 and known:
                 b[k] -= sign * float(n @ (pose.v + pose.omega * _kperp(r)))
             elif order == 2:
-                quadratic = -pose.omega**2 * r
+                quadratic = -(pose.omega**2) * r
                 full = pose.a + pose.alpha * _kperp(r) + quadratic
                 b[k] -= sign * float(n @ (full if known else quadratic))
 
@@ -159,22 +161,37 @@ def poses_at(links: Mapping[str, LinkMotion], scene: LinkageScene, k: int) -> di
         first = motion.point(scene.drawn(scene.links[name].points[0]))
         zero = np.zeros(2)
         poses[name] = _Pose(
-            first.p[k], float(motion.theta[k]),
+            first.p[k],
+            float(motion.theta[k]),
             zero if first.v is None else first.v[k],
             0.0 if motion.omega is None else float(motion.omega[k]),
             zero if first.a is None else first.a[k],
-            0.0 if motion.alpha is None else float(motion.alpha[k]))
+            0.0 if motion.alpha is None else float(motion.alpha[k]),
+        )
     return poses
 
 
 def _unknown_poses(system: ConstraintSystem, q: Array, qd: Array, qdd: Array) -> dict[str, _Pose]:
-    return {link: _Pose(q[3 * k : 3 * k + 2], float(q[3 * k + 2]), qd[3 * k : 3 * k + 2],
-                        float(qd[3 * k + 2]), qdd[3 * k : 3 * k + 2], float(qdd[3 * k + 2]))
-            for k, link in enumerate(system.unknown)}
+    return {
+        link: _Pose(
+            q[3 * k : 3 * k + 2],
+            float(q[3 * k + 2]),
+            qd[3 * k : 3 * k + 2],
+            float(qd[3 * k + 2]),
+            qdd[3 * k : 3 * k + 2],
+            float(qdd[3 * k + 2]),
+        )
+        for k, link in enumerate(system.unknown)
+    }
 
 
-def solve_group(scene: LinkageScene, group: Sequence[str], known: Mapping[str, LinkMotion],
-                samples: int, order: int) -> tuple[dict[str, LinkMotion], NewtonReport]:
+def solve_group(
+    scene: LinkageScene,
+    group: Sequence[str],
+    known: Mapping[str, LinkMotion],
+    samples: int,
+    order: int,
+) -> tuple[dict[str, LinkMotion], NewtonReport]:
     """Newton-Raphson for the links of ``group`` at every sample, then their rates.
 
     Each sample starts from the previous sample's solution extrapolated linearly (the first from
@@ -194,14 +211,15 @@ def solve_group(scene: LinkageScene, group: Sequence[str], known: Mapping[str, L
             q = 2.0 * q_all[k - 1] - q_all[k - 2]
         fixed = poses_at(known, scene, k)
         zero = np.zeros(n)
-        residual = np.inf
-        for iteration in range(1, NEWTON_MAX_ITERATIONS + 1):
+        residual, iterations = np.inf, 0
+        while iterations < NEWTON_MAX_ITERATIONS:
             phi, J, _ = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 0)
             residual = float(np.linalg.norm(phi))
             if residual <= tolerance:
                 break
             q = q - np.linalg.lstsq(J, phi, rcond=None)[0]
-        worst_iterations = max(worst_iterations, iteration)
+            iterations += 1
+        worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, residual)
         converged[k] = residual <= tolerance
         q_all[k] = q
@@ -215,20 +233,30 @@ def solve_group(scene: LinkageScene, group: Sequence[str], known: Mapping[str, L
     motions = {}
     for index, link in enumerate(group):
         s = slice(3 * index, 3 * index + 2)
-        anchor = PointMotion(q_all[:, s], qd_all[:, s] if order >= 1 else None,
-                             qdd_all[:, s] if order >= 2 else None)
-        motions[link] = LinkMotion(system.anchor0[link], anchor, q_all[:, 3 * index + 2],
-                                   qd_all[:, 3 * index + 2] if order >= 1 else None,
-                                   qdd_all[:, 3 * index + 2] if order >= 2 else None)
-    message = (f"Newton-Raphson did not close the loop of {', '.join(group)}: residual "
-               f"{worst_residual:.3g} m > tolerance {tolerance:.3g} m after {worst_iterations} "
-               "iterations")
-    report = NewtonReport(tuple(group), converged, worst_iterations, worst_residual, tolerance,
-                          message)
+        anchor = PointMotion(
+            q_all[:, s], qd_all[:, s] if order >= 1 else None, qdd_all[:, s] if order >= 2 else None
+        )
+        motions[link] = LinkMotion(
+            system.anchor0[link],
+            anchor,
+            q_all[:, 3 * index + 2],
+            qd_all[:, 3 * index + 2] if order >= 1 else None,
+            qdd_all[:, 3 * index + 2] if order >= 2 else None,
+        )
+    message = (
+        f"Newton-Raphson did not close the loop of {', '.join(group)}: residual "
+        f"{worst_residual:.3g} m > tolerance {tolerance:.3g} m after {worst_iterations} "
+        "iterations"
+    )
+    report = NewtonReport(
+        tuple(group), converged, worst_iterations, worst_residual, tolerance, message
+    )
     return motions, report
 
 
-def velocity_condition_number(scene: LinkageScene, links: Mapping[str, LinkMotion], k: int) -> float:
+def velocity_condition_number(
+    scene: LinkageScene, links: Mapping[str, LinkMotion], k: int
+) -> float:
     """cond(J) of the whole velocity system (drivers included), angle columns scaled by the size.
 
     Scaling the rotation columns and the angle rows by the scene size makes J dimensionless, so

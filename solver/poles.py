@@ -21,13 +21,15 @@ POLE_TOLERANCE = 1e-10
 def velocity_pole(X: Array, v_X: Array, omega: float, size: float) -> Array | None:
     """From v_X = omega x r_PX: P = X + (k x v_X) / omega."""
     if abs(omega) * size <= POLE_TOLERANCE * (float(np.hypot(*v_X)) + abs(omega) * size) or (
-            omega == 0.0):
+        omega == 0.0
+    ):
         return None
     return X + perp(v_X) / omega
 
 
-def acceleration_pole(X: Array, a_X: Array, omega: float, alpha: float, size: float
-                      ) -> Array | None:
+def acceleration_pole(
+    X: Array, a_X: Array, omega: float, alpha: float, size: float
+) -> Array | None:
     """From a_X = alpha x r_GX - omega^2 r_GX: r_GX = M^-1 a_X with M = [[-w^2, -a], [a, -w^2]].
 
     M^-1 = [[-w^2, a], [-a, -w^2]] / (w^4 + a^2), so G = X - M^-1 a_X.
@@ -51,8 +53,9 @@ class InstantCentre:
     direction: Array | None
 
 
-def instant_centre(link_i: str, V_i: Array, omega_i: float, link_j: str, V_j: Array,
-                   omega_j: float, size: float) -> InstantCentre:
+def instant_centre(
+    link_i: str, V_i: Array, omega_i: float, link_j: str, V_j: Array, omega_j: float, size: float
+) -> InstantCentre:
     """The point P with v_i(P) = v_j(P): P = k x (V_i - V_j) / (omega_i - omega_j).
 
     ``V`` is the velocity of the link's point at the world origin (v_A - omega k x A), so each
@@ -88,8 +91,12 @@ def grashof_class(ground: float, crank: float, coupler: float, rocker: float) ->
     if spread > 0:
         return "non-Grashof triple-rocker"
     shortest = int(np.argmin(lengths))
-    return ("Grashof double-crank", "Grashof crank-rocker", "Grashof double-rocker",
-            "Grashof rocker-crank")[shortest]
+    return (
+        "Grashof double-crank",
+        "Grashof crank-rocker",
+        "Grashof double-rocker",
+        "Grashof rocker-crank",
+    )[shortest]
 
 
 def transmission_angle(B: Array, C: Array, D: Array) -> float:

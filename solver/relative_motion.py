@@ -96,8 +96,9 @@ def coriolis_acceleration(omega_carrier: Array, v_rel: Array) -> Array:
     return scale(2.0 * omega_carrier, perp(v_rel))
 
 
-def moving_point_motion(scene: LinkageScene, mp: MovingPoint, carrier: LinkMotion,
-                        time: Array) -> MovingPointMotion:
+def moving_point_motion(
+    scene: LinkageScene, mp: MovingPoint, carrier: LinkMotion, time: Array
+) -> MovingPointMotion:
     """Composite motion of M at the given times, on a carrier already solved at those times."""
     s, s_dot, s_ddot = parse_time_law(mp.s_law).evaluate(np.asarray(time, dtype=float))
     path = path_geometry(scene, mp, s)
@@ -113,6 +114,21 @@ def moving_point_motion(scene: LinkageScene, mp: MovingPoint, carrier: LinkMotio
     a_cor = coriolis_acceleration(carrier.omega, v_rel)
     a_tr_t, a_tr_n = intrinsic_parts(coincident.a, coincident.v)
     return MovingPointMotion(
-        coincident.p, coincident.v + v_rel, coincident.a + a_rel + a_cor, coincident.v, v_rel,
-        coincident.a, a_rel, a_cor, a_tr_t, a_tr_n, a_rel_t, a_rel_n, carrier.omega,
-        carrier.alpha, s, s_dot, s_ddot)
+        coincident.p,
+        coincident.v + v_rel,
+        coincident.a + a_rel + a_cor,
+        coincident.v,
+        v_rel,
+        coincident.a,
+        a_rel,
+        a_cor,
+        a_tr_t,
+        a_tr_n,
+        a_rel_t,
+        a_rel_n,
+        carrier.omega,
+        carrier.alpha,
+        s,
+        s_dot,
+        s_ddot,
+    )

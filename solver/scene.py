@@ -41,7 +41,7 @@ class Link:
 
 @dataclass(frozen=True)
 class Joint:
-    """A joint at ``point`` between ``links``; for slider and prismatic, ``links = (guide, follower)``.
+    """A joint at ``point`` between ``links``; slider and prismatic: ``links = (guide, follower)``.
 
     ``axis`` is the unit direction of the slot (world coordinates at the drawn pose), fixed in the
     guide; ``None`` for a revolute joint.
@@ -117,7 +117,7 @@ class LinkageScene:
 
     @property
     def size(self) -> float:
-        """A characteristic length: the diagonal of the drawn points' bounding box (at least 1e-300)."""
+        """A characteristic length: the diagonal of the drawn points' bounding box."""
         xy = np.array(list(self.points.values()), dtype=float)
         return max(float(np.hypot(*(xy.max(axis=0) - xy.min(axis=0)))), 1e-300)
 
@@ -213,12 +213,17 @@ def _parse_links(doc: Mapping[str, Any], points: Mapping[str, Any]) -> dict[str,
         links[name] = Link(name, names, ground)
     grounds = [name for name, link in links.items() if link.ground]
     if len(grounds) != 1:
-        raise _where("links", f"exactly one link must have \"ground\": true, found {len(grounds)}"
-                     + (f" ({', '.join(grounds)})" if grounds else ""))
+        raise _where(
+            "links",
+            f'exactly one link must have "ground": true, found {len(grounds)}'
+            + (f" ({', '.join(grounds)})" if grounds else ""),
+        )
     return links
 
 
-def _check_link_lengths(links: Mapping[str, Link], points: Mapping[str, tuple[float, float]]) -> None:
+def _check_link_lengths(
+    links: Mapping[str, Link], points: Mapping[str, tuple[float, float]]
+) -> None:
     xy = np.array(list(points.values()))
     size = max(float(np.hypot(*(xy.max(axis=0) - xy.min(axis=0)))), 1e-300)
     for link in links.values():
@@ -228,8 +233,10 @@ def _check_link_lengths(links: Mapping[str, Link], points: Mapping[str, tuple[fl
             for b in link.points[i + 1 :]:
                 d = math.dist(points[a], points[b])
                 if d <= MIN_RELATIVE_LENGTH * size:
-                    raise _where(f"links.{link.name}", f"zero-length link: points {a} and {b} "
-                                 f"coincide (|{a}{b}| = {d:.3g} m)")
+                    raise _where(
+                        f"links.{link.name}",
+                        f"zero-length link: points {a} and {b} coincide (|{a}{b}| = {d:.3g} m)",
+                    )
 
 
 def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Joint, ...]:
@@ -239,8 +246,10 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
         body = _mapping(body, path)
         kind = body.get("type")
         if kind not in ("revolute", "slider", "prismatic"):
-            raise _where(f"{path}.type", f"unknown joint type {kind!r}; "
-                         "expected revolute, slider or prismatic")
+            raise _where(
+                f"{path}.type",
+                f"unknown joint type {kind!r}; expected revolute, slider or prismatic",
+            )
         point = _name(body.get("point"), f"{path}.point")
         pair = _list(body.get("links"), f"{path}.links", 2)
         if len(pair) != 2:
@@ -254,8 +263,11 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
         axis = None
         if kind == "revolute":
             if point not in links[a].points or point not in links[b].points:
-                raise _where(f"{path}.point", f"revolute joint point '{point}' must be listed in "
-                             f"the points of both links '{a}' and '{b}'")
+                raise _where(
+                    f"{path}.point",
+                    f"revolute joint point '{point}' must be listed in "
+                    f"the points of both links '{a}' and '{b}'",
+                )
         else:
             if "axis" not in body:
                 raise _where(f"{path}.axis", f"a {kind} joint needs the slot direction 'axis'")
@@ -265,11 +277,17 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
                 raise _where(f"{path}.axis", "the slot direction is the zero vector")
             axis = (ax[0] / norm, ax[1] / norm)
             if point not in links[b].points:
-                raise _where(f"{path}.point", f"the {kind} point '{point}' is attached to the "
-                             f"follower '{b}' and must be listed in its points")
+                raise _where(
+                    f"{path}.point",
+                    f"the {kind} point '{point}' is attached to the "
+                    f"follower '{b}' and must be listed in its points",
+                )
             if point in links[a].points:
-                raise _where(f"{path}.point", f"the {kind} point '{point}' slides in the guide "
-                             f"'{a}' and must not be listed in the guide's points")
+                raise _where(
+                    f"{path}.point",
+                    f"the {kind} point '{point}' slides in the guide "
+                    f"'{a}' and must not be listed in the guide's points",
+                )
         joints.append(Joint(kind, point, (a, b), axis))
     return tuple(joints)
 
@@ -281,8 +299,9 @@ def _ground_pivot(link: str, joints: Sequence[Joint], ground: str) -> str | None
     return None
 
 
-def _parse_drivers(doc: Mapping[str, Any], links: Mapping[str, Link], joints: Sequence[Joint],
-                   ground: str) -> tuple[Driver, ...]:
+def _parse_drivers(
+    doc: Mapping[str, Any], links: Mapping[str, Link], joints: Sequence[Joint], ground: str
+) -> tuple[Driver, ...]:
     drivers = []
     seen = set()
     for i, body in enumerate(_list(doc.get("drivers", []), "drivers", MAX_LINKS)):
@@ -298,8 +317,10 @@ def _parse_drivers(doc: Mapping[str, Any], links: Mapping[str, Link], joints: Se
         seen.add(link)
         pivot = _ground_pivot(link, joints, ground)
         if pivot is None:
-            raise _where(f"{path}.link", f"the driven link '{link}' has no revolute joint with "
-                         f"the ground '{ground}'")
+            raise _where(
+                f"{path}.link",
+                f"the driven link '{link}' has no revolute joint with the ground '{ground}'",
+            )
         law = body.get("angle_law")
         if law is not None:
             if not isinstance(law, str):
@@ -309,20 +330,25 @@ def _parse_drivers(doc: Mapping[str, Any], links: Mapping[str, Link], joints: Se
             drivers.append(Driver(link, pivot, angle_law=law))
             continue
         angle = body.get("angle_deg")
-        drivers.append(Driver(
-            link, pivot,
-            omega=_number(body.get("omega", 0.0), f"{path}.omega", MAX_RATE),
-            alpha=_number(body.get("alpha", 0.0), f"{path}.alpha", MAX_RATE),
-            angle_deg=None if angle is None else _number(angle, f"{path}.angle_deg", 1e6),
-        ))
+        drivers.append(
+            Driver(
+                link,
+                pivot,
+                omega=_number(body.get("omega", 0.0), f"{path}.omega", MAX_RATE),
+                alpha=_number(body.get("alpha", 0.0), f"{path}.alpha", MAX_RATE),
+                angle_deg=None if angle is None else _number(angle, f"{path}.angle_deg", 1e6),
+            )
+        )
     return tuple(drivers)
 
 
-def _parse_moving_points(doc: Mapping[str, Any], scene_points: Mapping[str, Any],
-                         links: Mapping[str, Link]) -> tuple[MovingPoint, ...]:
-    moving = []
-    for i, body in enumerate(_list(doc.get("moving_points", []), "moving_points",
-                                   MAX_MOVING_POINTS)):
+def _parse_moving_points(
+    doc: Mapping[str, Any], scene_points: Mapping[str, Any], links: Mapping[str, Link]
+) -> tuple[MovingPoint, ...]:
+    moving: list[MovingPoint] = []
+    for i, body in enumerate(
+        _list(doc.get("moving_points", []), "moving_points", MAX_MOVING_POINTS)
+    ):
         path = f"moving_points[{i}]"
         body = _mapping(body, path)
         name = _name(body.get("name"), f"{path}.name")
@@ -333,12 +359,13 @@ def _parse_moving_points(doc: Mapping[str, Any], scene_points: Mapping[str, Any]
             raise _where(f"{path}.link", f"unknown link '{link}'")
         raw = _mapping(body.get("path"), f"{path}.path")
         kind = raw.get("type")
-        on_link = links[link].points
 
-        def point_of_link(key: str, p: str = path, r: Mapping[str, Any] = raw) -> str:
+        def point_of_link(
+            key: str, p: str = path, r: Mapping[str, Any] = raw, carrier: str = link
+        ) -> str:
             value = _name(r.get(key), f"{p}.path.{key}")
-            if value not in on_link:
-                raise _where(f"{p}.path.{key}", f"'{value}' is not a point of link '{link}'")
+            if value not in links[carrier].points:
+                raise _where(f"{p}.path.{key}", f"'{value}' is not a point of link '{carrier}'")
             return value
 
         if kind == "arc":
@@ -382,10 +409,21 @@ def parse_linkage(doc: Mapping[str, Any]) -> LinkageScene:
     joints = _parse_joints(doc, links)
     drivers = _parse_drivers(doc, links, joints, ground)
     time = _number(doc.get("time", 0.0), "time", MAX_TIME)
-    scene = LinkageScene(title[:200], points, links, joints, drivers, ground,
-                         _parse_moving_points(doc, points, links), time)
+    scene = LinkageScene(
+        title[:200],
+        points,
+        links,
+        joints,
+        drivers,
+        ground,
+        _parse_moving_points(doc, points, links),
+        time,
+    )
     if scene.degrees_of_freedom != len(drivers):
-        raise _where("drivers", f"the linkage has {scene.degrees_of_freedom} degree(s) of freedom "
-                     f"(3 x {len(scene.moving_links)} links - 2 per revolute and prismatic joint "
-                     f"- 1 per slider) but {len(drivers)} driver(s)")
+        raise _where(
+            "drivers",
+            f"the linkage has {scene.degrees_of_freedom} degree(s) of freedom "
+            f"(3 x {len(scene.moving_links)} links - 2 per revolute and prismatic joint "
+            f"- 1 per slider) but {len(drivers)} driver(s)",
+        )
     return scene

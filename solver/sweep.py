@@ -95,8 +95,7 @@ def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[fl
         return None
     ahead = int(np.argmin(motion.feasible))
     behind_turns = start - direction * step * np.arange(PROBE_SAMPLES + 1)
-    behind = assemble(driven.scene, driven.plan, driven.inputs(behind_turns), 0,
-                      continuation=True)
+    behind = assemble(driven.scene, driven.plan, driven.inputs(behind_turns), 0, continuation=True)
     back = int(np.argmin(behind.feasible))
     end = _limit(driven, turns[ahead - 1], turns[ahead])
     begin = _limit(driven, behind_turns[back - 1], behind_turns[back])
@@ -148,14 +147,28 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     order = required_order(wanted)
     motion = driven.run(turns, order)
     require_feasible(motion, "during the sweep")
-    singular = np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING) if order else \
-        np.array([], dtype=int)
+    singular = (
+        np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING)
+        if order
+        else np.array([], dtype=int)
+    )
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
-    drawn = drawn_angle(scene, scene.drivers[0].link) if len(
-        scene.links[scene.drivers[0].link].points) >= 2 else 0.0
-    return Sweep(scene, scene.drivers[0].link, drawn + turns, motion, span is None,
-                 tuple(drawn + limit for limit in limits), singular, wanted)
+    drawn = (
+        drawn_angle(scene, scene.drivers[0].link)
+        if len(scene.links[scene.drivers[0].link].points) >= 2
+        else 0.0
+    )
+    return Sweep(
+        scene,
+        scene.drivers[0].link,
+        drawn + turns,
+        motion,
+        span is None,
+        tuple(drawn + limit for limit in limits),
+        singular,
+        wanted,
+    )
 
 
 @dataclass(frozen=True)
@@ -170,8 +183,9 @@ class TimeSweep:
     quantities: frozenset[str]
 
 
-def sweep_time(scene: LinkageScene, t0: float, t1: float, samples: int,
-               quantities: Iterable[str] | None = None) -> TimeSweep:
+def sweep_time(
+    scene: LinkageScene, t0: float, t1: float, samples: int, quantities: Iterable[str] | None = None
+) -> TimeSweep:
     """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws)."""
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
@@ -179,8 +193,9 @@ def sweep_time(scene: LinkageScene, t0: float, t1: float, samples: int,
         raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     if wanted - SWEEP_QUANTITIES - {"components"}:
-        raise InvalidScene("quantities: a time sweep gives position, velocity, acceleration "
-                           "and components")
+        raise InvalidScene(
+            "quantities: a time sweep gives position, velocity, acceleration and components"
+        )
     times = np.linspace(t0, t1, samples)
     plan = build_plan(scene)
     inputs = driver_inputs_over_time(scene, times)
@@ -191,8 +206,10 @@ def sweep_time(scene: LinkageScene, t0: float, t1: float, samples: int,
         motion_for_points = assemble(scene, plan, inputs, 2, continuation=True)
     else:
         motion_for_points = motion
-    moving = {mp.name: moving_point_motion(scene, mp, motion_for_points.links[mp.link], times)
-              for mp in scene.moving_points}
+    moving = {
+        mp.name: moving_point_motion(scene, mp, motion_for_points.links[mp.link], times)
+        for mp in scene.moving_points
+    }
     first = scene.drivers[0].link if scene.drivers else None
     angle = np.zeros(samples)
     if first is not None and len(scene.links[first].points) >= 2:

@@ -146,9 +146,10 @@ class _Decomposition:
         scene = self.scene
         known = [p for p in scene.links[link].points if p in self.known_points]
         if len(known) >= 2:
-            first, second = max(combinations(known, 2),
-                                key=lambda ab: float(np.hypot(*(scene.drawn(ab[0])
-                                                                - scene.drawn(ab[1])))))
+            first, second = max(
+                combinations(known, 2),
+                key=lambda ab: float(np.hypot(*(scene.drawn(ab[0]) - scene.drawn(ab[1])))),
+            )
             self.know_link(link, TwoPointStep(link, first, second))
             return True
         if len(known) != 1:
@@ -164,8 +165,10 @@ class _Decomposition:
                 u0 = np.array(joint.axis)
                 r0 = scene.drawn(joint.point) - scene.drawn(known[0])
                 sign = 1.0 if float(dot(u0, r0)) >= 0.0 else -1.0
-                self.know_link(link, LeverStep(link, known[0], joint.point,
-                                               float(cross(u0, r0)), sign, joint.axis))
+                self.know_link(
+                    link,
+                    LeverStep(link, known[0], joint.point, float(cross(u0, r0)), sign, joint.axis),
+                )
                 return True
         return False
 
@@ -184,8 +187,10 @@ class _Decomposition:
                 continue
             assert joint.axis is not None
             carried = joint.point == point or (
-                joint.type == "prismatic" and point in scene.links[joint.follower].points
-                and joint.follower not in self.known_links)
+                joint.type == "prismatic"
+                and point in scene.links[joint.follower].points
+                and joint.follower not in self.known_links
+            )
             if carried:
                 found.append(LineSpec(joint.guide, scene.points[point], joint.axis))
         return found
@@ -226,5 +231,5 @@ class _Decomposition:
 
 
 def build_plan(scene: LinkageScene) -> Plan:
-    """The solving order of ``scene``: drivers, closed-form groups, then a Newton group if needed."""
+    """The solving order: drivers, closed-form groups, then a Newton group if needed."""
     return _Decomposition(scene).run()

@@ -15,18 +15,21 @@ from server.responses import (
 from server.routes.scenes import parse_linkage_only, parse_scene
 from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
 from solver.analysis import analyze, normalise_quantities
-from solver.scene import LinkageScene
-from solver.spatial import analyze_spatial_chain
 from solver.errors import InvalidScene
 from solver.events import find_event
+from solver.scene import LinkageScene
+from solver.spatial import analyze_spatial_chain
 from solver.sweep import sweep, sweep_time
 
-router = APIRouter(tags=["kinematics"], route_class=StrictJSONRoute,
-                   default_response_class=FiniteJSONResponse)
+router = APIRouter(
+    tags=["kinematics"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+)
 
 
-@router.post("/analyze", summary="One instant: positions, velocities, accelerations, poles, "
-             "slider components")
+@router.post(
+    "/analyze",
+    summary="One instant: positions, velocities, accelerations, poles, slider components",
+)
 def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
     scene = parse_scene(request.scene)
     if isinstance(scene, LinkageScene):
@@ -35,18 +38,19 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
     return FiniteJSONResponse(spatial_response(analyze_spatial_chain(scene), wanted))
 
 
-@router.post("/sweep", summary="The linkage over one revolution of its first driver (or its "
-             "feasible range)")
+@router.post(
+    "/sweep", summary="The linkage over one revolution of its first driver (or its feasible range)"
+)
 def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/sweep")
     if request.time_range is None:
-        return FiniteJSONResponse(sweep_response(sweep(scene, request.samples,
-                                                       request.quantities)))
+        return FiniteJSONResponse(sweep_response(sweep(scene, request.samples, request.quantities)))
     if len(request.time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = request.time_range
-    return FiniteJSONResponse(time_sweep_response(sweep_time(scene, t0, t1, request.samples,
-                                                             request.quantities)))
+    return FiniteJSONResponse(
+        time_sweep_response(sweep_time(scene, t0, t1, request.samples, request.quantities))
+    )
 
 
 @router.post("/events", summary="The instant at which a moving point reaches a named point")
@@ -54,6 +58,12 @@ def events_route(request: EventsRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/events")
     e = request.event
     event = find_event(scene, e.moving_point, e.reaches, e.occurrence, e.t_max)
-    return FiniteJSONResponse({"time": event.time, "position": vector(event.position),
-                               "moving_point": e.moving_point, "reaches": e.reaches,
-                               "occurrence": e.occurrence})
+    return FiniteJSONResponse(
+        {
+            "time": event.time,
+            "position": vector(event.position),
+            "moving_point": e.moving_point,
+            "reaches": e.reaches,
+            "occurrence": e.occurrence,
+        }
+    )

@@ -4,7 +4,6 @@ Each preset gets its own POST route with a request model built from its paramete
 OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
-
 from typing import Any
 
 from fastapi import APIRouter
@@ -14,26 +13,55 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from solver.errors import InvalidScene
 from solver.presets import PRESETS, Preset
 
-router = APIRouter(prefix="/presets", tags=["presets"], route_class=StrictJSONRoute,
-                   default_response_class=FiniteJSONResponse)
+router = APIRouter(
+    prefix="/presets",
+    tags=["presets"],
+    route_class=StrictJSONRoute,
+    default_response_class=FiniteJSONResponse,
+)
 
 
 @router.get("", summary="The textbook mechanisms and their parameters")
 def list_presets() -> FiniteJSONResponse:
-    return FiniteJSONResponse({"presets": [{
-        "name": p.name, "title": p.title, "description": p.description,
-        "parameters": [{"name": q.name, "default": q.default, "unit": q.unit,
-                        "description": q.description, "minimum": q.minimum,
-                        "maximum": q.maximum,
-                        "choices": None if q.choices is None else list(q.choices)}
-                       for q in p.parameters]} for p in PRESETS.values()]})
+    return FiniteJSONResponse(
+        {
+            "presets": [
+                {
+                    "name": p.name,
+                    "title": p.title,
+                    "description": p.description,
+                    "parameters": [
+                        {
+                            "name": q.name,
+                            "default": q.default,
+                            "unit": q.unit,
+                            "description": q.description,
+                            "minimum": q.minimum,
+                            "maximum": q.maximum,
+                            "choices": None if q.choices is None else list(q.choices),
+                        }
+                        for q in p.parameters
+                    ],
+                }
+                for p in PRESETS.values()
+            ]
+        }
+    )
 
 
 def _parameters_model(preset: Preset) -> type[BaseModel]:
     fields: dict[str, Any] = {
-        q.name: (float | None, Field(None, description=f"{q.description} [{q.unit or '-'}]; "
-                                     f"default {q.default:g}", ge=q.minimum, le=q.maximum))
-        for q in preset.parameters}
+        q.name: (
+            float | None,
+            Field(
+                None,
+                description=f"{q.description} [{q.unit or '-'}]; default {q.default:g}",
+                ge=q.minimum,
+                le=q.maximum,
+            ),
+        )
+        for q in preset.parameters
+    }
     config = ConfigDict(extra="forbid", allow_inf_nan=False)
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
@@ -42,11 +70,19 @@ def _route(preset: Preset) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]
-        given = {} if parameters is None else parameters.model_dump(exclude_none=True)
+        given: dict[str, float] = (
+            {} if parameters is None else parameters.model_dump(exclude_none=True)
+        )
         return FiniteJSONResponse(preset.build(given))
 
-    router.add_api_route(f"/{preset.name}", build, methods=["POST"], summary=preset.title,
-                         description=preset.description, name=f"preset_{preset.name}")
+    router.add_api_route(
+        f"/{preset.name}",
+        build,
+        methods=["POST"],
+        summary=preset.title,
+        description=preset.description,
+        name=f"preset_{preset.name}",
+    )
 
 
 for _preset in PRESETS.values():

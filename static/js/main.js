@@ -420,6 +420,12 @@ class App {
     if (analysis) {
       this.analysis = analysis;
       this.analysisU = u;
+      if (this.track.static) {
+        // Without a sweep the picture is framed on the one pose the server placed.
+        const frame = frameFromAnalysis(analysis);
+        this.track = staticTrack(this.scene, this.track.param, this.track.values[0], frame.position);
+        this.linkage.setScene(this.scene, this.track);
+      }
       this.linkage.setAnalysis(analysis);
       this.drawPolygons();
       const missing = S.movingPoints(this.scene).map((m) => m.name).filter((n) => !analysis.moving_points?.[n]);
@@ -676,6 +682,7 @@ function showView(which) {
   document.querySelector('.motion').toggleAttribute('hidden', which === 'spatial');
   $('dimensions').toggleAttribute('hidden', which === 'spatial');
   $('plot-choices').toggleAttribute('hidden', which === 'spatial');
+  for (const el of document.querySelectorAll('.planar-only')) el.toggleAttribute('hidden', which === 'spatial');
 }
 
 function setMessage(el, text) {

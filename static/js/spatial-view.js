@@ -65,7 +65,7 @@ export class SpatialView {
     const mid = [0, 1, 2].map((i) => (Math.min(...pts.map((p) => p[i])) + Math.max(...pts.map((p) => p[i]))) / 2);
     const radius = Math.max(...pts.map((p) => Math.hypot(p[0] - mid[0], p[1] - mid[1], p[2] - mid[2])), 1e-3);
     this.radius = radius;
-    this.k = (Math.min(W, H) / 2 - 60) / radius;
+    this.k = (Math.min(W, H) / 2 - 30) / radius;
     // Centre the projected middle of the chain.
     this.c = [0, 0];
     const [x, y] = this.project(mid);

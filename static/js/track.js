@@ -54,9 +54,10 @@ function firstSeriesLength(response) {
 }
 
 /** A one-sample track from the drawn pose, used when the server has no /sweep to offer. */
-export function staticTrack(scene, param = 'angle', value = 0) {
+export function staticTrack(scene, param = 'angle', value = 0, positions = null) {
   const points = {};
-  for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [xy] };
+  for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [positions?.[name] || xy] };
+  for (const [name, xy] of Object.entries(positions || {})) if (!points[name]) points[name] = { position: [xy] };
   return { param, values: [value], n: 1, points, links: {}, feasible: true, limits: [], closed: false, static: true };
 }
 

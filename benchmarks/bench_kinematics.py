@@ -1,0 +1,621 @@
+"""Speed of the kinematics solver and its HTTP API, against a vectorised numpy closed-form baseline.
+
+Run from the repository root:
+
+    python -m benchmarks.bench_kinematics            # full run (about a minute)
+    python -m benchmarks.bench_kinematics --quick    # short run, noisier numbers
+    python -m benchmarks.bench_kinematics --no-http  # in-process only
+
+It prints one markdown report and writes it into docs/BENCHMARKS.md between the markers
+``<!-- kinematics:start -->`` and ``<!-- kinematics:end -->`` (the rest of the file is kept).
+benchmarks/README.md explains every row. Nothing here changes environment variables: the BLAS
+library, its kernel and its thread count are reported as found.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import cProfile
+import importlib.util
+import inspect
+import json
+import math
+import os
+import platform
+import pstats
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+import typing
+import warnings
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
+    sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+from solver.analysis import analyze  # noqa: E402
+from solver.presets import PRESETS, build_preset  # noqa: E402
+from solver.scene import LinkageScene, parse_linkage  # noqa: E402
+from solver.sweep import Sweep, sweep  # noqa: E402
+
+DOC = ROOT / "docs" / "BENCHMARKS.md"
+START, END = "<!-- kinematics:start -->", "<!-- kinematics:end -->"
+ALL = ("position", "velocity", "acceleration")
+SIZES = (360, 3600, 36000)
+TRADE_SIZES = (36, 360, 3600, 36000)
+BLAS_ENV = ("OPENBLAS_CORETYPE", "OPENBLAS_L2_SIZE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
+            "MKL_NUM_THREADS")
+AGREEMENT = 1e-9  # relative: baseline and solver must give the same answers to compare speeds
+
+# Targets of issue 2 (Speed) and issue 4 (worked solutions).
+INSTANT_TARGET_S = 1e-3
+SWEEP_RATIO_TARGET = 3.0
+HTTP_INSTANT_TARGET_S = 10e-3
+SOLUTION_TARGET_S = 20e-3
+
+
+@dataclass(frozen=True)
+class Budget:
+    """How much each measurement runs; the quick run trades stability for time."""
+
+    name: str
+    repeats: int  # timeit-style repeats of a sweep
+    repeat_seconds: float  # each repeat loops the call for at least this long
+    instant_calls: int  # one-instant latencies, four-bar
+    preset_calls: int  # one-instant latencies and worked solutions, every preset
+    http_calls: int  # /analyze requests
+    http_sweeps: tuple[int, int, int]  # /sweep requests for 360, 3600, 36000 samples
+
+
+FULL = Budget("full", 25, 0.1, 2000, 300, 1000, (100, 40, 8))
+QUICK = Budget("quick", 7, 0.02, 300, 40, 200, (20, 8, 3))
+
+
+# -- the baseline: a closed-form four-bar in numpy ------------------------------------------
+
+
+@dataclass(frozen=True)
+class FourBar:
+    """Crank AB about A = (0, 0), coupler BC, rocker DC about D = (ground, 0); the crank turns
+    at omega (rad/s) with angular acceleration alpha."""
+
+    ground: float
+    crank: float
+    coupler: float
+    rocker: float
+    omega: float
+    alpha: float = 0.0
+
+    def scene_document(self, crank_angle_deg: float = 30.0) -> dict[str, Any]:
+        """The same linkage as a four_bar preset (open assembly, no coupler point)."""
+        return build_preset("four_bar", {
+            "ground": self.ground, "crank": self.crank, "coupler": self.coupler,
+            "rocker": self.rocker, "crank_angle_deg": crank_angle_deg, "assembly": 0,
+            "coupler_point_u": 0.0, "coupler_point_v": 0.0, "omega": self.omega,
+            "alpha": self.alpha})
+
+
+SEED_004 = FourBar(ground=1.0, crank=0.15, coupler=1.0, rocker=0.55, omega=8 * math.pi)
+
+
+def closed_form(fb: FourBar, theta2: np.ndarray) -> dict[str, np.ndarray]:
+    """Positions, velocities and accelerations of B and C, omega and alpha of coupler (3) and
+    rocker (4), for crank angles ``theta2``: C by circle intersection on the open branch (to the
+    left of B -> D), the rates from the vector loop a e^(i t2) + b e^(i t3) - c e^(i t4) = d."""
+    a, b, c, d = fb.crank, fb.coupler, fb.rocker, fb.ground
+    w2, al2 = fb.omega, fb.alpha
+    bx, by = a * np.cos(theta2), a * np.sin(theta2)
+    ex, ey = d - bx, -by  # B -> D
+    dist2 = ex * ex + ey * ey
+    dist = np.sqrt(dist2)
+    along = (dist2 + b * b - c * c) / (2.0 * dist)
+    h = np.sqrt(b * b - along * along)
+    cx = bx + (along * ex - h * ey) / dist
+    cy = by + (along * ey + h * ex) / dist
+    t3 = np.arctan2(cy - by, cx - bx)
+    t4 = np.arctan2(cy, cx - d)
+    s34, c34 = np.sin(t3 - t4), np.cos(t3 - t4)
+    s23, c23 = np.sin(theta2 - t3), np.cos(theta2 - t3)
+    s24, c24 = np.sin(theta2 - t4), np.cos(theta2 - t4)
+    w3 = -a * w2 * s24 / (b * s34)
+    w4 = -a * w2 * s23 / (c * s34)
+    al3 = (c * w4**2 - a * al2 * s24 - a * w2**2 * c24 - b * w3**2 * c34) / (b * s34)
+    al4 = -(a * al2 * s23 + a * w2**2 * c23 + b * w3**2 - c * w4**2 * c34) / (c * s34)
+    rx, ry = cx - d, cy  # D -> C
+    return {
+        "B.p": np.stack((bx, by), axis=1),
+        "B.v": np.stack((-w2 * by, w2 * bx), axis=1),
+        "B.a": np.stack((-al2 * by - w2**2 * bx, al2 * bx - w2**2 * by), axis=1),
+        "C.p": np.stack((cx, cy), axis=1),
+        "C.v": np.stack((-w4 * ry, w4 * rx), axis=1),
+        "C.a": np.stack((-al4 * ry - w4**2 * rx, al4 * rx - w4**2 * ry), axis=1),
+        "coupler.omega": w3, "rocker.omega": w4, "coupler.alpha": al3, "rocker.alpha": al4,
+    }
+
+
+def baseline_sweep(fb: FourBar, samples: int, start: float = math.radians(30.0)
+                   ) -> dict[str, np.ndarray]:
+    """The baseline's whole sweep: one revolution from ``start``, everything closed form."""
+    return closed_form(fb, start + 2.0 * math.pi * np.arange(samples) / samples)
+
+
+def solver_values(result: Sweep) -> dict[str, np.ndarray]:
+    """The solver's sweep in the baseline's keys."""
+    m = result.motion
+    out: dict[str, np.ndarray] = {}
+    for point in ("B", "C"):
+        p = m.points[point]
+        out |= {f"{point}.p": p.p, f"{point}.v": p.v, f"{point}.a": p.a}
+    for link in ("coupler", "rocker"):
+        out |= {f"{link}.omega": m.links[link].omega, f"{link}.alpha": m.links[link].alpha}
+    return out
+
+
+def max_rel_error(value: np.ndarray, reference: np.ndarray) -> float:
+    """Largest difference over the cycle, relative to the largest magnitude of the reference."""
+    return float(np.max(np.abs(value - reference)) / np.max(np.abs(reference)))
+
+
+# -- timing helpers -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Stats:
+    p50: float
+    p90: float
+    p99: float
+    count: int
+
+    @classmethod
+    def of(cls, seconds: list[float] | np.ndarray) -> Stats:
+        p50, p90, p99 = np.percentile(seconds, [50, 90, 99])
+        return cls(float(p50), float(p90), float(p99), len(seconds))
+
+
+def repeated(fn: Callable[[], object], budget: Budget, repeats: int | None = None) -> Stats:
+    """timeit-style: each repeat loops ``fn`` for at least ``budget.repeat_seconds``; the
+    statistics are over the repeats' seconds per call."""
+    fn()  # warm-up
+    number = 1
+    while True:
+        elapsed = _loop(fn, number)
+        if elapsed >= budget.repeat_seconds:
+            break
+        number = max(number + 1, int(number * 1.2 * budget.repeat_seconds / max(elapsed, 1e-9)))
+    return Stats.of([_loop(fn, number) / number for _ in range(repeats or budget.repeats)])
+
+
+def _loop(fn: Callable[[], object], number: int) -> float:
+    start = time.perf_counter()
+    for _ in range(number):
+        fn()
+    return time.perf_counter() - start
+
+
+def latencies(fn: Callable[[], object], calls: int, warmup: int = 20) -> Stats:
+    """Each call timed on its own (for p50 and p99 of single requests)."""
+    for _ in range(min(warmup, calls)):
+        fn()
+    seconds = []
+    for _ in range(calls):
+        start = time.perf_counter()
+        fn()
+        seconds.append(time.perf_counter() - start)
+    return Stats.of(seconds)
+
+
+def peak_memory(fn: Callable[[], object]) -> int:
+    """tracemalloc peak (bytes) of one call; numpy reports its buffers to tracemalloc."""
+    tracemalloc.start()
+    try:
+        fn()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def ms(seconds: float | None) -> str:
+    return "n/a" if seconds is None else f"{seconds * 1e3:.3g} ms"
+
+
+def mib(size: int) -> str:
+    return f"{size / 2**20:.3g} MiB"
+
+
+def table(headers: list[str], rows: list[list[str]]) -> str:
+    lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    return "\n".join(lines + ["| " + " | ".join(row) + " |" for row in rows])
+
+
+def verdict(passed: bool | None) -> str:
+    return "n/a" if passed is None else ("PASS" if passed else "MISS")
+
+
+# -- measurements ---------------------------------------------------------------------------
+
+
+@dataclass
+class Results:
+    rows: dict[str, str]  # markdown sections by name
+    instant_p50: float | None = None
+    sweep_ratio: float | None = None
+    http_p50: float | None = None
+    solution_p50: float | None = None
+    solution_note: str = ""
+
+
+def measure_agreement(scene: LinkageScene) -> tuple[str, bool]:
+    """Solver sweep versus baseline at the same samples: the answers must be the same."""
+    result = sweep(scene, 3600, ALL)
+    base = closed_form(SEED_004, result.driver_angle)
+    ours = solver_values(result)
+    units = {"p": "m", "v": "m/s", "a": "m/s^2", "omega": "rad/s", "alpha": "rad/s^2"}
+    rows, worst = [], 0.0
+    for key in ("C.p", "C.v", "C.a", "coupler.omega", "rocker.omega", "coupler.alpha",
+                "rocker.alpha"):
+        unit = units[key.split(".")[1]]
+        diff = float(np.max(np.abs(ours[key] - base[key])))
+        scale = float(np.max(np.abs(base[key])))
+        worst = max(worst, diff / scale)
+        rows.append([key, f"{diff:.2e} {unit}", f"{scale:.4g} {unit}", f"{diff / scale:.1e}"])
+    agree = worst < AGREEMENT and bool(result.feasible)
+    header = ("Solver sweep versus baseline, seed-004 crank-rocker, 3600 samples, same crank "
+              f"angles: {'the answers agree' if agree else 'THE ANSWERS DISAGREE'} "
+              f"(worst relative difference {worst:.1e}, required < {AGREEMENT:.0e}).")
+    return header + "\n\n" + table(
+        ["quantity", "max abs difference", "max abs value", "relative"], rows), agree
+
+
+def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
+    rows = []
+    for n in SIZES:
+        base = repeated(lambda n=n: baseline_sweep(SEED_004, n), budget)
+        ours = repeated(lambda n=n: sweep(scene, n, ALL), budget)
+        ratio = ours.p50 / base.p50
+        if n == 3600:
+            res.sweep_ratio = ratio
+        rows.append([str(n), ms(base.p50), ms(ours.p50), ms(ours.p90), f"{ratio:.1f}x",
+                     mib(peak_memory(lambda n=n: baseline_sweep(SEED_004, n))),
+                     mib(peak_memory(lambda n=n: sweep(scene, n, ALL)))])
+    return (f"Seed-004 crank-rocker, one revolution, positions + velocities + accelerations, "
+            f"in-process, scene parsed once; {budget.repeats} repeats.\n\n" + table(
+                ["samples", "baseline p50", "solver p50", "solver p90", "solver / baseline",
+                 "baseline peak mem", "solver peak mem"], rows))
+
+
+def measure_instant(doc: dict[str, Any], budget: Budget, res: Results) -> str:
+    scene = parse_linkage(doc)
+    full = latencies(lambda: analyze(parse_linkage(doc)), budget.instant_calls)
+    only = latencies(lambda: analyze(scene), budget.instant_calls)
+    res.instant_p50 = full.p50
+    rows = [["seed-004 four-bar: parse + analyze", ms(full.p50), ms(full.p99), str(full.count)],
+            ["seed-004 four-bar: analyze (pre-parsed)", ms(only.p50), ms(only.p99),
+             str(only.count)]]
+    for name in PRESETS:
+        preset = build_preset(name, {})
+        s = latencies(lambda preset=preset: analyze(parse_linkage(preset)), budget.preset_calls)
+        rows.append([f"preset {name} (defaults): parse + analyze", ms(s.p50), ms(s.p99),
+                     str(s.count)])
+    return ("One instant, everything (positions, velocities, accelerations, poles, components, "
+            "instant centres), in-process.\n\n" + table(["call", "p50", "p99", "calls"], rows))
+
+
+def solution_call(doc: dict[str, Any]) -> Callable[[], object] | str:
+    """One worked solution in-process (issue 4): the POST /api/v1/solution handler called
+    directly with its validated request (solver.steps + the results + JSON, without HTTP);
+    a string says why there is none."""
+    if importlib.util.find_spec("solver.steps") is None:
+        return "n/a (not available)"
+    from server.app import app
+
+    route = next((r for r in app.routes if getattr(r, "path", "") == "/api/v1/solution"
+                  and "POST" in getattr(r, "methods", ())), None)
+    if route is None:
+        return "n/a (solver.steps exists, POST /api/v1/solution does not)"
+    endpoint = route.endpoint  # type: ignore[attr-defined]
+    hints = typing.get_type_hints(endpoint)
+    params = list(inspect.signature(endpoint).parameters)
+    model = hints.get(params[0]) if len(params) == 1 else None
+    if inspect.iscoroutinefunction(endpoint) or not hasattr(model, "model_validate"):
+        return "n/a (the /solution handler is not a plain function of one request model)"
+    request = model.model_validate({"scene": doc, "method": "vector"})  # type: ignore[union-attr]
+    return lambda: endpoint(request)
+
+
+def measure_solutions(budget: Budget, res: Results) -> str:
+    rows, worst = [], 0.0
+    for name in PRESETS:
+        call = solution_call(build_preset(name, {}))
+        if isinstance(call, str):
+            res.solution_note = call
+            return f"Worked solution (issue 4), in-process: {call}."
+        try:
+            s = latencies(call, budget.preset_calls, warmup=3)
+        except Exception as error:  # a broken handler is reported, not hidden
+            rows.append([f"preset {name}", f"error: {type(error).__name__}: {error}", "", ""])
+            continue
+        worst = max(worst, s.p50)
+        rows.append([f"preset {name} (defaults), method vector", ms(s.p50), ms(s.p99),
+                     str(s.count)])
+    res.solution_p50 = worst or None
+    return ("Worked solution (issue 4), in-process: the /solution handler called directly.\n\n"
+            + table(["scene", "p50", "p99", "calls"], rows))
+
+
+def measure_trade(scene: LinkageScene, budget: Budget) -> str:
+    """What analytic derivatives buy: error of v_C and a_C against the closed form, for the
+    solver's sweep and for finite differences of a position-only sweep."""
+    rows = []
+    for n in TRADE_SIZES:
+        exact = sweep(scene, n, ALL)
+        base = closed_form(SEED_004, exact.driver_angle)
+        positions = sweep(scene, n, ["position"]).motion.points["C"].p
+        dt = 2.0 * math.pi / n / abs(SEED_004.omega)  # uniform samples, constant crank speed
+        ahead, behind = np.roll(positions, -1, axis=0), np.roll(positions, 1, axis=0)
+        fd_v = (ahead - behind) / (2.0 * dt)
+        fd_a = (ahead - 2.0 * positions + behind) / dt**2
+        t_pos = repeated(lambda n=n: sweep(scene, n, ["position"]), budget, budget.repeats // 3)
+        t_all = repeated(lambda n=n: sweep(scene, n, ALL), budget, budget.repeats // 3)
+        rows.append([str(n), ms(t_pos.p50),
+                     f"{max_rel_error(fd_v, base['C.v']):.1e}",
+                     f"{max_rel_error(fd_a, base['C.a']):.1e}", ms(t_all.p50),
+                     f"{max_rel_error(exact.motion.points['C'].v, base['C.v']):.1e}",
+                     f"{max_rel_error(exact.motion.points['C'].a, base['C.a']):.1e}"])
+    return ("Speed versus accuracy, seed-004 crank-rocker: maximum error over the cycle relative "
+            "to the largest closed-form value. Finite differences: central differences of a "
+            "position-only sweep (cyclic); analytic: the solver's own velocities and "
+            "accelerations.\n\n" + table(
+                ["samples", "position-only sweep p50", "FD v_C error", "FD a_C error",
+                 "full sweep p50", "analytic v_C error", "analytic a_C error"], rows))
+
+
+# -- over HTTP ------------------------------------------------------------------------------
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@contextlib.contextmanager
+def running_server(timeout: float = 60.0) -> Iterator[str]:
+    """uvicorn with the app on a free loopback port; stopped on exit whatever happens."""
+    import httpx
+
+    port = free_port()
+    base = f"http://127.0.0.1:{port}"
+    with tempfile.TemporaryFile() as log:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1",
+             "--port", str(port), "--no-access-log", "--log-level", "warning"],
+            cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        try:
+            deadline = time.monotonic() + timeout
+            while True:
+                if proc.poll() is not None or time.monotonic() > deadline:
+                    log.seek(0)
+                    raise RuntimeError("the server did not come up:\n" + log.read().decode())
+                with contextlib.suppress(httpx.TransportError):
+                    if httpx.get(base + "/health", timeout=1.0).status_code == 200:
+                        break
+                time.sleep(0.1)
+            yield base
+        finally:
+            proc.terminate()
+            try:
+                proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+
+
+def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
+    import httpx
+
+    def poster(client: httpx.Client, path: str, body: dict[str, Any]) -> Callable[[], int]:
+        payload = json.dumps(body).encode()
+
+        def post() -> int:
+            r = client.post(path, content=payload, headers={"content-type": "application/json"})
+            if r.status_code != 200:
+                raise RuntimeError(f"POST {path}: {r.status_code} {r.text[:300]}")
+            return len(r.content)
+        return post
+
+    rows = []
+    with running_server() as base, httpx.Client(base_url=base, timeout=60.0) as client:
+        one = poster(client, "/api/v1/analyze", {"scene": doc})
+        s = latencies(one, budget.http_calls, warmup=50)
+        res.http_p50 = s.p50
+        rows.append(["/analyze one instant, everything", ms(s.p50), ms(s.p99), str(s.count),
+                     f"{one():,}"])
+        for n, count in zip(SIZES, budget.http_sweeps, strict=True):
+            post = poster(client, "/api/v1/sweep", {"scene": doc, "samples": n,
+                                                    "quantities": list(ALL)})
+            s = latencies(post, count, warmup=2)
+            rows.append([f"/sweep {n} samples, all quantities", ms(s.p50), ms(s.p99),
+                         str(s.count), f"{post():,}"])
+        body = {"scene": doc, "method": "vector"}
+        probe = client.post("/api/v1/solution", json=body)
+        if probe.status_code == 200:
+            post = poster(client, "/api/v1/solution", body)
+            s = latencies(post, budget.preset_calls, warmup=3)
+            rows.append(["/solution four-bar, method vector", ms(s.p50), ms(s.p99), str(s.count),
+                         f"{post():,}"])
+        else:
+            rows.append(["/solution four-bar, method vector",
+                         f"n/a (not available: HTTP {probe.status_code})", "", "", ""])
+    versions = ", ".join(f"{m} {_version(m)}" for m in ("fastapi", "uvicorn", "httpx", "orjson"))
+    return ("Over HTTP on loopback: uvicorn (1 worker, no access log) in a subprocess, one "
+            f"httpx client with keep-alive, seed-004 four-bar ({versions}).\n\n" + table(
+                ["request", "p50", "p99", "requests", "response bytes"], rows))
+
+
+def _version(module: str) -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(module)
+    except PackageNotFoundError:
+        return "?"
+
+
+# -- report ---------------------------------------------------------------------------------
+
+
+def machine() -> str:
+    model = platform.processor() or "unknown CPU"
+    with contextlib.suppress(OSError):
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    return (f"{os.cpu_count()} cores, {model}; Python {platform.python_version()}; "
+            f"numpy {np.__version__}; BLAS: {blas()}")
+
+
+def blas() -> str:
+    env = ", ".join(f"{k}={os.environ[k]}" for k in BLAS_ENV if k in os.environ) or "none"
+    try:
+        from threadpoolctl import threadpool_info
+
+        libs = "; ".join(f"{i['internal_api']} {i.get('version')}, kernel "
+                         f"{i.get('architecture')}, {i['num_threads']} threads"
+                         for i in threadpool_info()) or "none loaded"
+    except ImportError:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            config = np.show_config(mode="dicts")["Build Dependencies"]["blas"]
+        libs = (f"{config.get('name')} {config.get('version')} (threads and kernel unknown: "
+                "threadpoolctl is not installed)")
+    return f"{libs}; BLAS environment: {env}"
+
+
+def targets(res: Results) -> str:
+    def row(what: str, value: str, goal: str, passed: bool | None) -> list[str]:
+        return [what, value, goal, verdict(passed)]
+
+    def below(value: float | None, limit: float) -> bool | None:
+        return None if value is None else value < limit
+
+    ratio = res.sweep_ratio
+    solution = ms(res.solution_p50) if res.solution_p50 else res.solution_note or "n/a"
+    return table(["target", "measured", "goal", "result"], [
+        row("one instant in-process, four-bar, parse + analyze (p50)", ms(res.instant_p50),
+            "< 1 ms", below(res.instant_p50, INSTANT_TARGET_S)),
+        row("3600-sample sweep, all quantities, in-process (p50 / baseline p50)",
+            "n/a" if ratio is None else f"{ratio:.1f}x", f"<= {SWEEP_RATIO_TARGET:g}x",
+            None if ratio is None else ratio <= SWEEP_RATIO_TARGET),
+        row("one instant over HTTP, /analyze (p50)",
+            ms(res.http_p50) if res.http_p50 else "n/a (--no-http)", "< 10 ms",
+            below(res.http_p50, HTTP_INSTANT_TARGET_S)),
+        row("worked solution in-process, slowest preset (p50)", solution, "< 20 ms",
+            below(res.solution_p50, SOLUTION_TARGET_S)),
+    ])
+
+
+def run(budget: Budget, http: bool) -> str:
+    started = time.perf_counter()
+    doc = SEED_004.scene_document()
+    scene = parse_linkage(doc)
+    res = Results({})
+    agreement, agree = measure_agreement(scene)
+    res.rows["Sweeps in-process"] = measure_sweeps(scene, budget, res)
+    if not agree:
+        res.sweep_ratio = None  # a ratio between different answers means nothing
+    res.rows["One instant in-process"] = measure_instant(doc, budget, res)
+    res.rows["Worked solutions in-process"] = measure_solutions(budget, res)
+    res.rows["Speed versus accuracy"] = measure_trade(scene, budget)
+    res.rows["Over HTTP"] = measure_http(doc, budget, res) if http else "Skipped (--no-http)."
+    when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    parts = [f"Measured {when} ({budget.name} run, {time.perf_counter() - started:.0f} s) by "
+             "`python -m benchmarks.bench_kinematics`.\n\nMachine: " + machine() + ".",
+             "### Targets\n\n" + targets(res),
+             "### Agreement with the baseline\n\n" + agreement]
+    parts += [f"### {title}\n\n{body}" for title, body in res.rows.items()]
+    return "\n\n".join(parts)
+
+
+TEMPLATE = f"""# Benchmarks
+
+Measured, not asserted: these are benchmarks, not tests. Each section is written by its script;
+run the script again to refresh it. How to run them and what each row means:
+benchmarks/README.md.
+
+## Kinematics: solver and API
+
+{START}
+{END}
+
+## Front end
+
+<!-- frontend:start -->
+Placeholder for the front end's benchmark (benchmarks/frontend_fps.py): frames per second of the
+animation and the plots.
+<!-- frontend:end -->
+"""
+
+
+def write_doc(report: str) -> None:
+    """Replace what stands between the kinematics markers; everything else is kept."""
+    text = DOC.read_text() if DOC.exists() else TEMPLATE
+    if START not in text or END not in text:
+        text = text.rstrip() + f"\n\n## Kinematics: solver and API\n\n{START}\n{END}\n"
+    head, rest = text.split(START, 1)
+    tail = rest.split(END, 1)[1]
+    DOC.parent.mkdir(parents=True, exist_ok=True)
+    temporary = DOC.with_suffix(".md.tmp")
+    temporary.write_text(f"{head}{START}\n{report}\n{END}{tail}")
+    os.replace(temporary, DOC)
+
+
+def profile(budget: Budget) -> None:
+    """cProfile of the in-process calls behind the targets: top functions by own time."""
+    doc = SEED_004.scene_document()
+    scene = parse_linkage(doc)
+    calls: list[tuple[str, Callable[[], object], int]] = [
+        ("sweep, 3600 samples, all quantities", lambda: sweep(scene, 3600, ALL), 200),
+        ("parse + analyze, one instant", lambda: analyze(parse_linkage(doc)),
+         budget.instant_calls)]
+    for title, fn, count in calls:
+        profiler = cProfile.Profile()
+        profiler.enable()
+        for _ in range(count):
+            fn()
+        profiler.disable()
+        print(f"\n## Profile: {title} x {count}, top by own time")
+        pstats.Stats(profiler).sort_stats("tottime").print_stats(15)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="short run (noisier numbers)")
+    parser.add_argument("--no-http", action="store_true", help="skip the HTTP measurements")
+    parser.add_argument("--no-write", action="store_true", help="print only; keep the doc as is")
+    parser.add_argument("--profile", action="store_true",
+                        help="also print cProfile hot spots of the in-process calls")
+    args = parser.parse_args()
+    budget = QUICK if args.quick else FULL
+    report = run(budget, http=not args.no_http)
+    print(report)
+    if not args.no_write:
+        write_doc(report)
+        print(f"\nwritten to {DOC.relative_to(ROOT)}")
+    if args.profile:
+        profile(budget)
+
+
+if __name__ == "__main__":
+    main()
