@@ -32,9 +32,10 @@ import time
 import tracemalloc
 import typing
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -44,7 +45,7 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
 
 import numpy as np  # noqa: E402
 
-from solver.analysis import analyze  # noqa: E402
+from solver.analysis import LinkageAnalysis, analyze  # noqa: E402
 from solver.presets import PRESETS, build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
 from solver.sweep import Sweep, sweep  # noqa: E402
@@ -54,8 +55,13 @@ START, END = "<!-- kinematics:start -->", "<!-- kinematics:end -->"
 ALL = ("position", "velocity", "acceleration")
 SIZES = (360, 3600, 36000)
 TRADE_SIZES = (36, 360, 3600, 36000)
-BLAS_ENV = ("OPENBLAS_CORETYPE", "OPENBLAS_L2_SIZE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
-            "MKL_NUM_THREADS")
+BLAS_ENV = (
+    "OPENBLAS_CORETYPE",
+    "OPENBLAS_L2_SIZE",
+    "OPENBLAS_NUM_THREADS",
+    "OMP_NUM_THREADS",
+    "MKL_NUM_THREADS",
+)
 AGREEMENT = 1e-9  # relative: baseline and solver must give the same answers to compare speeds
 
 # Targets of issue 2 (Speed) and issue 4 (worked solutions).
@@ -73,13 +79,14 @@ class Budget:
     repeats: int  # timeit-style repeats of a sweep
     repeat_seconds: float  # each repeat loops the call for at least this long
     instant_calls: int  # one-instant latencies, four-bar
-    preset_calls: int  # one-instant latencies and worked solutions, every preset
+    preset_calls: int  # one-instant latencies, every preset
+    solution_calls: int  # worked solutions, every preset (in-process and over HTTP)
     http_calls: int  # /analyze requests
     http_sweeps: tuple[int, int, int]  # /sweep requests for 360, 3600, 36000 samples
 
 
-FULL = Budget("full", 25, 0.1, 2000, 300, 1000, (100, 40, 8))
-QUICK = Budget("quick", 7, 0.02, 300, 40, 200, (20, 8, 3))
+FULL = Budget("full", 25, 0.1, 2000, 300, 100, 1000, (100, 40, 8))
+QUICK = Budget("quick", 7, 0.02, 300, 40, 10, 200, (20, 8, 3))
 
 
 # -- the baseline: a closed-form four-bar in numpy ------------------------------------------
@@ -99,11 +106,21 @@ class FourBar:
 
     def scene_document(self, crank_angle_deg: float = 30.0) -> dict[str, Any]:
         """The same linkage as a four_bar preset (open assembly, no coupler point)."""
-        return build_preset("four_bar", {
-            "ground": self.ground, "crank": self.crank, "coupler": self.coupler,
-            "rocker": self.rocker, "crank_angle_deg": crank_angle_deg, "assembly": 0,
-            "coupler_point_u": 0.0, "coupler_point_v": 0.0, "omega": self.omega,
-            "alpha": self.alpha})
+        return build_preset(
+            "four_bar",
+            {
+                "ground": self.ground,
+                "crank": self.crank,
+                "coupler": self.coupler,
+                "rocker": self.rocker,
+                "crank_angle_deg": crank_angle_deg,
+                "assembly": 0,
+                "coupler_point_u": 0.0,
+                "coupler_point_v": 0.0,
+                "omega": self.omega,
+                "alpha": self.alpha,
+            },
+        )
 
 
 SEED_004 = FourBar(ground=1.0, crank=0.15, coupler=1.0, rocker=0.55, omega=8 * math.pi)
@@ -140,26 +157,46 @@ def closed_form(fb: FourBar, theta2: np.ndarray) -> dict[str, np.ndarray]:
         "C.p": np.stack((cx, cy), axis=1),
         "C.v": np.stack((-w4 * ry, w4 * rx), axis=1),
         "C.a": np.stack((-al4 * ry - w4**2 * rx, al4 * rx - w4**2 * ry), axis=1),
-        "coupler.omega": w3, "rocker.omega": w4, "coupler.alpha": al3, "rocker.alpha": al4,
+        "coupler.omega": w3,
+        "rocker.omega": w4,
+        "coupler.alpha": al3,
+        "rocker.alpha": al4,
     }
 
 
-def baseline_sweep(fb: FourBar, samples: int, start: float = math.radians(30.0)
-                   ) -> dict[str, np.ndarray]:
+def baseline_sweep(
+    fb: FourBar, samples: int, start: float = math.radians(30.0)
+) -> dict[str, np.ndarray]:
     """The baseline's whole sweep: one revolution from ``start``, everything closed form."""
     return closed_form(fb, start + 2.0 * math.pi * np.arange(samples) / samples)
 
 
 def solver_values(result: Sweep) -> dict[str, np.ndarray]:
-    """The solver's sweep in the baseline's keys."""
+    """The solver's sweep (all quantities) in the baseline's keys."""
     m = result.motion
-    out: dict[str, np.ndarray] = {}
+    out = {f"{point}.p": m.points[point].p for point in ("B", "C")}
     for point in ("B", "C"):
-        p = m.points[point]
-        out |= {f"{point}.p": p.p, f"{point}.v": p.v, f"{point}.a": p.a}
+        out |= {
+            f"{point}.v": computed(m.points[point].v),
+            f"{point}.a": computed(m.points[point].a),
+        }
     for link in ("coupler", "rocker"):
-        out |= {f"{link}.omega": m.links[link].omega, f"{link}.alpha": m.links[link].alpha}
+        out |= {
+            f"{link}.omega": computed(m.links[link].omega),
+            f"{link}.alpha": computed(m.links[link].alpha),
+        }
     return out
+
+
+def computed(value: np.ndarray | None) -> np.ndarray:
+    """A quantity that was asked for (the solver gives None only for what was not)."""
+    assert value is not None
+    return value
+
+
+def parse_and_analyze(doc: dict[str, Any]) -> LinkageAnalysis:
+    """One instant from the document, as a request handler does it."""
+    return analyze(parse_linkage(doc))
 
 
 def max_rel_error(value: np.ndarray, reference: np.ndarray) -> float:
@@ -183,17 +220,27 @@ class Stats:
         return cls(float(p50), float(p90), float(p99), len(seconds))
 
 
-def repeated(fn: Callable[[], object], budget: Budget, repeats: int | None = None) -> Stats:
-    """timeit-style: each repeat loops ``fn`` for at least ``budget.repeat_seconds``; the
-    statistics are over the repeats' seconds per call."""
-    fn()  # warm-up
+def repeated(
+    fns: Sequence[Callable[[], object]], budget: Budget, repeats: int | None = None
+) -> list[Stats]:
+    """timeit-style: each repeat loops each of ``fns`` for at least ``budget.repeat_seconds``,
+    one after the other (so that a change in the machine's load hits them alike); the statistics
+    are over the repeats' seconds per call."""
+    numbers = [_calibrate(fn, budget.repeat_seconds) for fn in fns]
+    seconds: list[list[float]] = [[] for _ in fns]
+    for _ in range(repeats or budget.repeats):
+        for fn, number, out in zip(fns, numbers, seconds, strict=True):
+            out.append(_loop(fn, number) / number)
+    return [Stats.of(s) for s in seconds]
+
+
+def _calibrate(fn: Callable[[], object], seconds: float) -> int:
+    """How many calls last at least ``seconds`` (after a warm-up call)."""
+    fn()
     number = 1
-    while True:
-        elapsed = _loop(fn, number)
-        if elapsed >= budget.repeat_seconds:
-            break
-        number = max(number + 1, int(number * 1.2 * budget.repeat_seconds / max(elapsed, 1e-9)))
-    return Stats.of([_loop(fn, number) / number for _ in range(repeats or budget.repeats)])
+    while (elapsed := _loop(fn, number)) < seconds:
+        number = max(number + 1, int(number * 1.2 * seconds / max(elapsed, 1e-9)))
+    return number
 
 
 def _loop(fn: Callable[[], object], number: int) -> float:
@@ -247,7 +294,7 @@ def verdict(passed: bool | None) -> str:
 
 @dataclass
 class Results:
-    rows: dict[str, str]  # markdown sections by name
+    sections: dict[str, str]  # markdown sections by title
     instant_p50: float | None = None
     sweep_ratio: float | None = None
     http_p50: float | None = None
@@ -262,53 +309,89 @@ def measure_agreement(scene: LinkageScene) -> tuple[str, bool]:
     ours = solver_values(result)
     units = {"p": "m", "v": "m/s", "a": "m/s^2", "omega": "rad/s", "alpha": "rad/s^2"}
     rows, worst = [], 0.0
-    for key in ("C.p", "C.v", "C.a", "coupler.omega", "rocker.omega", "coupler.alpha",
-                "rocker.alpha"):
+    for key in (
+        "C.p",
+        "C.v",
+        "C.a",
+        "coupler.omega",
+        "rocker.omega",
+        "coupler.alpha",
+        "rocker.alpha",
+    ):
         unit = units[key.split(".")[1]]
         diff = float(np.max(np.abs(ours[key] - base[key])))
         scale = float(np.max(np.abs(base[key])))
         worst = max(worst, diff / scale)
         rows.append([key, f"{diff:.2e} {unit}", f"{scale:.4g} {unit}", f"{diff / scale:.1e}"])
     agree = worst < AGREEMENT and bool(result.feasible)
-    header = ("Solver sweep versus baseline, seed-004 crank-rocker, 3600 samples, same crank "
-              f"angles: {'the answers agree' if agree else 'THE ANSWERS DISAGREE'} "
-              f"(worst relative difference {worst:.1e}, required < {AGREEMENT:.0e}).")
+    header = (
+        "Solver sweep versus baseline, seed-004 crank-rocker, 3600 samples, same crank "
+        f"angles: {'the answers agree' if agree else 'THE ANSWERS DISAGREE'} "
+        f"(worst relative difference {worst:.1e}, required < {AGREEMENT:.0e})."
+    )
     return header + "\n\n" + table(
-        ["quantity", "max abs difference", "max abs value", "relative"], rows), agree
+        ["quantity", "max abs difference", "max abs value", "relative"], rows
+    ), agree
 
 
 def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
     rows = []
     for n in SIZES:
-        base = repeated(lambda n=n: baseline_sweep(SEED_004, n), budget)
-        ours = repeated(lambda n=n: sweep(scene, n, ALL), budget)
+        base, ours = repeated(
+            [partial(baseline_sweep, SEED_004, n), partial(sweep, scene, n, ALL)], budget
+        )
         ratio = ours.p50 / base.p50
         if n == 3600:
             res.sweep_ratio = ratio
-        rows.append([str(n), ms(base.p50), ms(ours.p50), ms(ours.p90), f"{ratio:.1f}x",
-                     mib(peak_memory(lambda n=n: baseline_sweep(SEED_004, n))),
-                     mib(peak_memory(lambda n=n: sweep(scene, n, ALL)))])
-    return (f"Seed-004 crank-rocker, one revolution, positions + velocities + accelerations, "
-            f"in-process, scene parsed once; {budget.repeats} repeats.\n\n" + table(
-                ["samples", "baseline p50", "solver p50", "solver p90", "solver / baseline",
-                 "baseline peak mem", "solver peak mem"], rows))
+        rows.append(
+            [
+                str(n),
+                ms(base.p50),
+                ms(ours.p50),
+                ms(ours.p90),
+                f"{ratio:.1f}x",
+                mib(peak_memory(partial(baseline_sweep, SEED_004, n))),
+                mib(peak_memory(partial(sweep, scene, n, ALL))),
+            ]
+        )
+    return (
+        f"Seed-004 crank-rocker, one revolution, positions + velocities + accelerations, "
+        f"in-process, scene parsed once; {budget.repeats} repeats, baseline and solver "
+        "alternating.\n\n"
+        + table(
+            [
+                "samples",
+                "baseline p50",
+                "solver p50",
+                "solver p90",
+                "solver / baseline",
+                "baseline peak mem",
+                "solver peak mem",
+            ],
+            rows,
+        )
+    )
 
 
 def measure_instant(doc: dict[str, Any], budget: Budget, res: Results) -> str:
     scene = parse_linkage(doc)
-    full = latencies(lambda: analyze(parse_linkage(doc)), budget.instant_calls)
+    full = latencies(partial(parse_and_analyze, doc), budget.instant_calls)
     only = latencies(lambda: analyze(scene), budget.instant_calls)
     res.instant_p50 = full.p50
-    rows = [["seed-004 four-bar: parse + analyze", ms(full.p50), ms(full.p99), str(full.count)],
-            ["seed-004 four-bar: analyze (pre-parsed)", ms(only.p50), ms(only.p99),
-             str(only.count)]]
+    rows = [
+        ["seed-004 four-bar: parse + analyze", ms(full.p50), ms(full.p99), str(full.count)],
+        ["seed-004 four-bar: analyze (pre-parsed)", ms(only.p50), ms(only.p99), str(only.count)],
+    ]
     for name in PRESETS:
         preset = build_preset(name, {})
-        s = latencies(lambda preset=preset: analyze(parse_linkage(preset)), budget.preset_calls)
-        rows.append([f"preset {name} (defaults): parse + analyze", ms(s.p50), ms(s.p99),
-                     str(s.count)])
-    return ("One instant, everything (positions, velocities, accelerations, poles, components, "
-            "instant centres), in-process.\n\n" + table(["call", "p50", "p99", "calls"], rows))
+        s = latencies(partial(parse_and_analyze, preset), budget.preset_calls)
+        rows.append(
+            [f"preset {name} (defaults): parse + analyze", ms(s.p50), ms(s.p99), str(s.count)]
+        )
+    return (
+        "One instant, everything (positions, velocities, accelerations, poles, components, "
+        "instant centres), in-process.\n\n" + table(["call", "p50", "p99", "calls"], rows)
+    )
 
 
 def solution_call(doc: dict[str, Any]) -> Callable[[], object] | str:
@@ -319,8 +402,14 @@ def solution_call(doc: dict[str, Any]) -> Callable[[], object] | str:
         return "n/a (not available)"
     from server.app import app
 
-    route = next((r for r in app.routes if getattr(r, "path", "") == "/api/v1/solution"
-                  and "POST" in getattr(r, "methods", ())), None)
+    route = next(
+        (
+            r
+            for r in app.routes
+            if getattr(r, "path", "") == "/api/v1/solution" and "POST" in getattr(r, "methods", ())
+        ),
+        None,
+    )
     if route is None:
         return "n/a (solver.steps exists, POST /api/v1/solution does not)"
     endpoint = route.endpoint  # type: ignore[attr-defined]
@@ -341,16 +430,19 @@ def measure_solutions(budget: Budget, res: Results) -> str:
             res.solution_note = call
             return f"Worked solution (issue 4), in-process: {call}."
         try:
-            s = latencies(call, budget.preset_calls, warmup=3)
+            s = latencies(call, budget.solution_calls, warmup=3)
         except Exception as error:  # a broken handler is reported, not hidden
             rows.append([f"preset {name}", f"error: {type(error).__name__}: {error}", "", ""])
             continue
         worst = max(worst, s.p50)
-        rows.append([f"preset {name} (defaults), method vector", ms(s.p50), ms(s.p99),
-                     str(s.count)])
+        rows.append(
+            [f"preset {name} (defaults), method vector", ms(s.p50), ms(s.p99), str(s.count)]
+        )
     res.solution_p50 = worst or None
-    return ("Worked solution (issue 4), in-process: the /solution handler called directly.\n\n"
-            + table(["scene", "p50", "p99", "calls"], rows))
+    return (
+        "Worked solution (issue 4), in-process: the /solution handler called directly.\n\n"
+        + table(["scene", "p50", "p99", "calls"], rows)
+    )
 
 
 def measure_trade(scene: LinkageScene, budget: Budget) -> str:
@@ -365,19 +457,41 @@ def measure_trade(scene: LinkageScene, budget: Budget) -> str:
         ahead, behind = np.roll(positions, -1, axis=0), np.roll(positions, 1, axis=0)
         fd_v = (ahead - behind) / (2.0 * dt)
         fd_a = (ahead - 2.0 * positions + behind) / dt**2
-        t_pos = repeated(lambda n=n: sweep(scene, n, ["position"]), budget, budget.repeats // 3)
-        t_all = repeated(lambda n=n: sweep(scene, n, ALL), budget, budget.repeats // 3)
-        rows.append([str(n), ms(t_pos.p50),
-                     f"{max_rel_error(fd_v, base['C.v']):.1e}",
-                     f"{max_rel_error(fd_a, base['C.a']):.1e}", ms(t_all.p50),
-                     f"{max_rel_error(exact.motion.points['C'].v, base['C.v']):.1e}",
-                     f"{max_rel_error(exact.motion.points['C'].a, base['C.a']):.1e}"])
-    return ("Speed versus accuracy, seed-004 crank-rocker: maximum error over the cycle relative "
-            "to the largest closed-form value. Finite differences: central differences of a "
-            "position-only sweep (cyclic); analytic: the solver's own velocities and "
-            "accelerations.\n\n" + table(
-                ["samples", "position-only sweep p50", "FD v_C error", "FD a_C error",
-                 "full sweep p50", "analytic v_C error", "analytic a_C error"], rows))
+        t_pos, t_all = repeated(
+            [partial(sweep, scene, n, ["position"]), partial(sweep, scene, n, ALL)],
+            budget,
+            budget.repeats // 3,
+        )
+        ours = solver_values(exact)
+        rows.append(
+            [
+                str(n),
+                ms(t_pos.p50),
+                f"{max_rel_error(fd_v, base['C.v']):.1e}",
+                f"{max_rel_error(fd_a, base['C.a']):.1e}",
+                ms(t_all.p50),
+                f"{max_rel_error(ours['C.v'], base['C.v']):.1e}",
+                f"{max_rel_error(ours['C.a'], base['C.a']):.1e}",
+            ]
+        )
+    return (
+        "Speed versus accuracy, seed-004 crank-rocker: maximum error over the cycle relative "
+        "to the largest closed-form value. Finite differences: central differences of a "
+        "position-only sweep (cyclic); analytic: the solver's own velocities and "
+        "accelerations.\n\n"
+        + table(
+            [
+                "samples",
+                "position-only sweep p50",
+                "FD v_C error",
+                "FD a_C error",
+                "full sweep p50",
+                "analytic v_C error",
+                "analytic a_C error",
+            ],
+            rows,
+        )
+    )
 
 
 # -- over HTTP ------------------------------------------------------------------------------
@@ -398,9 +512,24 @@ def running_server(timeout: float = 60.0) -> Iterator[str]:
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryFile() as log:
         proc = subprocess.Popen(
-            [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1",
-             "--port", str(port), "--no-access-log", "--log-level", "warning"],
-            cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+            [
+                sys.executable,
+                "-m",
+                "uvicorn",
+                "server.app:app",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(port),
+                "--no-access-log",
+                "--log-level",
+                "warning",
+            ],
+            cwd=ROOT,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+        )
         try:
             deadline = time.monotonic() + timeout
             while True:
@@ -432,6 +561,7 @@ def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
             if r.status_code != 200:
                 raise RuntimeError(f"POST {path}: {r.status_code} {r.text[:300]}")
             return len(r.content)
+
         return post
 
     rows = []
@@ -439,28 +569,53 @@ def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
         one = poster(client, "/api/v1/analyze", {"scene": doc})
         s = latencies(one, budget.http_calls, warmup=50)
         res.http_p50 = s.p50
-        rows.append(["/analyze one instant, everything", ms(s.p50), ms(s.p99), str(s.count),
-                     f"{one():,}"])
+        rows.append(
+            ["/analyze one instant, everything", ms(s.p50), ms(s.p99), str(s.count), f"{one():,}"]
+        )
         for n, count in zip(SIZES, budget.http_sweeps, strict=True):
-            post = poster(client, "/api/v1/sweep", {"scene": doc, "samples": n,
-                                                    "quantities": list(ALL)})
+            post = poster(
+                client, "/api/v1/sweep", {"scene": doc, "samples": n, "quantities": list(ALL)}
+            )
             s = latencies(post, count, warmup=2)
-            rows.append([f"/sweep {n} samples, all quantities", ms(s.p50), ms(s.p99),
-                         str(s.count), f"{post():,}"])
+            rows.append(
+                [
+                    f"/sweep {n} samples, all quantities",
+                    ms(s.p50),
+                    ms(s.p99),
+                    str(s.count),
+                    f"{post():,}",
+                ]
+            )
         body = {"scene": doc, "method": "vector"}
         probe = client.post("/api/v1/solution", json=body)
         if probe.status_code == 200:
             post = poster(client, "/api/v1/solution", body)
-            s = latencies(post, budget.preset_calls, warmup=3)
-            rows.append(["/solution four-bar, method vector", ms(s.p50), ms(s.p99), str(s.count),
-                         f"{post():,}"])
+            s = latencies(post, budget.solution_calls, warmup=3)
+            rows.append(
+                [
+                    "/solution four-bar, method vector",
+                    ms(s.p50),
+                    ms(s.p99),
+                    str(s.count),
+                    f"{post():,}",
+                ]
+            )
         else:
-            rows.append(["/solution four-bar, method vector",
-                         f"n/a (not available: HTTP {probe.status_code})", "", "", ""])
+            rows.append(
+                [
+                    "/solution four-bar, method vector",
+                    f"n/a (not available: HTTP {probe.status_code})",
+                    "",
+                    "",
+                    "",
+                ]
+            )
     versions = ", ".join(f"{m} {_version(m)}" for m in ("fastapi", "uvicorn", "httpx", "orjson"))
-    return ("Over HTTP on loopback: uvicorn (1 worker, no access log) in a subprocess, one "
-            f"httpx client with keep-alive, seed-004 four-bar ({versions}).\n\n" + table(
-                ["request", "p50", "p99", "requests", "response bytes"], rows))
+    return (
+        "Over HTTP on loopback: uvicorn (1 worker, no access log) in a subprocess, one "
+        f"httpx client with keep-alive, seed-004 four-bar ({versions}).\n\n"
+        + table(["request", "p50", "p99", "requests", "response bytes"], rows)
+    )
 
 
 def _version(module: str) -> str:
@@ -482,8 +637,10 @@ def machine() -> str:
             if line.startswith("model name"):
                 model = line.split(":", 1)[1].strip()
                 break
-    return (f"{os.cpu_count()} cores, {model}; Python {platform.python_version()}; "
-            f"numpy {np.__version__}; BLAS: {blas()}")
+    return (
+        f"{os.cpu_count()} cores, {model}; Python {platform.python_version()}; "
+        f"numpy {np.__version__}; BLAS: {blas()}"
+    )
 
 
 def blas() -> str:
@@ -491,15 +648,22 @@ def blas() -> str:
     try:
         from threadpoolctl import threadpool_info
 
-        libs = "; ".join(f"{i['internal_api']} {i.get('version')}, kernel "
-                         f"{i.get('architecture')}, {i['num_threads']} threads"
-                         for i in threadpool_info()) or "none loaded"
+        libs = (
+            "; ".join(
+                f"{i['internal_api']} {i.get('version')}, kernel "
+                f"{i.get('architecture')}, {i['num_threads']} threads"
+                for i in threadpool_info()
+            )
+            or "none loaded"
+        )
     except ImportError:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             config = np.show_config(mode="dicts")["Build Dependencies"]["blas"]
-        libs = (f"{config.get('name')} {config.get('version')} (threads and kernel unknown: "
-                "threadpoolctl is not installed)")
+        libs = (
+            f"{config.get('name')} {config.get('version')} (threads and kernel unknown: "
+            "threadpoolctl is not installed)"
+        )
     return f"{libs}; BLAS environment: {env}"
 
 
@@ -512,39 +676,67 @@ def targets(res: Results) -> str:
 
     ratio = res.sweep_ratio
     solution = ms(res.solution_p50) if res.solution_p50 else res.solution_note or "n/a"
-    return table(["target", "measured", "goal", "result"], [
-        row("one instant in-process, four-bar, parse + analyze (p50)", ms(res.instant_p50),
-            "< 1 ms", below(res.instant_p50, INSTANT_TARGET_S)),
-        row("3600-sample sweep, all quantities, in-process (p50 / baseline p50)",
-            "n/a" if ratio is None else f"{ratio:.1f}x", f"<= {SWEEP_RATIO_TARGET:g}x",
-            None if ratio is None else ratio <= SWEEP_RATIO_TARGET),
-        row("one instant over HTTP, /analyze (p50)",
-            ms(res.http_p50) if res.http_p50 else "n/a (--no-http)", "< 10 ms",
-            below(res.http_p50, HTTP_INSTANT_TARGET_S)),
-        row("worked solution in-process, slowest preset (p50)", solution, "< 20 ms",
-            below(res.solution_p50, SOLUTION_TARGET_S)),
-    ])
+    return table(
+        ["target", "measured", "goal", "result"],
+        [
+            row(
+                "one instant in-process, four-bar, parse + analyze (p50)",
+                ms(res.instant_p50),
+                "< 1 ms",
+                below(res.instant_p50, INSTANT_TARGET_S),
+            ),
+            row(
+                "3600-sample sweep, all quantities, in-process (p50 / baseline p50)",
+                "n/a" if ratio is None else f"{ratio:.1f}x",
+                f"<= {SWEEP_RATIO_TARGET:g}x",
+                None if ratio is None else ratio <= SWEEP_RATIO_TARGET,
+            ),
+            row(
+                "one instant over HTTP, /analyze (p50)",
+                ms(res.http_p50) if res.http_p50 else "n/a (--no-http)",
+                "< 10 ms",
+                below(res.http_p50, HTTP_INSTANT_TARGET_S),
+            ),
+            row(
+                "worked solution in-process, slowest preset (p50)",
+                solution,
+                "< 20 ms",
+                below(res.solution_p50, SOLUTION_TARGET_S),
+            ),
+        ],
+    )
+
+
+def load() -> str:
+    """1-minute load average: other processes on the machine compete with the benchmark."""
+    with contextlib.suppress(OSError, AttributeError):
+        return f"{os.getloadavg()[0]:.2f}"
+    return "unknown"
 
 
 def run(budget: Budget, http: bool) -> str:
-    started = time.perf_counter()
+    started, load_before = time.perf_counter(), load()
     doc = SEED_004.scene_document()
     scene = parse_linkage(doc)
     res = Results({})
     agreement, agree = measure_agreement(scene)
-    res.rows["Sweeps in-process"] = measure_sweeps(scene, budget, res)
+    res.sections["Sweeps in-process"] = measure_sweeps(scene, budget, res)
     if not agree:
         res.sweep_ratio = None  # a ratio between different answers means nothing
-    res.rows["One instant in-process"] = measure_instant(doc, budget, res)
-    res.rows["Worked solutions in-process"] = measure_solutions(budget, res)
-    res.rows["Speed versus accuracy"] = measure_trade(scene, budget)
-    res.rows["Over HTTP"] = measure_http(doc, budget, res) if http else "Skipped (--no-http)."
+    res.sections["One instant in-process"] = measure_instant(doc, budget, res)
+    res.sections["Worked solutions in-process"] = measure_solutions(budget, res)
+    res.sections["Speed versus accuracy"] = measure_trade(scene, budget)
+    res.sections["Over HTTP"] = measure_http(doc, budget, res) if http else "Skipped (--no-http)."
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
-    parts = [f"Measured {when} ({budget.name} run, {time.perf_counter() - started:.0f} s) by "
-             "`python -m benchmarks.bench_kinematics`.\n\nMachine: " + machine() + ".",
-             "### Targets\n\n" + targets(res),
-             "### Agreement with the baseline\n\n" + agreement]
-    parts += [f"### {title}\n\n{body}" for title, body in res.rows.items()]
+    parts = [
+        f"Measured {when} ({budget.name} run, {time.perf_counter() - started:.0f} s) by "
+        "`python -m benchmarks.bench_kinematics`.\n\nMachine: " + machine() + ". Load "
+        f"average (1 min) before the run {load_before}, after it {load()} (the machine has "
+        f"{os.cpu_count()} cores: a load above 0 means other processes competed).",
+        "### Targets\n\n" + targets(res),
+        "### Agreement with the baseline\n\n" + agreement,
+    ]
+    parts += [f"### {title}\n\n{body}" for title, body in res.sections.items()]
     return "\n\n".join(parts)
 
 
@@ -587,8 +779,8 @@ def profile(budget: Budget) -> None:
     scene = parse_linkage(doc)
     calls: list[tuple[str, Callable[[], object], int]] = [
         ("sweep, 3600 samples, all quantities", lambda: sweep(scene, 3600, ALL), 200),
-        ("parse + analyze, one instant", lambda: analyze(parse_linkage(doc)),
-         budget.instant_calls)]
+        ("parse + analyze, one instant", partial(parse_and_analyze, doc), budget.instant_calls),
+    ]
     for title, fn, count in calls:
         profiler = cProfile.Profile()
         profiler.enable()
@@ -604,8 +796,11 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="short run (noisier numbers)")
     parser.add_argument("--no-http", action="store_true", help="skip the HTTP measurements")
     parser.add_argument("--no-write", action="store_true", help="print only; keep the doc as is")
-    parser.add_argument("--profile", action="store_true",
-                        help="also print cProfile hot spots of the in-process calls")
+    parser.add_argument(
+        "--profile",
+        action="store_true",
+        help="also print cProfile hot spots of the in-process calls",
+    )
     args = parser.parse_args()
     budget = QUICK if args.quick else FULL
     report = run(budget, http=not args.no_http)

@@ -215,9 +215,16 @@ def solve_group(
         while iterations < NEWTON_MAX_ITERATIONS:
             phi, J, _ = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 0)
             residual = float(np.linalg.norm(phi))
+            step = np.linalg.lstsq(J, phi, rcond=None)[0]
             if residual <= tolerance:
+                # One more step polishes a converged iterate to rounding (quadratic convergence).
+                phi_next = system.equations(
+                    {**fixed, **_unknown_poses(system, q - step, zero, zero)}, 0
+                )[0]
+                if float(np.linalg.norm(phi_next)) < residual:
+                    q, residual = q - step, float(np.linalg.norm(phi_next))
                 break
-            q = q - np.linalg.lstsq(J, phi, rcond=None)[0]
+            q = q - step
             iterations += 1
         worst_iterations = max(worst_iterations, iterations)
         worst_residual = max(worst_residual, residual)
@@ -243,11 +250,13 @@ def solve_group(
             qd_all[:, 3 * index + 2] if order >= 1 else None,
             qdd_all[:, 3 * index + 2] if order >= 2 else None,
         )
-    message = (
-        f"Newton-Raphson did not close the loop of {', '.join(group)}: residual "
-        f"{worst_residual:.3g} m > tolerance {tolerance:.3g} m after {worst_iterations} "
-        "iterations"
-    )
+    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
+    if not np.all(converged):
+        message = (
+            f"Newton-Raphson did not close the loop of {', '.join(group)}: residual "
+            f"{worst_residual:.3g} m > tolerance {tolerance:.3g} m after {worst_iterations} "
+            "iterations"
+        )
     report = NewtonReport(
         tuple(group), converged, worst_iterations, worst_residual, tolerance, message
     )

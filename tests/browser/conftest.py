@@ -154,11 +154,30 @@ def _is_local(url: str) -> bool:
     return re.match(r"^https?://127\.0\.0\.1(:\d+)?/", url) is not None
 
 
+def _watch(page: Any, log: PageLog) -> None:
+    def on_console(msg: Any) -> None:
+        if msg.type == "error":
+            where = (msg.location or {}).get("url", "")
+            log.errors.append(f"{msg.text} [{where}]")
+
+    page.on("console", on_console)
+    page.on("pageerror", lambda err: log.errors.append(f"page error: {err}"))
+    page.on("request", lambda req: log.requests.append(req.url))
+
+
 @dataclass
 class AppPage:
     page: Any
     log: PageLog
     server: LiveServer
+    context: Any = None
+
+    def new_page(self) -> Any:
+        """Another tab of the same browser, watched like the first."""
+        page = self.context.new_page()
+        page.set_default_timeout(20_000)
+        _watch(page, self.log)
+        return page
 
     def open(self, fragment: str = "") -> None:
         self.page.goto(f"{self.server.url}/{fragment}")
@@ -189,22 +208,14 @@ def app(browser: Any, live_server: LiveServer) -> Iterator[AppPage]:
     page = context.new_page()
     page.set_default_timeout(20_000)
     log = PageLog()
-
-    def on_console(msg: Any) -> None:
-        if msg.type == "error":
-            where = (msg.location or {}).get("url", "")
-            log.errors.append(f"{msg.text} [{where}]")
-
-    page.on("console", on_console)
-    page.on("pageerror", lambda err: log.errors.append(f"page error: {err}"))
-    page.on("request", lambda req: log.requests.append(req.url))
+    _watch(page, log)
     # Endpoints the server does not have yet: the page says so on screen (a test checks it);
     # the browser's own "Failed to load resource" line for them is not a defect of the page.
     for path in ("/solution", "/events"):
         if not live_server.has(path):
             log.allow(rf"status of 40[45].*\[http://127\.0\.0\.1:\d+/api/v1{path}\]")
     try:
-        yield AppPage(page=page, log=log, server=live_server)
+        yield AppPage(page=page, log=log, server=live_server, context=context)
         external = log.external_requests()
         assert not external, f"requests to other hosts: {external}"
         unexpected = log.unexpected_errors()
@@ -216,3 +227,7 @@ def app(browser: Any, live_server: LiveServer) -> Iterator[AppPage]:
 def pytest_terminal_summary(terminalreporter: Any) -> None:
     if SCREENSHOTS.exists() and any(SCREENSHOTS.iterdir()):
         terminalreporter.write_line(f"browser screenshots: {SCREENSHOTS}")
+
+
+def pytest_configure(config: Any) -> None:
+    config.addinivalue_line("markers", "browser: drives the page in headless Chromium")

@@ -1,0 +1,105 @@
+"""LaTeX building blocks of the worked solutions (only what KaTeX supports).
+
+Names of points and links come from the user's scene, so they are never pasted into LaTeX as they
+are: a short plain name (``B``, ``A0``, ``2``) is set as math, anything else inside ``\\text{}``
+with every special character escaped. Vectors are written as the seeds write them: columns with
+three components (z = 0 in the plane), and cross products as 3x3 determinants with the unit vectors
+in the first row.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+_PLAIN = re.compile(r"[A-Za-z][0-9]{0,2}|[0-9]{1,3}")
+_TEXT_ESCAPES = {
+    "\\": r"\textbackslash{}",
+    "{": r"\{",
+    "}": r"\}",
+    "$": r"\$",
+    "&": r"\&",
+    "#": r"\#",
+    "%": r"\%",
+    "_": r"\_",
+    "^": r"\textasciicircum{}",
+    "~": r"\textasciitilde{}",
+}
+_UNIT_ROW = r"\mathbf{i} & \mathbf{j} & \mathbf{k}"
+
+
+def escape_text(text: str) -> str:
+    """``text`` safe inside ``\\text{...}`` (control characters dropped)."""
+    out = []
+    for ch in text:
+        if ch in _TEXT_ESCAPES:
+            out.append(_TEXT_ESCAPES[ch])
+        elif ch.isprintable():
+            out.append(ch)
+    return "".join(out) or "?"
+
+
+def name(raw: str) -> str:
+    """A point or link name as a LaTeX subscript body."""
+    if _PLAIN.fullmatch(raw):
+        return raw
+    return r"\text{" + escape_text(raw) + "}"
+
+
+def pair(first: str, second: str) -> str:
+    """The subscript of a position vector from ``first`` to ``second``: AB, or A0\\,B."""
+    a, b = name(first), name(second)
+    if len(first) == 1 and len(second) == 1 and _PLAIN.fullmatch(first + second) is None:
+        return a + b
+    return a + r"\," + b
+
+
+def vec(symbol: str, sub: str) -> str:
+    """\\vec{symbol}_{sub} (``sub`` is already LaTeX)."""
+    return rf"\vec{{{symbol}}}_{{{sub}}}"
+
+
+def scalar(symbol: str, sub: str) -> str:
+    return rf"{symbol}_{{{sub}}}"
+
+
+def column(entries: Sequence[str]) -> str:
+    """A column vector of LaTeX entries."""
+    return r"\begin{pmatrix} " + r" \\ ".join(entries) + r" \end{pmatrix}"
+
+
+def determinant3(row2: Sequence[str], row3: Sequence[str], units: str = _UNIT_ROW) -> str:
+    """The cross product row2 x row3 as a determinant with the unit vectors in the first row."""
+    return (r"\begin{vmatrix} " + units + r" \\ " + " & ".join(row2) + r" \\ "
+            + " & ".join(row3) + r" \end{vmatrix}")
+
+
+def determinant2(rows: Sequence[Sequence[str]]) -> str:
+    return (r"\begin{vmatrix} " + r" \\ ".join(" & ".join(r) for r in rows)
+            + r" \end{vmatrix}")
+
+
+def aligned(lines: Sequence[str]) -> str:
+    """Several equations, aligned at their first '&'."""
+    if len(lines) == 1:
+        return lines[0].replace("&", "", 1)
+    return r"\begin{aligned} " + r" \\ ".join(lines) + r" \end{aligned}"
+
+
+def paren(latex_number: str) -> str:
+    """A number in parentheses when it is negative (for products such as 2 \\cdot (-1.5))."""
+    return f"({latex_number})" if latex_number.startswith("-") else latex_number
+
+
+def signed(latex_number: str, first: bool = False) -> str:
+    """A term of a sum: '+ 0.5', '- 0.5' (or '0.5', '-0.5' as the first term)."""
+    if first:
+        return latex_number
+    if latex_number.startswith("-"):
+        return "- " + latex_number[1:]
+    return "+ " + latex_number
+
+
+def boxed_result(latex: str) -> str:
+    """A final result, doubly underlined as in the seeds."""
+    return r"\underline{\underline{" + latex + "}}"

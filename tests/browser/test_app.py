@@ -1,0 +1,369 @@
+"""The browser app as a student uses it (issue 5), driven in Debian's Chromium.
+
+Every test runs against the real server (conftest.live_server) and fails on any console error,
+page error or request to another host (conftest.app). Screenshots land in
+test-artifacts/screenshots/ for a person to look at.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+
+pytestmark = pytest.mark.browser
+
+
+def wait_until(check: Callable[[], Any], timeout: float = 15.0, what: str = "condition") -> Any:
+    """Poll `check` until it returns something truthy (the page works asynchronously)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = check()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.1)
+
+
+def links_svg(page: Any) -> str:
+    html: str = page.evaluate("document.querySelector('#linkage .layer-links').innerHTML")
+    return html
+
+
+def plot_data(page: Any, div: str) -> str:
+    """The traces of a Plotly div, as JSON (what the student sees, without styling)."""
+    data: str = page.evaluate(
+        """(id) => JSON.stringify((document.getElementById(id).data || [])
+            .map((t) => ({name: t.name, x: t.x, y: t.y, text: t.text})))""",
+        div,
+    )
+    return data
+
+
+def pause_and_wait(page: Any) -> None:
+    """Pause and wait until the analysed instant is the one shown."""
+    if page.get_attribute("#play", "aria-pressed") == "true":
+        page.click("#play")
+    wait_analysed(page)
+
+
+def wait_analysed(page: Any) -> None:
+    page.wait_for_function(
+        """() => { const d = document.getElementById('linkage').dataset;
+                   return d.analysed !== undefined && d.analysed === d.instant; }"""
+    )
+
+
+def choose(app: AppPage, value: str) -> None:
+    app.page.select_option("#preset", value)
+    app.page.wait_for_function(
+        "(v) => document.getElementById('preset').value === v", arg=value
+    )
+
+
+# ---- opening the page ----------------------------------------------------------------------
+
+
+def test_page_opens_on_a_moving_four_bar_without_errors(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    assert page.input_value("#preset") == "preset:four_bar"
+    assert page.get_attribute("#play", "aria-pressed") == "true"
+    assert page.locator("#linkage .link").count() >= 3
+    assert page.locator("#linkage .ground-pivot").count() == 2
+    assert page.locator("#linkage .point-label").count() >= 4
+    assert page.locator("#status[data-level='error']").count() == 0
+    assert not page.evaluate("performance.getEntriesByName('first-frame').length === 0")
+    path = app.screenshot("overview")
+    assert path.exists()
+    assert all(u.startswith(app.server.url) or u.startswith("data:") for u in app.log.requests)
+
+
+def test_linkage_svg_moves_between_frames_without_a_request_per_frame(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    first = links_svg(page)
+    page.wait_for_timeout(250)
+    second = links_svg(page)
+    assert first != second, "the mechanism did not move between two frames"
+    # Playing back is local: over two seconds of animation no new request is made.
+    api_calls = [u for u in app.log.requests if "/api/v1/" in u]
+    page.wait_for_timeout(2000)
+    assert [u for u in app.log.requests if "/api/v1/" in u] == api_calls
+    assert sum(u.endswith("/api/v1/sweep") for u in api_calls) == 1
+
+
+def test_keyboard_turns_the_crank_and_pauses(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    page.focus("#crank-angle")
+    before = float(page.input_value("#crank-angle"))
+    page.keyboard.press("ArrowRight")
+    page.keyboard.press("ArrowRight")
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    after = float(page.input_value("#crank-angle"))
+    assert after == pytest.approx(before + 2, abs=1.01)
+    wait_analysed(page)
+    # Space plays again (focus outside any field).
+    page.focus("#linkage")
+    page.evaluate("document.activeElement.blur()")
+    page.keyboard.press(" ")
+    assert page.get_attribute("#play", "aria-pressed") == "true"
+
+
+# ---- polygons and worked solution ----------------------------------------------------------
+
+
+def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_selector("#velocity-polygon .main-svg")
+    page.wait_for_selector("#acceleration-polygon .main-svg")
+    names = json.loads(page.evaluate(
+        "JSON.stringify(document.getElementById('acceleration-polygon').data.map(t => t.name))"
+    ))
+    assert "absolute acceleration" in names
+    assert "normal part −ω²r" in names and "tangential part α×r" in names
+    for div in ("velocity-polygon", "acceleration-polygon"):
+        anchor = page.evaluate(f"document.getElementById('{div}').layout.yaxis.scaleanchor")
+        assert anchor == "x", "polygon axes must have equal scales"
+    vdata = json.loads(plot_data(page, "velocity-polygon"))
+    labels = [t for trace in vdata for t in (trace.get("text") or []) if isinstance(t, str)]
+    assert "b" in labels and "c" in labels, "velocity tips are labelled like the points"
+    app.screenshot("polygons", ".polygons-panel")
+    app.screenshot("cycle-plots", ".plots-panel")
+
+
+def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
+    app.server.require("/solution")
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#steps .katex").count() >= 3
+    assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
+    assert page.locator("#mistakes li").count() >= 1
+    vector_text = page.inner_text("#steps")
+    page.check("input[name='method'][value='loop']")
+    wait_until(lambda: page.inner_text("#steps") != vector_text, what="the loop-method steps")
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#steps .step-error").count() == 0
+    app.screenshot("worked-solution", ".solution-panel")
+
+
+def test_missing_solution_endpoint_is_said_on_screen(app: AppPage) -> None:
+    if app.server.has("/solution"):
+        pytest.skip("the server offers /solution")
+    app.open()
+    page = app.page
+    wait_until(lambda: "solution" in page.inner_text("#steps").lower(), what="the message")
+
+
+# ---- changing the mechanism ------------------------------------------------------------------
+
+
+def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    before = (links_svg(page), plot_data(page, "velocity-polygon"), plot_data(page, "plots"))
+    choose(app, "preset:slider_crank")
+    wait_until(lambda: "slider" in page.inner_text("#view-title").lower(), what="the new title")
+    page.wait_for_selector("#linkage .slider-block")
+    page.wait_for_selector("#f-param_rod")
+    pause_and_wait(page)
+    after_preset = (links_svg(page), plot_data(page, "velocity-polygon"), plot_data(page, "plots"))
+    for old, new, view in zip(before, after_preset, ("linkage", "polygon", "plots"), strict=True):
+        assert old != new, f"the {view} view did not follow the preset"
+    steps_before = page.inner_text("#steps")
+    # Edit the crank length: everything is asked again and redrawn.
+    page.fill("#f-param_crank", "0.12")
+    page.press("#f-param_crank", "Tab")
+    wait_until(
+        lambda: plot_data(page, "plots") != after_preset[2], what="the cycle plots to change"
+    )
+    pause_and_wait(page)
+    wait_until(
+        lambda: plot_data(page, "velocity-polygon") != after_preset[1], what="the polygons"
+    )
+    assert links_svg(page) != after_preset[0]
+    assert page.get_attribute("#f-param_crank", "aria-invalid") is None
+    if app.server.has("/solution"):
+        wait_until(lambda: page.inner_text("#steps") != steps_before, what="the new solution")
+    app.screenshot("slider-crank-edited")
+
+
+def test_non_assemblable_length_shows_the_servers_message_beside_the_field(
+    app: AppPage,
+) -> None:
+    app.log.allow(r"status of 422")
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    status, problem = app.server.post("/presets/four_bar", {"crank": 3})
+    assert status == 422 and problem["code"] == "not_assemblable"
+    ground_before = page.inner_html("#linkage .layer-ground")
+    polygon_before = plot_data(page, "velocity-polygon")
+    page.fill("#f-param_crank", "3")
+    page.press("#f-param_crank", "Tab")
+    error = page.locator("#f-param_crank-error")
+    error.wait_for(state="visible")
+    assert error.inner_text().strip() == problem["detail"]
+    assert page.get_attribute("#f-param_crank", "aria-invalid") == "true"
+    # The view is intact: same mechanism, still drawn and analysed.
+    assert page.inner_html("#linkage .layer-ground") == ground_before
+    assert page.locator("#linkage .link").count() >= 3
+    assert plot_data(page, "velocity-polygon") == polygon_before
+    app.screenshot("not-assemblable")
+    # Correcting the value clears the message.
+    page.fill("#f-param_crank", "0.2")
+    page.press("#f-param_crank", "Tab")
+    error.wait_for(state="hidden")
+
+
+def test_units_switch_changes_the_display_only(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    assert float(page.input_value("#f-param_crank")) == pytest.approx(0.15)
+    requests = len(app.log.requests)
+    page.select_option("#units", "mm")
+    assert float(page.input_value("#f-param_crank")) == pytest.approx(150)
+    wait_until(
+        lambda: "mm/s" in page.inner_text("#velocity-polygon"), what="mm/s in the polygon"
+    )
+    assert "°" in page.inner_text("#crank-angle-value")
+    assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "units are display only"
+
+
+# ---- share link ----------------------------------------------------------------------------
+
+
+def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "preset:quick_return")
+    page.wait_for_selector("#f-param_lever")
+    page.wait_for_selector("#linkage .slider-block")
+    page.fill("#f-param_lever", "0.65")
+    page.press("#f-param_lever", "Tab")
+    wait_until(lambda: page.input_value("#f-param_lever") == "0.65", what="the edit")
+    pause_and_wait(page)
+    page.focus("#crank-angle")
+    for _ in range(20):
+        page.keyboard.press("ArrowRight")
+    wait_analysed(page)
+    page.select_option("#units", "mm")
+    page.check("#show-acceleration")
+    page.click("#share")
+    page.wait_for_function("document.getElementById('share-url').value.includes('#s=')")
+    url = page.input_value("#share-url")
+    assert url.startswith(app.server.url) and "#s=" in url
+
+    def view(p: Any) -> dict[str, Any]:
+        state: dict[str, Any] = p.evaluate(
+            """() => ({
+                preset: document.getElementById('preset').value,
+                units: document.getElementById('units').value,
+                lever: document.getElementById('f-param_lever').value,
+                angle: document.getElementById('crank-angle').value,
+                playing: document.getElementById('play').getAttribute('aria-pressed'),
+                acc: document.getElementById('show-acceleration').checked,
+                instant: document.getElementById('linkage').dataset.instant,
+                title: document.getElementById('view-title').textContent,
+            })"""
+        )
+        return state
+
+    shown = view(page)
+    polygon = plot_data(page, "velocity-polygon")
+    other = app.new_page()
+    other.goto(url)
+    other.wait_for_selector("#linkage .link")
+    wait_analysed(other)
+    other.wait_for_function("document.getElementById('velocity-polygon').data !== undefined")
+    restored = view(other)
+    assert restored == shown
+    assert plot_data(other, "velocity-polygon") == polygon
+    assert other.locator("#linkage .vector-acceleration").count() > 0
+    other.screenshot(path=str(app.screenshot("share-source").parent / "share-restored.png"))
+
+
+# ---- other kinds of scene --------------------------------------------------------------------
+
+
+def test_spatial_chain_example_renders(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "example:S002-spatial-arm.json")
+    page.wait_for_selector("#spatial .body")
+    assert page.locator("#linkage").is_hidden()
+    labels = page.eval_on_selector_all(
+        "#spatial .point-label", "(nodes) => nodes.map((n) => n.textContent)"
+    )
+    assert {"O2", "A", "B"} <= set(labels)
+    assert page.locator("#spatial .joint-axis").count() == 3
+    page.wait_for_selector("#spatial .vector-velocity")
+    assert page.locator("#spatial-info li").count() >= 6
+    note = page.text_content("#spatial .view-note")
+    page.focus("#spatial")
+    page.keyboard.press("ArrowLeft")
+    assert page.text_content("#spatial .view-note") != note, "arrow keys turn the view"
+    app.screenshot("spatial-arm")
+
+
+def test_relative_motion_scene_animates_in_time_or_says_why_not(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "example:S003-T2-rotating-carrier.json")
+    wait_until(lambda: "S003" in page.inner_text("#view-title"), what="the seed scene")
+    page.wait_for_selector("#linkage .groove", state="attached")
+    if page.is_disabled("#crank-angle"):
+        message = page.inner_text("#view-message")
+        assert "time" in message.lower(), "a scene that cannot animate must say why"
+    else:
+        assert page.inner_text("#crank-angle-label") == "Time"
+        first = links_svg(page)
+        page.wait_for_timeout(250)
+        assert links_svg(page) != first
+    app.screenshot("relative-motion")
+
+
+@pytest.mark.parametrize(
+    "example",
+    [
+        "S000-T1.json",
+        "S000-T2.json",
+        "S000-T3.json",
+        "S000-T4.json",
+        "S001-offset-slider-crank.json",
+        "S003-T1-translating-carrier.json",
+    ],
+)
+def test_seed_examples_open(app: AppPage, example: str) -> None:
+    app.open()
+    page = app.page
+    choose(app, f"example:{example}")
+    wait_until(
+        lambda: example.split(".")[0][:7] in page.inner_text("#view-title"), what="the title"
+    )
+    page.wait_for_selector("#linkage .link")
+    pause_and_wait(page)
+    page.wait_for_selector("#velocity-polygon .main-svg")
+    assert page.locator("#status[data-level='error']:not(:empty)").count() == 0
+
+
+def test_tablet_layout_has_no_horizontal_scroll(app: AppPage) -> None:
+    app.page.set_viewport_size({"width": 820, "height": 1180})
+    app.open()
+    page = app.page
+    overflow = page.evaluate("document.documentElement.scrollWidth - window.innerWidth")
+    assert overflow <= 0
+    app.screenshot("tablet")
