@@ -19,7 +19,8 @@ analyses it at the drawn pose, and the condition number of its velocity equation
 
 from __future__ import annotations
 
-import cmath
+import copy
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,7 +29,7 @@ from hypothesis import strategies as st
 
 from solver.analysis import analyze
 from solver.errors import KinematicsError
-from solver.presets import build_preset
+from solver.presets import PRESETS, build_preset
 from solver.scene import parse_linkage
 from tests.strategies import assemblable_presets
 
@@ -80,8 +81,9 @@ def _circle_circle(p: complex, r_p: float, q: complex, r_q: float, left: bool) -
 
 
 @st.composite
-def six_bars(draw: st.DrawFn) -> SixBar:
-    """A random Watt or Stephenson six-bar that assembles at its drawn pose (see module doc)."""
+def six_bars(draw: st.DrawFn, max_condition: float = MAX_CONDITION) -> SixBar:
+    """A random Watt or Stephenson six-bar that assembles at its drawn pose (see module doc), with
+    the condition number of its velocity equations below ``max_condition``."""
     _, values = draw(assemblable_presets(["four_bar"]))
     doc = build_preset("four_bar", values)
     pts = {name: complex(x, y) for name, (x, y) in doc["points"].items()}
@@ -120,10 +122,48 @@ def six_bars(draw: st.DrawFn) -> SixBar:
         doc["drivers"] = [{**doc["drivers"][0], "link": "dyad_in"}]
     chain = "Watt" if frozenset((host, other)) in ADJACENT else "Stephenson"
     doc["title"] = f"{chain} six-bar ({host}-{other}, driver {driver})"
+    assume(condition_number(doc) < max_condition)
+    return SixBar(chain, (host, other), driver, doc)
+
+
+def condition_number(doc: dict[str, Any]) -> float:
+    """The reported condition number of the drawn pose's velocity equations (inf if singular)."""
     try:
         condition = analyze(parse_linkage(doc)).diagnostics.condition_number
     except KinematicsError:  # a singular draw: rare, and not what these strategies are for
-        condition = None
-    assume(condition is not None and condition < MAX_CONDITION)
-    assert cmath.isfinite(Q)
-    return SixBar(chain, (host, other), driver, doc)
+        return math.inf
+    return math.inf if condition is None else condition
+
+
+def block_in_lever(doc: dict[str, Any]) -> dict[str, Any]:
+    """An inverted slider-crank preset with its pin-in-slot at A replaced by a block.
+
+    The block carries A only: a revolute joint to the crank and a prismatic joint in the lever's
+    slot, so it turns with the lever (a prismatic joint and a one-point link, which no preset has).
+    """
+    doc = copy.deepcopy(doc)
+    slider = next(j for j in doc["joints"] if j["type"] == "slider")
+    guide, follower = slider["links"]
+    doc["links"]["block"] = {"points": [slider["point"]]}
+    doc["joints"].remove(slider)
+    doc["joints"] += [
+        {"type": "revolute", "point": slider["point"], "links": [follower, "block"]},
+        {**slider, "type": "prismatic", "links": [guide, "block"]},
+    ]
+    doc["title"] = "inverted slider-crank with a block in the lever's slot"
+    return doc
+
+
+FAMILIES = (*PRESETS, "block_in_lever", "six_bar")
+
+
+def linkages(family: str, max_condition: float = MAX_CONDITION) -> st.SearchStrategy[dict[str, Any]]:
+    """Scene documents of one family (a preset name, ``block_in_lever`` or ``six_bar``) whose
+    drawn pose assembles with a velocity condition number below ``max_condition``."""
+    if family == "six_bar":
+        return six_bars(max_condition).map(lambda s: s.doc)
+    name = "inverted_slider_crank" if family == "block_in_lever" else family
+    docs = assemblable_presets([name]).map(lambda nv: build_preset(*nv))
+    if family == "block_in_lever":
+        docs = docs.map(block_in_lever)
+    return docs.filter(lambda doc: condition_number(doc) < max_condition)
