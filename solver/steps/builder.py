@@ -1,0 +1,276 @@
+"""Assembling one step: its values (with checks), its LaTeX lines and its plain text.
+
+``StepBuilder`` keeps the numbers and their display together: a number enters a step once, by
+``put`` (full precision, unit, source), and every place the step shows it is formatted from that
+entry, so the LaTeX, the text and ``values`` always show the same digits. ``present_solution``
+writes a 2x2 linear system and its solution the way the seeds do: directly where one equation has
+a single unknown, by Cramer's rule with the determinants written out otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.steps import latex as tex
+from solver.steps.format import Formatter, latex_unit
+from solver.steps.model import Check, Number, Relation, Step, Value
+
+Source = tuple[str | int, ...]
+
+
+def _number(value: float | Sequence[float] | np.ndarray) -> Number:
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return float(value)
+    if isinstance(value, np.ndarray | list | tuple):
+        return tuple(float(x) for x in value)
+    return float(value)
+
+
+class StepBuilder:
+    """Collects one step's values, checks, LaTeX lines and text sentences."""
+
+    def __init__(self, fmt: Formatter, kind: str, title: str) -> None:
+        self.fmt = fmt
+        self.kind = kind
+        self.title = title
+        self.values: dict[str, Value] = {}
+        self.checks: list[Check] = []
+        self.lines: list[str] = []
+        self.sentences: list[str] = []
+
+    # --- values ---------------------------------------------------------------------------------
+
+    def put(self, key: str, value: float | Sequence[float] | np.ndarray, unit: str,
+            source: Source | None = None) -> str:
+        """Register a value (again: it must be the same number) and return its key."""
+        number = _number(value)
+        if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
+            raise ValueError(f"non-finite value {key} = {number}")
+        self.values[key] = Value(number, unit, self.fmt.display(number, unit), source)
+        return key
+
+    def get(self, key: str) -> Number:
+        return self.values[key].value
+
+    def scalar(self, key: str) -> float:
+        value = self.values[key].value
+        assert not isinstance(value, tuple), key
+        return value
+
+    def vector(self, key: str) -> tuple[float, ...]:
+        value = self.values[key].value
+        assert isinstance(value, tuple), key
+        return value
+
+    def num(self, key: str, reference: float = 0.0) -> str:
+        """The scalar value as a LaTeX number."""
+        return self.fmt.latex(self.scalar(key), self.values[key].unit, reference)
+
+    def numu(self, key: str) -> str:
+        """The scalar value as a LaTeX number with its unit."""
+        return self.num(key) + latex_unit(self.values[key].unit)
+
+    def entries(self, key: str, dims: int = 3) -> list[str]:
+        """The vector's components as LaTeX numbers (planar vectors get z = 0 when dims = 3)."""
+        vector = self.vector(key)
+        clean = self.fmt.clean_vector(vector, self.values[key].unit)
+        out = [self.fmt.latex(x) for x in clean]
+        return out + ["0"] * (dims - len(out))
+
+    def col(self, key: str, dims: int = 3) -> str:
+        return tex.column(self.entries(key, dims))
+
+    def colu(self, key: str, dims: int = 3) -> str:
+        return self.col(key, dims) + latex_unit(self.values[key].unit)
+
+    def txt(self, key: str) -> str:
+        """The value as plain text with its unit."""
+        return self.values[key].display
+
+    def txtn(self, key: str) -> str:
+        """The value as plain text without its unit."""
+        value = self.values[key]
+        if isinstance(value.value, tuple):
+            return self.fmt.text_vector(value.value)
+        return self.fmt.text(value.value, value.unit)
+
+    def is_zero(self, key: str) -> bool:
+        """True when the value displays as zero (every component, for a vector)."""
+        value = self.values[key]
+        if isinstance(value.value, tuple):
+            return all(x == 0.0 for x in self.fmt.clean_vector(value.value, value.unit)) or all(
+                self.fmt.is_zero(x, value.unit) for x in value.value)
+        return self.fmt.is_zero(value.value, value.unit)
+
+    # --- checks, lines, text --------------------------------------------------------------------
+
+    def check(self, relation: Relation, result: str, *operands: str, factor: float = 1.0) -> None:
+        for name in (result, *operands):
+            base = name.lstrip("-").split("[")[0] if name.endswith("]") else name.lstrip("-")
+            assert base in self.values, f"check of {self.kind}: unknown value {name}"
+        self.checks.append(Check(relation, result, tuple(operands), factor))
+
+    def line(self, latex: str) -> None:
+        self.lines.append(latex)
+
+    def say(self, text: str) -> None:
+        self.sentences.append(text)
+
+    def build(self) -> Step:
+        return Step(self.kind, self.title, tex.aligned(self.lines) if self.lines else "",
+                    " ".join(self.sentences), dict(self.values), tuple(self.checks))
+
+
+# --- linear expressions and 2x2 systems ------------------------------------------------------
+
+
+def term(fmt: Formatter, coefficient: float, symbol: str, first: bool, reference: float) -> str:
+    """'+ 0.5\\,\\omega' (LaTeX); '' when the coefficient displays as 0."""
+    if fmt.is_zero(coefficient, "", reference):
+        return ""
+    number = fmt.latex(coefficient)
+    if number == "1":
+        body = symbol
+    elif number == "-1":
+        body = "-" + symbol
+    else:
+        body = number + r"\," + symbol
+    return tex.signed(body, first)
+
+
+def term_text(fmt: Formatter, coefficient: float, symbol: str, first: bool,
+              reference: float) -> str:
+    if fmt.is_zero(coefficient, "", reference):
+        return ""
+    number = fmt.text(coefficient)
+    body = symbol if number == "1" else "-" + symbol if number == "-1" else f"{number} {symbol}"
+    if first:
+        return body
+    return f"- {body[1:]}" if body.startswith("-") else f"+ {body}"
+
+
+def linear_latex(fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]],
+                 reference: float) -> str:
+    """constant + c1 u1 + c2 u2 in LaTeX, dropping zero parts (at least '0')."""
+    parts: list[str] = []
+    if constant is not None and not fmt.is_zero(constant, "", reference):
+        parts.append(fmt.latex(constant))
+    for coefficient, symbol in terms:
+        piece = term(fmt, coefficient, symbol, not parts, reference)
+        if piece:
+            parts.append(piece)
+    return " ".join(parts) if parts else "0"
+
+
+def linear_text(fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]],
+                reference: float) -> str:
+    parts: list[str] = []
+    if constant is not None and not fmt.is_zero(constant, "", reference):
+        parts.append(fmt.text(constant))
+    for coefficient, symbol in terms:
+        piece = term_text(fmt, coefficient, symbol, not parts, reference)
+        if piece:
+            parts.append(piece)
+    return " ".join(parts) if parts else "0"
+
+
+@dataclass(frozen=True)
+class Unknown:
+    """An unknown of a linear system: its value key, symbols, unit and the solver's value."""
+
+    key: str
+    latex: str
+    text: str
+    unit: str
+    value: float
+    source: Source | None = None
+    meaning: str = ""
+
+
+def _sense(fmt: Formatter, unknown: Unknown) -> str:
+    if unknown.unit in ("rad/s", "rad/s^2") and not fmt.is_zero(unknown.value, unknown.unit):
+        return " (counter-clockwise)" if unknown.value > 0 else " (clockwise)"
+    return ""
+
+
+def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: Sequence[Sequence[str]],
+                     rhs: Sequence[str], prefix: str) -> None:
+    """Write and solve  c11 u1 + c12 u2 = b1,  c21 u1 + c22 u2 = b2  (values already registered).
+
+    Registers the unknowns with the solver's values, the equations as ``linear`` checks, and the
+    solution: directly where a row has one unknown, else by Cramer's rule (``det2``/``quotient``).
+    """
+    fmt = b.fmt
+    for u in unknowns:
+        b.put(u.key, u.value, u.unit, u.source)
+    n = len(unknowns)
+    rows = []
+    for i in range(n):
+        scale = max(abs(b.scalar(c)) for c in coefficients[i])
+        terms = [(b.scalar(coefficients[i][j]), unknowns[j].latex) for j in range(n)]
+        terms_text = [(b.scalar(coefficients[i][j]), unknowns[j].text) for j in range(n)]
+        rows.append((scale, terms, terms_text))
+        b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs[i]))
+        b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = "
+              f"{b.txtn(rhs[i])}.")
+        operands: list[str] = []
+        for j in range(n):
+            operands += [coefficients[i][j], unknowns[j].key]
+        b.check("linear", rhs[i], *operands)
+    if n == 1:
+        b.check("quotient", unknowns[0].key, rhs[0], coefficients[0][0])
+        _result(b, unknowns[0], rf"\frac{{{b.num(rhs[0])}}}{{{b.num(coefficients[0][0])}}}")
+        return
+    single = [[j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", rows[i][0])]
+              for i in range(2)]
+    direct = next((i for i in range(2) if len(single[i]) == 1), None)
+    if direct is not None:
+        j = single[direct][0]
+        other_row, other = 1 - direct, 1 - j
+        u, w = unknowns[j], unknowns[other]
+        b.check("quotient", u.key, rhs[direct], coefficients[direct][j])
+        b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
+        _result(b, u, rf"\frac{{{b.num(rhs[direct])}}}{{{b.num(coefficients[direct][j])}}}")
+        c_other = b.scalar(coefficients[other_row][other])
+        if fmt.is_zero(c_other, "", rows[other_row][0]):
+            b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
+            return
+        rest = b.put(f"{prefix}rest", b.scalar(rhs[other_row])
+                     - b.scalar(coefficients[other_row][j]) * u.value, "")
+        b.check("quotient", w.key, rest, coefficients[other_row][other])
+        b.line(rf"&{term(fmt, c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
+               rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
+               rf"{tex.paren(fmt.latex(u.value, u.unit))} = {b.num(rest)}")
+        b.say(f"Substituting into equation {other_row + 1}: "
+              f"{term_text(fmt, c_other, w.text, True, 0.0)} = {b.txtn(rest)}.")
+        _result(b, w, rf"\frac{{{b.num(rest)}}}{{{b.num(coefficients[other_row][other])}}}")
+        return
+    c = coefficients
+    det = b.put(f"{prefix}D", b.scalar(c[0][0]) * b.scalar(c[1][1])
+                - b.scalar(c[0][1]) * b.scalar(c[1][0]), "")
+    b.check("det2", det, c[0][0], c[0][1], c[1][0], c[1][1])
+    b.line(rf"&D = {tex.determinant2([[b.num(c[0][0]), b.num(c[0][1])], [b.num(c[1][0]), b.num(c[1][1])]])}"
+           rf" = {b.num(det)}")
+    b.say(f"By Cramer's rule, the determinant of the coefficients is D = {b.txtn(det)}.")
+    for j in range(2):
+        columns = [[rhs[i] if k == j else c[i][k] for k in range(2)] for i in range(2)]
+        value = (b.scalar(columns[0][0]) * b.scalar(columns[1][1])
+                 - b.scalar(columns[0][1]) * b.scalar(columns[1][0]))
+        dj = b.put(f"{prefix}D{j + 1}", value, "")
+        b.check("det2", dj, columns[0][0], columns[0][1], columns[1][0], columns[1][1])
+        b.check("quotient", unknowns[j].key, dj, det)
+        matrix = tex.determinant2([[b.num(columns[i][k]) for k in range(2)] for i in range(2)])
+        b.line(rf"&D_{j + 1} = {matrix} = {b.num(dj)}")
+        b.say(f"D{j + 1}, with column {j + 1} replaced by the right-hand sides, is {b.txtn(dj)}.")
+        _result(b, unknowns[j], rf"\frac{{D_{j + 1}}}{{D}} = \frac{{{b.num(dj)}}}{{{b.num(det)}}}")
+
+
+def _result(b: StepBuilder, u: Unknown, fraction: str) -> None:
+    value = b.fmt.latex(u.value, u.unit)
+    b.line(rf"&{u.latex} = {fraction} = {tex.boxed_result(value + latex_unit(u.unit))}")
+    b.say(f"So {u.text} = {b.fmt.text_value(u.value, u.unit)}{_sense(b.fmt, u)}"
+          + (f": {u.meaning}." if u.meaning else "."))
