@@ -209,6 +209,7 @@ def max_rel_error(value: np.ndarray, reference: np.ndarray) -> float:
 
 @dataclass(frozen=True)
 class Stats:
+    best: float
     p50: float
     p90: float
     p99: float
@@ -217,7 +218,7 @@ class Stats:
     @classmethod
     def of(cls, seconds: list[float] | np.ndarray) -> Stats:
         p50, p90, p99 = np.percentile(seconds, [50, 90, 99])
-        return cls(float(p50), float(p90), float(p99), len(seconds))
+        return cls(float(np.min(seconds)), float(p50), float(p90), float(p99), len(seconds))
 
 
 def repeated(
@@ -350,6 +351,7 @@ def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
                 ms(ours.p50),
                 ms(ours.p90),
                 f"{ratio:.1f}x",
+                f"{ours.best / base.best:.1f}x",
                 mib(peak_memory(partial(baseline_sweep, SEED_004, n))),
                 mib(peak_memory(partial(sweep, scene, n, ALL))),
             ]
@@ -364,7 +366,8 @@ def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
                 "baseline p50",
                 "solver p50",
                 "solver p90",
-                "solver / baseline",
+                "solver / baseline (p50)",
+                "solver / baseline (best)",
                 "baseline peak mem",
                 "solver peak mem",
             ],
@@ -650,8 +653,8 @@ def blas() -> str:
 
         libs = (
             "; ".join(
-                f"{i['internal_api']} {i.get('version')}, kernel "
-                f"{i.get('architecture')}, {i['num_threads']} threads"
+                f"{i['internal_api']} {i.get('version')} ({Path(i['filepath']).parent.name}), "
+                f"kernel {i.get('architecture')}, {i['num_threads']} threads"
                 for i in threadpool_info()
             )
             or "none loaded"

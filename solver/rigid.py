@@ -25,14 +25,20 @@ def dot(a: Array, b: Array) -> Array:
 
 def perp(a: Array) -> Array:
     """k x a: the vector a turned 90 degrees counter-clockwise."""
-    return np.stack((-a[..., 1], a[..., 0]), axis=-1)
+    out = np.empty_like(a, dtype=float)
+    out[..., 0] = -a[..., 1]
+    out[..., 1] = a[..., 0]
+    return out
 
 
 def rotate(vector: Array, angle: Array) -> Array:
     """R(angle) vector for each sample: ``vector`` is (2,) or (N, 2), ``angle`` (N,)."""
     c, s = np.cos(angle), np.sin(angle)
     x, y = vector[..., 0], vector[..., 1]
-    return np.stack((c * x - s * y, s * x + c * y), axis=-1)
+    out = np.empty((*np.broadcast_shapes(c.shape, x.shape), 2))
+    out[..., 0] = c * x - s * y
+    out[..., 1] = s * x + c * y
+    return out
 
 
 def scale(factor: Array, vector: Array) -> Array:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Literal
 
 import numpy as np
@@ -112,10 +113,17 @@ class LinkageScene:
     time: float = 0.0
 
     def drawn(self, point: str) -> np.ndarray:
-        """The drawn position of ``point`` as an array."""
-        return np.array(self.points[point], dtype=float)
+        """The drawn position of ``point`` as an array (read-only: shared between callers)."""
+        return self._drawn[point]
 
-    @property
+    @cached_property
+    def _drawn(self) -> dict[str, np.ndarray]:
+        arrays = {name: np.array(xy, dtype=float) for name, xy in self.points.items()}
+        for array in arrays.values():
+            array.flags.writeable = False
+        return arrays
+
+    @cached_property
     def size(self) -> float:
         """A characteristic length: the diagonal of the drawn points' bounding box."""
         xy = np.array(list(self.points.values()), dtype=float)

@@ -23,6 +23,8 @@ from typing import Any
 
 import pytest
 
+UVICORN = [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1"]
+UVICORN += ["--log-level", "warning"]
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = Path("/usr/bin/chromium")
 SCREENSHOTS = ROOT / "test-artifacts" / "screenshots"
@@ -80,8 +82,7 @@ def live_server() -> Iterator[LiveServer]:
     log.mkdir(parents=True, exist_ok=True)
     out = open(log / "browser-uvicorn.log", "wb")  # noqa: SIM115 - closed after the session
     proc = subprocess.Popen(
-        [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1"]
-        + ["--port", str(port), "--log-level", "warning"],
+        [*UVICORN, "--port", str(port)],
         cwd=ROOT,
         stdout=out,
         stderr=subprocess.STDOUT,
@@ -117,7 +118,9 @@ def live_server() -> Iterator[LiveServer]:
 @pytest.fixture(scope="session")
 def browser() -> Iterator[Any]:
     if not CHROMIUM.exists():
-        pytest.skip("Debian's Chromium is not installed at /usr/bin/chromium (tests/run.sh installs it)")
+        pytest.skip(
+            "Debian's Chromium is not installed at /usr/bin/chromium (tests/run.sh installs it)"
+        )
     from playwright.sync_api import sync_playwright
 
     pw = sync_playwright().start()

@@ -62,9 +62,7 @@ def wait_analysed(page: Any) -> None:
 
 def choose(app: AppPage, value: str) -> None:
     app.page.select_option("#preset", value)
-    app.page.wait_for_function(
-        "(v) => document.getElementById('preset').value === v", arg=value
-    )
+    app.page.wait_for_function("(v) => document.getElementById('preset').value === v", arg=value)
 
 
 # ---- opening the page ----------------------------------------------------------------------
@@ -126,9 +124,11 @@ def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
     pause_and_wait(page)
     page.wait_for_selector("#velocity-polygon .main-svg")
     page.wait_for_selector("#acceleration-polygon .main-svg")
-    names = json.loads(page.evaluate(
-        "JSON.stringify(document.getElementById('acceleration-polygon').data.map(t => t.name))"
-    ))
+    names = json.loads(
+        page.evaluate(
+            "JSON.stringify(document.getElementById('acceleration-polygon').data.map(t => t.name))"
+        )
+    )
     assert "absolute acceleration" in names
     assert "normal part −ω²r" in names and "tangential part α×r" in names
     for div in ("velocity-polygon", "acceleration-polygon"):
@@ -190,9 +190,7 @@ def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) 
         lambda: plot_data(page, "plots") != after_preset[2], what="the cycle plots to change"
     )
     pause_and_wait(page)
-    wait_until(
-        lambda: plot_data(page, "velocity-polygon") != after_preset[1], what="the polygons"
-    )
+    wait_until(lambda: plot_data(page, "velocity-polygon") != after_preset[1], what="the polygons")
     assert links_svg(page) != after_preset[0]
     assert page.get_attribute("#f-param_crank", "aria-invalid") is None
     if app.server.has("/solution"):
@@ -236,9 +234,7 @@ def test_units_switch_changes_the_display_only(app: AppPage) -> None:
     requests = len(app.log.requests)
     page.select_option("#units", "mm")
     assert float(page.input_value("#f-param_crank")) == pytest.approx(150)
-    wait_until(
-        lambda: "mm/s" in page.inner_text("#velocity-polygon"), what="mm/s in the polygon"
-    )
+    wait_until(lambda: "mm/s" in page.inner_text("#velocity-polygon"), what="mm/s in the polygon")
     assert "°" in page.inner_text("#crank-angle-value")
     assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "units are display only"
 

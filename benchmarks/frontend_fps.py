@@ -1,0 +1,153 @@
+"""Frame rate of the animation and time to the first drawn frame, in headless Chromium.
+
+Starts the real app with uvicorn on a free loopback port, opens the page in Debian's Chromium,
+and for each case measures:
+
+- first frame: ``performance.mark('first-frame')`` (set by static/js/main.js when the mechanism is
+  first drawn), in ms from navigation start; this includes fetching the presets, building the
+  preset scene and the one sweep of the cycle;
+- fps: requestAnimationFrame callbacks counted over ~3 s while the mechanism plays, with the
+  longest frame and the number of frames over 20 ms.
+
+Usage: ``.venv/bin/python benchmarks/frontend_fps.py [--seconds 3]``. Prints a table. Headless
+Chromium has no display to sync to, so fps here is the page's own ceiling under the headless
+compositor (usually ~60), not a monitor's refresh rate.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+UVICORN = [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1"]
+UVICORN += ["--log-level", "warning"]
+ROOT = Path(__file__).resolve().parents[1]
+CHROMIUM = "/usr/bin/chromium"
+ARGS = [
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+
+# (label, preset selector value or None for the default page, viewport)
+CASES: list[tuple[str, str | None, tuple[int, int]]] = [
+    ("four-bar (opening page), laptop", None, (1440, 1000)),
+    ("four-bar (opening page), tablet", None, (820, 1180)),
+    ("quick-return, laptop", "preset:quick_return", (1440, 1000)),
+    ("seed S001 slider-crank, laptop", "example:S001-offset-slider-crank.json", (1440, 1000)),
+]
+
+COUNT_FRAMES = """(ms) => new Promise((resolve) => {
+  const times = [];
+  const t0 = performance.now();
+  function step(t) {
+    times.push(t);
+    if (t - t0 < ms) requestAnimationFrame(step);
+    else {
+      const gaps = times.slice(1).map((x, i) => x - times[i]);
+      resolve({
+        frames: times.length - 1,
+        seconds: (times[times.length - 1] - times[0]) / 1000,
+        longest: Math.max(...gaps),
+        over20: gaps.filter((g) => g > 20).length,
+      });
+    }
+  }
+  requestAnimationFrame(step);
+})"""
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port: int = s.getsockname()[1]
+        return port
+
+
+def start_server() -> tuple[subprocess.Popen[bytes], str]:
+    port = free_port()
+    proc = subprocess.Popen(
+        [*UVICORN, "--port", str(port)],
+        cwd=ROOT,
+    )
+    url = f"http://127.0.0.1:{port}"
+    for _ in range(200):
+        try:
+            with urllib.request.urlopen(f"{url}/api/v1/presets", timeout=2) as r:
+                json.load(r)
+            return proc, url
+        except OSError:
+            time.sleep(0.2)
+    proc.terminate()
+    raise SystemExit("the app did not start")
+
+
+def measure(
+    browser: Any, url: str, case: tuple[str, str | None, tuple[int, int]], seconds: float
+) -> dict[str, Any]:
+    label, choice, (width, height) = case
+    page = browser.new_page(viewport={"width": width, "height": height})
+    page.goto(url)
+    page.wait_for_function("performance.getEntriesByName('first-frame').length > 0", timeout=30_000)
+    first = page.evaluate("performance.getEntriesByName('first-frame')[0].startTime")
+    if choice:
+        page.select_option("#preset", choice)
+        page.wait_for_timeout(1500)
+    page.wait_for_selector("#linkage .link")
+    # Let the first analysis and Plotly settle, then count frames while playing.
+    page.wait_for_timeout(800)
+    playing = page.get_attribute("#play", "aria-pressed") == "true"
+    result = page.evaluate(COUNT_FRAMES, seconds * 1000)
+    page.close()
+    return {
+        "case": label,
+        "first_frame_ms": first,
+        "fps": result["frames"] / result["seconds"],
+        "longest_ms": result["longest"],
+        "over20": result["over20"],
+        "playing": playing,
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=3.0)
+    args = parser.parse_args()
+    from playwright.sync_api import sync_playwright
+
+    proc, url = start_server()
+    rows = []
+    try:
+        with sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            for case in CASES:
+                rows.append(measure(browser, url, case, args.seconds))
+            browser.close()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    print(f"frontend frame rate, headless Chromium, {args.seconds:g} s per case")
+    print()
+    print("| case | first frame (ms) | fps | longest frame (ms) | frames > 20 ms | playing |")
+    print("|---|---:|---:|---:|---:|---|")
+    for r in rows:
+        print(
+            f"| {r['case']} | {r['first_frame_ms']:.0f} | {r['fps']:.1f} | "
+            f"{r['longest_ms']:.1f} | {r['over20']} | {'yes' if r['playing'] else 'no'} |"
+        )
+
+
+if __name__ == "__main__":
+    main()

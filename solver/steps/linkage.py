@@ -1,0 +1,500 @@
+"""What every worked solution of a planar linkage shares: its context and the common steps.
+
+``LinkageContext`` reads the solver's analysis (positions, rates, slider components, poles) and
+names things the way the steps write them. The common steps are the data, the position vectors,
+the rigid-body velocity v_Y = v_X + omega x r_XY and acceleration
+a_Y = a_X + alpha x r_XY - omega^2 r_XY of one point from another, the velocity and acceleration
+poles of each moving link, and the summary of results. Every number is the solver's own; the
+cross products and sums written out are derived from those numbers and agree with them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy
+
+from solver.analysis import LinkageAnalysis, SlidingJoint
+from solver.laws import parse_time_law
+from solver.rigid import perp
+from solver.scene import Joint, LinkageScene
+from solver.steps import latex as tex
+from solver.steps.builder import StepBuilder, Unknown, present_solution
+from solver.steps.format import Formatter, latex_unit
+from solver.steps.model import Step
+
+V0 = r"\vec{0}"
+
+
+def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
+    """The largest magnitude of each unit in the analysis (what 'rounding noise' is relative to)."""
+    def largest(values: Sequence[np.ndarray | float | None]) -> float:
+        found = [float(np.max(np.abs(v))) for v in values if v is not None]
+        return max(found, default=0.0)
+
+    points = analysis.points.values()
+    links = analysis.links.values()
+    return {
+        "m": size,
+        "m/s": largest([p.velocity for p in points]),
+        "m/s^2": largest([p.acceleration for p in points]),
+        "rad/s": largest([link.omega for link in links]),
+        "rad/s^2": largest([link.alpha for link in links]),
+    }
+
+
+@dataclass
+class LinkageContext:
+    """The scene, its analysis, the formatter, and what the steps have shown so far."""
+
+    scene: LinkageScene
+    analysis: LinkageAnalysis
+    fmt: Formatter
+    used_vectors: list[tuple[str, str]] = field(default_factory=list)
+    shown_velocity: set[str] = field(default_factory=set)
+    shown_acceleration: set[str] = field(default_factory=set)
+
+    # --- the solver's numbers -------------------------------------------------------------------
+
+    def pos(self, point: str) -> np.ndarray:
+        p = self.analysis.points[point].position
+        assert p is not None
+        return p
+
+    def vel(self, point: str) -> np.ndarray:
+        v = self.analysis.points[point].velocity
+        assert v is not None
+        return v
+
+    def acc(self, point: str) -> np.ndarray:
+        a = self.analysis.points[point].acceleration
+        assert a is not None
+        return a
+
+    def omega(self, link: str) -> float:
+        if link == self.scene.ground:
+            return 0.0
+        value = self.analysis.links[link].omega
+        assert value is not None
+        return value
+
+    def alpha(self, link: str) -> float:
+        if link == self.scene.ground:
+            return 0.0
+        value = self.analysis.links[link].alpha
+        assert value is not None
+        return value
+
+    def link_source(self, link: str, key: str) -> tuple[str, ...] | None:
+        return None if link == self.scene.ground else ("links", link, key)
+
+    def is_fixed(self, point: str) -> bool:
+        return point in self.scene.links[self.scene.ground].points
+
+    def ground_pivot(self, link: str) -> str | None:
+        """The point of a revolute joint between ``link`` and the ground, if any."""
+        for joint in self.scene.joints:
+            if joint.type == "revolute" and set(joint.links) == {link, self.scene.ground}:
+                return joint.point
+        return None
+
+    def sliding(self, guide: str, point: str) -> tuple[int, Joint, SlidingJoint]:
+        """The slider/prismatic joint in which ``point`` (or its follower) slides along ``guide``."""
+        index = 0
+        found = None
+        for joint in self.scene.joints:
+            if joint.type == "revolute":
+                continue
+            carried = joint.point == point or (
+                joint.type == "prismatic" and point in self.scene.links[joint.follower].points)
+            if joint.guide == guide and carried and found is None:
+                found = (index, joint, self.analysis.joints[index])
+            index += 1
+        assert found is not None, (guide, point)
+        return found
+
+    def slot_direction(self, joint: Joint) -> np.ndarray:
+        """The unit direction of the slot now: the drawn axis turned with the guide."""
+        assert joint.axis is not None
+        theta = float(self.analysis.motion.links[joint.guide].theta[0])
+        c, s = math.cos(theta), math.sin(theta)
+        x, y = joint.axis
+        return np.array([c * x - s * y, s * x + c * y])
+
+    # --- names ----------------------------------------------------------------------------------
+
+    def builder(self, kind: str, title: str) -> StepBuilder:
+        return StepBuilder(self.fmt, kind, title)
+
+    def use(self, first: str, second: str) -> None:
+        if (first, second) not in self.used_vectors:
+            self.used_vectors.append((first, second))
+
+
+# --- symbols ----------------------------------------------------------------------------------
+
+
+def w_sym(link: str) -> str:
+    return tex.scalar(r"\omega", tex.name(link))
+
+
+def a_sym(link: str) -> str:
+    return tex.scalar(r"\alpha", tex.name(link))
+
+
+def v_vec(point: str, extra: str = "") -> str:
+    return tex.vec("v", tex.name(point) + extra)
+
+
+def a_vec(point: str, extra: str = "") -> str:
+    return tex.vec("a", tex.name(point) + extra)
+
+
+def r_vec(first: str, second: str) -> str:
+    return tex.vec("r", tex.pair(first, second))
+
+
+def w_vec(link: str) -> str:
+    return tex.vec(r"\omega", tex.name(link))
+
+
+def al_vec(link: str) -> str:
+    return tex.vec(r"\alpha", tex.name(link))
+
+
+def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
+    """(0, 0, z) x (r_x, r_y, 0) in the plane."""
+    return scalar_z * perp(np.asarray(r, dtype=float))
+
+
+def det_row_z(b: StepBuilder, key: str) -> list[str]:
+    return ["0", "0", b.num(key)]
+
+
+def det_row_z_symbol(symbol: str) -> list[str]:
+    return ["0", "0", symbol]
+
+
+def det_row_vec(b: StepBuilder, key: str) -> list[str]:
+    return b.entries(key)
+
+
+# --- the common steps -------------------------------------------------------------------------
+
+
+def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
+    """The given data: drivers (with their time laws), joints, the analysed instant."""
+    scene, b = ctx.scene, ctx.builder("data", "Data")
+    b.say(method_sentence)
+    b.say("Sign convention: x to the right, y up, z out of the page; angular velocities and "
+          "accelerations are z-components, counter-clockwise positive.")
+    for driver in scene.drivers:
+        link = driver.link
+        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+        if driver.angle_law is not None:
+            law = parse_time_law(driver.angle_law)
+            t = b.put("t", scene.time, "s")
+            phi = rf"\varphi_{{{tex.name(link)}}}"
+            b.line(rf"&{phi}(t) = {sympy.latex(law.expression)}, \quad "
+                   rf"\dot{{{phi}}}(t) = {sympy.latex(law.first_derivative)}, \quad "
+                   rf"\ddot{{{phi}}}(t) = {sympy.latex(law.second_derivative)}")
+            b.line(rf"&t = {b.numu(t)}: \quad {w_sym(link)} = \dot{{{phi}}}(t) = {b.numu(w)}, "
+                   rf"\quad {a_sym(link)} = \ddot{{{phi}}}(t) = {b.numu(al)}")
+            b.say(f"Link {link} turns by phi(t) = {driver.angle_law} (rad) from its drawn pose; "
+                  f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
+                  f"alpha({link}) = {b.txt(al)}.")
+        else:
+            b.line(rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
+                   rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
+                   rf"{latex_unit('rad/s^2')}")
+            b.say(f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
+                  f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}.")
+    for joint in scene.joints:
+        if joint.type == "revolute":
+            continue
+        guide, follower = joint.links
+        fixed = guide == scene.ground
+        b.say(f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
+              + (" (a fixed guide)." if fixed else " (a moving guide).")
+              + (" The block cannot turn relative to the guide." if joint.type == "prismatic"
+                 else ""))
+    return b.build()
+
+
+def positions_step(ctx: LinkageContext) -> Step:
+    """The points at the analysed instant and the position vectors the steps use."""
+    b = ctx.builder("positions", "Position vectors")
+    names = sorted({p for pair in ctx.used_vectors for p in pair}, key=list(ctx.scene.points).index)
+    for p in names:
+        b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
+    b.line("&" + r", \quad ".join(rf"{tex.name(p)} = ({', '.join(b.entries(f'pos({p})', 2))})"
+                                  for p in names) + latex_unit("m"))
+    b.say("Points at the analysed instant: " + "; ".join(f"{p} = {b.txt(f'pos({p})')}"
+                                                        for p in names) + ".")
+    rows = []
+    texts = []
+    for first, second in ctx.used_vectors:
+        key = b.put(f"r({first},{second})", ctx.pos(second) - ctx.pos(first), "m")
+        b.check("sum", key, f"pos({second})", f"-pos({first})")
+        rows.append(rf"{r_vec(first, second)} = {b.col(key)}")
+        texts.append(f"r({first},{second}) = {b.txt(key)}")
+    for i in range(0, len(rows), 3):
+        b.line("&" + r" \quad ".join(rows[i:i + 3]) + latex_unit("m"))
+    b.say("Position vectors: " + "; ".join(texts) + ".")
+    return b.build()
+
+
+def fixed_points_step(ctx: LinkageContext, order: int) -> Step | None:
+    fixed = [p for p in ctx.scene.links[ctx.scene.ground].points]
+    if not fixed:
+        return None
+    symbol = v_vec if order == 1 else a_vec
+    unit = "m/s" if order == 1 else "m/s^2"
+    b = ctx.builder("velocity.fixed" if order == 1 else "acceleration.fixed",
+                    "Fixed points")
+    for p in fixed:
+        b.put(f"{'v' if order == 1 else 'a'}({p})",
+              ctx.vel(p) if order == 1 else ctx.acc(p), unit,
+              ("points", p, "velocity" if order == 1 else "acceleration"))
+    b.line("&" + r" = ".join(symbol(p) for p in fixed) + rf" = {V0}{latex_unit(unit)}"
+           r" \quad \text{(fixed joints)}")
+    which = "velocity" if order == 1 else "acceleration"
+    b.say(f"The points of the ground ({', '.join(fixed)}) are fixed: their {which} is zero.")
+    (ctx.shown_velocity if order == 1 else ctx.shown_acceleration).update(fixed)
+    return b.build()
+
+
+def rigid_velocity_step(ctx: LinkageContext, link: str, base: str, target: str,
+                        reason: str = "") -> Step:
+    """v_Y = v_X + omega x r_XY with the cross product as a determinant."""
+    b = ctx.builder("velocity.rigid", f"Velocity of {target} (link {link})")
+    ctx.use(base, target)
+    vx = b.put(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    r = b.put(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
+    wxr = b.put(f"omega x r({base},{target})", k_cross(ctx.omega(link), ctx.pos(target)
+                                                       - ctx.pos(base)), "m/s")
+    vy = b.put(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
+    b.check("cross", wxr, w, r)
+    b.check("sum", vy, vx, wxr)
+    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(vx) else b.col(vx)
+    b.line(rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
+           rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}")
+    b.line(rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
+           rf"{tex.boxed_result(b.colu(vy))}")
+    if reason:
+        b.say(reason)
+    b.say(f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
+          f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}.")
+    ctx.shown_velocity.add(target)
+    return b.build()
+
+
+def rigid_acceleration_step(ctx: LinkageContext, link: str, base: str, target: str,
+                            reason: str = "") -> Step:
+    """a_Y = a_X + alpha x r_XY - omega^2 r_XY: tangential term as a determinant, normal term."""
+    b = ctx.builder("acceleration.rigid", f"Acceleration of {target} (link {link})")
+    ctx.use(base, target)
+    r_np = ctx.pos(target) - ctx.pos(base)
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    ax = b.put(f"a({base})", ctx.acc(base), "m/s^2", ("points", base, "acceleration"))
+    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
+    r = b.put(f"r({base},{target})", r_np, "m")
+    t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
+    n = b.put(f"-omega^2 r({base},{target})", -(omega**2) * r_np, "m/s^2")
+    ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
+    b.check("cross", t, al, r)
+    b.check("product", n, w, w, r, factor=-1.0)
+    b.check("sum", ay, ax, t, n)
+    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
+    w2 = ctx.fmt.latex(omega**2)
+    b.line(rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
+           rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}")
+    b.line(rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
+           rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - {tex.paren(b.num(w))}^2 \cdot "
+           rf"{b.col(r)}")
+    b.line(rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {w2} \cdot {b.col(r)} = "
+           rf"{base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}")
+    if reason:
+        b.say(reason)
+    b.say(f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
+          f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
+          f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
+          f"-{ctx.fmt.text(omega**2)} times r, pointing from {target} towards {base}.")
+    ctx.shown_acceleration.add(target)
+    return b.build()
+
+
+def _other_points(ctx: LinkageContext, link: str) -> list[str]:
+    return [p for p in ctx.scene.links[link].points]
+
+
+def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
+    """The velocity pole P of a moving link: from v_X = omega x r_PX at two points."""
+    result = ctx.analysis.links[link]
+    b = ctx.builder("poles.velocity", f"Velocity pole of link {link}")
+    sub = "P_{" + tex.name(link) + "}"
+    omega = ctx.omega(link)
+    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    if result.velocity_pole is None:
+        b.line(rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
+               r"(it is at infinity)}")
+        b.say(f"Link {link} translates at this instant (omega({link}) = {b.txt(w)}): all its "
+              "points have the same velocity, so its velocity pole is at infinity.")
+        return b.build()
+    pole = b.put(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
+    pivot = ctx.ground_pivot(link)
+    if pivot is not None:
+        o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
+        b.check("sum", pole, o)
+        b.line(rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))})"
+               rf"{latex_unit('m')} \quad \text{{(fixed pivot: }} {v_vec(pivot)} = {V0}\text{{)}}")
+        b.say(f"Link {link} turns about the fixed joint {pivot}: its velocity pole is "
+              f"{pivot} = {b.txt(pole)}.")
+        return b.build()
+    points = [p for p in _other_points(ctx, link)][:2]
+    b.say(f"The velocity pole {sub.replace('_{', '_').rstrip('}')} of link {link} is the point "
+          f"of the link with zero velocity: v(X) = omega({link}) cross r(P,X) for every point X.")
+    b.say("It lies on the perpendiculars to the velocities of two points, drawn through them.")
+    for x in points:
+        v = ctx.vel(x)
+        r_np = ctx.pos(x) - result.velocity_pole
+        vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
+        px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+        r = b.put(f"r(P,{x})", r_np, "m")
+        d = b.put(f"r(P,{x}).v({x})", float(np.dot(r_np, v)), "m^2/s")
+        b.check("cross", vx, w, r)
+        b.check("sum", pole, px, f"-{r}")
+        b.check("dot", d, r, vx)
+        rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+        vxv = b.entries(vx)
+        b.line(rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
+               rf"{tex.column([f'-{tex.paren(b.num(w))}\\, {ry}', f'{b.num(w)}\\, {rx}', '0'])}")
+        b.line(rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
+               rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+               rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+               rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}")
+        b.say(f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
+              f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
+              f"r(P,{x}) = {b.txt(pole)}.")
+    if len(points) == 2:
+        b.say(f"Check: {points[0]} and {points[1]} give the same pole.")
+    return b.build()
+
+
+def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
+    """The acceleration pole G: a_X = alpha x r_GX - omega^2 r_GX solved for r_GX (Cramer)."""
+    result = ctx.analysis.links[link]
+    b = ctx.builder("poles.acceleration", f"Acceleration pole of link {link}")
+    sub = "G_{" + tex.name(link) + "}"
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
+    if result.acceleration_pole is None:
+        b.line(rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
+               r"\;\Rightarrow\; \text{no acceleration pole}")
+        b.say(f"omega({link}) and alpha({link}) are both zero: the link translates without "
+              "turning and all its points have the same acceleration; there is no acceleration "
+              "pole.")
+        return b.build()
+    pole = b.put(f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole"))
+    pivot = ctx.ground_pivot(link)
+    if pivot is not None:
+        o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
+        b.check("sum", pole, o)
+        b.line(rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))}){latex_unit('m')}"
+               rf" \quad \text{{(fixed pivot: }} {a_vec(pivot)} = {V0}\text{{)}}")
+        b.say(f"Link {link} turns about the fixed joint {pivot}, whose acceleration is zero: its "
+              f"acceleration pole is {pivot} = {b.txt(pole)}.")
+        return b.build()
+    points = _other_points(ctx, link)[:2]
+    x = points[-1]
+    a = ctx.acc(x)
+    r_np = ctx.pos(x) - result.acceleration_pole
+    ax = b.put(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
+    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+    b.line(rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
+           rf"{tex.name(x)}}} - \omega_{{{tex.name(link)}}}^2\,\vec{{r}}_{{{sub}{tex.name(x)}}}, "
+           rf"\quad \vec{{a}}_{{{sub}}} = {V0}")
+    b.line(rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
+           rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}")
+    w2 = omega**2
+    c11 = b.put("c11", -w2, "")
+    c12 = b.put("c12", -alpha, "")
+    c21 = b.put("c21", alpha, "")
+    c22 = b.put("c22", -w2, "")
+    b.check("product", c11, w, w, factor=-1.0)
+    b.check("product", c12, al, factor=-1.0)
+    b.check("product", c21, al)
+    b.check("product", c22, w, w, factor=-1.0)
+    b1 = b.put("b1", float(a[0]), "m/s^2")
+    b2 = b.put("b2", float(a[1]), "m/s^2")
+    b.check("sum", b1, f"{ax}[0]")
+    b.check("sum", b2, f"{ax}[1]")
+    b.say(f"The acceleration pole G of link {link} is the point of the link with zero "
+          f"acceleration: a({x}) = alpha cross r(G,{x}) - omega squared r(G,{x}), two equations "
+          f"for the components of r(G,{x}).")
+    r = b.put(f"r(G,{x})", r_np, "m")
+    unknowns = [Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
+                Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1]))]
+    present_vector_unknowns(b, unknowns, [[c11, c12], [c21, c22]], [b1, b2], "G:")
+    b.check("sum", pole, px, f"-{r}")
+    b.line(rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+           rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}")
+    b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
+    if len(points) == 2 and points[0] != x:
+        y = points[0]
+        ry_np = ctx.pos(y) - result.acceleration_pole
+        ay = b.put(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
+        ry = b.put(f"r(G,{y})", ry_np, "m")
+        py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
+        t = b.put(f"alpha x r(G,{y})", k_cross(alpha, ry_np), "m/s^2")
+        n = b.put(f"-omega^2 r(G,{y})", -w2 * ry_np, "m/s^2")
+        b.check("sum", ry, py, f"-{pole}")
+        b.check("cross", t, al, ry)
+        b.check("product", n, w, w, ry, factor=-1.0)
+        b.check("sum", ay, t, n)
+        b.line(rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
+               rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
+               rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}")
+        b.say(f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
+              f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}.")
+    return b.build()
+
+
+def present_vector_unknowns(b: StepBuilder, unknowns: list[Unknown],
+                            coefficients: list[list[str]], rhs: list[str], prefix: str) -> None:
+    """``present_solution`` for unknowns that are components of an already registered vector."""
+    # The unknowns' values live in the vector value; register scalar copies for the checks.
+    renamed = []
+    for u in unknowns:
+        key = u.key.replace("[0]", ".x").replace("[1]", ".y")
+        renamed.append(Unknown(key, u.latex, u.text, u.unit, u.value, u.source, u.meaning))
+    present_solution(b, renamed, coefficients, rhs, prefix)
+    for u, v in zip(unknowns, renamed, strict=True):
+        b.check("sum", v.key, u.key)
+
+
+def summary_step(ctx: LinkageContext) -> Step:
+    """The results: every moving link's omega and alpha, every point's velocity and acceleration."""
+    b = ctx.builder("summary", "Results")
+    rows = []
+    for link in ctx.scene.moving_links:
+        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ("links", link, "omega"))
+        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ("links", link, "alpha"))
+        rows.append(rf"{w_sym(link)} = {b.numu(w)}, & {a_sym(link)} = {b.numu(al)}")
+        b.say(f"Link {link}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
+    for p in ctx.scene.points:
+        v = b.put(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
+        a = b.put(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
+        rows.append(rf"{v_vec(p)} = ({', '.join(b.entries(v, 2))}){latex_unit('m/s')}, & "
+                    rf"{a_vec(p)} = ({', '.join(b.entries(a, 2))}){latex_unit('m/s^2')}")
+        b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
+    b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
+    return b.build()
