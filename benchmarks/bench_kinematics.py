@@ -273,6 +273,20 @@ def peak_memory(fn: Callable[[], object]) -> int:
         tracemalloc.stop()
 
 
+def page_faults(fn: Callable[[], object], calls: int = 20) -> float | None:
+    """Minor page faults per call: memory handed back to the OS after one call and faulted in
+    again by the next (glibc trims the heap when its free top exceeds a threshold)."""
+    try:
+        import resource
+    except ImportError:  # not on this platform
+        return None
+    fn()
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    for _ in range(calls):
+        fn()
+    return (resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before) / calls
+
+
 def ms(seconds: float | None) -> str:
     return "n/a" if seconds is None else f"{seconds * 1e3:.3g} ms"
 
@@ -354,6 +368,13 @@ def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
                 f"{ours.best / base.best:.1f}x",
                 mib(peak_memory(partial(baseline_sweep, SEED_004, n))),
                 mib(peak_memory(partial(sweep, scene, n, ALL))),
+                " / ".join(
+                    "n/a" if f is None else f"{f:.0f}"
+                    for f in (
+                        page_faults(partial(baseline_sweep, SEED_004, n)),
+                        page_faults(partial(sweep, scene, n, ALL)),
+                    )
+                ),
             ]
         )
     return (
@@ -370,6 +391,7 @@ def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
                 "solver / baseline (best)",
                 "baseline peak mem",
                 "solver peak mem",
+                "page faults per call (baseline / solver)",
             ],
             rows,
         )

@@ -106,8 +106,8 @@ def measure(
         page.select_option("#preset", choice)
         page.wait_for_timeout(1500)
     page.wait_for_selector("#linkage .link")
-    # Let the first analysis and Plotly settle, then count frames while playing.
-    page.wait_for_timeout(800)
+    # Let the first analysis, Plotly and KaTeX settle, then count frames while playing.
+    page.wait_for_timeout(1500)
     playing = page.get_attribute("#play", "aria-pressed") == "true"
     result = page.evaluate(COUNT_FRAMES, seconds * 1000)
     page.close()

@@ -1,34 +1,42 @@
 """The instant at which a moving point reaches a named point: ``find_event``.
 
 When the target is a point of M's own carrier, coincidence means M's path coordinate s(t) equals
-the target's (plus whole turns of an arc). s(t) is split at the zeros of s'(t) into monotonic
-pieces, so every level between a piece's end values is crossed exactly once there and is found by
-Brent's method: no crossing is missed between samples, however fast M moves. For any other
-target the distance |M(t) - P(t)| is sampled with the linkage, its local minima refined, and a
-minimum below ``COINCIDENCE_TOLERANCE`` of the scene size counts as a meeting.
+the target's (plus whole turns of an arc). Time is marched in windows from t = 0, stopping at the
+requested occurrence; in each window s(t) is split at the zeros of s'(t) into monotonic pieces,
+so every level between a piece's end values is crossed exactly once there and is found by
+Brent's method. A window is narrowed until s'(t) turns at most a few times in it, so a fast
+oscillation is resolved however long the search. For any other target the distance
+|M(t) - P(t)| is sampled with the linkage, and at each local minimum the root of
+d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken; a minimum below ``COINCIDENCE_TOLERANCE`` of the
+scene size counts as a meeting.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import pairwise
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
+from scipy.optimize import brentq
 
 from solver.analysis import driver_inputs_over_time
 from solver.assembly import assemble, require_feasible
 from solver.errors import InvalidScene, LimitExceeded, NoEvent
 from solver.laws import parse_time_law
-from solver.relative_motion import path_geometry
-from solver.rigid import Array
+from solver.relative_motion import moving_point_motion, path_geometry
+from solver.rigid import Array, dot
 from solver.scene import MAX_TIME, LinkageScene, MovingPoint
 from solver.topology import build_plan
 
-GRID = 4096  # samples of s(t) or of the distance over [0, t_max]
+WINDOW = 64  # samples per window of the path-coordinate search
+MAX_TURNS_PER_WINDOW = 4  # more sign changes of s'' than this: the window is too wide
+MAX_SEARCH_SAMPLES = 4_000_000  # evaluations of s(t) before the search gives up
+DISTANCE_GRID = 4096  # samples of |M - P| over [0, t_max]
 MAX_OCCURRENCE = 10_000
 ON_PATH_TOLERANCE = 1e-9  # relative to the path's size: the target lies on M's path
+TOUCH_TOLERANCE = 1e-12  # relative: a turning point this close to the target's s touches it
 COINCIDENCE_TOLERANCE = 1e-7  # relative to the scene size: M meets a target off its carrier
 
 
@@ -67,8 +75,48 @@ def _path_levels(scene: LinkageScene, mp: MovingPoint, target: str) -> tuple[flo
     return radius * (angle % (2.0 * math.pi)), 2.0 * math.pi * radius
 
 
-def _crossings_of_levels(mp: MovingPoint, level: float, period: float, t_max: float) -> list[float]:
-    """All t in [0, t_max] with s(t) = level + k period (any integer k; k = 0 for a line)."""
+def _zeros(f: Callable[[float], float], grid: Array, values: Array) -> list[float]:
+    """Zeros of f on the grid: exact zeros at samples, and Brent's root in each sign change."""
+    zeros = [float(t) for t in grid[values == 0.0]]
+    for i in np.flatnonzero(values[:-1] * values[1:] < 0.0):
+        zeros.append(brentq(f, grid[i], grid[i + 1], xtol=1e-15 * max(abs(grid[i]), 1.0)))
+    return sorted(zeros)
+
+
+def _levels_crossed(
+    s: Callable[[float], float], a: float, b: float, level: float, period: float
+) -> list[float]:
+    """On a piece [a, b] where s is monotonic: the times at which s = level + k period."""
+    sa, sb = s(a), s(b)
+    low, high = min(sa, sb), max(sa, sb)
+    touch = TOUCH_TOLERANCE * max(abs(level), abs(low), abs(high), period, 1e-300)
+    if period > 0.0:
+        turns = range(
+            math.ceil((low - touch - level) / period),
+            math.floor((high + touch - level) / period) + 1,
+        )
+    else:
+        turns = range(int(low - touch <= level <= high + touch))
+    times = []
+    for k in turns:
+        target = level + k * period
+        if abs(sa - target) <= touch:
+            times.append(a)
+        elif abs(sb - target) <= touch:
+            times.append(b)
+        else:
+            times.append(
+                brentq(
+                    lambda t, c=target: s(t) - c, a, b, xtol=1e-15 * max(abs(b), 1.0), rtol=1e-15
+                )
+            )
+    return times
+
+
+def _crossings_of_levels(
+    mp: MovingPoint, level: float, period: float, t_max: float, wanted: int
+) -> list[float]:
+    """The first ``wanted`` t in (0, t_max] with s(t) = level + k period (k = 0 for a line)."""
     law = parse_time_law(mp.s_law)
 
     def s(t: float) -> float:
@@ -77,34 +125,33 @@ def _crossings_of_levels(mp: MovingPoint, level: float, period: float, t_max: fl
     def s_dot(t: float) -> float:
         return float(law.evaluate(t)[1])
 
-    grid = np.linspace(0.0, t_max, GRID + 1)
-    rates = law.evaluate(grid)[1]
-    breaks = [0.0]
-    for i in np.flatnonzero(np.sign(rates[:-1]) * np.sign(rates[1:]) < 0):
-        breaks.append(brentq(s_dot, grid[i], grid[i + 1], xtol=1e-15 * max(t_max, 1.0)))
-    breaks.append(t_max)
-    times = []
-    for a, b in pairwise(breaks):
-        sa, sb = s(a), s(b)
-        low, high = min(sa, sb), max(sa, sb)
-        if period > 0.0:
-            turns = range(
-                math.ceil((low - level) / period), math.floor((high - level) / period) + 1
+    widest = t_max / WINDOW
+    width, t, evaluated = widest, 0.0, 0
+    times: list[float] = []
+    while t < t_max and len(times) < wanted:
+        grid = np.linspace(t, min(t + width, t_max), WINDOW + 1)
+        _, rates, rates_dot = law.evaluate(grid)
+        evaluated += grid.size
+        if evaluated > MAX_SEARCH_SAMPLES:
+            raise LimitExceeded(
+                f"{mp.name} moves too fast to search up to t_max = {t_max:g} s "
+                f"(more than {MAX_SEARCH_SAMPLES} samples): lower t_max"
             )
-        else:
-            turns = range(int(low <= level <= high))
-        for k in turns:
-            target = level + k * period
-            if sa == target:
-                times.append(a)
-            elif sb == target:
-                times.append(b)
-            else:
-                times.append(
-                    brentq(
-                        lambda t, c=target: s(t) - c, a, b, xtol=1e-15 * max(t_max, 1.0), rtol=1e-15
-                    )
-                )
+        turning = int(np.count_nonzero(rates_dot[:-1] * rates_dot[1:] < 0.0))
+        if turning > MAX_TURNS_PER_WINDOW and width > 1e-12 * t_max:
+            width /= 4.0
+            continue
+        breaks = [grid[0], *_zeros(s_dot, grid, rates), grid[-1]]
+        for a, b in pairwise(breaks):
+            if b > a:
+                times += [
+                    c
+                    for c in _levels_crossed(s, a, b, level, period)
+                    if c > 1e-12 * t_max and (not times or c - times[-1] > 1e-12 * t_max)
+                ]
+        t = grid[-1]
+        if turning == 0:
+            width = min(2.0 * width, widest)
     return times
 
 
@@ -113,30 +160,38 @@ def _meetings_off_carrier(
 ) -> list[float]:
     """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance)."""
     plan = build_plan(scene)
-    law = parse_time_law(mp.s_law)
 
-    def gap(times: Array) -> Array:
+    def state(times: Array, order: int) -> tuple[Array, Array | None, Array, Array | None]:
         motion = assemble(
-            scene, plan, driver_inputs_over_time(scene, times), 0, continuation=times.size > 2
+            scene, plan, driver_inputs_over_time(scene, times), order, continuation=times.size > 2
         )
         require_feasible(motion, "while searching for the event")
-        drawn = path_geometry(scene, mp, law.evaluate(times)[0]).point
-        m = motion.links[mp.link].point(drawn).p
-        return np.hypot(*(m - motion.points[target].p).T)
+        P = motion.points[target]
+        if order == 0:
+            law = parse_time_law(mp.s_law)
+            drawn = path_geometry(scene, mp, law.evaluate(times)[0]).point
+            return motion.links[mp.link].point(drawn).p, None, P.p, None
+        M = moving_point_motion(scene, mp, motion.links[mp.link], times)
+        return M.position, M.velocity, P.p, P.v
 
-    grid = np.linspace(0.0, t_max, GRID + 1)
-    d = gap(grid)
-    times = []
+    def approach(t: float) -> float:
+        """d(|M - P|^2)/dt / 2 = (M - P).(v_M - v_P): negative while M closes in."""
+        m, v_m, p, v_p = state(np.array([t]), 2)
+        assert v_m is not None and v_p is not None
+        return float(dot(m - p, v_m - v_p)[0])
+
+    grid = np.linspace(0.0, t_max, DISTANCE_GRID + 1)
+    m, _, p, _ = state(grid, 0)
+    d = np.hypot(*(m - p).T)
     tolerance = COINCIDENCE_TOLERANCE * scene.size
+    times = []
     for k in np.flatnonzero((d[1:-1] <= d[:-2]) & (d[1:-1] <= d[2:])) + 1:
-        found = minimize_scalar(
-            lambda t: float(gap(np.array([t]))[0]),
-            bounds=(grid[k - 1], grid[k + 1]),
-            method="bounded",
-            options={"xatol": 1e-13 * max(t_max, 1.0)},
-        )
-        if found.fun <= tolerance:
-            times.append(float(found.x))
+        a, b = grid[k - 1], grid[k + 1]
+        fa, fb = approach(a), approach(b)
+        t = float(grid[k]) if fa * fb > 0.0 else brentq(approach, a, b, xtol=1e-15 * t_max)
+        m_t, _, p_t, _ = state(np.array([t]), 0)
+        if float(np.hypot(*(m_t - p_t)[0])) <= tolerance:
+            times.append(t)
     if d[-1] <= tolerance:
         times.append(t_max)
     return times
@@ -158,7 +213,7 @@ def find_event(
         raise LimitExceeded(f"event.t_max: {t_max} s is outside (0, {MAX_TIME:g}] s")
     if reaches in scene.links[mp.link].points:
         level, period = _path_levels(scene, mp, reaches)
-        times = _crossings_of_levels(mp, level, period, t_max)
+        times = _crossings_of_levels(mp, level, period, t_max, occurrence)
     else:
         times = _meetings_off_carrier(scene, mp, reaches, t_max)
     after_start = sorted({t for t in times if t > 1e-12 * t_max})

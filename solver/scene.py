@@ -16,6 +16,7 @@ from typing import Any, Literal
 import numpy as np
 
 from solver.errors import InvalidScene, LimitExceeded
+from solver.laws import parse_time_law
 
 JointType = Literal["revolute", "slider", "prismatic"]
 
@@ -335,6 +336,7 @@ def _parse_drivers(
                 raise _where(f"{path}.angle_law", "expected an expression in t")
             if "omega" in body or "alpha" in body or "angle_deg" in body:
                 raise _where(path, "give either angle_law or omega/alpha/angle_deg, not both")
+            parse_time_law(law)
             drivers.append(Driver(link, pivot, angle_law=law))
             continue
         angle = body.get("angle_deg")
@@ -394,6 +396,7 @@ def _parse_moving_points(
         law = body.get("s_law")
         if not isinstance(law, str):
             raise _where(f"{path}.s_law", "expected an expression in t")
+        parse_time_law(law)
         moving.append(MovingPoint(name, link, route, law))
     return tuple(moving)
 

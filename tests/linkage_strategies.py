@@ -157,13 +157,30 @@ def block_in_lever(doc: dict[str, Any]) -> dict[str, Any]:
 FAMILIES = (*PRESETS, "block_in_lever", "six_bar")
 
 
+def _rate(largest: float) -> st.SearchStrategy[float]:
+    """0, or a magnitude in [1e-3, largest] with either sign (no subnormal rates: their products
+    underflow, which says nothing about the kinematics; extreme rates are tested on purpose)."""
+    magnitude = st.floats(1e-3, largest)
+    return st.just(0.0) | magnitude | magnitude.map(lambda x: -x)
+
+
+@st.composite
+def _with_rates(draw: st.DrawFn, docs: st.SearchStrategy[dict[str, Any]]) -> dict[str, Any]:
+    doc = draw(docs)
+    doc["drivers"][0] |= {"omega": draw(_rate(50.0)), "alpha": draw(_rate(100.0))}
+    return doc
+
+
 def linkages(family: str, max_condition: float = MAX_CONDITION) -> st.SearchStrategy[dict[str, Any]]:
     """Scene documents of one family (a preset name, ``block_in_lever`` or ``six_bar``) whose
-    drawn pose assembles with a velocity condition number below ``max_condition``."""
+    drawn pose assembles with a velocity condition number below ``max_condition``, driven at a
+    random omega and alpha."""
     if family == "six_bar":
-        return six_bars(max_condition).map(lambda s: s.doc)
-    name = "inverted_slider_crank" if family == "block_in_lever" else family
-    docs = assemblable_presets([name]).map(lambda nv: build_preset(*nv))
-    if family == "block_in_lever":
-        docs = docs.map(block_in_lever)
-    return docs.filter(lambda doc: condition_number(doc) < max_condition)
+        docs = six_bars(max_condition).map(lambda s: s.doc)
+    else:
+        name = "inverted_slider_crank" if family == "block_in_lever" else family
+        docs = assemblable_presets([name]).map(lambda nv: build_preset(*nv))
+        if family == "block_in_lever":
+            docs = docs.map(block_in_lever)
+        docs = docs.filter(lambda doc: condition_number(doc) < max_condition)
+    return _with_rates(docs)

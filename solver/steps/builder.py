@@ -41,16 +41,22 @@ class StepBuilder:
         self.checks: list[Check] = []
         self.lines: list[str] = []
         self.sentences: list[str] = []
+        self.references: dict[str, float] = {}
 
     # --- values ---------------------------------------------------------------------------------
 
     def put(self, key: str, value: float | Sequence[float] | np.ndarray, unit: str,
-            source: Source | None = None) -> str:
-        """Register a value (again: it must be the same number) and return its key."""
+            source: Source | None = None, reference: float = 0.0) -> str:
+        """Register a value and return its key.
+
+        ``reference`` is the size of the terms the value was computed from: a result smaller
+        than rounding noise next to it (a dot product of two perpendicular vectors) shows as 0.
+        """
         number = _number(value)
         if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
             raise ValueError(f"non-finite value {key} = {number}")
-        self.values[key] = Value(number, unit, self.fmt.display(number, unit), source)
+        self.references[key] = reference
+        self.values[key] = Value(number, unit, self.fmt.display(number, unit, reference), source)
         return key
 
     def get(self, key: str) -> Number:
@@ -66,9 +72,9 @@ class StepBuilder:
         assert isinstance(value, tuple), key
         return value
 
-    def num(self, key: str, reference: float = 0.0) -> str:
+    def num(self, key: str) -> str:
         """The scalar value as a LaTeX number."""
-        return self.fmt.latex(self.scalar(key), self.values[key].unit, reference)
+        return self.fmt.latex(self.scalar(key), self.values[key].unit, self.references[key])
 
     def numu(self, key: str) -> str:
         """The scalar value as a LaTeX number with its unit."""
@@ -96,7 +102,7 @@ class StepBuilder:
         value = self.values[key]
         if isinstance(value.value, tuple):
             return self.fmt.text_vector(value.value)
-        return self.fmt.text(value.value, value.unit)
+        return self.fmt.text(value.value, value.unit, self.references[key])
 
     def is_zero(self, key: str) -> bool:
         """True when the value displays as zero (every component, for a vector)."""
@@ -104,7 +110,7 @@ class StepBuilder:
         if isinstance(value.value, tuple):
             return all(x == 0.0 for x in self.fmt.clean_vector(value.value, value.unit)) or all(
                 self.fmt.is_zero(x, value.unit) for x in value.value)
-        return self.fmt.is_zero(value.value, value.unit)
+        return self.fmt.is_zero(value.value, value.unit, self.references[key])
 
     # --- checks, lines, text --------------------------------------------------------------------
 
@@ -197,12 +203,14 @@ def _sense(fmt: Formatter, unknown: Unknown) -> str:
     return ""
 
 
-def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: Sequence[Sequence[str]],
-                     rhs: Sequence[str], prefix: str) -> None:
+def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
+                     coefficients: Sequence[Sequence[str]], rhs: Sequence[str], prefix: str,
+                     cramer: bool = False) -> None:
     """Write and solve  c11 u1 + c12 u2 = b1,  c21 u1 + c22 u2 = b2  (values already registered).
 
     Registers the unknowns with the solver's values, the equations as ``linear`` checks, and the
-    solution: directly where a row has one unknown, else by Cramer's rule (``det2``/``quotient``).
+    solution: directly where a row has one unknown, else (or always with ``cramer``) by Cramer's
+    rule with the determinants written out (``det2``/``quotient`` checks).
     """
     fmt = b.fmt
     for u in unknowns:
@@ -223,10 +231,18 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: 
         b.check("linear", rhs[i], *operands)
     if n == 1:
         b.check("quotient", unknowns[0].key, rhs[0], coefficients[0][0])
-        _result(b, unknowns[0], rf"\frac{{{b.num(rhs[0])}}}{{{b.num(coefficients[0][0])}}}")
+        _result(b, unknowns[0], _fraction(b, rhs[0], coefficients[0][0]))
         return
     single = [[j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", rows[i][0])]
               for i in range(2)]
+    if cramer:
+        single = [[0, 1], [0, 1]]
+    if all(len(single[i]) == 1 for i in range(2)) and single[0][0] != single[1][0]:
+        for i in range(2):  # each equation has its own single unknown
+            j = single[i][0]
+            b.check("quotient", unknowns[j].key, rhs[i], coefficients[i][j])
+            _result(b, unknowns[j], _fraction(b, rhs[i], coefficients[i][j]))
+        return
     direct = next((i for i in range(2) if len(single[i]) == 1), None)
     if direct is not None:
         j = single[direct][0]
@@ -234,24 +250,31 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: 
         u, w = unknowns[j], unknowns[other]
         b.check("quotient", u.key, rhs[direct], coefficients[direct][j])
         b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
-        _result(b, u, rf"\frac{{{b.num(rhs[direct])}}}{{{b.num(coefficients[direct][j])}}}")
+        _result(b, u, _fraction(b, rhs[direct], coefficients[direct][j]))
         c_other = b.scalar(coefficients[other_row][other])
         if fmt.is_zero(c_other, "", rows[other_row][0]):
             b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
             return
         rest = b.put(f"{prefix}rest", b.scalar(rhs[other_row])
-                     - b.scalar(coefficients[other_row][j]) * u.value, "")
+                     - b.scalar(coefficients[other_row][j]) * u.value, "",
+                     reference=abs(b.scalar(rhs[other_row]))
+                     + abs(b.scalar(coefficients[other_row][j]) * u.value))
         b.check("quotient", w.key, rest, coefficients[other_row][other])
         b.line(rf"&{term(fmt, c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
                rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
                rf"{tex.paren(fmt.latex(u.value, u.unit))} = {b.num(rest)}")
         b.say(f"Substituting into equation {other_row + 1}: "
               f"{term_text(fmt, c_other, w.text, True, 0.0)} = {b.txtn(rest)}.")
-        _result(b, w, rf"\frac{{{b.num(rest)}}}{{{b.num(coefficients[other_row][other])}}}")
+        _result(b, w, _fraction(b, rest, coefficients[other_row][other]))
         return
     c = coefficients
+
+    def size(key: str) -> float:
+        return max(abs(b.scalar(key)), b.references[key])
+
     det = b.put(f"{prefix}D", b.scalar(c[0][0]) * b.scalar(c[1][1])
-                - b.scalar(c[0][1]) * b.scalar(c[1][0]), "")
+                - b.scalar(c[0][1]) * b.scalar(c[1][0]), "",
+                reference=size(c[0][0]) * size(c[1][1]) + size(c[0][1]) * size(c[1][0]))
     b.check("det2", det, c[0][0], c[0][1], c[1][0], c[1][1])
     b.line(rf"&D = {tex.determinant2([[b.num(c[0][0]), b.num(c[0][1])], [b.num(c[1][0]), b.num(c[1][1])]])}"
            rf" = {b.num(det)}")
@@ -260,7 +283,9 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: 
         columns = [[rhs[i] if k == j else c[i][k] for k in range(2)] for i in range(2)]
         value = (b.scalar(columns[0][0]) * b.scalar(columns[1][1])
                  - b.scalar(columns[0][1]) * b.scalar(columns[1][0]))
-        dj = b.put(f"{prefix}D{j + 1}", value, "")
+        dj = b.put(f"{prefix}D{j + 1}", value, "",
+                   reference=size(columns[0][0]) * size(columns[1][1])
+                   + size(columns[0][1]) * size(columns[1][0]))
         b.check("det2", dj, columns[0][0], columns[0][1], columns[1][0], columns[1][1])
         b.check("quotient", unknowns[j].key, dj, det)
         matrix = tex.determinant2([[b.num(columns[i][k]) for k in range(2)] for i in range(2)])
@@ -269,8 +294,16 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown], coefficients: 
         _result(b, unknowns[j], rf"\frac{{D_{j + 1}}}{{D}} = \frac{{{b.num(dj)}}}{{{b.num(det)}}}")
 
 
+def _fraction(b: StepBuilder, numerator: str, denominator: str) -> str:
+    """'\\frac{n}{d}', or '' when d displays as 1 (the result is then the numerator itself)."""
+    if b.num(denominator) == "1":
+        return ""
+    return rf"\frac{{{b.num(numerator)}}}{{{b.num(denominator)}}}"
+
+
 def _result(b: StepBuilder, u: Unknown, fraction: str) -> None:
     value = b.fmt.latex(u.value, u.unit)
-    b.line(rf"&{u.latex} = {fraction} = {tex.boxed_result(value + latex_unit(u.unit))}")
+    middle = f" {fraction} =" if fraction else ""
+    b.line(rf"&{u.latex} ={middle} {tex.boxed_result(value + latex_unit(u.unit))}")
     b.say(f"So {u.text} = {b.fmt.text_value(u.value, u.unit)}{_sense(b.fmt, u)}"
           + (f": {u.meaning}." if u.meaning else "."))

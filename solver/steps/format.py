@@ -119,11 +119,11 @@ class Formatter:
         body = "(" + ", ".join(self.text(x) for x in clean) + ")"
         return f"{body} {unit}" if unit else body
 
-    def display(self, value: float | tuple[float, ...], unit: str) -> str:
+    def display(self, value: float | tuple[float, ...], unit: str, reference: float = 0.0) -> str:
         """The ``Value.display`` string: plain text with the unit."""
         if isinstance(value, tuple):
             return self.text_vector(value, unit)
-        return self.text_value(value, unit)
+        return self.text_value(value, unit, reference)
 
 
 def latex_unit(unit: str) -> str:

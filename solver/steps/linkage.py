@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy
 
-from solver.analysis import LinkageAnalysis, SlidingJoint
+from solver.analysis import LinkageAnalysis
 from solver.laws import parse_time_law
 from solver.rigid import perp
 from solver.scene import Joint, LinkageScene
@@ -38,12 +38,41 @@ def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
     points = analysis.points.values()
     links = analysis.links.values()
     return {
+        "rad": math.pi,
+        "deg": 180.0,
         "m": size,
         "m/s": largest([p.velocity for p in points]),
         "m/s^2": largest([p.acceleration for p in points]),
         "rad/s": largest([link.omega for link in links]),
         "rad/s^2": largest([link.alpha for link in links]),
     }
+
+
+@dataclass(frozen=True)
+class SlotMotion:
+    """A point in a slot: the textbook split of its velocity and acceleration.
+
+    ``index`` is the joint's index in the analysis' ``joints`` (None for a derived split).
+    """
+
+    index: int | None
+    joint: Joint
+    omega_guide: float
+    direction: np.ndarray
+    transport_velocity: np.ndarray
+    relative_velocity: np.ndarray
+    velocity: np.ndarray
+    transport_acceleration: np.ndarray | None
+    relative_acceleration: np.ndarray | None
+    coriolis_acceleration: np.ndarray | None
+    acceleration: np.ndarray | None
+
+    def source(self, name: str) -> tuple[str | int, ...] | None:
+        return None if self.index is None else ("joints", self.index, name)
+
+    @property
+    def guide(self) -> str:
+        return self.joint.guide
 
 
 @dataclass
@@ -101,20 +130,43 @@ class LinkageContext:
                 return joint.point
         return None
 
-    def sliding(self, guide: str, point: str) -> tuple[int, Joint, SlidingJoint]:
-        """The slider/prismatic joint in which ``point`` (or its follower) slides along ``guide``."""
+    def slot(self, guide: str, point: str) -> SlotMotion:
+        """The motion of ``point`` in the slot of ``guide``: transport, relative, Coriolis.
+
+        For the joint's own point these are the solver's ``SlidingJoint`` numbers (with their
+        paths in the response); for another point of a prismatic follower they are derived from
+        the guide's rigid motion in the same way.
+        """
         index = 0
-        found = None
         for joint in self.scene.joints:
             if joint.type == "revolute":
                 continue
             carried = joint.point == point or (
                 joint.type == "prismatic" and point in self.scene.links[joint.follower].points)
-            if joint.guide == guide and carried and found is None:
-                found = (index, joint, self.analysis.joints[index])
+            if joint.guide == guide and carried:
+                direction = self.slot_direction(joint)
+                if joint.point == point:
+                    s = self.analysis.joints[index]
+                    return SlotMotion(index, joint, s.omega_guide, direction,
+                                      s.transport_velocity, s.relative_velocity, s.velocity,
+                                      s.transport_acceleration, s.relative_acceleration,
+                                      s.coriolis_acceleration, s.acceleration)
+                return self._derived_slot(joint, point, direction)
             index += 1
-        assert found is not None, (guide, point)
-        return found
+        raise AssertionError(f"no slot of {guide} carries {point}")
+
+    def _derived_slot(self, joint: Joint, point: str, direction: np.ndarray) -> SlotMotion:
+        guide = joint.guide
+        anchor = self.scene.links[guide].points[0]
+        r = self.pos(point) - self.pos(anchor)
+        omega, alpha = self.omega(guide), self.alpha(guide)
+        v_tr = self.vel(anchor) + k_cross(omega, r)
+        v_rel = self.vel(point) - v_tr
+        a_tr = self.acc(anchor) + k_cross(alpha, r) - omega**2 * r
+        a_cor = 2.0 * k_cross(omega, v_rel)
+        a_rel = self.acc(point) - a_tr - a_cor
+        return SlotMotion(None, joint, omega, direction, v_tr, v_rel, self.vel(point), a_tr,
+                          a_rel, a_cor, self.acc(point))
 
     def slot_direction(self, joint: Joint) -> np.ndarray:
         """The unit direction of the slot now: the drawn axis turned with the guide."""
@@ -227,8 +279,9 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
 
 def positions_step(ctx: LinkageContext) -> Step:
     """The points at the analysed instant and the position vectors the steps use."""
-    b = ctx.builder("positions", "Position vectors")
-    names = sorted({p for pair in ctx.used_vectors for p in pair}, key=list(ctx.scene.points).index)
+    b = ctx.builder("positions", "Positions" if not ctx.used_vectors else "Position vectors")
+    names = sorted({p for pair in ctx.used_vectors for p in pair} or set(ctx.scene.points),
+                   key=list(ctx.scene.points).index)
     for p in names:
         b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
     b.line("&" + r", \quad ".join(rf"{tex.name(p)} = ({', '.join(b.entries(f'pos({p})', 2))})"
@@ -244,7 +297,8 @@ def positions_step(ctx: LinkageContext) -> Step:
         texts.append(f"r({first},{second}) = {b.txt(key)}")
     for i in range(0, len(rows), 3):
         b.line("&" + r" \quad ".join(rows[i:i + 3]) + latex_unit("m"))
-    b.say("Position vectors: " + "; ".join(texts) + ".")
+    if texts:
+        b.say("Position vectors: " + "; ".join(texts) + ".")
     return b.build()
 
 
@@ -306,7 +360,7 @@ def rigid_acceleration_step(ctx: LinkageContext, link: str, base: str, target: s
     al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
     r = b.put(f"r({base},{target})", r_np, "m")
     t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
-    n = b.put(f"-omega^2 r({base},{target})", -(omega**2) * r_np, "m/s^2")
+    n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
     b.check("cross", t, al, r)
     b.check("product", n, w, w, r, factor=-1.0)
@@ -358,8 +412,8 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
               f"{pivot} = {b.txt(pole)}.")
         return b.build()
     points = [p for p in _other_points(ctx, link)][:2]
-    b.say(f"The velocity pole {sub.replace('_{', '_').rstrip('}')} of link {link} is the point "
-          f"of the link with zero velocity: v(X) = omega({link}) cross r(P,X) for every point X.")
+    b.say(f"The velocity pole P of link {link} is the point of the link with zero velocity: "
+          f"v(X) = omega({link}) cross r(P,X) for every point X.")
     b.say("It lies on the perpendiculars to the velocities of two points, drawn through them.")
     for x in points:
         v = ctx.vel(x)
@@ -367,14 +421,17 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
         vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
         px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
         r = b.put(f"r(P,{x})", r_np, "m")
-        d = b.put(f"r(P,{x}).v({x})", float(np.dot(r_np, v)), "m^2/s")
+        d = b.put(f"r(P,{x}).v({x})", float(np.dot(r_np, v)), "m^2/s",
+                  reference=float(np.hypot(*r_np) * np.hypot(*v)))
         b.check("cross", vx, w, r)
         b.check("sum", pole, px, f"-{r}")
         b.check("dot", d, r, vx)
         rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
         vxv = b.entries(vx)
+        expanded = tex.column(["-" + tex.paren(b.num(w)) + r"\, " + ry,
+                               b.num(w) + r"\, " + rx, "0"])
         b.line(rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
-               rf"{tex.column([f'-{tex.paren(b.num(w))}\\, {ry}', f'{b.num(w)}\\, {rx}', '0'])}")
+               rf"{expanded}")
         b.line(rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
                rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
                rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
@@ -455,7 +512,7 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
         ry = b.put(f"r(G,{y})", ry_np, "m")
         py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
         t = b.put(f"alpha x r(G,{y})", k_cross(alpha, ry_np), "m/s^2")
-        n = b.put(f"-omega^2 r(G,{y})", -w2 * ry_np, "m/s^2")
+        n = b.put(f"normal(G,{y})", -w2 * ry_np, "m/s^2")
         b.check("sum", ry, py, f"-{pole}")
         b.check("cross", t, al, ry)
         b.check("product", n, w, w, ry, factor=-1.0)

@@ -335,6 +335,9 @@ export class Controls {
   setInstantRange(param, lo, hi, enabled = true) {
     const s = this.el.slider;
     this.instant = { param, lo, hi };
+    $('motion-hint').textContent = param === 'time'
+      ? 'The motion follows the time laws. Focus the slider and use the arrow keys to choose the instant. Space plays and pauses.'
+      : 'Drag the crank in the drawing, or focus the slider and use the arrow keys. Space plays and pauses.';
     if (param === 'time') {
       this.el.sliderLabel.textContent = 'Time';
       s.min = '0';

@@ -8,7 +8,7 @@
 import { svgEl, setAttrs, clear, arrowMarker, hatchPattern } from './svg.js';
 import { COLOURS } from './theme.js';
 import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawnAngle } from './scene.js';
-import { extent, maxNorm } from './track.js';
+import { extent, typicalNorm, PARTS } from './track.js';
 import { show } from './units.js';
 
 const WIDTH = 1000;
@@ -90,7 +90,8 @@ export class LinkageView {
 
   inView(p) {
     const [x, y] = this.px(p);
-    return x >= 0 && x <= WIDTH && y >= 0 && y <= this.map.height;
+    // Keep a marker and its label clear of the border.
+    return x >= 24 && x <= WIDTH - 60 && y >= 24 && y <= this.map.height - 24;
   }
 
   // ---- building ----------------------------------------------------------------------------
@@ -225,9 +226,10 @@ export class LinkageView {
       if (j.type !== 'slider' && j.type !== 'prismatic') continue;
       const [guide, follower] = j.links;
       if (guide !== ground) {
-        const slot = svgEl('line', { stroke: '#ffffff', 'stroke-width': 6, 'stroke-linecap': 'round', class: 'slot' }, this.layers.slots);
-        const edge = svgEl('line', { stroke: this.colours[guide], 'stroke-width': 1.2, 'stroke-linecap': 'round', 'stroke-dasharray': '2 3' }, this.layers.slots);
-        this.slotNodes.push({ joint: j, guide, nodes: [slot, edge] });
+        // A slotted bar along the axis, as long as the guide link and the block's travel.
+        const bar = svgEl('line', { stroke: this.colours[guide], 'stroke-width': 13, 'stroke-linecap': 'round', class: 'slot-bar' }, this.layers.slots);
+        const slot = svgEl('line', { stroke: '#ffffff', 'stroke-width': 5, 'stroke-linecap': 'round', class: 'slot' }, this.layers.slots);
+        this.slotNodes.push({ joint: j, guide, nodes: [bar, slot] });
       }
       const colour = this.colours[follower] || COLOURS.ink;
       const rect = svgEl('rect', { width: BLOCK[0], height: BLOCK[1], x: -BLOCK[0] / 2, y: -BLOCK[1] / 2, rx: 3, fill: '#ffffff', stroke: colour, 'stroke-width': 2.5, class: 'slider-block' }, this.layers.blocks);
@@ -285,35 +287,37 @@ export class LinkageView {
     this.vectorNodes = [];
     const opt = this.options;
     const names = [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)];
-    // Scale arrows so that the largest over the cycle (or at this instant) is a fifth of the picture.
-    const vmax = Math.max(maxNorm(this.track, 'velocity'), analysisMax(this.analysis, 'velocity'));
-    const amax = Math.max(maxNorm(this.track, 'acceleration'), analysisMax(this.analysis, 'acceleration'));
+    // One scale per cycle, so arrows can be compared between instants: a typical large vector of
+    // the sweep is a fifth of the picture (the analysis alone when there is no sweep).
+    const vmax = typicalNorm(this.track, 'velocity') || analysisMax(this.analysis, 'velocity');
+    const amax = typicalNorm(this.track, 'acceleration') || analysisMax(this.analysis, 'acceleration');
     const reach = this.map.size * 0.22;
     this.scale = { velocity: vmax > 0 ? reach / vmax : 0, acceleration: amax > 0 ? reach / amax : 0 };
     const add = (kind, quantity, point, extra = {}) => {
       const node = svgEl('line', { stroke: COLOURS[kind], 'stroke-width': extra.width || 2.6, 'marker-end': this.markers[kind], 'stroke-dasharray': extra.dash || null, class: `vector vector-${kind}` }, this.layers.vectors);
-      this.vectorNodes.push({ kind, quantity, point, node, from: extra.from || null });
+      this.vectorNodes.push({ kind, quantity, point, node });
     };
     if (opt.showVelocity) for (const n of names) add('velocity', 'velocity', n);
     if (opt.showAcceleration) for (const n of names) add('acceleration', 'acceleration', n);
 
-    // Slider and moving-point parts (transport, relative, Coriolis) come from the analysis only.
-    const notes = [];
-    if (this.analysis) {
-      const parts = componentSources(this.analysis);
-      for (const part of parts) {
-        if (opt.showVelocity) {
-          add('transport', { vec: part.transport_velocity }, part.point, { width: 2, dash: '5 3' });
-          add('relative', { vec: part.relative_velocity, fromVec: part.transport_velocity }, part.point, { width: 2 });
-        }
-        if (opt.showAcceleration) {
-          add('transport', { vec: part.transport_acceleration, accel: true }, part.point, { width: 2, dash: '5 3' });
-          add('coriolis', { vec: part.coriolis_acceleration, fromVec: part.transport_acceleration, accel: true }, part.point, { width: 2 });
-          add('relative', { vec: part.relative_acceleration, fromVec: sum(part.transport_acceleration, part.coriolis_acceleration), accel: true }, part.point, { width: 2 });
-        }
+    // Transport, relative and Coriolis parts at sliders and moving points: from the analysis at
+    // the analysed instant, and from the sweep while a relative-motion scene plays.
+    const partPoints = new Set();
+    if (this.analysis) for (const p of componentSources(this.analysis)) partPoints.add(p.point);
+    for (const [name, q] of Object.entries(this.track.points)) if (PARTS.some((k) => Array.isArray(q[k]))) partPoints.add(name);
+    for (const point of partPoints) {
+      if (opt.showVelocity) {
+        add('transport', { part: 'transport_velocity', from: [] }, point, { width: 2, dash: '5 3' });
+        add('relative', { part: 'relative_velocity', from: ['transport_velocity'] }, point, { width: 2 });
       }
-      if (opt.showPoles) notes.push(...this.buildPoles());
+      if (opt.showAcceleration) {
+        add('transport', { part: 'transport_acceleration', from: [], accel: true }, point, { width: 2, dash: '5 3' });
+        add('coriolis', { part: 'coriolis_acceleration', from: ['transport_acceleration'], accel: true }, point, { width: 2 });
+        add('relative', { part: 'relative_acceleration', from: ['transport_acceleration', 'coriolis_acceleration'], accel: true }, point, { width: 2 });
+      }
     }
+    const notes = [];
+    if (this.analysis && opt.showPoles) notes.push(...this.buildPoles());
     this.buildNotes(notes);
   }
 
@@ -462,9 +466,9 @@ export class LinkageView {
         vec = frame[v.quantity]?.[v.point];
         scale = this.scale[v.quantity];
       } else {
-        // Slider parts belong to the analysed instant only.
-        vec = frame.exact ? v.quantity.vec : null;
-        from = v.quantity.fromVec || [0, 0];
+        const parts = frame.parts?.[v.point];
+        vec = parts?.[v.quantity.part];
+        from = v.quantity.from.reduce((acc, k) => sum(acc, parts?.[k]), [0, 0]);
         scale = v.quantity.accel ? this.scale.acceleration : this.scale.velocity;
       }
       if (!p || !vec || !scale || Math.hypot(vec[0], vec[1]) * scale * this.map.k < 2) {

@@ -7,7 +7,7 @@
 
 import * as api from './api.js';
 import { Controls } from './controls.js';
-import { LinkageView } from './linkage-view.js';
+import { LinkageView, componentSources } from './linkage-view.js';
 import { SpatialView } from './spatial-view.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
 import { renderPlots, moveCursor, available } from './plots.js';
@@ -16,6 +16,7 @@ import { readHash, writeHash } from './share.js';
 import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue } from './track.js';
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
+import { plotlyReady, katexReady } from './vendor.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -123,12 +124,13 @@ class App {
       scene = view?.scene || await api.buildPreset(name, params);
     } catch (err) {
       this.status(`The preset ${name} could not be built: ${err.detail}`, 'error');
+      this.reselectSource();
       return;
     }
     this.source = { type: 'preset', name, params: { ...params } };
     this.controls.setPresetFields(meta?.parameters || [], params, (p, v) => this.onParam(p, v));
     this.setDriverFields(scene);
-    await this.commitOrReport(scene, null, view);
+    await this.commitOrReport(scene, view);
   }
 
   async openExample(file, view = null) {
@@ -139,11 +141,20 @@ class App {
       scene = view?.scene || await api.getExample(file);
     } catch (err) {
       this.status(err.detail, 'error');
+      this.reselectSource();
       return;
     }
     this.source = { type: 'example', file };
     this.setExampleFields(scene);
-    await this.commitOrReport(scene, null, view);
+    await this.commitOrReport(scene, view);
+  }
+
+  /** Put the selector back on what is shown (after a mechanism could not be opened). */
+  reselectSource() {
+    const src = this.source;
+    if (!src) return;
+    const value = src.type === 'preset' ? `preset:${src.name}` : src.type === 'example' ? `example:${src.file}` : 'shared';
+    this.controls.el.preset.value = value;
   }
 
   setExampleFields(scene) {
@@ -162,14 +173,12 @@ class App {
     this.controls.setDriverFields(scene, (f, v) => this.onDriver(f, v), (kind, name, text) => this.onLaw(kind, name, text));
   }
 
-  /** Load a scene; an error here has no field to sit next to, so it goes to the status line. */
-  async commitOrReport(scene, fieldKey, view) {
+  /** Load a chosen mechanism; an error has no field to sit next to, so it goes to the status line. */
+  async commitOrReport(scene, view) {
     try {
-      await this.loadScene(scene, view ? { instant: view.view?.instant } : {});
+      await this.loadScene(scene, view ? { instant: view.view?.instant, keepChoices: true } : {});
     } catch (err) {
-      if (!fieldKey || !this.controls.showFieldError(fieldKey, err.detail, err.position)) {
-        this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
-      }
+      this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
     }
   }
 
@@ -253,7 +262,7 @@ class App {
    * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
    * server's error (and leaves the page as it was) when the scene is not acceptable.
    */
-  async loadScene(scene, { keepInstant = false, instant = null } = {}) {
+  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant } = {}) {
     const seq = ++this.geometrySeq;
     if (S.isSpatial(scene)) return this.loadSpatial(scene, seq);
     const timeDriven = S.isTimeDriven(scene);
@@ -280,14 +289,16 @@ class App {
         : `No animation: ${err.detail} The drawn pose is analysed.`;
     }
     if (seq !== this.geometrySeq) return; // a newer edit won
-    this.commitPlanar(scene, track, note, previous ?? instant);
+    this.commitPlanar(scene, track, note, previous ?? instant, keepChoices);
   }
 
   async fetchTrack(scene, timeDriven) {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
+    // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
+    const quantities = timeDriven ? [...QUANTITIES, 'components'] : QUANTITIES;
     let response;
     try {
-      response = await api.sweep(scene, SAMPLES, QUANTITIES, range);
+      response = await api.sweep(scene, SAMPLES, quantities, range);
     } catch (err) {
       // A server that can only sweep positions still animates; plots then show angles only.
       if (err.code !== 'invalid_scene') throw err;
@@ -301,7 +312,7 @@ class App {
     return track;
   }
 
-  commitPlanar(scene, track, note, instant) {
+  commitPlanar(scene, track, note, instant, keepChoices) {
     this.scene = scene;
     this.track = track;
     this.analysis = null;
@@ -318,13 +329,14 @@ class App {
       this.controls.setPlaying(false);
     }
 
+    // The traced and plotted point and links survive an edit or a shared link, not a new mechanism.
     const names = S.pointNames(scene);
     const opts = this.controls.options();
-    const trace = names.includes(opts.trace) ? opts.trace : defaultTrace(scene);
-    const plotPoint = names.includes(this.plot.point) ? this.plot.point : trace || names[names.length - 1];
+    const trace = keepChoices && (opts.trace === null || names.includes(opts.trace)) ? opts.trace : defaultTrace(scene);
+    const plotPoint = keepChoices && names.includes(this.plot.point) ? this.plot.point : trace || names[names.length - 1];
     this.controls.setPointChoices(names, trace, plotPoint);
     const links = S.movingLinks(scene);
-    const chosen = this.plot.links.filter((l) => links.includes(l));
+    const chosen = keepChoices ? this.plot.links.filter((l) => links.includes(l)) : [];
     this.plot = { links: chosen.length ? chosen : links.slice(0, 3), point: plotPoint };
     this.controls.setLinkChoices(links, S.linkColours(scene), this.plot.links);
 
@@ -338,6 +350,9 @@ class App {
       messages.push(`The crank cannot turn fully: it rocks between ${show('angle', Math.min(a, b), this.units)} and ${show('angle', Math.max(a, b), this.units)} (limit positions).`);
     }
     this.viewMessage(messages.join(' '));
+    $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
+    // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
+    this.drawFrame();
     this.drawPlots();
     this.dirty = true;
     this.scheduleAnalysis(0);
@@ -443,7 +458,7 @@ class App {
     const seq = ++this.solutionSeq;
     const target = scene || (S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u));
     try {
-      const sol = await api.solution(target, this.method, 4);
+      const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
       if (seq !== this.solutionSeq) return;
       const failures = renderSolution($('steps'), $('mistakes'), sol);
       if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
@@ -454,7 +469,8 @@ class App {
     }
   }
 
-  drawPolygons() {
+  async drawPolygons() {
+    await plotlyReady();
     if (!this.analysis) return;
     const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.units);
     this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
@@ -462,12 +478,17 @@ class App {
     if (this.track && !this.track.static && v !== null) {
       const label = this.track.param === 'time' ? `t = ${fmt(v)} s` : `θ = ${show('angle', v, this.units)}`;
       $('instant-readout').textContent = `analysed instant: ${label}`;
+      $('linkage').setAttribute('aria-label', `Drawing of the ${this.scene.title || 'mechanism'}; analysed instant ${label}`);
     } else {
       $('instant-readout').textContent = '';
     }
   }
 
-  drawPlots() {
+  async drawPlots() {
+    if (!(await plotlyReady())) {
+      this.plotsMessage('Plotly could not be loaded, so the plots cannot be drawn.');
+      return;
+    }
     const div = $('plots');
     const t = this.track;
     if (!t || t.n < 2) {
@@ -643,7 +664,7 @@ class App {
       this.source = { type: 'shared' };
       this.controls.selectSource('shared', 'A mechanism opened from a link.');
       this.setExampleFields(state.scene);
-      await this.commitOrReport(state.scene, null, { view });
+      await this.commitOrReport(state.scene, { view });
     }
     if (this.track) this.controls.setOptions(view.options || {});
     this.linkage.setOptions(this.controls.options());
@@ -692,7 +713,7 @@ function setMessage(el, text) {
 
 /** The analysed instant drawn exactly as the server placed it. */
 function frameFromAnalysis(analysis) {
-  const frame = { position: {}, velocity: {}, acceleration: {}, exact: true };
+  const frame = { position: {}, velocity: {}, acceleration: {}, parts: {}, exact: true };
   for (const group of [analysis.points, analysis.moving_points]) {
     for (const [name, q] of Object.entries(group || {})) {
       if (q.position) frame.position[name] = q.position;
@@ -700,6 +721,7 @@ function frameFromAnalysis(analysis) {
       if (q.acceleration) frame.acceleration[name] = q.acceleration;
     }
   }
+  for (const part of componentSources(analysis)) frame.parts[part.point] = part;
   return frame;
 }
 

@@ -98,7 +98,7 @@ export function renderPlots(div, scene, track, { links = [], point = null, units
       hovertemplate: `|v_${point}|: %{y:.4g}<extra></extra>`,
     });
   }
-  layout.xaxis = { title: { text: title }, anchor: `y${axisFor(panels - 1)}`, gridcolor: '#eef0f3' };
+  layout.xaxis = { title: { text: title }, anchor: `y${axisFor(panels - 1)}`, gridcolor: '#eef0f3', zeroline: false };
   // Every panel shares the x axis; show tick labels only on the bottom one.
   layout.shapes = cursorShapes(cursor, track, units);
   P.react(div, traces, layout, CONFIG);

@@ -177,7 +177,7 @@ export function velocityFigure(scene, analysis, units) {
     const vr = j.relative_velocity.map((c) => toDisplay('velocity', c, units));
     if (norm(vt) > TINY) {
       tr.push([[0, 0], vt, vecText(`v_${j.point},tr`, vt, 'velocity', units)]);
-      lab.push([vt, `${lower(j.point)}′`, 'bottom left']);
+      lab.push([vt, `${lower(j.point)}<sub>tr</sub>`, 'bottom left']);
     }
     if (norm(vr) > TINY) rel.push([vt, add(vt, vr), vecText(`v_${j.point},rel`, vr, 'velocity', units)]);
   }
@@ -235,7 +235,7 @@ export function accelerationFigure(scene, analysis, units) {
     const ar = conv(j.relative_acceleration);
     if (norm(at) > TINY) {
       tr.push([[0, 0], at, vecText(`a_${j.point},tr`, at, 'acceleration', units)]);
-      lab.push([at, `${lower(j.point)}′`, 'bottom left']);
+      lab.push([at, `${lower(j.point)}<sub>tr</sub>`, 'bottom left']);
     }
     if (norm(ac) > TINY) cor.push([at, add(at, ac), vecText(`a_${j.point},Cor = 2ω×v_rel`, ac, 'acceleration', units)]);
     else zeroCoriolis.push(j.point);

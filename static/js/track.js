@@ -74,14 +74,25 @@ function split(track, u) {
   return [i, Math.min(i + 1, max), clamped - i];
 }
 
-/** Positions (and velocities/accelerations when the sweep has them) at fractional index u. */
+/** The parts of a moving point's (or slider's) motion, as the API names them. */
+export const PARTS = ['transport_velocity', 'relative_velocity', 'transport_acceleration', 'relative_acceleration', 'coriolis_acceleration'];
+
+/**
+ * Positions (and velocities, accelerations, and the transport/relative/Coriolis parts of moving
+ * points, when the sweep has them) at fractional index u.
+ */
 export function frameAt(track, u) {
   const [i, j, f] = split(track, u);
-  const frame = { position: {}, velocity: {}, acceleration: {}, u };
+  const frame = { position: {}, velocity: {}, acceleration: {}, parts: {}, u };
   for (const [name, q] of Object.entries(track.points)) {
     if (q.position) frame.position[name] = lerp2(q.position[i], q.position[j], f);
     if (q.velocity) frame.velocity[name] = lerp2(q.velocity[i], q.velocity[j], f);
     if (q.acceleration) frame.acceleration[name] = lerp2(q.acceleration[i], q.acceleration[j], f);
+    for (const part of PARTS) {
+      if (!Array.isArray(q[part])) continue;
+      frame.parts[name] = frame.parts[name] || {};
+      frame.parts[name][part] = lerp2(q[part][i], q[part][j], f);
+    }
   }
   return frame;
 }
@@ -135,11 +146,17 @@ export function extent(track) {
   return box;
 }
 
-/** Largest magnitude of a per-point quantity over the track (for arrow scaling). */
-export function maxNorm(track, quantity) {
-  let m = 0;
-  for (const q of Object.values(track.points)) {
-    for (const v of q[quantity] || []) if (v) m = Math.max(m, Math.hypot(v[0], v[1]));
+/**
+ * A typical large magnitude of a per-point quantity over the track, for arrow scaling: the 95th
+ * percentile, not the maximum, so that one near-singular sample (a guide whipping round) does not
+ * shrink every other arrow to a dot.
+ */
+export function typicalNorm(track, quantity, q = 0.95) {
+  const norms = [];
+  for (const p of Object.values(track.points)) {
+    for (const v of p[quantity] || []) if (v) norms.push(Math.hypot(v[0], v[1]));
   }
-  return m;
+  if (!norms.length) return 0;
+  norms.sort((a, b) => a - b);
+  return norms[Math.min(norms.length - 1, Math.floor(q * norms.length))];
 }

@@ -311,8 +311,17 @@ def test_spatial_chain_example_renders(app: AppPage) -> None:
     note = page.text_content("#spatial .view-note")
     page.focus("#spatial")
     page.keyboard.press("ArrowLeft")
-    assert page.text_content("#spatial .view-note") != note, "arrow keys turn the view"
+    turned = page.text_content("#spatial .view-note")
+    assert turned != note, "arrow keys turn the view"
     app.screenshot("spatial-arm")
+    # The camera travels in the share link too.
+    page.click("#share")
+    page.wait_for_function("document.getElementById('share-url').value.includes('#s=')")
+    other = app.new_page()
+    other.goto(page.input_value("#share-url"))
+    other.wait_for_selector("#spatial .body")
+    assert other.text_content("#spatial .view-note") == turned
+    assert other.input_value("#preset") == "example:S002-spatial-arm.json"
 
 
 def test_relative_motion_scene_animates_in_time_or_says_why_not(app: AppPage) -> None:
@@ -363,3 +372,36 @@ def test_tablet_layout_has_no_horizontal_scroll(app: AppPage) -> None:
     overflow = page.evaluate("document.documentElement.scrollWidth - window.innerWidth")
     assert overflow <= 0
     app.screenshot("tablet")
+
+
+def test_dragging_the_crank_chooses_the_analysed_instant(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    page.wait_for_selector("#linkage .crank-handle")
+    before = page.get_attribute("#linkage", "data-instant")
+    box = page.locator("#linkage .crank-handle").bounding_box()
+    assert box is not None
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x - 25, y - 35, steps=6)
+    page.mouse.up()
+    assert page.get_attribute("#play", "aria-pressed") == "false"
+    wait_analysed(page)
+    assert page.get_attribute("#linkage", "data-instant") != before
+
+
+def test_invalid_time_law_points_at_the_character(app: AppPage) -> None:
+    app.log.allow(r"status of 422")
+    app.open()
+    page = app.page
+    choose(app, "example:S003-T2-rotating-carrier.json")
+    page.wait_for_selector("#f-law_angle")
+    page.fill("#f-law_angle", "2*t + import(3)")
+    page.press("#f-law_angle", "Tab")
+    error = page.locator("#f-law_angle-error")
+    error.wait_for(state="visible")
+    assert "import" in error.inner_text()
+    caret = page.text_content("#f-law_angle-error .caret") or ""
+    assert caret.splitlines()[-1] == " " * 6 + "^"
+    assert page.locator("#linkage .link").count() >= 1

@@ -1,0 +1,616 @@
+"""The loop-closure method in complex form (seed 001): loop, derivatives, Cramer's rule.
+
+A linkage qualifies when its plan is a chain of single loops through the ground, each closed by
+one group of the plan on a link that turns about a fixed pivot (a crank, or a rocker or lever
+solved by an earlier loop):
+
+- four-bar loop (RRR dyad with one centre on that link and the other fixed):
+  a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) + a4 e^(i th14);
+- slider-crank loop (pin on a fixed straight guide of direction phi, offset c):
+  a2 e^(i th12) + a3 e^(i th13) = (s14 + i c1) e^(i phi);
+- slotted-lever loop (the pin in the slot of a lever turning about a fixed pivot Q):
+  a2 e^(i th12) = a1 e^(i th11) + (s + i c) e^(i beta), (s + i c) e^(i beta) = r_QP.
+
+The first time derivative is linear in the unknown rates; its real and imaginary parts are two
+equations, solved by Cramer's rule with the determinants written out. The second derivative gives
+the same matrix for the angular and sliding accelerations. For any other topology (a moving slot
+of a dyad, a prismatic block, a Newton group...) ``LoopUnavailable`` says why, and ``solve``
+falls back to the vector method.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from solver.steps import latex as tex
+from solver.steps.builder import StepBuilder, Unknown, present_solution
+from solver.steps.format import latex_unit
+from solver.steps.linkage import LinkageContext, SlotMotion
+from solver.steps.model import Step
+from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, TwoPointStep
+
+VELOCITY, ACCELERATION = 1, 2
+
+
+def join_sum(parts: list[str]) -> str:
+    """Terms joined with + and -, a negative term written as a subtraction ('0' if none)."""
+    if not parts:
+        return "0"
+    out = parts[0]
+    for p in parts[1:]:
+        out += f" - {p[1:]}" if p.startswith("-") else f" + {p}"
+    return out
+
+
+class LoopUnavailable(Exception):
+    """The loop-closure method does not cover this linkage (the message says why)."""
+
+
+@dataclass
+class Member:
+    """One vector of a loop: a link vector a e^(i theta) turning with ``link`` (``rotating``), the
+    fixed ground vector, or a slider's (s + i c) e^(i phi) along a fixed guide (``slider``)."""
+
+    kind: str  # "rotating" | "ground" | "slider" | "slot"
+    first: str
+    second: str
+    number: str  # the link's number in the loop notation (2, 3, ...)
+    link: str | None = None
+    slot: SlotMotion | None = None
+
+
+@dataclass
+class Loop:
+    kind: str  # "four-bar" | "slider-crank" | "slotted lever"
+    left: list[Member]
+    right: list[Member]
+    unknown_links: list[str]
+    slot: SlotMotion | None = None
+    slot_number: str = ""
+    joint: str = ""  # the point that closes the loop
+
+
+@dataclass
+class _Term:
+    """A term of a differentiated loop: factor * prod(values) * (i) e^(i angle) [* unknown]."""
+
+    latex: str
+    text: str
+    kind: str  # "phasor" or "iphasor"
+    factors: list[tuple[str, float, str]]  # (key, value, unit)
+    angle: tuple[str, float]
+    factor: float = 1.0
+    unknown: Unknown | None = None
+
+    def value(self) -> np.ndarray:
+        magnitude = self.factor * math.prod(v for _, v, _ in self.factors)
+        theta = self.angle[1]
+        unit = np.array([math.cos(theta), math.sin(theta)])
+        if self.kind == "iphasor":
+            unit = np.array([-unit[1], unit[0]])
+        return magnitude * unit
+
+
+@dataclass
+class LoopMethod:
+    ctx: LinkageContext
+    numbers: dict[str, str] = field(default_factory=dict)
+    rotating: dict[str, str] = field(default_factory=dict)  # link -> fixed pivot
+    solved: set[str] = field(default_factory=set)
+    loops: list[Loop] = field(default_factory=list)
+
+    # --- topology -------------------------------------------------------------------------------
+
+    def number(self, link: str) -> str:
+        if link not in self.numbers:
+            self.numbers[link] = str(len(self.numbers) + 1)
+        return self.numbers[link]
+
+    def crank_of(self, point: str) -> str:
+        """The known link turning about a fixed pivot that carries ``point`` (not as its pivot)."""
+        for link, pivot in self.rotating.items():
+            if point in self.ctx.scene.links[link].points and point != pivot:
+                return link
+        raise LoopUnavailable(f"point {point} is not carried by a link turning about a fixed "
+                              "pivot, so no single loop through the ground closes there")
+
+    def analyse(self) -> None:
+        scene = self.ctx.scene
+        ground = scene.ground
+        self.number(ground)
+        for step in self.ctx.analysis.plan.steps:
+            if isinstance(step, DriverStep):
+                self.rotating[step.link] = step.pivot
+                self.number(step.link)
+            elif isinstance(step, DyadStep):
+                self.loops.append(self.dyad_loop(step))
+            elif isinstance(step, LeverStep):
+                self.loops.append(self.lever_loop(step))
+            elif isinstance(step, TwoPointStep):
+                if step.link not in self.solved:
+                    raise LoopUnavailable(f"link {step.link} is not closed by a loop")
+            else:
+                raise LoopUnavailable(
+                    f"the solving order contains a {type(step).__name__.replace('Step', '')} "
+                    "group, which is not a four-bar, slider-crank or slotted-lever loop")
+        if not self.loops:
+            raise LoopUnavailable("the linkage has no closed loop (only driven links)")
+
+    def dyad_loop(self, step: DyadStep) -> Loop:
+        ctx, ground = self.ctx, self.ctx.scene.ground
+        x = step.point
+        circles = [s for s in step.loci if isinstance(s, CircleSpec)]
+        lines = [s for s in step.loci if isinstance(s, LineSpec)]
+        if len(circles) == 2:
+            fixed = [c for c in circles if ctx.is_fixed(c.center)]
+            moving = [c for c in circles if not ctx.is_fixed(c.center)]
+            if len(fixed) != 1 or len(moving) != 1:
+                raise LoopUnavailable(f"the dyad at {x} is not a four-bar loop (one centre on a "
+                                      "crank, the other fixed)")
+            coupler, rocker = moving[0], fixed[0]
+            crank = self.crank_of(coupler.center)
+            pivot = self.rotating[crank]
+            for link in (coupler.link, rocker.link):
+                self.number(link)
+            self.solved.update((coupler.link, rocker.link))
+            self.rotating[rocker.link] = rocker.center
+            return Loop("four-bar",
+                        [Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                         Member("rotating", coupler.center, x, self.numbers[coupler.link],
+                                coupler.link)],
+                        [Member("ground", pivot, rocker.center, self.numbers[ground]),
+                         Member("rotating", rocker.center, x, self.numbers[rocker.link],
+                                rocker.link)],
+                        [coupler.link, rocker.link], joint=x)
+        if len(circles) == 1 and len(lines) == 1:
+            coupler, line = circles[0], lines[0]
+            if line.guide != ground:
+                raise LoopUnavailable(f"{x} slides in a moving slot of {line.guide}: not a "
+                                      "slider-crank loop")
+            if ctx.is_fixed(coupler.center):
+                raise LoopUnavailable(f"the dyad at {x} turns about a fixed point: no loop")
+            crank = self.crank_of(coupler.center)
+            pivot = self.rotating[crank]
+            self.number(coupler.link)
+            slider_number = str(len(self.numbers) + 1)
+            self.numbers[f"slider at {x}"] = slider_number
+            self.solved.add(coupler.link)
+            slot = ctx.slot(line.guide, x)
+            return Loop("slider-crank",
+                        [Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                         Member("rotating", coupler.center, x, self.numbers[coupler.link],
+                                coupler.link)],
+                        [Member("slider", pivot, x, slider_number, slot=slot)],
+                        [coupler.link], slot, slider_number, joint=x)
+        raise LoopUnavailable(f"{x} is carried by two slots: not a four-bar, slider-crank or "
+                              "slotted-lever loop")
+
+    def lever_loop(self, step: LeverStep) -> Loop:
+        ctx = self.ctx
+        if not ctx.is_fixed(step.pivot):
+            raise LoopUnavailable(f"the lever {step.link} turns about the moving point "
+                                  f"{step.pivot}: not a single loop through the ground")
+        crank = self.crank_of(step.pin)
+        pivot = self.rotating[crank]
+        self.number(step.link)
+        self.solved.add(step.link)
+        self.rotating[step.link] = step.pivot
+        slot = ctx.slot(step.link, step.pin)
+        return Loop("slotted lever",
+                    [Member("rotating", pivot, step.pin, self.numbers[crank], crank)],
+                    [Member("ground", pivot, step.pivot, self.numbers[ctx.scene.ground]),
+                     Member("slot", step.pivot, step.pin, self.numbers[step.link], step.link,
+                            slot)],
+                    [step.link], slot, self.numbers[step.link], joint=step.pin)
+
+    # --- symbols and values ---------------------------------------------------------------------
+
+    def sym(self, member: Member) -> tuple[str, str, str]:
+        """(length symbol, angle symbol, rate subscript) of a member in the loop notation."""
+        n = member.number
+        return f"a_{{{n}}}", rf"\theta_{{1{n}}}", f"1{n}"
+
+    def register_member(self, b: StepBuilder, member: Member) -> tuple[str, str]:
+        """Put the member's vector, length and angle with their checks; return (a key, th key)."""
+        ctx = self.ctx
+        r_np = ctx.pos(member.second) - ctx.pos(member.first)
+        n = member.number
+        p1 = b.put(f"pos({member.first})", ctx.pos(member.first), "m",
+                   ("points", member.first, "position"))
+        p2 = b.put(f"pos({member.second})", ctx.pos(member.second), "m",
+                   ("points", member.second, "position"))
+        r = b.put(f"r({member.first},{member.second})", r_np, "m")
+        b.check("sum", r, p2, f"-{p1}")
+        if member.kind in ("slider", "slot"):
+            assert member.slot is not None
+            u = member.slot.direction
+            phi = b.put(f"phi{n}", math.atan2(u[1], u[0]), "rad")
+            s = b.put(f"s1{n}", float(np.dot(r_np, u)), "m")
+            c = b.put(f"c{n}", float(u[0] * r_np[1] - u[1] * r_np[0]), "m")
+            uk = b.put(f"u{n}", u, "")
+            b.check("angle", phi, uk)
+            b.check("dot", s, r, uk)
+            b.check("cross", c, uk, r)
+            if member.kind == "slot":
+                a = b.put(f"a{n}", float(np.hypot(*r_np)), "m")
+                th = b.put(f"theta1{n}", math.atan2(r_np[1], r_np[0]), "rad")
+                b.check("norm", a, r)
+                b.check("angle", th, r)
+                return a, th
+            return s, phi
+        a = b.put(f"a{n}", float(np.hypot(*r_np)), "m")
+        th = b.put(f"theta1{n}", math.atan2(r_np[1], r_np[0]), "rad")
+        b.check("norm", a, r)
+        b.check("angle", th, r)
+        return a, th
+
+    def deg(self, b: StepBuilder, key: str) -> str:
+        """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
+        return tex.paren(self.ctx.fmt.latex(math.degrees(b.scalar(key)), "deg") + r"^{\circ}")
+
+    # --- the steps ------------------------------------------------------------------------------
+
+    def loop_step(self, loop: Loop, index: int) -> Step:
+        ctx = self.ctx
+        title = f"Loop {index}: the {loop.kind} closing at {loop.joint}"
+        b = ctx.builder("loop.position", title)
+        legend = ", ".join(f"{n} = {name}" for name, n in self.numbers.items())
+        b.say(f"Links are numbered {legend}. Every vector of the loop is written as a complex "
+              "number: length times e to the i times its angle from the x axis.")
+        lhs, rhs = [], []
+        lhs_num, rhs_num = [], []
+        z_left, z_right = [], []
+        for side, out, num, zs in ((loop.left, lhs, lhs_num, z_left),
+                                   (loop.right, rhs, rhs_num, z_right)):
+            for m in side:
+                a, th = self.register_member(b, m)
+                n = m.number
+                if m.kind == "slider":
+                    out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\varphi_{{{n}}}}}")
+                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
+                    z = b.put(f"z({m.first},{m.second})",
+                              ctx.pos(m.second) - ctx.pos(m.first), "m")
+                    b.check("sum", z, f"r({m.first},{m.second})")
+                elif m.kind == "slot":
+                    out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\beta_{{{n}}}}}")
+                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
+                    z = b.put(f"z({m.first},{m.second})",
+                              ctx.pos(m.second) - ctx.pos(m.first), "m")
+                    b.check("phasor", z, a, th)
+                else:
+                    out.append(rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}")
+                    num.append(rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}")
+                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first),
+                              "m")
+                    b.check("phasor", z, a, th)
+                zs.append(z)
+        total = b.put(f"z({loop.joint})", ctx.pos(loop.joint)
+                      - ctx.pos(loop.left[0].first), "m")
+        b.check("sum", total, *z_left)
+        b.check("sum", total, *z_right)
+        b.line("&" + " + ".join(lhs) + " = " + " + ".join(rhs))
+        b.line("&" + " + ".join(lhs_num) + " = " + " + ".join(rhs_num))
+        b.line(rf"&\text{{both sides}} = {self.cx(b, total)}{latex_unit('m')}")
+        data = []
+        for key in b.values:
+            if key[0] in "asc" and "(" not in key and key not in ("a", "s", "c"):
+                data.append(f"{key} = {b.txt(key)}")
+            elif key.startswith(("theta1", "phi")):
+                data.append(f"{key} = {b.txt(key)} "
+                            f"({ctx.fmt.text(math.degrees(b.scalar(key)), 'deg')} deg)")
+        b.say(f"Loop closure: {' + '.join(self.member_text(m) for m in loop.left)} = "
+              f"{' + '.join(self.member_text(m) for m in loop.right)}. With " + "; ".join(data)
+              + f", both sides give the position of {loop.joint} relative to "
+              f"{loop.left[0].first}: {b.txt(total)}.")
+        return b.build()
+
+    def offset(self, b: StepBuilder, n: str) -> str:
+        """(s + c i) with the numbers; just s when the offset c is zero."""
+        s, c = b.num(f"s1{n}"), b.num(f"c{n}")
+        if c == "0":
+            return tex.paren(s)
+        return f"({s} {tex.signed(c)}\\,i)"
+
+    def member_text(self, m: Member) -> str:
+        n = m.number
+        if m.kind in ("slider", "slot"):
+            return f"(s1{n} + i c{n}) e^(i phi{n})"
+        return f"a{n} e^(i theta1{n})"
+
+    def cx(self, b: StepBuilder, key: str) -> str:
+        """A 2-vector value as a complex number: 'a', 'b i', '(a + b i)'."""
+        re, im = b.entries(key, 2)
+        imaginary = {"1": "i", "-1": "-i"}.get(im, im + r"\,i")
+        if im == "0":
+            return re
+        if re == "0":
+            return imaginary
+        return f"({re} {tex.signed(imaginary)})"
+
+    def derivative_terms(self, loop: Loop, order: int, b: StepBuilder
+                         ) -> tuple[list[_Term], list[_Term]]:
+        """The terms of the first (order 1) or second (order 2) time derivative of each side."""
+        ctx = self.ctx
+        sides: tuple[list[_Term], list[_Term]] = ([], [])
+        for side, terms in ((loop.left, sides[0]), (loop.right, sides[1])):
+            for m in side:
+                a, th = self.register_member(b, m)
+                n = m.number
+                if m.kind == "ground":
+                    continue
+                if m.kind == "slider":
+                    assert m.slot is not None
+                    u = self.slide_unknown(m, order)
+                    terms.append(_Term(rf"{u.latex}\,e^{{i\varphi_{{{n}}}}}",
+                                       f"{u.text} e^(i phi{n})", "phasor", [],
+                                       (th, b.scalar(th)), 1.0, u))
+                    continue
+                link = m.link
+                assert link is not None
+                omega, alpha = ctx.omega(link), ctx.alpha(link)
+                w_key = b.put(f"omega1{n}", omega, "rad/s", ("links", link, "omega"))
+                unknown = link in loop.unknown_links
+                rate = self.rate_unknown(link, n, order)
+                av, thv = b.scalar(a), b.scalar(th)
+                a_f = (a, av, "m")
+                if m.kind == "slot":
+                    su = self.slide_unknown(m, order)
+                    beta = (f"phi{n}", b.scalar(f"phi{n}"))
+                    if order == VELOCITY:
+                        terms.append(_Term(rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
+                                           f"{su.text} e^(i beta{n})", "phasor", [], beta, 1.0,
+                                           su))
+                    else:
+                        sdot = self.slide_value(m, VELOCITY)
+                        sd_key = b.put(f"s_dot1{n}", sdot, "m/s")
+                        terms.append(_Term(rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
+                                           f"{su.text} e^(i beta{n})", "phasor", [], beta, 1.0,
+                                           su))
+                        terms.append(_Term(
+                            rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}",
+                            f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)", "iphasor",
+                            [(w_key, omega, "rad/s"), (sd_key, sdot, "m/s")], beta, 2.0))
+                if order == VELOCITY:
+                    if unknown:
+                        terms.append(_Term(rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                           f"i a{n} omega1{n} e^(i theta1{n})", "iphasor",
+                                           [a_f], (th, thv), 1.0, rate))
+                    else:
+                        terms.append(_Term(rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                           f"i a{n} omega1{n} e^(i theta1{n})", "iphasor",
+                                           [a_f, (w_key, omega, "rad/s")], (th, thv)))
+                    continue
+                al_key = b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha"))
+                if unknown:
+                    terms.append(_Term(rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                       f"i a{n} alpha1{n} e^(i theta1{n})", "iphasor", [a_f],
+                                       (th, thv), 1.0, rate))
+                else:
+                    terms.append(_Term(rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                       f"i a{n} alpha1{n} e^(i theta1{n})", "iphasor",
+                                       [a_f, (al_key, alpha, "rad/s^2")], (th, thv)))
+                terms.append(_Term(rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}",
+                                   f"- a{n} omega1{n} squared e^(i theta1{n})", "phasor",
+                                   [a_f, (w_key, omega, "rad/s"), (w_key, omega, "rad/s")],
+                                   (th, thv), -1.0))
+        return sides
+
+    def rate_unknown(self, link: str, n: str, order: int) -> Unknown:
+        ctx = self.ctx
+        if order == VELOCITY:
+            return Unknown(f"omega1{n}", rf"\omega_{{1{n}}}", f"omega1{n}", "rad/s",
+                           ctx.omega(link), ("links", link, "omega"),
+                           f"the angular velocity of link {n} ({link})")
+        return Unknown(f"alpha1{n}", rf"\alpha_{{1{n}}}", f"alpha1{n}", "rad/s^2",
+                       ctx.alpha(link), ("links", link, "alpha"),
+                       f"the angular acceleration of link {n} ({link})")
+
+    def slide_value(self, m: Member, order: int) -> float:
+        assert m.slot is not None
+        u = m.slot.direction
+        if order == VELOCITY:
+            return float(np.dot(m.slot.relative_velocity, u))
+        assert m.slot.relative_acceleration is not None
+        return float(np.dot(m.slot.relative_acceleration, u))
+
+    def slide_unknown(self, m: Member, order: int) -> Unknown:
+        n = m.number
+        where = f"along the {'guide' if m.kind == 'slider' else 'slot'} at {m.second}"
+        if order == VELOCITY:
+            return Unknown(f"s_dot1{n}", rf"\dot{{s}}_{{1{n}}}", f"s-dot1{n}", "m/s",
+                           self.slide_value(m, order), None, f"the sliding speed {where}")
+        return Unknown(f"s_ddot1{n}", rf"\ddot{{s}}_{{1{n}}}", f"s-double-dot1{n}", "m/s^2",
+                       self.slide_value(m, order), None, f"the sliding acceleration {where}")
+
+    def term_latex_number(self, b: StepBuilder, t: _Term, key: str) -> str:
+        number = self.cx(b, key)
+        if t.unknown is None:
+            return number
+        if number in ("1", "-1"):
+            return number[:-1] + t.unknown.latex
+        return number + r"\," + t.unknown.latex
+
+    def derivative_step(self, loop: Loop, index: int, order: int) -> Step:
+        ctx = self.ctx
+        what = "velocity" if order == VELOCITY else "acceleration"
+        b = ctx.builder(f"loop.{what}", f"Loop {index}: {what} equation "
+                        f"({'first' if order == VELOCITY else 'second'} time derivative)")
+        left, right = self.derivative_terms(loop, order, b)
+        unknown_keys: dict[str, str] = {}
+        known_keys: list[tuple[str, float]] = []
+        columns: list[tuple[Unknown, str, float]] = []
+        shown: dict[int, str] = {}
+        for side_sign, terms in ((1.0, left), (-1.0, right)):
+            for t in terms:
+                operands = [k for k, _, _ in t.factors] + [t.angle[0]]
+                if t.unknown is not None:
+                    key = b.put(f"col({t.unknown.key})", t.value(), "")
+                    b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
+                    unknown_keys[t.unknown.key] = key
+                    columns.append((t.unknown, key, side_sign))
+                else:
+                    key = b.put(f"term{len(known_keys) + 1}", t.value(),
+                                "m/s" if order == VELOCITY else "m/s^2")
+                    b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
+                    known_keys.append((key, side_sign))
+                shown[id(t)] = key
+        sym_left = " + ".join(t.latex for t in left).replace("+ -", "- ")
+        sym_right = " + ".join(t.latex for t in right).replace("+ -", "- ") or "0"
+        b.line(rf"&{sym_left} = {sym_right}")
+        num_left = join_sum([self.term_latex_number(b, t, shown[id(t)]) for t in left])
+        num_right = join_sum([self.term_latex_number(b, t, shown[id(t)]) for t in right])
+        b.line(rf"&{num_left} = {num_right}")
+        text_left = " + ".join(t.text for t in left).replace("+ -", "-")
+        text_right = (" + ".join(t.text for t in right) or "0").replace("+ -", "-")
+        b.say(f"Differentiating the loop {'once' if order == VELOCITY else 'twice'} with respect "
+              "to time (lengths of links are constant, d/dt e^(i theta) = i omega e^(i theta)): "
+              f"{text_left} = {text_right}.")
+        if order == ACCELERATION and loop.kind == "slotted lever":
+            b.say("The term 2 i omega s-dot e^(i beta) is the Coriolis acceleration of the pin in "
+                  "the turning slot (with the factor 2).")
+        # unknowns to the left, knowns to the right: sum(side * col * u) = -sum(side * known)
+        rhs_vec = b.put("rhs", -sum((s * np.asarray(b.vector(k)) for k, s in known_keys),
+                                    np.zeros(2)), "m/s" if order == VELOCITY else "m/s^2")
+        b.check("sum", rhs_vec, *[("-" if s > 0 else "") + k for k, s in known_keys])
+        coefficients: list[list[str]] = [[], []]
+        rhs = []
+        known_size = sum(float(np.hypot(*b.vector(k))) for k, _ in known_keys)
+        for i in range(2):
+            for j, (u, key, sign) in enumerate(columns):
+                c = b.put(f"c{i + 1}{j + 1}", sign * b.vector(key)[i], "",
+                          reference=float(np.hypot(*b.vector(key))))
+                b.check("sum", c, f"{'-' if sign < 0 else ''}{key}[{i}]")
+                coefficients[i].append(c)
+            bi = b.put(f"b{i + 1}", b.vector(rhs_vec)[i], "", reference=known_size)
+            b.check("sum", bi, f"{rhs_vec}[{i}]")
+            rhs.append(bi)
+        b.say("Unknowns to the left, known terms to the right; the real and imaginary parts are "
+              "two linear equations:")
+        present_solution(b, [u for u, _, _ in columns], coefficients, rhs, "", cramer=True)
+        if loop.slot is not None and loop.kind != "four-bar":
+            field_name = "relative_velocity" if order == VELOCITY else "relative_acceleration"
+            rel = getattr(loop.slot, field_name)
+            r = b.put(f"v_rel({loop.joint})" if order == VELOCITY else f"a_rel({loop.joint})",
+                      rel, "m/s" if order == VELOCITY else "m/s^2", loop.slot.source(field_name))
+            u = b.put("u", loop.slot.direction, "")
+            slide = next(u_ for u_, _, _ in columns if u_.key.startswith("s_"))
+            b.check("dot", slide.key, r, u)
+            b.say(f"{slide.text} is the component along the slot of the relative "
+                  f"{what} of {loop.joint}: {b.txt(r)}.")
+        return b.build()
+
+    def joint_motion_step(self, loop: Loop, index: int, order: int) -> Step | None:
+        """v (a) of the loop's joint as the sum of the left side's derivative terms."""
+        if loop.kind == "slotted lever":
+            return None
+        ctx = self.ctx
+        what = "velocity" if order == VELOCITY else "acceleration"
+        x = loop.joint
+        b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {x} from loop {index}")
+        left, _ = self.derivative_terms(Loop(loop.kind, loop.left, [], []), order, b)
+        keys = []
+        for k, t in enumerate(left):
+            operands = [key for key, _, _ in t.factors] + [t.angle[0]]
+            key = b.put(f"t{k + 1}", t.value(), "m/s" if order == VELOCITY else "m/s^2")
+            b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
+            keys.append(key)
+        unit = "m/s" if order == VELOCITY else "m/s^2"
+        field_name = "velocity" if order == VELOCITY else "acceleration"
+        total = b.put(f"{field_name[0]}({x})", getattr(ctx.analysis.points[x], field_name), unit,
+                      ("points", x, field_name))
+        b.check("sum", total, *keys)
+        letter = "v" if order == VELOCITY else "a"
+        b.line(rf"&\vec{{{letter}}}_{{{tex.name(x)}}} = " + " + ".join(t.latex for t in left)
+               .replace("+ -", "- "))
+        b.line(r"&\phantom{\vec{v}} = " + join_sum([self.cx(b, k) for k in keys]) + " = "
+               + tex.boxed_result(self.cx(b, total) + latex_unit(unit)))
+        b.say(f"The {what} of {x} is the derivative of the left side of the loop (the position "
+              f"of {x}): " + " + ".join(b.txt(k) for k in keys) + f" = {b.txt(total)} (x + i y).")
+        return b.build()
+
+    def other_points(self) -> list[Step]:
+        """Points of solved links not on a loop: X = B + b e^(i theta_BX) on a known link."""
+        ctx = self.ctx
+        on_loops = {p for loop in self.loops for m in loop.left + loop.right
+                    for p in (m.first, m.second)}
+        out = []
+        for order in (VELOCITY, ACCELERATION):
+            for link in list(self.rotating) + [s for s in self.solved if s not in self.rotating]:
+                points = ctx.scene.links[link].points
+                base = next((p for p in points if p in on_loops), points[0])
+                for p in points:
+                    if p in on_loops or ctx.is_fixed(p):
+                        continue
+                    out.append(self.point_step(link, base, p, order))
+        return out
+
+    def point_step(self, link: str, base: str, point: str, order: int) -> Step:
+        """X = B + b e^(i theta) on a known link: v_X = v_B + i b omega e^(i theta), a_X likewise."""
+        ctx = self.ctx
+        what = "velocity" if order == VELOCITY else "acceleration"
+        b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {point} (link {link})")
+        r_np = ctx.pos(point) - ctx.pos(base)
+        r = b.put(f"r({base},{point})", r_np, "m")
+        bl = b.put("b", float(np.hypot(*r_np)), "m")
+        th = b.put("theta", math.atan2(r_np[1], r_np[0]), "rad")
+        b.check("norm", bl, r)
+        b.check("angle", th, r)
+        w = b.put("omega", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        unit = "m/s" if order == VELOCITY else "m/s^2"
+        field_name = "velocity" if order == VELOCITY else "acceleration"
+        x0 = b.put(f"{field_name[0]}({base})", getattr(ctx.analysis.points[base], field_name),
+                   unit, ("points", base, field_name))
+        x1 = b.put(f"{field_name[0]}({point})", getattr(ctx.analysis.points[point], field_name),
+                   unit, ("points", point, field_name))
+        sub = f"1{self.numbers[link]}"
+        if order == VELOCITY:
+            t = b.put("i b omega e^(i theta)", ctx.omega(link) * np.array([-r_np[1], r_np[0]]),
+                      unit)
+            b.check("iphasor", t, bl, w, th)
+            b.check("sum", x1, x0, t)
+            b.line(rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
+                   rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu(bl)}, \quad "
+                   rf"\theta = {self.deg(b, th)}")
+            b.line(rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
+                   rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}")
+            b.say(f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
+                  f"{b.txt(bl)}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
+                  f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}.")
+            return b.build()
+        al = b.put("alpha", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+        tt = (ctx.alpha(link) * np.array([-r_np[1], r_np[0]]))
+        nn = -(ctx.omega(link) ** 2) * r_np
+        t = b.put("i b alpha e^(i theta)", tt, unit)
+        n = b.put("normal term", nn, unit)
+        b.check("iphasor", t, bl, al, th)
+        b.check("phasor", n, bl, w, w, th, factor=-1.0)
+        b.check("sum", x1, x0, t, n)
+        b.line(rf"&\vec{{a}}_{{{tex.name(point)}}} = \vec{{a}}_{{{tex.name(base)}}} + "
+               rf"i\,b\,\alpha_{{{sub}}}\,e^{{i\theta}} - b\,\omega_{{{sub}}}^2\,e^{{i\theta}}")
+        b.line(rf"&\phantom{{\vec{{a}}}} = {self.cx(b, x0)} + {self.cx(b, t)} + {self.cx(b, n)} = "
+               rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}")
+        b.say(f"Differentiating again: a({point}) = a({base}) + i b alpha e^(i theta) - b omega "
+              f"squared e^(i theta) = {b.txt(x0)} + {b.txt(t)} + {b.txt(n)} = {b.txt(x1)}.")
+        return b.build()
+
+    def steps(self) -> list[Step]:
+        self.analyse()
+        out: list[Step] = []
+        for i, loop in enumerate(self.loops, start=1):
+            out.append(self.loop_step(loop, i))
+        for order in (VELOCITY, ACCELERATION):
+            for i, loop in enumerate(self.loops, start=1):
+                out.append(self.derivative_step(loop, i, order))
+                point = self.joint_motion_step(loop, i, order)
+                if point is not None:
+                    out.append(point)
+        out += self.other_points()
+        return out
+
+
+def loop_steps(ctx: LinkageContext) -> list[Step]:
+    """The loop-closure steps, or ``LoopUnavailable`` (why) for another topology."""
+    return LoopMethod(ctx).steps()

@@ -1,0 +1,97 @@
+"""The entry point: ``solve(scene, method, digits) -> Solution``.
+
+One analysis of the scene (the same call /analyze makes, all quantities), then the steps of the
+requested method built from its numbers, then the typical mistakes for the scene. A method that
+does not apply to the scene (the loop-closure method for a linkage that is not a chain of
+four-bar / slider-crank / slotted-lever loops, or for a spatial chain) falls back to the vector
+method; the solution then says so in its first step and in ``method``/``requested_method``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from solver.analysis import analyze
+from solver.errors import InvalidScene
+from solver.scene import LinkageScene
+from solver.spatial import SpatialChain, analyze_spatial_chain
+from solver.steps import latex as tex
+from solver.steps.format import Formatter
+from solver.steps.linkage import LinkageContext, data_step, positions_step, summary_step, unit_scales
+from solver.steps.loop import LoopUnavailable, loop_steps
+from solver.steps.mistakes import linkage_mistakes, spatial_mistakes
+from solver.steps.model import Solution, Step
+from solver.steps.relative import moving_point_steps
+from solver.steps.spatial import spatial_steps
+from solver.steps.vector import vector_steps
+
+METHODS = ("vector", "loop")
+MIN_DIGITS, MAX_DIGITS = 1, 15
+
+_SENTENCES = {
+    "vector": "Method: relative velocities (vector method). Point by point in the solver's order, "
+              "v_B = v_A + omega x r_AB and a_B = a_A + alpha x r_AB - omega^2 r_AB, with the "
+              "transport, relative and Coriolis terms at every slot.",
+    "loop": "Method: loop closure in complex form. Each loop of link vectors closes; its time "
+            "derivatives are linear in the unknown rates, solved by Cramer's rule.",
+}
+
+
+def _fallback_step(requested: str, reason: str) -> Step:
+    title = f"The {requested} method is not available for this scene"
+    text = f"{reason} The solution below uses the relative-velocity (vector) method instead."
+    return Step("fallback", title, r"\text{" + tex.escape_text(title) + "}", text)
+
+
+def _linkage(scene: LinkageScene, method: str, fmt: Formatter) -> tuple[list[Step], str, object,
+                                                                         list[object]]:
+    analysis = analyze(scene)
+    ctx = LinkageContext(scene, analysis, fmt.__class__(fmt.digits, unit_scales(analysis,
+                                                                                scene.size)))
+    used = method
+    lead: list[Step] = []
+    body: list[Step]
+    if method == "loop":
+        try:
+            body = loop_steps(ctx)
+        except LoopUnavailable as why:
+            lead.append(_fallback_step("loop-closure", str(why)))
+            ctx = LinkageContext(scene, analysis, ctx.fmt)
+            used = "vector"
+            body = vector_steps(ctx)
+    else:
+        body = vector_steps(ctx)
+    body += moving_point_steps(ctx)
+    steps = [*lead, data_step(ctx, _SENTENCES[used])]
+    steps.append(positions_step(ctx))
+    steps += body
+    steps.append(summary_step(ctx))
+    return steps, used, analysis, list(linkage_mistakes(ctx))
+
+
+def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4
+          ) -> Solution:
+    """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
+    ``digits`` significant digits (1..15)."""
+    if method not in METHODS:
+        raise InvalidScene(f"method: unknown method {method!r}; available: {', '.join(METHODS)}")
+    if isinstance(digits, bool) or not isinstance(digits, int) or not (
+            MIN_DIGITS <= digits <= MAX_DIGITS):
+        raise InvalidScene(f"digits: expected an integer from {MIN_DIGITS} to {MAX_DIGITS}, got "
+                           f"{digits!r}")
+    fmt = Formatter(digits)
+    if isinstance(scene, SpatialChain):
+        analysis = analyze_spatial_chain(scene)
+        lead = []
+        if method != "vector":
+            lead.append(_fallback_step(
+                "loop-closure", "A spatial chain is an open chain of rotating frames: it has no "
+                "loop to close; its velocities follow from the composition of angular velocities."))
+        steps = lead + spatial_steps(scene, analysis, fmt)
+        mistakes = spatial_mistakes(scene, analysis, fmt)
+        return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)
+    builders: dict[str, Callable[..., object]] = {}
+    del builders
+    steps, used, analysis, mistakes = _linkage(scene, method, fmt)
+    return Solution(tuple(steps), tuple(mistakes), analysis, used, method,  # type: ignore[arg-type]
+                    digits)
