@@ -9,16 +9,20 @@ and for each case measures:
 - fps: requestAnimationFrame callbacks counted over ~3 s while the mechanism plays, with the
   longest frame and the number of frames over 20 ms.
 
-Usage: ``.venv/bin/python benchmarks/frontend_fps.py [--seconds 3]``. Prints a table. Headless
-Chromium has no display to sync to, so fps here is the page's own ceiling under the headless
-compositor (usually ~60), not a monitor's refresh rate.
+Usage: ``.venv/bin/python benchmarks/frontend_fps.py [--seconds 3] [--repeat 3]``. Each case is
+run ``repeat`` times in a fresh page; the table gives the median (and the worst) so that another
+process stealing the CPU for a moment does not decide the result. Headless Chromium has no display
+to sync to: fps here is the page's own rate under the headless compositor (at most ~60), not a
+monitor's refresh rate.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import socket
+import statistics
 import subprocess
 import sys
 import time
@@ -121,9 +125,24 @@ def measure(
     }
 
 
+def summarise(runs: list[dict[str, Any]]) -> dict[str, Any]:
+    med = statistics.median
+    return {
+        "case": runs[0]["case"],
+        "first_frame_ms": med(r["first_frame_ms"] for r in runs),
+        "first_frame_worst": max(r["first_frame_ms"] for r in runs),
+        "fps": med(r["fps"] for r in runs),
+        "fps_worst": min(r["fps"] for r in runs),
+        "longest_ms": med(r["longest_ms"] for r in runs),
+        "over20": med(r["over20"] for r in runs),
+        "playing": all(r["playing"] for r in runs),
+    }
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=3.0)
+    parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     from playwright.sync_api import sync_playwright
 
@@ -133,19 +152,29 @@ def main() -> None:
         with sync_playwright() as pw:
             browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
             for case in CASES:
-                rows.append(measure(browser, url, case, args.seconds))
+                runs = [measure(browser, url, case, args.seconds) for _ in range(args.repeat)]
+                rows.append(summarise(runs))
             browser.close()
     finally:
         proc.terminate()
         proc.wait(timeout=10)
-    print(f"frontend frame rate, headless Chromium, {args.seconds:g} s per case")
+    load = os.getloadavg()[0]
+    print(
+        f"frontend frame rate, headless Chromium, {args.seconds:g} s per run, "
+        f"{args.repeat} runs per case (median, worst); load average {load:.2f} "
+        f"on {os.cpu_count()} cores"
+    )
     print()
-    print("| case | first frame (ms) | fps | longest frame (ms) | frames > 20 ms | playing |")
+    print(
+        "| case | first frame ms (median / worst) | fps (median / worst) "
+        "| longest frame ms (median) | frames > 20 ms (median) | playing |"
+    )
     print("|---|---:|---:|---:|---:|---|")
     for r in rows:
         print(
-            f"| {r['case']} | {r['first_frame_ms']:.0f} | {r['fps']:.1f} | "
-            f"{r['longest_ms']:.1f} | {r['over20']} | {'yes' if r['playing'] else 'no'} |"
+            f"| {r['case']} | {r['first_frame_ms']:.0f} / {r['first_frame_worst']:.0f} "
+            f"| {r['fps']:.1f} / {r['fps_worst']:.1f} | {r['longest_ms']:.1f} "
+            f"| {r['over20']:.0f} | {'yes' if r['playing'] else 'no'} |"
         )
 
 

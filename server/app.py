@@ -10,7 +10,7 @@ from fastapi.responses import HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from server import problems
-from server.routes import kinematics, presets
+from server.routes import kinematics, presets, solution
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
@@ -30,6 +30,7 @@ def create_app() -> FastAPI:
     problems.install(app)
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
+    app.include_router(solution.router, prefix=API_PREFIX)
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:

@@ -292,8 +292,18 @@ def _link_results(
     return results
 
 
-def _instant_centres(scene: LinkageScene, motion: Motion) -> list[InstantCentre]:
-    """Instant centres of every pair of links (ground included), from the velocity fields."""
+def _instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[InstantCentre]:
+    """Instant centres of every pair of links (ground included), from the velocity fields.
+
+    They depend on the geometry alone (for one degree of freedom): with every driver at rest the
+    same pose is differentiated at unit driver rates instead.
+    """
+    if all(float(motion.links[d.link].omega[0]) == 0.0 for d in scene.drivers):  # type: ignore[index]
+        unit = [
+            DriverInput(motion.links[d.link].theta[:1], np.ones(1), np.zeros(1))
+            for d in scene.drivers
+        ]
+        motion = assemble(scene, plan, unit, 1)
     fields = {}
     for name in scene.links:
         link = motion.links[name]
@@ -373,7 +383,7 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
         if name in scene.points
     }
     joints = _sliding_joints(scene, motion, order) if "components" in wanted else []
-    centres = _instant_centres(scene, motion) if "poles" in wanted else []
+    centres = _instant_centres(scene, plan, motion) if "poles" in wanted else []
     diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
     moving = {}
     if scene.moving_points:

@@ -178,7 +178,11 @@ class _Assembler:
 
     def run(self, plan: Plan) -> Motion:
         ground = self.scene.links[self.scene.ground]
-        self.know(self.scene.ground, fixed_link(self.scene.drawn(ground.points[0]), self.samples))
+        self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
+        at_rest = np.zeros((self.samples, 2))
+        for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
+            drawn = np.broadcast_to(self.scene.drawn(p), (self.samples, 2))
+            self.points[p] = PointMotion(drawn, at_rest, at_rest)
         for step in plan.steps:
             if isinstance(step, DriverStep):
                 self.drive(step)

@@ -185,6 +185,26 @@ def _unknown_poses(system: ConstraintSystem, q: Array, qd: Array, qdd: Array) ->
     }
 
 
+def _continuation_order(
+    known: Mapping[str, LinkMotion], samples: int
+) -> list[tuple[int, tuple[int, ...]]]:
+    """Samples in solving order, each with the already solved neighbours to predict from.
+
+    Continuation starts at the sample where the known links are nearest their drawn pose (the
+    drawn branch) and runs outwards to both ends.
+    """
+    away = np.zeros(samples)
+    for motion in known.values():
+        away += np.abs(np.angle(np.exp(1j * motion.theta)))
+    start = int(np.argmin(away))
+    order: list[tuple[int, tuple[int, ...]]] = []
+    for leg in (list(range(start, samples)), list(range(start, -1, -1))):
+        for i, k in enumerate(leg):
+            if k != start or not order:
+                order.append((k, tuple(leg[max(i - 2, 0) : i][::-1])))
+    return order
+
+
 def solve_group(
     scene: LinkageScene,
     group: Sequence[str],
@@ -194,8 +214,8 @@ def solve_group(
 ) -> tuple[dict[str, LinkMotion], NewtonReport]:
     """Newton-Raphson for the links of ``group`` at every sample, then their rates.
 
-    Each sample starts from the previous sample's solution extrapolated linearly (the first from
-    the drawn pose), which keeps the assembly branch along a sweep.
+    Each sample starts from its neighbours' solutions extrapolated linearly (the first from the
+    drawn pose), which keeps the assembly branch along a sweep.
     """
     system = ConstraintSystem(scene, group)
     n = 3 * len(group)
@@ -205,10 +225,13 @@ def solve_group(
     qdd_all = np.zeros((samples, n))
     converged = np.zeros(samples, dtype=bool)
     worst_iterations, worst_residual = 0, 0.0
-    q = np.concatenate([np.append(system.anchor0[link], 0.0) for link in group])
-    for k in range(samples):
-        if k >= 2:
-            q = 2.0 * q_all[k - 1] - q_all[k - 2]
+    drawn = np.concatenate([np.append(system.anchor0[link], 0.0) for link in group])
+    for k, previous in _continuation_order(known, samples):
+        q = drawn
+        if len(previous) == 2:
+            q = 2.0 * q_all[previous[0]] - q_all[previous[1]]
+        elif previous:
+            q = q_all[previous[0]]
         fixed = poses_at(known, scene, k)
         zero = np.zeros(n)
         residual, iterations = np.inf, 0

@@ -132,20 +132,27 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     driven = _Driven(scene, plan)
     start, omega, _ = driven.given[0]
     direction = -1.0 if omega < 0 else 1.0
-    if not driven.closes(start):
+    # The drawn pose closes by construction; a start at angle_deg must be checked.
+    if start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
-    span = _feasible_range(driven, start, direction)
-    if span is None:
-        turns = start + direction * 2.0 * math.pi * np.arange(samples) / samples
-        limits: tuple[float, ...] = ()
+    order = required_order(wanted)
+    turns = start + direction * 2.0 * math.pi * np.arange(samples) / samples
+    limits: tuple[float, ...] = ()
+    motion = None
+    if samples >= PROBE_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+        motion = driven.run(turns, order)
+        span = None if np.all(motion.feasible) else _feasible_range(driven, start, direction)
     else:
+        span = _feasible_range(driven, start, direction)
+    if span is not None:
         low, high = span
         turns = low + (high - low) * (np.arange(samples) + 0.5) / samples
         if direction < 0:
             turns = turns[::-1]
         limits = span
-    order = required_order(wanted)
-    motion = driven.run(turns, order)
+        motion = None
+    if motion is None:
+        motion = driven.run(turns, order)
     require_feasible(motion, "during the sweep")
     singular = (
         np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING)

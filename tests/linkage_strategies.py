@@ -81,14 +81,19 @@ def _circle_circle(p: complex, r_p: float, q: complex, r_q: float, left: bool) -
 
 
 @st.composite
-def six_bars(draw: st.DrawFn, max_condition: float = MAX_CONDITION) -> SixBar:
+def six_bars(draw: st.DrawFn, max_condition: float = MAX_CONDITION,
+             newton: bool | None = None) -> SixBar:
     """A random Watt or Stephenson six-bar that assembles at its drawn pose (see module doc), with
-    the condition number of its velocity equations below ``max_condition``."""
+    the condition number of its velocity equations below ``max_condition``.
+
+    ``newton=True`` draws only the Stephenson chains the solver must close by Newton-Raphson
+    (ground-coupler, driven by ``dyad_in``), ``False`` only those closed by dyads, ``None`` both.
+    """
     _, values = draw(assemblable_presets(["four_bar"]))
     doc = build_preset("four_bar", values)
     pts = {name: complex(x, y) for name, (x, y) in doc["points"].items()}
     size = max(abs(z - w) for z in pts.values() for w in pts.values())
-    host, other = draw(st.sampled_from(ATTACHMENTS))
+    host, other = ("ground", "coupler") if newton else draw(st.sampled_from(ATTACHMENTS))
     links = doc["links"]
 
     def new_point(link: str) -> complex:
@@ -117,7 +122,7 @@ def six_bars(draw: st.DrawFn, max_condition: float = MAX_CONDITION) -> SixBar:
         {"type": "revolute", "point": "Y", "links": ["dyad_out", other]},
     ]
     driver = "crank"
-    if host == "ground" and draw(st.booleans()):
+    if newton or (newton is None and host == "ground" and draw(st.booleans())):
         driver = "dyad_in"
         doc["drivers"] = [{**doc["drivers"][0], "link": "dyad_in"}]
     chain = "Watt" if frozenset((host, other)) in ADJACENT else "Stephenson"

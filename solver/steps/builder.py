@@ -23,11 +23,11 @@ Source = tuple[str | int, ...]
 
 
 def _number(value: float | Sequence[float] | np.ndarray) -> Number:
-    if isinstance(value, np.ndarray) and value.ndim == 0:
+    if isinstance(value, np.ndarray):
+        return float(value) if value.ndim == 0 else tuple(float(x) for x in value)
+    if isinstance(value, int | float | np.floating):
         return float(value)
-    if isinstance(value, np.ndarray | list | tuple):
-        return tuple(float(x) for x in value)
-    return float(value)
+    return tuple(float(x) for x in value)
 
 
 class StepBuilder:
@@ -45,8 +45,14 @@ class StepBuilder:
 
     # --- values ---------------------------------------------------------------------------------
 
-    def put(self, key: str, value: float | Sequence[float] | np.ndarray, unit: str,
-            source: Source | None = None, reference: float = 0.0) -> str:
+    def put(
+        self,
+        key: str,
+        value: float | Sequence[float] | np.ndarray,
+        unit: str,
+        source: Source | None = None,
+        reference: float = 0.0,
+    ) -> str:
         """Register a value and return its key.
 
         ``reference`` is the size of the terms the value was computed from: a result smaller
@@ -87,6 +93,10 @@ class StepBuilder:
         out = [self.fmt.latex(x) for x in clean]
         return out + ["0"] * (dims - len(out))
 
+    def point(self, key: str) -> str:
+        """A planar vector as coordinates '(x, y)' in LaTeX."""
+        return "(" + ", ".join(self.entries(key, 2)) + ")"
+
     def col(self, key: str, dims: int = 3) -> str:
         return tex.column(self.entries(key, dims))
 
@@ -109,7 +119,8 @@ class StepBuilder:
         value = self.values[key]
         if isinstance(value.value, tuple):
             return all(x == 0.0 for x in self.fmt.clean_vector(value.value, value.unit)) or all(
-                self.fmt.is_zero(x, value.unit) for x in value.value)
+                self.fmt.is_zero(x, value.unit) for x in value.value
+            )
         return self.fmt.is_zero(value.value, value.unit, self.references[key])
 
     # --- checks, lines, text --------------------------------------------------------------------
@@ -127,8 +138,14 @@ class StepBuilder:
         self.sentences.append(text)
 
     def build(self) -> Step:
-        return Step(self.kind, self.title, tex.aligned(self.lines) if self.lines else "",
-                    " ".join(self.sentences), dict(self.values), tuple(self.checks))
+        return Step(
+            self.kind,
+            self.title,
+            tex.aligned(self.lines) if self.lines else "",
+            " ".join(self.sentences),
+            dict(self.values),
+            tuple(self.checks),
+        )
 
 
 # --- linear expressions and 2x2 systems ------------------------------------------------------
@@ -148,8 +165,9 @@ def term(fmt: Formatter, coefficient: float, symbol: str, first: bool, reference
     return tex.signed(body, first)
 
 
-def term_text(fmt: Formatter, coefficient: float, symbol: str, first: bool,
-              reference: float) -> str:
+def term_text(
+    fmt: Formatter, coefficient: float, symbol: str, first: bool, reference: float
+) -> str:
     if fmt.is_zero(coefficient, "", reference):
         return ""
     number = fmt.text(coefficient)
@@ -159,8 +177,9 @@ def term_text(fmt: Formatter, coefficient: float, symbol: str, first: bool,
     return f"- {body[1:]}" if body.startswith("-") else f"+ {body}"
 
 
-def linear_latex(fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]],
-                 reference: float) -> str:
+def linear_latex(
+    fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]], reference: float
+) -> str:
     """constant + c1 u1 + c2 u2 in LaTeX, dropping zero parts (at least '0')."""
     parts: list[str] = []
     if constant is not None and not fmt.is_zero(constant, "", reference):
@@ -172,8 +191,9 @@ def linear_latex(fmt: Formatter, constant: float | None, terms: Sequence[tuple[f
     return " ".join(parts) if parts else "0"
 
 
-def linear_text(fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]],
-                reference: float) -> str:
+def linear_text(
+    fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]], reference: float
+) -> str:
     parts: list[str] = []
     if constant is not None and not fmt.is_zero(constant, "", reference):
         parts.append(fmt.text(constant))
@@ -203,9 +223,14 @@ def _sense(fmt: Formatter, unknown: Unknown) -> str:
     return ""
 
 
-def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
-                     coefficients: Sequence[Sequence[str]], rhs: Sequence[str], prefix: str,
-                     cramer: bool = False) -> None:
+def present_solution(
+    b: StepBuilder,
+    unknowns: Sequence[Unknown],
+    coefficients: Sequence[Sequence[str]],
+    rhs: Sequence[str],
+    prefix: str,
+    cramer: bool = False,
+) -> None:
     """Write and solve  c11 u1 + c12 u2 = b1,  c21 u1 + c22 u2 = b2  (values already registered).
 
     Registers the unknowns with the solver's values, the equations as ``linear`` checks, and the
@@ -223,8 +248,7 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
         terms_text = [(b.scalar(coefficients[i][j]), unknowns[j].text) for j in range(n)]
         rows.append((scale, terms, terms_text))
         b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs[i]))
-        b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = "
-              f"{b.txtn(rhs[i])}.")
+        b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = {b.txtn(rhs[i])}.")
         operands: list[str] = []
         for j in range(n):
             operands += [coefficients[i][j], unknowns[j].key]
@@ -233,8 +257,10 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
         b.check("quotient", unknowns[0].key, rhs[0], coefficients[0][0])
         _result(b, unknowns[0], _fraction(b, rhs[0], coefficients[0][0]))
         return
-    single = [[j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", rows[i][0])]
-              for i in range(2)]
+    single = [
+        [j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", rows[i][0])]
+        for i in range(2)
+    ]
     if cramer:
         single = [[0, 1], [0, 1]]
     if all(len(single[i]) == 1 for i in range(2)) and single[0][0] != single[1][0]:
@@ -255,16 +281,23 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
         if fmt.is_zero(c_other, "", rows[other_row][0]):
             b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
             return
-        rest = b.put(f"{prefix}rest", b.scalar(rhs[other_row])
-                     - b.scalar(coefficients[other_row][j]) * u.value, "",
-                     reference=abs(b.scalar(rhs[other_row]))
-                     + abs(b.scalar(coefficients[other_row][j]) * u.value))
+        rest = b.put(
+            f"{prefix}rest",
+            b.scalar(rhs[other_row]) - b.scalar(coefficients[other_row][j]) * u.value,
+            "",
+            reference=abs(b.scalar(rhs[other_row]))
+            + abs(b.scalar(coefficients[other_row][j]) * u.value),
+        )
         b.check("quotient", w.key, rest, coefficients[other_row][other])
-        b.line(rf"&{term(fmt, c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
-               rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
-               rf"{tex.paren(fmt.latex(u.value, u.unit))} = {b.num(rest)}")
-        b.say(f"Substituting into equation {other_row + 1}: "
-              f"{term_text(fmt, c_other, w.text, True, 0.0)} = {b.txtn(rest)}.")
+        b.line(
+            rf"&{term(fmt, c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
+            rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
+            rf"{tex.paren(fmt.latex(u.value, u.unit))} = {b.num(rest)}"
+        )
+        b.say(
+            f"Substituting into equation {other_row + 1}: "
+            f"{term_text(fmt, c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
+        )
         _result(b, w, _fraction(b, rest, coefficients[other_row][other]))
         return
     c = coefficients
@@ -272,20 +305,28 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
     def size(key: str) -> float:
         return max(abs(b.scalar(key)), b.references[key])
 
-    det = b.put(f"{prefix}D", b.scalar(c[0][0]) * b.scalar(c[1][1])
-                - b.scalar(c[0][1]) * b.scalar(c[1][0]), "",
-                reference=size(c[0][0]) * size(c[1][1]) + size(c[0][1]) * size(c[1][0]))
+    det = b.put(
+        f"{prefix}D",
+        b.scalar(c[0][0]) * b.scalar(c[1][1]) - b.scalar(c[0][1]) * b.scalar(c[1][0]),
+        "",
+        reference=size(c[0][0]) * size(c[1][1]) + size(c[0][1]) * size(c[1][0]),
+    )
     b.check("det2", det, c[0][0], c[0][1], c[1][0], c[1][1])
-    b.line(rf"&D = {tex.determinant2([[b.num(c[0][0]), b.num(c[0][1])], [b.num(c[1][0]), b.num(c[1][1])]])}"
-           rf" = {b.num(det)}")
+    matrix = tex.determinant2([[b.num(c[i][k]) for k in range(2)] for i in range(2)])
+    b.line(rf"&D = {matrix} = {b.num(det)}")
     b.say(f"By Cramer's rule, the determinant of the coefficients is D = {b.txtn(det)}.")
     for j in range(2):
         columns = [[rhs[i] if k == j else c[i][k] for k in range(2)] for i in range(2)]
-        value = (b.scalar(columns[0][0]) * b.scalar(columns[1][1])
-                 - b.scalar(columns[0][1]) * b.scalar(columns[1][0]))
-        dj = b.put(f"{prefix}D{j + 1}", value, "",
-                   reference=size(columns[0][0]) * size(columns[1][1])
-                   + size(columns[0][1]) * size(columns[1][0]))
+        value = b.scalar(columns[0][0]) * b.scalar(columns[1][1]) - b.scalar(
+            columns[0][1]
+        ) * b.scalar(columns[1][0])
+        dj = b.put(
+            f"{prefix}D{j + 1}",
+            value,
+            "",
+            reference=size(columns[0][0]) * size(columns[1][1])
+            + size(columns[0][1]) * size(columns[1][0]),
+        )
         b.check("det2", dj, columns[0][0], columns[0][1], columns[1][0], columns[1][1])
         b.check("quotient", unknowns[j].key, dj, det)
         matrix = tex.determinant2([[b.num(columns[i][k]) for k in range(2)] for i in range(2)])
@@ -295,7 +336,7 @@ def present_solution(b: StepBuilder, unknowns: Sequence[Unknown],
 
 
 def _fraction(b: StepBuilder, numerator: str, denominator: str) -> str:
-    """'\\frac{n}{d}', or '' when d displays as 1 (the result is then the numerator itself)."""
+    """The fraction n/d in LaTeX, or '' when d displays as 1 (the result is then n itself)."""
     if b.num(denominator) == "1":
         return ""
     return rf"\frac{{{b.num(numerator)}}}{{{b.num(denominator)}}}"
@@ -305,5 +346,7 @@ def _result(b: StepBuilder, u: Unknown, fraction: str) -> None:
     value = b.fmt.latex(u.value, u.unit)
     middle = f" {fraction} =" if fraction else ""
     b.line(rf"&{u.latex} ={middle} {tex.boxed_result(value + latex_unit(u.unit))}")
-    b.say(f"So {u.text} = {b.fmt.text_value(u.value, u.unit)}{_sense(b.fmt, u)}"
-          + (f": {u.meaning}." if u.meaning else "."))
+    b.say(
+        f"So {u.text} = {b.fmt.text_value(u.value, u.unit)}{_sense(b.fmt, u)}"
+        + (f": {u.meaning}." if u.meaning else ".")
+    )

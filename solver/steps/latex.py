@@ -12,6 +12,8 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
+import sympy
+
 _PLAIN = re.compile(r"[A-Za-z][0-9]{0,2}|[0-9]{1,3}")
 _TEXT_ESCAPES = {
     "\\": r"\textbackslash{}",
@@ -70,13 +72,19 @@ def column(entries: Sequence[str]) -> str:
 
 def determinant3(row2: Sequence[str], row3: Sequence[str], units: str = _UNIT_ROW) -> str:
     """The cross product row2 x row3 as a determinant with the unit vectors in the first row."""
-    return (r"\begin{vmatrix} " + units + r" \\ " + " & ".join(row2) + r" \\ "
-            + " & ".join(row3) + r" \end{vmatrix}")
+    return (
+        r"\begin{vmatrix} "
+        + units
+        + r" \\ "
+        + " & ".join(row2)
+        + r" \\ "
+        + " & ".join(row3)
+        + r" \end{vmatrix}"
+    )
 
 
 def determinant2(rows: Sequence[Sequence[str]]) -> str:
-    return (r"\begin{vmatrix} " + r" \\ ".join(" & ".join(r) for r in rows)
-            + r" \end{vmatrix}")
+    return r"\begin{vmatrix} " + r" \\ ".join(" & ".join(r) for r in rows) + r" \end{vmatrix}"
 
 
 def aligned(lines: Sequence[str]) -> str:
@@ -87,8 +95,11 @@ def aligned(lines: Sequence[str]) -> str:
 
 
 def paren(latex_number: str) -> str:
-    """A number in parentheses when it is negative (for products such as 2 \\cdot (-1.5))."""
-    return f"({latex_number})" if latex_number.startswith("-") else latex_number
+    """A number in parentheses when it is negative or has a power of ten (for products such as
+    2 \\cdot (-1.5) and powers such as (1.5 \\cdot 10^{-7})^2)."""
+    if latex_number.startswith("-") or "^" in latex_number:
+        return f"({latex_number})"
+    return latex_number
 
 
 def signed(latex_number: str, first: bool = False) -> str:
@@ -103,3 +114,9 @@ def signed(latex_number: str, first: bool = False) -> str:
 def boxed_result(latex: str) -> str:
     """A final result, doubly underlined as in the seeds."""
     return r"\underline{\underline{" + latex + "}}"
+
+
+def law(expression: sympy.Expr, digits: int) -> str:
+    """A time law (or a derivative) in LaTeX, its decimal numbers rounded to ``digits``."""
+    rounded = {f: sympy.Float(f, digits) for f in expression.atoms(sympy.Float)}
+    return str(sympy.latex(expression.xreplace(rounded)))

@@ -15,7 +15,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-import sympy
 
 from solver.analysis import LinkageAnalysis
 from solver.laws import parse_time_law
@@ -31,6 +30,7 @@ V0 = r"\vec{0}"
 
 def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
     """The largest magnitude of each unit in the analysis (what 'rounding noise' is relative to)."""
+
     def largest(values: Sequence[np.ndarray | float | None]) -> float:
         found = [float(np.max(np.abs(v))) for v in values if v is not None]
         return max(found, default=0.0)
@@ -142,15 +142,25 @@ class LinkageContext:
             if joint.type == "revolute":
                 continue
             carried = joint.point == point or (
-                joint.type == "prismatic" and point in self.scene.links[joint.follower].points)
+                joint.type == "prismatic" and point in self.scene.links[joint.follower].points
+            )
             if joint.guide == guide and carried:
                 direction = self.slot_direction(joint)
                 if joint.point == point:
                     s = self.analysis.joints[index]
-                    return SlotMotion(index, joint, s.omega_guide, direction,
-                                      s.transport_velocity, s.relative_velocity, s.velocity,
-                                      s.transport_acceleration, s.relative_acceleration,
-                                      s.coriolis_acceleration, s.acceleration)
+                    return SlotMotion(
+                        index,
+                        joint,
+                        s.omega_guide,
+                        direction,
+                        s.transport_velocity,
+                        s.relative_velocity,
+                        s.velocity,
+                        s.transport_acceleration,
+                        s.relative_acceleration,
+                        s.coriolis_acceleration,
+                        s.acceleration,
+                    )
                 return self._derived_slot(joint, point, direction)
             index += 1
         raise AssertionError(f"no slot of {guide} carries {point}")
@@ -165,8 +175,19 @@ class LinkageContext:
         a_tr = self.acc(anchor) + k_cross(alpha, r) - omega**2 * r
         a_cor = 2.0 * k_cross(omega, v_rel)
         a_rel = self.acc(point) - a_tr - a_cor
-        return SlotMotion(None, joint, omega, direction, v_tr, v_rel, self.vel(point), a_tr,
-                          a_rel, a_cor, self.acc(point))
+        return SlotMotion(
+            None,
+            joint,
+            omega,
+            direction,
+            v_tr,
+            v_rel,
+            self.vel(point),
+            a_tr,
+            a_rel,
+            a_cor,
+            self.acc(point),
+        )
 
     def slot_direction(self, joint: Joint) -> np.ndarray:
         """The unit direction of the slot now: the drawn axis turned with the guide."""
@@ -241,8 +262,10 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
     """The given data: drivers (with their time laws), joints, the analysed instant."""
     scene, b = ctx.scene, ctx.builder("data", "Data")
     b.say(method_sentence)
-    b.say("Sign convention: x to the right, y up, z out of the page; angular velocities and "
-          "accelerations are z-components, counter-clockwise positive.")
+    b.say(
+        "Sign convention: x to the right, y up, z out of the page; angular velocities and "
+        "accelerations are z-components, counter-clockwise positive."
+    )
     for driver in scene.drivers:
         link = driver.link
         w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
@@ -250,44 +273,79 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
         if driver.angle_law is not None:
             law = parse_time_law(driver.angle_law)
             t = b.put("t", scene.time, "s")
-            phi = rf"\varphi_{{{tex.name(link)}}}"
-            b.line(rf"&{phi}(t) = {sympy.latex(law.expression)}, \quad "
-                   rf"\dot{{{phi}}}(t) = {sympy.latex(law.first_derivative)}, \quad "
-                   rf"\ddot{{{phi}}}(t) = {sympy.latex(law.second_derivative)}")
-            b.line(rf"&t = {b.numu(t)}: \quad {w_sym(link)} = \dot{{{phi}}}(t) = {b.numu(w)}, "
-                   rf"\quad {a_sym(link)} = \ddot{{{phi}}}(t) = {b.numu(al)}")
-            b.say(f"Link {link} turns by phi(t) = {driver.angle_law} (rad) from its drawn pose; "
-                  f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
-                  f"alpha({link}) = {b.txt(al)}.")
+            sub = "_{" + tex.name(link) + "}"
+            phi, dphi, ddphi = (
+                rf"{head}{sub}" for head in (r"\varphi", r"\dot{\varphi}", r"\ddot{\varphi}")
+            )
+            b.line(
+                rf"&{phi}(t) = {tex.law(law.expression, ctx.fmt.digits)}, \quad "
+                rf"{dphi}(t) = {tex.law(law.first_derivative, ctx.fmt.digits)}, \quad "
+                rf"{ddphi}(t) = {tex.law(law.second_derivative, ctx.fmt.digits)}"
+            )
+            b.line(
+                rf"&t = {b.numu(t)}: \quad {w_sym(link)} = {dphi}(t) = {b.numu(w)}, "
+                rf"\quad {a_sym(link)} = {ddphi}(t) = {b.numu(al)}"
+            )
+            b.say(
+                f"Link {link} turns by phi(t) = {driver.angle_law} (rad) from its drawn pose; "
+                f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
+                f"alpha({link}) = {b.txt(al)}."
+            )
         else:
-            b.line(rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
-                   rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
-                   rf"{latex_unit('rad/s^2')}")
-            b.say(f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
-                  f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}.")
+            b.line(
+                rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
+                rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
+                rf"{latex_unit('rad/s^2')}"
+            )
+            b.say(
+                f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
+                f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}."
+            )
+    angles = ctx.analysis.diagnostics.driver_angles
+    for link, degrees in angles.items():
+        key = b.put(f"angle({link})", math.radians(degrees), "rad")
+        b.line(
+            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}^{{\circ}} "
+            rf"= {b.numu(key)} \quad \text{{(the analysed instant)}}"
+        )
+        b.say(
+            f"The analysed instant has link {link} at {ctx.fmt.text(degrees, 'deg')} deg from "
+            "the x axis."
+        )
     for joint in scene.joints:
         if joint.type == "revolute":
             continue
         guide, follower = joint.links
         fixed = guide == scene.ground
-        b.say(f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
-              + (" (a fixed guide)." if fixed else " (a moving guide).")
-              + (" The block cannot turn relative to the guide." if joint.type == "prismatic"
-                 else ""))
+        b.say(
+            f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
+            + (" (a fixed guide)." if fixed else " (a moving guide).")
+            + (" The block cannot turn relative to the guide." if joint.type == "prismatic" else "")
+        )
     return b.build()
 
 
 def positions_step(ctx: LinkageContext) -> Step:
     """The points at the analysed instant and the position vectors the steps use."""
     b = ctx.builder("positions", "Positions" if not ctx.used_vectors else "Position vectors")
-    names = sorted({p for pair in ctx.used_vectors for p in pair} or set(ctx.scene.points),
-                   key=list(ctx.scene.points).index)
+    names = sorted(
+        {p for pair in ctx.used_vectors for p in pair} or set(ctx.scene.points),
+        key=list(ctx.scene.points).index,
+    )
     for p in names:
         b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
-    b.line("&" + r", \quad ".join(rf"{tex.name(p)} = ({', '.join(b.entries(f'pos({p})', 2))})"
-                                  for p in names) + latex_unit("m"))
-    b.say("Points at the analysed instant: " + "; ".join(f"{p} = {b.txt(f'pos({p})')}"
-                                                        for p in names) + ".")
+    b.line(
+        "&"
+        + r", \quad ".join(
+            rf"{tex.name(p)} = ({', '.join(b.entries(f'pos({p})', 2))})" for p in names
+        )
+        + latex_unit("m")
+    )
+    b.say(
+        "Points at the analysed instant: "
+        + "; ".join(f"{p} = {b.txt(f'pos({p})')}" for p in names)
+        + "."
+    )
     rows = []
     texts = []
     for first, second in ctx.used_vectors:
@@ -296,7 +354,7 @@ def positions_step(ctx: LinkageContext) -> Step:
         rows.append(rf"{r_vec(first, second)} = {b.col(key)}")
         texts.append(f"r({first},{second}) = {b.txt(key)}")
     for i in range(0, len(rows), 3):
-        b.line("&" + r" \quad ".join(rows[i:i + 3]) + latex_unit("m"))
+        b.line("&" + r" \quad ".join(rows[i : i + 3]) + latex_unit("m"))
     if texts:
         b.say("Position vectors: " + "; ".join(texts) + ".")
     return b.build()
@@ -308,48 +366,63 @@ def fixed_points_step(ctx: LinkageContext, order: int) -> Step | None:
         return None
     symbol = v_vec if order == 1 else a_vec
     unit = "m/s" if order == 1 else "m/s^2"
-    b = ctx.builder("velocity.fixed" if order == 1 else "acceleration.fixed",
-                    "Fixed points")
+    b = ctx.builder("velocity.fixed" if order == 1 else "acceleration.fixed", "Fixed points")
     for p in fixed:
-        b.put(f"{'v' if order == 1 else 'a'}({p})",
-              ctx.vel(p) if order == 1 else ctx.acc(p), unit,
-              ("points", p, "velocity" if order == 1 else "acceleration"))
-    b.line("&" + r" = ".join(symbol(p) for p in fixed) + rf" = {V0}{latex_unit(unit)}"
-           r" \quad \text{(fixed joints)}")
+        b.put(
+            f"{'v' if order == 1 else 'a'}({p})",
+            ctx.vel(p) if order == 1 else ctx.acc(p),
+            unit,
+            ("points", p, "velocity" if order == 1 else "acceleration"),
+        )
+    b.line(
+        "&" + r" = ".join(symbol(p) for p in fixed) + rf" = {V0}{latex_unit(unit)}"
+        r" \quad \text{(fixed joints)}"
+    )
     which = "velocity" if order == 1 else "acceleration"
     b.say(f"The points of the ground ({', '.join(fixed)}) are fixed: their {which} is zero.")
     (ctx.shown_velocity if order == 1 else ctx.shown_acceleration).update(fixed)
     return b.build()
 
 
-def rigid_velocity_step(ctx: LinkageContext, link: str, base: str, target: str,
-                        reason: str = "") -> Step:
+def rigid_velocity_step(
+    ctx: LinkageContext, link: str, base: str, target: str, reason: str = ""
+) -> Step:
     """v_Y = v_X + omega x r_XY with the cross product as a determinant."""
     b = ctx.builder("velocity.rigid", f"Velocity of {target} (link {link})")
     ctx.use(base, target)
     vx = b.put(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
     w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
     r = b.put(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
-    wxr = b.put(f"omega x r({base},{target})", k_cross(ctx.omega(link), ctx.pos(target)
-                                                       - ctx.pos(base)), "m/s")
+    wxr = b.put(
+        f"omega x r({base},{target})",
+        k_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
+        "m/s",
+    )
     vy = b.put(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
     b.check("cross", wxr, w, r)
     b.check("sum", vy, vx, wxr)
     base_tex = V0 if ctx.is_fixed(base) and b.is_zero(vx) else b.col(vx)
-    b.line(rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
-           rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}")
-    b.line(rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
-           rf"{tex.boxed_result(b.colu(vy))}")
+    b.line(
+        rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
+        rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}"
+    )
+    b.line(
+        rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
+        rf"{tex.boxed_result(b.colu(vy))}"
+    )
     if reason:
         b.say(reason)
-    b.say(f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
-          f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}.")
+    b.say(
+        f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
+        f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}."
+    )
     ctx.shown_velocity.add(target)
     return b.build()
 
 
-def rigid_acceleration_step(ctx: LinkageContext, link: str, base: str, target: str,
-                            reason: str = "") -> Step:
+def rigid_acceleration_step(
+    ctx: LinkageContext, link: str, base: str, target: str, reason: str = ""
+) -> Step:
     """a_Y = a_X + alpha x r_XY - omega^2 r_XY: tangential term as a determinant, normal term."""
     b = ctx.builder("acceleration.rigid", f"Acceleration of {target} (link {link})")
     ctx.use(base, target)
@@ -367,19 +440,27 @@ def rigid_acceleration_step(ctx: LinkageContext, link: str, base: str, target: s
     b.check("sum", ay, ax, t, n)
     base_tex = V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
     w2 = ctx.fmt.latex(omega**2)
-    b.line(rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
-           rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}")
-    b.line(rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
-           rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - {tex.paren(b.num(w))}^2 \cdot "
-           rf"{b.col(r)}")
-    b.line(rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {w2} \cdot {b.col(r)} = "
-           rf"{base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}")
+    b.line(
+        rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
+        rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
+    )
+    b.line(
+        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
+        rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - {tex.paren(b.num(w))}^2 \cdot "
+        rf"{b.col(r)}"
+    )
+    b.line(
+        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {w2} \cdot {b.col(r)} = "
+        rf"{base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}"
+    )
     if reason:
         b.say(reason)
-    b.say(f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
-          f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
-          f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
-          f"-{ctx.fmt.text(omega**2)} times r, pointing from {target} towards {base}.")
+    b.say(
+        f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
+        f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
+        f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
+        f"-{ctx.fmt.text(omega**2)} times r, pointing from {target} towards {base}."
+    )
     ctx.shown_acceleration.add(target)
     return b.build()
 
@@ -396,24 +477,34 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
     omega = ctx.omega(link)
     w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
     if result.velocity_pole is None:
-        b.line(rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
-               r"(it is at infinity)}")
-        b.say(f"Link {link} translates at this instant (omega({link}) = {b.txt(w)}): all its "
-              "points have the same velocity, so its velocity pole is at infinity.")
+        b.line(
+            rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
+            r"(it is at infinity)}"
+        )
+        b.say(
+            f"Link {link} translates at this instant (omega({link}) = {b.txt(w)}): all its "
+            "points have the same velocity, so its velocity pole is at infinity."
+        )
         return b.build()
     pole = b.put(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
     pivot = ctx.ground_pivot(link)
     if pivot is not None:
         o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
         b.check("sum", pole, o)
-        b.line(rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))})"
-               rf"{latex_unit('m')} \quad \text{{(fixed pivot: }} {v_vec(pivot)} = {V0}\text{{)}}")
-        b.say(f"Link {link} turns about the fixed joint {pivot}: its velocity pole is "
-              f"{pivot} = {b.txt(pole)}.")
+        b.line(
+            rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))})"
+            rf"{latex_unit('m')} \quad \text{{(fixed pivot: }} {v_vec(pivot)} = {V0}\text{{)}}"
+        )
+        b.say(
+            f"Link {link} turns about the fixed joint {pivot}: its velocity pole is "
+            f"{pivot} = {b.txt(pole)}."
+        )
         return b.build()
     points = [p for p in _other_points(ctx, link)][:2]
-    b.say(f"The velocity pole P of link {link} is the point of the link with zero velocity: "
-          f"v(X) = omega({link}) cross r(P,X) for every point X.")
+    b.say(
+        f"The velocity pole P of link {link} is the point of the link with zero velocity: "
+        f"v(X) = omega({link}) cross r(P,X) for every point X."
+    )
     b.say("It lies on the perpendiculars to the velocities of two points, drawn through them.")
     for x in points:
         v = ctx.vel(x)
@@ -421,24 +512,35 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
         vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
         px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
         r = b.put(f"r(P,{x})", r_np, "m")
-        d = b.put(f"r(P,{x}).v({x})", float(np.dot(r_np, v)), "m^2/s",
-                  reference=float(np.hypot(*r_np) * np.hypot(*v)))
+        d = b.put(
+            f"r(P,{x}).v({x})",
+            float(np.dot(r_np, v)),
+            "m^2/s",
+            reference=float(np.hypot(*r_np) * np.hypot(*v)),
+        )
         b.check("cross", vx, w, r)
         b.check("sum", pole, px, f"-{r}")
         b.check("dot", d, r, vx)
         rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
         vxv = b.entries(vx)
-        expanded = tex.column(["-" + tex.paren(b.num(w)) + r"\, " + ry,
-                               b.num(w) + r"\, " + rx, "0"])
-        b.line(rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
-               rf"{expanded}")
-        b.line(rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
-               rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-               rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-               rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}")
-        b.say(f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
-              f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
-              f"r(P,{x}) = {b.txt(pole)}.")
+        expanded = tex.column(
+            ["-" + tex.paren(b.num(w)) + r"\, " + ry, b.num(w) + r"\, " + rx, "0"]
+        )
+        b.line(
+            rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
+            rf"{expanded}"
+        )
+        b.line(
+            rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
+            rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+            rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+            rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}"
+        )
+        b.say(
+            f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
+            f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
+            f"r(P,{x}) = {b.txt(pole)}."
+        )
     if len(points) == 2:
         b.say(f"Check: {points[0]} and {points[1]} give the same pole.")
     return b.build()
@@ -453,21 +555,29 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
     al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
     if result.acceleration_pole is None:
-        b.line(rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
-               r"\;\Rightarrow\; \text{no acceleration pole}")
-        b.say(f"omega({link}) and alpha({link}) are both zero: the link translates without "
-              "turning and all its points have the same acceleration; there is no acceleration "
-              "pole.")
+        b.line(
+            rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
+            r"\;\Rightarrow\; \text{no acceleration pole}"
+        )
+        b.say(
+            f"omega({link}) and alpha({link}) are both zero: the link translates without "
+            "turning and all its points have the same acceleration; there is no acceleration "
+            "pole."
+        )
         return b.build()
     pole = b.put(f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole"))
     pivot = ctx.ground_pivot(link)
     if pivot is not None:
         o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
         b.check("sum", pole, o)
-        b.line(rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))}){latex_unit('m')}"
-               rf" \quad \text{{(fixed pivot: }} {a_vec(pivot)} = {V0}\text{{)}}")
-        b.say(f"Link {link} turns about the fixed joint {pivot}, whose acceleration is zero: its "
-              f"acceleration pole is {pivot} = {b.txt(pole)}.")
+        b.line(
+            rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))}){latex_unit('m')}"
+            rf" \quad \text{{(fixed pivot: }} {a_vec(pivot)} = {V0}\text{{)}}"
+        )
+        b.say(
+            f"Link {link} turns about the fixed joint {pivot}, whose acceleration is zero: its "
+            f"acceleration pole is {pivot} = {b.txt(pole)}."
+        )
         return b.build()
     points = _other_points(ctx, link)[:2]
     x = points[-1]
@@ -476,11 +586,15 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     ax = b.put(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
     px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
     rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
-    b.line(rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
-           rf"{tex.name(x)}}} - \omega_{{{tex.name(link)}}}^2\,\vec{{r}}_{{{sub}{tex.name(x)}}}, "
-           rf"\quad \vec{{a}}_{{{sub}}} = {V0}")
-    b.line(rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
-           rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}")
+    b.line(
+        rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
+        rf"{tex.name(x)}}} - \omega_{{{tex.name(link)}}}^2\,\vec{{r}}_{{{sub}{tex.name(x)}}}, "
+        rf"\quad \vec{{a}}_{{{sub}}} = {V0}"
+    )
+    b.line(
+        rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
+        rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}"
+    )
     w2 = omega**2
     c11 = b.put("c11", -w2, "")
     c12 = b.put("c12", -alpha, "")
@@ -494,16 +608,22 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     b2 = b.put("b2", float(a[1]), "m/s^2")
     b.check("sum", b1, f"{ax}[0]")
     b.check("sum", b2, f"{ax}[1]")
-    b.say(f"The acceleration pole G of link {link} is the point of the link with zero "
-          f"acceleration: a({x}) = alpha cross r(G,{x}) - omega squared r(G,{x}), two equations "
-          f"for the components of r(G,{x}).")
+    b.say(
+        f"The acceleration pole G of link {link} is the point of the link with zero "
+        f"acceleration: a({x}) = alpha cross r(G,{x}) - omega squared r(G,{x}), two equations "
+        f"for the components of r(G,{x})."
+    )
     r = b.put(f"r(G,{x})", r_np, "m")
-    unknowns = [Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
-                Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1]))]
+    unknowns = [
+        Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
+        Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1])),
+    ]
     present_vector_unknowns(b, unknowns, [[c11, c12], [c21, c22]], [b1, b2], "G:")
     b.check("sum", pole, px, f"-{r}")
-    b.line(rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-           rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}")
+    b.line(
+        rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}"
+    )
     b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
     if len(points) == 2 and points[0] != x:
         y = points[0]
@@ -517,25 +637,33 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
         b.check("cross", t, al, ry)
         b.check("product", n, w, w, ry, factor=-1.0)
         b.check("sum", ay, t, n)
-        b.line(rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
-               rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
-               rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}")
-        b.say(f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
-              f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}.")
+        b.line(
+            rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
+            rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
+            rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}"
+        )
+        b.say(
+            f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
+            f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}."
+        )
     return b.build()
 
 
-def present_vector_unknowns(b: StepBuilder, unknowns: list[Unknown],
-                            coefficients: list[list[str]], rhs: list[str], prefix: str) -> None:
+def present_vector_unknowns(
+    b: StepBuilder,
+    unknowns: list[Unknown],
+    coefficients: list[list[str]],
+    rhs: list[str],
+    prefix: str,
+) -> None:
     """``present_solution`` for unknowns that are components of an already registered vector."""
     # The unknowns' values live in the vector value; register scalar copies for the checks.
     renamed = []
     for u in unknowns:
-        key = u.key.replace("[0]", ".x").replace("[1]", ".y")
+        key = b.put(u.key.replace("[0]", ".x").replace("[1]", ".y"), u.value, u.unit)
+        b.check("sum", key, u.key)
         renamed.append(Unknown(key, u.latex, u.text, u.unit, u.value, u.source, u.meaning))
     present_solution(b, renamed, coefficients, rhs, prefix)
-    for u, v in zip(unknowns, renamed, strict=True):
-        b.check("sum", v.key, u.key)
 
 
 def summary_step(ctx: LinkageContext) -> Step:
@@ -550,8 +678,10 @@ def summary_step(ctx: LinkageContext) -> Step:
     for p in ctx.scene.points:
         v = b.put(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
         a = b.put(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
-        rows.append(rf"{v_vec(p)} = ({', '.join(b.entries(v, 2))}){latex_unit('m/s')}, & "
-                    rf"{a_vec(p)} = ({', '.join(b.entries(a, 2))}){latex_unit('m/s^2')}")
+        rows.append(
+            rf"{v_vec(p)} = ({', '.join(b.entries(v, 2))}){latex_unit('m/s')}, & "
+            rf"{a_vec(p)} = ({', '.join(b.entries(a, 2))}){latex_unit('m/s^2')}"
+        )
         b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
     b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
     return b.build()

@@ -114,8 +114,10 @@ class LoopMethod:
         for link, pivot in self.rotating.items():
             if point in self.ctx.scene.links[link].points and point != pivot:
                 return link
-        raise LoopUnavailable(f"point {point} is not carried by a link turning about a fixed "
-                              "pivot, so no single loop through the ground closes there")
+        raise LoopUnavailable(
+            f"point {point} is not carried by a link turning about a fixed "
+            "pivot, so no single loop through the ground closes there"
+        )
 
     def analyse(self) -> None:
         scene = self.ctx.scene
@@ -135,7 +137,8 @@ class LoopMethod:
             else:
                 raise LoopUnavailable(
                     f"the solving order contains a {type(step).__name__.replace('Step', '')} "
-                    "group, which is not a four-bar, slider-crank or slotted-lever loop")
+                    "group, which is not a four-bar, slider-crank or slotted-lever loop"
+                )
         if not self.loops:
             raise LoopUnavailable("the linkage has no closed loop (only driven links)")
 
@@ -148,8 +151,10 @@ class LoopMethod:
             fixed = [c for c in circles if ctx.is_fixed(c.center)]
             moving = [c for c in circles if not ctx.is_fixed(c.center)]
             if len(fixed) != 1 or len(moving) != 1:
-                raise LoopUnavailable(f"the dyad at {x} is not a four-bar loop (one centre on a "
-                                      "crank, the other fixed)")
+                raise LoopUnavailable(
+                    f"the dyad at {x} is not a four-bar loop (one centre on a "
+                    "crank, the other fixed)"
+                )
             coupler, rocker = moving[0], fixed[0]
             crank = self.crank_of(coupler.center)
             pivot = self.rotating[crank]
@@ -157,19 +162,25 @@ class LoopMethod:
                 self.number(link)
             self.solved.update((coupler.link, rocker.link))
             self.rotating[rocker.link] = rocker.center
-            return Loop("four-bar",
-                        [Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
-                         Member("rotating", coupler.center, x, self.numbers[coupler.link],
-                                coupler.link)],
-                        [Member("ground", pivot, rocker.center, self.numbers[ground]),
-                         Member("rotating", rocker.center, x, self.numbers[rocker.link],
-                                rocker.link)],
-                        [coupler.link, rocker.link], joint=x)
+            return Loop(
+                "four-bar",
+                [
+                    Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                    Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
+                ],
+                [
+                    Member("ground", pivot, rocker.center, self.numbers[ground]),
+                    Member("rotating", rocker.center, x, self.numbers[rocker.link], rocker.link),
+                ],
+                [coupler.link, rocker.link],
+                joint=x,
+            )
         if len(circles) == 1 and len(lines) == 1:
             coupler, line = circles[0], lines[0]
             if line.guide != ground:
-                raise LoopUnavailable(f"{x} slides in a moving slot of {line.guide}: not a "
-                                      "slider-crank loop")
+                raise LoopUnavailable(
+                    f"{x} slides in a moving slot of {line.guide}: not a slider-crank loop"
+                )
             if ctx.is_fixed(coupler.center):
                 raise LoopUnavailable(f"the dyad at {x} turns about a fixed point: no loop")
             crank = self.crank_of(coupler.center)
@@ -179,32 +190,47 @@ class LoopMethod:
             self.numbers[f"slider at {x}"] = slider_number
             self.solved.add(coupler.link)
             slot = ctx.slot(line.guide, x)
-            return Loop("slider-crank",
-                        [Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
-                         Member("rotating", coupler.center, x, self.numbers[coupler.link],
-                                coupler.link)],
-                        [Member("slider", pivot, x, slider_number, slot=slot)],
-                        [coupler.link], slot, slider_number, joint=x)
-        raise LoopUnavailable(f"{x} is carried by two slots: not a four-bar, slider-crank or "
-                              "slotted-lever loop")
+            return Loop(
+                "slider-crank",
+                [
+                    Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                    Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
+                ],
+                [Member("slider", pivot, x, slider_number, slot=slot)],
+                [coupler.link],
+                slot,
+                slider_number,
+                joint=x,
+            )
+        raise LoopUnavailable(
+            f"{x} is carried by two slots: not a four-bar, slider-crank or slotted-lever loop"
+        )
 
     def lever_loop(self, step: LeverStep) -> Loop:
         ctx = self.ctx
         if not ctx.is_fixed(step.pivot):
-            raise LoopUnavailable(f"the lever {step.link} turns about the moving point "
-                                  f"{step.pivot}: not a single loop through the ground")
+            raise LoopUnavailable(
+                f"the lever {step.link} turns about the moving point "
+                f"{step.pivot}: not a single loop through the ground"
+            )
         crank = self.crank_of(step.pin)
         pivot = self.rotating[crank]
         self.number(step.link)
         self.solved.add(step.link)
         self.rotating[step.link] = step.pivot
         slot = ctx.slot(step.link, step.pin)
-        return Loop("slotted lever",
-                    [Member("rotating", pivot, step.pin, self.numbers[crank], crank)],
-                    [Member("ground", pivot, step.pivot, self.numbers[ctx.scene.ground]),
-                     Member("slot", step.pivot, step.pin, self.numbers[step.link], step.link,
-                            slot)],
-                    [step.link], slot, self.numbers[step.link], joint=step.pin)
+        return Loop(
+            "slotted lever",
+            [Member("rotating", pivot, step.pin, self.numbers[crank], crank)],
+            [
+                Member("ground", pivot, step.pivot, self.numbers[ctx.scene.ground]),
+                Member("slot", step.pivot, step.pin, self.numbers[step.link], step.link, slot),
+            ],
+            [step.link],
+            slot,
+            self.numbers[step.link],
+            joint=step.pin,
+        )
 
     # --- symbols and values ---------------------------------------------------------------------
 
@@ -218,10 +244,15 @@ class LoopMethod:
         ctx = self.ctx
         r_np = ctx.pos(member.second) - ctx.pos(member.first)
         n = member.number
-        p1 = b.put(f"pos({member.first})", ctx.pos(member.first), "m",
-                   ("points", member.first, "position"))
-        p2 = b.put(f"pos({member.second})", ctx.pos(member.second), "m",
-                   ("points", member.second, "position"))
+        p1 = b.put(
+            f"pos({member.first})", ctx.pos(member.first), "m", ("points", member.first, "position")
+        )
+        p2 = b.put(
+            f"pos({member.second})",
+            ctx.pos(member.second),
+            "m",
+            ("points", member.second, "position"),
+        )
         r = b.put(f"r({member.first},{member.second})", r_np, "m")
         b.check("sum", r, p2, f"-{p1}")
         if member.kind in ("slider", "slot"):
@@ -258,37 +289,40 @@ class LoopMethod:
         title = f"Loop {index}: the {loop.kind} closing at {loop.joint}"
         b = ctx.builder("loop.position", title)
         legend = ", ".join(f"{n} = {name}" for name, n in self.numbers.items())
-        b.say(f"Links are numbered {legend}. Every vector of the loop is written as a complex "
-              "number: length times e to the i times its angle from the x axis.")
-        lhs, rhs = [], []
-        lhs_num, rhs_num = [], []
-        z_left, z_right = [], []
-        for side, out, num, zs in ((loop.left, lhs, lhs_num, z_left),
-                                   (loop.right, rhs, rhs_num, z_right)):
+        b.say(
+            f"Links are numbered {legend}. Every vector of the loop is written as a complex "
+            "number: length times e to the i times its angle from the x axis."
+        )
+        lhs: list[str] = []
+        rhs: list[str] = []
+        lhs_num: list[str] = []
+        rhs_num: list[str] = []
+        z_left: list[str] = []
+        z_right: list[str] = []
+        for side, out, num, zs in (
+            (loop.left, lhs, lhs_num, z_left),
+            (loop.right, rhs, rhs_num, z_right),
+        ):
             for m in side:
                 a, th = self.register_member(b, m)
                 n = m.number
                 if m.kind == "slider":
                     out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\varphi_{{{n}}}}}")
                     num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
-                    z = b.put(f"z({m.first},{m.second})",
-                              ctx.pos(m.second) - ctx.pos(m.first), "m")
+                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
                     b.check("sum", z, f"r({m.first},{m.second})")
                 elif m.kind == "slot":
                     out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\beta_{{{n}}}}}")
                     num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
-                    z = b.put(f"z({m.first},{m.second})",
-                              ctx.pos(m.second) - ctx.pos(m.first), "m")
+                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
                     b.check("phasor", z, a, th)
                 else:
                     out.append(rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}")
                     num.append(rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}")
-                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first),
-                              "m")
+                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
                     b.check("phasor", z, a, th)
                 zs.append(z)
-        total = b.put(f"z({loop.joint})", ctx.pos(loop.joint)
-                      - ctx.pos(loop.left[0].first), "m")
+        total = b.put(f"z({loop.joint})", ctx.pos(loop.joint) - ctx.pos(loop.left[0].first), "m")
         b.check("sum", total, *z_left)
         b.check("sum", total, *z_right)
         b.line("&" + " + ".join(lhs) + " = " + " + ".join(rhs))
@@ -299,12 +333,16 @@ class LoopMethod:
             if key[0] in "asc" and "(" not in key and key not in ("a", "s", "c"):
                 data.append(f"{key} = {b.txt(key)}")
             elif key.startswith(("theta1", "phi")):
-                data.append(f"{key} = {b.txt(key)} "
-                            f"({ctx.fmt.text(math.degrees(b.scalar(key)), 'deg')} deg)")
-        b.say(f"Loop closure: {' + '.join(self.member_text(m) for m in loop.left)} = "
-              f"{' + '.join(self.member_text(m) for m in loop.right)}. With " + "; ".join(data)
-              + f", both sides give the position of {loop.joint} relative to "
-              f"{loop.left[0].first}: {b.txt(total)}.")
+                data.append(
+                    f"{key} = {b.txt(key)} ({ctx.fmt.text(math.degrees(b.scalar(key)), 'deg')} deg)"
+                )
+        b.say(
+            f"Loop closure: {' + '.join(self.member_text(m) for m in loop.left)} = "
+            f"{' + '.join(self.member_text(m) for m in loop.right)}. With "
+            + "; ".join(data)
+            + f", both sides give the position of {loop.joint} relative to "
+            f"{loop.left[0].first}: {b.txt(total)}."
+        )
         return b.build()
 
     def offset(self, b: StepBuilder, n: str) -> str:
@@ -330,8 +368,9 @@ class LoopMethod:
             return imaginary
         return f"({re} {tex.signed(imaginary)})"
 
-    def derivative_terms(self, loop: Loop, order: int, b: StepBuilder
-                         ) -> tuple[list[_Term], list[_Term]]:
+    def derivative_terms(
+        self, loop: Loop, order: int, b: StepBuilder
+    ) -> tuple[list[_Term], list[_Term]]:
         """The terms of the first (order 1) or second (order 2) time derivative of each side."""
         ctx = self.ctx
         sides: tuple[list[_Term], list[_Term]] = ([], [])
@@ -344,9 +383,17 @@ class LoopMethod:
                 if m.kind == "slider":
                     assert m.slot is not None
                     u = self.slide_unknown(m, order)
-                    terms.append(_Term(rf"{u.latex}\,e^{{i\varphi_{{{n}}}}}",
-                                       f"{u.text} e^(i phi{n})", "phasor", [],
-                                       (th, b.scalar(th)), 1.0, u))
+                    terms.append(
+                        _Term(
+                            rf"{u.latex}\,e^{{i\varphi_{{{n}}}}}",
+                            f"{u.text} e^(i phi{n})",
+                            "phasor",
+                            [],
+                            (th, b.scalar(th)),
+                            1.0,
+                            u,
+                        )
+                    )
                     continue
                 link = m.link
                 assert link is not None
@@ -360,53 +407,121 @@ class LoopMethod:
                     su = self.slide_unknown(m, order)
                     beta = (f"phi{n}", b.scalar(f"phi{n}"))
                     if order == VELOCITY:
-                        terms.append(_Term(rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
-                                           f"{su.text} e^(i beta{n})", "phasor", [], beta, 1.0,
-                                           su))
+                        terms.append(
+                            _Term(
+                                rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
+                                f"{su.text} e^(i beta{n})",
+                                "phasor",
+                                [],
+                                beta,
+                                1.0,
+                                su,
+                            )
+                        )
                     else:
                         sdot = self.slide_value(m, VELOCITY)
                         sd_key = b.put(f"s_dot1{n}", sdot, "m/s")
-                        terms.append(_Term(rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
-                                           f"{su.text} e^(i beta{n})", "phasor", [], beta, 1.0,
-                                           su))
-                        terms.append(_Term(
-                            rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}",
-                            f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)", "iphasor",
-                            [(w_key, omega, "rad/s"), (sd_key, sdot, "m/s")], beta, 2.0))
+                        terms.append(
+                            _Term(
+                                rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
+                                f"{su.text} e^(i beta{n})",
+                                "phasor",
+                                [],
+                                beta,
+                                1.0,
+                                su,
+                            )
+                        )
+                        terms.append(
+                            _Term(
+                                rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}",
+                                f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)",
+                                "iphasor",
+                                [(w_key, omega, "rad/s"), (sd_key, sdot, "m/s")],
+                                beta,
+                                2.0,
+                            )
+                        )
                 if order == VELOCITY:
                     if unknown:
-                        terms.append(_Term(rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                           f"i a{n} omega1{n} e^(i theta1{n})", "iphasor",
-                                           [a_f], (th, thv), 1.0, rate))
+                        terms.append(
+                            _Term(
+                                rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                f"i a{n} omega1{n} e^(i theta1{n})",
+                                "iphasor",
+                                [a_f],
+                                (th, thv),
+                                1.0,
+                                rate,
+                            )
+                        )
                     else:
-                        terms.append(_Term(rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                           f"i a{n} omega1{n} e^(i theta1{n})", "iphasor",
-                                           [a_f, (w_key, omega, "rad/s")], (th, thv)))
+                        terms.append(
+                            _Term(
+                                rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                                f"i a{n} omega1{n} e^(i theta1{n})",
+                                "iphasor",
+                                [a_f, (w_key, omega, "rad/s")],
+                                (th, thv),
+                            )
+                        )
                     continue
                 al_key = b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha"))
                 if unknown:
-                    terms.append(_Term(rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                       f"i a{n} alpha1{n} e^(i theta1{n})", "iphasor", [a_f],
-                                       (th, thv), 1.0, rate))
+                    terms.append(
+                        _Term(
+                            rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                            f"i a{n} alpha1{n} e^(i theta1{n})",
+                            "iphasor",
+                            [a_f],
+                            (th, thv),
+                            1.0,
+                            rate,
+                        )
+                    )
                 else:
-                    terms.append(_Term(rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                       f"i a{n} alpha1{n} e^(i theta1{n})", "iphasor",
-                                       [a_f, (al_key, alpha, "rad/s^2")], (th, thv)))
-                terms.append(_Term(rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}",
-                                   f"- a{n} omega1{n} squared e^(i theta1{n})", "phasor",
-                                   [a_f, (w_key, omega, "rad/s"), (w_key, omega, "rad/s")],
-                                   (th, thv), -1.0))
+                    terms.append(
+                        _Term(
+                            rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                            f"i a{n} alpha1{n} e^(i theta1{n})",
+                            "iphasor",
+                            [a_f, (al_key, alpha, "rad/s^2")],
+                            (th, thv),
+                        )
+                    )
+                terms.append(
+                    _Term(
+                        rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}",
+                        f"- a{n} omega1{n} squared e^(i theta1{n})",
+                        "phasor",
+                        [a_f, (w_key, omega, "rad/s"), (w_key, omega, "rad/s")],
+                        (th, thv),
+                        -1.0,
+                    )
+                )
         return sides
 
     def rate_unknown(self, link: str, n: str, order: int) -> Unknown:
         ctx = self.ctx
         if order == VELOCITY:
-            return Unknown(f"omega1{n}", rf"\omega_{{1{n}}}", f"omega1{n}", "rad/s",
-                           ctx.omega(link), ("links", link, "omega"),
-                           f"the angular velocity of link {n} ({link})")
-        return Unknown(f"alpha1{n}", rf"\alpha_{{1{n}}}", f"alpha1{n}", "rad/s^2",
-                       ctx.alpha(link), ("links", link, "alpha"),
-                       f"the angular acceleration of link {n} ({link})")
+            return Unknown(
+                f"omega1{n}",
+                rf"\omega_{{1{n}}}",
+                f"omega1{n}",
+                "rad/s",
+                ctx.omega(link),
+                ("links", link, "omega"),
+                f"the angular velocity of link {n} ({link})",
+            )
+        return Unknown(
+            f"alpha1{n}",
+            rf"\alpha_{{1{n}}}",
+            f"alpha1{n}",
+            "rad/s^2",
+            ctx.alpha(link),
+            ("links", link, "alpha"),
+            f"the angular acceleration of link {n} ({link})",
+        )
 
     def slide_value(self, m: Member, order: int) -> float:
         assert m.slot is not None
@@ -420,10 +535,24 @@ class LoopMethod:
         n = m.number
         where = f"along the {'guide' if m.kind == 'slider' else 'slot'} at {m.second}"
         if order == VELOCITY:
-            return Unknown(f"s_dot1{n}", rf"\dot{{s}}_{{1{n}}}", f"s-dot1{n}", "m/s",
-                           self.slide_value(m, order), None, f"the sliding speed {where}")
-        return Unknown(f"s_ddot1{n}", rf"\ddot{{s}}_{{1{n}}}", f"s-double-dot1{n}", "m/s^2",
-                       self.slide_value(m, order), None, f"the sliding acceleration {where}")
+            return Unknown(
+                f"s_dot1{n}",
+                rf"\dot{{s}}_{{1{n}}}",
+                f"s-dot1{n}",
+                "m/s",
+                self.slide_value(m, order),
+                None,
+                f"the sliding speed {where}",
+            )
+        return Unknown(
+            f"s_ddot1{n}",
+            rf"\ddot{{s}}_{{1{n}}}",
+            f"s-double-dot1{n}",
+            "m/s^2",
+            self.slide_value(m, order),
+            None,
+            f"the sliding acceleration {where}",
+        )
 
     def term_latex_number(self, b: StepBuilder, t: _Term, key: str) -> str:
         number = self.cx(b, key)
@@ -436,8 +565,11 @@ class LoopMethod:
     def derivative_step(self, loop: Loop, index: int, order: int) -> Step:
         ctx = self.ctx
         what = "velocity" if order == VELOCITY else "acceleration"
-        b = ctx.builder(f"loop.{what}", f"Loop {index}: {what} equation "
-                        f"({'first' if order == VELOCITY else 'second'} time derivative)")
+        b = ctx.builder(
+            f"loop.{what}",
+            f"Loop {index}: {what} equation "
+            f"({'first' if order == VELOCITY else 'second'} time derivative)",
+        )
         left, right = self.derivative_terms(loop, order, b)
         unknown_keys: dict[str, str] = {}
         known_keys: list[tuple[str, float]] = []
@@ -452,8 +584,11 @@ class LoopMethod:
                     unknown_keys[t.unknown.key] = key
                     columns.append((t.unknown, key, side_sign))
                 else:
-                    key = b.put(f"term{len(known_keys) + 1}", t.value(),
-                                "m/s" if order == VELOCITY else "m/s^2")
+                    key = b.put(
+                        f"term{len(known_keys) + 1}",
+                        t.value(),
+                        "m/s" if order == VELOCITY else "m/s^2",
+                    )
                     b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
                     known_keys.append((key, side_sign))
                 shown[id(t)] = key
@@ -465,41 +600,59 @@ class LoopMethod:
         b.line(rf"&{num_left} = {num_right}")
         text_left = " + ".join(t.text for t in left).replace("+ -", "-")
         text_right = (" + ".join(t.text for t in right) or "0").replace("+ -", "-")
-        b.say(f"Differentiating the loop {'once' if order == VELOCITY else 'twice'} with respect "
-              "to time (lengths of links are constant, d/dt e^(i theta) = i omega e^(i theta)): "
-              f"{text_left} = {text_right}.")
+        b.say(
+            f"Differentiating the loop {'once' if order == VELOCITY else 'twice'} with respect "
+            "to time (lengths of links are constant, d/dt e^(i theta) = i omega e^(i theta)): "
+            f"{text_left} = {text_right}."
+        )
         if order == ACCELERATION and loop.kind == "slotted lever":
-            b.say("The term 2 i omega s-dot e^(i beta) is the Coriolis acceleration of the pin in "
-                  "the turning slot (with the factor 2).")
+            b.say(
+                "The term 2 i omega s-dot e^(i beta) is the Coriolis acceleration of the pin in "
+                "the turning slot (with the factor 2)."
+            )
         # unknowns to the left, knowns to the right: sum(side * col * u) = -sum(side * known)
-        rhs_vec = b.put("rhs", -sum((s * np.asarray(b.vector(k)) for k, s in known_keys),
-                                    np.zeros(2)), "m/s" if order == VELOCITY else "m/s^2")
+        known_total = np.zeros(2)
+        for k, s in known_keys:
+            known_total = known_total + s * np.asarray(b.vector(k))
+        rhs_vec = b.put("rhs", -known_total, "m/s" if order == VELOCITY else "m/s^2")
         b.check("sum", rhs_vec, *[("-" if s > 0 else "") + k for k, s in known_keys])
         coefficients: list[list[str]] = [[], []]
         rhs = []
-        known_size = sum(float(np.hypot(*b.vector(k))) for k, _ in known_keys)
+        known_size = sum(math.hypot(*b.vector(k)) for k, _ in known_keys)
         for i in range(2):
-            for j, (u, key, sign) in enumerate(columns):
-                c = b.put(f"c{i + 1}{j + 1}", sign * b.vector(key)[i], "",
-                          reference=float(np.hypot(*b.vector(key))))
+            for j, (_, key, sign) in enumerate(columns):
+                c = b.put(
+                    f"c{i + 1}{j + 1}",
+                    sign * b.vector(key)[i],
+                    "",
+                    reference=math.hypot(*b.vector(key)),
+                )
                 b.check("sum", c, f"{'-' if sign < 0 else ''}{key}[{i}]")
                 coefficients[i].append(c)
             bi = b.put(f"b{i + 1}", b.vector(rhs_vec)[i], "", reference=known_size)
             b.check("sum", bi, f"{rhs_vec}[{i}]")
             rhs.append(bi)
-        b.say("Unknowns to the left, known terms to the right; the real and imaginary parts are "
-              "two linear equations:")
+        b.say(
+            "Unknowns to the left, known terms to the right; the real and imaginary parts are "
+            "two linear equations:"
+        )
         present_solution(b, [u for u, _, _ in columns], coefficients, rhs, "", cramer=True)
         if loop.slot is not None and loop.kind != "four-bar":
             field_name = "relative_velocity" if order == VELOCITY else "relative_acceleration"
             rel = getattr(loop.slot, field_name)
-            r = b.put(f"v_rel({loop.joint})" if order == VELOCITY else f"a_rel({loop.joint})",
-                      rel, "m/s" if order == VELOCITY else "m/s^2", loop.slot.source(field_name))
-            u = b.put("u", loop.slot.direction, "")
+            r = b.put(
+                f"v_rel({loop.joint})" if order == VELOCITY else f"a_rel({loop.joint})",
+                rel,
+                "m/s" if order == VELOCITY else "m/s^2",
+                loop.slot.source(field_name),
+            )
+            direction = b.put("u", loop.slot.direction, "")
             slide = next(u_ for u_, _, _ in columns if u_.key.startswith("s_"))
-            b.check("dot", slide.key, r, u)
-            b.say(f"{slide.text} is the component along the slot of the relative "
-                  f"{what} of {loop.joint}: {b.txt(r)}.")
+            b.check("dot", slide.key, r, direction)
+            b.say(
+                f"{slide.text} is the component along the slot of the relative "
+                f"{what} of {loop.joint}: {b.txt(r)}."
+            )
         return b.build()
 
     def joint_motion_step(self, loop: Loop, index: int, order: int) -> Step | None:
@@ -519,26 +672,40 @@ class LoopMethod:
             keys.append(key)
         unit = "m/s" if order == VELOCITY else "m/s^2"
         field_name = "velocity" if order == VELOCITY else "acceleration"
-        total = b.put(f"{field_name[0]}({x})", getattr(ctx.analysis.points[x], field_name), unit,
-                      ("points", x, field_name))
+        total = b.put(
+            f"{field_name[0]}({x})",
+            getattr(ctx.analysis.points[x], field_name),
+            unit,
+            ("points", x, field_name),
+        )
         b.check("sum", total, *keys)
         letter = "v" if order == VELOCITY else "a"
-        b.line(rf"&\vec{{{letter}}}_{{{tex.name(x)}}} = " + " + ".join(t.latex for t in left)
-               .replace("+ -", "- "))
-        b.line(r"&\phantom{\vec{v}} = " + join_sum([self.cx(b, k) for k in keys]) + " = "
-               + tex.boxed_result(self.cx(b, total) + latex_unit(unit)))
-        b.say(f"The {what} of {x} is the derivative of the left side of the loop (the position "
-              f"of {x}): " + " + ".join(b.txt(k) for k in keys) + f" = {b.txt(total)} (x + i y).")
+        b.line(
+            rf"&\vec{{{letter}}}_{{{tex.name(x)}}} = "
+            + " + ".join(t.latex for t in left).replace("+ -", "- ")
+        )
+        b.line(
+            r"&\phantom{\vec{v}} = "
+            + join_sum([self.cx(b, k) for k in keys])
+            + " = "
+            + tex.boxed_result(self.cx(b, total) + latex_unit(unit))
+        )
+        b.say(
+            f"The {what} of {x} is the derivative of the left side of the loop (the position "
+            f"of {x}): " + " + ".join(b.txt(k) for k in keys) + f" = {b.txt(total)} (x + i y)."
+        )
         return b.build()
 
     def other_points(self) -> list[Step]:
         """Points of solved links not on a loop: X = B + b e^(i theta_BX) on a known link."""
         ctx = self.ctx
-        on_loops = {p for loop in self.loops for m in loop.left + loop.right
-                    for p in (m.first, m.second)}
+        on_loops = {
+            p for loop in self.loops for m in loop.left + loop.right for p in (m.first, m.second)
+        }
         out = []
         for order in (VELOCITY, ACCELERATION):
-            for link in list(self.rotating) + [s for s in self.solved if s not in self.rotating]:
+            links = [k for k in self.numbers if k in self.rotating or k in self.solved]
+            for link in links:
                 points = ctx.scene.links[link].points
                 base = next((p for p in points if p in on_loops), points[0])
                 for p in points:
@@ -548,7 +715,7 @@ class LoopMethod:
         return out
 
     def point_step(self, link: str, base: str, point: str, order: int) -> Step:
-        """X = B + b e^(i theta) on a known link: v_X = v_B + i b omega e^(i theta), a_X likewise."""
+        """X = B + b e^(i theta) on a known link: v_X = v_B + i b omega e^(i theta), a_X too."""
         ctx = self.ctx
         what = "velocity" if order == VELOCITY else "acceleration"
         b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {point} (link {link})")
@@ -561,39 +728,60 @@ class LoopMethod:
         w = b.put("omega", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
         unit = "m/s" if order == VELOCITY else "m/s^2"
         field_name = "velocity" if order == VELOCITY else "acceleration"
-        x0 = b.put(f"{field_name[0]}({base})", getattr(ctx.analysis.points[base], field_name),
-                   unit, ("points", base, field_name))
-        x1 = b.put(f"{field_name[0]}({point})", getattr(ctx.analysis.points[point], field_name),
-                   unit, ("points", point, field_name))
+        x0 = b.put(
+            f"{field_name[0]}({base})",
+            getattr(ctx.analysis.points[base], field_name),
+            unit,
+            ("points", base, field_name),
+        )
+        x1 = b.put(
+            f"{field_name[0]}({point})",
+            getattr(ctx.analysis.points[point], field_name),
+            unit,
+            ("points", point, field_name),
+        )
         sub = f"1{self.numbers[link]}"
         if order == VELOCITY:
-            t = b.put("i b omega e^(i theta)", ctx.omega(link) * np.array([-r_np[1], r_np[0]]),
-                      unit)
+            t = b.put(
+                "i b omega e^(i theta)", ctx.omega(link) * np.array([-r_np[1], r_np[0]]), unit
+            )
             b.check("iphasor", t, bl, w, th)
             b.check("sum", x1, x0, t)
-            b.line(rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
-                   rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu(bl)}, \quad "
-                   rf"\theta = {self.deg(b, th)}")
-            b.line(rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
-                   rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}")
-            b.say(f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
-                  f"{b.txt(bl)}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
-                  f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}.")
+            b.line(
+                rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
+                rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu(bl)}, \quad "
+                rf"\theta = {self.deg(b, th)}"
+            )
+            b.line(
+                rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
+                rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}"
+            )
+            b.say(
+                f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
+                f"{b.txt(bl)}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
+                f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}."
+            )
             return b.build()
         al = b.put("alpha", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
-        tt = (ctx.alpha(link) * np.array([-r_np[1], r_np[0]]))
+        tt = ctx.alpha(link) * np.array([-r_np[1], r_np[0]])
         nn = -(ctx.omega(link) ** 2) * r_np
         t = b.put("i b alpha e^(i theta)", tt, unit)
         n = b.put("normal term", nn, unit)
         b.check("iphasor", t, bl, al, th)
         b.check("phasor", n, bl, w, w, th, factor=-1.0)
         b.check("sum", x1, x0, t, n)
-        b.line(rf"&\vec{{a}}_{{{tex.name(point)}}} = \vec{{a}}_{{{tex.name(base)}}} + "
-               rf"i\,b\,\alpha_{{{sub}}}\,e^{{i\theta}} - b\,\omega_{{{sub}}}^2\,e^{{i\theta}}")
-        b.line(rf"&\phantom{{\vec{{a}}}} = {self.cx(b, x0)} + {self.cx(b, t)} + {self.cx(b, n)} = "
-               rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}")
-        b.say(f"Differentiating again: a({point}) = a({base}) + i b alpha e^(i theta) - b omega "
-              f"squared e^(i theta) = {b.txt(x0)} + {b.txt(t)} + {b.txt(n)} = {b.txt(x1)}.")
+        b.line(
+            rf"&\vec{{a}}_{{{tex.name(point)}}} = \vec{{a}}_{{{tex.name(base)}}} + "
+            rf"i\,b\,\alpha_{{{sub}}}\,e^{{i\theta}} - b\,\omega_{{{sub}}}^2\,e^{{i\theta}}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{a}}}} = {self.cx(b, x0)} + {self.cx(b, t)} + {self.cx(b, n)} = "
+            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}"
+        )
+        b.say(
+            f"Differentiating again: a({point}) = a({base}) + i b alpha e^(i theta) - b omega "
+            f"squared e^(i theta) = {b.txt(x0)} + {b.txt(t)} + {b.txt(n)} = {b.txt(x1)}."
+        )
         return b.build()
 
     def steps(self) -> list[Step]:

@@ -1,12 +1,509 @@
-"""stub"""
+"""The typical mistakes for a scene, each with the wrong number a student would get.
+
+Only mistakes that apply to the scene are listed: a Coriolis factor of 2 where a slot turns, the
+Coriolis term on a fixed guide where a slider's link turns, omega^2 with the wrong sign, the
+cross product in the wrong order, the unknowns of a dyad mixed up, omega written for alpha, and,
+for moving points and spatial chains, the mistakes of seeds 002 and 003 (ERRATA.md). The wrong
+value is computed by making exactly that mistake with the solver's numbers, and shown next to
+the right one.
+"""
+
 from __future__ import annotations
-from typing import Any
-from solver.steps.model import Mistake
+
+import numpy as np
+
+from solver.relative_motion import MovingPointMotion
+from solver.rigid import perp
+from solver.spatial import SpatialAnalysis, SpatialChain
+from solver.steps.format import Formatter
+from solver.steps.linkage import LinkageContext, k_cross
+from solver.steps.model import Mistake, Value
+from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
 
 
-def linkage_mistakes(ctx: Any) -> list[Mistake]:
-    return []
+def _value(fmt: Formatter, value: float | np.ndarray, unit: str) -> Value:
+    number: float | tuple[float, ...]
+    number = tuple(float(x) for x in value) if isinstance(value, np.ndarray) else float(value)
+    return Value(number, unit, fmt.display(number, unit))
 
 
-def spatial_mistakes(scene: Any, analysis: Any, fmt: Any) -> list[Mistake]:
-    return []
+def _mistake(
+    fmt: Formatter,
+    kind: str,
+    title: str,
+    text: str,
+    wrong: float | np.ndarray,
+    right: float | np.ndarray,
+    unit: str,
+) -> Mistake:
+    w, r = _value(fmt, wrong, unit), _value(fmt, right, unit)
+    return Mistake(
+        kind, title, f"{text} Wrong: {w.display}; right: {r.display}.", {"wrong": w, "right": r}
+    )
+
+
+def _solve2(columns: tuple[np.ndarray, np.ndarray], rhs: np.ndarray) -> np.ndarray:
+    matrix = np.column_stack(columns)
+    return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
+
+
+class LinkageMistakes:
+    def __init__(self, ctx: LinkageContext) -> None:
+        self.ctx = ctx
+        self.fmt = ctx.fmt
+        self.out: list[Mistake] = []
+
+    def nonzero(self, value: float | np.ndarray, unit: str) -> bool:
+        if isinstance(value, np.ndarray):
+            return not all(x == 0.0 for x in self.fmt.clean_vector(tuple(value), unit))
+        return not self.fmt.is_zero(value, unit)
+
+    # --- Coriolis -------------------------------------------------------------------------------
+
+    def coriolis(self) -> None:
+        ctx = self.ctx
+        plan = ctx.analysis.plan
+        for step in plan.steps:
+            if isinstance(step, LeverStep):
+                self.lever_coriolis(step)
+            elif isinstance(step, DyadStep):
+                for spec in step.loci:
+                    if isinstance(spec, LineSpec):
+                        self.slot_coriolis(step, spec)
+
+    def lever_coriolis(self, step: LeverStep) -> None:
+        ctx, fmt = self.ctx, self.fmt
+        slot = ctx.slot(step.link, step.pin)
+        omega = slot.omega_guide
+        v_rel = slot.relative_velocity
+        assert slot.coriolis_acceleration is not None
+        if not (self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s")):
+            return
+        right = slot.coriolis_acceleration
+        half = k_cross(omega, v_rel)
+        r = ctx.pos(step.pin) - ctx.pos(step.pivot)
+        u = slot.direction
+        base = ctx.acc(step.pin) - ctx.acc(step.pivot) + ctx.omega(step.link) ** 2 * r
+        alpha_wrong = _solve2((perp(r), u), base - half)[0]
+        self.out.append(
+            _mistake(
+                fmt,
+                "coriolis.factor_2",
+                "The factor 2 in the Coriolis term",
+                f"The Coriolis acceleration of {step.pin} in the turning slot of {step.link} is "
+                f"2 omega({step.link}) x v_rel, twice omega x v_rel: half comes from the relative "
+                "velocity turning with the slot, half from the slot carrying the point to places "
+                "that move faster. Without the 2, a_Cor is wrong and so is the lever's angular "
+                f"acceleration: alpha({step.link}) would come out as "
+                f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
+                f"{fmt.text_value(ctx.alpha(step.link), 'rad/s^2')}.",
+                half,
+                right,
+                "m/s^2",
+            )
+        )
+        v_abs = ctx.vel(step.pin)
+        if self.nonzero(v_abs - v_rel, "m/s"):
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "coriolis.absolute_velocity",
+                    "Relative, not absolute, velocity in Coriolis",
+                    f"a_Cor = 2 omega({step.link}) x v_rel uses the velocity of {step.pin} "
+                    f"relative to the slot ({fmt.text_vector(tuple(v_rel), 'm/s')}), "
+                    f"not its absolute velocity ({fmt.text_vector(tuple(v_abs), 'm/s')}).",
+                    2.0 * k_cross(omega, v_abs),
+                    right,
+                    "m/s^2",
+                )
+            )
+
+    def slot_coriolis(self, step: DyadStep, spec: LineSpec) -> None:
+        ctx, fmt = self.ctx, self.fmt
+        point = step.point
+        slot = ctx.slot(spec.guide, point)
+        v_rel = slot.relative_velocity
+        assert slot.coriolis_acceleration is not None
+        right = slot.coriolis_acceleration
+        circle = next((s for s in step.loci if isinstance(s, CircleSpec)), None)
+        if spec.guide == ctx.scene.ground:
+            follower = slot.joint.follower
+            omega_f = ctx.omega(follower)
+            if not (self.nonzero(omega_f, "rad/s") and self.nonzero(v_rel, "m/s")):
+                return
+            wrong = 2.0 * k_cross(omega_f, v_rel)
+            consequence = ""
+            if circle is not None:
+                r = ctx.pos(point) - ctx.pos(circle.center)
+                base = ctx.acc(circle.center) - ctx.omega(circle.link) ** 2 * r
+                alpha_wrong = _solve2((perp(r), -slot.direction), wrong - base)[0]
+                consequence = (
+                    f" Carried into the equations it gives alpha({circle.link}) = "
+                    f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
+                    f"{fmt.text_value(ctx.alpha(circle.link), 'rad/s^2')}."
+                )
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "coriolis.fixed_guide",
+                    "No Coriolis term on a fixed guide",
+                    f"{point} slides in a slot fixed in the ground. The Coriolis term is "
+                    "2 omega_guide x v_rel with the angular velocity of the guide, which is zero; "
+                    f"the angular velocity of link {follower} ({fmt.text_value(omega_f, 'rad/s')}) "
+                    f"does not belong in it." + consequence,
+                    wrong,
+                    right,
+                    "m/s^2",
+                )
+            )
+            return
+        omega = slot.omega_guide
+        if self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s"):
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "coriolis.factor_2",
+                    "The factor 2 in the Coriolis term",
+                    f"The Coriolis acceleration of {point} in the turning slot of {spec.guide} is "
+                    f"2 omega({spec.guide}) x v_rel, not omega x v_rel.",
+                    k_cross(omega, v_rel),
+                    right,
+                    "m/s^2",
+                )
+            )
+
+    # --- signs and orders -----------------------------------------------------------------------
+
+    def first_rotation(self) -> tuple[str, str, str] | None:
+        """(link, pivot, point) of the first driven link with a turning rate and a second point."""
+        ctx = self.ctx
+        for step in ctx.analysis.plan.steps:
+            if isinstance(step, DriverStep) and self.nonzero(ctx.omega(step.link), "rad/s"):
+                others = [p for p in ctx.scene.links[step.link].points if p != step.pivot]
+                if others:
+                    return step.link, step.pivot, others[0]
+        return None
+
+    def signs(self) -> None:
+        ctx, fmt = self.ctx, self.fmt
+        found = self.first_rotation()
+        if found is None:
+            return
+        link, pivot, point = found
+        r = ctx.pos(point) - ctx.pos(pivot)
+        omega, alpha = ctx.omega(link), ctx.alpha(link)
+        a_right = ctx.acc(point)
+        self.out.append(
+            _mistake(
+                fmt,
+                "normal.sign",
+                "The sign of the normal term -omega^2 r",
+                f"The normal (centripetal) acceleration of {point} about {pivot} is -omega^2 "
+                f"r({pivot},{point}): it points from {point} back towards {pivot}, whatever the "
+                f"sign of omega (omega^2 = ({fmt.text(omega)})^2 = {fmt.text(omega**2)} is "
+                "positive). Writing +omega^2 r turns it outwards.",
+                ctx.acc(pivot) + k_cross(alpha, r) + omega**2 * r,
+                a_right,
+                "m/s^2",
+            )
+        )
+        self.out.append(
+            _mistake(
+                fmt,
+                "cross.order",
+                "The order of the cross product",
+                f"v({point}) = v({pivot}) + omega x r({pivot},{point}); r x omega = -(omega x r) "
+                "reverses the relative velocity. In the determinant, the row of omega comes before "
+                "the row of r.",
+                ctx.vel(pivot) - k_cross(omega, r),
+                ctx.vel(point),
+                "m/s",
+            )
+        )
+        if self.nonzero(alpha - omega, "rad/s^2"):
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "labels.omega_alpha",
+                    "alpha, not omega, in the tangential term",
+                    f"The tangential acceleration is alpha x r, with the angular acceleration "
+                    f"alpha({link}) = {fmt.text_value(alpha, 'rad/s^2')}; writing omega x r there "
+                    f"(omega({link}) = {fmt.text_value(omega, 'rad/s')}) mixes up the two labels.",
+                    ctx.acc(pivot) + k_cross(omega, r) - omega**2 * r,
+                    a_right,
+                    "m/s^2",
+                )
+            )
+
+    def unknowns(self) -> None:
+        """An RRR dyad: two different links, two different unknowns."""
+        ctx, fmt = self.ctx, self.fmt
+        drivers = {s.link for s in ctx.analysis.plan.steps if isinstance(s, DriverStep)}
+        for step in ctx.analysis.plan.steps:
+            if not isinstance(step, DyadStep):
+                continue
+            circles = [s for s in step.loci if isinstance(s, CircleSpec)]
+            if not circles:
+                continue
+            known = next(
+                (d for d in drivers if circles[0].center in ctx.scene.links[d].points), None
+            )
+            first = circles[0]
+            r = ctx.pos(step.point) - ctx.pos(first.center)
+            if known is not None and known != first.link:
+                wrong = ctx.vel(first.center) + k_cross(ctx.omega(known), r)
+                text = (
+                    f"In v({step.point}) = v({first.center}) + omega x r({first.center},"
+                    f"{step.point}), omega is the unknown angular velocity of link "
+                    f"{first.link}, not the known omega({known}) of the driven link."
+                )
+                if len(circles) == 2:
+                    second = circles[1].link
+                    text += (
+                        f" The two unknowns belong to different links: omega({first.link}) ="
+                        f" {fmt.text_value(ctx.omega(first.link), 'rad/s')} and "
+                        f"omega({second}) = {fmt.text_value(ctx.omega(second), 'rad/s')} "
+                        f"(likewise alpha({first.link}) = "
+                        f"{fmt.text_value(ctx.alpha(first.link), 'rad/s^2')} and "
+                        f"alpha({second}) = {fmt.text_value(ctx.alpha(second), 'rad/s^2')});"
+                        " giving them one symbol mixes them up."
+                    )
+                self.out.append(
+                    _mistake(
+                        fmt,
+                        "unknowns.which_link",
+                        "Whose omega is unknown",
+                        text,
+                        wrong,
+                        ctx.vel(step.point),
+                        "m/s",
+                    )
+                )
+                return
+
+    # --- moving points --------------------------------------------------------------------------
+
+    def moving_points(self) -> None:
+        ctx, fmt = self.ctx, self.fmt
+        moving: dict[str, MovingPointMotion] = getattr(ctx.analysis, "moving_points", {}) or {}
+        for mp in ctx.scene.moving_points:
+            m = moving.get(mp.name)
+            if m is None:
+                continue
+            omega = float(m.omega_carrier)
+            v_rel = np.asarray(m.relative_velocity)
+            if (
+                mp.path.type == "arc"
+                and mp.path.center is not None
+                and self.nonzero(omega, "rad/s")
+            ):
+                radius = float(np.hypot(*(np.asarray(m.position) - ctx.pos(mp.path.center))))
+                speed = float(np.hypot(*v_rel))
+                if speed > 0:
+                    tau = v_rel / speed * np.sign(float(m.s_dot) or 1.0)
+                    wrong = v_rel + omega * radius * tau
+                    self.out.append(
+                        _mistake(
+                            fmt,
+                            "relative.carrier_rate",
+                            "No carrier rate in the relative velocity",
+                            f"The relative velocity of {mp.name} is what an observer on {mp.link} "
+                            "sees: s-dot along the path's tangent. Adding the carrier's rotation "
+                            "(R (theta-dot + phi-dot)) counts the transport motion twice.",
+                            wrong,
+                            v_rel,
+                            "m/s",
+                        )
+                    )
+                self.out.append(
+                    _mistake(
+                        fmt,
+                        "coriolis.factor_2",
+                        "The factor 2 in the Coriolis term",
+                        f"a_Cor({mp.name}) = 2 omega({mp.link}) x v_rel, not omega x v_rel.",
+                        k_cross(omega, v_rel),
+                        np.asarray(m.coriolis_acceleration),
+                        "m/s^2",
+                    )
+                )
+            if not self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s"):
+                turning = [
+                    j
+                    for j in ctx.scene.joints
+                    if j.type == "revolute"
+                    and mp.link in j.links
+                    and self.nonzero(
+                        ctx.omega(j.links[0] if j.links[1] == mp.link else j.links[1]), "rad/s"
+                    )
+                ]
+                if turning:
+                    joint = turning[0]
+                    other = joint.links[0] if joint.links[1] == mp.link else joint.links[1]
+                    self.out.append(
+                        _mistake(
+                            fmt,
+                            "coriolis.translating_carrier",
+                            "No Coriolis term on a translating carrier",
+                            f"The carrier {mp.link} translates (omega = 0), so a_Cor = 0 "
+                            f"even though link {other} that drives it turns "
+                            f"(omega({other}) = {fmt.text_value(ctx.omega(other), 'rad/s')}); the "
+                            "Coriolis term uses the carrier's angular velocity only.",
+                            2.0 * k_cross(ctx.omega(other), v_rel),
+                            np.asarray(m.coriolis_acceleration),
+                            "m/s^2",
+                        )
+                    )
+            if (
+                mp.path.type == "arc"
+                and mp.path.center is not None
+                and self.nonzero(omega, "rad/s")
+            ):
+                centre = mp.path.center
+                self.out.append(
+                    _mistake(
+                        fmt,
+                        "relative.transport_point",
+                        "Transport velocity at M itself",
+                        "The transport velocity is the velocity of the carrier's point that "
+                        f"coincides with {mp.name} (omega x r to {mp.name}), not that of the "
+                        f"path's centre {centre} or of another reference point.",
+                        ctx.vel(centre),
+                        np.asarray(m.transport_velocity),
+                        "m/s",
+                    )
+                )
+
+    def all(self) -> list[Mistake]:
+        self.coriolis()
+        self.unknowns()
+        self.signs()
+        self.moving_points()
+        seen: set[tuple[str, str]] = set()
+        unique = []
+        for m in self.out:
+            key = (m.kind, m.text)
+            if key not in seen:
+                seen.add(key)
+                unique.append(m)
+        return unique
+
+
+def linkage_mistakes(ctx: LinkageContext) -> list[Mistake]:
+    """The typical mistakes for a planar linkage (with or without moving points)."""
+    return LinkageMistakes(ctx).all()
+
+
+def spatial_mistakes(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter
+) -> list[Mistake]:
+    """The typical mistakes for a spatial chain (seed 002)."""
+    out: list[Mistake] = []
+    for joint in chain.joints:
+        body = analysis.bodies[joint.name]
+        if joint.type == "revolute" and np.linalg.norm(body.axis_rate) * abs(joint.rate) > 0:
+            wrong = body.alpha - joint.rate * body.axis_rate
+            scale = max(1.0, float(np.linalg.norm(body.alpha)))
+            if float(np.linalg.norm(wrong - body.alpha)) > 1e-12 * scale:
+                out.append(
+                    _mistake(
+                        fmt,
+                        "spatial.axis_rate",
+                        "The turning axis in alpha",
+                        f"Axis e({joint.name}) is fixed in the body before it, which turns: "
+                        "d/dt (rate e) = rate-dot e + rate (omega x e). Leaving out omega x e "
+                        f"gives a wrong alpha({joint.name}).",
+                        wrong,
+                        body.alpha,
+                        "rad/s^2",
+                    )
+                )
+                break
+    for point in chain.points:
+        motion = analysis.points[point.name]
+        if np.linalg.norm(motion.centripetal) > 0:
+            out.append(
+                _mistake(
+                    fmt,
+                    "spatial.centripetal_order",
+                    "The order in omega x (omega x r)",
+                    f"The centripetal term of {point.name} is omega x (omega x r), pointing "
+                    "towards the axis; (omega x r) x omega has the opposite sign.",
+                    motion.acceleration - 2.0 * motion.centripetal,
+                    motion.acceleration,
+                    "m/s^2",
+                )
+            )
+            break
+    for point in chain.points:
+        motion = analysis.points[point.name]
+        if float(np.linalg.norm(motion.coriolis)) > 0:
+            out.append(
+                _mistake(
+                    fmt,
+                    "coriolis.factor_2",
+                    "The factor 2 in the Coriolis term",
+                    f"{point.name} is carried by a sliding joint in a turning body: its Coriolis "
+                    "term is 2 omega x v_rel, not omega x v_rel.",
+                    motion.acceleration - 0.5 * motion.coriolis,
+                    motion.acceleration,
+                    "m/s^2",
+                )
+            )
+            break
+    out.append(
+        Mistake(
+            "spatial.unit_vectors",
+            "Cross products of unit vectors",
+            "Unit vectors cross in cyclic order: E1 x E2 = E3, E2 x E3 = E1, E3 x E1 = "
+            "E2 (and reversed order gives the minus sign). E3 x E1 is E2, not E1.",
+        )
+    )
+    out.append(
+        Mistake(
+            "spatial.rigid_points",
+            "Coriolis and relative terms of fixed points",
+            "A point fixed in its body has v_rel = 0 and a_rel = 0: of the five terms "
+            "only a_O, alpha x r and omega x (omega x r) remain. They reappear for a "
+            "point carried by a prismatic joint.",
+        )
+    )
+    return out
+
+
+def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
+    """Mistakes of the loop-closure method: the factor i of a derivative, a spurious i (E001-1)."""
+    fmt = ctx.fmt
+    out: list[Mistake] = []
+    for step in ctx.analysis.plan.steps:
+        if isinstance(step, DriverStep):
+            others = [p for p in ctx.scene.links[step.link].points if p != step.pivot]
+            if others and not fmt.is_zero(ctx.omega(step.link), "rad/s"):
+                r = ctx.pos(others[0]) - ctx.pos(step.pivot)
+                out.append(
+                    _mistake(
+                        fmt,
+                        "loop.derivative_i",
+                        "d/dt e^(i theta) = i omega e^(i theta)",
+                        f"Differentiating a e^(i theta) gives i a omega e^(i theta): the factor i "
+                        f"turns the term 90 degrees, perpendicular to the link. Without it the "
+                        f"velocity of {others[0]} would point along the crank.",
+                        ctx.omega(step.link) * r,
+                        ctx.vel(others[0]),
+                        "m/s",
+                    )
+                )
+                break
+    if any(
+        isinstance(s, DyadStep) and any(isinstance(x, LineSpec) for x in s.loci)
+        for s in ctx.analysis.plan.steps
+    ):
+        out.append(
+            Mistake(
+                "loop.real_slider",
+                "The slider's rates are real",
+                "s and its derivatives are real numbers: s-double-dot is the real part of the "
+                "acceleration loop equation along the guide. An extra i in front of a term of "
+                "s-double-dot (as in seed 001, eq. 10) would give it an imaginary part.",
+            )
+        )
+    return out

@@ -47,8 +47,12 @@ class Value:
 
     def as_json(self) -> dict[str, Any]:
         number: Any = list(self.value) if isinstance(self.value, tuple) else self.value
-        return {"value": number, "unit": self.unit, "display": self.display,
-                "source": None if self.source is None else list(self.source)}
+        return {
+            "value": number,
+            "unit": self.unit,
+            "display": self.display,
+            "source": None if self.source is None else list(self.source),
+        }
 
 
 @dataclass(frozen=True)
@@ -64,8 +68,12 @@ class Check:
     factor: float = 1.0
 
     def as_json(self) -> dict[str, Any]:
-        return {"relation": self.relation, "result": self.result,
-                "operands": list(self.operands), "factor": self.factor}
+        return {
+            "relation": self.relation,
+            "result": self.result,
+            "operands": list(self.operands),
+            "factor": self.factor,
+        }
 
 
 @dataclass(frozen=True)
@@ -80,9 +88,14 @@ class Step:
     checks: tuple[Check, ...] = ()
 
     def as_json(self) -> dict[str, Any]:
-        return {"kind": self.kind, "title": self.title, "latex": self.latex, "text": self.text,
-                "values": {k: v.as_json() for k, v in self.values.items()},
-                "checks": [c.as_json() for c in self.checks]}
+        return {
+            "kind": self.kind,
+            "title": self.title,
+            "latex": self.latex,
+            "text": self.text,
+            "values": {k: v.as_json() for k, v in self.values.items()},
+            "checks": [c.as_json() for c in self.checks],
+        }
 
 
 @dataclass(frozen=True)
@@ -96,8 +109,12 @@ class Mistake:
     values: Mapping[str, Value] = field(default_factory=dict)
 
     def as_json(self) -> dict[str, Any]:
-        return {"kind": self.kind, "title": self.title, "text": self.text,
-                "values": {k: v.as_json() for k, v in self.values.items()}}
+        return {
+            "kind": self.kind,
+            "title": self.title,
+            "text": self.text,
+            "values": {k: v.as_json() for k, v in self.values.items()},
+        }
 
 
 @dataclass(frozen=True)

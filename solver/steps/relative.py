@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import sympy
 
 from solver.laws import parse_time_law
 from solver.relative_motion import MovingPointMotion
@@ -69,57 +68,91 @@ class MovingPointSteps:
         s = b.put("s", float(self.m.s), "m", self.src("s"))
         sd = b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
         sdd = b.put("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot"))
-        b.line(rf"&s(t) = {sympy.latex(law.expression)}, \quad \dot{{s}}(t) = "
-               rf"{sympy.latex(law.first_derivative)}, \quad \ddot{{s}}(t) = "
-               rf"{sympy.latex(law.second_derivative)}")
-        b.line(rf"&t = {b.numu(t)}: \quad s = {b.numu(s)}, \quad \dot{{s}} = {b.numu(sd)}, \quad "
-               rf"\ddot{{s}} = {b.numu(sdd)}")
-        b.say(f"{self.name} moves along a path fixed in link {self.carrier}; its arc length from "
-              f"{mp.path.start} is s(t) = {mp.s_law} (m). At t = {b.txt(t)}: s = {b.txt(s)}, "
-              f"s-dot = {b.txt(sd)}, s-double-dot = {b.txt(sdd)}.")
+        b.line(
+            rf"&s(t) = {tex.law(law.expression, ctx.fmt.digits)}, \quad \dot{{s}}(t) = "
+            rf"{tex.law(law.first_derivative, ctx.fmt.digits)}, \quad \ddot{{s}}(t) = "
+            rf"{tex.law(law.second_derivative, ctx.fmt.digits)}"
+        )
+        b.line(
+            rf"&t = {b.numu(t)}: \quad s = {b.numu(s)}, \quad \dot{{s}} = {b.numu(sd)}, \quad "
+            rf"\ddot{{s}} = {b.numu(sdd)}"
+        )
+        b.say(
+            f"{self.name} moves along a path fixed in link {self.carrier}; its arc length from "
+            f"{mp.path.start} is s(t) = {mp.s_law} (m). At t = {b.txt(t)}: s = {b.txt(s)}, "
+            f"s-dot = {b.txt(sd)}, s-double-dot = {b.txt(sdd)}."
+        )
         route = mp.path
         m = b.put(f"pos({self.name})", self.m.position, "m", self.src("position"))
         if route.type == "arc":
             assert route.center is not None
-            c = b.put(f"pos({route.center})", ctx.pos(route.center), "m",
-                      ("points", route.center, "position"))
-            radius = float(np.hypot(*(ctx.scene.drawn(route.start)
-                                      - ctx.scene.drawn(route.center))))
+            c = b.put(
+                f"pos({route.center})",
+                ctx.pos(route.center),
+                "m",
+                ("points", route.center, "position"),
+            )
+            radius = float(
+                np.hypot(*(ctx.scene.drawn(route.start) - ctx.scene.drawn(route.center)))
+            )
             r = b.put("R", radius, "m")
             start = ctx.scene.drawn(route.start) - ctx.scene.drawn(route.center)
             theta = float(ctx.analysis.motion.links[self.carrier].theta[0])
             turn = 1.0 if route.direction == "ccw" else -1.0
-            angle = b.put("angle", math.atan2(start[1], start[0]) + theta
-                          + turn * float(self.m.s) / radius, "rad")
-            d = b.put(f"r({route.center},{self.name})", np.asarray(self.m.position)
-                      - ctx.pos(route.center), "m")
+            angle = b.put(
+                "angle",
+                math.atan2(start[1], start[0]) + theta + turn * float(self.m.s) / radius,
+                "rad",
+            )
+            d = b.put(
+                f"r({route.center},{self.name})",
+                np.asarray(self.m.position) - ctx.pos(route.center),
+                "m",
+            )
             b.check("phasor", d, r, angle)
             b.check("sum", m, c, d)
-            b.line(rf"&\text{{arc about }} {tex.name(route.center)}, \; R = {b.numu(r)}, \; "
-                   rf"\text{{{'counter-clockwise' if turn > 0 else 'clockwise'} from }} "
-                   rf"{tex.name(route.start)}: \; {self.n} = {tex.name(route.center)} + "
-                   rf"R\,(\cos\psi, \sin\psi), \; \psi = {b.numu(angle)}")
-            b.line(rf"&{self.n} = ({', '.join(b.entries(c, 2))}) + ({', '.join(b.entries(d, 2))})"
-                   rf" = {tex.boxed_result('(' + ', '.join(b.entries(m, 2)) + ')' + latex_unit('m'))}")
-            b.say(f"The path is an arc of radius R = {b.txt(r)} about {route.center}, run "
-                  f"{'counter-clockwise' if turn > 0 else 'clockwise'} from {route.start}; "
-                  f"{self.name} is at the angle psi = {b.txt(angle)} on it: {self.name} = "
-                  f"{b.txt(m)}.")
+            b.line(
+                rf"&\text{{arc about }} {tex.name(route.center)}, \; R = {b.numu(r)}, \; "
+                rf"\text{{{'counter-clockwise' if turn > 0 else 'clockwise'} from }} "
+                rf"{tex.name(route.start)}: \; {self.n} = {tex.name(route.center)} + "
+                rf"R\,(\cos\psi, \sin\psi), \; \psi = {b.numu(angle)}"
+            )
+            b.line(
+                rf"&{self.n} = {b.point(c)} + {b.point(d)} = "
+                rf"{tex.boxed_result(b.point(m) + latex_unit('m'))}"
+            )
+            b.say(
+                f"The path is an arc of radius R = {b.txt(r)} about {route.center}, run "
+                f"{'counter-clockwise' if turn > 0 else 'clockwise'} from {route.start}; "
+                f"{self.name} is at the angle psi = {b.txt(angle)} on it: {self.name} = "
+                f"{b.txt(m)}."
+            )
         else:
             assert route.through is not None
-            s0 = b.put(f"pos({route.start})", ctx.pos(route.start), "m",
-                       ("points", route.start, "position"))
+            s0 = b.put(
+                f"pos({route.start})",
+                ctx.pos(route.start),
+                "m",
+                ("points", route.start, "position"),
+            )
             u_np = ctx.pos(route.through) - ctx.pos(route.start)
             u = b.put("u", u_np / float(np.hypot(*u_np)), "")
-            d = b.put(f"r({route.start},{self.name})", np.asarray(self.m.position)
-                      - ctx.pos(route.start), "m")
+            d = b.put(
+                f"r({route.start},{self.name})",
+                np.asarray(self.m.position) - ctx.pos(route.start),
+                "m",
+            )
             b.check("product", d, s, u)
             b.check("sum", m, s0, d)
-            b.line(rf"&{self.n} = {tex.name(route.start)} + s\,\vec{{u}} = "
-                   rf"({', '.join(b.entries(s0, 2))}) + {b.num(s)} \cdot ({', '.join(b.entries(u, 2))})"
-                   rf" = {tex.boxed_result('(' + ', '.join(b.entries(m, 2)) + ')' + latex_unit('m'))}")
-            b.say(f"The path is the line from {route.start} towards {route.through} (direction "
-                  f"{b.txtn(u)}): {self.name} = {b.txt(m)}.")
+            b.line(
+                rf"&{self.n} = {tex.name(route.start)} + s\,\vec{{u}} = {b.point(s0)} + "
+                rf"{b.num(s)} \cdot {b.point(u)} = "
+                rf"{tex.boxed_result(b.point(m) + latex_unit('m'))}"
+            )
+            b.say(
+                f"The path is the line from {route.start} towards {route.through} (direction "
+                f"{b.txtn(u)}): {self.name} = {b.txt(m)}."
+            )
         return b.build()
 
     def velocity_steps(self) -> list[Step]:
@@ -133,47 +166,64 @@ class MovingPointSteps:
         w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
         r = b.put(f"r({a},{self.name})", r_np, "m")
         wxr = b.put("omega x r", k_cross(omega, r_np), "m/s")
-        tr = b.put(f"v_tr({self.name})", self.m.transport_velocity, "m/s",
-                   self.src("transport_velocity"))
+        tr = b.put(
+            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
+        )
         b.check("cross", wxr, w, r)
         b.check("sum", tr, va, wxr)
         base = V0 if ctx.is_fixed(a) and b.is_zero(va) else b.col(va)
         sub = self.n + r",\mathrm{tr}"
-        b.line(rf"&\vec{{v}}_{{{sub}}} = \vec{{v}}_{{{tex.name(a)}}} + "
-               rf"\vec{{\omega}}_{{{tex.name(carrier)}}} \times \vec{{r}}_{{{tex.pair(a, self.name)}}}"
-               rf" = {base} + {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
-               rf"{tex.boxed_result(b.colu(tr))}")
+        b.line(
+            rf"&\vec{{v}}_{{{sub}}} = \vec{{v}}_{{{tex.name(a)}}} + "
+            rf"\vec{{\omega}}_{{{tex.name(carrier)}}} \times "
+            rf"\vec{{r}}_{{{tex.pair(a, self.name)}}}"
+            rf" = {base} + {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
+            rf"{tex.boxed_result(b.colu(tr))}"
+        )
         if b.is_zero(w):
-            b.say(f"The carrier {carrier} translates at this instant (omega = 0): every point of "
-                  f"it, including the one under {self.name}, moves like {a}: v_tr = {b.txt(tr)}.")
+            b.say(
+                f"The carrier {carrier} translates at this instant (omega = 0): every point of "
+                f"it, including the one under {self.name}, moves like {a}: v_tr = {b.txt(tr)}."
+            )
         else:
-            b.say(f"Transport velocity: the velocity of the point of {carrier} under "
-                  f"{self.name}, v({a}) + omega({carrier}) cross r({a},{self.name}) = "
-                  f"{b.txt(va)} + {b.txt(wxr)} = {b.txt(tr)}.")
+            b.say(
+                f"Transport velocity: the velocity of the point of {carrier} under "
+                f"{self.name}, v({a}) + omega({carrier}) cross r({a},{self.name}) = "
+                f"{b.txt(va)} + {b.txt(wxr)} = {b.txt(tr)}."
+            )
         out.append(b.build())
         tau, _, _ = self.tangent_normal()
         b = ctx.builder("relative.relative_velocity", f"Relative velocity of {self.name}")
         sd = b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
         t = b.put("tau", tau, "")
-        rel = b.put(f"v_rel({self.name})", self.m.relative_velocity, "m/s",
-                    self.src("relative_velocity"))
+        rel = b.put(
+            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
+        )
         b.check("product", rel, sd, t)
-        b.line(rf"&\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = \dot{{s}}\,\vec{{\tau}} = "
-               rf"{b.num(sd)} \cdot {b.col(t)} = {tex.boxed_result(b.colu(rel))}")
-        b.say(f"Relative velocity: along the path's tangent tau = {b.txtn(t)} (the direction of "
-              f"increasing s), v_rel = s-dot tau = {b.txt(rel)}. It is the velocity an observer "
-              f"on {carrier} sees: the carrier's rate does not enter it.")
+        b.line(
+            rf"&\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = \dot{{s}}\,\vec{{\tau}} = "
+            rf"{b.num(sd)} \cdot {b.col(t)} = {tex.boxed_result(b.colu(rel))}"
+        )
+        b.say(
+            f"Relative velocity: along the path's tangent tau = {b.txtn(t)} (the direction of "
+            f"increasing s), v_rel = s-dot tau = {b.txt(rel)}. It is the velocity an observer "
+            f"on {carrier} sees: the carrier's rate does not enter it."
+        )
         out.append(b.build())
         b = ctx.builder("relative.velocity", f"Absolute velocity of {self.name}")
-        tr = b.put(f"v_tr({self.name})", self.m.transport_velocity, "m/s",
-                   self.src("transport_velocity"))
-        rel = b.put(f"v_rel({self.name})", self.m.relative_velocity, "m/s",
-                    self.src("relative_velocity"))
+        tr = b.put(
+            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
+        )
+        rel = b.put(
+            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
+        )
         v = b.put(f"v({self.name})", self.m.velocity, "m/s", self.src("velocity"))
         b.check("sum", v, tr, rel)
-        b.line(rf"&\vec{{v}}_{{{self.n}}} = \vec{{v}}_{{{self.n},\mathrm{{tr}}}} + "
-               rf"\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
-               rf"{tex.boxed_result(b.colu(v))}")
+        b.line(
+            rf"&\vec{{v}}_{{{self.n}}} = \vec{{v}}_{{{self.n},\mathrm{{tr}}}} + "
+            rf"\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
+            rf"{tex.boxed_result(b.colu(v))}"
+        )
         b.say(f"v({self.name}) = v_tr + v_rel = {b.txt(tr)} + {b.txt(rel)} = {b.txt(v)}.")
         out.append(b.build())
         return out
@@ -185,50 +235,74 @@ class MovingPointSteps:
         omega, alpha = float(self.m.omega_carrier), float(self.m.alpha_carrier)
         out = []
         sub = self.n
-        b = ctx.builder("relative.transport_acceleration",
-                        f"Transport acceleration of {self.name}")
+        b = ctx.builder("relative.transport_acceleration", f"Transport acceleration of {self.name}")
         aa = b.put(f"a({a_pt})", ctx.acc(a_pt), "m/s^2", ("points", a_pt, "acceleration"))
         w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
         al = b.put(f"alpha({carrier})", alpha, "rad/s^2", self.src("alpha_carrier"))
         r = b.put(f"r({a_pt},{self.name})", r_np, "m")
         t = b.put("alpha x r", k_cross(alpha, r_np), "m/s^2")
         n = b.put("normal", -(omega**2) * r_np, "m/s^2")
-        tr = b.put(f"a_tr({self.name})", self.m.transport_acceleration, "m/s^2",
-                   self.src("transport_acceleration"))
-        tt = b.put("a_tr tangential", self.m.transport_tangential, "m/s^2",
-                   self.src("transport_tangential"))
+        tr = b.put(
+            f"a_tr({self.name})",
+            self.m.transport_acceleration,
+            "m/s^2",
+            self.src("transport_acceleration"),
+        )
+        tt = b.put(
+            "a_tr tangential",
+            self.m.transport_tangential,
+            "m/s^2",
+            self.src("transport_tangential"),
+        )
         tn = b.put("a_tr normal", self.m.transport_normal, "m/s^2", self.src("transport_normal"))
-        vtr = b.put(f"v_tr({self.name})", self.m.transport_velocity, "m/s",
-                    self.src("transport_velocity"))
-        d = b.put("a_tr normal . v_tr", float(np.dot(self.m.transport_normal,
-                                                     self.m.transport_velocity)), "m^2/s^3",
-                  reference=float(np.hypot(*self.m.transport_normal)
-                                  * np.hypot(*self.m.transport_velocity)))
+        vtr = b.put(
+            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
+        )
+        d = b.put(
+            "a_tr normal . v_tr",
+            float(np.dot(self.m.transport_normal, self.m.transport_velocity)),
+            "m^2/s^3",
+            reference=float(
+                np.hypot(*self.m.transport_normal) * np.hypot(*self.m.transport_velocity)
+            ),
+        )
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
         b.check("sum", tr, aa, t, n)
         b.check("sum", tr, tt, tn)
         b.check("dot", d, tn, vtr)
         base = V0 if ctx.is_fixed(a_pt) and b.is_zero(aa) else b.col(aa)
-        b.line(rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = \vec{{a}}_{{{tex.name(a_pt)}}} + "
-               rf"\vec{{\alpha}}_{{{tex.name(carrier)}}} \times \vec{{r}} - "
-               rf"\omega_{{{tex.name(carrier)}}}^2\,\vec{{r}} = {base} + "
-               rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-               rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}")
-        b.line(rf"&\phantom{{\vec{{a}}}} = {base} + {b.col(t)} + {b.col(n)} = "
-               rf"{tex.boxed_result(b.colu(tr))}")
-        b.line(rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{tr}}}} = {b.col(tt)}, \quad "
-               rf"\vec{{a}}^{{n}}_{{{sub},\mathrm{{tr}}}} = {b.col(tn)} \quad "
-               r"\text{(along and across } \vec{v}_{\mathrm{tr}}\text{)}")
+        b.line(
+            rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = \vec{{a}}_{{{tex.name(a_pt)}}} + "
+            rf"\vec{{\alpha}}_{{{tex.name(carrier)}}} \times \vec{{r}} - "
+            rf"\omega_{{{tex.name(carrier)}}}^2\,\vec{{r}} = {base} + "
+            rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - "
+            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{a}}}} = {base} + {b.col(t)} + {b.col(n)} = "
+            rf"{tex.boxed_result(b.colu(tr))}"
+        )
+        b.line(
+            rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{tr}}}} = {b.col(tt)}, \quad "
+            rf"\vec{{a}}^{{n}}_{{{sub},\mathrm{{tr}}}} = {b.col(tn)} \quad "
+            r"\text{(along and across } \vec{v}_{\mathrm{tr}}\text{)}"
+        )
         if b.is_zero(w) and b.is_zero(al):
-            b.say(f"The carrier {carrier} translates (omega = alpha = 0): all its points have "
-                  f"the acceleration of {a_pt}, so a_tr = a({a_pt}) = {b.txt(tr)}.")
+            b.say(
+                f"The carrier {carrier} translates (omega = alpha = 0): all its points have "
+                f"the acceleration of {a_pt}, so a_tr = a({a_pt}) = {b.txt(tr)}."
+            )
         else:
-            b.say(f"Transport acceleration: a({a_pt}) + alpha({carrier}) cross r - "
-                  f"omega({carrier}) squared r = {b.txt(aa)} + {b.txt(t)} + {b.txt(n)} = "
-                  f"{b.txt(tr)}.")
-        b.say(f"Its tangential part (along v_tr) is {b.txt(tt)} and its normal part (across it) "
-              f"{b.txt(tn)}.")
+            b.say(
+                f"Transport acceleration: a({a_pt}) + alpha({carrier}) cross r - "
+                f"omega({carrier}) squared r = {b.txt(aa)} + {b.txt(t)} + {b.txt(n)} = "
+                f"{b.txt(tr)}."
+            )
+        b.say(
+            f"Its tangential part (along v_tr) is {b.txt(tt)} and its normal part (across it) "
+            f"{b.txt(tn)}."
+        )
         out.append(b.build())
         tau, normal, curvature = self.tangent_normal()
         b = ctx.builder("relative.relative_acceleration", f"Relative acceleration of {self.name}")
@@ -237,69 +311,120 @@ class MovingPointSteps:
         tk = b.put("tau", tau, "")
         nk = b.put("n", normal, "")
         kappa = b.put("1/R", curvature, "1/m" if curvature else "")
-        rt = b.put("a_rel tangential", self.m.relative_tangential, "m/s^2",
-                   self.src("relative_tangential"))
+        rt = b.put(
+            "a_rel tangential", self.m.relative_tangential, "m/s^2", self.src("relative_tangential")
+        )
         rn = b.put("a_rel normal", self.m.relative_normal, "m/s^2", self.src("relative_normal"))
-        rel = b.put(f"a_rel({self.name})", self.m.relative_acceleration, "m/s^2",
-                    self.src("relative_acceleration"))
+        rel = b.put(
+            f"a_rel({self.name})",
+            self.m.relative_acceleration,
+            "m/s^2",
+            self.src("relative_acceleration"),
+        )
         b.check("product", rt, sdd, tk)
         b.check("product", rn, sd, sd, kappa, nk)
         b.check("sum", rel, rt, rn)
-        b.line(rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{rel}}}} = \ddot{{s}}\,\vec{{\tau}} = "
-               rf"{b.num(sdd)} \cdot {b.col(tk)} = {b.col(rt)}")
+        b.line(
+            rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{rel}}}} = \ddot{{s}}\,\vec{{\tau}} = "
+            rf"{b.num(sdd)} \cdot {b.col(tk)} = {b.col(rt)}"
+        )
         if curvature:
-            b.line(rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = \frac{{\dot{{s}}^2}}{{R}}\,"
-                   rf"\vec{{n}} = \frac{{{tex.paren(b.num(sd))}^2}}{{{ctx.fmt.latex(1 / curvature)}}}"
-                   rf" \cdot {b.col(nk)} = {b.col(rn)}")
+            radius = ctx.fmt.latex(1 / curvature)
+            b.line(
+                rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = \frac{{\dot{{s}}^2}}{{R}}\,"
+                rf"\vec{{n}} = \frac{{{tex.paren(b.num(sd))}^2}}{{{radius}}}"
+                rf" \cdot {b.col(nk)} = {b.col(rn)}"
+            )
         else:
-            b.line(rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = {V0} \quad "
-                   r"\text{(straight path)}")
-        b.line(rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {b.col(rt)} + {b.col(rn)} = "
-               rf"{tex.boxed_result(b.colu(rel))}")
-        b.say(f"Relative acceleration: tangential s-double-dot tau = {b.txt(rt)} (along the "
-              "direction of increasing s)"
-              + (f", normal s-dot squared over R towards the centre = {b.txt(rn)}"
-                 if curvature else ", no normal part on a straight path")
-              + f"; a_rel = {b.txt(rel)}.")
+            b.line(
+                rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = {V0} \quad "
+                r"\text{(straight path)}"
+            )
+        b.line(
+            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {b.col(rt)} + {b.col(rn)} = "
+            rf"{tex.boxed_result(b.colu(rel))}"
+        )
+        b.say(
+            f"Relative acceleration: tangential s-double-dot tau = {b.txt(rt)} (along the "
+            "direction of increasing s)"
+            + (
+                f", normal s-dot squared over R towards the centre = {b.txt(rn)}"
+                if curvature
+                else ", no normal part on a straight path"
+            )
+            + f"; a_rel = {b.txt(rel)}."
+        )
         out.append(b.build())
         b = ctx.builder("relative.coriolis", f"Coriolis acceleration of {self.name}")
         w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
-        vrel = b.put(f"v_rel({self.name})", self.m.relative_velocity, "m/s",
-                     self.src("relative_velocity"))
-        cor = b.put(f"a_cor({self.name})", self.m.coriolis_acceleration, "m/s^2",
-                    self.src("coriolis_acceleration"))
+        vrel = b.put(
+            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
+        )
+        cor = b.put(
+            f"a_cor({self.name})",
+            self.m.coriolis_acceleration,
+            "m/s^2",
+            self.src("coriolis_acceleration"),
+        )
         b.check("cross", cor, w, vrel, factor=2.0)
-        formula = (rf"\vec{{a}}_{{{sub},\mathrm{{Cor}}}} = 2\,\vec{{\omega}}_{{{tex.name(carrier)}}}"
-                   rf" \times \vec{{v}}_{{{sub},\mathrm{{rel}}}}")
+        formula = (
+            rf"\vec{{a}}_{{{sub},\mathrm{{Cor}}}} = 2\,"
+            rf"\vec{{\omega}}_{{{tex.name(carrier)}}} \times "
+            rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}"
+        )
         if b.is_zero(w):
-            b.line(rf"&{formula} = {tex.boxed_result(V0 + latex_unit('m/s^2'))} \quad "
-                   rf"(\omega_{{{tex.name(carrier)}}} = 0)")
-            b.say(f"The carrier {carrier} does not rotate (omega({carrier}) = {b.txt(w)}): it "
-                  "translates, so there is no Coriolis acceleration, even if the links that "
-                  "drive it turn.")
+            b.line(
+                rf"&{formula} = {tex.boxed_result(V0 + latex_unit('m/s^2'))} \quad "
+                rf"(\omega_{{{tex.name(carrier)}}} = 0)"
+            )
+            b.say(
+                f"The carrier {carrier} does not rotate (omega({carrier}) = {b.txt(w)}): it "
+                "translates, so there is no Coriolis acceleration, even if the links that "
+                "drive it turn."
+            )
         else:
             half = b.put("omega x v_rel", k_cross(omega, self.m.relative_velocity), "m/s^2")
             b.check("cross", half, w, vrel)
-            b.line(rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))}"
-                   rf" = 2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}")
-            b.say(f"Coriolis acceleration: 2 omega({carrier}) cross v_rel = 2 (0, 0, "
-                  f"{b.txtn(w)}) cross {b.txt(vrel)} = {b.txt(cor)}.")
+            b.line(
+                rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))}"
+                rf" = 2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+            )
+            b.say(
+                f"Coriolis acceleration: 2 omega({carrier}) cross v_rel = 2 (0, 0, "
+                f"{b.txtn(w)}) cross {b.txt(vrel)} = {b.txt(cor)}."
+            )
         out.append(b.build())
         b = ctx.builder("relative.acceleration", f"Absolute acceleration of {self.name}")
-        tr = b.put(f"a_tr({self.name})", self.m.transport_acceleration, "m/s^2",
-                   self.src("transport_acceleration"))
-        rel = b.put(f"a_rel({self.name})", self.m.relative_acceleration, "m/s^2",
-                    self.src("relative_acceleration"))
-        cor = b.put(f"a_cor({self.name})", self.m.coriolis_acceleration, "m/s^2",
-                    self.src("coriolis_acceleration"))
+        tr = b.put(
+            f"a_tr({self.name})",
+            self.m.transport_acceleration,
+            "m/s^2",
+            self.src("transport_acceleration"),
+        )
+        rel = b.put(
+            f"a_rel({self.name})",
+            self.m.relative_acceleration,
+            "m/s^2",
+            self.src("relative_acceleration"),
+        )
+        cor = b.put(
+            f"a_cor({self.name})",
+            self.m.coriolis_acceleration,
+            "m/s^2",
+            self.src("coriolis_acceleration"),
+        )
         total = b.put(f"a({self.name})", self.m.acceleration, "m/s^2", self.src("acceleration"))
         b.check("sum", total, tr, rel, cor)
-        b.line(rf"&\vec{{a}}_{{{sub}}} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-               rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
-               rf"{b.col(tr)} + {b.col(rel)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
-               rf"{tex.boxed_result(b.colu(total))}")
-        b.say(f"a({self.name}) = a_tr + a_rel + a_Cor = {b.txt(tr)} + {b.txt(rel)} + "
-              f"{b.txt(cor)} = {b.txt(total)}.")
+        b.line(
+            rf"&\vec{{a}}_{{{sub}}} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
+            rf"{b.col(tr)} + {b.col(rel)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
+            rf"{tex.boxed_result(b.colu(total))}"
+        )
+        b.say(
+            f"a({self.name}) = a_tr + a_rel + a_Cor = {b.txt(tr)} + {b.txt(rel)} + "
+            f"{b.txt(cor)} = {b.txt(total)}."
+        )
         out.append(b.build())
         return out
 

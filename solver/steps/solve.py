@@ -9,17 +9,21 @@ method; the solution then says so in its first step and in ``method``/``requeste
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from solver.analysis import analyze
 from solver.errors import InvalidScene
 from solver.scene import LinkageScene
 from solver.spatial import SpatialChain, analyze_spatial_chain
 from solver.steps import latex as tex
 from solver.steps.format import Formatter
-from solver.steps.linkage import LinkageContext, data_step, positions_step, summary_step, unit_scales
+from solver.steps.linkage import (
+    LinkageContext,
+    data_step,
+    positions_step,
+    summary_step,
+    unit_scales,
+)
 from solver.steps.loop import LoopUnavailable, loop_steps
-from solver.steps.mistakes import linkage_mistakes, spatial_mistakes
+from solver.steps.mistakes import linkage_mistakes, loop_mistakes, spatial_mistakes
 from solver.steps.model import Solution, Step
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
@@ -30,10 +34,10 @@ MIN_DIGITS, MAX_DIGITS = 1, 15
 
 _SENTENCES = {
     "vector": "Method: relative velocities (vector method). Point by point in the solver's order, "
-              "v_B = v_A + omega x r_AB and a_B = a_A + alpha x r_AB - omega^2 r_AB, with the "
-              "transport, relative and Coriolis terms at every slot.",
+    "v_B = v_A + omega x r_AB and a_B = a_A + alpha x r_AB - omega^2 r_AB, with the "
+    "transport, relative and Coriolis terms at every slot.",
     "loop": "Method: loop closure in complex form. Each loop of link vectors closes; its time "
-            "derivatives are linear in the unknown rates, solved by Cramer's rule.",
+    "derivatives are linear in the unknown rates, solved by Cramer's rule.",
 }
 
 
@@ -43,55 +47,58 @@ def _fallback_step(requested: str, reason: str) -> Step:
     return Step("fallback", title, r"\text{" + tex.escape_text(title) + "}", text)
 
 
-def _linkage(scene: LinkageScene, method: str, fmt: Formatter) -> tuple[list[Step], str, object,
-                                                                         list[object]]:
+def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     analysis = analyze(scene)
-    ctx = LinkageContext(scene, analysis, fmt.__class__(fmt.digits, unit_scales(analysis,
-                                                                                scene.size)))
+    fmt = Formatter(digits, unit_scales(analysis, scene.size))
+    ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
-    body: list[Step]
     if method == "loop":
         try:
             body = loop_steps(ctx)
         except LoopUnavailable as why:
-            lead.append(_fallback_step("loop-closure", str(why)))
-            ctx = LinkageContext(scene, analysis, ctx.fmt)
+            reason = str(why)
+            lead.append(_fallback_step("loop-closure", reason[:1].upper() + reason[1:] + "."))
+            ctx = LinkageContext(scene, analysis, fmt)
             used = "vector"
             body = vector_steps(ctx)
     else:
         body = vector_steps(ctx)
     body += moving_point_steps(ctx)
-    steps = [*lead, data_step(ctx, _SENTENCES[used])]
-    steps.append(positions_step(ctx))
-    steps += body
-    steps.append(summary_step(ctx))
-    return steps, used, analysis, list(linkage_mistakes(ctx))
+    steps = [*lead, data_step(ctx, _SENTENCES[used]), positions_step(ctx), *body, summary_step(ctx)]
+    mistakes = linkage_mistakes(ctx)
+    if used == "loop":
+        mistakes += loop_mistakes(ctx)
+    return Solution(tuple(steps), tuple(mistakes), analysis, used, method, digits)
 
 
-def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4
-          ) -> Solution:
+def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4) -> Solution:
     """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
-    ``digits`` significant digits (1..15)."""
+    ``digits`` significant digits (1..15). Raises ``InvalidScene`` for an unknown method or a
+    bad digit count, and the analysis' own errors (NotAssemblable, SingularConfiguration...)."""
     if method not in METHODS:
         raise InvalidScene(f"method: unknown method {method!r}; available: {', '.join(METHODS)}")
-    if isinstance(digits, bool) or not isinstance(digits, int) or not (
-            MIN_DIGITS <= digits <= MAX_DIGITS):
-        raise InvalidScene(f"digits: expected an integer from {MIN_DIGITS} to {MAX_DIGITS}, got "
-                           f"{digits!r}")
+    if (
+        isinstance(digits, bool)
+        or not isinstance(digits, int)
+        or not (MIN_DIGITS <= digits <= MAX_DIGITS)
+    ):
+        raise InvalidScene(
+            f"digits: expected an integer from {MIN_DIGITS} to {MAX_DIGITS}, got {digits!r}"
+        )
+    if isinstance(scene, LinkageScene):
+        return _linkage(scene, method, digits)
+    analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
-    if isinstance(scene, SpatialChain):
-        analysis = analyze_spatial_chain(scene)
-        lead = []
-        if method != "vector":
-            lead.append(_fallback_step(
-                "loop-closure", "A spatial chain is an open chain of rotating frames: it has no "
-                "loop to close; its velocities follow from the composition of angular velocities."))
-        steps = lead + spatial_steps(scene, analysis, fmt)
-        mistakes = spatial_mistakes(scene, analysis, fmt)
-        return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)
-    builders: dict[str, Callable[..., object]] = {}
-    del builders
-    steps, used, analysis, mistakes = _linkage(scene, method, fmt)
-    return Solution(tuple(steps), tuple(mistakes), analysis, used, method,  # type: ignore[arg-type]
-                    digits)
+    lead = []
+    if method != "vector":
+        lead.append(
+            _fallback_step(
+                "loop-closure",
+                "A spatial chain is an open chain of rotating frames: it has no loop "
+                "to close; its velocities follow from the composition of angular velocities.",
+            )
+        )
+    steps = lead + spatial_steps(scene, analysis, fmt)
+    mistakes = spatial_mistakes(scene, analysis, fmt)
+    return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)

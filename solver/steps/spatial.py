@@ -28,12 +28,18 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
     positions = [j.origin for j in chain.joints] + [p.position for p in chain.points]
     return {
         "m": max(largest(positions), 1e-300),
-        "m/s": largest([p.velocity for p in analysis.points.values()]
-                       + [b.velocity_origin for b in analysis.bodies.values()]),
-        "m/s^2": largest([p.acceleration for p in analysis.points.values()]
-                         + [b.acceleration_origin for b in analysis.bodies.values()]),
-        "rad/s": largest([b.omega for b in analysis.bodies.values()]
-                         + [b.axis_rate for b in analysis.bodies.values()]),
+        "m/s": largest(
+            [p.velocity for p in analysis.points.values()]
+            + [b.velocity_origin for b in analysis.bodies.values()]
+        ),
+        "m/s^2": largest(
+            [p.acceleration for p in analysis.points.values()]
+            + [b.acceleration_origin for b in analysis.bodies.values()]
+        ),
+        "rad/s": largest(
+            [b.omega for b in analysis.bodies.values()]
+            + [b.axis_rate for b in analysis.bodies.values()]
+        ),
         "rad/s^2": largest([b.alpha for b in analysis.bodies.values()]),
     }
 
@@ -52,10 +58,12 @@ class SpatialSteps:
 
     def data(self) -> Step:
         b = self.builder("data", "Data")
-        b.say("Method: composition of angular velocities in a chain of rotating frames. Joint k "
-              "connects body k-1 (the ground for the first joint) to body k; its axis e_k is "
-              "fixed in body k-1 and turns with it. Vectors are components in the fixed frame "
-              "E1, E2, E3 at the instant.")
+        b.say(
+            "Method: composition of angular velocities in a chain of rotating frames. Joint k "
+            "connects body k-1 (the ground for the first joint) to body k; its axis e_k is "
+            "fixed in body k-1 and turns with it. Vectors are components in the fixed frame "
+            "E1, E2, E3 at the instant."
+        )
         rows = []
         for j in self.chain.joints:
             e = b.put(f"e({j.name})", j.axis, "")
@@ -65,12 +73,16 @@ class SpatialSteps:
             qd = b.put(f"rate_dot({j.name})", j.rate_dot, rate_unit[1])
             n = tex.name(j.name)
             symbol = r"\omega" if j.type == "revolute" else "v"
-            rows.append(rf"&\text{{joint }} {n} \text{{ ({j.type})}}: \; O_{{{n}}} = "
-                        rf"({', '.join(b.entries(o))}){latex_unit('m')}, \; \vec{{e}}_{{{n}}} = "
-                        rf"({', '.join(b.entries(e))}), \; {symbol}_{{{n}}} = {b.numu(q)}, \; "
-                        rf"\dot{{{symbol}}}_{{{n}}} = {b.numu(qd)}")
-            b.say(f"Joint {j.name} ({j.type}) at O = {b.txt(o)}, axis e = {b.txtn(e)}, rate "
-                  f"{b.txt(q)}, rate of change {b.txt(qd)}.")
+            rows.append(
+                rf"&\text{{joint }} {n} \text{{ ({j.type})}}: \; O_{{{n}}} = "
+                rf"({', '.join(b.entries(o))}){latex_unit('m')}, \; \vec{{e}}_{{{n}}} = "
+                rf"({', '.join(b.entries(e))}), \; {symbol}_{{{n}}} = {b.numu(q)}, \; "
+                rf"\dot{{{symbol}}}_{{{n}}} = {b.numu(qd)}"
+            )
+            b.say(
+                f"Joint {j.name} ({j.type}) at O = {b.txt(o)}, axis e = {b.txtn(e)}, rate "
+                f"{b.txt(q)}, rate of change {b.txt(qd)}."
+            )
         for line in rows:
             b.line(line)
         return b.build()
@@ -78,15 +90,15 @@ class SpatialSteps:
     def parent_name(self, index: int) -> str:
         return GROUND if index == 0 else self.chain.joints[index - 1].name
 
-    def parent_vectors(self, index: int) -> tuple[np.ndarray, np.ndarray, np.ndarray,
-                                                  np.ndarray, np.ndarray]:
+    def parent_vectors(
+        self, index: int
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """omega, alpha, origin, v_origin, a_origin of body k-1 (zeros for the ground)."""
         if index == 0:
             z = np.zeros(3)
             return z, z, z, z, z
         body = self.analysis.bodies[self.chain.joints[index - 1].name]
-        return (body.omega, body.alpha, body.origin, body.velocity_origin,
-                body.acceleration_origin)
+        return (body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin)
 
     def body_steps(self, index: int, joint: SpatialJoint) -> list[Step]:
         body = self.analysis.bodies[joint.name]
@@ -96,8 +108,12 @@ class SpatialSteps:
         out = []
         # angular velocity
         b = self.builder("spatial.omega", f"Angular velocity of body {joint.name}")
-        wp = b.put(f"omega({parent})", w_parent, "rad/s",
-                   None if index == 0 else ("bodies", parent, "omega"))
+        wp = b.put(
+            f"omega({parent})",
+            w_parent,
+            "rad/s",
+            None if index == 0 else ("bodies", parent, "omega"),
+        )
         w = b.put(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
         e = b.put(f"e({joint.name})", joint.axis, "")
         if joint.type == "revolute":
@@ -105,37 +121,57 @@ class SpatialSteps:
             term = b.put(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
             b.check("product", term, q, e)
             b.check("sum", w, wp, term)
-            b.line(rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
-                   rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
-                   rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}")
-            b.say(f"Angular velocities add: omega({joint.name}) = omega({parent}) + "
-                  f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
-                  f"{b.txt(w)}.")
+            b.line(
+                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
+                rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
+                rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}"
+            )
+            b.say(
+                f"Angular velocities add: omega({joint.name}) = omega({parent}) + "
+                f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
+                f"{b.txt(w)}."
+            )
         else:
             b.check("sum", w, wp)
-            b.line(rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = "
-                   rf"{tex.boxed_result(b.colu(w))}")
-            b.say(f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent}) = "
-                  f"{b.txt(w)}.")
+            b.line(
+                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = "
+                rf"{tex.boxed_result(b.colu(w))}"
+            )
+            b.say(
+                f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent}) = "
+                f"{b.txt(w)}."
+            )
         out.append(b.build())
         # the turning axis
         b = self.builder("spatial.axis_rate", f"Rate of change of the axis of joint {joint.name}")
-        wp = b.put(f"omega({parent})", w_parent, "rad/s",
-                   None if index == 0 else ("bodies", parent, "omega"))
+        wp = b.put(
+            f"omega({parent})",
+            w_parent,
+            "rad/s",
+            None if index == 0 else ("bodies", parent, "omega"),
+        )
         e = b.put(f"e({joint.name})", joint.axis, "")
         ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
         b.check("cross", ed, wp, e)
-        b.line(rf"&\dot{{\vec{{e}}}}_{{{n}}} = \vec{{\omega}}_{{{p}}} \times \vec{{e}}_{{{n}}} = "
-               rf"{tex.determinant3(b.entries(wp), b.entries(e), UNITS)} = "
-               rf"{tex.boxed_result(b.colu(ed))}")
-        b.say(f"The axis e({joint.name}) is fixed in body {parent}, so it turns with "
-              f"omega({parent}): its rate of change is omega({parent}) cross e({joint.name}) = "
-              f"{b.txt(ed)}.")
+        b.line(
+            rf"&\dot{{\vec{{e}}}}_{{{n}}} = \vec{{\omega}}_{{{p}}} \times \vec{{e}}_{{{n}}} = "
+            rf"{tex.determinant3(b.entries(wp), b.entries(e), UNITS)} = "
+            rf"{tex.boxed_result(b.colu(ed))}"
+        )
+        b.say(
+            f"The axis e({joint.name}) is fixed in body {parent}, so it turns with "
+            f"omega({parent}): its rate of change is omega({parent}) cross e({joint.name}) = "
+            f"{b.txt(ed)}."
+        )
         out.append(b.build())
         # angular acceleration
         b = self.builder("spatial.alpha", f"Angular acceleration of body {joint.name}")
-        alp = b.put(f"alpha({parent})", al_parent, "rad/s^2",
-                    None if index == 0 else ("bodies", parent, "alpha"))
+        alp = b.put(
+            f"alpha({parent})",
+            al_parent,
+            "rad/s^2",
+            None if index == 0 else ("bodies", parent, "alpha"),
+        )
         al = b.put(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
         if joint.type == "revolute":
             e = b.put(f"e({joint.name})", joint.axis, "")
@@ -147,26 +183,39 @@ class SpatialSteps:
             b.check("product", t1, qd, e)
             b.check("product", t2, q, ed)
             b.check("sum", al, alp, t1, t2)
-            b.line(rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
-                   rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
-                   rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
-                   rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}")
-            b.say(f"Differentiating omega({joint.name}) = omega({parent}) + rate e: "
-                  f"alpha({joint.name}) = alpha({parent}) + rate-dot e + rate times de/dt = "
-                  f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
-                  "from the turning axis; leaving it out is a common mistake.")
+            b.line(
+                rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
+                rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
+                rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
+                rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}"
+            )
+            b.say(
+                f"Differentiating omega({joint.name}) = omega({parent}) + rate e: "
+                f"alpha({joint.name}) = alpha({parent}) + rate-dot e + rate times de/dt = "
+                f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
+                "from the turning axis; leaving it out is a common mistake."
+            )
         else:
             b.check("sum", al, alp)
-            b.line(rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} = "
-                   rf"{tex.boxed_result(b.colu(al))}")
+            b.line(
+                rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} = "
+                rf"{tex.boxed_result(b.colu(al))}"
+            )
             b.say(f"alpha({joint.name}) = alpha({parent}) = {b.txt(al)} (prismatic joint).")
         out.append(b.build())
         out += self.origin_steps(index, joint, w_parent, al_parent, o_parent, v_parent, a_parent)
         return out
 
-    def origin_steps(self, index: int, joint: SpatialJoint, w_parent: np.ndarray,
-                     al_parent: np.ndarray, o_parent: np.ndarray, v_parent: np.ndarray,
-                     a_parent: np.ndarray) -> list[Step]:
+    def origin_steps(
+        self,
+        index: int,
+        joint: SpatialJoint,
+        w_parent: np.ndarray,
+        al_parent: np.ndarray,
+        o_parent: np.ndarray,
+        v_parent: np.ndarray,
+        a_parent: np.ndarray,
+    ) -> list[Step]:
         body = self.analysis.bodies[joint.name]
         parent = self.parent_name(index)
         n, p = tex.name(joint.name), tex.name(parent)
@@ -175,8 +224,12 @@ class SpatialSteps:
         out = []
         b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
         vp = b.put(f"v(O{parent})", v_parent, "m/s")
-        wp = b.put(f"omega({parent})", w_parent, "rad/s",
-                   None if index == 0 else ("bodies", parent, "omega"))
+        wp = b.put(
+            f"omega({parent})",
+            w_parent,
+            "rad/s",
+            None if index == 0 else ("bodies", parent, "omega"),
+        )
         r = b.put("r", r_np, "m")
         wxr = b.put("omega x r", np.cross(w_parent, r_np), "m/s")
         v = b.put(f"v(O{joint.name})", body.velocity_origin, "m/s")
@@ -191,23 +244,36 @@ class SpatialSteps:
             terms.append(rel)
             extra = rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}"
         b.check("sum", v, *terms)
-        b.line(rf"&\vec{{v}}_{{O_{{{n}}}}} = \vec{{v}}_{{{origin_p}}} + \vec{{\omega}}_{{{p}}} "
-               rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}{extra} = {self.col(b, vp)} + "
-               rf"{tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
-               + (rf" + {b.col(terms[2])}" if len(terms) > 2 else "")
-               + rf" = {tex.boxed_result(b.colu(v))}")
-        b.say(f"The origin O{joint.name} of joint {joint.name} moves with body {parent}: "
-              f"v = v(O{parent}) + omega({parent}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
-              + (f" + {b.txt(terms[2])} (sliding)" if len(terms) > 2 else "")
-              + f" = {b.txt(v)}.")
+        b.line(
+            rf"&\vec{{v}}_{{O_{{{n}}}}} = \vec{{v}}_{{{origin_p}}} + \vec{{\omega}}_{{{p}}} "
+            rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}{extra} = {self.col(b, vp)} + "
+            rf"{tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
+            + (rf" + {b.col(terms[2])}" if len(terms) > 2 else "")
+            + rf" = {tex.boxed_result(b.colu(v))}"
+        )
+        b.say(
+            f"The origin O{joint.name} of joint {joint.name} moves with body {parent}: "
+            f"v = v(O{parent}) + omega({parent}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
+            + (f" + {b.txt(terms[2])} (sliding)" if len(terms) > 2 else "")
+            + f" = {b.txt(v)}."
+        )
         out.append(b.build())
-        b = self.builder("spatial.origin.acceleration",
-                         f"Acceleration of the joint origin O{joint.name}")
+        b = self.builder(
+            "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
+        )
         ap = b.put(f"a(O{parent})", a_parent, "m/s^2")
-        wp = b.put(f"omega({parent})", w_parent, "rad/s",
-                   None if index == 0 else ("bodies", parent, "omega"))
-        alp = b.put(f"alpha({parent})", al_parent, "rad/s^2",
-                    None if index == 0 else ("bodies", parent, "alpha"))
+        wp = b.put(
+            f"omega({parent})",
+            w_parent,
+            "rad/s",
+            None if index == 0 else ("bodies", parent, "omega"),
+        )
+        alp = b.put(
+            f"alpha({parent})",
+            al_parent,
+            "rad/s^2",
+            None if index == 0 else ("bodies", parent, "alpha"),
+        )
         r = b.put("r", r_np, "m")
         t = b.put("alpha x r", np.cross(al_parent, r_np), "m/s^2")
         inner = b.put("omega x r", np.cross(w_parent, r_np), "m/s")
@@ -222,24 +288,39 @@ class SpatialSteps:
             q = b.put(f"rate({joint.name})", joint.rate, "m/s")
             qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
             rel_v = b.put("v_rel", joint.rate * joint.axis, "m/s")
-            cor = b.put("2 omega x v_rel", 2.0 * np.cross(w_parent, joint.rate * joint.axis),
-                        "m/s^2")
+            cor = b.put(
+                "2 omega x v_rel", 2.0 * np.cross(w_parent, joint.rate * joint.axis), "m/s^2"
+            )
             rel_a = b.put("a_rel", joint.rate_dot * joint.axis, "m/s^2")
             b.check("product", rel_v, q, e)
             b.check("cross", cor, wp, rel_v, factor=2.0)
             b.check("product", rel_a, qd, e)
             terms += [cor, rel_a]
         b.check("sum", a, *terms)
-        b.line(rf"&\vec{{a}}_{{O_{{{n}}}}} = \vec{{a}}_{{{origin_p}}} + \vec{{\alpha}}_{{{p}}} "
-               rf"\times \vec{{r}} + \vec{{\omega}}_{{{p}}} \times (\vec{{\omega}}_{{{p}}} \times "
-               rf"\vec{{r}})" + (r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + "
-                                 r"\vec{a}_{\mathrm{rel}}" if joint.type == "prismatic" else ""))
-        b.line(r"&\phantom{\vec{a}} = " + " + ".join(self.col(b, k) for k in terms)
-               + rf" = {tex.boxed_result(b.colu(a))}")
-        b.say(f"Acceleration of O{joint.name}: a(O{parent}) + alpha({parent}) cross r + "
-              f"omega({parent}) cross (omega({parent}) cross r)"
-              + (" + 2 omega cross v_rel + a_rel" if joint.type == "prismatic" else "")
-              + " = " + " + ".join(b.txt(k) for k in terms) + f" = {b.txt(a)}.")
+        b.line(
+            rf"&\vec{{a}}_{{O_{{{n}}}}} = \vec{{a}}_{{{origin_p}}} + \vec{{\alpha}}_{{{p}}} "
+            rf"\times \vec{{r}} + \vec{{\omega}}_{{{p}}} \times (\vec{{\omega}}_{{{p}}} \times "
+            rf"\vec{{r}})"
+            + (
+                r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + "
+                r"\vec{a}_{\mathrm{rel}}"
+                if joint.type == "prismatic"
+                else ""
+            )
+        )
+        b.line(
+            r"&\phantom{\vec{a}} = "
+            + " + ".join(self.col(b, k) for k in terms)
+            + rf" = {tex.boxed_result(b.colu(a))}"
+        )
+        b.say(
+            f"Acceleration of O{joint.name}: a(O{parent}) + alpha({parent}) cross r + "
+            f"omega({parent}) cross (omega({parent}) cross r)"
+            + (" + 2 omega cross v_rel + a_rel" if joint.type == "prismatic" else "")
+            + " = "
+            + " + ".join(b.txt(k) for k in terms)
+            + f" = {b.txt(a)}."
+        )
         out.append(b.build())
         return out
 
@@ -266,16 +347,23 @@ class SpatialSteps:
         v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
         b.check("cross", wxr, w, r)
         b.check("sum", v, vo, wxr)
-        b.line(rf"&\vec{{v}}_{{{n}}} = \vec{{v}}_{{O_{{{k}}}}} + \vec{{\omega}}_{{{k}}} \times "
-               rf"\vec{{r}}_{{O_{{{k}}}{n}}} = {self.col(b, vo)} + "
-               rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)}")
-        b.line(rf"&\phantom{{\vec{{v}}_{{{n}}}}} = {self.col(b, vo)} + {b.col(wxr)} = "
-               rf"{tex.boxed_result(b.colu(v))}")
-        b.say(f"{name} is fixed in body {point.body}: v({name}) = v(O{point.body}) + "
-              f"omega({point.body}) cross r = {b.txt(vo)} + {b.txt(wxr)} = {b.txt(v)}.")
+        b.line(
+            rf"&\vec{{v}}_{{{n}}} = \vec{{v}}_{{O_{{{k}}}}} + \vec{{\omega}}_{{{k}}} \times "
+            rf"\vec{{r}}_{{O_{{{k}}}{n}}} = {self.col(b, vo)} + "
+            rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{v}}_{{{n}}}}} = {self.col(b, vo)} + {b.col(wxr)} = "
+            rf"{tex.boxed_result(b.colu(v))}"
+        )
+        b.say(
+            f"{name} is fixed in body {point.body}: v({name}) = v(O{point.body}) + "
+            f"omega({point.body}) cross r = {b.txt(vo)} + {b.txt(wxr)} = {b.txt(v)}."
+        )
         out.append(b.build())
-        b = self.builder("spatial.point.acceleration",
-                         f"Acceleration of {name}: the five-term formula")
+        b = self.builder(
+            "spatial.point.acceleration", f"Acceleration of {name}: the five-term formula"
+        )
         src = ("points", name, "acceleration_terms")
         ao = b.put("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
         al = b.put(f"alpha({point.body})", body.alpha, "rad/s^2", ("bodies", point.body, "alpha"))
@@ -291,27 +379,42 @@ class SpatialSteps:
         b.check("cross", inner, w, r)
         b.check("cross", c, w, inner)
         b.check("sum", a, ao, t, c, cor, rel)
-        b.line(rf"&\vec{{a}}_{{{n}}} = \vec{{a}}_{{O_{{{k}}}}} + \vec{{\alpha}}_{{{k}}} \times "
-               rf"\vec{{r}} + \vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times "
-               rf"\vec{{r}}) + 2\,\vec{{\omega}} \times \vec{{v}}_{{\mathrm{{rel}}}} + "
-               rf"\vec{{a}}_{{\mathrm{{rel}}}}")
-        b.line(rf"&\vec{{\alpha}}_{{{k}}} \times \vec{{r}} = "
-               rf"{tex.determinant3(b.entries(al), b.entries(r), UNITS)} = {b.col(t)}, \quad "
-               rf"\vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
-               rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)} = {b.col(inner)}")
-        b.line(rf"&\vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times \vec{{r}}) = "
-               rf"{tex.determinant3(b.entries(w), b.entries(inner), UNITS)} = {b.col(c)}")
-        b.line(rf"&\vec{{a}}_{{{n}}} = {self.col(b, ao)} + {self.col(b, t)} + {self.col(b, c)} + "
-               rf"{self.col(b, cor)} + {self.col(b, rel)} = {tex.boxed_result(b.colu(a))}")
+        b.line(
+            rf"&\vec{{a}}_{{{n}}} = \vec{{a}}_{{O_{{{k}}}}} + \vec{{\alpha}}_{{{k}}} \times "
+            rf"\vec{{r}} + \vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times "
+            rf"\vec{{r}}) + 2\,\vec{{\omega}} \times \vec{{v}}_{{\mathrm{{rel}}}} + "
+            rf"\vec{{a}}_{{\mathrm{{rel}}}}"
+        )
+        b.line(
+            rf"&\vec{{\alpha}}_{{{k}}} \times \vec{{r}} = "
+            rf"{tex.determinant3(b.entries(al), b.entries(r), UNITS)} = {b.col(t)}, \quad "
+            rf"\vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
+            rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)} = {b.col(inner)}"
+        )
+        b.line(
+            rf"&\vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times \vec{{r}}) = "
+            rf"{tex.determinant3(b.entries(w), b.entries(inner), UNITS)} = {b.col(c)}"
+        )
+        b.line(
+            rf"&\vec{{a}}_{{{n}}} = {self.col(b, ao)} + {self.col(b, t)} + {self.col(b, c)} + "
+            rf"{self.col(b, cor)} + {self.col(b, rel)} = {tex.boxed_result(b.colu(a))}"
+        )
         if joint.type == "prismatic":
-            why = (f"joint {joint.name} slides, so the Coriolis term 2 omega({self.parent_of(joint)})"
-                   f" cross v_rel = {b.txt(cor)} and the relative term {b.txt(rel)} appear")
+            parent = self.parent_of(joint)
+            why = (
+                f"joint {joint.name} slides, so the Coriolis term 2 omega({parent}) cross "
+                f"v_rel = {b.txt(cor)} and the relative term {b.txt(rel)} appear"
+            )
         else:
-            why = (f"{name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
-                   "and relative terms are zero")
-        b.say(f"Five-term formula for {name} with r = r(O{point.body},{name}) = {b.txt(r)}: "
-              f"a_O = {b.txt(ao)}; alpha cross r = {b.txt(t)}; omega cross (omega cross r) = "
-              f"{b.txt(c)}; {why}. Sum: a({name}) = {b.txt(a)}.")
+            why = (
+                f"{name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
+                "and relative terms are zero"
+            )
+        b.say(
+            f"Five-term formula for {name} with r = r(O{point.body},{name}) = {b.txt(r)}: "
+            f"a_O = {b.txt(ao)}; alpha cross r = {b.txt(t)}; omega cross (omega cross r) = "
+            f"{b.txt(c)}; {why}. Sum: a({name}) = {b.txt(a)}."
+        )
         out.append(b.build())
         return out
 
@@ -325,16 +428,20 @@ class SpatialSteps:
         for name, body in self.analysis.bodies.items():
             w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
             al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
-            rows.append(rf"\vec{{\omega}}_{{{tex.name(name)}}} = ({', '.join(b.entries(w))})"
-                        rf"{latex_unit('rad/s')}, & \vec{{\alpha}}_{{{tex.name(name)}}} = "
-                        rf"({', '.join(b.entries(al))}){latex_unit('rad/s^2')}")
+            rows.append(
+                rf"\vec{{\omega}}_{{{tex.name(name)}}} = ({', '.join(b.entries(w))})"
+                rf"{latex_unit('rad/s')}, & \vec{{\alpha}}_{{{tex.name(name)}}} = "
+                rf"({', '.join(b.entries(al))}){latex_unit('rad/s^2')}"
+            )
             b.say(f"Body {name}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
         for name, p in self.analysis.points.items():
             v = b.put(f"v({name})", p.velocity, "m/s", ("points", name, "velocity"))
             a = b.put(f"a({name})", p.acceleration, "m/s^2", ("points", name, "acceleration"))
-            rows.append(rf"\vec{{v}}_{{{tex.name(name)}}} = ({', '.join(b.entries(v))})"
-                        rf"{latex_unit('m/s')}, & \vec{{a}}_{{{tex.name(name)}}} = "
-                        rf"({', '.join(b.entries(a))}){latex_unit('m/s^2')}")
+            rows.append(
+                rf"\vec{{v}}_{{{tex.name(name)}}} = ({', '.join(b.entries(v))})"
+                rf"{latex_unit('m/s')}, & \vec{{a}}_{{{tex.name(name)}}} = "
+                rf"({', '.join(b.entries(a))}){latex_unit('m/s^2')}"
+            )
             b.say(f"Point {name}: v = {b.txt(v)}, a = {b.txt(a)}.")
         b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
         return b.build()

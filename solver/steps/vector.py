@@ -53,7 +53,6 @@ from solver.topology import (
     GuidedStep,
     LeverStep,
     LineSpec,
-    LocusSpec,
     NewtonStep,
     TwoPointStep,
 )
@@ -128,12 +127,24 @@ class VectorMethod:
     def unknown_rate(self, link: str, order: int) -> Unknown:
         ctx = self.ctx
         if order == VELOCITY:
-            return Unknown(f"omega({link})", w_sym(link), f"omega({link})", "rad/s",
-                           ctx.omega(link), ctx.link_source(link, "omega"),
-                           f"the angular velocity of link {link}")
-        return Unknown(f"alpha({link})", a_sym(link), f"alpha({link})", "rad/s^2",
-                       ctx.alpha(link), ctx.link_source(link, "alpha"),
-                       f"the angular acceleration of link {link}")
+            return Unknown(
+                f"omega({link})",
+                w_sym(link),
+                f"omega({link})",
+                "rad/s",
+                ctx.omega(link),
+                ctx.link_source(link, "omega"),
+                f"the angular velocity of link {link}",
+            )
+        return Unknown(
+            f"alpha({link})",
+            a_sym(link),
+            f"alpha({link})",
+            "rad/s^2",
+            ctx.alpha(link),
+            ctx.link_source(link, "alpha"),
+            f"the angular acceleration of link {link}",
+        )
 
     def unknown_slide(self, point: str, guide: str, order: int, two_slots: bool) -> Unknown:
         ctx = self.ctx
@@ -142,14 +153,25 @@ class VectorMethod:
         sub = tex.name(point) + (r",\," + tex.name(guide) if two_slots else "")
         suffix = f"{point} in {guide}" if two_slots else point
         if order == VELOCITY:
-            return Unknown(f"s_dot({point}/{guide})", rf"\dot{{s}}_{{{sub}}}", f"s-dot({suffix})",
-                           "m/s", float(np.dot(sliding.relative_velocity, u)), None,
-                           f"the speed of {point} along the slot of {guide}")
+            return Unknown(
+                f"s_dot({point}/{guide})",
+                rf"\dot{{s}}_{{{sub}}}",
+                f"s-dot({suffix})",
+                "m/s",
+                float(np.dot(sliding.relative_velocity, u)),
+                None,
+                f"the speed of {point} along the slot of {guide}",
+            )
         assert sliding.relative_acceleration is not None
-        return Unknown(f"s_ddot({point}/{guide})", rf"\ddot{{s}}_{{{sub}}}",
-                       f"s-double-dot({suffix})", "m/s^2",
-                       float(np.dot(sliding.relative_acceleration, u)), None,
-                       f"the relative acceleration of {point} along the slot of {guide}")
+        return Unknown(
+            f"s_ddot({point}/{guide})",
+            rf"\ddot{{s}}_{{{sub}}}",
+            f"s-double-dot({suffix})",
+            "m/s^2",
+            float(np.dot(sliding.relative_acceleration, u)),
+            None,
+            f"the relative acceleration of {point} along the slot of {guide}",
+        )
 
     def transport_point(self, guide: str) -> str:
         """A point of the guide to carry its motion from: its fixed pivot, else its first point."""
@@ -175,8 +197,12 @@ class VectorMethod:
 
     def plan_step(self, step: object, order: int) -> list[Step]:
         if isinstance(step, DriverStep):
-            return self.remaining(step.link, step.pivot, order,
-                                  f"Link {step.link} is driven about the fixed pivot {step.pivot}.")
+            return self.remaining(
+                step.link,
+                step.pivot,
+                order,
+                f"Link {step.link} is driven about the fixed pivot {step.pivot}.",
+            )
         if isinstance(step, DyadStep):
             return self.dyad(step, order)
         if isinstance(step, LeverStep):
@@ -214,61 +240,89 @@ class VectorMethod:
         unknown = self.unknown_rate(link, order)
         rkey = f"r({center},{point})"
         if order == VELOCITY:
-            b = ctx.builder("velocity.dyad.side",
-                            f"Velocity of {point} through link {link} ({unknown.text} unknown)")
+            b = ctx.builder(
+                "velocity.dyad.side",
+                f"Velocity of {point} through link {link} ({unknown.text} unknown)",
+            )
             vc = b.put(f"v({center})", ctx.vel(center), "m/s", ("points", center, "velocity"))
             b.put(rkey, r_np, "m")
-            side = Side(f"v({center})", ctx.vel(center), "m/s",
-                        [Term(unknown, "perp", rkey, r_np, "m")])
+            side = Side(
+                f"v({center})", ctx.vel(center), "m/s", [Term(unknown, "perp", rkey, r_np, "m")]
+            )
             base = V0 if ctx.is_fixed(center) and b.is_zero(vc) else b.col(vc)
             size = float(np.hypot(*r_np))
-            expansion = tex.column([linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)],
-                                                 size),
-                                    linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)],
-                                                 size), "0"])
-            b.line(rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
-                   rf"{r_vec(center, point)} = {base} + "
-                   rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))}")
-            b.line(rf"&\phantom{{{v_vec(point)}}} = {base} + {expansion} = {side_column(b, side)}"
-                   rf"{latex_unit('m/s')}")
-            b.say(f"{point} is a point of link {link}, which also carries {center}: v({point}) = "
-                  f"v({center}) + omega({link}) cross r({center},{point}) = {b.txt(vc)} + "
-                  f"(0, 0, {unknown.text}) cross {b.txtn(rkey)} = {side_text(b, side)} m/s, "
-                  f"with {unknown.text} unknown.")
+            expansion = tex.column(
+                [
+                    linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)], size),
+                    linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)], size),
+                    "0",
+                ]
+            )
+            b.line(
+                rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
+                rf"{r_vec(center, point)} = {base} + "
+                rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))}"
+            )
+            b.line(
+                rf"&\phantom{{{v_vec(point)}}} = {base} + {expansion} = {side_column(b, side)}"
+                rf"{latex_unit('m/s')}"
+            )
+            b.say(
+                f"{point} is a point of link {link}, which also carries {center}: v({point}) = "
+                f"v({center}) + omega({link}) cross r({center},{point}) = {b.txt(vc)} + "
+                f"(0, 0, {unknown.text}) cross {b.txtn(rkey)} = {side_text(b, side)} m/s, "
+                f"with {unknown.text} unknown."
+            )
             return b.build(), side
-        b = ctx.builder("acceleration.dyad.side",
-                        f"Acceleration of {point} through link {link} ({unknown.text} unknown)")
+        b = ctx.builder(
+            "acceleration.dyad.side",
+            f"Acceleration of {point} through link {link} ({unknown.text} unknown)",
+        )
         omega = ctx.omega(link)
         ac = b.put(f"a({center})", ctx.acc(center), "m/s^2", ("points", center, "acceleration"))
         w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
         b.put(rkey, r_np, "m")
         n = b.put(f"normal({center},{point})", -(omega**2) * r_np, "m/s^2")
         known = ctx.acc(center) - omega**2 * r_np
-        side = Side(f"known({point} via {link})", known, "m/s^2",
-                    [Term(unknown, "perp", rkey, r_np, "m")])
+        side = Side(
+            f"known({point} via {link})", known, "m/s^2", [Term(unknown, "perp", rkey, r_np, "m")]
+        )
         b.put(side.known_key, known, "m/s^2")
         b.check("product", n, w, w, rkey, factor=-1.0)
         b.check("sum", side.known_key, ac, n)
         base = V0 if ctx.is_fixed(center) and b.is_zero(ac) else b.col(ac)
         size = float(np.hypot(*r_np))
-        expansion = tex.column([linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)], size),
-                                linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)], size),
-                                "0"])
-        b.line(rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
-               rf" - \omega_{{{tex.name(link)}}}^2\,{r_vec(center, point)}")
-        b.line(rf"&\phantom{{{a_vec(point)}}} = {base} + "
-               rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))} - "
-               rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)}")
-        b.line(rf"&\phantom{{{a_vec(point)}}} = {base} + {expansion} + {b.col(n)} = "
-               rf"{side_column(b, side)}{latex_unit('m/s^2')}")
-        b.say(f"Through link {link}: a({point}) = a({center}) + alpha({link}) cross "
-              f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term "
-              f"-({b.txtn(w)}) squared times {b.txtn(rkey)} = {b.txt(n)} is known; "
-              f"{unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2.")
+        expansion = tex.column(
+            [
+                linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)], size),
+                linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)], size),
+                "0",
+            ]
+        )
+        b.line(
+            rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
+            rf" - \omega_{{{tex.name(link)}}}^2\,{r_vec(center, point)}"
+        )
+        b.line(
+            rf"&\phantom{{{a_vec(point)}}} = {base} + "
+            rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))} - "
+            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)}"
+        )
+        b.line(
+            rf"&\phantom{{{a_vec(point)}}} = {base} + {expansion} + {b.col(n)} = "
+            rf"{side_column(b, side)}{latex_unit('m/s^2')}"
+        )
+        b.say(
+            f"Through link {link}: a({point}) = a({center}) + alpha({link}) cross "
+            f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term "
+            f"-({b.txtn(w)}) squared times {b.txtn(rkey)} = {b.txt(n)} is known; "
+            f"{unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2."
+        )
         return b.build(), side
 
-    def transport_step(self, point: str, guide: str, order: int) -> tuple[Step | None, str,
-                                                                           np.ndarray]:
+    def transport_step(
+        self, point: str, guide: str, order: int
+    ) -> tuple[Step | None, str, np.ndarray]:
         """The transport velocity/acceleration of ``point`` in the slot of a moving guide.
 
         Returns (step or None for a fixed guide, value key, value)."""
@@ -285,10 +339,11 @@ class VectorMethod:
         r_np = ctx.pos(point) - ctx.pos(g)
         omega, alpha = ctx.omega(guide), ctx.alpha(guide)
         what = "velocity" if order == VELOCITY else "acceleration"
-        b = ctx.builder(f"{'velocity' if order == VELOCITY else 'acceleration'}.transport",
-                        f"Transport {what} of {point} (the point of {guide} under {point})")
-        tr = b.put(key, value, "m/s" if order == VELOCITY else "m/s^2",
-                   sliding.source(field_name))
+        b = ctx.builder(
+            f"{'velocity' if order == VELOCITY else 'acceleration'}.transport",
+            f"Transport {what} of {point} (the point of {guide} under {point})",
+        )
+        tr = b.put(key, value, "m/s" if order == VELOCITY else "m/s^2", sliding.source(field_name))
         r = b.put(f"r({g},{point})", r_np, "m")
         w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
         sub = tex.name(point) + r",\mathrm{tr}"
@@ -298,12 +353,16 @@ class VectorMethod:
             b.check("cross", wxr, w, r)
             b.check("sum", tr, vg, wxr)
             base = V0 if ctx.is_fixed(g) and b.is_zero(vg) else b.col(vg)
-            b.line(rf"&\vec{{v}}_{{{sub}}} = {v_vec(g)} + {w_vec(guide)} \times {r_vec(g, point)}"
-                   rf" = {base} + {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
-                   rf"{b.colu(tr)}")
-            b.say(f"The transport velocity of {point} is the velocity of the point of {guide} "
-                  f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
-                  f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}.")
+            b.line(
+                rf"&\vec{{v}}_{{{sub}}} = {v_vec(g)} + {w_vec(guide)} \times {r_vec(g, point)}"
+                rf" = {base} + {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
+                rf"{b.colu(tr)}"
+            )
+            b.say(
+                f"The transport velocity of {point} is the velocity of the point of {guide} "
+                f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
+                f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}."
+            )
         else:
             ag = b.put(f"a({g})", ctx.acc(g), "m/s^2", ("points", g, "acceleration"))
             al = b.put(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
@@ -313,16 +372,22 @@ class VectorMethod:
             b.check("product", n, w, w, r, factor=-1.0)
             b.check("sum", tr, ag, t, n)
             base = V0 if ctx.is_fixed(g) and b.is_zero(ag) else b.col(ag)
-            b.line(rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
-                   rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
-                   rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-                   rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}")
-            b.line(rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
-                   rf"{b.colu(tr)}")
-            b.say(f"The transport acceleration of {point} is the acceleration of the point of "
-                  f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
-                  f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
-                  f"{b.txt(n)} = {b.txt(tr)}.")
+            b.line(
+                rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
+                rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
+                rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
+                rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+            )
+            b.line(
+                rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
+                rf"{b.colu(tr)}"
+            )
+            b.say(
+                f"The transport acceleration of {point} is the acceleration of the point of "
+                f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
+                f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
+                f"{b.txt(n)} = {b.txt(tr)}."
+            )
         return b.build(), key, value
 
     def coriolis_step(self, point: str, guide: str) -> tuple[Step, str, np.ndarray]:
@@ -333,51 +398,75 @@ class VectorMethod:
         omega = sliding.omega_guide
         b = ctx.builder("acceleration.coriolis", f"Coriolis acceleration of {point}")
         key = f"a_cor({point})"
-        cor = b.put(key, sliding.coriolis_acceleration, "m/s^2",
-                    sliding.source("coriolis_acceleration"))
+        cor = b.put(
+            key, sliding.coriolis_acceleration, "m/s^2", sliding.source("coriolis_acceleration")
+        )
         w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
-        vrel = b.put(f"v_rel({point})", sliding.relative_velocity, "m/s",
-                     sliding.source("relative_velocity"))
+        vrel = b.put(
+            f"v_rel({point})", sliding.relative_velocity, "m/s", sliding.source("relative_velocity")
+        )
         b.check("cross", cor, w, vrel, factor=2.0)
         sub = tex.name(point) + r",\mathrm{Cor}"
-        formula = (rf"\vec{{a}}_{{{sub}}} = 2\,{w_vec(guide)} \times "
-                   rf"\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}}")
+        formula = (
+            rf"\vec{{a}}_{{{sub}}} = 2\,{w_vec(guide)} \times "
+            rf"\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}}"
+        )
         if guide == ctx.scene.ground:
-            b.line(rf"&{formula} = 2 \cdot {V0} \times \vec{{v}}_{{{tex.name(point)},"
-                   rf"\mathrm{{rel}}}} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}")
+            b.line(
+                rf"&{formula} = 2 \cdot {V0} \times \vec{{v}}_{{{tex.name(point)},"
+                rf"\mathrm{{rel}}}} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}"
+            )
             follower = sliding.joint.follower
-            b.say(f"The Coriolis acceleration of {point} is zero: the slot is fixed in the ground, "
-                  "which does not rotate (omega of the guide = 0), so there is no transport "
-                  "rotation to turn the relative velocity.")
+            b.say(
+                f"The Coriolis acceleration of {point} is zero: the slot is fixed in the ground, "
+                "which does not rotate (omega of the guide = 0), so there is no transport "
+                "rotation to turn the relative velocity."
+            )
             if follower != ctx.scene.ground and not ctx.fmt.is_zero(ctx.omega(follower), "rad/s"):
-                b.say(f"The angular velocity of link {follower} (omega({follower}) = "
-                      f"{ctx.fmt.text_value(ctx.omega(follower), 'rad/s')}) does not enter the "
-                      "Coriolis term: only the guide's rotation does.")
+                b.say(
+                    f"The angular velocity of link {follower} (omega({follower}) = "
+                    f"{ctx.fmt.text_value(ctx.omega(follower), 'rad/s')}) does not enter the "
+                    "Coriolis term: only the guide's rotation does."
+                )
         elif b.is_zero(w):
-            b.line(rf"&{formula} = 2 \cdot {tex.column(['0', '0', b.num(w)])} \times "
-                   rf"{b.col(vrel)} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}")
-            b.say(f"The Coriolis acceleration of {point} is zero at this instant: the guide "
-                  f"{guide} does not rotate now (omega({guide}) = {b.txt(w)}).")
+            b.line(
+                rf"&{formula} = 2 \cdot {tex.column(['0', '0', b.num(w)])} \times "
+                rf"{b.col(vrel)} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}"
+            )
+            b.say(
+                f"The Coriolis acceleration of {point} is zero at this instant: the guide "
+                f"{guide} does not rotate now (omega({guide}) = {b.txt(w)})."
+            )
         elif b.is_zero(vrel):
-            b.line(rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = "
-                   rf"{tex.boxed_result(V0 + latex_unit('m/s^2'))}")
-            b.say(f"The Coriolis acceleration of {point} is zero at this instant: {point} does "
-                  f"not slide relative to {guide} now (v_rel = 0).")
+            b.line(
+                rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = "
+                rf"{tex.boxed_result(V0 + latex_unit('m/s^2'))}"
+            )
+            b.say(
+                f"The Coriolis acceleration of {point} is zero at this instant: {point} does "
+                f"not slide relative to {guide} now (v_rel = 0)."
+            )
         else:
-            half = b.put(f"omega x v_rel({point})", k_cross(omega, sliding.relative_velocity),
-                         "m/s^2")
+            half = b.put(
+                f"omega x v_rel({point})", k_cross(omega, sliding.relative_velocity), "m/s^2"
+            )
             b.check("cross", half, w, vrel)
-            b.line(rf"&{formula} = 2 \cdot "
-                   rf"{tex.determinant3(det_row_z(b, w), b.entries(vrel))} = 2 \cdot "
-                   rf"{b.col(half)} = {tex.boxed_result(b.colu(cor))}")
-            b.say(f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
-                  f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
-                  f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
-                  f"of {point} along the slot (not its absolute velocity).")
+            b.line(
+                rf"&{formula} = 2 \cdot "
+                rf"{tex.determinant3(det_row_z(b, w), b.entries(vrel))} = 2 \cdot "
+                rf"{b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+            )
+            b.say(
+                f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
+                f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
+                f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
+                f"of {point} along the slot (not its absolute velocity)."
+            )
         return b.build(), key, sliding.coriolis_acceleration
 
-    def line_side(self, point: str, spec: LineSpec, order: int, two_slots: bool
-                  ) -> tuple[list[Step], Side]:
+    def line_side(
+        self, point: str, spec: LineSpec, order: int, two_slots: bool
+    ) -> tuple[list[Step], Side]:
         ctx = self.ctx
         guide = spec.guide
         sliding = ctx.slot(guide, point)
@@ -391,59 +480,82 @@ class VectorMethod:
         ukey = f"u({point}/{guide})"
         sub = tex.name(point)
         if order == VELOCITY:
-            b = ctx.builder("velocity.dyad.side",
-                            f"Velocity of {point} in the slot of {guide} ({unknown.text} "
-                            "unknown)")
+            b = ctx.builder(
+                "velocity.dyad.side",
+                f"Velocity of {point} in the slot of {guide} ({unknown.text} unknown)",
+            )
             known_key, known = tr_key, tr_value
         else:
-            cor_step, cor_key, cor_value = self.coriolis_step(point, guide)
+            cor_step, _, cor_value = self.coriolis_step(point, guide)
             steps.append(cor_step)
-            b = ctx.builder("acceleration.dyad.side",
-                            f"Acceleration of {point} in the slot of {guide} ({unknown.text} "
-                            "unknown)")
+            b = ctx.builder(
+                "acceleration.dyad.side",
+                f"Acceleration of {point} in the slot of {guide} ({unknown.text} unknown)",
+            )
             known_key, known = f"known({point} in {guide})", tr_value + cor_value
         side = Side(known_key, known, unit, [Term(unknown, "dir", ukey, u_np, "")])
-        tr = b.put(tr_key, tr_value, unit, sliding.source(
-            "transport_velocity" if order == VELOCITY else "transport_acceleration"))
+        tr = b.put(
+            tr_key,
+            tr_value,
+            unit,
+            sliding.source("transport_velocity" if order == VELOCITY else "transport_acceleration"),
+        )
         b.put(ukey, u_np, "")
         fixed = guide == ctx.scene.ground
         if order == VELOCITY:
-            b.line(rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                   rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
-                   rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}")
+            b.line(
+                rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
+                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
+                rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}"
+            )
             tr_tex = V0 if fixed else b.col(tr)
-            b.line(rf"&\phantom{{{v_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} = "
-                   rf"{side_column(b, side)}{latex_unit('m/s')}")
+            b.line(
+                rf"&\phantom{{{v_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} = "
+                rf"{side_column(b, side)}{latex_unit('m/s')}"
+            )
             if fixed:
-                b.say(f"{point} slides in a slot fixed in the ground: its transport velocity is "
-                      f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
-                      f"u = {b.txtn(ukey)}.")
+                b.say(
+                    f"{point} slides in a slot fixed in the ground: its transport velocity is "
+                    f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
+                    f"u = {b.txtn(ukey)}."
+                )
             else:
-                b.say(f"{point} slides in the slot of the moving link {guide}: v({point}) = "
-                      f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
-                      f"{b.txtn(ukey)} = {side_text(b, side)} m/s.")
+                b.say(
+                    f"{point} slides in the slot of the moving link {guide}: v({point}) = "
+                    f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
+                    f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
+                )
             return [*steps, b.build()], side
         cor = b.put(f"a_cor({point})", cor_value, unit, sliding.source("coriolis_acceleration"))
         b.put(known_key, known, unit)
         b.check("sum", known_key, tr, cor)
-        b.line(rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-               rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, \quad "
-               rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}}")
+        b.line(
+            rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, \quad "
+            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}}"
+        )
         tr_tex = V0 if fixed else b.col(tr)
         cor_tex = V0 if b.is_zero(cor) else b.col(cor)
-        b.line(rf"&\phantom{{{a_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} + "
-               rf"{cor_tex} = {side_column(b, side)}{latex_unit('m/s^2')}")
+        b.line(
+            rf"&\phantom{{{a_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} + "
+            rf"{cor_tex} = {side_column(b, side)}{latex_unit('m/s^2')}"
+        )
         if fixed:
-            b.say(f"The slot of {point} is fixed in the ground: the transport and Coriolis "
-                  f"accelerations are zero, so a({point}) = a_rel({point}) = {unknown.text} u.")
+            b.say(
+                f"The slot of {point} is fixed in the ground: the transport and Coriolis "
+                f"accelerations are zero, so a({point}) = a_rel({point}) = {unknown.text} u."
+            )
         else:
-            b.say(f"In the slot of {guide}: a({point}) = a_tr({point}) + a_rel({point}) + "
-                  f"a_Cor({point}) = {b.txt(tr)} + {unknown.text} times {b.txtn(ukey)} + "
-                  f"{b.txt(cor)} = {side_text(b, side)} m/s^2.")
+            b.say(
+                f"In the slot of {guide}: a({point}) = a_tr({point}) + a_rel({point}) + "
+                f"a_Cor({point}) = {b.txt(tr)} + {unknown.text} times {b.txtn(ukey)} + "
+                f"{b.txt(cor)} = {side_text(b, side)} m/s^2."
+            )
         return [*steps, b.build()], side
 
-    def equate(self, kind: str, title: str, left: Side, right: Side, sentence: str,
-               prefix: str) -> Step:
+    def equate(
+        self, kind: str, title: str, left: Side, right: Side, sentence: str, prefix: str
+    ) -> Step:
         """left = right, unknowns to the left: two component equations, solved."""
         b = self.ctx.builder(kind, title)
         _register_side(b, left)
@@ -462,20 +574,29 @@ class VectorMethod:
                 key = b.put(f"{prefix}c{i + 1}{j + 1}", row_sign * raw[j], t.of_unit)
                 coefficients[i].append(key)
                 if t.kind == "perp":  # k x r = (-r_y, r_x)
-                    b.check("product", key, f"{t.of}[{1 - i}]",
-                            factor=row_sign * sign * (-1.0 if i == 0 else 1.0))
+                    b.check(
+                        "product",
+                        key,
+                        f"{t.of}[{1 - i}]",
+                        factor=row_sign * sign * (-1.0 if i == 0 else 1.0),
+                    )
                 else:
                     b.check("product", key, f"{t.of}[{i}]", factor=row_sign * sign)
-            rhs_key = b.put(f"{prefix}b{i + 1}",
-                            row_sign * float(right.known[i] - left.known[i]), left.unit)
-            b.check("sum", rhs_key, f"{right.known_key}[{i}]", f"-{left.known_key}[{i}]",
-                    factor=row_sign)
+            rhs_key = b.put(
+                f"{prefix}b{i + 1}", row_sign * float(right.known[i] - left.known[i]), left.unit
+            )
+            b.check(
+                "sum",
+                rhs_key,
+                f"{right.known_key}[{i}]",
+                f"-{left.known_key}[{i}]",
+                factor=row_sign,
+            )
             rhs.append(rhs_key)
         present_solution(b, [t.unknown for t, _ in terms], coefficients, rhs, prefix)
         return b.build()
 
     def dyad(self, step: DyadStep, order: int) -> list[Step]:
-        ctx = self.ctx
         point = step.point
         out: list[Step] = []
         sides: list[Side] = []
@@ -489,11 +610,17 @@ class VectorMethod:
                 out += more
             sides.append(side)
         what = "velocity" if order == VELOCITY else "acceleration"
-        out.append(self.equate(
-            f"{what}.dyad.solve", f"Components of the {what} of {point}: geometric connection = "
-            "relative connection", sides[0], sides[1],
-            f"Both expressions give the {what} of the same point {point}; equating their x and y "
-            "components gives two equations for the two unknowns:", f"{what[0]}:{point}:"))
+        out.append(
+            self.equate(
+                f"{what}.dyad.solve",
+                f"Components of the {what} of {point}: geometric connection = relative connection",
+                sides[0],
+                sides[1],
+                f"Both expressions give the {what} of the same point {point}; equating their x "
+                "and y components gives two equations for the two unknowns:",
+                f"{what[0]}:{point}:",
+            )
+        )
         out += self.dyad_results(step, order)
         return out
 
@@ -526,51 +653,84 @@ class VectorMethod:
         unknown = self.unknown_slide(point, guide, order, False)
         sub = tex.name(point)
         if order == VELOCITY:
-            b = ctx.builder("velocity.relative", f"Relative velocity of {point} in the slot of "
-                            f"{guide}")
+            b = ctx.builder(
+                "velocity.relative", f"Relative velocity of {point} in the slot of {guide}"
+            )
             s = b.put(unknown.key, unknown.value, "m/s")
             u = b.put(f"u({point}/{guide})", u_np, "")
-            rel = b.put(f"v_rel({point})", sliding.relative_velocity, "m/s",
-                        sliding.source("relative_velocity"))
-            tr = b.put(f"v_tr({point})", sliding.transport_velocity, "m/s",
-                       sliding.source("transport_velocity"))
+            rel = b.put(
+                f"v_rel({point})",
+                sliding.relative_velocity,
+                "m/s",
+                sliding.source("relative_velocity"),
+            )
+            tr = b.put(
+                f"v_tr({point})",
+                sliding.transport_velocity,
+                "m/s",
+                sliding.source("transport_velocity"),
+            )
             total = b.put(f"v({point})", sliding.velocity, "m/s", sliding.source("velocity"))
             b.check("product", rel, s, u)
             b.check("sum", total, tr, rel)
-            b.line(rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
-                   rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}")
-            b.line(rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                   rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
-                   rf"{tex.boxed_result(b.colu(total))}")
-            b.say(f"Relative velocity of {point} along the slot of {guide}: v_rel = "
-                  f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; with the transport velocity "
-                  f"{b.txt(tr)}, v({point}) = {b.txt(total)}.")
+            b.line(
+                rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
+                rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+            )
+            b.line(
+                rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
+                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
+                rf"{tex.boxed_result(b.colu(total))}"
+            )
+            b.say(
+                f"Relative velocity of {point} along the slot of {guide}: v_rel = "
+                f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; with the transport velocity "
+                f"{b.txt(tr)}, v({point}) = {b.txt(total)}."
+            )
             return b.build()
-        b = ctx.builder("acceleration.relative", f"Relative acceleration of {point} in the slot "
-                        f"of {guide}")
+        b = ctx.builder(
+            "acceleration.relative", f"Relative acceleration of {point} in the slot of {guide}"
+        )
         assert sliding.relative_acceleration is not None
         assert sliding.transport_acceleration is not None
         assert sliding.coriolis_acceleration is not None and sliding.acceleration is not None
         s = b.put(unknown.key, unknown.value, "m/s^2")
         u = b.put(f"u({point}/{guide})", u_np, "")
-        rel = b.put(f"a_rel({point})", sliding.relative_acceleration, "m/s^2",
-                    sliding.source("relative_acceleration"))
-        tr = b.put(f"a_tr({point})", sliding.transport_acceleration, "m/s^2",
-                   sliding.source("transport_acceleration"))
-        cor = b.put(f"a_cor({point})", sliding.coriolis_acceleration, "m/s^2",
-                    sliding.source("coriolis_acceleration"))
-        total = b.put(f"a({point})", sliding.acceleration, "m/s^2",
-                      sliding.source("acceleration"))
+        rel = b.put(
+            f"a_rel({point})",
+            sliding.relative_acceleration,
+            "m/s^2",
+            sliding.source("relative_acceleration"),
+        )
+        tr = b.put(
+            f"a_tr({point})",
+            sliding.transport_acceleration,
+            "m/s^2",
+            sliding.source("transport_acceleration"),
+        )
+        cor = b.put(
+            f"a_cor({point})",
+            sliding.coriolis_acceleration,
+            "m/s^2",
+            sliding.source("coriolis_acceleration"),
+        )
+        total = b.put(f"a({point})", sliding.acceleration, "m/s^2", sliding.source("acceleration"))
         b.check("product", rel, s, u)
         b.check("sum", total, tr, rel, cor)
-        b.line(rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
-               rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}")
-        b.line(rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-               rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
-               rf"{b.col(tr)} + {b.col(rel)} + {b.col(cor)} = {tex.boxed_result(b.colu(total))}")
-        b.say(f"Relative acceleration of {point} along the slot of {guide}: a_rel = "
-              f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; a({point}) = a_tr + a_rel + a_Cor "
-              f"= {b.txt(tr)} + {b.txt(rel)} + {b.txt(cor)} = {b.txt(total)}.")
+        b.line(
+            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
+            rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+        )
+        b.line(
+            rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
+            rf"{b.col(tr)} + {b.col(rel)} + {b.col(cor)} = {tex.boxed_result(b.colu(total))}"
+        )
+        b.say(
+            f"Relative acceleration of {point} along the slot of {guide}: a_rel = "
+            f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; a({point}) = a_tr + a_rel + a_Cor "
+            f"= {b.txt(tr)} + {b.txt(rel)} + {b.txt(cor)} = {b.txt(total)}."
+        )
         return b.build()
 
     # --- slotted lever --------------------------------------------------------------------------
@@ -591,8 +751,10 @@ class VectorMethod:
         sub = tex.name(pin)
         omega = ctx.omega(lever)
         if order == VELOCITY:
-            b = ctx.builder("velocity.lever.side", f"Velocity of {pin} in the slot of {lever} "
-                            f"({rate.text} and {slide.text} unknown)")
+            b = ctx.builder(
+                "velocity.lever.side",
+                f"Velocity of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
+            )
             vq = b.put(f"v({pivot})", ctx.vel(pivot), "m/s", ("points", pivot, "velocity"))
             vp = b.put(f"v({pin})", ctx.vel(pin), "m/s", ("points", pin, "velocity"))
             b.put(rkey, r_np, "m")
@@ -600,26 +762,35 @@ class VectorMethod:
             known_side = Side(vp, ctx.vel(pin), "m/s")
             lever_side = Side(vq, ctx.vel(pivot), "m/s", terms)
             base = V0 if ctx.is_fixed(pivot) and b.is_zero(vq) else b.col(vq)
-            b.line(rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                   rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
-                   rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = "
-                   rf"{b.col(ukey)}")
-            b.line(rf"&\phantom{{{v_vec(pin)}}} = {base} + "
-                   rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} + "
-                   rf"{slide.latex} {b.col(ukey)} = {side_column(b, lever_side)}"
-                   rf"{latex_unit('m/s')}")
-            b.say(f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = "
-                  f"{b.txt(vp)} is known. Relative connection: {pin} slides in the slot of "
-                  f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
-                  f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
-                  f"{side_text(b, lever_side)} m/s, with {rate.text} and {slide.text} unknown.")
+            b.line(
+                rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
+                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
+                rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = "
+                rf"{b.col(ukey)}"
+            )
+            b.line(
+                rf"&\phantom{{{v_vec(pin)}}} = {base} + "
+                rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} + "
+                rf"{slide.latex} {b.col(ukey)} = {side_column(b, lever_side)}"
+                rf"{latex_unit('m/s')}"
+            )
+            b.say(
+                f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = "
+                f"{b.txt(vp)} is known. Relative connection: {pin} slides in the slot of "
+                f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
+                f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
+                f"{side_text(b, lever_side)} m/s, with {rate.text} and {slide.text} unknown."
+            )
             out.append(b.build())
             what = "velocity"
         else:
             cor_step, cor_key, cor_value = self.coriolis_step(pin, lever)
             out.append(cor_step)
-            b = ctx.builder("acceleration.lever.side", f"Acceleration of {pin} in the slot of "
-                            f"{lever} ({rate.text} and {slide.text} unknown)")
+            b = ctx.builder(
+                "acceleration.lever.side",
+                f"Acceleration of {pin} in the slot of "
+                f"{lever} ({rate.text} and {slide.text} unknown)",
+            )
             aq = b.put(f"a({pivot})", ctx.acc(pivot), "m/s^2", ("points", pivot, "acceleration"))
             ap = b.put(f"a({pin})", ctx.acc(pin), "m/s^2", ("points", pin, "acceleration"))
             w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
@@ -635,29 +806,42 @@ class VectorMethod:
             known_side = Side(ap, ctx.acc(pin), "m/s^2")
             lever_side = Side(known_key, known, "m/s^2", terms)
             base = V0 if ctx.is_fixed(pivot) and b.is_zero(aq) else b.col(aq)
-            b.line(rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-                   rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
-                   rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
-                   rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
-                   rf"{r_vec(pivot, pin)}")
-            b.line(rf"&\phantom{{{a_vec(pin)}}} = {base} + "
-                   rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} - "
-                   rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)} + {slide.latex} {b.col(ukey)}"
-                   rf" + {b.col(cor)}")
-            b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, lever_side)}"
-                   rf"{latex_unit('m/s^2')}")
-            b.say(f"Geometric connection: a({pin}) = {b.txt(ap)} is known from its crank. "
-                  f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
-                  f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
-                  f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
-                  f"term {b.txt(cor)}: a({pin}) = {side_text(b, lever_side)} m/s^2.")
+            b.line(
+                rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
+                rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
+                rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
+                rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
+                rf"{r_vec(pivot, pin)}"
+            )
+            b.line(
+                rf"&\phantom{{{a_vec(pin)}}} = {base} + "
+                rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} - "
+                rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)} + {slide.latex} {b.col(ukey)}"
+                rf" + {b.col(cor)}"
+            )
+            b.line(
+                rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, lever_side)}"
+                rf"{latex_unit('m/s^2')}"
+            )
+            b.say(
+                f"Geometric connection: a({pin}) = {b.txt(ap)} is known from its crank. "
+                f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
+                f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
+                f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
+                f"term {b.txt(cor)}: a({pin}) = {side_text(b, lever_side)} m/s^2."
+            )
             out.append(b.build())
             what = "acceleration"
-        out.append(self.equate(
-            f"{what}.lever.solve", f"Components of the {what} of {pin}: geometric connection = "
-            "relative connection", lever_side, known_side,
-            f"The two expressions of the {what} of {pin} are equal; component by component:",
-            f"{what[0]}:{pin}:"))
+        out.append(
+            self.equate(
+                f"{what}.lever.solve",
+                f"Components of the {what} of {pin}: geometric connection = relative connection",
+                lever_side,
+                known_side,
+                f"The two expressions of the {what} of {pin} are equal; component by component:",
+                f"{what[0]}:{pin}:",
+            )
+        )
         (self.solved_omega if order == VELOCITY else self.solved_alpha).add(lever)
         out.append(self.lever_parts(step, order))
         (ctx.shown_velocity if order == VELOCITY else ctx.shown_acceleration).add(pin)
@@ -678,24 +862,40 @@ class VectorMethod:
             w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
             r = b.put(f"r({pivot},{pin})", r_np, "m")
             wxr = b.put(f"omega x r({pivot},{pin})", k_cross(omega, r_np), "m/s")
-            tr = b.put(f"v_tr({pin})", sliding.transport_velocity, "m/s",
-                       sliding.source("transport_velocity"))
+            tr = b.put(
+                f"v_tr({pin})",
+                sliding.transport_velocity,
+                "m/s",
+                sliding.source("transport_velocity"),
+            )
             slide = self.unknown_slide(pin, lever, order, False)
             s = b.put(slide.key, slide.value, "m/s")
             u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-            rel = b.put(f"v_rel({pin})", sliding.relative_velocity, "m/s",
-                        sliding.source("relative_velocity"))
+            rel = b.put(
+                f"v_rel({pin})",
+                sliding.relative_velocity,
+                "m/s",
+                sliding.source("relative_velocity"),
+            )
             b.check("cross", wxr, w, r)
             b.check("sum", tr, vq, wxr)
             b.check("product", rel, s, u)
-            b.line(rf"&\vec{{v}}_{{{sub},\mathrm{{tr}}}} = {w_vec(lever)} \times "
-                   rf"{r_vec(pivot, pin)} = {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
-                   rf"{b.colu(tr)}")
-            b.line(rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
-                   rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}")
-            b.say(f"With omega({lever}) = {b.txt(w)}: the transport velocity of {pin} (the point "
-                  f"of {lever} under the pin) is {b.txt(tr)}; the relative velocity along the "
-                  f"slot is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}.")
+            base = "" if ctx.is_fixed(pivot) and b.is_zero(vq) else b.col(vq) + " + "
+            moving = "" if not base else f"{v_vec(pivot)} + "
+            b.line(
+                rf"&\vec{{v}}_{{{sub},\mathrm{{tr}}}} = {moving}{w_vec(lever)} \times "
+                rf"{r_vec(pivot, pin)} = {base}"
+                rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
+            )
+            b.line(
+                rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
+                rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+            )
+            b.say(
+                f"With omega({lever}) = {b.txt(w)}: the transport velocity of {pin} (the point "
+                f"of {lever} under the pin) is {b.txt(tr)}; the relative velocity along the "
+                f"slot is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}."
+            )
             return b.build()
         assert sliding.transport_acceleration is not None
         assert sliding.relative_acceleration is not None
@@ -706,33 +906,48 @@ class VectorMethod:
         r = b.put(f"r({pivot},{pin})", r_np, "m")
         t = b.put(f"alpha x r({pivot},{pin})", k_cross(alpha, r_np), "m/s^2")
         n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-        tr = b.put(f"a_tr({pin})", sliding.transport_acceleration, "m/s^2",
-                   sliding.source("transport_acceleration"))
+        tr = b.put(
+            f"a_tr({pin})",
+            sliding.transport_acceleration,
+            "m/s^2",
+            sliding.source("transport_acceleration"),
+        )
         slide = self.unknown_slide(pin, lever, order, False)
         s = b.put(slide.key, slide.value, "m/s^2")
         u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-        rel = b.put(f"a_rel({pin})", sliding.relative_acceleration, "m/s^2",
-                    sliding.source("relative_acceleration"))
+        rel = b.put(
+            f"a_rel({pin})",
+            sliding.relative_acceleration,
+            "m/s^2",
+            sliding.source("relative_acceleration"),
+        )
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
         b.check("sum", tr, aq, t, n)
         b.check("product", rel, s, u)
-        b.line(rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = {al_vec(lever)} \times {r_vec(pivot, pin)}"
-               rf" - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = "
-               rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-               rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)} = {b.col(t)} + {b.col(n)} = "
-               rf"{b.colu(tr)}")
-        b.line(rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
-               rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}")
-        b.say(f"With alpha({lever}) = {b.txt(al)}: the transport acceleration of {pin} is "
-              f"{b.txt(t)} + {b.txt(n)} = {b.txt(tr)}; the relative acceleration along the slot "
-              f"is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}.")
+        base = "" if ctx.is_fixed(pivot) and b.is_zero(aq) else b.col(aq) + " + "
+        moving = "" if not base else f"{a_vec(pivot)} + "
+        b.line(
+            rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = {moving}{al_vec(lever)} \times "
+            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = "
+            rf"{base}{tex.determinant3(det_row_z(b, al), b.entries(r))} - "
+            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)} = {base}{b.col(t)} + {b.col(n)} = "
+            rf"{b.colu(tr)}"
+        )
+        b.line(
+            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
+            rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+        )
+        b.say(
+            f"With alpha({lever}) = {b.txt(al)}: the transport acceleration of {pin} is "
+            f"{b.txt(t)} + {b.txt(n)} = {b.txt(tr)}; the relative acceleration along the slot "
+            f"is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}."
+        )
         return b.build()
 
     # --- links known from two points, guided links, Newton groups -------------------------------
 
     def two_points(self, step: TwoPointStep, order: int) -> list[Step]:
-        ctx = self.ctx
         link, first, second = step.link, step.first, step.second
         solved = self.solved_omega if order == VELOCITY else self.solved_alpha
         out = []
@@ -747,19 +962,32 @@ class VectorMethod:
         ctx = self.ctx
         ctx.use(first, second)
         r_np = ctx.pos(second) - ctx.pos(first)
-        letter, unit, field_name = (("v", "m/s", "velocity") if order == VELOCITY
-                                    else ("a", "m/s^2", "acceleration"))
+        letter, unit, field_name = (
+            ("v", "m/s", "velocity") if order == VELOCITY else ("a", "m/s^2", "acceleration")
+        )
         rate = self.unknown_rate(link, order)
         b = ctx.builder(f"{field_name}.two_points", f"{rate.text} from two known points")
-        x1 = b.put(f"{letter}({first})", getattr(ctx.analysis.points[first], field_name), unit,
-                   ("points", first, field_name))
-        x2 = b.put(f"{letter}({second})", getattr(ctx.analysis.points[second], field_name), unit,
-                   ("points", second, field_name))
+        x1 = b.put(
+            f"{letter}({first})",
+            getattr(ctx.analysis.points[first], field_name),
+            unit,
+            ("points", first, field_name),
+        )
+        x2 = b.put(
+            f"{letter}({second})",
+            getattr(ctx.analysis.points[second], field_name),
+            unit,
+            ("points", second, field_name),
+        )
         r = b.put(f"r({first},{second})", r_np, "m")
         diff = b.put(f"d{letter}", np.asarray(b.vector(x2)) - np.asarray(b.vector(x1)), unit)
         dv = np.asarray(b.vector(diff))
-        cross = b.put("r x d", float(r_np[0] * dv[1] - r_np[1] * dv[0]), "",
-                      reference=float(np.hypot(*r_np) * np.hypot(*dv)))
+        cross = b.put(
+            "r x d",
+            float(r_np[0] * dv[1] - r_np[1] * dv[0]),
+            "",
+            reference=float(np.hypot(*r_np) * np.hypot(*dv)),
+        )
         r2 = b.put("|r|^2", float(np.dot(r_np, r_np)), "m^2")
         value = b.put(rate.key, rate.value, rate.unit, rate.source)
         b.check("sum", diff, x2, f"-{x1}")
@@ -768,36 +996,48 @@ class VectorMethod:
         b.check("quotient", value, cross, r2)
         sym = letter
         if order == VELOCITY:
-            b.line(rf"&{v_vec(second)} = {v_vec(first)} + {w_vec(link)} \times "
-                   rf"{r_vec(first, second)} \;\Rightarrow\; {rate.latex} = "
-                   rf"\frac{{({r_vec(first, second)} \times ({v_vec(second)} - {v_vec(first)}))_z}}"
-                   rf"{{|{r_vec(first, second)}|^2}}")
+            b.line(
+                rf"&{v_vec(second)} = {v_vec(first)} + {w_vec(link)} \times "
+                rf"{r_vec(first, second)} \;\Rightarrow\; {rate.latex} = "
+                rf"\frac{{({r_vec(first, second)} \times ({v_vec(second)} - {v_vec(first)}))_z}}"
+                rf"{{|{r_vec(first, second)}|^2}}"
+            )
         else:
-            b.line(rf"&{a_vec(second)} = {a_vec(first)} + {al_vec(link)} \times "
-                   rf"{r_vec(first, second)} - \omega^2 {r_vec(first, second)} \;\Rightarrow\; "
-                   rf"{rate.latex} = \frac{{({r_vec(first, second)} \times ({a_vec(second)} - "
-                   rf"{a_vec(first)}))_z}}{{|{r_vec(first, second)}|^2}}")
-        b.line(rf"&{rate.latex} = \frac{{{b.num(cross)}}}{{{b.num(r2)}}} = "
-               rf"{tex.boxed_result(b.numu(value))}")
-        b.say(f"Both {first} and {second} are known points of link {link}. Crossing "
-              f"r({first},{second}) with {sym}({second}) - {sym}({first}) = {b.txt(diff)} "
-              + ("" if order == VELOCITY else "(the normal term is along r and drops out) ")
-              + f"gives {b.txtn(cross)}; divided by |r|^2 = {b.txt(r2)}: {rate.text} = "
-              f"{b.txt(value)}.")
+            b.line(
+                rf"&{a_vec(second)} = {a_vec(first)} + {al_vec(link)} \times "
+                rf"{r_vec(first, second)} - \omega^2 {r_vec(first, second)} \;\Rightarrow\; "
+                rf"{rate.latex} = \frac{{({r_vec(first, second)} \times ({a_vec(second)} - "
+                rf"{a_vec(first)}))_z}}{{|{r_vec(first, second)}|^2}}"
+            )
+        b.line(
+            rf"&{rate.latex} = \frac{{{b.num(cross)}}}{{{b.num(r2)}}} = "
+            rf"{tex.boxed_result(b.numu(value))}"
+        )
+        b.say(
+            f"Both {first} and {second} are known points of link {link}. Crossing "
+            f"r({first},{second}) with {sym}({second}) - {sym}({first}) = {b.txt(diff)} "
+            + ("" if order == VELOCITY else "(the normal term is along r and drops out) ")
+            + f"gives {b.txtn(cross)}; divided by |r|^2 = {b.txt(r2)}: {rate.text} = "
+            f"{b.txt(value)}."
+        )
         return b.build()
 
     def guided(self, step: GuidedStep, order: int) -> list[Step]:
         ctx = self.ctx
         rate = self.unknown_rate(step.link, order)
         guide_rate = self.unknown_rate(step.guide, order)
-        b = ctx.builder("velocity.guided" if order == VELOCITY else "acceleration.guided",
-                        f"{rate.text}: link {step.link} cannot turn relative to {step.guide}")
+        b = ctx.builder(
+            "velocity.guided" if order == VELOCITY else "acceleration.guided",
+            f"{rate.text}: link {step.link} cannot turn relative to {step.guide}",
+        )
         value = b.put(rate.key, rate.value, rate.unit, rate.source)
         g = b.put(guide_rate.key, guide_rate.value, guide_rate.unit, guide_rate.source)
         b.check("sum", value, g)
         b.line(rf"&{rate.latex} = {guide_rate.latex} = {tex.boxed_result(b.numu(value))}")
-        b.say(f"Link {step.link} slides in a prismatic joint of {step.guide} and cannot turn "
-              f"relative to it: {rate.text} = {guide_rate.text} = {b.txt(value)}.")
+        b.say(
+            f"Link {step.link} slides in a prismatic joint of {step.guide} and cannot turn "
+            f"relative to it: {rate.text} = {guide_rate.text} = {b.txt(value)}."
+        )
         (self.solved_omega if order == VELOCITY else self.solved_alpha).add(step.link)
         return [b.build(), *self.remaining(step.link, step.point, order)]
 
@@ -809,12 +1049,20 @@ class VectorMethod:
             rate = self.unknown_rate(link, order)
             value = b.put(rate.key, rate.value, rate.unit, rate.source)
             b.line(rf"&{rate.latex} = {b.numu(value)}")
-        b.say(f"Links {', '.join(step.links)} form no two-joint group with a closed-form solution:"
-              f" their {what} equations were solved together (simultaneously), which gives "
-              + "; ".join(f"{k} = {v.display}" for k, v in b.values.items()) + ".")
+        b.say(
+            f"Links {', '.join(step.links)} form no two-joint group with a closed-form solution:"
+            f" their {what} equations were solved together (simultaneously), which gives "
+            + "; ".join(f"{k} = {v.display}" for k, v in b.values.items())
+            + "."
+        )
         out = [b.build()]
         shown = ctx.shown_velocity if order == VELOCITY else ctx.shown_acceleration
-        for link in step.links:
+        todo = list(step.links)
+        while todo:  # carry from points already shown where possible, link after link
+            link = next(
+                (k for k in todo if any(p in shown for p in ctx.scene.links[k].points)), todo[0]
+            )
+            todo.remove(link)
             points = ctx.scene.links[link].points
             base = next((p for p in points if p in shown), points[0])
             shown.add(base)
