@@ -176,12 +176,13 @@ def _with_rates(draw: st.DrawFn, docs: st.SearchStrategy[dict[str, Any]]) -> dic
     return doc
 
 
-def linkages(family: str, max_condition: float = MAX_CONDITION) -> st.SearchStrategy[dict[str, Any]]:
+def linkages(family: str, max_condition: float = MAX_CONDITION, newton: bool | None = None
+             ) -> st.SearchStrategy[dict[str, Any]]:
     """Scene documents of one family (a preset name, ``block_in_lever`` or ``six_bar``) whose
     drawn pose assembles with a velocity condition number below ``max_condition``, driven at a
-    random omega and alpha."""
+    random omega and alpha. ``newton`` restricts the six-bars as in ``six_bars``."""
     if family == "six_bar":
-        docs = six_bars(max_condition).map(lambda s: s.doc)
+        docs = six_bars(max_condition, newton).map(lambda s: s.doc)
     else:
         name = "inverted_slider_crank" if family == "block_in_lever" else family
         docs = assemblable_presets([name]).map(lambda nv: build_preset(*nv))

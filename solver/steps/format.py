@@ -24,7 +24,7 @@ LATEX_UNITS = {
     "rad/s": r"\mathrm{rad/s}",
     "rad/s^2": r"\mathrm{rad/s^{2}}",
     "s": r"\mathrm{s}",
-    "deg": r"^{\circ}",
+    "deg": r"{}^{\circ}",
     "m^2": r"\mathrm{m^{2}}",
     "1/s": r"\mathrm{1/s}",
 }

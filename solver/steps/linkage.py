@@ -305,7 +305,7 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
     for link, degrees in angles.items():
         key = b.put(f"angle({link})", math.radians(degrees), "rad")
         b.line(
-            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}^{{\circ}} "
+            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}{{}}^{{\circ}} "
             rf"= {b.numu(key)} \quad \text{{(the analysed instant)}}"
         )
         b.say(

@@ -280,7 +280,7 @@ class LoopMethod:
 
     def deg(self, b: StepBuilder, key: str) -> str:
         """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
-        return tex.paren(self.ctx.fmt.latex(math.degrees(b.scalar(key)), "deg") + r"^{\circ}")
+        return tex.paren(self.ctx.fmt.latex(math.degrees(b.scalar(key)), "deg") + r"{}^{\circ}")
 
     # --- the steps ------------------------------------------------------------------------------
 

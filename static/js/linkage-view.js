@@ -8,7 +8,7 @@
 import { svgEl, setAttrs, clear, arrowMarker, hatchPattern } from './svg.js';
 import { COLOURS } from './theme.js';
 import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawnAngle } from './scene.js';
-import { extent, typicalNorm, PARTS } from './track.js';
+import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
 
 const WIDTH = 1000;
@@ -359,14 +359,27 @@ export class LinkageView {
     });
   }
 
+  /** Text notes and scale bars (a round value of each quantity drawn at its arrow scale). */
   buildNotes(notes) {
-    const lines = [...notes];
-    if (this.options.showVelocity && this.scale.velocity) lines.push(`velocity arrows: ${show('velocity', (this.map.size * 0.22) / this.scale.velocity, this.options.units, 3)} per ${fmtLen(this.map.size * 0.22 * this.map.k)} px`);
-    if (this.options.showAcceleration && this.scale.acceleration) lines.push(`acceleration arrows: ${show('acceleration', (this.map.size * 0.22) / this.scale.acceleration, this.options.units, 3)} per ${fmtLen(this.map.size * 0.22 * this.map.k)} px`);
-    lines.forEach((line, i) => {
-      const t = svgEl('text', { x: 12, y: this.map.height - 12 - (lines.length - 1 - i) * 18, class: 'view-note' }, this.layers.notes);
-      t.textContent = line;
-    });
+    const bars = [];
+    for (const kind of ['velocity', 'acceleration']) {
+      const on = kind === 'velocity' ? this.options.showVelocity : this.options.showAcceleration;
+      const scale = this.scale[kind];
+      if (!on || !scale) continue;
+      const value = niceBelow((this.map.size * 0.22) / scale);
+      bars.push({ kind, value, px: value * scale * this.map.k });
+    }
+    const lineHeight = 18;
+    let y = this.map.height - 12 - (notes.length + bars.length - 1) * lineHeight;
+    for (const b of bars) {
+      svgEl('line', { x1: 12, y1: y - 4, x2: 12 + b.px, y2: y - 4, stroke: COLOURS[b.kind], 'stroke-width': 2.6, 'marker-end': this.markers[b.kind], class: 'scale-bar' }, this.layers.notes);
+      svgEl('text', { x: 20 + b.px, y, class: 'view-note' }, this.layers.notes).textContent = `${show(b.kind, b.value, this.options.units, 3)} (${b.kind} scale)`;
+      y += lineHeight;
+    }
+    for (const line of notes) {
+      svgEl('text', { x: 12, y, class: 'view-note' }, this.layers.notes).textContent = line;
+      y += lineHeight;
+    }
   }
 
   // ---- drawing one frame -------------------------------------------------------------------
@@ -571,8 +584,10 @@ function hullOrder(ps) {
   return [...ps].sort((a, b) => Math.atan2(a[1] - c[1], a[0] - c[0]) - Math.atan2(b[1] - c[1], b[0] - c[0]));
 }
 
-function fmtLen(px) {
-  return Math.round(px);
+/** The largest 1, 2 or 5 times a power of ten not above v: a scale bar with a round label. */
+function niceBelow(v) {
+  const p = 10 ** Math.floor(Math.log10(v));
+  return [5, 2, 1].map((m) => m * p).find((x) => x <= v) || p;
 }
 
 function analysisMax(analysis, quantity) {
@@ -585,12 +600,4 @@ function analysisMax(analysis, quantity) {
     }
   }
   return m;
-}
-
-/** Joints and moving points of the analysis that carry transport/relative/Coriolis parts. */
-export function componentSources(analysis) {
-  const out = [];
-  for (const j of analysis.joints || []) if (j.transport_velocity || j.transport_acceleration) out.push(j);
-  for (const [name, m] of Object.entries(analysis.moving_points || {})) out.push({ ...m, point: name });
-  return out;
 }

@@ -7,13 +7,13 @@
 
 import * as api from './api.js';
 import { Controls } from './controls.js';
-import { LinkageView, componentSources } from './linkage-view.js';
+import { LinkageView } from './linkage-view.js';
 import { SpatialView } from './spatial-view.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
 import { renderPlots, moveCursor, available } from './plots.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { readHash, writeHash } from './share.js';
-import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue } from './track.js';
+import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentSources } from './track.js';
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';

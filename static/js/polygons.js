@@ -13,6 +13,7 @@
 import { COLOURS } from './theme.js';
 import { linkColours, solvingOrder, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
+import { componentSources } from './track.js';
 
 const TINY = 1e-12;
 
@@ -145,14 +146,6 @@ function hexAlpha(hex, alpha) {
   return `rgba(${(n >> 16) & 255},${(n >> 8) & 255},${n & 255},${alpha})`;
 }
 
-/** Joints and moving points that carry transport / relative / Coriolis parts. */
-function parts(analysis) {
-  const out = [];
-  for (const j of analysis.joints || []) if (j.transport_velocity || j.transport_acceleration) out.push(j);
-  for (const [name, m] of Object.entries(analysis.moving_points || {})) out.push({ ...m, point: name });
-  return out;
-}
-
 function poleLabel(pole, tips) {
   const atPole = Object.entries(tips).filter(([, v]) => norm(v) < TINY).map(([n]) => lower(n));
   return atPole.length ? `${pole} ≡ ${atPole.join(', ')}` : pole;
@@ -171,7 +164,7 @@ export function velocityFigure(scene, analysis, units) {
   traces.push(arrows('absolute velocity', abs, COLOURS.velocity));
   const tr = [];
   const rel = [];
-  for (const j of parts(analysis)) {
+  for (const j of componentSources(analysis)) {
     if (!j.transport_velocity || !j.relative_velocity) continue;
     const vt = j.transport_velocity.map((c) => toDisplay('velocity', c, units));
     const vr = j.relative_velocity.map((c) => toDisplay('velocity', c, units));
@@ -227,7 +220,7 @@ export function accelerationFigure(scene, analysis, units) {
   const cor = [];
   const rel = [];
   const zeroCoriolis = [];
-  for (const j of parts(analysis)) {
+  for (const j of componentSources(analysis)) {
     if (!j.transport_acceleration) continue;
     const conv = (v) => (v || [0, 0]).map((c) => toDisplay('acceleration', c, units));
     const at = conv(j.transport_acceleration);

@@ -77,6 +77,14 @@ function split(track, u) {
 /** The parts of a moving point's (or slider's) motion, as the API names them. */
 export const PARTS = ['transport_velocity', 'relative_velocity', 'transport_acceleration', 'relative_acceleration', 'coriolis_acceleration'];
 
+/** Joints and moving points of an /analyze answer that carry transport/relative/Coriolis parts. */
+export function componentSources(analysis) {
+  const out = [];
+  for (const j of analysis.joints || []) if (j.transport_velocity || j.transport_acceleration) out.push(j);
+  for (const [name, m] of Object.entries(analysis.moving_points || {})) out.push({ ...m, point: name });
+  return out;
+}
+
 /**
  * Positions (and velocities, accelerations, and the transport/relative/Coriolis parts of moving
  * points, when the sweep has them) at fractional index u.

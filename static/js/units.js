@@ -26,11 +26,6 @@ const SYSTEMS = {
   },
 };
 
-export const UNIT_SYSTEMS = [
-  { value: 'si', label: 'SI (m, rad, rad/s)' },
-  { value: 'mm', label: 'mm, deg, rpm' },
-];
-
 /** Which physical kind a unit string of the API (preset parameters) denotes, or null. */
 export function kindOfUnit(unit) {
   const u = String(unit || '').replace(/\s/g, '').replace('²', '^2');

@@ -19,7 +19,7 @@ from fastapi.testclient import TestClient
 
 from server.app import app
 from solver.presets import PRESETS
-from tests.solver.test_steps import verify
+from tests.solver.test_steps import unit_floors, verify
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
 SCENES = sorted(p.stem for p in EXAMPLES.glob("*.json"))
@@ -49,10 +49,11 @@ def test_solution_results_equal_analyze(name: str, method: str) -> None:
     assert body["requested_method"] == method and body["method"] in ("vector", "loop")
     assert body["digits"] == 4
     assert body["steps"] and body["steps"][-1]["kind"] == "summary"
+    floors = unit_floors(body["steps"])
     for step in body["steps"]:
         assert {"title", "latex", "text", "values", "checks", "kind"} <= set(step)
         assert step["title"] and step["text"]
-        assert not verify(step), verify(step)[:2]
+        assert not verify(step, floors), verify(step, floors)[:2]
     for mistake in body["mistakes"]:
         assert mistake["title"] and mistake["text"]
 

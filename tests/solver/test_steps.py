@@ -37,6 +37,7 @@ from solver.scene import parse_linkage
 from solver.spatial import parse_spatial_chain
 from solver.steps import Solution, Step, solve
 from solver.steps.format import Formatter
+from tests.linkage_strategies import linkages
 from tests.strategies import assemblable_presets
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -72,14 +73,26 @@ def _cross(a: JSONValue, b: JSONValue) -> JSONValue:
     return np.cross(a, b)
 
 
-def verify(step: dict[str, Any]) -> list[str]:
-    """The checks of one step (as JSON) that do not hold; [] when the step is consistent."""
+def unit_floors(steps: Iterable[dict[str, Any]]) -> dict[str, float]:
+    """The largest magnitude of each unit over a whole solution (the scale of rounding noise)."""
+    floors: dict[str, float] = {}
+    for step in steps:
+        for v in step["values"].values():
+            floors[v["unit"]] = max(floors.get(v["unit"], 0.0), _size(v["value"]))
+    return floors
+
+
+def verify(step: dict[str, Any], floors: dict[str, float] | None = None) -> list[str]:
+    """The checks of one step (as JSON) that do not hold; [] when the step is consistent.
+
+    ``floors``: the scale of each unit in the whole solution (``unit_floors``); rounding noise
+    of the solver is relative to it (a pole 1e-16 m away from a pivot at the origin)."""
     values = {
         k: np.asarray(v["value"], float) if isinstance(v["value"], list) else v["value"]
         for k, v in step["values"].items()
     }
     units = {k: v["unit"] for k, v in step["values"].items()}
-    floor: dict[str, float] = {}  # the largest magnitude of each unit in the step
+    floor = dict(floors or {})  # the largest magnitude of each unit in the step (or solution)
     for key, value in values.items():
         floor[units[key]] = max(floor.get(units[key], 0.0), _size(value))
     natural: dict[str, float] = {}  # size of the terms a checked result was made of
@@ -544,9 +557,10 @@ def test_mistakes_show_the_seed_errors_as_wrong_numbers() -> None:
 
 def _check_solution(solution: Solution) -> None:
     body = results_body(solution)
+    floors = unit_floors(step.as_json() for step in solution.steps)
     for step in solution.steps:
         data = step.as_json()
-        failures = verify(data)
+        failures = verify(data, floors)
         assert not failures, failures[:3]
         for key, v in step.values.items():
             if v.source is not None:
@@ -606,6 +620,19 @@ def test_random_presets_every_step_re_evaluates(
     """Property on random scenes of every preset: each step's checks hold with the values it
     lists, and every value labelled with a source is exactly the /analyze number."""
     _check_solution(solve(parse_linkage(build_preset(*case)), method))
+
+
+@pytest.mark.parametrize("family", ["six_bar", "block_in_lever"])
+def test_six_bars_and_blocks_every_step_re_evaluates(family: str) -> None:
+    """Random Watt/Stephenson six-bars (some need a Newton group) and a block in a prismatic
+    joint (``tests.linkage_strategies``): the same property as for the presets."""
+
+    @settings(max_examples=15, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(linkages(family), st.sampled_from(["vector", "loop"]))
+    def run(doc: dict[str, Any], method: str) -> None:
+        _check_solution(solve(parse_linkage(doc), method))
+
+    run()
 
 
 def test_the_checker_can_fail() -> None:
