@@ -92,6 +92,17 @@ export const sweep = (scene, samples, quantities, timeRange) =>
   call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
 
+/** The printable worked solution: a whole HTML page (text, not JSON). */
+export async function solutionPage(scene, method, digits = 4) {
+  const response = await fetch(BASE + '/solution.html', {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ scene, method, digits }),
+  });
+  if (!response.ok) throw await problemFrom(response, '/solution.html');
+  return response.text();
+}
+
 /** Static example scenes shipped with the page (not part of the API). */
 export async function getExample(file) {
   const response = await fetch(`examples/${encodeURIComponent(file)}`);

@@ -64,6 +64,7 @@ class App {
       method: (m) => { this.method = m; this.requestSolution(); this.saveHash(); },
       share: () => this.onShare(),
     });
+    $('print-solution').addEventListener('click', () => this.openPrintable());
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),
@@ -466,6 +467,23 @@ class App {
       if (seq !== this.solutionSeq) return;
       renderMessage($('steps'), err.missing ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
       $('mistakes').replaceChildren();
+    }
+  }
+
+  /** Opens the print-friendly worked solution of the analysed instant in a new window. */
+  async openPrintable() {
+    if (!this.scene) return;
+    const target = S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u);
+    const page = window.open('', '_blank');
+    try {
+      const html = await api.solutionPage(target, this.method, 4);
+      // about:blank shares this page's origin and base URL, so the page's /vendor/ links resolve.
+      page.document.open();
+      page.document.write(html);
+      page.document.close();
+    } catch (err) {
+      page?.close();
+      this.status(`No printable solution: ${err.detail}`, 'error');
     }
   }
 

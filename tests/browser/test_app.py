@@ -161,12 +161,17 @@ def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
     app.screenshot("worked-solution", ".solution-panel")
 
 
-def test_missing_solution_endpoint_is_said_on_screen(app: AppPage) -> None:
-    if app.server.has("/solution"):
-        pytest.skip("the server offers /solution")
+def test_printable_page_opens_with_the_typeset_solution(app: AppPage) -> None:
     app.open()
     page = app.page
-    wait_until(lambda: "solution" in page.inner_text("#steps").lower(), what="the message")
+    pause_and_wait(page)
+    page.wait_for_selector("#steps .katex")
+    with page.expect_popup() as popup:
+        page.click("#print-solution")
+    printable = popup.value
+    printable.wait_for_selector(".katex")
+    assert printable.locator(".katex").count() >= 3
+    assert "Typical mistakes" in printable.inner_text("body")
 
 
 # ---- changing the mechanism ------------------------------------------------------------------
