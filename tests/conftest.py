@@ -1,14 +1,14 @@
 """Shared fixtures: an in-process client and a live uvicorn server.
 
-``client`` drives the ASGI app in process (fastapi.testclient). ``live_server`` starts the app the
-way a user does, ``python -m uvicorn server.app:app`` from the repository root on a free loopback
-port, waits for GET /health, yields the base URL and stops the process at the end of the session.
+``client`` drives the ASGI app in process (fastapi.testclient), answering server errors as 500s.
+``live_server`` starts the app the way a user does, ``python -m uvicorn server.app:app`` from the
+repository root on a free loopback port, waits for GET /health, yields the base URL and stops the
+process at the end of the session.
 (tests/browser may define its own server fixture; this one is named ``live_server`` to stay apart.)
 """
 
 from __future__ import annotations
 
-import os
 import socket
 import subprocess
 import sys
@@ -16,6 +16,7 @@ import tempfile
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import IO
 
 import httpx
 import pytest
@@ -29,7 +30,9 @@ STARTUP_TIMEOUT = 30.0  # s
 
 @pytest.fixture(scope="module")
 def client() -> Iterator[TestClient]:
-    with TestClient(app) as test_client:
+    # A server-side exception must reach the test as the 500 a user would get (a defect to
+    # assert against), not as an exception re-raised into the test.
+    with TestClient(app, raise_server_exceptions=False) as test_client:
         yield test_client
 
 
@@ -43,12 +46,29 @@ def _free_port() -> int:
 @pytest.fixture(scope="session")
 def live_server() -> Iterator[str]:
     port = _free_port()
+    # output to a file: a pipe could fill up and block the server
+    with tempfile.TemporaryFile() as log:
+        yield from _serve(port, log)
+
+
+def _serve(port: int, log: IO[bytes]) -> Iterator[str]:
     base = f"http://127.0.0.1:{port}"
-    log = tempfile.TemporaryFile()  # a pipe could fill up and block the server
     process = subprocess.Popen(
-        [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1",
-         "--port", str(port), "--log-level", "warning"],
-        cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env={**os.environ, "PYTHONPATH": str(ROOT)},
+        [
+            sys.executable,
+            "-m",
+            "uvicorn",
+            "server.app:app",
+            "--host",
+            "127.0.0.1",
+            "--port",
+            str(port),
+            "--log-level",
+            "warning",
+        ],
+        cwd=ROOT,
+        stdout=log,
+        stderr=subprocess.STDOUT,
     )
     try:
         deadline = time.monotonic() + STARTUP_TIMEOUT
@@ -73,4 +93,3 @@ def live_server() -> Iterator[str]:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
-        log.close()

@@ -81,8 +81,9 @@ def _circle_circle(p: complex, r_p: float, q: complex, r_q: float, left: bool) -
 
 
 @st.composite
-def six_bars(draw: st.DrawFn, max_condition: float = MAX_CONDITION,
-             newton: bool | None = None) -> SixBar:
+def six_bars(
+    draw: st.DrawFn, max_condition: float = MAX_CONDITION, newton: bool | None = None
+) -> SixBar:
     """A random Watt or Stephenson six-bar that assembles at its drawn pose (see module doc), with
     the condition number of its velocity equations below ``max_condition``.
 
@@ -176,8 +177,9 @@ def _with_rates(draw: st.DrawFn, docs: st.SearchStrategy[dict[str, Any]]) -> dic
     return doc
 
 
-def linkages(family: str, max_condition: float = MAX_CONDITION, newton: bool | None = None
-             ) -> st.SearchStrategy[dict[str, Any]]:
+def linkages(
+    family: str, max_condition: float = MAX_CONDITION, newton: bool | None = None
+) -> st.SearchStrategy[dict[str, Any]]:
     """Scene documents of one family (a preset name, ``block_in_lever`` or ``six_bar``) whose
     drawn pose assembles with a velocity condition number below ``max_condition``, driven at a
     random omega and alpha. ``newton`` restricts the six-bars as in ``six_bars``."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import html
 import json
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Query
@@ -142,84 +142,99 @@ def _vector(value: Any) -> str:
     return _e(value)
 
 
+def _table(caption: str, header: Sequence[str], rows: Iterable[Sequence[str]]) -> str:
+    """An HTML table: caption, a header row, and rows of cells already escaped."""
+    head = "".join(f"<th>{h}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    return f"<table><caption>{caption}</caption><tr>{head}</tr>{body}</table>"
+
+
+def _driver_motion(d: Mapping[str, Any]) -> str:
+    if "angle_law" in d:
+        return f"angle law {_e(d['angle_law'])} rad"
+    return f"omega = {_e(d.get('omega', 0))} rad/s, alpha = {_e(d.get('alpha', 0))} rad/s^2" + (
+        f", angle {_e(d['angle_deg'])} deg" if "angle_deg" in d else ""
+    )
+
+
 def _scene_tables(doc: Mapping[str, Any]) -> str:
     """The scene's data as tables (from the validated document)."""
-    parts = []
     if doc.get("kind") == "spatial_chain":
-        rows = "".join(
-            f"<tr><td>{_e(j.get('name'))}</td><td>{_e(j.get('type'))}</td>"
-            f"<td>{_vector(j.get('origin'))}</td><td>{_vector(j.get('axis'))}</td>"
-            f"<td>{_e(j.get('rate'))}</td><td>{_e(j.get('rate_dot', 0))}</td></tr>"
-            for j in doc.get("joints", [])
+        return _table(
+            "Joints (origin m, rate rad/s or m/s)",
+            ["joint", "type", "origin", "axis", "rate", "rate of rate"],
+            (
+                [
+                    _e(j.get("name")),
+                    _e(j.get("type")),
+                    _vector(j.get("origin")),
+                    _vector(j.get("axis")),
+                    _e(j.get("rate")),
+                    _e(j.get("rate_dot", 0)),
+                ]
+                for j in doc.get("joints", [])
+            ),
+        ) + _table(
+            "Points (m)",
+            ["point", "body", "position"],
+            (
+                [_e(n), _e(p.get("body")), _vector(p.get("position"))]
+                for n, p in doc.get("points", {}).items()
+            ),
         )
-        parts.append(
-            "<table><caption>Joints (origin m, rate rad/s or m/s)</caption><tr>"
-            "<th>joint</th><th>type</th><th>origin</th><th>axis</th><th>rate</th>"
-            f"<th>rate of rate</th></tr>{rows}</table>"
-        )
-        rows = "".join(
-            f"<tr><td>{_e(n)}</td><td>{_e(p.get('body'))}</td>"
-            f"<td>{_vector(p.get('position'))}</td></tr>"
-            for n, p in doc.get("points", {}).items()
-        )
-        parts.append(
-            "<table><caption>Points (m)</caption><tr><th>point</th><th>body</th>"
-            f"<th>position</th></tr>{rows}</table>"
-        )
-        return "".join(parts)
-    rows = "".join(
-        f"<tr><td>{_e(n)}</td><td>{_vector(xy)}</td></tr>"
-        for n, xy in doc.get("points", {}).items()
-    )
-    parts.append(
-        "<table><caption>Points as drawn (m)</caption><tr><th>point</th>"
-        f"<th>position</th></tr>{rows}</table>"
-    )
-    rows = "".join(
-        f"<tr><td>{_e(n)}</td><td>{_e(', '.join(map(str, link.get('points', []))))}"
-        f"</td><td>{'ground' if link.get('ground') else ''}</td></tr>"
-        for n, link in doc.get("links", {}).items()
-    )
-    parts.append(
-        "<table><caption>Links</caption><tr><th>link</th><th>points</th><th></th></tr>"
-        f"{rows}</table>"
-    )
-    rows = "".join(
-        f"<tr><td>{_e(j.get('type'))}</td><td>{_e(j.get('point'))}</td>"
-        f"<td>{_e(', '.join(map(str, j.get('links', []))))}</td>"
-        f"<td>{_vector(j['axis']) if 'axis' in j else ''}</td></tr>"
-        for j in doc.get("joints", [])
-    )
-    parts.append(
-        "<table><caption>Joints (slider and prismatic: links = guide, follower)"
-        "</caption><tr><th>type</th><th>point</th><th>links</th><th>slot axis</th></tr>"
-        f"{rows}</table>"
-    )
-    rows = "".join(
-        f"<tr><td>{_e(d.get('link'))}</td><td>"
-        + (
-            f"angle law {_e(d['angle_law'])} rad"
-            if "angle_law" in d
-            else f"omega = {_e(d.get('omega', 0))} rad/s, alpha = {_e(d.get('alpha', 0))} rad/s^2"
-            + (f", angle {_e(d['angle_deg'])} deg" if "angle_deg" in d else "")
-        )
-        + "</td></tr>"
-        for d in doc.get("drivers", [])
-    )
-    parts.append(
-        f"<table><caption>Drivers</caption><tr><th>link</th><th>motion</th></tr>{rows}</table>"
-    )
+    parts = [
+        _table(
+            "Points as drawn (m)",
+            ["point", "position"],
+            ([_e(n), _vector(xy)] for n, xy in doc.get("points", {}).items()),
+        ),
+        _table(
+            "Links",
+            ["link", "points", ""],
+            (
+                [
+                    _e(n),
+                    _e(", ".join(map(str, link.get("points", [])))),
+                    "ground" if link.get("ground") else "",
+                ]
+                for n, link in doc.get("links", {}).items()
+            ),
+        ),
+        _table(
+            "Joints (slider and prismatic: links = guide, follower)",
+            ["type", "point", "links", "slot axis"],
+            (
+                [
+                    _e(j.get("type")),
+                    _e(j.get("point")),
+                    _e(", ".join(map(str, j.get("links", [])))),
+                    _vector(j["axis"]) if "axis" in j else "",
+                ]
+                for j in doc.get("joints", [])
+            ),
+        ),
+        _table(
+            "Drivers",
+            ["link", "motion"],
+            ([_e(d.get("link")), _driver_motion(d)] for d in doc.get("drivers", [])),
+        ),
+    ]
     moving = doc.get("moving_points", [])
     if moving:
-        rows = "".join(
-            f"<tr><td>{_e(m.get('name'))}</td><td>{_e(m.get('link'))}</td>"
-            f"<td>{_e(json.dumps(m.get('path')))}</td><td>{_e(m.get('s_law'))}</td>"
-            "</tr>"
-            for m in moving
-        )
         parts.append(
-            "<table><caption>Moving points (s in m, t in s)</caption><tr><th>point</th>"
-            f"<th>carrier</th><th>path</th><th>s(t)</th></tr>{rows}</table>"
+            _table(
+                "Moving points (s in m, t in s)",
+                ["point", "carrier", "path", "s(t)"],
+                (
+                    [
+                        _e(m.get("name")),
+                        _e(m.get("link")),
+                        _e(json.dumps(m.get("path"))),
+                        _e(m.get("s_law")),
+                    ]
+                    for m in moving
+                ),
+            )
         )
     if "time" in doc:
         parts.append(f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>")

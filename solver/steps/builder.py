@@ -65,9 +65,6 @@ class StepBuilder:
         self.values[key] = Value(number, unit, self.fmt.display(number, unit, reference), source)
         return key
 
-    def get(self, key: str) -> Number:
-        return self.values[key].value
-
     def scalar(self, key: str) -> float:
         value = self.values[key].value
         assert not isinstance(value, tuple), key
@@ -151,57 +148,64 @@ class StepBuilder:
 # --- linear expressions and 2x2 systems ------------------------------------------------------
 
 
-def term(fmt: Formatter, coefficient: float, symbol: str, first: bool, reference: float) -> str:
-    """'+ 0.5\\,\\omega' (LaTeX); '' when the coefficient displays as 0."""
-    if fmt.is_zero(coefficient, "", reference):
-        return ""
-    number = fmt.latex(coefficient)
+def _term(number: str, symbol: str, first: bool, separator: str) -> str:
+    """A term of a sum, c u with the number c as written: 'u', '- u', '+ 0.5 u'."""
     if number == "1":
         body = symbol
     elif number == "-1":
         body = "-" + symbol
     else:
-        body = number + r"\," + symbol
+        body = number + separator + symbol
     return tex.signed(body, first)
+
+
+def term(fmt: Formatter, coefficient: float, symbol: str, first: bool, reference: float) -> str:
+    """'+ 0.5\\,\\omega' (LaTeX); '' when the coefficient displays as 0."""
+    if fmt.is_zero(coefficient, "", reference):
+        return ""
+    return _term(fmt.latex(coefficient), symbol, first, r"\,")
 
 
 def term_text(
     fmt: Formatter, coefficient: float, symbol: str, first: bool, reference: float
 ) -> str:
+    """'+ 0.5 omega' (plain text); '' when the coefficient displays as 0."""
     if fmt.is_zero(coefficient, "", reference):
         return ""
-    number = fmt.text(coefficient)
-    body = symbol if number == "1" else "-" + symbol if number == "-1" else f"{number} {symbol}"
-    if first:
-        return body
-    return f"- {body[1:]}" if body.startswith("-") else f"+ {body}"
+    return _term(fmt.text(coefficient), symbol, first, " ")
+
+
+def _linear(
+    fmt: Formatter,
+    constant: float | None,
+    terms: Sequence[tuple[float, str]],
+    reference: float,
+    latex: bool,
+) -> str:
+    """constant + c1 u1 + c2 u2, dropping zero parts (at least '0')."""
+    number, write_term = (fmt.latex, term) if latex else (fmt.text, term_text)
+    parts: list[str] = []
+    if constant is not None and not fmt.is_zero(constant, "", reference):
+        parts.append(number(constant))
+    for coefficient, symbol in terms:
+        piece = write_term(fmt, coefficient, symbol, not parts, reference)
+        if piece:
+            parts.append(piece)
+    return " ".join(parts) if parts else "0"
 
 
 def linear_latex(
     fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]], reference: float
 ) -> str:
     """constant + c1 u1 + c2 u2 in LaTeX, dropping zero parts (at least '0')."""
-    parts: list[str] = []
-    if constant is not None and not fmt.is_zero(constant, "", reference):
-        parts.append(fmt.latex(constant))
-    for coefficient, symbol in terms:
-        piece = term(fmt, coefficient, symbol, not parts, reference)
-        if piece:
-            parts.append(piece)
-    return " ".join(parts) if parts else "0"
+    return _linear(fmt, constant, terms, reference, latex=True)
 
 
 def linear_text(
     fmt: Formatter, constant: float | None, terms: Sequence[tuple[float, str]], reference: float
 ) -> str:
-    parts: list[str] = []
-    if constant is not None and not fmt.is_zero(constant, "", reference):
-        parts.append(fmt.text(constant))
-    for coefficient, symbol in terms:
-        piece = term_text(fmt, coefficient, symbol, not parts, reference)
-        if piece:
-            parts.append(piece)
-    return " ".join(parts) if parts else "0"
+    """constant + c1 u1 + c2 u2 in plain text, dropping zero parts (at least '0')."""
+    return _linear(fmt, constant, terms, reference, latex=False)
 
 
 @dataclass(frozen=True)
@@ -241,12 +245,12 @@ def present_solution(
     for u in unknowns:
         b.put(u.key, u.value, u.unit, u.source)
     n = len(unknowns)
-    rows = []
+    scales = []
     for i in range(n):
         scale = max(abs(b.scalar(c)) for c in coefficients[i])
         terms = [(b.scalar(coefficients[i][j]), unknowns[j].latex) for j in range(n)]
         terms_text = [(b.scalar(coefficients[i][j]), unknowns[j].text) for j in range(n)]
-        rows.append((scale, terms, terms_text))
+        scales.append(scale)
         b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs[i]))
         b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = {b.txtn(rhs[i])}.")
         operands: list[str] = []
@@ -258,7 +262,7 @@ def present_solution(
         _result(b, unknowns[0], _fraction(b, rhs[0], coefficients[0][0]))
         return
     single = [
-        [j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", rows[i][0])]
+        [j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", scales[i])]
         for i in range(2)
     ]
     if cramer:
@@ -278,7 +282,7 @@ def present_solution(
         b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
         _result(b, u, _fraction(b, rhs[direct], coefficients[direct][j]))
         c_other = b.scalar(coefficients[other_row][other])
-        if fmt.is_zero(c_other, "", rows[other_row][0]):
+        if fmt.is_zero(c_other, "", scales[other_row]):
             b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
             return
         rest = b.put(

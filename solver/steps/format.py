@@ -68,25 +68,23 @@ class Formatter:
     def _parts(self, value: float, unit: str, reference: float) -> tuple[str, int] | None:
         return _split(self.clean(value, unit, reference), self.digits)
 
-    def text(self, value: float, unit: str = "", reference: float = 0.0) -> str:
-        """Plain text: '-0.375', '12.31', '1.5 x 10^-7'."""
+    def _number(self, value: float, unit: str, reference: float, power: str) -> str:
+        """The rounded number, fixed-point or as ``power`` (mantissa {0}, exponent {1})."""
         parts = self._parts(value, unit, reference)
         if parts is None:
             return "0"
         mantissa, exponent = parts
         if FIXED_LOW <= exponent < FIXED_HIGH:
             return self._fixed(mantissa, exponent)
-        return f"{mantissa} x 10^{exponent}"
+        return power.format(mantissa, exponent)
+
+    def text(self, value: float, unit: str = "", reference: float = 0.0) -> str:
+        """Plain text: '-0.375', '12.31', '1.5 x 10^-7'."""
+        return self._number(value, unit, reference, "{0} x 10^{1}")
 
     def latex(self, value: float, unit: str = "", reference: float = 0.0) -> str:
         """LaTeX: '-0.375', '1.5 \\cdot 10^{-7}'."""
-        parts = self._parts(value, unit, reference)
-        if parts is None:
-            return "0"
-        mantissa, exponent = parts
-        if FIXED_LOW <= exponent < FIXED_HIGH:
-            return self._fixed(mantissa, exponent)
-        return rf"{mantissa} \cdot 10^{{{exponent}}}"
+        return self._number(value, unit, reference, r"{0} \cdot 10^{{{1}}}")
 
     def is_zero(self, value: float, unit: str = "", reference: float = 0.0) -> bool:
         """True when the value displays as 0 (noise, or smaller than the last digit shown)."""

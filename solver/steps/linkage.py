@@ -26,6 +26,8 @@ from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
 
 V0 = r"\vec{0}"
+VELOCITY, ACCELERATION = 1, 2  # the order of a time derivative
+MOTION = {VELOCITY: ("velocity", "m/s"), ACCELERATION: ("acceleration", "m/s^2")}
 
 
 def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
@@ -46,6 +48,15 @@ def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
         "rad/s": largest([link.omega for link in links]),
         "rad/s^2": largest([link.alpha for link in links]),
     }
+
+
+def split_part(name: str, point: str) -> tuple[str, str]:
+    """Key and unit of one part of v = v_tr + v_rel or a = a_tr + a_rel + a_cor at ``point``:
+    'relative_velocity' -> ('v_rel(X)', 'm/s'), 'acceleration' -> ('a(X)', 'm/s^2')."""
+    prefix, _, what = name.rpartition("_")
+    short = {"transport": "_tr", "relative": "_rel", "coriolis": "_cor", "": ""}[prefix]
+    unit = MOTION[VELOCITY if what == "velocity" else ACCELERATION][1]
+    return f"{what[0]}{short}({point})", unit
 
 
 @dataclass(frozen=True)
@@ -69,6 +80,14 @@ class SlotMotion:
 
     def source(self, name: str) -> tuple[str | int, ...] | None:
         return None if self.index is None else ("joints", self.index, name)
+
+    def put(self, b: StepBuilder, name: str, point: str) -> str:
+        """Register one part of the split (``name`` a field, e.g. 'relative_velocity') as
+        'v_rel(X)', 'a_tr(X)', 'a_cor(X)', 'v(X)'..., with its path in the response."""
+        value = getattr(self, name)
+        assert value is not None, name
+        key, unit = split_part(name, point)
+        return b.put(key, value, unit, self.source(name))
 
     @property
     def guide(self) -> str:
@@ -122,6 +141,11 @@ class LinkageContext:
 
     def is_fixed(self, point: str) -> bool:
         return point in self.scene.links[self.scene.ground].points
+
+    def reference_point(self, link: str) -> str:
+        """A point of ``link`` to carry its motion from: its fixed pivot, else its first point."""
+        pivot = self.ground_pivot(link)
+        return pivot if pivot is not None else self.scene.links[link].points[0]
 
     def ground_pivot(self, link: str) -> str | None:
         """The point of a revolute joint between ``link`` and the ground, if any."""
@@ -238,6 +262,17 @@ def al_vec(link: str) -> str:
     return tex.vec(r"\alpha", tex.name(link))
 
 
+def put_motion(b: StepBuilder, ctx: LinkageContext, point: str, order: int) -> str:
+    """v_X (order 1) or a_X (order 2): the solver's number for ``point``, as 'v(X)' / 'a(X)'."""
+    field_name, unit = MOTION[order]
+    return b.put(
+        f"{field_name[0]}({point})",
+        getattr(ctx.analysis.points[point], field_name),
+        unit,
+        ("points", point, field_name),
+    )
+
+
 def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
     """(0, 0, z) x (r_x, r_y, 0) in the plane."""
     return scalar_z * perp(np.asarray(r, dtype=float))
@@ -249,10 +284,6 @@ def det_row_z(b: StepBuilder, key: str) -> list[str]:
 
 def det_row_z_symbol(symbol: str) -> list[str]:
     return ["0", "0", symbol]
-
-
-def det_row_vec(b: StepBuilder, key: str) -> list[str]:
-    return b.entries(key)
 
 
 # --- the common steps -------------------------------------------------------------------------
@@ -336,9 +367,7 @@ def positions_step(ctx: LinkageContext) -> Step:
         b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
     b.line(
         "&"
-        + r", \quad ".join(
-            rf"{tex.name(p)} = ({', '.join(b.entries(f'pos({p})', 2))})" for p in names
-        )
+        + r", \quad ".join(rf"{tex.name(p)} = {b.point(f'pos({p})')}" for p in names)
         + latex_unit("m")
     )
     b.say(
@@ -361,26 +390,21 @@ def positions_step(ctx: LinkageContext) -> Step:
 
 
 def fixed_points_step(ctx: LinkageContext, order: int) -> Step | None:
-    fixed = [p for p in ctx.scene.links[ctx.scene.ground].points]
+    """v_X = 0 (a_X = 0) for the points of the ground; None when the ground has no point."""
+    fixed = list(ctx.scene.links[ctx.scene.ground].points)
     if not fixed:
         return None
-    symbol = v_vec if order == 1 else a_vec
-    unit = "m/s" if order == 1 else "m/s^2"
-    b = ctx.builder("velocity.fixed" if order == 1 else "acceleration.fixed", "Fixed points")
+    which, unit = MOTION[order]
+    symbol = v_vec if order == VELOCITY else a_vec
+    b = ctx.builder(f"{which}.fixed", "Fixed points")
     for p in fixed:
-        b.put(
-            f"{'v' if order == 1 else 'a'}({p})",
-            ctx.vel(p) if order == 1 else ctx.acc(p),
-            unit,
-            ("points", p, "velocity" if order == 1 else "acceleration"),
-        )
+        put_motion(b, ctx, p, order)
     b.line(
         "&" + r" = ".join(symbol(p) for p in fixed) + rf" = {V0}{latex_unit(unit)}"
         r" \quad \text{(fixed joints)}"
     )
-    which = "velocity" if order == 1 else "acceleration"
     b.say(f"The points of the ground ({', '.join(fixed)}) are fixed: their {which} is zero.")
-    (ctx.shown_velocity if order == 1 else ctx.shown_acceleration).update(fixed)
+    (ctx.shown_velocity if order == VELOCITY else ctx.shown_acceleration).update(fixed)
     return b.build()
 
 
@@ -465,8 +489,25 @@ def rigid_acceleration_step(
     return b.build()
 
 
-def _other_points(ctx: LinkageContext, link: str) -> list[str]:
-    return [p for p in ctx.scene.links[link].points]
+def _pole_at_pivot(
+    ctx: LinkageContext, b: StepBuilder, link: str, pole: str, sub: str, order: int, why: str
+) -> Step | None:
+    """P = Q (G = Q): the pole of a link turning about the fixed joint Q, else None."""
+    pivot = ctx.ground_pivot(link)
+    if pivot is None:
+        return None
+    o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
+    b.check("sum", pole, o)
+    symbol = v_vec if order == VELOCITY else a_vec
+    b.line(
+        rf"&{sub} = {tex.name(pivot)} = {b.point(pole)}{latex_unit('m')}"
+        rf" \quad \text{{(fixed pivot: }} {symbol(pivot)} = {V0}\text{{)}}"
+    )
+    b.say(
+        f"Link {link} turns about the fixed joint {pivot}{why}: its {MOTION[order][0]} pole is "
+        f"{pivot} = {b.txt(pole)}."
+    )
+    return b.build()
 
 
 def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
@@ -487,20 +528,10 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
         )
         return b.build()
     pole = b.put(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
-    pivot = ctx.ground_pivot(link)
-    if pivot is not None:
-        o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
-        b.check("sum", pole, o)
-        b.line(
-            rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))})"
-            rf"{latex_unit('m')} \quad \text{{(fixed pivot: }} {v_vec(pivot)} = {V0}\text{{)}}"
-        )
-        b.say(
-            f"Link {link} turns about the fixed joint {pivot}: its velocity pole is "
-            f"{pivot} = {b.txt(pole)}."
-        )
-        return b.build()
-    points = [p for p in _other_points(ctx, link)][:2]
+    at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, VELOCITY, "")
+    if at_pivot is not None:
+        return at_pivot
+    points = ctx.scene.links[link].points[:2]
     b.say(
         f"The velocity pole P of link {link} is the point of the link with zero velocity: "
         f"v(X) = omega({link}) cross r(P,X) for every point X."
@@ -534,7 +565,7 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
             rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
             rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
             rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-            rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}"
+            rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
         )
         b.say(
             f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
@@ -566,20 +597,10 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
         )
         return b.build()
     pole = b.put(f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole"))
-    pivot = ctx.ground_pivot(link)
-    if pivot is not None:
-        o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
-        b.check("sum", pole, o)
-        b.line(
-            rf"&{sub} = {tex.name(pivot)} = ({', '.join(b.entries(pole, 2))}){latex_unit('m')}"
-            rf" \quad \text{{(fixed pivot: }} {a_vec(pivot)} = {V0}\text{{)}}"
-        )
-        b.say(
-            f"Link {link} turns about the fixed joint {pivot}, whose acceleration is zero: its "
-            f"acceleration pole is {pivot} = {b.txt(pole)}."
-        )
-        return b.build()
-    points = _other_points(ctx, link)[:2]
+    at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, ACCELERATION, ", whose acceleration is zero")
+    if at_pivot is not None:
+        return at_pivot
+    points = ctx.scene.links[link].points[:2]
     x = points[-1]
     a = ctx.acc(x)
     r_np = ctx.pos(x) - result.acceleration_pole
@@ -622,7 +643,7 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     b.check("sum", pole, px, f"-{r}")
     b.line(
         rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-        rf"{tex.boxed_result('(' + ', '.join(b.entries(pole, 2)) + ')' + latex_unit('m'))}"
+        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
     )
     b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
     if len(points) == 2 and points[0] != x:
@@ -679,8 +700,8 @@ def summary_step(ctx: LinkageContext) -> Step:
         v = b.put(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
         a = b.put(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
         rows.append(
-            rf"{v_vec(p)} = ({', '.join(b.entries(v, 2))}){latex_unit('m/s')}, & "
-            rf"{a_vec(p)} = ({', '.join(b.entries(a, 2))}){latex_unit('m/s^2')}"
+            rf"{v_vec(p)} = {b.point(v)}{latex_unit('m/s')}, & "
+            rf"{a_vec(p)} = {b.point(a)}{latex_unit('m/s^2')}"
         )
         b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
     b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")

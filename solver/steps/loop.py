@@ -22,17 +22,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, present_solution
 from solver.steps.format import latex_unit
-from solver.steps.linkage import LinkageContext, SlotMotion
+from solver.steps.linkage import (
+    ACCELERATION,
+    MOTION,
+    VELOCITY,
+    LinkageContext,
+    SlotMotion,
+    put_motion,
+)
 from solver.steps.model import Step
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, TwoPointStep
-
-VELOCITY, ACCELERATION = 1, 2
 
 
 def join_sum(parts: list[str]) -> str:
@@ -69,7 +75,6 @@ class Loop:
     right: list[Member]
     unknown_links: list[str]
     slot: SlotMotion | None = None
-    slot_number: str = ""
     joint: str = ""  # the point that closes the loop
 
 
@@ -79,19 +84,26 @@ class _Term:
 
     latex: str
     text: str
-    kind: str  # "phasor" or "iphasor"
-    factors: list[tuple[str, float, str]]  # (key, value, unit)
+    kind: Literal["phasor", "iphasor"]
+    factors: list[tuple[str, float]]  # (key, value)
     angle: tuple[str, float]
     factor: float = 1.0
     unknown: Unknown | None = None
 
     def value(self) -> np.ndarray:
-        magnitude = self.factor * math.prod(v for _, v, _ in self.factors)
+        magnitude = self.factor * math.prod(v for _, v in self.factors)
         theta = self.angle[1]
         unit = np.array([math.cos(theta), math.sin(theta)])
         if self.kind == "iphasor":
             unit = np.array([-unit[1], unit[0]])
         return magnitude * unit
+
+    def put(self, b: StepBuilder, key: str, unit: str) -> str:
+        """Register the term's value as ``key`` with its phasor check; return the key."""
+        b.put(key, self.value(), unit)
+        operands = [k for k, _ in self.factors] + [self.angle[0]]
+        b.check(self.kind, key, *operands, factor=self.factor)
+        return key
 
 
 @dataclass
@@ -199,7 +211,6 @@ class LoopMethod:
                 [Member("slider", pivot, x, slider_number, slot=slot)],
                 [coupler.link],
                 slot,
-                slider_number,
                 joint=x,
             )
         raise LoopUnavailable(
@@ -228,16 +239,10 @@ class LoopMethod:
             ],
             [step.link],
             slot,
-            self.numbers[step.link],
             joint=step.pin,
         )
 
     # --- symbols and values ---------------------------------------------------------------------
-
-    def sym(self, member: Member) -> tuple[str, str, str]:
-        """(length symbol, angle symbol, rate subscript) of a member in the loop notation."""
-        n = member.number
-        return f"a_{{{n}}}", rf"\theta_{{1{n}}}", f"1{n}"
 
     def register_member(self, b: StepBuilder, member: Member) -> tuple[str, str]:
         """Put the member's vector, length and angle with their checks; return (a key, th key)."""
@@ -265,13 +270,8 @@ class LoopMethod:
             b.check("angle", phi, uk)
             b.check("dot", s, r, uk)
             b.check("cross", c, uk, r)
-            if member.kind == "slot":
-                a = b.put(f"a{n}", float(np.hypot(*r_np)), "m")
-                th = b.put(f"theta1{n}", math.atan2(r_np[1], r_np[0]), "rad")
-                b.check("norm", a, r)
-                b.check("angle", th, r)
-                return a, th
-            return s, phi
+            if member.kind == "slider":
+                return s, phi
         a = b.put(f"a{n}", float(np.hypot(*r_np)), "m")
         th = b.put(f"theta1{n}", math.atan2(r_np[1], r_np[0]), "rad")
         b.check("norm", a, r)
@@ -309,17 +309,16 @@ class LoopMethod:
                 if m.kind == "slider":
                     out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\varphi_{{{n}}}}}")
                     num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
-                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
-                    b.check("sum", z, f"r({m.first},{m.second})")
                 elif m.kind == "slot":
                     out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\beta_{{{n}}}}}")
                     num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
-                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
-                    b.check("phasor", z, a, th)
                 else:
                     out.append(rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}")
                     num.append(rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}")
-                    z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
+                z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
+                if m.kind == "slider":
+                    b.check("sum", z, f"r({m.first},{m.second})")
+                else:
                     b.check("phasor", z, a, th)
                 zs.append(z)
         total = b.put(f"z({loop.joint})", ctx.pos(loop.joint) - ctx.pos(loop.left[0].first), "m")
@@ -402,99 +401,58 @@ class LoopMethod:
                 unknown = link in loop.unknown_links
                 rate = self.rate_unknown(link, n, order)
                 av, thv = b.scalar(a), b.scalar(th)
-                a_f = (a, av, "m")
+                a_f = (a, av)
                 if m.kind == "slot":
                     su = self.slide_unknown(m, order)
                     beta = (f"phi{n}", b.scalar(f"phi{n}"))
-                    if order == VELOCITY:
-                        terms.append(
-                            _Term(
-                                rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
-                                f"{su.text} e^(i beta{n})",
-                                "phasor",
-                                [],
-                                beta,
-                                1.0,
-                                su,
-                            )
+                    terms.append(
+                        _Term(
+                            rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
+                            f"{su.text} e^(i beta{n})",
+                            "phasor",
+                            [],
+                            beta,
+                            1.0,
+                            su,
                         )
-                    else:
+                    )
+                    if order == ACCELERATION:
                         sdot = self.slide_value(m, VELOCITY)
                         sd_key = b.put(f"s_dot1{n}", sdot, "m/s")
-                        terms.append(
-                            _Term(
-                                rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
-                                f"{su.text} e^(i beta{n})",
-                                "phasor",
-                                [],
-                                beta,
-                                1.0,
-                                su,
-                            )
-                        )
                         terms.append(
                             _Term(
                                 rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}",
                                 f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)",
                                 "iphasor",
-                                [(w_key, omega, "rad/s"), (sd_key, sdot, "m/s")],
+                                [(w_key, omega), (sd_key, sdot)],
                                 beta,
                                 2.0,
                             )
                         )
                 if order == VELOCITY:
-                    if unknown:
-                        terms.append(
-                            _Term(
-                                rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                f"i a{n} omega1{n} e^(i theta1{n})",
-                                "iphasor",
-                                [a_f],
-                                (th, thv),
-                                1.0,
-                                rate,
-                            )
-                        )
-                    else:
-                        terms.append(
-                            _Term(
-                                rf"i\,a_{{{n}}}\,\omega_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                                f"i a{n} omega1{n} e^(i theta1{n})",
-                                "iphasor",
-                                [a_f, (w_key, omega, "rad/s")],
-                                (th, thv),
-                            )
-                        )
-                    continue
-                al_key = b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha"))
-                if unknown:
-                    terms.append(
-                        _Term(
-                            rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                            f"i a{n} alpha1{n} e^(i theta1{n})",
-                            "iphasor",
-                            [a_f],
-                            (th, thv),
-                            1.0,
-                            rate,
-                        )
-                    )
+                    name, known = "omega", (w_key, omega)
                 else:
-                    terms.append(
-                        _Term(
-                            rf"i\,a_{{{n}}}\,\alpha_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                            f"i a{n} alpha1{n} e^(i theta1{n})",
-                            "iphasor",
-                            [a_f, (al_key, alpha, "rad/s^2")],
-                            (th, thv),
-                        )
+                    al_key = b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha"))
+                    name, known = "alpha", (al_key, alpha)
+                terms.append(  # d/dt a e^(i theta) = i a omega e^(i theta) (alpha likewise)
+                    _Term(
+                        rf"i\,a_{{{n}}}\,\{name}_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
+                        f"i a{n} {name}1{n} e^(i theta1{n})",
+                        "iphasor",
+                        [a_f] if unknown else [a_f, known],
+                        (th, thv),
+                        1.0,
+                        rate if unknown else None,
                     )
+                )
+                if order == VELOCITY:
+                    continue
                 terms.append(
                     _Term(
                         rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}",
                         f"- a{n} omega1{n} squared e^(i theta1{n})",
                         "phasor",
-                        [a_f, (w_key, omega, "rad/s"), (w_key, omega, "rad/s")],
+                        [a_f, (w_key, omega), (w_key, omega)],
                         (th, thv),
                         -1.0,
                     )
@@ -564,32 +522,23 @@ class LoopMethod:
 
     def derivative_step(self, loop: Loop, index: int, order: int) -> Step:
         ctx = self.ctx
-        what = "velocity" if order == VELOCITY else "acceleration"
+        what, unit = MOTION[order]
         b = ctx.builder(
             f"loop.{what}",
             f"Loop {index}: {what} equation "
             f"({'first' if order == VELOCITY else 'second'} time derivative)",
         )
         left, right = self.derivative_terms(loop, order, b)
-        unknown_keys: dict[str, str] = {}
         known_keys: list[tuple[str, float]] = []
         columns: list[tuple[Unknown, str, float]] = []
         shown: dict[int, str] = {}
         for side_sign, terms in ((1.0, left), (-1.0, right)):
             for t in terms:
-                operands = [k for k, _, _ in t.factors] + [t.angle[0]]
                 if t.unknown is not None:
-                    key = b.put(f"col({t.unknown.key})", t.value(), "")
-                    b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
-                    unknown_keys[t.unknown.key] = key
+                    key = t.put(b, f"col({t.unknown.key})", "")
                     columns.append((t.unknown, key, side_sign))
                 else:
-                    key = b.put(
-                        f"term{len(known_keys) + 1}",
-                        t.value(),
-                        "m/s" if order == VELOCITY else "m/s^2",
-                    )
-                    b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
+                    key = t.put(b, f"term{len(known_keys) + 1}", unit)
                     known_keys.append((key, side_sign))
                 shown[id(t)] = key
         sym_left = " + ".join(t.latex for t in left).replace("+ -", "- ")
@@ -614,7 +563,7 @@ class LoopMethod:
         known_total = np.zeros(2)
         for k, s in known_keys:
             known_total = known_total + s * np.asarray(b.vector(k))
-        rhs_vec = b.put("rhs", -known_total, "m/s" if order == VELOCITY else "m/s^2")
+        rhs_vec = b.put("rhs", -known_total, unit)
         b.check("sum", rhs_vec, *[("-" if s > 0 else "") + k for k, s in known_keys])
         coefficients: list[list[str]] = [[], []]
         rhs = []
@@ -640,12 +589,7 @@ class LoopMethod:
         if loop.slot is not None and loop.kind != "four-bar":
             field_name = "relative_velocity" if order == VELOCITY else "relative_acceleration"
             rel = getattr(loop.slot, field_name)
-            r = b.put(
-                f"v_rel({loop.joint})" if order == VELOCITY else f"a_rel({loop.joint})",
-                rel,
-                "m/s" if order == VELOCITY else "m/s^2",
-                loop.slot.source(field_name),
-            )
+            r = b.put(f"{what[0]}_rel({loop.joint})", rel, unit, loop.slot.source(field_name))
             direction = b.put("u", loop.slot.direction, "")
             slide = next(u_ for u_, _, _ in columns if u_.key.startswith("s_"))
             b.check("dot", slide.key, r, direction)
@@ -660,28 +604,15 @@ class LoopMethod:
         if loop.kind == "slotted lever":
             return None
         ctx = self.ctx
-        what = "velocity" if order == VELOCITY else "acceleration"
+        what, unit = MOTION[order]
         x = loop.joint
         b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {x} from loop {index}")
         left, _ = self.derivative_terms(Loop(loop.kind, loop.left, [], []), order, b)
-        keys = []
-        for k, t in enumerate(left):
-            operands = [key for key, _, _ in t.factors] + [t.angle[0]]
-            key = b.put(f"t{k + 1}", t.value(), "m/s" if order == VELOCITY else "m/s^2")
-            b.check(t.kind, key, *operands, factor=t.factor)  # type: ignore[arg-type]
-            keys.append(key)
-        unit = "m/s" if order == VELOCITY else "m/s^2"
-        field_name = "velocity" if order == VELOCITY else "acceleration"
-        total = b.put(
-            f"{field_name[0]}({x})",
-            getattr(ctx.analysis.points[x], field_name),
-            unit,
-            ("points", x, field_name),
-        )
+        keys = [t.put(b, f"t{k + 1}", unit) for k, t in enumerate(left)]
+        total = put_motion(b, ctx, x, order)
         b.check("sum", total, *keys)
-        letter = "v" if order == VELOCITY else "a"
         b.line(
-            rf"&\vec{{{letter}}}_{{{tex.name(x)}}} = "
+            rf"&\vec{{{what[0]}}}_{{{tex.name(x)}}} = "
             + " + ".join(t.latex for t in left).replace("+ -", "- ")
         )
         b.line(
@@ -717,7 +648,7 @@ class LoopMethod:
     def point_step(self, link: str, base: str, point: str, order: int) -> Step:
         """X = B + b e^(i theta) on a known link: v_X = v_B + i b omega e^(i theta), a_X too."""
         ctx = self.ctx
-        what = "velocity" if order == VELOCITY else "acceleration"
+        what, unit = MOTION[order]
         b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {point} (link {link})")
         r_np = ctx.pos(point) - ctx.pos(base)
         r = b.put(f"r({base},{point})", r_np, "m")
@@ -726,20 +657,8 @@ class LoopMethod:
         b.check("norm", bl, r)
         b.check("angle", th, r)
         w = b.put("omega", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-        unit = "m/s" if order == VELOCITY else "m/s^2"
-        field_name = "velocity" if order == VELOCITY else "acceleration"
-        x0 = b.put(
-            f"{field_name[0]}({base})",
-            getattr(ctx.analysis.points[base], field_name),
-            unit,
-            ("points", base, field_name),
-        )
-        x1 = b.put(
-            f"{field_name[0]}({point})",
-            getattr(ctx.analysis.points[point], field_name),
-            unit,
-            ("points", point, field_name),
-        )
+        x0 = put_motion(b, ctx, base, order)
+        x1 = put_motion(b, ctx, point, order)
         sub = f"1{self.numbers[link]}"
         if order == VELOCITY:
             t = b.put(

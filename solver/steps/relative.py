@@ -22,8 +22,9 @@ from solver.relative_motion import MovingPointMotion
 from solver.rigid import perp
 from solver.scene import MovingPoint
 from solver.steps import latex as tex
+from solver.steps.builder import StepBuilder
 from solver.steps.format import latex_unit
-from solver.steps.linkage import V0, LinkageContext, det_row_z, k_cross
+from solver.steps.linkage import V0, LinkageContext, det_row_z, k_cross, split_part
 from solver.steps.model import Step
 
 
@@ -39,10 +40,11 @@ class MovingPointSteps:
     def src(self, field: str) -> tuple[str, ...]:
         return ("moving_points", self.name, field)
 
-    def base_point(self) -> str:
-        """A point of the carrier to carry its motion from: its fixed pivot, else its first."""
-        pivot = self.ctx.ground_pivot(self.carrier)
-        return pivot if pivot is not None else self.ctx.scene.links[self.carrier].points[0]
+    def put(self, b: StepBuilder, name: str) -> str:
+        """One part of v = v_tr + v_rel or a = a_tr + a_rel + a_cor of M (``name`` a field of
+        the motion, e.g. 'transport_velocity'), with its path in the response."""
+        key, unit = split_part(name, self.name)
+        return b.put(key, getattr(self.m, name), unit, self.src(name))
 
     def tangent_normal(self) -> tuple[np.ndarray, np.ndarray, float]:
         """Unit tangent (increasing s), inward normal and curvature of the path at M, now."""
@@ -157,7 +159,7 @@ class MovingPointSteps:
 
     def velocity_steps(self) -> list[Step]:
         ctx, carrier = self.ctx, self.carrier
-        a = self.base_point()
+        a = ctx.reference_point(carrier)
         r_np = np.asarray(self.m.position) - ctx.pos(a)
         omega = float(self.m.omega_carrier)
         out = []
@@ -166,9 +168,7 @@ class MovingPointSteps:
         w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
         r = b.put(f"r({a},{self.name})", r_np, "m")
         wxr = b.put("omega x r", k_cross(omega, r_np), "m/s")
-        tr = b.put(
-            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
-        )
+        tr = self.put(b, "transport_velocity")
         b.check("cross", wxr, w, r)
         b.check("sum", tr, va, wxr)
         base = V0 if ctx.is_fixed(a) and b.is_zero(va) else b.col(va)
@@ -196,9 +196,7 @@ class MovingPointSteps:
         b = ctx.builder("relative.relative_velocity", f"Relative velocity of {self.name}")
         sd = b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
         t = b.put("tau", tau, "")
-        rel = b.put(
-            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
-        )
+        rel = self.put(b, "relative_velocity")
         b.check("product", rel, sd, t)
         b.line(
             rf"&\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = \dot{{s}}\,\vec{{\tau}} = "
@@ -211,13 +209,9 @@ class MovingPointSteps:
         )
         out.append(b.build())
         b = ctx.builder("relative.velocity", f"Absolute velocity of {self.name}")
-        tr = b.put(
-            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
-        )
-        rel = b.put(
-            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
-        )
-        v = b.put(f"v({self.name})", self.m.velocity, "m/s", self.src("velocity"))
+        tr = self.put(b, "transport_velocity")
+        rel = self.put(b, "relative_velocity")
+        v = self.put(b, "velocity")
         b.check("sum", v, tr, rel)
         b.line(
             rf"&\vec{{v}}_{{{self.n}}} = \vec{{v}}_{{{self.n},\mathrm{{tr}}}} + "
@@ -230,7 +224,7 @@ class MovingPointSteps:
 
     def acceleration_steps(self) -> list[Step]:
         ctx, carrier = self.ctx, self.carrier
-        a_pt = self.base_point()
+        a_pt = ctx.reference_point(carrier)
         r_np = np.asarray(self.m.position) - ctx.pos(a_pt)
         omega, alpha = float(self.m.omega_carrier), float(self.m.alpha_carrier)
         out = []
@@ -242,12 +236,7 @@ class MovingPointSteps:
         r = b.put(f"r({a_pt},{self.name})", r_np, "m")
         t = b.put("alpha x r", k_cross(alpha, r_np), "m/s^2")
         n = b.put("normal", -(omega**2) * r_np, "m/s^2")
-        tr = b.put(
-            f"a_tr({self.name})",
-            self.m.transport_acceleration,
-            "m/s^2",
-            self.src("transport_acceleration"),
-        )
+        tr = self.put(b, "transport_acceleration")
         tt = b.put(
             "a_tr tangential",
             self.m.transport_tangential,
@@ -255,9 +244,7 @@ class MovingPointSteps:
             self.src("transport_tangential"),
         )
         tn = b.put("a_tr normal", self.m.transport_normal, "m/s^2", self.src("transport_normal"))
-        vtr = b.put(
-            f"v_tr({self.name})", self.m.transport_velocity, "m/s", self.src("transport_velocity")
-        )
+        vtr = self.put(b, "transport_velocity")
         d = b.put(
             "a_tr normal . v_tr",
             float(np.dot(self.m.transport_normal, self.m.transport_velocity)),
@@ -315,12 +302,7 @@ class MovingPointSteps:
             "a_rel tangential", self.m.relative_tangential, "m/s^2", self.src("relative_tangential")
         )
         rn = b.put("a_rel normal", self.m.relative_normal, "m/s^2", self.src("relative_normal"))
-        rel = b.put(
-            f"a_rel({self.name})",
-            self.m.relative_acceleration,
-            "m/s^2",
-            self.src("relative_acceleration"),
-        )
+        rel = self.put(b, "relative_acceleration")
         b.check("product", rt, sdd, tk)
         b.check("product", rn, sd, sd, kappa, nk)
         b.check("sum", rel, rt, rn)
@@ -357,15 +339,8 @@ class MovingPointSteps:
         out.append(b.build())
         b = ctx.builder("relative.coriolis", f"Coriolis acceleration of {self.name}")
         w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
-        vrel = b.put(
-            f"v_rel({self.name})", self.m.relative_velocity, "m/s", self.src("relative_velocity")
-        )
-        cor = b.put(
-            f"a_cor({self.name})",
-            self.m.coriolis_acceleration,
-            "m/s^2",
-            self.src("coriolis_acceleration"),
-        )
+        vrel = self.put(b, "relative_velocity")
+        cor = self.put(b, "coriolis_acceleration")
         b.check("cross", cor, w, vrel, factor=2.0)
         formula = (
             rf"\vec{{a}}_{{{sub},\mathrm{{Cor}}}} = 2\,"
@@ -395,25 +370,10 @@ class MovingPointSteps:
             )
         out.append(b.build())
         b = ctx.builder("relative.acceleration", f"Absolute acceleration of {self.name}")
-        tr = b.put(
-            f"a_tr({self.name})",
-            self.m.transport_acceleration,
-            "m/s^2",
-            self.src("transport_acceleration"),
-        )
-        rel = b.put(
-            f"a_rel({self.name})",
-            self.m.relative_acceleration,
-            "m/s^2",
-            self.src("relative_acceleration"),
-        )
-        cor = b.put(
-            f"a_cor({self.name})",
-            self.m.coriolis_acceleration,
-            "m/s^2",
-            self.src("coriolis_acceleration"),
-        )
-        total = b.put(f"a({self.name})", self.m.acceleration, "m/s^2", self.src("acceleration"))
+        tr = self.put(b, "transport_acceleration")
+        rel = self.put(b, "relative_acceleration")
+        cor = self.put(b, "coriolis_acceleration")
+        total = self.put(b, "acceleration")
         b.check("sum", total, tr, rel, cor)
         b.line(
             rf"&\vec{{a}}_{{{sub}}} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "

@@ -100,6 +100,14 @@ class SpatialSteps:
         body = self.analysis.bodies[self.chain.joints[index - 1].name]
         return (body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin)
 
+    def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> str:
+        """omega_{k-1} (or alpha_{k-1}) of body k-1; the ground's is zero and has no source."""
+        parent = self.parent_name(index)
+        unit = "rad/s" if name == "omega" else "rad/s^2"
+        return b.put(
+            f"{name}({parent})", value, unit, None if index == 0 else ("bodies", parent, name)
+        )
+
     def body_steps(self, index: int, joint: SpatialJoint) -> list[Step]:
         body = self.analysis.bodies[joint.name]
         w_parent, al_parent, o_parent, v_parent, a_parent = self.parent_vectors(index)
@@ -108,12 +116,7 @@ class SpatialSteps:
         out = []
         # angular velocity
         b = self.builder("spatial.omega", f"Angular velocity of body {joint.name}")
-        wp = b.put(
-            f"omega({parent})",
-            w_parent,
-            "rad/s",
-            None if index == 0 else ("bodies", parent, "omega"),
-        )
+        wp = self.parent_rate(b, index, "omega", w_parent)
         w = b.put(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
         e = b.put(f"e({joint.name})", joint.axis, "")
         if joint.type == "revolute":
@@ -144,12 +147,7 @@ class SpatialSteps:
         out.append(b.build())
         # the turning axis
         b = self.builder("spatial.axis_rate", f"Rate of change of the axis of joint {joint.name}")
-        wp = b.put(
-            f"omega({parent})",
-            w_parent,
-            "rad/s",
-            None if index == 0 else ("bodies", parent, "omega"),
-        )
+        wp = self.parent_rate(b, index, "omega", w_parent)
         e = b.put(f"e({joint.name})", joint.axis, "")
         ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
         b.check("cross", ed, wp, e)
@@ -166,12 +164,7 @@ class SpatialSteps:
         out.append(b.build())
         # angular acceleration
         b = self.builder("spatial.alpha", f"Angular acceleration of body {joint.name}")
-        alp = b.put(
-            f"alpha({parent})",
-            al_parent,
-            "rad/s^2",
-            None if index == 0 else ("bodies", parent, "alpha"),
-        )
+        alp = self.parent_rate(b, index, "alpha", al_parent)
         al = b.put(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
         if joint.type == "revolute":
             e = b.put(f"e({joint.name})", joint.axis, "")
@@ -224,12 +217,7 @@ class SpatialSteps:
         out = []
         b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
         vp = b.put(f"v(O{parent})", v_parent, "m/s")
-        wp = b.put(
-            f"omega({parent})",
-            w_parent,
-            "rad/s",
-            None if index == 0 else ("bodies", parent, "omega"),
-        )
+        wp = self.parent_rate(b, index, "omega", w_parent)
         r = b.put("r", r_np, "m")
         wxr = b.put("omega x r", np.cross(w_parent, r_np), "m/s")
         v = b.put(f"v(O{joint.name})", body.velocity_origin, "m/s")
@@ -262,18 +250,8 @@ class SpatialSteps:
             "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
         )
         ap = b.put(f"a(O{parent})", a_parent, "m/s^2")
-        wp = b.put(
-            f"omega({parent})",
-            w_parent,
-            "rad/s",
-            None if index == 0 else ("bodies", parent, "omega"),
-        )
-        alp = b.put(
-            f"alpha({parent})",
-            al_parent,
-            "rad/s^2",
-            None if index == 0 else ("bodies", parent, "alpha"),
-        )
+        wp = self.parent_rate(b, index, "omega", w_parent)
+        alp = self.parent_rate(b, index, "alpha", al_parent)
         r = b.put("r", r_np, "m")
         t = b.put("alpha x r", np.cross(al_parent, r_np), "m/s^2")
         inner = b.put("omega x r", np.cross(w_parent, r_np), "m/s")

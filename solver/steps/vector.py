@@ -27,7 +27,10 @@ from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, linear_latex, linear_text, present_solution
 from solver.steps.format import latex_unit
 from solver.steps.linkage import (
+    ACCELERATION,
+    MOTION,
     V0,
+    VELOCITY,
     LinkageContext,
     a_sym,
     a_vec,
@@ -37,6 +40,7 @@ from solver.steps.linkage import (
     det_row_z_symbol,
     fixed_points_step,
     k_cross,
+    put_motion,
     r_vec,
     rigid_acceleration_step,
     rigid_velocity_step,
@@ -56,8 +60,6 @@ from solver.topology import (
     NewtonStep,
     TwoPointStep,
 )
-
-VELOCITY, ACCELERATION = 1, 2
 
 
 @dataclass
@@ -106,6 +108,29 @@ def side_text(b: StepBuilder, side: Side) -> str:
         known = fmt.clean(float(side.known[i]), side.unit, float(np.hypot(*side.known)))
         entries.append(linear_text(fmt, known, terms, reference))
     return "(" + ", ".join(entries) + ")"
+
+
+def rotation_column(b: StepBuilder, r: np.ndarray, rate: str) -> str:
+    """k x r times the unknown rate, (-r_y w, r_x w, 0), as a column in LaTeX."""
+    size = float(np.hypot(*r))
+    return tex.column(
+        [
+            linear_latex(b.fmt, None, [(-float(r[1]), rate)], size),
+            linear_latex(b.fmt, None, [(float(r[0]), rate)], size),
+            "0",
+        ]
+    )
+
+
+def relative_line(
+    b: StepBuilder, letter: str, sub: str, slide: str, s: str, u: str, rel: str
+) -> None:
+    """v_rel = s_dot u (a_rel = s_ddot u, ``letter`` 'a') along the slot, with the numbers."""
+    b.check("product", rel, s, u)
+    b.line(
+        rf"&\vec{{{letter}}}_{{{sub},\mathrm{{rel}}}} = {slide}\,\vec{{u}} = "
+        rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+    )
 
 
 def _register_side(b: StepBuilder, side: Side) -> None:
@@ -172,11 +197,6 @@ class VectorMethod:
             None,
             f"the relative acceleration of {point} along the slot of {guide}",
         )
-
-    def transport_point(self, guide: str) -> str:
-        """A point of the guide to carry its motion from: its fixed pivot, else its first point."""
-        pivot = self.ctx.ground_pivot(guide)
-        return pivot if pivot is not None else self.ctx.scene.links[guide].points[0]
 
     # --- the method -----------------------------------------------------------------------------
 
@@ -250,14 +270,7 @@ class VectorMethod:
                 f"v({center})", ctx.vel(center), "m/s", [Term(unknown, "perp", rkey, r_np, "m")]
             )
             base = V0 if ctx.is_fixed(center) and b.is_zero(vc) else b.col(vc)
-            size = float(np.hypot(*r_np))
-            expansion = tex.column(
-                [
-                    linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)], size),
-                    linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)], size),
-                    "0",
-                ]
-            )
+            expansion = rotation_column(b, r_np, unknown.latex)
             b.line(
                 rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
                 rf"{r_vec(center, point)} = {base} + "
@@ -291,14 +304,7 @@ class VectorMethod:
         b.check("product", n, w, w, rkey, factor=-1.0)
         b.check("sum", side.known_key, ac, n)
         base = V0 if ctx.is_fixed(center) and b.is_zero(ac) else b.col(ac)
-        size = float(np.hypot(*r_np))
-        expansion = tex.column(
-            [
-                linear_latex(b.fmt, None, [(-float(r_np[1]), unknown.latex)], size),
-                linear_latex(b.fmt, None, [(float(r_np[0]), unknown.latex)], size),
-                "0",
-            ]
-        )
+        expansion = rotation_column(b, r_np, unknown.latex)
         b.line(
             rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
             rf" - \omega_{{{tex.name(link)}}}^2\,{r_vec(center, point)}"
@@ -320,30 +326,22 @@ class VectorMethod:
         )
         return b.build(), side
 
-    def transport_step(
-        self, point: str, guide: str, order: int
-    ) -> tuple[Step | None, str, np.ndarray]:
-        """The transport velocity/acceleration of ``point`` in the slot of a moving guide.
-
-        Returns (step or None for a fixed guide, value key, value)."""
+    def transport_step(self, point: str, guide: str, order: int) -> Step | None:
+        """v_tr = v_G + omega x r_GX (a_tr = a_G + alpha x r_GX - omega^2 r_GX): the point of
+        the moving guide under ``point``; None for a guide fixed in the ground."""
         ctx = self.ctx
-        sliding = ctx.slot(guide, point)
-        field_name = "transport_velocity" if order == VELOCITY else "transport_acceleration"
-        value = sliding.transport_velocity if order == VELOCITY else sliding.transport_acceleration
-        assert value is not None
-        key = f"{'v' if order == VELOCITY else 'a'}_tr({point})"
         if guide == ctx.scene.ground:
-            return None, key, value
-        g = self.transport_point(guide)
+            return None
+        sliding = ctx.slot(guide, point)
+        g = ctx.reference_point(guide)
         ctx.use(g, point)
         r_np = ctx.pos(point) - ctx.pos(g)
         omega, alpha = ctx.omega(guide), ctx.alpha(guide)
-        what = "velocity" if order == VELOCITY else "acceleration"
+        what = MOTION[order][0]
         b = ctx.builder(
-            f"{'velocity' if order == VELOCITY else 'acceleration'}.transport",
-            f"Transport {what} of {point} (the point of {guide} under {point})",
+            f"{what}.transport", f"Transport {what} of {point} (the point of {guide} under {point})"
         )
-        tr = b.put(key, value, "m/s" if order == VELOCITY else "m/s^2", sliding.source(field_name))
+        tr = sliding.put(b, f"transport_{what}", point)
         r = b.put(f"r({g},{point})", r_np, "m")
         w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
         sub = tex.name(point) + r",\mathrm{tr}"
@@ -388,23 +386,17 @@ class VectorMethod:
                 f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
                 f"{b.txt(n)} = {b.txt(tr)}."
             )
-        return b.build(), key, value
+        return b.build()
 
-    def coriolis_step(self, point: str, guide: str) -> tuple[Step, str, np.ndarray]:
+    def coriolis_step(self, point: str, guide: str) -> Step:
         """a_cor = 2 omega_guide x v_rel, or why it is zero."""
         ctx = self.ctx
         sliding = ctx.slot(guide, point)
-        assert sliding.coriolis_acceleration is not None
         omega = sliding.omega_guide
         b = ctx.builder("acceleration.coriolis", f"Coriolis acceleration of {point}")
-        key = f"a_cor({point})"
-        cor = b.put(
-            key, sliding.coriolis_acceleration, "m/s^2", sliding.source("coriolis_acceleration")
-        )
+        cor = sliding.put(b, "coriolis_acceleration", point)
         w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
-        vrel = b.put(
-            f"v_rel({point})", sliding.relative_velocity, "m/s", sliding.source("relative_velocity")
-        )
+        vrel = sliding.put(b, "relative_velocity", point)
         b.check("cross", cor, w, vrel, factor=2.0)
         sub = tex.name(point) + r",\mathrm{Cor}"
         formula = (
@@ -462,7 +454,7 @@ class VectorMethod:
                 f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
                 f"of {point} along the slot (not its absolute velocity)."
             )
-        return b.build(), key, sliding.coriolis_acceleration
+        return b.build()
 
     def line_side(
         self, point: str, spec: LineSpec, order: int, two_slots: bool
@@ -473,33 +465,26 @@ class VectorMethod:
         u_np = sliding.direction
         unknown = self.unknown_slide(point, guide, order, two_slots)
         steps: list[Step] = []
-        transport, tr_key, tr_value = self.transport_step(point, guide, order)
+        transport = self.transport_step(point, guide, order)
         if transport is not None:
             steps.append(transport)
-        unit = "m/s" if order == VELOCITY else "m/s^2"
+        what, unit = MOTION[order]
         ukey = f"u({point}/{guide})"
         sub = tex.name(point)
-        if order == VELOCITY:
-            b = ctx.builder(
-                "velocity.dyad.side",
-                f"Velocity of {point} in the slot of {guide} ({unknown.text} unknown)",
-            )
-            known_key, known = tr_key, tr_value
-        else:
-            cor_step, _, cor_value = self.coriolis_step(point, guide)
-            steps.append(cor_step)
-            b = ctx.builder(
-                "acceleration.dyad.side",
-                f"Acceleration of {point} in the slot of {guide} ({unknown.text} unknown)",
-            )
-            known_key, known = f"known({point} in {guide})", tr_value + cor_value
-        side = Side(known_key, known, unit, [Term(unknown, "dir", ukey, u_np, "")])
-        tr = b.put(
-            tr_key,
-            tr_value,
-            unit,
-            sliding.source("transport_velocity" if order == VELOCITY else "transport_acceleration"),
+        if order == ACCELERATION:
+            steps.append(self.coriolis_step(point, guide))
+        b = ctx.builder(
+            f"{what}.dyad.side",
+            f"{what.capitalize()} of {point} in the slot of {guide} ({unknown.text} unknown)",
         )
+        tr_value = getattr(sliding, f"transport_{what}")
+        if order == VELOCITY:
+            known_key, known = f"v_tr({point})", tr_value
+        else:
+            known_key = f"known({point} in {guide})"
+            known = tr_value + sliding.coriolis_acceleration
+        side = Side(known_key, known, unit, [Term(unknown, "dir", ukey, u_np, "")])
+        tr = sliding.put(b, f"transport_{what}", point)
         b.put(ukey, u_np, "")
         fixed = guide == ctx.scene.ground
         if order == VELOCITY:
@@ -526,7 +511,7 @@ class VectorMethod:
                     f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
                 )
             return [*steps, b.build()], side
-        cor = b.put(f"a_cor({point})", cor_value, unit, sliding.source("coriolis_acceleration"))
+        cor = sliding.put(b, "coriolis_acceleration", point)
         b.put(known_key, known, unit)
         b.check("sum", known_key, tr, cor)
         b.line(
@@ -646,91 +631,44 @@ class VectorMethod:
         return out
 
     def relative_result(self, point: str, guide: str, order: int) -> Step:
-        """v_rel = s_dot u (a_rel = s_ddot u) with the solved number, and the split of v (a)."""
+        """v_rel = s_dot u (a_rel = s_ddot u) with the solved number, and the split of v (a):
+        v = v_tr + v_rel, a = a_tr + a_rel + a_Cor."""
         ctx = self.ctx
         sliding = ctx.slot(guide, point)
-        u_np = sliding.direction
         unknown = self.unknown_slide(point, guide, order, False)
-        sub = tex.name(point)
+        what, unit = MOTION[order]
+        letter, sub = what[0], tex.name(point)
+        b = ctx.builder(f"{what}.relative", f"Relative {what} of {point} in the slot of {guide}")
+        s = b.put(unknown.key, unknown.value, unit)
+        u = b.put(f"u({point}/{guide})", sliding.direction, "")
+        rel = sliding.put(b, f"relative_{what}", point)
+        parts = [sliding.put(b, f"transport_{what}", point), rel]
+        names = ["tr", "rel"]
+        if order == ACCELERATION:
+            parts.append(sliding.put(b, "coriolis_acceleration", point))
+            names.append("Cor")
+        total = sliding.put(b, what, point)
+        relative_line(b, letter, sub, unknown.latex, s, u, rel)
+        b.check("sum", total, *parts)
+        b.line(
+            rf"&\vec{{{letter}}}_{{{sub}}} = "
+            + " + ".join(rf"\vec{{{letter}}}_{{{sub},\mathrm{{{n}}}}}" for n in names)
+            + " = "
+            + " + ".join(b.col(k) for k in parts)
+            + rf" = {tex.boxed_result(b.colu(total))}"
+        )
         if order == VELOCITY:
-            b = ctx.builder(
-                "velocity.relative", f"Relative velocity of {point} in the slot of {guide}"
-            )
-            s = b.put(unknown.key, unknown.value, "m/s")
-            u = b.put(f"u({point}/{guide})", u_np, "")
-            rel = b.put(
-                f"v_rel({point})",
-                sliding.relative_velocity,
-                "m/s",
-                sliding.source("relative_velocity"),
-            )
-            tr = b.put(
-                f"v_tr({point})",
-                sliding.transport_velocity,
-                "m/s",
-                sliding.source("transport_velocity"),
-            )
-            total = b.put(f"v({point})", sliding.velocity, "m/s", sliding.source("velocity"))
-            b.check("product", rel, s, u)
-            b.check("sum", total, tr, rel)
-            b.line(
-                rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
-                rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
-            )
-            b.line(
-                rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
-                rf"{tex.boxed_result(b.colu(total))}"
-            )
             b.say(
                 f"Relative velocity of {point} along the slot of {guide}: v_rel = "
                 f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; with the transport velocity "
-                f"{b.txt(tr)}, v({point}) = {b.txt(total)}."
+                f"{b.txt(parts[0])}, v({point}) = {b.txt(total)}."
             )
-            return b.build()
-        b = ctx.builder(
-            "acceleration.relative", f"Relative acceleration of {point} in the slot of {guide}"
-        )
-        assert sliding.relative_acceleration is not None
-        assert sliding.transport_acceleration is not None
-        assert sliding.coriolis_acceleration is not None and sliding.acceleration is not None
-        s = b.put(unknown.key, unknown.value, "m/s^2")
-        u = b.put(f"u({point}/{guide})", u_np, "")
-        rel = b.put(
-            f"a_rel({point})",
-            sliding.relative_acceleration,
-            "m/s^2",
-            sliding.source("relative_acceleration"),
-        )
-        tr = b.put(
-            f"a_tr({point})",
-            sliding.transport_acceleration,
-            "m/s^2",
-            sliding.source("transport_acceleration"),
-        )
-        cor = b.put(
-            f"a_cor({point})",
-            sliding.coriolis_acceleration,
-            "m/s^2",
-            sliding.source("coriolis_acceleration"),
-        )
-        total = b.put(f"a({point})", sliding.acceleration, "m/s^2", sliding.source("acceleration"))
-        b.check("product", rel, s, u)
-        b.check("sum", total, tr, rel, cor)
-        b.line(
-            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}} = "
-            rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
-        )
-        b.line(
-            rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
-            rf"{b.col(tr)} + {b.col(rel)} + {b.col(cor)} = {tex.boxed_result(b.colu(total))}"
-        )
-        b.say(
-            f"Relative acceleration of {point} along the slot of {guide}: a_rel = "
-            f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; a({point}) = a_tr + a_rel + a_Cor "
-            f"= {b.txt(tr)} + {b.txt(rel)} + {b.txt(cor)} = {b.txt(total)}."
-        )
+        else:
+            b.say(
+                f"Relative acceleration of {point} along the slot of {guide}: a_rel = "
+                f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; a({point}) = a_tr + a_rel + a_Cor "
+                f"= {' + '.join(b.txt(k) for k in parts)} = {b.txt(total)}."
+            )
         return b.build()
 
     # --- slotted lever --------------------------------------------------------------------------
@@ -784,8 +722,9 @@ class VectorMethod:
             out.append(b.build())
             what = "velocity"
         else:
-            cor_step, cor_key, cor_value = self.coriolis_step(pin, lever)
-            out.append(cor_step)
+            out.append(self.coriolis_step(pin, lever))
+            cor_value = sliding.coriolis_acceleration
+            assert cor_value is not None
             b = ctx.builder(
                 "acceleration.lever.side",
                 f"Acceleration of {pin} in the slot of "
@@ -797,7 +736,7 @@ class VectorMethod:
             b.put(rkey, r_np, "m")
             b.put(ukey, u_np, "")
             n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-            cor = b.put(cor_key, cor_value, "m/s^2", sliding.source("coriolis_acceleration"))
+            cor = sliding.put(b, "coriolis_acceleration", pin)
             known = ctx.acc(pivot) - omega**2 * r_np + cor_value
             known_key = f"known({pin} in {lever})"
             b.put(known_key, known, "m/s^2")
@@ -862,24 +801,13 @@ class VectorMethod:
             w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
             r = b.put(f"r({pivot},{pin})", r_np, "m")
             wxr = b.put(f"omega x r({pivot},{pin})", k_cross(omega, r_np), "m/s")
-            tr = b.put(
-                f"v_tr({pin})",
-                sliding.transport_velocity,
-                "m/s",
-                sliding.source("transport_velocity"),
-            )
+            tr = sliding.put(b, "transport_velocity", pin)
             slide = self.unknown_slide(pin, lever, order, False)
             s = b.put(slide.key, slide.value, "m/s")
             u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-            rel = b.put(
-                f"v_rel({pin})",
-                sliding.relative_velocity,
-                "m/s",
-                sliding.source("relative_velocity"),
-            )
+            rel = sliding.put(b, "relative_velocity", pin)
             b.check("cross", wxr, w, r)
             b.check("sum", tr, vq, wxr)
-            b.check("product", rel, s, u)
             base = "" if ctx.is_fixed(pivot) and b.is_zero(vq) else b.col(vq) + " + "
             moving = "" if not base else f"{v_vec(pivot)} + "
             b.line(
@@ -887,18 +815,13 @@ class VectorMethod:
                 rf"{r_vec(pivot, pin)} = {base}"
                 rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
             )
-            b.line(
-                rf"&\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
-                rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
-            )
+            relative_line(b, "v", sub, slide.latex, s, u, rel)
             b.say(
                 f"With omega({lever}) = {b.txt(w)}: the transport velocity of {pin} (the point "
                 f"of {lever} under the pin) is {b.txt(tr)}; the relative velocity along the "
                 f"slot is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}."
             )
             return b.build()
-        assert sliding.transport_acceleration is not None
-        assert sliding.relative_acceleration is not None
         b = ctx.builder("acceleration.lever.parts", f"Transport and relative acceleration of {pin}")
         aq = b.put(f"a({pivot})", ctx.acc(pivot), "m/s^2", ("points", pivot, "acceleration"))
         w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
@@ -906,25 +829,14 @@ class VectorMethod:
         r = b.put(f"r({pivot},{pin})", r_np, "m")
         t = b.put(f"alpha x r({pivot},{pin})", k_cross(alpha, r_np), "m/s^2")
         n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-        tr = b.put(
-            f"a_tr({pin})",
-            sliding.transport_acceleration,
-            "m/s^2",
-            sliding.source("transport_acceleration"),
-        )
+        tr = sliding.put(b, "transport_acceleration", pin)
         slide = self.unknown_slide(pin, lever, order, False)
         s = b.put(slide.key, slide.value, "m/s^2")
         u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-        rel = b.put(
-            f"a_rel({pin})",
-            sliding.relative_acceleration,
-            "m/s^2",
-            sliding.source("relative_acceleration"),
-        )
+        rel = sliding.put(b, "relative_acceleration", pin)
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
         b.check("sum", tr, aq, t, n)
-        b.check("product", rel, s, u)
         base = "" if ctx.is_fixed(pivot) and b.is_zero(aq) else b.col(aq) + " + "
         moving = "" if not base else f"{a_vec(pivot)} + "
         b.line(
@@ -934,10 +846,7 @@ class VectorMethod:
             rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)} = {base}{b.col(t)} + {b.col(n)} = "
             rf"{b.colu(tr)}"
         )
-        b.line(
-            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {slide.latex}\,\vec{{u}} = "
-            rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
-        )
+        relative_line(b, "a", sub, slide.latex, s, u, rel)
         b.say(
             f"With alpha({lever}) = {b.txt(al)}: the transport acceleration of {pin} is "
             f"{b.txt(t)} + {b.txt(n)} = {b.txt(tr)}; the relative acceleration along the slot "
@@ -962,23 +871,12 @@ class VectorMethod:
         ctx = self.ctx
         ctx.use(first, second)
         r_np = ctx.pos(second) - ctx.pos(first)
-        letter, unit, field_name = (
-            ("v", "m/s", "velocity") if order == VELOCITY else ("a", "m/s^2", "acceleration")
-        )
+        field_name, unit = MOTION[order]
+        letter = field_name[0]
         rate = self.unknown_rate(link, order)
         b = ctx.builder(f"{field_name}.two_points", f"{rate.text} from two known points")
-        x1 = b.put(
-            f"{letter}({first})",
-            getattr(ctx.analysis.points[first], field_name),
-            unit,
-            ("points", first, field_name),
-        )
-        x2 = b.put(
-            f"{letter}({second})",
-            getattr(ctx.analysis.points[second], field_name),
-            unit,
-            ("points", second, field_name),
-        )
+        x1 = put_motion(b, ctx, first, order)
+        x2 = put_motion(b, ctx, second, order)
         r = b.put(f"r({first},{second})", r_np, "m")
         diff = b.put(f"d{letter}", np.asarray(b.vector(x2)) - np.asarray(b.vector(x1)), unit)
         dv = np.asarray(b.vector(diff))

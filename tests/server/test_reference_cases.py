@@ -30,8 +30,11 @@ def _planar_requests() -> list[tuple[str, dict[str, Any]]]:
     for case in cases:
         for index, request in enumerate(case["requests"]):
             scene = request["body"]["scene"]
-            if (request["endpoint"] == "POST /api/v1/analyze" and scene["kind"] == "linkage"
-                    and not scene.get("moving_points")):
+            if (
+                request["endpoint"] == "POST /api/v1/analyze"
+                and scene["kind"] == "linkage"
+                and not scene.get("moving_points")
+            ):
                 selected.append((f"{case['id']}#{index}", request))
     return selected
 
@@ -42,8 +45,14 @@ PLANAR = _planar_requests()
 def test_the_planar_cases_are_the_ones_issue_2_names() -> None:
     """S000-T1..T4 (with the rounded T2) and S001: the selection must not silently shrink."""
     ids = sorted(name.split("#")[0] for name, _ in PLANAR)
-    assert ids == ["S000-T1", "S000-T2", "S000-T2-rounded", "S000-T3", "S000-T4",
-                   "S001-offset-slider-crank"]
+    assert ids == [
+        "S000-T1",
+        "S000-T2",
+        "S000-T2-rounded",
+        "S000-T3",
+        "S000-T4",
+        "S001-offset-slider-crank",
+    ]
 
 
 def resolve(body: Any, path: str) -> Any:
@@ -104,8 +113,10 @@ def test_reference_case_over_http(http: httpx.Client, name: str) -> None:
         got_values, want = _flat(got), _flat(item["value"])
         assert len(got_values) == len(want), item["path"]
         if any(abs(g - w) > tolerance[item["kind"]] for g, w in zip(got_values, want, strict=True)):
-            wrong.append(f"{item['path']}: got {got_values}, reference {want} "
-                         f"(tolerance {tolerance[item['kind']]:.1e})")
+            wrong.append(
+                f"{item['path']}: got {got_values}, reference {want} "
+                f"(tolerance {tolerance[item['kind']]:.1e})"
+            )
     assert not wrong, "\n".join(wrong)
 
 
@@ -124,20 +135,25 @@ def test_erratum_E000_T1_4_coupler_and_rocker_alpha(http: httpx.Client) -> None:
 def test_erratum_E000_T1_6_coupler_acceleration_pole(http: httpx.Client) -> None:
     """E000-T1-6: G_2 = (12.3077, 3.4615) m (4 decimals in ERRATA); G_3 = D, not G_2 = D."""
     assert _value(http, "S000-T1", "links.coupler.acceleration_pole") == pytest.approx(
-        [12.3077, 3.4615], abs=5e-5)
+        [12.3077, 3.4615], abs=5e-5
+    )
     assert _value(http, "S000-T1", "links.rocker.acceleration_pole") == pytest.approx(
-        [2.5, 0.0], abs=1e-9)
+        [2.5, 0.0], abs=1e-9
+    )
 
 
 def test_erratum_E000_T2_6_exact_geometry_coriolis(http: httpx.Client) -> None:
-    """E000-T2-6/-3: with x = sqrt(0.12) m, a_Cor = (2.77128, 0) and beta_B = 0.69282 m/s (the seed's
-    2.8 and 0.7 belong to the rounded x = 0.35 m, case S000-T2-rounded)."""
+    """E000-T2-6/-3: with x = sqrt(0.12) m, a_Cor = (2.77128, 0) and beta_B = 0.69282 m/s (the
+    seed's 2.8 and 0.7 belong to the rounded x = 0.35 m, case S000-T2-rounded)."""
     assert _value(http, "S000-T2", "joints[0].coriolis_acceleration") == pytest.approx(
-        [2.77128, 0.0], abs=5e-6)
+        [2.77128, 0.0], abs=5e-6
+    )
     assert _value(http, "S000-T2", "joints[0].relative_velocity") == pytest.approx(
-        [0.0, 0.69282], abs=5e-6)
+        [0.0, 0.69282], abs=5e-6
+    )
     assert _value(http, "S000-T2-rounded", "joints[0].coriolis_acceleration") == pytest.approx(
-        [2.8, 0.0], abs=1e-9)
+        [2.8, 0.0], abs=1e-9
+    )
 
 
 def test_erratum_E000_T3_3_no_coriolis_on_a_fixed_guide(http: httpx.Client) -> None:
@@ -150,16 +166,17 @@ def test_erratum_E000_T3_3_no_coriolis_on_a_fixed_guide(http: httpx.Client) -> N
     assert _value(http, "S000-T3", "joints[0].transport_acceleration") == [0.0, 0.0]
 
 
-def test_erratum_E000_T3_4_and_5_coupler_alpha_and_slider_acceleration(http: httpx.Client
-                                                                         ) -> None:
+def test_erratum_E000_T3_4_and_5_coupler_alpha_and_slider_acceleration(http: httpx.Client) -> None:
     """E000-T3-4: eps_2 = +7.68 rad/s^2 (not 2.16); E000-T3-5: a_C = (1.8432, 0) (a slider on a
     horizontal fixed guide has no a_y); E000-T3-6: a_D = (1.01376, 3.072) m/s^2."""
     (alpha,) = _value(http, "S000-T3", "links.coupler.alpha")
     assert alpha == pytest.approx(7.68, abs=1e-9)
-    assert _value(http, "S000-T3", "points.C.acceleration") == pytest.approx([1.8432, 0.0],
-                                                                            abs=1e-9)
-    assert _value(http, "S000-T3", "points.D.acceleration") == pytest.approx([1.01376, 3.072],
-                                                                            abs=1e-9)
+    assert _value(http, "S000-T3", "points.C.acceleration") == pytest.approx(
+        [1.8432, 0.0], abs=1e-9
+    )
+    assert _value(http, "S000-T3", "points.D.acceleration") == pytest.approx(
+        [1.01376, 3.072], abs=1e-9
+    )
 
 
 def test_erratum_E000_T4_4_and_5_exact_slider_crank(http: httpx.Client) -> None:
@@ -172,7 +189,8 @@ def test_erratum_E000_T4_4_and_5_exact_slider_crank(http: httpx.Client) -> None:
     (omega,) = _value(http, "S000-T4", "links.coupler.omega")
     assert omega == pytest.approx(0.347195, abs=5e-7)
     assert _value(http, "S000-T4", "links.coupler.velocity_pole") == pytest.approx(
-        [0.90561, 1.42701], abs=5e-6)
+        [0.90561, 1.42701], abs=5e-6
+    )
 
 
 def test_erratum_E001_1_slider_acceleration_is_real(http: httpx.Client) -> None:

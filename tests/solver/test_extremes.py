@@ -50,22 +50,40 @@ def _case(case_id: str) -> dict[str, Any]:
 S000_T1 = _case("S000-T1")["requests"][0]
 
 
-def four_bar(A: complex, B: complex, C: complex, D: complex, omega: float, alpha: float,
-             angle_deg: float | None = None) -> Doc:
+def four_bar(
+    A: complex,
+    B: complex,
+    C: complex,
+    D: complex,
+    omega: float,
+    alpha: float,
+    angle_deg: float | None = None,
+) -> Doc:
     """Crank AB, coupler BC, rocker DC, ground AD (the link names of S000-T1)."""
     driver: dict[str, float] = {"omega": omega, "alpha": alpha}
     if angle_deg is not None:
         driver["angle_deg"] = angle_deg
     return {
         "kind": "linkage",
-        "points": {name: [float(mp.re(z)), float(mp.im(z))]
-                   for name, z in (("A", A), ("B", B), ("C", C), ("D", D))},
-        "links": {"ground": {"points": ["A", "D"], "ground": True},
-                  "crank": {"points": ["A", "B"]}, "coupler": {"points": ["B", "C"]},
-                  "rocker": {"points": ["D", "C"]}},
-        "joints": [{"type": "revolute", "point": p, "links": pair} for p, pair in (
-            ("A", ["ground", "crank"]), ("B", ["crank", "coupler"]),
-            ("C", ["coupler", "rocker"]), ("D", ["rocker", "ground"]))],
+        "points": {
+            name: [float(mp.re(z)), float(mp.im(z))]
+            for name, z in (("A", A), ("B", B), ("C", C), ("D", D))
+        },
+        "links": {
+            "ground": {"points": ["A", "D"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": p, "links": pair}
+            for p, pair in (
+                ("A", ["ground", "crank"]),
+                ("B", ["crank", "coupler"]),
+                ("C", ["coupler", "rocker"]),
+                ("D", ["rocker", "ground"]),
+            )
+        ],
         "drivers": [{"link": "crank", **driver}],
     }
 
@@ -97,8 +115,14 @@ def closed_form(doc: Doc, crank_angle: Any | None = None) -> dict[str, Any]:
     a_B = (1j * alpha1 - omega1**2) * ba
     rhs = -1j * (-a_B + w2**2 * cb - w3**2 * cd)
     a2, a3 = mp.lu_solve(M, mp.matrix([rhs.real, rhs.imag]))
-    return {"B": B, "C": C, "omega": (omega1, w2, w3), "alpha": (alpha1, a2, a3),
-            "v_C": 1j * w3 * cd, "a_C": (1j * a3 - w3**2) * cd}
+    return {
+        "B": B,
+        "C": C,
+        "omega": (omega1, w2, w3),
+        "alpha": (alpha1, a2, a3),
+        "v_C": 1j * w3 * cd,
+        "a_C": (1j * a3 - w3**2) * cd,
+    }
 
 
 def assert_within_condition_bound(result: LinkageAnalysis, exact: dict[str, Any]) -> float:
@@ -126,8 +150,13 @@ def assert_within_condition_bound(result: LinkageAnalysis, exact: dict[str, Any]
 # The seed-004 crank-rocker (l1 0.15, coupler 1.0, rocker 0.55, ground 1.0 m): at a toggle the
 # crank and coupler are collinear (|AC| = l2 +- l1), the rocker is at an extreme and turns back:
 # omega3 changes sign there. The velocity equations stay well conditioned (cond ~ 10).
-TOGGLE = {"A": mp.mpc(0, 0), "D": mp.mpc(1, 0), "l1": mp.mpf("0.15"), "l2": mp.mpf(1),
-          "l3": mp.mpf("0.55")}
+TOGGLE = {
+    "A": mp.mpc(0, 0),
+    "D": mp.mpc(1, 0),
+    "l1": mp.mpf("0.15"),
+    "l2": mp.mpf(1),
+    "l3": mp.mpf("0.55"),
+}
 
 
 def toggle_angle(extended: bool) -> Any:
@@ -171,7 +200,8 @@ def test_four_bar_turned_to_1e_6_rad_from_a_toggle(extended: bool) -> None:
     cond = assert_within_condition_bound(result, exact)
     for name in ("B", "C"):
         assert abs(complex(*result.points[name].position) - complex(exact[name])) <= (
-            10 * cond * EPS * 2.0)
+            10 * cond * EPS * 2.0
+        )
 
 
 # --- next to a dead centre -----------------------------------------------------------------------
@@ -179,10 +209,16 @@ def test_four_bar_turned_to_1e_6_rad_from_a_toggle(extended: bool) -> None:
 # S000-T1 (ground 2.5, crank 1, coupler 2, rocker sqrt(1.25) m) is a non-Grashof triple rocker:
 # the crank stops where coupler and rocker are collinear, |BD| = l2 + l3, at
 # cos(theta_lim) = (l1^2 + g^2 - (l2 + l3)^2) / (2 l1 g), theta_lim = 119.63 deg.
-T1 = {"A": mp.mpc(0, 0), "D": mp.mpc("2.5", 0), "l1": mp.mpf(1), "l2": mp.mpf(2),
-      "l3": mp.sqrt(mp.mpf("1.25"))}
-T1_LIMIT = mp.acos((T1["l1"] ** 2 + T1["D"].real ** 2 - (T1["l2"] + T1["l3"]) ** 2)
-                   / (2 * T1["l1"] * T1["D"].real))
+T1 = {
+    "A": mp.mpc(0, 0),
+    "D": mp.mpc("2.5", 0),
+    "l1": mp.mpf(1),
+    "l2": mp.mpf(2),
+    "l3": mp.sqrt(mp.mpf("1.25")),
+}
+T1_LIMIT = mp.acos(
+    (T1["l1"] ** 2 + T1["D"].real ** 2 - (T1["l2"] + T1["l3"]) ** 2) / (2 * T1["l1"] * T1["D"].real)
+)
 
 
 @pytest.mark.parametrize("inside", ["1e-6", "1e-9"])
@@ -212,7 +248,8 @@ def test_four_bar_turned_to_1e_6_rad_inside_a_dead_centre() -> None:
     cond = assert_within_condition_bound(result, exact)
     assert cond > 1e3
     assert abs(complex(*result.points["C"].position) - complex(exact["C"])) <= (
-        10 * cond * EPS * 3.0)
+        10 * cond * EPS * 3.0
+    )
 
 
 # --- at a dead centre ----------------------------------------------------------------------------
@@ -225,8 +262,9 @@ FOLDED_DEAD_CENTRE = four_bar(0j, 1 + 0j, 3 + 0j, 2 + 0j, 1.0, 0.0)  # rocker DC
 EXTENDED_DEAD_CENTRE = four_bar(0j, 3j, mp.mpc("2.4", "1.2"), 4 + 0j, -1.0, 0.5)
 
 
-@pytest.mark.parametrize("doc", [FOLDED_DEAD_CENTRE, EXTENDED_DEAD_CENTRE],
-                         ids=["folded", "extended"])
+@pytest.mark.parametrize(
+    "doc", [FOLDED_DEAD_CENTRE, EXTENDED_DEAD_CENTRE], ids=["folded", "extended"]
+)
 def test_exactly_at_a_dead_centre_is_a_singular_configuration(doc: Doc) -> None:
     """scene-v1: the velocity equations are singular (dead centre) -> SingularConfiguration,
     whose message names the dead centre, and whose condition number is beyond the threshold."""
@@ -236,10 +274,10 @@ def test_exactly_at_a_dead_centre_is_a_singular_configuration(doc: Doc) -> None:
     assert raised.value.condition_number > SINGULAR_CONDITION
 
 
-@pytest.mark.parametrize("doc", [FOLDED_DEAD_CENTRE, EXTENDED_DEAD_CENTRE],
-                         ids=["folded", "extended"])
-def test_dead_centre_over_http_is_422_singular_configuration(client: TestClient, doc: Doc
-                                                              ) -> None:
+@pytest.mark.parametrize(
+    "doc", [FOLDED_DEAD_CENTRE, EXTENDED_DEAD_CENTRE], ids=["folded", "extended"]
+)
+def test_dead_centre_over_http_is_422_singular_configuration(client: TestClient, doc: Doc) -> None:
     """scene-v1 errors table: singular_configuration, 422, problem+json."""
     response = client.post("/api/v1/analyze", json={"scene": doc})
     assert response.status_code == 422
@@ -264,8 +302,7 @@ SPEEDS = [1e-3, 1.0, 1e4]
 
 
 def _expected_s000_t1() -> dict[str, Any]:
-    return {e["path"]: (np.array(e["value"], dtype=float), e["kind"]) for e in
-            S000_T1["expected"]}
+    return {e["path"]: (np.array(e["value"], dtype=float), e["kind"]) for e in S000_T1["expected"]}
 
 
 @pytest.mark.parametrize("length", LENGTHS)
@@ -402,12 +439,13 @@ def test_reported_limit_positions_can_be_posed() -> None:
         at_limit = analyze(parse_linkage(posed), ["position"])
         B, C, D = (at_limit.points[p].position for p in "BCD")
         assert abs(float(np.hypot(*(D - B))) - float(T1["l2"] + T1["l3"])) <= 1e-9
+        u, w = B - C, D - C
+        assert abs(u[0] * w[1] - u[1] * w[0]) <= 1e-5 * float(np.hypot(*u) * np.hypot(*w))
 
 
 def test_non_grashof_sweep_over_http(client: TestClient) -> None:
     """The /sweep response states the feasible range (scene-v1): feasible false, two limits."""
-    response = client.post("/api/v1/sweep", json={"scene": S000_T1["body"]["scene"],
-                                                  "samples": 50})
+    response = client.post("/api/v1/sweep", json={"scene": S000_T1["body"]["scene"], "samples": 50})
     assert response.status_code == 200
     body = response.json()
     assert body["feasible"] is False
@@ -423,17 +461,35 @@ def test_non_grashof_sweep_over_http(client: TestClient) -> None:
 # tests/linkage_strategies.py.)
 NEWTON_SIX_BAR: Doc = {
     "kind": "linkage",
-    "points": {"A": [0.0, 0.0], "B": [0.5, 0.0], "C": [0.5625, 0.24206145913796356],
-               "D": [1.0, 0.0], "X": [1.0, 1.0], "Y": [0.25793854086203644, 0.0625],
-               "Q": [1.4408680864789296, -0.11139407478282459]},
-    "links": {"ground": {"points": ["A", "D", "X"], "ground": True},
-              "crank": {"points": ["A", "B"]}, "coupler": {"points": ["B", "C", "Y"]},
-              "rocker": {"points": ["D", "C"]}, "dyad_in": {"points": ["X", "Q"]},
-              "dyad_out": {"points": ["Q", "Y"]}},
-    "joints": [{"type": "revolute", "point": p, "links": pair} for p, pair in (
-        ("A", ["ground", "crank"]), ("B", ["crank", "coupler"]), ("C", ["coupler", "rocker"]),
-        ("D", ["rocker", "ground"]), ("X", ["ground", "dyad_in"]), ("Q", ["dyad_in", "dyad_out"]),
-        ("Y", ["dyad_out", "coupler"]))],
+    "points": {
+        "A": [0.0, 0.0],
+        "B": [0.5, 0.0],
+        "C": [0.5625, 0.24206145913796356],
+        "D": [1.0, 0.0],
+        "X": [1.0, 1.0],
+        "Y": [0.25793854086203644, 0.0625],
+        "Q": [1.4408680864789296, -0.11139407478282459],
+    },
+    "links": {
+        "ground": {"points": ["A", "D", "X"], "ground": True},
+        "crank": {"points": ["A", "B"]},
+        "coupler": {"points": ["B", "C", "Y"]},
+        "rocker": {"points": ["D", "C"]},
+        "dyad_in": {"points": ["X", "Q"]},
+        "dyad_out": {"points": ["Q", "Y"]},
+    },
+    "joints": [
+        {"type": "revolute", "point": p, "links": pair}
+        for p, pair in (
+            ("A", ["ground", "crank"]),
+            ("B", ["crank", "coupler"]),
+            ("C", ["coupler", "rocker"]),
+            ("D", ["rocker", "ground"]),
+            ("X", ["ground", "dyad_in"]),
+            ("Q", ["dyad_in", "dyad_out"]),
+            ("Y", ["dyad_out", "coupler"]),
+        )
+    ],
     "drivers": [{"link": "dyad_in", "omega": 1.0, "alpha": 0.0}],
 }
 
@@ -443,7 +499,7 @@ def _link_length_residual(scene: LinkageScene, positions: dict[str, np.ndarray])
     for link in scene.links.values():
         names = link.points
         for i, x in enumerate(names):
-            for y in names[i + 1:]:
+            for y in names[i + 1 :]:
                 drawn = float(np.hypot(*(scene.drawn(y) - scene.drawn(x))))
                 now = np.hypot(*(positions[y] - positions[x]).T)
                 worst = max(worst, float(np.max(np.abs(now - drawn))))
@@ -454,7 +510,7 @@ def test_newton_six_bar_sweeps_its_feasible_range() -> None:
     """The drawn pose assembles, so the sweep over the driver's feasible range must too (issue 2:
     sweep over the feasible range, keeping the drawn branch): it reports the range, every sample
     closes the loop to 1e-12 of the size, and the samples bracket the drawn angle. 360 samples,
-    the API's default. Runs ~20 s: every sample of a Newton group is solved in Python."""
+    the API's default. Runs ~12 s: every sample of a Newton group is solved in Python."""
     scene = parse_linkage(NEWTON_SIX_BAR)
     analyze(scene)  # the drawn pose itself is fine
     result = sweep(scene, 360, ["position"])
