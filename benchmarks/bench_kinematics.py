@@ -17,8 +17,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import cProfile
-import importlib.util
-import inspect
 import json
 import math
 import os
@@ -30,7 +28,6 @@ import sys
 import tempfile
 import time
 import tracemalloc
-import typing
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -314,7 +311,6 @@ class Results:
     sweep_ratio: float | None = None
     http_p50: float | None = None
     solution_p50: float | None = None
-    solution_note: str = ""
 
 
 def measure_agreement(scene: LinkageScene) -> tuple[str, bool]:
@@ -419,53 +415,26 @@ def measure_instant(doc: dict[str, Any], budget: Budget, res: Results) -> str:
     )
 
 
-def solution_call(doc: dict[str, Any]) -> Callable[[], object] | str:
-    """One worked solution in-process (issue 4): the POST /api/v1/solution handler called
-    directly with its validated request (solver.steps + the results + JSON, without HTTP);
-    a string says why there is none."""
-    if importlib.util.find_spec("solver.steps") is None:
-        return "n/a (not available)"
-    from server.app import app
+def solution_call(doc: dict[str, Any]) -> Callable[[], object]:
+    """One worked solution in-process (issue 4): parse, solve (analysis included) and build
+    the /solution response body, as the route does, without HTTP."""
+    from server.routes.solution import solution_body
+    from solver.steps import solve
 
-    route = next(
-        (
-            r
-            for r in app.routes
-            if getattr(r, "path", "") == "/api/v1/solution" and "POST" in getattr(r, "methods", ())
-        ),
-        None,
-    )
-    if route is None:
-        return "n/a (solver.steps exists, POST /api/v1/solution does not)"
-    endpoint = route.endpoint  # type: ignore[attr-defined]
-    hints = typing.get_type_hints(endpoint)
-    params = list(inspect.signature(endpoint).parameters)
-    model = hints.get(params[0]) if len(params) == 1 else None
-    if inspect.iscoroutinefunction(endpoint) or not hasattr(model, "model_validate"):
-        return "n/a (the /solution handler is not a plain function of one request model)"
-    request = model.model_validate({"scene": doc, "method": "vector"})  # type: ignore[union-attr]
-    return lambda: endpoint(request)
+    return lambda: solution_body(solve(parse_linkage(doc), "vector", 4))
 
 
 def measure_solutions(budget: Budget, res: Results) -> str:
     rows, worst = [], 0.0
     for name in PRESETS:
-        call = solution_call(build_preset(name, {}))
-        if isinstance(call, str):
-            res.solution_note = call
-            return f"Worked solution (issue 4), in-process: {call}."
-        try:
-            s = latencies(call, budget.solution_calls, warmup=3)
-        except Exception as error:  # a broken handler is reported, not hidden
-            rows.append([f"preset {name}", f"error: {type(error).__name__}: {error}", "", ""])
-            continue
+        s = latencies(solution_call(build_preset(name, {})), budget.solution_calls, warmup=3)
         worst = max(worst, s.p50)
         rows.append(
             [f"preset {name} (defaults), method vector", ms(s.p50), ms(s.p99), str(s.count)]
         )
     res.solution_p50 = worst or None
     return (
-        "Worked solution (issue 4), in-process: the /solution handler called directly.\n\n"
+        "Worked solution (issue 4), in-process: parse, solve and the /solution body.\n\n"
         + table(["scene", "p50", "p99", "calls"], rows)
     )
 
@@ -700,7 +669,7 @@ def targets(res: Results) -> str:
         return None if value is None else value < limit
 
     ratio = res.sweep_ratio
-    solution = ms(res.solution_p50) if res.solution_p50 else res.solution_note or "n/a"
+    solution = ms(res.solution_p50) if res.solution_p50 else "n/a"
     return table(
         ["target", "measured", "goal", "result"],
         [

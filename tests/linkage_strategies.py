@@ -1,4 +1,6 @@
-"""Hypothesis strategies for random six-bar linkages (Watt and Stephenson chains).
+"""Hypothesis strategies for random linkages beyond the presets: six-bars (Watt and Stephenson
+chains), a block in a slotted lever (prismatic joint), and ``linkages(family)``, which draws any
+preset, the block or a six-bar at a random omega and alpha, below a bound on the condition number.
 
 A six-bar is drawn as a random four-bar from ``tests.strategies.assemblable_presets(["four_bar"])``
 (links ground, crank, coupler, rocker) plus a dyad X-Q-Y: link ``dyad_in`` = [X, Q] and link
@@ -8,8 +10,8 @@ joint) the chain is Watt's, otherwise Stephenson's (ground-coupler or crank-rock
 
 The driver is the four-bar's crank, or, when X is on the ground, sometimes the dyad's grounded link
 ``dyad_in``. Driving ``dyad_in`` of a ground-coupler Stephenson chain leaves the four-bar with no
-driven link: its four moving links form one loop of four unknown links, which no dyad closes, so
-the solver must use Newton-Raphson (the case the closed-form dyads cannot reach).
+driven link: its moving links (crank, coupler, rocker, dyad_out) form one group that no dyad
+closes, so the solver must use Newton-Raphson (the case the closed-form dyads cannot reach).
 
 Every draw is posed consistently by construction (Q is the intersection of its two circles, never
 near tangency: the dyad's triangle is kept away from flat) and is checked to assemble: the solver
