@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
-from fastapi.responses import HTMLResponse
+from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from server import problems
@@ -46,8 +47,36 @@ def create_app() -> FastAPI:
     def health() -> dict[str, str]:
         return {"status": "ok"}
 
-    app.mount("/", StaticFiles(directory=STATIC, html=True), name="static")
+    _serve_static(app)
     return app
+
+
+def _serve_static(app: FastAPI) -> None:
+    """The front end: index.html at /, each folder of static/ mounted at its own path.
+
+    Not one mount at "/": that would answer every unknown /api path itself (a 405 for a POST,
+    a 404 for the wrong method on a real route) instead of the API's own 404 and 405.
+    """
+    index = STATIC / "index.html"
+
+    @app.get("/", include_in_schema=False)
+    def front_end() -> FileResponse:
+        return FileResponse(index)
+
+    for entry in sorted(STATIC.iterdir()):
+        if entry.is_dir():
+            app.mount(f"/{entry.name}", StaticFiles(directory=entry), name=entry.name)
+        elif entry.name != "index.html":
+            app.add_api_route(
+                f"/{entry.name}", _file_route(entry), methods=["GET"], include_in_schema=False
+            )
+
+
+def _file_route(path: Path) -> Callable[[], FileResponse]:
+    def serve() -> FileResponse:
+        return FileResponse(path)
+
+    return serve
 
 
 app = create_app()

@@ -216,7 +216,7 @@ def _last_sample(motion: Motion) -> Motion:
     return Motion(
         links,
         {k: point(m) for k, m in motion.points.items()},
-        motion.feasible[-1:],
+        motion.margin[-1:],
         motion.conditioning[-1:],
         motion.failures,
         motion.newton,

@@ -48,15 +48,21 @@ class Motion:
     """The solved state of a linkage over N samples.
 
     ``conditioning`` is the smallest sine of the angle between the two constraint gradients of any
-    group (0 at a dead centre); ``feasible`` marks the samples where every group closed.
+    group (0 at a dead centre); ``margin`` the smallest h^2 / r^2 of any two-branch group
+    (negative where a group does not close; -1 where Newton-Raphson did not converge).
     """
 
     links: dict[str, LinkMotion]
     points: dict[str, PointMotion]
-    feasible: Array
+    margin: Array
     conditioning: Array
     failures: list[str] = field(default_factory=list)
     newton: list[newton.NewtonReport] = field(default_factory=list)
+
+    @property
+    def feasible(self) -> Array:
+        """Samples where every group closed (to the tangency tolerance)."""
+        return self.margin >= -dyads.TANGENCY_TOLERANCE
 
 
 def continuous_sign(candidate: Callable[[Array], Array], drawn: float, samples: int) -> Array:
@@ -96,7 +102,7 @@ class _Assembler:
         self.samples = len(inputs[0].theta) if inputs else 1
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
-        self.feasible = np.ones(self.samples, dtype=bool)
+        self.margin = np.ones(self.samples)
         self.conditioning = np.ones(self.samples)
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
@@ -107,10 +113,12 @@ class _Assembler:
             if p not in self.points:
                 self.points[p] = motion.point(self.scene.drawn(p))
 
-    def fail(self, where: Array, message: str) -> None:
-        if np.any(~where & self.feasible):
+    def close(self, gap2: Array, message: str) -> None:
+        """Record a group's margin h^2 / r^2, and its message where it newly fails to close."""
+        failing = gap2 < -dyads.TANGENCY_TOLERANCE
+        if np.any(failing & (self.margin >= -dyads.TANGENCY_TOLERANCE)):
             self.failures.append(message)
-        self.feasible &= where
+        self.margin = np.minimum(self.margin, gap2)
 
     def locus(self, spec: LocusSpec) -> dyads.Locus:
         if isinstance(spec, CircleSpec):
@@ -139,7 +147,7 @@ class _Assembler:
     def dyad(self, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)
         cut = dyads.intersect(first, second, step.point)
-        self.fail(cut.feasible, cut.message[0])
+        self.close(cut.gap2, cut.message)
         sign = (
             continuous_sign(cut.point, step.sign, self.samples)
             if self.continuation
@@ -164,8 +172,8 @@ class _Assembler:
             else np.full(self.samples, step.sign)
         )
         solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
-        self.fail(
-            solution.gap2 >= -dyads.TANGENCY_TOLERANCE,
+        self.close(
+            solution.gap2,
             f"|{step.pivot}{step.pin}| is shorter than the offset {abs(step.offset):.6g} m "
             f"of the slot of '{step.link}' from its pivot {step.pivot}",
         )
@@ -215,7 +223,7 @@ class _Assembler:
             else:
                 self.newton_group(step)
         return Motion(
-            self.links, self.points, self.feasible, self.conditioning, self.failures, self.reports
+            self.links, self.points, self.margin, self.conditioning, self.failures, self.reports
         )
 
     def newton_group(self, step: NewtonStep) -> None:
@@ -223,7 +231,7 @@ class _Assembler:
             self.scene, step.links, self.links, self.samples, self.order
         )
         self.reports.append(report)
-        self.fail(report.converged, report.message)
+        self.close(np.where(report.converged, 0.0, -1.0), report.message)
         for link, motion in solved.items():
             self.know(link, motion)
 

@@ -55,7 +55,7 @@ class Intersection:
     offset: Array
     h: Array
     gap2: Array
-    message: list[str]
+    message: str
 
     def point(self, sign: Array) -> Array:
         return self.base + scale(sign * self.h, self.offset)
@@ -93,19 +93,21 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     gap2 = np.where(d > 0.0, h2 / c1.radius**2, -1.0)
     first = int(np.argmax(gap2 < -TANGENCY_TOLERANCE)) if np.any(gap2 < -TANGENCY_TOLERANCE) else 0
     dk, total, diff = float(d[first]), c1.radius + c2.radius, abs(c1.radius - c2.radius)
-    pair = f"|{c1.center_name}{c2.center_name}|"
-    lengths = (
-        f"|{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.6g} + "
-        f"{c2.radius:.6g} = {total:.6g} m"
-    )
+    n = _digits(dk, total if dk > total else diff)
+    pair = f"|{c1.center_name}{c2.center_name}| = {dk:.{n}g} m"
     if dk > total:
-        message = [f"{pair} = {dk:.6g} m > {lengths}"]
+        message = (
+            f"{pair} > |{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.{n}g}"
+            f" + {c2.radius:.{n}g} = {total:.{n}g} m"
+        )
     else:
-        message = [
-            f"{pair} = {dk:.6g} m < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| "
-            f"= {diff:.6g} m"
-        ]
+        message = f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
     return Intersection(c1.center.p + scale(a, u), perp(u), _root(gap2, h2), gap2, message)
+
+
+def _digits(a: float, b: float) -> int:
+    """Significant digits (6 to 15) that show two different numbers as different."""
+    return next((n for n in range(6, 16) if f"{a:.{n}g}" != f"{b:.{n}g}"), 15)
 
 
 def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
@@ -116,10 +118,11 @@ def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
     gap2 = h2 / c.radius**2
     k = int(np.argmin(gap2))
     distance = abs(float(cross(line.direction[k], q_c[k])))
-    message = [
+    n = _digits(distance, c.radius)
+    message = (
         f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
-        f"{distance:.6g} m > |{c.center_name}{name}| = {c.radius:.6g} m"
-    ]
+        f"{distance:.{n}g} m > |{c.center_name}{name}| = {c.radius:.{n}g} m"
+    )
     base = line.through.p - scale(b, line.direction)
     return Intersection(base, line.direction, _root(gap2, h2), gap2, message)
 
@@ -130,7 +133,7 @@ def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
     parallel = np.abs(denominator) <= 1e-12
     t = cross(l2.direction, l2.through.p - l1.through.p) / np.where(parallel, 1.0, denominator)
     gap2 = np.where(parallel, -1.0, 0.0)
-    message = [f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"]
+    message = f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
     base = l1.through.p + scale(t, l1.direction)
     return Intersection(base, l1.direction, np.zeros_like(t), gap2, message)
 

@@ -64,11 +64,12 @@ def instant_centre(
     dv = V_i - V_j
     dw = omega_i - omega_j
     speed = float(np.hypot(*dv))
-    if abs(dw) * size > POLE_TOLERANCE * (speed + abs(dw) * size) and dw != 0.0:
-        return InstantCentre((link_i, link_j), perp(dv) / dw, None)
-    if speed == 0.0:
+    reference = float(np.hypot(*V_i) + np.hypot(*V_j)) + (abs(omega_i) + abs(omega_j)) * size
+    if speed + abs(dw) * size <= POLE_TOLERANCE * reference:  # at rest relative to each other
         return InstantCentre((link_i, link_j), None, None)
-    return InstantCentre((link_i, link_j), None, perp(dv) / speed)
+    if abs(dw) * size <= POLE_TOLERANCE * (speed + abs(dw) * size):  # relative translation
+        return InstantCentre((link_i, link_j), None, perp(dv) / speed)
+    return InstantCentre((link_i, link_j), perp(dv) / dw, None)
 
 
 @dataclass(frozen=True)

@@ -160,7 +160,10 @@ def _name(value: Any, path: str) -> str:
 def _number(value: Any, path: str, limit: float) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise _where(path, f"expected a number, got {value!r}")
-    number = float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an integer literal beyond the float range
+        number = math.inf
     if not math.isfinite(number):
         raise _where(path, "must be a finite number")
     if abs(number) > limit:
@@ -260,7 +263,7 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
                 f"unknown joint type {kind!r}; expected revolute, slider or prismatic",
             )
         point = _name(body.get("point"), f"{path}.point")
-        pair = _list(body.get("links"), f"{path}.links", 2)
+        pair = _list(body.get("links"), f"{path}.links", MAX_LINKS)
         if len(pair) != 2:
             raise _where(f"{path}.links", "a joint connects exactly two links")
         a, b = (_name(x, f"{path}.links[{k}]") for k, x in enumerate(pair))

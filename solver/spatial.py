@@ -20,6 +20,7 @@ from solver.errors import InvalidScene, LimitExceeded
 
 MAX_JOINTS = 64
 MAX_POINTS = 256
+MAX_MAGNITUDE = 1e6  # m, rad/s, m/s and their rates: a larger number is a typo
 GROUND = "ground"
 JointType = Literal["revolute", "prismatic"]
 
@@ -92,9 +93,15 @@ class SpatialAnalysis:
 def _number(value: Any, where: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise InvalidScene(f"{where} must be a number, got {value!r}")
-    if not math.isfinite(value):
-        raise InvalidScene(f"{where} is not a finite number ({value!r})")
-    return float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an integer literal beyond the float range
+        number = math.inf
+    if not math.isfinite(number):
+        raise InvalidScene(f"{where} is not a finite number ({str(value)[:20]})")
+    if abs(number) > MAX_MAGNITUDE:
+        raise InvalidScene(f"{where}: |{number:g}| exceeds the limit {MAX_MAGNITUDE:g}")
+    return number
 
 
 def _vector(value: Any, where: str) -> np.ndarray:

@@ -70,16 +70,18 @@ class _Driven:
     def run(self, turns: Array, order: int) -> Motion:
         return assemble(self.scene, self.plan, self.inputs(turns), order, continuation=True)
 
-    def closes(self, turn: float) -> bool:
+    def closes(self, turn: float, strictly: bool = False) -> bool:
+        """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
+        (a limit found so lies inside the tolerance band and can be posed again)."""
         motion = assemble(self.scene, self.plan, self.inputs(np.array([turn])), 0)
-        return bool(motion.feasible[0])
+        return bool(motion.margin[0] >= 0.0) if strictly else bool(motion.feasible[0])
 
 
 def _limit(driven: _Driven, inside: float, outside: float) -> float:
     """Bisection for the limit position between a closing and a non-closing driver turn."""
     for _ in range(BISECTION_STEPS):
         middle = 0.5 * (inside + outside)
-        if driven.closes(middle):
+        if driven.closes(middle, strictly=True):
             inside = middle
         else:
             outside = middle
