@@ -22,14 +22,11 @@ import math
 import os
 import platform
 import pstats
-import socket
-import subprocess
 import sys
-import tempfile
 import time
 import tracemalloc
 import warnings
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from functools import partial
@@ -42,6 +39,7 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
 
 import numpy as np  # noqa: E402
 
+from server.local import serve_locally  # noqa: E402
 from solver.analysis import LinkageAnalysis, analyze  # noqa: E402
 from solver.presets import PRESETS, build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
@@ -491,59 +489,6 @@ def measure_trade(scene: LinkageScene, budget: Budget) -> str:
 # -- over HTTP ------------------------------------------------------------------------------
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-@contextlib.contextmanager
-def running_server(timeout: float = 60.0) -> Iterator[str]:
-    """uvicorn with the app on a free loopback port; stopped on exit whatever happens."""
-    import httpx
-
-    port = free_port()
-    base = f"http://127.0.0.1:{port}"
-    with tempfile.TemporaryFile() as log:
-        proc = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "uvicorn",
-                "server.app:app",
-                "--host",
-                "127.0.0.1",
-                "--port",
-                str(port),
-                "--no-access-log",
-                "--log-level",
-                "warning",
-            ],
-            cwd=ROOT,
-            stdout=log,
-            stderr=subprocess.STDOUT,
-            stdin=subprocess.DEVNULL,
-        )
-        try:
-            deadline = time.monotonic() + timeout
-            while True:
-                if proc.poll() is not None or time.monotonic() > deadline:
-                    log.seek(0)
-                    raise RuntimeError("the server did not come up:\n" + log.read().decode())
-                with contextlib.suppress(httpx.TransportError):
-                    if httpx.get(base + "/health", timeout=1.0).status_code == 200:
-                        break
-                time.sleep(0.1)
-            yield base
-        finally:
-            proc.terminate()
-            try:
-                proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
-
-
 def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
     import httpx
 
@@ -559,7 +504,7 @@ def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
         return post
 
     rows = []
-    with running_server() as base, httpx.Client(base_url=base, timeout=60.0) as client:
+    with serve_locally(timeout=60.0) as base, httpx.Client(base_url=base, timeout=60.0) as client:
         one = poster(client, "/api/v1/analyze", {"scene": doc})
         s = latencies(one, budget.http_calls, warmup=50)
         res.http_p50 = s.p50
@@ -580,30 +525,11 @@ def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
                     f"{post():,}",
                 ]
             )
-        body = {"scene": doc, "method": "vector"}
-        probe = client.post("/api/v1/solution", json=body)
-        if probe.status_code == 200:
-            post = poster(client, "/api/v1/solution", body)
-            s = latencies(post, budget.solution_calls, warmup=3)
-            rows.append(
-                [
-                    "/solution four-bar, method vector",
-                    ms(s.p50),
-                    ms(s.p99),
-                    str(s.count),
-                    f"{post():,}",
-                ]
-            )
-        else:
-            rows.append(
-                [
-                    "/solution four-bar, method vector",
-                    f"n/a (not available: HTTP {probe.status_code})",
-                    "",
-                    "",
-                    "",
-                ]
-            )
+        post = poster(client, "/api/v1/solution", {"scene": doc, "method": "vector"})
+        s = latencies(post, budget.solution_calls, warmup=3)
+        rows.append(
+            ["/solution four-bar, method vector", ms(s.p50), ms(s.p99), str(s.count), f"{post():,}"]
+        )
     versions = ", ".join(f"{m} {_version(m)}" for m in ("fastapi", "uvicorn", "httpx", "orjson"))
     return (
         "Over HTTP on loopback: uvicorn (1 worker, no access log) in a subprocess, one "

@@ -19,20 +19,18 @@ monitor's refresh rate.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import socket
 import statistics
-import subprocess
 import sys
-import time
-import urllib.request
 from pathlib import Path
 from typing import Any
 
-UVICORN = [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1"]
-UVICORN += ["--log-level", "warning"]
 ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # run as `python benchmarks/frontend_fps.py`
+    sys.path.insert(0, str(ROOT))
+
+from server.local import serve_locally  # noqa: E402
+
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [
     "--headless=new",
@@ -71,31 +69,6 @@ COUNT_FRAMES = """(ms) => new Promise((resolve) => {
   }
   requestAnimationFrame(step);
 })"""
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
-
-
-def start_server() -> tuple[subprocess.Popen[bytes], str]:
-    port = free_port()
-    proc = subprocess.Popen(
-        [*UVICORN, "--port", str(port)],
-        cwd=ROOT,
-    )
-    url = f"http://127.0.0.1:{port}"
-    for _ in range(200):
-        try:
-            with urllib.request.urlopen(f"{url}/api/v1/presets", timeout=2) as r:
-                json.load(r)
-            return proc, url
-        except OSError:
-            time.sleep(0.2)
-    proc.terminate()
-    raise SystemExit("the app did not start")
 
 
 def measure(
@@ -146,18 +119,13 @@ def main() -> None:
     args = parser.parse_args()
     from playwright.sync_api import sync_playwright
 
-    proc, url = start_server()
     rows = []
-    try:
-        with sync_playwright() as pw:
-            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-            for case in CASES:
-                runs = [measure(browser, url, case, args.seconds) for _ in range(args.repeat)]
-                rows.append(summarise(runs))
-            browser.close()
-    finally:
-        proc.terminate()
-        proc.wait(timeout=10)
+    with serve_locally() as url, sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        for case in CASES:
+            runs = [measure(browser, url, case, args.seconds) for _ in range(args.repeat)]
+            rows.append(summarise(runs))
+        browser.close()
     load = os.getloadavg()[0]
     print(
         f"frontend frame rate, headless Chromium, {args.seconds:g} s per run, "

@@ -129,49 +129,43 @@ def drawn_angle(scene: LinkageScene, link: str) -> float:
     return math.atan2(d[1], d[0])
 
 
-def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[float, float, float]:
-    """(rotation from the drawn pose, omega, alpha) of a driver at ``time``.
+def _start_turn(scene: LinkageScene, driver: Driver) -> float:
+    """The driver's rotation from the drawn pose to its ``angle_deg`` (0 without one)."""
+    if driver.angle_deg is None:
+        return 0.0
+    if len(scene.links[driver.link].points) < 2:
+        raise InvalidScene(
+            f"drivers: angle_deg needs two points on link '{driver.link}' to define its angle"
+        )
+    turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
+    return math.atan2(math.sin(turn), math.cos(turn))
+
+
+def driver_motion(scene: LinkageScene, driver: Driver, times: Array) -> DriverInput:
+    """A driver's rotation from the drawn pose, omega and alpha at each of ``times``.
 
     With an ``angle_law`` the law gives all three. A driver with constant ``alpha`` turns from
     its starting angle (drawn, or ``angle_deg``) as phi = omega t + alpha t^2 / 2, so at the
     default time 0 it is exactly where the scene puts it, with the given omega and alpha.
     """
     if driver.angle_law is not None:
-        value, rate, rate_dot = parse_time_law(driver.angle_law).evaluate(time)
-        return float(value), float(rate), float(rate_dot)
-    turn = 0.0
-    if driver.angle_deg is not None:
-        if len(scene.links[driver.link].points) < 2:
-            raise InvalidScene(
-                f"drivers: angle_deg needs two points on link '{driver.link}' to define its angle"
-            )
-        turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
-        turn = math.atan2(math.sin(turn), math.cos(turn))
-    if time == 0.0:
-        return turn, driver.omega, driver.alpha
-    return (
-        turn + driver.omega * time + 0.5 * driver.alpha * time**2,
-        driver.omega + driver.alpha * time,
-        driver.alpha,
+        return DriverInput(*parse_time_law(driver.angle_law).evaluate(times))
+    return DriverInput(
+        _start_turn(scene, driver) + driver.omega * times + 0.5 * driver.alpha * times**2,
+        driver.omega + driver.alpha * times,
+        np.full(times.size, driver.alpha),
     )
+
+
+def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[float, float, float]:
+    """(rotation from the drawn pose, omega, alpha) of a driver at one instant."""
+    at = driver_motion(scene, driver, np.array([time]))
+    return float(at.theta[0]), float(at.omega[0]), float(at.alpha[0])
 
 
 def driver_inputs_over_time(scene: LinkageScene, times: Array) -> list[DriverInput]:
     """Every driver's rotation from the drawn pose and its rates at each of ``times``."""
-    inputs = []
-    for driver in scene.drivers:
-        if driver.angle_law is not None:
-            inputs.append(DriverInput(*parse_time_law(driver.angle_law).evaluate(times)))
-            continue
-        turn = driver_input(scene, driver, 0.0)[0]
-        inputs.append(
-            DriverInput(
-                turn + driver.omega * times + 0.5 * driver.alpha * times**2,
-                driver.omega + driver.alpha * times,
-                np.full(times.size, driver.alpha),
-            )
-        )
-    return inputs
+    return [driver_motion(scene, driver, times) for driver in scene.drivers]
 
 
 def solve_instant(

@@ -1,19 +1,15 @@
-"""Fixtures for the browser tests: the real app under uvicorn, Debian's Chromium, a watched page.
+"""Fixtures for the browser tests: Debian's Chromium and a watched page of the real app.
 
-The app runs in a subprocess on a free loopback port, exactly as a student would reach it. Every
-page records its console errors, page errors and request URLs; a test fails when the page logged
-an error it did not expect or asked any host other than 127.0.0.1 for anything.
+The app is the session's one uvicorn on a free loopback port (``live_server`` in tests/conftest.py),
+exactly as a student would reach it. Every page records its console errors, page errors and
+request URLs; a test fails when the page logged an error it did not expect or asked any host
+other than 127.0.0.1 for anything.
 """
 
 from __future__ import annotations
 
 import json
-import os
 import re
-import socket
-import subprocess
-import sys
-import time
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
@@ -23,8 +19,6 @@ from typing import Any
 
 import pytest
 
-UVICORN = [sys.executable, "-m", "uvicorn", "server.app:app", "--host", "127.0.0.1"]
-UVICORN += ["--log-level", "warning"]
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = Path("/usr/bin/chromium")
 SCREENSHOTS = ROOT / "test-artifacts" / "screenshots"
@@ -38,81 +32,6 @@ CHROMIUM_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-START_TIMEOUT_S = 40.0
-
-
-def _free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
-
-
-@dataclass
-class LiveServer:
-    url: str
-    routes: frozenset[str]
-
-    def has(self, path: str) -> bool:
-        """Whether the API offers `path` (e.g. "/solution"): the server is built alongside."""
-        return f"/api/v1{path}" in self.routes
-
-    def require(self, path: str) -> None:
-        if not self.has(path):
-            pytest.skip(f"the server has no /api/v1{path} yet")
-
-    def post(self, path: str, body: Any) -> tuple[int, Any]:
-        request = urllib.request.Request(
-            f"{self.url}/api/v1{path}",
-            data=json.dumps(body).encode(),
-            headers={"Content-Type": "application/json"},
-            method="POST",
-        )
-        try:
-            with urllib.request.urlopen(request, timeout=30) as response:
-                return response.status, json.load(response)
-        except urllib.error.HTTPError as err:
-            return err.code, json.load(err)
-
-
-@pytest.fixture(scope="session")
-def live_server() -> Iterator[LiveServer]:
-    port = _free_port()
-    log = (ROOT / "test-artifacts").resolve()
-    log.mkdir(parents=True, exist_ok=True)
-    out = open(log / "browser-uvicorn.log", "wb")  # noqa: SIM115 - closed after the session
-    proc = subprocess.Popen(
-        [*UVICORN, "--port", str(port)],
-        cwd=ROOT,
-        stdout=out,
-        stderr=subprocess.STDOUT,
-        env={**os.environ, "PYTHONUNBUFFERED": "1"},
-    )
-    url = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + START_TIMEOUT_S
-    spec: dict[str, Any] | None = None
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            break
-        try:
-            with urllib.request.urlopen(f"{url}/api/v1/openapi.json", timeout=2) as r:
-                spec = json.load(r)
-            break
-        except OSError:
-            time.sleep(0.2)
-    if spec is None:
-        proc.terminate()
-        out.close()
-        pytest.fail(f"the app did not start on {url}; see {log / 'browser-uvicorn.log'}")
-    try:
-        yield LiveServer(url=url, routes=frozenset(spec.get("paths", {})))
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-        out.close()
 
 
 @pytest.fixture(scope="session")
@@ -172,8 +91,22 @@ def _watch(page: Any, log: PageLog) -> None:
 class AppPage:
     page: Any
     log: PageLog
-    server: LiveServer
+    url: str  # the base URL of the app, http://127.0.0.1:<port>
     context: Any = None
+
+    def post(self, path: str, body: Any) -> tuple[int, Any]:
+        """POST `body` as JSON to /api/v1`path` straight to the server: (status, JSON answer)."""
+        request = urllib.request.Request(
+            f"{self.url}/api/v1{path}",
+            data=json.dumps(body).encode(),
+            headers={"Content-Type": "application/json"},
+            method="POST",
+        )
+        try:
+            with urllib.request.urlopen(request, timeout=30) as response:
+                return response.status, json.load(response)
+        except urllib.error.HTTPError as err:
+            return err.code, json.load(err)
 
     def new_page(self) -> Any:
         """Another tab of the same browser, watched like the first."""
@@ -183,7 +116,7 @@ class AppPage:
         return page
 
     def open(self, fragment: str = "") -> None:
-        self.page.goto(f"{self.server.url}/{fragment}")
+        self.page.goto(f"{self.url}/{fragment}")
         self.wait_ready()
 
     def wait_ready(self) -> None:
@@ -206,19 +139,14 @@ class AppPage:
 
 
 @pytest.fixture
-def app(browser: Any, live_server: LiveServer) -> Iterator[AppPage]:
+def app(browser: Any, live_server: str) -> Iterator[AppPage]:
     context = browser.new_context(viewport={"width": 1440, "height": 1000})
     page = context.new_page()
     page.set_default_timeout(20_000)
     log = PageLog()
     _watch(page, log)
-    # Endpoints the server does not have yet: the page says so on screen (a test checks it);
-    # the browser's own "Failed to load resource" line for them is not a defect of the page.
-    for path in ("/solution", "/events"):
-        if not live_server.has(path):
-            log.allow(rf"status of 40[45].*\[http://127\.0\.0\.1:\d+/api/v1{path}\]")
     try:
-        yield AppPage(page=page, log=log, server=live_server, context=context)
+        yield AppPage(page=page, log=log, url=live_server, context=context)
         external = log.external_requests()
         assert not external, f"requests to other hosts: {external}"
         unexpected = log.unexpected_errors()

@@ -1,6 +1,6 @@
 """The browser app as a student uses it (issue 5), driven in Debian's Chromium.
 
-Every test runs against the real server (conftest.live_server) and fails on any console error,
+Every test runs against the real server (the session's ``live_server``) and fails on any console error,
 page error or request to another host (conftest.app). Screenshots land in
 test-artifacts/screenshots/ for a person to look at.
 """
@@ -80,7 +80,7 @@ def test_page_opens_on_a_moving_four_bar_without_errors(app: AppPage) -> None:
     assert not page.evaluate("performance.getEntriesByName('first-frame').length === 0")
     path = app.screenshot("overview")
     assert path.exists()
-    assert all(u.startswith(app.server.url) or u.startswith("data:") for u in app.log.requests)
+    assert all(u.startswith(app.url) or u.startswith("data:") for u in app.log.requests)
 
 
 def test_linkage_svg_moves_between_frames_without_a_request_per_frame(app: AppPage) -> None:
@@ -145,7 +145,6 @@ def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
 
 
 def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
-    app.server.require("/solution")
     app.open()
     page = app.page
     pause_and_wait(page)
@@ -201,8 +200,7 @@ def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) 
     wait_until(lambda: plot_data(page, "velocity-polygon") != after_preset[1], what="the polygons")
     assert links_svg(page) != after_preset[0]
     assert page.get_attribute("#f-param_crank", "aria-invalid") is None
-    if app.server.has("/solution"):
-        wait_until(lambda: page.inner_text("#steps") != steps_before, what="the new solution")
+    wait_until(lambda: page.inner_text("#steps") != steps_before, what="the new solution")
     app.screenshot("slider-crank-edited")
 
 
@@ -213,7 +211,7 @@ def test_non_assemblable_length_shows_the_servers_message_beside_the_field(
     app.open()
     page = app.page
     pause_and_wait(page)
-    status, problem = app.server.post("/presets/four_bar", {"crank": 3})
+    status, problem = app.post("/presets/four_bar", {"crank": 3})
     assert status == 422 and problem["code"] == "not_assemblable"
     ground_before = page.inner_html("#linkage .layer-ground")
     polygon_before = plot_data(page, "velocity-polygon")
@@ -269,7 +267,7 @@ def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
     page.click("#share")
     page.wait_for_function("document.getElementById('share-url').value.includes('#s=')")
     url = page.input_value("#share-url")
-    assert url.startswith(app.server.url) and "#s=" in url
+    assert url.startswith(app.url) and "#s=" in url
 
     def view(p: Any) -> dict[str, Any]:
         state: dict[str, Any] = p.evaluate(
