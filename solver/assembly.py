@@ -15,7 +15,15 @@ import numpy as np
 
 from solver import dyads, newton
 from solver.errors import NotAssemblable
-from solver.rigid import Array, LinkMotion, PointMotion, fixed_link, link_from_two_points, rotate
+from solver.rigid import (
+    Array,
+    LinkMotion,
+    PointMotion,
+    dot,
+    fixed_link,
+    link_from_two_points,
+    rotate,
+)
 from solver.scene import LinkageScene
 from solver.topology import (
     CircleSpec,
@@ -76,6 +84,16 @@ def continuous_sign(candidate: Callable[[Array], Array], drawn: float, samples: 
     if samples < 3:
         return sign
     plus, minus = candidate(np.ones(samples)), candidate(-np.ones(samples))
+    # A switch needs the branches closer than a few steps: 2 h < 3 (|dP_k| + |dP_k-1|).
+    separation = np.sqrt(dot(plus - minus, plus - minus))
+    step = np.sqrt(
+        np.maximum(
+            dot(np.diff(plus, axis=0), np.diff(plus, axis=0)),
+            dot(np.diff(minus, axis=0), np.diff(minus, axis=0)),
+        )
+    )
+    if separation.min() > 6.0 * step.max():
+        return sign
     for _ in range(MAX_BRANCH_SWITCHES):
         keep = np.where((sign > 0)[:, None], plus, minus)
         other = np.where((sign > 0)[:, None], minus, plus)

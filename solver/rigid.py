@@ -42,8 +42,11 @@ def rotate(vector: Array, angle: Array) -> Array:
 
 
 def scale(factor: Array, vector: Array) -> Array:
-    """factor[i] * vector[i] for each sample."""
-    return factor[..., None] * vector
+    """factor[i] * vector[i] for each sample (column by column: faster than broadcasting)."""
+    out = np.empty(np.broadcast_shapes((*np.shape(factor), 2), vector.shape))
+    np.multiply(vector[..., 0], factor, out=out[..., 0])
+    np.multiply(vector[..., 1], factor, out=out[..., 1])
+    return out
 
 
 @dataclass(frozen=True)

@@ -2,14 +2,10 @@
 //
 // Every call goes to the same origin under /api/v1. Failures are turned into one error type,
 // ApiError {code, detail, position, status, title}, whatever went wrong: an RFC 9457
-// problem+json answer from the server, a plain 404 from an endpoint that does not exist yet,
-// or the network. The views only ever show `detail` next to the field or panel concerned, so
-// they never need to know which of those it was.
+// problem+json answer from the server, another HTTP error, or the network (code 'network').
+// The views show `detail` next to the field or panel concerned.
 
 const BASE = '/api/v1';
-
-/** Error codes of the contract (spec scene-v1, "Errors"). */
-const SPEC_CODES = new Set(['invalid_scene', 'invalid_expression', 'not_assemblable', 'singular_configuration', 'limit_exceeded']);
 
 export class ApiError extends Error {
   constructor({ code, detail, position = null, status = 0, title = '' }) {
@@ -20,11 +16,6 @@ export class ApiError extends Error {
     this.position = position;
     this.status = status;
     this.title = title;
-  }
-
-  /** True when the endpoint is simply not there (the server is still being built). */
-  get missing() {
-    return this.code === 'not_implemented';
   }
 }
 
@@ -37,15 +28,6 @@ async function problemFrom(response, path) {
     } catch {
       body = null;
     }
-  }
-  // A route that does not exist yet answers 404/405 with no code of the contract (FastAPI's
-  // plain {"detail": ...}, or a generic not_found/method_not_allowed problem).
-  if ((response.status === 404 || response.status === 405) && !SPEC_CODES.has(body?.code)) {
-    return new ApiError({
-      code: 'not_implemented',
-      detail: `The server does not offer ${path} yet (HTTP ${response.status}).`,
-      status: response.status,
-    });
   }
   if (body && typeof body === 'object' && (body.code || body.detail)) {
     // FastAPI's own validation errors may carry `detail` as a list of {loc, msg}; flatten it
@@ -107,7 +89,7 @@ export async function solutionPage(scene, method, digits = 4) {
 export async function getExample(file) {
   const response = await fetch(`examples/${encodeURIComponent(file)}`);
   if (!response.ok) {
-    throw new ApiError({ code: 'http_' + response.status, detail: `Example ${file} is missing.`, status: response.status });
+    throw new ApiError({ code: 'http_' + response.status, detail: `Example ${file} could not be loaded (HTTP ${response.status}).`, status: response.status });
   }
   return response.json();
 }

@@ -274,15 +274,16 @@ class App {
       track = await this.fetchTrack(scene, timeDriven);
     } catch (err) {
       // Not-assemblable and friends are answers about the scene: report them to the caller.
-      // An endpoint that is missing, or (for time laws) a sweep that cannot do time ranges yet,
-      // only costs the animation: check the scene with /analyze and show it still.
-      const soft = err.missing || err.code === 'network' || (timeDriven && err.code !== 'invalid_expression');
+      // A network failure, or (for time laws) a sweep over the range chosen here that fails
+      // although the scene's own instant may be fine, only costs the animation: check the
+      // scene with /analyze and show it still.
+      const soft = err.code === 'network' || (timeDriven && err.code !== 'invalid_expression');
       if (!soft) throw err;
       const probeScene = timeDriven ? S.sceneAt(scene, 'time', scene.time ?? 0) : scene;
       try {
         await api.analyze(probeScene, ['position']);
       } catch (probe) {
-        if (!probe.missing && probe.code !== 'network') throw probe;
+        if (probe.code !== 'network') throw probe;
       }
       track = staticTrack(scene, timeDriven ? 'time' : 'angle', timeDriven ? scene.time ?? 0 : S.drawnAngle(scene, scene.drivers?.[0]?.link));
       note = timeDriven
@@ -305,12 +306,7 @@ class App {
       if (err.code !== 'invalid_scene') throw err;
       response = await api.sweep(scene, SAMPLES, ['position'], range);
     }
-    const track = trackFromSweep(response, scene, range);
-    if (timeDriven && track.param !== 'time') {
-      // The server turned the driver instead of running the clock: its sweep has no time range yet.
-      throw new api.ApiError({ code: 'not_implemented', detail: 'The server\'s /sweep does not run over a time range yet (its answer has no "time").' });
-    }
-    return track;
+    return trackFromSweep(response, scene, range);
   }
 
   commitPlanar(scene, track, note, instant, keepChoices) {
@@ -366,7 +362,7 @@ class App {
     try {
       analysis = await api.analyze(scene);
     } catch (err) {
-      if (!err.missing && err.code !== 'network') throw err;
+      if (err.code !== 'network') throw err;
       note = `The server cannot analyse this spatial chain: ${err.detail}`;
     }
     if (seq !== this.geometrySeq) return;
@@ -430,7 +426,7 @@ class App {
       if (seq !== this.analysisSeq) return;
       this.analysis = null;
       this.linkage.setAnalysis(null);
-      this.polygonMessage(err.missing ? `Polygons unavailable: ${err.detail}` : `At this instant the server reports: ${err.detail}`);
+      this.polygonMessage(err.code === 'network' ? `Polygons unavailable: ${err.detail}` : `At this instant the server reports: ${err.detail}`);
     }
     if (seq !== this.analysisSeq) return;
     if (analysis) {
@@ -444,8 +440,6 @@ class App {
       }
       this.linkage.setAnalysis(analysis);
       this.drawPolygons();
-      const missing = S.movingPoints(this.scene).map((m) => m.name).filter((n) => !analysis.moving_points?.[n]);
-      if (missing.length) this.polygonMessage(`The server's analysis has no moving point ${missing.join(', ')} yet, so it is not drawn.`);
       moveCursor($('plots'), this.track, this.instantValue(u), this.units);
       $('linkage').dataset.analysed = String(this.instantValue(u));
     }
@@ -465,7 +459,7 @@ class App {
       if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
     } catch (err) {
       if (seq !== this.solutionSeq) return;
-      renderMessage($('steps'), err.missing ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
+      renderMessage($('steps'), err.code === 'network' ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
       $('mistakes').replaceChildren();
     }
   }

@@ -53,7 +53,7 @@ function firstSeriesLength(response) {
   return 0;
 }
 
-/** A one-sample track from the drawn pose, used when the server has no /sweep to offer. */
+/** A one-sample track from the drawn pose, used when there is no sweep to play (see main.js). */
 export function staticTrack(scene, param = 'angle', value = 0, positions = null) {
   const points = {};
   for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [positions?.[name] || xy] };

@@ -1,8 +1,8 @@
 """The browser app as a student uses it (issue 5), driven in Debian's Chromium.
 
-Every test runs against the real server (the session's ``live_server``) and fails on any console error,
-page error or request to another host (conftest.app). Screenshots land in
-test-artifacts/screenshots/ for a person to look at.
+Every test runs against the real server (the session's ``live_server``, tests/conftest.py) and
+fails on any console error, page error or request to another host (conftest.app). Screenshots
+land in test-artifacts/screenshots/ for a person to look at.
 """
 
 from __future__ import annotations
