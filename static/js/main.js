@@ -298,15 +298,7 @@ class App {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
     // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
     const quantities = timeDriven ? [...QUANTITIES, 'components'] : QUANTITIES;
-    let response;
-    try {
-      response = await api.sweep(scene, SAMPLES, quantities, range);
-    } catch (err) {
-      // A server that can only sweep positions still animates; plots then show angles only.
-      if (err.code !== 'invalid_scene') throw err;
-      response = await api.sweep(scene, SAMPLES, ['position'], range);
-    }
-    return trackFromSweep(response, scene, range);
+    return trackFromSweep(await api.sweep(scene, SAMPLES, quantities, range));
   }
 
   commitPlanar(scene, track, note, instant, keepChoices) {

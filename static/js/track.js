@@ -6,17 +6,9 @@
 // so no number a student reads comes from this interpolation.
 
 /** Build a track from a /sweep response. `param` is 'angle' (driver_angle) or 'time'. */
-export function trackFromSweep(response, scene, timeRange = null) {
-  let timeBased = Array.isArray(response.time);
-  let values = timeBased ? response.time : response.driver_angle;
-  if (timeRange && !timeBased && !Array.isArray(response.driver_angle)) {
-    // Asked for a time range but given samples without their times: they are evenly spaced.
-    const n = firstSeriesLength(response);
-    if (n > 1) {
-      values = Array.from({ length: n }, (_, i) => timeRange[0] + ((timeRange[1] - timeRange[0]) * i) / (n - 1));
-      timeBased = true;
-    }
-  }
+export function trackFromSweep(response) {
+  const timeBased = Array.isArray(response.time);
+  const values = timeBased ? response.time : response.driver_angle;
   if (!Array.isArray(values) || values.length === 0) {
     throw new Error('The sweep answer has no samples.');
   }
@@ -26,10 +18,6 @@ export function trackFromSweep(response, scene, timeRange = null) {
   };
   addPoints(response.points);
   addPoints(response.moving_points);
-  // Ground points never move; a sweep may leave them out, the scene has them.
-  for (const [name, xy] of Object.entries(scene.points || {})) {
-    if (!points[name]) points[name] = { position: values.map(() => xy), fixed: true };
-  }
   const span = values[values.length - 1] - values[0];
   return {
     param: timeBased ? 'time' : 'angle',
@@ -44,13 +32,6 @@ export function trackFromSweep(response, scene, timeRange = null) {
     closed: !timeBased && response.feasible !== false && Math.abs(Math.abs(span) - 2 * Math.PI) < 0.2,
     static: false,
   };
-}
-
-function firstSeriesLength(response) {
-  for (const group of [response.points, response.moving_points]) {
-    for (const q of Object.values(group || {})) if (Array.isArray(q.position)) return q.position.length;
-  }
-  return 0;
 }
 
 /** A one-sample track from the drawn pose, used when there is no sweep to play (see main.js). */
