@@ -292,7 +292,8 @@ def _instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[In
     They depend on the geometry alone (for one degree of freedom): with every driver at rest the
     same pose is differentiated at unit driver rates instead.
     """
-    if all(float(motion.links[d.link].omega[0]) == 0.0 for d in scene.drivers):  # type: ignore[index]
+    driver_rates = [motion.links[d.link].omega for d in scene.drivers]
+    if all(rate is not None and rate[0] == 0.0 for rate in driver_rates):
         unit = [
             DriverInput(motion.links[d.link].theta[:1], np.ones(1), np.zeros(1))
             for d in scene.drivers
