@@ -154,21 +154,31 @@ class ConstraintSystem:
         return phi, J, b
 
 
-def poses_at(links: Mapping[str, LinkMotion], scene: LinkageScene, k: int) -> dict[str, _Pose]:
-    """Each known link's pose and rates at sample ``k`` (anchor moved to the link's first point)."""
-    poses = {}
-    for name, motion in links.items():
-        first = motion.point(scene.drawn(scene.links[name].points[0]))
+class KnownPoses:
+    """The known links' poses and rates sample by sample, each link's anchor moved once to its
+    first point (the anchor the constraint equations use)."""
+
+    def __init__(self, links: Mapping[str, LinkMotion], scene: LinkageScene) -> None:
+        self.links = links
+        self.first = {
+            name: motion.point(scene.drawn(scene.links[name].points[0]))
+            for name, motion in links.items()
+        }
+
+    def at(self, k: int) -> dict[str, _Pose]:
         zero = np.zeros(2)
-        poses[name] = _Pose(
-            first.p[k],
-            float(motion.theta[k]),
-            zero if first.v is None else first.v[k],
-            0.0 if motion.omega is None else float(motion.omega[k]),
-            zero if first.a is None else first.a[k],
-            0.0 if motion.alpha is None else float(motion.alpha[k]),
-        )
-    return poses
+        poses = {}
+        for name, motion in self.links.items():
+            first = self.first[name]
+            poses[name] = _Pose(
+                first.p[k],
+                float(motion.theta[k]),
+                zero if first.v is None else first.v[k],
+                0.0 if motion.omega is None else float(motion.omega[k]),
+                zero if first.a is None else first.a[k],
+                0.0 if motion.alpha is None else float(motion.alpha[k]),
+            )
+        return poses
 
 
 def _unknown_poses(system: ConstraintSystem, q: Array, qd: Array, qdd: Array) -> dict[str, _Pose]:
@@ -185,24 +195,46 @@ def _unknown_poses(system: ConstraintSystem, q: Array, qd: Array, qdd: Array) ->
     }
 
 
-def _continuation_order(
+def _continuation_legs(
     known: Mapping[str, LinkMotion], samples: int
-) -> list[tuple[int, tuple[int, ...]]]:
+) -> list[list[tuple[int, tuple[int, ...]]]]:
     """Samples in solving order, each with the already solved neighbours to predict from.
 
     Continuation starts at the sample where the known links are nearest their drawn pose (the
-    drawn branch) and runs outwards to both ends.
+    drawn branch) and runs outwards in two legs, to the last sample and to the first.
     """
     away = np.zeros(samples)
     for motion in known.values():
         away += np.abs(np.angle(np.exp(1j * motion.theta)))
     start = int(np.argmin(away))
-    order: list[tuple[int, tuple[int, ...]]] = []
+    legs = []
     for leg in (list(range(start, samples)), list(range(start, -1, -1))):
-        for i, k in enumerate(leg):
-            if k != start or not order:
-                order.append((k, tuple(leg[max(i - 2, 0) : i][::-1])))
-    return order
+        legs.append([(k, tuple(leg[max(i - 2, 0) : i][::-1])) for i, k in enumerate(leg)])
+    legs[1] = legs[1][1:]  # the starting sample is solved once, in the first leg
+    return legs
+
+
+def _newton(
+    system: ConstraintSystem, fixed: Mapping[str, _Pose], q: Array, tolerance: float
+) -> tuple[Array, float, int]:
+    """Newton-Raphson q <- q - J^+ Phi(q) from ``q``: (solution, residual norm, iterations)."""
+    zero = np.zeros(q.size)
+    residual, iterations = np.inf, 0
+    while iterations < NEWTON_MAX_ITERATIONS:
+        phi, J, _ = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 0)
+        residual = float(np.linalg.norm(phi))
+        step = np.linalg.lstsq(J, phi, rcond=None)[0]
+        if residual <= tolerance:
+            # One more step polishes a converged iterate to rounding (quadratic convergence).
+            phi_next = system.equations(
+                {**fixed, **_unknown_poses(system, q - step, zero, zero)}, 0
+            )[0]
+            if float(np.linalg.norm(phi_next)) < residual:
+                q, residual = q - step, float(np.linalg.norm(phi_next))
+            break
+        q = q - step
+        iterations += 1
+    return q, residual, iterations
 
 
 def solve_group(
@@ -226,40 +258,30 @@ def solve_group(
     converged = np.zeros(samples, dtype=bool)
     worst_iterations, worst_residual = 0, 0.0
     drawn = np.concatenate([np.append(system.anchor0[link], 0.0) for link in group])
-    for k, previous in _continuation_order(known, samples):
-        q = drawn
-        if len(previous) == 2:
-            q = 2.0 * q_all[previous[0]] - q_all[previous[1]]
-        elif previous:
-            q = q_all[previous[0]]
-        fixed = poses_at(known, scene, k)
-        zero = np.zeros(n)
-        residual, iterations = np.inf, 0
-        while iterations < NEWTON_MAX_ITERATIONS:
-            phi, J, _ = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 0)
-            residual = float(np.linalg.norm(phi))
-            step = np.linalg.lstsq(J, phi, rcond=None)[0]
-            if residual <= tolerance:
-                # One more step polishes a converged iterate to rounding (quadratic convergence).
-                phi_next = system.equations(
-                    {**fixed, **_unknown_poses(system, q - step, zero, zero)}, 0
-                )[0]
-                if float(np.linalg.norm(phi_next)) < residual:
-                    q, residual = q - step, float(np.linalg.norm(phi_next))
-                break
-            q = q - step
-            iterations += 1
-        worst_iterations = max(worst_iterations, iterations)
-        worst_residual = max(worst_residual, residual)
-        converged[k] = residual <= tolerance
-        q_all[k] = q
-        if order >= 1:
-            _, J, b = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 1)
-            qd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
-        if order >= 2:
-            poses = {**fixed, **_unknown_poses(system, q, qd_all[k], zero)}
-            _, J, b = system.equations(poses, 2)
-            qdd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
+    known_poses = KnownPoses(known, scene)
+    for leg in _continuation_legs(known, samples):
+        for k, previous in leg:
+            q = drawn
+            if len(previous) == 2:
+                q = 2.0 * q_all[previous[0]] - q_all[previous[1]]
+            elif previous:
+                q = q_all[previous[0]]
+            fixed = known_poses.at(k)
+            q, residual, iterations = _newton(system, fixed, q, tolerance)
+            worst_iterations = max(worst_iterations, iterations)
+            worst_residual = max(worst_residual, residual)
+            q_all[k] = q
+            converged[k] = residual <= tolerance
+            if not converged[k]:
+                break  # past a limit position the rest of this leg cannot close either
+            zero = np.zeros(n)
+            if order >= 1:
+                _, J, b = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 1)
+                qd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
+            if order >= 2:
+                poses = {**fixed, **_unknown_poses(system, q, qd_all[k], zero)}
+                _, J, b = system.equations(poses, 2)
+                qdd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
     motions = {}
     for index, link in enumerate(group):
         s = slice(3 * index, 3 * index + 2)
@@ -296,7 +318,7 @@ def velocity_condition_number(
     """
     moving = scene.moving_links
     system = ConstraintSystem(scene, moving, drivers=True)
-    _, J, _ = system.equations(poses_at(links, scene, k), 0)
+    _, J, _ = system.equations(KnownPoses(links, scene).at(k), 0)
     size = scene.size
     J = J.copy()
     J[:, 2::3] /= size
