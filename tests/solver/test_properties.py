@@ -461,9 +461,8 @@ def loop_closure_residual(scene: LinkageScene, positions: dict[str, np.ndarray])
 def test_loop_closes_over_a_sweep(family: str, data: st.DataObject) -> None:
     """Every link keeps its lengths, the ground stays put and every sliding point stays on its
     slot line, at every sample of a 360-sample sweep: residual below 1e-12 of the linkage size.
-    Six-bars here are those closed by dyads: a sweep of a Newton-Raphson six-bar takes tens of
-    seconds, so test_extremes.py sweeps one on purpose."""
-    doc = data.draw(linkages(family, WELL_POSED, newton=False), label="doc")
+    Six-bars include those that need a Newton-Raphson group."""
+    doc = data.draw(linkages(family, WELL_POSED), label="doc")
     check_loop_closure(doc)
 
 
