@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from solver.newton import ConstraintSystem, KnownPoses
 from solver.rigid import perp
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, linear_latex, linear_text, present_solution
@@ -939,17 +940,63 @@ class VectorMethod:
         (self.solved_omega if order == VELOCITY else self.solved_alpha).add(step.link)
         return [b.build(), *self.remaining(step.link, step.point, order)]
 
+    def newton_system(self, step: NewtonStep, order: int, b: StepBuilder) -> None:
+        """The group's loop-closure equations differentiated once (twice): J qdot = b_v
+        (J qddot = b_a), the unknowns being each link's first-point velocity (acceleration) and
+        its omega (alpha), with the solver's own matrix, right-hand side and solution."""
+        ctx = self.ctx
+        system = ConstraintSystem(ctx.scene, step.links)
+        poses = KnownPoses(ctx.analysis.motion.links, ctx.scene).at(0)
+        _, J, rhs = system.equations(poses, order)
+        dot = r"\dot" if order == VELOCITY else r"\ddot"
+        rate = r"\omega" if order == VELOCITY else r"\alpha"
+        unknowns, solution = [], []
+        for link in step.links:
+            first = tex.name(ctx.scene.links[link].points[0])
+            pose = poses[link]
+            motion = pose.v if order == VELOCITY else pose.a
+            turn = pose.omega if order == VELOCITY else pose.alpha
+            unknowns += [
+                rf"{dot}{{x}}_{{{first}}}",
+                rf"{dot}{{y}}_{{{first}}}",
+                rf"{rate}_{{{tex.name(link)}}}",
+            ]
+            solution += [float(motion[0]), float(motion[1]), turn]
+        fmt = ctx.fmt
+
+        def matrix(rows: list[list[float]]) -> str:
+            # entries at rounding-noise level next to the largest are shown as 0
+            largest = max((abs(x) for row in rows for x in row), default=0.0)
+            body = r" \\ ".join(
+                " & ".join(fmt.latex(x, reference=largest) for x in row) for row in rows
+            )
+            return r"\begin{bmatrix} " + body + r" \end{bmatrix}"
+
+        b.line(
+            matrix(J.tolist())
+            + tex.column(unknowns)
+            + " = "
+            + matrix([[x] for x in rhs])
+            + r"\quad\Rightarrow\quad "
+            + tex.column(unknowns)
+            + " = "
+            + matrix([[x] for x in solution])
+        )
+
     def newton(self, step: NewtonStep, order: int) -> list[Step]:
         ctx = self.ctx
         what = "velocity" if order == VELOCITY else "acceleration"
+        plural = "velocities" if order == VELOCITY else "accelerations"
         b = ctx.builder(f"{what}.newton", f"Links {', '.join(step.links)}: solved together")
+        self.newton_system(step, order, b)
         for link in step.links:
             rate = self.unknown_rate(link, order)
             value = b.put(rate.key, rate.value, rate.unit, rate.source)
             b.line(rf"&{rate.latex} = {b.numu(value)}")
         b.say(
             f"Links {', '.join(step.links)} form no two-joint group with a closed-form solution:"
-            f" their {what} equations were solved together (simultaneously), which gives "
+            f" their {what} equations, linear in the unknown {plural} of their first points and"
+            " their angular rates, are solved together (the matrix system above), which gives "
             + "; ".join(f"{k} = {v.display}" for k, v in b.values.items())
             + "."
         )
