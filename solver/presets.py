@@ -41,6 +41,7 @@ class PresetParameter:
     minimum: float | None = None
     maximum: float | None = None
     choices: tuple[float, ...] | None = None
+    labels: tuple[str, ...] | None = None  # one word per choice, for a selector
 
     def check(self, value: float) -> float:
         """The value as a float, or ``InvalidScene`` saying why it is not allowed."""
@@ -465,8 +466,10 @@ def _alpha(default: float = 0.0) -> PresetParameter:
     )
 
 
-def _assembly(description: str) -> PresetParameter:
-    return PresetParameter("assembly", 0.0, "", description, 0.0, 1.0, choices=(0.0, 1.0))
+def _assembly(description: str, labels: tuple[str, str]) -> PresetParameter:
+    return PresetParameter(
+        "assembly", 0.0, "", description, 0.0, 1.0, choices=(0.0, 1.0), labels=labels
+    )
 
 
 def _coupler_point(u: float, v: float) -> tuple[PresetParameter, PresetParameter]:
@@ -509,7 +512,10 @@ PRESETS: Mapping[str, Preset] = MappingProxyType(
                 _length("coupler", 1.0, "Length of the coupler BC."),
                 _length("rocker", 0.55, "Length of the rocker DC."),
                 _crank_angle(30.0),
-                _assembly("0 = open (C to the left of B->D), 1 = crossed (C mirrored across BD)."),
+                _assembly(
+                    "0 = open (C to the left of B->D), 1 = crossed (C mirrored across BD).",
+                    ("open", "crossed"),
+                ),
                 *_coupler_point(0.5, 0.2),
                 _omega(8 * math.pi),
                 _alpha(),
@@ -524,7 +530,10 @@ PRESETS: Mapping[str, Preset] = MappingProxyType(
                     "offset", 0.05, "Height y of the slider's guide line above A (0 = centred)."
                 ),
                 _crank_angle(60.0),
-                _assembly("0 = slider to the right of B, 1 = slider to the left of B."),
+                _assembly(
+                    "0 = slider to the right of B, 1 = slider to the left of B.",
+                    ("slider right of B", "slider left of B"),
+                ),
                 *_coupler_point(0.175, 0.1),
                 _omega(10.0),
                 _alpha(),

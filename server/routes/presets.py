@@ -39,6 +39,7 @@ def list_presets() -> FiniteJSONResponse:
                             "minimum": q.minimum,
                             "maximum": q.maximum,
                             "choices": None if q.choices is None else list(q.choices),
+                            "labels": None if q.labels is None else list(q.labels),
                         }
                         for q in p.parameters
                     ],

@@ -173,7 +173,7 @@ export class Controls {
     }
   }
 
-  /** Preset parameters: {name, default, unit, description, minimum, maximum, choices}. */
+  /** Preset parameters: {name, default, unit, description, minimum, maximum, choices, labels}. */
   setPresetFields(parameters, values, onParam) {
     this.clearFields(this.el.dimensions);
     for (const p of parameters) {
@@ -181,7 +181,7 @@ export class Controls {
       const kind = kindOfUnit(p.unit);
       const value = values[p.name] ?? p.default;
       if (Array.isArray(p.choices) && p.choices.length) {
-        this.choiceField(this.el.dimensions, `param:${p.name}`, p.name, value, p.choices, p.description, (v) => onParam(p.name, v));
+        this.choiceField(this.el.dimensions, `param:${p.name}`, p.name, value, p.choices, p.labels, p.description, (v) => onParam(p.name, v));
       } else {
         this.numberField(this.el.dimensions, `param:${p.name}`, p.name.replace(/_/g, ' '), value, {
           kind, rawUnit: p.unit, min: p.minimum, max: p.maximum, help: p.description || '', onCommit: (v) => onParam(p.name, v),
@@ -190,13 +190,13 @@ export class Controls {
     }
   }
 
-  choiceField(parent, key, label, value, choices, help, onCommit) {
+  choiceField(parent, key, label, value, choices, labels, help, onCommit) {
     const id = `f-${key.replace(/[^a-zA-Z0-9_-]/g, '_')}`;
     const wrap = el('div', { class: 'field' });
     const lab = el('label', { for: id }, label.replace(/_/g, ' '));
     const select = el('select', { id, 'data-key': key, 'aria-describedby': `${id}-error` });
     if (help) select.title = help;
-    for (const c of choices) select.appendChild(el('option', { value: JSON.stringify(c) }, String(c)));
+    choices.forEach((c, i) => select.appendChild(el('option', { value: JSON.stringify(c) }, labels?.[i] ?? String(c))));
     select.value = JSON.stringify(value);
     const error = el('p', { id: `${id}-error`, class: 'field-error', role: 'alert', hidden: true });
     wrap.append(lab, select, error);
