@@ -22,14 +22,22 @@ from solver.laws import parse_time_law
 from solver.poles import (
     FourBarLoop,
     InstantCentre,
-    acceleration_pole,
+    Poles,
+    acceleration_poles,
     grashof_class,
     instant_centre,
     transmission_angle,
-    velocity_pole,
+    velocity_poles,
 )
-from solver.relative_motion import MovingPointMotion, moving_point_motion
-from solver.rigid import Array, LinkMotion, PointMotion, perp
+from solver.relative_motion import MovingPointMotion, coriolis_acceleration, moving_point_motion
+from solver.rigid import (
+    Array,
+    LinkMotion,
+    PointMotion,
+    perp,
+    rigid_body_acceleration,
+    rigid_body_velocity,
+)
 from solver.scene import Driver, LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, build_plan
 
@@ -69,7 +77,7 @@ class SlidingJoint:
     point: str
     type: str
     links: tuple[str, str]
-    omega_guide: float
+    omega_guide: Array
     transport_velocity: Array
     relative_velocity: Array
     velocity: Array
@@ -77,6 +85,19 @@ class SlidingJoint:
     relative_acceleration: Array | None
     coriolis_acceleration: Array | None
     acceleration: Array | None
+
+    def at(self, k: int) -> SlidingJoint:
+        """The same parts at sample ``k`` alone (arrays over samples become single values)."""
+
+        def pick(value: Array | None) -> Array | None:
+            return None if value is None else value[k]
+
+        return SlidingJoint(
+            self.point, self.type, self.links, self.omega_guide[k],
+            self.transport_velocity[k], self.relative_velocity[k], self.velocity[k],
+            pick(self.transport_acceleration), pick(self.relative_acceleration),
+            pick(self.coriolis_acceleration), pick(self.acceleration),
+        )  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -217,7 +238,8 @@ def _last_sample(motion: Motion) -> Motion:
     )
 
 
-def _sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:
+def sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:
+    """Every slider and prismatic joint split into its parts, at every sample of ``motion``."""
     joints = []
     for joint in scene.joints:
         if joint.type == "revolute":
@@ -225,41 +247,48 @@ def _sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[Sli
         guide = motion.links[joint.guide]
         P = motion.points[joint.point]
         assert P.v is not None and guide.omega is not None and guide.anchor.v is not None
-        omega_g = float(guide.omega[0])
-        r = P.p[0] - guide.anchor.p[0]
-        v_tr = guide.anchor.v[0] + omega_g * perp(r)
-        v_rel = P.v[0] - v_tr
-        a_tr = a_rel = a_cor = a = None
+        r = P.p - guide.anchor.p
+        v_tr = rigid_body_velocity(guide.anchor.v, guide.omega, r)
+        v_rel = P.v - v_tr
+        a_tr = a_rel = a_cor = None
         if order >= 2:
             assert P.a is not None and guide.alpha is not None and guide.anchor.a is not None
-            alpha_g = float(guide.alpha[0])
-            a_tr = guide.anchor.a[0] + alpha_g * perp(r) - omega_g**2 * r
-            a_cor = 2.0 * omega_g * perp(v_rel)
-            a = P.a[0]
-            a_rel = a - a_tr - a_cor
+            a_tr = rigid_body_acceleration(guide.anchor.a, guide.omega, guide.alpha, r)
+            a_cor = coriolis_acceleration(guide.omega, v_rel)
+            a_rel = P.a - a_tr - a_cor
         joints.append(
             SlidingJoint(
                 joint.point,
                 joint.type,
                 joint.links,
-                omega_g,
+                guide.omega,
                 v_tr,
                 v_rel,
-                P.v[0],
+                P.v,
                 a_tr,
                 a_rel,
                 a_cor,
-                a,
+                P.a if order >= 2 else None,
             )
         )
     return joints
+
+
+def link_poles(scene: LinkageScene, motion: Motion, link: str) -> tuple[Poles, Poles]:
+    """The velocity and acceleration poles of a moving link at every sample of ``motion``."""
+    m = motion.links[link]
+    X = m.anchor
+    assert X.v is not None and X.a is not None and m.omega is not None and m.alpha is not None
+    return (
+        velocity_poles(X.p, X.v, m.omega, scene.size),
+        acceleration_poles(X.p, X.a, m.omega, m.alpha, scene.size),
+    )
 
 
 def _link_results(
     scene: LinkageScene, motion: Motion, quantities: frozenset[str]
 ) -> dict[str, LinkResult]:
     results = {}
-    size = scene.size
     for name in scene.moving_links:
         link = motion.links[name]
         points = scene.links[name].points
@@ -271,11 +300,8 @@ def _link_results(
         alpha = None if link.alpha is None else float(link.alpha[0])
         v_pole = a_pole = None
         if "poles" in quantities:
-            assert omega is not None and alpha is not None
-            X = link.anchor
-            assert X.v is not None and X.a is not None
-            v_pole = velocity_pole(X.p[0], X.v[0], omega, size)
-            a_pole = acceleration_pole(X.p[0], X.a[0], omega, alpha, size)
+            v_poles, a_poles = link_poles(scene, motion, name)
+            v_pole, a_pole = v_poles.at(0), a_poles.at(0)
         results[name] = LinkResult(
             angle,
             omega if "velocity" in quantities or "poles" in quantities else None,
@@ -377,7 +403,9 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
         for name, m in motion.points.items()
         if name in scene.points
     }
-    joints = _sliding_joints(scene, motion, order) if "components" in wanted else []
+    joints = (
+        [j.at(0) for j in sliding_joints(scene, motion, order)] if "components" in wanted else []
+    )
     centres = _instant_centres(scene, plan, motion) if "poles" in wanted else []
     diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
     moving = {}

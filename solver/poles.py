@@ -8,39 +8,52 @@ million kilometres away.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from solver.rigid import Array, perp
+from solver.rigid import Array, dot, perp
 
 POLE_TOLERANCE = 1e-10
 
 
-def velocity_pole(X: Array, v_X: Array, omega: float, size: float) -> Array | None:
-    """From v_X = omega x r_PX: P = X + (k x v_X) / omega."""
-    if abs(omega) * size <= POLE_TOLERANCE * (float(np.hypot(*v_X)) + abs(omega) * size) or (
-        omega == 0.0
-    ):
-        return None
-    return X + perp(v_X) / omega
+@dataclass(frozen=True)
+class Poles:
+    """Poles over samples: ``position`` (N, 2) is meaningful where ``exists`` (N,) is true."""
+
+    position: Array
+    exists: Array
+
+    def at(self, k: int) -> Array | None:
+        return self.position[k] if self.exists[k] else None
 
 
-def acceleration_pole(
-    X: Array, a_X: Array, omega: float, alpha: float, size: float
-) -> Array | None:
+def velocity_poles(X: Array, v_X: Array, omega: Array, size: float) -> Poles:
+    """From v_X = omega x r_PX: P = X + (k x v_X) / omega, where the link turns."""
+    speed = np.sqrt(dot(v_X, v_X))
+    turning = (omega != 0.0) & (
+        np.abs(omega) * size > POLE_TOLERANCE * (speed + np.abs(omega) * size)
+    )
+    r_XP = perp(v_X)
+    r_XP /= np.where(turning, omega, 1.0)[..., None]
+    return Poles(X + r_XP, turning)
+
+
+def acceleration_poles(X: Array, a_X: Array, omega: Array, alpha: Array, size: float) -> Poles:
     """From a_X = alpha x r_GX - omega^2 r_GX: r_GX = M^-1 a_X with M = [[-w^2, -a], [a, -w^2]].
 
     M^-1 = [[-w^2, a], [-a, -w^2]] / (w^4 + a^2), so G = X - M^-1 a_X.
     """
     det = omega**4 + alpha**2
-    rate = math.sqrt(det)
-    if det == 0.0 or rate * size <= POLE_TOLERANCE * (float(np.hypot(*a_X)) + rate * size):
-        return None
+    rate = np.sqrt(det)
+    magnitude = np.sqrt(dot(a_X, a_X))
+    exists = (det != 0.0) & (rate * size > POLE_TOLERANCE * (magnitude + rate * size))
+    safe = np.where(exists, det, 1.0)
     w2 = omega**2
-    r_GX = np.array([-w2 * a_X[0] + alpha * a_X[1], -alpha * a_X[0] - w2 * a_X[1]]) / det
-    return X - r_GX
+    r_GX = np.empty_like(a_X)
+    r_GX[..., 0] = (-w2 * a_X[..., 0] + alpha * a_X[..., 1]) / safe
+    r_GX[..., 1] = (-alpha * a_X[..., 0] - w2 * a_X[..., 1]) / safe
+    return Poles(X - r_GX, exists)
 
 
 @dataclass(frozen=True)

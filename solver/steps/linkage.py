@@ -175,7 +175,7 @@ class LinkageContext:
                     return SlotMotion(
                         index,
                         joint,
-                        s.omega_guide,
+                        float(s.omega_guide),
                         direction,
                         s.transport_velocity,
                         s.relative_velocity,
