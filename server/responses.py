@@ -12,8 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis
+from solver.analysis import LinkageAnalysis, SlidingJoint
 from solver.assembly import Motion
+from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion
 from solver.scene import LinkageScene
 from solver.spatial import SpatialAnalysis
@@ -79,6 +80,27 @@ def moving_point_fields(
     return out
 
 
+SLIDING_JOINT_PARTS = (
+    "transport_velocity",
+    "relative_velocity",
+    "velocity",
+    "transport_acceleration",
+    "relative_acceleration",
+    "coriolis_acceleration",
+    "acceleration",
+)
+
+
+def sliding_joint_fields(joint: SlidingJoint, convert: Callable[[Any], Any]) -> JSON:
+    """A slider or prismatic joint's parts (vectors converted; the guide's omega as is)."""
+    out: JSON = {"point": joint.point, "type": joint.type, "links": list(joint.links)}
+    omega = joint.omega_guide
+    out["omega_guide"] = float(omega) if np.ndim(omega) == 0 else convert(omega)
+    for name in SLIDING_JOINT_PARTS:
+        out[name] = convert(getattr(joint, name))
+    return out
+
+
 def analysis_response(result: LinkageAnalysis) -> JSON:
     """The /analyze body of a linkage."""
     wanted = result.quantities
@@ -102,22 +124,7 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
             out["acceleration_pole"] = vector(link.acceleration_pole)
         body["links"][name] = out
     if "components" in wanted:
-        body["joints"] = [
-            {
-                "point": j.point,
-                "type": j.type,
-                "links": list(j.links),
-                "omega_guide": j.omega_guide,
-                "transport_velocity": vector(j.transport_velocity),
-                "relative_velocity": vector(j.relative_velocity),
-                "velocity": vector(j.velocity),
-                "transport_acceleration": vector(j.transport_acceleration),
-                "relative_acceleration": vector(j.relative_acceleration),
-                "coriolis_acceleration": vector(j.coriolis_acceleration),
-                "acceleration": vector(j.acceleration),
-            }
-            for j in result.joints
-        ]
+        body["joints"] = [sliding_joint_fields(j, vector) for j in result.joints]
     if result.moving_points:
         body["moving_points"] = {
             name: moving_point_fields(m, wanted, vector) for name, m in result.moving_points.items()
@@ -186,8 +193,20 @@ def spatial_response(result: SpatialAnalysis, wanted: frozenset[str]) -> JSON:
     return body
 
 
-def _motion_arrays(scene: LinkageScene, motion: Motion, wanted: frozenset[str]) -> JSON:
-    """Points and links of a vectorised motion, as the sweep arrays of the spec."""
+def _pole_list(poles: Poles) -> list[list[float] | None]:
+    """[x, y] at each sample, null where the pole does not exist."""
+    return [p if e else None for p, e in zip(poles.position.tolist(), poles.exists, strict=True)]
+
+
+def _motion_arrays(
+    scene: LinkageScene,
+    motion: Motion,
+    wanted: frozenset[str],
+    joints: list[SlidingJoint],
+    poles: dict[str, tuple[Poles, Poles]],
+) -> JSON:
+    """Points, links (with their poles) and slider parts of a vectorised motion, as the sweep
+    arrays of the spec."""
     points = {
         name: _point(array(p.p), array(p.v), array(p.a), wanted)
         for name, p in motion.points.items()
@@ -206,8 +225,13 @@ def _motion_arrays(scene: LinkageScene, motion: Motion, wanted: frozenset[str]) 
             out["omega"] = array(link.omega)
         if "acceleration" in wanted:
             out["alpha"] = array(link.alpha)
+        if name in poles:
+            out["velocity_pole"], out["acceleration_pole"] = map(_pole_list, poles[name])
         links[name] = out
-    return {"points": points, "links": links}
+    body: JSON = {"points": points, "links": links}
+    if "components" in wanted:
+        body["joints"] = [sliding_joint_fields(j, array) for j in joints]
+    return body
 
 
 def sweep_response(result: Sweep) -> JSON:
@@ -216,7 +240,9 @@ def sweep_response(result: Sweep) -> JSON:
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
         "samples": int(result.driver_angle.size),
-        **_motion_arrays(result.scene, result.motion, result.quantities),
+        **_motion_arrays(
+            result.scene, result.motion, result.quantities, result.joints, result.poles
+        ),
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
@@ -230,7 +256,7 @@ def time_sweep_response(result: TimeSweep) -> JSON:
         "time": array(result.time),
         "driver_angle": array(result.driver_angle),
         "samples": int(result.time.size),
-        **_motion_arrays(result.scene, result.motion, wanted),
+        **_motion_arrays(result.scene, result.motion, wanted, result.joints, result.poles),
         "moving_points": {
             name: moving_point_fields(m, wanted, array) for name, m in result.moving_points.items()
         },

@@ -43,10 +43,11 @@ class SweepRequest(Strict):
         description="A scene-v1 'linkage' document.", examples=[_example("S000-T1")]
     )
     samples: int = Field(360, description="Samples over the revolution (or feasible range).")
-    quantities: list[Literal["position", "velocity", "acceleration", "components"]] | None = Field(
+    quantities: list[Quantity] | None = Field(
         None,
-        description="Default: position only. 'components' (time sweeps): the "
-        "moving points' transport, relative and Coriolis parts.",
+        description="Default: position only. 'poles': each link's velocity and acceleration "
+        "pole per sample (null where none); 'components': the slider joints' (and moving "
+        "points') transport, relative and Coriolis parts per sample.",
     )
     time_range: list[float] | None = Field(
         None,

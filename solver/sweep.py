@@ -18,14 +18,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.analysis import (
+    SlidingJoint,
     drawn_angle,
     driver_input,
     driver_inputs_over_time,
+    link_poles,
     normalise_quantities,
     required_order,
+    sliding_joints,
 )
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
 from solver.errors import InvalidScene, LimitExceeded
+from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
 from solver.scene import LinkageScene
@@ -35,7 +39,6 @@ MAX_SAMPLES = 100_000
 PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
 SINGULAR_CONDITIONING = 1e-12  # sine of the angle between a group's constraint gradients
-SWEEP_QUANTITIES = frozenset({"position", "velocity", "acceleration"})
 
 
 @dataclass(frozen=True)
@@ -50,6 +53,17 @@ class Sweep:
     limits: tuple[float, ...]
     singular_samples: Array
     quantities: frozenset[str]
+    joints: list[SlidingJoint]
+    poles: dict[str, tuple[Poles, Poles]]
+
+
+def _joints_and_poles(
+    scene: LinkageScene, motion: Motion, wanted: frozenset[str], order: int
+) -> tuple[list[SlidingJoint], dict[str, tuple[Poles, Poles]]]:
+    """The slider parts (``components``) and the links' poles (``poles``), where requested."""
+    joints = sliding_joints(scene, motion, order) if "components" in wanted else []
+    poles = {link: link_poles(scene, motion, link) for link in scene.moving_links}
+    return joints, poles if "poles" in wanted else {}
 
 
 class _Driven:
@@ -128,8 +142,6 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
-    if wanted - SWEEP_QUANTITIES:
-        raise InvalidScene(f"quantities: a sweep gives {', '.join(sorted(SWEEP_QUANTITIES))}")
     plan = build_plan(scene)
     driven = _Driven(scene, plan)
     start, omega, _ = driven.given[0]
@@ -177,6 +189,7 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
         tuple(drawn + limit for limit in limits),
         singular,
         wanted,
+        *_joints_and_poles(scene, motion, wanted, order),
     )
 
 
@@ -190,6 +203,8 @@ class TimeSweep:
     motion: Motion
     moving_points: dict[str, MovingPointMotion]
     quantities: frozenset[str]
+    joints: list[SlidingJoint]
+    poles: dict[str, tuple[Poles, Poles]]
 
 
 def sweep_time(
@@ -201,10 +216,6 @@ def sweep_time(
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
         raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
-    if wanted - SWEEP_QUANTITIES - {"components"}:
-        raise InvalidScene(
-            "quantities: a time sweep gives position, velocity, acceleration and components"
-        )
     times = np.linspace(t0, t1, samples)
     plan = build_plan(scene)
     inputs = driver_inputs_over_time(scene, times)
@@ -223,4 +234,12 @@ def sweep_time(
     angle = np.zeros(samples)
     if first is not None and len(scene.links[first].points) >= 2:
         angle = drawn_angle(scene, first) + inputs[0].theta
-    return TimeSweep(scene, times, angle, motion, moving, wanted)
+    return TimeSweep(
+        scene,
+        times,
+        angle,
+        motion,
+        moving,
+        wanted,
+        *_joints_and_poles(scene, motion, wanted, order),
+    )
