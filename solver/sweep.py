@@ -62,8 +62,10 @@ def _joints_and_poles(
 ) -> tuple[list[SlidingJoint], dict[str, tuple[Poles, Poles]]]:
     """The slider parts (``components``) and the links' poles (``poles``), where requested."""
     joints = sliding_joints(scene, motion, order) if "components" in wanted else []
-    poles = {link: link_poles(scene, motion, link) for link in scene.moving_links}
-    return joints, poles if "poles" in wanted else {}
+    poles = {}
+    if "poles" in wanted:
+        poles = {link: link_poles(scene, motion, link) for link in scene.moving_links}
+    return joints, poles
 
 
 class _Driven:

@@ -353,7 +353,6 @@ def test_samples_of_the_wrong_type(client: TestClient, samples: Any) -> None:
     [
         ("/api/v1/analyze", ["position", "jerk"]),
         ("/api/v1/analyze", "position"),
-        ("/api/v1/sweep", ["poles"]),  # an instant's quantity, not a sweep's
         ("/api/v1/sweep", ["jerk"]),
     ],
 )
