@@ -82,7 +82,7 @@ def measure(
     if choice:
         page.select_option("#preset", choice)
         page.wait_for_timeout(1500)
-    page.wait_for_selector("#linkage .link")
+    page.wait_for_selector("#linkage .link", state="attached")
     # Let the first analysis, Plotly and KaTeX settle, then count frames while playing.
     page.wait_for_timeout(1500)
     playing = page.get_attribute("#play", "aria-pressed") == "true"
