@@ -158,6 +158,22 @@ def _circle_line(
     return q + (w.real + (s if forward else -s)) * u
 
 
+def _on_horizontal_guide(
+    b: complex,
+    length: float,
+    height: float,
+    link: str,
+    where: str,
+    *,
+    forward: bool = True,
+    guide: str = "the guide line",
+) -> complex:
+    """The point at distance ``length`` from B on the fixed horizontal guide y = ``height``
+    (to the right of B when ``forward``)."""
+    names = ("B", f"{guide} y = {height:g} m", link)
+    return _circle_line(b, length, complex(0, height), 1, forward=forward, names=names, where=where)
+
+
 def _slot_direction(
     pivot: complex, pin: complex, offset: float, *, names: str, where: str
 ) -> complex:
@@ -298,15 +314,7 @@ def _slider_crank(v: Mapping[str, float]) -> dict[str, Any]:
     a = 0j
     b, where = _crank_pin(a, v)
     offset = v["offset"]
-    c = _circle_line(
-        b,
-        v["rod"],
-        complex(0, offset),
-        1,
-        forward=v["assembly"] == 0,
-        names=("B", f"the guide line y = {offset:g} m", "rod"),
-        where=where,
-    )
+    c = _on_horizontal_guide(b, v["rod"], offset, "rod", where, forward=v["assembly"] == 0)
     points = {"A": a, "B": b, "C": c}
     coupler = _with_coupler_point(points, v)
     return _layout(
@@ -365,16 +373,7 @@ def _quick_return(v: Mapping[str, float]) -> dict[str, Any]:
     a, where = _crank_pin(o2, v)
     u = _slot_direction(o4, a, v["slot_offset"], names="O4A", where=where)
     b = _at(o4, u, along, v["slot_offset"])
-    height = v["ram_height"]
-    c = _circle_line(
-        b,
-        v["rod"],
-        complex(0, height),
-        1,
-        forward=True,
-        names=("B", f"the ram's guide y = {height:g} m", "rod"),
-        where=where,
-    )
+    c = _on_horizontal_guide(b, v["rod"], v["ram_height"], "rod", where, guide="the ram's guide")
     return _layout(
         {"O2": o2, "A": a, "O4": o4, "B": b, "C": c},
         ["O2", "O4"],
@@ -399,16 +398,7 @@ def _slider_guide_extension(v: Mapping[str, float]) -> dict[str, Any]:
     """
     a = 0j
     b, where = _crank_pin(a, v)
-    height = v["guide_height"]
-    c = _circle_line(
-        b,
-        v["coupler"],
-        complex(0, height),
-        1,
-        forward=True,
-        names=("B", f"the guide line y = {height:g} m", "coupler"),
-        where=where,
-    )
+    c = _on_horizontal_guide(b, v["coupler"], v["guide_height"], "coupler", where)
     d = _at(c, _unit(b, c), v["extension"], 0)
     return _layout(
         {"A": a, "B": b, "C": c, "D": d},
