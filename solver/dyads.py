@@ -60,10 +60,6 @@ class Intersection:
     def point(self, sign: Array) -> Array:
         return self.base + scale(sign * self.h, self.offset)
 
-    @property
-    def feasible(self) -> Array:
-        return self.gap2 >= -TANGENCY_TOLERANCE
-
 
 def _root(gap2: Array, h2: Array) -> Array:
     """sqrt(h^2), a tangency within rounding snapped to zero, no root taken of a negative."""
@@ -136,13 +132,6 @@ def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
     message = f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
     base = l1.through.p + scale(t, l1.direction)
     return Intersection(base, l1.direction, np.zeros_like(t), gap2, message)
-
-
-def drawn_sign(first: Locus, second: Locus, X0: Array, base0: Array, offset0: Array) -> float:
-    """The branch of the drawn pose: which side of the base the drawn point lies on (+1 or -1)."""
-    del first, second
-    side = float(dot(X0 - base0, offset0))
-    return 1.0 if side >= 0.0 else -1.0
 
 
 def _constraint_row(locus: Locus, X: Array) -> Array:

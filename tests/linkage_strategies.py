@@ -37,7 +37,6 @@ from tests.strategies import assemblable_presets
 
 # Bound on the reported condition number of an accepted draw (a well-posed instant).
 MAX_CONDITION = 1e4
-FOUR_BAR_LINKS = ("ground", "crank", "coupler", "rocker")
 # Links of the four-bar that share a joint (A, B, C, D): a dyad between them makes a Watt chain.
 ADJACENT = {
     frozenset(("ground", "crank")),

@@ -21,7 +21,6 @@ import pytest
 REFERENCE = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
 RELATIVE_TOLERANCE = 1e-6  # seed-cases.json "about"
 
-Case = dict[str, Any]
 
 
 def _planar_requests() -> list[tuple[str, dict[str, Any]]]:
