@@ -22,7 +22,6 @@ REFERENCE = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json
 RELATIVE_TOLERANCE = 1e-6  # seed-cases.json "about"
 
 
-
 def _planar_requests() -> list[tuple[str, dict[str, Any]]]:
     cases = json.loads(REFERENCE.read_text())["cases"]
     selected = []
