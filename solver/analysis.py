@@ -32,8 +32,6 @@ from solver.poles import (
 from solver.relative_motion import MovingPointMotion, coriolis_acceleration, moving_point_motion
 from solver.rigid import (
     Array,
-    LinkMotion,
-    PointMotion,
     perp,
     rigid_body_acceleration,
     rigid_body_velocity,
@@ -204,7 +202,7 @@ def solve_instant(
         inputs.append(DriverInput(ramp, np.full(ramp.size, omega), np.full(ramp.size, alpha)))
     motion = assemble(scene, plan, inputs, order, continuation=steps > 1)
     if steps > 1:
-        motion = _last_sample(motion)
+        motion = motion.cut(slice(-1, None))
     angles = {
         d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
         for d, g in zip(scene.drivers, given, strict=True)
@@ -215,27 +213,6 @@ def solve_instant(
         where = "at the drawn pose"
     require_feasible(motion, where)
     return motion, angles
-
-
-def _last_sample(motion: Motion) -> Motion:
-    def cut(a: Array | None) -> Array | None:
-        return None if a is None else a[-1:]
-
-    def point(m: PointMotion) -> PointMotion:
-        return PointMotion(m.p[-1:], cut(m.v), cut(m.a))
-
-    links = {
-        k: LinkMotion(m.anchor0, point(m.anchor), m.theta[-1:], cut(m.omega), cut(m.alpha))
-        for k, m in motion.links.items()
-    }
-    return Motion(
-        links,
-        {k: point(m) for k, m in motion.points.items()},
-        motion.margin[-1:],
-        motion.conditioning[-1:],
-        motion.failures,
-        motion.newton,
-    )
 
 
 def sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:

@@ -1,17 +1,22 @@
 """Assemble a linkage at given driver inputs: positions, velocities, accelerations on request.
 
 Runs a ``Plan`` (see ``topology``) vectorised over samples. The branch of each two-branch group is
-either the drawn one (``continuation=False``: the same orientation of the dyad's triangle, as the
-spec asks for a single pose) or followed from sample to sample with a predictor
-(``continuation=True``: a sweep keeps a parallelogram a parallelogram through its change points).
+the drawn one (the same orientation of the dyad's triangle, as the spec asks for a single pose).
+With ``continuation=True`` (a sweep) it switches only where the group's two branches meet between
+two samples within rounding: the closest approach of the branches over the continuous driver
+path is found by Brent's method wherever the samples say it could come near, so a parallelogram
+stays a parallelogram through its change points and a linkage 1e-12 off a change point keeps its
+assembly, at any sample count.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq, minimize_scalar
 
 from solver import dyads, newton
 from solver.errors import NotAssemblable
@@ -19,7 +24,6 @@ from solver.rigid import (
     Array,
     LinkMotion,
     PointMotion,
-    dot,
     fixed_link,
     link_from_two_points,
     rotate,
@@ -34,12 +38,15 @@ from solver.topology import (
     LocusSpec,
     NewtonStep,
     Plan,
+    Step,
     TwoPointStep,
 )
 
-# A branch switch must bring the next sample at least this much closer to the predicted position.
-SWITCH_MARGIN = 0.5
-MAX_BRANCH_SWITCHES = 64
+EPS = float(np.finfo(float).eps)
+
+# Where the branches come closer than this fraction of the linkage's size without meeting, a
+# sweep reports the closest approach (a real mechanism with clearance could switch there).
+WARNING_MARGIN = 1e-3
 
 
 @dataclass(frozen=True)
@@ -52,12 +59,25 @@ class DriverInput:
 
 
 @dataclass(frozen=True)
+class Approach:
+    """The closest approach of a group's two branches between samples: at fractional sample
+    ``at`` (k + x: x of the way from sample k to k + 1), the length margin ``margin`` (metres;
+    within the coincidence tolerance the branches meet, below it the group cannot close)."""
+
+    point: str
+    at: float
+    margin: float
+
+
+@dataclass(frozen=True)
 class Motion:
     """The solved state of a linkage over N samples.
 
     ``conditioning`` is the smallest sine of the angle between the two constraint gradients of any
-    group (0 at a dead centre); ``margin`` the smallest h^2 / r^2 of any two-branch group
-    (negative where a group does not close; -1 where Newton-Raphson did not converge).
+    group (0 at a dead centre); ``margin`` the smallest length margin m / size of any two-branch
+    group (negative where a group does not close; -1 where Newton-Raphson did not converge).
+    With continuation, ``approaches`` lists every close approach found between samples: branch
+    switches (the branches meet), near misses, and windows where the linkage cannot close.
     """
 
     links: dict[str, LinkMotion]
@@ -66,57 +86,95 @@ class Motion:
     conditioning: Array
     failures: list[str] = field(default_factory=list)
     newton: list[newton.NewtonReport] = field(default_factory=list)
+    approaches: list[Approach] = field(default_factory=list)
+    size: float = 1.0
 
     @property
     def feasible(self) -> Array:
-        """Samples where every group closed (to the tangency tolerance)."""
-        return self.margin >= -dyads.TANGENCY_TOLERANCE
+        """Samples where every group closed (to the coincidence tolerance)."""
+        return self.margin >= -dyads.COINCIDENCE_TOLERANCE
 
+    def cut(self, part: slice) -> Motion:
+        """The same motion at the samples ``part`` only (approaches kept as found)."""
 
-def continuous_sign(candidate: Callable[[Array], Array], drawn: float, samples: int) -> Array:
-    """Per-sample branch signs that keep the motion smooth, starting on the drawn branch.
+        def take(a: Array | None) -> Array | None:
+            return None if a is None else a[part]
 
-    With a constant sign the path P follows one side of the dyad. Where the other side's point is
-    clearly closer to the linear prediction 2 P[k-1] - P[k-2] (which happens only where the two
-    branches meet, at a change point), the sign flips from that sample on.
-    """
-    sign = np.full(samples, drawn)
-    if samples < 3:
-        return sign
-    plus, minus = candidate(np.ones(samples)), candidate(-np.ones(samples))
-    # A switch needs the branches closer than a few steps: 2 h < 3 (|dP_k| + |dP_k-1|).
-    separation = np.sqrt(dot(plus - minus, plus - minus))
-    step = np.sqrt(
-        np.maximum(
-            dot(np.diff(plus, axis=0), np.diff(plus, axis=0)),
-            dot(np.diff(minus, axis=0), np.diff(minus, axis=0)),
+        def point(m: PointMotion) -> PointMotion:
+            return PointMotion(m.p[part], take(m.v), take(m.a))
+
+        links = {
+            k: LinkMotion(m.anchor0, point(m.anchor), m.theta[part], take(m.omega), take(m.alpha))
+            for k, m in self.links.items()
+        }
+        return Motion(
+            links,
+            {k: point(m) for k, m in self.points.items()},
+            self.margin[part],
+            self.conditioning[part],
+            self.failures,
+            self.newton,
+            self.approaches,
+            self.size,
         )
-    )
-    if separation.min() > 6.0 * step.max():
-        return sign
-    for _ in range(MAX_BRANCH_SWITCHES):
-        keep = np.where((sign > 0)[:, None], plus, minus)
-        other = np.where((sign > 0)[:, None], minus, plus)
-        predicted = 2.0 * keep[1:-1] - keep[:-2]
-        err_keep = np.hypot(*(keep[2:] - predicted).T)
-        err_other = np.hypot(*(other[2:] - predicted).T)
-        switch = np.flatnonzero(err_other < SWITCH_MARGIN * err_keep)
-        if switch.size == 0:
-            break
-        sign[switch[0] + 2 :] *= -1.0
-    return sign
+
+    @property
+    def windows(self) -> list[Approach]:
+        """Closest approaches between samples where the linkage cannot close."""
+        return [a for a in self.approaches if a.margin < -dyads.COINCIDENCE_TOLERANCE * self.size]
+
+    @property
+    def near_misses(self) -> list[Approach]:
+        """Closest approaches between samples where the branches come close without meeting."""
+        return [a for a in self.approaches if a.margin > dyads.COINCIDENCE_TOLERANCE * self.size]
+
+
+def candidate_minima(margin: Array, size: float) -> Array:
+    """Samples k at a local minimum of the margin whose neighbourhood may dip below the warning
+    threshold: m_k - max(m_k-1 - m_k, m_k+1 - m_k) < WARNING_MARGIN size (a bound that holds for a
+    smooth minimum within half a step of k and for a V-shaped one, |d| at coincident centres)."""
+    if margin.size < 3:
+        return np.array([], dtype=int)
+    m, before, after = margin[1:-1], margin[:-2], margin[2:]
+    low = m - np.maximum(before - m, after - m)
+    found = (m < before) & (m <= after) & (low < WARNING_MARGIN * size)
+    found &= m >= -dyads.COINCIDENCE_TOLERANCE * size  # an infeasible sample is reported as such
+    return np.flatnonzero(found) + 1
+
+
+def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list[DriverInput]:
+    """The drivers at fractional sample u = k + x, -1 <= x <= 1 (thetas linear between samples),
+    with rates d theta / du: the path the continuation follows between two samples."""
+    out = []
+    for given in inputs:
+        theta = given.theta
+        step = float(theta[k] - theta[k - 1] if x < 0.0 else theta[k + 1] - theta[k])
+        out.append(DriverInput(np.array([theta[k] + x * step]), np.array([step]), np.zeros(1)))
+    return out
 
 
 class _Assembler:
-    """Runs one plan over one set of inputs (state lives only for the duration of ``run``)."""
+    """Runs one plan over one set of inputs (state lives only for the duration of ``run``).
+
+    ``signs`` forces the branch of given steps (used to evaluate a group between two samples with
+    the branches its inputs were given there); with continuation, each group is on its drawn
+    branch at sample ``anchor``.
+    """
 
     def __init__(
-        self, scene: LinkageScene, inputs: Sequence[DriverInput], order: int, continuation: bool
+        self,
+        scene: LinkageScene,
+        inputs: Sequence[DriverInput],
+        order: int,
+        continuation: bool,
+        signs: Mapping[int, float] | None = None,
+        anchor: int = 0,
     ) -> None:
         self.scene = scene
         self.inputs = inputs
         self.order = order
         self.continuation = continuation
+        self.signs = signs or {}
         self.samples = len(inputs[0].theta) if inputs else 1
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
@@ -124,6 +182,11 @@ class _Assembler:
         self.conditioning = np.ones(self.samples)
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
+        self.steps: tuple[Step, ...] = ()
+        self.anchor = anchor
+        self.flips: dict[int, tuple[float, list[float]]] = {}  # sign at sample 0, switches
+        self.approaches: list[Approach] = []
+        self.last: tuple[Array, Array | None] = (np.ones(1), None)  # last group's m, dm/du
 
     def know(self, link: str, motion: LinkMotion) -> None:
         self.links[link] = motion
@@ -131,12 +194,13 @@ class _Assembler:
             if p not in self.points:
                 self.points[p] = motion.point(self.scene.drawn(p))
 
-    def close(self, gap2: Array, message: str) -> None:
-        """Record a group's margin h^2 / r^2, and its message where it newly fails to close."""
-        failing = gap2 < -dyads.TANGENCY_TOLERANCE
-        if np.any(failing & (self.margin >= -dyads.TANGENCY_TOLERANCE)):
+    def close(self, margin: Array, message: str) -> None:
+        """Record a group's relative margin, and its message where it newly fails to close."""
+        tolerance = dyads.COINCIDENCE_TOLERANCE
+        failing = margin < -tolerance
+        if np.any(failing & (self.margin >= -tolerance)):
             self.failures.append(message)
-        self.margin = np.minimum(self.margin, gap2)
+        self.margin = np.minimum(self.margin, margin)
 
     def locus(self, spec: LocusSpec) -> dyads.Locus:
         if isinstance(spec, CircleSpec):
@@ -162,39 +226,71 @@ class _Assembler:
             ),
         )
 
-    def dyad(self, step: DyadStep) -> None:
+    def branch(self, index: int, point: str, drawn: float, margin: Array) -> Array:
+        """The branch sign per sample: the drawn one, switched after every closest approach
+        between samples where the two branches meet within rounding (a change point)."""
+        sign = np.full(self.samples, self.signs.get(index, drawn))
+        if not self.continuation:
+            return sign
+        size = self.scene.size
+        switches: list[float] = []
+        for k in candidate_minima(margin, size):
+            approach = self.closest_approach(index, point, int(k))
+            self.approaches.append(approach)
+            if abs(approach.margin) <= dyads.COINCIDENCE_TOLERANCE * size:
+                switches.append(approach.at)
+                sign[math.floor(approach.at) + 1 :] *= -1.0
+        if sign[self.anchor] != drawn:  # the drawn branch holds at the anchor sample
+            sign *= -1.0
+        self.flips[index] = (float(sign[0]), switches)
+        return sign
+
+    def closest_approach(self, index: int, point: str, k: int) -> Approach:
+        """The minimum of group ``index``'s margin between samples k - 1 and k + 1: Brent's method
+        on the root of dm/du (or on m itself where dm/du does not change sign there)."""
+
+        def evaluate(x: float) -> tuple[float, float]:
+            signs = {
+                j: first * (-1.0) ** sum(1 for at in switches if at < k + x)
+                for j, (first, switches) in self.flips.items()
+            }
+            probe = _Assembler(self.scene, interpolated_inputs(self.inputs, k, x), 1, False, signs)
+            probe.run_steps(self.steps[: index + 1])
+            m, rate = probe.last
+            return float(m[0]), 0.0 if rate is None else float(rate[0])
+
+        if evaluate(-1.0)[1] < 0.0 < evaluate(1.0)[1]:
+            x = brentq(lambda x: evaluate(x)[1], -1.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
+        else:
+            found = minimize_scalar(
+                lambda x: evaluate(x)[0], bounds=(-1.0, 1.0), method="bounded",
+                options={"xatol": 1e-12},
+            )  # fmt: skip
+            x = float(found.x)
+        return Approach(point, k + x, evaluate(x)[0])
+
+    def dyad(self, index: int, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)
         cut = dyads.intersect(first, second, step.point)
-        self.close(cut.gap2, cut.message)
-        sign = (
-            continuous_sign(cut.point, step.sign, self.samples)
-            if self.continuation
-            else np.full(self.samples, step.sign)
-        )
-        X = cut.point(sign)
+        self.close(cut.margin / self.scene.size, cut.message)
+        self.last = (cut.margin, cut.margin_rate)
+        X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
         self.conditioning = np.minimum(
             self.conditioning, dyads.relative_determinant(first, second, X)
         )
         self.points[step.point] = dyads.point_motion(first, second, X, self.order)
 
-    def lever(self, step: LeverStep) -> None:
+    def lever(self, index: int, step: LeverStep) -> None:
         pivot, pin = self.points[step.pivot], self.points[step.pin]
-
-        def direction(sign: Array) -> Array:
-            beta = dyads.slotted_lever(pivot, pin, step.offset, sign, 0).beta
-            return np.stack((np.cos(beta), np.sin(beta)), axis=-1)
-
-        sign = (
-            continuous_sign(direction, step.sign, self.samples)
-            if self.continuation
-            else np.full(self.samples, step.sign)
-        )
-        solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
+        margin, rate = dyads.lever_margin(pivot, pin, step.offset)
         self.close(
-            solution.gap2,
+            margin / self.scene.size,
             f"|{step.pivot}{step.pin}| is shorter than the offset {abs(step.offset):.6g} m "
             f"of the slot of '{step.link}' from its pivot {step.pivot}",
         )
+        self.last = (margin, rate)
+        sign = self.branch(index, step.pin, step.sign, margin)
+        solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
         self.conditioning = np.minimum(self.conditioning, solution.conditioning)
         theta = solution.beta - np.arctan2(step.direction0[1], step.direction0[0])
         self.know(
@@ -202,20 +298,21 @@ class _Assembler:
             LinkMotion(self.scene.drawn(step.pivot), pivot, theta, solution.omega, solution.alpha),
         )
 
-    def run(self, plan: Plan) -> Motion:
+    def run_steps(self, steps: tuple[Step, ...]) -> None:
+        self.steps = steps
         ground = self.scene.links[self.scene.ground]
         self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
         at_rest = np.zeros((self.samples, 2))
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
             drawn = np.broadcast_to(self.scene.drawn(p), (self.samples, 2))
             self.points[p] = PointMotion(drawn, at_rest, at_rest)
-        for step in plan.steps:
+        for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(step)
             elif isinstance(step, DyadStep):
-                self.dyad(step)
+                self.dyad(index, step)
             elif isinstance(step, LeverStep):
-                self.lever(step)
+                self.lever(index, step)
             elif isinstance(step, TwoPointStep):
                 self.know(
                     step.link,
@@ -240,8 +337,18 @@ class _Assembler:
                 )
             else:
                 self.newton_group(step)
+
+    def run(self, plan: Plan) -> Motion:
+        self.run_steps(plan.steps)
         return Motion(
-            self.links, self.points, self.margin, self.conditioning, self.failures, self.reports
+            self.links,
+            self.points,
+            self.margin,
+            self.conditioning,
+            self.failures,
+            self.reports,
+            self.approaches,
+            self.scene.size,
         )
 
     def newton_group(self, step: NewtonStep) -> None:
@@ -260,12 +367,22 @@ def assemble(
     inputs: Sequence[DriverInput],
     order: int,
     continuation: bool = False,
+    anchor: int = 0,
 ) -> Motion:
-    """Positions (order 0), velocities (1) and accelerations (2) of every link and point."""
-    return _Assembler(scene, inputs, order, continuation).run(plan)
+    """Positions (order 0), velocities (1) and accelerations (2) of every link and point; with
+    continuation the drawn branch holds at sample ``anchor``."""
+    return _Assembler(scene, inputs, order, continuation, anchor=anchor).run(plan)
 
 
 def require_feasible(motion: Motion, where: str) -> None:
-    """Raise ``NotAssemblable`` with the numbers of the first group that did not close."""
+    """Raise ``NotAssemblable`` with the numbers of the first group that did not close (at a
+    sample, or in a window between two samples)."""
     if not np.all(motion.feasible):
         raise NotAssemblable(f"the linkage cannot be closed {where}: " + "; ".join(motion.failures))
+    if motion.windows:
+        window = motion.windows[0]
+        raise NotAssemblable(
+            f"the linkage cannot be closed {where}: the loci of {window.point} fail to meet by "
+            f"{-window.margin:.3g} m between samples {math.floor(window.at)} and "
+            f"{math.floor(window.at) + 1}"
+        )

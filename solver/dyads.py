@@ -19,8 +19,16 @@ import numpy as np
 
 from solver.rigid import Array, PointMotion, cross, dot, perp, scale
 
-# |h^2| below this fraction of r^2 is a tangency within rounding: the two branches meet (h = 0).
-TANGENCY_TOLERANCE = 1e-12
+EPS = float(np.finfo(float).eps)
+# h^2 below this fraction of r^2 is rounding noise (h^2 = r^2 - a^2 is good to a few eps r^2):
+# the point is on the tangency, h = 0 (a square root of the noise would be ~1e-8 r off).
+TANGENCY_TOLERANCE = 16.0 * EPS
+# The two branches of a group coincide within rounding where its length margin m (see
+# ``Intersection``) is below this fraction of the linkage's size: a tangency, or two coincident
+# centres. Rounding makes m uncertain by a few eps times the size (~1e-15 L); 1e-13 L is 100
+# times that, and 10 times less than the closest approach of a linkage 1e-12 (relative to its
+# longest link) off a change point.
+COINCIDENCE_TOLERANCE = 1e-13
 
 
 @dataclass(frozen=True)
@@ -49,21 +57,28 @@ Locus = Circle | Line
 
 @dataclass(frozen=True)
 class Intersection:
-    """X = base + sign h offset for the two branches; ``gap2`` = h^2 / r^2 (negative: none)."""
+    """X = base + sign h offset for the two branches.
+
+    ``margin`` m (metres) is how far the group is from having its two branches meet: the smallest
+    of r1 + r2 - d and d - |r1 - r2| (two circles whose centres are d apart), r - |s| (a circle and
+    a line at distance s from its centre); negative where the loci do not meet, +inf where the
+    group has one solution. ``margin_rate`` is dm/du along the driver's path (with velocities).
+    """
 
     base: Array
     offset: Array
     h: Array
-    gap2: Array
+    margin: Array
+    margin_rate: Array | None
     message: str
 
     def point(self, sign: Array) -> Array:
         return self.base + scale(sign * self.h, self.offset)
 
 
-def _root(gap2: Array, h2: Array) -> Array:
-    """sqrt(h^2), a tangency within rounding snapped to zero, no root taken of a negative."""
-    return np.sqrt(np.where(gap2 > TANGENCY_TOLERANCE, h2, 0.0))
+def _root(h2: Array, r2: float | Array) -> Array:
+    """sqrt(h^2), a tangency within rounding (h^2 <= TANGENCY_TOLERANCE r^2) snapped to zero."""
+    return np.sqrt(np.where(h2 > TANGENCY_TOLERANCE * r2, h2, 0.0))
 
 
 def intersect(first: Locus, second: Locus, name: str) -> Intersection:
@@ -79,16 +94,26 @@ def intersect(first: Locus, second: Locus, name: str) -> Intersection:
 
 
 def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
-    """RRR: d = |C1C2|, a = (r1^2 - r2^2 + d^2) / 2d along C1C2, h^2 = r1^2 - a^2 across."""
+    """RRR: d = |C1C2|, a = (r1^2 - r2^2 + d^2) / 2d along C1C2, h^2 = r1^2 - a^2 across.
+
+    Margin m = min(r1 + r2 - d, d - |r1 - r2|), rate dm/du = -+ (C2 - C1).(v2 - v1) / d.
+    """
     d_vec = c2.center.p - c1.center.p
     d = np.sqrt(dot(d_vec, d_vec))
     safe_d = np.where(d > 0.0, d, 1.0)
     u = d_vec / safe_d[:, None]
+    u[d == 0.0] = (1.0, 0.0)  # coincident centres: any direction (every point of the circle fits)
     a = (c1.radius**2 - c2.radius**2 + d**2) / (2.0 * safe_d)
     h2 = c1.radius**2 - a**2
-    gap2 = np.where(d > 0.0, h2 / c1.radius**2, -1.0)
-    first = int(np.argmax(gap2 < -TANGENCY_TOLERANCE)) if np.any(gap2 < -TANGENCY_TOLERANCE) else 0
-    dk, total, diff = float(d[first]), c1.radius + c2.radius, abs(c1.radius - c2.radius)
+    total, diff = c1.radius + c2.radius, abs(c1.radius - c2.radius)
+    extended, folded = total - d, d - diff
+    margin = np.minimum(extended, folded)
+    rate = None
+    if c1.center.v is not None and c2.center.v is not None:
+        d_rate = dot(u, c2.center.v - c1.center.v)
+        rate = np.where(extended < folded, -d_rate, d_rate)
+    first = int(np.argmin(margin))
+    dk = float(d[first])
     n = _digits(dk, total if dk > total else diff)
     pair = f"|{c1.center_name}{c2.center_name}| = {dk:.{n}g} m"
     if dk > total:
@@ -98,7 +123,9 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
         )
     else:
         message = f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
-    return Intersection(c1.center.p + scale(a, u), perp(u), _root(gap2, h2), gap2, message)
+    return Intersection(
+        c1.center.p + scale(a, u), perp(u), _root(h2, c1.radius**2), margin, rate, message
+    )
 
 
 def _digits(a: float, b: float) -> int:
@@ -107,31 +134,42 @@ def _digits(a: float, b: float) -> int:
 
 
 def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
-    """RRP: X = Q + t w with |X - C| = r: t = -b +/- sqrt(b^2 - c), b = w.(Q - C)."""
+    """RRP: X = Q + t w with |X - C| = r: t = -b +/- sqrt(b^2 - c), b = w.(Q - C).
+
+    The line is s = w x (Q - C) from C: margin m = r - |s|, rate dm/du = -sign(s) ds/du with
+    ds/du = omega (k x w) x (Q - C) + w x (v_Q - v_C).
+    """
     q_c = line.through.p - c.center.p
     b = dot(line.direction, q_c)
     h2 = b**2 - (dot(q_c, q_c) - c.radius**2)
-    gap2 = h2 / c.radius**2
-    k = int(np.argmin(gap2))
-    distance = abs(float(cross(line.direction[k], q_c[k])))
+    s = cross(line.direction, q_c)
+    margin = c.radius - np.abs(s)
+    rate = None
+    if line.through.v is not None and c.center.v is not None and line.omega is not None:
+        s_rate = line.omega * cross(perp(line.direction), q_c) + cross(
+            line.direction, line.through.v - c.center.v
+        )
+        rate = -np.sign(s) * s_rate
+    k = int(np.argmin(margin))
+    distance = abs(float(s[k]))
     n = _digits(distance, c.radius)
     message = (
         f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
         f"{distance:.{n}g} m > |{c.center_name}{name}| = {c.radius:.{n}g} m"
     )
     base = line.through.p - scale(b, line.direction)
-    return Intersection(base, line.direction, _root(gap2, h2), gap2, message)
+    return Intersection(base, line.direction, _root(h2, c.radius**2), margin, rate, message)
 
 
 def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
-    """A pin in two slots: X = Q1 + t w1 with w2 x (X - Q2) = 0."""
+    """A pin in two slots: X = Q1 + t w1 with w2 x (X - Q2) = 0 (one solution: margin +inf)."""
     denominator = cross(l2.direction, l1.direction)
     parallel = np.abs(denominator) <= 1e-12
     t = cross(l2.direction, l2.through.p - l1.through.p) / np.where(parallel, 1.0, denominator)
-    gap2 = np.where(parallel, -1.0, 0.0)
+    margin = np.where(parallel, -np.inf, np.inf)
     message = f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
     base = l1.through.p + scale(t, l1.direction)
-    return Intersection(base, l1.direction, np.zeros_like(t), gap2, message)
+    return Intersection(base, l1.direction, np.zeros_like(t), margin, None, message)
 
 
 def _constraint_row(locus: Locus, X: Array) -> Array:
@@ -197,13 +235,23 @@ def point_motion(first: Locus, second: Locus, X: Array, order: int) -> PointMoti
 
 @dataclass(frozen=True)
 class LeverSolution:
-    """Angle and rates of a slotted lever; ``gap2`` = (|AP|^2 - e^2) / |AP|^2 (negative: none)."""
+    """Angle and rates of a slotted lever, and the sine of the angle between slot and r."""
 
     beta: Array
     omega: Array | None
     alpha: Array | None
-    gap2: Array
     conditioning: Array
+
+
+def lever_margin(pivot: PointMotion, pin: PointMotion, offset: float) -> tuple[Array, Array | None]:
+    """The slot meets the pin where |AP| >= |e|: margin m = |r| - |e| (r = P - A; negative: no
+    slot through P) and, with velocities, its rate dm/du = r.(v_P - v_A) / |r|."""
+    r = pin.p - pivot.p
+    length = np.sqrt(dot(r, r))
+    rate = None
+    if pin.v is not None and pivot.v is not None:
+        rate = dot(r, pin.v - pivot.v) / np.where(length > 0.0, length, 1.0)
+    return length - abs(offset), rate
 
 
 def slotted_lever(
@@ -218,8 +266,7 @@ def slotted_lever(
     """
     r = pin.p - pivot.p
     r2 = dot(r, r)
-    gap2 = (r2 - offset**2) / np.where(r2 > 0.0, r2, 1.0)
-    along = sign * np.sqrt(np.where(gap2 > TANGENCY_TOLERANCE, r2 - offset**2, 0.0))
+    along = sign * _root(r2 - offset**2, r2)
     beta = np.arctan2(r[:, 1], r[:, 0]) - np.arctan2(offset, along)
     u = np.stack((np.cos(beta), np.sin(beta)), axis=-1)
     u_r = dot(u, r)
@@ -234,4 +281,4 @@ def slotted_lever(
             a_rel = pin.a - pivot.a
             alpha = (cross(u, a_rel) - 2.0 * omega * dot(u, v_rel) - omega**2 * offset) / safe
     conditioning = np.abs(u_r) / np.sqrt(np.where(r2 > 0.0, r2, 1.0))
-    return LeverSolution(beta, omega, alpha, gap2, conditioning)
+    return LeverSolution(beta, omega, alpha, conditioning)

@@ -83,8 +83,10 @@ class _Driven:
             inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
         return inputs
 
-    def run(self, turns: Array, order: int) -> Motion:
-        return assemble(self.scene, self.plan, self.inputs(turns), order, continuation=True)
+    def run(self, turns: Array, order: int, start: float = 0.0) -> Motion:
+        """The linkage at ``turns``, on the drawn branch at the turn nearest ``start``."""
+        anchor = int(np.argmin(np.abs(turns - start)))
+        return assemble(self.scene, self.plan, self.inputs(turns), order, True, anchor)
 
     def closes(self, turn: float, strictly: bool = False) -> bool:
         """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
@@ -104,19 +106,34 @@ def _limit(driven: _Driven, inside: float, outside: float) -> float:
     return inside
 
 
+def _turns_fully(motion: Motion) -> bool:
+    """Every sample closes, and no window between two samples fails to."""
+    return bool(np.all(motion.feasible)) and not motion.windows
+
+
+def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:
+    """(the last closing turn, the first non-closing one) along ``turns``: the first sample that
+    does not close, or the deepest point of the first window between samples that does not."""
+    bad = int(np.argmin(motion.feasible)) if not np.all(motion.feasible) else turns.size
+    for window in motion.windows:
+        k = math.floor(window.at)
+        if k + 1 <= bad:
+            x = window.at - k
+            return float(turns[k]), float(turns[k] + x * (turns[k + 1] - turns[k]))
+    return float(turns[bad - 1]), float(turns[bad])
+
+
 def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
     """None if the driver turns fully, else the (low, high) turns bounding the start's interval."""
     step = 2.0 * math.pi / PROBE_SAMPLES
     turns = start + direction * step * np.arange(PROBE_SAMPLES + 1)
     motion = assemble(driven.scene, driven.plan, driven.inputs(turns), 0, continuation=True)
-    if np.all(motion.feasible):
+    if _turns_fully(motion):
         return None
-    ahead = int(np.argmin(motion.feasible))
     behind_turns = start - direction * step * np.arange(PROBE_SAMPLES + 1)
     behind = assemble(driven.scene, driven.plan, driven.inputs(behind_turns), 0, continuation=True)
-    back = int(np.argmin(behind.feasible))
-    end = _limit(driven, turns[ahead - 1], turns[ahead])
-    begin = _limit(driven, behind_turns[back - 1], behind_turns[back])
+    end = _limit(driven, *_first_failure(motion, turns))
+    begin = _limit(driven, *_first_failure(behind, behind_turns))
     return (min(begin, end), max(begin, end))
 
 
@@ -152,12 +169,13 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     if start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
     order = required_order(wanted)
-    turns = start + direction * 2.0 * math.pi * np.arange(samples) / samples
+    # One sample more than asked, back at the start: the last interval is searched too.
+    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
     limits: tuple[float, ...] = ()
     motion = None
     if samples >= PROBE_SAMPLES:  # the sweep itself is a fine enough feasibility probe
-        motion = driven.run(turns, order)
-        span = None if np.all(motion.feasible) else _feasible_range(driven, start, direction)
+        motion = driven.run(turns, order, start)
+        span = None if _turns_fully(motion) else _feasible_range(driven, start, direction)
     else:
         span = _feasible_range(driven, start, direction)
     if span is not None:
@@ -168,7 +186,9 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
         limits = span
         motion = None
     if motion is None:
-        motion = driven.run(turns, order)
+        motion = driven.run(turns, order, start)
+    if span is None:
+        motion, turns = motion.cut(slice(0, samples)), turns[:samples]
     require_feasible(motion, "during the sweep")
     singular = (
         np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING)
