@@ -28,6 +28,13 @@ class Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
 
+STRICT: bool = Field(
+    False,
+    description="true: a scene key the contract does not know is an invalid_scene error "
+    "instead of a warning in the response's 'warnings'.",
+)
+
+
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
@@ -36,6 +43,7 @@ class AnalyzeRequest(Strict):
     quantities: list[Quantity] | None = Field(
         None, description="What to compute (default: all). The server computes only these."
     )
+    strict: bool = STRICT
 
 
 class SweepRequest(Strict):
@@ -54,6 +62,7 @@ class SweepRequest(Strict):
         description="[t0, t1] (s): sweep in time through the scene's time laws instead "
         "of a driver revolution.",
     )
+    strict: bool = STRICT
 
 
 class EventSpec(Strict):
@@ -69,3 +78,4 @@ class EventsRequest(Strict):
         examples=[_example("S003-T2-rotating-carrier")],
     )
     event: EventSpec
+    strict: bool = STRICT
