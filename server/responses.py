@@ -1,15 +1,24 @@
 """Solver results to HTTP responses: mechanical conversion, nothing computed here.
 
 A result's ``as_dict()`` is the body (``solver.results``); it goes out through orjson, large
-sweep arrays included, after the check that every number is finite (``server.edge``).
+sweep arrays included, after the check that every number is finite (``server.edge``). The body
+is not validated against the route's response model: the model is published in the OpenAPI
+document, and a contract test checks real responses against it.
 """
 
 from __future__ import annotations
+
+from fastapi.responses import JSONResponse
 
 from server.edge import FiniteJSONResponse
 from solver.results import Result
 
 
-def respond(result: Result) -> FiniteJSONResponse:
+class ResultResponse(FiniteJSONResponse, JSONResponse):
+    """orjson and the finiteness check of FiniteJSONResponse; a JSONResponse for FastAPI, which
+    publishes a route's response model only for JSON response classes."""
+
+
+def respond(result: Result) -> ResultResponse:
     """The 200 response of a solver result: its body, serialised by orjson."""
-    return FiniteJSONResponse(result.as_dict())
+    return ResultResponse(result.as_dict())

@@ -5,27 +5,42 @@ from __future__ import annotations
 from fastapi import APIRouter
 
 import solver
-from server.edge import FiniteJSONResponse, StrictJSONRoute
-from server.responses import respond
-from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
+from server.edge import StrictJSONRoute
+from server.responses import ResultResponse, respond
+from server.schemas import (
+    PROBLEMS,
+    AnalyzeRequest,
+    AnalyzeResponse,
+    EventResponse,
+    EventsRequest,
+    SweepRequest,
+    SweepResponse,
+    TimeSweepResponse,
+)
 
 router = APIRouter(
-    tags=["kinematics"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+    tags=["kinematics"],
+    route_class=StrictJSONRoute,
+    default_response_class=ResultResponse,
+    responses=PROBLEMS,
 )
 
 
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
+    response_model=AnalyzeResponse,
 )
-def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
+def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     return respond(solver.analyze(request.scene, request.quantities, strict=request.strict))
 
 
 @router.post(
-    "/sweep", summary="The linkage over one revolution of its first driver (or its feasible range)"
+    "/sweep",
+    summary="The linkage over one revolution of its first driver (or its feasible range)",
+    response_model=SweepResponse | TimeSweepResponse,
 )
-def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
+def sweep_route(request: SweepRequest) -> ResultResponse:
     if request.time_range is None:
         return respond(
             solver.sweep(request.scene, request.samples, request.quantities, strict=request.strict)
@@ -41,8 +56,12 @@ def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     )
 
 
-@router.post("/events", summary="The instant at which a moving point reaches a named point")
-def events_route(request: EventsRequest) -> FiniteJSONResponse:
+@router.post(
+    "/events",
+    summary="The instant at which a moving point reaches a named point",
+    response_model=EventResponse,
+)
+def events_route(request: EventsRequest) -> ResultResponse:
     e = request.event
     return respond(
         solver.find_event(

@@ -14,14 +14,17 @@ from fastapi.responses import HTMLResponse
 from pydantic import Field
 
 import solver
-from server.edge import FiniteJSONResponse, StrictJSONRoute
-from server.responses import respond
-from server.schemas import EXAMPLES, STRICT, Strict
+from server.edge import StrictJSONRoute
+from server.responses import ResultResponse, respond
+from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
 from solver.presets import build_preset
 
 router = APIRouter(
-    tags=["solutions"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+    tags=["solutions"],
+    route_class=StrictJSONRoute,
+    default_response_class=ResultResponse,
+    responses=PROBLEMS,
 )
 
 Method = Literal["vector", "loop"]
@@ -54,8 +57,12 @@ class SolutionRequest(Strict):
     strict: bool = STRICT
 
 
-@router.post("/solution", summary="Worked solution, step by step, in the textbook's form")
-def solution_route(request: SolutionRequest) -> FiniteJSONResponse:
+@router.post(
+    "/solution",
+    summary="Worked solution, step by step, in the textbook's form",
+    response_model=SolutionResponse,
+)
+def solution_route(request: SolutionRequest) -> ResultResponse:
     return respond(
         solver.solve(request.scene, request.method, request.digits, strict=request.strict)
     )

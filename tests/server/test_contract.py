@@ -10,8 +10,10 @@ from typing import Any
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
+from jsonschema import Draft202012Validator
 
 import solver
+from server import problems
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 NAMES = sorted(path.stem for path in EXAMPLES.glob("*.json"))
@@ -82,3 +84,80 @@ def test_warnings_over_http_and_strict(client: TestClient) -> None:
         assert strict.json()["code"] == "invalid_scene" and warning in strict.json()["detail"]
     clean = client.post("/api/v1/analyze", json={"scene": example("S000-T2"), "strict": True})
     assert clean.status_code == 200 and clean.json()["warnings"] == []
+
+
+# --- the published schema ------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def openapi(client: TestClient) -> dict[str, Any]:
+    document: dict[str, Any] = client.get("/api/v1/openapi.json").json()
+    return document
+
+
+def check(openapi: dict[str, Any], path: str, method: str, response: Any) -> None:
+    """The response satisfies the schema the OpenAPI document publishes for its status and media
+    type (JSON Schema 2020-12, references resolved within the document)."""
+    media = response.headers["content-type"].split(";")[0]
+    declared = openapi["paths"][f"/api/v1{path}"][method]["responses"]
+    schema = declared[str(response.status_code)]["content"][media]["schema"]
+    validator = Draft202012Validator({**openapi, **schema})
+    body = response.json()
+    errors = [f"{list(e.absolute_path)}: {e.message}" for e in validator.iter_errors(body)]
+    assert not errors, (path, response.status_code, errors[:5])
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_real_responses_satisfy_the_published_schema(
+    client: TestClient, openapi: dict[str, Any], name: str
+) -> None:
+    for endpoint, request, _ in calls(name):
+        check(openapi, endpoint, "post", client.post(f"/api/v1{endpoint}", json=request))
+
+
+def test_presets_and_problems_satisfy_the_published_schema(
+    client: TestClient, openapi: dict[str, Any]
+) -> None:
+    check(openapi, "/presets", "get", client.get("/api/v1/presets"))
+    check(openapi, "/presets/four_bar", "post", client.post("/api/v1/presets/four_bar", json={}))
+    doc = example("S000-T1")
+    doc["drivers"][0]["angle_deg"] = 180.0
+    problems = [
+        ("/analyze", {"scene": {"kind": "nope"}}),
+        ("/analyze", {"scene": doc}),  # not_assemblable
+        ("/analyze", {"scene": example("S000-T1"), "quantities": ["speed"]}),  # pydantic's
+        ("/sweep", {"scene": example("S000-T1"), "samples": 10**7}),
+        ("/solution", {"scene": example("S000-T1"), "digits": 0}),
+    ]
+    for endpoint, request in problems:
+        response = client.post(f"/api/v1{endpoint}", json=request)
+        assert response.status_code in (413, 422), response.text
+        assert response.headers["content-type"] == "application/problem+json"
+        check(openapi, endpoint, "post", response)
+
+
+def test_the_schema_would_catch_a_wrong_body(client: TestClient, openapi: dict[str, Any]) -> None:
+    """The check is not vacuous: a body without warnings, or with a vector as a string, fails."""
+    response = client.post("/api/v1/analyze", json={"scene": example("S000-T2")})
+    schema = openapi["paths"]["/api/v1/analyze"]["post"]["responses"]["200"]["content"]
+    validator = Draft202012Validator({**openapi, **schema["application/json"]["schema"]})
+    body = response.json()
+    assert validator.is_valid(body)
+    assert not validator.is_valid({k: v for k, v in body.items() if k != "warnings"})
+    body["points"]["C"]["velocity"] = "fast"
+    assert not validator.is_valid(body)
+
+
+def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> None:
+    codes = openapi["components"]["schemas"]["ProblemCode"]["enum"]
+    assert sorted(codes) == sorted(problems.TITLES)
+    assert "HTTPValidationError" not in json.dumps(openapi)
+    for path, operations in openapi["paths"].items():
+        for method, operation in operations.items():
+            for status, response in operation["responses"].items():
+                media = set(response.get("content", {}))
+                if status.startswith("4"):
+                    assert media == {"application/problem+json"}, (path, method, status)
+                elif path.startswith("/api/v1/") and not path.endswith(".html"):
+                    assert media == {"application/json"}, (path, method, status)
+                    assert response["content"]["application/json"]["schema"] != {"type": "string"}
