@@ -416,10 +416,9 @@ def measure_instant(doc: dict[str, Any], budget: Budget, res: Results) -> str:
 def solution_call(doc: dict[str, Any]) -> Callable[[], object]:
     """One worked solution in-process (issue 4): parse, solve (analysis included) and build
     the /solution response body, as the route does, without HTTP."""
-    from server.routes.solution import solution_body
-    from solver.steps import solve
+    import solver
 
-    return lambda: solution_body(solve(parse_linkage(doc), "vector", 4))
+    return lambda: solver.solve(doc, "vector", 4).as_dict()
 
 
 def measure_solutions(budget: Budget, res: Results) -> str:

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from fastapi import FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
-from server import problems
+from server import problems, schemas
 from server.routes import kinematics, presets, solution
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
@@ -29,6 +30,7 @@ def create_app() -> FastAPI:
         openapi_url=f"{API_PREFIX}/openapi.json",
     )
     problems.install(app)
+    _publish_problems(app)
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
@@ -49,6 +51,16 @@ def create_app() -> FastAPI:
 
     _serve_static(app)
     return app
+
+
+def _publish_problems(app: FastAPI) -> None:
+    """The OpenAPI document declares errors as application/problem+json (server.schemas)."""
+    generate = app.openapi
+
+    def openapi() -> dict[str, Any]:
+        return schemas.problems_as_problem_json(generate())
+
+    app.openapi = openapi  # type: ignore[method-assign]
 
 
 def _serve_static(app: FastAPI) -> None:

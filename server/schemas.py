@@ -8,6 +8,7 @@ spec's examples attached for the OpenAPI page.
 from __future__ import annotations
 
 import json
+from enum import StrEnum
 from pathlib import Path
 from typing import Any, Literal
 
@@ -28,6 +29,13 @@ class Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
 
+STRICT: bool = Field(
+    False,
+    description="true: a scene key the contract does not know is an invalid_scene error "
+    "instead of a warning in the response's 'warnings'.",
+)
+
+
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
@@ -36,6 +44,7 @@ class AnalyzeRequest(Strict):
     quantities: list[Quantity] | None = Field(
         None, description="What to compute (default: all). The server computes only these."
     )
+    strict: bool = STRICT
 
 
 class SweepRequest(Strict):
@@ -54,6 +63,7 @@ class SweepRequest(Strict):
         description="[t0, t1] (s): sweep in time through the scene's time laws instead "
         "of a driver revolution.",
     )
+    strict: bool = STRICT
 
 
 class EventSpec(Strict):
@@ -69,3 +79,303 @@ class EventsRequest(Strict):
         examples=[_example("S003-T2-rotating-carrier")],
     )
     event: EventSpec
+    strict: bool = STRICT
+
+
+# --- responses -----------------------------------------------------------------------------------
+# Declared for the OpenAPI document, never used to validate on the hot path: the routes return
+# the solver result's body through orjson (server.responses). Every model admits more fields
+# than it names (the spec's extensions add quantities), and a contract test checks real
+# responses against the published schema.
+
+
+class Open(BaseModel):
+    model_config = ConfigDict(extra="allow")
+
+
+Vector = list[float]
+Vectors = list[Vector]
+WARNINGS: list[str] = Field(
+    description="What the server noticed but answered anyway: a scene key the contract does "
+    "not know (with its path and the nearest valid name), a pose near a change point. Empty "
+    'when all is well; "strict": true turns unknown keys into invalid_scene.',
+)
+
+
+class PointValues(Open):
+    position: Vector | None = None
+    velocity: Vector | None = None
+    acceleration: Vector | None = None
+
+
+class LinkValues(Open):
+    angle: float | None = Field(
+        None, description="rad, first point towards second; null: one point"
+    )
+    omega: float | None = None
+    alpha: float | None = None
+    velocity_pole: Vector | None = Field(None, description="null where the link translates")
+    acceleration_pole: Vector | None = None
+
+
+class JointValues(Open):
+    point: str
+    type: Literal["revolute", "slider", "prismatic"]
+    links: list[str] = Field(description="slider and prismatic: [guide, follower]")
+    omega_guide: float | None = None
+    transport_velocity: Vector | None = None
+    relative_velocity: Vector | None = None
+    velocity: Vector | None = None
+    transport_acceleration: Vector | None = None
+    relative_acceleration: Vector | None = None
+    coriolis_acceleration: Vector | None = None
+    acceleration: Vector | None = None
+
+
+class MovingPointValues(Open):
+    position: Vector | None = None
+    velocity: Vector | None = None
+    acceleration: Vector | None = None
+    transport_velocity: Vector | None = None
+    relative_velocity: Vector | None = None
+    transport_acceleration: Vector | None = None
+    relative_acceleration: Vector | None = None
+    coriolis_acceleration: Vector | None = None
+
+
+class InstantCentreValues(Open):
+    links: list[str]
+    position: Vector | None
+    direction_at_infinity: Vector | None
+
+
+class FourBarLoopValues(Open):
+    links: dict[str, str]
+    lengths: dict[str, float]
+    grashof: str
+    transmission_angle: float
+    transmission_angle_deg: float
+
+
+class NewtonValues(Open):
+    links: list[str]
+    converged: bool
+    iterations: int
+    residual_norm: float
+    tolerance: float
+
+
+class DiagnosticsValues(Open):
+    condition_number: float | None
+    position_method: str
+    newton: list[NewtonValues]
+    driver_angles_deg: dict[str, float]
+
+
+class BodyValues(Open):
+    omega: Vector | None = None
+    alpha: Vector | None = None
+
+
+class SpatialPointValues(PointValues):
+    acceleration_terms: dict[str, Vector] | None = None
+
+
+class AnalyzeResponse(Open):
+    """One instant. A linkage has points, links, four_bar_loops and diagnostics (joints,
+    moving_points, instant_centres where asked or present); a spatial chain bodies and points."""
+
+    points: dict[str, SpatialPointValues]
+    links: dict[str, LinkValues] | None = None
+    joints: list[JointValues] | None = None
+    moving_points: dict[str, MovingPointValues] | None = None
+    instant_centres: list[InstantCentreValues] | None = None
+    four_bar_loops: list[FourBarLoopValues] | None = None
+    diagnostics: DiagnosticsValues | None = None
+    bodies: dict[str, BodyValues] | None = None
+    warnings: list[str] = WARNINGS
+
+
+class SweepPointValues(Open):
+    position: Vectors | None = None
+    velocity: Vectors | None = None
+    acceleration: Vectors | None = None
+
+
+class SweepLinkValues(Open):
+    angle: list[float] | None = None
+    omega: list[float] | None = None
+    alpha: list[float] | None = None
+    velocity_pole: list[Vector | None] | None = None
+    acceleration_pole: list[Vector | None] | None = None
+
+
+class SweepJointValues(Open):
+    point: str
+    type: Literal["revolute", "slider", "prismatic"]
+    links: list[str]
+    omega_guide: list[float] | None = None
+    transport_velocity: Vectors | None = None
+    relative_velocity: Vectors | None = None
+    velocity: Vectors | None = None
+    transport_acceleration: Vectors | None = None
+    relative_acceleration: Vectors | None = None
+    coriolis_acceleration: Vectors | None = None
+    acceleration: Vectors | None = None
+
+
+class SweepMovingPointValues(Open):
+    position: Vectors | None = None
+    velocity: Vectors | None = None
+    acceleration: Vectors | None = None
+
+
+class SweepResponse(Open):
+    """A revolution of the first driver, or its feasible range (arrays over driver_angle)."""
+
+    driver: str
+    driver_angle: list[float] = Field(description="rad, the driver link's absolute angle")
+    samples: int
+    points: dict[str, SweepPointValues]
+    links: dict[str, SweepLinkValues]
+    joints: list[SweepJointValues] | None = None
+    feasible: bool = Field(description="false: the driver rocks between the two limits")
+    limits: list[float] = Field(description="rad: the limit positions, empty if feasible")
+    singular_samples: list[int]
+    warnings: list[str] = WARNINGS
+
+
+class TimeSweepResponse(Open):
+    """The scene over a time range through its laws (arrays over time)."""
+
+    time: list[float]
+    driver_angle: list[float]
+    samples: int
+    points: dict[str, SweepPointValues]
+    links: dict[str, SweepLinkValues]
+    joints: list[SweepJointValues] | None = None
+    moving_points: dict[str, SweepMovingPointValues]
+    feasible: bool
+    limits: list[float]
+    warnings: list[str] = WARNINGS
+
+
+class EventResponse(Open):
+    time: float = Field(description="s")
+    position: Vector
+    moving_point: str
+    reaches: str
+    occurrence: int
+    warnings: list[str] = WARNINGS
+
+
+class ValueModel(Open):
+    value: float | list[float]
+    unit: str
+    display: str
+    source: list[str | int] | None
+
+
+class CheckModel(Open):
+    relation: str
+    result: str
+    operands: list[str]
+    factor: float
+
+
+class StepModel(Open):
+    kind: str
+    title: str
+    latex: str
+    text: str
+    values: dict[str, ValueModel]
+    checks: list[CheckModel]
+
+
+class MistakeModel(Open):
+    kind: str
+    title: str
+    text: str
+    values: dict[str, ValueModel]
+
+
+class SolutionResponse(Open):
+    method: str
+    requested_method: str
+    digits: int
+    steps: list[StepModel]
+    mistakes: list[MistakeModel]
+    results: AnalyzeResponse = Field(description="The /analyze body of the same scene")
+    warnings: list[str] = WARNINGS
+
+
+class PresetParameter(Open):
+    name: str
+    default: float
+    unit: str
+    description: str
+    minimum: float | None
+    maximum: float | None
+    choices: list[float] | None
+    labels: list[str] | None
+
+
+class PresetInfo(Open):
+    name: str
+    title: str
+    description: str
+    parameters: list[PresetParameter]
+
+
+class PresetList(Open):
+    presets: list[PresetInfo]
+
+
+class ProblemCode(StrEnum):
+    """The stable machine-readable codes of every error (scene-v1 "Errors", and the server's)."""
+
+    invalid_scene = "invalid_scene"
+    invalid_expression = "invalid_expression"
+    not_assemblable = "not_assemblable"
+    singular_configuration = "singular_configuration"
+    limit_exceeded = "limit_exceeded"
+    no_event = "no_event"
+    not_found = "not_found"
+    method_not_allowed = "method_not_allowed"
+    internal_error = "internal_error"
+
+
+class Problem(Open):
+    """RFC 9457 problem details, with the stable ``code``."""
+
+    type: str
+    title: str
+    status: int
+    detail: str = Field(description="What is wrong, with the numbers that show it")
+    code: ProblemCode
+    position: int | None = Field(None, description="invalid_expression: the character (0-based)")
+    expression: str | None = None
+    condition_number: float | None = None
+
+
+PROBLEM_MEDIA_TYPE = "application/problem+json"
+PROBLEMS: dict[int | str, dict[str, Any]] = {
+    413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
+    422: {
+        "model": Problem,
+        "description": "The request cannot be answered: invalid_scene, invalid_expression, "
+        "not_assemblable, singular_configuration, limit_exceeded, no_event",
+    },
+}
+
+
+def problems_as_problem_json(document: dict[str, Any]) -> dict[str, Any]:
+    """Declare every 4xx and 5xx response of an OpenAPI document as application/problem+json
+    (FastAPI writes a declared model under the route's own media type: JSON, or HTML)."""
+    for path in document.get("paths", {}).values():
+        for operation in path.values():
+            for status, response in operation.get("responses", {}).items():
+                content = response.get("content", {})
+                if status[:1] in "45" and content:
+                    response["content"] = {PROBLEM_MEDIA_TYPE: next(iter(content.values()))}
+    return document

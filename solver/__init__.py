@@ -1,5 +1,67 @@
 """Kinematics of mechanisms: planar linkages, moving points on moving bodies, spatial chains.
 
 A plain library (numpy, scipy, sympy; no web imports). A scene goes in, a frozen result comes out;
-nothing here mutates a scene.
+nothing here mutates a scene. Each entry point accepts a scene-v1 dict or a parsed scene, and each
+result's ``as_dict()`` is the body of the HTTP endpoint of the same name::
+
+    import solver
+
+    doc = {"kind": "linkage", "points": {...}, "links": {...}, "joints": [...], "drivers": [...]}
+    instant = solver.analyze(doc)                    # POST /api/v1/analyze
+    cycle = solver.sweep(doc, 360, ["position", "velocity"])   # POST /api/v1/sweep
+    cycle["links"]["rocker"]["omega"]                # a read-only numpy array over the samples
+    steps = solver.solve(doc, "loop")                # POST /api/v1/solution
+
+Errors are the exceptions of ``solver.errors``; an unknown key in a scene is a warning in the
+result's ``warnings`` (an ``InvalidScene`` with ``strict=True``).
 """
+
+from solver.api import (
+    SceneWarning,
+    analyze,
+    find_event,
+    parse_scene,
+    solve,
+    sweep,
+    sweep_time,
+)
+from solver.errors import (
+    InvalidExpression,
+    InvalidScene,
+    KinematicsError,
+    LimitExceeded,
+    NoEvent,
+    NotAssemblable,
+    SingularConfiguration,
+)
+from solver.results import (
+    AnalysisResult,
+    EventResult,
+    Result,
+    SolutionResult,
+    SweepResult,
+    TimeSweepResult,
+)
+
+__all__ = [
+    "AnalysisResult",
+    "EventResult",
+    "InvalidExpression",
+    "InvalidScene",
+    "KinematicsError",
+    "LimitExceeded",
+    "NoEvent",
+    "NotAssemblable",
+    "Result",
+    "SceneWarning",
+    "SingularConfiguration",
+    "SolutionResult",
+    "SweepResult",
+    "TimeSweepResult",
+    "analyze",
+    "find_event",
+    "parse_scene",
+    "solve",
+    "sweep",
+    "sweep_time",
+]

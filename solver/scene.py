@@ -7,6 +7,7 @@ mutates it. ``parse_linkage`` turns a JSON document into one, or raises ``Invali
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -441,3 +442,104 @@ def parse_linkage(doc: Mapping[str, Any]) -> LinkageScene:
             f"- 1 per slider) but {len(drivers)} driver(s)",
         )
     return scene
+
+
+# --- keys the contract knows ---------------------------------------------------------------------
+
+# The fields of scene-v1 (and of its additive extensions, dynamics-v1), by where they appear:
+# "[]" stands for every entry of a list, "*" for every value of a name-keyed object. Points are
+# name-keyed vectors and have no fields of their own.
+SCENE_FIELDS: dict[str, dict[str, frozenset[str]]] = {
+    "linkage": {
+        "": frozenset(
+            (
+                "kind", "title", "points", "links", "joints", "drivers", "moving_points", "time",
+                "masses", "point_masses", "gravity", "forces", "torques",
+            )
+        ),
+        "links.*": frozenset(("points", "ground")),
+        "joints[]": frozenset(("type", "point", "links", "axis")),
+        "drivers[]": frozenset(("link", "omega", "alpha", "angle_deg", "angle_law")),
+        "moving_points[]": frozenset(("name", "link", "path", "s_law")),
+        "moving_points[].path": frozenset(("type", "center", "start", "direction", "through")),
+        "masses.*": frozenset(("mass", "bar", "center", "inertia")),
+        "point_masses[]": frozenset(("name", "link", "point", "mass")),
+        "forces[]": frozenset(
+            ("name", "link", "point", "magnitude", "direction_deg", "relative_to")
+        ),
+        "torques[]": frozenset(("name", "link", "moment")),
+    },
+    "spatial_chain": {
+        "": frozenset(("kind", "title", "joints", "points")),
+        "joints[]": frozenset(("name", "type", "origin", "axis", "rate", "rate_dot")),
+        "points.*": frozenset(("body", "position")),
+    },
+}  # fmt: skip
+
+
+# Fields whose value is text; between equally near names, one that takes the kind of value given
+# wins ("angle": 120 is nearer angle_deg than angle_law).
+TEXT_FIELDS = frozenset(
+    ("kind", "title", "type", "point", "link", "name", "center", "start", "through", "direction",
+     "angle_law", "s_law", "magnitude", "moment", "relative_to", "body")
+)  # fmt: skip
+
+
+def _nearest(key: str, value: Any, known: frozenset[str]) -> str | None:
+    """The known name nearest to ``key`` (difflib's ratio of at least 0.6), or None."""
+
+    def ratio(name: str) -> float:
+        return difflib.SequenceMatcher(None, key, name).ratio()
+
+    close = difflib.get_close_matches(key, sorted(known), n=3, cutoff=0.6)
+    nearest = [name for name in close if ratio(name) == ratio(close[0])]
+    fitting = [name for name in nearest if (name in TEXT_FIELDS) == isinstance(value, str)]
+    return next(iter(fitting or nearest), None)
+
+
+def _unknown_here(known: frozenset[str], body: Mapping[str, Any], where: str) -> list[str]:
+    """One sentence per key of ``body`` that ``known`` lacks, with the nearest known name."""
+    found = []
+    for key, value in body.items():
+        if key in known:
+            continue
+        path = f"{where}.{key}" if where else str(key)
+        close = _nearest(str(key), value, known)
+        hint = f"did you mean {close}?" if close else f"the fields are {', '.join(sorted(known))}"
+        found.append(f"{path} is not a scene field; {hint}")
+    return found
+
+
+def unknown_keys(doc: Mapping[str, Any]) -> list[str]:
+    """Every key of a scene document that the contract does not know, as sentences naming the key,
+    its path and the nearest valid name: ``drivers[0].angle is not a scene field; did you mean
+    angle_deg?``. The spec allows extra fields, so these are warnings (an error only on request);
+    parts of the document that are not shaped as the contract says are left to the parser."""
+    fields = SCENE_FIELDS.get(str(doc.get("kind")), {}) if isinstance(doc, Mapping) else {}
+    found: list[str] = []
+    for pattern, known in fields.items():
+        for where, body in _bodies(doc, pattern):
+            found += _unknown_here(known, body, where)
+    return found
+
+
+def _bodies(doc: Mapping[str, Any], pattern: str) -> list[tuple[str, Mapping[str, Any]]]:
+    """The objects of ``doc`` at ``pattern`` (e.g. ``moving_points[].path``), with their paths."""
+    level: list[tuple[str, Any]] = [("", doc)]
+    for part in pattern.split(".") if pattern else []:
+        name, star = part.removesuffix("[]"), part.endswith("[]")
+        deeper: list[tuple[str, Any]] = []
+        for where, body in level:
+            if name == "*":
+                if isinstance(body, Mapping):
+                    deeper += [(f"{where}.{k}", v) for k, v in body.items()]
+                continue
+            value = body.get(name) if isinstance(body, Mapping) else None
+            path = f"{where}.{name}" if where else name
+            if star:
+                if isinstance(value, list):
+                    deeper += [(f"{path}[{i}]", item) for i, item in enumerate(value)]
+            elif value is not None:
+                deeper.append((path, value))
+        level = deeper
+    return [(where, body) for where, body in level if isinstance(body, Mapping)]

@@ -1,11 +1,12 @@
-"""Shared fixtures: an in-process client and a live uvicorn server.
+"""The live server every HTTP and browser test shares (solver tests need none of it).
 
-``client`` drives the ASGI app in process (fastapi.testclient), answering server errors as 500s.
 ``live_server`` starts the app the way a user does (server.local.serve_locally: ``python -m
 uvicorn server.app:app`` from the repository root on a free loopback port), waits for GET /health,
 yields the base URL and stops the process at the end of the session. It is the only server the
 suite starts: the API tests and the browser tests share it. Its output goes to
-test-artifacts/uvicorn.log.
+test-artifacts/uvicorn.log. server.local uses the standard library only, so the solver tests run
+with numpy, scipy and sympy installed and no web framework; the in-process ``client`` lives in
+tests/server/conftest.py.
 """
 
 from __future__ import annotations
@@ -15,21 +16,11 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from fastapi.testclient import TestClient
 
-from server.app import app
 from server.local import serve_locally
 
 ROOT = Path(__file__).resolve().parents[1]
 SERVER_LOG = ROOT / "test-artifacts" / "uvicorn.log"
-
-
-@pytest.fixture(scope="module")
-def client() -> Iterator[TestClient]:
-    # A server-side exception must reach the test as the 500 a user would get (a defect to
-    # assert against), not as an exception re-raised into the test.
-    with TestClient(app, raise_server_exceptions=False) as test_client:
-        yield test_client
 
 
 @pytest.fixture(scope="session")

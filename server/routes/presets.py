@@ -10,6 +10,8 @@ from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field, create_model
 
 from server.edge import FiniteJSONResponse, StrictJSONRoute
+from server.responses import ResultResponse
+from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
 from solver.presets import PRESETS, Preset
 
@@ -17,11 +19,12 @@ router = APIRouter(
     prefix="/presets",
     tags=["presets"],
     route_class=StrictJSONRoute,
-    default_response_class=FiniteJSONResponse,
+    default_response_class=ResultResponse,
+    responses=PROBLEMS,
 )
 
 
-@router.get("", summary="The textbook mechanisms and their parameters")
+@router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
 def list_presets() -> FiniteJSONResponse:
     return FiniteJSONResponse(
         {
@@ -83,6 +86,8 @@ def _route(preset: Preset) -> None:
         summary=preset.title,
         description=preset.description,
         name=f"preset_{preset.name}",
+        response_model=dict[str, Any],
+        response_description="A scene-v1 document",
     )
 
 

@@ -28,7 +28,6 @@ from typing import Any
 import mpmath as mp
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 
 from solver.analysis import SINGULAR_CONDITION, LinkageAnalysis, analyze
 from solver.errors import SingularConfiguration
@@ -274,20 +273,6 @@ def test_exactly_at_a_dead_centre_is_a_singular_configuration(doc: Doc) -> None:
     assert raised.value.condition_number > SINGULAR_CONDITION
 
 
-@pytest.mark.parametrize(
-    "doc", [FOLDED_DEAD_CENTRE, EXTENDED_DEAD_CENTRE], ids=["folded", "extended"]
-)
-def test_dead_centre_over_http_is_422_singular_configuration(client: TestClient, doc: Doc) -> None:
-    """scene-v1 errors table: singular_configuration, 422, problem+json."""
-    response = client.post("/api/v1/analyze", json={"scene": doc})
-    assert response.status_code == 422
-    assert response.headers["content-type"].startswith("application/problem+json")
-    body = response.json()
-    assert body["code"] == "singular_configuration"
-    assert body["status"] == 422
-    assert "dead centre" in body["detail"]
-
-
 # --- lengths and speeds over many decades --------------------------------------------------------
 
 # S000-T1 with every length times L and the crank at omega = -s, alpha: positions and poles scale
@@ -441,16 +426,6 @@ def test_reported_limit_positions_can_be_posed() -> None:
         assert abs(float(np.hypot(*(D - B))) - float(T1["l2"] + T1["l3"])) <= 1e-9
         u, w = B - C, D - C
         assert abs(u[0] * w[1] - u[1] * w[0]) <= 1e-5 * float(np.hypot(*u) * np.hypot(*w))
-
-
-def test_non_grashof_sweep_over_http(client: TestClient) -> None:
-    """The /sweep response states the feasible range (scene-v1): feasible false, two limits."""
-    response = client.post("/api/v1/sweep", json={"scene": S000_T1["body"]["scene"], "samples": 50})
-    assert response.status_code == 200
-    body = response.json()
-    assert body["feasible"] is False
-    assert sorted(body["limits"]) == pytest.approx([-float(T1_LIMIT), float(T1_LIMIT)], abs=1e-8)
-    assert len(body["driver_angle"]) == 50
 
 
 # --- a Newton-Raphson six-bar swept over a limited range -----------------------------------------

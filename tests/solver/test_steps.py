@@ -29,10 +29,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from server.responses import analysis_response, spatial_response
 from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.errors import InvalidScene
 from solver.presets import PRESETS, build_preset
+from solver.results import analysis_body, spatial_body
 from solver.scene import parse_linkage
 from solver.spatial import parse_spatial_chain
 from solver.steps import Solution, Step, solve
@@ -189,8 +189,8 @@ def value(step: Step, key: str) -> Any:
 
 def results_body(solution: Solution) -> dict[str, Any]:
     if isinstance(solution.analysis, LinkageAnalysis):
-        return analysis_response(solution.analysis)
-    return spatial_response(solution.analysis, frozenset(QUANTITIES))
+        return analysis_body(solution.analysis, [])
+    return spatial_body(solution.analysis, frozenset(QUANTITIES), [])
 
 
 def at_path(body: Any, path: Sequence[Any]) -> Any:

@@ -1,0 +1,163 @@
+"""The printable page of a worked solution: standalone HTML from a template.
+
+``templates/solution.html`` holds the page (its print style, and the one inline script that
+typesets the steps with KaTeX from /vendor/katex/; nothing is loaded from another host). This
+module fills it from the /solution body and the scene document, escaping every name.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from string import Template
+from typing import Any
+
+TEMPLATE = Template((Path(__file__).parent / "templates" / "solution.html").read_text())
+METHODS = {"vector": "relative velocities (vector method)", "loop": "loop closure in complex form"}
+
+
+def _e(text: object) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def _vector(value: Any) -> str:
+    if isinstance(value, list | tuple):
+        return "(" + ", ".join(f"{float(x):.6g}" for x in value) + ")"
+    return _e(value)
+
+
+def _table(caption: str, header: Sequence[str], rows: Iterable[Sequence[str]]) -> str:
+    """An HTML table: caption, a header row, and rows of cells already escaped."""
+    head = "".join(f"<th>{h}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    return f"<table><caption>{caption}</caption><tr>{head}</tr>{body}</table>"
+
+
+def _driver_motion(d: Mapping[str, Any]) -> str:
+    if "angle_law" in d:
+        return f"angle law {_e(d['angle_law'])} rad"
+    return f"omega = {_e(d.get('omega', 0))} rad/s, alpha = {_e(d.get('alpha', 0))} rad/s^2" + (
+        f", angle {_e(d['angle_deg'])} deg" if "angle_deg" in d else ""
+    )
+
+
+def _scene_tables(doc: Mapping[str, Any]) -> str:
+    """The scene's data as tables (from the validated document)."""
+    if doc.get("kind") == "spatial_chain":
+        return _table(
+            "Joints (origin m, rate rad/s or m/s)",
+            ["joint", "type", "origin", "axis", "rate", "rate of rate"],
+            (
+                [
+                    _e(j.get("name")),
+                    _e(j.get("type")),
+                    _vector(j.get("origin")),
+                    _vector(j.get("axis")),
+                    _e(j.get("rate")),
+                    _e(j.get("rate_dot", 0)),
+                ]
+                for j in doc.get("joints", [])
+            ),
+        ) + _table(
+            "Points (m)",
+            ["point", "body", "position"],
+            (
+                [_e(n), _e(p.get("body")), _vector(p.get("position"))]
+                for n, p in doc.get("points", {}).items()
+            ),
+        )
+    parts = [
+        _table(
+            "Points as drawn (m)",
+            ["point", "position"],
+            ([_e(n), _vector(xy)] for n, xy in doc.get("points", {}).items()),
+        ),
+        _table(
+            "Links",
+            ["link", "points", ""],
+            (
+                [
+                    _e(n),
+                    _e(", ".join(map(str, link.get("points", [])))),
+                    "ground" if link.get("ground") else "",
+                ]
+                for n, link in doc.get("links", {}).items()
+            ),
+        ),
+        _table(
+            "Joints (slider and prismatic: links = guide, follower)",
+            ["type", "point", "links", "slot axis"],
+            (
+                [
+                    _e(j.get("type")),
+                    _e(j.get("point")),
+                    _e(", ".join(map(str, j.get("links", [])))),
+                    _vector(j["axis"]) if "axis" in j else "",
+                ]
+                for j in doc.get("joints", [])
+            ),
+        ),
+        _table(
+            "Drivers",
+            ["link", "motion"],
+            ([_e(d.get("link")), _driver_motion(d)] for d in doc.get("drivers", [])),
+        ),
+    ]
+    moving = doc.get("moving_points", [])
+    if moving:
+        parts.append(
+            _table(
+                "Moving points (s in m, t in s)",
+                ["point", "carrier", "path", "s(t)"],
+                (
+                    [
+                        _e(m.get("name")),
+                        _e(m.get("link")),
+                        _e(json.dumps(m.get("path"))),
+                        _e(m.get("s_law")),
+                    ]
+                    for m in moving
+                ),
+            )
+        )
+    if "time" in doc:
+        parts.append(f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>")
+    return "".join(parts)
+
+
+def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
+    """The page of ``solution`` (a /solution body) for the scene document ``doc``."""
+    title = doc.get("title") or (
+        "spatial chain" if doc.get("kind") == "spatial_chain" else "linkage"
+    )
+    steps = "".join(
+        f'<li class="step"><h3>{_e(s["title"])}</h3>'
+        + (
+            f'<div class="math pending" data-latex="{_e(s["latex"])}">{_e(s["latex"])}</div>'
+            if s["latex"]
+            else ""
+        )
+        + f'<p class="text">{_e(s["text"])}</p></li>'
+        for s in solution["steps"]
+    )
+    mistakes = "".join(
+        f"<li><strong>{_e(m['title'])}</strong><br>{_e(m['text'])}</li>"
+        for m in solution["mistakes"]
+    )
+    note = ""
+    if solution["method"] != solution["requested_method"]:
+        note = (
+            f'<p class="note">The {_e(solution["requested_method"])} method does not apply to '
+            "this scene; the first step says why.</p>"
+        )
+    return TEMPLATE.substitute(
+        title=_e(title),
+        method=_e(METHODS[solution["method"]]),
+        digits=solution["digits"],
+        note=note,
+        scene_tables=_scene_tables(doc),
+        steps=steps,
+        mistakes=mistakes or "<li>None listed for this scene.</li>",
+    )

@@ -1,0 +1,162 @@
+"""The solver's public entry points: a scene in (a scene-v1 dict or a parsed scene), a frozen
+result out whose ``as_dict()`` is the body of the matching HTTP endpoint.
+
+    import solver
+    result = solver.analyze(doc, ["position", "velocity"])
+    result["links"]["coupler"]["omega"]
+
+A dict is checked against the contract: a key it does not know (``"angle"`` for ``angle_deg``)
+is reported in the result's ``warnings`` (``drivers[0].angle is not a scene field; did you mean
+angle_deg?``), or raises ``InvalidScene`` with ``strict=True``. Errors are the exceptions of
+``solver.errors`` (``InvalidScene``, ``NotAssemblable``, ``SingularConfiguration``...).
+"""
+
+from __future__ import annotations
+
+import warnings as python_warnings
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+from solver import analysis, events, results
+from solver import steps as worked
+from solver.errors import InvalidScene
+from solver.results import (
+    AnalysisResult,
+    EventResult,
+    SolutionResult,
+    SweepResult,
+    TimeSweepResult,
+)
+from solver.scene import LinkageScene, parse_linkage, unknown_keys
+from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
+from solver.sweep import sweep as sweep_linkage
+from solver.sweep import sweep_time as sweep_linkage_time
+
+Scene = LinkageScene | SpatialChain
+SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain
+
+
+class SceneWarning(UserWarning):
+    """A scene document has a key the contract does not know (``parse_scene`` warns with it)."""
+
+
+def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
+    """The scene of a document of either kind, and the warnings about its unknown keys."""
+    kind = doc.get("kind") if isinstance(doc, Mapping) else None
+    scene: Scene
+    if kind == "linkage":
+        scene = parse_linkage(doc)
+    elif kind == "spatial_chain":
+        scene = parse_spatial_chain(doc)
+    else:
+        raise InvalidScene(f"kind: expected 'linkage' or 'spatial_chain', got {kind!r}")
+    found = unknown_keys(doc)
+    if strict and found:
+        raise InvalidScene("strict: " + "; ".join(found))
+    return scene, found
+
+
+def _scene(scene: SceneInput, strict: bool) -> tuple[Scene, list[str]]:
+    if isinstance(scene, LinkageScene | SpatialChain):
+        return scene, []
+    return _parse(scene, strict)
+
+
+def _linkage(scene: SceneInput, strict: bool, what: str) -> tuple[LinkageScene, list[str]]:
+    parsed, found = _scene(scene, strict)
+    if not isinstance(parsed, LinkageScene):
+        raise InvalidScene(f"kind: {what} takes a 'linkage' scene")
+    return parsed, found
+
+
+def parse_scene(doc: Mapping[str, Any], *, strict: bool = False) -> Scene:
+    """Validate a scene-v1 document of kind ``linkage`` or ``spatial_chain`` and build the
+    immutable scene. Unknown keys are reported with ``SceneWarning`` (``InvalidScene`` when
+    ``strict``)."""
+    scene, found = _parse(doc, strict)
+    for sentence in found:
+        python_warnings.warn(sentence, SceneWarning, stacklevel=2)
+    return scene
+
+
+def analyze(
+    scene: SceneInput, quantities: Iterable[str] | None = None, *, strict: bool = False
+) -> AnalysisResult:
+    """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
+    ``angle_law`` at ``time``), or the spatial chain. ``quantities``: any of position, velocity,
+    acceleration, poles, components (default: all); only those are computed."""
+    parsed, found = _scene(scene, strict)
+    wanted = analysis.normalise_quantities(quantities)
+    if isinstance(parsed, LinkageScene):
+        return AnalysisResult(results.analysis_body(analysis.analyze(parsed, wanted), found))
+    return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
+
+
+def sweep(
+    scene: SceneInput,
+    samples: int = 360,
+    quantities: Iterable[str] | None = None,
+    *,
+    strict: bool = False,
+) -> SweepResult:
+    """The linkage over one revolution of its first driver from its start angle, or over its
+    feasible range with the limit positions (POST /sweep). Default quantity: position."""
+    parsed, found = _linkage(scene, strict, "a sweep")
+    return SweepResult(results.sweep_body(sweep_linkage(parsed, samples, quantities), found))
+
+
+def sweep_time(
+    scene: SceneInput,
+    time_range: Sequence[float],
+    samples: int = 360,
+    quantities: Iterable[str] | None = None,
+    *,
+    strict: bool = False,
+) -> TimeSweepResult:
+    """The linkage and its moving points at ``samples`` instants over ``time_range`` = (t0, t1)
+    through its time laws (POST /sweep with ``time_range``). Default quantity: position."""
+    parsed, found = _linkage(scene, strict, "a sweep")
+    if len(time_range) != 2:
+        raise InvalidScene("time_range: expected [t0, t1]")
+    t0, t1 = time_range
+    body = results.time_sweep_body(sweep_linkage_time(parsed, t0, t1, samples, quantities), found)
+    return TimeSweepResult(body)
+
+
+def find_event(
+    scene: SceneInput,
+    moving_point: str,
+    reaches: str,
+    occurrence: int = 1,
+    t_max: float = 60.0,
+    *,
+    strict: bool = False,
+) -> EventResult:
+    """The ``occurrence``-th instant after t = 0 at which ``moving_point`` coincides with the
+    point ``reaches``, searched in 0 < t <= ``t_max`` (POST /events)."""
+    parsed, found = _linkage(scene, strict, "an event search")
+    event = events.find_event(parsed, moving_point, reaches, occurrence, t_max)
+    return EventResult(
+        {
+            "time": event.time,
+            "position": results.vector(event.position),
+            "moving_point": moving_point,
+            "reaches": reaches,
+            "occurrence": occurrence,
+            "warnings": found,
+        }
+    )
+
+
+def solve(
+    scene: SceneInput, method: str = "vector", digits: int = 4, *, strict: bool = False
+) -> SolutionResult:
+    """The worked solution (POST /solution) by ``method`` ('vector' or 'loop'), numbers shown with
+    ``digits`` significant digits; ``results`` is the /analyze body of the same instant."""
+    parsed, found = _scene(scene, strict)
+    solution = worked.solve(parsed, method, digits)
+    if isinstance(solution.analysis, analysis.LinkageAnalysis):
+        body = results.analysis_body(solution.analysis, found)
+    else:
+        body = results.spatial_body(solution.analysis, frozenset(analysis.QUANTITIES), found)
+    return SolutionResult(results.solution_body(solution, body, found))

@@ -1,0 +1,163 @@
+"""The API contract (issue 9): every 200 body is the solver result's ``as_dict()``, warnings and
+``strict`` reach HTTP, and real responses satisfy the published OpenAPI schema."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from jsonschema import Draft202012Validator
+
+import solver
+from server import problems
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+NAMES = sorted(path.stem for path in EXAMPLES.glob("*.json"))
+SAMPLES = 24
+
+
+def example(name: str) -> dict[str, Any]:
+    data: dict[str, Any] = json.loads((EXAMPLES / f"{name}.json").read_text())
+    return data
+
+
+def plain(value: Any) -> Any:
+    """A body as JSON would carry it: arrays as nested lists."""
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    return value
+
+
+def calls(name: str) -> list[tuple[str, dict[str, Any], solver.Result]]:
+    """(endpoint, request, the library's result) for every endpoint that takes this scene."""
+    doc = example(name)
+    out: list[tuple[str, dict[str, Any], solver.Result]] = [
+        ("/analyze", {"scene": doc}, solver.analyze(doc)),
+        ("/analyze", {"scene": doc, "quantities": ["position"]}, solver.analyze(doc, ["position"])),
+        ("/solution", {"scene": doc, "method": "loop"}, solver.solve(doc, "loop")),
+    ]
+    if doc["kind"] != "linkage":
+        return out
+    wanted = ["position", "velocity", "acceleration", "poles", "components"]
+    if not doc.get("moving_points"):
+        request = {"scene": doc, "samples": SAMPLES, "quantities": wanted}
+        out.append(("/sweep", request, solver.sweep(doc, SAMPLES, wanted)))
+    else:
+        request = {"scene": doc, "samples": SAMPLES, "quantities": wanted, "time_range": [0, 1]}
+        out.append(("/sweep", request, solver.sweep_time(doc, (0, 1), SAMPLES, wanted)))
+        moving = doc["moving_points"][0]
+        event = {"moving_point": moving["name"], "reaches": moving["path"]["start"]}
+        try:
+            result = solver.find_event(doc, moving["name"], moving["path"]["start"])
+        except solver.NoEvent:
+            return out
+        out.append(("/events", {"scene": doc, "event": event}, result))
+    return out
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_body_is_the_results_as_dict(client: TestClient, name: str) -> None:
+    for endpoint, request, result in calls(name):
+        response = client.post(f"/api/v1{endpoint}", json=request)
+        assert response.status_code == 200, (endpoint, response.text)
+        assert response.json() == plain(result.as_dict()), endpoint
+
+
+def test_warnings_over_http_and_strict(client: TestClient) -> None:
+    doc = example("S000-T2")
+    doc["drivers"][0]["angle"] = 120
+    warning = "drivers[0].angle is not a scene field; did you mean angle_deg?"
+    for endpoint, extra in (("/analyze", {}), ("/sweep", {"samples": 8}), ("/solution", {})):
+        body = client.post(f"/api/v1{endpoint}", json={"scene": doc, **extra}).json()
+        assert body["warnings"] == [warning], endpoint
+        strict = client.post(f"/api/v1{endpoint}", json={"scene": doc, "strict": True, **extra})
+        assert strict.status_code == 422
+        assert strict.headers["content-type"].startswith("application/problem+json")
+        assert strict.json()["code"] == "invalid_scene" and warning in strict.json()["detail"]
+    clean = client.post("/api/v1/analyze", json={"scene": example("S000-T2"), "strict": True})
+    assert clean.status_code == 200 and clean.json()["warnings"] == []
+
+
+# --- the published schema ------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def openapi(client: TestClient) -> dict[str, Any]:
+    document: dict[str, Any] = client.get("/api/v1/openapi.json").json()
+    return document
+
+
+def check(openapi: dict[str, Any], path: str, method: str, response: Any) -> None:
+    """The response satisfies the schema the OpenAPI document publishes for its status and media
+    type (JSON Schema 2020-12, references resolved within the document)."""
+    media = response.headers["content-type"].split(";")[0]
+    declared = openapi["paths"][f"/api/v1{path}"][method]["responses"]
+    schema = declared[str(response.status_code)]["content"][media]["schema"]
+    validator = Draft202012Validator({**openapi, **schema})
+    body = response.json()
+    errors = [f"{list(e.absolute_path)}: {e.message}" for e in validator.iter_errors(body)]
+    assert not errors, (path, response.status_code, errors[:5])
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_real_responses_satisfy_the_published_schema(
+    client: TestClient, openapi: dict[str, Any], name: str
+) -> None:
+    for endpoint, request, _ in calls(name):
+        check(openapi, endpoint, "post", client.post(f"/api/v1{endpoint}", json=request))
+
+
+def test_presets_and_problems_satisfy_the_published_schema(
+    client: TestClient, openapi: dict[str, Any]
+) -> None:
+    check(openapi, "/presets", "get", client.get("/api/v1/presets"))
+    check(openapi, "/presets/four_bar", "post", client.post("/api/v1/presets/four_bar", json={}))
+    doc = example("S000-T1")
+    doc["drivers"][0]["angle_deg"] = 180.0
+    problems = [
+        ("/analyze", {"scene": {"kind": "nope"}}),
+        ("/analyze", {"scene": doc}),  # not_assemblable
+        ("/analyze", {"scene": example("S000-T1"), "quantities": ["speed"]}),  # pydantic's
+        ("/sweep", {"scene": example("S000-T1"), "samples": 10**7}),
+        ("/solution", {"scene": example("S000-T1"), "digits": 0}),
+    ]
+    for endpoint, request in problems:
+        response = client.post(f"/api/v1{endpoint}", json=request)
+        assert response.status_code in (413, 422), response.text
+        assert response.headers["content-type"] == "application/problem+json"
+        check(openapi, endpoint, "post", response)
+
+
+def test_the_schema_would_catch_a_wrong_body(client: TestClient, openapi: dict[str, Any]) -> None:
+    """The check is not vacuous: a body without warnings, or with a vector as a string, fails."""
+    response = client.post("/api/v1/analyze", json={"scene": example("S000-T2")})
+    schema = openapi["paths"]["/api/v1/analyze"]["post"]["responses"]["200"]["content"]
+    validator = Draft202012Validator({**openapi, **schema["application/json"]["schema"]})
+    body = response.json()
+    assert validator.is_valid(body)
+    assert not validator.is_valid({k: v for k, v in body.items() if k != "warnings"})
+    body["points"]["C"]["velocity"] = "fast"
+    assert not validator.is_valid(body)
+
+
+def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> None:
+    codes = openapi["components"]["schemas"]["ProblemCode"]["enum"]
+    assert sorted(codes) == sorted(problems.TITLES)
+    assert "HTTPValidationError" not in json.dumps(openapi)
+    for path, operations in openapi["paths"].items():
+        for method, operation in operations.items():
+            for status, response in operation["responses"].items():
+                media = set(response.get("content", {}))
+                if status.startswith("4"):
+                    assert media == {"application/problem+json"}, (path, method, status)
+                elif path.startswith("/api/v1/") and not path.endswith(".html"):
+                    assert media == {"application/json"}, (path, method, status)
+                    assert response["content"]["application/json"]["schema"] != {"type": "string"}
