@@ -19,6 +19,17 @@ function el(tag, attrs = {}, text = null) {
   return node;
 }
 
+/**
+ * The number a student typed, or null: a decimal comma is a decimal point ("0,2" -> 0.2);
+ * letters, an empty field or anything but one plain number is not a number.
+ */
+export function parseNumber(text) {
+  const t = String(text).trim().replace(/\s+/g, '').replace(',', '.');
+  if (!/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(t)) return null;
+  const v = Number(t);
+  return Number.isFinite(v) ? v : null;
+}
+
 function debounce(fn, ms) {
   let timer = null;
   return (...args) => {
@@ -119,7 +130,10 @@ export class Controls {
     const wrap = el('div', { class: 'field' });
     const lab = el('label', { for: id });
     lab.append(document.createTextNode(label), el('span', { class: 'unit' }));
-    const input = el('input', { id, type: 'number', step: 'any', inputmode: 'decimal', 'data-key': key, 'aria-describedby': `${id}-error` });
+    // A text field, not type=number: the browser's number field drops "0,2" and letters
+    // silently (its value becomes ""), so the page could neither read a decimal comma nor say
+    // that a value is not a number.
+    const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': key, 'aria-describedby': `${id}-error` });
     if (help) input.title = help;
     const error = el('p', { id: `${id}-error`, class: 'field-error', role: 'alert', hidden: true });
     wrap.append(lab, input, error);
@@ -128,9 +142,22 @@ export class Controls {
     this.fields.set(key, field);
     this.paintField(field);
     const commit = () => {
-      if (input.value.trim() === '') return;
-      const si = fromDisplay(kind, Number(input.value), this.units);
-      if (!Number.isFinite(si) || si === field.lastSent) return;
+      const typed = parseNumber(input.value);
+      if (typed === null) {
+        field.lastSent = null;
+        this.showFieldError(key, input.value.trim() === ''
+          ? 'Empty: type a number (a decimal comma is fine).'
+          : `"${input.value.trim()}" is not a number: type a value such as 0.25 or 0,25.`);
+        return;
+      }
+      const si = fromDisplay(kind, typed, this.units);
+      if (si === field.valueSI) {
+        // The value the server last accepted: valid as it stands, nothing to ask.
+        field.lastSent = si;
+        this.clearFieldError(key);
+        return;
+      }
+      if (si === field.lastSent) return; // already sent, answer pending
       field.lastSent = si;
       onCommit(si);
     };
@@ -267,12 +294,14 @@ export class Controls {
     this.paintField(f);
   }
 
-  /** Accept what was typed: the server took it. */
+  /** Accept what was typed: the server took it (shown again in canonical form, "0,2" -> 0.2). */
   acceptField(key, valueSI) {
     const f = this.fields.get(key);
     if (!f) return;
     this.clearFieldError(key);
-    if (f.kind !== 'text') f.valueSI = valueSI;
+    if (f.kind === 'text') return;
+    f.valueSI = valueSI;
+    this.paintField(f);
   }
 
   showFieldError(key, message, position = null) {

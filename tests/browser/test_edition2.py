@@ -1,0 +1,67 @@
+"""The browser app, second edition (issue 13): fields that never lie, one crank angle, layout,
+export, plots, notation. Driven in Debian's Chromium against the real server, like test_app.py.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import pause_and_wait, wait_until
+
+pytestmark = pytest.mark.browser
+
+
+def edit(page: Any, selector: str, text: str) -> None:
+    page.fill(selector, text)
+    page.press(selector, "Tab")
+
+
+# ---- fields that never lie -------------------------------------------------------------------
+
+
+def test_an_error_clears_as_soon_as_the_field_holds_a_valid_value(app: AppPage) -> None:
+    app.log.allow(r"status of 422")
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    edit(page, "#f-param_ground", "2.6")
+    error = page.locator("#f-param_ground-error")
+    error.wait_for(state="visible")
+    assert "2.6" in error.inner_text() or "|" in error.inner_text()
+    assert page.get_attribute("#f-param_ground", "aria-invalid") == "true"
+    # Back to the value the server accepted before: no request needed, the error goes.
+    edit(page, "#f-param_ground", "1")
+    error.wait_for(state="hidden")
+    assert page.get_attribute("#f-param_ground", "aria-invalid") is None
+
+
+def test_a_decimal_comma_is_a_decimal_point(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    with page.expect_request(lambda r: r.url.endswith("/presets/four_bar")) as request:
+        edit(page, "#f-param_crank", "0,2")
+    assert json.loads(request.value.post_data or "{}")["crank"] == pytest.approx(0.2)
+    wait_until(lambda: page.input_value("#f-param_crank") == "0.2", what="0,2 shown as 0.2")
+    assert page.get_attribute("#f-param_crank", "aria-invalid") is None
+
+
+@pytest.mark.parametrize("text", ["abc", "", "0.2.3", "1e"])
+def test_unparseable_input_is_marked_invalid_without_a_request(app: AppPage, text: str) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    before = len(app.log.requests)
+    edit(page, "#f-param_crank", text)
+    page.locator("#f-param_crank-error").wait_for(state="visible")
+    assert page.get_attribute("#f-param_crank", "aria-invalid") == "true"
+    assert "number" in page.inner_text("#f-param_crank-error").lower()
+    page.wait_for_timeout(900)  # past the typing debounce
+    assert not any("/presets/" in u for u in app.log.requests[before:])
+    # A valid value clears it (0.15 is the value shown before: nothing to ask).
+    edit(page, "#f-param_crank", "0.15")
+    page.locator("#f-param_crank-error").wait_for(state="hidden")
