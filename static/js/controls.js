@@ -10,6 +10,9 @@ import { COLOURS, LEGEND } from './theme.js';
 
 const $ = (id) => document.getElementById(id);
 
+/** The preset parameter that only places the drawn pose (the crank angle of the drawing). */
+export const POSE_PARAMETER = 'crank_angle_deg';
+
 function el(tag, attrs = {}, text = null) {
   const node = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) {
@@ -205,6 +208,9 @@ export class Controls {
     this.clearFields(this.el.dimensions);
     for (const p of parameters) {
       if (/^(omega|alpha)$/i.test(p.name)) continue; // shown with the driver
+      // One crank angle on the page: the slider's (the analysed instant). The preset's drawn
+      // pose follows it when the mechanism is rebuilt (main.js), it is not a dimension.
+      if (p.name === POSE_PARAMETER) continue;
       const kind = kindOfUnit(p.unit);
       const value = values[p.name] ?? p.default;
       if (Array.isArray(p.choices) && p.choices.length) {

@@ -6,7 +6,7 @@
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
 import * as api from './api.js';
-import { Controls } from './controls.js';
+import { Controls, POSE_PARAMETER } from './controls.js';
 import { LinkageView } from './linkage-view.js';
 import { SpatialView } from './spatial-view.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
@@ -204,7 +204,7 @@ class App {
     return this.edit(
       `param:${name}`,
       value,
-      async () => this.withDriverEdits(await api.buildPreset(this.source.name, params)),
+      async () => this.withDriverEdits(await api.buildPreset(this.source.name, this.posedAtInstant(params))),
       () => { this.source = { ...this.source, params }; this.saveHash(); },
     );
   }
@@ -248,6 +248,18 @@ class App {
       scene.joints.find((j) => j.name === name)[field] = value;
       return scene;
     });
+  }
+
+  /**
+   * Preset parameters with the drawn pose at the analysed instant: the slider is the one crank
+   * angle, so an edit is checked (and any "cannot be assembled" said) at the angle shown.
+   */
+  posedAtInstant(params) {
+    const meta = this.presets.get(this.source.name);
+    const t = this.track;
+    if (!meta?.parameters?.some((p) => p.name === POSE_PARAMETER) || !t || t.static || t.param !== 'angle') return params;
+    const deg = (valueAt(t, this.u) * 180) / Math.PI;
+    return { ...params, [POSE_PARAMETER]: Number((((deg % 360) + 360) % 360).toFixed(6)) };
   }
 
   withDriverEdits(scene) {

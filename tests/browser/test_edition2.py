@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 
 from tests.browser.conftest import AppPage
-from tests.browser.test_app import pause_and_wait, wait_until
+from tests.browser.test_app import pause_and_wait, wait_analysed, wait_until
 
 pytestmark = pytest.mark.browser
 
@@ -65,3 +65,33 @@ def test_unparseable_input_is_marked_invalid_without_a_request(app: AppPage, tex
     # A valid value clears it (0.15 is the value shown before: nothing to ask).
     edit(page, "#f-param_crank", "0.15")
     page.locator("#f-param_crank-error").wait_for(state="hidden")
+
+
+# ---- one crank angle ---------------------------------------------------------------------------
+
+
+def test_the_slider_is_the_one_crank_angle(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    assert page.locator("#f-param_crank_angle_deg").count() == 0, "no second crank angle"
+    page.focus("#crank-angle")
+    for _ in range(40):
+        page.keyboard.press("ArrowRight")
+    wait_analysed(page)
+    angle = float(page.input_value("#crank-angle")) % 360
+    with page.expect_request(lambda r: r.url.endswith("/presets/four_bar")) as request:
+        edit(page, "#f-param_coupler", "1.05")
+    body = json.loads(request.value.post_data or "{}")
+    assert body["crank_angle_deg"] == pytest.approx(angle, abs=1e-6)
+    wait_until(lambda: page.input_value("#f-param_coupler") == "1.05", what="the edit")
+    wait_analysed(page)
+    assert float(page.input_value("#crank-angle")) % 360 == pytest.approx(angle, abs=1e-6)
+    # The printable page is the analysed instant's.
+    with (
+        page.expect_request(lambda r: r.url.endswith("/solution.html")) as printed,
+        page.expect_popup(),
+    ):
+        page.click("#print-solution")
+    scene = json.loads(printed.value.post_data or "{}")["scene"]
+    assert scene["drivers"][0]["angle_deg"] % 360 == pytest.approx(angle, abs=1e-6)
