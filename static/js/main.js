@@ -17,6 +17,7 @@ import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentS
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';
+import { installTabs } from './tabs.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -65,6 +66,7 @@ class App {
       share: () => this.onShare(),
     });
     $('print-solution').addEventListener('click', () => this.openPrintable());
+    installTabs();
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),

@@ -95,3 +95,52 @@ def test_the_slider_is_the_one_crank_angle(app: AppPage) -> None:
         page.click("#print-solution")
     scene = json.loads(printed.value.post_data or "{}")["scene"]
     assert scene["drivers"][0]["angle_deg"] % 360 == pytest.approx(angle, abs=1e-6)
+
+
+# ---- layout ------------------------------------------------------------------------------------
+
+
+def in_view(page: Any, selector: str) -> bool:
+    """The element's whole box is inside the viewport as the page opens (no scrolling)."""
+    inside: bool = page.evaluate(
+        """(sel) => { const r = document.querySelector(sel).getBoundingClientRect();
+                      return r.width > 0 && r.top >= 0 && r.left >= 0
+                        && r.bottom <= innerHeight && r.right <= innerWidth; }""",
+        selector,
+    )
+    return inside
+
+
+def test_drawing_motion_controls_and_polygons_fit_one_laptop_screen(app: AppPage) -> None:
+    app.page.set_viewport_size({"width": 1440, "height": 900})
+    app.open()
+    page = app.page
+    page.wait_for_selector("#velocity-polygon .main-svg")
+    for selector in (
+        "#linkage",
+        "#play",
+        "#crank-angle",
+        "#velocity-polygon",
+        "#acceleration-polygon",
+    ):
+        assert in_view(page, selector), f"{selector} is not in view at 1440x900"
+    assert page.evaluate("scrollY") == 0
+    # The worked solution is a tab, not 8000 px below: the page stays short.
+    assert page.evaluate("document.documentElement.scrollHeight") < 2000
+    assert page.locator("#steps").is_hidden()
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#plots").is_hidden()
+    assert page.get_attribute("#tab-solution", "aria-selected") == "true"
+    page.click("#tab-plots")
+    assert page.locator("#plots .main-svg").first.is_visible()
+    app.screenshot("laptop-1440x900-first-screen", None)
+
+
+def test_drawing_and_its_controls_fit_a_tablet_screen(app: AppPage) -> None:
+    app.page.set_viewport_size({"width": 1024, "height": 768})
+    app.open()
+    page = app.page
+    for selector in ("#linkage", "#play", "#crank-angle"):
+        assert in_view(page, selector), f"{selector} is not in view at 1024x768"
+    assert page.evaluate("document.documentElement.scrollWidth - innerWidth") <= 0
