@@ -53,7 +53,7 @@ export class Controls {
       play: $('play'), speed: $('speed'), slider: $('crank-angle'), sliderLabel: $('crank-angle-label'), sliderValue: $('crank-angle-value'),
       units: $('units'), share: $('share'), shareUrl: $('share-url'),
       showVelocity: $('show-velocity'), showAcceleration: $('show-acceleration'), showPoles: $('show-poles'), trace: $('trace-point'),
-      plotLinks: $('plot-links'), plotPoint: $('plot-point'), legend: $('legend'),
+      plotLinks: $('plot-links'), plotPoint: $('plot-point'), plotX: $('plot-x'), legend: $('legend'),
     };
     this.buildLegend();
     this.wire();
@@ -73,6 +73,7 @@ export class Controls {
     for (const k of ['showVelocity', 'showAcceleration', 'showPoles']) e[k].addEventListener('change', opts);
     e.trace.addEventListener('change', opts);
     e.plotPoint.addEventListener('change', () => this.on.plot(this.plotSelection()));
+    e.plotX.addEventListener('change', () => this.on.plot(this.plotSelection()));
     e.plotLinks.addEventListener('change', () => this.on.plot(this.plotSelection()));
     for (const r of document.querySelectorAll('input[name="method"]')) {
       r.addEventListener('change', () => r.checked && this.on.method(r.value));
@@ -429,7 +430,7 @@ export class Controls {
     if (o.trace !== undefined && [...e.trace.options].some((x) => x.value === (o.trace || ''))) e.trace.value = o.trace || '';
   }
 
-  setPointChoices(names, trace, plotPoint) {
+  setPointChoices(names, trace) {
     const fill = (sel, selected, none) => {
       sel.replaceChildren();
       if (none) sel.appendChild(el('option', { value: '' }, none));
@@ -437,7 +438,23 @@ export class Controls {
       sel.value = names.includes(selected) ? selected : none ? '' : names[0] || '';
     };
     fill(this.el.trace, trace, 'none');
-    fill(this.el.plotPoint, plotPoint, null);
+  }
+
+  /** The quantity plotted under the link panels: [{value, label}] and the chosen value. */
+  setQuantityChoices(choices, selected) {
+    const sel = this.el.plotPoint;
+    sel.replaceChildren(...choices.map((c) => el('option', { value: c.value }, c.label)));
+    sel.value = choices.some((c) => c.value === selected) ? selected : choices[0]?.value || '';
+    return sel.value || null;
+  }
+
+  /** The x axes offered ('angle', 'time'); returns the one chosen. */
+  setAxisChoices(axes, selected) {
+    const sel = this.el.plotX;
+    for (const o of sel.options) o.hidden = !axes.includes(o.value);
+    sel.value = axes.includes(selected) ? selected : axes[0];
+    sel.disabled = axes.length < 2;
+    return sel.value;
   }
 
   setLinkChoices(links, colours, checked) {
@@ -456,7 +473,7 @@ export class Controls {
 
   plotSelection() {
     const links = [...this.el.plotLinks.querySelectorAll('input:checked')].map((i) => i.value);
-    return { links, point: this.el.plotPoint.value || null };
+    return { links, quantity: this.el.plotPoint.value || null, axis: this.el.plotX.value };
   }
 
   setMethod(method) {
