@@ -10,6 +10,9 @@ import { COLOURS, LEGEND } from './theme.js';
 
 const $ = (id) => document.getElementById(id);
 
+/** The preset parameter that only places the drawn pose (the crank angle of the drawing). */
+export const POSE_PARAMETER = 'crank_angle_deg';
+
 function el(tag, attrs = {}, text = null) {
   const node = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) {
@@ -17,6 +20,17 @@ function el(tag, attrs = {}, text = null) {
   }
   if (text !== null) node.textContent = text;
   return node;
+}
+
+/**
+ * The number a student typed, or null: a decimal comma is a decimal point ("0,2" -> 0.2);
+ * letters, an empty field or anything but one plain number is not a number.
+ */
+export function parseNumber(text) {
+  const t = String(text).trim().replace(/\s+/g, '').replace(',', '.');
+  if (!/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(t)) return null;
+  const v = Number(t);
+  return Number.isFinite(v) ? v : null;
 }
 
 function debounce(fn, ms) {
@@ -39,7 +53,7 @@ export class Controls {
       play: $('play'), speed: $('speed'), slider: $('crank-angle'), sliderLabel: $('crank-angle-label'), sliderValue: $('crank-angle-value'),
       units: $('units'), share: $('share'), shareUrl: $('share-url'),
       showVelocity: $('show-velocity'), showAcceleration: $('show-acceleration'), showPoles: $('show-poles'), trace: $('trace-point'),
-      plotLinks: $('plot-links'), plotPoint: $('plot-point'), legend: $('legend'),
+      plotLinks: $('plot-links'), plotPoint: $('plot-point'), plotX: $('plot-x'), legend: $('legend'),
     };
     this.buildLegend();
     this.wire();
@@ -59,6 +73,7 @@ export class Controls {
     for (const k of ['showVelocity', 'showAcceleration', 'showPoles']) e[k].addEventListener('change', opts);
     e.trace.addEventListener('change', opts);
     e.plotPoint.addEventListener('change', () => this.on.plot(this.plotSelection()));
+    e.plotX.addEventListener('change', () => this.on.plot(this.plotSelection()));
     e.plotLinks.addEventListener('change', () => this.on.plot(this.plotSelection()));
     for (const r of document.querySelectorAll('input[name="method"]')) {
       r.addEventListener('change', () => r.checked && this.on.method(r.value));
@@ -119,7 +134,10 @@ export class Controls {
     const wrap = el('div', { class: 'field' });
     const lab = el('label', { for: id });
     lab.append(document.createTextNode(label), el('span', { class: 'unit' }));
-    const input = el('input', { id, type: 'number', step: 'any', inputmode: 'decimal', 'data-key': key, 'aria-describedby': `${id}-error` });
+    // A text field, not type=number: the browser's number field drops "0,2" and letters
+    // silently (its value becomes ""), so the page could neither read a decimal comma nor say
+    // that a value is not a number.
+    const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': key, 'aria-describedby': `${id}-error` });
     if (help) input.title = help;
     const error = el('p', { id: `${id}-error`, class: 'field-error', role: 'alert', hidden: true });
     wrap.append(lab, input, error);
@@ -128,9 +146,22 @@ export class Controls {
     this.fields.set(key, field);
     this.paintField(field);
     const commit = () => {
-      if (input.value.trim() === '') return;
-      const si = fromDisplay(kind, Number(input.value), this.units);
-      if (!Number.isFinite(si) || si === field.lastSent) return;
+      const typed = parseNumber(input.value);
+      if (typed === null) {
+        field.lastSent = null;
+        this.showFieldError(key, input.value.trim() === ''
+          ? 'Empty: type a number (a decimal comma is fine).'
+          : `"${input.value.trim()}" is not a number: type a value such as 0.25 or 0,25.`);
+        return;
+      }
+      const si = fromDisplay(kind, typed, this.units);
+      if (si === field.valueSI) {
+        // The value the server last accepted: valid as it stands, nothing to ask.
+        field.lastSent = si;
+        this.clearFieldError(key);
+        return;
+      }
+      if (si === field.lastSent) return; // already sent, answer pending
       field.lastSent = si;
       onCommit(si);
     };
@@ -178,6 +209,9 @@ export class Controls {
     this.clearFields(this.el.dimensions);
     for (const p of parameters) {
       if (/^(omega|alpha)$/i.test(p.name)) continue; // shown with the driver
+      // One crank angle on the page: the slider's (the analysed instant). The preset's drawn
+      // pose follows it when the mechanism is rebuilt (main.js), it is not a dimension.
+      if (p.name === POSE_PARAMETER) continue;
       const kind = kindOfUnit(p.unit);
       const value = values[p.name] ?? p.default;
       if (Array.isArray(p.choices) && p.choices.length) {
@@ -267,12 +301,14 @@ export class Controls {
     this.paintField(f);
   }
 
-  /** Accept what was typed: the server took it. */
+  /** Accept what was typed: the server took it (shown again in canonical form, "0,2" -> 0.2). */
   acceptField(key, valueSI) {
     const f = this.fields.get(key);
     if (!f) return;
     this.clearFieldError(key);
-    if (f.kind !== 'text') f.valueSI = valueSI;
+    if (f.kind === 'text') return;
+    f.valueSI = valueSI;
+    this.paintField(f);
   }
 
   showFieldError(key, message, position = null) {
@@ -394,7 +430,7 @@ export class Controls {
     if (o.trace !== undefined && [...e.trace.options].some((x) => x.value === (o.trace || ''))) e.trace.value = o.trace || '';
   }
 
-  setPointChoices(names, trace, plotPoint) {
+  setPointChoices(names, trace) {
     const fill = (sel, selected, none) => {
       sel.replaceChildren();
       if (none) sel.appendChild(el('option', { value: '' }, none));
@@ -402,7 +438,23 @@ export class Controls {
       sel.value = names.includes(selected) ? selected : none ? '' : names[0] || '';
     };
     fill(this.el.trace, trace, 'none');
-    fill(this.el.plotPoint, plotPoint, null);
+  }
+
+  /** The quantity plotted under the link panels: [{value, label}] and the chosen value. */
+  setQuantityChoices(choices, selected) {
+    const sel = this.el.plotPoint;
+    sel.replaceChildren(...choices.map((c) => el('option', { value: c.value }, c.label)));
+    sel.value = choices.some((c) => c.value === selected) ? selected : choices[0]?.value || '';
+    return sel.value || null;
+  }
+
+  /** The x axes offered ('angle', 'time'); returns the one chosen. */
+  setAxisChoices(axes, selected) {
+    const sel = this.el.plotX;
+    for (const o of sel.options) o.hidden = !axes.includes(o.value);
+    sel.value = axes.includes(selected) ? selected : axes[0];
+    sel.disabled = axes.length < 2;
+    return sel.value;
   }
 
   setLinkChoices(links, colours, checked) {
@@ -421,7 +473,7 @@ export class Controls {
 
   plotSelection() {
     const links = [...this.el.plotLinks.querySelectorAll('input:checked')].map((i) => i.value);
-    return { links, point: this.el.plotPoint.value || null };
+    return { links, quantity: this.el.plotPoint.value || null, axis: this.el.plotX.value };
   }
 
   setMethod(method) {

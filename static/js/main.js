@@ -6,17 +6,20 @@
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
 import * as api from './api.js';
-import { Controls } from './controls.js';
+import { Controls, POSE_PARAMETER } from './controls.js';
 import { LinkageView } from './linkage-view.js';
 import { SpatialView } from './spatial-view.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
-import { renderPlots, moveCursor, available } from './plots.js';
+import { renderPlots, moveCursor, available, quantityChoices } from './plots.js';
+import { cycleOrder, allSeries, xAxes, transmissionLoops } from './series.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { readHash, writeHash } from './share.js';
 import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentSources } from './track.js';
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';
+import { installTabs } from './tabs.js';
+import { installExport } from './export.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -38,7 +41,8 @@ class App {
     this.speed = 1;
     this.units = 'si';
     this.method = 'vector';
-    this.plot = { links: [], point: null };
+    this.plot = { links: [], quantity: null, axis: 'angle' };
+    this.loops = []; // four-bar loops of the scene, from the first analysis (transmission angle)
     this.camera = { yaw: -35, pitch: 22 };
     this.driverEdits = {};
     this.analysis = null;
@@ -60,11 +64,13 @@ class App {
       speed: (s) => { this.speed = s; this.saveHash(); },
       units: (u) => this.onUnits(u),
       options: (o) => this.onOptions(o),
-      plot: (sel) => { this.plot = sel; this.drawPlots(); this.saveHash(); },
+      plot: (sel) => { this.plot = { ...this.plot, ...sel }; this.drawPlots(); this.saveHash(); },
       method: (m) => { this.method = m; this.requestSolution(); this.saveHash(); },
       share: () => this.onShare(),
     });
     $('print-solution').addEventListener('click', () => this.openPrintable());
+    installTabs();
+    installExport(this);
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),
@@ -150,6 +156,15 @@ class App {
     await this.commitOrReport(scene, view);
   }
 
+  /** A scene document from elsewhere (an uploaded file, the editor): analysed at once. */
+  async openScene(scene, { name = 'file' } = {}) {
+    this.driverEdits = {};
+    this.source = { type: 'shared' };
+    this.controls.selectSource('shared', `Opened from ${name}.`);
+    this.setExampleFields(scene);
+    await this.commitOrReport(scene, null);
+  }
+
   /** Put the selector back on what is shown (after a mechanism could not be opened). */
   reselectSource() {
     const src = this.source;
@@ -204,7 +219,7 @@ class App {
     return this.edit(
       `param:${name}`,
       value,
-      async () => this.withDriverEdits(await api.buildPreset(this.source.name, params)),
+      async () => this.withDriverEdits(await api.buildPreset(this.source.name, this.posedAtInstant(params))),
       () => { this.source = { ...this.source, params }; this.saveHash(); },
     );
   }
@@ -248,6 +263,18 @@ class App {
       scene.joints.find((j) => j.name === name)[field] = value;
       return scene;
     });
+  }
+
+  /**
+   * Preset parameters with the drawn pose at the analysed instant: the slider is the one crank
+   * angle, so an edit is checked (and any "cannot be assembled" said) at the angle shown.
+   */
+  posedAtInstant(params) {
+    const meta = this.presets.get(this.source.name);
+    const t = this.track;
+    if (!meta?.parameters?.some((p) => p.name === POSE_PARAMETER) || !t || t.static || t.param !== 'angle') return params;
+    const deg = (valueAt(t, this.u) * 180) / Math.PI;
+    return { ...params, [POSE_PARAMETER]: Number((((deg % 360) + 360) % 360).toFixed(6)) };
   }
 
   withDriverEdits(scene) {
@@ -298,6 +325,15 @@ class App {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
     // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
     const quantities = timeDriven ? [...QUANTITIES, 'components'] : QUANTITIES;
+    if (!timeDriven && scene.drivers?.length) {
+      // A crank that turns fully is swept from 0 deg, so the samples (plots, CSV) fall on
+      // round angles; one that cannot be assembled at 0 deg is swept from its drawn pose.
+      try {
+        return trackFromSweep(await api.sweep(S.sceneAt(scene, 'angle', 0), SAMPLES, quantities));
+      } catch (err) {
+        if (err.code === 'network') throw err;
+      }
+    }
     return trackFromSweep(await api.sweep(scene, SAMPLES, quantities, range));
   }
 
@@ -322,11 +358,17 @@ class App {
     const names = S.pointNames(scene);
     const opts = this.controls.options();
     const trace = keepChoices && (opts.trace === null || names.includes(opts.trace)) ? opts.trace : defaultTrace(scene);
-    const plotPoint = keepChoices && names.includes(this.plot.point) ? this.plot.point : trace || names[names.length - 1];
-    this.controls.setPointChoices(names, trace, plotPoint);
+    this.controls.setPointChoices(names, trace);
     const links = S.movingLinks(scene);
     const chosen = keepChoices ? this.plot.links.filter((l) => links.includes(l)) : [];
-    this.plot = { links: chosen.length ? chosen : links.slice(0, 3), point: plotPoint };
+    this.plot = {
+      links: chosen.length ? chosen : links.slice(0, 3),
+      quantity: keepChoices ? this.plot.quantity : null,
+      axis: keepChoices ? this.plot.axis : 'angle',
+      trace: trace || names[names.length - 1],
+    };
+    this.loops = [];
+    this.mechanismFacts(null);
     this.controls.setLinkChoices(links, S.linkColours(scene), this.plot.links);
 
     this.linkage.options = { ...this.linkage.options, ...this.controls.options(), units: this.units };
@@ -432,7 +474,14 @@ class App {
       }
       this.linkage.setAnalysis(analysis);
       this.drawPolygons();
-      moveCursor($('plots'), this.track, this.instantValue(u), this.units);
+      this.mechanismFacts(analysis);
+      const loops = analysis.four_bar_loops || [];
+      if (JSON.stringify(loops.map((l) => l.links)) !== JSON.stringify(this.loops.map((l) => l.links))) {
+        this.loops = loops;
+        this.drawPlots();
+      } else {
+        moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
+      }
       $('linkage').dataset.analysed = String(this.instantValue(u));
     }
     this.dirty = true;
@@ -500,9 +549,25 @@ class App {
       this.plotsMessage(t ? 'No sweep from the server, so there is no cycle to plot.' : '');
       return;
     }
-    const ok = renderPlots(div, this.scene, t, { links: this.plot.links, point: this.plot.point, units: this.units, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
+    const choices = quantityChoices(allSeries(this.scene, t, cycleOrder(t), this.units, this.loops));
+    const preferred = this.plot.quantity
+      ?? (choices.find((c) => c.value.startsWith('slider:')) || choices.find((c) => c.value === `point:${this.plot.trace}:velocity`) || choices[0])?.value;
+    const quantity = this.controls.setQuantityChoices(choices, preferred);
+    const axis = this.controls.setAxisChoices(xAxes(this.scene, t), this.plot.axis);
+    this.plot = { ...this.plot, quantity, axis };
+    const { ok, facts } = renderPlots(div, this.scene, t, { links: this.plot.links, quantity, axis, units: this.units, loops: this.loops, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
+    $('plot-facts').replaceChildren(...facts.map((f) => Object.assign(document.createElement('li'), { textContent: f })));
     const have = available(t);
     this.plotsMessage(!ok ? 'The sweep has nothing to plot.' : !have.omega ? 'The server swept positions only: angular velocities and accelerations are not plotted.' : '');
+  }
+
+  /** Grashof class and transmission angle of each four-bar loop at the analysed instant. */
+  mechanismFacts(analysis) {
+    const el = $('mechanism-facts');
+    const loops = analysis?.four_bar_loops || [];
+    const named = transmissionLoops(this.scene, loops);
+    el.textContent = loops.map((l, i) => `${l.grashof}; transmission angle ${named[i]?.name || 'μ'} = ${show('angle', l.transmission_angle, this.units)}`).join(' · ');
+    el.hidden = !loops.length;
   }
 
   // ---- interaction ---------------------------------------------------------------------------
@@ -537,6 +602,7 @@ class App {
     this.controls.setUnits(units);
     this.linkage.setOptions({ units });
     this.spatial.setOptions({ units });
+    this.mechanismFacts(this.analysis);
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();
@@ -651,12 +717,16 @@ class App {
     this.method = view.method === 'loop' ? 'loop' : 'vector';
     this.controls.setMethod(this.method);
     if (view.camera) this.camera = view.camera;
-    if (view.plot) this.plot = view.plot;
+    if (view.plot) {
+      // Links before issue 13 saved the point whose speed was plotted.
+      const { links = [], quantity = null, axis = 'angle', point = null } = view.plot;
+      this.plot = { links, quantity: quantity ?? (point ? `point:${point}:velocity` : null), axis };
+    }
     this.driverEdits = {};
     this.playing = view.playing !== false;
     this.controls.setPlaying(this.playing);
     if (view.options) {
-      this.controls.setPointChoices(S.isSpatial(state.scene) ? [] : S.pointNames(state.scene), view.options.trace, null);
+      this.controls.setPointChoices(S.isSpatial(state.scene) ? [] : S.pointNames(state.scene), view.options.trace);
       this.controls.setOptions(view.options);
     }
     const src = state.source || {};

@@ -1,37 +1,18 @@
 // plots.js: quantities over the cycle, from the one sweep the animation already has.
 //
-// Four stacked panels sharing the x axis (driver angle, or time for relative-motion scenes):
-// link angles, link omegas, link alphas, and the speed of a chosen point. A vertical cursor
-// marks the analysed instant; moving it is a relayout of one shape, not a redraw.
+// Stacked panels sharing the x axis (driver angle 0..360 deg or time, see series.js): link
+// angles, ω and α of the chosen links, then the chosen quantity (a point's position, velocity
+// or acceleration with its components, a slider's s, v, a along its guide, or the transmission
+// angle with its extremes). A vertical cursor marks the analysed instant; moving it is a relayout
+// of one shape, not a redraw. The series come from series.js, the same list the CSV export writes.
 
 import { COLOURS } from './theme.js';
 import { linkColours } from './scene.js';
-import { toDisplay, unitLabel } from './units.js';
+import { unitLabel, toDisplay, fmt } from './units.js';
+import { cycleOrder, xValues, allSeries, extremes, groundSliders, timeRatio } from './series.js';
 
-const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
-
-function unwrap(values) {
-  // Angles from atan2 jump by 2 pi; a plot of a crank angle should be a straight line.
-  const out = [];
-  let offset = 0;
-  for (let i = 0; i < values.length; i++) {
-    if (i > 0 && values[i] !== null && values[i - 1] !== null) {
-      const d = values[i] + offset - out[i - 1];
-      if (d > Math.PI) offset -= 2 * Math.PI;
-      else if (d < -Math.PI) offset += 2 * Math.PI;
-    }
-    out.push(values[i] === null ? null : values[i] + offset);
-  }
-  return out;
-}
-
-function xValues(track, units) {
-  if (track.param === 'time') return { x: track.values, title: `time t [s]` };
-  return {
-    x: track.values.map((v) => toDisplay('angle', v, units)),
-    title: `driver angle [${unitLabel('angle', units)}]`,
-  };
-}
+const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'], toImageButtonOptions: { filename: 'plots' } };
+const TWO_PI = 2 * Math.PI;
 
 /** What the plots can show from this track (a position-only sweep has no omega/alpha). */
 export function available(track) {
@@ -41,79 +22,154 @@ export function available(track) {
   return { angle: has('angle'), omega: has('omega'), alpha: has('alpha'), speed };
 }
 
-export function renderPlots(div, scene, track, { links = [], point = null, units = 'si', cursor = null } = {}) {
+/** The quantities a student can add under the link panels: [{value, label, panels: [[keys]]}]. */
+export function quantityChoices(series) {
+  const keys = new Set(series.map((s) => s.key));
+  const choices = [];
+  const points = [...new Set(series.filter((s) => s.key.startsWith('point:')).map((s) => s.key.split(':')[1]))];
+  for (const s of series.filter((x) => x.key.startsWith('slider:') && x.key.endsWith(':s'))) {
+    const p = s.key.split(':')[1];
+    choices.push({ value: `slider:${p}`, label: `slider ${p}: position, velocity, acceleration`, panels: ['s', 'v', 'a'].map((k) => [`slider:${p}:${k}`]).filter(([k]) => keys.has(k)) });
+  }
+  for (const s of series.filter((x) => x.key.startsWith('transmission:'))) {
+    choices.push({ value: s.key, label: 'transmission angle μ', panels: [[s.key]] });
+  }
+  for (const p of points) {
+    const has = (k) => keys.has(`point:${p}:${k}`);
+    if (has('v')) choices.push({ value: `point:${p}:velocity`, label: `${p}: velocity (vx, vy, |v|)`, panels: [[`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`]] });
+    if (has('a')) choices.push({ value: `point:${p}:acceleration`, label: `${p}: acceleration (ax, ay, |a|)`, panels: [[`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
+    if (has('x')) choices.push({ value: `point:${p}:position`, label: `${p}: position (x, y)`, panels: [[`point:${p}:x`, `point:${p}:y`]] });
+    if (has('v') && has('a')) choices.push({ value: `point:${p}:all`, label: `${p}: displacement, velocity, acceleration`, panels: [[`point:${p}:x`, `point:${p}:y`], [`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`], [`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
+  }
+  return choices;
+}
+
+/** The plot's x value of an instant (driver angle or time, SI) on the chosen axis. */
+function cursorX(scene, track, axis, value, units) {
+  if (value === null || value === undefined) return null;
+  if (track.param === 'time') return value;
+  if (axis === 'time') {
+    const omega = scene.drivers[0].omega;
+    return (((value - track.values[0]) / omega) % (TWO_PI / Math.abs(omega)) + TWO_PI / Math.abs(omega)) % (TWO_PI / Math.abs(omega));
+  }
+  const lo = track.closed ? 0 : TWO_PI * Math.floor(Math.min(track.values[0], track.values[track.n - 1]) / TWO_PI);
+  const a = track.closed ? ((value % TWO_PI) + TWO_PI) % TWO_PI : value - lo;
+  return toDisplay('angle', a, units);
+}
+
+/**
+ * Draw the panels. `sel` = {links, quantity, axis, units, cursor, loops}. Returns
+ * {ok, facts: [sentences]} (facts: transmission extremes, quick-return ratio).
+ */
+export function renderPlots(div, scene, track, { links = [], quantity = null, axis = 'angle', units = 'si', cursor = null, loops = [] } = {}) {
   const P = globalThis.Plotly;
-  if (!P || !track || track.n < 2) return false;
+  if (!P || !track || track.n < 2) return { ok: false, facts: [] };
   const colours = linkColours(scene);
-  const { x, title } = xValues(track, units);
-  const rows = [
-    ['angle', `angle [${unitLabel('angle', units)}]`, 'angle'],
-    ['omega', `ω [${unitLabel('omega', units)}]`, 'omega'],
-    ['alpha', `α [${unitLabel('alpha', units)}]`, 'alpha'],
-  ];
-  const have = available(track);
-  const shown = rows.filter(([q]) => have[q]);
-  const panels = shown.length + (have.speed && point ? 1 : 0);
-  if (!panels) return false;
+  const order = cycleOrder(track);
+  const xs = xValues(scene, track, order, axis, units);
+  const series = allSeries(scene, track, order, units, loops);
+  const byKey = new Map(series.map((s) => [s.key, s]));
+  // On a time axis the samples are reordered by time (one period from t = 0).
+  let perm = xs.x.map((_, i) => i);
+  if (xs.sort) perm.sort((a, b) => xs.x[a] - xs.x[b]);
+  const X = perm.map((i) => xs.x[i]);
+  const Y = (s) => perm.map((i) => s.y[i]);
+
+  const panels = [];
+  for (const q of ['angle', 'omega', 'alpha']) {
+    const keys = links.map((l) => `link:${l}:${q}`).filter((k) => byKey.has(k));
+    if (keys.length) panels.push({ keys, title: `${q === 'angle' ? 'φ' : q === 'omega' ? 'ω' : 'α'} [${unitLabel(q, units)}]`, link: true });
+  }
+  const choice = quantityChoices(series).find((c) => c.value === quantity);
+  for (const keys of choice?.panels || []) {
+    const first = byKey.get(keys[0]);
+    panels.push({ keys, title: `${shortName(keys[0])} [${first.unit}]` });
+  }
+  if (!panels.length) return { ok: false, facts: [] };
+
   const traces = [];
   const layout = {
-    margin: { l: 64, r: 16, t: 16, b: 44 },
+    margin: { l: 64, r: 16, t: 58, b: 44 },
     showlegend: true,
-    legend: { orientation: 'h', y: 1.06, x: 0, font: { size: 11 } },
+    legend: { orientation: 'h', y: 1, yanchor: 'bottom', x: 0, font: { size: 11 } },
     paper_bgcolor: '#ffffff',
     plot_bgcolor: '#ffffff',
     font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink, size: 12 },
     hovermode: 'x unified',
-    uirevision: `plots-${scene.title || ''}`,
+    uirevision: `plots-${scene.title || ''}-${axis}`,
     shapes: [],
+    annotations: [],
   };
   const gap = 0.05;
-  const h = (1 - gap * (panels - 1)) / panels;
+  const h = (1 - gap * (panels.length - 1)) / panels.length;
   const axisFor = (i) => (i === 0 ? '' : String(i + 1));
-  shown.forEach(([q, label, kind], i) => {
+  const facts = [];
+  const componentColours = [COLOURS.velocity, '#2a9d8f', '#d08c2c'];
+  panels.forEach((panel, i) => {
     const ax = axisFor(i);
     const top = 1 - i * (h + gap);
-    layout[`yaxis${ax}`] = { title: { text: label, font: { size: 12 } }, domain: [top - h, top], gridcolor: '#eef0f3', zerolinecolor: '#d1d5db' };
-    for (const name of links) {
-      const series = track.links?.[name]?.[q];
-      if (!Array.isArray(series)) continue;
-      const y = (q === 'angle' ? unwrap(series) : series).map((v) => (v === null ? null : toDisplay(kind, v, units)));
+    layout[`yaxis${ax}`] = { title: { text: panel.title, font: { size: 12 } }, domain: [top - h, top], gridcolor: '#eef0f3', zerolinecolor: '#d1d5db' };
+    panel.keys.forEach((key, k) => {
+      const s = byKey.get(key);
+      if (!s) return;
+      const name = panel.link ? `link ${key.split(':')[1]}` : s.label;
       traces.push({
-        type: 'scatter', mode: 'lines', x, y, xaxis: 'x', yaxis: `y${ax}`,
-        name: `link ${name}`, legendgroup: name, showlegend: i === 0,
-        line: { color: colours[name], width: 2 },
-        hovertemplate: `${q} ${name}: %{y:.4g}<extra></extra>`,
+        type: 'scatter', mode: 'lines', x: X, y: Y(s), xaxis: 'x', yaxis: `y${ax}`,
+        name, legendgroup: panel.link ? key.split(':')[1] : key, showlegend: !panel.link || i === 0,
+        line: { color: panel.link ? colours[key.split(':')[1]] : componentColours[k % 3], width: k === 0 ? 2.2 : 1.6, dash: !panel.link && k > 0 ? 'dot' : 'solid' },
+        hovertemplate: `${s.label}: %{y:.4g} ${s.unit}<extra></extra>`,
       });
-    }
-  });
-  if (have.speed && point && track.points[point]?.velocity) {
-    const i = shown.length;
-    const ax = axisFor(i);
-    const top = 1 - i * (h + gap);
-    layout[`yaxis${ax}`] = { title: { text: `|v_${point}| [${unitLabel('velocity', units)}]`, font: { size: 12 } }, domain: [top - h, top], gridcolor: '#eef0f3', rangemode: 'tozero' };
-    traces.push({
-      type: 'scatter', mode: 'lines', x, xaxis: 'x', yaxis: `y${ax}`,
-      y: track.points[point].velocity.map((v) => (v ? toDisplay('velocity', Math.hypot(v[0], v[1]), units) : null)),
-      name: `speed of ${point}`, line: { color: COLOURS.velocity, width: 2 },
-      hovertemplate: `|v_${point}|: %{y:.4g}<extra></extra>`,
+      if (key.startsWith('transmission:')) {
+        const { lo, hi } = extremes(X, Y(s));
+        const xu = xs.kind === 'time' ? 's' : unitLabel('angle', units);
+        for (const [e, what] of [[lo, 'min'], [hi, 'max']]) {
+          if (!e) continue;
+          traces.push({ type: 'scatter', mode: 'markers+text', x: [e.x], y: [e.y], xaxis: 'x', yaxis: `y${ax}`, showlegend: false, text: [`${what} ${fmt(e.y, 4)}`], textposition: what === 'min' ? 'bottom center' : 'top center', marker: { size: 8, color: COLOURS.acceleration }, hoverinfo: 'skip' });
+        }
+        if (lo && hi) facts.push(`Transmission angle ${s.label.replace('transmission angle ', '')}: min ${fmt(lo.y, 4)} ${s.unit} at ${fmt(lo.x, 4)} ${xu}, max ${fmt(hi.y, 4)} ${s.unit} at ${fmt(hi.x, 4)} ${xu}.`);
+      }
     });
+  });
+  for (const slider of groundSliders(scene)) {
+    if (quantity !== `slider:${slider.point}`) continue;
+    const r = timeRatio(track, slider);
+    if (r) facts.push(`Quick-return time ratio of ${slider.point}: ${fmt(r.ratio, 4)} (slower stroke over ${fmt(toDisplay('angle', r.slow, units), 4)} ${unitLabel('angle', units)} of crank turn, faster over ${fmt(toDisplay('angle', r.fast, units), 4)} ${unitLabel('angle', units)}).`);
   }
-  layout.xaxis = { title: { text: title }, anchor: `y${axisFor(panels - 1)}`, gridcolor: '#eef0f3', zeroline: false };
-  // Every panel shares the x axis; show tick labels only on the bottom one.
-  layout.shapes = cursorShapes(cursor, track, units);
-  P.react(div, traces, layout, CONFIG);
-  return true;
+  const last = axisFor(panels.length - 1);
+  layout.xaxis = { title: { text: xs.title }, anchor: `y${last}`, gridcolor: '#eef0f3', zeroline: false };
+  if (xs.kind === 'angle' && track.closed) {
+    const full = toDisplay('angle', TWO_PI, units);
+    layout.xaxis.range = [0, full];
+    if (units !== 'si') layout.xaxis.dtick = 45;
+  }
+  layout.shapes = cursorShapes(cursorX(scene, track, axis, cursor, units));
+  // Each panel keeps a readable height however many are stacked.
+  div.style.height = `${Math.max(360, 110 + 120 * panels.length)}px`;
+  P.react(div, traces, layout, { ...CONFIG, toImageButtonOptions: { filename: `${slug(scene.title)}-plots` } });
+  div.dataset.axis = axis;
+  return { ok: true, facts };
 }
 
-function cursorShapes(cursor, track, units) {
-  if (cursor === null || cursor === undefined) return [];
-  const x = track.param === 'time' ? cursor : toDisplay('angle', cursor, units);
+function shortName(key) {
+  const [group, name, q] = key.split(':');
+  if (group === 'slider') return { s: `s of ${name}`, v: `v of ${name}`, a: `a of ${name}` }[q];
+  if (group === 'transmission') return 'μ';
+  if (group === 'point') return { x: `x, y of ${name}`, y: `y of ${name}`, v: `v of ${name}`, a: `a of ${name}` }[q] || `${q} of ${name}`;
+  return key;
+}
+
+export function slug(text) {
+  return String(text || 'mechanism').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'mechanism';
+}
+
+function cursorShapes(x) {
+  if (x === null || x === undefined) return [];
   return [{ type: 'line', xref: 'x', yref: 'paper', x0: x, x1: x, y0: 0, y1: 1, line: { color: COLOURS.ink, width: 1.5, dash: 'dot' } }];
 }
 
 /** Move the cursor to the analysed instant without redrawing the curves. */
-export function moveCursor(div, track, cursor, units) {
+export function moveCursor(div, scene, track, cursor, units) {
   const P = globalThis.Plotly;
   if (!P || !div.data) return;
-  P.relayout(div, { shapes: cursorShapes(cursor, track, units) });
+  P.relayout(div, { shapes: cursorShapes(cursorX(scene, track, div.dataset.axis || 'angle', cursor, units)) });
 }

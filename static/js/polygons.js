@@ -95,7 +95,7 @@ function baseLayout(title, kind, units, revision) {
   };
 }
 
-const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
+const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
 
 /** Points of the analysis with their vectors, converted to display units. */
 function collect(scene, analysis, quantity, units) {

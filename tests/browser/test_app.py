@@ -148,6 +148,7 @@ def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
+    page.click("#tab-solution")  # the worked solution has its own tab
     page.wait_for_selector("#steps .katex")
     assert page.locator("#steps .katex").count() >= 3
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
@@ -164,6 +165,7 @@ def test_printable_page_opens_with_the_typeset_solution(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
+    page.click("#tab-solution")  # the worked solution has its own tab
     page.wait_for_selector("#steps .katex")
     with page.expect_popup() as popup:
         page.click("#print-solution")
@@ -211,12 +213,16 @@ def test_non_assemblable_length_shows_the_servers_message_beside_the_field(
     app.open()
     page = app.page
     pause_and_wait(page)
-    status, problem = app.post("/presets/four_bar", {"crank": 3})
-    assert status == 422 and problem["code"] == "not_assemblable"
     ground_before = page.inner_html("#linkage .layer-ground")
     polygon_before = plot_data(page, "velocity-polygon")
-    page.fill("#f-param_crank", "3")
-    page.press("#f-param_crank", "Tab")
+    with page.expect_request(lambda r: r.url.endswith("/presets/four_bar")) as request:
+        page.fill("#f-param_crank", "3")
+        page.press("#f-param_crank", "Tab")
+    # The preset is built posed at the analysed instant (one crank angle on the page).
+    body = json.loads(request.value.post_data or "{}")
+    assert body["crank"] == 3
+    status, problem = app.post("/presets/four_bar", body)
+    assert status == 422 and problem["code"] == "not_assemblable"
     error = page.locator("#f-param_crank-error")
     error.wait_for(state="visible")
     assert error.inner_text().strip() == problem["detail"]

@@ -1,0 +1,331 @@
+"""The browser app, second edition (issue 13): fields that never lie, one crank angle, layout,
+export, plots, notation. Driven in Debian's Chromium against the real server, like test_app.py.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import choose, pause_and_wait, wait_analysed, wait_until
+
+pytestmark = pytest.mark.browser
+
+
+def edit(page: Any, selector: str, text: str) -> None:
+    page.fill(selector, text)
+    page.press(selector, "Tab")
+
+
+# ---- fields that never lie -------------------------------------------------------------------
+
+
+def test_an_error_clears_as_soon_as_the_field_holds_a_valid_value(app: AppPage) -> None:
+    app.log.allow(r"status of 422")
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    edit(page, "#f-param_ground", "2.6")
+    error = page.locator("#f-param_ground-error")
+    error.wait_for(state="visible")
+    assert "2.6" in error.inner_text() or "|" in error.inner_text()
+    assert page.get_attribute("#f-param_ground", "aria-invalid") == "true"
+    # Back to the value the server accepted before: no request needed, the error goes.
+    edit(page, "#f-param_ground", "1")
+    error.wait_for(state="hidden")
+    assert page.get_attribute("#f-param_ground", "aria-invalid") is None
+
+
+def test_a_decimal_comma_is_a_decimal_point(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    with page.expect_request(lambda r: r.url.endswith("/presets/four_bar")) as request:
+        edit(page, "#f-param_crank", "0,2")
+    assert json.loads(request.value.post_data or "{}")["crank"] == pytest.approx(0.2)
+    wait_until(lambda: page.input_value("#f-param_crank") == "0.2", what="0,2 shown as 0.2")
+    assert page.get_attribute("#f-param_crank", "aria-invalid") is None
+
+
+@pytest.mark.parametrize("text", ["abc", "", "0.2.3", "1e"])
+def test_unparseable_input_is_marked_invalid_without_a_request(app: AppPage, text: str) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    before = len(app.log.requests)
+    edit(page, "#f-param_crank", text)
+    page.locator("#f-param_crank-error").wait_for(state="visible")
+    assert page.get_attribute("#f-param_crank", "aria-invalid") == "true"
+    assert "number" in page.inner_text("#f-param_crank-error").lower()
+    page.wait_for_timeout(900)  # past the typing debounce
+    assert not any("/presets/" in u for u in app.log.requests[before:])
+    # A valid value clears it (0.15 is the value shown before: nothing to ask).
+    edit(page, "#f-param_crank", "0.15")
+    page.locator("#f-param_crank-error").wait_for(state="hidden")
+
+
+# ---- one crank angle ---------------------------------------------------------------------------
+
+
+def test_the_slider_is_the_one_crank_angle(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    assert page.locator("#f-param_crank_angle_deg").count() == 0, "no second crank angle"
+    page.focus("#crank-angle")
+    for _ in range(40):
+        page.keyboard.press("ArrowRight")
+    wait_analysed(page)
+    angle = float(page.input_value("#crank-angle")) % 360
+    with page.expect_request(lambda r: r.url.endswith("/presets/four_bar")) as request:
+        edit(page, "#f-param_coupler", "1.05")
+    body = json.loads(request.value.post_data or "{}")
+    assert body["crank_angle_deg"] == pytest.approx(angle, abs=1e-6)
+    wait_until(lambda: page.input_value("#f-param_coupler") == "1.05", what="the edit")
+    wait_analysed(page)
+    assert float(page.input_value("#crank-angle")) % 360 == pytest.approx(angle, abs=1e-6)
+    # The printable page is the analysed instant's.
+    page.click("#tab-solution")
+    with (
+        page.expect_request(lambda r: r.url.endswith("/solution.html")) as printed,
+        page.expect_popup(),
+    ):
+        page.click("#print-solution")
+    scene = json.loads(printed.value.post_data or "{}")["scene"]
+    assert scene["drivers"][0]["angle_deg"] % 360 == pytest.approx(angle, abs=1e-6)
+
+
+# ---- layout ------------------------------------------------------------------------------------
+
+
+def in_view(page: Any, selector: str) -> bool:
+    """The element's whole box is inside the viewport as the page opens (no scrolling)."""
+    inside: bool = page.evaluate(
+        """(sel) => { const r = document.querySelector(sel).getBoundingClientRect();
+                      return r.width > 0 && r.top >= 0 && r.left >= 0
+                        && r.bottom <= innerHeight && r.right <= innerWidth; }""",
+        selector,
+    )
+    return inside
+
+
+def test_drawing_motion_controls_and_polygons_fit_one_laptop_screen(app: AppPage) -> None:
+    app.page.set_viewport_size({"width": 1440, "height": 900})
+    app.open()
+    page = app.page
+    page.wait_for_selector("#velocity-polygon .main-svg")
+    for selector in (
+        "#linkage",
+        "#play",
+        "#crank-angle",
+        "#velocity-polygon",
+        "#acceleration-polygon",
+    ):
+        assert in_view(page, selector), f"{selector} is not in view at 1440x900"
+    assert page.evaluate("scrollY") == 0
+    # The worked solution is a tab, not 8000 px below: the page stays short.
+    assert page.evaluate("document.documentElement.scrollHeight") < 2000
+    assert page.locator("#steps").is_hidden()
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#plots").is_hidden()
+    assert page.get_attribute("#tab-solution", "aria-selected") == "true"
+    page.click("#tab-plots")
+    assert page.locator("#plots .main-svg").first.is_visible()
+    app.screenshot("laptop-1440x900-first-screen", None)
+
+
+def test_drawing_and_its_controls_fit_a_tablet_screen(app: AppPage) -> None:
+    app.page.set_viewport_size({"width": 1024, "height": 768})
+    app.open()
+    page = app.page
+    for selector in ("#linkage", "#play", "#crank-angle"):
+        assert in_view(page, selector), f"{selector} is not in view at 1024x768"
+    assert page.evaluate("document.documentElement.scrollWidth - innerWidth") <= 0
+
+
+# ---- export ------------------------------------------------------------------------------------
+
+
+def download(page: Any, button: str) -> tuple[str, bytes]:
+    """Open the export menu, click `button`, return (suggested file name, content)."""
+    if not page.evaluate("document.getElementById('export-menu').open"):
+        page.click("#export-menu summary")
+    with page.expect_download() as info:
+        page.click(button)
+    path = info.value.path()
+    return info.value.suggested_filename, Path(path).read_bytes()
+
+
+def exported_scene(page: Any) -> dict[str, Any]:
+    name, content = download(page, "#export-scene")
+    assert name.endswith(".json")
+    scene: dict[str, Any] = json.loads(content)
+    return scene
+
+
+def test_cycle_csv_holds_every_series_with_units_and_the_servers_numbers(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.select_option("#units", "mm")
+    scene = exported_scene(page)
+    name, content = download(page, "#export-csv")
+    assert name.endswith("-cycle.csv")
+    rows = list(csv.reader(io.StringIO(content.decode())))
+    header, body = rows[0], rows[1:]
+    assert header[0] == "angle of crank θ [deg]" and header[1] == "time t from θ = 0 [s]"
+    assert "ω of rocker [rpm]" in header and "|v| of P [mm/s]" in header
+    assert "transmission angle μ = ∠BCD [deg]" in header
+    assert all(h.endswith("]") for h in header), "every column states its unit"
+    assert len(body) == 242  # 241 samples from 0 deg, and 360 deg closing the turn
+    angles = [float(r[0]) for r in body]
+    assert angles[0] == pytest.approx(0, abs=1e-9) and angles[-1] == pytest.approx(360)
+    assert angles == sorted(angles)
+    # Against the server's own sweep of the same scene from 0 deg: rocker ω at each crank angle.
+    scene["drivers"][0]["angle_deg"] = 0
+    status, sweep = app.post(
+        "/sweep", {"scene": scene, "samples": 241, "quantities": ["position", "velocity"]}
+    )
+    assert status == 200
+    omega = {
+        round(math.degrees(a) % 360, 6): w
+        for a, w in zip(sweep["driver_angle"], sweep["links"]["rocker"]["omega"], strict=True)
+    }
+    column = header.index("ω of rocker [rpm]")
+    for r in body:
+        expected = omega[round(float(r[0]) % 360, 6)] * 60 / (2 * math.pi)
+        assert float(r[column]) == pytest.approx(expected, rel=1e-12, abs=1e-12)
+
+
+def test_instant_csv_is_the_analysed_instant(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    scene = exported_scene(page)
+    angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    _, content = download(page, "#export-instant-csv")
+    rows = list(csv.reader(io.StringIO(content.decode())))
+    assert rows[0] == ["object", "quantity", "x", "y", "magnitude", "unit"]
+    assert rows[1][0] == "instant" and float(rows[1][4]) == pytest.approx(angle)
+    scene["drivers"][0]["angle_deg"] = math.degrees(angle)
+    status, analysis = app.post("/analyze", {"scene": scene})
+    assert status == 200
+    vp = next(r for r in rows if r[:2] == ["point P", "velocity"])
+    assert [float(vp[2]), float(vp[3])] == pytest.approx(analysis["points"]["P"]["velocity"])
+    assert vp[5] == "m/s"
+    alpha = next(r for r in rows if r[:2] == ["link coupler", "alpha"])
+    assert float(alpha[4]) == pytest.approx(analysis["links"]["coupler"]["alpha"])
+
+
+@pytest.mark.parametrize(
+    ("which", "fmt"),
+    [("linkage", "png"), ("linkage", "svg"), ("velocity-polygon", "png"), ("plots", "svg")],
+)
+def test_figures_download_as_png_and_svg(app: AppPage, which: str, fmt: str) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_selector("#plots .main-svg")
+    page.click("#export-menu summary")
+    page.select_option("#export-figure-which", which)
+    page.select_option("#export-figure-format", fmt)
+    name, content = download(page, "#export-figure")
+    assert name.endswith(f"-{which}.{fmt}")
+    if fmt == "png":
+        assert content[:8] == b"\x89PNG\r\n\x1a\n"
+        width, height = int.from_bytes(content[16:20], "big"), int.from_bytes(content[20:24], "big")
+        assert width >= 600 and height >= 300
+    else:
+        text = content.decode()
+        assert "<svg" in text
+        if which == "linkage":
+            assert 'data-link="coupler"' in text and ">P</text>" in text
+
+
+def test_scene_json_downloads_and_uploads(app: AppPage, tmp_path: Path) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    scene = exported_scene(page)
+    assert scene["kind"] == "linkage" and "coupler" in scene["links"]
+    scene["title"] = "my own four-bar"
+    scene["points"]["P"] = [scene["points"]["P"][0] + 0.1, scene["points"]["P"][1]]
+    upload = tmp_path / "mine.json"
+    upload.write_text(json.dumps(scene))
+    page.set_input_files("#import-scene", str(upload))
+    wait_until(lambda: page.inner_text("#view-title") == "my own four-bar", what="the upload")
+    pause_and_wait(page)
+    assert page.input_value("#preset") == "shared"
+    assert float(page.input_value("#f-point_P_0")) == pytest.approx(scene["points"]["P"][0])
+
+
+# ---- plots -------------------------------------------------------------------------------------
+
+
+def plots_layout(page: Any) -> dict[str, Any]:
+    layout: dict[str, Any] = page.evaluate(
+        """() => { const d = document.getElementById('plots');
+                   return {range: d.layout.xaxis.range, title: d.layout.xaxis.title.text,
+                           traces: d.data.map((t) => ({name: t.name, x: t.x, y: t.y}))}; }"""
+    )
+    return layout
+
+
+def test_plots_run_over_0_to_360_degrees_or_time(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.select_option("#units", "mm")
+    wait_until(lambda: plots_layout(page)["range"] == [0, 360], what="0..360 deg")
+    crank = next(t for t in plots_layout(page)["traces"] if t["name"] == "link crank")
+    assert crank["x"][0] == pytest.approx(0, abs=1e-9) and crank["x"][-1] == pytest.approx(360)
+    page.select_option("#plot-x", "time")
+    wait_until(lambda: "time" in plots_layout(page)["title"], what="the time axis")
+    x = plots_layout(page)["traces"][0]["x"]
+    period = 2 * math.pi / 25.132741228718345
+    assert min(x) == pytest.approx(0, abs=1e-9) and max(x) == pytest.approx(period, rel=1e-9)
+    assert x == sorted(x)
+
+
+def test_slider_plots_and_the_quick_return_time_ratio(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "preset:quick_return")
+    page.wait_for_selector("#linkage .slider-block", state="attached")
+    wait_until(lambda: page.input_value("#plot-point") == "slider:C", what="the ram's plots")
+    names = [t["name"] for t in plots_layout(page)["traces"]]
+    for q in ("position s", "velocity", "acceleration"):
+        assert f"{q} of slider C along its guide" in names
+    # Closed form: the lever's limit positions are where the crank is perpendicular to it,
+    # cos(β/2) = crank/ground; the return stroke takes β of crank turn, the cut 360° − β.
+    beta = 2 * math.acos(0.1 / 0.3)
+    expected = (2 * math.pi - beta) / beta
+    facts = wait_until(lambda: page.inner_text("#plot-facts"), what="the time ratio")
+    ratio = float(facts.split("time ratio of C: ")[1].split(" ")[0])
+    assert ratio == pytest.approx(expected, abs=2e-3)  # four digits shown
+
+
+def test_transmission_angle_with_its_extremes_and_grashof_class(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    facts = wait_until(lambda: page.inner_text("#mechanism-facts"), what="Grashof class")
+    assert "Grashof crank-rocker" in facts and "transmission angle μ = ∠BCD" in facts
+    page.select_option("#units", "mm")
+    wait_until(lambda: page.locator("#plot-point option[value='transmission:C']").count(), what="μ")
+    page.select_option("#plot-point", "transmission:C")
+    text = wait_until(lambda: page.inner_text("#plot-facts"), what="the extremes")
+    # Closed form: extremes with the crank along the ground line, |BD| = ground ∓ crank.
+    a, b, c, d = 0.15, 1.0, 0.55, 1.0
+    mu = [math.degrees(math.acos((b * b + c * c - e * e) / (2 * b * c))) for e in (d - a, d + a)]
+    lo = float(text.split("min ")[1].split(" ")[0])
+    hi = float(text.split("max ")[1].split(" ")[0])
+    assert lo == pytest.approx(mu[0], abs=0.01) and hi == pytest.approx(mu[1], abs=0.01)
