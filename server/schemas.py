@@ -299,6 +299,25 @@ class MistakeModel(Open):
     values: dict[str, ValueModel]
 
 
+class SegmentValues(Open):
+    """One image segment B -> P of a link: v_P - v_B = velocity, a_P - a_B = tangential + normal."""
+
+    link: str
+    base: str
+    point: str
+    velocity: Vector = Field(description="omega x r_BP")
+    tangential: Vector = Field(description="alpha x r_BP")
+    normal: Vector = Field(description="-omega^2 r_BP, towards the base point")
+
+
+class PolygonValues(Open):
+    segments: list[SegmentValues] = Field(description="In the vector method's order")
+    sliding: list[list[str | int]] = Field(
+        description="Paths in results of the joints and moving points with a Coriolis part "
+        '(["joints", 0], ["moving_points", "M"]), in the order the solution takes them up'
+    )
+
+
 class SolutionResponse(Open):
     method: str
     requested_method: str
@@ -306,6 +325,9 @@ class SolutionResponse(Open):
     steps: list[StepModel]
     mistakes: list[MistakeModel]
     results: AnalyzeResponse = Field(description="The /analyze body of the same scene")
+    polygons: PolygonValues | None = Field(
+        None, description="A linkage's velocity and acceleration polygons, segment by segment"
+    )
     warnings: list[str] = WARNINGS
 
 

@@ -20,6 +20,7 @@ from typing import Any
 from solver import analysis, events, results
 from solver import steps as worked
 from solver.errors import InvalidScene
+from solver.polygons import polygons
 from solver.results import (
     AnalysisResult,
     EventResult,
@@ -152,11 +153,15 @@ def solve(
     scene: SceneInput, method: str = "vector", digits: int = 4, *, strict: bool = False
 ) -> SolutionResult:
     """The worked solution (POST /solution) by ``method`` ('vector' or 'loop'), numbers shown with
-    ``digits`` significant digits; ``results`` is the /analyze body of the same instant."""
+    ``digits`` significant digits; ``results`` is the /analyze body of the same instant and, for
+    a linkage, ``polygons`` the polygons' segments in the vector method's order."""
     parsed, found = _scene(scene, strict)
     solution = worked.solve(parsed, method, digits)
-    if isinstance(solution.analysis, analysis.LinkageAnalysis):
-        body = results.analysis_body(solution.analysis, found)
-    else:
+    if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(analysis.QUANTITIES), found)
-    return SolutionResult(results.solution_body(solution, body, found))
+        return SolutionResult(results.solution_body(solution, body, None, found))
+    # The polygons follow the vector method's steps, whichever method the solution uses.
+    vector = solution if solution.method == "vector" else worked.solve(parsed, "vector", digits)
+    shapes = polygons(parsed, vector.analysis, vector.steps)
+    body = results.analysis_body(solution.analysis, found)
+    return SolutionResult(results.solution_body(solution, body, shapes, found))

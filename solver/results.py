@@ -416,9 +416,12 @@ def time_sweep_body(result: TimeSweep, warnings: list[str]) -> JSON:
     }
 
 
-def solution_body(solution: Solution, results: JSON, warnings: list[str]) -> JSON:
-    """The /solution body: steps, mistakes, methods, and the /analyze body as ``results``."""
-    return {
+def solution_body(
+    solution: Solution, results: JSON, polygons: JSON | None, warnings: list[str]
+) -> JSON:
+    """The /solution body: steps, mistakes, methods, the /analyze body as ``results``, and the
+    polygons' segments of a linkage (``solver.polygons``)."""
+    body = {
         "method": solution.method,
         "requested_method": solution.requested_method,
         "digits": solution.digits,
@@ -427,3 +430,6 @@ def solution_body(solution: Solution, results: JSON, warnings: list[str]) -> JSO
         "results": results,
         "warnings": list(warnings),
     }
+    if polygons is not None:
+        body["polygons"] = polygons
+    return body
