@@ -498,10 +498,12 @@ class App {
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
       if (seq !== this.solutionSeq) return;
-      const failures = renderSolution($('steps'), $('mistakes'), sol);
+      this.solution = sol;
+      const failures = renderSolution($('steps'), $('mistakes'), sol, this.units);
       if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
     } catch (err) {
       if (seq !== this.solutionSeq) return;
+      this.solution = null;
       renderMessage($('steps'), err.code === 'network' ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
       $('mistakes').replaceChildren();
     }
@@ -606,6 +608,8 @@ class App {
     this.linkage.setOptions({ units });
     this.spatial.setOptions({ units });
     this.mechanismFacts(this.analysis);
+    // The worked solution follows the units switch without asking the server again.
+    if (this.solution) renderSolution($('steps'), $('mistakes'), this.solution, units);
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();

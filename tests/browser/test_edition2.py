@@ -418,3 +418,31 @@ def test_magnitudes_table_beside_the_polygons(app: AppPage) -> None:
     a = analysis["points"]["P"]["acceleration"]
     assert float(cells[0]) == pytest.approx(math.hypot(*v), rel=1e-3)
     assert float(cells[1]) == pytest.approx(math.hypot(*a), rel=1e-3)
+
+
+# ---- units -------------------------------------------------------------------------------------
+
+
+def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#steps .step-units").count() == 0
+    requests = len(app.log.requests)
+    page.select_option("#units", "mm")
+    page.wait_for_selector("#steps .step-units")
+    assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "no new request"
+    text = page.inner_text("#steps")
+    assert "mm/s" in text and "rpm" in text
+    line = next(t for t in page.locator("#steps .step-units").all_inner_texts() if "v(B) = (" in t)
+    shown = [float(x) for x in line.split("v(B) = (")[1].split(")")[0].split(", ")]
+    angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    scene = exported_scene(page)
+    scene["drivers"][0]["angle_deg"] = math.degrees(angle)
+    _, analysis = app.post("/analyze", {"scene": scene})
+    expected = [1000 * c for c in analysis["points"]["B"]["velocity"]]
+    assert shown == pytest.approx(expected, rel=1e-3)
+    page.select_option("#units", "si")
+    page.wait_for_function("!document.querySelector('#steps .step-units')")
