@@ -10,6 +10,7 @@ import { COLOURS } from './theme.js';
 import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawnAngle } from './scene.js';
 import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
+import { velocityPoleName, accelerationPoleName, linkNumbers } from './notation.js';
 
 const WIDTH = 1000;
 const MARGIN = 70;
@@ -215,7 +216,8 @@ export class LinkageView {
         this.linkNodes.push({ name, pts, kind: 'plate', nodes: [poly] });
       }
       const label = svgEl('text', { class: 'link-label', fill: colour, 'text-anchor': 'middle' }, this.layers.labels);
-      label.textContent = name;
+      // The link's number names its poles (I₁₃, Γ₁₃).
+      label.textContent = `${name} (${linkNumbers(scene)[name]})`;
       this.linkNodes.push({ name, pts, kind: 'label', nodes: [label] });
     }
     // Slots in moving guides and blocks of sliders.
@@ -327,10 +329,10 @@ export class LinkageView {
     const atFixed = (p) => this.isGroundPoint(p);
     const colourOf = (link) => this.colours[link] || COLOURS.pole;
     for (const [name, l] of Object.entries(this.analysis.links || {})) {
-      for (const [key, letter, shape] of [['velocity_pole', 'P', 'circle'], ['acceleration_pole', 'G', 'diamond']]) {
+      for (const [key, naming, shape] of [['velocity_pole', velocityPoleName, 'circle'], ['acceleration_pole', accelerationPoleName, 'diamond']]) {
         const p = l[key];
         if (!p || atFixed(p)) continue;
-        const label = name.length <= 2 ? `${letter}${name}` : `${letter}(${name})`;
+        const label = naming(this.scene, name);
         if (!this.inView(p)) {
           offView.push(`${label} (${show('length', p[0], this.options.units, 3)}, ${show('length', p[1], this.options.units, 3)})`);
           continue;
@@ -345,7 +347,7 @@ export class LinkageView {
         }
         const t = svgEl('text', { x: 9, y: 16, class: 'pole-label', fill: colourOf(name) }, g);
         t.textContent = label;
-        svgEl('title', {}, g).textContent = `${key === 'velocity_pole' ? 'velocity pole' : 'acceleration pole'} of link ${name}`;
+        svgEl('title', {}, g).textContent = `${label}: ${key === 'velocity_pole' ? 'velocity pole (instant centre with the ground)' : 'acceleration pole'} of link ${name}`;
       }
     }
     return offView.length ? [`Poles outside the picture: ${offView.join(', ')}`] : [];

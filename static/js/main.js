@@ -20,6 +20,7 @@ import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';
 import { installTabs } from './tabs.js';
 import { installExport } from './export.js';
+import { renderMagnitudes } from './magnitudes.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -415,6 +416,7 @@ class App {
     this.paintSpatialInfo();
     this.viewMessage(note || '');
     clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
+    renderMagnitudes($('polygon-table'), scene, null, this.units);
     this.polygonMessage('The polygons are drawn for planar linkages. The vectors of this spatial chain are listed under its drawing.');
     clearPolygons($('plots'));
     this.plotsMessage('A spatial chain is analysed at one instant: there is no cycle to plot.');
@@ -496,10 +498,12 @@ class App {
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
       if (seq !== this.solutionSeq) return;
-      const failures = renderSolution($('steps'), $('mistakes'), sol);
+      this.solution = sol;
+      const failures = renderSolution($('steps'), $('mistakes'), sol, this.units);
       if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
     } catch (err) {
       if (seq !== this.solutionSeq) return;
+      this.solution = null;
       renderMessage($('steps'), err.code === 'network' ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
       $('mistakes').replaceChildren();
     }
@@ -526,6 +530,7 @@ class App {
     await plotlyReady();
     if (!this.analysis) return;
     const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.units);
+    renderMagnitudes($('polygon-table'), this.scene, this.analysis, this.units);
     this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
     const v = this.instantValue(this.analysisU ?? this.u);
     if (this.track && !this.track.static && v !== null) {
@@ -603,6 +608,8 @@ class App {
     this.linkage.setOptions({ units });
     this.spatial.setOptions({ units });
     this.mechanismFacts(this.analysis);
+    // The worked solution follows the units switch without asking the server again.
+    if (this.solution) renderSolution($('steps'), $('mistakes'), this.solution, units);
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();

@@ -14,10 +14,12 @@ import { COLOURS } from './theme.js';
 import { linkColours, solvingOrder, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
+import { imageName, POLYGON_POLE } from './notation.js';
+import { placeLabels } from './labels.js';
 
 const TINY = 1e-12;
 
-const lower = (name) => name.toLowerCase();
+const lower = imageName;
 
 function plotly() {
   return globalThis.Plotly || null;
@@ -51,21 +53,6 @@ function arrows(name, segments, colour, { dash = 'solid', width = 2.4, group = n
   };
 }
 
-function labels(entries, colour = COLOURS.ink) {
-  return {
-    type: 'scatter',
-    mode: 'text',
-    showlegend: false,
-    hoverinfo: 'skip',
-    x: entries.map((e) => e[0][0]),
-    y: entries.map((e) => e[0][1]),
-    text: entries.map((e) => e[1]),
-    textposition: entries.map((e) => e[2] || 'top right'),
-    textfont: { size: 14, color: colour },
-    cliponaxis: false,
-  };
-}
-
 function vecText(symbol, v, kind, units) {
   const u = unitLabel(kind, units);
   return `${symbol} = (${fmt(v[0])}, ${fmt(v[1])}) ${u}, |${symbol}| = ${fmt(Math.hypot(v[0], v[1]))} ${u}`;
@@ -77,7 +64,7 @@ const mul = (a, k) => [a[0] * k, a[1] * k];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
 const norm = (a) => Math.hypot(a[0], a[1]);
 
-function baseLayout(title, kind, units, revision) {
+function baseLayout(title, kind, units) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
   return {
@@ -90,7 +77,6 @@ function baseLayout(title, kind, units, revision) {
     plot_bgcolor: '#ffffff',
     font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink },
     hovermode: 'closest',
-    uirevision: revision,
     annotations: [],
   };
 }
@@ -176,9 +162,8 @@ export function velocityFigure(scene, analysis, units) {
   }
   traces.push(arrows('transport velocity', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('relative velocity', rel, COLOURS.relative, { width: 2 }));
-  lab.push([[0, 0], poleLabel('p', tips), 'bottom left']);
-  traces.push(labels(lab));
-  return { traces, layout: baseLayout('Velocity polygon', 'velocity', units, `v-${scene.title || ''}`) };
+  lab.unshift([[0, 0], poleLabel(POLYGON_POLE.velocity, tips)]);
+  return { traces, labels: lab, layout: baseLayout('Velocity polygon', 'velocity', units) };
 }
 
 export function accelerationFigure(scene, analysis, units) {
@@ -237,17 +222,17 @@ export function accelerationFigure(scene, analysis, units) {
   traces.push(arrows('transport', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('Coriolis 2ω×v_rel', cor, COLOURS.coriolis, { width: 2.2 }));
   traces.push(arrows('relative', rel, COLOURS.relative, { width: 2 }));
-  lab.push([[0, 0], poleLabel('π', tips), 'bottom left']);
-  traces.push(labels(lab));
-  const layout = baseLayout('Acceleration polygon', 'acceleration', units, `a-${scene.title || ''}`);
+  lab.unshift([[0, 0], poleLabel(POLYGON_POLE.acceleration, tips)]);
+  const layout = baseLayout('Acceleration polygon', 'acceleration', units);
   if (zeroCoriolis.length) {
+    // In the top margin, right-aligned: never on a vector or a label.
     layout.annotations.push({
-      xref: 'paper', yref: 'paper', x: 0.99, y: 0.99, xanchor: 'right', yanchor: 'top', showarrow: false,
-      text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (the guide does not rotate)`,
-      font: { size: 11, color: COLOURS.coriolis }, bgcolor: 'rgba(255,255,255,0.85)',
+      xref: 'paper', yref: 'paper', x: 1, y: 1, xanchor: 'right', yanchor: 'bottom', showarrow: false,
+      text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`,
+      font: { size: 11, color: COLOURS.coriolis },
     });
   }
-  return { traces, layout };
+  return { traces, labels: lab, layout };
 }
 
 /** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
@@ -256,13 +241,29 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, units) {
   if (!P) return false;
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
     const v = velocityFigure(scene, analysis, units);
-    P.react(velDiv, v.traces, v.layout, CONFIG);
+    P.react(velDiv, v.traces, v.layout, CONFIG).then(() => placeFigureLabels(P, velDiv, v));
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
     const a = accelerationFigure(scene, analysis, units);
-    P.react(accDiv, a.traces, a.layout, CONFIG);
+    P.react(accDiv, a.traces, a.layout, CONFIG).then(() => placeFigureLabels(P, accDiv, a));
   }
   return true;
+}
+
+/** Labels of the tips and poles placed once Plotly has fixed the scale (labels.js). */
+function placeFigureLabels(P, div, figure) {
+  const entries = figure.labels.map(([at, text]) => ({ at, text }));
+  const annotations = [...(figure.layout.annotations || []), ...placeLabels(div, entries, figure.traces)];
+  // Drawn again on the ranges the labels were placed on: Plotly would otherwise widen them to
+  // fit the annotations, and a label's pixel offset would no longer match its neighbours'.
+  const { xaxis, yaxis } = div._fullLayout;
+  const layout = {
+    ...figure.layout,
+    annotations,
+    xaxis: { ...figure.layout.xaxis, range: [...xaxis.range], autorange: false },
+    yaxis: { ...figure.layout.yaxis, range: [...yaxis.range], autorange: false },
+  };
+  return P.react(div, figure.traces, layout, CONFIG);
 }
 
 export function clearPolygons(...divs) {

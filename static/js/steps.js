@@ -6,6 +6,26 @@
 // cannot read is shown as plain text with a visible mark (class `step-error`), so a bad string
 // from the server is seen and tested for, never silently dropped.
 
+import { kindOfUnit, toDisplay, unitLabel, fmt } from './units.js';
+
+/**
+ * A step's values in the units chosen on the page ("v(B) = (-1.5, 2.6) mm/s"): the working is
+ * the server's, in SI; this line converts each value the step lists (values[key] = {value,
+ * unit}) so a student reading mm and rpm elsewhere finds the same numbers here. Values whose unit
+ * has no display conversion are left out.
+ */
+export function valuesInUnits(values, units) {
+  const parts = [];
+  for (const [name, v] of Object.entries(values || {})) {
+    const kind = kindOfUnit(v.unit);
+    if (!kind || v.value === null || v.value === undefined) continue;
+    const conv = (x) => fmt(toDisplay(kind, x, units), 4);
+    const shown = Array.isArray(v.value) ? `(${v.value.map(conv).join(', ')})` : conv(v.value);
+    parts.push(`${name} = ${shown} ${unitLabel(kind, units)}`);
+  }
+  return parts.join('; ');
+}
+
 function el(tag, attrs = {}, text = null) {
   const node = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
@@ -28,10 +48,16 @@ function typeset(latex, target) {
   }
 }
 
-/** Render {steps, mistakes} into the two containers. Returns the number of LaTeX failures. */
-export function renderSolution(stepsEl, mistakesEl, solution) {
+/**
+ * Render {steps, mistakes} into the two containers, with each step's values also in `units`
+ * when they are not SI. Returns the number of LaTeX failures.
+ */
+export function renderSolution(stepsEl, mistakesEl, solution, units = 'si') {
   stepsEl.replaceChildren();
   let failures = 0;
+  if (units !== 'si') {
+    stepsEl.appendChild(el('p', { class: 'hint units-note' }, `The working is in SI units, as the equations are written; each step's values are also given in ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)} (the units chosen above).`));
+  }
   const list = el('ol', { class: 'step-list' });
   for (const step of solution.steps || []) {
     const item = el('li', { class: 'step' });
@@ -47,6 +73,8 @@ export function renderSolution(stepsEl, mistakesEl, solution) {
       item.appendChild(math);
     }
     if (step.text) item.appendChild(el('p', { class: 'step-text' }, step.text));
+    const converted = units !== 'si' ? valuesInUnits(step.values, units) : '';
+    if (converted) item.appendChild(el('p', { class: 'step-units' }, `In ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)}: ${converted}`));
     list.appendChild(item);
   }
   stepsEl.appendChild(list);

@@ -137,8 +137,12 @@ def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
     for div in ("velocity-polygon", "acceleration-polygon"):
         anchor = page.evaluate(f"document.getElementById('{div}').layout.yaxis.scaleanchor")
         assert anchor == "x", "polygon axes must have equal scales"
-    vdata = json.loads(plot_data(page, "velocity-polygon"))
-    labels = [t for trace in vdata for t in (trace.get("text") or []) if isinstance(t, str)]
+    page.wait_for_function(
+        "(document.getElementById('velocity-polygon').layout.annotations || []).length > 2"
+    )
+    labels = page.evaluate(
+        "document.getElementById('velocity-polygon').layout.annotations.map((a) => a.text)"
+    )
     assert "b" in labels and "c" in labels, "velocity tips are labelled like the points"
     app.screenshot("polygons", ".polygons-panel")
     app.screenshot("cycle-plots", ".plots-panel")

@@ -329,3 +329,120 @@ def test_transmission_angle_with_its_extremes_and_grashof_class(app: AppPage) ->
     lo = float(text.split("min ")[1].split(" ")[0])
     hi = float(text.split("max ")[1].split(" ")[0])
     assert lo == pytest.approx(mu[0], abs=0.01) and hi == pytest.approx(mu[1], abs=0.01)
+
+
+# ---- notation and readable polygons ------------------------------------------------------------
+
+LABEL_BOXES = """(id) => {
+    const div = document.getElementById(id);
+    const notes = div.layout.annotations || [];
+    return [...div.querySelectorAll('g.annotation')]
+        .filter((g) => String(notes[Number(g.dataset.index)]?.name || '').startsWith('label:'))
+        .map((g) => { const r = g.querySelector('.annotation-text-g').getBoundingClientRect();
+                      return [g.textContent, r.left, r.top, r.right, r.bottom]; });
+}"""
+
+LABELS_PLACED = """(id) => (document.getElementById(id).layout?.annotations || [])
+    .some((a) => String(a.name || '').startsWith('label:'))"""
+
+
+def label_overlaps(page: Any, div: str) -> list[tuple[str, str]]:
+    boxes = page.evaluate(LABEL_BOXES, div)
+    assert boxes, f"no labels in {div}"
+    clashes = []
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            if a[1] < b[3] and b[1] < a[3] and a[2] < b[4] and b[2] < a[4]:
+                clashes.append((a[0], b[0]))
+    return clashes
+
+
+def test_no_two_polygon_labels_overlap_on_any_preset_or_seed_example(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    values = page.eval_on_selector_all("#preset option", "(os) => os.map((o) => o.value)")
+    planar = [v for v in values if "spatial" not in v]
+    assert len(planar) >= 11
+    for value in planar:
+        choose(app, value)
+        page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
+        pause_and_wait(page)
+        for div in ("velocity-polygon", "acceleration-polygon"):
+            page.wait_for_function(LABELS_PLACED, arg=div)
+            assert label_overlaps(page, div) == [], f"{value}: labels overlap in {div}"
+        if value == "preset:quick_return":
+            app.screenshot("quick-return-polygons", ".polygons-panel")
+
+
+def test_poles_and_images_never_share_a_name_with_a_point(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)  # the four-bar has a coupler point P: its image is p
+    for div, pole in (
+        ("velocity-polygon", "O<sub>v</sub>"),
+        ("acceleration-polygon", "O<sub>a</sub>"),
+    ):
+        page.wait_for_function(LABELS_PLACED, arg=div)
+        texts = page.evaluate(
+            f"document.getElementById('{div}').layout.annotations.map(a => a.text)"
+        )
+        assert any(t.startswith(f"{pole} ≡ ") for t in texts), texts
+        assert "p" in texts and not any(t.startswith("p ≡") for t in texts)
+    # In the drawing, the coupler (link 3) has its poles I₁₃ and Γ₁₃, never a point's letter.
+    page.wait_for_function(
+        """() => document.querySelector('#linkage .pole')
+                 || document.querySelector('#linkage .layer-notes').textContent.includes('Poles')"""
+    )
+    poles = page.eval_on_selector_all("#linkage .pole", "(gs) => gs.map((g) => g.textContent)")
+    notes = page.text_content("#linkage .layer-notes") or ""
+    names = set(poles) | {n for n in ("I₁₃", "Γ₁₃") if n in notes}
+    assert {"I₁₃", "Γ₁₃"} <= names, (poles, notes)
+    assert "coupler (3)" in page.eval_on_selector_all(
+        "#linkage .link-label", "(ts) => ts.map((t) => t.textContent)"
+    )
+
+
+def test_magnitudes_table_beside_the_polygons(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.click("#magnitudes summary")
+    row = page.locator("#polygon-table tr", has_text="P (p)")
+    row.wait_for()
+    cells = row.locator("td").all_inner_texts()
+    angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    scene = exported_scene(page)
+    scene["drivers"][0]["angle_deg"] = math.degrees(angle)
+    _, analysis = app.post("/analyze", {"scene": scene})
+    v = analysis["points"]["P"]["velocity"]
+    a = analysis["points"]["P"]["acceleration"]
+    assert float(cells[0]) == pytest.approx(math.hypot(*v), rel=1e-3)
+    assert float(cells[1]) == pytest.approx(math.hypot(*a), rel=1e-3)
+
+
+# ---- units -------------------------------------------------------------------------------------
+
+
+def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps .katex")
+    assert page.locator("#steps .step-units").count() == 0
+    requests = len(app.log.requests)
+    page.select_option("#units", "mm")
+    page.wait_for_selector("#steps .step-units")
+    assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "no new request"
+    text = page.inner_text("#steps")
+    assert "mm/s" in text and "rpm" in text
+    line = next(t for t in page.locator("#steps .step-units").all_inner_texts() if "v(B) = (" in t)
+    shown = [float(x) for x in line.split("v(B) = (")[1].split(")")[0].split(", ")]
+    angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    scene = exported_scene(page)
+    scene["drivers"][0]["angle_deg"] = math.degrees(angle)
+    _, analysis = app.post("/analyze", {"scene": scene})
+    expected = [1000 * c for c in analysis["points"]["B"]["velocity"]]
+    assert shown == pytest.approx(expected, rel=1e-3)
+    page.select_option("#units", "si")
+    page.wait_for_function("!document.querySelector('#steps .step-units')")

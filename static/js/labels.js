@@ -1,0 +1,104 @@
+// labels.js: labels of a Plotly polygon placed so that no two overlap and few sit on a line.
+//
+// After Plotly has laid the figure out (equal axis scales, its own ranges), each label is tried
+// at growing distances in eight directions around its anchor (the tip it names); the position
+// with the least cost wins: overlapping a label already placed costs most, then leaving the plot
+// area, then crossing a drawn line (arrows, images, ticks are lines), then distance. Labels are
+// placed in order of importance (poles, then images, then the rest) and become annotations
+// named "label:<text>" (xshift/yshift in pixels from the anchor).
+
+const FONT = '600 14px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
+const HEIGHT = 17;
+const PAD = 2;
+const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110];
+const DIRECTIONS = [[1, -1], [-1, -1], [1, 1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
+
+let context = null;
+function textWidth(html) {
+  context = context || document.createElement('canvas').getContext('2d');
+  context.font = FONT;
+  // Subscripts are smaller: count them at 70 %.
+  const sub = [...html.matchAll(/<sub>(.*?)<\/sub>/g)].map((m) => m[1]).join('');
+  const main = html.replace(/<sub>.*?<\/sub>/g, '').replace(/<[^>]+>/g, '');
+  return context.measureText(main).width + 0.7 * context.measureText(sub).width;
+}
+
+const overlaps = (a, b) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+
+function segmentHitsBox([x1, y1], [x2, y2], b) {
+  // Liang–Barsky clipping of the segment against the box.
+  let t0 = 0;
+  let t1 = 1;
+  const dx = x2 - x1;
+  const dy = y2 - y1;
+  for (const [p, q] of [[-dx, x1 - b.x0], [dx, b.x1 - x1], [-dy, y1 - b.y0], [dy, b.y1 - y1]]) {
+    if (p === 0) {
+      if (q < 0) return false;
+      continue;
+    }
+    const r = q / p;
+    if (p < 0) t0 = Math.max(t0, r);
+    else t1 = Math.min(t1, r);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+/** Line segments of the figure's traces, in pixels of the plot area. */
+function segmentsOf(traces, toPx) {
+  const out = [];
+  for (const t of traces) {
+    if (!String(t.mode || '').includes('lines') || !Array.isArray(t.x)) continue;
+    for (let i = 0; i + 1 < t.x.length; i++) {
+      if (t.x[i] === null || t.x[i + 1] === null) continue;
+      out.push([toPx([t.x[i], t.y[i]]), toPx([t.x[i + 1], t.y[i + 1]])]);
+    }
+  }
+  return out;
+}
+
+/**
+ * Annotations for `entries` = [{at: [x, y], text, colour}] on the laid-out Plotly `div`.
+ * Returns [] when the figure has no axes yet.
+ */
+export function placeLabels(div, entries, traces) {
+  const xa = div._fullLayout?.xaxis;
+  const ya = div._fullLayout?.yaxis;
+  if (!xa?.l2p || !ya?.l2p) return [];
+  const toPx = ([x, y]) => [xa.l2p(x), ya.l2p(y)];
+  const area = { x0: 0, y0: 0, x1: xa._length, y1: ya._length };
+  const segments = segmentsOf(traces, toPx);
+  const placed = [];
+  const out = [];
+  for (const e of entries) {
+    const [ax, ay] = toPx(e.at);
+    const w = textWidth(e.text) + 2 * PAD;
+    const h = HEIGHT + 2 * PAD;
+    let best = null;
+    for (const r of RADII) {
+      for (const [dx, dy] of DIRECTIONS) {
+        const n = Math.hypot(dx, dy);
+        // The box's nearest edge r px from the anchor, in direction (dx, dy).
+        const cx = ax + (dx / n) * r + (dx * w) / 2;
+        const cy = ay + (dy / n) * r + (dy * h) / 2;
+        const box = { x0: cx - w / 2, x1: cx + w / 2, y0: cy - h / 2, y1: cy + h / 2 };
+        let cost = r;
+        for (const p of placed) if (overlaps(box, p)) cost += 1e6;
+        if (box.x0 < area.x0 || box.x1 > area.x1 || box.y0 < area.y0 || box.y1 > area.y1) cost += 1e3;
+        for (const [a, b] of segments) if (segmentHitsBox(a, b, box)) cost += 25;
+        if (!best || cost < best.cost) best = { cost, box, cx, cy, r };
+      }
+      if (best.cost < 1e3 && best.cost - best.r < 25) break; // clear of labels, area and lines
+    }
+    placed.push(best.box);
+    out.push({
+      name: `label:${e.text}`,
+      x: e.at[0], y: e.at[1], xref: 'x', yref: 'y', showarrow: false,
+      xanchor: 'center', yanchor: 'middle',
+      xshift: best.cx - ax, yshift: -(best.cy - ay),
+      text: e.text, font: { size: 14, color: e.colour || '#1f2933' },
+      bgcolor: 'rgba(255,255,255,0.75)', borderpad: 0,
+    });
+  }
+  return out;
+}
