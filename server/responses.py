@@ -165,7 +165,11 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
             for r in d.newton
         ],
         "driver_angles_deg": d.driver_angles,
+        "closest_approach": None
+        if d.closest_approach is None
+        else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
     }
+    body.setdefault("warnings", []).extend(result.warnings)
     return body
 
 
@@ -236,6 +240,16 @@ def _motion_arrays(
 
 def sweep_response(result: Sweep) -> JSON:
     """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
+    approaches = [
+        {
+            "point": a.point,
+            "margin": a.margin,
+            "driver_angle": a.driver_angle,
+            "driver_angle_deg": math.degrees(a.driver_angle),
+        }
+        for a in result.close_approaches
+    ]
+    closest = approaches[0] if approaches else None
     return {
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
@@ -246,6 +260,8 @@ def sweep_response(result: Sweep) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
+        "diagnostics": {"close_approaches": approaches, "closest_approach": closest},
+        "warnings": list(result.warnings),
     }
 
 
