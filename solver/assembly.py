@@ -179,6 +179,11 @@ class _Assembler:
         self.continuation = continuation
         self.signs = signs or {}
         self.samples = len(inputs[0].theta) if inputs else 1
+        # Samples at the drawn pose (every driver unturned): the drawn coordinates are the answer
+        # there (they close by construction; a re-solved point near a tangency would not be).
+        self.at_drawn = np.ones(self.samples, dtype=bool)
+        for given in inputs:
+            self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
         self.margin = np.ones(self.samples)
@@ -281,6 +286,7 @@ class _Assembler:
         if np.all(np.isfinite(cut.margin)):  # two branches (a pin in two slots has one)
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
+        X[self.at_drawn] = self.scene.drawn(step.point)
         self.conditioning = np.minimum(
             self.conditioning, dyads.relative_determinant(first, second, X)
         )
@@ -298,9 +304,12 @@ class _Assembler:
         label = f"the slot of '{step.link}'"
         self.group_margins[label] = margin
         sign = self.branch(index, label, step.sign, margin)
-        solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
+        drawn = math.atan2(step.direction0[1], step.direction0[0])
+        solution = dyads.slotted_lever(
+            pivot, pin, step.offset, sign, self.order, (self.at_drawn, drawn)
+        )
         self.conditioning = np.minimum(self.conditioning, solution.conditioning)
-        theta = solution.beta - np.arctan2(step.direction0[1], step.direction0[0])
+        theta = solution.beta - drawn
         self.know(
             step.link,
             LinkMotion(self.scene.drawn(step.pivot), pivot, theta, solution.omega, solution.alpha),
