@@ -16,7 +16,8 @@ from itertools import combinations
 import numpy as np
 
 from solver import newton
-from solver.assembly import DriverInput, Motion, assemble, require_feasible
+from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.dyads import COINCIDENCE_TOLERANCE
 from solver.errors import InvalidScene, SingularConfiguration
 from solver.laws import parse_time_law
 from solver.poles import (
@@ -106,6 +107,7 @@ class Diagnostics:
     closed_form: bool
     newton: tuple[newton.NewtonReport, ...]
     driver_angles: dict[str, float]
+    closest_approach: tuple[str, float] | None = None  # the group nearest its change point, m
 
 
 @dataclass(frozen=True)
@@ -120,6 +122,23 @@ class LinkageAnalysis:
     plan: Plan
     motion: Motion = field(repr=False)
     moving_points: dict[str, MovingPointMotion] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
+
+
+def near_change_point(motion: Motion) -> tuple[tuple[str, float] | None, tuple[str, ...]]:
+    """The two-branch group with the smallest length margin at the (single) pose, and a warning
+    where its two branches are closer than the warning margin without meeting."""
+    margins = {name: float(m[0]) for name, m in motion.group_margins.items()}
+    if not margins:
+        return None, ()
+    name = min(margins, key=lambda k: margins[k])
+    margin = margins[name]
+    if not COINCIDENCE_TOLERANCE * motion.size < margin < WARNING_MARGIN * motion.size:
+        return (name, margin), ()
+    return (name, margin), (
+        f"the two assemblies of {name} are within {margin:.2g} m of a change point at this pose; "
+        "a real mechanism with clearance could switch assembly here",
+    )
 
 
 def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
@@ -384,7 +403,8 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
         [j.at(0) for j in sliding_joints(scene, motion, order)] if "components" in wanted else []
     )
     centres = _instant_centres(scene, plan, motion) if "poles" in wanted else []
-    diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles)
+    closest, warnings = near_change_point(motion)
+    diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles, closest)
     moving = {}
     if scene.moving_points:
         carriers = motion.links
@@ -405,4 +425,5 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
         plan,
         motion,
         moving,
+        warnings,
     )

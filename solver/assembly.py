@@ -75,7 +75,8 @@ class Motion:
 
     ``conditioning`` is the smallest sine of the angle between the two constraint gradients of any
     group (0 at a dead centre); ``margin`` the smallest length margin m / size of any two-branch
-    group (negative where a group does not close; -1 where Newton-Raphson did not converge).
+    group (negative where a group does not close; -1 where Newton-Raphson did not converge);
+    ``group_margins`` each two-branch group's m (metres), by the point (or slot) it locates.
     With continuation, ``approaches`` lists every close approach found between samples: branch
     switches (the branches meet), near misses, and windows where the linkage cannot close.
     """
@@ -88,6 +89,7 @@ class Motion:
     newton: list[newton.NewtonReport] = field(default_factory=list)
     approaches: list[Approach] = field(default_factory=list)
     size: float = 1.0
+    group_margins: dict[str, Array] = field(default_factory=dict)
 
     @property
     def feasible(self) -> Array:
@@ -116,6 +118,7 @@ class Motion:
             self.newton,
             self.approaches,
             self.size,
+            {k: m[part] for k, m in self.group_margins.items()},
         )
 
     @property
@@ -176,6 +179,11 @@ class _Assembler:
         self.continuation = continuation
         self.signs = signs or {}
         self.samples = len(inputs[0].theta) if inputs else 1
+        # Samples at the drawn pose (every driver unturned): the drawn coordinates are the answer
+        # there (they close by construction; a re-solved point near a tangency would not be).
+        self.at_drawn = np.ones(self.samples, dtype=bool)
+        for given in inputs:
+            self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
         self.margin = np.ones(self.samples)
@@ -187,6 +195,7 @@ class _Assembler:
         self.flips: dict[int, tuple[float, list[float]]] = {}  # sign at sample 0, switches
         self.approaches: list[Approach] = []
         self.last: tuple[Array, Array | None] = (np.ones(1), None)  # last group's m, dm/du
+        self.group_margins: dict[str, Array] = {}
 
     def know(self, link: str, motion: LinkMotion) -> None:
         self.links[link] = motion
@@ -274,7 +283,10 @@ class _Assembler:
         cut = dyads.intersect(first, second, step.point)
         self.close(cut.margin / self.scene.size, cut.message)
         self.last = (cut.margin, cut.margin_rate)
+        if np.all(np.isfinite(cut.margin)):  # two branches (a pin in two slots has one)
+            self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
+        X[self.at_drawn] = self.scene.drawn(step.point)
         self.conditioning = np.minimum(
             self.conditioning, dyads.relative_determinant(first, second, X)
         )
@@ -289,10 +301,15 @@ class _Assembler:
             f"of the slot of '{step.link}' from its pivot {step.pivot}",
         )
         self.last = (margin, rate)
-        sign = self.branch(index, step.pin, step.sign, margin)
-        solution = dyads.slotted_lever(pivot, pin, step.offset, sign, self.order)
+        label = f"the slot of '{step.link}'"
+        self.group_margins[label] = margin
+        sign = self.branch(index, label, step.sign, margin)
+        drawn = math.atan2(step.direction0[1], step.direction0[0])
+        solution = dyads.slotted_lever(
+            pivot, pin, step.offset, sign, self.order, (self.at_drawn, drawn)
+        )
         self.conditioning = np.minimum(self.conditioning, solution.conditioning)
-        theta = solution.beta - np.arctan2(step.direction0[1], step.direction0[0])
+        theta = solution.beta - drawn
         self.know(
             step.link,
             LinkMotion(self.scene.drawn(step.pivot), pivot, theta, solution.omega, solution.alpha),
@@ -349,6 +366,7 @@ class _Assembler:
             self.reports,
             self.approaches,
             self.scene.size,
+            self.group_margins,
         )
 
     def newton_group(self, step: NewtonStep) -> None:

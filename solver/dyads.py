@@ -255,7 +255,12 @@ def lever_margin(pivot: PointMotion, pin: PointMotion, offset: float) -> tuple[A
 
 
 def slotted_lever(
-    pivot: PointMotion, pin: PointMotion, offset: float, sign: Array, order: int
+    pivot: PointMotion,
+    pin: PointMotion,
+    offset: float,
+    sign: Array,
+    order: int,
+    known: tuple[Array, float] | None = None,
 ) -> LeverSolution:
     """The direction beta of a slot through ``pin``, in a lever turning about ``pivot``.
 
@@ -263,11 +268,14 @@ def slotted_lever(
     sin beta). With r = P - A: beta = atan2(r) - atan2(e, sign sqrt(|r|^2 - e^2)).
     Differentiating u x r = e once and twice:
     omega = (u x v_rel) / (u.r),  alpha = (u x a_rel - 2 omega u.v_rel - omega^2 e) / (u.r).
+    ``known`` = (mask, beta): samples where the direction is known (the drawn pose).
     """
     r = pin.p - pivot.p
     r2 = dot(r, r)
     along = sign * _root(r2 - offset**2, r2)
     beta = np.arctan2(r[:, 1], r[:, 0]) - np.arctan2(offset, along)
+    if known is not None:
+        beta[known[0]] = known[1]
     u = np.stack((np.cos(beta), np.sin(beta)), axis=-1)
     u_r = dot(u, r)
     safe = np.where(u_r != 0.0, u_r, np.inf)

@@ -298,8 +298,11 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
             for r in d.newton
         ],
         "driver_angles_deg": d.driver_angles,
+        "closest_approach": None
+        if d.closest_approach is None
+        else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
     }
-    body["warnings"] = list(warnings)
+    body["warnings"] = [*warnings, *result.warnings]
     return body
 
 
@@ -384,6 +387,15 @@ def _motion_arrays(
 
 def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
     """The /sweep body: arrays sample by sample."""
+    approaches = [
+        {
+            "point": a.point,
+            "margin": a.margin,
+            "driver_angle": a.driver_angle,
+            "driver_angle_deg": math.degrees(a.driver_angle),
+        }
+        for a in result.close_approaches
+    ]
     return {
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
@@ -394,7 +406,11 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
-        "warnings": list(warnings),
+        "diagnostics": {
+            "close_approaches": approaches,
+            "closest_approach": approaches[0] if approaches else None,
+        },
+        "warnings": [*warnings, *result.warnings],
     }
 
 

@@ -27,7 +27,7 @@ from solver.analysis import (
     required_order,
     sliding_joints,
 )
-from solver.assembly import DriverInput, Motion, assemble, require_feasible
+from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.errors import InvalidScene, LimitExceeded
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion, moving_point_motion
@@ -55,6 +55,44 @@ class Sweep:
     quantities: frozenset[str]
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
+    close_approaches: tuple[CloseApproach, ...] = ()
+
+    @property
+    def warnings(self) -> list[str]:
+        return [a.warning for a in self.close_approaches]
+
+
+@dataclass(frozen=True)
+class CloseApproach:
+    """Where a group's two branches come within ``margin`` (m, its length margin) of meeting,
+    without meeting: at the first driver's absolute angle ``driver_angle`` (rad)."""
+
+    point: str
+    driver: str
+    margin: float
+    driver_angle: float
+
+    @property
+    def warning(self) -> str:
+        degrees = math.degrees(math.remainder(self.driver_angle, 2.0 * math.pi))
+        return (
+            f"the linkage passes within {self.margin:.2g} m of a change point at {degrees:.1f} "
+            f"deg ('{self.driver}' angle; the two assemblies of {self.point} nearly meet there); "
+            "a real mechanism with clearance could switch assembly here"
+        )
+
+
+def close_approaches(motion: Motion, driver: str, angles: Array) -> tuple[CloseApproach, ...]:
+    """The near misses of ``motion`` closer than the warning margin, at the driver angles
+    interpolated between the samples' ``angles`` (closest first)."""
+    found = [
+        CloseApproach(
+            a.point, driver, a.margin, float(np.interp(a.at, np.arange(angles.size), angles))
+        )
+        for a in motion.near_misses
+        if a.margin < WARNING_MARGIN * motion.size
+    ]
+    return tuple(sorted(found, key=lambda a: a.margin))
 
 
 def _joints_and_poles(
@@ -187,6 +225,12 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
         motion = None
     if motion is None:
         motion = driven.run(turns, order, start)
+    drawn = (
+        drawn_angle(scene, scene.drivers[0].link)
+        if len(scene.links[scene.drivers[0].link].points) >= 2
+        else 0.0
+    )
+    approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
     if span is None:
         motion, turns = motion.cut(slice(0, samples)), turns[:samples]
     require_feasible(motion, "during the sweep")
@@ -197,11 +241,6 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     )
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
-    drawn = (
-        drawn_angle(scene, scene.drivers[0].link)
-        if len(scene.links[scene.drivers[0].link].points) >= 2
-        else 0.0
-    )
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -212,6 +251,7 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
         singular,
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
+        approaches,
     )
 
 

@@ -381,6 +381,7 @@ class App {
       const [a, b] = [v[0], v[v.length - 1]];
       messages.push(`The crank cannot turn fully: it rocks between ${show('angle', Math.min(a, b), this.units)} and ${show('angle', Math.max(a, b), this.units)} (limit positions).`);
     }
+    for (const warning of track.warnings || []) messages.push(`Note: ${warning}.`);
     this.viewMessage(messages.join(' '));
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.

@@ -27,6 +27,8 @@ export function trackFromSweep(response) {
     links: response.links || {},
     feasible: response.feasible !== false,
     limits: response.limits || [],
+    // The server's warnings in words (e.g. a close approach to a change point), shown as they are.
+    warnings: response.warnings || [],
     // A full revolution loops; a rocking driver (infeasible) or a time range plays back and forth
     // or restarts (see main.js).
     closed: !timeBased && response.feasible !== false && Math.abs(Math.abs(span) - 2 * Math.PI) < 0.2,
@@ -39,7 +41,7 @@ export function staticTrack(scene, param = 'angle', value = 0, positions = null)
   const points = {};
   for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [positions?.[name] || xy] };
   for (const [name, xy] of Object.entries(positions || {})) if (!points[name]) points[name] = { position: [xy] };
-  return { param, values: [value], n: 1, points, links: {}, feasible: true, limits: [], closed: false, static: true };
+  return { param, values: [value], n: 1, points, links: {}, feasible: true, limits: [], warnings: [], closed: false, static: true };
 }
 
 function lerp2(a, b, f) {

@@ -420,3 +420,18 @@ def test_invalid_time_law_points_at_the_character(app: AppPage) -> None:
     caret = page.text_content("#f-law_angle-error .caret") or ""
     assert caret.splitlines()[-1] == " " * 6 + "^"
     assert page.locator("#linkage .link").count() >= 1
+
+
+def test_close_approach_to_a_change_point_is_shown(app: AppPage) -> None:
+    """Issue 8: a four-bar 1e-4 m inside the Grashof equality (rocker = crank + 1e-4 with ground
+    = coupler) keeps its assembly, and the view says in words how close it came (the server's
+    warning, shown as it is)."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.fill("#f-param_rocker", "0.1501")
+    page.press("#f-param_rocker", "Tab")
+    wait_until(
+        lambda: "change point" in page.inner_text("#view-message"), what="the close-approach note"
+    )
+    assert "clearance could switch assembly" in page.inner_text("#view-message")

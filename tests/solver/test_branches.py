@@ -22,7 +22,9 @@ from typing import Any
 
 import numpy as np
 import pytest
+from fastapi.testclient import TestClient
 
+from solver.analysis import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweep import Sweep, sweep
@@ -304,3 +306,68 @@ def test_kite_keeps_its_deltoid_shape_through_b_on_d(samples: int) -> None:
     assert result.feasible is False
     assert sorted(result.limits) == pytest.approx([-math.pi / 3, math.pi / 3], abs=TOLERANCE)
     assert result.driver_angle.min() < 0.0 < result.driver_angle.max()  # it passes B = D
+
+
+# --- close approaches: said in words, with the numbers ----------------------------------------
+
+
+def _near_crank_rocker(eps: float, angle_deg: float = 30.0) -> Doc:
+    values = FAMILIES["crank_rocker_extended"].values(eps)
+    return build_preset("four_bar", {**values, "crank_angle_deg": angle_deg, "omega": 1.0})
+
+
+@pytest.mark.parametrize("samples", [36, 3600])
+def test_sweep_warns_where_the_branches_nearly_meet(samples: int) -> None:
+    """The crank-rocker 1e-4 inside the Grashof equality: the coupler and rocker come within
+    m = b + c - (g + a) = 1e-4 m of the extended line at crank 180 deg (the closed form: |BD| is
+    largest there). The sweep keeps its branch, reports that closest approach (to 1e-12 m and
+    1e-6 rad) and says so in words with the numbers."""
+    scene = parse_linkage(_near_crank_rocker(1e-4))
+    result = sweep(scene, samples, ["position"])
+    margin = _length(scene, "B", "C") + _length(scene, "D", "C") - 1.4
+    assert len(result.close_approaches) == 1
+    (approach,) = result.close_approaches
+    assert approach.point == "C"
+    assert abs(approach.margin - margin) <= 1e-12
+    assert _wrapped(approach.driver_angle, math.pi) <= 1e-6
+    (warning,) = result.warnings
+    assert f"within {margin:.2g} m of a change point at 180.0 deg" in warning
+    assert "clearance could switch assembly" in warning
+
+
+def test_no_warning_far_from_a_change_point_or_at_one() -> None:
+    """1e-2 of the size away: no close approach to report. A parallelogram meets its change
+    points (the branches coincide): it passes through them, with nothing to warn about."""
+    far = sweep(parse_linkage(_near_crank_rocker(0.05)), 360, ["position"])
+    assert far.close_approaches == () and far.warnings == []
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 1.0, "rocker": 0.4, "crank_angle_deg": 60.0}
+    parallelogram = build_preset("four_bar", {**values, "assembly": 0.0, "omega": 1.0})
+    assert sweep(parse_linkage(parallelogram), 360, ["position"]).warnings == []
+
+
+def test_analyze_warns_near_a_close_approach() -> None:
+    """/analyze at crank 179 deg of the same linkage (margin there ~ 1e-4 + a g (1 - cos 1 deg)
+    / ... < 1e-3 of the size): a warning and the closest approach in the diagnostics; at 90 deg
+    the margin is large: no warning, the closest approach still reported."""
+    near = analyze(parse_linkage(_near_crank_rocker(1e-4, 179.0)))
+    assert near.diagnostics.closest_approach is not None
+    point, margin = near.diagnostics.closest_approach
+    assert point == "C" and 1e-4 < margin < 1e-3
+    assert len(near.warnings) == 1 and f"within {margin:.2g} m" in near.warnings[0]
+    far = analyze(parse_linkage(_near_crank_rocker(1e-4, 90.0)))
+    assert far.warnings == () and far.diagnostics.closest_approach is not None
+
+
+def test_sweep_warning_over_http(client: TestClient) -> None:
+    """The /sweep body carries the warning (a top-level list of strings) and the closest approach
+    in its diagnostics; /analyze near it carries its own."""
+    body = client.post(
+        "/api/v1/sweep", json={"scene": _near_crank_rocker(1e-4), "samples": 90}
+    ).json()
+    assert len(body["warnings"]) == 1 and "change point at 180.0 deg" in body["warnings"][0]
+    closest = body["diagnostics"]["closest_approach"]
+    assert closest["point"] == "C" and closest["margin"] == pytest.approx(1e-4, rel=1e-6)
+    assert closest["driver_angle_deg"] % 360.0 == pytest.approx(180.0, abs=1e-4)
+    near = client.post("/api/v1/analyze", json={"scene": _near_crank_rocker(1e-4, 179.0)}).json()
+    assert len(near["warnings"]) == 1
+    assert near["diagnostics"]["closest_approach"]["point"] == "C"

@@ -1,0 +1,84 @@
+"""Grashof classes and the transmission angle against textbook values (issue 8: swapping two class
+labels, or a constant transmission angle, must turn a test red).
+
+Grashof's criterion (e.g. Norton, Design of Machinery, sec. 2.12; Uicker, Pennock and Shigley,
+Theory of Machines and Mechanisms, sec. 1.10): with s the shortest link, l the longest and p, q
+the others, s + l < p + q is a Grashof linkage, and then the link next to the shortest decides:
+the shortest as ground gives a double-crank (drag-link), as crank a crank-rocker, as rocker a
+rocker-crank (the rocker turns fully), as coupler a double-rocker; s + l > p + q is a non-Grashof
+triple-rocker; s + l = p + q a change-point linkage. The transmission angle mu is the angle BCD
+between coupler and rocker, from the law of cosines (Norton eq. 4.32):
+cos mu = (b^2 + c^2 - |BD|^2) / (2 b c), |BD|^2 = a^2 + g^2 - 2 a g cos(theta2).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from solver.analysis import analyze
+from solver.poles import FourBarLoop
+from solver.presets import build_preset
+from solver.scene import parse_linkage
+
+# (ground, crank, coupler, rocker, drawn crank angle in degrees) -> textbook class
+CASES = {
+    "Grashof crank-rocker": (1.0, 0.15, 1.0, 0.55, 30.0),
+    "Grashof double-crank": (0.15, 1.0, 1.0, 0.55, 30.0),
+    "Grashof double-rocker": (1.0, 0.55, 0.15, 1.0, 70.0),
+    "Grashof rocker-crank": (1.0, 0.55, 1.0, 0.15, 70.0),
+    "non-Grashof triple-rocker": (2.5, 1.0, 2.0, math.sqrt(1.25), 60.0),
+    "change-point": (1.0, 0.4, 1.0, 0.4, 60.0),
+}
+
+
+def _loop(
+    g: float, a: float, b: float, c: float, angle: float, at: float | None = None
+) -> FourBarLoop:
+    doc = build_preset(
+        "four_bar",
+        {"ground": g, "crank": a, "coupler": b, "rocker": c, "crank_angle_deg": angle},
+    )
+    if at is not None:
+        doc["drivers"][0]["angle_deg"] = at
+    (loop,) = analyze(parse_linkage(doc), ["position"]).four_bar_loops
+    return loop
+
+
+@pytest.mark.parametrize("expected", list(CASES))
+def test_grashof_class_is_the_textbook_one(expected: str) -> None:
+    """Each of the six classes from lengths that are textbook examples of it."""
+    assert _loop(*CASES[expected]).grashof == expected
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_transmission_angle_follows_the_law_of_cosines(name: str) -> None:
+    """mu at five crank angles of each linkage's range against the law of cosines, to 1e-12 rad;
+    it changes with the crank angle (a constant would fail)."""
+    g, a, b, c, drawn = CASES[name]
+    seen = []
+    for turn in (-8.0, -4.0, 0.0, 4.0, 8.0):
+        theta = drawn + turn
+        bd2 = a * a + g * g - 2.0 * a * g * math.cos(math.radians(theta))
+        expected = math.acos((b * b + c * c - bd2) / (2.0 * b * c))
+        mu = _loop(g, a, b, c, drawn, theta).transmission_angle
+        assert mu == pytest.approx(expected, abs=1e-12), (name, theta)
+        seen.append(mu)
+    assert max(seen) - min(seen) > 1e-3, name
+
+
+def test_seed_004_transmission_angle_extremes() -> None:
+    """Seed 004's crank-rocker: mu is smallest with the crank along the ground towards D
+    (|BD| = g - a) and largest away from it (|BD| = g + a): Norton eq. 4.33,
+    cos mu_min = (b^2 + c^2 - (g - a)^2) / 2bc, here 58.2 and 91.0 deg to 0.1 deg."""
+    g, a, b, c, drawn = CASES["Grashof crank-rocker"]
+    low = _loop(g, a, b, c, drawn, 0.0).transmission_angle
+    high = _loop(g, a, b, c, drawn, 180.0).transmission_angle
+    assert math.degrees(low) == pytest.approx(
+        math.degrees(math.acos((b * b + c * c - (g - a) ** 2) / (2 * b * c))), abs=1e-9
+    )
+    assert math.degrees(high) == pytest.approx(
+        math.degrees(math.acos((b * b + c * c - (g + a) ** 2) / (2 * b * c))), abs=1e-9
+    )
+    assert round(math.degrees(low), 1) == 58.2 and round(math.degrees(high), 1) == 91.0
