@@ -22,8 +22,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 
+import solver
 from solver.analysis import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
@@ -358,16 +358,14 @@ def test_analyze_warns_near_a_close_approach() -> None:
     assert far.warnings == () and far.diagnostics.closest_approach is not None
 
 
-def test_sweep_warning_over_http(client: TestClient) -> None:
-    """The /sweep body carries the warning (a top-level list of strings) and the closest approach
-    in its diagnostics; /analyze near it carries its own."""
-    body = client.post(
-        "/api/v1/sweep", json={"scene": _near_crank_rocker(1e-4), "samples": 90}
-    ).json()
+def test_sweep_warning_in_the_body() -> None:
+    """The /sweep body (``as_dict()``, what HTTP sends) carries the warning (a top-level list of
+    strings) and the closest approach in its diagnostics; /analyze near it carries its own."""
+    body = solver.sweep(_near_crank_rocker(1e-4), 90).as_dict()
     assert len(body["warnings"]) == 1 and "change point at 180.0 deg" in body["warnings"][0]
     closest = body["diagnostics"]["closest_approach"]
     assert closest["point"] == "C" and closest["margin"] == pytest.approx(1e-4, rel=1e-6)
     assert closest["driver_angle_deg"] % 360.0 == pytest.approx(180.0, abs=1e-4)
-    near = client.post("/api/v1/analyze", json={"scene": _near_crank_rocker(1e-4, 179.0)}).json()
+    near = solver.analyze(_near_crank_rocker(1e-4, 179.0)).as_dict()
     assert len(near["warnings"]) == 1
     assert near["diagnostics"]["closest_approach"]["point"] == "C"
