@@ -236,6 +236,13 @@ def sliding_joint_fields(joint: SlidingJoint, convert: Callable[[Any], Any]) -> 
 FOUR_BAR = ("ground", "crank", "coupler", "rocker")
 
 
+def _warnings(found: list[str], result: object) -> list[str]:
+    """The request's warnings (unknown keys), then the solver's own about the result (a pose
+    near a change point), where the result carries any."""
+    noticed: tuple[str, ...] = getattr(result, "warnings", ())
+    return [*found, *noticed]
+
+
 def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
     """The /analyze body of a linkage."""
     wanted = holds(result.quantities)
@@ -299,7 +306,7 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
         ],
         "driver_angles_deg": d.driver_angles,
     }
-    body["warnings"] = list(warnings)
+    body["warnings"] = _warnings(warnings, result)
     return body
 
 
@@ -394,7 +401,7 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
-        "warnings": list(warnings),
+        "warnings": _warnings(warnings, result),
     }
 
 
@@ -412,7 +419,7 @@ def time_sweep_body(result: TimeSweep, warnings: list[str]) -> JSON:
         },
         "feasible": True,
         "limits": [],
-        "warnings": list(warnings),
+        "warnings": _warnings(warnings, result),
     }
 
 
