@@ -17,10 +17,12 @@ result's ``warnings`` (an ``InvalidScene`` with ``strict=True``).
 """
 
 from solver.api import (
+    ReadScene,
     SceneWarning,
     analyze,
     find_event,
     parse_scene,
+    read_scene,
     solve,
     sweep,
     sweep_time,
@@ -52,6 +54,7 @@ __all__ = [
     "LimitExceeded",
     "NoEvent",
     "NotAssemblable",
+    "ReadScene",
     "Result",
     "SceneWarning",
     "SingularConfiguration",
@@ -61,6 +64,7 @@ __all__ = [
     "analyze",
     "find_event",
     "parse_scene",
+    "read_scene",
     "solve",
     "sweep",
     "sweep_time",

@@ -7,14 +7,17 @@ result out whose ``as_dict()`` is the body of the matching HTTP endpoint.
 
 A dict is checked against the contract: a key it does not know (``"angle"`` for ``angle_deg``)
 is reported in the result's ``warnings`` (``drivers[0].angle is not a scene field; did you mean
-angle_deg?``), or raises ``InvalidScene`` with ``strict=True``. Errors are the exceptions of
-``solver.errors`` (``InvalidScene``, ``NotAssemblable``, ``SingularConfiguration``...).
+angle_deg?``), or raises ``InvalidScene`` with ``strict=True`` (``strict`` applies where a
+document is read: a parsed scene carries no key warnings, a ``ReadScene`` those found on
+reading). Errors are the exceptions of ``solver.errors`` (``InvalidScene``, ``NotAssemblable``,
+``SingularConfiguration``...).
 """
 
 from __future__ import annotations
 
 import warnings as python_warnings
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from solver import analysis, events, results
@@ -34,11 +37,22 @@ from solver.sweep import sweep as sweep_linkage
 from solver.sweep import sweep_time as sweep_linkage_time
 
 Scene = LinkageScene | SpatialChain
-SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain
 
 
 class SceneWarning(UserWarning):
     """A scene document has a key the contract does not know (``parse_scene`` warns with it)."""
+
+
+@dataclass(frozen=True)
+class ReadScene:
+    """A parsed scene with the warnings about its document, for a caller that looks at the scene
+    (a cost check, say) before asking for a result that must still carry those warnings."""
+
+    scene: Scene
+    warnings: tuple[str, ...]
+
+
+SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain | ReadScene
 
 
 def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
@@ -58,6 +72,8 @@ def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
 
 
 def _scene(scene: SceneInput, strict: bool) -> tuple[Scene, list[str]]:
+    if isinstance(scene, ReadScene):
+        return scene.scene, list(scene.warnings)
     if isinstance(scene, LinkageScene | SpatialChain):
         return scene, []
     return _parse(scene, strict)
@@ -78,6 +94,13 @@ def parse_scene(doc: Mapping[str, Any], *, strict: bool = False) -> Scene:
     for sentence in found:
         python_warnings.warn(sentence, SceneWarning, stacklevel=2)
     return scene
+
+
+def read_scene(doc: Mapping[str, Any], *, strict: bool = False) -> ReadScene:
+    """Parse a document as ``parse_scene`` does, keeping the warnings with the scene (each entry
+    point accepts the returned ``ReadScene`` and reports them)."""
+    scene, found = _parse(doc, strict)
+    return ReadScene(scene, tuple(found))
 
 
 def analyze(

@@ -236,6 +236,13 @@ def sliding_joint_fields(joint: SlidingJoint, convert: Callable[[Any], Any]) -> 
 FOUR_BAR = ("ground", "crank", "coupler", "rocker")
 
 
+def _warnings(found: list[str], result: object) -> list[str]:
+    """The request's warnings (unknown keys), then the solver's own about the result (a pose
+    near a change point), where the result carries any."""
+    noticed: tuple[str, ...] = getattr(result, "warnings", ())
+    return [*found, *noticed]
+
+
 def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
     """The /analyze body of a linkage."""
     wanted = holds(result.quantities)
@@ -302,7 +309,7 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
         if d.closest_approach is None
         else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
     }
-    body["warnings"] = [*warnings, *result.warnings]
+    body["warnings"] = _warnings(warnings, result)
     return body
 
 
@@ -410,7 +417,7 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
             "close_approaches": approaches,
             "closest_approach": approaches[0] if approaches else None,
         },
-        "warnings": [*warnings, *result.warnings],
+        "warnings": _warnings(warnings, result),
     }
 
 
@@ -428,7 +435,7 @@ def time_sweep_body(result: TimeSweep, warnings: list[str]) -> JSON:
         },
         "feasible": True,
         "limits": [],
-        "warnings": list(warnings),
+        "warnings": _warnings(warnings, result),
     }
 
 

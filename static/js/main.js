@@ -2,7 +2,7 @@
 //
 // Requests are made per decision, never per frame:
 //   geometry change (preset, dimension, driver, law) -> one /sweep for the whole cycle
-//   pause, drag end, slider, edit (debounced)         -> one /analyze + one /solution
+//   pause, drag end, slider, edit (debounced)         -> one /solution (it carries the analysis)
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
 import * as api from './api.js';
@@ -47,6 +47,7 @@ class App {
     this.camera = { yaw: -35, pitch: 22 };
     this.driverEdits = {};
     this.analysis = null;
+    this.polygons = null;
     this.analysisU = null;
     this.geometrySeq = 0;
     this.analysisSeq = 0;
@@ -330,12 +331,16 @@ class App {
       // A crank that turns fully is swept from 0 deg, so the samples (plots, CSV) fall on
       // round angles; one that cannot be assembled at 0 deg is swept from its drawn pose.
       try {
-        return trackFromSweep(await api.sweep(S.sceneAt(scene, 'angle', 0), SAMPLES, quantities));
+        const body = await api.sweep(S.sceneAt(scene, 'angle', 0), SAMPLES, quantities);
+        this.warnings(body.warnings);
+        return trackFromSweep(body);
       } catch (err) {
         if (err.code === 'network') throw err;
       }
     }
-    return trackFromSweep(await api.sweep(scene, SAMPLES, quantities, range));
+    const body = await api.sweep(scene, SAMPLES, quantities, range);
+    this.warnings(body.warnings);
+    return trackFromSweep(body);
   }
 
   commitPlanar(scene, track, note, instant, keepChoices) {
@@ -397,6 +402,7 @@ class App {
     let note = null;
     try {
       analysis = await api.analyze(scene);
+      this.warnings(analysis.warnings);
     } catch (err) {
       if (err.code !== 'network') throw err;
       note = `The server cannot analyse this spatial chain: ${err.detail}`;
@@ -451,31 +457,38 @@ class App {
     this.analysisTimer = setTimeout(() => this.analyzeNow(), delay);
   }
 
+  /** One request per pause: /solution carries the analysis (results), the polygons and the steps. */
   async analyzeNow() {
     if (!this.scene || S.isSpatial(this.scene)) return;
     const seq = ++this.analysisSeq;
+    this.solutionSeq += 1; // a solution asked for earlier must not replace this one
+    const solutionSeq = this.solutionSeq;
     const u = this.u;
     const scene = this.instantScene(u);
-    let analysis = null;
+    let solution = null;
     try {
-      analysis = await api.analyze(scene);
+      solution = await api.solution(scene, this.method, 4);
     } catch (err) {
       if (seq !== this.analysisSeq) return;
       this.analysis = null;
+      this.polygons = null;
       this.linkage.setAnalysis(null);
       this.polygonMessage(err.code === 'network' ? `Polygons unavailable: ${err.detail}` : `At this instant the server reports: ${err.detail}`);
+      this.solutionFailed(err);
     }
     if (seq !== this.analysisSeq) return;
-    if (analysis) {
-      this.analysis = analysis;
+    if (solution) {
+      this.analysis = solution.results;
+      this.polygons = solution.polygons;
       this.analysisU = u;
+      this.warnings(solution.warnings);
       if (this.track.static) {
         // Without a sweep the picture is framed on the one pose the server placed.
-        const frame = frameFromAnalysis(analysis);
+        const frame = frameFromAnalysis(this.analysis);
         this.track = staticTrack(this.scene, this.track.param, this.track.values[0], frame.position);
         this.linkage.setScene(this.scene, this.track);
       }
-      this.linkage.setAnalysis(analysis);
+      this.linkage.setAnalysis(this.analysis);
       this.drawPolygons();
       this.mechanismFacts(analysis);
       const loops = analysis.four_bar_loops || [];
@@ -486,28 +499,41 @@ class App {
         moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
       }
       $('linkage').dataset.analysed = String(this.instantValue(u));
+      await katexReady();
+      if (solutionSeq === this.solutionSeq) this.showSolution(solution);
     }
     this.dirty = true;
-    this.requestSolution(scene);
     this.saveHash();
   }
 
-  async requestSolution(scene = null) {
+  /** The worked solution alone (another method, or a spatial chain). */
+  async requestSolution() {
     if (!this.scene) return;
     const seq = ++this.solutionSeq;
-    const target = scene || (S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u));
+    const target = S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u);
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
-      if (seq !== this.solutionSeq) return;
-      this.solution = sol;
-      const failures = renderSolution($('steps'), $('mistakes'), sol, this.units);
-      if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
+      if (seq === this.solutionSeq) this.showSolution(sol);
     } catch (err) {
-      if (seq !== this.solutionSeq) return;
-      this.solution = null;
-      renderMessage($('steps'), err.code === 'network' ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
-      $('mistakes').replaceChildren();
+      if (seq === this.solutionSeq) this.solutionFailed(err);
     }
+  }
+
+  showSolution(solution) {
+    this.solution = solution;
+    const failures = renderSolution($('steps'), $('mistakes'), solution, this.units);
+    if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
+  }
+
+  solutionFailed(err) {
+    this.solution = null;
+    renderMessage($('steps'), err.code === 'network' ? `No worked solution: ${err.detail}` : `No worked solution for this instant: ${err.detail}`);
+    $('mistakes').replaceChildren();
+  }
+
+  /** What the server noticed but answered anyway (an unknown scene key, ...), on the status line. */
+  warnings(list) {
+    if (list && list.length) this.status(`Note: ${list.join('; ')}`, 'warning');
   }
 
   /** Opens the print-friendly worked solution of the analysed instant in a new window. */
@@ -530,7 +556,7 @@ class App {
   async drawPolygons() {
     await plotlyReady();
     if (!this.analysis) return;
-    const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.units);
+    const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.polygons, this.units);
     renderMagnitudes($('polygon-table'), this.scene, this.analysis, this.units);
     this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
     const v = this.instantValue(this.analysisU ?? this.u);

@@ -2,16 +2,15 @@
 //
 // Drawn as a textbook draws them: every absolute vector from the pole of the polygon, labelled
 // with the lowercase name of its point (b for B); the image of each link joins the tips of its
-// points. In the acceleration polygon each link's relative acceleration is split into the normal
-// part (along the link, towards the base point) and the tangential part (across it), and every
-// slider or moving point into transport + Coriolis + relative, head to tail.
+// points. In the acceleration polygon each image segment B->P is drawn as its normal part
+// (-omega^2 r, towards the base point) then its tangential part (alpha x r), and every slider or
+// moving point as transport + Coriolis + relative, head to tail.
 //
-// All vectors are the server's. The normal/tangential split is a projection of the server's
-// relative acceleration a_Q - a_B onto the direction B->Q (for a rigid link that projection is
-// exactly -omega^2 r and the remainder exactly alpha x r): drawing, not recomputing.
+// Every vector is the server's: the segments, their base points and their order are those of the
+// worked solution (/solution's `polygons`); this module only places them head to tail.
 
 import { COLOURS } from './theme.js';
-import { linkColours, solvingOrder, movingLinks } from './scene.js';
+import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
 import { imageName, POLYGON_POLE } from './notation.js';
@@ -59,9 +58,6 @@ function vecText(symbol, v, kind, units) {
 }
 
 const add = (a, b) => [a[0] + b[0], a[1] + b[1]];
-const sub = (a, b) => [a[0] - b[0], a[1] - b[1]];
-const mul = (a, k) => [a[0] * k, a[1] * k];
-const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
 const norm = (a) => Math.hypot(a[0], a[1]);
 
 function baseLayout(title, kind, units) {
@@ -166,7 +162,7 @@ export function velocityFigure(scene, analysis, units) {
   return { traces, labels: lab, layout: baseLayout('Velocity polygon', 'velocity', units) };
 }
 
-export function accelerationFigure(scene, analysis, units) {
+export function accelerationFigure(scene, analysis, polygons, units) {
   const tips = collect(scene, analysis, 'acceleration', units);
   const traces = [...linkImages(scene, analysis, tips, 'acceleration')];
   const abs = [];
@@ -176,26 +172,17 @@ export function accelerationFigure(scene, analysis, units) {
     abs.push([[0, 0], a, vecText(`a_${name}`, a, 'acceleration', units)]);
     lab.push([a, lower(name)]);
   }
-  // Normal and tangential parts, link by link, in the order a textbook solves them.
+  // Normal and tangential parts of each image segment, in the worked solution's order.
   const normal = [];
   const tangential = [];
-  for (const { link, base } of solvingOrder(scene)) {
-    const aBase = tips[base];
-    const rBase = analysis.points?.[base]?.position;
-    if (!aBase || !rBase) continue;
-    for (const q of scene.links[link].points) {
-      if (q === base || !tips[q] || !analysis.points?.[q]?.position) continue;
-      const r = sub(analysis.points[q].position, rBase);
-      const rn = norm(r);
-      if (rn < TINY) continue;
-      const e = mul(r, 1 / rn);
-      const relA = sub(tips[q], aBase);
-      const an = mul(e, dot(relA, e));
-      const at = sub(relA, an);
-      const tag = `${q}${base}`;
-      if (norm(an) > TINY) normal.push([aBase, add(aBase, an), vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);
-      if (norm(at) > TINY) tangential.push([add(aBase, an), tips[q], vecText(`aᵗ_${tag}`, at, 'acceleration', units)]);
-    }
+  for (const seg of polygons?.segments || []) {
+    const aBase = tips[seg.base];
+    if (!aBase || !tips[seg.point]) continue;
+    const an = seg.normal.map((c) => toDisplay('acceleration', c, units));
+    const at = seg.tangential.map((c) => toDisplay('acceleration', c, units));
+    const tag = `${seg.point}${seg.base}`;
+    if (norm(an) > TINY) normal.push([aBase, add(aBase, an), vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);
+    if (norm(at) > TINY) tangential.push([add(aBase, an), add(add(aBase, an), at), vecText(`aᵗ_${tag}`, at, 'acceleration', units)]);
   }
   traces.push(arrows('normal part −ω²r', normal, COLOURS.normal, { width: 1.8 }));
   traces.push(arrows('tangential part α×r', tangential, COLOURS.tangential, { width: 1.8 }));
@@ -236,7 +223,7 @@ export function accelerationFigure(scene, analysis, units) {
 }
 
 /** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
-export function renderPolygons(velDiv, accDiv, scene, analysis, units) {
+export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units) {
   const P = plotly();
   if (!P) return false;
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
@@ -244,7 +231,7 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, units) {
     P.react(velDiv, v.traces, v.layout, CONFIG).then(() => placeFigureLabels(P, velDiv, v));
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
-    const a = accelerationFigure(scene, analysis, units);
+    const a = accelerationFigure(scene, analysis, polygons, units);
     P.react(accDiv, a.traces, a.layout, CONFIG).then(() => placeFigureLabels(P, accDiv, a));
   }
   return true;

@@ -83,35 +83,3 @@ export function linkColours(scene) {
   });
   return colours;
 }
-
-/** Order in which a textbook solves the links: outwards from the ground, each with its base point. */
-export function solvingOrder(scene) {
-  const ground = groundLink(scene);
-  const known = new Set();
-  for (const j of scene.joints || []) if (j.links.includes(ground)) known.add(j.point);
-  for (const p of scene.links?.[ground]?.points || []) known.add(p);
-  const order = [];
-  const pending = new Set(movingLinks(scene));
-  // Driver first: its pivot is known and its omega is given.
-  const driver = scene.drivers?.[0]?.link;
-  let guard = 0;
-  while (pending.size && guard++ < 50) {
-    let progressed = false;
-    const candidates = [...pending].sort((a, b) => (a === driver ? -1 : b === driver ? 1 : 0));
-    for (const name of candidates) {
-      const pts = scene.links[name].points;
-      const base = pts.find((p) => known.has(p));
-      if (base === undefined) continue;
-      order.push({ link: name, base });
-      pts.forEach((p) => known.add(p));
-      pending.delete(name);
-      progressed = true;
-      break;
-    }
-    if (!progressed) {
-      for (const name of pending) order.push({ link: name, base: scene.links[name].points[0] });
-      break;
-    }
-  }
-  return order;
-}

@@ -14,12 +14,14 @@ import subprocess
 import sys
 import warnings
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 import pytest
 
 import solver
+from solver import results
 from solver.presets import build_preset
 from solver.results import Result, holds
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
@@ -235,6 +237,27 @@ def test_every_example_and_the_extensions_keys_are_known() -> None:
         "torques": [{"name": "M", "link": "rocker", "moment": "-50"}],
     }
     assert unknown_keys(doc) == []
+
+
+def test_a_read_scene_keeps_its_warnings_for_the_result() -> None:
+    """read_scene: look at the scene first (a cost check), the result still reports the typo."""
+    doc = example("S000-T1")
+    doc["drivers"][0]["angle"] = 120
+    read = solver.read_scene(doc)
+    assert isinstance(read.scene, LinkageScene)
+    assert read.warnings == ("drivers[0].angle is not a scene field; did you mean angle_deg?",)
+    assert solver.analyze(read).warnings == read.warnings
+    assert solver.sweep(read, 8).warnings == read.warnings
+    with pytest.raises(solver.InvalidScene):
+        solver.read_scene(doc, strict=True)
+
+
+def test_the_solvers_own_warnings_follow_the_requests() -> None:
+    """A result's body lists the request's warnings first, then any the solver's result carries
+    (the near-change-point warnings of the core solver)."""
+    noticed = SimpleNamespace(warnings=("near a change point",))
+    assert results._warnings(["unknown key"], noticed) == ["unknown key", "near a change point"]
+    assert results._warnings(["unknown key"], object()) == ["unknown key"]
 
 
 def test_a_parsed_scene_carries_no_key_warnings() -> None:
