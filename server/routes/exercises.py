@@ -1,0 +1,77 @@
+"""Exercises (exercises-v1): types, generation, checking with diagnosis, and exports.
+
+Exercises are generated, never stored: ``type:difficulty:seed:index`` determines one completely,
+so checking needs nothing but the id. Extensions beyond the spec: ``with_solutions`` on
+POST /exercises adds each exercise's worked solution (``solution``: the steps), and
+GET /exercises/{id} answers one exercise with its worked solution (the student mode's share link).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter
+from pydantic import Field
+
+from server.edge import FiniteJSONResponse, StrictJSONRoute
+from server.schemas import Strict
+from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
+from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
+from solver.exercises.solutions import worked_solution
+
+router = APIRouter(
+    prefix="/exercises",
+    tags=["exercises"],
+    route_class=StrictJSONRoute,
+    default_response_class=FiniteJSONResponse,
+)
+
+
+class ExercisesRequest(Strict):
+    type: str = Field(description="An exercise type from GET /exercises/types.", max_length=64)
+    count: int = Field(1, strict=True, description=f"How many exercises (1 to {MAX_COUNT}).")
+    seed: int = Field(0, strict=True, ge=0, le=MAX_SEED, description="Seed (e.g. a student id).")
+    difficulty: str = Field(
+        DEFAULT_DIFFICULTY, max_length=32, description=f"One of {', '.join(DIFFICULTIES)}."
+    )
+    with_solutions: bool = Field(
+        False, description="Extension: add each exercise's worked solution (its steps)."
+    )
+
+
+def exercise_body(exercise: Exercise, with_solution: bool) -> dict[str, Any]:
+    body = exercise.as_json()
+    if with_solution:
+        body["solution"] = {"steps": worked_solution(exercise)}
+    return body
+
+
+@router.get("/types", summary="Every exercise type, its difficulties and what it can ask")
+def types_route() -> FiniteJSONResponse:
+    return FiniteJSONResponse(
+        {
+            "types": [
+                {
+                    "name": t.name,
+                    "title": t.title,
+                    "description": t.description,
+                    "difficulties": list(DIFFICULTIES),
+                    "asks": list(t.asks),
+                }
+                for t in TYPES.values()
+            ]
+        }
+    )
+
+
+@router.post("", summary="Generate exercises: statement, figure, scene, asked quantities, key")
+def exercises_route(request: ExercisesRequest) -> FiniteJSONResponse:
+    exercises = generate(request.type, request.difficulty, request.seed, request.count)
+    return FiniteJSONResponse(
+        {"exercises": [exercise_body(e, request.with_solutions) for e in exercises]}
+    )
+
+
+@router.get("/{exercise_id}", summary="One exercise by its id, with its worked solution")
+def exercise_route(exercise_id: str) -> FiniteJSONResponse:
+    return FiniteJSONResponse(exercise_body(build(parse_id(exercise_id)), True))
