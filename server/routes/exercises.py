@@ -16,6 +16,7 @@ from pydantic import Field
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.schemas import Strict
 from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
+from solver.exercises.checking import check
 from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
 from solver.exercises.solutions import worked_solution
 
@@ -75,3 +76,15 @@ def exercises_route(request: ExercisesRequest) -> FiniteJSONResponse:
 @router.get("/{exercise_id}", summary="One exercise by its id, with its worked solution")
 def exercise_route(exercise_id: str) -> FiniteJSONResponse:
     return FiniteJSONResponse(exercise_body(build(parse_id(exercise_id)), True))
+
+
+class CheckRequest(Strict):
+    id: str = Field(description="The exercise id, type:difficulty:seed:index.", max_length=200)
+    answers: dict[str, float | None] = Field(
+        description="The given answers by key (SI units); a key left out is 'missing'."
+    )
+
+
+@router.post("/check", summary="Grade answers within tolerance and diagnose typical mistakes")
+def check_route(request: CheckRequest) -> FiniteJSONResponse:
+    return FiniteJSONResponse(check(request.id, request.answers))

@@ -16,7 +16,9 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
-from solver.exercises import DIFFICULTIES, TYPES
+from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
+from solver.exercises.mistakes import typical_mistakes
+from solver.exercises.model import within
 
 EXERCISE_COUNT = int(os.environ.get("KT_EXERCISE_COUNT", "50"))
 API = "/api/v1"
@@ -151,3 +153,44 @@ def test_bad_requests_are_problems(
 def test_unknown_ids_are_invalid_scene(client: TestClient, bad_id: str) -> None:
     r = client.get(f"{API}/exercises/{bad_id}")
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene", r.text
+
+
+@pytest.mark.parametrize(
+    ("kind", "mistake"),
+    [
+        ("inverted_slider_crank", "coriolis_left_out"),
+        ("quick_return", "coriolis_without_factor_2"),
+        ("slider_crank", "coriolis_on_fixed_guide"),
+        ("moving_point", "coriolis_left_out"),
+        ("spatial_arm", "rotation_sign"),
+        ("four_bar_velocity", "rotation_sign"),
+        ("four_bar_velocity", "degrees_for_radians"),
+        ("four_bar_acceleration", "alpha_in_normal_term"),
+    ],
+)
+def test_named_mistakes_over_the_api(client: TestClient, kind: str, mistake: str) -> None:
+    """The diagnosis as a client sees it: the sentence names the mistake."""
+    e = build(ExerciseId(kind, "challenging", 8, 0))
+    made = next(m for m in typical_mistakes(e) if m.kind == mistake)
+    key, wrong = next((k, v) for k, v in made.values.items() if not within(v, e.answers[k], 0.01))
+    r = client.post("/api/v1/exercises/check", json={"id": str(e.id), "answers": {key: wrong}})
+    assert r.status_code == 200, r.text
+    body = r.json()
+    assert body["id"] == str(e.id) and body["score"] == 0.0
+    row = next(x for x in body["results"] if x["key"] == key)
+    assert row["verdict"] == "incorrect" and row["mistake"] == mistake
+    assert row["given"] == wrong and row["expected"] == e.answers[key]
+    assert row["diagnosis"].startswith("This is")
+    missing = [x["verdict"] for x in body["results"] if x["key"] != key]
+    assert set(missing) == {"missing"}
+
+
+def test_check_rejects_unknown_ids_and_keys(client: TestClient) -> None:
+    for body, word in (
+        ({"id": "nope", "answers": {}}, "id"),
+        ({"id": "four_bar_velocity:standard:7:0", "answers": {"x": 1.0}}, "unknown key"),
+        ({"id": "four_bar_velocity:standard:7:0", "answers": {"omega_coupler": "a"}}, "answers"),
+    ):
+        r = client.post(f"{API}/exercises/check", json=body)
+        assert r.status_code == 422 and r.json()["code"] == "invalid_scene", r.text
+        assert word in r.json()["detail"]
