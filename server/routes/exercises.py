@@ -8,15 +8,17 @@ GET /exercises/{id} answers one exercise with its worked solution (the student m
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 from fastapi import APIRouter
+from fastapi.responses import Response
 from pydantic import Field
 
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.schemas import Strict
 from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
 from solver.exercises.checking import check
+from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
 from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
 from solver.exercises.solutions import worked_solution
 
@@ -88,3 +90,49 @@ class CheckRequest(Strict):
 @router.post("/check", summary="Grade answers within tolerance and diagnose typical mistakes")
 def check_route(request: CheckRequest) -> FiniteJSONResponse:
     return FiniteJSONResponse(check(request.id, request.answers))
+
+
+ExportFormat = Literal["moodle_xml", "html", "csv", "json"]
+_MEDIA = {
+    "moodle_xml": ("application/xml", "xml"),
+    "html": ("text/html; charset=utf-8", "html"),
+    "csv": ("text/csv; charset=utf-8", "csv"),
+    "json": ("application/json", "json"),
+}
+
+
+class ExportRequest(ExercisesRequest):
+    format: ExportFormat = Field(
+        description="moodle_xml (question bank), html (printable sheet), csv (answer key), json."
+    )
+    moodle_question: Literal["auto", "numerical", "cloze"] = Field(
+        "auto",
+        description="Extension: 'auto' makes a numerical question of an exercise asking one "
+        "quantity and a cloze question of one asking several; 'numerical' one numerical "
+        "question per asked quantity; 'cloze' one cloze question per exercise.",
+    )
+
+
+@router.post(
+    "/export",
+    summary="The exercises as a file: Moodle XML, printable HTML, CSV answer key or JSON",
+    response_class=Response,
+)
+def export_route(request: ExportRequest) -> Response:
+    exercises = generate(request.type, request.difficulty, request.seed, request.count)
+    if request.format == "moodle_xml":
+        content = moodle_xml(exercises, request.moodle_question)
+    elif request.format == "html":
+        content = html_sheets(exercises, request.with_solutions)
+    elif request.format == "csv":
+        content = answer_csv(exercises)
+    else:
+        content = exercises_json(exercises, request.with_solutions)
+    media, extension = _MEDIA[request.format]
+    key = "-key" if request.with_solutions and request.format == "html" else ""
+    name = f"exercises-{request.type}-{request.difficulty}-{request.seed}{key}.{extension}"
+    return Response(
+        content,
+        media_type=media,
+        headers={"Content-Disposition": f'attachment; filename="{name}"'},
+    )

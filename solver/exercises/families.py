@@ -52,7 +52,7 @@ _AXES = ("x", "y", "z")
 def omega_of(link: str, name: str, sub: str) -> Asked:
     return Asked(
         f"omega_{link}",
-        f"angular velocity of the {name} {sub}",
+        f"angular velocity of the {name} {sub.replace('_', '')}",
         "rad/s",
         f"links.{link}.omega",
         rf"\omega_{{{sub}}}",
@@ -62,7 +62,7 @@ def omega_of(link: str, name: str, sub: str) -> Asked:
 def alpha_of(link: str, name: str, sub: str) -> Asked:
     return Asked(
         f"alpha_{link}",
-        f"angular acceleration of the {name} {sub}",
+        f"angular acceleration of the {name} {sub.replace('_', '')}",
         "rad/s^2",
         f"links.{link}.alpha",
         rf"\alpha_{{{sub}}}",
@@ -72,14 +72,15 @@ def alpha_of(link: str, name: str, sub: str) -> Asked:
 def vector_of(
     root: str, owner: str, field: str, key: str, label: str, unit: str, symbol: str, axes: str
 ) -> tuple[Asked, ...]:
-    """The components (``axes`` among "xyz") of a vector at ``root.owner.field``."""
+    """The components (``axes`` among "xyz") of a vector at ``root.owner.field``; ``symbol`` is
+    the LaTeX symbol and subscript, e.g. ``v_{C``, closed here with the axis: ``v_{C,x}``."""
     return tuple(
         Asked(
             f"{key}_{axis}",
             f"{label}, {axis} component",
             unit,
             f"{root}.{owner}.{field}.{_AXES.index(axis)}",
-            rf"{symbol}_{{{axis}}}",
+            f"{symbol},{axis}}}",
         )
         for axis in axes
     )
@@ -88,14 +89,14 @@ def vector_of(
 def velocity_of(point: str, axes: str = "xy") -> tuple[Asked, ...]:
     return vector_of(
         "points", point, "velocity", f"v_{point}", f"velocity of {point}", "m/s",
-        rf"v_{{{point}}}", axes,
+        rf"v_{{{point}", axes,
     )  # fmt: skip
 
 
 def acceleration_of(point: str, axes: str = "xy") -> tuple[Asked, ...]:
     return vector_of(
         "points", point, "acceleration", f"a_{point}", f"acceleration of {point}", "m/s^2",
-        rf"a_{{{point}}}", axes,
+        rf"a_{{{point}", axes,
     )  # fmt: skip
 
 
@@ -252,7 +253,7 @@ def _pole(link: str, kind: str, sub: str) -> tuple[Asked, ...]:
     symbol = "P" if kind == "velocity" else "Q"
     return vector_of(
         "links", link, f"{kind}_pole", f"{kind}_pole_{link}", f"{name} of {sub}", "m",
-        rf"{symbol}_{{{sub}}}", "xy",
+        rf"{symbol}_{{{sub}", "xy",
     )  # fmt: skip
 
 
@@ -327,7 +328,7 @@ def slider_crank(rng: random.Random, difficulty: str) -> Draft:
 def _coriolis_of(joint: int, point: str) -> tuple[Asked, ...]:
     return vector_of(
         "joints", str(joint), "coriolis_acceleration", f"a_cor_{point}",
-        f"Coriolis acceleration of {point} in the slot", "m/s^2", rf"a^{{Cor}}_{{{point}}}", "xy",
+        f"Coriolis acceleration of {point} in the slot", "m/s^2", rf"a^{{Cor}}_{{{point}", "xy",
     )  # fmt: skip
 
 
@@ -347,7 +348,7 @@ def inverted_slider_crank(rng: random.Random, difficulty: str) -> Draft:
     if difficulty == "basic":
         asked += vector_of(
             "joints", "0", "relative_velocity", "v_rel_A", "sliding velocity of A in the slot",
-            "m/s", r"v^{rel}_{A}", "xy",
+            "m/s", r"v^{rel}_{A", "xy",
         )  # fmt: skip
     else:
         asked += (alpha_of("lever", "slotted lever", "CD"), *_coriolis_of(0, "A"))
@@ -400,9 +401,12 @@ def quick_return(rng: random.Random, difficulty: str) -> Draft:
     }
     v["omega"], v["alpha"] = rates_for(rng, difficulty, difficulty == "challenging")
     scene = build_preset("quick_return", v)
-    asked: tuple[Asked, ...] = (omega_of("lever", "slotted lever", "O4B"), velocity_of("C", "x")[0])
+    asked: tuple[Asked, ...] = (
+        omega_of("lever", "slotted lever", "O_4B"),
+        velocity_of("C", "x")[0],
+    )
     if difficulty != "basic":
-        asked += (alpha_of("lever", "slotted lever", "O4B"), *_coriolis_of(0, "A"))
+        asked += (alpha_of("lever", "slotted lever", "O_4B"), *_coriolis_of(0, "A"))
     if difficulty == "challenging":
         asked += (acceleration_of("C", "x")[0],)
     text = (
@@ -550,13 +554,13 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
         "moving_points": [{"name": "M", "link": carrier, "path": path, "s_law": f"{num(c)}*t^2"}],
         "time": t1,
     }
-    asked: tuple[Asked, ...] = _moving("v_M", "velocity", "velocity of M", "m/s", "v_{M}")
+    asked: tuple[Asked, ...] = _moving("v_M", "velocity", "velocity of M", "m/s", "v_{M")
     asked += _moving(
         "a_cor_M", "coriolis_acceleration", "Coriolis acceleration of M", "m/s^2",
-        r"a^{Cor}_{M}",
+        r"a^{Cor}_{M",
     )  # fmt: skip
     if difficulty != "basic":
-        asked += _moving("a_M", "acceleration", "acceleration of M", "m/s^2", "a_{M}")
+        asked += _moving("a_M", "acceleration", "acceleration of M", "m/s^2", "a_{M")
         asked += (Asked("t_M_T", "time at which M reaches T", "s", "events.M.T.time", "t_{T}"),)
     text = (
         f"A {carrier} turns about the fixed pivot O by the angle phi(t) = {law.replace('*', ' ')}"
@@ -619,7 +623,7 @@ def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
     }
     asked: tuple[Asked, ...] = vector_of(
         "bodies", "3", "omega", "omega_3", "angular velocity of body 3", "rad/s",
-        r"\omega_{3}", "xyz",
+        r"\omega_{3", "xyz",
     )  # fmt: skip
     if difficulty != "basic":
         asked += velocity_of("B", "xyz")
