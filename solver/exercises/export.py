@@ -157,17 +157,17 @@ td.blank { width: 35%; } .step { margin: 0.6rem 0; break-inside: avoid; }
 @media print { .sheet { padding: 0; } @page { margin: 15mm; } }
 """
 
-_KATEX = """
-<link rel="stylesheet" href="/vendor/katex/katex.min.css">
-<script defer src="/vendor/katex/katex.min.js"></script>
+_KATEX_CSS = '<link rel="stylesheet" href="/vendor/katex/katex.min.css">'
+# At the end of the body: the formulas are there when the (blocking) script has loaded.
+_KATEX_JS = """
+<script src="/vendor/katex/katex.min.js"></script>
 <script>
-window.addEventListener("load", () => {
-  if (!window.katex) return;
+if (window.katex) {
   for (const el of document.querySelectorAll("[data-tex]")) {
     try { window.katex.render(el.dataset.tex, el, {throwOnError: false, displayMode: true}); }
     catch (e) { /* the plain TeX stays visible */ }
   }
-});
+}
 </script>
 """
 
@@ -218,7 +218,7 @@ def html_sheets(exercises: Sequence[Exercise], with_solutions: bool) -> str:
     return (
         f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><link rel="icon" '
         f'href="/favicon.svg"><title>{escape(title)}'
-        f"</title><style>{_STYLE}</style>{_KATEX}</head><body>"
+        f"</title><style>{_STYLE}</style>{_KATEX_CSS}</head><body>"
         + "".join(_sheet(e, with_solutions) for e in exercises)
-        + "</body></html>\n"
+        + f"{_KATEX_JS}</body></html>\n"
     )
