@@ -6,7 +6,7 @@ difficulty, seed, count)`` several; ``check`` grades answers and names typical m
 """
 
 from solver.exercises.families import TYPES, ExerciseType
-from solver.exercises.generate import MAX_COUNT, build, generate
+from solver.exercises.generation import MAX_COUNT, build, generate
 from solver.exercises.model import DIFFICULTIES, Asked, Exercise, ExerciseId, parse_id
 
 __all__ = [

@@ -95,9 +95,3 @@ def value_at(solved: Solved, path: str) -> float:
     if not math.isfinite(value):
         raise InvalidScene(f"path {path!r}: the value is not finite")
     return value
-
-
-def answer_key(doc: Mapping[str, Any], paths: Mapping[str, str]) -> dict[str, float]:
-    """{key: value at its path} for one scene."""
-    solved = solve_scene(doc)
-    return {key: value_at(solved, path) for key, path in paths.items()}

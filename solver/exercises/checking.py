@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.errors import InvalidScene
-from solver.exercises.generate import build
+from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -102,9 +102,6 @@ class Exercise:
     asked: tuple[Asked, ...]
     answers: Mapping[str, float]
 
-    def asked_by_key(self, key: str) -> Asked | None:
-        return next((a for a in self.asked if a.key == key), None)
-
     def as_json(self) -> dict[str, Any]:
         i = self.id
         return {
@@ -151,4 +148,3 @@ class Draft:
     asked: tuple[Asked, ...]
     scales: Mapping[str, float]
     check: Callable[[Any], str | None] = field(default=lambda analysis: None)
-    figure_notes: Sequence[str] = ()
