@@ -140,6 +140,22 @@ def _driver_label(driver: Mapping[str, Any]) -> tuple[float, str]:
     return omega or 1.0, label
 
 
+def _pivot(scene: Mapping[str, Any], ground: str, link: str) -> str:
+    """The point of the revolute joint between ``link`` and the ground."""
+    return str(
+        next(
+            j["point"]
+            for j in scene["joints"]
+            if j["type"] == "revolute" and set(j["links"]) == {ground, link}
+        )
+    )
+
+
+def _disc_radius(pivot: Point, centre: Point, start: Point) -> float:
+    """A disc about ``pivot`` wide enough for the groove about ``centre`` through ``start``."""
+    return 1.1 * (math.dist(pivot, centre) + math.dist(centre, start))
+
+
 def _linkage(scene: Mapping[str, Any]) -> str:
     pts: dict[str, Point] = {k: (float(v[0]), float(v[1])) for k, v in scene["points"].items()}
     links = scene["links"]
@@ -153,6 +169,11 @@ def _linkage(scene: Mapping[str, Any]) -> str:
             r = math.dist(c, s)
             arcs.append((c, r))
             extent += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
+    for mp in scene.get("moving_points", []):
+        if mp["path"]["type"] == "arc":
+            o = pts[_pivot(scene, ground, mp["link"])]
+            reach = _disc_radius(o, pts[mp["path"]["center"]], pts[mp["path"]["start"]])
+            extent += [(o[0] - reach, o[1] - reach), (o[0] + reach, o[1] + reach)]
     canvas = Canvas(extent)
     sliders = [j for j in scene["joints"] if j["type"] != "revolute"]
     for j in sliders:
@@ -175,9 +196,20 @@ def _linkage(scene: Mapping[str, Any]) -> str:
     for mp in scene.get("moving_points", []):
         if mp["path"]["type"] == "line":
             canvas.line(pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
+    discs = {mp["link"] for mp in scene.get("moving_points", []) if mp["path"]["type"] == "arc"}
     for name, link in links.items():
         members = [pts[p] for p in link["points"]]
         if name == ground or len(members) < 2:
+            continue
+        if name in discs:  # a turning disc carrying a groove: drawn as the disc itself
+            pivot = pts[_pivot(scene, ground, name)]
+            path = next(m["path"] for m in scene["moving_points"] if m["link"] == name)
+            radius = _disc_radius(pivot, pts[path["center"]], pts[path["start"]])
+            x, y = canvas.px(pivot)
+            canvas.add(
+                f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius * canvas.scale:.1f}" '
+                f'fill="#dbeafe" fill-opacity="0.5" stroke="{LINK}" stroke-width="2.5"/>'
+            )
             continue
         if len(members) >= 3:
             poly = " ".join("{:.1f},{:.1f}".format(*canvas.px(m)) for m in members)
@@ -203,13 +235,8 @@ def _linkage(scene: Mapping[str, Any]) -> str:
         start = pts[mp["path"]["start"]]
         canvas.text(start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
     for driver in scene["drivers"]:
-        pivot = next(
-            j["point"]
-            for j in scene["joints"]
-            if j["type"] == "revolute" and set(j["links"]) == {ground, driver["link"]}
-        )
         omega, label = _driver_label(driver)
-        _rotation(canvas, pts[pivot], omega, label)
+        _rotation(canvas, pts[_pivot(scene, ground, driver["link"])], omega, label)
     _scale_bar(canvas)
     return canvas.svg(str(scene.get("title", "linkage")))
 
