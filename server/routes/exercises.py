@@ -8,7 +8,7 @@ GET /exercises/{id} answers one exercise with its worked solution (the student m
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter
 from fastapi.responses import Response
@@ -21,6 +21,8 @@ from solver.exercises.checking import check
 from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
 from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
 from solver.exercises.solutions import worked_solution
+
+MAX_ANSWER = 1e15  # a given answer beyond this is no number a student means
 
 router = APIRouter(
     prefix="/exercises",
@@ -80,10 +82,14 @@ def exercise_route(exercise_id: str) -> FiniteJSONResponse:
     return FiniteJSONResponse(exercise_body(build(parse_id(exercise_id)), True))
 
 
+Answer = Annotated[float, Field(ge=-MAX_ANSWER, le=MAX_ANSWER)]
+
+
 class CheckRequest(Strict):
     id: str = Field(description="The exercise id, type:difficulty:seed:index.", max_length=200)
-    answers: dict[str, float | None] = Field(
-        description="The given answers by key (SI units); a key left out is 'missing'."
+    answers: dict[str, Answer | None] = Field(
+        description="The given answers by key (SI units, |x| <= 1e15); a key left out (or null) "
+        "is 'missing'."
     )
 
 

@@ -190,7 +190,17 @@ def test_check_rejects_unknown_ids_and_keys(client: TestClient) -> None:
         ({"id": "nope", "answers": {}}, "id"),
         ({"id": "four_bar_velocity:standard:7:0", "answers": {"x": 1.0}}, "unknown key"),
         ({"id": "four_bar_velocity:standard:7:0", "answers": {"omega_coupler": "a"}}, "answers"),
+        ({"id": "four_bar_velocity:standard:7:0", "answers": {"omega_coupler": 1e308}}, "answers"),
     ):
         r = client.post(f"{API}/exercises/check", json=body)
         assert r.status_code == 422 and r.json()["code"] == "invalid_scene", r.text
         assert word in r.json()["detail"]
+
+
+def test_a_huge_seed_is_a_seed_like_any_other(client: TestClient) -> None:
+    seed = 2**63 - 1
+    r = client.post(f"{API}/exercises", json={"type": "spatial_arm", "seed": seed})
+    assert r.status_code == 200, r.text
+    assert r.json()["exercises"][0]["id"] == f"spatial_arm:standard:{seed}:0"
+    r = client.post(f"{API}/exercises", json={"type": "spatial_arm", "seed": seed + 1})
+    assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
