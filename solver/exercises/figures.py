@@ -97,7 +97,8 @@ def _ground_pivot(canvas: Canvas, p: Point) -> None:
 
 
 def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
-    """An arc arrow of radius 22 px about ``p``, counter-clockwise when omega > 0."""
+    """An arc arrow of radius 22 px under ``p``, counter-clockwise when omega > 0, labelled
+    below the pivot's hatching."""
     x, y = canvas.px(p)
     r, start, end = 22.0, math.radians(200), math.radians(-20)
     if omega < 0:
@@ -116,7 +117,7 @@ def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
         f'L{ex - 4 * nx:.1f} {ey - 4 * ny:.1f}z" fill="{ROTATION}"/>'
     )
     canvas.add(
-        f'<text x="{x - 30:.1f}" y="{y - r - 8:.1f}" font-size="12" fill="{ROTATION}" '
+        f'<text x="{x - 30:.1f}" y="{y + 38:.1f}" font-size="12" fill="{ROTATION}" '
         f'font-family="sans-serif">{escape(label)}</text>'
     )
 
