@@ -99,3 +99,27 @@ export async function getExampleIndex() {
   if (!response.ok) return { examples: [] };
   return response.json();
 }
+
+// --- exercises (exercises-v1) -----------------------------------------------------------------
+export const exerciseTypes = () => call('GET', '/exercises/types');
+export const generateExercises = (request) => call('POST', '/exercises', request);
+export const getExercise = (id) => call('GET', `/exercises/${encodeURIComponent(id)}`);
+export const checkAnswers = (id, answers) => call('POST', '/exercises/check', { id, answers });
+
+/** An export as a file: {blob, filename} (Moodle XML, HTML sheet, CSV or JSON). */
+export async function exportExercises(request) {
+  let response;
+  try {
+    response = await fetch(BASE + '/exercises/export', {
+      method: 'POST',
+      headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify(request),
+    });
+  } catch (err) {
+    throw new ApiError({ code: 'network', detail: `The server cannot be reached (${err.message}).` });
+  }
+  if (!response.ok) throw await problemFrom(response, '/exercises/export');
+  const disposition = response.headers.get('content-disposition') || '';
+  const match = /filename="([^"]+)"/.exec(disposition);
+  return { blob: await response.blob(), filename: match ? match[1] : 'exercises' };
+}

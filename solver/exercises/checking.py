@@ -1,0 +1,70 @@
+"""Grading: each answer against its key within the relative tolerance, and, for a wrong one, the
+typical mistake that gives it.
+
+A wrong answer is put down to a mistake when it lies within the tolerance of the wrong value that
+mistake gives (``solver.exercises.mistakes``), that wrong value being itself clearly apart from
+the right one; the first such mistake in the list is named.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from solver.errors import InvalidScene
+from solver.exercises.generation import build
+from solver.exercises.mistakes import WrongAnswers, typical_mistakes
+from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
+
+
+def _diagnosis(
+    asked: Asked, given: float, expected: float, mistakes: list[WrongAnswers]
+) -> WrongAnswers | None:
+    for mistake in mistakes:
+        wrong = mistake.values.get(asked.key)
+        if (
+            wrong is not None
+            and not within(wrong, expected, asked.tolerance)
+            and within(given, wrong, asked.tolerance)
+        ):
+            return mistake
+    return None
+
+
+def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:
+    """The /exercises/check body: a verdict per asked quantity, the score (the share correct)."""
+    unknown = sorted(set(answers) - {a.key for a in exercise.asked})
+    if unknown:
+        raise InvalidScene(
+            f"answers: unknown key(s) {', '.join(k[:40] for k in unknown[:5])} for "
+            f"{exercise.id}; asked: {', '.join(a.key for a in exercise.asked)}"
+        )
+    mistakes: list[WrongAnswers] | None = None
+    results = []
+    for asked in exercise.asked:
+        expected = exercise.answers[asked.key]
+        given = answers.get(asked.key)
+        result: dict[str, Any] = {"key": asked.key, "given": given, "expected": expected}
+        if given is None:
+            result |= {"verdict": "missing", "relative_error": None, "diagnosis": None}
+        elif within(given, expected, asked.tolerance):
+            error = relative_error(given, expected)
+            result |= {"verdict": "correct", "relative_error": error, "diagnosis": None}
+        else:
+            if mistakes is None:
+                mistakes = typical_mistakes(exercise)
+            found = _diagnosis(asked, given, expected, mistakes)
+            result |= {
+                "verdict": "incorrect",
+                "relative_error": relative_error(given, expected),
+                "diagnosis": None if found is None else found.sentence,
+                "mistake": None if found is None else found.kind,
+            }
+        results.append(result)
+    correct = sum(r["verdict"] == "correct" for r in results)
+    return {"id": str(exercise.id), "score": correct / len(results), "results": results}
+
+
+def check(exercise_id: str, answers: Mapping[str, float | None]) -> dict[str, Any]:
+    """Grade answers to the exercise named by its id (``invalid_scene`` for an unknown id)."""
+    return check_answers(build(parse_id(exercise_id)), answers)

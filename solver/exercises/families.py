@@ -1,0 +1,772 @@
+"""The exercise types: one textbook family each, drawn with nice rounded inputs.
+
+A family draws a candidate (``Draft``) from a seeded ``random.Random``: the scene (a preset's,
+or built as a preset would build it), what it asks, the statement, and the scales an answer is
+measured against. Whether the draft is well-posed is decided by ``generate`` with the solver's
+own analysis; the family only adds its own test (the Grashof class, the transmission angle).
+The difficulty sets what is asked and which inputs are plain: ``basic`` turns the crank at a
+constant speed and asks the first rates; ``standard`` adds points and accelerations;
+``challenging`` adds an angular acceleration of the crank, offsets and further points.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from solver.exercises.model import Asked, Draft
+from solver.presets import build_preset
+
+TRANSMISSION_MIN_DEG = 35.0  # the transmission angle stays within [35, 145] deg
+
+
+def pick(rng: random.Random, low: float, high: float, step: float) -> float:
+    """A multiple of ``step`` in [low, high], as a book would print it (no rounding noise)."""
+    count = round((high - low) / step)
+    return round(low + step * rng.randint(0, count), 10)
+
+
+def rate(rng: random.Random, low: int, high: int, signed: bool = True) -> float:
+    """A whole number in [low, high] (rad/s, rad/s^2), of either sign when ``signed``."""
+    value = float(rng.randint(low, high))
+    return -value if signed and rng.random() < 0.5 else value
+
+
+def num(x: float) -> str:
+    """A given number as printed in the statement."""
+    return f"{x:g}"
+
+
+def sense(omega: float) -> str:
+    return "counter-clockwise" if omega > 0 else "clockwise"
+
+
+# --- asked quantities ----------------------------------------------------------------------------
+
+_AXES = ("x", "y", "z")
+
+
+def omega_of(link: str, name: str, sub: str) -> Asked:
+    return Asked(
+        f"omega_{link}",
+        f"angular velocity of the {name} {sub.replace('_', '')}",
+        "rad/s",
+        f"links.{link}.omega",
+        rf"\omega_{{{sub}}}",
+    )
+
+
+def alpha_of(link: str, name: str, sub: str) -> Asked:
+    return Asked(
+        f"alpha_{link}",
+        f"angular acceleration of the {name} {sub.replace('_', '')}",
+        "rad/s^2",
+        f"links.{link}.alpha",
+        rf"\alpha_{{{sub}}}",
+    )
+
+
+def vector_of(
+    root: str, owner: str, field: str, key: str, label: str, unit: str, symbol: str, axes: str
+) -> tuple[Asked, ...]:
+    """The components (``axes`` among "xyz") of a vector at ``root.owner.field``; ``symbol`` is
+    the LaTeX symbol and subscript, e.g. ``v_{C``, closed here with the axis: ``v_{C,x}``."""
+    return tuple(
+        Asked(
+            f"{key}_{axis}",
+            f"{label}, {axis} component",
+            unit,
+            f"{root}.{owner}.{field}.{_AXES.index(axis)}",
+            f"{symbol},{axis}}}",
+        )
+        for axis in axes
+    )
+
+
+def velocity_of(point: str, axes: str = "xy") -> tuple[Asked, ...]:
+    return vector_of(
+        "points", point, "velocity", f"v_{point}", f"velocity of {point}", "m/s",
+        rf"v_{{{point}", axes,
+    )  # fmt: skip
+
+
+def acceleration_of(point: str, axes: str = "xy") -> tuple[Asked, ...]:
+    return vector_of(
+        "points", point, "acceleration", f"a_{point}", f"acceleration of {point}", "m/s^2",
+        rf"a_{{{point}", axes,
+    )  # fmt: skip
+
+
+def scales(omega: float, alpha: float, size: float) -> dict[str, float]:
+    """The size of an answer in each unit for a crank turning at omega, alpha in a drawing of
+    ``size`` metres."""
+    rates = max(omega * omega, abs(alpha))
+    return {
+        "rad/s": abs(omega),
+        "rad/s^2": rates,
+        "m/s": abs(omega) * size,
+        "m/s^2": rates * size,
+        "m": size,
+    }
+
+
+def givens_latex(rows: Sequence[tuple[str, float, str]]) -> str:
+    r"""``symbol = value\,unit`` rows, comma-separated, four to a line."""
+    units = {"m": r"\,\mathrm{m}", "rad/s": r"\,\mathrm{rad/s}", "rad/s^2": r"\,\mathrm{rad/s^2}"}
+    units |= {"deg": r"^\circ", "s": r"\,\mathrm{s}", "m/s^2": r"\,\mathrm{m/s^2}", "": ""}
+    items = [f"{s} = {num(v)}{units[u]}" for s, v, u in rows]
+    lines = [",\\; ".join(items[k : k + 4]) for k in range(0, len(items), 4)]
+    return ",\\\\".join(lines)
+
+
+def asked_latex(asked: Sequence[Asked]) -> str:
+    return r"\text{Find } " + ",\\; ".join(a.symbol for a in asked)
+
+
+def crank_sentence(pin: str, pivot: str, omega: float, alpha: float) -> str:
+    turn = f"turns {sense(omega)} at a constant {abs(omega):g} rad/s"
+    if alpha != 0.0:
+        speeding = "speeding up" if alpha * omega > 0 else "slowing down"
+        turn = f"turns {sense(omega)} at {abs(omega):g} rad/s, {speeding} at {abs(alpha):g} rad/s^2"
+    return f"The crank {pivot}{pin} {turn}."
+
+
+def rates_for(rng: random.Random, difficulty: str, accelerating: bool) -> tuple[float, float]:
+    """(omega, alpha) of the crank: alpha = 0 unless the difficulty wants an accelerating crank."""
+    omega = rate(rng, 2, 12, signed=difficulty != "basic")
+    alpha = rate(rng, 2, 30) if accelerating else 0.0
+    return omega, alpha
+
+
+# --- four-bar ------------------------------------------------------------------------------------
+
+
+def _four_bar_scene(
+    rng: random.Random, difficulty: str, accelerating: bool, coupler_point: bool
+) -> tuple[dict[str, Any], dict[str, float]]:
+    while True:
+        v = {
+            "ground": pick(rng, 0.3, 0.8, 0.05),
+            "crank": pick(rng, 0.08, 0.25, 0.01),
+            "coupler": pick(rng, 0.3, 0.9, 0.05),
+            "rocker": pick(rng, 0.2, 0.8, 0.05),
+        }
+        lengths = sorted(v.values())
+        # crank-rocker with a margin from the change point: s + l <= p + q - 5 % of l
+        if v["crank"] == lengths[0] and lengths[0] + lengths[3] <= (
+            lengths[1] + lengths[2] - 0.05 * lengths[3]
+        ):
+            break
+    step = 15.0 if difficulty == "basic" else 5.0
+    v["crank_angle_deg"] = pick(rng, 0.0, 360.0 - step, step)
+    v["omega"], v["alpha"] = rates_for(rng, difficulty, accelerating)
+    v["assembly"] = 0.0
+    if coupler_point:
+        v["coupler_point_u"] = pick(rng, 0.1, 0.5, 0.05)
+        v["coupler_point_v"] = pick(rng, -0.2, 0.2, 0.05)
+    else:
+        v["coupler_point_u"] = v["coupler_point_v"] = 0.0
+    return build_preset("four_bar", v), v
+
+
+def _four_bar_check(analysis: Any) -> str | None:
+    loops = analysis.four_bar_loops
+    if not loops or loops[0].grashof != "Grashof crank-rocker":
+        return "not a Grashof crank-rocker"
+    mu = math.degrees(loops[0].transmission_angle)
+    if not TRANSMISSION_MIN_DEG <= mu <= 180.0 - TRANSMISSION_MIN_DEG:
+        return f"transmission angle {mu:.1f} deg"
+    return None
+
+
+def _four_bar_text(v: Mapping[str, float], goal: str, point: bool) -> tuple[str, str]:
+    text = (
+        f"In the four-bar linkage ABCD the fixed pivots A and D are {num(v['ground'])} m apart "
+        f"(D to the right of A). The crank AB = {num(v['crank'])} m, the coupler BC = "
+        f"{num(v['coupler'])} m and the rocker DC = {num(v['rocker'])} m (C above the line BD, "
+        f"a Grashof crank-rocker). The crank is drawn at {num(v['crank_angle_deg'])} deg from AD. "
+        + crank_sentence("B", "A", v["omega"], v["alpha"])
+    )
+    if point:
+        text += (
+            f" The coupler point P lies {num(v['coupler_point_u'])} m along BC from B and "
+            f"{num(v['coupler_point_v'])} m to the left of the line from B to C."
+        )
+    rows = [
+        (r"|AD|", v["ground"], "m"),
+        (r"|AB|", v["crank"], "m"),
+        (r"|BC|", v["coupler"], "m"),
+        (r"|DC|", v["rocker"], "m"),
+        (r"\varphi_{AB}", v["crank_angle_deg"], "deg"),
+        (r"\omega_{AB}", v["omega"], "rad/s"),
+    ]
+    if v["alpha"] != 0.0 or "acceleration" in goal:
+        rows.append((r"\alpha_{AB}", v["alpha"], "rad/s^2"))
+    return f"{text} {goal}", givens_latex(rows)
+
+
+def four_bar_velocity(rng: random.Random, difficulty: str) -> Draft:
+    point = difficulty == "challenging"
+    scene, v = _four_bar_scene(rng, difficulty, False, point)
+    asked: tuple[Asked, ...] = (
+        omega_of("coupler", "coupler", "BC"),
+        omega_of("rocker", "rocker", "DC"),
+    )
+    if difficulty != "basic":
+        asked += velocity_of("C")
+    if point:
+        asked += velocity_of("P")
+    text, latex = _four_bar_text(
+        v, "Find the angular velocities of the coupler and the rocker"
+        + (" and the velocities asked." if difficulty != "basic" else "."), point,
+    )  # fmt: skip
+    return Draft(
+        "Four-bar: velocities", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
+    )  # fmt: skip
+
+
+def four_bar_acceleration(rng: random.Random, difficulty: str) -> Draft:
+    point = difficulty == "challenging"
+    scene, v = _four_bar_scene(rng, difficulty, difficulty != "basic", point)
+    asked: tuple[Asked, ...] = (
+        alpha_of("coupler", "coupler", "BC"),
+        alpha_of("rocker", "rocker", "DC"),
+    )
+    if difficulty != "basic":
+        asked += acceleration_of("C")
+    if point:
+        asked += acceleration_of("P")
+    text, latex = _four_bar_text(
+        v, "Find the angular accelerations of the coupler and the rocker"
+        + (" and the accelerations asked." if difficulty != "basic" else "."), point,
+    )  # fmt: skip
+    return Draft(
+        "Four-bar: accelerations", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
+    )  # fmt: skip
+
+
+def _pole(link: str, kind: str, sub: str) -> tuple[Asked, ...]:
+    name = "velocity pole" if kind == "velocity" else "acceleration pole"
+    symbol = "P" if kind == "velocity" else "Q"
+    return vector_of(
+        "links", link, f"{kind}_pole", f"{kind}_pole_{link}", f"{name} of {sub}", "m",
+        rf"{symbol}_{{{sub}", "xy",
+    )  # fmt: skip
+
+
+def four_bar_poles(rng: random.Random, difficulty: str) -> Draft:
+    scene, v = _four_bar_scene(rng, difficulty, difficulty == "challenging", False)
+    asked: tuple[Asked, ...] = _pole("coupler", "velocity", "BC")
+    if difficulty != "basic":
+        asked += _pole("coupler", "acceleration", "BC")
+    goal = "Locate the velocity pole (instant centre) of the coupler BC" + (
+        " and its acceleration pole (the point of BC with zero acceleration)"
+        if difficulty != "basic"
+        else ""
+    )
+    text, latex = _four_bar_text(v, goal + ", with A as the origin and x along AD.", False)
+    return Draft(
+        "Four-bar: poles of the coupler", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
+    )  # fmt: skip
+
+
+# --- slider-crank --------------------------------------------------------------------------------
+
+
+def slider_crank(rng: random.Random, difficulty: str) -> Draft:
+    crank = pick(rng, 0.05, 0.2, 0.01)
+    v = {
+        "crank": crank,
+        "rod": round(crank * pick(rng, 3.0, 5.0, 0.5), 10),
+        "offset": 0.0 if difficulty == "basic" else pick(rng, 0.01, 0.4, 0.01) * crank / 0.2,
+        "crank_angle_deg": pick(rng, 0.0, 345.0, 15.0 if difficulty == "basic" else 5.0),
+        "assembly": 0.0,
+        "coupler_point_u": 0.0,
+        "coupler_point_v": 0.0,
+    }
+    v["offset"] = round(v["offset"], 3) * (1 if rng.random() < 0.5 else -1)
+    v["omega"], v["alpha"] = rates_for(rng, difficulty, difficulty == "challenging")
+    scene = build_preset("slider_crank", v)
+    asked: tuple[Asked, ...] = (
+        velocity_of("C", "x")[0],
+        omega_of("coupler", "connecting rod", "BC"),
+    )
+    if difficulty != "basic":
+        asked += (acceleration_of("C", "x")[0], alpha_of("coupler", "connecting rod", "BC"))
+    guide = "through A" if v["offset"] == 0 else f"at y = {num(v['offset'])} m (offset)"
+    text = (
+        f"In the slider-crank ABC the crank AB = {num(crank)} m turns about the fixed pivot A, "
+        f"the connecting rod BC = {num(v['rod'])} m drives the slider C along the horizontal guide "
+        f"{guide}, C to the right of B. The crank is drawn at {num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("B", "A", v["omega"], v["alpha"])
+        + " Find the slider's velocity and the rod's angular velocity"
+        + (" and accelerations." if difficulty != "basic" else ".")
+    )
+    latex = givens_latex(
+        [
+            ("|AB|", crank, "m"),
+            ("|BC|", v["rod"], "m"),
+            ("e", v["offset"], "m"),
+            (r"\varphi_{AB}", v["crank_angle_deg"], "deg"),
+            (r"\omega_{AB}", v["omega"], "rad/s"),
+            (r"\alpha_{AB}", v["alpha"], "rad/s^2"),
+        ]
+    )
+    return Draft(
+        "Offset slider-crank", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], v["alpha"], crank + v["rod"]),
+    )  # fmt: skip
+
+
+# --- inverted slider-crank and quick-return ------------------------------------------------
+
+
+def _coriolis_of(joint: int, point: str) -> tuple[Asked, ...]:
+    return vector_of(
+        "joints", str(joint), "coriolis_acceleration", f"a_cor_{point}",
+        f"Coriolis acceleration of {point} in the slot", "m/s^2", rf"a^{{Cor}}_{{{point}", "xy",
+    )  # fmt: skip
+
+
+def inverted_slider_crank(rng: random.Random, difficulty: str) -> Draft:
+    ground = pick(rng, 0.2, 0.5, 0.05)
+    crank = round(ground * pick(rng, 0.3, 0.7, 0.1), 10)
+    v = {
+        "crank": crank,
+        "ground": ground,
+        "lever": round(math.ceil((ground + crank) * 1.2 / 0.05) * 0.05, 10),
+        "slot_offset": 0.0 if difficulty != "challenging" else pick(rng, -0.03, 0.03, 0.01),
+        "crank_angle_deg": pick(rng, 0.0, 345.0, 15.0 if difficulty == "basic" else 5.0),
+    }
+    v["omega"], v["alpha"] = rates_for(rng, difficulty, difficulty == "challenging")
+    scene = build_preset("inverted_slider_crank", v)
+    asked: tuple[Asked, ...] = (omega_of("lever", "slotted lever", "CD"),)
+    if difficulty == "basic":
+        asked += vector_of(
+            "joints", "0", "relative_velocity", "v_rel_A", "sliding velocity of A in the slot",
+            "m/s", r"v^{rel}_{A", "xy",
+        )  # fmt: skip
+    else:
+        asked += (alpha_of("lever", "slotted lever", "CD"), *_coriolis_of(0, "A"))
+    text = (
+        f"In the inverted slider-crank the crank OA = {num(crank)} m turns about the fixed pivot "
+        f"O; its pin A carries a block sliding in the slot of the lever CD, pivoted at C, "
+        f"{num(ground)} m to the right of O"
+        + (
+            f"; the slot runs {num(v['slot_offset'])} m from C (left of C->D)"
+            if v["slot_offset"]
+            else "; the slot runs through C"
+        )
+        + f". The crank is drawn at {num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("A", "O", v["omega"], v["alpha"])
+        + " Find the lever's angular velocity"
+        + (
+            " and the block's sliding velocity."
+            if difficulty == "basic"
+            else ", its angular acceleration and the Coriolis acceleration of A."
+        )
+    )
+    latex = givens_latex(
+        [
+            ("|OA|", crank, "m"),
+            ("|OC|", ground, "m"),
+            ("e", v["slot_offset"], "m"),
+            (r"\varphi_{OA}", v["crank_angle_deg"], "deg"),
+            (r"\omega_{OA}", v["omega"], "rad/s"),
+            (r"\alpha_{OA}", v["alpha"], "rad/s^2"),
+        ]
+    )
+    return Draft(
+        "Inverted slider-crank (Coriolis)", text, latex + r"\\" + asked_latex(asked), scene,
+        asked, scales(v["omega"], v["alpha"], ground + crank),
+    )  # fmt: skip
+
+
+def quick_return(rng: random.Random, difficulty: str) -> Draft:
+    ground = pick(rng, 0.2, 0.4, 0.05)
+    crank = round(ground * pick(rng, 0.3, 0.6, 0.1), 10)
+    lever = round(math.ceil((ground + crank) * 1.5 / 0.05) * 0.05, 10)
+    v = {
+        "crank": crank,
+        "ground": ground,
+        "lever": lever,
+        "rod": pick(rng, 0.15, 0.3, 0.05),
+        "ram_height": round(lever - ground + pick(rng, -0.05, 0.0, 0.01), 10),
+        "slot_offset": 0.0,
+        "crank_angle_deg": pick(rng, 0.0, 345.0, 15.0 if difficulty == "basic" else 5.0),
+    }
+    v["omega"], v["alpha"] = rates_for(rng, difficulty, difficulty == "challenging")
+    scene = build_preset("quick_return", v)
+    asked: tuple[Asked, ...] = (
+        omega_of("lever", "slotted lever", "O_4B"),
+        velocity_of("C", "x")[0],
+    )
+    if difficulty != "basic":
+        asked += (alpha_of("lever", "slotted lever", "O_4B"), *_coriolis_of(0, "A"))
+    if difficulty == "challenging":
+        asked += (acceleration_of("C", "x")[0],)
+    text = (
+        f"In the crank-and-slotted-lever quick-return mechanism the crank O2A = {num(crank)} m "
+        f"turns about O2; its pin A slides in the slot of the lever O4B = {num(lever)} m, pivoted "
+        f"at O4 {num(ground)} m below O2. The link BC = {num(v['rod'])} m drives the ram C along "
+        f"the horizontal guide y = {num(v['ram_height'])} m. The crank is drawn at "
+        f"{num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("A", "O2", v["omega"], v["alpha"])
+        + " Find the lever's angular velocity and the ram's velocity"
+        + (
+            ", the lever's angular acceleration and the Coriolis acceleration of A"
+            if difficulty != "basic"
+            else ""
+        )
+        + (" and the ram's acceleration." if difficulty == "challenging" else ".")
+    )
+    latex = givens_latex(
+        [
+            ("|O_2A|", crank, "m"),
+            ("|O_2O_4|", ground, "m"),
+            ("|O_4B|", lever, "m"),
+            ("|BC|", v["rod"], "m"),
+            ("y_C", v["ram_height"], "m"),
+            (r"\varphi_{O_2A}", v["crank_angle_deg"], "deg"),
+            (r"\omega_{O_2A}", v["omega"], "rad/s"),
+            (r"\alpha_{O_2A}", v["alpha"], "rad/s^2"),
+        ]
+    )
+    return Draft(
+        "Quick-return mechanism (Coriolis)", text, latex + r"\\" + asked_latex(asked), scene,
+        asked, scales(v["omega"], v["alpha"], lever),
+    )  # fmt: skip
+
+
+# --- slider on a fixed guide with an extension ---------------------------------------------------
+
+
+def slider_extension(rng: random.Random, difficulty: str) -> Draft:
+    crank = pick(rng, 0.1, 0.3, 0.02)
+    v = {
+        "crank": crank,
+        "coupler": round(crank * pick(rng, 1.6, 3.0, 0.2), 10),
+        "extension": pick(rng, 0.1, 0.4, 0.05),
+        "guide_height": round(crank * pick(rng, 0.0, 0.8, 0.2), 10),
+        "crank_angle_deg": pick(rng, 0.0, 345.0, 15.0 if difficulty == "basic" else 5.0),
+    }
+    v["omega"], v["alpha"] = rates_for(rng, difficulty, difficulty == "challenging")
+    scene = build_preset("slider_guide_extension", v)
+    asked: tuple[Asked, ...] = (omega_of("coupler", "coupler", "BCD"), *velocity_of("D"))
+    if difficulty != "basic":
+        asked += (alpha_of("coupler", "coupler", "BCD"),)
+    if difficulty == "challenging":
+        asked += acceleration_of("D")
+    text = (
+        f"The crank AB = {num(crank)} m turns about the fixed pivot A. The coupler BCD is pinned "
+        f"to it at B; its point C (BC = {num(v['coupler'])} m) slides along the fixed horizontal "
+        f"guide y = {num(v['guide_height'])} m, to the right of B, and D lies on the extension of "
+        f"BC beyond C, CD = {num(v['extension'])} m. The crank is drawn at "
+        f"{num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("B", "A", v["omega"], v["alpha"])
+        + " Find the coupler's angular velocity and the velocity of D"
+        + (", and the coupler's angular acceleration" if difficulty != "basic" else "")
+        + (" and the acceleration of D." if difficulty == "challenging" else ".")
+    )
+    latex = givens_latex(
+        [
+            ("|AB|", crank, "m"),
+            ("|BC|", v["coupler"], "m"),
+            ("|CD|", v["extension"], "m"),
+            ("y_C", v["guide_height"], "m"),
+            (r"\varphi_{AB}", v["crank_angle_deg"], "deg"),
+            (r"\omega_{AB}", v["omega"], "rad/s"),
+            (r"\alpha_{AB}", v["alpha"], "rad/s^2"),
+        ]
+    )
+    return Draft(
+        "Slider on a fixed guide with an extension", text, latex + r"\\" + asked_latex(asked),
+        scene, asked, scales(v["omega"], v["alpha"], crank + v["coupler"] + v["extension"]),
+    )  # fmt: skip
+
+
+# --- a point moving on a moving body -------------------------------------------------------------
+
+
+def _moving(key: str, field: str, label: str, unit: str, symbol: str) -> tuple[Asked, ...]:
+    return vector_of("moving_points", "M", field, key, label, unit, symbol, "xy")
+
+
+def moving_point(rng: random.Random, difficulty: str) -> Draft:
+    """A disc (or a rod) turning about O by a time law, and M moving along a groove (or a slot)
+    fixed in it by s(t) = c t^2: at t1, M's velocity, its Coriolis and absolute acceleration; and
+    the instant at which M reaches the target point T of its path."""
+    groove = rng.random() < 0.5
+    omega = rate(rng, 1, 4, signed=difficulty != "basic")
+    epsilon = rate(rng, 1, 3) / 10 if difficulty == "challenging" else 0.0
+    c = pick(rng, 0.02, 0.1, 0.01)
+    t1 = pick(rng, 0.5, 2.0, 0.5)
+    law = f"{num(omega)}*t" + (f" + {num(epsilon / 2)}*t^2" if epsilon else "")
+    if groove:
+        q = pick(rng, 0.1, 0.3, 0.05)
+        radius = pick(rng, 0.05, 0.15, 0.01)
+        turn_deg = pick(rng, 90.0, 270.0, 45.0)
+        direction = "ccw" if rng.random() < 0.5 else "cw"
+        side = 1.0 if direction == "ccw" else -1.0
+        start_angle = math.radians(-90.0)
+        points = {"O": [0.0, 0.0], "Q": [q, 0.0]}
+        points["S"] = [q + radius * math.cos(start_angle), radius * math.sin(start_angle)]
+        phi = start_angle + side * math.radians(turn_deg)
+        points["T"] = [q + radius * math.cos(phi), radius * math.sin(phi)]
+        path = {"type": "arc", "center": "Q", "start": "S", "direction": direction}
+        carrier, on = "disc", ["O", "Q", "S", "T"]
+        where = (
+            f"a circular groove of radius {num(radius)} m centred at Q, {num(q)} m from O; M "
+            f"starts at S (straight below Q) and runs {'counter-' if side > 0 else ''}clockwise "
+            f"round the groove; T is {num(turn_deg)} deg further round"
+        )
+        size = q + radius
+        rows = [("|OQ|", q, "m"), ("R", radius, "m"), (r"\angle SQT", turn_deg, "deg")]
+    else:
+        start = pick(rng, 0.05, 0.15, 0.05)
+        length = pick(rng, 0.2, 0.5, 0.05)
+        angle = math.radians(pick(rng, 0.0, 60.0, 15.0))
+        unit = (math.cos(angle), math.sin(angle))
+        points = {
+            "O": [0.0, 0.0],
+            "S": [start * unit[0], start * unit[1]],
+            "T": [(start + length) * unit[0], (start + length) * unit[1]],
+        }
+        path = {"type": "line", "start": "S", "through": "T"}
+        carrier, on = "rod", ["O", "S", "T"]
+        where = (
+            f"a straight slot along the rod, from S ({num(start)} m from O) outwards to its end T "
+            f"({num(length)} m further); M starts at S"
+        )
+        size = start + length
+        rows = [("|OS|", start, "m"), ("|ST|", length, "m")]
+    scene = {
+        "kind": "linkage",
+        "title": "point moving on a turning " + carrier,
+        "points": points,
+        "links": {"ground": {"points": ["O"], "ground": True}, carrier: {"points": on}},
+        "joints": [{"type": "revolute", "point": "O", "links": ["ground", carrier]}],
+        "drivers": [{"link": carrier, "angle_law": law}],
+        "moving_points": [{"name": "M", "link": carrier, "path": path, "s_law": f"{num(c)}*t^2"}],
+        "time": t1,
+    }
+    asked: tuple[Asked, ...] = _moving("v_M", "velocity", "velocity of M", "m/s", "v_{M")
+    asked += _moving(
+        "a_cor_M", "coriolis_acceleration", "Coriolis acceleration of M", "m/s^2",
+        r"a^{Cor}_{M",
+    )  # fmt: skip
+    if difficulty != "basic":
+        asked += _moving("a_M", "acceleration", "acceleration of M", "m/s^2", "a_{M")
+        asked += (Asked("t_M_T", "time at which M reaches T", "s", "events.M.T.time", "t_{T}"),)
+    text = (
+        f"A {carrier} turns about the fixed pivot O by the angle phi(t) = {law.replace('*', ' ')}"
+        f" rad (phi counter-clockwise positive: the {carrier} turns {sense(omega)}). It carries "
+        f"{where}, by the law s(t) = {num(c)} t^2 (s in m, t in s). Drawn at t = 0. At "
+        f"t = {num(t1)} s find the velocity of M and its Coriolis acceleration"
+        + (
+            ", its absolute acceleration, and the time at which M reaches T."
+            if difficulty != "basic"
+            else "."
+        )
+    )
+    latex = (
+        rf"\varphi(t) = {law.replace('*', ' ')}"
+        + rf",\; s(t) = {num(c)}\,t^2,\; t_1 = {num(t1)}\,\mathrm{{s}},\; "
+        + givens_latex(rows)
+    )
+    rates = max(omega * omega, abs(epsilon), 1.0)
+    return Draft(
+        "Point moving on a turning " + carrier, text, latex + r"\\" + asked_latex(asked), scene,
+        asked,
+        {"m/s": max(abs(omega), 1.0) * size, "m/s^2": rates * size, "s": 1.0},
+    )  # fmt: skip
+
+
+# --- spatial arm ---------------------------------------------------------------------------------
+
+
+def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
+    """The arm of seed 002: a column turning about z, an arm hinged about x at its top, and a
+    forearm turning about its own axis, carrying the tool point B off that axis."""
+    l1 = pick(rng, 0.8, 1.5, 0.1)
+    tilt = math.radians(pick(rng, 15.0, 45.0, 15.0))
+    l2 = pick(rng, 0.4, 0.8, 0.1)
+    down = math.radians(pick(rng, 15.0, 60.0, 15.0))
+    l3 = pick(rng, 0.1, 0.3, 0.05)
+    o2 = [0.0, l1 * math.sin(tilt), l1 * math.cos(tilt)]
+    e3 = [0.0, math.cos(down), -math.sin(down)]
+    a = [o2[k] + l2 * e3[k] for k in range(3)]
+    b = [a[0] + l3, a[1], a[2]]
+    rates = [rate(rng, 1, 3, signed=difficulty != "basic") for _ in range(3)]
+    rate_dots = [rate(rng, 1, 5) if difficulty == "challenging" else 0.0 for _ in range(3)]
+    axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], e3]
+    origins = [[0.0, 0.0, 0.0], o2, a]
+    scene = {
+        "kind": "spatial_chain",
+        "title": "spatial arm",
+        "joints": [
+            {
+                "name": str(k + 1),
+                "type": "revolute",
+                "origin": origins[k],
+                "axis": axes[k],
+                "rate": rates[k],
+                "rate_dot": rate_dots[k],
+            }
+            for k in range(3)
+        ],
+        "points": {"A": {"body": "2", "position": a}, "B": {"body": "3", "position": b}},
+    }
+    asked: tuple[Asked, ...] = vector_of(
+        "bodies", "3", "omega", "omega_3", "angular velocity of body 3", "rad/s",
+        r"\omega_{3", "xyz",
+    )  # fmt: skip
+    if difficulty != "basic":
+        asked += velocity_of("B", "xyz")
+    asked += acceleration_of("B", "xyz") if difficulty != "basic" else ()
+    text = (
+        f"A spatial arm: body 1 turns about the vertical z axis through O at {rates[0]:g} rad/s; "
+        f"at its top O2, {num(l1)} m from O in the y-z plane at {math.degrees(tilt):g} deg from "
+        f"z, body 2 is hinged about the x axis at {rates[1]:g} rad/s relative to body 1; at A, "
+        f"{num(l2)} m from O2 along body 2 (pointing {math.degrees(down):g} deg below the y "
+        f"axis), body 3 turns about that same direction at {rates[2]:g} rad/s relative to body "
+        f"2, and carries the point B, {num(l3)} m from A along x."
+        + (
+            f" The relative rates change at {rate_dots[0]:g}, {rate_dots[1]:g} and "
+            f"{rate_dots[2]:g} rad/s^2."
+            if difficulty == "challenging"
+            else " The relative rates are constant."
+        )
+        + " Find the angular velocity of body 3"
+        + (" and the velocity and acceleration of B." if difficulty != "basic" else ".")
+    )
+    latex = givens_latex(
+        [
+            ("|OO_2|", l1, "m"),
+            ("|O_2A|", l2, "m"),
+            ("|AB|", l3, "m"),
+            (r"\omega_{1}", rates[0], "rad/s"),
+            (r"\omega_{21}", rates[1], "rad/s"),
+            (r"\omega_{32}", rates[2], "rad/s"),
+        ]
+    )
+    largest = max(abs(r) for r in rates) + max(abs(r) for r in rate_dots) ** 0.5
+    return Draft(
+        "Spatial arm", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(largest, 0.0, l1 + l2 + l3),
+    )  # fmt: skip
+
+
+# --- the registry --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ExerciseType:
+    """A type of exercise: its name, what it is about, the keys it can ask, how to draw one,
+    and the family of typical mistakes that apply to it (see ``solver.exercises.mistakes``)."""
+
+    name: str
+    title: str
+    description: str
+    asks: tuple[str, ...]
+    draw: Callable[[random.Random, str], Draft]
+    mistakes: str
+
+
+def _type(
+    name: str,
+    title: str,
+    description: str,
+    asks: tuple[str, ...],
+    draw: Callable[[random.Random, str], Draft],
+    mistakes: str,
+) -> ExerciseType:
+    return ExerciseType(name, title, description, asks, draw, mistakes)
+
+
+def _xy(key: str) -> tuple[str, str]:
+    return (f"{key}_x", f"{key}_y")
+
+
+TYPES: Mapping[str, ExerciseType] = {
+    t.name: t
+    for t in (
+        _type(
+            "four_bar_velocity", "Four-bar linkage: velocities",
+            "A Grashof crank-rocker driven at a constant speed: the angular velocities of the "
+            "coupler and the rocker, the velocity of C and (challenging) of a coupler point.",
+            ("omega_coupler", "omega_rocker", *_xy("v_C"), *_xy("v_P")),
+            four_bar_velocity, "four_bar",
+        ),
+        _type(
+            "four_bar_acceleration", "Four-bar linkage: accelerations",
+            "A Grashof crank-rocker, from standard on with an accelerating crank: the angular "
+            "accelerations of the coupler and the rocker, the acceleration of C and "
+            "(challenging) of a coupler point.",
+            ("alpha_coupler", "alpha_rocker", *_xy("a_C"), *_xy("a_P")),
+            four_bar_acceleration, "four_bar",
+        ),
+        _type(
+            "four_bar_poles", "Four-bar linkage: poles of the coupler",
+            "The coupler's velocity pole (instant centre) and, from standard on, its "
+            "acceleration pole.",
+            (*_xy("velocity_pole_coupler"), *_xy("acceleration_pole_coupler")),
+            four_bar_poles, "four_bar",
+        ),
+        _type(
+            "slider_crank", "Offset slider-crank",
+            "The engine mechanism with an offset guide (centred at basic): the slider's velocity "
+            "and acceleration, the rod's angular velocity and acceleration.",
+            ("v_C_x", "omega_coupler", "a_C_x", "alpha_coupler"),
+            slider_crank, "slider",
+        ),
+        _type(
+            "inverted_slider_crank", "Inverted slider-crank: Coriolis",
+            "A block on the crank pin slides in a turning slotted lever: the lever's angular "
+            "velocity, the sliding velocity (basic), the lever's angular acceleration and the "
+            "Coriolis acceleration 2 omega x v_rel.",
+            ("omega_lever", *_xy("v_rel_A"), "alpha_lever", *_xy("a_cor_A")),
+            inverted_slider_crank, "lever",
+        ),
+        _type(
+            "quick_return", "Quick-return mechanism: Coriolis",
+            "Crank and slotted lever driving a ram: the lever's angular velocity and the ram's "
+            "velocity, the lever's angular acceleration, the Coriolis acceleration, and "
+            "(challenging) the ram's acceleration.",
+            ("omega_lever", "v_C_x", "alpha_lever", *_xy("a_cor_A"), "a_C_x"),
+            quick_return, "quick_return",
+        ),
+        _type(
+            "slider_extension", "Slider on a fixed guide with an extension",
+            "A coupler whose point C slides on a fixed guide and whose extension D is asked: "
+            "its angular velocity and acceleration, the velocity and acceleration of D.",
+            ("omega_coupler", *_xy("v_D"), "alpha_coupler", *_xy("a_D")),
+            slider_extension, "slider",
+        ),
+        _type(
+            "moving_point", "Point moving on a moving body",
+            "A point M moving by a time law in a groove of a turning disc or a slot of a turning "
+            "rod: its velocity, Coriolis and absolute acceleration at an instant, and the time at "
+            "which it reaches a point of its path.",
+            (*_xy("v_M"), *_xy("a_cor_M"), *_xy("a_M"), "t_M_T"),
+            moving_point, "moving_point",
+        ),
+        _type(
+            "spatial_arm", "Spatial arm",
+            "Three revolute joints in space: the angular velocity of the last body by "
+            "composition, and the velocity and five-term acceleration of its tool point.",
+            ("omega_3_x", "omega_3_y", "omega_3_z", "v_B_x", "v_B_y", "v_B_z", "a_B_x", "a_B_y",
+             "a_B_z"),
+            spatial_arm, "spatial",
+        ),
+    )
+}  # fmt: skip
+# The dynamics types (driving torque, ...) join this registry once solver/dynamics lands: a
+# family function drawing a Draft whose paths point into the dynamics response, and a mistakes
+# family for it.

@@ -1,0 +1,282 @@
+"""The figure of an exercise: an SVG drawing of its scene to scale, labelled, rotations drawn.
+
+Planar scenes are drawn in the x-y plane (y up) at one scale with a scale bar: links as bars
+(a link with three or more points as a plate), fixed pivots hatched, sliders as blocks on their
+guide (a fixed guide hatched, a slot drawn on its link), the driver's rotation as an arrow about
+its pivot with omega (and alpha) beside it, a moving point's path dashed. Spatial chains are
+drawn in an oblique projection with each joint's axis and rate.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from html import escape
+from itertools import pairwise
+from typing import Any
+
+WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
+INK = "#1f2937"
+LINK = "#2563eb"
+GUIDE = "#6b7280"
+ROTATION = "#dc2626"
+Point = tuple[float, float]
+
+
+class Canvas:
+    """World coordinates (m) to SVG pixels: one scale for x and y, y pointing up."""
+
+    def __init__(self, points: Sequence[Point]) -> None:
+        xs, ys = [p[0] for p in points], [p[1] for p in points]
+        self.x0, self.y1 = min(xs), max(ys)
+        span_x, span_y = max(xs) - self.x0, self.y1 - min(ys)
+        self.scale = min(
+            (WIDTH - 2 * MARGIN) / max(span_x, 1e-9), (HEIGHT - 2 * MARGIN) / max(span_y, 1e-9)
+        )
+        self.dx = (WIDTH - self.scale * span_x) / 2
+        self.dy = (HEIGHT - self.scale * span_y) / 2
+        self.parts: list[str] = []
+
+    def px(self, p: Point) -> Point:
+        return (self.dx + (p[0] - self.x0) * self.scale, self.dy + (self.y1 - p[1]) * self.scale)
+
+    def add(self, element: str) -> None:
+        self.parts.append(element)
+
+    def line(self, a: Point, b: Point, color: str, width: float, dash: str = "") -> None:
+        (x1, y1), (x2, y2) = self.px(a), self.px(b)
+        extra = f' stroke-dasharray="{dash}"' if dash else ""
+        self.add(
+            f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" stroke="{color}" '
+            f'stroke-width="{width}" stroke-linecap="round"{extra}/>'
+        )
+
+    def text(self, p: Point, label: str, dx: float = 7, dy: float = -7, color: str = INK) -> None:
+        x, y = self.px(p)
+        self.add(
+            f'<text x="{x + dx:.1f}" y="{y + dy:.1f}" font-size="13" fill="{color}" '
+            f'font-family="sans-serif">{escape(label)}</text>'
+        )
+
+    def svg(self, title: str) -> str:
+        head = (
+            f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH:.0f} {HEIGHT:.0f}" '
+            f'width="{WIDTH:.0f}" height="{HEIGHT:.0f}" role="img" aria-label="{escape(title)}">'
+            f"<title>{escape(title)}</title>"
+            f'<rect width="{WIDTH:.0f}" height="{HEIGHT:.0f}" fill="white"/>'
+        )
+        return head + "".join(self.parts) + "</svg>"
+
+
+def _nice_length(target: float) -> float:
+    """1, 2 or 5 times a power of ten, at most ``target``."""
+    power = 10.0 ** math.floor(math.log10(target))
+    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= target)
+
+
+def _scale_bar(canvas: Canvas) -> None:
+    length = _nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.scale)
+    x, y = 12.0, HEIGHT - 14.0
+    w = length * canvas.scale
+    canvas.add(
+        f'<path d="M{x:.1f} {y - 4:.1f}V{y:.1f}H{x + w:.1f}V{y - 4:.1f}" fill="none" '
+        f'stroke="{INK}" stroke-width="1.2"/><text x="{x + w + 6:.1f}" y="{y:.1f}" '
+        f'font-size="11" font-family="sans-serif" fill="{INK}">{length:g} m</text>'
+    )
+
+
+def _ground_pivot(canvas: Canvas, p: Point) -> None:
+    x, y = canvas.px(p)
+    canvas.add(
+        f'<path d="M{x:.1f} {y:.1f}l-9 15h18z" fill="#e5e7eb" stroke="{INK}" stroke-width="1.2"/>'
+        f'<path d="M{x - 12:.1f} {y + 15:.1f}h24" stroke="{INK}" stroke-width="1.2"/>'
+        + "".join(
+            f'<path d="M{x - 12 + 5 * k:.1f} {y + 15:.1f}l-4 5" stroke="{INK}"/>' for k in range(6)
+        )
+    )
+
+
+def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
+    """An arc arrow of radius 22 px under ``p``, counter-clockwise when omega > 0, labelled
+    below the pivot's hatching."""
+    x, y = canvas.px(p)
+    r, start, end = 22.0, math.radians(200), math.radians(-20)
+    if omega < 0:
+        start, end = end, start
+    sx, sy = x + r * math.cos(start), y - r * math.sin(start)
+    ex, ey = x + r * math.cos(end), y - r * math.sin(end)
+    sweep = 1 if omega < 0 else 0  # SVG's y points down: a ccw turn on paper is sweep 0
+    heading = end + (math.pi / 2 if omega > 0 else -math.pi / 2)
+    hx, hy = math.cos(heading), -math.sin(heading)
+    nx, ny = -hy, hx
+    tip = (ex + 7 * hx, ey + 7 * hy)
+    canvas.add(
+        f'<path d="M{sx:.1f} {sy:.1f}A{r} {r} 0 0 {sweep} {ex:.1f} {ey:.1f}" fill="none" '
+        f'stroke="{ROTATION}" stroke-width="1.6"/>'
+        f'<path d="M{tip[0]:.1f} {tip[1]:.1f}L{ex + 4 * nx:.1f} {ey + 4 * ny:.1f}'
+        f'L{ex - 4 * nx:.1f} {ey - 4 * ny:.1f}z" fill="{ROTATION}"/>'
+    )
+    canvas.add(
+        f'<text x="{x - 30:.1f}" y="{y + 38:.1f}" font-size="12" fill="{ROTATION}" '
+        f'font-family="sans-serif">{escape(label)}</text>'
+    )
+
+
+def _block(canvas: Canvas, p: Point, axis: Point) -> None:
+    x, y = canvas.px(p)
+    angle = -math.degrees(math.atan2(axis[1], axis[0]))
+    canvas.add(
+        f'<rect x="{x - 12:.1f}" y="{y - 7:.1f}" width="24" height="14" fill="#fde68a" '
+        f'stroke="{INK}" stroke-width="1.2" transform="rotate({angle:.2f} {x:.1f} {y:.1f})"/>'
+    )
+
+
+def _driver_label(driver: Mapping[str, Any]) -> tuple[float, str]:
+    if "angle_law" in driver:
+        return 1.0, "φ(t)"
+    omega, alpha = float(driver.get("omega", 0.0)), float(driver.get("alpha", 0.0))
+    label = f"ω = {abs(omega):g} rad/s"
+    if alpha:
+        label += f", α = {abs(alpha):g} rad/s²"
+    return omega or 1.0, label
+
+
+def _pivot(scene: Mapping[str, Any], ground: str, link: str) -> str:
+    """The point of the revolute joint between ``link`` and the ground."""
+    return str(
+        next(
+            j["point"]
+            for j in scene["joints"]
+            if j["type"] == "revolute" and set(j["links"]) == {ground, link}
+        )
+    )
+
+
+def _disc_radius(pivot: Point, centre: Point, start: Point) -> float:
+    """A disc about ``pivot`` wide enough for the groove about ``centre`` through ``start``."""
+    return 1.1 * (math.dist(pivot, centre) + math.dist(centre, start))
+
+
+def _linkage(scene: Mapping[str, Any]) -> str:
+    pts: dict[str, Point] = {k: (float(v[0]), float(v[1])) for k, v in scene["points"].items()}
+    links = scene["links"]
+    ground = next(k for k, v in links.items() if v.get("ground"))
+    extent = list(pts.values())
+    arcs = []
+    for mp in scene.get("moving_points", []):
+        path = mp["path"]
+        if path["type"] == "arc":
+            c, s = pts[path["center"]], pts[path["start"]]
+            r = math.dist(c, s)
+            arcs.append((c, r))
+            extent += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
+    for mp in scene.get("moving_points", []):
+        if mp["path"]["type"] == "arc":
+            o = pts[_pivot(scene, ground, mp["link"])]
+            reach = _disc_radius(o, pts[mp["path"]["center"]], pts[mp["path"]["start"]])
+            extent += [(o[0] - reach, o[1] - reach), (o[0] + reach, o[1] + reach)]
+    canvas = Canvas(extent)
+    sliders = [j for j in scene["joints"] if j["type"] != "revolute"]
+    for j in sliders:
+        p, u = pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1]))
+        n = math.hypot(*u)
+        u = (u[0] / n, u[1] / n)
+        reach = 0.35 * (WIDTH - 2 * MARGIN) / canvas.scale
+        a, b = (
+            (p[0] - reach * u[0], p[1] - reach * u[1]),
+            (p[0] + reach * u[0], p[1] + reach * u[1]),
+        )
+        fixed = j["links"][0] == ground
+        canvas.line(a, b, GUIDE, 1.4 if fixed else 1.0, "" if fixed else "5 3")
+    for c, r in arcs:
+        x, y = canvas.px(c)
+        canvas.add(
+            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * canvas.scale:.1f}" fill="none" '
+            f'stroke="{GUIDE}" stroke-width="1.4" stroke-dasharray="5 3"/>'
+        )
+    for mp in scene.get("moving_points", []):
+        if mp["path"]["type"] == "line":
+            canvas.line(pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
+    discs = {mp["link"] for mp in scene.get("moving_points", []) if mp["path"]["type"] == "arc"}
+    for name, link in links.items():
+        members = [pts[p] for p in link["points"]]
+        if name == ground or len(members) < 2:
+            continue
+        if name in discs:  # a turning disc carrying a groove: drawn as the disc itself
+            pivot = pts[_pivot(scene, ground, name)]
+            path = next(m["path"] for m in scene["moving_points"] if m["link"] == name)
+            radius = _disc_radius(pivot, pts[path["center"]], pts[path["start"]])
+            x, y = canvas.px(pivot)
+            canvas.add(
+                f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius * canvas.scale:.1f}" '
+                f'fill="#dbeafe" fill-opacity="0.5" stroke="{LINK}" stroke-width="2.5"/>'
+            )
+            continue
+        if len(members) >= 3:
+            poly = " ".join("{:.1f},{:.1f}".format(*canvas.px(m)) for m in members)
+            canvas.add(
+                f'<polygon points="{poly}" fill="#dbeafe" fill-opacity="0.6" stroke="{LINK}" '
+                'stroke-width="2.5" stroke-linejoin="round"/>'
+            )
+        else:
+            canvas.line(members[0], members[1], LINK, 3.5)
+    for j in scene["joints"]:
+        if j["type"] == "revolute" and ground in j["links"]:
+            _ground_pivot(canvas, pts[j["point"]])
+    for j in sliders:
+        _block(canvas, pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1])))
+    for name, p in pts.items():
+        x, y = canvas.px(p)
+        canvas.add(
+            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="3.5" fill="white" stroke="{INK}" '
+            'stroke-width="1.4"/>'
+        )
+        canvas.text(p, name)
+    for mp in scene.get("moving_points", []):
+        start = pts[mp["path"]["start"]]
+        canvas.text(start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
+    for driver in scene["drivers"]:
+        omega, label = _driver_label(driver)
+        _rotation(canvas, pts[_pivot(scene, ground, driver["link"])], omega, label)
+    _scale_bar(canvas)
+    return canvas.svg(str(scene.get("title", "linkage")))
+
+
+def _oblique(p: Sequence[float]) -> Point:
+    """Cabinet-style oblique view: y to the right, z up, x receding down-left at 30 deg."""
+    return (p[1] - 0.5 * p[0] * math.cos(math.pi / 6), p[2] - 0.5 * p[0] * math.sin(math.pi / 6))
+
+
+def _spatial(scene: Mapping[str, Any]) -> str:
+    joints = scene["joints"]
+    points = {k: v["position"] for k, v in scene["points"].items()}
+    chain = [j["origin"] for j in joints] + [points[k] for k in points]
+    flat = [_oblique(p) for p in chain] + [_oblique([0, 0, -0.15])]
+    canvas = Canvas(flat)
+    o = (0.0, 0.0)
+    for axis, label in (((0.3, 0, 0), "x"), ((0, 0.3, 0), "y"), ((0, 0, 0.3), "z")):
+        end = _oblique(axis)
+        canvas.line(o, end, GUIDE, 1.0, "3 3")
+        canvas.text(end, label, color=GUIDE)
+    _ground_pivot(canvas, _oblique([0, 0, 0]))
+    route = [_oblique(j["origin"]) for j in joints] + [_oblique(p) for p in points.values()]
+    for a, b in pairwise(route):
+        canvas.line(a, b, LINK, 3.5)
+    for k, j in enumerate(joints):
+        start = j["origin"]
+        tip = [start[i] + 0.2 * j["axis"][i] for i in range(3)]
+        canvas.line(_oblique(start), _oblique(tip), ROTATION, 1.8)
+        canvas.text(_oblique(tip), f"ω{k + 1} = {j['rate']:g}", color=ROTATION)
+    for name, position in points.items():
+        x, y = canvas.px(_oblique(position))
+        canvas.add(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="3.5" fill="white" stroke="{INK}"/>')
+        canvas.text(_oblique(position), name, dy=16)
+    canvas.text(_oblique(joints[1]["origin"]), "O2", dx=-24)
+    canvas.text((0.0, 0.0), "O", dx=-16)
+    _scale_bar(canvas)
+    return canvas.svg(str(scene.get("title", "spatial chain")))
+
+
+def figure_svg(scene: Mapping[str, Any]) -> str:
+    """The exercise's figure (a standalone SVG document)."""
+    return _spatial(scene) if scene.get("kind") == "spatial_chain" else _linkage(scene)

@@ -1,0 +1,113 @@
+"""Seeded generation: the exercise of an id, well-posed by construction.
+
+The generator of ``type:difficulty:seed:index`` is ``random.Random`` seeded with that very string
+(a SHA-512 of it: the same on every platform and Python version). The family draws candidates from
+it until one passes every check below, so an id always gives the same exercise:
+
+- the scene assembles (the preset's closed form, then the solver's own analysis);
+- the pose is well away from a dead centre: the condition number of the velocity equations is at
+  most ``MAX_CONDITION`` (a dead centre is infinite);
+- the family's own test holds (the asked Grashof class, the transmission angle);
+- every answer is finite, at least ``SMALL`` and at most ``LARGE`` times the size of a quantity in
+  its unit (omega of the crank for rad/s, omega^2 L for m/s^2, ...): never negligibly small, where
+  a relative tolerance means nothing, and never absurd.
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import replace
+
+from solver.analysis import LinkageAnalysis
+from solver.errors import InvalidScene, KinematicsError, LimitExceeded
+from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.families import TYPES, ExerciseType
+from solver.exercises.figures import figure_svg
+from solver.exercises.model import (
+    DIFFICULTIES,
+    Draft,
+    Exercise,
+    ExerciseId,
+    Statement,
+    check_seed_index,
+)
+
+MAX_ATTEMPTS = 2000
+MAX_CONDITION = 60.0
+SMALL = 0.02
+LARGE = 50.0
+MAX_COUNT = 100  # exercises per request
+PENDING = ExerciseId("", "", 0, 0)
+
+
+class GenerationFailed(RuntimeError):
+    """No well-posed candidate in MAX_ATTEMPTS draws: a defect of the family's ranges."""
+
+
+def exercise_type(name: str) -> ExerciseType:
+    kind = TYPES.get(name)
+    if kind is None:
+        raise InvalidScene(f"unknown exercise type '{name[:64]}'; available: {', '.join(TYPES)}")
+    return kind
+
+
+def check_difficulty(difficulty: str) -> None:
+    if difficulty not in DIFFICULTIES:
+        raise InvalidScene(
+            f"difficulty: unknown {difficulty[:32]!r}; available: {', '.join(DIFFICULTIES)}"
+        )
+
+
+def ill_posed(draft: Draft, solved: Solved, answers: dict[str, float]) -> str | None:
+    """Why the candidate is not a good exercise, or None (see the module docstring)."""
+    analysis = solved.analysis
+    if isinstance(analysis, LinkageAnalysis):
+        condition = analysis.diagnostics.condition_number
+        if condition is None or condition > MAX_CONDITION:
+            return f"near a dead centre (condition number {condition})"
+    reason = draft.check(analysis)
+    if reason is not None:
+        return reason
+    for asked in draft.asked:
+        size = draft.scales[asked.unit]
+        value = abs(answers[asked.key])
+        if not SMALL * size <= value <= LARGE * size:
+            return f"{asked.key} = {answers[asked.key]:.3g} {asked.unit} is out of scale"
+    return None
+
+
+def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exercise | None:
+    """A drawn draft as an exercise (its id filled in by the caller), or None when the draft
+    does not assemble or is not well-posed."""
+    try:
+        draft = kind.draw(rng, difficulty)
+        solved = solve_scene(draft.scene)
+        answers = {a.key: value_at(solved, a.path) for a in draft.asked}
+    except KinematicsError:
+        return None
+    if ill_posed(draft, solved, answers) is not None:
+        return None
+    statement = Statement(draft.text, draft.latex, figure_svg(draft.scene))
+    return Exercise(PENDING, draft.title, statement, draft.scene, draft.asked, answers)
+
+
+def build(ident: ExerciseId) -> Exercise:
+    """The exercise named by ``ident`` (its id string seeds the generator)."""
+    kind = exercise_type(ident.type)
+    check_difficulty(ident.difficulty)
+    check_seed_index(ident.seed, ident.index)
+    rng = random.Random(str(ident))
+    for _ in range(MAX_ATTEMPTS):
+        exercise = _candidate(kind, ident.difficulty, rng)
+        if exercise is not None:
+            return replace(exercise, id=ident)
+    raise GenerationFailed(f"no well-posed exercise for {ident} in {MAX_ATTEMPTS} draws")
+
+
+def generate(kind: str, difficulty: str, seed: int, count: int) -> list[Exercise]:
+    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``."""
+    exercise_type(kind)
+    check_difficulty(difficulty)
+    if not 1 <= count <= MAX_COUNT:
+        raise LimitExceeded(f"count: expected 1 to {MAX_COUNT} exercises, got {count}")
+    return [build(ExerciseId(kind, difficulty, seed, index)) for index in range(count)]

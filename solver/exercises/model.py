@@ -1,0 +1,150 @@
+"""What an exercise is made of: its id, the asked quantities, the statement and the answer key.
+
+An exercise is never stored: ``type:difficulty:seed:index`` determines it completely (the
+generator is seeded with that very string), so the same id gives the same exercise on any server.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from solver.errors import InvalidScene, LimitExceeded
+
+DIFFICULTIES = ("basic", "standard", "challenging")
+DEFAULT_DIFFICULTY = "standard"
+DEFAULT_TOLERANCE = 0.01  # relative: 1 %
+MAX_SEED = 2**63 - 1
+MAX_INDEX = 1_000_000
+_ID = re.compile(r"([a-z_]{1,40}):([a-z]{1,20}):([0-9]{1,19}):([0-9]{1,7})")
+
+
+@dataclass(frozen=True)
+class ExerciseId:
+    """``type:difficulty:seed:index``; ``str()`` gives it back."""
+
+    type: str
+    difficulty: str
+    seed: int
+    index: int
+
+    def __str__(self) -> str:
+        return f"{self.type}:{self.difficulty}:{self.seed}:{self.index}"
+
+
+def check_seed_index(seed: int, index: int) -> None:
+    if not 0 <= seed <= MAX_SEED:
+        raise InvalidScene(f"seed: expected an integer from 0 to {MAX_SEED}, got {seed}")
+    if not 0 <= index < MAX_INDEX:
+        raise LimitExceeded(f"index: expected an integer from 0 to {MAX_INDEX - 1}, got {index}")
+
+
+def parse_id(text: str) -> ExerciseId:
+    """The parts of an exercise id, or ``InvalidScene`` saying what is wrong with it."""
+    match = _ID.fullmatch(text) if isinstance(text, str) else None
+    if match is None:
+        shown = repr(text)[:80]
+        raise InvalidScene(
+            f"id: {shown} is not an exercise id of the form type:difficulty:seed:index "
+            "(e.g. four_bar_velocity:standard:7:0)"
+        )
+    kind, difficulty, seed, index = match.groups()
+    check_seed_index(int(seed), int(index))
+    return ExerciseId(kind, difficulty, int(seed), int(index))
+
+
+@dataclass(frozen=True)
+class Asked:
+    """One asked quantity: its key in ``answers``, label, SI unit, path and relative tolerance.
+
+    ``path`` is a dotted path into the /analyze response of the exercise's scene
+    (``links.coupler.omega``, ``points.C.velocity.0``), or ``events.<M>.<target>.time`` for the
+    first instant after t = 0 at which moving point M reaches ``target`` (as /events answers with
+    its default ``occurrence`` 1 and ``t_max`` 60 s).
+    """
+
+    key: str
+    label: str
+    unit: str
+    path: str
+    symbol: str  # LaTeX of the quantity, e.g. \omega_{BC}
+    tolerance: float = DEFAULT_TOLERANCE
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "key": self.key,
+            "label": self.label,
+            "unit": self.unit,
+            "path": self.path,
+            "tolerance": self.tolerance,
+            "symbol": self.symbol,
+        }
+
+
+@dataclass(frozen=True)
+class Statement:
+    text: str
+    latex: str
+    figure_svg: str
+
+
+@dataclass(frozen=True)
+class Exercise:
+    """A generated exercise: its id, statement, scene (scene-v1), asked quantities and key."""
+
+    id: ExerciseId
+    title: str
+    statement: Statement
+    scene: Mapping[str, Any]
+    asked: tuple[Asked, ...]
+    answers: Mapping[str, float]
+
+    def as_json(self) -> dict[str, Any]:
+        i = self.id
+        return {
+            "id": str(i),
+            "type": i.type,
+            "difficulty": i.difficulty,
+            "seed": i.seed,
+            "index": i.index,
+            "title": self.title,
+            "statement": {
+                "text": self.statement.text,
+                "latex": self.statement.latex,
+                "figure_svg": self.statement.figure_svg,
+            },
+            "scene": self.scene,
+            "asked": [a.as_json() for a in self.asked],
+            "answers": dict(self.answers),
+        }
+
+
+def relative_error(given: float, expected: float) -> float:
+    """|given - expected| / |expected| (expected is never 0 in a well-posed exercise)."""
+    return abs(given - expected) / abs(expected) if expected != 0.0 else abs(given)
+
+
+def within(given: float, expected: float, tolerance: float) -> bool:
+    return math.isfinite(given) and relative_error(given, expected) <= tolerance
+
+
+@dataclass(frozen=True)
+class Draft:
+    """A candidate exercise drawn by a family before the well-posedness checks.
+
+    ``scales`` gives, per unit, the size an answer in that unit is measured against (the crank
+    speed for rad/s, omega^2 L for m/s^2, ...): an answer below ``SMALL`` or above ``LARGE``
+    times its scale makes the draft ill-posed. ``check`` is the family's own test on the analysis
+    (Grashof class, transmission angle, ...): a reason to reject, or None.
+    """
+
+    title: str
+    text: str
+    latex: str
+    scene: dict[str, Any]
+    asked: tuple[Asked, ...]
+    scales: Mapping[str, float]
+    check: Callable[[Any], str | None] = field(default=lambda analysis: None)

@@ -1,0 +1,254 @@
+// exercises.js: the instructor page and the student mode (exercises.html).
+//
+// Instructor (exercises.html): choose a type, a difficulty, a count and a seed; the server
+// generates the exercises (nothing is stored: the id type:difficulty:seed:index is the whole
+// exercise); the preview shows each statement with its figure and, folded, its key; each export
+// downloads as a file. Student (exercises.html#id=<id>, the share link): the statement, a field
+// per asked quantity, a check that grades and names a typical mistake, and the worked solution
+// revealed one step at a time. The server computes everything; this page only shows it.
+
+import {
+  checkAnswers,
+  exerciseTypes,
+  exportExercises,
+  generateExercises,
+  getExercise,
+} from './api.js';
+import { katexReady } from './vendor.js';
+
+const $ = (id) => document.getElementById(id);
+
+function el(tag, attrs = {}, text = null) {
+  const node = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+  if (text !== null) node.textContent = text;
+  return node;
+}
+
+function status(message, error = false) {
+  const box = $('status');
+  box.textContent = message;
+  if (error) box.dataset.level = 'error';
+  else delete box.dataset.level;
+}
+
+async function typeset(latex, target, display = true) {
+  const katex = await katexReady();
+  target.textContent = latex;
+  if (!katex) return;
+  try {
+    katex.render(latex, target, { displayMode: display, throwOnError: true, strict: 'ignore', trust: false });
+  } catch {
+    target.textContent = latex;
+    target.classList.add('step-error');
+  }
+}
+
+/** The figure: SVG written by the server from the scene (names escaped there). */
+function figure(target, svg) {
+  const doc = new DOMParser().parseFromString(svg, 'image/svg+xml');
+  const root = doc.documentElement;
+  target.replaceChildren(root.nodeName === 'svg' ? document.importNode(root, true) : el('p', {}, 'figure unavailable'));
+}
+
+const shareLink = (id) => `${location.origin}${location.pathname}#id=${encodeURIComponent(id)}`;
+
+// --- instructor ---------------------------------------------------------------------------------
+
+function request() {
+  return {
+    type: $('ex-type').value,
+    difficulty: $('ex-difficulty').value,
+    count: Number($('ex-count').value),
+    seed: Number($('ex-seed').value),
+  };
+}
+
+function card(exercise) {
+  const box = el('article', { class: 'panel card', 'data-id': exercise.id });
+  box.appendChild(el('h3', {}, `${exercise.index + 1}. ${exercise.title}`));
+  box.appendChild(el('p', { class: 'muted small mono' }, exercise.id));
+  box.appendChild(el('p', {}, exercise.statement.text));
+  const tex = el('div', { class: 'tex' });
+  typeset(exercise.statement.latex, tex);
+  box.appendChild(tex);
+  const fig = el('figure');
+  figure(fig, exercise.statement.figure_svg);
+  box.appendChild(fig);
+  const key = el('details');
+  key.appendChild(el('summary', {}, 'Answer key'));
+  const table = el('table');
+  for (const asked of exercise.asked) {
+    const row = el('tr');
+    row.appendChild(el('td', {}, asked.label));
+    row.appendChild(el('td', { class: 'mono key-value', 'data-key': asked.key }, exercise.answers[asked.key].toPrecision(6)));
+    row.appendChild(el('td', {}, asked.unit));
+    row.appendChild(el('td', {}, `± ${asked.tolerance * 100} %`));
+    table.appendChild(row);
+  }
+  key.appendChild(table);
+  box.appendChild(key);
+  const open = el('a', { href: `#id=${encodeURIComponent(exercise.id)}`, class: 'student-link' }, 'Open in student mode');
+  box.appendChild(open);
+  return box;
+}
+
+async function preview(event) {
+  event?.preventDefault();
+  status('Generating…');
+  try {
+    const { exercises } = await generateExercises(request());
+    $('preview').replaceChildren(...exercises.map(card));
+    status(`${exercises.length} exercise(s): ${request().type}, ${request().difficulty}, seed ${request().seed}.`);
+  } catch (err) {
+    $('preview').replaceChildren();
+    status(err.detail || String(err), true);
+  }
+}
+
+async function download(button) {
+  const body = { ...request(), format: button.dataset.format, with_solutions: button.dataset.solutions === 'true' };
+  status('Preparing the download…');
+  try {
+    const { blob, filename } = await exportExercises(body);
+    const link = el('a', { href: URL.createObjectURL(blob), download: filename });
+    document.body.appendChild(link);
+    link.click();
+    link.remove();
+    setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
+    status(`Downloaded ${filename}.`);
+  } catch (err) {
+    status(err.detail || String(err), true);
+  }
+}
+
+async function instructor() {
+  $('instructor').hidden = false;
+  $('student').hidden = true;
+  if (!$('ex-type').options.length) {
+    const { types } = await exerciseTypes();
+    for (const t of types) $('ex-type').appendChild(el('option', { value: t.name }, t.title));
+    const describe = () => {
+      const t = types.find((x) => x.name === $('ex-type').value);
+      $('ex-type-description').textContent = t ? t.description : '';
+    };
+    $('ex-type').addEventListener('change', describe);
+    describe();
+    $('generate-form').addEventListener('submit', preview);
+    for (const button of document.querySelectorAll('.downloads button')) {
+      button.addEventListener('click', () => download(button));
+    }
+  }
+  await preview();
+}
+
+// --- student ------------------------------------------------------------------------------------
+
+let current = null;
+let shown = 0;
+
+function parseNumber(text) {
+  const cleaned = text.trim().replace(',', '.').replace(/\s+/g, '');
+  if (cleaned === '') return null;
+  const value = Number(cleaned);
+  return Number.isFinite(value) ? value : NaN;
+}
+
+function answerRow(asked) {
+  const row = el('tr', { 'data-key': asked.key });
+  const label = el('td');
+  const symbol = el('span', { class: 'symbol' });
+  typeset(asked.symbol, symbol, false);
+  label.append(symbol, ' ', asked.label);
+  const field = el('input', { type: 'text', inputmode: 'decimal', name: asked.key, 'aria-label': `${asked.label} in ${asked.unit}` });
+  const input = el('td');
+  input.appendChild(field);
+  row.append(label, input, el('td', {}, asked.unit), el('td', { class: 'result', 'aria-live': 'polite' }));
+  return row;
+}
+
+async function check(event) {
+  event.preventDefault();
+  const answers = {};
+  for (const field of document.querySelectorAll('#answer-rows input')) {
+    const value = parseNumber(field.value);
+    if (Number.isNaN(value)) {
+      status(`"${field.value}" is not a number.`, true);
+      field.focus();
+      return;
+    }
+    if (value !== null) answers[field.name] = value;
+  }
+  try {
+    const result = await checkAnswers(current.id, answers);
+    for (const r of result.results) {
+      const cell = document.querySelector(`#answer-rows tr[data-key="${CSS.escape(r.key)}"] .result`);
+      cell.className = `result ${r.verdict}`;
+      cell.replaceChildren(el('span', {}, { correct: '✓ correct', incorrect: '✗ not right', missing: '— missing' }[r.verdict]));
+      if (r.diagnosis) cell.appendChild(el('span', { class: 'diagnosis' }, r.diagnosis));
+    }
+    const correct = result.results.filter((r) => r.verdict === 'correct').length;
+    $('score').textContent = `${correct} of ${result.results.length} correct`;
+    status('Checked.');
+  } catch (err) {
+    status(err.detail || String(err), true);
+  }
+}
+
+function nextStep() {
+  const steps = current.solution.steps;
+  if (shown >= steps.length) return;
+  const step = steps[shown];
+  const item = el('li', { class: 'step' });
+  item.appendChild(el('h3', { class: 'step-title' }, step.title));
+  const math = el('div', { class: 'step-math' });
+  typeset(step.latex, math);
+  item.append(math, el('p', { class: 'step-text' }, step.text));
+  $('st-steps').appendChild(item);
+  shown += 1;
+  $('step-count').textContent = `step ${shown} of ${steps.length}`;
+  $('next-step').disabled = shown >= steps.length;
+}
+
+async function student(id) {
+  $('instructor').hidden = true;
+  $('student').hidden = false;
+  status('Loading the exercise…');
+  try {
+    current = await getExercise(id);
+  } catch (err) {
+    status(err.detail || String(err), true);
+    return;
+  }
+  shown = 0;
+  $('st-title').textContent = current.title;
+  $('st-id').textContent = current.id;
+  $('st-text').textContent = current.statement.text;
+  typeset(current.statement.latex, $('st-latex'));
+  figure($('st-figure'), current.statement.figure_svg);
+  $('answer-rows').replaceChildren(...current.asked.map(answerRow));
+  $('score').textContent = '';
+  $('st-steps').replaceChildren();
+  $('next-step').disabled = false;
+  $('step-count').textContent = `${current.solution.steps.length} steps`;
+  $('st-share-url').hidden = true;
+  document.title = `${current.title}: exercise`;
+  status('');
+}
+
+function route() {
+  const match = /^#id=(.+)$/.exec(location.hash);
+  if (match) student(decodeURIComponent(match[1]));
+  else instructor().catch((err) => status(err.detail || String(err), true));
+}
+
+$('answer-form').addEventListener('submit', check);
+$('next-step').addEventListener('click', nextStep);
+$('st-share').addEventListener('click', () => {
+  const box = $('st-share-url');
+  box.value = shareLink(current.id);
+  box.hidden = false;
+  box.select();
+});
+window.addEventListener('hashchange', route);
+route();

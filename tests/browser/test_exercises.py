@@ -1,0 +1,151 @@
+"""Exercises in the browser: the printable sheet rendered in Chromium, the instructor page and
+the student mode (static/exercises.html), against the real server."""
+
+from __future__ import annotations
+
+import json
+import re
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+
+pytestmark = pytest.mark.browser
+
+
+def export(app: AppPage, **body: Any) -> str:
+    request = urllib.request.Request(
+        f"{app.url}/api/v1/exercises/export",
+        data=json.dumps(body).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
+    )
+    with urllib.request.urlopen(request, timeout=60) as response:
+        text: str = response.read().decode()
+        return text
+
+
+@pytest.mark.parametrize("with_solutions", [False, True])
+def test_the_printable_sheet_renders_with_its_figures(app: AppPage, with_solutions: bool) -> None:
+    html = export(
+        app, type="quick_return", seed=12, count=3, format="html", with_solutions=with_solutions
+    )
+    app.log.allow(r"favicon\.ico")  # asked for by the JSON page of /health, which has none
+    app.page.goto(f"{app.url}/health")  # the app's origin, so /vendor/katex/ resolves
+    app.page.set_content(html, wait_until="load")
+    page = app.page
+    assert page.locator("section.sheet").count() == 3
+    figures = page.locator("section.sheet figure svg")
+    assert figures.count() == 3
+    for k in range(3):
+        box = figures.nth(k).bounding_box()
+        assert box is not None and box["width"] > 300 and box["height"] > 200
+        assert figures.nth(k).locator("line, polygon").count() >= 3
+    page.wait_for_function("document.querySelectorAll('.tex .katex').length > 0")
+    assert page.locator(".tex .katex-error").count() == 0
+    pdf = page.pdf(format="A4")
+    pages = len(re.findall(rb"/Type\s*/Page[^s]", pdf))
+    if with_solutions:
+        assert pages >= 3
+        assert page.locator(".step").count() > 30
+    else:
+        assert pages == 3  # one page per student
+    app.screenshot(f"exercise-sheet-{'key' if with_solutions else 'student'}")
+
+
+def open_page(app: AppPage, fragment: str = "") -> None:
+    app.page.goto(f"{app.url}/exercises.html{fragment}")
+
+
+def test_the_instructor_page_generates_previews_and_downloads(app: AppPage) -> None:
+    page = app.page
+    open_page(app)
+    page.wait_for_selector("#preview .card")
+    assert page.locator("#preview .card").count() == 5
+    page.select_option("#ex-type", "quick_return")
+    page.select_option("#ex-difficulty", "challenging")
+    page.fill("#ex-count", "2")
+    page.fill("#ex-seed", "9")
+    page.click("#ex-generate")
+    page.wait_for_selector('#preview .card[data-id="quick_return:challenging:9:1"]')
+    cards = page.locator("#preview .card")
+    assert cards.count() == 2
+    status, body = app.post(
+        "/exercises", {"type": "quick_return", "difficulty": "challenging", "seed": 9, "count": 2}
+    )
+    assert status == 200
+    for k, exercise in enumerate(body["exercises"]):
+        card = cards.nth(k)
+        assert card.get_attribute("data-id") == exercise["id"]
+        assert card.locator("figure svg").count() == 1
+        card.locator("summary").click()
+        for asked in exercise["asked"]:
+            shown = card.locator(f'.key-value[data-key="{asked["key"]}"]').inner_text()
+            assert float(shown) == pytest.approx(exercise["answers"][asked["key"]], rel=1e-5)
+    page.wait_for_function("document.querySelectorAll('#preview .tex .katex').length >= 2")
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="csv"]')
+    download = download_info.value
+    assert download.suggested_filename == "exercises-quick_return-challenging-9.csv"
+    text = Path(download.path()).read_text(encoding="utf-8")
+    for exercise in body["exercises"]:
+        for asked in exercise["asked"]:
+            assert repr(exercise["answers"][asked["key"]]) in text
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="moodle_xml"]')
+    assert download_info.value.suggested_filename.endswith(".xml")
+    app.screenshot("exercises-instructor")
+
+
+def test_the_student_mode_checks_diagnoses_and_reveals_one_step_at_a_time(app: AppPage) -> None:
+    from solver.exercises import build, parse_id
+    from solver.exercises.mistakes import typical_mistakes
+
+    ident = "four_bar_acceleration:standard:3:0"
+    exercise = build(parse_id(ident))
+    made = next(m for m in typical_mistakes(exercise) if m.kind == "alpha_in_normal_term")
+    page = app.page
+    open_page(app, f"#id={ident}")
+    page.wait_for_selector("#answer-rows tr")
+    assert page.inner_text("#st-id") == ident
+    assert page.locator("#st-figure svg").count() == 1
+    keys = [a.key for a in exercise.asked]
+    assert page.locator("#answer-rows tr").count() == len(keys)
+    page.fill(f'input[name="{keys[0]}"]', f"{exercise.answers[keys[0]]:.5g}")
+    page.fill(f'input[name="{keys[1]}"]', repr(made.values[keys[1]]))
+    page.click("#check")
+    page.wait_for_selector("#answer-rows .result.correct")
+    rows = page.locator("#answer-rows tr")
+    assert "correct" in (rows.nth(0).locator(".result").get_attribute("class") or "")
+    wrong = rows.nth(1).locator(".result")
+    assert "incorrect" in (wrong.get_attribute("class") or "")
+    assert wrong.locator(".diagnosis").inner_text() == made.sentence
+    assert "missing" in (rows.nth(2).locator(".result").get_attribute("class") or "")
+    assert page.inner_text("#score") == f"1 of {len(keys)} correct"
+    # the worked solution: nothing shown until asked, then one step per click
+    assert page.locator("#st-steps li").count() == 0
+    page.click("#next-step")
+    assert page.locator("#st-steps li").count() == 1
+    page.click("#next-step")
+    assert page.locator("#st-steps li").count() == 2
+    page.wait_for_function("document.querySelectorAll('#st-steps .katex').length >= 1")
+    assert page.locator("#st-steps .step-error").count() == 0
+    app.screenshot("exercises-student")
+    # the share link carries the exercise id and opens the same exercise
+    page.click("#st-share")
+    link = page.input_value("#st-share-url")
+    assert link.endswith(f"/exercises.html#id={ident.replace(':', '%3A')}")
+    other = app.new_page()
+    other.goto(link)
+    other.wait_for_selector("#answer-rows tr")
+    assert other.inner_text("#st-id") == ident
+
+
+def test_a_bad_share_link_says_why(app: AppPage) -> None:
+    app.log.allow("422")
+    open_page(app, "#id=not-an-id")
+    app.page.wait_for_function("document.getElementById('status').textContent.includes('id')")
+    assert "type:difficulty:seed:index" in app.page.inner_text("#status")
