@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import html
 import json
+import math
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Query
+from fastapi import APIRouter, Query, Request
 from fastapi.responses import HTMLResponse
 from pydantic import Field
 
@@ -22,6 +23,7 @@ from server.responses import JSON, analysis_response, spatial_response
 from server.routes.scenes import parse_scene
 from server.schemas import EXAMPLES, Strict
 from solver.analysis import QUANTITIES, LinkageAnalysis
+from solver.errors import InvalidScene
 from solver.presets import build_preset
 from solver.steps import Solution, solve
 
@@ -284,7 +286,7 @@ def solution_page(doc: Mapping[str, Any], solution: Solution) -> str:
 <button class="print" type="button">Print</button>
 <h1>Worked solution: {_e(title)}</h1>
 <p class="meta">Method: {_e(method)}. Numbers to {solution.digits} significant digits, SI units;
-z out of the page, angular velocities counter-clockwise positive.</p>
+{_e(solution.convention)}.</p>
 {note}
 </header>
 <main>
@@ -312,11 +314,25 @@ def _page(doc: Mapping[str, Any], method: str, digits: int) -> HTMLResponse:
     response_class=HTMLResponse,
 )
 def solution_page_preset(
+    request: Request,
     preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
     method: Annotated[Method, Query()] = "vector",
     digits: Annotated[int, Query(ge=1, le=15)] = 4,
 ) -> HTMLResponse:
-    return _page(build_preset(preset, {}), method, digits)
+    """Every other query parameter is a parameter of the preset (``crank=0.2``): a number, or
+    ``invalid_scene`` (unknown name, not a number, out of range), never silently ignored."""
+    values: dict[str, float] = {}
+    for key, raw in request.query_params.multi_items():
+        if key in ("preset", "method", "digits"):
+            continue
+        try:
+            number = float(raw)
+        except ValueError:
+            raise InvalidScene(f"{key}: expected a number, got {raw!r}") from None
+        if key in values or not math.isfinite(number):
+            raise InvalidScene(f"{key}: given twice or not finite ({raw!r})")
+        values[key] = number
+    return _page(build_preset(preset, values), method, digits)
 
 
 @router.post(

@@ -47,6 +47,7 @@ def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
         "m/s^2": largest([p.acceleration for p in points]),
         "rad/s": largest([link.omega for link in links]),
         "rad/s^2": largest([link.alpha for link in links]),
+        "1/s^2": largest([link.omega for link in links]) ** 2,
     }
 
 
@@ -459,11 +460,13 @@ def rigid_acceleration_step(
     t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
     n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
+    w2key = b.put(f"omega^2({link})", omega**2, "1/s^2")
     b.check("cross", t, al, r)
-    b.check("product", n, w, w, r, factor=-1.0)
+    b.check("product", w2key, w, w)
+    b.check("product", n, w2key, r, factor=-1.0)
     b.check("sum", ay, ax, t, n)
     base_tex = V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
-    w2 = ctx.fmt.latex(omega**2)
+    w2 = b.num(w2key)
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
@@ -483,7 +486,7 @@ def rigid_acceleration_step(
         f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
         f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
         f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
-        f"-{ctx.fmt.text(omega**2)} times r, pointing from {target} towards {base}."
+        f"-{b.txtn(w2key)} times r, pointing from {target} towards {base}."
     )
     ctx.shown_acceleration.add(target)
     return b.build()
@@ -704,5 +707,19 @@ def summary_step(ctx: LinkageContext) -> Step:
             rf"{a_vec(p)} = {b.point(a)}{latex_unit('m/s^2')}"
         )
         b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
+    for name, m in ctx.analysis.moving_points.items():
+        source = ("moving_points", name)
+        x = b.put(f"pos({name})", m.position, "m", (*source, "position"))
+        v = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+        a = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+        rows.append(
+            rf"{v_vec(name)} = {b.point(v)}{latex_unit('m/s')}, & "
+            rf"{a_vec(name)} = {b.point(a)}{latex_unit('m/s^2')} \\ "
+            rf"\text{{moving point }} {tex.name(name)} = {b.point(x)}{latex_unit('m')} &"
+        )
+        b.say(
+            f"Moving point {name} (at {b.txt(x)}): v = {b.txt(v)}, a = {b.txt(a)} "
+            "(absolute, transport plus relative plus Coriolis)."
+        )
     b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
     return b.build()

@@ -200,7 +200,8 @@ class LinkageMistakes:
                 "The sign of the normal term -omega^2 r",
                 f"The normal (centripetal) acceleration of {point} about {pivot} is -omega^2 "
                 f"r({pivot},{point}): it points from {point} back towards {pivot}, whatever the "
-                f"sign of omega (omega^2 = ({fmt.text(omega)})^2 = {fmt.text(omega**2)} is "
+                f"sign of omega (omega^2 = ({fmt.text(omega, 'rad/s')})^2 = "
+                f"{fmt.text(omega**2, '1/s^2')} is "
                 "positive). Writing +omega^2 r turns it outwards.",
                 ctx.acc(pivot) + k_cross(alpha, r) + omega**2 * r,
                 a_right,

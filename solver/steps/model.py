@@ -14,6 +14,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+from solver.spatial import SpatialAnalysis
+
 Number = float | tuple[float, ...]
 
 Relation = Literal[
@@ -131,6 +133,16 @@ class Solution:
     method: str
     requested_method: str
     digits: int
+
+    @property
+    def convention(self) -> str:
+        """The sign convention, one sentence for the page's header (planar or spatial)."""
+        if isinstance(self.analysis, SpatialAnalysis):
+            return (
+                "vectors are components in the fixed frame E1, E2, E3; angular velocities "
+                "follow the right-hand rule about their axes"
+            )
+        return "z out of the page, angular velocities counter-clockwise positive"
 
     @property
     def fell_back(self) -> bool:

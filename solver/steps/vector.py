@@ -599,7 +599,12 @@ class VectorMethod:
         out.append(
             self.equate(
                 f"{what}.dyad.solve",
-                f"Components of the {what} of {point}: geometric connection = relative connection",
+                f"Components of the {what} of {point}: "
+                + (
+                    "geometric connection = relative connection"
+                    if lines
+                    else f"the two expressions of the {what} of {point} are equal"
+                ),
                 sides[0],
                 sides[1],
                 f"Both expressions give the {what} of the same point {point}; equating their x "

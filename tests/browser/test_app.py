@@ -8,6 +8,7 @@ land in test-artifacts/screenshots/ for a person to look at.
 from __future__ import annotations
 
 import json
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -410,3 +411,17 @@ def test_invalid_time_law_points_at_the_character(app: AppPage) -> None:
     caret = page.text_content("#f-law_angle-error .caret") or ""
     assert caret.splitlines()[-1] == " " * 6 + "^"
     assert page.locator("#linkage .link").count() >= 1
+
+
+def test_seed_example_opens_at_the_books_pose(app: AppPage) -> None:
+    """Issue 12: S000-T1 opens with the crank at 90 deg as drawn in the seed (not at the first
+    sample of its sweep, a limit position of the rocking crank); motion reduced so it stays."""
+    app.page.emulate_media(reduced_motion="reduce")
+    app.open()
+    page = app.page
+    choose(app, "example:S000-T1.json")
+    wait_until(lambda: "S000" in page.inner_text("#view-title"), what="the title")
+    page.wait_for_selector("#linkage .link", state="attached")
+    wait_analysed(page)
+    instant = float(page.get_attribute("#linkage", "data-instant") or "nan")
+    assert abs(instant - math.pi / 2) < 0.02, instant
