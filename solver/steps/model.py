@@ -109,12 +109,16 @@ class Mistake:
     title: str
     text: str
     values: Mapping[str, Value] = field(default_factory=dict)
+    # where it belongs: (step kind prefix, part of the step's title), alternatives in order
+    anchors: tuple[tuple[str, str], ...] = ()
+    step: int | None = None  # the index of that step in the solution, once placed
 
     def as_json(self) -> dict[str, Any]:
         return {
             "kind": self.kind,
             "title": self.title,
             "text": self.text,
+            "step": self.step,
             "values": {k: v.as_json() for k, v in self.values.items()},
         }
 

@@ -23,7 +23,12 @@ from solver.steps.linkage import (
     unit_scales,
 )
 from solver.steps.loop import LoopUnavailable, loop_steps
-from solver.steps.mistakes import linkage_mistakes, loop_mistakes, spatial_mistakes
+from solver.steps.mistakes import (
+    linkage_mistakes,
+    loop_mistakes,
+    place_mistakes,
+    spatial_mistakes,
+)
 from solver.steps.model import Solution, Step
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
@@ -69,7 +74,8 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)
-    return Solution(tuple(steps), tuple(mistakes), analysis, used, method, digits)
+    placed = place_mistakes(steps, mistakes, used == "loop")
+    return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
 
 
 def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4) -> Solution:
@@ -100,5 +106,5 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
             )
         )
     steps = lead + spatial_steps(scene, analysis, fmt)
-    mistakes = spatial_mistakes(scene, analysis, fmt)
+    mistakes = place_mistakes(steps, spatial_mistakes(scene, analysis, fmt), False)
     return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)

@@ -15,6 +15,7 @@ import re
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from solver.presets import PRESETS, build_preset
@@ -164,3 +165,99 @@ def test_one_symbol_per_angle_of_a_turning_slot(name: str) -> None:
             assert f"phi{n}" not in step.text and f"phi{n}" not in step.values, step.title
         for n in re.findall(r"\\varphi_\{(\d+)\}", step.latex):
             assert f"beta{n}" not in step.text, step.title
+
+
+# --- typical mistakes under their step ------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_every_mistake_names_an_existing_step(name: str, solution: Solution) -> None:
+    for mistake in solution.mistakes:
+        assert mistake.step is not None, (name, mistake.kind)
+        assert 0 <= mistake.step < len(solution.steps), (name, mistake.kind)
+        assert mistake.as_json()["step"] == mistake.step
+        if solution.method == "loop":  # in loop mode, only loop-method mistakes
+            assert solution.steps[mistake.step].kind.startswith(("loop.", "relative.")), (
+                name,
+                mistake.kind,
+                solution.steps[mistake.step].kind,
+            )
+
+
+def test_vector_mistakes_are_all_placed() -> None:
+    """No mistake of the vector method is lost by placing it (each finds its step)."""
+    from solver.analysis import analyze
+    from solver.steps.format import Formatter
+    from solver.steps.linkage import LinkageContext, unit_scales
+    from solver.steps.mistakes import linkage_mistakes
+
+    for name in SEEDS:
+        doc = example(name)
+        if doc["kind"] != "linkage":
+            continue
+        scene = parse_linkage(doc)
+        analysis = analyze(scene)
+        ctx = LinkageContext(scene, analysis, Formatter(4, unit_scales(analysis, scene.size)))
+        listed = {m.kind for m in linkage_mistakes(ctx)}
+        assert {m.kind for m in solve(scene).mistakes} == listed, name
+
+
+@pytest.mark.parametrize(
+    ("name", "kind", "step_kind", "title_part"),
+    [
+        ("S000-T1", "normal.sign", "acceleration.rigid", "of B ("),
+        ("S000-T1", "cross.order", "velocity.rigid", "of B ("),
+        ("S000-T1", "unknowns.which_link", "velocity.dyad.side", "coupler"),
+        ("S000-T2", "coriolis.factor_2", "acceleration.coriolis", "B"),
+        ("S000-T3", "coriolis.fixed_guide", "acceleration.coriolis", "C"),
+        ("S003-T2-rotating-carrier", "relative.carrier_rate", "relative.relative_velocity", "M"),
+        ("S003-T1-translating-carrier", "coriolis.translating_carrier", "relative.coriolis", ""),
+        ("S002-spatial-arm", "spatial.axis_rate", "spatial.alpha", "body 2"),
+    ],
+)
+def test_mistakes_sit_under_the_step_they_belong_to(
+    name: str, kind: str, step_kind: str, title_part: str
+) -> None:
+    solution = solution_of(example(name))
+    mistake = next(m for m in solution.mistakes if m.kind == kind)
+    assert mistake.step is not None
+    step = solution.steps[mistake.step]
+    assert step.kind == step_kind and title_part in step.title, (step.kind, step.title)
+
+
+def test_loop_mode_lists_only_loop_mistakes() -> None:
+    vector = {m.kind for m in solution_of(example("S000-T1")).mistakes}
+    loop = {m.kind for m in solution_of(example("S000-T1"), "loop").mistakes}
+    assert "normal.sign" in vector and "normal.sign" not in loop
+    assert "loop.derivative_i" in loop
+
+
+def _mistake(name: str, kind: str) -> Any:
+    return next(m for m in solution_of(example(name)).mistakes if m.kind == kind)
+
+
+def test_errata_mistakes_with_their_wrong_numbers() -> None:
+    """ERRATA.md: E003-1 (tangential relative acceleration reversed: (-0.3265, -0.1885) for
+    (+0.3265, +0.1885)), E000-T2-4 (alpha squared in the normal term), E000-T1-5 (the pole from
+    another point's velocity: P = (2, 5) instead of (0, 5)), E000-T2-6 (x = 0.346 rounded to
+    0.35), and a trigonometry slip in the position (crank2 of S003-T1 at 30 deg, not 60)."""
+    sense = _mistake("S003-T1-translating-carrier", "relative.tangential_sense")
+    wrong, right = (np.array(sense.values[k].value) for k in ("wrong", "right"))
+    np.testing.assert_allclose(wrong - right, [-2 * 0.32648, -2 * 0.18850], atol=1e-4)
+    squared = _mistake("S000-T2", "normal.alpha_squared")
+    np.testing.assert_allclose(squared.values["right"].value, [0.78564, -1.83923], atol=1e-5)
+    r_cb = np.array([-math.sqrt(0.12), 0.2])  # B - C, crank 0.4 m
+    np.testing.assert_allclose(
+        np.array(squared.values["wrong"].value) - squared.values["right"].value,
+        -(3.0**2 - 2.0**2) * r_cb,
+        atol=1e-9,
+    )
+    pole = _mistake("S000-T1", "poles.wrong_velocity")
+    np.testing.assert_allclose(pole.values["wrong"].value, [2.0, 5.0], atol=1e-12)
+    np.testing.assert_allclose(pole.values["right"].value, [0.0, 5.0], atol=1e-12)
+    rounding = _mistake("S000-T2", "inputs.rounding")
+    assert rounding.values["wrong"].value == pytest.approx(0.35, abs=1e-12)
+    assert rounding.values["right"].value == pytest.approx(math.sqrt(0.12), abs=1e-12)
+    trig = _mistake("S003-T1-translating-carrier", "position.trigonometry")
+    assert trig.values["right"].value == pytest.approx(30.0, abs=1e-9)
+    assert trig.values["wrong"].value == pytest.approx(60.0, abs=1e-9)
