@@ -286,7 +286,8 @@ class LoopMethod:
 
     def deg(self, b: StepBuilder, key: str) -> str:
         """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
-        return tex.paren(self.ctx.fmt.latex(math.degrees(b.scalar(key)), "deg") + r"{}^{\circ}")
+        degrees = b.fmt_of(key).latex(math.degrees(b.scalar(key)), "deg")
+        return tex.paren(degrees + r"{}^{\circ}")
 
     # --- the steps ------------------------------------------------------------------------------
 
@@ -506,7 +507,7 @@ class LoopMethod:
                 "m/s",
                 self.slide_value(m, order),
                 None,
-                f"the sliding speed {where}",
+                f"the signed sliding rate {where} (positive in the direction of its angle)",
             )
         return Unknown(
             f"s_ddot1{n}",

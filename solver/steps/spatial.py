@@ -14,6 +14,7 @@ import numpy as np
 from solver.spatial import GROUND, SpatialAnalysis, SpatialChain, SpatialJoint
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
+from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
 
@@ -45,14 +46,21 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
 
 
 class SpatialSteps:
-    def __init__(self, chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> None:
+    def __init__(
+        self,
+        chain: SpatialChain,
+        analysis: SpatialAnalysis,
+        fmt: Formatter,
+        plan: DigitPlan | None = None,
+    ) -> None:
+        self.plan = plan
         self.chain = chain
         self.analysis = analysis
         self.fmt = Formatter(fmt.digits, _scales(chain, analysis))
         self.shown: set[str] = set()  # points already shown (at a joint origin)
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        return StepBuilder(self.fmt, kind, title)
+        return StepBuilder(self.fmt, kind, title, self.plan)
 
     def col(self, b: StepBuilder, key: str) -> str:
         return V0 if b.is_zero(key) else b.col(key)
@@ -453,6 +461,8 @@ class SpatialSteps:
         return out
 
 
-def spatial_steps(chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> list[Step]:
+def spatial_steps(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter, plan: DigitPlan | None = None
+) -> list[Step]:
     """The steps of a spatial chain's solution (numbers from ``analysis``)."""
-    return SpatialSteps(chain, analysis, fmt).steps()
+    return SpatialSteps(chain, analysis, fmt, plan).steps()

@@ -186,7 +186,8 @@ class VectorMethod:
                 "m/s",
                 float(np.dot(sliding.relative_velocity, u)),
                 None,
-                f"the speed of {point} along the slot of {guide}",
+                f"the signed sliding rate of {point} along the slot of {guide} (positive in the "
+                "slot's direction u)",
             )
         assert sliding.relative_acceleration is not None
         return Unknown(

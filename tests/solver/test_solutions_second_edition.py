@@ -261,3 +261,179 @@ def test_errata_mistakes_with_their_wrong_numbers() -> None:
     trig = _mistake("S003-T1-translating-carrier", "position.trigonometry")
     assert trig.values["right"].value == pytest.approx(30.0, abs=1e-9)
     assert trig.values["wrong"].value == pytest.approx(60.0, abs=1e-9)
+
+
+# --- the shown arithmetic recomputes from the shown numbers -----------------------------------
+
+_DISPLAY_NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?: x 10\^-?\d+)?")
+
+
+def shown_number(display: str) -> tuple[np.ndarray, np.ndarray]:
+    """The numbers of a display string ('(-0.1571, 0.2721) m/s', '1.5 x 10^-7 m', '30 deg')
+    and one unit in the last digit of each."""
+    body = display.split(")")[0] if display.startswith("(") else display.split(" ")[0]
+    if " x 10^" in display and not display.startswith("("):
+        body = " ".join(display.split(" ")[:3])
+    numbers, ulps = [], []
+    for text in _DISPLAY_NUMBER.findall(body):
+        mantissa, _, exponent = text.partition(" x 10^")
+        power = int(exponent) if exponent else 0
+        decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        numbers.append(float(mantissa) * 10.0**power)
+        if float(mantissa) == 0.0:
+            ulps.append(0.0)
+        elif decimals:
+            ulps.append(10.0 ** (power - decimals))
+        else:  # an integer: its last significant digit
+            digits = mantissa.lstrip("-")
+            ulps.append(10.0 ** (power + len(digits) - len(digits.rstrip("0"))))
+    return np.array(numbers), np.array(ulps)
+
+
+def _relation(relation: str, ops: list[np.ndarray], factor: float) -> tuple[np.ndarray, float]:
+    size = [float(np.linalg.norm(o)) for o in ops]
+
+    def perp(a: np.ndarray) -> np.ndarray:
+        return np.array([-a[1], a[0]])
+
+    if relation == "sum":
+        value, scale = np.sum(np.broadcast_arrays(*ops), axis=0), sum(size)
+    elif relation == "cross":
+        a, b = ops
+        if a.size == 1:
+            value = a[0] * perp(b)
+        elif a.size == 2:
+            value = np.array([a[0] * b[1] - a[1] * b[0]])
+        else:
+            value = np.cross(a, b)
+        scale = size[0] * size[1]
+    elif relation == "product":
+        value, scale = np.prod(np.broadcast_arrays(*ops), axis=0), math.prod(size)
+    elif relation == "quotient":
+        value, scale = ops[0] / ops[1], size[0] / size[1]
+    elif relation == "det2":
+        value, scale = ops[0] * ops[3] - ops[1] * ops[2], size[0] * size[3] + size[1] * size[2]
+    elif relation == "linear":
+        value = sum(ops[k] * ops[k + 1] for k in range(0, len(ops), 2))
+        scale = sum(size[k] * size[k + 1] for k in range(0, len(ops), 2))
+    elif relation == "dot":
+        value, scale = np.array([np.dot(ops[0], ops[1])]), size[0] * size[1]
+    elif relation in ("phasor", "iphasor"):
+        e = np.array([math.cos(ops[-1][0]), math.sin(ops[-1][0])])
+        value = np.prod(np.broadcast_arrays(*ops[:-1]), axis=0) * (
+            e if relation == "phasor" else perp(e)
+        )
+        scale = math.prod(size[:-1])
+    elif relation == "angle":
+        value, scale = np.array([math.atan2(ops[0][1], ops[0][0])]), math.pi
+    else:
+        assert relation == "norm"
+        value, scale = np.array([np.linalg.norm(ops[0])]), size[0]
+    return factor * np.asarray(value, float), abs(factor) * scale
+
+
+def unrecomputable(step: Any) -> list[str]:
+    """The checks of a step whose result, recomputed from the operands as displayed, differs
+    from the result as displayed by more than 0.6 unit in its last digit."""
+    shown = {k: shown_number(v.display) for k, v in step.values.items()}
+    failures = []
+
+    def get(name: str) -> tuple[np.ndarray, np.ndarray]:
+        sign = -1.0 if name.startswith("-") else 1.0
+        key = name.lstrip("-")
+        match = re.fullmatch(r"(.*)\[(\d)\]", key)
+        if match and match.group(1) in shown:
+            numbers, ulps = shown[match.group(1)]
+            i = int(match.group(2))
+            return sign * numbers[i : i + 1], ulps[i : i + 1]
+        numbers, ulps = shown[key]
+        return sign * numbers, ulps
+
+    for check in step.checks:
+        if check.relation == "linear":  # an equation in the unknowns, not shown arithmetic
+            continue
+        ops = [get(o)[0] for o in check.operands]
+        value, scale = _relation(check.relation, ops, check.factor)
+        result, ulps = get(check.result)
+        diff = value - result
+        if check.relation == "angle":
+            diff = (diff + math.pi) % (2 * math.pi) - math.pi
+        floor = float(np.max(ulps)) if np.any(ulps) else 0.0
+        if floor == 0.0:  # the result is shown as 0: the last digit of the terms' size
+            floor = 10.0 ** (math.floor(math.log10(scale)) - 3) if scale > 0 else 0.0
+        tolerance = 0.6 * np.maximum(ulps, floor) * (1 + 1e-9) + 1e-12 * scale
+        if np.any(np.abs(diff) > tolerance):
+            failures.append(
+                f"{step.kind} '{step.title}': {check.result} = {check.relation}"
+                f"{check.operands}: shown {result}, recomputed {value}"
+            )
+    return failures
+
+
+def test_shown_number_parses_displays() -> None:
+    numbers, ulps = shown_number("(-0.1571, 0.2721) m/s")
+    np.testing.assert_allclose(numbers, [-0.1571, 0.2721])
+    np.testing.assert_allclose(ulps, [1e-4, 1e-4])
+    numbers, ulps = shown_number("1.5 x 10^-7 m")
+    np.testing.assert_allclose(numbers, [1.5e-7])
+    np.testing.assert_allclose(ulps, [1e-8])
+    numbers, ulps = shown_number("12350 m")
+    np.testing.assert_allclose(ulps, [10.0])
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_shown_arithmetic_recomputes_to_the_shown_digits(name: str, solution: Solution) -> None:
+    """-0.03125/0.0127 must not read -2.462: each check, evaluated with its operands as they are
+    displayed, gives its result as displayed (to 0.6 unit in the last digit)."""
+    failures = [f for step in solution.steps for f in unrecomputable(step)]
+    assert not failures, (name, failures[:3])
+
+
+def test_the_recompute_check_can_fail() -> None:
+    """The issue's example: 0.0127 shown with four digits makes -0.03125/0.0127 = -2.461."""
+    from solver.steps.model import Check, Step, Value
+
+    step = Step(
+        "x",
+        "x",
+        "",
+        "",
+        {
+            "n": Value(-0.03125, "", "-0.03125"),
+            "d": Value(0.012695, "", "0.0127"),
+            "q": Value(-0.03125 / 0.012695, "", "-2.462"),
+        },
+        (Check("quotient", "q", ("n", "d")),),
+    )
+    assert unrecomputable(step)
+
+
+# --- reading the answer -------------------------------------------------------------------------
+
+
+def reading(solution: Solution) -> Any:
+    return next(s for s in solution.steps if s.kind == "reading")
+
+
+def test_reading_the_answer_in_words() -> None:
+    """S000-T3: coupler omega = -1.44 (clockwise), alpha = +7.68 (counter-clockwise): slowing
+    down; C slides to the right (v_C = 0.96 m/s) and speeds up (a_C = 1.8432 m/s^2). S000-T1: the
+    crank (omega = alpha = -1) speeds up."""
+    t3 = reading(solution_of(example("S000-T3")))
+    assert "omega clockwise, alpha counter-clockwise: link coupler is slowing down" in t3.text
+    assert "C slides to the right, speeding up" in t3.text
+    t1 = reading(solution_of(example("S000-T1")))
+    assert "omega clockwise, alpha clockwise: link crank is speeding up" in t1.text
+    m = reading(solution_of(example("S003-T2-rotating-carrier")))
+    assert "M moves to the right and down" in m.text and "slowing down" in m.text
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_units_on_every_line_and_no_signed_speed(name: str, solution: Solution) -> None:
+    for step in solution.steps:
+        if step.kind == "reading":
+            for line in step.latex.split(r" \\ "):
+                assert r"\mathrm{" in line, (name, line)
+        for match in re.finditer(r"speed (?:of |is |= )?(-?[\d.]+)", step.text):
+            assert float(match.group(1)) >= 0, (name, step.title, match.group(0))
+        assert "sliding speed" not in step.text and "the speed of" not in step.text, name
