@@ -105,6 +105,8 @@ p.text { margin: 0.3rem 0 0; color: #333; font-size: 0.92rem; }
 ul.mistakes li { margin-bottom: 0.6rem; }
 .note { border: 1px solid #c90; background: #fff8e6; padding: 0.5rem 0.8rem; }
 button.print { float: right; font-size: 0.95rem; padding: 0.3rem 0.8rem; }
+figure.figure { margin: 0.5rem 0; overflow-x: auto; }
+figure.figure svg { max-width: 100%; height: auto; }
 @media print {
   body { margin: 0; max-width: none; font-size: 10.5pt; }
   button.print { display: none; }
@@ -112,6 +114,10 @@ button.print { float: right; font-size: 0.95rem; padding: 0.3rem 0.8rem; }
   li.step, ul.mistakes li, table { break-inside: avoid; }
   .math { overflow: visible; }
   a { color: inherit; text-decoration: none; }
+  figure.figure { break-inside: avoid; }
+  figure.figure svg line, figure.figure svg path, figure.figure svg circle {
+    stroke: #000 !important; }
+  figure.figure svg text, figure.figure svg marker path { fill: #000 !important; }
 }
 """
 
@@ -243,6 +249,11 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
     return "".join(parts)
 
 
+def _inline_svg(figure: str) -> str:
+    """A step's SVG (built with escaped labels) inside HTML, where no namespace is needed."""
+    return figure.replace(' xmlns="http://www.w3.org/2000/svg"', "", 1)
+
+
 def solution_page(doc: Mapping[str, Any], solution: Solution) -> str:
     """The standalone, print-friendly HTML page of a worked solution."""
     title = doc.get("title") or (
@@ -259,7 +270,9 @@ def solution_page(doc: Mapping[str, Any], solution: Solution) -> str:
             if s.latex
             else ""
         )
-        + f'<p class="text">{_e(s.text)}</p></li>'
+        + f'<p class="text">{_e(s.text)}</p>'
+        + (f'<figure class="figure">{_inline_svg(s.figure)}</figure>' if s.figure else "")
+        + "</li>"
         for s in solution.steps
     )
     mistakes = "".join(

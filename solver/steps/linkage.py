@@ -48,7 +48,10 @@ def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
         "m/s^2": largest([p.acceleration for p in points]),
         "rad/s": largest([link.omega for link in links]),
         "rad/s^2": largest([link.alpha for link in links]),
-        "1/s^2": largest([link.omega for link in links]) ** 2,
+        "1/s": largest([link.omega for link in links]),
+        "1/s^2": max(
+            largest([link.omega for link in links]) ** 2, largest([link.alpha for link in links])
+        ),
     }
 
 

@@ -88,9 +88,10 @@ class Step:
     text: str
     values: Mapping[str, Value] = field(default_factory=dict)
     checks: tuple[Check, ...] = ()
+    figure: str = ""  # a standalone SVG drawing beside the step ('' for none)
 
     def as_json(self) -> dict[str, Any]:
-        return {
+        out = {
             "kind": self.kind,
             "title": self.title,
             "latex": self.latex,
@@ -98,6 +99,9 @@ class Step:
             "values": {k: v.as_json() for k, v in self.values.items()},
             "checks": [c.as_json() for c in self.checks],
         }
+        if self.figure:
+            out["figure"] = self.figure
+        return out
 
 
 @dataclass(frozen=True)

@@ -9,13 +9,18 @@ method; the solution then says so in its first step and in ``method``/``requeste
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from solver.analysis import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
 from solver.scene import LinkageScene
 from solver.spatial import SpatialChain, analyze_spatial_chain
 from solver.steps import latex as tex
+from solver.steps.classification import classification_steps
 from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter
+from solver.steps.graphical import graphical_steps, mechanism_figure
+from solver.steps.instant_centres import instant_centres_step
 from solver.steps.linkage import (
     LinkageContext,
     data_step,
@@ -32,6 +37,7 @@ from solver.steps.mistakes import (
     spatial_mistakes,
 )
 from solver.steps.model import Solution, Step
+from solver.steps.position import position_steps
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
 from solver.steps.vector import vector_steps
@@ -74,10 +80,16 @@ def _linkage_steps(
     else:
         body = vector_steps(ctx)
     body += moving_point_steps(ctx)
+    body += graphical_steps(ctx)
+    body.append(instant_centres_step(ctx))
+    positions = positions_step(ctx)
+    positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
         *lead,
         data_step(ctx, _SENTENCES[used]),
-        positions_step(ctx),
+        positions,
+        *position_steps(ctx),
+        *classification_steps(ctx),
         *body,
         reading_step(ctx),
         summary_step(ctx),

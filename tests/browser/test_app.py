@@ -425,3 +425,22 @@ def test_seed_example_opens_at_the_books_pose(app: AppPage) -> None:
     wait_analysed(page)
     instant = float(page.get_attribute("#linkage", "data-instant") or "nan")
     assert abs(instant - math.pi / 2) < 0.02, instant
+
+
+def test_printable_solution_page_with_figures(app: AppPage) -> None:
+    """Issue 12: the printable page shows the mechanism and the polygons beside the steps; every
+    formula is typeset; in print the figures are black and white. Screenshotted."""
+    page = app.page
+    page.goto(f"{app.url}/api/v1/solution.html?preset=quick_return&crank=0.12")
+    page.wait_for_function("document.querySelectorAll('.math.pending').length === 0")
+    assert page.locator(".math.error").count() == 0
+    assert page.locator("figure.figure svg").count() >= 3
+    box = page.locator("figure.figure svg").first.bounding_box()
+    assert box is not None and box["width"] > 100 and box["height"] > 50
+    app.screenshot("solution-figures", "figure.figure >> nth=1")
+    page.emulate_media(media="print")
+    stroke = page.evaluate(
+        "getComputedStyle(document.querySelector('figure.figure svg line[data-vector]')).stroke"
+    )
+    assert stroke in ("rgb(0, 0, 0)", "#000000"), stroke
+    app.screenshot("solution-print")

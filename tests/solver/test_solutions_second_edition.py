@@ -437,3 +437,71 @@ def test_units_on_every_line_and_no_signed_speed(name: str, solution: Solution) 
         for match in re.finditer(r"speed (?:of |is |= )?(-?[\d.]+)", step.text):
             assert float(match.group(1)) >= 0, (name, step.title, match.group(0))
         assert "sliding speed" not in step.text and "the speed of" not in step.text, name
+
+
+# --- new step kinds -----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_step_kinds_present(name: str, solution: Solution) -> None:
+    kinds = {s.kind for s in solution.steps}
+    if "spatial" in name:
+        assert {"spatial.omega", "spatial.point.acceleration", "summary"} <= kinds
+        return
+    assert {
+        "positions",
+        "graphical.velocity",
+        "graphical.acceleration",
+        "instant_centres",
+        "reading",
+        "summary",
+    } <= kinds, name
+    assert ("classification" in kinds) == bool(solution.analysis.four_bar_loops), name
+    assert "position.crank" in kinds, name
+    dyads = [s for s in solution.analysis.plan.steps if type(s).__name__ == "DyadStep"]
+    if dyads:
+        assert kinds & {"position.triangle", "position.slider"}, name
+    centres = next(s for s in solution.steps if s.kind == "instant_centres")
+    assert "Not found" not in centres.text, (name, centres.text)
+
+
+def test_classification_of_the_four_bar_preset_against_a_brute_force_cycle() -> None:
+    """ground 1, crank 0.15, coupler 1, rocker 0.55 m: 0.15 + 1 < 1 + 0.55, a crank-rocker; mu
+    over a full turn, sampled every 0.01 deg from the geometry, has the extremes shown."""
+    solution = solution_of(build_preset("four_bar", {}))
+    step = next(s for s in solution.steps if s.kind == "classification")
+    assert "Grashof crank-rocker" in step.latex and "s + l < p + q" in step.text
+    g, a, b, c = 1.0, 0.15, 1.0, 0.55
+    theta = np.radians(np.arange(0.0, 360.0, 0.01))
+    diagonal = np.hypot(a * np.cos(theta) - g, a * np.sin(theta))
+    mu = np.degrees(np.arccos((b * b + c * c - diagonal**2) / (2 * b * c)))
+    shown_min = math.degrees(step.values["mu_min"].value)
+    shown_max = math.degrees(step.values["mu_max"].value)
+    assert shown_min == pytest.approx(float(mu.min()), abs=1e-6)
+    assert shown_max == pytest.approx(float(mu.max()), abs=1e-6)
+    assert step.values["mu"].source == ("four_bar_loops", 0, "transmission_angle")
+    t1 = next(s for s in solution_of(example("S000-T1")).steps if s.kind == "classification")
+    assert "non-Grashof triple-rocker" in t1.latex and "does not turn fully" in t1.text
+
+
+@pytest.mark.parametrize(
+    ("name", "pair", "where"),
+    [
+        ("S000-T1", "P13", [0.0, 5.0]),  # E000-T1-5: P_2 = (0, 5)
+        ("S000-T3", "P13", [0.32, -0.42667]),  # the coupler's pole, on the slot's normal at C
+        ("S000-T4", "P13", [0.90561, 1.42701]),  # E000-T4-5: P_2
+    ],
+)
+def test_kennedy_gives_the_textbook_poles(name: str, pair: str, where: list[float]) -> None:
+    step = next(s for s in solution_of(example(name)).steps if s.kind == "instant_centres")
+    np.testing.assert_allclose(step.values[pair].value, where, atol=1e-5)
+    assert "velocity pole of link coupler found analytically" in step.text
+
+
+def test_position_of_seed_000_type_1_by_the_law_of_cosines() -> None:
+    """B = (0, 1), D = (2.5, 0), BC = 2, DC = sqrt(1.25): BD = sqrt(7.25), cos gamma =
+    (4 + 7.25 - 1.25) / (2 * 2 * sqrt(7.25)), and C = (2, 1) above BD, as drawn."""
+    step = next(s for s in solution_of(example("S000-T1")).steps if s.kind == "position.triangle")
+    assert step.values["cos gamma"].value == pytest.approx(10 / (4 * math.sqrt(7.25)), rel=1e-12)
+    np.testing.assert_allclose(step.values["pos(C)"].value, [2.0, 1.0], atol=1e-12)
+    assert "C on the left of BD, as drawn" in step.text
