@@ -127,6 +127,11 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
     return "".join(parts)
 
 
+def _inline_svg(figure: str) -> str:
+    """A step's SVG (built with escaped labels) inside HTML, where no namespace is needed."""
+    return figure.replace(' xmlns="http://www.w3.org/2000/svg"', "", 1)
+
+
 def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
     """The page of ``solution`` (a /solution body) for the scene document ``doc``."""
     title = doc.get("title") or (
@@ -139,7 +144,9 @@ def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
             if s["latex"]
             else ""
         )
-        + f'<p class="text">{_e(s["text"])}</p></li>'
+        + f'<p class="text">{_e(s["text"])}</p>'
+        + (f'<figure class="figure">{_inline_svg(s["figure"])}</figure>' if s.get("figure") else "")
+        + "</li>"
         for s in solution["steps"]
     )
     mistakes = "".join(
@@ -156,6 +163,7 @@ def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
         title=_e(title),
         method=_e(METHODS[solution["method"]]),
         digits=solution["digits"],
+        convention=_e(solution["convention"]),
         note=note,
         scene_tables=_scene_tables(doc),
         steps=steps,

@@ -448,6 +448,7 @@ def solution_body(
         "method": solution.method,
         "requested_method": solution.requested_method,
         "digits": solution.digits,
+        "convention": solution.convention,
         "steps": [step.as_json() for step in solution.steps],
         "mistakes": [mistake.as_json() for mistake in solution.mistakes],
         "results": results,

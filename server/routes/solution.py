@@ -7,9 +7,10 @@ scene. The HTML page (``server.solution_page``) is standalone and print-friendly
 from __future__ import annotations
 
 import json
+import math
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Query
+from fastapi import APIRouter, Query, Request
 from fastapi.responses import HTMLResponse
 from pydantic import Field
 
@@ -18,6 +19,7 @@ from server.edge import StrictJSONRoute
 from server.responses import ResultResponse, respond
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
+from solver.errors import InvalidScene
 from solver.presets import build_preset
 
 router = APIRouter(
@@ -79,11 +81,25 @@ def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -
     response_class=HTMLResponse,
 )
 def solution_page_preset(
+    request: Request,
     preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
     method: Annotated[Method, Query()] = "vector",
     digits: Annotated[int, Query(ge=1, le=15)] = 4,
 ) -> HTMLResponse:
-    return _page(build_preset(preset, {}), method, digits)
+    """Every other query parameter is a parameter of the preset (``crank=0.2``): a number, or
+    ``invalid_scene`` (unknown name, not a number, out of range), never silently ignored."""
+    values: dict[str, float] = {}
+    for key, raw in request.query_params.multi_items():
+        if key in ("preset", "method", "digits"):
+            continue
+        try:
+            number = float(raw)
+        except ValueError:
+            raise InvalidScene(f"{key}: expected a number, got {raw!r}") from None
+        if key in values or not math.isfinite(number):
+            raise InvalidScene(f"{key}: given twice or not finite ({raw!r})")
+        values[key] = number
+    return _page(build_preset(preset, values), method, digits)
 
 
 @router.post(

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.steps import latex as tex
+from solver.steps.digits import DigitPlan, needed_digits
 from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Check, Number, Relation, Step, Value
 
@@ -33,10 +34,16 @@ def _number(value: float | Sequence[float] | np.ndarray) -> Number:
 class StepBuilder:
     """Collects one step's values, checks, LaTeX lines and text sentences."""
 
-    def __init__(self, fmt: Formatter, kind: str, title: str) -> None:
+    def __init__(
+        self, fmt: Formatter, kind: str, title: str, plan: DigitPlan | None = None
+    ) -> None:
         self.fmt = fmt
         self.kind = kind
         self.title = title
+        self.plan = plan
+        self.plan_key = plan.key(kind, title) if plan is not None else None
+        self.digits = plan.digits(self.plan_key) if plan and self.plan_key else {}
+        self.formatters: dict[int, Formatter] = {}
         self.values: dict[str, Value] = {}
         self.checks: list[Check] = []
         self.lines: list[str] = []
@@ -44,6 +51,15 @@ class StepBuilder:
         self.references: dict[str, float] = {}
 
     # --- values ---------------------------------------------------------------------------------
+
+    def fmt_of(self, key: str) -> Formatter:
+        """The formatter of one value: more digits where the step's arithmetic needs them."""
+        digits = self.digits.get(key, self.fmt.digits)
+        if digits <= self.fmt.digits:
+            return self.fmt
+        if digits not in self.formatters:
+            self.formatters[digits] = Formatter(digits, self.fmt.scales)
+        return self.formatters[digits]
 
     def put(
         self,
@@ -62,7 +78,8 @@ class StepBuilder:
         if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
             raise ValueError(f"non-finite value {key} = {number}")
         self.references[key] = reference
-        self.values[key] = Value(number, unit, self.fmt.display(number, unit, reference), source)
+        display = self.fmt_of(key).display(number, unit, reference)
+        self.values[key] = Value(number, unit, display, source)
         return key
 
     def scalar(self, key: str) -> float:
@@ -77,7 +94,8 @@ class StepBuilder:
 
     def num(self, key: str) -> str:
         """The scalar value as a LaTeX number."""
-        return self.fmt.latex(self.scalar(key), self.values[key].unit, self.references[key])
+        fmt = self.fmt_of(key)
+        return fmt.latex(self.scalar(key), self.values[key].unit, self.references[key])
 
     def numu(self, key: str) -> str:
         """The scalar value as a LaTeX number with its unit."""
@@ -87,7 +105,7 @@ class StepBuilder:
         """The vector's components as LaTeX numbers (planar vectors get z = 0 when dims = 3)."""
         vector = self.vector(key)
         clean = self.fmt.clean_vector(vector, self.values[key].unit)
-        out = [self.fmt.latex(x) for x in clean]
+        out = [self.fmt_of(key).latex(x) for x in clean]
         return out + ["0"] * (dims - len(out))
 
     def point(self, key: str) -> str:
@@ -107,9 +125,10 @@ class StepBuilder:
     def txtn(self, key: str) -> str:
         """The value as plain text without its unit."""
         value = self.values[key]
+        fmt = self.fmt_of(key)
         if isinstance(value.value, tuple):
-            return self.fmt.text_vector(value.value)
-        return self.fmt.text(value.value, value.unit, self.references[key])
+            return fmt.text_vector(value.value)
+        return fmt.text(value.value, value.unit, self.references[key])
 
     def is_zero(self, key: str) -> bool:
         """True when the value displays as zero (every component, for a vector)."""
@@ -135,6 +154,10 @@ class StepBuilder:
         self.sentences.append(text)
 
     def build(self) -> Step:
+        if self.plan is not None and self.plan_key is not None and self.plan.recording:
+            self.plan.record(
+                self.plan_key, needed_digits(self.values, self.references, self.checks, self.fmt)
+            )
         return Step(
             self.kind,
             self.title,
@@ -251,8 +274,9 @@ def present_solution(
         terms = [(b.scalar(coefficients[i][j]), unknowns[j].latex) for j in range(n)]
         terms_text = [(b.scalar(coefficients[i][j]), unknowns[j].text) for j in range(n)]
         scales.append(scale)
-        b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs[i]))
-        b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = {b.txtn(rhs[i])}.")
+        row = max((b.fmt_of(c) for c in coefficients[i]), key=lambda f: f.digits)
+        b.line("&" + linear_latex(row, None, terms, scale) + " = " + b.num(rhs[i]))
+        b.say(f"Equation {i + 1}: {linear_text(row, None, terms_text, scale)} = {b.txtn(rhs[i])}.")
         operands: list[str] = []
         for j in range(n):
             operands += [coefficients[i][j], unknowns[j].key]
@@ -281,7 +305,8 @@ def present_solution(
         b.check("quotient", u.key, rhs[direct], coefficients[direct][j])
         b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
         _result(b, u, _fraction(b, rhs[direct], coefficients[direct][j]))
-        c_other = b.scalar(coefficients[other_row][other])
+        c_key = coefficients[other_row][other]
+        c_other = b.scalar(c_key)
         if fmt.is_zero(c_other, "", scales[other_row]):
             b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
             return
@@ -294,13 +319,13 @@ def present_solution(
         )
         b.check("quotient", w.key, rest, coefficients[other_row][other])
         b.line(
-            rf"&{term(fmt, c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
+            rf"&{term(b.fmt_of(c_key), c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
             rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
-            rf"{tex.paren(fmt.latex(u.value, u.unit))} = {b.num(rest)}"
+            rf"{tex.paren(b.num(u.key))} = {b.num(rest)}"
         )
         b.say(
             f"Substituting into equation {other_row + 1}: "
-            f"{term_text(fmt, c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
+            f"{term_text(b.fmt_of(c_key), c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
         )
         _result(b, w, _fraction(b, rest, coefficients[other_row][other]))
         return
@@ -347,10 +372,9 @@ def _fraction(b: StepBuilder, numerator: str, denominator: str) -> str:
 
 
 def _result(b: StepBuilder, u: Unknown, fraction: str) -> None:
-    value = b.fmt.latex(u.value, u.unit)
     middle = f" {fraction} =" if fraction else ""
-    b.line(rf"&{u.latex} ={middle} {tex.boxed_result(value + latex_unit(u.unit))}")
+    b.line(rf"&{u.latex} ={middle} {tex.boxed_result(b.numu(u.key))}")
     b.say(
-        f"So {u.text} = {b.fmt.text_value(u.value, u.unit)}{_sense(b.fmt, u)}"
+        f"So {u.text} = {b.txt(u.key)}{_sense(b.fmt, u)}"
         + (f": {u.meaning}." if u.meaning else ".")
     )

@@ -27,6 +27,7 @@ LATEX_UNITS = {
     "deg": r"{}^{\circ}",
     "m^2": r"\mathrm{m^{2}}",
     "1/s": r"\mathrm{1/s}",
+    "1/s^2": r"\mathrm{1/s^{2}}",
 }
 
 

@@ -22,6 +22,7 @@ from solver.rigid import perp
 from solver.scene import Joint, LinkageScene
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, present_solution
+from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
 
@@ -47,6 +48,10 @@ def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
         "m/s^2": largest([p.acceleration for p in points]),
         "rad/s": largest([link.omega for link in links]),
         "rad/s^2": largest([link.alpha for link in links]),
+        "1/s": largest([link.omega for link in links]),
+        "1/s^2": max(
+            largest([link.omega for link in links]) ** 2, largest([link.alpha for link in links])
+        ),
     }
 
 
@@ -104,6 +109,7 @@ class LinkageContext:
     used_vectors: list[tuple[str, str]] = field(default_factory=list)
     shown_velocity: set[str] = field(default_factory=set)
     shown_acceleration: set[str] = field(default_factory=set)
+    plan: DigitPlan | None = None  # digits per value, where the shown arithmetic needs more
 
     # --- the solver's numbers -------------------------------------------------------------------
 
@@ -224,7 +230,7 @@ class LinkageContext:
     # --- names ----------------------------------------------------------------------------------
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        return StepBuilder(self.fmt, kind, title)
+        return StepBuilder(self.fmt, kind, title, self.plan)
 
     def use(self, first: str, second: str) -> None:
         if (first, second) not in self.used_vectors:
@@ -459,11 +465,13 @@ def rigid_acceleration_step(
     t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
     n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
+    w2key = b.put(f"omega^2({link})", omega**2, "1/s^2")
     b.check("cross", t, al, r)
-    b.check("product", n, w, w, r, factor=-1.0)
+    b.check("product", w2key, w, w)
+    b.check("product", n, w2key, r, factor=-1.0)
     b.check("sum", ay, ax, t, n)
     base_tex = V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
-    w2 = ctx.fmt.latex(omega**2)
+    w2 = b.num(w2key)
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
@@ -483,7 +491,7 @@ def rigid_acceleration_step(
         f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
         f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
         f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
-        f"-{ctx.fmt.text(omega**2)} times r, pointing from {target} towards {base}."
+        f"-{b.txtn(w2key)} times r, pointing from {target} towards {base}."
     )
     ctx.shown_acceleration.add(target)
     return b.build()
@@ -687,6 +695,123 @@ def present_vector_unknowns(
     present_solution(b, renamed, coefficients, rhs, prefix)
 
 
+SENSE = {1: "counter-clockwise", -1: "clockwise"}
+
+
+def direction_words(angle: float) -> str:
+    """A direction of motion in words: 'to the right', 'up', 'to the left and down (at 210 deg)'."""
+    degrees = math.degrees(angle) % 360.0
+    for centre, words in ((0, "to the right"), (90, "up"), (180, "to the left"), (270, "down")):
+        if min(abs(degrees - centre), 360.0 - abs(degrees - centre)) < 1.0:
+            return words
+    horizontal = "to the right" if math.cos(angle) > 0 else "to the left"
+    vertical = "up" if math.sin(angle) > 0 else "down"
+    return f"{horizontal} and {vertical} (at {degrees:.0f} deg from the x axis)"
+
+
+def _trend(fmt: Formatter, rate: float, rate_unit: str, change: float, change_unit: str) -> str:
+    """'speeding up', 'slowing down', 'at a steady rate' or 'momentarily at rest'."""
+    if fmt.is_zero(rate, rate_unit):
+        return "momentarily at rest"
+    if fmt.is_zero(change, change_unit):
+        return "at a steady rate"
+    return "speeding up" if rate * change > 0 else "slowing down"
+
+
+def reading_step(ctx: LinkageContext) -> Step:
+    """Reading the answer: each rotation's sense in words and whether the link speeds up or slows
+    down (omega and alpha of the same sign: speeding up), each slider's direction of motion."""
+    fmt, b = ctx.fmt, ctx.builder("reading", "Reading the answer")
+    for link in ctx.scene.moving_links:
+        omega, alpha = ctx.omega(link), ctx.alpha(link)
+        w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
+        al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
+        w_sense = "" if b.is_zero(w) else SENSE[1 if omega > 0 else -1]
+        a_sense = "" if b.is_zero(al) else SENSE[1 if alpha > 0 else -1]
+        trend = _trend(fmt, omega, "rad/s", alpha, "rad/s^2")
+        if not w_sense:
+            words = f"link {link} does not turn at this instant" + (
+                f"; alpha {a_sense} starts it turning {a_sense}" if a_sense else ""
+            )
+        elif not a_sense:
+            words = f"omega {w_sense}, alpha zero: link {link} turns {w_sense} at a steady rate"
+        else:
+            words = f"omega {w_sense}, alpha {a_sense}: link {link} is {trend}"
+        b.line(
+            rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} \quad "
+            rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+        )
+        b.say(f"omega({link}) = {b.txt(w)}, alpha({link}) = {b.txt(al)}: {words}.")
+    index = 0
+    for joint in ctx.scene.joints:
+        if joint.type == "revolute":
+            continue
+        slot = ctx.slot(joint.guide, joint.point)
+        index += 1
+        assert slot.relative_acceleration is not None
+        point = joint.point
+        rel = slot.put(b, "relative_velocity", point)
+        arel = slot.put(b, "relative_acceleration", point)
+        v, a = slot.relative_velocity, slot.relative_acceleration
+        power = b.put(
+            f"v_rel.a_rel({point})",
+            float(np.dot(v, a)),
+            "m^2/s^3",
+            reference=float(np.hypot(*v) * np.hypot(*a)),
+        )
+        b.check("dot", power, rel, arel)
+        frame = "" if joint.guide == ctx.scene.ground else f" relative to link {joint.guide}"
+        if b.is_zero(rel):
+            words = f"{point} does not slide{frame} at this instant"
+        else:
+            heading = b.put(f"heading({point})", math.atan2(v[1], v[0]), "rad")
+            b.check("angle", heading, rel)
+            trend = "speeding up" if float(np.dot(v, a)) > 0 else "slowing down"
+            if b.is_zero(power):
+                trend = "at a steady rate"
+            words = f"{point} slides {direction_words(math.atan2(v[1], v[0]))}{frame}, {trend}"
+        b.line(
+            rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = {b.point(rel)}"
+            rf"{latex_unit('m/s')}, \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = "
+            rf"{b.point(arel)}{latex_unit('m/s^2')} \quad "
+            rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+        )
+        b.say(
+            f"v_rel({point}) = {b.txt(rel)}, a_rel({point}) = {b.txt(arel)} (their dot product "
+            f"{b.txt(power)}: the same sense means speeding up): {words}."
+        )
+    for name, m in ctx.analysis.moving_points.items():
+        source = ("moving_points", name)
+        vk = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+        ak = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+        speed = b.put(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
+        power = b.put(
+            f"v.a({name})",
+            float(np.dot(m.velocity, m.acceleration)),
+            "m^2/s^3",
+            reference=float(np.hypot(*m.velocity) * np.hypot(*m.acceleration)),
+        )
+        b.check("norm", speed, vk)
+        b.check("dot", power, vk, ak)
+        vv = np.asarray(m.velocity, dtype=float)
+        if b.is_zero(vk):
+            words = f"{name} is momentarily at rest"
+        else:
+            trend = "speeding up" if float(np.dot(vv, m.acceleration)) > 0 else "slowing down"
+            if b.is_zero(power):
+                trend = "at a steady speed"
+            words = (
+                f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed "
+                f"{b.txt(speed)}, {trend}"
+            )
+        b.line(
+            rf"&|\vec{{v}}_{{{tex.name(name)}}}| = {b.numu(speed)} \quad \Rightarrow "
+            rf"\text{{{tex.escape_text(words)}}}"
+        )
+        b.say(f"v({name}) = {b.txt(vk)}, a({name}) = {b.txt(ak)}: {words}.")
+    return b.build()
+
+
 def summary_step(ctx: LinkageContext) -> Step:
     """The results: every moving link's omega and alpha, every point's velocity and acceleration."""
     b = ctx.builder("summary", "Results")
@@ -704,5 +829,19 @@ def summary_step(ctx: LinkageContext) -> Step:
             rf"{a_vec(p)} = {b.point(a)}{latex_unit('m/s^2')}"
         )
         b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
+    for name, m in ctx.analysis.moving_points.items():
+        source = ("moving_points", name)
+        x = b.put(f"pos({name})", m.position, "m", (*source, "position"))
+        v = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+        a = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+        rows.append(
+            rf"{v_vec(name)} = {b.point(v)}{latex_unit('m/s')}, & "
+            rf"{a_vec(name)} = {b.point(a)}{latex_unit('m/s^2')} \\ "
+            rf"\text{{moving point }} {tex.name(name)} = {b.point(x)}{latex_unit('m')} &"
+        )
+        b.say(
+            f"Moving point {name} (at {b.txt(x)}): v = {b.txt(v)}, a = {b.txt(a)} "
+            "(absolute, transport plus relative plus Coriolis)."
+        )
     b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
     return b.build()

@@ -51,6 +51,12 @@ def join_sum(parts: list[str]) -> str:
     return out
 
 
+def angle_name(member: Member) -> str:
+    """The one symbol of a straight guide's angle: phi for a fixed slider guide, beta for a
+    turning slot (the same in LaTeX, text and value keys)."""
+    return "beta" if member.kind == "slot" else "phi"
+
+
 class LoopUnavailable(Exception):
     """The loop-closure method does not cover this linkage (the message says why)."""
 
@@ -263,7 +269,7 @@ class LoopMethod:
         if member.kind in ("slider", "slot"):
             assert member.slot is not None
             u = member.slot.direction
-            phi = b.put(f"phi{n}", math.atan2(u[1], u[0]), "rad")
+            phi = b.put(f"{angle_name(member)}{n}", math.atan2(u[1], u[0]), "rad")
             s = b.put(f"s1{n}", float(np.dot(r_np, u)), "m")
             c = b.put(f"c{n}", float(u[0] * r_np[1] - u[1] * r_np[0]), "m")
             uk = b.put(f"u{n}", u, "")
@@ -280,7 +286,8 @@ class LoopMethod:
 
     def deg(self, b: StepBuilder, key: str) -> str:
         """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
-        return tex.paren(self.ctx.fmt.latex(math.degrees(b.scalar(key)), "deg") + r"{}^{\circ}")
+        degrees = b.fmt_of(key).latex(math.degrees(b.scalar(key)), "deg")
+        return tex.paren(degrees + r"{}^{\circ}")
 
     # --- the steps ------------------------------------------------------------------------------
 
@@ -311,7 +318,7 @@ class LoopMethod:
                     num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
                 elif m.kind == "slot":
                     out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\beta_{{{n}}}}}")
-                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
+                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'beta{n}')}}}")
                 else:
                     out.append(rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}")
                     num.append(rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}")
@@ -331,7 +338,7 @@ class LoopMethod:
         for key in b.values:
             if key[0] in "asc" and "(" not in key and key not in ("a", "s", "c"):
                 data.append(f"{key} = {b.txt(key)}")
-            elif key.startswith(("theta1", "phi")):
+            elif key.startswith(("theta1", "phi", "beta")):
                 data.append(
                     f"{key} = {b.txt(key)} ({ctx.fmt.text(math.degrees(b.scalar(key)), 'deg')} deg)"
                 )
@@ -354,7 +361,7 @@ class LoopMethod:
     def member_text(self, m: Member) -> str:
         n = m.number
         if m.kind in ("slider", "slot"):
-            return f"(s1{n} + i c{n}) e^(i phi{n})"
+            return f"(s1{n} + i c{n}) e^(i {angle_name(m)}{n})"
         return f"a{n} e^(i theta1{n})"
 
     def cx(self, b: StepBuilder, key: str) -> str:
@@ -404,7 +411,7 @@ class LoopMethod:
                 a_f = (a, av)
                 if m.kind == "slot":
                     su = self.slide_unknown(m, order)
-                    beta = (f"phi{n}", b.scalar(f"phi{n}"))
+                    beta = (f"beta{n}", b.scalar(f"beta{n}"))
                     terms.append(
                         _Term(
                             rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
@@ -500,7 +507,7 @@ class LoopMethod:
                 "m/s",
                 self.slide_value(m, order),
                 None,
-                f"the sliding speed {where}",
+                f"the signed sliding rate {where} (positive in the direction of its angle)",
             )
         return Unknown(
             f"s_ddot1{n}",
@@ -551,7 +558,14 @@ class LoopMethod:
         text_right = (" + ".join(t.text for t in right) or "0").replace("+ -", "-")
         b.say(
             f"Differentiating the loop {'once' if order == VELOCITY else 'twice'} with respect "
-            "to time (lengths of links are constant, d/dt e^(i theta) = i omega e^(i theta)): "
+            "to time ("
+            + (
+                "the lengths a of the links are constant, while the slider's s varies and is "
+                "differentiated as an unknown; "
+                if any(m.kind in ("slider", "slot") for m in (*loop.left, *loop.right))
+                else "the lengths of the links are constant; "
+            )
+            + "d/dt e^(i theta) = i omega e^(i theta)): "
             f"{text_left} = {text_right}."
         )
         if order == ACCELERATION and loop.kind == "slotted lever":

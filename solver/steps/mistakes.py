@@ -10,6 +10,11 @@ the right one.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+from itertools import pairwise
+
 import numpy as np
 
 from solver.relative_motion import MovingPointMotion
@@ -17,7 +22,7 @@ from solver.rigid import perp
 from solver.spatial import SpatialAnalysis, SpatialChain
 from solver.steps.format import Formatter
 from solver.steps.linkage import LinkageContext, k_cross
-from solver.steps.model import Mistake, Value
+from solver.steps.model import Mistake, Step, Value
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
 
 
@@ -35,11 +40,44 @@ def _mistake(
     wrong: float | np.ndarray,
     right: float | np.ndarray,
     unit: str,
+    *anchors: tuple[str, str],
 ) -> Mistake:
     w, r = _value(fmt, wrong, unit), _value(fmt, right, unit)
     return Mistake(
-        kind, title, f"{text} Wrong: {w.display}; right: {r.display}.", {"wrong": w, "right": r}
+        kind,
+        title,
+        f"{text} Wrong: {w.display}; right: {r.display}.",
+        {"wrong": w, "right": r},
+        anchors,
     )
+
+
+def place_mistakes(steps: Sequence[Step], mistakes: Sequence[Mistake], loop: bool) -> list[Mistake]:
+    """Each mistake with the index of the step it belongs to (its first anchor found among the
+    steps: kind prefix and part of the title). A mistake whose step is not in this solution is
+    left out; in a loop-method solution only the loop's and the moving points' steps count."""
+    placed = []
+    for mistake in mistakes:
+        for kind, part in mistake.anchors:
+            found = next(
+                (
+                    i
+                    for i, step in enumerate(steps)
+                    if step.kind.startswith(kind) and part in step.title
+                ),
+                None,
+            )
+            if found is None:
+                continue
+            if not loop or steps[found].kind.startswith(("loop.", "relative.")):
+                placed.append(replace(mistake, step=found))
+            break
+    return placed
+
+
+def _round2(x: float) -> float:
+    """x rounded to two significant digits (0.3464 -> 0.35), as a hand solution rounds."""
+    return float(f"{x:.1e}") if x else 0.0
 
 
 def _solve2(columns: tuple[np.ndarray, np.ndarray], rhs: np.ndarray) -> np.ndarray:
@@ -100,6 +138,9 @@ class LinkageMistakes:
                 half,
                 right,
                 "m/s^2",
+                ("acceleration.coriolis", step.pin),
+                ("acceleration.lever", step.pin),
+                ("loop.acceleration", ""),
             )
         )
         v_abs = ctx.vel(step.pin)
@@ -115,6 +156,9 @@ class LinkageMistakes:
                     2.0 * k_cross(omega, v_abs),
                     right,
                     "m/s^2",
+                    ("acceleration.coriolis", step.pin),
+                    ("acceleration.lever", step.pin),
+                    ("loop.acceleration", ""),
                 )
             )
 
@@ -154,6 +198,7 @@ class LinkageMistakes:
                     wrong,
                     right,
                     "m/s^2",
+                    ("acceleration.coriolis", point),
                 )
             )
             return
@@ -169,6 +214,8 @@ class LinkageMistakes:
                     k_cross(omega, v_rel),
                     right,
                     "m/s^2",
+                    ("acceleration.coriolis", point),
+                    ("loop.acceleration", ""),
                 )
             )
 
@@ -200,11 +247,13 @@ class LinkageMistakes:
                 "The sign of the normal term -omega^2 r",
                 f"The normal (centripetal) acceleration of {point} about {pivot} is -omega^2 "
                 f"r({pivot},{point}): it points from {point} back towards {pivot}, whatever the "
-                f"sign of omega (omega^2 = ({fmt.text(omega)})^2 = {fmt.text(omega**2)} is "
+                f"sign of omega (omega^2 = ({fmt.text(omega, 'rad/s')})^2 = "
+                f"{fmt.text(omega**2, '1/s^2')} is "
                 "positive). Writing +omega^2 r turns it outwards.",
                 ctx.acc(pivot) + k_cross(alpha, r) + omega**2 * r,
                 a_right,
                 "m/s^2",
+                ("acceleration.rigid", f"of {point} ("),
             )
         )
         self.out.append(
@@ -218,6 +267,7 @@ class LinkageMistakes:
                 ctx.vel(pivot) - k_cross(omega, r),
                 ctx.vel(point),
                 "m/s",
+                ("velocity.rigid", f"of {point} ("),
             )
         )
         if self.nonzero(alpha - omega, "rad/s^2"):
@@ -232,6 +282,7 @@ class LinkageMistakes:
                     ctx.acc(pivot) + k_cross(omega, r) - omega**2 * r,
                     a_right,
                     "m/s^2",
+                    ("acceleration.rigid", f"of {point} ("),
                 )
             )
 
@@ -277,6 +328,8 @@ class LinkageMistakes:
                         wrong,
                         ctx.vel(step.point),
                         "m/s",
+                        ("velocity.dyad.side", f"through link {first.link}"),
+                        ("velocity.dyad", step.point),
                     )
                 )
                 return
@@ -313,6 +366,7 @@ class LinkageMistakes:
                             wrong,
                             v_rel,
                             "m/s",
+                            ("relative.relative_velocity", mp.name),
                         )
                     )
                 self.out.append(
@@ -324,6 +378,7 @@ class LinkageMistakes:
                         k_cross(omega, v_rel),
                         np.asarray(m.coriolis_acceleration),
                         "m/s^2",
+                        ("relative.coriolis", mp.name),
                     )
                 )
             if not self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s"):
@@ -351,8 +406,26 @@ class LinkageMistakes:
                             2.0 * k_cross(ctx.omega(other), v_rel),
                             np.asarray(m.coriolis_acceleration),
                             "m/s^2",
+                            ("relative.coriolis", mp.name),
                         )
                     )
+            tangential = np.asarray(m.relative_tangential)
+            if mp.path.type == "arc" and self.nonzero(tangential, "m/s^2"):
+                self.out.append(
+                    _mistake(
+                        fmt,
+                        "relative.tangential_sense",
+                        "The sense of the tangential relative acceleration",
+                        f"a_rel^tau = s-double-dot tau points along the direction of increasing s "
+                        f"({mp.path.direction} on the arc). Writing it as eps_rel x r with "
+                        "eps_rel counter-clockwise when M runs clockwise (seed 003, task 1) "
+                        "reverses it.",
+                        np.asarray(m.relative_acceleration) - 2.0 * tangential,
+                        np.asarray(m.relative_acceleration),
+                        "m/s^2",
+                        ("relative.relative_acceleration", mp.name),
+                    )
+                )
             if (
                 mp.path.type == "arc"
                 and mp.path.center is not None
@@ -370,13 +443,148 @@ class LinkageMistakes:
                         ctx.vel(centre),
                         np.asarray(m.transport_velocity),
                         "m/s",
+                        ("relative.transport_velocity", mp.name),
                     )
                 )
+
+    # --- the other slips of the seeds (ERRATA.md) ------------------------------------------------
+
+    def alpha_squared(self) -> None:
+        """E000-T2-4: -(-3)^2 r, the angular acceleration squared in the normal term."""
+        ctx, fmt = self.ctx, self.fmt
+        found = self.first_rotation()
+        if found is None:
+            return
+        link, pivot, point = found
+        omega, alpha = ctx.omega(link), ctx.alpha(link)
+        if not self.nonzero(alpha**2 - omega**2, "1/s^2"):
+            return
+        r = ctx.pos(point) - ctx.pos(pivot)
+        self.out.append(
+            _mistake(
+                fmt,
+                "normal.alpha_squared",
+                "omega squared, not alpha squared, in the normal term",
+                f"The normal term of {point} is -omega({link})^2 r = -("
+                f"{fmt.text(omega, 'rad/s')})^2 r; seed 000 type 2 wrote -(-3)^2 with the angular "
+                f"acceleration. With alpha({link})^2 = {fmt.text(alpha**2)} the acceleration "
+                "comes out wrong.",
+                ctx.acc(pivot) + k_cross(alpha, r) - alpha**2 * r,
+                ctx.acc(point),
+                "m/s^2",
+                ("acceleration.rigid", f"of {point} ("),
+                ("loop.acceleration", ""),
+            )
+        )
+
+    def trigonometry(self) -> None:
+        """E000-T3-1: cos phi = 0.3/0.4 (the wrong sides) where sin phi = 0.3/0.5."""
+        ctx, fmt = self.ctx, self.fmt
+        drivers = {s.link for s in ctx.analysis.plan.steps if isinstance(s, DriverStep)}
+        for link in ctx.scene.moving_links:
+            points = ctx.scene.links[link].points
+            if link in drivers or len(points) < 2:
+                continue
+            d = np.array(fmt.clean_vector(tuple(ctx.pos(points[1]) - ctx.pos(points[0])), "m"))
+            length = float(np.hypot(*d))
+            right = math.degrees(math.atan2(d[1], d[0]))
+            wrong = math.degrees(math.acos(abs(d[1]) / length))
+            if abs(abs(right) - wrong) < 1e-3:
+                continue
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "position.trigonometry",
+                    "Trigonometry of the position: the right sides for the ratio",
+                    f"The angle of link {link} ({points[0]} to {points[1]}) has cos = dx/L = "
+                    f"{fmt.text(d[0])}/{fmt.text(length)} and sin = dy/L = {fmt.text(d[1])}/"
+                    f"{fmt.text(length)}, both; its quadrant follows from the signs (atan2). "
+                    "Taking the cosine of the height over the length (seed 000 type 3 wrote "
+                    "cos phi = 0.3/0.4 for sin phi = 0.3/0.5) gives another angle, and every "
+                    "vector after it is wrong.",
+                    wrong,
+                    right,
+                    "deg",
+                    ("loop.position", ""),
+                    ("positions", ""),
+                )
+            )
+            return
+
+    def pole_velocity(self) -> None:
+        """E000-T1-5: the velocity pole from C computed with a velocity that is not v_C."""
+        ctx, fmt = self.ctx, self.fmt
+        for link in ctx.scene.moving_links:
+            result = ctx.analysis.links[link]
+            points = ctx.scene.links[link].points
+            if result.velocity_pole is None or ctx.ground_pivot(link) is not None:
+                continue
+            if len(points) < 2:
+                continue
+            x, y = points[1], points[0]
+            omega = ctx.omega(link)
+            if not self.nonzero(ctx.vel(x) - ctx.vel(y), "m/s"):
+                continue
+            r_wrong = -perp(ctx.vel(y)) / omega  # v_Y = omega x r  =>  r = -perp(v) / omega
+            self.out.append(
+                _mistake(
+                    fmt,
+                    "poles.wrong_velocity",
+                    "The pole from the velocity of the same point",
+                    f"v({x}) = omega({link}) x r(P,{x}) must use the velocity of {x} itself "
+                    f"({fmt.text_vector(tuple(ctx.vel(x)), 'm/s')}); with the velocity of {y} "
+                    f"({fmt.text_vector(tuple(ctx.vel(y)), 'm/s')}) the pole lands elsewhere "
+                    "(seed 000 type 1 used (0.5, 0, 0) for v_C = (1, 0.5, 0)).",
+                    ctx.pos(x) - r_wrong,
+                    np.asarray(result.velocity_pole),
+                    "m",
+                    ("poles.velocity", f"link {link}"),
+                )
+            )
+            return
+
+    def rounding(self) -> None:
+        """E000-T2-6: x = sqrt(0.12) = 0.346 rounded to 0.35 changes the crank's length."""
+        ctx, fmt = self.ctx, self.fmt
+        rounded = {p: np.array([_round2(c) for c in ctx.pos(p)]) for p in ctx.scene.points}
+        worst = None
+        for link in ctx.scene.links:
+            points = ctx.scene.links[link].points
+            for a, b in pairwise(points):
+                exact = float(np.hypot(*(ctx.pos(b) - ctx.pos(a))))
+                approx = float(np.hypot(*(rounded[b] - rounded[a])))
+                change = abs(approx - exact) / exact if exact > 0 else 0.0
+                if change > 1e-3 and (worst is None or change > worst[0]):
+                    worst = (change, link, a, b, approx, exact)
+        if worst is None:
+            return
+        _, link, a, b, approx, exact = worst
+        self.out.append(
+            _mistake(
+                fmt,
+                "inputs.rounding",
+                "Rounding the inputs consistently",
+                f"Rounded to two significant digits, the coordinates of {a} and {b} no longer "
+                f"give the length of link {link}: |{a}{b}| becomes {fmt.text(approx)} m. Seed 000 "
+                "type 2 rounded x = 0.346 m to 0.35 m and so solved another mechanism (crank "
+                "0.4031 m instead of 0.4 m). Keep the inputs exact (or round all of them from "
+                "the same geometry) and round only the results.",
+                approx,
+                exact,
+                "m",
+                ("loop.position", ""),
+                ("positions", ""),
+            )
+        )
 
     def all(self) -> list[Mistake]:
         self.coriolis()
         self.unknowns()
         self.signs()
+        self.alpha_squared()
+        self.trigonometry()
+        self.pole_velocity()
+        self.rounding()
         self.moving_points()
         seen: set[tuple[str, str]] = set()
         unique = []
@@ -415,6 +623,7 @@ def spatial_mistakes(
                         wrong,
                         body.alpha,
                         "rad/s^2",
+                        ("spatial.alpha", f"body {joint.name}"),
                     )
                 )
                 break
@@ -431,6 +640,7 @@ def spatial_mistakes(
                     motion.acceleration - 2.0 * motion.centripetal,
                     motion.acceleration,
                     "m/s^2",
+                    ("spatial.point.acceleration", f"of {point.name}"),
                 )
             )
             break
@@ -447,6 +657,7 @@ def spatial_mistakes(
                     motion.acceleration - 0.5 * motion.coriolis,
                     motion.acceleration,
                     "m/s^2",
+                    ("spatial.point.acceleration", f"of {point.name}"),
                 )
             )
             break
@@ -456,6 +667,7 @@ def spatial_mistakes(
             "Cross products of unit vectors",
             "Unit vectors cross in cyclic order: E1 x E2 = E3, E2 x E3 = E1, E3 x E1 = "
             "E2 (and reversed order gives the minus sign). E3 x E1 is E2, not E1.",
+            anchors=(("spatial.axis_rate", ""),),
         )
     )
     out.append(
@@ -465,6 +677,7 @@ def spatial_mistakes(
             "A point fixed in its body has v_rel = 0 and a_rel = 0: of the five terms "
             "only a_O, alpha x r and omega x (omega x r) remain. They reappear for a "
             "point carried by a prismatic joint.",
+            anchors=(("spatial.point.acceleration", ""),),
         )
     )
     return out
@@ -490,6 +703,7 @@ def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
                         ctx.omega(step.link) * r,
                         ctx.vel(others[0]),
                         "m/s",
+                        ("loop.velocity", ""),
                     )
                 )
                 break
@@ -504,6 +718,7 @@ def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
                 "s and its derivatives are real numbers: s-double-dot is the real part of the "
                 "acceleration loop equation along the guide. An extra i in front of a term of "
                 "s-double-dot (as in seed 001, eq. 10) would give it an imaginary part.",
+                anchors=(("loop.acceleration", ""),),
             )
         )
     return out

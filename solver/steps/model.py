@@ -14,6 +14,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+from solver.spatial import SpatialAnalysis
+
 Number = float | tuple[float, ...]
 
 Relation = Literal[
@@ -86,9 +88,10 @@ class Step:
     text: str
     values: Mapping[str, Value] = field(default_factory=dict)
     checks: tuple[Check, ...] = ()
+    figure: str = ""  # a standalone SVG drawing beside the step ('' for none)
 
     def as_json(self) -> dict[str, Any]:
-        return {
+        out = {
             "kind": self.kind,
             "title": self.title,
             "latex": self.latex,
@@ -96,6 +99,9 @@ class Step:
             "values": {k: v.as_json() for k, v in self.values.items()},
             "checks": [c.as_json() for c in self.checks],
         }
+        if self.figure:
+            out["figure"] = self.figure
+        return out
 
 
 @dataclass(frozen=True)
@@ -107,12 +113,16 @@ class Mistake:
     title: str
     text: str
     values: Mapping[str, Value] = field(default_factory=dict)
+    # where it belongs: (step kind prefix, part of the step's title), alternatives in order
+    anchors: tuple[tuple[str, str], ...] = ()
+    step: int | None = None  # the index of that step in the solution, once placed
 
     def as_json(self) -> dict[str, Any]:
         return {
             "kind": self.kind,
             "title": self.title,
             "text": self.text,
+            "step": self.step,
             "values": {k: v.as_json() for k, v in self.values.items()},
         }
 
@@ -131,6 +141,16 @@ class Solution:
     method: str
     requested_method: str
     digits: int
+
+    @property
+    def convention(self) -> str:
+        """The sign convention, one sentence for the page's header (planar or spatial)."""
+        if isinstance(self.analysis, SpatialAnalysis):
+            return (
+                "vectors are components in the fixed frame E1, E2, E3; angular velocities "
+                "follow the right-hand rule about their axes"
+            )
+        return "z out of the page, angular velocities counter-clockwise positive"
 
     @property
     def fell_back(self) -> bool:

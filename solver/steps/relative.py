@@ -8,7 +8,8 @@ For each moving point, at the scene's instant t:
 - relative: v_rel = s' tau along the path tangent (no carrier rate in it),
   a_rel = s'' tau + (s'^2 / R) n, tangential and normal (towards the centre of the arc);
 - Coriolis: a_cor = 2 omega_carrier x v_rel, or why it is zero (the carrier translates);
-- v = v_tr + v_rel and a = a_tr + a_rel + a_cor.
+- v = v_tr + v_rel and a = a_tr + a_rel + a_cor;
+- on an arc, the times at which M is opposite its start (s = pi R) and back at it (s = 2 pi R).
 """
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import sympy
+from scipy.optimize import brentq
 
 from solver.laws import parse_time_law
 from solver.relative_motion import MovingPointMotion
@@ -26,6 +29,9 @@ from solver.steps.builder import StepBuilder
 from solver.steps.format import latex_unit
 from solver.steps.linkage import V0, LinkageContext, det_row_z, k_cross, split_part
 from solver.steps.model import Step
+
+EVENT_HORIZON = 60.0  # s: the event search looks this far ahead (the /events default t_max)
+EVENT_SAMPLES = 6001
 
 
 class MovingPointSteps:
@@ -388,8 +394,70 @@ class MovingPointSteps:
         out.append(b.build())
         return out
 
+    def event_step(self) -> Step | None:
+        """s(t_e) = pi R (M opposite its start) and s(t_e) = 2 pi R (M back at its start), each
+        solved for the first t_e > 0 by a sign change of s(t) - level and Brent's method."""
+        route = self.mp.path
+        if route.type != "arc":
+            return None
+        assert route.center is not None
+        law = parse_time_law(self.mp.s_law)
+        s_of_t = sympy.lambdify(sympy.Symbol("t"), law.expression, "math")
+        radius = float(
+            np.hypot(*(self.ctx.scene.drawn(route.start) - self.ctx.scene.drawn(route.center)))
+        )
+        b = self.ctx.builder(
+            "relative.event", f"When {self.name} reaches the far end and its start"
+        )
+        r = b.put("R", radius, "m")
+        pi = b.put("pi", math.pi, "")
+        grid = np.linspace(0.0, EVENT_HORIZON, EVENT_SAMPLES)
+        found = False
+        for turns, where in (
+            (1, "opposite its start (half a turn, s = pi R)"),
+            (2, f"back at {route.start} (a full turn, s = 2 pi R)"),
+        ):
+            level = turns * math.pi * radius
+            values = np.array([float(s_of_t(float(t))) for t in grid]) - level
+            crossing = np.nonzero(np.sign(values[1:]) * np.sign(values[:-1]) <= 0)[0]
+            if crossing.size == 0:
+                continue
+            k = int(crossing[0])
+            t_e = float(
+                brentq(
+                    lambda t, level=level: float(s_of_t(t)) - level,
+                    grid[k],
+                    grid[k + 1],
+                    xtol=1e-14,
+                    rtol=1e-15,
+                )
+            )
+            lv = b.put(f"s_{turns}", level, "m", reference=level)
+            te = b.put(f"t_{turns}", t_e, "s")
+            b.check("product", lv, pi, r, factor=float(turns))
+            factor = "" if turns == 1 else "2"
+            b.line(
+                rf"&s(t) = {factor}\pi R = {b.numu(lv)} \;\Rightarrow\; "
+                rf"{tex.law(law.expression, self.ctx.fmt.digits)} = {b.num(lv)} \;\Rightarrow\; "
+                rf"t = {tex.boxed_result(b.numu(te))}"
+            )
+            b.say(
+                f"{self.name} is {where} when s(t) = {b.txt(lv)}: the first positive root of "
+                f"{self.mp.s_law} = {b.txtn(lv)} is t = {b.txt(te)}."
+            )
+            found = True
+        if not found:
+            return None
+        return b.build()
+
     def steps(self) -> list[Step]:
-        return [self.law_step(), *self.velocity_steps(), *self.acceleration_steps()]
+        event = self.event_step()
+        return [
+            self.law_step(),
+            *self.velocity_steps(),
+            *self.acceleration_steps(),
+            *([event] if event is not None else []),
+        ]
 
 
 def moving_point_steps(ctx: LinkageContext) -> list[Step]:

@@ -9,22 +9,35 @@ method; the solution then says so in its first step and in ``method``/``requeste
 
 from __future__ import annotations
 
-from solver.analysis import analyze
+from dataclasses import replace
+
+from solver.analysis import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
 from solver.scene import LinkageScene
 from solver.spatial import SpatialChain, analyze_spatial_chain
 from solver.steps import latex as tex
+from solver.steps.classification import classification_steps
+from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter
+from solver.steps.graphical import graphical_steps, mechanism_figure
+from solver.steps.instant_centres import instant_centres_step
 from solver.steps.linkage import (
     LinkageContext,
     data_step,
     positions_step,
+    reading_step,
     summary_step,
     unit_scales,
 )
 from solver.steps.loop import LoopUnavailable, loop_steps
-from solver.steps.mistakes import linkage_mistakes, loop_mistakes, spatial_mistakes
+from solver.steps.mistakes import (
+    linkage_mistakes,
+    loop_mistakes,
+    place_mistakes,
+    spatial_mistakes,
+)
 from solver.steps.model import Solution, Step
+from solver.steps.position import position_steps
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
 from solver.steps.vector import vector_steps
@@ -47,10 +60,12 @@ def _fallback_step(requested: str, reason: str) -> Step:
     return Step("fallback", title, r"\text{" + tex.escape_text(title) + "}", text)
 
 
-def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
-    analysis = analyze(scene)
-    fmt = Formatter(digits, unit_scales(analysis, scene.size))
-    ctx = LinkageContext(scene, analysis, fmt)
+def _linkage_steps(
+    scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str, plan: DigitPlan
+) -> tuple[list[Step], LinkageContext, str]:
+    """The steps by ``method`` (or the vector method, when it does not apply), the context they
+    were built in, and the method used."""
+    ctx = LinkageContext(scene, analysis, fmt, plan=plan)
     used = method
     lead: list[Step] = []
     if method == "loop":
@@ -59,17 +74,41 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
         except LoopUnavailable as why:
             reason = str(why)
             lead.append(_fallback_step("loop-closure", reason[:1].upper() + reason[1:] + "."))
-            ctx = LinkageContext(scene, analysis, fmt)
+            ctx = LinkageContext(scene, analysis, fmt, plan=plan)
             used = "vector"
             body = vector_steps(ctx)
     else:
         body = vector_steps(ctx)
     body += moving_point_steps(ctx)
-    steps = [*lead, data_step(ctx, _SENTENCES[used]), positions_step(ctx), *body, summary_step(ctx)]
+    body += graphical_steps(ctx)
+    body.append(instant_centres_step(ctx))
+    positions = positions_step(ctx)
+    positions = replace(positions, figure=mechanism_figure(ctx))
+    steps = [
+        *lead,
+        data_step(ctx, _SENTENCES[used]),
+        positions,
+        *position_steps(ctx),
+        *classification_steps(ctx),
+        *body,
+        reading_step(ctx),
+        summary_step(ctx),
+    ]
+    return steps, ctx, used
+
+
+def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
+    analysis = analyze(scene)
+    fmt = Formatter(digits, unit_scales(analysis, scene.size))
+    plan = DigitPlan()
+    steps, ctx, used = _linkage_steps(scene, analysis, fmt, method, plan)
+    if plan.replay():  # some arithmetic needs more digits to recompute: build again with them
+        steps, ctx, used = _linkage_steps(scene, analysis, fmt, method, plan)
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)
-    return Solution(tuple(steps), tuple(mistakes), analysis, used, method, digits)
+    placed = place_mistakes(steps, mistakes, used == "loop")
+    return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
 
 
 def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4) -> Solution:
@@ -99,6 +138,10 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
                 "to close; its velocities follow from the composition of angular velocities.",
             )
         )
-    steps = lead + spatial_steps(scene, analysis, fmt)
-    mistakes = spatial_mistakes(scene, analysis, fmt)
+    plan = DigitPlan()
+    body = spatial_steps(scene, analysis, fmt, plan)
+    if plan.replay():
+        body = spatial_steps(scene, analysis, fmt, plan)
+    steps = lead + body
+    mistakes = place_mistakes(steps, spatial_mistakes(scene, analysis, fmt), False)
     return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)

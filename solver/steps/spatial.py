@@ -14,6 +14,7 @@ import numpy as np
 from solver.spatial import GROUND, SpatialAnalysis, SpatialChain, SpatialJoint
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
+from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
 
@@ -45,13 +46,21 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
 
 
 class SpatialSteps:
-    def __init__(self, chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> None:
+    def __init__(
+        self,
+        chain: SpatialChain,
+        analysis: SpatialAnalysis,
+        fmt: Formatter,
+        plan: DigitPlan | None = None,
+    ) -> None:
+        self.plan = plan
         self.chain = chain
         self.analysis = analysis
         self.fmt = Formatter(fmt.digits, _scales(chain, analysis))
+        self.shown: set[str] = set()  # points already shown (at a joint origin)
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        return StepBuilder(self.fmt, kind, title)
+        return StepBuilder(self.fmt, kind, title, self.plan)
 
     def col(self, b: StepBuilder, key: str) -> str:
         return V0 if b.is_zero(key) else b.col(key)
@@ -107,6 +116,16 @@ class SpatialSteps:
         return b.put(
             f"{name}({parent})", value, unit, None if index == 0 else ("bodies", parent, name)
         )
+
+    def point_at_origin(self, index: int, joint: SpatialJoint) -> str | None:
+        """A named point of body k-1 at the origin of joint k: its own steps carry the origin's
+        motion, so the origin is not computed twice."""
+        parent = self.parent_name(index)
+        tolerance = 1e-12 * max(1.0, float(np.max(np.abs(joint.origin))))
+        for point in self.chain.points:
+            if point.body == parent and np.max(np.abs(point.position - joint.origin)) <= tolerance:
+                return point.name
+        return None
 
     def body_steps(self, index: int, joint: SpatialJoint) -> list[Step]:
         body = self.analysis.bodies[joint.name]
@@ -196,7 +215,14 @@ class SpatialSteps:
             )
             b.say(f"alpha({joint.name}) = alpha({parent}) = {b.txt(al)} (prismatic joint).")
         out.append(b.build())
-        out += self.origin_steps(index, joint, w_parent, al_parent, o_parent, v_parent, a_parent)
+        at_origin = self.point_at_origin(index, joint)
+        if at_origin is not None:
+            self.shown.add(at_origin)
+            out += self.point_steps(at_origin, f" (the origin O{joint.name} of joint {joint.name})")
+        else:
+            out += self.origin_steps(
+                index, joint, w_parent, al_parent, o_parent, v_parent, a_parent
+            )
         return out
 
     def origin_steps(
@@ -302,7 +328,7 @@ class SpatialSteps:
         out.append(b.build())
         return out
 
-    def point_steps(self, name: str) -> list[Step]:
+    def point_steps(self, name: str, role: str = "") -> list[Step]:
         point = next(p for p in self.chain.points if p.name == name)
         motion = self.analysis.points[name]
         if point.body == GROUND:
@@ -317,7 +343,7 @@ class SpatialSteps:
         r_np = point.position - body.origin
         n, k = tex.name(name), tex.name(point.body)
         out = []
-        b = self.builder("spatial.point.velocity", f"Velocity of {name}")
+        b = self.builder("spatial.point.velocity", f"Velocity of {name}{role}")
         vo = b.put(f"v(O{point.body})", body.velocity_origin, "m/s")
         w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
         r = b.put(f"r(O{point.body},{name})", r_np, "m")
@@ -340,7 +366,7 @@ class SpatialSteps:
         )
         out.append(b.build())
         b = self.builder(
-            "spatial.point.acceleration", f"Acceleration of {name}: the five-term formula"
+            "spatial.point.acceleration", f"Acceleration of {name}{role}: the five-term formula"
         )
         src = ("points", name, "acceleration_terms")
         ao = b.put("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
@@ -429,11 +455,14 @@ class SpatialSteps:
         for index, joint in enumerate(self.chain.joints):
             out += self.body_steps(index, joint)
         for point in self.chain.points:
-            out += self.point_steps(point.name)
+            if point.name not in self.shown:
+                out += self.point_steps(point.name)
         out.append(self.summary())
         return out
 
 
-def spatial_steps(chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> list[Step]:
+def spatial_steps(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter, plan: DigitPlan | None = None
+) -> list[Step]:
     """The steps of a spatial chain's solution (numbers from ``analysis``)."""
-    return SpatialSteps(chain, analysis, fmt).steps()
+    return SpatialSteps(chain, analysis, fmt, plan).steps()

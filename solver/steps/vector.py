@@ -186,7 +186,8 @@ class VectorMethod:
                 "m/s",
                 float(np.dot(sliding.relative_velocity, u)),
                 None,
-                f"the speed of {point} along the slot of {guide}",
+                f"the signed sliding rate of {point} along the slot of {guide} (positive in the "
+                "slot's direction u)",
             )
         assert sliding.relative_acceleration is not None
         return Unknown(
@@ -599,7 +600,12 @@ class VectorMethod:
         out.append(
             self.equate(
                 f"{what}.dyad.solve",
-                f"Components of the {what} of {point}: geometric connection = relative connection",
+                f"Components of the {what} of {point}: "
+                + (
+                    "geometric connection = relative connection"
+                    if lines
+                    else f"the two expressions of the {what} of {point} are equal"
+                ),
                 sides[0],
                 sides[1],
                 f"Both expressions give the {what} of the same point {point}; equating their x "

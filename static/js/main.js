@@ -155,7 +155,9 @@ class App {
     }
     this.source = { type: 'example', file };
     this.setExampleFields(scene);
-    await this.commitOrReport(scene, view);
+    // A worked example opens at the book's pose (its drawn pose, its driver angle or its time),
+    // not at the first sample of the sweep (a limit position for a rocking crank).
+    await this.commitOrReport(scene, view, S.ownInstant(scene));
   }
 
   /** A scene document from elsewhere (an uploaded file, the editor): analysed at once. */
@@ -192,9 +194,9 @@ class App {
   }
 
   /** Load a chosen mechanism; an error has no field to sit next to, so it goes to the status line. */
-  async commitOrReport(scene, view) {
+  async commitOrReport(scene, view, instant = null) {
     try {
-      await this.loadScene(scene, view ? { instant: view.view?.instant, keepChoices: true } : {});
+      await this.loadScene(scene, view ? { instant: view.view?.instant, keepChoices: true } : { instant });
     } catch (err) {
       this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
     }

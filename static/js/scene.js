@@ -61,6 +61,16 @@ export function sceneAt(scene, param, value) {
   return copy;
 }
 
+/** The instant a scene itself asks for: its time (time laws), else its first driver's angle_deg
+ * or drawn angle (rad, absolute). */
+export function ownInstant(scene) {
+  if (isTimeDriven(scene)) return scene.time ?? 0;
+  const driver = scene.drivers?.[0];
+  if (!driver) return null;
+  if (typeof driver.angle_deg === 'number') return (driver.angle_deg * Math.PI) / 180;
+  return drawnAngle(scene, driver.link);
+}
+
 /** The drawn-pose angle of a link (direction from its first to its second point). */
 export function drawnAngle(scene, linkName) {
   const pts = scene.links?.[linkName]?.points;

@@ -8,6 +8,7 @@ land in test-artifacts/screenshots/ for a person to look at.
 from __future__ import annotations
 
 import json
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -435,3 +436,36 @@ def test_close_approach_to_a_change_point_is_shown(app: AppPage) -> None:
         lambda: "change point" in page.inner_text("#view-message"), what="the close-approach note"
     )
     assert "clearance could switch assembly" in page.inner_text("#view-message")
+
+
+def test_seed_example_opens_at_the_books_pose(app: AppPage) -> None:
+    """Issue 12: S000-T1 opens with the crank at 90 deg as drawn in the seed (not at the first
+    sample of its sweep, a limit position of the rocking crank); motion reduced so it stays."""
+    app.page.emulate_media(reduced_motion="reduce")
+    app.open()
+    page = app.page
+    choose(app, "example:S000-T1.json")
+    wait_until(lambda: "S000" in page.inner_text("#view-title"), what="the title")
+    page.wait_for_selector("#linkage .link", state="attached")
+    wait_analysed(page)
+    instant = float(page.get_attribute("#linkage", "data-instant") or "nan")
+    assert abs(instant - math.pi / 2) < 0.02, instant
+
+
+def test_printable_solution_page_with_figures(app: AppPage) -> None:
+    """Issue 12: the printable page shows the mechanism and the polygons beside the steps; every
+    formula is typeset; in print the figures are black and white. Screenshotted."""
+    page = app.page
+    page.goto(f"{app.url}/api/v1/solution.html?preset=quick_return&crank=0.12")
+    page.wait_for_function("document.querySelectorAll('.math.pending').length === 0")
+    assert page.locator(".math.error").count() == 0
+    assert page.locator("figure.figure svg").count() >= 3
+    box = page.locator("figure.figure svg").first.bounding_box()
+    assert box is not None and box["width"] > 100 and box["height"] > 50
+    app.screenshot("solution-figures", "figure.figure >> nth=1")
+    page.emulate_media(media="print")
+    stroke = page.evaluate(
+        "getComputedStyle(document.querySelector('figure.figure svg line[data-vector]')).stroke"
+    )
+    assert stroke in ("rgb(0, 0, 0)", "#000000"), stroke
+    app.screenshot("solution-print")

@@ -186,3 +186,19 @@ def test_printable_page_errors_are_problems() -> None:
 def test_vendored_katex_is_served() -> None:
     for path in ("/vendor/katex/katex.min.js", "/vendor/katex/katex.min.css"):
         assert client.get(path).status_code == 200
+
+
+def test_printable_page_honours_every_preset_parameter() -> None:
+    """GET /solution.html?preset=four_bar&crank=0.2: the page is the solution of the preset with
+    crank = 0.2 m (the same steps as POST /solution of that scene), never the default silently."""
+    response = client.get("/api/v1/solution.html?preset=four_bar&crank=0.2&crank_angle_deg=50")
+    assert response.status_code == 200
+    scene = client.post("/api/v1/presets/four_bar", json={"crank": 0.2, "crank_angle_deg": 50})
+    body = post({"scene": scene.json()}).json()
+    assert _page(response.text).latex == [s["latex"] for s in body["steps"] if s["latex"]]
+    default = _page(client.get("/api/v1/solution.html?preset=four_bar").text).latex
+    assert _page(response.text).latex != default
+    for bad in ("cranck=0.2", "crank=abc", "crank=-1", "crank=nan", "crank=0.2&crank=0.3"):
+        response = client.get(f"/api/v1/solution.html?preset=four_bar&{bad}")
+        assert response.status_code == 422, bad
+        assert response.json()["code"] == "invalid_scene", bad

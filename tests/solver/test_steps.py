@@ -594,12 +594,14 @@ def _boxed(latex: str) -> list[str]:
 
 
 def _boxed_results_are_listed_values(step: Step, digits: int) -> None:
-    """Every number in a doubly underlined result is one of the step's values as displayed."""
-    fmt = Formatter(digits)
+    """Every number in a doubly underlined result is one of the step's values as displayed (with
+    ``digits`` or, where the step's arithmetic needs them to recompute, more)."""
     shown = {"0"}
-    for v in step.values.values():
-        for x in v.value if isinstance(v.value, tuple) else (v.value,):
-            shown.update((fmt.latex(x), fmt.latex(-x)))
+    for d in range(digits, 16):
+        fmt = Formatter(d)
+        for v in step.values.values():
+            for x in v.value if isinstance(v.value, tuple) else (v.value,):
+                shown.update((fmt.latex(x), fmt.latex(-x)))
     boxes = _boxed(step.latex)
     for boxed in boxes:
         for number in _NUMBER.findall(boxed):
