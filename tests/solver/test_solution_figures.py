@@ -20,8 +20,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from server.responses import analysis_response
 from solver.presets import PRESETS, build_preset
+from solver.results import analysis_body
 from solver.scene import parse_linkage
 from solver.steps import Solution, solve
 
@@ -97,7 +97,7 @@ def test_figures_are_svg_drawn_to_their_stated_scale(
     assert {"graphical.velocity", "graphical.acceleration"} <= kinds
     drawn = figures(solution)
     assert {k for k, _ in drawn} >= {"positions", "graphical.velocity", "graphical.acceleration"}
-    body = analysis_response(solution.analysis)
+    body = analysis_body(solution.analysis, [])
     measured = 0
     for kind, root in drawn:
         assert root.tag == f"{SVG}svg"
@@ -129,7 +129,7 @@ def test_a_wrongly_scaled_drawing_is_caught() -> None:
     step = next(s for s in solution.steps if s.kind == "graphical.velocity")
     root = ET.fromstring(step.figure)
     scale = 2 * float(root.attrib["data-scale"])
-    body = analysis_response(solution.analysis)
+    body = analysis_body(solution.analysis, [])
     line = next(x for x in root.iter(f"{SVG}line") if "data-vector" in x.attrib)
     x1, y1, x2, y2 = (float(line.attrib[a]) for a in ("x1", "y1", "x2", "y2"))
     drawn_vector = np.array([x2 - x1, -(y2 - y1)]) / 10.0 * scale
