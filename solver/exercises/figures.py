@@ -71,6 +71,8 @@ class Canvas:
 def _nice_length(target: float) -> float:
     """1, 2 or 5 times a power of ten, at most ``target``."""
     power = 10.0 ** math.floor(math.log10(target))
+    if power > target:  # log10 rounded up to a whole number just above the target
+        power /= 10.0
     return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= target)
 
 
