@@ -61,7 +61,10 @@ AGREEMENT = 1e-9  # relative: baseline and solver must give the same answers to 
 
 # Targets of issue 2 (Speed) and issue 4 (worked solutions).
 INSTANT_TARGET_S = 1e-3
-SWEEP_RATIO_TARGET = 3.0
+SWEEP_RATIO_TARGET = 2.0  # issue 8: against the lean closed form (issue 2 had 3x a heavier one)
+# Issue 8: a 360-sample sweep under pylinkage's numba-compiled step_fast_with_kinematics, 0.32 ms
+# as measured in the issue (pylinkage is not installed here, so the number is the issue's).
+SWEEP_360_TARGET_S = 0.32e-3
 HTTP_INSTANT_TARGET_S = 10e-3
 SOLUTION_TARGET_S = 20e-3
 
@@ -314,6 +317,7 @@ class Results:
     sections: dict[str, str]  # markdown sections by title
     instant_p50: float | None = None
     sweep_ratio: float | None = None
+    sweep_360_p50: float | None = None
     http_p50: float | None = None
     solution_p50: float | None = None
 
@@ -359,6 +363,8 @@ def measure_sweeps(scene: LinkageScene, budget: Budget, res: Results) -> str:
         ratio = ours.p50 / base.p50
         if n == 3600:
             res.sweep_ratio = ratio
+        if n == 360:
+            res.sweep_360_p50 = ours.p50
         rows.append(
             [
                 str(n),
@@ -617,6 +623,12 @@ def targets(res: Results) -> str:
                 "n/a" if ratio is None else f"{ratio:.1f}x",
                 f"<= {SWEEP_RATIO_TARGET:g}x",
                 None if ratio is None else ratio <= SWEEP_RATIO_TARGET,
+            ),
+            row(
+                "360-sample sweep, all quantities, in-process (p50)",
+                ms(res.sweep_360_p50),
+                "< 0.32 ms (pylinkage + numba, issue 8)",
+                below(res.sweep_360_p50, SWEEP_360_TARGET_S),
             ),
             row(
                 "one instant over HTTP, /analyze (p50)",

@@ -1,11 +1,14 @@
 """A sweep of the first driver through one revolution, or through its feasible range.
 
-The whole sweep is one vectorised run of the plan with branch continuation. Where the linkage
-cannot turn fully, the feasible interval around the starting angle is found on a probe grid,
-its ends (the limit positions) are refined by bisection, and the samples are spread strictly
-inside it (at a limit position itself the velocity equations are singular). Samples that land
-exactly on a change point (a parallelogram's crossing: the velocity equations singular, the
-motion smooth) take their rates from their two neighbours and are listed in
+The whole sweep is one vectorised run of the plan with branch continuation (one sample more than
+asked, back at the start, so that the closing interval is searched for close approaches too).
+Where the linkage cannot turn fully (a sample that does not close, or a window between two
+samples found by the closest-approach search), the feasible interval around the starting angle
+is found on a probe grid, its ends (the limit positions) are refined by bisection, and the
+samples are spread strictly inside it (at a limit position itself the velocity equations are
+singular). Close approaches of a group's two branches (within 1e-3 of the size) are reported.
+Samples that land exactly on a change point (a parallelogram's crossing: the velocity equations
+singular, the motion smooth) take their rates from their two neighbours and are listed in
 ``singular_samples``.
 """
 
