@@ -12,7 +12,7 @@ assembly, at any sample count.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -203,12 +203,12 @@ class _Assembler:
             if p not in self.points:
                 self.points[p] = motion.point(self.scene.drawn(p))
 
-    def close(self, margin: Array, message: str) -> None:
+    def close(self, margin: Array, message: Callable[[], str]) -> None:
         """Record a group's relative margin, and its message where it newly fails to close."""
         tolerance = dyads.COINCIDENCE_TOLERANCE
         failing = margin < -tolerance
         if np.any(failing & (self.margin >= -tolerance)):
-            self.failures.append(message)
+            self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
     def locus(self, spec: LocusSpec) -> dyads.Locus:
@@ -281,7 +281,7 @@ class _Assembler:
     def dyad(self, index: int, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)
         cut = dyads.intersect(first, second, step.point)
-        self.close(cut.margin / self.scene.size, cut.message)
+        self.close(cut.margin / self.scene.size, cut.describe)
         self.last = (cut.margin, cut.margin_rate)
         if np.all(np.isfinite(cut.margin)):  # two branches (a pin in two slots has one)
             self.group_margins[step.point] = cut.margin
@@ -297,8 +297,10 @@ class _Assembler:
         margin, rate = dyads.lever_margin(pivot, pin, step.offset)
         self.close(
             margin / self.scene.size,
-            f"|{step.pivot}{step.pin}| is shorter than the offset {abs(step.offset):.6g} m "
-            f"of the slot of '{step.link}' from its pivot {step.pivot}",
+            lambda: (
+                f"|{step.pivot}{step.pin}| is shorter than the offset "
+                f"{abs(step.offset):.6g} m of the slot of '{step.link}' from its pivot {step.pivot}"
+            ),
         )
         self.last = (margin, rate)
         label = f"the slot of '{step.link}'"
@@ -374,7 +376,7 @@ class _Assembler:
             self.scene, step.links, self.links, self.samples, self.order
         )
         self.reports.append(report)
-        self.close(np.where(report.converged, 0.0, -1.0), report.message)
+        self.close(np.where(report.converged, 0.0, -1.0), lambda: report.message)
         for link, motion in solved.items():
             self.know(link, motion)
 

@@ -13,6 +13,7 @@ system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,7 +71,11 @@ class Intersection:
     h: Array
     margin: Array
     margin_rate: Array | None
-    message: str
+    describe: Callable[[], str]  # why the loci fail to meet (built only when they do)
+
+    @property
+    def message(self) -> str:
+        return self.describe()
 
     def point(self, sign: Array) -> Array:
         return self.base + scale(sign * self.h, self.offset)
@@ -112,17 +117,18 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     if c1.center.v is not None and c2.center.v is not None:
         d_rate = dot(u, c2.center.v - c1.center.v)
         rate = np.where(extended < folded, -d_rate, d_rate)
-    first = int(np.argmin(margin))
-    dk = float(d[first])
-    n = _digits(dk, total if dk > total else diff)
-    pair = f"|{c1.center_name}{c2.center_name}| = {dk:.{n}g} m"
-    if dk > total:
-        message = (
-            f"{pair} > |{c1.center_name}{name}| + |{c2.center_name}{name}| = {c1.radius:.{n}g}"
-            f" + {c2.radius:.{n}g} = {total:.{n}g} m"
-        )
-    else:
-        message = f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
+
+    def message() -> str:
+        dk = float(d[int(np.argmin(margin))])
+        n = _digits(dk, total if dk > total else diff)
+        pair = f"|{c1.center_name}{c2.center_name}| = {dk:.{n}g} m"
+        if dk > total:
+            return (
+                f"{pair} > |{c1.center_name}{name}| + |{c2.center_name}{name}| = "
+                f"{c1.radius:.{n}g} + {c2.radius:.{n}g} = {total:.{n}g} m"
+            )
+        return f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
+
     return Intersection(
         c1.center.p + scale(a, u), perp(u), _root(h2, c1.radius**2), margin, rate, message
     )
@@ -150,13 +156,15 @@ def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
             line.direction, line.through.v - c.center.v
         )
         rate = -np.sign(s) * s_rate
-    k = int(np.argmin(margin))
-    distance = abs(float(s[k]))
-    n = _digits(distance, c.radius)
-    message = (
-        f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
-        f"{distance:.{n}g} m > |{c.center_name}{name}| = {c.radius:.{n}g} m"
-    )
+
+    def message() -> str:
+        distance = abs(float(s[int(np.argmin(margin))]))
+        n = _digits(distance, c.radius)
+        return (
+            f"the distance from {c.center_name} to the slot of {name} in '{line.guide}' is "
+            f"{distance:.{n}g} m > |{c.center_name}{name}| = {c.radius:.{n}g} m"
+        )
+
     base = line.through.p - scale(b, line.direction)
     return Intersection(base, line.direction, _root(h2, c.radius**2), margin, rate, message)
 
@@ -167,8 +175,11 @@ def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
     parallel = np.abs(denominator) <= 1e-12
     t = cross(l2.direction, l2.through.p - l1.through.p) / np.where(parallel, 1.0, denominator)
     margin = np.where(parallel, -np.inf, np.inf)
-    message = f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
     base = l1.through.p + scale(t, l1.direction)
+
+    def message() -> str:
+        return f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
+
     return Intersection(base, l1.direction, np.zeros_like(t), margin, None, message)
 
 

@@ -1,11 +1,14 @@
 """A sweep of the first driver through one revolution, or through its feasible range.
 
-The whole sweep is one vectorised run of the plan with branch continuation. Where the linkage
-cannot turn fully, the feasible interval around the starting angle is found on a probe grid,
-its ends (the limit positions) are refined by bisection, and the samples are spread strictly
-inside it (at a limit position itself the velocity equations are singular). Samples that land
-exactly on a change point (a parallelogram's crossing: the velocity equations singular, the
-motion smooth) take their rates from their two neighbours and are listed in
+The whole sweep is one vectorised run of the plan with branch continuation (one sample more than
+asked, back at the start, so that the closing interval is searched for close approaches too).
+Where the linkage cannot turn fully (a sample that does not close, or a window between two
+samples found by the closest-approach search), the feasible interval around the starting angle
+is found on a probe grid, its ends (the limit positions) are refined by bisection, and the
+samples are spread strictly inside it (at a limit position itself the velocity equations are
+singular). Close approaches of a group's two branches (within 1e-3 of the size) are reported.
+Samples that land exactly on a change point (a parallelogram's crossing: the velocity equations
+singular, the motion smooth) take their rates from their two neighbours and are listed in
 ``singular_samples``.
 """
 
@@ -37,6 +40,9 @@ from solver.topology import Plan, build_plan
 
 MAX_SAMPLES = 100_000
 PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
+# From 90 samples (4 degrees) on, the sweep is its own feasibility probe: a window where the
+# linkage cannot close between two samples is found by the closest-approach search of assembly.
+SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
 SINGULAR_CONDITIONING = 1e-12  # sine of the angle between a group's constraint gradients
 
@@ -85,6 +91,8 @@ class CloseApproach:
 def close_approaches(motion: Motion, driver: str, angles: Array) -> tuple[CloseApproach, ...]:
     """The near misses of ``motion`` closer than the warning margin, at the driver angles
     interpolated between the samples' ``angles`` (closest first)."""
+    if not motion.approaches:
+        return ()
     found = [
         CloseApproach(
             a.point, driver, a.margin, float(np.interp(a.at, np.arange(angles.size), angles))
@@ -211,7 +219,7 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
     limits: tuple[float, ...] = ()
     motion = None
-    if samples >= PROBE_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+    if samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
         motion = driven.run(turns, order, start)
         span = None if _turns_fully(motion) else _feasible_range(driven, start, direction)
     else:
