@@ -35,7 +35,9 @@ from solver.steps.linkage import (
     VELOCITY,
     LinkageContext,
     SlotMotion,
+    acceleration_pole_step,
     put_motion,
+    velocity_pole_step,
 )
 from solver.steps.model import Step
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, TwoPointStep
@@ -568,6 +570,12 @@ class LoopMethod:
             + "d/dt e^(i theta) = i omega e^(i theta)): "
             f"{text_left} = {text_right}."
         )
+        if index == 1 and order == VELOCITY:
+            b.say(
+                "The real and imaginary parts of this equation are the x and y components of the "
+                "vector method's v_B = v_A + omega x r_AB: i a omega e^(i theta) is omega x r in "
+                "complex numbers, so both methods solve the same two equations."
+            )
         if order == ACCELERATION and loop.kind == "slotted lever":
             b.say(
                 "The term 2 i omega s-dot e^(i beta) is the Coriolis acceleration of the pin in "
@@ -729,6 +737,9 @@ class LoopMethod:
                 if point is not None:
                     out.append(point)
         out += self.other_points()
+        # the poles are the same in both methods: P and G of every moving link
+        out += [velocity_pole_step(self.ctx, link) for link in self.ctx.scene.moving_links]
+        out += [acceleration_pole_step(self.ctx, link) for link in self.ctx.scene.moving_links]
         return out
 
 

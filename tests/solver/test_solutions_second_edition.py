@@ -505,3 +505,13 @@ def test_position_of_seed_000_type_1_by_the_law_of_cosines() -> None:
     assert step.values["cos gamma"].value == pytest.approx(10 / (4 * math.sqrt(7.25)), rel=1e-12)
     np.testing.assert_allclose(step.values["pos(C)"].value, [2.0, 1.0], atol=1e-12)
     assert "C on the left of BD, as drawn" in step.text
+
+
+def test_loop_method_has_the_poles_and_says_the_equivalence_once() -> None:
+    solution = solution_of(example("S000-T1"), "loop")
+    assert solution.method == "loop"
+    poles = [s for s in solution.steps if s.kind == "poles.velocity"]
+    coupler = next(s for s in poles if "coupler" in s.title)
+    np.testing.assert_allclose(coupler.values["P(coupler)"].value, [0.0, 5.0], atol=1e-12)
+    said = [s for s in solution.steps if "both methods solve the same two equations" in s.text]
+    assert len(said) == 1 and said[0].kind == "loop.velocity"
