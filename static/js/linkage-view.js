@@ -23,6 +23,8 @@ export class LinkageView {
    */
   constructor(svg, callbacks = {}) {
     this.svg = svg;
+    this.editable = false; // joints can be dragged (set by main.js for scenes without time laws)
+    this.pointDrag = null; // {name, pointerId, moved} while a joint is dragged
     this.callbacks = callbacks;
     this.options = { showVelocity: true, showAcceleration: false, showPoles: true, trace: null, units: 'si' };
     this.scene = null;
@@ -114,7 +116,9 @@ export class LinkageView {
     svgEl('title', {}, svg).textContent = `${scene.title || 'Mechanism'}: drawing of the linkage`;
 
     this.layers = {};
-    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'joints', 'vectors', 'poles', 'labels', 'handle', 'notes']) {
+    // The crank's handle ring lies under the joints: the ring turns the crank, a joint's own
+    // circle moves the joint (editing the geometry).
+    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'handle', 'joints', 'vectors', 'poles', 'labels', 'notes']) {
       this.layers[name] = svgEl('g', { class: `layer-${name}` }, svg);
     }
     this.buildGround();
@@ -252,7 +256,9 @@ export class LinkageView {
         stroke: COLOURS.ink,
         'stroke-width': isJoint ? 2.2 : 1,
         class: isJoint ? 'joint' : 'point',
+        'data-point': name,
       }, this.layers.joints);
+      if (this.editable) svgEl('title', {}, node).textContent = `Drag ${name} to change the geometry (Shift: no snapping)`;
       this.jointNodes.push({ name, node });
     }
     for (const m of movingPoints(scene)) {
@@ -497,6 +503,16 @@ export class LinkageView {
     this.layers.poles.setAttribute('visibility', frame.exact ? 'visible' : 'hidden');
   }
 
+  /** The grid step for snapping a dragged joint: a round value near 1/40 of the picture. */
+  gridStep() {
+    return niceBelow(this.map.size / 40);
+  }
+
+  snap(p) {
+    const g = this.gridStep();
+    return [Math.round(p[0] / g) * g, Math.round(p[1] / g) * g].map((v) => Number(v.toFixed(10)));
+  }
+
   /** Slot axis at this frame: the drawn axis turned with the guide link. */
   axisAt(joint, guide, frame) {
     const axis0 = unit(joint.axis || [1, 0]);
@@ -523,6 +539,14 @@ export class LinkageView {
       return this.world(q.x, q.y);
     };
     svg.addEventListener('pointerdown', (ev) => {
+      const name = ev.target.dataset?.point;
+      if (this.editable && name && this.lastFrame?.position[name]) {
+        this.pointDrag = { name, frame: this.lastFrame, at: this.lastFrame.position[name] };
+        svg.setPointerCapture(ev.pointerId);
+        svg.classList.add('dragging');
+        ev.preventDefault();
+        return;
+      }
       if (!this.handle || !this.lastFrame) return;
       const target = ev.target;
       if (!(target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link)) return;
@@ -532,6 +556,15 @@ export class LinkageView {
       ev.preventDefault();
     });
     svg.addEventListener('pointermove', (ev) => {
+      if (this.pointDrag) {
+        // The joint follows the pointer, snapped to the grid; the bars follow it (drawing only).
+        const d = this.pointDrag;
+        d.at = ev.shiftKey ? toWorld(ev) : this.snap(toWorld(ev));
+        const frame = { ...d.frame, position: { ...d.frame.position, [d.name]: d.at }, velocity: {}, acceleration: {}, parts: {}, exact: false };
+        this.draw(frame);
+        this.lastFrame = d.frame;
+        return;
+      }
       if (!this.dragging) return;
       const frame = this.lastFrame;
       const pivot = frame.position[this.handle.pivot];
@@ -549,6 +582,16 @@ export class LinkageView {
       this.callbacks.onDrag?.(linkAngle + wrap(pointer - now));
     });
     const end = (ev) => {
+      if (this.pointDrag) {
+        const d = this.pointDrag;
+        this.pointDrag = null;
+        svg.classList.remove('dragging');
+        if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
+        const start = d.frame.position[d.name];
+        if (Math.hypot(d.at[0] - start[0], d.at[1] - start[1]) > 0) this.callbacks.onPointDrop?.(d.name, d.at, d.frame);
+        else this.draw(d.frame);
+        return;
+      }
       if (!this.dragging) return;
       this.dragging = false;
       svg.classList.remove('dragging');
