@@ -564,3 +564,35 @@ def test_gruebler_count_explains_a_structure(app: AppPage) -> None:
         page.keyboard.press("Escape")
     assert page.get_attribute("#editor-dof", "data-f") == "0"
     assert "structure" in page.inner_text("#editor-dof")
+
+
+# ---- groove scene ------------------------------------------------------------------------------
+
+
+def test_groove_scene_draws_a_disc_and_a_groove_unlike_the_traced_path(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "example:S003-T2-rotating-carrier.json")
+    page.wait_for_selector("#linkage circle.disc", state="attached")
+    pause_and_wait(page)
+    disc = page.eval_on_selector(
+        "#linkage circle.disc",
+        "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy'), +c.getAttribute('r')]",
+    )
+    pivot = page.eval_on_selector(
+        "#linkage [data-point='P']", "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy')]"
+    )
+    assert disc[:2] == pytest.approx(pivot), "the disc turns about its pivot P"
+    groove = page.eval_on_selector(
+        "#linkage circle.groove",
+        "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy'), +c.getAttribute('r')]",
+    )
+    assert groove[2] < disc[2], "the groove lies on the disc"
+    assert page.locator("#linkage .groove-channel").count() == 1
+    styles = page.evaluate(
+        """() => ['.groove', '.coupler-curve'].map((c) =>
+            document.querySelector(`#linkage ${c}`).getAttribute('stroke-dasharray'))"""
+    )
+    assert styles[0] is None and styles[1], "the groove is a slot, the traced path is dashed"
+    assert "groove" in page.inner_text("#legend")
+    app.screenshot("groove-disc", ".view-panel")
