@@ -92,8 +92,9 @@ export class Controls {
     for (const item of LEGEND) {
       const li = el('li');
       const sw = el('span', { class: 'swatch', 'aria-hidden': 'true' });
-      sw.style.borderTopColor = COLOURS[item.key];
+      sw.style.borderTopColor = COLOURS[item.key] || COLOURS.ink;
       if (item.dash) sw.style.borderTopStyle = 'dashed';
+      if (item.groove) sw.classList.add('swatch-groove');
       li.append(sw, document.createTextNode(` ${item.label}`));
       this.el.legend.appendChild(li);
     }

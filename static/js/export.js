@@ -140,6 +140,7 @@ export function installExport(app) {
   const guard = (fn) => async (...args) => {
     try {
       await fn(...args);
+      $('export-menu').open = false;
     } catch (err) {
       app.status(`Export failed: ${err.message}`, 'error');
     }

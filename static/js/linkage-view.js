@@ -23,6 +23,8 @@ export class LinkageView {
    */
   constructor(svg, callbacks = {}) {
     this.svg = svg;
+    this.editable = false; // joints can be dragged (set by main.js for scenes without time laws)
+    this.pointDrag = null; // {name, pointerId, moved} while a joint is dragged
     this.callbacks = callbacks;
     this.options = { showVelocity: true, showAcceleration: false, showPoles: true, trace: null, units: 'si' };
     this.scene = null;
@@ -114,7 +116,9 @@ export class LinkageView {
     svgEl('title', {}, svg).textContent = `${scene.title || 'Mechanism'}: drawing of the linkage`;
 
     this.layers = {};
-    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'joints', 'vectors', 'poles', 'labels', 'handle', 'notes']) {
+    // The crank's handle ring lies under the joints: the ring turns the crank, a joint's own
+    // circle moves the joint (editing the geometry).
+    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'handle', 'joints', 'vectors', 'poles', 'labels', 'notes']) {
       this.layers[name] = svgEl('g', { class: `layer-${name}` }, svg);
     }
     this.buildGround();
@@ -193,11 +197,14 @@ export class LinkageView {
 
   buildPaths() {
     // The groove of a moving point, fixed in its link: redrawn each frame where the link is.
+    // Drawn as a slot cut in the link (a wide band in the link's colour with a white channel),
+    // so that it reads as a groove and not as the dashed path a point traces.
     this.paths = movingPoints(this.scene).map((m) => {
-      const node = m.path?.type === 'arc'
-        ? svgEl('circle', { fill: 'none', stroke: this.colours[m.link] || COLOURS.ink, 'stroke-width': 2, 'stroke-dasharray': '3 4', class: 'groove' }, this.layers.paths)
-        : svgEl('line', { stroke: this.colours[m.link] || COLOURS.ink, 'stroke-width': 2, 'stroke-dasharray': '3 4', class: 'groove' }, this.layers.paths);
-      return { m, node };
+      const tag = m.path?.type === 'arc' ? 'circle' : 'line';
+      const colour = this.colours[m.link] || COLOURS.ink;
+      const band = svgEl(tag, { fill: 'none', stroke: colour, 'stroke-width': 11, 'stroke-linecap': 'round', class: 'groove' }, this.layers.paths);
+      const channel = svgEl(tag, { fill: 'none', stroke: '#ffffff', 'stroke-width': 5, 'stroke-linecap': 'round', class: 'groove-channel' }, this.layers.paths);
+      return { m, nodes: [band, channel] };
     });
   }
 
@@ -211,6 +218,12 @@ export class LinkageView {
         const outer = svgEl('line', { stroke: colour, 'stroke-width': 11, 'stroke-linecap': 'round', class: 'link', 'data-link': name }, this.layers.links);
         const inner = svgEl('line', { stroke: '#ffffff', 'stroke-opacity': 0.35, 'stroke-width': 3, 'stroke-linecap': 'round' }, this.layers.links);
         this.linkNodes.push({ name, pts, kind: 'bar', nodes: [outer, inner] });
+      } else if (this.isDisc(name)) {
+        // A turning link that carries a circular groove is a disc about its pivot.
+        const disc = svgEl('circle', { fill: colour, 'fill-opacity': 0.16, stroke: colour, 'stroke-width': 3, class: 'link disc', 'data-link': name }, this.layers.links);
+        // The link's points joined on the disc: they show it turning.
+        const marks = svgEl('polygon', { fill: 'none', stroke: colour, 'stroke-opacity': 0.6, 'stroke-width': 2, 'stroke-dasharray': '2 3', class: 'disc-marks' }, this.layers.links);
+        this.linkNodes.push({ name, pts, kind: 'disc', nodes: [disc, marks] });
       } else if (pts.length > 2) {
         const poly = svgEl('polygon', { fill: colour, 'fill-opacity': 0.22, stroke: colour, 'stroke-width': 5, 'stroke-linejoin': 'round', class: 'link', 'data-link': name }, this.layers.links);
         this.linkNodes.push({ name, pts, kind: 'plate', nodes: [poly] });
@@ -252,7 +265,9 @@ export class LinkageView {
         stroke: COLOURS.ink,
         'stroke-width': isJoint ? 2.2 : 1,
         class: isJoint ? 'joint' : 'point',
+        'data-point': name,
       }, this.layers.joints);
+      if (this.editable) svgEl('title', {}, node).textContent = `Drag ${name} to change the geometry (Shift: no snapping)`;
       this.jointNodes.push({ name, node });
     }
     for (const m of movingPoints(scene)) {
@@ -391,13 +406,16 @@ export class LinkageView {
     this.lastFrame = frame;
     if (!this.map) return;
     const P = (name) => frame.position[name];
-    for (const { pts, kind, nodes } of this.linkNodes) {
+    for (const { name, pts, kind, nodes } of this.linkNodes) {
       const ps = pts.map(P).filter(Boolean).map((p) => this.px(p));
       if (ps.length < (kind === 'label' ? 1 : 2)) continue;
       if (kind === 'bar') {
         for (const n of nodes) setAttrs(n, { x1: ps[0][0], y1: ps[0][1], x2: ps[1][0], y2: ps[1][1] });
       } else if (kind === 'plate') {
         setAttrs(nodes[0], { points: hullOrder(ps).map((p) => p.join(',')).join(' ') });
+      } else if (kind === 'disc') {
+        setAttrs(nodes[0], this.discAt(name, frame));
+        setAttrs(nodes[1], { points: hullOrder(ps).map((p) => p.join(',')).join(' ') });
       } else {
         // Link name beside its middle, pushed off the bar so it does not sit on a label.
         const c = centroid(ps);
@@ -429,22 +447,24 @@ export class LinkageView {
       const deg = (-Math.atan2(axis[1], axis[0]) * 180) / Math.PI;
       setAttrs(node, { transform: `translate(${x.toFixed(2)},${y.toFixed(2)}) rotate(${deg.toFixed(2)})` });
     }
-    for (const { m, node } of this.paths) {
+    for (const { m, nodes } of this.paths) {
       const path = m.path || {};
+      let attrs;
       if (path.type === 'arc') {
         const c = P(path.center);
         const s = P(path.start);
         if (!c || !s) continue;
         const [cx, cy] = this.px(c);
-        setAttrs(node, { cx, cy, r: Math.hypot(s[0] - c[0], s[1] - c[1]) * this.map.k });
+        attrs = { cx, cy, r: Math.hypot(s[0] - c[0], s[1] - c[1]) * this.map.k };
       } else {
         const a = P(path.start);
         const b = P(path.through);
         if (!a || !b) continue;
         const [x1, y1] = this.px(a);
         const [x2, y2] = this.px(b);
-        setAttrs(node, { x1, y1, x2, y2 });
+        attrs = { x1, y1, x2, y2 };
       }
+      for (const n of nodes) setAttrs(n, attrs);
     }
     for (const { name, node } of this.jointNodes) {
       const p = P(name);
@@ -497,6 +517,43 @@ export class LinkageView {
     this.layers.poles.setAttribute('visibility', frame.exact ? 'visible' : 'hidden');
   }
 
+  /** True for a link pinned to the ground that carries a moving point's circular groove. */
+  isDisc(name) {
+    const ground = groundLink(this.scene);
+    const pinned = (this.scene.joints || []).some((j) => j.type === 'revolute' && j.links.includes(name) && j.links.includes(ground));
+    return pinned && movingPoints(this.scene).some((m) => m.link === name && m.path?.type === 'arc');
+  }
+
+  /** The disc of link `name` in this frame: centred on its pivot, wide enough for its groove. */
+  discAt(name, frame) {
+    const ground = groundLink(this.scene);
+    const pivot = (this.scene.joints || []).find((j) => j.type === 'revolute' && j.links.includes(name) && j.links.includes(ground)).point;
+    const c = frame.position[pivot];
+    let r = 0;
+    for (const p of this.scene.links[name].points) {
+      const q = frame.position[p];
+      if (q) r = Math.max(r, Math.hypot(q[0] - c[0], q[1] - c[1]));
+    }
+    for (const m of movingPoints(this.scene)) {
+      if (m.link !== name || m.path?.type !== 'arc') continue;
+      const gc = frame.position[m.path.center];
+      const gs = frame.position[m.path.start];
+      if (gc && gs) r = Math.max(r, Math.hypot(gc[0] - c[0], gc[1] - c[1]) + Math.hypot(gs[0] - gc[0], gs[1] - gc[1]));
+    }
+    const [cx, cy] = this.px(c);
+    return { cx, cy, r: r * this.map.k * 1.08 + 12 };
+  }
+
+  /** The grid step for snapping a dragged joint: a round value near 1/40 of the picture. */
+  gridStep() {
+    return niceBelow(this.map.size / 40);
+  }
+
+  snap(p) {
+    const g = this.gridStep();
+    return [Math.round(p[0] / g) * g, Math.round(p[1] / g) * g].map((v) => Number(v.toFixed(10)));
+  }
+
   /** Slot axis at this frame: the drawn axis turned with the guide link. */
   axisAt(joint, guide, frame) {
     const axis0 = unit(joint.axis || [1, 0]);
@@ -523,6 +580,14 @@ export class LinkageView {
       return this.world(q.x, q.y);
     };
     svg.addEventListener('pointerdown', (ev) => {
+      const name = ev.target.dataset?.point;
+      if (this.editable && name && this.lastFrame?.position[name]) {
+        this.pointDrag = { name, frame: this.lastFrame, at: this.lastFrame.position[name] };
+        svg.setPointerCapture(ev.pointerId);
+        svg.classList.add('dragging');
+        ev.preventDefault();
+        return;
+      }
       if (!this.handle || !this.lastFrame) return;
       const target = ev.target;
       if (!(target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link)) return;
@@ -532,6 +597,15 @@ export class LinkageView {
       ev.preventDefault();
     });
     svg.addEventListener('pointermove', (ev) => {
+      if (this.pointDrag) {
+        // The joint follows the pointer, snapped to the grid; the bars follow it (drawing only).
+        const d = this.pointDrag;
+        d.at = ev.shiftKey ? toWorld(ev) : this.snap(toWorld(ev));
+        const frame = { ...d.frame, position: { ...d.frame.position, [d.name]: d.at }, velocity: {}, acceleration: {}, parts: {}, exact: false };
+        this.draw(frame);
+        this.lastFrame = d.frame;
+        return;
+      }
       if (!this.dragging) return;
       const frame = this.lastFrame;
       const pivot = frame.position[this.handle.pivot];
@@ -549,6 +623,16 @@ export class LinkageView {
       this.callbacks.onDrag?.(linkAngle + wrap(pointer - now));
     });
     const end = (ev) => {
+      if (this.pointDrag) {
+        const d = this.pointDrag;
+        this.pointDrag = null;
+        svg.classList.remove('dragging');
+        if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
+        const start = d.frame.position[d.name];
+        if (Math.hypot(d.at[0] - start[0], d.at[1] - start[1]) > 0) this.callbacks.onPointDrop?.(d.name, d.at, d.frame);
+        else this.draw(d.frame);
+        return;
+      }
       if (!this.dragging) return;
       this.dragging = false;
       svg.classList.remove('dragging');

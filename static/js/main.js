@@ -21,6 +21,7 @@ import { plotlyReady, katexReady } from './vendor.js';
 import { installTabs } from './tabs.js';
 import { installExport } from './export.js';
 import { renderMagnitudes } from './magnitudes.js';
+import { Editor } from './editor.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -77,7 +78,30 @@ class App {
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),
       onDragEnd: () => this.scheduleAnalysis(0),
+      onPointDrop: (name, at, frame) => this.onPointDrop(name, at, frame),
     });
+    this.history = []; // earlier {scene, source}, for undo
+    this.future = []; // undone ones, for redo
+    $('undo').addEventListener('click', () => this.undo());
+    $('redo').addEventListener('click', () => this.redo());
+    document.addEventListener('keydown', (ev) => {
+      if (!(ev.ctrlKey || ev.metaKey) || ev.target.closest?.('input[type="text"], textarea')) return;
+      const key = ev.key.toLowerCase();
+      if (key === 'z' && !ev.shiftKey) this.undo();
+      else if (key === 'y' || (key === 'z' && ev.shiftKey)) this.redo();
+      else return;
+      ev.preventDefault();
+    });
+    this.paintHistory();
+    this.editor = new Editor({
+      onDone: async (scene) => {
+        this.closeEditor();
+        await this.openScene(scene, { name: 'the editor' });
+      },
+      onClose: () => this.closeEditor(),
+    });
+    $('new-mechanism').addEventListener('click', () => this.openEditor(null));
+    $('editor-from-current').addEventListener('click', () => this.editor.open(S.isSpatial(this.scene) ? null : this.scene));
     this.spatial = new SpatialView($('spatial'), {
       onRotate: (yaw, pitch) => { this.camera = { yaw, pitch }; this.saveHash(); },
     });
@@ -162,11 +186,88 @@ class App {
 
   /** A scene document from elsewhere (an uploaded file, the editor): analysed at once. */
   async openScene(scene, { name = 'file' } = {}) {
+    const before = this.snapshot();
     this.driverEdits = {};
     this.source = { type: 'shared' };
     this.controls.selectSource('shared', `Opened from ${name}.`);
     this.setExampleFields(scene);
     await this.commitOrReport(scene, null);
+    if (this.scene === scene) this.remember(before);
+  }
+
+  // ---- editing the drawn pose: drag a joint, undo, redo ------------------------------------
+
+  /**
+   * A joint dropped at `at` (world, m): the pose shown becomes the drawn pose, with that joint
+   * moved; slot axes turn with their guides. The result is a scene of its own (no longer the
+   * preset's parameters), checked by the server before it replaces what is shown.
+   */
+  async onPointDrop(name, at, frame) {
+    const scene = structuredClone(this.scene);
+    for (const n of Object.keys(scene.points)) if (frame.position[n]) scene.points[n] = [...frame.position[n]];
+    for (const j of scene.joints || []) {
+      if (j.type === 'slider' || j.type === 'prismatic') j.axis = this.linkage.axisAt(j, j.links[0], frame);
+    }
+    scene.points[name] = at;
+    for (const d of scene.drivers || []) delete d.angle_deg;
+    const before = this.snapshot();
+    try {
+      await this.loadScene(scene, { keepInstant: true });
+    } catch (err) {
+      this.linkage.draw(frame);
+      this.status(`${name} cannot go there: ${err.detail || err.message}`, 'error');
+      return;
+    }
+    this.source = { type: 'shared' };
+    this.controls.selectSource('shared', 'A mechanism edited in the drawing.');
+    this.setExampleFields(scene);
+    this.remember(before);
+  }
+
+  openEditor(scene) {
+    this.setPlaying(false, { analyse: false });
+    $('linkage').toggleAttribute('hidden', true);
+    $('spatial').toggleAttribute('hidden', true);
+    document.querySelector('.motion').toggleAttribute('hidden', true);
+    this.editor.open(scene);
+  }
+
+  closeEditor() {
+    this.editor.close();
+    showView(S.isSpatial(this.scene) ? 'spatial' : 'linkage');
+  }
+
+  snapshot() {
+    return this.scene ? { scene: this.scene, source: structuredClone(this.source) } : null;
+  }
+
+  remember(before) {
+    if (!before) return;
+    this.history.push(before);
+    if (this.history.length > 50) this.history.shift();
+    this.future = [];
+    this.paintHistory();
+  }
+
+  async undo() {
+    const state = this.history.pop();
+    if (!state) return;
+    this.future.push(this.snapshot());
+    await this.restore({ ...state, view: { ...this.shareState().view, playing: false } });
+    this.paintHistory();
+  }
+
+  async redo() {
+    const state = this.future.pop();
+    if (!state) return;
+    this.history.push(this.snapshot());
+    await this.restore({ ...state, view: { ...this.shareState().view, playing: false } });
+    this.paintHistory();
+  }
+
+  paintHistory() {
+    $('undo').disabled = !this.history.length;
+    $('redo').disabled = !this.future.length;
   }
 
   /** Put the selector back on what is shown (after a mechanism could not be opened). */
@@ -205,9 +306,11 @@ class App {
   // ---- edits: each one is validated by the server before it replaces what is shown ---------------
 
   async edit(fieldKey, valueSI, makeScene, onAccept = null) {
+    const before = this.snapshot();
     try {
       const scene = await makeScene();
       await this.loadScene(scene, { keepInstant: true });
+      this.remember(before);
     } catch (err) {
       this.controls.showFieldError(fieldKey, err.detail || err.message, err.position);
       this.controls.revertField(fieldKey);
@@ -380,6 +483,7 @@ class App {
     this.controls.setLinkChoices(links, S.linkColours(scene), this.plot.links);
 
     this.linkage.options = { ...this.linkage.options, ...this.controls.options(), units: this.units };
+    this.linkage.editable = !timeDrivenScene(scene);
     this.linkage.setScene(scene, track);
 
     const messages = [];
@@ -802,6 +906,11 @@ class App {
   plotsMessage(text) {
     setMessage($('plots-message'), text);
   }
+}
+
+/** Scenes moved by time laws are not edited by dragging (their paths name points). */
+function timeDrivenScene(scene) {
+  return S.isTimeDriven(scene);
 }
 
 /** Show one of the two drawings. SVG elements have no `hidden` property: use the attribute. */

@@ -25,4 +25,5 @@ export const LEGEND = [
   { key: 'relative', label: 'relative (along the slot)' },
   { key: 'coriolis', label: 'Coriolis 2 ω × v_rel' },
   { key: 'trace', label: 'path of the traced point', dash: true },
+  { key: 'groove', label: 'groove (slot cut in its link)', groove: true },
 ];

@@ -14,7 +14,7 @@ from typing import Any
 import pytest
 
 from tests.browser.conftest import AppPage
-from tests.browser.test_app import choose, pause_and_wait, wait_analysed, wait_until
+from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_analysed, wait_until
 
 pytestmark = pytest.mark.browser
 
@@ -446,3 +446,153 @@ def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
     assert shown == pytest.approx(expected, rel=1e-3)
     page.select_option("#units", "si")
     page.wait_for_function("!document.querySelector('#steps .step-units')")
+
+
+# ---- draw and edit -----------------------------------------------------------------------------
+
+
+def drag(page: Any, selector: str, dx: float, dy: float) -> None:
+    box = page.locator(selector).bounding_box()
+    assert box is not None
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + dx, y + dy, steps=8)
+    page.mouse.up()
+
+
+def test_dragging_a_joint_changes_the_geometry_and_the_analysis_and_undo_restores(
+    app: AppPage,
+) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    assert page.locator("#linkage [data-point]").count() >= 5
+    polygon = plot_data(page, "velocity-polygon")
+    ground = page.inner_html("#linkage .layer-ground")
+    drag(page, "#linkage [data-point='D']", 60, 0)
+    wait_until(lambda: page.input_value("#preset") == "shared", what="an edited scene")
+    page.wait_for_selector("#f-point_D_0")
+    d_x = float(page.input_value("#f-point_D_0"))
+    assert d_x > 1.05, "D moved right (the ground got longer)"
+    assert page.inner_html("#linkage .layer-ground") != ground
+    wait_analysed(page)
+    wait_until(lambda: plot_data(page, "velocity-polygon") != polygon, what="a new analysis")
+    # Snapped to the grid: a round coordinate.
+    assert round(d_x * 1000) == pytest.approx(d_x * 1000, abs=1e-6)
+    page.click("#undo")
+    wait_until(lambda: page.input_value("#preset") == "preset:four_bar", what="undo")
+    page.wait_for_selector("#f-param_ground")
+    assert page.input_value("#f-param_ground") == "1"
+    page.click("#redo")
+    wait_until(lambda: page.input_value("#preset") == "shared", what="redo")
+
+
+def sheet_click(page: Any, x: float, y: float) -> None:
+    """Click the editor's sheet at world (x, y) m (its view: 400 px/m, origin at (120, 380))."""
+    box = page.locator("#editor").bounding_box()
+    assert box is not None
+    scale = box["width"] / 1000
+    page.mouse.click(box["x"] + (120 + 400 * x) * scale, box["y"] + (380 - 400 * y) * scale)
+
+
+def test_a_four_bar_drawn_from_scratch_analyses(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    page.click("#new-mechanism")
+    page.wait_for_selector("#editor")
+    assert page.locator("#linkage").is_hidden()
+    corners = {"A": (0, 0), "B": (0, 0.1), "C": (0.6, 0.4), "D": (0.7, 0)}
+    for x, y in corners.values():
+        sheet_click(page, x, y)
+    assert page.locator("#editor [data-point]").count() == 4
+    page.check("input[name='editor-tool'][value='ground']")
+    for name in "AD":
+        sheet_click(page, *corners[name])
+    page.check("input[name='editor-tool'][value='link']")
+    for a, b in ("AB", "BC", "DC"):
+        sheet_click(page, *corners[a])
+        sheet_click(page, *corners[b])
+        page.keyboard.press("Escape")
+    assert page.get_attribute("#editor-dof", "data-f") == "1"
+    assert "F = 3(n − 1) − 2j = 3·3 − 2·4 = 1" in page.inner_text("#editor-dof")
+    page.click("#editor-done")  # no driver yet: explained, nothing sent
+    assert "driver" in page.inner_text("#editor-message")
+    page.check("input[name='editor-tool'][value='driver']")
+    sheet_click(page, 0, 0.05)  # the middle of bar AB
+    page.fill("#editor-title", "four-bar from scratch")
+    page.click("#editor-done")
+    wait_until(lambda: page.inner_text("#view-title") == "four-bar from scratch", what="it")
+    assert page.locator("#editor-panel").is_hidden()
+    page.wait_for_selector("#linkage .link", state="attached")
+    pause_and_wait(page)
+    page.wait_for_selector("#velocity-polygon .main-svg")
+    facts = wait_until(lambda: page.inner_text("#mechanism-facts"), what="Grashof class")
+    assert "Grashof crank-rocker" in facts
+    scene = exported_scene(page)
+    assert scene["points"]["C"] == pytest.approx([0.6, 0.4])
+    assert scene["drivers"][0]["link"] == "AB"
+    assert {(j["point"], tuple(j["links"])) for j in scene["joints"]} == {
+        ("A", ("ground", "AB")),
+        ("B", ("AB", "BC")),
+        ("C", ("BC", "DC")),
+        ("D", ("ground", "DC")),
+    }
+    # Saved in the share link.
+    page.wait_for_function("location.hash.startsWith('#s=')")
+    other = app.new_page()
+    other.goto(page.url)
+    other.wait_for_function(
+        "document.getElementById('view-title').textContent === 'four-bar from scratch'"
+    )
+    app.screenshot("four-bar-from-scratch")
+
+
+def test_gruebler_count_explains_a_structure(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    page.click("#new-mechanism")
+    for x, y in ((0, 0), (0.4, 0.3), (0.8, 0)):
+        sheet_click(page, x, y)
+    page.check("input[name='editor-tool'][value='ground']")
+    sheet_click(page, 0, 0)
+    sheet_click(page, 0.8, 0)
+    page.check("input[name='editor-tool'][value='link']")
+    for a, b in (((0, 0), (0.4, 0.3)), ((0.4, 0.3), (0.8, 0))):
+        sheet_click(page, *a)
+        sheet_click(page, *b)
+        page.keyboard.press("Escape")
+    assert page.get_attribute("#editor-dof", "data-f") == "0"
+    assert "structure" in page.inner_text("#editor-dof")
+
+
+# ---- groove scene ------------------------------------------------------------------------------
+
+
+def test_groove_scene_draws_a_disc_and_a_groove_unlike_the_traced_path(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "example:S003-T2-rotating-carrier.json")
+    page.wait_for_selector("#linkage circle.disc", state="attached")
+    pause_and_wait(page)
+    disc = page.eval_on_selector(
+        "#linkage circle.disc",
+        "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy'), +c.getAttribute('r')]",
+    )
+    pivot = page.eval_on_selector(
+        "#linkage [data-point='P']", "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy')]"
+    )
+    assert disc[:2] == pytest.approx(pivot), "the disc turns about its pivot P"
+    groove = page.eval_on_selector(
+        "#linkage circle.groove",
+        "(c) => [+c.getAttribute('cx'), +c.getAttribute('cy'), +c.getAttribute('r')]",
+    )
+    assert groove[2] < disc[2], "the groove lies on the disc"
+    assert page.locator("#linkage .groove-channel").count() == 1
+    styles = page.evaluate(
+        """() => ['.groove', '.coupler-curve'].map((c) =>
+            document.querySelector(`#linkage ${c}`).getAttribute('stroke-dasharray'))"""
+    )
+    assert styles[0] is None and styles[1], "the groove is a slot, the traced path is dashed"
+    assert "groove" in page.inner_text("#legend")
+    app.screenshot("groove-disc", ".view-panel")
