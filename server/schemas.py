@@ -353,6 +353,73 @@ class PresetList(Open):
     presets: list[PresetInfo]
 
 
+class ExerciseTypeInfo(Open):
+    name: str
+    title: str
+    description: str
+    difficulties: list[str]
+    asks: list[str]
+
+
+class ExerciseTypeList(Open):
+    """GET /exercises/types."""
+
+    types: list[ExerciseTypeInfo]
+
+
+class AskedQuantity(Open):
+    key: str
+    label: str
+    unit: str
+    path: str
+    tolerance: float
+    symbol: str
+
+
+class ExerciseStatement(Open):
+    text: str
+    latex: str
+    figure_svg: str
+
+
+class ExerciseModel(Open):
+    """One generated exercise (exercises-v1): its id, statement, scene, asked quantities, key."""
+
+    id: str
+    type: str
+    difficulty: str
+    seed: int
+    index: int
+    title: str
+    statement: ExerciseStatement
+    scene: dict[str, Any]
+    asked: list[AskedQuantity]
+    answers: dict[str, float]
+
+
+class ExerciseList(Open):
+    """POST /exercises."""
+
+    exercises: list[ExerciseModel]
+
+
+class AnswerVerdict(Open):
+    key: str
+    given: float | None
+    expected: float
+    verdict: Literal["correct", "incorrect", "missing"]
+    relative_error: float | None
+    diagnosis: str | None
+
+
+class CheckResponse(Open):
+    """POST /exercises/check."""
+
+    id: str
+    score: float
+    results: list[AnswerVerdict]
+
+
 class ProblemCode(StrEnum):
     """The stable machine-readable codes of every error (scene-v1 "Errors", and the server's)."""
 

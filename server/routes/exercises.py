@@ -14,8 +14,16 @@ from fastapi import APIRouter
 from fastapi.responses import Response
 from pydantic import Field
 
-from server.edge import FiniteJSONResponse, StrictJSONRoute
-from server.schemas import Strict
+from server.edge import StrictJSONRoute
+from server.responses import ResultResponse
+from server.schemas import (
+    PROBLEMS,
+    CheckResponse,
+    ExerciseList,
+    ExerciseModel,
+    ExerciseTypeList,
+    Strict,
+)
 from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
 from solver.exercises.checking import check
 from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
@@ -28,7 +36,8 @@ router = APIRouter(
     prefix="/exercises",
     tags=["exercises"],
     route_class=StrictJSONRoute,
-    default_response_class=FiniteJSONResponse,
+    default_response_class=ResultResponse,
+    responses=PROBLEMS,
 )
 
 
@@ -51,9 +60,13 @@ def exercise_body(exercise: Exercise, with_solution: bool) -> dict[str, Any]:
     return body
 
 
-@router.get("/types", summary="Every exercise type, its difficulties and what it can ask")
-def types_route() -> FiniteJSONResponse:
-    return FiniteJSONResponse(
+@router.get(
+    "/types",
+    summary="Every exercise type, its difficulties and what it can ask",
+    response_model=ExerciseTypeList,
+)
+def types_route() -> ResultResponse:
+    return ResultResponse(
         {
             "types": [
                 {
@@ -69,17 +82,25 @@ def types_route() -> FiniteJSONResponse:
     )
 
 
-@router.post("", summary="Generate exercises: statement, figure, scene, asked quantities, key")
-def exercises_route(request: ExercisesRequest) -> FiniteJSONResponse:
+@router.post(
+    "",
+    summary="Generate exercises: statement, figure, scene, asked quantities, key",
+    response_model=ExerciseList,
+)
+def exercises_route(request: ExercisesRequest) -> ResultResponse:
     exercises = generate(request.type, request.difficulty, request.seed, request.count)
-    return FiniteJSONResponse(
+    return ResultResponse(
         {"exercises": [exercise_body(e, request.with_solutions) for e in exercises]}
     )
 
 
-@router.get("/{exercise_id}", summary="One exercise by its id, with its worked solution")
-def exercise_route(exercise_id: str) -> FiniteJSONResponse:
-    return FiniteJSONResponse(exercise_body(build(parse_id(exercise_id)), True))
+@router.get(
+    "/{exercise_id}",
+    summary="One exercise by its id, with its worked solution",
+    response_model=ExerciseModel,
+)
+def exercise_route(exercise_id: str) -> ResultResponse:
+    return ResultResponse(exercise_body(build(parse_id(exercise_id)), True))
 
 
 Answer = Annotated[float, Field(ge=-MAX_ANSWER, le=MAX_ANSWER)]
@@ -93,9 +114,13 @@ class CheckRequest(Strict):
     )
 
 
-@router.post("/check", summary="Grade answers within tolerance and diagnose typical mistakes")
-def check_route(request: CheckRequest) -> FiniteJSONResponse:
-    return FiniteJSONResponse(check(request.id, request.answers))
+@router.post(
+    "/check",
+    summary="Grade answers within tolerance and diagnose typical mistakes",
+    response_model=CheckResponse,
+)
+def check_route(request: CheckRequest) -> ResultResponse:
+    return ResultResponse(check(request.id, request.answers))
 
 
 ExportFormat = Literal["moodle_xml", "html", "csv", "json"]
@@ -123,6 +148,12 @@ class ExportRequest(ExercisesRequest):
     "/export",
     summary="The exercises as a file: Moodle XML, printable HTML, CSV answer key or JSON",
     response_class=Response,
+    responses={
+        200: {
+            "description": "The file, as an attachment",
+            "content": {media: {"schema": {"type": "string"}} for media, _ in _MEDIA.values()},
+        }
+    },
 )
 def export_route(request: ExportRequest) -> Response:
     exercises = generate(request.type, request.difficulty, request.seed, request.count)

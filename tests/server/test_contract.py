@@ -158,6 +158,30 @@ def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> Non
                 media = set(response.get("content", {}))
                 if status.startswith("4"):
                     assert media == {"application/problem+json"}, (path, method, status)
+                elif path == "/api/v1/exercises/export":  # a file in the requested format
+                    assert media == {
+                        "application/xml",
+                        "text/html; charset=utf-8",
+                        "text/csv; charset=utf-8",
+                        "application/json",
+                    }
                 elif path.startswith("/api/v1/") and not path.endswith(".html"):
                     assert media == {"application/json"}, (path, method, status)
                     assert response["content"]["application/json"]["schema"] != {"type": "string"}
+
+
+def test_exercise_responses_satisfy_the_published_schema(
+    client: TestClient, openapi: dict[str, Any]
+) -> None:
+    """Every exercise type's generated body, one exercise by id, and a graded check."""
+    check(openapi, "/exercises/types", "get", client.get("/api/v1/exercises/types"))
+    types = [t["name"] for t in client.get("/api/v1/exercises/types").json()["types"]]
+    for name in types:
+        response = client.post("/api/v1/exercises", json={"type": name, "count": 1, "seed": 7})
+        check(openapi, "/exercises", "post", response)
+    exercise = response.json()["exercises"][0]
+    one = client.get(f"/api/v1/exercises/{exercise['id']}")
+    check(openapi, "/exercises/{exercise_id}", "get", one)
+    answers = {a["key"]: 1.0 for a in exercise["asked"]}
+    graded = client.post("/api/v1/exercises/check", json={"id": exercise["id"], "answers": answers})
+    check(openapi, "/exercises/check", "post", graded)
