@@ -21,7 +21,9 @@ def _example(name: str) -> dict[str, Any]:
     return data
 
 
-Quantity = Literal["position", "velocity", "acceleration", "poles", "components"]
+Quantity = Literal[
+    "position", "velocity", "acceleration", "poles", "components", "forces", "energy"
+]
 
 
 class Strict(BaseModel):
@@ -53,6 +55,13 @@ class SweepRequest(Strict):
         None,
         description="[t0, t1] (s): sweep in time through the scene's time laws instead "
         "of a driver revolution.",
+    )
+    speed_fluctuation: float | None = Field(
+        None,
+        gt=0,
+        le=1,
+        description="dynamics-v1: the coefficient of speed fluctuation k for which the cycle "
+        "gives the flywheel inertia energy_fluctuation / (k omega^2).",
     )
 
 

@@ -12,6 +12,7 @@ from server.responses import (
     time_sweep_response,
     vector,
 )
+from server.routes.dynamics import add_instant_dynamics, add_sweep_dynamics
 from server.routes.scenes import parse_linkage_only, parse_scene
 from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
 from solver.analysis import analyze, normalise_quantities
@@ -33,7 +34,8 @@ router = APIRouter(
 def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
     scene = parse_scene(request.scene)
     if isinstance(scene, LinkageScene):
-        return FiniteJSONResponse(analysis_response(analyze(scene, request.quantities)))
+        result = analyze(scene, request.quantities)
+        return FiniteJSONResponse(add_instant_dynamics(analysis_response(result), scene, result))
     wanted = normalise_quantities(request.quantities)
     return FiniteJSONResponse(spatial_response(analyze_spatial_chain(scene), wanted))
 
@@ -44,13 +46,14 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
 def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/sweep")
     if request.time_range is None:
-        return FiniteJSONResponse(sweep_response(sweep(scene, request.samples, request.quantities)))
+        result = sweep(scene, request.samples, request.quantities)
+        body = sweep_response(result)
+        return FiniteJSONResponse(add_sweep_dynamics(body, result, request.speed_fluctuation))
     if len(request.time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = request.time_range
-    return FiniteJSONResponse(
-        time_sweep_response(sweep_time(scene, t0, t1, request.samples, request.quantities))
-    )
+    timed = sweep_time(scene, t0, t1, request.samples, request.quantities)
+    return FiniteJSONResponse(add_sweep_dynamics(time_sweep_response(timed), timed))
 
 
 @router.post("/events", summary="The instant at which a moving point reaches a named point")

@@ -1,0 +1,233 @@
+"""Inverse dynamics by Newton-Euler: one sparse linear system per instant, over all samples.
+
+For every moving link k, with R_k its anchor point (any point will do, moving or not):
+
+    sum F = sum_i m_i a_i                                     (two force equations)
+    sum (r - R_k) x F + sum M = sum_i [I_i alpha + (r_i - R_k) x m_i a_i]    (moment about R_k)
+
+where i runs over the link's masses (the body and its point masses). The unknowns are the joint
+reactions (revolute: Fx, Fy; slider: the force normal to the slot, frictionless; prismatic: that
+force and a moment) and every driver's torque: 3 per moving link, as many as the equations
+(Gruebler). Each joint's force is the one its first link exerts on its second; the second link
+gets +F, the first -F. The samples' systems are the diagonal blocks of one sparse matrix, solved
+by one sparse LU factorisation (SuperLU, natural ordering: the fill stays inside each block).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse
+import scipy.sparse.linalg
+
+from solver.assembly import Motion
+from solver.dynamics.loads import (
+    AppliedForce,
+    AppliedMoment,
+    MassElement,
+    applied_loads,
+    dynamics_of,
+    mass_elements,
+)
+from solver.errors import SingularConfiguration
+from solver.rigid import Array, cross, perp, rotate
+from solver.scene import Joint, LinkageScene
+
+
+@dataclass(frozen=True)
+class System:
+    """The Newton-Euler system A u = b of every sample: ``entries`` (row, column, values (N,))
+    of A, ``rhs`` b (N, m), and the names of the unknowns and of the equations."""
+
+    unknowns: tuple[str, ...]
+    equations: tuple[str, ...]
+    entries: tuple[tuple[int, int, Array], ...]
+    rhs: Array
+    reference: dict[str, Array]  # link -> the point R_k its moments are taken about (N, 2)
+
+    def matrix(self, k: int) -> Array:
+        """A at sample ``k`` (dense)."""
+        m = len(self.unknowns)
+        A = np.zeros((m, m))
+        for row, column, values in self.entries:
+            A[row, column] += values[k]
+        return A
+
+    def solve(self, singular: Array, cyclic: bool = True) -> Array:
+        """u (N, m); ``singular`` samples (change points inside a sweep, where the equations are
+        singular and the motion smooth) take the mean of their neighbours (``cyclic``: over a
+        whole revolution)."""
+        n, m = self.rhs.shape
+        rows = np.array([e[0] for e in self.entries])
+        columns = np.array([e[1] for e in self.entries])
+        values = np.stack([e[2] for e in self.entries], axis=1)  # (N, entries)
+        rhs = self.rhs.copy()
+        if singular.size:  # an identity block, replaced below
+            values[singular] = 0.0
+            rhs[singular] = 0.0
+        offsets = (np.arange(n) * m)[:, None]
+        all_rows = np.concatenate(
+            [(offsets + rows).ravel(), (singular[:, None] * m + np.arange(m)).ravel()]
+        )
+        all_columns = np.concatenate(
+            [(offsets + columns).ravel(), (singular[:, None] * m + np.arange(m)).ravel()]
+        )
+        data = np.concatenate([values.ravel(), np.ones(singular.size * m)])
+        A = scipy.sparse.csc_matrix((data, (all_rows, all_columns)), shape=(n * m, n * m))
+        try:
+            lu = scipy.sparse.linalg.splu(A, permc_spec="NATURAL")
+        except RuntimeError:
+            raise SingularConfiguration(
+                "the Newton-Euler equations are singular: at a dead centre the driver cannot "
+                "move the linkage, so its torque and the joint forces are not determined",
+                float("inf"),
+            ) from None
+        u = lu.solve(rhs.ravel()).reshape(n, m)
+        for k in singular:
+            before, after = (
+                ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
+            )
+            u[k] = 0.5 * (u[before] + u[after])
+        return u
+
+
+@dataclass(frozen=True)
+class JointForce:
+    """The force the joint's first link exerts on its second (N, 2); prismatic: and a moment."""
+
+    joint: Joint
+    force: Array
+    moment: Array | None
+
+
+@dataclass(frozen=True)
+class ForceAnalysis:
+    """Joint forces, driver torques (on their links), and what the mechanism does to its frame."""
+
+    joints: list[JointForce]
+    torques: dict[str, Array]
+    frame_force: Array
+    frame_moment: Array
+    elements: list[MassElement]
+    forces: list[AppliedForce]
+    moments: list[AppliedMoment]
+    system: System
+
+
+def slot_normal(joint: Joint, motion: Motion) -> Array:
+    """The unit normal k x u of a slider's slot direction u, turned with its guide (N, 2)."""
+    assert joint.axis is not None
+    return perp(rotate(np.array(joint.axis), motion.links[joint.guide].theta))
+
+
+def newton_euler_system(
+    scene: LinkageScene,
+    motion: Motion,
+    elements: list[MassElement],
+    forces: list[AppliedForce],
+    moments: list[AppliedMoment],
+) -> System:
+    """Build A u = b (see the module docstring) at every sample."""
+    links = scene.moving_links
+    row = {name: 3 * i for i, name in enumerate(links)}
+    reference = {name: motion.links[name].anchor.p for name in links}
+    n = motion.margin.size
+    unknowns: list[str] = []
+    entries: list[tuple[int, int, Array]] = []
+    ones = np.ones(n)
+
+    def add_force(column: int, link: str, sign: float, point: Array, d: Array) -> None:
+        if link == scene.ground:
+            return
+        r = row[link]
+        entries.append((r, column, sign * d[:, 0]))
+        entries.append((r + 1, column, sign * d[:, 1]))
+        entries.append((r + 2, column, sign * cross(point - reference[link], d)))
+
+    def add_moment(column: int, link: str, sign: float) -> None:
+        if link != scene.ground:
+            entries.append((row[link] + 2, column, sign * ones))
+
+    for joint in scene.joints:
+        P = motion.points[joint.point].p
+        first, second = joint.links
+        if joint.type == "revolute":
+            for axis, unit in (("x", (1.0, 0.0)), ("y", (0.0, 1.0))):
+                d = np.broadcast_to(np.array(unit), (n, 2))
+                unknowns.append(f"F{axis}_{joint.point}")
+                add_force(len(unknowns) - 1, second, 1.0, P, d)
+                add_force(len(unknowns) - 1, first, -1.0, P, d)
+        else:
+            normal = slot_normal(joint, motion)
+            unknowns.append(f"N_{joint.point}")
+            add_force(len(unknowns) - 1, second, 1.0, P, normal)
+            add_force(len(unknowns) - 1, first, -1.0, P, normal)
+            if joint.type == "prismatic":
+                unknowns.append(f"M_{joint.point}")
+                add_moment(len(unknowns) - 1, second, 1.0)
+                add_moment(len(unknowns) - 1, first, -1.0)
+    for driver in scene.drivers:
+        unknowns.append(f"M_{driver.link}")
+        add_moment(len(unknowns) - 1, driver.link, 1.0)
+
+    gravity = np.array(dynamics_of(scene).gravity)
+    rhs = np.zeros((n, 3 * len(links)))
+    for e in elements:
+        r = row[e.link]
+        inertial = e.mass * (e.a - gravity)  # m a - m g
+        rhs[:, r : r + 2] += inertial
+        rhs[:, r + 2] += e.inertia * e.alpha + cross(e.p - reference[e.link], inertial)
+    for f in forces:
+        r = row[f.link]
+        rhs[:, r : r + 2] -= f.force
+        rhs[:, r + 2] -= cross(f.position - reference[f.link], f.force)
+    for m in moments:
+        rhs[:, row[m.link] + 2] -= m.moment
+    equations = tuple(f"{kind}({name})" for name in links for kind in ("Fx", "Fy", "Mz"))
+    return System(tuple(unknowns), equations, tuple(entries), rhs, reference)
+
+
+def inverse_dynamics(
+    scene: LinkageScene,
+    motion: Motion,
+    times: Array,
+    singular: Array | None = None,
+    cyclic: bool = True,
+) -> ForceAnalysis:
+    """Joint forces, driver torques and the frame's load at every sample of ``motion``
+    (accelerations required); ``times`` are the samples' t for the load expressions."""
+    elements = mass_elements(scene, motion)
+    forces, moments = applied_loads(scene, motion, times)
+    system = newton_euler_system(scene, motion, elements, forces, moments)
+    u = system.solve(np.array([], dtype=int) if singular is None else np.asarray(singular), cyclic)
+    n = times.size
+    joints, torques = [], {}
+    frame_force, frame_moment = np.zeros((n, 2)), np.zeros(n)
+    column = 0
+    for joint in scene.joints:
+        P = motion.points[joint.point].p
+        moment = None
+        if joint.type == "revolute":
+            force = u[:, column : column + 2].copy()
+            column += 2
+        else:
+            force = u[:, column, None] * slot_normal(joint, motion)
+            column += 1
+            if joint.type == "prismatic":
+                moment = u[:, column].copy()
+                column += 1
+        joints.append(JointForce(joint, force, moment))
+        if scene.ground in joint.links:  # the force on the ground: -F if it is the first link
+            sign = -1.0 if joint.links[0] == scene.ground else 1.0
+            frame_force += sign * force
+            frame_moment += sign * cross(P, force)
+            if moment is not None:
+                frame_moment += sign * moment
+    for driver in scene.drivers:
+        torques[driver.link] = u[:, column].copy()
+        frame_moment -= torques[driver.link]
+        column += 1
+    return ForceAnalysis(
+        joints, torques, frame_force, frame_moment, elements, forces, moments, system
+    )
