@@ -11,7 +11,7 @@ from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from server import problems
-from server.routes import kinematics, presets, solution
+from server.routes import dynamics, kinematics, presets, solution
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
@@ -32,6 +32,7 @@ def create_app() -> FastAPI:
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
+    app.include_router(dynamics.router, prefix=API_PREFIX)
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:

@@ -15,10 +15,16 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+from fastapi import APIRouter
+from pydantic import Field
 
+from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import JSON
+from server.routes.scenes import parse_linkage_only
+from server.schemas import Strict
 from solver.analysis import DYNAMIC_QUANTITIES, LinkageAnalysis
 from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics, sweep_times
+from solver.dynamics.balance import balance_four_bar
 from solver.dynamics.cycle import cycle_figures
 from solver.rigid import Array
 from solver.scene import LinkageScene
@@ -130,3 +136,49 @@ def add_sweep_dynamics(
             "speed_fluctuation": speed_fluctuation,
         }
     return body
+
+
+class CounterweightSpec(Strict):
+    link: str = Field(description="A link that turns about the ground (the crank or the rocker).")
+    mass: float = Field(gt=0, le=1e9, description="The counterweight's mass (kg).")
+
+
+class BalanceRequest(Strict):
+    scene: dict[str, Any] = Field(description="A four-bar 'linkage' with masses (dynamics-v1).")
+    counterweights: list[CounterweightSpec] = Field(
+        max_length=2, description="One counterweight on each link that turns about the ground."
+    )
+
+
+router = APIRouter(
+    tags=["dynamics"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+)
+
+
+@router.post(
+    "/balance",
+    summary="Full force balancing of a four-bar: counterweights that keep the centre of mass still",
+)
+def balance_route(request: BalanceRequest) -> FiniteJSONResponse:
+    scene = parse_linkage_only(request.scene, "/balance")
+    result = balance_four_bar(
+        scene, request.scene, [(c.link, c.mass) for c in request.counterweights]
+    )
+    return FiniteJSONResponse(
+        {
+            "counterweights": [
+                {
+                    "link": w.link,
+                    "mass": w.mass,
+                    "pivot": w.pivot,
+                    "distance": w.distance,
+                    "offset": w.offset,
+                    "position": list(w.position),
+                }
+                for w in result.counterweights
+            ],
+            "center_of_mass": list(result.center_of_mass),
+            "mass": result.mass,
+            "scene": result.scene,
+        }
+    )

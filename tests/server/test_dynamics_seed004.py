@@ -140,3 +140,28 @@ def test_seed004_cycle_energy_fluctuation_and_flywheel(cycle: Any) -> None:
     assert figures["energy_fluctuation"] == pytest.approx(fluctuation, rel=1e-9)
     omega = 8 * math.pi
     assert figures["flywheel_inertia"] == pytest.approx(fluctuation / (0.05 * omega**2), rel=1e-12)
+
+
+def test_seed004_balancing(http: httpx.Client) -> None:
+    """100 kg on the crank and on member 3 (E004-6): l_kappa = -0.0675 m, l_lambda = -1.005 m
+    (member 3 a bar Gamma -> D), the centre of mass stationary at x = 0.63636 m, not r_G = 0."""
+    response = http.post(
+        "/api/v1/balance",
+        json={
+            "scene": seed004_scene(),
+            "counterweights": [{"link": "crank", "mass": 100}, {"link": "rocker", "mass": 100}],
+        },
+    )
+    assert response.status_code == 200, response.text
+    body = response.json()
+    crank, rocker = body["counterweights"]
+    assert crank["distance"] == pytest.approx(
+        EXPECTED["balancing_l_kappa_for_100kg_on_crank"]["value"], abs=1e-12
+    )
+    assert rocker["distance"] == pytest.approx(
+        EXPECTED["balancing_l_lambda_for_100kg_on_member3"]["value"], abs=1e-12
+    )
+    assert body["center_of_mass"] == pytest.approx(
+        [EXPECTED["balanced_CoM_x"]["value"], 0.0], abs=1e-12
+    )
+    assert crank["position"] == pytest.approx([-0.0675, 0.0], abs=1e-12)
