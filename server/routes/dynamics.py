@@ -99,6 +99,14 @@ def add_instant_dynamics(body: JSON, scene: LinkageScene, result: LinkageAnalysi
     return body
 
 
+def add_dynamics_results(body: JSON, scene: LinkageScene, result: LinkageAnalysis) -> JSON:
+    """The /analyze body of a worked solution with ``forces`` and ``energy`` added (the paths
+    of its Newton-Euler steps' numbers point into them)."""
+    dynamics = linkage_dynamics(scene, result.motion, np.array([scene.time]))
+    _add(body, dynamics, result.quantities | set(DYNAMIC_QUANTITIES), _instant)
+    return body
+
+
 def add_sweep_dynamics(
     body: JSON, result: Sweep | TimeSweep, speed_fluctuation: float | None = None
 ) -> JSON:

@@ -19,17 +19,19 @@ from pydantic import Field
 
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import JSON, analysis_response, spatial_response
+from server.routes.dynamics import add_dynamics_results
 from server.routes.scenes import parse_scene
 from server.schemas import EXAMPLES, Strict
 from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.presets import build_preset
+from solver.scene import LinkageScene
 from solver.steps import Solution, solve
 
 router = APIRouter(
     tags=["solutions"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
 )
 
-Method = Literal["vector", "loop"]
+Method = Literal["vector", "loop", "newton_euler"]
 
 
 def _example(name: str) -> dict[str, Any]:
@@ -47,7 +49,8 @@ class SolutionRequest(Strict):
         description="'vector' (relative velocities, seed 000 form) or 'loop' (loop "
         "closure in complex form with Cramer's rule, seed 001 form; for linkages that are not "
         "chains of four-bar, slider-crank or slotted-lever loops the solution falls back to "
-        "'vector' and says so).",
+        "'vector' and says so), or 'newton_euler' (dynamics-v1: the kinematics, then the joint "
+        "forces and the driving torque by Newton-Euler, with free-body diagrams).",
     )
     digits: int = Field(
         4,
@@ -77,7 +80,11 @@ def solution_body(solution: Solution) -> JSON:
 @router.post("/solution", summary="Worked solution, step by step, in the textbook's form")
 def solution_route(request: SolutionRequest) -> FiniteJSONResponse:
     scene = parse_scene(request.scene)
-    return FiniteJSONResponse(solution_body(solve(scene, request.method, request.digits)))
+    solution = solve(scene, request.method, request.digits)
+    body = solution_body(solution)
+    if solution.method == "newton_euler" and isinstance(scene, LinkageScene):
+        add_dynamics_results(body["results"], scene, solution.analysis)
+    return FiniteJSONResponse(body)
 
 
 # --- the printable page -------------------------------------------------------------------------

@@ -38,9 +38,13 @@ from solver.scene import Joint, LinkageScene
 @dataclass(frozen=True)
 class System:
     """The Newton-Euler system A u = b of every sample: ``entries`` (row, column, values (N,))
-    of A, ``rhs`` b (N, m), and the names of the unknowns and of the equations."""
+    of A, ``rhs`` b (N, m), and the names of the unknowns and of the equations. ``origins`` says
+    what each unknown is: ("joint", index in the scene's joints, 0 | 1 for x | y of a revolute
+    joint's force, 0 for a slot's normal force, 2 for a prismatic joint's moment) or ("driver",
+    index, 0)."""
 
     unknowns: tuple[str, ...]
+    origins: tuple[tuple[str, int, int], ...]
     equations: tuple[str, ...]
     entries: tuple[tuple[int, int, Array], ...]
     rhs: Array
@@ -113,6 +117,7 @@ class ForceAnalysis:
     forces: list[AppliedForce]
     moments: list[AppliedMoment]
     system: System
+    solution: Array  # u (N, m): the unknowns in the order of ``system.unknowns``
 
 
 def slot_normal(joint: Joint, motion: Motion) -> Array:
@@ -134,6 +139,7 @@ def newton_euler_system(
     reference = {name: motion.links[name].anchor.p for name in links}
     n = motion.margin.size
     unknowns: list[str] = []
+    origins: list[tuple[str, int, int]] = []
     entries: list[tuple[int, int, Array]] = []
     ones = np.ones(n)
 
@@ -149,26 +155,30 @@ def newton_euler_system(
         if link != scene.ground:
             entries.append((row[link] + 2, column, sign * ones))
 
-    for joint in scene.joints:
+    for index, joint in enumerate(scene.joints):
         P = motion.points[joint.point].p
         first, second = joint.links
         if joint.type == "revolute":
-            for axis, unit in (("x", (1.0, 0.0)), ("y", (0.0, 1.0))):
+            for axis, unit in enumerate(((1.0, 0.0), (0.0, 1.0))):
                 d = np.broadcast_to(np.array(unit), (n, 2))
-                unknowns.append(f"F{axis}_{joint.point}")
+                unknowns.append(f"F{'xy'[axis]}_{joint.point}")
+                origins.append(("joint", index, axis))
                 add_force(len(unknowns) - 1, second, 1.0, P, d)
                 add_force(len(unknowns) - 1, first, -1.0, P, d)
         else:
             normal = slot_normal(joint, motion)
             unknowns.append(f"N_{joint.point}")
+            origins.append(("joint", index, 0))
             add_force(len(unknowns) - 1, second, 1.0, P, normal)
             add_force(len(unknowns) - 1, first, -1.0, P, normal)
             if joint.type == "prismatic":
                 unknowns.append(f"M_{joint.point}")
+                origins.append(("joint", index, 2))
                 add_moment(len(unknowns) - 1, second, 1.0)
                 add_moment(len(unknowns) - 1, first, -1.0)
-    for driver in scene.drivers:
+    for index, driver in enumerate(scene.drivers):
         unknowns.append(f"M_{driver.link}")
+        origins.append(("driver", index, 0))
         add_moment(len(unknowns) - 1, driver.link, 1.0)
 
     gravity = np.array(dynamics_of(scene).gravity)
@@ -185,7 +195,7 @@ def newton_euler_system(
     for m in moments:
         rhs[:, row[m.link] + 2] -= m.moment
     equations = tuple(f"{kind}({name})" for name in links for kind in ("Fx", "Fy", "Mz"))
-    return System(tuple(unknowns), equations, tuple(entries), rhs, reference)
+    return System(tuple(unknowns), tuple(origins), equations, tuple(entries), rhs, reference)
 
 
 def inverse_dynamics(
@@ -229,5 +239,5 @@ def inverse_dynamics(
         frame_moment -= torques[driver.link]
         column += 1
     return ForceAnalysis(
-        joints, torques, frame_force, frame_moment, elements, forces, moments, system
+        joints, torques, frame_force, frame_moment, elements, forces, moments, system, u
     )

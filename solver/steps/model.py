@@ -86,9 +86,10 @@ class Step:
     text: str
     values: Mapping[str, Value] = field(default_factory=dict)
     checks: tuple[Check, ...] = ()
+    figure: Mapping[str, Any] | None = None  # a drawing as data (a free-body diagram), if any
 
     def as_json(self) -> dict[str, Any]:
-        return {
+        out = {
             "kind": self.kind,
             "title": self.title,
             "latex": self.latex,
@@ -96,6 +97,9 @@ class Step:
             "values": {k: v.as_json() for k, v in self.values.items()},
             "checks": [c.as_json() for c in self.checks],
         }
+        if self.figure is not None:
+            out["figure"] = dict(self.figure)
+        return out
 
 
 @dataclass(frozen=True)

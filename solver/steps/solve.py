@@ -25,11 +25,12 @@ from solver.steps.linkage import (
 from solver.steps.loop import LoopUnavailable, loop_steps
 from solver.steps.mistakes import linkage_mistakes, loop_mistakes, spatial_mistakes
 from solver.steps.model import Solution, Step
+from solver.steps.newton_euler import in_scene_order, newton_euler_mistakes, newton_euler_steps
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
 from solver.steps.vector import vector_steps
 
-METHODS = ("vector", "loop")
+METHODS = ("vector", "loop", "newton_euler")
 MIN_DIGITS, MAX_DIGITS = 1, 15
 
 _SENTENCES = {
@@ -38,6 +39,9 @@ _SENTENCES = {
     "transport, relative and Coriolis terms at every slot.",
     "loop": "Method: loop closure in complex form. Each loop of link vectors closes; its time "
     "derivatives are linear in the unknown rates, solved by Cramer's rule.",
+    "newton_euler": "Method: Newton-Euler. The kinematics by relative velocities, then for every "
+    "moving link sum F = m a_G and the sum of moments about a point of the link, one linear "
+    "system for the joint forces and the driving torque, checked by the power balance.",
 }
 
 
@@ -65,10 +69,15 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     else:
         body = vector_steps(ctx)
     body += moving_point_steps(ctx)
+    if method == "newton_euler":
+        body += newton_euler_steps(ctx)
     steps = [*lead, data_step(ctx, _SENTENCES[used]), positions_step(ctx), *body, summary_step(ctx)]
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)
+    if used == "newton_euler":
+        mistakes += newton_euler_mistakes(ctx)
+        in_scene_order(steps, mistakes, ctx)
     return Solution(tuple(steps), tuple(mistakes), analysis, used, method, digits)
 
 
@@ -91,12 +100,18 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
     analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
     lead = []
-    if method != "vector":
+    if method == "loop":
         lead.append(
             _fallback_step(
                 "loop-closure",
                 "A spatial chain is an open chain of rotating frames: it has no loop "
                 "to close; its velocities follow from the composition of angular velocities.",
+            )
+        )
+    elif method == "newton_euler":
+        lead.append(
+            _fallback_step(
+                "Newton-Euler", "Masses and forces are defined for planar linkages only."
             )
         )
     steps = lead + spatial_steps(scene, analysis, fmt)
