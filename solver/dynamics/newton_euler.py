@@ -9,8 +9,10 @@ where i runs over the link's masses (the body and its point masses). The unknown
 reactions (revolute: Fx, Fy; slider: the force normal to the slot, frictionless; prismatic: that
 force and a moment) and every driver's torque: 3 per moving link, as many as the equations
 (Gruebler). Each joint's force is the one its first link exerts on its second; the second link
-gets +F, the first -F. The samples' systems are the diagonal blocks of one sparse matrix, solved
-by one sparse LU factorisation (SuperLU, natural ordering: the fill stays inside each block).
+gets +F, the first -F. The matrix is sparse (a force enters only the equations of the two links it
+joins) and has the same pattern at every sample: it is kept as (row, column, values per sample)
+entries, and the samples' blocks are solved together, as one dense batch by LAPACK for small
+linkages or as one block-diagonal sparse matrix by SuperLU for large ones.
 """
 
 from __future__ import annotations
@@ -33,6 +35,10 @@ from solver.dynamics.loads import (
 from solver.errors import SingularConfiguration
 from solver.rigid import Array, cross, perp, rotate
 from solver.scene import Joint, LinkageScene
+
+# Up to this many matrix entries over all samples (16 MB) the blocks are solved as one dense
+# batch (LAPACK), beyond as one sparse block-diagonal matrix (SuperLU).
+DENSE_LIMIT = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -63,37 +69,57 @@ class System:
         singular and the motion smooth) take the mean of their neighbours (``cyclic``: over a
         whole revolution)."""
         n, m = self.rhs.shape
-        rows = np.array([e[0] for e in self.entries])
-        columns = np.array([e[1] for e in self.entries])
-        values = np.stack([e[2] for e in self.entries], axis=1)  # (N, entries)
         rhs = self.rhs.copy()
-        if singular.size:  # an identity block, replaced below
-            values[singular] = 0.0
-            rhs[singular] = 0.0
-        offsets = (np.arange(n) * m)[:, None]
-        all_rows = np.concatenate(
-            [(offsets + rows).ravel(), (singular[:, None] * m + np.arange(m)).ravel()]
-        )
-        all_columns = np.concatenate(
-            [(offsets + columns).ravel(), (singular[:, None] * m + np.arange(m)).ravel()]
-        )
-        data = np.concatenate([values.ravel(), np.ones(singular.size * m)])
-        A = scipy.sparse.csc_matrix((data, (all_rows, all_columns)), shape=(n * m, n * m))
+        rhs[singular] = 0.0  # an identity block there, replaced below
         try:
-            lu = scipy.sparse.linalg.splu(A, permc_spec="NATURAL")
-        except RuntimeError:
+            if n * m * m <= DENSE_LIMIT:
+                u = self._solve_dense(rhs, singular)
+            else:
+                u = self._solve_sparse(rhs, singular)
+        except (RuntimeError, np.linalg.LinAlgError):
             raise SingularConfiguration(
                 "the Newton-Euler equations are singular: at a dead centre the driver cannot "
                 "move the linkage, so its torque and the joint forces are not determined",
                 float("inf"),
             ) from None
-        u = lu.solve(rhs.ravel()).reshape(n, m)
         for k in singular:
             before, after = (
                 ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
             )
             u[k] = 0.5 * (u[before] + u[after])
         return u
+
+    def _solve_dense(self, rhs: Array, singular: Array) -> Array:
+        """Every sample's block at once by LAPACK's LU (small systems)."""
+        n, m = rhs.shape
+        A = np.zeros((n, m, m))
+        for row, column, values in self.entries:
+            A[:, row, column] += values
+        A[singular] = np.eye(m)
+        return np.linalg.solve(A, rhs[..., None])[..., 0]
+
+    def _solve_sparse(self, rhs: Array, singular: Array) -> Array:
+        """The blocks as one block-diagonal sparse matrix, one SuperLU factorisation (natural
+        ordering: the fill stays inside each block)."""
+        n, m = rhs.shape
+        rows = np.array([e[0] for e in self.entries])
+        columns = np.array([e[1] for e in self.entries])
+        values = np.stack([e[2] for e in self.entries], axis=1)  # (N, entries)
+        values[singular] = 0.0
+        offsets = (np.arange(n) * m)[:, None]
+        diagonal = (singular[:, None] * m + np.arange(m)).ravel()
+        A = scipy.sparse.csc_matrix(
+            (
+                np.concatenate([values.ravel(), np.ones(diagonal.size)]),
+                (
+                    np.concatenate([(offsets + rows).ravel(), diagonal]),
+                    np.concatenate([(offsets + columns).ravel(), diagonal]),
+                ),
+            ),
+            shape=(n * m, n * m),
+        )
+        lu = scipy.sparse.linalg.splu(A, permc_spec="NATURAL")
+        return lu.solve(rhs.ravel()).reshape(n, m)
 
 
 @dataclass(frozen=True)
@@ -151,6 +177,15 @@ def newton_euler_system(
         entries.append((r + 1, column, sign * d[:, 1]))
         entries.append((r + 2, column, sign * cross(point - reference[link], d)))
 
+    def add_component(column: int, link: str, sign: float, point: Array, axis: int) -> None:
+        """A force along x (axis 0) or y (1): the same as add_force with d = e_x or e_y."""
+        if link == scene.ground:
+            return
+        r = row[link]
+        arm = point - reference[link]  # (r x e_x)_z = -r_y, (r x e_y)_z = r_x
+        entries.append((r + axis, column, sign * ones))
+        entries.append((r + 2, column, (sign if axis else -sign) * arm[:, 1 - axis]))
+
     def add_moment(column: int, link: str, sign: float) -> None:
         if link != scene.ground:
             entries.append((row[link] + 2, column, sign * ones))
@@ -159,12 +194,11 @@ def newton_euler_system(
         P = motion.points[joint.point].p
         first, second = joint.links
         if joint.type == "revolute":
-            for axis, unit in enumerate(((1.0, 0.0), (0.0, 1.0))):
-                d = np.broadcast_to(np.array(unit), (n, 2))
+            for axis in (0, 1):
                 unknowns.append(f"F{'xy'[axis]}_{joint.point}")
                 origins.append(("joint", index, axis))
-                add_force(len(unknowns) - 1, second, 1.0, P, d)
-                add_force(len(unknowns) - 1, first, -1.0, P, d)
+                add_component(len(unknowns) - 1, second, 1.0, P, axis)
+                add_component(len(unknowns) - 1, first, -1.0, P, axis)
         else:
             normal = slot_normal(joint, motion)
             unknowns.append(f"N_{joint.point}")
