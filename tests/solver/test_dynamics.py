@@ -159,3 +159,27 @@ def test_the_time_law_language_is_unchanged() -> None:
 def test_an_undefined_value_is_an_invalid_expression_naming_the_state() -> None:
     with pytest.raises(InvalidExpression, match=r'angle\("L"\) = -2'):
         parse_state_expression('sqrt(angle("L"))').evaluate(TIMES, STATE)
+
+
+def test_dense_and_sparse_solutions_agree_and_singular_samples_take_the_neighbours_mean(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Both ways of solving the samples' blocks give the same forces (1e-12 relative); a sample
+    marked singular (a change point inside a sweep) gets the mean of its neighbours."""
+    from solver.dynamics import newton_euler
+    from solver.sweep import sweep
+    from tests.dynamics_cases import seed004_scene
+
+    scene = parse_linkage(seed004_scene())
+    motion = sweep(scene, 36, ["acceleration"]).motion
+    times = np.linspace(0, 0.25, 36, endpoint=False)
+    system = newton_euler.inverse_dynamics(scene, motion, times).system
+    singular = np.array([0, 7])
+    dense = system.solve(singular)
+    monkeypatch.setattr(newton_euler, "DENSE_LIMIT", 0)
+    sparse = system.solve(singular)
+    assert sparse == pytest.approx(dense, rel=1e-12, abs=1e-9)
+    plain = system.solve(np.array([], dtype=int))
+    assert dense[7] == pytest.approx(0.5 * (plain[6] + plain[8]), rel=1e-12)
+    assert dense[0] == pytest.approx(0.5 * (plain[35] + plain[1]), rel=1e-12)
+    assert np.delete(dense, [0, 7], axis=0) == pytest.approx(np.delete(plain, [0, 7], axis=0))
