@@ -92,9 +92,13 @@ class System:
     def _solve_dense(self, rhs: Array, singular: Array) -> Array:
         """Every sample's block at once by LAPACK's LU (small systems)."""
         n, m = rhs.shape
-        A = np.zeros((n, m, m))
+        summed: dict[int, Array] = {}  # entry (row, column) at row * m + column, summed
         for row, column, values in self.entries:
-            A[:, row, column] += values
+            key = row * m + column
+            summed[key] = summed[key] + values if key in summed else values
+        rows = np.zeros((m * m, n))  # samples last: each entry one contiguous write
+        rows[list(summed)] = np.stack(list(summed.values()))
+        A = rows.T.reshape(n, m, m)
         A[singular] = np.eye(m)
         return np.linalg.solve(A, rhs[..., None])[..., 0]
 
