@@ -81,8 +81,9 @@ def svg(
     parts = [
         f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {SIZE} {SIZE}" width="{SIZE}" '
         f'height="{SIZE}" role="img" aria-label="free-body diagram of {e(link)}">',
-        '<defs><marker id="head" markerWidth="8" markerHeight="8" refX="7" refY="4" '
-        'orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="#c0392b"/></marker></defs>',
+        '<defs><marker id="head" markerWidth="9" markerHeight="8" refX="8" refY="4" '
+        'orient="auto" markerUnits="userSpaceOnUse"><path d="M0,0 L9,4 L0,8 z" '
+        'fill="context-stroke"/></marker></defs>',
     ]
     chain = " ".join(f"{x:.1f},{y:.1f}" for x, y in map(px, points.values()))
     parts.append(
@@ -101,7 +102,7 @@ def svg(
         magnitude = math.hypot(*a.vector)
         if largest == 0.0 or magnitude < 1e-9 * largest:
             continue
-        length = ARROW * max(magnitude / largest, 0.25)
+        length = ARROW * max(magnitude / largest, 0.4)
         x0, y0 = px(a.at)
         x1 = x0 + a.vector[0] / magnitude * length
         y1 = y0 - a.vector[1] / magnitude * length

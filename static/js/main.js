@@ -17,6 +17,7 @@ import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentS
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';
+import { DynamicsPanel } from './dynamics.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -65,6 +66,10 @@ class App {
       share: () => this.onShare(),
     });
     $('print-solution').addEventListener('click', () => this.openPrintable());
+    this.dynamics = new DynamicsPanel({
+      section: $('dynamics'), plots: $('dynamics-plots'), hodograph: $('dynamics-hodograph'),
+      info: $('dynamics-info'), message: $('dynamics-message'), balance: $('dynamics-balance'),
+    });
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),
@@ -343,12 +348,14 @@ class App {
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
     this.drawFrame();
     this.drawPlots();
+    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units));
     this.dirty = true;
     this.scheduleAnalysis(0);
     this.saveHash();
   }
 
   async loadSpatial(scene, seq) {
+    this.dynamics.show(scene, this.units); // hides the dynamics panel: no masses in space
     let analysis = null;
     let note = null;
     try {
@@ -540,6 +547,8 @@ class App {
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();
+    this.dynamics.units = units;
+    this.dynamics.drawCycle();
     this.dirty = true;
     this.saveHash();
   }
@@ -648,7 +657,7 @@ class App {
     this.controls.setUnits(this.units);
     this.speed = view.speed || 1;
     this.controls.setSpeed(this.speed);
-    this.method = view.method === 'loop' ? 'loop' : 'vector';
+    this.method = ['loop', 'newton_euler'].includes(view.method) ? view.method : 'vector';
     this.controls.setMethod(this.method);
     if (view.camera) this.camera = view.camera;
     if (view.plot) this.plot = view.plot;

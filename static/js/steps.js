@@ -47,6 +47,12 @@ export function renderSolution(stepsEl, mistakesEl, solution) {
       item.appendChild(math);
     }
     if (step.text) item.appendChild(el('p', { class: 'step-text' }, step.text));
+    if (step.figure && step.figure.svg) {
+      // A free-body diagram (dynamics-v1): the server's SVG, every name in it escaped there.
+      const figure = el('div', { class: 'step-figure' });
+      figure.innerHTML = step.figure.svg;
+      item.appendChild(figure);
+    }
     list.appendChild(item);
   }
   stepsEl.appendChild(list);
