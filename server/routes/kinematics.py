@@ -15,7 +15,7 @@ from server.responses import (
 from server.routes.dynamics import add_instant_dynamics, add_sweep_dynamics
 from server.routes.scenes import parse_linkage_only, parse_scene
 from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
-from solver.analysis import analyze, normalise_quantities
+from solver.analysis import DYNAMIC_QUANTITIES, analyze, normalise_quantities
 from solver.errors import InvalidScene
 from solver.events import find_event
 from solver.scene import LinkageScene
@@ -37,6 +37,8 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
         result = analyze(scene, request.quantities)
         return FiniteJSONResponse(add_instant_dynamics(analysis_response(result), scene, result))
     wanted = normalise_quantities(request.quantities)
+    if wanted & set(DYNAMIC_QUANTITIES):
+        raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
     return FiniteJSONResponse(spatial_response(analyze_spatial_chain(scene), wanted))
 
 

@@ -152,3 +152,13 @@ def test_an_expression_undefined_in_the_motion_is_a_422(client: TestClient) -> N
     response = post(client, "analyze", {"scene": scene, "quantities": ["forces"]})
     assert response.status_code == 422
     assert response.json()["code"] == "invalid_expression"
+
+
+def test_forces_of_a_spatial_chain_are_refused(client: TestClient) -> None:
+    from tests.server.test_solution import example
+
+    response = post(
+        client, "analyze", {"scene": example("S002-spatial-arm"), "quantities": ["forces"]}
+    )
+    assert response.status_code == 422
+    assert "planar linkages" in response.json()["detail"]
