@@ -9,8 +9,9 @@
 
 import * as api from './api.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
+import { svgEl, setAttrs, arrowMarker } from './svg.js';
 
-const SAMPLES = 361;
+const ARROW_PX = 70; // the largest joint force of the cycle, on the drawing
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
 const FIELDS = ['masses', 'point_masses', 'forces', 'torques'];
 
@@ -40,26 +41,30 @@ function isFourBar(scene) {
 }
 
 export class DynamicsPanel {
-  constructor({ section, plots, hodograph, info, message, balance }) {
-    Object.assign(this, { section, plots, hodograph, info, message, balance });
+  constructor({ section, plots, hodograph, info, message, balance, arrows, onArrows }) {
+    Object.assign(this, { section, plots, hodograph, info, message, balance, arrows });
     this.seq = 0;
     this.scene = null;
+    this.sweep = null;
     this.balanced = null;
     balance.addEventListener('change', () => this.drawHodograph());
+    arrows.addEventListener('change', () => onArrows());
   }
 
-  async show(scene, units) {
+  /** The sweep (``samples`` as the animation's, so that its frames index both). */
+  async show(scene, units, samples) {
     const seq = ++this.seq;
     this.units = units;
     this.section.hidden = !hasDynamics(scene);
     if (this.section.hidden) return;
     this.scene = scene;
+    this.sweep = null;
     this.balanced = null;
     this.balance.parentElement.hidden = !isFourBar(scene);
     this.message.hidden = true;
     let sweep;
     try {
-      sweep = await api.sweep(scene, SAMPLES, ['forces', 'energy']);
+      sweep = await api.sweep(scene, samples, ['forces', 'energy']);
     } catch (err) {
       if (seq !== this.seq) return;
       this.message.textContent = err.detail;
@@ -72,7 +77,7 @@ export class DynamicsPanel {
     if (isFourBar(scene)) {
       try {
         const answer = await api.balance(scene, counterweights(scene));
-        const balancedSweep = await api.sweep(answer.scene, SAMPLES, ['forces']);
+        const balancedSweep = await api.sweep(answer.scene, samples, ['forces']);
         if (seq !== this.seq) return;
         this.balanced = { answer, sweep: balancedSweep };
       } catch (err) {
@@ -147,5 +152,59 @@ export class DynamicsPanel {
     P.react(this.hodograph, traces, layout, CONFIG);
     this.hodograph.dataset.note = note;
     this.balance.title = note;
+  }
+
+  /**
+   * Arrows of the joint forces on the animated linkage at fractional sample ``u`` (each the force
+   * the joint's first link exerts on its second), when "Show joint forces" is on and the
+   * animation is the same sweep over the driver angle.
+   */
+  drawArrows(view, svg, frame, track, u) {
+    let g = svg.querySelector('g.layer-forces');
+    const s = this.sweep;
+    const on = this.arrows.checked && !this.section.hidden && s && track && track.param === 'angle' && s.samples === track.n;
+    if (!on) {
+      if (g) g.setAttribute('visibility', 'hidden');
+      return;
+    }
+    if (!g) {
+      g = svgEl('g', { class: 'layer-forces' }, svg);
+      this.head = arrowMarker(svgEl('defs', {}, g), 'force-head', '#c0392b');
+      this.arrowNodes = null;
+    }
+    g.setAttribute('visibility', 'visible');
+    if (!this.arrowNodes || this.arrowNodes.length !== s.joints.length || this.arrowNodes.sweep !== s) {
+      for (const node of g.querySelectorAll('line, text')) node.remove();
+      this.arrowNodes = s.joints.map((j) => ({
+        joint: j,
+        line: svgEl('line', { class: 'force-arrow', stroke: '#c0392b', 'stroke-width': 2.5, 'marker-end': this.head }, g),
+        label: svgEl('text', { class: 'force-label', fill: '#c0392b', 'font-size': 13 }, g),
+      }));
+      this.arrowNodes.sweep = s;
+      this.largest = Math.max(...s.joints.flatMap((j) => j.force.map(norm)), 1e-300);
+    }
+    const max = s.samples - 1;
+    const clamped = Math.min(Math.max(u, 0), max);
+    const i = Math.min(Math.floor(clamped), Math.max(max - 1, 0));
+    const f = clamped - i;
+    for (const a of this.arrowNodes) {
+      const p = frame.position[a.joint.point];
+      const F0 = a.joint.force[i];
+      const F1 = a.joint.force[Math.min(i + 1, max)];
+      const F = [F0[0] + (F1[0] - F0[0]) * f, F0[1] + (F1[1] - F0[1]) * f];
+      const size = norm(F);
+      if (!p || size < 1e-9 * this.largest) {
+        a.line.setAttribute('visibility', 'hidden');
+        a.label.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const [x, y] = view.px(p);
+      const length = (ARROW_PX * size) / this.largest;
+      const x2 = x + (F[0] / size) * length;
+      const y2 = y - (F[1] / size) * length;
+      setAttrs(a.line, { x1: x, y1: y, x2, y2, visibility: null });
+      setAttrs(a.label, { x: x2 + 4, y: y2 - 4, visibility: null });
+      a.label.textContent = `F ${a.joint.point} ${fmt(size, 3)} N`;
+    }
   }
 }

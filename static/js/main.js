@@ -69,6 +69,7 @@ class App {
     this.dynamics = new DynamicsPanel({
       section: $('dynamics'), plots: $('dynamics-plots'), hodograph: $('dynamics-hodograph'),
       info: $('dynamics-info'), message: $('dynamics-message'), balance: $('dynamics-balance'),
+      arrows: $('dynamics-arrows'), onArrows: () => this.drawFrame(),
     });
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
@@ -348,14 +349,14 @@ class App {
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
     this.drawFrame();
     this.drawPlots();
-    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units));
+    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units, SAMPLES).then(() => this.drawFrame()));
     this.dirty = true;
     this.scheduleAnalysis(0);
     this.saveHash();
   }
 
   async loadSpatial(scene, seq) {
-    this.dynamics.show(scene, this.units); // hides the dynamics panel: no masses in space
+    this.dynamics.show(scene, this.units, SAMPLES); // hides the panel: no masses in space
     let analysis = null;
     let note = null;
     try {
@@ -598,6 +599,7 @@ class App {
     const exact = !this.playing && this.analysis && this.analysisU === this.u;
     const frame = exact ? frameFromAnalysis(this.analysis) : frameAt(this.track, this.u);
     this.linkage.draw(frame);
+    this.dynamics.drawArrows(this.linkage, $('linkage'), frame, this.track, this.u);
     const value = this.instantValue();
     this.controls.setInstant(value);
     $('linkage').dataset.instant = String(value);

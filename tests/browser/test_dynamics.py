@@ -1,7 +1,7 @@
 """The dynamics panel in the browser (dynamics-v1): shown for scenes with masses, plots of the
 driving torque and its mean, power, joint forces, kinetic energy and equivalent inertia over the
-cycle, the frame force's hodograph with the balanced four-bar's beside it, and the Newton-Euler
-worked solution with its free-body diagrams."""
+cycle, the frame force's hodograph with the balanced four-bar's beside it, joint-force arrows on
+the animated linkage, and the Newton-Euler worked solution with its free-body diagrams."""
 
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
     assert names[:3] == ["torque M (crank)", "mean torque", "power M ω"]
     assert {"|F| at O", "|F| at A", "|F| at B", "|F| at Gamma"} <= set(names)
     mean = traces[1]["y"][0]
-    assert mean == pytest.approx(-63.6456581982242, rel=1e-3)  # 361 samples, a kinked load law
+    assert mean == pytest.approx(-63.6456581982242, rel=1e-3)  # 241 samples, a kinked load law
     assert "mean power -1600 W" in page.inner_text("#dynamics-info") or "-1599" in page.inner_text(
         "#dynamics-info"
     )
@@ -44,6 +44,21 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
 
     assert spread(balanced) < 0.25 * spread(unbalanced)
     app.screenshot("dynamics-seed004", "#dynamics")
+    # joint forces as arrows on the animated linkage, following the frames
+    page.check("#dynamics-arrows")
+    page.wait_for_selector("#linkage .force-arrow", state="attached")
+    assert page.locator("#linkage .force-arrow").count() == 4
+    first = page.get_attribute("#linkage .force-arrow >> nth=0", "x2")
+    wait_until(
+        lambda: page.get_attribute("#linkage .force-arrow >> nth=0", "x2") != first,
+        what="the force arrows to move with the animation",
+    )
+    page.uncheck("#dynamics-arrows")
+    wait_until(
+        lambda: page.get_attribute("#linkage g.layer-forces", "visibility") == "hidden",
+        what="the arrows to hide",
+    )
+    app.screenshot("linkage-with-forces", "#linkage")
 
 
 def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
