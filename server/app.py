@@ -12,7 +12,7 @@ from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from server import problems, schemas
-from server.routes import exercises, kinematics, presets, solution
+from server.routes import dynamics, exercises, kinematics, presets, solution
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
@@ -35,6 +35,7 @@ def create_app() -> FastAPI:
     app.include_router(presets.router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
     app.include_router(exercises.router, prefix=API_PREFIX)
+    app.include_router(dynamics.router, prefix=API_PREFIX)
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:

@@ -22,7 +22,9 @@ def _example(name: str) -> dict[str, Any]:
     return data
 
 
-Quantity = Literal["position", "velocity", "acceleration", "poles", "components"]
+Quantity = Literal[
+    "position", "velocity", "acceleration", "poles", "components", "forces", "energy"
+]
 
 
 class Strict(BaseModel):
@@ -64,6 +66,13 @@ class SweepRequest(Strict):
         "of a driver revolution.",
     )
     strict: bool = STRICT
+    speed_fluctuation: float | None = Field(
+        None,
+        gt=0,
+        le=1,
+        description="dynamics-v1: the coefficient of speed fluctuation k for which the cycle "
+        "gives the flywheel inertia energy_fluctuation / (k omega^2).",
+    )
 
 
 class EventSpec(Strict):
@@ -418,6 +427,24 @@ class CheckResponse(Open):
     id: str
     score: float
     results: list[AnswerVerdict]
+
+
+class CounterweightValues(Open):
+    link: str
+    mass: float
+    pivot: str
+    distance: float
+    offset: float
+    position: list[float]
+
+
+class BalanceResponse(Open):
+    """POST /balance (dynamics-v1)."""
+
+    counterweights: list[CounterweightValues]
+    center_of_mass: list[float]
+    mass: float
+    scene: dict[str, Any]
 
 
 class ProblemCode(StrEnum):

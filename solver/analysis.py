@@ -41,6 +41,7 @@ from solver.scene import Driver, LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, build_plan
 
 QUANTITIES = ("position", "velocity", "acceleration", "poles", "components")
+DYNAMIC_QUANTITIES = ("forces", "energy")  # dynamics-v1: computed by solver.dynamics
 # cond(J) above this: the velocity equations are singular to within rounding (a dead centre).
 SINGULAR_CONDITION = 1e12
 # Newton groups reach a driver angle far from the drawn one in steps no larger than this.
@@ -142,19 +143,22 @@ def near_change_point(motion: Motion) -> tuple[tuple[str, float] | None, tuple[s
 
 
 def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
+    """The requested quantities; the default is every kinematic one (the dynamic ones, which
+    dynamics-v1 adds, only when asked for)."""
     if quantities is None:
         return frozenset(QUANTITIES)
     chosen = frozenset(quantities)
-    unknown = sorted(chosen - set(QUANTITIES))
+    allowed = (*QUANTITIES, *DYNAMIC_QUANTITIES)
+    unknown = sorted(chosen - set(allowed))
     if unknown:
-        raise InvalidScene(f"quantities: unknown {unknown}; allowed: {', '.join(QUANTITIES)}")
+        raise InvalidScene(f"quantities: unknown {unknown}; allowed: {', '.join(allowed)}")
     return chosen
 
 
 def required_order(quantities: frozenset[str], moving_points: bool = False) -> int:
-    """0 for positions, 1 to velocities, 2 to accelerations (poles and components need both;
-    so do moving points, whose velocity parts and acceleration parts come together)."""
-    if quantities & {"acceleration", "poles", "components"} or (
+    """0 for positions, 1 to velocities, 2 to accelerations (poles, components, forces and
+    energy need both; so do moving points, whose velocity and acceleration parts come together)."""
+    if quantities & {"acceleration", "poles", "components", *DYNAMIC_QUANTITIES} or (
         moving_points and quantities - {"position"}
     ):
         return 2

@@ -22,6 +22,7 @@ from typing import Any
 
 from solver import analysis, events, results
 from solver import steps as worked
+from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
 from solver.errors import InvalidScene
 from solver.polygons import polygons
 from solver.results import (
@@ -112,7 +113,9 @@ def analyze(
     parsed, found = _scene(scene, strict)
     wanted = analysis.normalise_quantities(quantities)
     if isinstance(parsed, LinkageScene):
-        return AnalysisResult(results.analysis_body(analysis.analyze(parsed, wanted), found))
+        result = analysis.analyze(parsed, wanted)
+        body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
+        return AnalysisResult(body)
     return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
 
 
@@ -122,11 +125,16 @@ def sweep(
     quantities: Iterable[str] | None = None,
     *,
     strict: bool = False,
+    speed_fluctuation: float | None = None,
 ) -> SweepResult:
     """The linkage over one revolution of its first driver from its start angle, or over its
-    feasible range with the limit positions (POST /sweep). Default quantity: position."""
+    feasible range with the limit positions (POST /sweep). Default quantity: position. With
+    ``forces``, a revolution at constant speed also gets its ``cycle`` (and the flywheel inertia
+    for the coefficient of ``speed_fluctuation``)."""
     parsed, found = _linkage(scene, strict, "a sweep")
-    return SweepResult(results.sweep_body(sweep_linkage(parsed, samples, quantities), found))
+    result = sweep_linkage(parsed, samples, quantities)
+    body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
+    return SweepResult(body)
 
 
 def sweep_time(
@@ -143,7 +151,8 @@ def sweep_time(
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
-    body = results.time_sweep_body(sweep_linkage_time(parsed, t0, t1, samples, quantities), found)
+    result = sweep_linkage_time(parsed, t0, t1, samples, quantities)
+    body = add_sweep_dynamics(results.time_sweep_body(result, found), result)
     return TimeSweepResult(body)
 
 
@@ -175,16 +184,22 @@ def find_event(
 def solve(
     scene: SceneInput, method: str = "vector", digits: int = 4, *, strict: bool = False
 ) -> SolutionResult:
-    """The worked solution (POST /solution) by ``method`` ('vector' or 'loop'), numbers shown with
-    ``digits`` significant digits; ``results`` is the /analyze body of the same instant and, for
-    a linkage, ``polygons`` the polygons' segments in the vector method's order."""
+    """The worked solution (POST /solution) by ``method`` ('vector', 'loop' or 'newton_euler'),
+    numbers shown with ``digits`` significant digits; ``results`` is the /analyze body of the
+    same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's order."""
     parsed, found = _scene(scene, strict)
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(analysis.QUANTITIES), found)
         return SolutionResult(results.solution_body(solution, body, None, found))
     # The polygons follow the vector method's steps, whichever method the solution uses.
-    vector = solution if solution.method == "vector" else worked.solve(parsed, "vector", digits)
+    vector = (
+        solution
+        if solution.method in ("vector", "newton_euler")
+        else worked.solve(parsed, "vector", digits)
+    )
     shapes = polygons(parsed, vector.analysis, vector.steps)
     body = results.analysis_body(solution.analysis, found)
+    if solution.method == "newton_euler":  # its steps' numbers point into forces and energy
+        add_dynamics_results(body, parsed, solution.analysis)
     return SolutionResult(results.solution_body(solution, body, shapes, found))

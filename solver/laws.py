@@ -14,7 +14,7 @@ import ast
 import functools
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, NoReturn, overload
 
@@ -57,8 +57,28 @@ _CHAR_HINTS = {
     "[": "use round parentheses ( )", "]": "use round parentheses ( )",
     ".": "a point may only appear inside a number such as 0.5", "\n": "write the law on one line",
 }  # fmt: skip
-_OPERAND_END = {"num", "name", "close"}
-_OPERAND_START = {"num", "name", "func", "open"}
+_OPERAND_END = {"num", "name", "close", "str"}
+_OPERAND_START = {"num", "name", "func", "open", "str"}
+
+# State expressions (forces and moments, see dynamics-v1) add to the time laws' language: the
+# state of a link, comparisons, and/or/not, where(c, a, b), and quoted link names.
+STATE_FUNCTIONS = ("angle", "omega", "alpha")
+_STATE_NAMES = {"and": "op", "or": "op", "not": "not", "where": "func"}
+_STATE_TOKEN = re.compile(
+    r"(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
+    r"|(?P<str>\"[^\"]*\"|'[^']*')|(?P<op>\*\*|<=|>=|[-+*/^<>,])|(?P<open>\()|(?P<close>\))"
+    r"|(?P<space>[ \t]+)",
+    re.ASCII,
+)
+_STATE_ALLOWED = (
+    _ALLOWED + ', angle("L"), omega("L"), alpha("L"), where(c, a, b), comparisons '
+    "< <= > >=, and, or, not"
+)
+_STATE_HINTS = {
+    **_CHAR_HINTS,
+    "=": "compare with < <= > >= (== and != are not allowed)",
+    "!": "compare with < <= > >= (== and != are not allowed)",
+}
 
 _Fn = Callable[[Any], Any]  # float64 scalar or array in, the same out
 
@@ -73,26 +93,34 @@ def _needs_parentheses(name: str) -> str:
     return f": {name} needs its argument in parentheses, e.g. {name}(t)"
 
 
-def _scan(text: str) -> None:
+def _scan(text: str, state: bool = False) -> None:
     """Check characters, names, parentheses and juxtaposition before Python's parser runs.
 
     Python's own messages ("invalid decimal literal") would puzzle a student, and its parser
-    should never see a character outside the expression language.
+    should never see a character outside the expression language. ``state``: the language of
+    force and moment expressions (``STATE_FUNCTIONS``, comparisons, and/or/not, where).
     """
+    token, hints, allowed = (
+        (_STATE_TOKEN, _STATE_HINTS, _STATE_ALLOWED) if state else (_TOKEN, _CHAR_HINTS, _ALLOWED)
+    )
     opened: list[int] = []
     prev_kind, prev_text, pos = "", "", 0
     while pos < len(text):
-        match = _TOKEN.match(text, pos)
+        match = token.match(text, pos)
         if match is None:
-            hint = _CHAR_HINTS.get(text[pos], _ALLOWED)
+            hint = hints.get(text[pos], allowed)
             raise _error(text, pos, f"{text[pos]!r} is not allowed", f"; {hint}")
         start, pos, kind, tok = pos, match.end(), str(match.lastgroup), match.group()
         if kind == "space":
             continue
-        if kind == "name" and tok in FUNCTIONS:
+        if kind == "name" and (tok in FUNCTIONS or (state and tok in STATE_FUNCTIONS)):
             kind = "func"
+        elif kind == "name" and state and tok in _STATE_NAMES:
+            kind = _STATE_NAMES[tok]
         elif kind == "name" and tok not in CONSTANTS:
-            raise _error(text, start, f"unknown name {tok!r}", f"; {_ALLOWED}")
+            raise _error(text, start, f"unknown name {tok!r}", f"; {allowed}")
+        if kind == "not" and prev_kind in _OPERAND_END:
+            raise _error(text, start, "missing operator before 'not'")
         if prev_kind == "func" and kind != "open":
             raise _error(text, start, f"unexpected {tok!r}", _needs_parentheses(prev_text))
         if prev_kind == "num" and kind == "num":
@@ -230,14 +258,15 @@ class _Builder:
         return self.checked(FUNCTIONS[name](self.build(node.args[0], depth + 1)), node)
 
 
-def _to_sympy(text: str) -> sympy.Expr:
-    """Validate ``text`` and build its sympy expression (no derivatives yet)."""
+def _parse_tree(text: str, state: bool = False) -> tuple[ast.Expression, list[int]]:
+    """Scan ``text`` and parse it with Python's ``ast``; ``origin[i]`` is the original index of
+    character i of the parsed source."""
     if len(text) > MAX_LENGTH:
         msg = f"the law is too long: {len(text)} characters, at most {MAX_LENGTH}"
         raise InvalidExpression(msg, MAX_LENGTH, text)
     if not text.strip():
         raise InvalidExpression("the law is empty; write an expression in t, e.g. 2*t", 0, text)
-    _scan(text)
+    _scan(text, state)
     # '^' means power, but Python reads it as xor with lower precedence than '*': rewrite it
     # to '**' and remember where every rewritten character came from. Leading blanks are
     # dropped because Python's parser calls them an indent.
@@ -258,6 +287,12 @@ def _to_sympy(text: str) -> sympy.Expr:
         raise _error(text, pos, where) from None
     except (RecursionError, MemoryError, ValueError):
         raise InvalidExpression("the law is too complicated to read", 0, text) from None
+    return tree, origin
+
+
+def _to_sympy(text: str) -> sympy.Expr:
+    """Validate ``text`` and build its sympy expression (no derivatives yet)."""
+    tree, origin = _parse_tree(text)
     expr = _Builder(text, origin).build(tree.body, 0)
     if expr.has(sympy.zoo, sympy.nan, sympy.oo, sympy.I):
         raise InvalidExpression("the law is not a real, finite expression", 0, text)
@@ -392,3 +427,151 @@ def parse_time_law(text: str) -> TimeLaw:
     except InvalidExpression as exc:  # _compile does not know the text
         raise InvalidExpression(exc.message, exc.position, text) from None
     return TimeLaw(text, expression, first, second, functions, nodes)
+
+
+# ---------------------------------------------------------------------------------------------
+# State expressions: magnitudes of forces and moments as functions of t and the links' state.
+
+State = Mapping[str, tuple[npt.NDArray[np.float64], ...]]  # link -> (angle, omega, alpha) (N,)
+_StateFn = Callable[[npt.NDArray[np.float64], State], Any]
+_STATE_INDEX = {name: index for index, name in enumerate(STATE_FUNCTIONS)}
+_COMPARE: dict[type, Callable[[Any, Any], Any]] = {
+    ast.Lt: np.less, ast.LtE: np.less_equal, ast.Gt: np.greater, ast.GtE: np.greater_equal,
+}  # fmt: skip
+_ARITHMETIC: dict[type, Callable[[Any, Any], Any]] = {
+    ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply, ast.Div: np.divide,
+    ast.Pow: np.power,
+}  # fmt: skip
+_STATE_UFUNCS: dict[str, Callable[[Any], Any]] = {**{
+    name: _UFUNCS[fn] for name, fn in FUNCTIONS.items() if fn in _UFUNCS
+}, "sqrt": np.sqrt}  # fmt: skip
+
+
+def _truth(value: Any) -> Any:
+    return np.not_equal(value, 0.0)
+
+
+class _StateBuilder:
+    """Walks a Python AST under the state whitelist and builds a numpy closure of (t, state)."""
+
+    def __init__(self, text: str, origin: list[int]) -> None:
+        self.text, self.origin = text, origin
+        self.links: set[str] = set()
+
+    def fail(self, message: str, node: ast.AST) -> InvalidExpression:
+        return _error(self.text, self.origin[getattr(node, "col_offset", 0)], message)
+
+    def build(self, node: ast.AST, depth: int) -> _StateFn:
+        if depth > MAX_DEPTH:
+            raise self.fail(f"the expression is nested too deeply (at most {MAX_DEPTH})", node)
+        deeper = depth + 1
+        if (
+            isinstance(node, ast.Constant)
+            and isinstance(node.value, int | float)
+            and not isinstance(node.value, bool)
+        ):
+            if not math.isfinite(node.value) or abs(node.value) > MAX_LITERAL:
+                raise self.fail("the number is larger than 1e12", node)
+            constant = np.float64(node.value)
+            return lambda t, s: constant
+        if isinstance(node, ast.Name) and node.id in CONSTANTS:
+            if node.id == "t":
+                return lambda t, s: t
+            value = np.float64(float(CONSTANTS[node.id]))
+            return lambda t, s: value
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.UAdd | ast.USub | ast.Not):
+            inner = self.build(node.operand, deeper)
+            if isinstance(node.op, ast.USub):
+                return lambda t, s: np.negative(inner(t, s))
+            if isinstance(node.op, ast.Not):
+                return lambda t, s: np.logical_not(_truth(inner(t, s)))
+            return inner
+        if isinstance(node, ast.BinOp) and type(node.op) in _ARITHMETIC:
+            op = _ARITHMETIC[type(node.op)]
+            left, right = self.build(node.left, deeper), self.build(node.right, deeper)
+            return lambda t, s: op(left(t, s), right(t, s))
+        if isinstance(node, ast.BoolOp):
+            parts = [self.build(v, deeper) for v in node.values]
+            combine = np.logical_and if isinstance(node.op, ast.And) else np.logical_or
+            return lambda t, s: functools.reduce(combine, (_truth(p(t, s)) for p in parts))
+        if isinstance(node, ast.Compare):
+            if any(type(op) not in _COMPARE for op in node.ops):
+                raise self.fail("only the comparisons < <= > >= are allowed", node)
+            terms = [self.build(v, deeper) for v in (node.left, *node.comparators)]
+            ops = [_COMPARE[type(op)] for op in node.ops]
+
+            def compare(t: Any, s: State) -> Any:
+                values = [term(t, s) for term in terms]
+                pairs = (op(a, b) for op, a, b in zip(ops, values, values[1:], strict=False))
+                return functools.reduce(np.logical_and, pairs)
+
+            return compare
+        if isinstance(node, ast.Call):
+            return self.call(node, deeper)
+        raise self.fail(f"this is not allowed in an expression; {_STATE_ALLOWED}", node)
+
+    def call(self, node: ast.Call, depth: int) -> _StateFn:
+        name = node.func.id if isinstance(node.func, ast.Name) else ""
+        if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
+            raise self.fail(f"{name}() takes plain arguments", node)
+        if name == "where":
+            if len(node.args) != 3:
+                raise self.fail("where() takes three arguments: where(condition, a, b)", node)
+            c, a, b = (self.build(arg, depth) for arg in node.args)
+            return lambda t, s: np.where(_truth(c(t, s)), a(t, s), b(t, s))
+        if name in _STATE_INDEX:
+            argument = node.args[0] if len(node.args) == 1 else None
+            if not (isinstance(argument, ast.Constant) and isinstance(argument.value, str)):
+                raise self.fail(f'{name}() takes a link name in quotes, e.g. {name}("crank")', node)
+            link, index = argument.value, _STATE_INDEX[name]
+            self.links.add(link)
+            return lambda t, s: s[link][index]
+        if name in _STATE_UFUNCS:
+            if len(node.args) != 1:
+                raise self.fail(f"{name}() takes exactly one argument, e.g. {name}(t)", node)
+            ufunc, inner = _STATE_UFUNCS[name], self.build(node.args[0], depth)
+            return lambda t, s: ufunc(inner(t, s))
+        raise self.fail(f"unknown function; {_STATE_ALLOWED}", node)
+
+
+@dataclass(frozen=True)
+class StateExpression:
+    """A force or moment magnitude as an expression of ``t`` and the links' angle, omega, alpha.
+
+    ``links`` names every link the expression reads (the scene checks that they exist).
+    """
+
+    text: str
+    links: frozenset[str]
+    _function: _StateFn = field(repr=False, compare=False)
+
+    def evaluate(self, t: npt.NDArray[np.float64], state: State) -> npt.NDArray[np.float64]:
+        """The value at every sample (comparisons count as 1 or 0); ``InvalidExpression`` where
+        it is undefined or infinite."""
+        with np.errstate(all="ignore"):
+            value = np.broadcast_to(self._function(t, state), t.shape).astype(np.float64)
+        bad = ~np.isfinite(value)
+        if bad.any():
+            k = int(np.argmax(bad))
+            where = ", ".join(
+                f'{STATE_FUNCTIONS[i]}("{link}") = {state[link][i][k]:.6g}'
+                for link in sorted(self.links)
+                for i in range(3)
+            )
+            raise InvalidExpression(
+                f"{self.text} is not defined at t = {t[k]:.6g} s" + (f", {where}" if where else ""),
+                0,
+                self.text,
+            )
+        return value
+
+
+@functools.lru_cache(maxsize=256)
+def parse_state_expression(text: str) -> StateExpression:
+    """Parse and check a force or moment expression (the time-law whitelist plus the state)."""
+    if not isinstance(text, str):
+        raise InvalidExpression("an expression must be a string", 0, str(text))
+    tree, origin = _parse_tree(text, state=True)
+    builder = _StateBuilder(text, origin)
+    function = builder.build(tree.body, 0)
+    return StateExpression(text, frozenset(builder.links), function)

@@ -583,3 +583,171 @@ def build_preset(name: str, values: Mapping[str, float]) -> dict[str, Any]:
     if preset is None:
         raise InvalidScene(f"unknown preset '{name}'; available: {', '.join(PRESETS)}")
     return preset.build(values)
+
+
+# --- masses and loads (dynamics-v1) --------------------------------------------------------------
+
+# Each preset's output and the load it carries: a constant moment on a link, or a constant force
+# at a point of a link, pointing along -x (a resistance to a slider moving to the right).
+_LOADS: Mapping[str, tuple[str, str | None, str]] = {
+    "four_bar": ("rocker", None, "Constant moment on the rocker (counter-clockwise positive)."),
+    "slider_crank": ("coupler", "C", "Constant force on the slider C along -x."),
+    "inverted_slider_crank": ("lever", None, "Constant moment on the lever (ccw positive)."),
+    "quick_return": ("rod", "C", "Constant force on the ram C along -x (the cutting force)."),
+    "slider_guide_extension": ("coupler", "C", "Constant force on the slider C along -x."),
+}
+_MASS_NOTE = (
+    "Masses (dynamics-v1): with mass_per_length > 0 every moving link is a uniform bar between its "
+    "first two points of that mass per metre; gravity acts along -y; load is a constant load on "
+    "the output. With the defaults (all 0) the scene has no mass fields."
+)
+
+
+def _mass_parameters(load: str) -> tuple[PresetParameter, ...]:
+    unit = "N m" if "moment" in load else "N"
+    return (
+        PresetParameter(
+            "mass_per_length", 0.0, "kg/m", "Mass per metre of every moving link.", 0.0, 1e6
+        ),
+        PresetParameter("gravity", 0.0, "m/s^2", "Acceleration of gravity, along -y.", 0.0, 1e3),
+        PresetParameter("load", 0.0, unit, load, -1e9, 1e9),
+    )
+
+
+def with_masses(doc: dict[str, Any], v: Mapping[str, float], output: str) -> dict[str, Any]:
+    """``doc`` with uniform bars of ``mass_per_length``, gravity and the output's load."""
+    name, point, _ = _LOADS[output]
+    rho, g, load = v["mass_per_length"], v["gravity"], v["load"]
+    if rho > 0:
+        masses = {}
+        for link, body in doc["links"].items():
+            ends = body["points"][:2]
+            if not body.get("ground") and len(ends) == 2:
+                length = math.dist(doc["points"][ends[0]], doc["points"][ends[1]])
+                masses[link] = {"mass": rho * length, "bar": ends}
+        doc["masses"] = masses
+    if g > 0:
+        doc["gravity"] = [0.0, -g]
+    if load != 0 and point is None:
+        doc["torques"] = [{"name": "load", "link": name, "moment": repr(load)}]
+    elif load != 0:
+        doc["forces"] = [
+            {"name": "load", "link": name, "point": point, "magnitude": repr(load),
+             "direction_deg": 180.0, "relative_to": "world"}
+        ]  # fmt: skip
+    return doc
+
+
+def _massive(preset: Preset) -> Preset:
+    """The preset with the mass parameters (see ``_MASS_NOTE``)."""
+    geometry = preset.geometry
+
+    def build(v: Mapping[str, float]) -> dict[str, Any]:
+        return with_masses(geometry(v), v, preset.name)
+
+    return Preset(
+        preset.name,
+        preset.title,
+        f"{preset.description}\n\n{_MASS_NOTE}",
+        (*preset.parameters, *_mass_parameters(_LOADS[preset.name][2])),
+        build,
+    )
+
+
+def _seed004(v: Mapping[str, float]) -> dict[str, Any]:
+    """Seed 004, the Thessaloniki crank-rocker with a loaded arm: the crank OA (uniform bar)
+    turns about O at 240 rpm, the coupler AB (uniform bar) drives member 3, a uniform bar from
+    its pivot Gamma through B to its end D (length rocker + extension), with a point mass at D.
+
+    O is at the origin and Gamma at (ground, 0); B lies above the line A-Gamma. phi3 is member 3's
+    angle from +y, clockwise positive (the seed's convention): phi3 = pi/2 - angle(rocker). The
+    force F_D acts at D perpendicular to Gamma-D, counter-clockwise about Gamma, with magnitude
+    force_max (phi3 - phi3_c)/(phi3_min - phi3_c) while phi3 decreases from phi3_c = force_on_deg
+    to its minimum phi3_min (where the crank and the coupler fold over: |OB| = coupler - crank or
+    coupler + crank), and 0 otherwise. Gravity along -y. The seed's mean motor power is -1599.59 W
+    (the force drives the rocker in its active stroke), not the 0.75 kW the seed reports.
+    """
+    o, gamma = 0j, complex(v["ground"], 0)
+    a, where = _crank_pin(o, v)
+    b = _circle_circle(
+        a, v["coupler"], gamma, v["rocker"], left=True, names=("AGamma", "coupler", "rocker"),
+        where=where,
+    )  # fmt: skip
+    d = gamma + (b - gamma) / abs(b - gamma) * (v["rocker"] + v["extension"])
+    phi3_min = math.inf
+    for reach in (v["coupler"] - v["crank"], v["coupler"] + v["crank"]):
+        try:  # B at a fold of the crank and the coupler, on the same side of the ground line
+            fold = _circle_circle(
+                o, abs(reach), gamma, v["rocker"], left=True, names=("OGamma", "OB", "rocker"),
+                where="at a fold of the crank and the coupler",
+            )  # fmt: skip
+        except NotAssemblable:
+            continue
+        phi3_min = min(phi3_min, math.atan2((fold - gamma).real, (fold - gamma).imag))
+    phi3_c = math.radians(v["force_on_deg"])
+    if not phi3_min < phi3_c:
+        raise InvalidScene(
+            f"force_on_deg = {v['force_on_deg']:g} deg must exceed the least phi3 of the cycle, "
+            f"{math.degrees(phi3_min):.6g} deg"
+        )
+    phi3 = 'pi/2 - angle("rocker")'
+    law = (
+        f'where(omega("rocker") >= 0 and {phi3} < {phi3_c!r} and {phi3} > {phi3_min!r}, '
+        f"{v['force_max']!r}*({phi3} - {phi3_c!r})/({phi3_min!r} - {phi3_c!r}), 0)"
+    )
+    doc = _layout(
+        {"O": o, "A": a, "B": b, "Gamma": gamma, "D": d},
+        ["O", "Gamma"],
+        {"crank": ["O", "A"], "coupler": ["A", "B"], "rocker": ["Gamma", "B", "D"]},
+        [
+            _revolute("O", "ground", "crank"),
+            _revolute("A", "crank", "coupler"),
+            _revolute("B", "coupler", "rocker"),
+            _revolute("Gamma", "ground", "rocker"),
+        ],
+    )
+    doc["masses"] = {
+        "crank": {"mass": v["crank_mass"], "bar": ["O", "A"]},
+        "coupler": {"mass": v["coupler_mass"], "bar": ["A", "B"]},
+        "rocker": {"mass": v["rocker_mass"], "bar": ["Gamma", "D"]},
+    }
+    doc["point_masses"] = [{"name": "mD", "link": "rocker", "point": "D", "mass": v["end_mass"]}]
+    doc["gravity"] = [0.0, -v["gravity"]]
+    doc["forces"] = [
+        {"name": "F_D", "link": "rocker", "point": "D", "magnitude": law,
+         "direction_deg": 90.0, "relative_to": "link"}
+    ]  # fmt: skip
+    return doc
+
+
+def _mass(name: str, default: float, description: str) -> PresetParameter:
+    return PresetParameter(name, default, "kg", description, 0.0, 1e6)
+
+
+PRESETS = MappingProxyType(
+    {
+        **{name: _massive(preset) for name, preset in PRESETS.items()},
+        "seed004": _preset(
+            "seed004",
+            "seed 004: loaded crank-rocker (dynamics)",
+            _seed004,
+            _length("crank", 0.15, _CRANK + " (OA)"),
+            _length("coupler", 1.0, "Length of the coupler AB."),
+            _length("ground", 1.0, "Distance O-Gamma between the fixed pivots."),
+            _length("rocker", 0.55, "Distance Gamma-B on member 3."),
+            _length("extension", 0.15, "Distance B-D: member 3 goes on beyond B to its end D."),
+            _crank_angle(0.0),
+            _omega(8 * math.pi),
+            _alpha(),
+            _mass("crank_mass", 30.0, "Mass of the crank (a uniform bar)."),
+            _mass("coupler_mass", 60.0, "Mass of the coupler (a uniform bar)."),
+            _mass("rocker_mass", 60.0, "Mass of member 3 (a uniform bar from Gamma to D)."),
+            _mass("end_mass", 90.0, "The point mass at D."),
+            PresetParameter("force_max", 3000.0, "N", "The largest F_D.", 0.0, 1e9),
+            PresetParameter(
+                "force_on_deg", -10.0, "deg", "phi3_c: F_D grows from 0 here.", -180.0, 180.0
+            ),
+            PresetParameter("gravity", 9.81, "m/s^2", "Acceleration of gravity.", 0.0, 1e3),
+        ),
+    }
+)

@@ -16,6 +16,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from solver.dynamics.model import Dynamics, parse_dynamics
 from solver.errors import InvalidScene, LimitExceeded
 from solver.laws import parse_time_law
 
@@ -113,6 +114,7 @@ class LinkageScene:
     ground: str
     moving_points: tuple[MovingPoint, ...] = ()
     time: float = 0.0
+    dynamics: Dynamics | None = None  # masses and loads (dynamics-v1), None without them
 
     def drawn(self, point: str) -> np.ndarray:
         """The drawn position of ``point`` as an array (read-only: shared between callers)."""
@@ -433,6 +435,7 @@ def parse_linkage(doc: Mapping[str, Any]) -> LinkageScene:
         ground,
         _parse_moving_points(doc, points, links),
         time,
+        parse_dynamics(doc, points, links),
     )
     if scene.degrees_of_freedom != len(drivers):
         raise _where(

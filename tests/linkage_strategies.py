@@ -161,7 +161,8 @@ def block_in_lever(doc: dict[str, Any]) -> dict[str, Any]:
     return doc
 
 
-FAMILIES = (*PRESETS, "block_in_lever", "six_bar")
+# seed004 is a four-bar with masses and a load: the four_bar family covers its kinematics.
+FAMILIES = (*(name for name in PRESETS if name != "seed004"), "block_in_lever", "six_bar")
 
 
 def _rate(largest: float) -> st.SearchStrategy[float]:

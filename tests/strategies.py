@@ -103,12 +103,21 @@ def _slider_guide_extension(draw: st.DrawFn) -> PresetValues:
     return "slider_guide_extension", values | _rates(draw)
 
 
+@st.composite
+def _seed004(draw: st.DrawFn) -> PresetValues:
+    """Seed 004 at any crank angle, with a rocker that keeps it a crank-rocker."""
+    values = {"crank": 0.15, "coupler": 1.0, "ground": 1.0, "extension": 0.15}
+    values |= {"crank_angle_deg": draw(_angle), "rocker": draw(st.floats(0.4, 0.7))}
+    return "seed004", values | _rates(draw)
+
+
 _BY_NAME: dict[str, Callable[[], st.SearchStrategy[PresetValues]]] = {
     "four_bar": _four_bar,
     "slider_crank": _slider_crank,
     "inverted_slider_crank": _inverted_slider_crank,
     "quick_return": _quick_return,
     "slider_guide_extension": _slider_guide_extension,
+    "seed004": _seed004,
 }
 assert list(_BY_NAME) == list(PRESETS), "a preset has no strategy"
 

@@ -43,7 +43,13 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
 def sweep_route(request: SweepRequest) -> ResultResponse:
     if request.time_range is None:
         return respond(
-            solver.sweep(request.scene, request.samples, request.quantities, strict=request.strict)
+            solver.sweep(
+                request.scene,
+                request.samples,
+                request.quantities,
+                strict=request.strict,
+                speed_fluctuation=request.speed_fluctuation,
+            )
         )
     return respond(
         solver.sweep_time(

@@ -29,7 +29,7 @@ router = APIRouter(
     responses=PROBLEMS,
 )
 
-Method = Literal["vector", "loop"]
+Method = Literal["vector", "loop", "newton_euler"]
 
 
 def _example(name: str) -> dict[str, Any]:

@@ -89,6 +89,7 @@ class Step:
     values: Mapping[str, Value] = field(default_factory=dict)
     checks: tuple[Check, ...] = ()
     figure: str = ""  # a standalone SVG drawing beside the step ('' for none)
+    diagram: Mapping[str, Any] | None = None  # the figure as data (a free-body diagram)
 
     def as_json(self) -> dict[str, Any]:
         out = {
@@ -101,6 +102,8 @@ class Step:
         }
         if self.figure:
             out["figure"] = self.figure
+        if self.diagram is not None:
+            out["diagram"] = dict(self.diagram)
         return out
 
 

@@ -37,12 +37,13 @@ from solver.steps.mistakes import (
     spatial_mistakes,
 )
 from solver.steps.model import Solution, Step
+from solver.steps.newton_euler import in_scene_order, newton_euler_mistakes, newton_euler_steps
 from solver.steps.position import position_steps
 from solver.steps.relative import moving_point_steps
 from solver.steps.spatial import spatial_steps
 from solver.steps.vector import vector_steps
 
-METHODS = ("vector", "loop")
+METHODS = ("vector", "loop", "newton_euler")
 MIN_DIGITS, MAX_DIGITS = 1, 15
 
 _SENTENCES = {
@@ -51,6 +52,9 @@ _SENTENCES = {
     "transport, relative and Coriolis terms at every slot.",
     "loop": "Method: loop closure in complex form. Each loop of link vectors closes; its time "
     "derivatives are linear in the unknown rates, solved by Cramer's rule.",
+    "newton_euler": "Method: Newton-Euler. The kinematics by relative velocities, then for every "
+    "moving link sum F = m a_G and the sum of moments about a point of the link, one linear "
+    "system for the joint forces and the driving torque, checked by the power balance.",
 }
 
 
@@ -82,6 +86,8 @@ def _linkage_steps(
     body += moving_point_steps(ctx)
     body += graphical_steps(ctx)
     body.append(instant_centres_step(ctx))
+    if method == "newton_euler":
+        body += newton_euler_steps(ctx)
     positions = positions_step(ctx)
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
@@ -107,6 +113,9 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)
+    if used == "newton_euler":
+        mistakes += newton_euler_mistakes(ctx)
+        in_scene_order(steps, mistakes, ctx)
     placed = place_mistakes(steps, mistakes, used == "loop")
     return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
 
@@ -130,12 +139,18 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
     analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
     lead = []
-    if method != "vector":
+    if method == "loop":
         lead.append(
             _fallback_step(
                 "loop-closure",
                 "A spatial chain is an open chain of rotating frames: it has no loop "
                 "to close; its velocities follow from the composition of angular velocities.",
+            )
+        )
+    elif method == "newton_euler":
+        lead.append(
+            _fallback_step(
+                "Newton-Euler", "Masses and forces are defined for planar linkages only."
             )
         )
     plan = DigitPlan()

@@ -73,6 +73,7 @@ export const analyze = (scene, quantities) =>
 export const sweep = (scene, samples, quantities, timeRange) =>
   call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
+export const balance = (scene, counterweights) => call('POST', '/balance', { scene, counterweights });
 
 /** The printable worked solution: a whole HTML page (text, not JSON). */
 export async function solutionPage(scene, method, digits = 4) {

@@ -22,6 +22,7 @@ import { installTabs } from './tabs.js';
 import { installExport } from './export.js';
 import { renderMagnitudes } from './magnitudes.js';
 import { Editor } from './editor.js';
+import { DynamicsPanel } from './dynamics.js';
 
 const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
@@ -74,6 +75,11 @@ class App {
     $('print-solution').addEventListener('click', () => this.openPrintable());
     installTabs();
     installExport(this);
+    this.dynamics = new DynamicsPanel({
+      section: $('dynamics'), plots: $('dynamics-plots'), hodograph: $('dynamics-hodograph'),
+      info: $('dynamics-info'), message: $('dynamics-message'), balance: $('dynamics-balance'),
+      arrows: $('dynamics-arrows'), onArrows: () => this.drawFrame(),
+    });
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {
       onDrag: (angle) => this.onDrag(angle),
@@ -498,12 +504,14 @@ class App {
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
     this.drawFrame();
     this.drawPlots();
+    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units, SAMPLES).then(() => this.drawFrame()));
     this.dirty = true;
     this.scheduleAnalysis(0);
     this.saveHash();
   }
 
   async loadSpatial(scene, seq) {
+    this.dynamics.show(scene, this.units, SAMPLES); // hides the panel: no masses in space
     let analysis = null;
     let note = null;
     try {
@@ -746,6 +754,8 @@ class App {
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();
+    this.dynamics.units = units;
+    this.dynamics.drawCycle();
     this.dirty = true;
     this.saveHash();
   }
@@ -795,6 +805,7 @@ class App {
     const exact = !this.playing && this.analysis && this.analysisU === this.u;
     const frame = exact ? frameFromAnalysis(this.analysis) : frameAt(this.track, this.u);
     this.linkage.draw(frame);
+    this.dynamics.drawArrows(this.linkage, $('linkage'), frame, this.track, this.u);
     const value = this.instantValue();
     this.controls.setInstant(value);
     $('linkage').dataset.instant = String(value);
@@ -854,7 +865,7 @@ class App {
     this.controls.setUnits(this.units);
     this.speed = view.speed || 1;
     this.controls.setSpeed(this.speed);
-    this.method = view.method === 'loop' ? 'loop' : 'vector';
+    this.method = ['loop', 'newton_euler'].includes(view.method) ? view.method : 'vector';
     this.controls.setMethod(this.method);
     if (view.camera) this.camera = view.camera;
     if (view.plot) {

@@ -75,6 +75,13 @@ export function renderSolution(stepsEl, mistakesEl, solution, units = 'si') {
     if (step.text) item.appendChild(el('p', { class: 'step-text' }, step.text));
     const converted = units !== 'si' ? valuesInUnits(step.values, units) : '';
     if (converted) item.appendChild(el('p', { class: 'step-units' }, `In ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)}: ${converted}`));
+    if (step.figure) {
+      // A figure beside the step (mechanism, polygons, free-body diagram): the server's SVG,
+      // every name in it escaped there.
+      const figure = el('div', { class: 'step-figure' });
+      figure.innerHTML = step.figure;
+      item.appendChild(figure);
+    }
     list.appendChild(item);
   }
   stepsEl.appendChild(list);

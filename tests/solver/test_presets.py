@@ -27,6 +27,7 @@ EXPECTED_NAMES = [
     "inverted_slider_crank",
     "quick_return",
     "slider_guide_extension",
+    "seed004",
 ]
 
 
@@ -54,14 +55,24 @@ def check_geometry(name: str, v: Mapping[str, float], doc: Mapping[str, Any], to
         assert abs(a - b) <= tol * size, (a, b)
 
     pivot, pin = (
-        p[k] for k in {"inverted_slider_crank": "OA", "quick_return": ["O2", "A"]}.get(name, "AB")
+        p[k]
+        for k in {"inverted_slider_crank": "OA", "quick_return": ["O2", "A"], "seed004": "OA"}.get(
+            name, "AB"
+        )
     )
     assert pivot == 0
     close(abs(pin - pivot), v["crank"])
     close(pin, cmath.rect(v["crank"], math.radians(v["crank_angle_deg"])))
     joints = {j["point"]: j for j in doc["joints"]}
 
-    if name == "four_bar":
+    if name == "seed004":
+        a, b, gamma = p["A"], p["B"], p["Gamma"]
+        assert gamma == v["ground"]
+        close(abs(b - a), v["coupler"])
+        close(abs(b - gamma), v["rocker"])
+        assert ((b - a) / (gamma - a)).imag > 0  # B to the left of A->Gamma
+        close(p["D"], gamma + (b - gamma) / abs(b - gamma) * (v["rocker"] + v["extension"]))
+    elif name == "four_bar":
         b, c, d = p["B"], p["C"], p["D"]
         assert d == v["ground"]
         close(abs(c - b), v["coupler"])
@@ -139,7 +150,8 @@ def test_presets_are_listed_in_order_with_documented_parameters() -> None:
         for parameter in preset.parameters:
             assert parameter.description
             assert parameter.check(parameter.default) == parameter.default
-            assert parameter.unit in ("m", "deg", "rad/s", "rad/s^2", "")
+            units = ("m", "deg", "rad/s", "rad/s^2", "", "kg", "kg/m", "m/s^2", "N", "N m")
+            assert parameter.unit in units
 
 
 @pytest.mark.parametrize("name", EXPECTED_NAMES)
@@ -349,7 +361,7 @@ def test_unknown_parameter_is_named_with_the_allowed_ones() -> None:
     assert info.value.message == (
         "unknown parameter(s) beta, lenght for preset 'four_bar'; allowed: ground, crank, "
         "coupler, rocker, crank_angle_deg, assembly, coupler_point_u, coupler_point_v, omega, "
-        "alpha"
+        "alpha, mass_per_length, gravity, load"
     )
 
 

@@ -1,0 +1,143 @@
+"""The moving masses and the external loads of a linkage at every sample of a solved motion.
+
+Each link's mass is a body (mass at a centre carried by the link, inertia about it) plus any
+point masses on it; each is one ``MassElement`` with its position, velocity and acceleration
+from the rigid-body formulas. Force and moment expressions are evaluated on the links' state
+(angle as in the response, omega, alpha) and the sample times.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.assembly import Motion
+from solver.dynamics.model import Dynamics
+from solver.rigid import Array, rotate, scale
+from solver.scene import LinkageScene
+
+EMPTY = Dynamics()
+
+
+@dataclass(frozen=True)
+class MassElement:
+    """A mass on ``link``: a body (``inertia`` about its centre) or a point mass (inertia 0)."""
+
+    name: str
+    link: str
+    mass: float
+    inertia: float
+    p: Array  # (N, 2)
+    v: Array
+    a: Array
+    omega: Array  # (N,) the link's
+    alpha: Array
+
+
+@dataclass(frozen=True)
+class AppliedForce:
+    """An external force on ``link`` at ``point``: its vector and its point's velocity."""
+
+    name: str
+    link: str
+    point: str
+    position: Array
+    velocity: Array
+    force: Array
+
+    @property
+    def power(self) -> Array:
+        """P = F . v_P."""
+        return self.force[:, 0] * self.velocity[:, 0] + self.force[:, 1] * self.velocity[:, 1]
+
+
+@dataclass(frozen=True)
+class AppliedMoment:
+    """An external moment on ``link`` and the link's omega."""
+
+    name: str
+    link: str
+    moment: Array
+    omega: Array
+
+    @property
+    def power(self) -> Array:
+        """P = M omega."""
+        return self.moment * self.omega
+
+
+def dynamics_of(scene: LinkageScene) -> Dynamics:
+    return EMPTY if scene.dynamics is None else scene.dynamics
+
+
+def link_state(scene: LinkageScene, motion: Motion) -> dict[str, tuple[Array, Array, Array]]:
+    """(angle in (-pi, pi], omega, alpha) of every link with two points, per sample."""
+    state = {}
+    for name, link in scene.links.items():
+        if len(link.points) < 2:
+            continue
+        m = motion.links[name]
+        d = motion.points[link.points[1]].p - motion.points[link.points[0]].p
+        assert m.omega is not None and m.alpha is not None
+        state[name] = (np.arctan2(d[:, 1], d[:, 0]), m.omega, m.alpha)
+    return state
+
+
+def mass_elements(scene: LinkageScene, motion: Motion) -> list[MassElement]:
+    """Every body and point mass with its motion (requires accelerations in ``motion``)."""
+    dynamics = dynamics_of(scene)
+    elements = []
+    for body in dynamics.bodies:
+        link = motion.links[body.link]
+        G = link.point(np.array(body.center))
+        assert G.v is not None and G.a is not None
+        assert link.omega is not None and link.alpha is not None
+        elements.append(
+            MassElement(
+                body.link,
+                body.link,
+                body.mass,
+                body.inertia,
+                G.p,
+                G.v,
+                G.a,
+                link.omega,
+                link.alpha,
+            )
+        )
+    for pm in dynamics.point_masses:
+        link = motion.links[pm.link]
+        P = link.point(scene.drawn(pm.point))
+        assert P.v is not None and P.a is not None
+        assert link.omega is not None and link.alpha is not None
+        elements.append(
+            MassElement(pm.name, pm.link, pm.mass, 0.0, P.p, P.v, P.a, link.omega, link.alpha)
+        )
+    return elements
+
+
+def applied_loads(
+    scene: LinkageScene, motion: Motion, times: Array
+) -> tuple[list[AppliedForce], list[AppliedMoment]]:
+    """The external forces and moments at every sample (their expressions evaluated)."""
+    dynamics = dynamics_of(scene)
+    state = link_state(scene, motion)
+    forces = []
+    for f in dynamics.forces:
+        link = motion.links[f.link]
+        P = link.point(scene.drawn(f.point))
+        assert P.v is not None
+        direction = np.full(times.shape, math.radians(f.direction_deg))
+        if f.relative_to == "link":
+            direction = direction + state[f.link][0]
+        magnitude = f.magnitude.evaluate(times, state)
+        vector = scale(magnitude, rotate(np.array([1.0, 0.0]), direction))
+        forces.append(AppliedForce(f.name, f.link, f.point, P.p, P.v, vector))
+    moments = []
+    for m in dynamics.torques:
+        omega = motion.links[m.link].omega
+        assert omega is not None
+        moments.append(AppliedMoment(m.name, m.link, m.moment.evaluate(times, state), omega))
+    return forces, moments

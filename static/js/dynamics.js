@@ -1,0 +1,210 @@
+// dynamics.js: forces and energy over one cycle (dynamics-v1), for scenes with masses or loads.
+//
+// One /sweep with the quantities `forces` and `energy` per mechanism (not per frame): stacked
+// plots over the driver angle of the driving torque with its mean, the driver's power, the
+// magnitude of every joint force, the kinetic energy and the equivalent inertia; the frame force
+// as a hodograph (Fy against Fx over the cycle: the polar plot of the shaking force); the cycle's
+// figures. For a four-bar, "Compare balanced" asks /balance for counterweights as heavy as the
+// crank and the rocker and adds the balanced mechanism's frame force to the hodograph.
+
+import * as api from './api.js';
+import { toDisplay, unitLabel, fmt } from './units.js';
+import { svgEl, setAttrs, arrowMarker } from './svg.js';
+
+const ARROW_PX = 70; // the largest joint force of the cycle, on the drawing
+const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
+const FIELDS = ['masses', 'point_masses', 'forces', 'torques'];
+
+/** Whether the scene has masses or loads (only then is the dynamics panel shown). */
+export function hasDynamics(scene) {
+  if (!scene || scene.kind !== 'linkage') return false;
+  return FIELDS.some((k) => scene[k] && Object.keys(scene[k]).length > 0);
+}
+
+const norm = (v) => Math.hypot(v[0], v[1]);
+
+function grounded(scene) {
+  const ground = Object.entries(scene.links).find(([, l]) => l.ground)?.[0];
+  return scene.joints
+    .filter((j) => j.type === 'revolute' && j.links.includes(ground))
+    .map((j) => j.links.find((l) => l !== ground));
+}
+
+/** Counterweights as heavy as each grounded link (1 kg where it has no mass). */
+export function counterweights(scene) {
+  return grounded(scene).map((link) => ({ link, mass: scene.masses?.[link]?.mass || 1 }));
+}
+
+function isFourBar(scene) {
+  const moving = Object.values(scene.links).filter((l) => !l.ground).length;
+  return moving === 3 && scene.joints.length === 4 && scene.joints.every((j) => j.type === 'revolute');
+}
+
+export class DynamicsPanel {
+  constructor({ section, plots, hodograph, info, message, balance, arrows, onArrows }) {
+    Object.assign(this, { section, plots, hodograph, info, message, balance, arrows });
+    this.seq = 0;
+    this.scene = null;
+    this.sweep = null;
+    this.balanced = null;
+    balance.addEventListener('change', () => this.drawHodograph());
+    arrows.addEventListener('change', () => onArrows());
+  }
+
+  /** The sweep (``samples`` as the animation's, so that its frames index both). */
+  async show(scene, units, samples) {
+    const seq = ++this.seq;
+    this.units = units;
+    this.section.hidden = !hasDynamics(scene);
+    if (this.section.hidden) return;
+    this.scene = scene;
+    this.sweep = null;
+    this.balanced = null;
+    this.balance.parentElement.hidden = !isFourBar(scene);
+    this.message.hidden = true;
+    let sweep;
+    try {
+      sweep = await api.sweep(scene, samples, ['forces', 'energy']);
+    } catch (err) {
+      if (seq !== this.seq) return;
+      this.message.textContent = err.detail;
+      this.message.hidden = false;
+      return;
+    }
+    if (seq !== this.seq) return;
+    this.sweep = sweep;
+    this.drawCycle();
+    if (isFourBar(scene)) {
+      try {
+        const answer = await api.balance(scene, counterweights(scene));
+        const balancedSweep = await api.sweep(answer.scene, samples, ['forces']);
+        if (seq !== this.seq) return;
+        this.balanced = { answer, sweep: balancedSweep };
+      } catch (err) {
+        this.balanced = { error: err.detail };
+      }
+    }
+    this.drawHodograph();
+  }
+
+  drawCycle() {
+    const P = globalThis.Plotly;
+    const s = this.sweep;
+    if (!P || !s) return;
+    const x = s.driver_angle.map((a) => toDisplay('angle', a, this.units));
+    const xTitle = `driver angle [${unitLabel('angle', this.units)}]`;
+    const driver = s.drivers[0];
+    const traces = [];
+    if (driver) {
+      traces.push({ x, y: driver.torque, name: `torque M (${driver.link})`, yaxis: 'y', line: { color: '#c0392b' } });
+      if (s.cycle) {
+        traces.push({ x: [x[0], x[x.length - 1]], y: [s.cycle.mean_torque, s.cycle.mean_torque], name: 'mean torque', yaxis: 'y', line: { dash: 'dash', color: '#c0392b' } });
+      }
+      traces.push({ x, y: driver.power, name: 'power M ω', yaxis: 'y2', line: { color: '#8e44ad' } });
+    }
+    for (const joint of s.joints) {
+      traces.push({ x, y: joint.force.map(norm), name: `|F| at ${joint.point}`, yaxis: 'y3' });
+    }
+    traces.push({ x, y: s.energy.kinetic, name: 'kinetic energy T', yaxis: 'y4', line: { color: '#27ae60' } });
+    traces.push({ x, y: s.energy.equivalent_inertia, name: 'equivalent inertia', yaxis: 'y5', line: { color: '#2c3e50' } });
+    const axis = (title, domain) => ({ title: { text: title, font: { size: 11 } }, domain, zeroline: true });
+    const layout = {
+      margin: { l: 70, r: 16, t: 16, b: 44 },
+      height: 640,
+      showlegend: true,
+      legend: { orientation: 'h', y: -0.08 },
+      xaxis: { title: { text: xTitle }, anchor: 'y5' },
+      yaxis: axis('torque [N m]', [0.82, 1]),
+      yaxis2: axis('power [W]', [0.62, 0.79]),
+      yaxis3: axis('joint force [N]', [0.42, 0.59]),
+      yaxis4: axis('T [J]', [0.22, 0.39]),
+      yaxis5: axis('I_eq [kg m²]', [0, 0.19]),
+    };
+    P.react(this.plots, traces, layout, CONFIG);
+    const c = s.cycle;
+    this.info.textContent = c
+      ? `Period ${fmt(c.period)} s, mean torque ${fmt(c.mean_torque)} N m, mean power ${fmt(c.mean_power)} W, ` +
+        `work per cycle ${Object.entries(c.work).map(([k, v]) => `${k} ${fmt(v)} J`).join(', ') || '(no loads)'}, ` +
+        `energy fluctuation ${fmt(c.energy_fluctuation)} J.`
+      : 'The driver does not turn fully at constant speed: no cycle figures.';
+  }
+
+  drawHodograph() {
+    const P = globalThis.Plotly;
+    const s = this.sweep;
+    if (!P || !s) return;
+    const traces = [{ x: s.frame_force.map((f) => f[0]), y: s.frame_force.map((f) => f[1]), name: 'frame force', mode: 'lines', line: { color: '#c0392b' } }];
+    let note = '';
+    if (this.balance.checked && this.balanced?.sweep) {
+      const b = this.balanced.sweep;
+      traces.push({ x: b.frame_force.map((f) => f[0]), y: b.frame_force.map((f) => f[1]), name: 'balanced', mode: 'lines', line: { color: '#27ae60' } });
+      note = this.balanced.answer.counterweights.map((w) => `${w.link}: ${fmt(w.mass)} kg at ${fmt(w.distance)} m from ${w.pivot}`).join('; ');
+    } else if (this.balance.checked && this.balanced?.error) {
+      note = this.balanced.error;
+    }
+    const layout = {
+      margin: { l: 64, r: 16, t: 16, b: 44 },
+      height: 320,
+      xaxis: { title: { text: 'Fx [N]' }, zeroline: true },
+      yaxis: { title: { text: 'Fy [N]' }, zeroline: true, scaleanchor: 'x' },
+      showlegend: true,
+    };
+    P.react(this.hodograph, traces, layout, CONFIG);
+    this.hodograph.dataset.note = note;
+    this.balance.title = note;
+  }
+
+  /**
+   * Arrows of the joint forces on the animated linkage at fractional sample ``u`` (each the force
+   * the joint's first link exerts on its second), when "Show joint forces" is on and the
+   * animation is the same sweep over the driver angle.
+   */
+  drawArrows(view, svg, frame, track, u) {
+    let g = svg.querySelector('g.layer-forces');
+    const s = this.sweep;
+    const on = this.arrows.checked && !this.section.hidden && s && track && track.param === 'angle' && s.samples === track.n;
+    if (!on) {
+      if (g) g.setAttribute('visibility', 'hidden');
+      return;
+    }
+    if (!g) {
+      g = svgEl('g', { class: 'layer-forces' }, svg);
+      this.head = arrowMarker(svgEl('defs', {}, g), 'force-head', '#c0392b');
+      this.arrowNodes = null;
+    }
+    g.setAttribute('visibility', 'visible');
+    if (!this.arrowNodes || this.arrowNodes.length !== s.joints.length || this.arrowNodes.sweep !== s) {
+      for (const node of g.querySelectorAll('line, text')) node.remove();
+      this.arrowNodes = s.joints.map((j) => ({
+        joint: j,
+        line: svgEl('line', { class: 'force-arrow', stroke: '#c0392b', 'stroke-width': 2.5, 'marker-end': this.head }, g),
+        label: svgEl('text', { class: 'force-label', fill: '#c0392b', 'font-size': 13 }, g),
+      }));
+      this.arrowNodes.sweep = s;
+      this.largest = Math.max(...s.joints.flatMap((j) => j.force.map(norm)), 1e-300);
+    }
+    const max = s.samples - 1;
+    const clamped = Math.min(Math.max(u, 0), max);
+    const i = Math.min(Math.floor(clamped), Math.max(max - 1, 0));
+    const f = clamped - i;
+    for (const a of this.arrowNodes) {
+      const p = frame.position[a.joint.point];
+      const F0 = a.joint.force[i];
+      const F1 = a.joint.force[Math.min(i + 1, max)];
+      const F = [F0[0] + (F1[0] - F0[0]) * f, F0[1] + (F1[1] - F0[1]) * f];
+      const size = norm(F);
+      if (!p || size < 1e-9 * this.largest) {
+        a.line.setAttribute('visibility', 'hidden');
+        a.label.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const [x, y] = view.px(p);
+      const length = (ARROW_PX * size) / this.largest;
+      const x2 = x + (F[0] / size) * length;
+      const y2 = y - (F[1] / size) * length;
+      setAttrs(a.line, { x1: x, y1: y, x2, y2, visibility: null });
+      setAttrs(a.label, { x: x2 + 4, y: y2 - 4, visibility: null });
+      a.label.textContent = `F ${a.joint.point} ${fmt(size, 3)} N`;
+    }
+  }
+}

@@ -1,0 +1,75 @@
+"""The dynamics panel in the browser (dynamics-v1): shown for scenes with masses, plots of the
+driving torque and its mean, power, joint forces, kinetic energy and equivalent inertia over the
+cycle, the frame force's hodograph with the balanced four-bar's beside it, joint-force arrows on
+the animated linkage, and the Newton-Euler worked solution with its free-body diagrams."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
+
+pytestmark = pytest.mark.browser
+
+
+def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    assert page.locator("#dynamics").is_hidden(), "the default four-bar has no masses"
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    wait_until(lambda: plot_data(page, "dynamics-plots") != "[]", what="the dynamics plots")
+    traces = json.loads(plot_data(page, "dynamics-plots"))
+    names = [t["name"] for t in traces]
+    assert names[:3] == ["torque M (crank)", "mean torque", "power M ω"]
+    assert {"|F| at O", "|F| at A", "|F| at B", "|F| at Gamma"} <= set(names)
+    mean = traces[1]["y"][0]
+    assert mean == pytest.approx(-63.6456581982242, rel=1e-3)  # 241 samples, a kinked load law
+    assert "mean power -1600 W" in page.inner_text("#dynamics-info") or "-1599" in page.inner_text(
+        "#dynamics-info"
+    )
+    page.check("#dynamics-balance")
+    wait_until(
+        lambda: len(json.loads(plot_data(page, "dynamics-hodograph"))) == 2,
+        what="the balanced frame force",
+    )
+    unbalanced, balanced = json.loads(plot_data(page, "dynamics-hodograph"))
+
+    def spread(trace: dict[str, list[float]]) -> float:
+        return math.hypot(max(trace["x"]) - min(trace["x"]), max(trace["y"]) - min(trace["y"]))
+
+    assert spread(balanced) < 0.25 * spread(unbalanced)
+    app.screenshot("dynamics-seed004", "#dynamics")
+    # joint forces as arrows on the animated linkage, following the frames
+    page.check("#dynamics-arrows")
+    page.wait_for_selector("#linkage .force-arrow", state="attached")
+    assert page.locator("#linkage .force-arrow").count() == 4
+    first = page.get_attribute("#linkage .force-arrow >> nth=0", "x2")
+    wait_until(
+        lambda: page.get_attribute("#linkage .force-arrow >> nth=0", "x2") != first,
+        what="the force arrows to move with the animation",
+    )
+    page.uncheck("#dynamics-arrows")
+    wait_until(
+        lambda: page.get_attribute("#linkage g.layer-forces", "visibility") == "hidden",
+        what="the arrows to hide",
+    )
+    app.screenshot("linkage-with-forces", "#linkage")
+
+
+def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    pause_and_wait(page)
+    page.check("input[name='method'][value='newton_euler']")
+    page.wait_for_selector("#steps .step-figure svg")
+    assert page.locator("#steps .step-figure svg").count() == 3
+    assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
+    assert "power balance" in page.inner_text("#steps")
+    app.screenshot("newton-euler-solution", ".solution-panel")
