@@ -28,8 +28,8 @@ if str(ROOT) not in sys.path:
 
 from fastapi.testclient import TestClient  # noqa: E402
 
-from server.app import app  # noqa: E402
 import solver  # noqa: E402
+from server.app import app  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import parse_linkage  # noqa: E402
 

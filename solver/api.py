@@ -116,6 +116,8 @@ def analyze(
         result = analysis.analyze(parsed, wanted)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
         return AnalysisResult(body)
+    if wanted & set(analysis.DYNAMIC_QUANTITIES):
+        raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
     return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
 
 
@@ -186,7 +188,8 @@ def solve(
 ) -> SolutionResult:
     """The worked solution (POST /solution) by ``method`` ('vector', 'loop' or 'newton_euler'),
     numbers shown with ``digits`` significant digits; ``results`` is the /analyze body of the
-    same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's order."""
+    same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's
+    order."""
     parsed, found = _scene(scene, strict)
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):

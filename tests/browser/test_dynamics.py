@@ -69,7 +69,8 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     pause_and_wait(page)
     page.check("input[name='method'][value='newton_euler']")
     page.wait_for_selector("#steps .step-figure svg")
-    assert page.locator("#steps .step-figure svg").count() == 3
+    diagrams = page.locator("#steps .step-figure svg").filter(has_text="W_")
+    assert diagrams.count() == 3, "one free-body diagram per moving link, with its weight"
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
     assert "power balance" in page.inner_text("#steps")
     app.screenshot("newton-euler-solution", ".solution-panel")

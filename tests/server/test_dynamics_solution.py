@@ -90,7 +90,9 @@ def test_the_seed_mistake_about_an_accelerating_pin(client: TestClient) -> None:
 
 def test_free_body_diagrams(client: TestClient) -> None:
     body = solve(client, seed004_scene(180))
-    diagrams = [s["figure"] for s in body["steps"] if s["kind"] == "dynamics.free_body"]
+    free_body = [s for s in body["steps"] if s["kind"] == "dynamics.free_body"]
+    diagrams = [s["diagram"] for s in free_body]
+    svgs = [s["figure"] for s in free_body]
     assert [f["link"] for f in diagrams] == ["crank", "coupler", "rocker"]
     rocker = diagrams[2]
     names = [f["name"] for f in rocker["forces"]]
@@ -104,8 +106,8 @@ def test_free_body_diagrams(client: TestClient) -> None:
     )
     a_D = np.array(EXPECTED["theta=180deg/a_D"]["value"])
     assert total == pytest.approx(60 * a_rocker + 90 * a_D, abs=1e-6 * 3e4)
-    for diagram in diagrams:
-        root = ET.fromstring(diagram["svg"])
+    for diagram, svg in zip(diagrams, svgs, strict=True):
+        root = ET.fromstring(svg)
         arrows = [f for f in diagram["forces"] if math.hypot(*f["vector"]) > 1e-9 * 3e4]
         lines = root.findall("{http://www.w3.org/2000/svg}line")
         assert len(lines) == len(arrows)
