@@ -393,7 +393,9 @@ def test_poles_and_images_never_share_a_name_with_a_point(app: AppPage) -> None:
         """() => document.querySelector('#linkage .pole')
                  || document.querySelector('#linkage .layer-notes').textContent.includes('Poles')"""
     )
-    poles = page.eval_on_selector_all("#linkage .pole", "(gs) => gs.map((g) => g.textContent)")
+    poles = page.eval_on_selector_all(
+        "#linkage .pole-label", "(ts) => ts.map((t) => t.textContent)"
+    )
     notes = page.text_content("#linkage .layer-notes") or ""
     names = set(poles) | {n for n in ("I₁₃", "Γ₁₃") if n in notes}
     assert {"I₁₃", "Γ₁₃"} <= names, (poles, notes)
