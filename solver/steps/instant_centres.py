@@ -10,13 +10,15 @@ link with the ground with that link's velocity pole.
 
 from __future__ import annotations
 
-from itertools import combinations
+from dataclasses import replace
+from itertools import combinations, pairwise
 
 import numpy as np
 
 from solver.rigid import perp
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
+from solver.steps.figures import Arrow, Dot, model_scale, scale_text, svg
 from solver.steps.format import latex_unit
 from solver.steps.linkage import LinkageContext
 from solver.steps.model import Step
@@ -36,6 +38,7 @@ class Kennedy:
         self.directions: dict[Pair, np.ndarray] = {}  # centres at infinity
         self.loci: dict[Pair, tuple[np.ndarray, np.ndarray]] = {}  # a line the centre is on
         self.names = {name: str(i + 1) for i, name in enumerate(self.links)}
+        self.kennedy_lines: list[tuple[Pair, Pair]] = []  # (from a known centre, to the found)
 
     def sym(self, pair: Pair) -> str:
         i, j = sorted(pair, key=self.links.index)
@@ -172,6 +175,9 @@ class Kennedy:
         b.check("product", step, t, d1k)
         b.check("sum", pk, ak, step)
         self.points[pair] = point
+        for other in (k, m):
+            if other:
+                self.kennedy_lines.append((frozenset((i, other)), pair))
         first_tex, first_text = self.through(i, k, j)
         second_tex, second_text = self.through(i, m, j)
         b.line(
@@ -225,10 +231,52 @@ class Kennedy:
                 )
 
 
+FAR = 10.0  # scene sizes: a centre farther from the mechanism is not drawn
+
+
+def figure(kennedy: Kennedy) -> str:
+    """The mechanism with its instant centres and the Kennedy lines that found them."""
+    ctx = kennedy.ctx
+    positions = [ctx.pos(p) for p in ctx.scene.points]
+    middle = np.mean(positions, axis=0)
+    near = {
+        pair: at
+        for pair, at in kennedy.points.items()
+        if float(np.hypot(*(at - middle))) <= FAR * ctx.scene.size
+    }
+    per_mm = model_scale(positions + list(near.values()))
+    segments = []
+    for link in ctx.scene.moving_links:
+        points = ctx.scene.links[link].points
+        segments += [(ctx.pos(a), ctx.pos(c), "link") for a, c in pairwise(points)]
+    arrows = [
+        Arrow(
+            near[start],
+            near[end],
+            f"ic({','.join(sorted(end))})-ic({','.join(sorted(start))})",
+            "",
+            "position",
+        )
+        for start, end in kennedy.kennedy_lines
+        if start in near and end in near and not np.allclose(near[start], near[end])
+    ]
+    dots = [Dot(at, kennedy.text(pair)) for pair, at in near.items()]
+    k = per_mm * 10.0
+    return svg(
+        "Instant centres",
+        arrows,
+        dots,
+        segments,
+        per_mm,
+        f"Instant centres and Kennedy lines, {scale_text(k, 'm')}",
+        {"data-kind": "instant_centres", "data-scale": repr(k), "data-unit": "m"},
+    )
+
+
 def instant_centres_step(ctx: LinkageContext) -> Step:
     """All instant centres of the linkage: primary from the joints, the rest by Kennedy."""
     b = ctx.builder("instant_centres", "Instant centres (Kennedy's theorem)")
     kennedy = Kennedy(ctx)
     kennedy.primary(b)
     kennedy.secondary(b)
-    return b.build()
+    return replace(b.build(), figure=figure(kennedy))

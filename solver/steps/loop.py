@@ -353,6 +353,69 @@ class LoopMethod:
         )
         return b.build()
 
+    def closed_form_step(self, loop: Loop, index: int) -> Step:
+        """Seed 001's position for a slider-crank loop, in the guide's frame (times e^(-i phi)):
+        imaginary part a2 sin(th12 - phi) + a3 sin(th13 - phi) = c gives th13, the real part
+        s14 = a2 cos(th12 - phi) + a3 cos(th13 - phi)."""
+        crank, coupler = loop.left
+        slider = loop.right[0]
+        n2, n3, n4 = crank.number, coupler.number, slider.number
+        b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
+        a2, th12 = self.register_member(b, crank)
+        a3, th13 = self.register_member(b, coupler)
+        s14, phi = self.register_member(b, slider)
+        c = f"c{n4}"
+        one = b.put("1", 1.0, "")
+        rel = {}
+        for name, th in ((n2, th12), (n3, th13)):
+            d = b.put(f"theta1{name} - phi{n4}", b.scalar(th) - b.scalar(phi), "rad")
+            b.check("sum", d, th, f"-{phi}")
+            e = b.put(
+                f"e^(i(theta1{name} - phi{n4}))", (math.cos(b.scalar(d)), math.sin(b.scalar(d))), ""
+            )
+            b.check("phasor", e, one, d)
+            rel[name] = e
+        lift = b.put(f"a{n2} sin", b.scalar(a2) * b.vector(rel[n2])[1], "m")
+        b.check("product", lift, a2, f"{rel[n2]}[1]")
+        num = b.put(
+            f"c{n4} - a{n2} sin",
+            b.scalar(c) - b.scalar(lift),
+            "m",
+            reference=abs(b.scalar(c)) + abs(b.scalar(lift)),
+        )
+        b.check("sum", num, c, f"-{lift}")
+        sin13 = b.put(f"sin(theta1{n3} - phi{n4})", b.scalar(num) / b.scalar(a3), "", reference=1.0)
+        b.check("quotient", sin13, num, a3)
+        b.check("sum", sin13, f"{rel[n3]}[1]")
+        q2 = b.put(f"a{n2} cos", b.scalar(a2) * b.vector(rel[n2])[0], "m")
+        q3 = b.put(f"a{n3} cos", b.scalar(a3) * b.vector(rel[n3])[0], "m")
+        b.check("product", q2, a2, f"{rel[n2]}[0]")
+        b.check("product", q3, a3, f"{rel[n3]}[0]")
+        b.check("sum", s14, q2, q3)
+        branch = "cos(theta13 - phi) > 0" if b.vector(rel[n3])[0] >= 0 else "cos(theta13 - phi) < 0"
+        t2, t3, p4 = f"\\theta_{{1{n2}}}", f"\\theta_{{1{n3}}}", f"\\varphi_{{{n4}}}"
+        sin2, sin3 = rf"\sin({t2} - {p4})", rf"\sin({t3} - {p4})"
+        cos2, cos3 = rf"\cos({t2} - {p4})", rf"\cos({t3} - {p4})"
+        b.line(
+            rf"&\text{{Im: }} a_{{{n2}}} {sin2} + a_{{{n3}}} {sin3} = c_{{{n4}}} \;\Rightarrow\; "
+            rf"{sin3} = \frac{{c_{{{n4}}} - a_{{{n2}}} {sin2}}}{{a_{{{n3}}}}}"
+        )
+        b.line(rf"&\text{{Re: }} s_{{1{n4}}} = a_{{{n2}}} {cos2} + a_{{{n3}}} {cos3}")
+        fraction = rf"\frac{{{b.num(c)} - {tex.paren(b.num(lift))}}}{{{b.num(a3)}}}"
+        b.line(rf"&{sin3} = {fraction} = {b.num(sin13)}, \quad {t3} = {b.numu(th13)}")
+        b.line(
+            rf"&s_{{1{n4}}} = {b.num(q2)} {tex.signed(b.num(q3))} = "
+            rf"{tex.boxed_result(b.numu(s14))}"
+        )
+        b.say(
+            f"Turned into the guide's frame (times e^(-i phi{n4})), the imaginary part of the loop "
+            f"gives sin(theta1{n3} - phi{n4}) = (c{n4} - a{n2} sin(theta1{n2} - phi{n4}))/a{n3} = "
+            f"{b.txtn(sin13)}, and the real part s1{n4} = a{n2} cos(theta1{n2} - phi{n4}) + "
+            f"a{n3} cos(theta1{n3} - phi{n4}) = {b.txt(s14)}. Of the two angles with this sine the "
+            f"one taken has {branch}, the assembly as drawn: theta1{n3} = {b.txt(th13)}."
+        )
+        return b.build()
+
     def offset(self, b: StepBuilder, n: str) -> str:
         """(s + c i) with the numbers; just s when the offset c is zero."""
         s, c = b.num(f"s1{n}"), b.num(f"c{n}")
@@ -730,6 +793,8 @@ class LoopMethod:
         out: list[Step] = []
         for i, loop in enumerate(self.loops, start=1):
             out.append(self.loop_step(loop, i))
+            if loop.kind == "slider-crank":
+                out.append(self.closed_form_step(loop, i))
         for order in (VELOCITY, ACCELERATION):
             for i, loop in enumerate(self.loops, start=1):
                 out.append(self.derivative_step(loop, i, order))

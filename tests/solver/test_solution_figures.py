@@ -73,6 +73,13 @@ def expected_vector(name: str, body: dict[str, Any], doc: dict[str, Any]) -> np.
         if m.group(1) == "an":
             return -(float(body["links"][link]["omega"]) ** 2) * r
         return float(body["links"][link]["alpha"]) * perp(r)
+    if m := re.fullmatch(r"ic\((.+),(.+)\)-ic\((.+),(.+)\)", name):
+
+        def centre(i: str, j: str) -> np.ndarray:
+            found = next(c for c in body["instant_centres"] if set(c["links"]) == {i, j})
+            return np.array(found["position"], float)
+
+        return centre(m.group(1), m.group(2)) - centre(m.group(3), m.group(4))
     if m := re.fullmatch(r"r\((.+),(.+)\)", name):
         return point(m.group(2), "position") - point(m.group(1), "position")
     if m := re.fullmatch(r"([va])_(tr|rel|cor)\((.+)\)", name):
@@ -96,7 +103,12 @@ def test_figures_are_svg_drawn_to_their_stated_scale(
     kinds = {s.kind for s in solution.steps}
     assert {"graphical.velocity", "graphical.acceleration"} <= kinds
     drawn = figures(solution)
-    assert {k for k, _ in drawn} >= {"positions", "graphical.velocity", "graphical.acceleration"}
+    assert {k for k, _ in drawn} >= {
+        "positions",
+        "graphical.velocity",
+        "graphical.acceleration",
+        "instant_centres",
+    }
     body = analysis_body(solution.analysis, [])
     measured = 0
     for kind, root in drawn:

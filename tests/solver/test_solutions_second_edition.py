@@ -515,3 +515,15 @@ def test_loop_method_has_the_poles_and_says_the_equivalence_once() -> None:
     np.testing.assert_allclose(coupler.values["P(coupler)"].value, [0.0, 5.0], atol=1e-12)
     said = [s for s in solution.steps if "both methods solve the same two equations" in s.text]
     assert len(said) == 1 and said[0].kind == "loop.velocity"
+
+
+@pytest.mark.parametrize("name", ["S001-offset-slider-crank", "S000-T4"])
+def test_slider_crank_loop_position_in_closed_form(name: str) -> None:
+    """Seed 001's form: the imaginary part gives theta13, the real part s14 (the guide's frame)."""
+    solution = solution_of(example(name), "loop")
+    step = next(s for s in solution.steps if s.kind == "position.loop")
+    loop = next(s for s in solution.steps if s.kind == "loop.position")
+    for key in ("s14", "theta13"):
+        assert step.values[key].value == loop.values[key].value
+    assert r"\text{Im: }" in step.latex and r"\text{Re: }" in step.latex
+    assert "the assembly as drawn" in step.text
