@@ -256,6 +256,7 @@ def solution_page(doc: Mapping[str, Any], solution: Solution) -> str:
     method = {
         "vector": "relative velocities (vector method)",
         "loop": "loop closure in complex form",
+        "newton_euler": "Newton-Euler (joint forces and the driving torque)",
     }[solution.method]
     steps = "".join(
         f'<li class="step"><h3>{_e(s.title)}</h3>'
@@ -264,7 +265,10 @@ def solution_page(doc: Mapping[str, Any], solution: Solution) -> str:
             if s.latex
             else ""
         )
-        + f'<p class="text">{_e(s.text)}</p></li>'
+        + f'<p class="text">{_e(s.text)}</p>'
+        # a free-body diagram: the solver's SVG, every name in it escaped there
+        + (f'<div class="figure">{s.figure["svg"]}</div>' if s.figure else "")
+        + "</li>"
         for s in solution.steps
     )
     mistakes = "".join(
