@@ -15,7 +15,11 @@ from string import Template
 from typing import Any
 
 TEMPLATE = Template((Path(__file__).parent / "templates" / "solution.html").read_text())
-METHODS = {"vector": "relative velocities (vector method)", "loop": "loop closure in complex form"}
+METHODS = {
+    "vector": "relative velocities (vector method)",
+    "loop": "loop closure in complex form",
+    "newton_euler": "Newton-Euler (joint forces and the driving torque)",
+}
 
 
 def _e(text: object) -> str:

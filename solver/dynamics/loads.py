@@ -15,6 +15,8 @@ import numpy as np
 
 from solver.assembly import Motion
 from solver.dynamics.model import Dynamics
+from solver.errors import InvalidExpression
+from solver.laws import State, StateExpression
 from solver.rigid import Array, rotate, scale
 from solver.scene import LinkageScene
 
@@ -125,19 +127,30 @@ def applied_loads(
     dynamics = dynamics_of(scene)
     state = link_state(scene, motion)
     forces = []
-    for f in dynamics.forces:
+    for index, f in enumerate(dynamics.forces):
         link = motion.links[f.link]
         P = link.point(scene.drawn(f.point))
         assert P.v is not None
         direction = np.full(times.shape, math.radians(f.direction_deg))
         if f.relative_to == "link":
             direction = direction + state[f.link][0]
-        magnitude = f.magnitude.evaluate(times, state)
+        magnitude = _evaluate(f.magnitude, times, state, f"forces[{index}].magnitude")
         vector = scale(magnitude, rotate(np.array([1.0, 0.0]), direction))
         forces.append(AppliedForce(f.name, f.link, f.point, P.p, P.v, vector))
     moments = []
-    for m in dynamics.torques:
+    for index, m in enumerate(dynamics.torques):
         omega = motion.links[m.link].omega
         assert omega is not None
-        moments.append(AppliedMoment(m.name, m.link, m.moment.evaluate(times, state), omega))
+        value = _evaluate(m.moment, times, state, f"torques[{index}].moment")
+        moments.append(AppliedMoment(m.name, m.link, value, omega))
     return forces, moments
+
+
+def _evaluate(expression: StateExpression, times: Array, state: State, path: str) -> Array:
+    """The expression's values, or its error with the field it belongs to."""
+    try:
+        return expression.evaluate(times, state)
+    except InvalidExpression as error:
+        raise InvalidExpression(
+            f"{path}: {error.message}", error.position, error.expression
+        ) from None

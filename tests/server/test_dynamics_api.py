@@ -152,6 +152,7 @@ def test_an_expression_undefined_in_the_motion_is_a_422(client: TestClient) -> N
     response = post(client, "analyze", {"scene": scene, "quantities": ["forces"]})
     assert response.status_code == 422
     assert response.json()["code"] == "invalid_expression"
+    assert response.json()["detail"].startswith("forces[0].magnitude: ")
 
 
 def test_forces_of_a_spatial_chain_are_refused(client: TestClient) -> None:

@@ -9,10 +9,11 @@ link, a point mass, gravity, a state-dependent force and a moment (tests/dynamic
   the energy rates and the loads' power without any joint force.
 - Momentum: the frame force equals the weights plus the external force minus M a_G, and minus the
   sum of the forces that the ground exerts through its joints (1e-9 of the force scale).
-- Over a full revolution at constant speed, the mean motor power is minus the loads' work per
-  period (T and V are periodic; smooth loads, so the sampled means agree to rounding where the
-  samples resolve the motion: no step of the kinetic energy above 2% of its range, which leaves
-  out the linkages that pass close to a change point, where T has a narrow spike).
+- Over a full revolution at constant speed (four-bars, slider-cranks, quick-returns, six-bars),
+  the mean motor power is minus the loads' work per period (T and V are periodic; smooth loads,
+  so the sampled means agree to rounding where the samples resolve the motion: no step of the
+  kinetic energy above 2% of its range, which leaves out the linkages that pass close to a change
+  point, where T has a narrow spike).
 """
 
 from __future__ import annotations
@@ -94,7 +95,7 @@ def test_frame_force_is_weights_plus_loads_minus_momentum_rate(
     assert body["frame_force"] == pytest.approx(through_joints, abs=scale)
 
 
-@pytest.mark.parametrize("family", ("four_bar", "slider_crank", "quick_return"))
+@pytest.mark.parametrize("family", ("four_bar", "slider_crank", "quick_return", "six_bar"))
 @settings(max_examples=6, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())
 def test_mean_power_over_a_cycle_is_minus_the_work_of_the_loads(
@@ -108,6 +109,8 @@ def test_mean_power_over_a_cycle_is_minus_the_work_of_the_loads(
         "/api/v1/sweep",
         json={"scene": doc, "samples": 720, "quantities": ["forces", "energy"]},
     )
+    # a six-bar may not close over a whole turn of its driver (Newton-Raphson stops at a limit)
+    assume(response.json().get("code") != "not_assemblable")
     assert response.status_code == 200, response.text
     body = response.json()
     assume(body["feasible"])

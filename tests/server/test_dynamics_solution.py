@@ -131,3 +131,10 @@ def test_random_linkages_by_newton_euler(
     client: TestClient, family: str, data: st.DataObject
 ) -> None:
     check(solve(client, data.draw(linkages(family).flatmap(with_masses_and_loads))))
+
+
+def test_printable_page_of_the_newton_euler_solution(client: TestClient) -> None:
+    response = client.get("/api/v1/solution.html?preset=seed004&method=newton_euler")
+    assert response.status_code == 200, response.text
+    assert response.text.count('<div class="figure"><svg') == 3
+    assert "Newton-Euler" in response.text
