@@ -371,3 +371,46 @@ def test_sweep_warning_over_http(client: TestClient) -> None:
     near = client.post("/api/v1/analyze", json={"scene": _near_crank_rocker(1e-4, 179.0)}).json()
     assert len(near["warnings"]) == 1
     assert near["diagnostics"]["closest_approach"]["point"] == "C"
+
+
+# --- the margin's rate (it steers Brent's method to the closest approach) -------------------------
+
+
+def _moving(point: np.ndarray, t: np.ndarray, spin: float) -> Any:
+    """A point turning about the origin at ``spin`` rad per unit t, from ``point`` at t = 0."""
+    from solver.rigid import PointMotion
+
+    c, s = np.cos(spin * t), np.sin(spin * t)
+    p = np.stack((c * point[0] - s * point[1], s * point[0] + c * point[1]), axis=-1)
+    return PointMotion(p, spin * np.stack((-p[:, 1], p[:, 0]), axis=-1))
+
+
+@pytest.mark.parametrize("kind", ["circle-circle", "circle-line", "lever"])
+def test_margin_rate_is_the_derivative_of_the_margin(kind: str) -> None:
+    """dm/du of each group type against central differences of m (step 1e-6, to 1e-8), with
+    every locus moving: centres on circles, the slot turning with its guide."""
+    from solver import dyads
+
+    t0 = np.linspace(0.1, 6.0, 7)
+    step = 1e-6
+
+    def margin_and_rate(t: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        first = _moving(np.array([0.4, 0.1]), t, 1.0)
+        second = _moving(np.array([1.0, -0.2]), t, -0.7)
+        if kind == "lever":
+            return dyads.lever_margin(first, second, 0.3)
+        circle = dyads.Circle(first, 0.9, "B", "coupler")
+        if kind == "circle-circle":
+            other: dyads.Locus = dyads.Circle(second, 0.5, "D", "rocker")
+        else:
+            direction = np.stack((np.cos(-0.7 * t), np.sin(-0.7 * t)), axis=-1)
+            omega = np.full(t.size, -0.7)
+            other = dyads.Line(second, direction, omega, np.zeros(t.size), "guide")
+        cut = dyads.intersect(circle, other, "C")
+        return cut.margin, cut.margin_rate
+
+    _, rate = margin_and_rate(t0)
+    ahead, _ = margin_and_rate(t0 + step)
+    behind, _ = margin_and_rate(t0 - step)
+    assert rate is not None
+    np.testing.assert_allclose(rate, (ahead - behind) / (2.0 * step), atol=1e-8)
