@@ -18,7 +18,7 @@ from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion
 from solver.scene import LinkageScene
 from solver.spatial import SpatialAnalysis
-from solver.sweep import Sweep, TimeSweep
+from solver.sweep import CloseApproach, Sweep, TimeSweep
 
 JSON = dict[str, Any]
 
@@ -240,16 +240,6 @@ def _motion_arrays(
 
 def sweep_response(result: Sweep) -> JSON:
     """The /sweep body: arrays sample by sample (numpy arrays, serialised by orjson)."""
-    approaches = [
-        {
-            "point": a.point,
-            "margin": a.margin,
-            "driver_angle": a.driver_angle,
-            "driver_angle_deg": math.degrees(a.driver_angle),
-        }
-        for a in result.close_approaches
-    ]
-    closest = approaches[0] if approaches else None
     return {
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
@@ -260,8 +250,28 @@ def sweep_response(result: Sweep) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
-        "diagnostics": {"close_approaches": approaches, "closest_approach": closest},
-        "warnings": list(result.warnings),
+        **_approach_fields(result.close_approaches),
+    }
+
+
+def _approach_fields(found: tuple[CloseApproach, ...]) -> JSON:
+    """A sweep's close approaches to a change point: in ``diagnostics`` and, in words, in
+    ``warnings``."""
+    approaches = [
+        {
+            "point": a.point,
+            "margin": a.margin,
+            "driver_angle": a.driver_angle,
+            "driver_angle_deg": math.degrees(a.driver_angle),
+        }
+        for a in found
+    ]
+    return {
+        "diagnostics": {
+            "close_approaches": approaches,
+            "closest_approach": approaches[0] if approaches else None,
+        },
+        "warnings": [a.warning for a in found],
     }
 
 
@@ -278,4 +288,5 @@ def time_sweep_response(result: TimeSweep) -> JSON:
         },
         "feasible": True,
         "limits": [],
+        **_approach_fields(result.close_approaches),
     }

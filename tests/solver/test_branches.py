@@ -414,3 +414,16 @@ def test_margin_rate_is_the_derivative_of_the_margin(kind: str) -> None:
     behind, _ = margin_and_rate(t0 - step)
     assert rate is not None
     np.testing.assert_allclose(rate, (ahead - behind) / (2.0 * step), atol=1e-8)
+
+
+def test_time_sweep_warns_too() -> None:
+    """A sweep over time (crank at 1 rad/s for one turn) finds the same close approach: 1e-4 m
+    at crank 180 deg."""
+    from solver.sweep import sweep_time
+
+    scene = parse_linkage(_near_crank_rocker(1e-4))
+    result = sweep_time(scene, 0.0, 2.0 * math.pi, 100, ["position"])
+    (approach,) = result.close_approaches
+    assert approach.margin == pytest.approx(1e-4, rel=1e-6)
+    assert _wrapped(approach.driver_angle, math.pi) <= 1e-6
+    assert "change point at 180.0 deg" in result.warnings[0]
