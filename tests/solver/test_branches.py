@@ -427,3 +427,20 @@ def test_time_sweep_warns_too() -> None:
     assert approach.margin == pytest.approx(1e-4, rel=1e-6)
     assert _wrapped(approach.driver_angle, math.pi) <= 1e-6
     assert "change point at 180.0 deg" in result.warnings[0]
+
+
+def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
+    """Two slots 1e-6 rad apart meet, far away: slot 1 the x axis, slot 2 through (0, 1) at
+    angle 1e-6, so X = (-1 / tan(1e-6), 0) (one solution: margin +inf); parallel slots do not."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    def slot(through: list[float], angle: float) -> dyads.Line:
+        direction = np.array([[math.cos(angle), math.sin(angle)]])
+        return dyads.Line(PointMotion(np.array([through])), direction, None, None, "guide")
+
+    cut = dyads.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 1e-6), "X")
+    assert cut.margin[0] == math.inf
+    np.testing.assert_allclose(cut.point(np.ones(1))[0], [-1.0 / math.tan(1e-6), 0.0], rtol=1e-9)
+    parallel = dyads.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 0.0), "X")
+    assert parallel.margin[0] == -math.inf and "parallel" in parallel.message
