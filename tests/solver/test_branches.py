@@ -444,3 +444,13 @@ def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
     np.testing.assert_allclose(cut.point(np.ones(1))[0], [-1.0 / math.tan(1e-6), 0.0], rtol=1e-9)
     parallel = dyads.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 0.0), "X")
     assert parallel.margin[0] == -math.inf and "parallel" in parallel.message
+
+
+@pytest.mark.parametrize("fraction", [0.5, 2.0])
+def test_warning_threshold_is_1e_3_of_the_size(fraction: float) -> None:
+    """The same crank-rocker with its margin at 0.5e-3 and 2e-3 of its size: warned about below
+    1e-3 of the size only (assembly.WARNING_MARGIN)."""
+    size = parse_linkage(_near_crank_rocker(1e-3)).size
+    scene = parse_linkage(_near_crank_rocker(fraction * 1e-3 * size))
+    warned = sweep(scene, 360, ["position"]).warnings
+    assert (len(warned) == 1) == (fraction < 1.0)
