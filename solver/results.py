@@ -28,7 +28,7 @@ from solver.rigid import Array
 from solver.scene import LinkageScene
 from solver.spatial import SpatialAnalysis
 from solver.steps import Solution
-from solver.sweep import Sweep, TimeSweep
+from solver.sweep import CloseApproach, Sweep, TimeSweep
 
 JSON = dict[str, Any]
 
@@ -394,15 +394,6 @@ def _motion_arrays(
 
 def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
     """The /sweep body: arrays sample by sample."""
-    approaches = [
-        {
-            "point": a.point,
-            "margin": a.margin,
-            "driver_angle": a.driver_angle,
-            "driver_angle_deg": math.degrees(a.driver_angle),
-        }
-        for a in result.close_approaches
-    ]
     return {
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
@@ -413,11 +404,28 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
+        **_approach_fields(result.close_approaches, warnings),
+    }
+
+
+def _approach_fields(found: tuple[CloseApproach, ...], warnings: list[str]) -> JSON:
+    """A sweep's close approaches to a change point: in ``diagnostics`` and, in words, in
+    ``warnings`` after the request's own."""
+    approaches = [
+        {
+            "point": a.point,
+            "margin": a.margin,
+            "driver_angle": a.driver_angle,
+            "driver_angle_deg": math.degrees(a.driver_angle),
+        }
+        for a in found
+    ]
+    return {
         "diagnostics": {
             "close_approaches": approaches,
             "closest_approach": approaches[0] if approaches else None,
         },
-        "warnings": _warnings(warnings, result),
+        "warnings": [*warnings, *(a.warning for a in found)],
     }
 
 
@@ -435,7 +443,7 @@ def time_sweep_body(result: TimeSweep, warnings: list[str]) -> JSON:
         },
         "feasible": True,
         "limits": [],
-        "warnings": _warnings(warnings, result),
+        **_approach_fields(result.close_approaches, warnings),
     }
 
 

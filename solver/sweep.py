@@ -275,6 +275,11 @@ class TimeSweep:
     quantities: frozenset[str]
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
+    close_approaches: tuple[CloseApproach, ...] = ()
+
+    @property
+    def warnings(self) -> list[str]:
+        return [a.warning for a in self.close_approaches]
 
 
 def sweep_time(
@@ -312,4 +317,5 @@ def sweep_time(
         moving,
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
+        close_approaches(motion, first or "", angle),
     )

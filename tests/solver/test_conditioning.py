@@ -244,3 +244,25 @@ def test_exactly_at_a_dead_centre_is_refused(family: str) -> None:
     doc = make(mp.mpf(0), 1)
     with pytest.raises(SingularConfiguration):
         analyze(parse_linkage(doc), ["velocity"])
+
+
+@pytest.mark.parametrize("distance", ["1e-4", "1e-5", "1e-6"])
+def test_posed_next_to_a_change_point_is_answered(distance: str) -> None:
+    """The change-point four-bar drawn far from its flat pose and posed with angle_deg 1e-4 ...
+    1e-6 rad from it: the dyad is flat to h ~ distance x size, far above rounding, so the pose is
+    answered (not singular_configuration), its condition number within a factor 10 of the
+    exact pose's, the rates within 10 cond^2 eps of the 50-digit ones (a posed angle is a float:
+    its rounding moves the pose by cond eps, which the rates amplify by cond again)."""
+    exact_doc = four_bar_near_change_point(mp.mpf(distance), 1)
+    doc = four_bar_near_change_point(mp.mpf(1), 1)
+    doc["drivers"][0]["angle_deg"] = float(mp.degrees(mp.pi + mp.mpf(distance)))
+    result = analyze(parse_linkage(doc), ["velocity", "acceleration"])
+    cond = result.diagnostics.condition_number
+    assert cond is not None
+    exact = exact_condition(exact_doc)
+    assert exact / 10.0 <= cond <= 10.0 * exact, (cond, exact)
+    rates = four_bar_rates(exact_doc)
+    scale = max(abs(float(v)) for v in rates["omega"].values())
+    for link, value in rates["omega"].items():
+        got = result.links[link].omega
+        assert abs(got - float(value)) <= 10.0 * cond**2 * 2.2e-16 * scale, (link, got, value)

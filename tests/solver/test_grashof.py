@@ -82,3 +82,11 @@ def test_seed_004_transmission_angle_extremes() -> None:
         math.degrees(math.acos((b * b + c * c - (g + a) ** 2) / (2 * b * c))), abs=1e-9
     )
     assert round(math.degrees(low), 1) == 58.2 and round(math.degrees(high), 1) == 91.0
+
+
+@pytest.mark.parametrize("eps", [1e-9, -1e-9])
+def test_a_linkage_1e_9_off_the_equality_is_not_a_change_point(eps: float) -> None:
+    """s + l = p + q - 1e-9 (rocker 1e-9 longer) is a crank-rocker, 1e-9 shorter a triple rocker:
+    only the equality within rounding (1e-12 of the longest link) is a change point."""
+    loop = _loop(1.0, 0.4, 0.9, 0.5 + eps, 30.0)
+    assert loop.grashof == ("Grashof crank-rocker" if eps > 0 else "non-Grashof triple-rocker")
