@@ -36,6 +36,13 @@ class BodyTooLarge(LimitExceeded):
 
 
 def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
+    """The problem+json response; text that cannot be encoded (a lone surrogate echoed from the
+    request) is written as its escape, e.g. \\udfff."""
+    detail = detail.encode("utf-8", "backslashreplace").decode("utf-8")
+    extra = {
+        k: v.encode("utf-8", "backslashreplace").decode("utf-8") if isinstance(v, str) else v
+        for k, v in extra.items()
+    }
     body = {
         "type": f"/problems/{code}",
         "title": TITLES.get(code, code),
@@ -75,6 +82,9 @@ async def validation_error(_: Request, error: Exception) -> JSONResponse:
     messages = []
     for e in error.errors()[:10]:
         reason = e.get("ctx", {}).get("error", "")
+        given = e.get("input")
+        if isinstance(given, bool | int | float | str) and e["type"] != "missing":
+            reason = reason or f"got {type(given).__name__} {str(given)[:40]!r}"
         messages.append(
             f"{_location(tuple(e['loc']))}: {e['msg']}" + (f" ({reason})" if reason else "")
         )

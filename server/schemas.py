@@ -25,7 +25,7 @@ Quantity = Literal["position", "velocity", "acceleration", "poles", "components"
 
 
 class Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True)
 
 
 class AnalyzeRequest(Strict):
