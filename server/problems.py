@@ -31,10 +31,6 @@ TITLES = {
 log = logging.getLogger("kinematics")
 
 
-class BodyTooLarge(LimitExceeded):
-    """The request body exceeds the server's byte limit (answered with 413)."""
-
-
 def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
     """The problem+json response; text that cannot be encoded (a lone surrogate echoed from the
     request) is written as its escape, e.g. \\udfff."""
@@ -55,7 +51,8 @@ def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
 
 
 def _status(error: KinematicsError) -> int:
-    return 413 if isinstance(error, BodyTooLarge) else 422
+    """413 for a request larger or longer than the server allows, 422 for the others."""
+    return 413 if isinstance(error, LimitExceeded) else 422
 
 
 async def kinematics_error(_: Request, error: Exception) -> JSONResponse:

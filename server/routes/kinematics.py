@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter
 
+from server import budget
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import (
     analysis_response,
@@ -33,6 +34,7 @@ router = APIRouter(
 def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
     scene = parse_scene(request.scene)
     if isinstance(scene, LinkageScene):
+        budget.instant(scene)
         return FiniteJSONResponse(analysis_response(analyze(scene, request.quantities)))
     wanted = normalise_quantities(request.quantities)
     return FiniteJSONResponse(spatial_response(analyze_spatial_chain(scene), wanted))
@@ -43,6 +45,7 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
 )
 def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/sweep")
+    budget.sweep(scene, request.samples, request.quantities, request.time_range is not None)
     if request.time_range is None:
         return FiniteJSONResponse(sweep_response(sweep(scene, request.samples, request.quantities)))
     if len(request.time_range) != 2:
@@ -57,6 +60,7 @@ def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
 def events_route(request: EventsRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/events")
     e = request.event
+    budget.event(scene, e.moving_point, e.t_max)
     event = find_event(scene, e.moving_point, e.reaches, e.occurrence, e.t_max)
     return FiniteJSONResponse(
         {

@@ -17,12 +17,15 @@ from fastapi import APIRouter, Query
 from fastapi.responses import HTMLResponse
 from pydantic import Field
 
+from server import budget
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import JSON, analysis_response, spatial_response
 from server.routes.scenes import parse_scene
 from server.schemas import EXAMPLES, Strict
 from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.presets import build_preset
+from solver.scene import LinkageScene
+from solver.spatial import SpatialChain
 from solver.steps import Solution, solve
 
 router = APIRouter(
@@ -74,9 +77,17 @@ def solution_body(solution: Solution) -> JSON:
     }
 
 
+def parse_and_budget(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain:
+    """The scene of a /solution request, refused before any work if it costs too much."""
+    scene = parse_scene(doc)
+    if isinstance(scene, LinkageScene):
+        budget.instant(scene)
+    return scene
+
+
 @router.post("/solution", summary="Worked solution, step by step, in the textbook's form")
 def solution_route(request: SolutionRequest) -> FiniteJSONResponse:
-    scene = parse_scene(request.scene)
+    scene = parse_and_budget(request.scene)
     return FiniteJSONResponse(solution_body(solve(scene, request.method, request.digits)))
 
 
@@ -302,7 +313,7 @@ z out of the page, angular velocities counter-clockwise positive.</p>
 
 
 def _page(doc: Mapping[str, Any], method: str, digits: int) -> HTMLResponse:
-    solution = solve(parse_scene(doc), method, digits)
+    solution = solve(parse_and_budget(doc), method, digits)
     return HTMLResponse(solution_page(doc, solution))
 
 
