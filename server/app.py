@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
 from pathlib import Path
 
 from fastapi import FastAPI
@@ -10,15 +11,35 @@ from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
-from server import problems
+from server import problems, workers
 from server.routes import kinematics, presets, solution
+from server.settings import Settings, from_environment
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
 
 
-def create_app() -> FastAPI:
+def create_app(settings: Settings | None = None) -> FastAPI:
+    """The app; ``settings`` default to the environment's (server.settings)."""
+    settings = from_environment() if settings is None else settings
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        """The worker pool lives as long as the server (none with ``workers = 0``)."""
+        if settings.workers == 0:
+            yield
+            return
+        pool = workers.Pool(settings)
+        await pool.start()
+        app.state.pool = pool
+        try:
+            yield
+        finally:
+            app.state.pool = None
+            await pool.close()
+
     app = FastAPI(
+        lifespan=lifespan,
         title="Kinematics of mechanisms",
         version="1.0.0",
         description="Planar linkages, moving points on moving bodies and spatial chains: "
@@ -28,7 +49,9 @@ def create_app() -> FastAPI:
         redoc_url=None,
         openapi_url=f"{API_PREFIX}/openapi.json",
     )
+    app.state.settings = settings
     problems.install(app)
+    app.add_exception_handler(workers.Busy, workers.busy_problem)
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
@@ -44,7 +67,8 @@ def create_app() -> FastAPI:
         )
 
     @app.get("/health", include_in_schema=False)
-    def health() -> dict[str, str]:
+    async def health() -> dict[str, str]:
+        """On the event loop: it answers while every worker is busy."""
         return {"status": "ok"}
 
     _serve_static(app)

@@ -80,6 +80,9 @@ def sweep(
 
 def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:
     """/events: t_max x the law's frequency (and the Newton work of the distance search)."""
+    for law in [d.angle_law for d in scene.drivers] + [m.s_law for m in scene.moving_points]:
+        if law is not None:
+            parse_time_law(law)  # a bad law is reported as such, before any budget
     mp = next((m for m in scene.moving_points if m.name == moving_point), None)
     if mp is None or not 0.0 < t_max <= MAX_TIME:
         return  # the solver's own message

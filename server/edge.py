@@ -11,6 +11,7 @@ sent as null).
 from __future__ import annotations
 
 from collections.abc import Callable, Coroutine
+from contextvars import ContextVar
 from typing import Any
 
 import numpy as np
@@ -55,12 +56,18 @@ class StrictJSONRequest(Request):
         return self._json
 
 
+# The request being answered, for endpoint wrappers (server.workers) that need its client.
+CURRENT_REQUEST: ContextVar[Request] = ContextVar("CURRENT_REQUEST")
+
+
 class StrictJSONRoute(APIRoute):
     def get_route_handler(self) -> Callable[[Request], Coroutine[Any, Any, Response]]:
         handler = super().get_route_handler()
 
         async def strict(request: Request) -> Response:
-            return await handler(StrictJSONRequest(request.scope, request.receive))
+            strict_request = StrictJSONRequest(request.scope, request.receive)
+            CURRENT_REQUEST.set(strict_request)
+            return await handler(strict_request)
 
         return strict
 

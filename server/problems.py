@@ -22,7 +22,8 @@ TITLES = {
     "invalid_expression": "Invalid expression",
     "not_assemblable": "Linkage cannot be assembled",
     "singular_configuration": "Singular configuration (dead centre)",
-    "limit_exceeded": "Request too large",
+    "limit_exceeded": "Request too large or too long",
+    "busy": "Server busy",
     "no_event": "The event does not occur",
     "not_found": "Not found",
     "method_not_allowed": "Method not allowed",
@@ -55,8 +56,8 @@ def _status(error: KinematicsError) -> int:
     return 413 if isinstance(error, LimitExceeded) else 422
 
 
-async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
-    assert isinstance(error, KinematicsError)
+def solver_problem(error: KinematicsError) -> JSONResponse:
+    """The problem for a solver error (here, or in a worker process)."""
     extra: dict[str, Any] = {}
     if isinstance(error, InvalidExpression):
         extra = {"position": error.position, "expression": error.expression}
@@ -67,6 +68,15 @@ async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
             else None
         }
     return problem(_status(error), error.code, error.message, **extra)
+
+
+async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
+    assert isinstance(error, KinematicsError)
+    return solver_problem(error)
+
+
+def internal_problem() -> JSONResponse:
+    return problem(500, "internal_error", "an unexpected error occurred; this is a defect")
 
 
 def _location(loc: tuple[Any, ...]) -> str:
@@ -98,7 +108,7 @@ async def http_error(_: Request, error: Exception) -> JSONResponse:
 
 async def unexpected_error(_: Request, error: Exception) -> JSONResponse:
     log.exception("unexpected error", exc_info=error)
-    return problem(500, "internal_error", "an unexpected error occurred; this is a defect")
+    return internal_problem()
 
 
 def install(app: FastAPI) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter
 
 from server import budget
-from server.edge import FiniteJSONResponse, StrictJSONRoute
+from server.edge import FiniteJSONResponse
 from server.responses import (
     analysis_response,
     spatial_response,
@@ -15,6 +15,7 @@ from server.responses import (
 )
 from server.routes.scenes import parse_linkage_only, parse_scene
 from server.schemas import AnalyzeRequest, EventsRequest, SweepRequest
+from server.workers import WorkerRoute
 from solver.analysis import analyze, normalise_quantities
 from solver.errors import InvalidScene
 from solver.events import find_event
@@ -23,7 +24,7 @@ from solver.spatial import analyze_spatial_chain
 from solver.sweep import sweep, sweep_time
 
 router = APIRouter(
-    tags=["kinematics"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+    tags=["kinematics"], route_class=WorkerRoute, default_response_class=FiniteJSONResponse
 )
 
 

@@ -18,10 +18,11 @@ from fastapi.responses import HTMLResponse
 from pydantic import Field
 
 from server import budget
-from server.edge import FiniteJSONResponse, StrictJSONRoute
+from server.edge import FiniteJSONResponse
 from server.responses import JSON, analysis_response, spatial_response
 from server.routes.scenes import parse_scene
 from server.schemas import EXAMPLES, Strict
+from server.workers import WorkerRoute
 from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.presets import build_preset
 from solver.scene import LinkageScene
@@ -29,7 +30,7 @@ from solver.spatial import SpatialChain
 from solver.steps import Solution, solve
 
 router = APIRouter(
-    tags=["solutions"], route_class=StrictJSONRoute, default_response_class=FiniteJSONResponse
+    tags=["solutions"], route_class=WorkerRoute, default_response_class=FiniteJSONResponse
 )
 
 Method = Literal["vector", "loop"]
