@@ -7,16 +7,30 @@ from contextlib import asynccontextmanager
 from pathlib import Path
 
 from fastapi import FastAPI
-from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
-from server import problems, workers
+from server import headers, problems, workers
 from server.routes import kinematics, presets, solution
 from server.settings import Settings, from_environment
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
+SWAGGER_PAGE = """<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>Kinematics API</title>
+<link rel="icon" href="/favicon.svg" type="image/svg+xml">
+<link rel="stylesheet" href="/vendor/swagger-ui/swagger-ui.css">
+</head>
+<body>
+<div id="swagger-ui" data-openapi-url="{openapi}"></div>
+<script src="/vendor/swagger-ui/swagger-ui-bundle.js"></script>
+<script src="/js/swagger-init.js"></script>
+</body>
+</html>
+"""
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
@@ -50,6 +64,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         openapi_url=f"{API_PREFIX}/openapi.json",
     )
     app.state.settings = settings
+    headers.install(app, settings)
     problems.install(app)
     app.add_exception_handler(workers.Busy, workers.busy_problem)
     app.include_router(kinematics.router, prefix=API_PREFIX)
@@ -58,13 +73,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:
-        return get_swagger_ui_html(
-            openapi_url=f"{API_PREFIX}/openapi.json",
-            title="Kinematics API",
-            swagger_js_url="/vendor/swagger-ui/swagger-ui-bundle.js",
-            swagger_css_url="/vendor/swagger-ui/swagger-ui.css",
-            swagger_favicon_url="/favicon.svg",
-        )
+        """Swagger UI from /vendor, started by a script file (no inline script: see CSP)."""
+        return HTMLResponse(SWAGGER_PAGE.format(openapi=f"{API_PREFIX}/openapi.json"))
 
     @app.get("/health", include_in_schema=False)
     async def health() -> dict[str, str]:

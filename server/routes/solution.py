@@ -125,24 +125,6 @@ button.print { float: right; font-size: 0.95rem; padding: 0.3rem 0.8rem; }
 }
 """
 
-_SCRIPT = """
-document.querySelectorAll('.math[data-latex]').forEach(function (el) {
-  if (!window.katex) { el.classList.remove('pending'); el.classList.add('error'); return; }
-  try {
-    katex.render(el.getAttribute('data-latex'), el,
-                 {displayMode: true, throwOnError: true, strict: 'ignore', trust: false});
-    el.classList.remove('pending');
-  } catch (err) {
-    el.classList.remove('pending');
-    el.classList.add('error');
-    el.title = 'KaTeX could not read this step: ' + err.message;
-  }
-});
-document.querySelectorAll('button.print').forEach(function (b) {
-  b.addEventListener('click', function () { window.print(); });
-});
-"""
-
 
 def _e(text: object) -> str:
     return html.escape(str(text), quote=True)
@@ -307,7 +289,7 @@ z out of the page, angular velocities counter-clockwise positive.</p>
 <ul class="mistakes">{mistakes or "<li>None listed for this scene.</li>"}</ul></section>
 </main>
 <script src="/vendor/katex/katex.min.js"></script>
-<script>{_SCRIPT}</script>
+<script src="/js/solution-page.js"></script>
 </body>
 </html>
 """
