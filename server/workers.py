@@ -12,6 +12,8 @@ whose ``route_class`` is ``server.edge.WorkerRoute`` runs in one of ``workers`` 
    limit) or when its client disconnects: the worker is killed and replaced, so a runaway
    request frees its core at once.
 
+Endpoints with a time limit above ``QUICK_LIMIT`` (sweeps, solutions, events) share all the
+workers but one, so a burst of them leaves a worker to /analyze.
 ``/health`` and the static files never wait for a worker, so they answer while every worker is
 busy. Workers are forked from a ``forkserver`` that has imported the app, so a replacement is
 ready in milliseconds. With ``workers = 0``, with no pool started (an app driven without its
@@ -56,6 +58,7 @@ ENDPOINTS: dict[str, Callable[..., Any]] = {}
 # One BLAS thread per worker: the pool is the parallelism.
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
+QUICK_LIMIT = 2.0  # s: endpoints with this time limit or less may use every worker
 Answer = tuple[int, list[tuple[bytes, bytes]], bytes]
 
 
@@ -146,8 +149,10 @@ class Pool:
         # Threads that wait on the workers' pipes (and start replacements).
         self.threads = ThreadPoolExecutor(2 * settings.workers + 2, "worker-pipe")
         self.idle: asyncio.Queue[Worker] = asyncio.Queue()
+        # Endpoints allowed more than QUICK_LIMIT s share all workers but one, so a burst of
+        # sweeps never holds back /analyze.
+        self.slow_lane = asyncio.Semaphore(max(1, settings.workers - 1))
         self.waiting = 0
-        self.busy = 0
         self.tasks: set[asyncio.Task[None]] = set()
 
     async def _in_thread(self, function: Callable[..., Any], *args: Any) -> Any:
@@ -177,16 +182,28 @@ class Pool:
     def _retry_after(self) -> int:
         return max(1, math.ceil(self.waiting / max(self.settings.workers, 1)))
 
-    async def _acquire(self, gone: asyncio.Future[None]) -> Worker | None:
-        """An idle worker; None if the client left while waiting; Busy past the queue."""
+    async def _acquire(
+        self, gone: asyncio.Future[None], lane: asyncio.Semaphore | None
+    ) -> Worker | None:
+        """An idle worker (and a place in ``lane`` if given); None if the client left while
+        waiting; Busy past the queue."""
         if self.waiting >= self.settings.queue:
             raise Busy(
                 f"the server is busy: {self.waiting} requests wait for "
                 f"{self.settings.workers} workers (at most {self.settings.queue}); retry later",
                 self._retry_after(),
             )
+        held = False
+
+        async def take() -> Worker:
+            nonlocal held
+            if lane is not None:
+                await lane.acquire()
+                held = True
+            return await self.idle.get()
+
         self.waiting += 1
-        get = asyncio.ensure_future(self.idle.get())
+        get = asyncio.ensure_future(take())
         either: set[asyncio.Future[Any]] = {get, gone}
         try:
             done, _ = await asyncio.wait(
@@ -200,6 +217,8 @@ class Pool:
         with contextlib.suppress(asyncio.CancelledError):
             worker = await get  # it may have been handed a worker as it was cancelled
             self.idle.put_nowait(worker)
+        if held and lane is not None:
+            lane.release()
         if gone in done:
             return None
         raise Busy(
@@ -211,18 +230,20 @@ class Pool:
     async def run(self, key: str, kwargs: dict[str, Any], request: Request) -> Response:
         """Run endpoint ``key`` in a worker within the time limit of ``request``'s path."""
         limit = self.settings.time_limit_of(request.url.path)
+        lane = self.slow_lane if limit > QUICK_LIMIT else None
         gone = asyncio.ensure_future(_disconnected(request.receive))
         try:
-            worker = await self._acquire(gone)
-            if worker is None:
-                return Response(status_code=499)  # nobody reads it: the client has left
-            self.busy += 1
+            worker = await self._acquire(gone, lane)
+        except Busy:
+            gone.cancel()
+            raise
+        if worker is None:
+            gone.cancel()
+            return Response(status_code=499)  # nobody reads it: the client has left
+        try:
             work = asyncio.ensure_future(self._in_thread(worker.roundtrip, key, kwargs))
             either: set[asyncio.Future[Any]] = {work, gone}
-            try:
-                done, _ = await asyncio.wait(either, timeout=limit, return_when="FIRST_COMPLETED")
-            finally:
-                self.busy -= 1
+            done, _ = await asyncio.wait(either, timeout=limit, return_when="FIRST_COMPLETED")
             if work not in done or work.exception() is not None:
                 work.add_done_callback(lambda w: w.exception())  # EOFError once killed
                 self._replace(worker)
@@ -241,6 +262,8 @@ class Pool:
             return response
         finally:
             gone.cancel()
+            if lane is not None:
+                lane.release()
 
 
 def offloaded(endpoint: Callable[..., Any], key: str) -> Callable[..., Any]:
