@@ -1,4 +1,4 @@
-# The kinematics teaching app: the same install as the README's first command.
+# The kinematics teaching app: the same install as the README's first command (pinned deps).
 FROM python:3.11-slim
 
 ENV PYTHONDONTWRITEBYTECODE=1 \
@@ -8,11 +8,11 @@ ENV PYTHONDONTWRITEBYTECODE=1 \
 RUN useradd --create-home --uid 10001 app
 WORKDIR /app
 
-COPY pyproject.toml README.md ./
+COPY pyproject.toml README.md requirements.lock ./
 COPY solver ./solver
 COPY server ./server
 COPY static ./static
-RUN python -m pip install --no-cache-dir .
+RUN python -m pip install --no-cache-dir -r requirements.lock .
 
 USER 10001
 EXPOSE 8000
