@@ -1,4 +1,4 @@
-# The kinematics teaching app: the same install as the README's first command.
+# The kinematics teaching app: the same install as the README's first command (pinned deps).
 FROM python:3.11-slim
 
 ENV PYTHONDONTWRITEBYTECODE=1 \
@@ -8,14 +8,19 @@ ENV PYTHONDONTWRITEBYTECODE=1 \
 RUN useradd --create-home --uid 10001 app
 WORKDIR /app
 
-COPY pyproject.toml README.md ./
+COPY pyproject.toml README.md requirements.lock ./
 COPY solver ./solver
 COPY server ./server
 COPY static ./static
-RUN python -m pip install --no-cache-dir .
+RUN python -m pip install --no-cache-dir -r requirements.lock .
 
 USER 10001
 EXPOSE 8000
 HEALTHCHECK --interval=30s --timeout=3s --start-period=10s --retries=3 \
   CMD ["python", "-c", "import urllib.request, sys; sys.exit(0 if urllib.request.urlopen('http://127.0.0.1:8000/health', timeout=2).status == 200 else 1)"]
-CMD ["uvicorn", "server.app:app", "--host", "0.0.0.0", "--port", "8000"]
+# One uvicorn process; the solver runs in KINEMATICS_WORKERS worker processes (default: the
+# container's cores), with the queue and time limits of server/settings.py. Override with -e.
+ENV KINEMATICS_QUEUE=128 \
+    KINEMATICS_QUEUE_WAIT=10 \
+    KINEMATICS_TIME_LIMIT=10
+CMD ["uvicorn", "server.app:app", "--host", "0.0.0.0", "--port", "8000", "--timeout-graceful-shutdown", "15"]

@@ -2,24 +2,59 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
 
 from fastapi import FastAPI
-from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
-from server import problems, schemas
+from server import headers, problems, schemas, workers
 from server.routes import dynamics, exercises, kinematics, presets, solution
+from server.settings import Settings, from_environment
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 API_PREFIX = "/api/v1"
+SWAGGER_PAGE = """<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>Kinematics API</title>
+<link rel="icon" href="/favicon.svg" type="image/svg+xml">
+<link rel="stylesheet" href="/vendor/swagger-ui/swagger-ui.css">
+</head>
+<body>
+<div id="swagger-ui" data-openapi-url="{openapi}"></div>
+<script src="/vendor/swagger-ui/swagger-ui-bundle.js"></script>
+<script src="/js/swagger-init.js"></script>
+</body>
+</html>
+"""
 
 
-def create_app() -> FastAPI:
+def create_app(settings: Settings | None = None) -> FastAPI:
+    """The app; ``settings`` default to the environment's (server.settings)."""
+    settings = from_environment() if settings is None else settings
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        """The worker pool lives as long as the server (none with ``workers = 0``)."""
+        if settings.workers == 0:
+            yield
+            return
+        pool = workers.Pool(settings)
+        await pool.start()
+        app.state.pool = pool
+        try:
+            yield
+        finally:
+            app.state.pool = None
+            await pool.close()
+
     app = FastAPI(
+        lifespan=lifespan,
         title="Kinematics of mechanisms",
         version="1.0.0",
         description="Planar linkages, moving points on moving bodies and spatial chains: "
@@ -29,8 +64,11 @@ def create_app() -> FastAPI:
         redoc_url=None,
         openapi_url=f"{API_PREFIX}/openapi.json",
     )
+    app.state.settings = settings
+    headers.install(app, settings)
     problems.install(app)
     _publish_problems(app)
+    app.add_exception_handler(workers.Busy, workers.busy_problem)
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
@@ -39,16 +77,12 @@ def create_app() -> FastAPI:
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:
-        return get_swagger_ui_html(
-            openapi_url=f"{API_PREFIX}/openapi.json",
-            title="Kinematics API",
-            swagger_js_url="/vendor/swagger-ui/swagger-ui-bundle.js",
-            swagger_css_url="/vendor/swagger-ui/swagger-ui.css",
-            swagger_favicon_url="/favicon.svg",
-        )
+        """Swagger UI from /vendor, started by a script file (no inline script: see CSP)."""
+        return HTMLResponse(SWAGGER_PAGE.format(openapi=f"{API_PREFIX}/openapi.json"))
 
     @app.get("/health", include_in_schema=False)
-    def health() -> dict[str, str]:
+    async def health() -> dict[str, str]:
+        """On the event loop: it answers while every worker is busy."""
         return {"status": "ok"}
 
     _serve_static(app)

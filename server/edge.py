@@ -1,15 +1,17 @@
-"""Strict JSON at the edge: bounded bodies, no NaN or Infinity, finite numbers out.
+"""Strict JSON at the edge: bounded bodies, strict documents in, finite numbers out.
 
-Python's json module accepts ``NaN`` and ``Infinity`` by default, and a client could send a body
-of any size: this route class reads the body with a byte limit and rejects the non-standard
-constants as a JSON error. Responses are serialised with orjson after a check that every number
-is finite (a non-finite value in a response is a defect, never sent as null).
+Python's json module accepts ``NaN``, ``Infinity``, duplicate keys (the last wins) and strings
+that cannot be encoded, and a client could send a body of any size: this route class reads the
+body with a byte limit and parses it with ``server.text.loads``, which refuses all of these as
+``invalid_scene`` with the path of the offending value. Responses are serialised with orjson
+after a check that every number is finite (a non-finite value in a response is a defect, never
+sent as null).
 """
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable, Coroutine
+from contextvars import ContextVar
 from typing import Any
 
 import numpy as np
@@ -18,11 +20,10 @@ from fastapi import Request, Response
 from fastapi.routing import APIRoute
 from starlette.exceptions import HTTPException
 
+from server import text
+from solver.errors import InvalidScene
+
 MAX_BODY_BYTES = 1_000_000
-
-
-def _reject_constant(name: str) -> Any:
-    raise json.JSONDecodeError(f"{name} is not a number in JSON; send finite numbers only", name, 0)
 
 
 class StrictJSONRequest(Request):
@@ -48,8 +49,15 @@ class StrictJSONRequest(Request):
 
     async def json(self) -> Any:
         if not hasattr(self, "_json"):
-            self._json = json.loads(await self.body(), parse_constant=_reject_constant)
+            try:
+                self._json = text.loads(await self.body())
+            except InvalidScene as error:  # FastAPI would answer any other exception with 400
+                raise HTTPException(422, error.message) from None
         return self._json
+
+
+# The request being answered, for endpoint wrappers (server.workers) that need its client.
+CURRENT_REQUEST: ContextVar[Request] = ContextVar("CURRENT_REQUEST")
 
 
 class StrictJSONRoute(APIRoute):
@@ -57,7 +65,9 @@ class StrictJSONRoute(APIRoute):
         handler = super().get_route_handler()
 
         async def strict(request: Request) -> Response:
-            return await handler(StrictJSONRequest(request.scope, request.receive))
+            strict_request = StrictJSONRequest(request.scope, request.receive)
+            CURRENT_REQUEST.set(strict_request)
+            return await handler(strict_request)
 
         return strict
 

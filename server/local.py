@@ -27,7 +27,7 @@ import sys
 import tempfile
 import time
 import urllib.request
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import IO
 
@@ -43,8 +43,14 @@ _opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))
 
 
 @contextlib.contextmanager
-def serve_locally(log: IO[bytes] | None = None, timeout: float = 40.0) -> Iterator[str]:
-    """Run the app under uvicorn on a free 127.0.0.1 port and yield its base URL."""
+def serve_locally(
+    log: IO[bytes] | None = None, timeout: float = 40.0, settings: Mapping[str, str] | None = None
+) -> Iterator[str]:
+    """Run the app under uvicorn on a free 127.0.0.1 port and yield its base URL.
+
+    ``settings``: environment variables for the server (``KINEMATICS_WORKERS``, ... see
+    server/settings.py) on top of this process's environment.
+    """
     with contextlib.ExitStack() as stack:
         out = log if log is not None else stack.enter_context(tempfile.TemporaryFile())
         start = _position(out)
@@ -58,7 +64,7 @@ def serve_locally(log: IO[bytes] | None = None, timeout: float = 40.0) -> Iterat
             stdin=subprocess.DEVNULL,
             stdout=out,
             stderr=subprocess.STDOUT,
-            env={**os.environ, "PYTHONUNBUFFERED": "1"},
+            env={**os.environ, **(settings or {}), "PYTHONUNBUFFERED": "1"},
         )
         stack.callback(_stop, process)
         deadline = time.monotonic() + timeout

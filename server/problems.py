@@ -22,7 +22,8 @@ TITLES = {
     "invalid_expression": "Invalid expression",
     "not_assemblable": "Linkage cannot be assembled",
     "singular_configuration": "Singular configuration (dead centre)",
-    "limit_exceeded": "Request too large",
+    "limit_exceeded": "Request too large or too long",
+    "busy": "Server busy",
     "no_event": "The event does not occur",
     "not_found": "Not found",
     "method_not_allowed": "Method not allowed",
@@ -31,11 +32,14 @@ TITLES = {
 log = logging.getLogger("kinematics")
 
 
-class BodyTooLarge(LimitExceeded):
-    """The request body exceeds the server's byte limit (answered with 413)."""
-
-
 def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
+    """The problem+json response; text that cannot be encoded (a lone surrogate echoed from the
+    request) is written as its escape, e.g. \\udfff."""
+    detail = detail.encode("utf-8", "backslashreplace").decode("utf-8")
+    extra = {
+        k: v.encode("utf-8", "backslashreplace").decode("utf-8") if isinstance(v, str) else v
+        for k, v in extra.items()
+    }
     body = {
         "type": f"/problems/{code}",
         "title": TITLES.get(code, code),
@@ -48,11 +52,12 @@ def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
 
 
 def _status(error: KinematicsError) -> int:
-    return 413 if isinstance(error, BodyTooLarge) else 422
+    """413 for a request larger or longer than the server allows, 422 for the others."""
+    return 413 if isinstance(error, LimitExceeded) else 422
 
 
-async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
-    assert isinstance(error, KinematicsError)
+def solver_problem(error: KinematicsError) -> JSONResponse:
+    """The problem for a solver error (here, or in a worker process)."""
     extra: dict[str, Any] = {}
     if isinstance(error, InvalidExpression):
         extra = {"position": error.position, "expression": error.expression}
@@ -65,6 +70,15 @@ async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
     return problem(_status(error), error.code, error.message, **extra)
 
 
+async def kinematics_error(_: Request, error: Exception) -> JSONResponse:
+    assert isinstance(error, KinematicsError)
+    return solver_problem(error)
+
+
+def internal_problem() -> JSONResponse:
+    return problem(500, "internal_error", "an unexpected error occurred; this is a defect")
+
+
 def _location(loc: tuple[Any, ...]) -> str:
     parts = [str(p) for p in loc if p != "body"]
     return ".".join(parts) or "body"
@@ -75,6 +89,9 @@ async def validation_error(_: Request, error: Exception) -> JSONResponse:
     messages = []
     for e in error.errors()[:10]:
         reason = e.get("ctx", {}).get("error", "")
+        given = e.get("input")
+        if isinstance(given, bool | int | float | str) and e["type"] != "missing":
+            reason = reason or f"got {type(given).__name__} {str(given)[:40]!r}"
         messages.append(
             f"{_location(tuple(e['loc']))}: {e['msg']}" + (f" ({reason})" if reason else "")
         )
@@ -91,7 +108,7 @@ async def http_error(_: Request, error: Exception) -> JSONResponse:
 
 async def unexpected_error(_: Request, error: Exception) -> JSONResponse:
     log.exception("unexpected error", exc_info=error)
-    return problem(500, "internal_error", "an unexpected error occurred; this is a defect")
+    return internal_problem()
 
 
 def install(app: FastAPI) -> None:

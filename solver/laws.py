@@ -22,13 +22,17 @@ import numpy as np
 import numpy.typing as npt
 import sympy
 
-from solver.errors import InvalidExpression
+from solver.errors import InvalidExpression, LimitExceeded
 
 MAX_LENGTH = 500  # characters of the law text
 MAX_DEPTH = 50  # nesting of parentheses and of the syntax tree
 MAX_LITERAL = 1e12  # magnitude of a number written in the law
 MAX_EXPONENT = 100  # magnitude of a constant exponent
 MAX_CONSTANT_DIGITS = 100  # a t-free part or constant power may not exceed 1e100
+# Functions and powers of t nested in one another (sin(exp(t)) is 2, t^t^t is 2): each level
+# multiplies the size of the derivatives (chain rule); 51 levels of t^t^... took 53 s to
+# differentiate, 6 levels of any kind at most about 1 s in a 500-character law.
+MAX_COMPOSITION = 6
 
 T = sympy.Symbol("t")
 CONSTANTS: dict[str, sympy.Expr] = {"t": T, "pi": sympy.pi, "e": sympy.E}
@@ -296,7 +300,25 @@ def _to_sympy(text: str) -> sympy.Expr:
     expr = _Builder(text, origin).build(tree.body, 0)
     if expr.has(sympy.zoo, sympy.nan, sympy.oo, sympy.I):
         raise InvalidExpression("the law is not a real, finite expression", 0, text)
+    depth = composition_depth(expr)
+    if depth > MAX_COMPOSITION:
+        raise LimitExceeded(
+            f"the law {text[:40]!r} nests {depth} functions or powers of t in one another, more "
+            f"than the limit of {MAX_COMPOSITION} (its derivatives would take too long to form)"
+        )
     return expr
+
+
+def composition_depth(expr: sympy.Expr) -> int:
+    """How many functions and powers of t are nested in one another in ``expr``.
+
+    A sum or product adds no level; a function of t, or a power whose base or exponent holds t,
+    adds one (``sin(t)``: 1, ``sin(t)^2``: 2, ``t^t^t``: 2, ``6*pi*t^2``: 1).
+    """
+    if T not in expr.free_symbols:
+        return 0
+    inner = max((composition_depth(a) for a in expr.args), default=0)
+    return inner if isinstance(expr, sympy.Add | sympy.Mul) or expr == T else inner + 1
 
 
 def _identity(t: Any) -> Any:

@@ -12,9 +12,9 @@ from fastapi import APIRouter
 from pydantic import Field
 
 import solver
-from server.edge import StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, BalanceResponse, Strict
+from server.workers import WorkerRoute
 from solver.dynamics.balance import balance_four_bar
 from solver.dynamics.body import balance_body
 from solver.errors import InvalidScene
@@ -35,7 +35,7 @@ class BalanceRequest(Strict):
 
 router = APIRouter(
     tags=["dynamics"],
-    route_class=StrictJSONRoute,
+    route_class=WorkerRoute,
     default_response_class=ResultResponse,
     responses=PROBLEMS,
 )

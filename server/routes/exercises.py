@@ -14,7 +14,6 @@ from fastapi import APIRouter
 from fastapi.responses import Response
 from pydantic import Field
 
-from server.edge import StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import (
     PROBLEMS,
@@ -24,6 +23,7 @@ from server.schemas import (
     ExerciseTypeList,
     Strict,
 )
+from server.workers import WorkerRoute
 from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
 from solver.exercises.checking import check
 from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
@@ -35,7 +35,7 @@ MAX_ANSWER = 1e15  # a given answer beyond this is no number a student means
 router = APIRouter(
     prefix="/exercises",
     tags=["exercises"],
-    route_class=StrictJSONRoute,
+    route_class=WorkerRoute,
     default_response_class=ResultResponse,
     responses=PROBLEMS,
 )

@@ -1,11 +1,15 @@
-"""POST /api/v1/analyze, POST /api/v1/sweep and POST /api/v1/events."""
+"""POST /api/v1/analyze, POST /api/v1/sweep and POST /api/v1/events.
+
+Each runs in a worker process (``server.workers.WorkerRoute``); its cost is checked against the
+budget (``server.budget``) before any work.
+"""
 
 from __future__ import annotations
 
 from fastapi import APIRouter
 
 import solver
-from server.edge import StrictJSONRoute
+from server import budget
 from server.responses import ResultResponse, respond
 from server.schemas import (
     PROBLEMS,
@@ -17,13 +21,24 @@ from server.schemas import (
     SweepResponse,
     TimeSweepResponse,
 )
+from server.workers import WorkerRoute
+from solver.errors import InvalidScene
+from solver.scene import LinkageScene
 
 router = APIRouter(
     tags=["kinematics"],
-    route_class=StrictJSONRoute,
+    route_class=WorkerRoute,
     default_response_class=ResultResponse,
     responses=PROBLEMS,
 )
+
+
+def read_linkage(doc: dict[str, object], strict: bool, what: str) -> solver.ReadScene:
+    """The document read as a linkage (``invalid_scene`` for a spatial chain), warnings kept."""
+    read = solver.read_scene(doc, strict=strict)
+    if not isinstance(read.scene, LinkageScene):
+        raise InvalidScene(f"kind: {what} takes a 'linkage' scene")
+    return read
 
 
 @router.post(
@@ -32,7 +47,10 @@ router = APIRouter(
     response_model=AnalyzeResponse,
 )
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
-    return respond(solver.analyze(request.scene, request.quantities, strict=request.strict))
+    read = solver.read_scene(request.scene, strict=request.strict)
+    if isinstance(read.scene, LinkageScene):
+        budget.instant(read.scene)
+    return respond(solver.analyze(read, request.quantities))
 
 
 @router.post(
@@ -41,25 +59,19 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     response_model=SweepResponse | TimeSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
+    read = read_linkage(request.scene, request.strict, "a sweep")
+    assert isinstance(read.scene, LinkageScene)
+    budget.sweep(read.scene, request.samples, request.quantities, request.time_range is not None)
     if request.time_range is None:
         return respond(
             solver.sweep(
-                request.scene,
+                read,
                 request.samples,
                 request.quantities,
-                strict=request.strict,
                 speed_fluctuation=request.speed_fluctuation,
             )
         )
-    return respond(
-        solver.sweep_time(
-            request.scene,
-            request.time_range,
-            request.samples,
-            request.quantities,
-            strict=request.strict,
-        )
-    )
+    return respond(solver.sweep_time(read, request.time_range, request.samples, request.quantities))
 
 
 @router.post(
@@ -68,9 +80,8 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
     response_model=EventResponse,
 )
 def events_route(request: EventsRequest) -> ResultResponse:
+    read = read_linkage(request.scene, request.strict, "an event search")
+    assert isinstance(read.scene, LinkageScene)
     e = request.event
-    return respond(
-        solver.find_event(
-            request.scene, e.moving_point, e.reaches, e.occurrence, e.t_max, strict=request.strict
-        )
-    )
+    budget.event(read.scene, e.moving_point, e.t_max)
+    return respond(solver.find_event(read, e.moving_point, e.reaches, e.occurrence, e.t_max))

@@ -66,7 +66,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
         )
         for q in preset.parameters
     }
-    config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True)
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 

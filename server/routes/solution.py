@@ -10,21 +10,23 @@ import json
 import math
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Query, Request
+from fastapi import APIRouter, Depends, Query, Request
 from fastapi.responses import HTMLResponse
 from pydantic import Field
 
 import solver
-from server.edge import StrictJSONRoute
+from server import budget
 from server.responses import ResultResponse, respond
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
+from server.workers import WorkerRoute
 from solver.errors import InvalidScene
 from solver.presets import build_preset
+from solver.scene import LinkageScene
 
 router = APIRouter(
     tags=["solutions"],
-    route_class=StrictJSONRoute,
+    route_class=WorkerRoute,
     default_response_class=ResultResponse,
     responses=PROBLEMS,
 )
@@ -65,29 +67,28 @@ class SolutionRequest(Strict):
     response_model=SolutionResponse,
 )
 def solution_route(request: SolutionRequest) -> ResultResponse:
-    return respond(
-        solver.solve(request.scene, request.method, request.digits, strict=request.strict)
-    )
+    read = _read(request.scene, request.strict)
+    return respond(solver.solve(read, request.method, request.digits))
+
+
+def _read(doc: dict[str, Any], strict: bool) -> solver.ReadScene:
+    """The scene of a solution request, refused before any work if it costs too much."""
+    read = solver.read_scene(doc, strict=strict)
+    if isinstance(read.scene, LinkageScene):
+        budget.instant(read.scene)
+    return read
 
 
 def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -> HTMLResponse:
-    solution = solver.solve(doc, method, digits, strict=strict)
+    solution = solver.solve(_read(doc, strict), method, digits)
     return HTMLResponse(solution_page(doc, solution))
 
 
-@router.get(
-    "/solution.html",
-    summary="Printable worked solution of a textbook preset",
-    response_class=HTMLResponse,
-)
-def solution_page_preset(
-    request: Request,
-    preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
-    method: Annotated[Method, Query()] = "vector",
-    digits: Annotated[int, Query(ge=1, le=15)] = 4,
-) -> HTMLResponse:
-    """Every other query parameter is a parameter of the preset (``crank=0.2``): a number, or
-    ``invalid_scene`` (unknown name, not a number, out of range), never silently ignored."""
+def preset_values(request: Request) -> dict[str, float]:
+    """Every query parameter but preset, method and digits, as a parameter of the preset
+    (``crank=0.2``): a number, or ``invalid_scene`` (not a number, given twice, not finite);
+    the preset refuses unknown names. Read on the server's side, so only numbers go to a
+    worker."""
     values: dict[str, float] = {}
     for key, raw in request.query_params.multi_items():
         if key in ("preset", "method", "digits"):
@@ -99,6 +100,22 @@ def solution_page_preset(
         if key in values or not math.isfinite(number):
             raise InvalidScene(f"{key}: given twice or not finite ({raw!r})")
         values[key] = number
+    return values
+
+
+@router.get(
+    "/solution.html",
+    summary="Printable worked solution of a textbook preset",
+    response_class=HTMLResponse,
+)
+def solution_page_preset(
+    preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
+    values: Annotated[dict[str, float], Depends(preset_values)],
+    method: Annotated[Method, Query()] = "vector",
+    digits: Annotated[int, Query(ge=1, le=15)] = 4,
+) -> HTMLResponse:
+    """Every other query parameter is a parameter of the preset (``crank=0.2``), never silently
+    ignored."""
     return _page(build_preset(preset, values), method, digits)
 
 

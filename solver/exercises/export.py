@@ -161,14 +161,7 @@ _KATEX_CSS = '<link rel="stylesheet" href="/vendor/katex/katex.min.css">'
 # At the end of the body: the formulas are there when the (blocking) script has loaded.
 _KATEX_JS = """
 <script src="/vendor/katex/katex.min.js"></script>
-<script>
-if (window.katex) {
-  for (const el of document.querySelectorAll("[data-tex]")) {
-    try { window.katex.render(el.dataset.tex, el, {throwOnError: false, displayMode: true}); }
-    catch (e) { /* the plain TeX stays visible */ }
-  }
-}
-</script>
+<script src="/js/sheet.js"></script>
 """
 
 

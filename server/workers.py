@@ -1,0 +1,298 @@
+"""The solver's work in a bounded pool of worker processes, never on the event loop.
+
+The server's one event loop only parses requests and moves bytes; every endpoint of a router
+whose ``route_class`` is ``server.edge.WorkerRoute`` runs in one of ``workers`` processes
+(``server.settings``). A request
+
+1. waits for an idle worker: at most ``queue`` requests wait, each at most ``queue_wait``
+   seconds; past either it is answered 503 with ``Retry-After`` (never a dropped connection);
+2. runs its endpoint in the worker, which sends back the finished response (status, headers and
+   body bytes; a solver error becomes its problem+json there);
+3. is stopped when it runs past its endpoint's time limit (answered ``limit_exceeded`` with the
+   limit) or when its client disconnects: the worker is killed and replaced, so a runaway
+   request frees its core at once.
+
+Endpoints with a time limit above ``QUICK_LIMIT`` (sweeps, solutions, events) share all the
+workers but one, so a burst of them leaves a worker to /analyze.
+``/health`` and the static files never wait for a worker, so they answer while every worker is
+busy. Workers are forked from a ``forkserver`` that has imported the app, so a replacement is
+ready in milliseconds. With ``workers = 0``, with no pool started (an app driven without its
+lifespan), or in a forked copy of the server, endpoints run in the server's thread pool as plain
+FastAPI would run them. Like any multiprocessing program, a script that starts the app with its
+lifespan must guard its main code with ``if __name__ == "__main__":`` (workers import it).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import functools
+import inspect
+import logging
+import math
+import multiprocessing
+import os
+import signal
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from multiprocessing.connection import Connection
+from typing import Any
+
+from fastapi import Request as FastAPIRequest
+from fastapi.encoders import jsonable_encoder
+from fastapi.responses import JSONResponse
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import Request
+from starlette.responses import Response
+from starlette.types import Receive
+
+from server import problems
+from server.edge import CURRENT_REQUEST, FiniteJSONResponse, StrictJSONRoute
+from server.settings import Settings
+from solver.errors import KinematicsError, LimitExceeded
+
+log = logging.getLogger("kinematics")
+# Every endpoint that may run in a worker, by "METHODS path" (filled at import, in the server
+# and, identically, in every worker).
+ENDPOINTS: dict[str, Callable[..., Any]] = {}
+# One BLAS thread per worker: the pool is the parallelism.
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+QUICK_LIMIT = 2.0  # s: endpoints with this time limit or less may use every worker
+Answer = tuple[int, list[tuple[bytes, bytes]], bytes]
+
+
+class Busy(Exception):
+    """No worker became free in time, or the queue is full: answered 503 with Retry-After."""
+
+    def __init__(self, message: str, retry_after: int) -> None:
+        super().__init__(message)
+        self.message, self.retry_after = message, retry_after
+
+
+async def busy_problem(_: FastAPIRequest, error: Exception) -> JSONResponse:
+    """The 503 answer, with Retry-After in seconds."""
+    assert isinstance(error, Busy)
+    response = problems.problem(503, "busy", error.message)
+    response.headers["Retry-After"] = str(error.retry_after)
+    return response
+
+
+# --- in the worker -------------------------------------------------------------------------------
+
+
+def answer(key: str, kwargs: dict[str, Any]) -> Answer:
+    """Run one endpoint and return its finished response (errors as problem+json)."""
+    try:
+        result = ENDPOINTS[key](**kwargs)
+        if not isinstance(result, Response):
+            result = FiniteJSONResponse(jsonable_encoder(result))
+    except KinematicsError as error:
+        result = problems.solver_problem(error)
+    except Exception as error:  # a defect: logged here, answered 500 like any other
+        log.exception("unexpected error in a worker", exc_info=error)
+        result = problems.internal_problem()
+    return result.status_code, result.raw_headers, bytes(result.body)
+
+
+def serve(connection: Connection) -> None:
+    """A worker's loop: one request at a time until the server closes the pipe."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the server, which stops us
+    while True:
+        try:
+            key, kwargs = connection.recv()
+        except (EOFError, OSError):
+            return
+        connection.send(answer(key, kwargs))
+
+
+# --- in the server ------------------------------------------------------------------------------
+
+
+class Worker:
+    """One worker process and the server's end of its pipe."""
+
+    def __init__(self, context: Any) -> None:
+        self.connection, child = context.Pipe()
+        self.process = context.Process(target=serve, args=(child,), daemon=True)
+        self.process.start()
+        child.close()
+
+    def roundtrip(self, key: str, kwargs: dict[str, Any]) -> Answer:
+        """Send one request and wait for its answer (in a thread; EOFError if killed)."""
+        self.connection.send((key, kwargs))
+        result: Answer = self.connection.recv()
+        return result
+
+    def stop(self) -> None:
+        self.process.kill()
+        self.process.join()
+        self.connection.close()
+
+
+async def _disconnected(receive: Receive) -> None:
+    """Return when the client has gone (its request body was read already)."""
+    while (await receive())["type"] != "http.disconnect":
+        pass
+
+
+class Pool:
+    """``settings.workers`` worker processes, a bounded queue, time limits and replacement."""
+
+    def __init__(self, settings: Settings) -> None:
+        self.settings = settings
+        self.owner = os.getpid()  # a forked copy of the app must not use this process's pool
+        for name in THREAD_VARIABLES:
+            os.environ.setdefault(name, "1")
+        self.context = multiprocessing.get_context("forkserver")
+        self.context.set_forkserver_preload(["server.app"])
+        # Threads that wait on the workers' pipes (and start replacements).
+        self.threads = ThreadPoolExecutor(2 * settings.workers + 2, "worker-pipe")
+        self.idle: asyncio.Queue[Worker] = asyncio.Queue()
+        # Endpoints allowed more than QUICK_LIMIT s share all workers but one, so a burst of
+        # sweeps never holds back /analyze.
+        self.slow_lane = asyncio.Semaphore(max(1, settings.workers - 1))
+        self.waiting = 0
+        self.tasks: set[asyncio.Task[None]] = set()
+
+    async def _in_thread(self, function: Callable[..., Any], *args: Any) -> Any:
+        return await asyncio.get_running_loop().run_in_executor(self.threads, function, *args)
+
+    async def start(self) -> None:
+        for _ in range(self.settings.workers):
+            self.idle.put_nowait(await self._in_thread(Worker, self.context))
+
+    async def close(self) -> None:
+        await asyncio.gather(*self.tasks, return_exceptions=True)
+        while not self.idle.empty():
+            await self._in_thread(self.idle.get_nowait().stop)
+        self.threads.shutdown(wait=False, cancel_futures=True)
+
+    def _replace(self, worker: Worker) -> None:
+        """Kill ``worker`` and put a fresh one in its place (in the background)."""
+
+        async def replace() -> None:
+            await self._in_thread(worker.stop)
+            self.idle.put_nowait(await self._in_thread(Worker, self.context))
+
+        task = asyncio.get_running_loop().create_task(replace())
+        self.tasks.add(task)
+        task.add_done_callback(self.tasks.discard)
+
+    def _retry_after(self) -> int:
+        return max(1, math.ceil(self.waiting / max(self.settings.workers, 1)))
+
+    async def _acquire(
+        self, gone: asyncio.Future[None], lane: asyncio.Semaphore | None
+    ) -> Worker | None:
+        """An idle worker (and a place in ``lane`` if given); None if the client left while
+        waiting; Busy past the queue."""
+        if self.waiting >= self.settings.queue:
+            raise Busy(
+                f"the server is busy: {self.waiting} requests wait for "
+                f"{self.settings.workers} workers (at most {self.settings.queue}); retry later",
+                self._retry_after(),
+            )
+        held = False
+
+        async def take() -> Worker:
+            nonlocal held
+            if lane is not None:
+                await lane.acquire()
+                held = True
+            return await self.idle.get()
+
+        self.waiting += 1
+        get = asyncio.ensure_future(take())
+        either: set[asyncio.Future[Any]] = {get, gone}
+        try:
+            done, _ = await asyncio.wait(
+                either, timeout=self.settings.queue_wait, return_when="FIRST_COMPLETED"
+            )
+        finally:
+            self.waiting -= 1
+        if get in done:
+            return get.result()
+        get.cancel()
+        with contextlib.suppress(asyncio.CancelledError):
+            worker = await get  # it may have been handed a worker as it was cancelled
+            self.idle.put_nowait(worker)
+        if held and lane is not None:
+            lane.release()
+        if gone in done:
+            return None
+        raise Busy(
+            f"the server is busy: no worker became free within {self.settings.queue_wait:g} s; "
+            "retry later",
+            self._retry_after(),
+        )
+
+    async def run(self, key: str, kwargs: dict[str, Any], request: Request) -> Response:
+        """Run endpoint ``key`` in a worker within the time limit of ``request``'s path."""
+        limit = self.settings.time_limit_of(request.url.path)
+        lane = self.slow_lane if limit > QUICK_LIMIT else None
+        gone = asyncio.ensure_future(_disconnected(request.receive))
+        try:
+            worker = await self._acquire(gone, lane)
+        except Busy:
+            gone.cancel()
+            raise
+        if worker is None:
+            gone.cancel()
+            return Response(status_code=499)  # nobody reads it: the client has left
+        try:
+            work = asyncio.ensure_future(self._in_thread(worker.roundtrip, key, kwargs))
+            either: set[asyncio.Future[Any]] = {work, gone}
+            done, _ = await asyncio.wait(either, timeout=limit, return_when="FIRST_COMPLETED")
+            if work not in done or work.exception() is not None:
+                work.add_done_callback(lambda w: w.exception())  # EOFError once killed
+                self._replace(worker)
+                if gone in done:
+                    return Response(status_code=499)
+                if work not in done:
+                    raise LimitExceeded(
+                        f"the request ran past the time limit of {limit:g} s for "
+                        f"{request.url.path} and was stopped"
+                    )
+                raise RuntimeError("a worker stopped while answering") from work.exception()
+            self.idle.put_nowait(worker)
+            status, headers, body = work.result()
+            response = Response(body, status_code=status)
+            response.raw_headers = headers
+            return response
+        finally:
+            gone.cancel()
+            if lane is not None:
+                lane.release()
+
+
+def offloaded(endpoint: Callable[..., Any], key: str) -> Callable[..., Any]:
+    """``endpoint`` as an async endpoint that runs in the app's pool (same signature)."""
+    ENDPOINTS[key] = endpoint
+
+    @functools.wraps(endpoint)
+    async def run(**kwargs: Any) -> Response:
+        request = CURRENT_REQUEST.get()
+        pool: Pool | None = getattr(request.app.state, "pool", None)
+        if pool is None or pool.owner != os.getpid():
+            result: Response = await run_in_threadpool(endpoint, **kwargs)
+            return result
+        return await pool.run(key, kwargs, request)
+
+    run.__signature__ = inspect.signature(endpoint)  # type: ignore[attr-defined]
+    run.offloaded_from = endpoint  # type: ignore[attr-defined]
+    return run
+
+
+class WorkerRoute(StrictJSONRoute):
+    """A strict-JSON route whose endpoint runs in the worker pool under its time limit.
+
+    ``APIRouter(route_class=WorkerRoute, ...)`` is all a router needs. The endpoint's arguments
+    (request models, query values) are pickled to the worker, so they must be picklable
+    (module-level models); it should return a Response (anything else is sent as JSON).
+    """
+
+    def __init__(self, path: str, endpoint: Callable[..., Any], **kwargs: Any) -> None:
+        original = getattr(endpoint, "offloaded_from", endpoint)  # when re-included with a prefix
+        key = f"{','.join(sorted(kwargs.get('methods') or ['GET']))} {path}"
+        super().__init__(path, offloaded(original, key), **kwargs)

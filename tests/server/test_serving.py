@@ -1,0 +1,169 @@
+"""Serving under load (issue 15), over the real server on loopback (server.local).
+
+A runaway request is stopped at its endpoint's time limit and answered ``limit_exceeded`` with
+the limit while the server keeps answering; a full queue is answered 503 with Retry-After (not a
+dropped connection); a client that disconnects stops its work. The runaway is a legal request
+inside the cost budget: a 20-sample sweep of four triads (one Newton-Raphson group of 16 links,
+about 5 s on an idle core), so each server here runs ONE worker with small limits.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import http.client
+import json
+import threading
+import time
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from server.local import serve_locally
+from server.settings import TIME_LIMITS, Settings, from_environment
+from tests.server.test_budget import triads
+from tests.server.test_errors import FOUR_BAR
+
+LOGS = Path(__file__).resolve().parents[2] / "test-artifacts"
+RUNAWAY = {"scene": triads(4), "samples": 20}
+_opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))
+
+
+def request(base: str, path: str, body: Any = None, timeout: float = 60) -> tuple[int, Any, Any]:
+    """(status, headers, body as JSON or text) of a GET, or a POST when ``body`` is given."""
+    data = None if body is None else json.dumps(body).encode()
+    req = urllib.request.Request(base + path, data=data)
+    req.add_header("content-type", "application/json")
+    try:
+        with _opener.open(req, timeout=timeout) as response:
+            status, headers, raw = response.status, response.headers, response.read()
+    except urllib.error.HTTPError as error:
+        status, headers, raw = error.code, error.headers, error.read()
+    is_json = "json" in headers.get("content-type", "")
+    return status, headers, json.loads(raw) if is_json else raw.decode()
+
+
+@contextlib.contextmanager
+def server(name: str, **settings: str) -> Iterator[str]:
+    LOGS.mkdir(exist_ok=True)
+    with (
+        (LOGS / f"uvicorn-{name}.log").open("w+b") as log,
+        serve_locally(log, settings=settings) as base,
+    ):
+        yield base
+
+
+@pytest.fixture(scope="module")
+def one_worker() -> Iterator[str]:
+    """One worker, one place in the queue, /sweep stopped after 2 s."""
+    with server(
+        "one-worker",
+        KINEMATICS_WORKERS="1",
+        KINEMATICS_QUEUE="1",
+        KINEMATICS_TIME_LIMITS="/api/v1/sweep=2",
+    ) as base:
+        yield base
+
+
+class Background:
+    """A request running in a thread; ``result`` once joined."""
+
+    def __init__(self, base: str, path: str, body: Any) -> None:
+        self.result: tuple[int, Any, Any] | None = None
+        self.thread = threading.Thread(target=self._run, args=(base, path, body))
+        self.thread.start()
+
+    def _run(self, base: str, path: str, body: Any) -> None:
+        self.result = request(base, path, body)
+
+    def join(self) -> tuple[int, Any, Any]:
+        self.thread.join(timeout=120)
+        assert self.result is not None
+        return self.result
+
+
+def test_a_runaway_request_is_stopped_at_its_limit_while_the_server_answers(
+    one_worker: str,
+) -> None:
+    runaway = Background(one_worker, "/api/v1/sweep", RUNAWAY)
+    time.sleep(0.5)
+    health = [request(one_worker, "/health", timeout=5)[0] for _ in range(5)]
+    status, headers, body = runaway.join()
+    assert health == [200] * 5
+    assert status == 413 and headers["content-type"].startswith("application/problem+json")
+    assert body["code"] == "limit_exceeded"
+    assert "time limit of 2 s for /api/v1/sweep" in body["detail"]
+    # the stopped worker was replaced: the next requests are answered
+    assert request(one_worker, "/api/v1/analyze", {"scene": FOUR_BAR})[0] == 200
+    assert request(one_worker, "/api/v1/sweep", {"scene": FOUR_BAR, "samples": 36})[0] == 200
+
+
+def test_a_full_queue_is_answered_503_with_retry_after(one_worker: str) -> None:
+    runaway = Background(one_worker, "/api/v1/sweep", RUNAWAY)  # takes the only worker
+    time.sleep(0.5)
+    waiting = Background(one_worker, "/api/v1/analyze", {"scene": FOUR_BAR})  # the one place
+    time.sleep(0.5)
+    status, headers, body = request(one_worker, "/api/v1/analyze", {"scene": FOUR_BAR})
+    assert status == 503, body
+    assert headers["content-type"].startswith("application/problem+json")
+    assert body["code"] == "busy" and "retry later" in body["detail"]
+    assert int(headers["Retry-After"]) >= 1
+    assert runaway.join()[0] == 413
+    assert waiting.join()[0] == 200  # it waited, then was answered
+
+
+def test_a_client_that_disconnects_stops_its_work() -> None:
+    """With one worker and no time limit to speak of, the next request is answered as soon as
+    the runaway's client leaves (it would otherwise wait about 5 s for the worker)."""
+    with server(
+        "disconnect", KINEMATICS_WORKERS="1", KINEMATICS_TIME_LIMITS="/api/v1/sweep=120"
+    ) as base:
+        host, port = base.removeprefix("http://").split(":")
+        connection = http.client.HTTPConnection(host, int(port), timeout=30)
+        payload = json.dumps(RUNAWAY)
+        connection.request("POST", "/api/v1/sweep", payload, {"content-type": "application/json"})
+        time.sleep(0.5)
+        connection.close()  # the client leaves
+        left = time.monotonic()
+        status, _, _ = request(base, "/api/v1/analyze", {"scene": FOUR_BAR})
+        waited = time.monotonic() - left
+        assert status == 200
+        assert waited < 3.0, f"the abandoned sweep kept the worker {waited:.1f} s"
+
+
+def test_settings_from_the_environment() -> None:
+    settings = from_environment(
+        {
+            "KINEMATICS_WORKERS": "3",
+            "KINEMATICS_QUEUE": "7",
+            "KINEMATICS_QUEUE_WAIT": "2.5",
+            "KINEMATICS_TIME_LIMITS": " /api/v1/sweep=20 , /api/v1/x=0.5",
+            "KINEMATICS_TIME_LIMIT": "4",
+            "KINEMATICS_CORS_ORIGINS": "https://a.example, https://b.example",
+        }
+    )
+    assert (settings.workers, settings.queue, settings.queue_wait) == (3, 7, 2.5)
+    assert settings.time_limit_of("/api/v1/sweep") == 20.0
+    assert settings.time_limit_of("/api/v1/x") == 0.5
+    assert settings.time_limit_of("/api/v1/analyze") == TIME_LIMITS["/api/v1/analyze"] == 2.0
+    assert settings.time_limit_of("/api/v1/dynamics") == 4.0
+    assert settings.cors_origins == ("https://a.example", "https://b.example")
+    assert from_environment({}) == Settings()
+    assert Settings().workers >= 1 and Settings().cors_origins == ()
+
+
+@pytest.mark.parametrize(
+    ("name", "value"),
+    [
+        ("KINEMATICS_WORKERS", "two"),
+        ("KINEMATICS_WORKERS", "-1"),
+        ("KINEMATICS_QUEUE_WAIT", "inf"),
+        ("KINEMATICS_TIME_LIMITS", "sweep=2"),
+        ("KINEMATICS_TIME_LIMITS", "/api/v1/sweep=0"),
+    ],
+)
+def test_bad_settings_are_named(name: str, value: str) -> None:
+    with pytest.raises(ValueError, match=name):
+        from_environment({name: value})
