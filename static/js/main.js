@@ -604,8 +604,8 @@ class App {
       }
       this.linkage.setAnalysis(this.analysis);
       this.drawPolygons();
-      this.mechanismFacts(analysis);
-      const loops = analysis.four_bar_loops || [];
+      this.mechanismFacts(this.analysis);
+      const loops = this.analysis.four_bar_loops || [];
       if (JSON.stringify(loops.map((l) => l.links)) !== JSON.stringify(this.loops.map((l) => l.links))) {
         this.loops = loops;
         this.drawPlots();
