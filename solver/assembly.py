@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solver import dyads, newton
+from solver.continuation import Continuation, solve_group
 from solver.errors import NotAssemblable
 from solver.rigid import (
     Array,
@@ -111,9 +112,15 @@ class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``)."""
 
     def __init__(
-        self, scene: LinkageScene, inputs: Sequence[DriverInput], order: int, continuation: bool
+        self,
+        scene: LinkageScene,
+        inputs: Sequence[DriverInput],
+        order: int,
+        continuation: bool,
+        newton_groups: Continuation | None = None,
     ) -> None:
         self.scene = scene
+        self.newton_groups = newton_groups
         self.inputs = inputs
         self.order = order
         self.continuation = continuation
@@ -245,8 +252,13 @@ class _Assembler:
         )
 
     def newton_group(self, step: NewtonStep) -> None:
-        solved, report = newton.solve_group(
-            self.scene, step.links, self.links, self.samples, self.order
+        solved, report = solve_group(
+            self.scene,
+            step.links,
+            self.links,
+            [given.theta for given in self.inputs],
+            self.order,
+            self.newton_groups or Continuation(self.scene),
         )
         self.reports.append(report)
         self.close(np.where(report.converged, 0.0, -1.0), report.message)
@@ -260,9 +272,11 @@ def assemble(
     inputs: Sequence[DriverInput],
     order: int,
     continuation: bool = False,
+    newton_groups: Continuation | None = None,
 ) -> Motion:
-    """Positions (order 0), velocities (1) and accelerations (2) of every link and point."""
-    return _Assembler(scene, inputs, order, continuation).run(plan)
+    """Positions (order 0), velocities (1) and accelerations (2) of every link and point;
+    ``newton_groups`` carries a Newton group's tolerance and the branches already followed."""
+    return _Assembler(scene, inputs, order, continuation, newton_groups).run(plan)
 
 
 def require_feasible(motion: Motion, where: str) -> None:

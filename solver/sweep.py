@@ -28,7 +28,9 @@ from solver.analysis import (
     sliding_joints,
 )
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
+from solver.continuation import Continuation
 from solver.errors import InvalidScene, LimitExceeded
+from solver.newton import NEWTON_TOLERANCE
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
@@ -71,9 +73,10 @@ def _joints_and_poles(
 class _Driven:
     """Assembles the linkage with the first driver turned by given angles, the others held."""
 
-    def __init__(self, scene: LinkageScene, plan: Plan) -> None:
+    def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
         self.scene, self.plan = scene, plan
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
+        self.newton_groups = Continuation(scene, tolerance or NEWTON_TOLERANCE)
 
     def inputs(self, turns: Array) -> list[DriverInput]:
         n = turns.size
@@ -84,12 +87,20 @@ class _Driven:
         return inputs
 
     def run(self, turns: Array, order: int) -> Motion:
-        return assemble(self.scene, self.plan, self.inputs(turns), order, continuation=True)
+        return assemble(
+            self.scene,
+            self.plan,
+            self.inputs(turns),
+            order,
+            continuation=True,
+            newton_groups=self.newton_groups,
+        )
 
     def closes(self, turn: float, strictly: bool = False) -> bool:
         """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
         (a limit found so lies inside the tolerance band and can be posed again)."""
-        motion = assemble(self.scene, self.plan, self.inputs(np.array([turn])), 0)
+        inputs = self.inputs(np.array([turn]))
+        motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
         return bool(motion.margin[0] >= 0.0) if strictly else bool(motion.feasible[0])
 
 
@@ -120,6 +131,15 @@ def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[fl
     return (min(begin, end), max(begin, end))
 
 
+def _newton_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
+    """The feasible range of a linkage with a Newton group: None if the driver turns fully, else
+    the turns of the two limit positions its branch meets either way from the drawn pose (found
+    by continuation to rounding, whatever the number of samples)."""
+    branch = driven.newton_groups.branch(tuple(given[0] for given in driven.given[1:]))
+    far = start + direction * 2.0 * math.pi
+    return branch.limits(min(start, far), max(start, far))
+
+
 def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
     """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
     n = motion.feasible.size
@@ -137,15 +157,21 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
                 values[k] = 0.5 * (values[before] + values[after])
 
 
-def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = None) -> Sweep:
-    """Turn the first driver through a revolution (or its feasible range) from its start angle."""
+def sweep(
+    scene: LinkageScene,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
+) -> Sweep:
+    """Turn the first driver through a revolution (or its feasible range) from its start angle;
+    ``tolerance`` is a Newton group's (relative to the size; default NEWTON_TOLERANCE)."""
     if not scene.drivers:
         raise InvalidScene("drivers: a sweep needs a driver")
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     plan = build_plan(scene)
-    driven = _Driven(scene, plan)
+    driven = _Driven(scene, plan, tolerance)
     start, omega, _ = driven.given[0]
     direction = -1.0 if omega < 0 else 1.0
     # The drawn pose closes by construction; a start at angle_deg must be checked.
@@ -155,7 +181,9 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     turns = start + direction * 2.0 * math.pi * np.arange(samples) / samples
     limits: tuple[float, ...] = ()
     motion = None
-    if samples >= PROBE_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+    if not plan.closed_form:
+        span = _newton_range(driven, start, direction)
+    elif samples >= PROBE_SAMPLES:  # the sweep itself is a fine enough feasibility probe
         motion = driven.run(turns, order)
         span = None if np.all(motion.feasible) else _feasible_range(driven, start, direction)
     else:
