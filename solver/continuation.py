@@ -258,7 +258,8 @@ class Branch:
         return q[0]
 
     def refine(self, turns: Array) -> None:
-        """Halve the path's segments that hold ``turns`` (a node added at each middle)."""
+        """Split the path's segments that hold ``turns`` (a node added at the middle, or nearer
+        the segment's start where the corrector does not converge from the middle)."""
         for sense in (1, -1):
             leg = self.legs[sense]
             mine = turns[(turns >= 0.0) if sense > 0 else (turns < 0.0)]
@@ -268,8 +269,11 @@ class Branch:
             segments = np.clip(np.searchsorted(t_nodes, sense * mine) - 1, 0, len(leg.s) - 2)
             for k in sorted(set(segments.tolist()), reverse=True):
                 x, tau = leg.x[k], leg.tau[k]
-                half = 0.5 * float(np.linalg.norm(leg.x[k + 1] - x))
-                new, J, ok, _ = self._correct(x + half * tau, tau)
+                chord = float(np.linalg.norm(leg.x[k + 1] - x))
+                for fraction in (0.5, 0.25, 0.125, 0.0625):  # the middle, or nearer node k
+                    new, J, ok, _ = self._correct(x + fraction * chord * tau, tau)
+                    if ok:
+                        break
                 if not ok:
                     continue
                 leg.s.insert(k + 1, leg.s[k] + float(np.linalg.norm(new - x)))
@@ -426,6 +430,8 @@ def _failure(
             f"{math.degrees(drawn + float(turns[k])):.6g} deg: turning {link} from its drawn pose "
             "either way meets a limit position first"
         )
+    if residual <= tolerance:
+        return f"Newton-Raphson could not follow the branch of {names} to every sample"
     return (
         f"Newton-Raphson did not close the loop of {names}: residual {residual:.3g} m > "
         f"tolerance {tolerance:.3g} m after {iterations} iterations"
