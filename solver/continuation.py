@@ -15,7 +15,7 @@ predictor x_k + h tau_k is corrected by Newton-Raphson on [F(x); tau_k . (x - x_
 is accepted when the corrector contracts and converges and the tangent turns by less than
 MAX_TANGENT_TURN; otherwise h is halved (down to MIN_STEP); an easy step doubles h (up to
 MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path) shows
-as a change of sign of the tangent's driver component; it is located by Brent's method on that
+as a change of sign of the tangent's driver component; it is located by regula falsi on that
 component, to rounding, so the limits do not depend on the number of samples.
 
 **Every sample at once** (``solve_group``): each sample's starting value is the cubic Hermite
@@ -32,7 +32,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from solver import newton
 from solver.errors import NotAssemblable
@@ -50,7 +49,9 @@ CORRECTOR_ITERATIONS = 8
 # Residual (scaled) allowed at the middle of the cubic between two nodes: the samples' starting
 # values are that close to the path, well inside Newton-Raphson's quadratic convergence.
 INTERPOLATION_RESIDUAL = 1e-3
-FOLD_XTOL = 1e-10  # arclength; the limit's turn is then exact to ~1e-20 rad (stationary there)
+FOLD_TANGENT = 1e-8  # the tangent's driver component at a located limit (turn error ~ 1e-16)
+FOLD_XTOL = 1e-12  # or the bracket on the arclength this short
+FOLD_ITERATIONS = 60
 # A sample's start must lie within this (relative to the size) of the root it converges to, and
 # the root within two first Newton steps of it; otherwise the path is refined around the sample
 # (its segment halved, at most MAX_REFINEMENTS times) and the sample solved again.
@@ -106,6 +107,7 @@ class Branch:
         size = scene.size
         self.scale = np.tile([size, size, 1.0], len(self.system.unknown))
         self.row_scale = np.where(self.system.length_rows, size, 1.0)
+        self.jacobian_scale = self.scale[None, :] / self.row_scale[:, None]
         ground = scene.ground
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
@@ -120,7 +122,7 @@ class Branch:
     def _f(self, x: Array) -> tuple[Array, Array]:
         """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
         phi, J, _ = self.system.evaluate(self.known, (x * self.scale)[None], turns=self.held)
-        return phi[0] / self.row_scale, J[0] * self.scale / self.row_scale[:, None]
+        return phi[0] / self.row_scale, J[0] * self.jacobian_scale
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
@@ -156,44 +158,58 @@ class Branch:
         leg = self.legs[sense]
         while leg.limit is None and sense * (self._turn(leg.x[-1]) - target) < 0.0:
             x, tau, h = leg.x[-1], leg.tau[-1], leg.h
-            new, J, ok, iterations = self._correct(x + h * tau, tau)
-            tau_new = tau
+            new, J, ok, _ = self._correct(x + h * tau, tau)
+            tau_new, grow = tau, 0.5
             if ok:  # near the predictor (not on a neighbouring strand of the path), gently turning
                 tau_new = self._tangent(J, tau)
-                ok = float(tau_new @ tau) >= math.cos(MAX_TANGENT_TURN)
-                ok = ok and float(np.linalg.norm(new - x - h * tau)) <= MAX_CORRECTION * h
+                turn = math.acos(min(1.0, float(tau_new @ tau)))
+                moved = float(np.linalg.norm(new - x - h * tau)) / h
+                # Both grow about linearly with h: aim at 0.6 of their bounds with the next step.
+                grow = 0.6 * min(MAX_TANGENT_TURN / max(turn, 1e-12), MAX_CORRECTION / moved)
+                ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
             if ok:  # the cubic between the two nodes must stay on the path (the samples' start)
                 chord = float(np.linalg.norm(new - x))
                 middle = 0.5 * (x + new) + 0.125 * chord * (tau - tau_new)
                 ok = float(np.linalg.norm(self._f(middle)[0])) <= INTERPOLATION_RESIDUAL
+                grow = grow if ok else 0.5
             if not ok:
-                leg.h = h / 2.0
+                leg.h = h * min(max(grow, 0.25), 0.5)
                 if leg.h < MIN_STEP:  # the path cannot be continued (a bifurcation): stop here
                     leg.limit = self._turn(x)
                 continue
             if sense * tau_new[self.free] <= 0.0:
-                self._limit(leg, sense, h)
+                self._limit(leg, sense, h, sense * float(tau_new[self.free]))
                 break
             leg.s.append(leg.s[-1] + chord)
             leg.x.append(new)
             leg.tau.append(tau_new)
-            if iterations <= 3:
-                leg.h = min(2.0 * h, MAX_STEP)
+            leg.h = min(h * min(grow, 2.0), MAX_STEP)
         return leg
 
-    def _limit(self, leg: _Leg, sense: int, h: float) -> None:
+    def _limit(self, leg: _Leg, sense: int, h: float, beyond: float) -> None:
         """The limit position between the last node and the step h past it (where the tangent's
-        driver component changed sign), located by Brent's method and appended as a node."""
+        driver component, ``beyond`` there, changed sign): the zero of that component along the
+        step by regula falsi (Illinois), appended as a node. The turn is stationary at the
+        limit, so a component c left over moves it by only ~ c^2."""
         x, tau = leg.x[-1], leg.tau[-1]
-
-        def component(s: float) -> tuple[float, Array, Array]:
+        a, b = 0.0, h
+        g_a, g_b = sense * float(tau[self.free]), beyond
+        point, tangent, kept = x, tau, 0
+        for _ in range(FOLD_ITERATIONS):
+            s = (a * g_b - b * g_a) / (g_b - g_a)
             point, J, _, _ = self._correct(x + s * tau, tau)
             tangent = self._tangent(J, tau)
-            return sense * float(tangent[self.free]), point, tangent
-
-        # The turn is stationary at the limit: an error ds in s moves it by ~ ds^2.
-        s = brentq(lambda s: component(s)[0], 0.0, h, xtol=FOLD_XTOL, maxiter=100)
-        _, point, tangent = component(s)
+            g = sense * float(tangent[self.free])
+            if abs(g) <= FOLD_TANGENT or b - a <= FOLD_XTOL:
+                break
+            if g > 0.0:
+                a, g_a = s, g
+                g_b = g_b / 2.0 if kept == 1 else g_b
+                kept = 1
+            else:
+                b, g_b = s, g
+                g_a = g_a / 2.0 if kept == -1 else g_a
+                kept = -1
         leg.s.append(leg.s[-1] + float(np.linalg.norm(point - x)))
         leg.x.append(point)
         leg.tau.append(tangent)

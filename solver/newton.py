@@ -186,8 +186,12 @@ class ConstraintSystem:
         """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero."""
         M = q.shape[0]
         L = len(self.names)
-        c, v, a = np.zeros((M, L, 2)), np.zeros((M, L, 2)), np.zeros((M, L, 2))
-        theta, omega, alpha = np.zeros((M, L)), np.zeros((M, L)), np.zeros((M, L))
+        c, theta = np.empty((M, L, 2)), np.empty((M, L))
+        v = a = np.zeros((1, L, 2))
+        omega = alpha = np.zeros((1, L))
+        if order:
+            v, a = np.zeros((M, L, 2)), np.zeros((M, L, 2))
+            omega, alpha = np.zeros((M, L)), np.zeros((M, L))
         for k, name in zip(self.known_index, self.known, strict=True):
             s = known[name]
             c[:, k], theta[:, k] = s.c, s.theta
@@ -218,7 +222,8 @@ class ConstraintSystem:
         c, theta, v, omega, a, alpha = self._stack(known, q, qd, order)
         cos, sin = np.cos(theta), np.sin(theta)
         phi = np.zeros((M, self.rows))
-        J = np.broadcast_to(self.unit, (M, self.rows, self.n)).copy()
+        J = np.empty((M, self.rows, self.n))
+        J[:] = self.unit
         b = np.zeros((M, self.rows))
 
         def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
