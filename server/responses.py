@@ -161,6 +161,7 @@ def analysis_response(result: LinkageAnalysis) -> JSON:
                 "iterations": r.iterations,
                 "residual_norm": r.residual_norm,
                 "tolerance": r.tolerance,
+                "relative_tolerance": r.relative_tolerance,
             }
             for r in d.newton
         ],
@@ -246,7 +247,25 @@ def sweep_response(result: Sweep) -> JSON:
         "feasible": result.feasible,
         "limits": list(result.limits),
         "singular_samples": [int(k) for k in result.singular_samples],
+        **_newton_diagnostics(result.motion),
     }
+
+
+def _newton_diagnostics(motion: Motion) -> JSON:
+    """A sweep's Newton groups (if any): how Newton-Raphson went over all its samples."""
+    if not motion.newton:
+        return {}
+    groups = [
+        {
+            "links": list(r.links),
+            "iterations": r.iterations,
+            "residual_norm": r.residual_norm,
+            "tolerance": r.tolerance,
+            "relative_tolerance": r.relative_tolerance,
+        }
+        for r in motion.newton
+    ]
+    return {"diagnostics": {"newton": groups}}
 
 
 def time_sweep_response(result: TimeSweep) -> JSON:

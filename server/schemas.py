@@ -36,6 +36,13 @@ class AnalyzeRequest(Strict):
     quantities: list[Quantity] | None = Field(
         None, description="What to compute (default: all). The server computes only these."
     )
+    tolerance: float | None = Field(
+        None,
+        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
+        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
+        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
+        "docs/BENCHMARKS.md. Reported in diagnostics.",
+    )
 
 
 class SweepRequest(Strict):
@@ -53,6 +60,13 @@ class SweepRequest(Strict):
         None,
         description="[t0, t1] (s): sweep in time through the scene's time laws instead "
         "of a driver revolution.",
+    )
+    tolerance: float | None = Field(
+        None,
+        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
+        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
+        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
+        "docs/BENCHMARKS.md. Reported in diagnostics.",
     )
 
 

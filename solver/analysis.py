@@ -363,12 +363,16 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
     return loops
 
 
-def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> LinkageAnalysis:
-    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``."""
+def analyze(
+    scene: LinkageScene, quantities: Iterable[str] | None = None, tolerance: float | None = None
+) -> LinkageAnalysis:
+    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``;
+    ``tolerance`` is a Newton group's (relative to the size; default newton.NEWTON_TOLERANCE)."""
     wanted = normalise_quantities(quantities)
     order = required_order(wanted, bool(scene.moving_points))
     plan = build_plan(scene)
-    motion, angles = solve_instant(scene, plan, order)
+    groups = Continuation(scene, newton.newton_tolerance(tolerance))
+    motion, angles = solve_instant(scene, plan, order, newton_groups=groups)
     condition = None
     if order >= 1:
         condition = newton.velocity_condition_number(scene, motion.links, 0)
@@ -398,7 +402,7 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
     if scene.moving_points:
         carriers = motion.links
         if order < 2:  # a position-only request: M's position comes with its parts
-            carriers = solve_instant(scene, plan, 2)[0].links
+            carriers = solve_instant(scene, plan, 2, newton_groups=groups)[0].links
         moving = {
             mp.name: moving_point_motion(scene, mp, carriers[mp.link], np.array([scene.time])).at(0)
             for mp in scene.moving_points

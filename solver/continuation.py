@@ -414,7 +414,9 @@ def solve_group(
     if not np.all(converged):
         at = turns[0] if turns else np.zeros(samples)
         message = _failure(scene, group, at, reached, worst, tolerance, iterations)
-    report = NewtonReport(tuple(group), converged, iterations, worst, tolerance, message)
+    report = NewtonReport(
+        tuple(group), converged, iterations, worst, tolerance, message, continuation.tolerance
+    )
     return motions, report
 
 

@@ -22,11 +22,13 @@ come from following the branch by continuation (``solver.continuation``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from solver.errors import InvalidScene
 from solver.rigid import Array, LinkMotion, PointMotion
 from solver.scene import LinkageScene
 
@@ -45,6 +47,21 @@ class NewtonReport:
     residual_norm: float
     tolerance: float
     message: str
+    relative_tolerance: float = NEWTON_TOLERANCE
+
+
+def newton_tolerance(value: float | None) -> float:
+    """A user's Newton tolerance (relative to the scene size), checked against TOLERANCE_BOUNDS;
+    None: the default NEWTON_TOLERANCE."""
+    if value is None:
+        return NEWTON_TOLERANCE
+    low, high = TOLERANCE_BOUNDS
+    if not (math.isfinite(value) and low <= value <= high):
+        raise InvalidScene(
+            f"tolerance: {value:g} is outside {low:g} .. {high:g} (the Newton-Raphson residual "
+            f"relative to the scene size; default {NEWTON_TOLERANCE:g})"
+        )
+    return float(value)
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ from solver.analysis import (
 from solver.assembly import DriverInput, Motion, assemble, require_feasible
 from solver.continuation import Continuation
 from solver.errors import InvalidScene, LimitExceeded
-from solver.newton import NEWTON_TOLERANCE
+from solver.newton import newton_tolerance
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
@@ -76,7 +76,7 @@ class _Driven:
     def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
         self.scene, self.plan = scene, plan
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
-        self.newton_groups = Continuation(scene, tolerance or NEWTON_TOLERANCE)
+        self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
     def inputs(self, turns: Array) -> list[DriverInput]:
         n = turns.size
@@ -238,9 +238,15 @@ class TimeSweep:
 
 
 def sweep_time(
-    scene: LinkageScene, t0: float, t1: float, samples: int, quantities: Iterable[str] | None = None
+    scene: LinkageScene,
+    t0: float,
+    t1: float,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
 ) -> TimeSweep:
-    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws)."""
+    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws);
+    ``tolerance`` as for ``sweep``."""
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
@@ -250,10 +256,13 @@ def sweep_time(
     plan = build_plan(scene)
     inputs = driver_inputs_over_time(scene, times)
     order = required_order(wanted, bool(scene.moving_points))
-    motion = assemble(scene, plan, inputs, order, continuation=True)
+    groups = Continuation(scene, newton_tolerance(tolerance))
+    motion = assemble(scene, plan, inputs, order, continuation=True, newton_groups=groups)
     require_feasible(motion, f"during t = {t0:g} .. {t1:g} s")
     if scene.moving_points and order < 2:
-        motion_for_points = assemble(scene, plan, inputs, 2, continuation=True)
+        motion_for_points = assemble(
+            scene, plan, inputs, 2, continuation=True, newton_groups=groups
+        )
     else:
         motion_for_points = motion
     moving = {

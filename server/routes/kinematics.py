@@ -33,7 +33,8 @@ router = APIRouter(
 def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
     scene = parse_scene(request.scene)
     if isinstance(scene, LinkageScene):
-        return FiniteJSONResponse(analysis_response(analyze(scene, request.quantities)))
+        result = analyze(scene, request.quantities, request.tolerance)
+        return FiniteJSONResponse(analysis_response(result))
     wanted = normalise_quantities(request.quantities)
     return FiniteJSONResponse(spatial_response(analyze_spatial_chain(scene), wanted))
 
@@ -44,12 +45,15 @@ def analyze_route(request: AnalyzeRequest) -> FiniteJSONResponse:
 def sweep_route(request: SweepRequest) -> FiniteJSONResponse:
     scene = parse_linkage_only(request.scene, "/sweep")
     if request.time_range is None:
-        return FiniteJSONResponse(sweep_response(sweep(scene, request.samples, request.quantities)))
+        result = sweep(scene, request.samples, request.quantities, request.tolerance)
+        return FiniteJSONResponse(sweep_response(result))
     if len(request.time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = request.time_range
     return FiniteJSONResponse(
-        time_sweep_response(sweep_time(scene, t0, t1, request.samples, request.quantities))
+        time_sweep_response(
+            sweep_time(scene, t0, t1, request.samples, request.quantities, request.tolerance)
+        )
     )
 
 
