@@ -39,7 +39,8 @@ from solver.newton import ConstraintSystem, NewtonReport, States
 from solver.rigid import Array, LinkMotion
 from solver.scene import LinkageScene
 
-TRACE_TOLERANCE = 1e-11  # a path node's residual, relative to the scene size
+NODE_TOLERANCE = 1e-9  # a path node's residual, relative to the scene size (samples are polished)
+LIMIT_TOLERANCE = 1e-13  # the residual of a limit position's node (the limits are answers)
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
 MAX_TANGENT_TURN = math.radians(15.0)
@@ -132,14 +133,16 @@ class Branch:
         z = _solve(A, rhs)
         return z / np.linalg.norm(z)
 
-    def _correct(self, predicted: Array, tau: Array) -> tuple[Array, Array, bool, int]:
+    def _correct(
+        self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
+    ) -> tuple[Array, Array, bool, int]:
         """Newton-Raphson on [F(x); tau . (x - predicted)] = 0 from the predictor: the point,
         dF/dx there, whether it converged and in how many iterations."""
         x = predicted
         last = np.inf
         for iteration in range(CORRECTOR_ITERATIONS + 1):
             F, J = self._f(x)
-            if np.linalg.norm(F) <= TRACE_TOLERANCE:
+            if np.linalg.norm(F) <= tolerance:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
@@ -197,7 +200,7 @@ class Branch:
         point, tangent, kept = x, tau, 0
         for _ in range(FOLD_ITERATIONS):
             s = (a * g_b - b * g_a) / (g_b - g_a)
-            point, J, _, _ = self._correct(x + s * tau, tau)
+            point, J, _, _ = self._correct(x + s * tau, tau, LIMIT_TOLERANCE)
             tangent = self._tangent(J, tau)
             g = sense * float(tangent[self.free])
             if abs(g) <= FOLD_TANGENT or b - a <= FOLD_XTOL:

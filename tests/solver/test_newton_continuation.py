@@ -247,3 +247,31 @@ def test_second_driver_is_turned_first_then_the_first_swept() -> None:
     angle = np.degrees(np.arctan2(G2[:, 1] - H[1], G2[:, 0] - H[0]))
     np.testing.assert_allclose(angle, -85.0, atol=1e-9)
     check_against_analyze(doc, fine, every=41)
+
+
+@pytest.mark.parametrize("doc", triads(TRIADS), ids=[f"triad{k}" for k in range(TRIADS)])
+def test_triad_limits_solve_the_fold_equations(doc: Doc) -> None:
+    """Each limit position is a fold: the loop equations F(x) = 0 hold and the Jacobian with the
+    driver held, J_q, has a null vector v (J_q v = 0, c . v = 1). That extended system, solved
+    independently (scipy's fsolve, finite-difference Jacobian) from the limit node, gives the
+    same driver turn to 1e-12 rad."""
+    from scipy.optimize import fsolve
+
+    scene = parse_linkage(doc)
+    branch = Branch(scene)
+    if branch.limits(0.0, 2.0 * math.pi) is None:
+        pytest.skip("turns fully")
+    for leg in branch.legs.values():
+        x0 = leg.x[-1]
+        keep = [i for i in range(x0.size) if i != branch.free]
+        v0 = np.linalg.svd(branch._f(x0)[1][:, keep])[2][-1]
+
+        def extended(
+            z: np.ndarray, v0: np.ndarray = v0, n: int = x0.size, keep: list[int] = keep
+        ) -> np.ndarray:
+            F, J = branch._f(z[:n])
+            return np.concatenate([F, J[:, keep] @ z[n:], [v0 @ z[n:] - 1.0]])
+
+        z = fsolve(extended, np.concatenate([x0, v0]), xtol=1e-14)
+        assert np.linalg.norm(extended(z)) < 1e-12
+        assert leg.limit == pytest.approx(z[branch.free], abs=1e-12)
