@@ -22,7 +22,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from solver.analysis import CONTINUATION_STEP, driver_input, normalise_quantities
+from solver.analysis import driver_input, normalise_quantities
 from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
 from solver.scene import MAX_TIME, LinkageScene
@@ -35,6 +35,9 @@ MAX_OSCILLATIONS = 5_000
 FEASIBLE_RANGE_SEARCH = 2 * PROBE_SAMPLES + 2 * BISECTION_STEPS  # samples, at most
 EVENT_GRID = 4097  # samples of |M - P| in an event search off M's carrier (solver.events)
 FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
+# A Newton group reaches a pose by following its path from the drawn pose (solver.continuation):
+# the work is estimated as one correction per this much driver turn (a cost model, not a rule).
+TURN_PER_CORRECTION = np.radians(5.0)
 
 
 def _newton_links(scene: LinkageScene) -> int:
@@ -56,7 +59,7 @@ def instant(scene: LinkageScene) -> None:
     if not _newton_links(scene):
         return
     turned = max((abs(driver_input(scene, d, scene.time)[0]) for d in scene.drivers), default=0.0)
-    _newton(scene, 1 + int(turned / CONTINUATION_STEP), "continuation steps to the pose")
+    _newton(scene, 1 + int(turned / TURN_PER_CORRECTION), "continuation steps to the pose")
 
 
 def sweep(

@@ -47,6 +47,13 @@ class AnalyzeRequest(Strict):
         None, description="What to compute (default: all). The server computes only these."
     )
     strict: bool = STRICT
+    tolerance: float | None = Field(
+        None,
+        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
+        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
+        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
+        "docs/BENCHMARKS.md. Reported in diagnostics.",
+    )
 
 
 class SweepRequest(Strict):
@@ -72,6 +79,13 @@ class SweepRequest(Strict):
         le=1,
         description="dynamics-v1: the coefficient of speed fluctuation k for which the cycle "
         "gives the flywheel inertia energy_fluctuation / (k omega^2).",
+    )
+    tolerance: float | None = Field(
+        None,
+        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
+        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
+        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
+        "docs/BENCHMARKS.md. Reported in diagnostics.",
     )
 
 

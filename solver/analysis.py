@@ -17,6 +17,7 @@ import numpy as np
 
 from solver import newton
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.continuation import Continuation
 from solver.dyads import COINCIDENCE_TOLERANCE
 from solver.errors import InvalidScene, SingularConfiguration
 from solver.laws import parse_time_law
@@ -44,8 +45,6 @@ QUANTITIES = ("position", "velocity", "acceleration", "poles", "components")
 DYNAMIC_QUANTITIES = ("forces", "energy")  # dynamics-v1: computed by solver.dynamics
 # cond(J) above this: the velocity equations are singular to within rounding (a dead centre).
 SINGULAR_CONDITION = 1e12
-# Newton groups reach a driver angle far from the drawn one in steps no larger than this.
-CONTINUATION_STEP = math.radians(5.0)
 
 
 @dataclass(frozen=True)
@@ -171,8 +170,9 @@ def drawn_angle(scene: LinkageScene, link: str) -> float:
     return math.atan2(d[1], d[0])
 
 
-def _start_turn(scene: LinkageScene, driver: Driver) -> float:
-    """The driver's rotation from the drawn pose to its ``angle_deg`` (0 without one)."""
+def _start_turn(scene: LinkageScene, driver: Driver, wrap: bool = True) -> float:
+    """The driver's rotation from the drawn pose to its ``angle_deg`` (0 without one), reduced
+    to (-pi, pi] unless ``wrap`` is false (then as written: angle_deg - the drawn angle)."""
     if driver.angle_deg is None:
         return 0.0
     if len(scene.links[driver.link].points) < 2:
@@ -180,10 +180,12 @@ def _start_turn(scene: LinkageScene, driver: Driver) -> float:
             f"drivers: angle_deg needs two points on link '{driver.link}' to define its angle"
         )
     turn = math.radians(driver.angle_deg) - drawn_angle(scene, driver.link)
-    return math.atan2(math.sin(turn), math.cos(turn))
+    return math.atan2(math.sin(turn), math.cos(turn)) if wrap else turn
 
 
-def driver_motion(scene: LinkageScene, driver: Driver, times: Array) -> DriverInput:
+def driver_motion(
+    scene: LinkageScene, driver: Driver, times: Array, wrap: bool = True
+) -> DriverInput:
     """A driver's rotation from the drawn pose, omega and alpha at each of ``times``.
 
     With an ``angle_law`` the law gives all three. A driver with constant ``alpha`` turns from
@@ -193,15 +195,17 @@ def driver_motion(scene: LinkageScene, driver: Driver, times: Array) -> DriverIn
     if driver.angle_law is not None:
         return DriverInput(*parse_time_law(driver.angle_law).evaluate(times))
     return DriverInput(
-        _start_turn(scene, driver) + driver.omega * times + 0.5 * driver.alpha * times**2,
+        _start_turn(scene, driver, wrap) + driver.omega * times + 0.5 * driver.alpha * times**2,
         driver.omega + driver.alpha * times,
         np.full(times.size, driver.alpha),
     )
 
 
-def driver_input(scene: LinkageScene, driver: Driver, time: float) -> tuple[float, float, float]:
+def driver_input(
+    scene: LinkageScene, driver: Driver, time: float, wrap: bool = True
+) -> tuple[float, float, float]:
     """(rotation from the drawn pose, omega, alpha) of a driver at one instant."""
-    at = driver_motion(scene, driver, np.array([time]))
+    at = driver_motion(scene, driver, np.array([time]), wrap)
     return float(at.theta[0]), float(at.omega[0]), float(at.alpha[0])
 
 
@@ -211,21 +215,26 @@ def driver_inputs_over_time(scene: LinkageScene, times: Array) -> list[DriverInp
 
 
 def solve_instant(
-    scene: LinkageScene, plan: Plan, order: int, time: float | None = None
+    scene: LinkageScene,
+    plan: Plan,
+    order: int,
+    time: float | None = None,
+    newton_groups: Continuation | None = None,
 ) -> tuple[Motion, dict[str, float]]:
-    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion)."""
+    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion).
+
+    A Newton group takes the pose its branch reaches from the drawn pose (``solver.continuation``)
+    as the driver turns to ``angle_deg`` as written (not reduced to one turn), which is how a
+    sweep's ``driver_angle`` reads.
+    """
     t = scene.time if time is None else time
     given = [driver_input(scene, d, t) for d in scene.drivers]
-    steps = 1
-    if not plan.closed_form:
-        steps = 1 + int(max((abs(g[0]) for g in given), default=0.0) / CONTINUATION_STEP)
-    inputs = []
-    for turn, omega, alpha in given:
-        ramp = np.linspace(turn, 0.0, steps + 1)[::-1] if steps > 1 else np.array([turn])
-        inputs.append(DriverInput(ramp, np.full(ramp.size, omega), np.full(ramp.size, alpha)))
-    motion = assemble(scene, plan, inputs, order, continuation=steps > 1)
-    if steps > 1:
-        motion = motion.cut(slice(-1, None))
+    turns = [driver_input(scene, d, t, wrap=plan.closed_form)[0] for d in scene.drivers]
+    inputs = [
+        DriverInput(np.array([turn]), np.array([w]), np.array([e]))
+        for turn, (_, w, e) in zip(turns, given, strict=True)
+    ]
+    motion = assemble(scene, plan, inputs, order, newton_groups=newton_groups)
     angles = {
         d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
         for d, g in zip(scene.drivers, given, strict=True)
@@ -377,12 +386,16 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
     return loops
 
 
-def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> LinkageAnalysis:
-    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``."""
+def analyze(
+    scene: LinkageScene, quantities: Iterable[str] | None = None, tolerance: float | None = None
+) -> LinkageAnalysis:
+    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``;
+    ``tolerance`` is a Newton group's (relative to the size; default newton.NEWTON_TOLERANCE)."""
     wanted = normalise_quantities(quantities)
     order = required_order(wanted, bool(scene.moving_points))
     plan = build_plan(scene)
-    motion, angles = solve_instant(scene, plan, order)
+    groups = Continuation(scene, newton.newton_tolerance(tolerance))
+    motion, angles = solve_instant(scene, plan, order, newton_groups=groups)
     condition = None
     if order >= 1:
         condition = newton.velocity_condition_number(scene, motion.links, 0)
@@ -413,7 +426,7 @@ def analyze(scene: LinkageScene, quantities: Iterable[str] | None = None) -> Lin
     if scene.moving_points:
         carriers = motion.links
         if order < 2:  # a position-only request: M's position comes with its parts
-            carriers = solve_instant(scene, plan, 2)[0].links
+            carriers = solve_instant(scene, plan, 2, newton_groups=groups)[0].links
         moving = {
             mp.name: moving_point_motion(scene, mp, carriers[mp.link], np.array([scene.time])).at(0)
             for mp in scene.moving_points

@@ -105,15 +105,20 @@ def read_scene(doc: Mapping[str, Any], *, strict: bool = False) -> ReadScene:
 
 
 def analyze(
-    scene: SceneInput, quantities: Iterable[str] | None = None, *, strict: bool = False
+    scene: SceneInput,
+    quantities: Iterable[str] | None = None,
+    *,
+    strict: bool = False,
+    tolerance: float | None = None,
 ) -> AnalysisResult:
     """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
     ``angle_law`` at ``time``), or the spatial chain. ``quantities``: any of position, velocity,
-    acceleration, poles, components (default: all); only those are computed."""
+    acceleration, poles, components (default: all); only those are computed. ``tolerance``: a
+    Newton group's residual relative to the scene size (1e-15 to 1e-6, default 1e-13)."""
     parsed, found = _scene(scene, strict)
     wanted = analysis.normalise_quantities(quantities)
     if isinstance(parsed, LinkageScene):
-        result = analysis.analyze(parsed, wanted)
+        result = analysis.analyze(parsed, wanted, tolerance)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
         return AnalysisResult(body)
     if wanted & set(analysis.DYNAMIC_QUANTITIES):
@@ -128,13 +133,14 @@ def sweep(
     *,
     strict: bool = False,
     speed_fluctuation: float | None = None,
+    tolerance: float | None = None,
 ) -> SweepResult:
     """The linkage over one revolution of its first driver from its start angle, or over its
     feasible range with the limit positions (POST /sweep). Default quantity: position. With
     ``forces``, a revolution at constant speed also gets its ``cycle`` (and the flywheel inertia
     for the coefficient of ``speed_fluctuation``)."""
     parsed, found = _linkage(scene, strict, "a sweep")
-    result = sweep_linkage(parsed, samples, quantities)
+    result = sweep_linkage(parsed, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
     return SweepResult(body)
 
@@ -146,6 +152,7 @@ def sweep_time(
     quantities: Iterable[str] | None = None,
     *,
     strict: bool = False,
+    tolerance: float | None = None,
 ) -> TimeSweepResult:
     """The linkage and its moving points at ``samples`` instants over ``time_range`` = (t0, t1)
     through its time laws (POST /sweep with ``time_range``). Default quantity: position."""
@@ -153,7 +160,7 @@ def sweep_time(
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
-    result = sweep_linkage_time(parsed, t0, t1, samples, quantities)
+    result = sweep_linkage_time(parsed, t0, t1, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.time_sweep_body(result, found), result)
     return TimeSweepResult(body)
 

@@ -19,6 +19,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from solver import dyads, newton
+from solver.continuation import Continuation, solve_group
 from solver.errors import NotAssemblable
 from solver.rigid import (
     Array,
@@ -172,8 +173,10 @@ class _Assembler:
         continuation: bool,
         signs: Mapping[int, float] | None = None,
         anchor: int = 0,
+        newton_groups: Continuation | None = None,
     ) -> None:
         self.scene = scene
+        self.newton_groups = newton_groups
         self.inputs = inputs
         self.order = order
         self.continuation = continuation
@@ -372,8 +375,13 @@ class _Assembler:
         )
 
     def newton_group(self, step: NewtonStep) -> None:
-        solved, report = newton.solve_group(
-            self.scene, step.links, self.links, self.samples, self.order
+        solved, report = solve_group(
+            self.scene,
+            step.links,
+            self.links,
+            [given.theta for given in self.inputs],
+            self.order,
+            self.newton_groups or Continuation(self.scene),
         )
         self.reports.append(report)
         self.close(np.where(report.converged, 0.0, -1.0), lambda: report.message)
@@ -388,10 +396,14 @@ def assemble(
     order: int,
     continuation: bool = False,
     anchor: int = 0,
+    newton_groups: Continuation | None = None,
 ) -> Motion:
     """Positions (order 0), velocities (1) and accelerations (2) of every link and point; with
-    continuation the drawn branch holds at sample ``anchor``."""
-    return _Assembler(scene, inputs, order, continuation, anchor=anchor).run(plan)
+    continuation the drawn branch holds at sample ``anchor``; ``newton_groups`` carries a Newton
+    group's tolerance and the branches already followed."""
+    return _Assembler(
+        scene, inputs, order, continuation, anchor=anchor, newton_groups=newton_groups
+    ).run(plan)
 
 
 def require_feasible(motion: Motion, where: str) -> None:

@@ -7,24 +7,33 @@ X = c + R(theta) (X0 - A0). The joints give the constraints
 - revolute at P between links i, j:  X_i(P) - X_j(P) = 0
 - slider at P (guide g, follower f):  n_g . (X_f(P) - Q_g) = 0, Q_g the guide's point drawn at P
 - prismatic: the slider equation and theta_f - theta_g = 0
+- a driver whose angle is given: theta_d - turn_d = 0
 
 with the analytic Jacobian J = dPhi/dq. Velocities solve J qdot = b_v and accelerations
 J qddot = b_a (the known links' motion and the quadratic velocity terms on the right). The same
 system with every moving link unknown and the drivers' rows added is the linkage's velocity
 system, whose (dimensionless) condition number is reported.
+
+Everything is evaluated for M samples at once: Phi is (M, rows), J (M, rows, 3 x unknown links),
+so Newton-Raphson polishes every sample of a sweep together with ``numpy.linalg.solve`` on the
+stacked Jacobians. Which root each sample converges to is decided by the starting values, which
+come from following the branch by continuation (``solver.continuation``).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from solver.errors import InvalidScene
 from solver.rigid import Array, LinkMotion, PointMotion
-from solver.scene import Joint, LinkageScene
+from solver.scene import LinkageScene
 
-NEWTON_TOLERANCE = 1e-13  # residual, relative to the scene size
+NEWTON_TOLERANCE = 1e-13  # residual, relative to the scene size (the default)
+TOLERANCE_BOUNDS = (1e-15, 1e-6)  # a user's choice of the Newton tolerance must lie in here
 NEWTON_MAX_ITERATIONS = 50
 
 
@@ -38,6 +47,21 @@ class NewtonReport:
     residual_norm: float
     tolerance: float
     message: str
+    relative_tolerance: float = NEWTON_TOLERANCE
+
+
+def newton_tolerance(value: float | None) -> float:
+    """A user's Newton tolerance (relative to the scene size), checked against TOLERANCE_BOUNDS;
+    None: the default NEWTON_TOLERANCE."""
+    if value is None:
+        return NEWTON_TOLERANCE
+    low, high = TOLERANCE_BOUNDS
+    if not (math.isfinite(value) and low <= value <= high):
+        raise InvalidScene(
+            f"tolerance: {value:g} is outside {low:g} .. {high:g} (the Newton-Raphson residual "
+            f"relative to the scene size; default {NEWTON_TOLERANCE:g})"
+        )
+    return float(value)
 
 
 @dataclass(frozen=True)
@@ -52,260 +76,373 @@ class _Pose:
     alpha: float
 
 
+@dataclass(frozen=True)
+class States:
+    """Known links over M samples: anchor (first point) position, rotation from drawn, rates."""
+
+    c: Array  # (M, 2)
+    theta: Array  # (M,)
+    v: Array  # (M, 2)
+    omega: Array  # (M,)
+    a: Array  # (M, 2)
+    alpha: Array  # (M,)
+
+
+def _rotate(d: Array, cos: Array, sin: Array) -> Array:
+    """R(theta) d for (M, K) angles and (K, 2) drawn vectors: (M, K, 2)."""
+    out = np.empty((*cos.shape, 2))
+    out[..., 0] = cos * d[:, 0] - sin * d[:, 1]
+    out[..., 1] = sin * d[:, 0] + cos * d[:, 1]
+    return out
+
+
 def _kperp(r: Array) -> Array:
-    return np.array([-r[1], r[0]])
+    out = np.empty_like(r)
+    out[..., 0] = -r[..., 1]
+    out[..., 1] = r[..., 0]
+    return out
+
+
+def _dot(a: Array, b: Array) -> Array:
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
 class ConstraintSystem:
-    """The constraint equations of the joints touching ``unknown`` links (and drivers, if asked)."""
+    """The constraint equations of the joints touching ``unknown`` links, and one row per link
+    in ``angles`` holding its rotation (a driver's given turn); ``drivers=True`` adds every
+    driver's row (the linkage's velocity system)."""
 
-    def __init__(self, scene: LinkageScene, unknown: Sequence[str], drivers: bool = False) -> None:
+    def __init__(
+        self,
+        scene: LinkageScene,
+        unknown: Sequence[str],
+        drivers: bool = False,
+        angles: Sequence[str] = (),
+    ) -> None:
         self.scene = scene
         self.unknown = tuple(unknown)
         self.column = {link: 3 * k for k, link in enumerate(self.unknown)}
-        self.joints: tuple[Joint, ...] = tuple(
-            j for j in scene.joints if j.links[0] in self.column or j.links[1] in self.column
-        )
-        self.drivers = tuple(d.link for d in scene.drivers) if drivers else ()
+        self.names = tuple(scene.links)
+        index = {name: k for k, name in enumerate(self.names)}
         self.anchor0 = {name: scene.drawn(link.points[0]) for name, link in scene.links.items()}
-        self.rows = sum(
-            {"revolute": 2, "slider": 1, "prismatic": 2}[j.type] for j in self.joints
-        ) + len(self.drivers)
+        self.angles = tuple(d.link for d in scene.drivers) if drivers else tuple(angles)
+        joints = [j for j in scene.joints if j.links[0] in self.column or j.links[1] in self.column]
+        self.known = tuple(
+            sorted({link for j in joints for link in j.links if link not in self.column})
+        )
+        rows = 0
+        revolute: list[tuple[int, int, int]] = []
+        sliding: list[tuple[int, int, int, int]] = []
+        offsets: list[tuple[Array, Array]] = []
+        slot_offsets: list[tuple[Array, Array, Array]] = []
+        for joint in joints:
+            i, j = (index[link] for link in joint.links)
+            d_i = scene.drawn(joint.point) - self.anchor0[joint.links[0]]
+            d_j = scene.drawn(joint.point) - self.anchor0[joint.links[1]]
+            if joint.type == "revolute":
+                revolute.append((rows, i, j))
+                offsets.append((d_i, d_j))
+                rows += 2
+                continue
+            assert joint.axis is not None
+            prismatic = rows + 1 if joint.type == "prismatic" else -1
+            sliding.append((rows, i, j, prismatic))
+            slot_offsets.append((d_i, d_j, np.array(joint.axis, dtype=float)))
+            rows += 2 if joint.type == "prismatic" else 1
+        self.angle_rows = np.arange(rows, rows + len(self.angles))
+        self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
+        self.rows = rows + len(self.angles)
+        self.n = 3 * len(self.unknown)
+        self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
+        self.rev_d = np.array(offsets, dtype=float).reshape(-1, 2, 2)
+        self.sld = np.array(sliding, dtype=int).reshape(-1, 4)
+        self.sld_d = np.array(slot_offsets, dtype=float).reshape(-1, 3, 2)
+        self.prismatic = self.sld[self.sld[:, 3] >= 0]
+        # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
+        self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
+        unit = np.zeros((self.rows, self.n))
+        for row, i, j in self.rev:
+            for link, sign in ((i, 1.0), (j, -1.0)):
+                if self.col[link] >= 0:
+                    unit[row, self.col[link]] += sign
+                    unit[row + 1, self.col[link] + 1] += sign
+        for _, i, j, angle_row in self.prismatic:
+            for link, sign in ((j, 1.0), (i, -1.0)):
+                if self.col[link] >= 0:
+                    unit[angle_row, self.col[link] + 2] += sign
+        for row, link in zip(self.angle_rows, self.angle_links, strict=True):
+            if self.col[link] >= 0:
+                unit[row, self.col[link] + 2] += 1.0
+        self.unit = unit
+        # Where the pose-dependent entries of J go (flat indices into a (rows, n) matrix): the
+        # rotation columns of both sides of each revolute joint's two rows, then each slider's
+        # follower (x, y, theta) and guide (x, y, theta) columns; the masks pick unknown sides.
+        n, col = self.n, self.col
+        first, left, right = self.rev.T
+        self.rev_mask = (col[left] >= 0, col[right] >= 0)
+        flat = []
+        for link, mask in ((left, self.rev_mask[0]), (right, self.rev_mask[1])):
+            for offset in (0, 1):
+                flat.append((first[mask] + offset) * n + col[link][mask] + 2)
+        slot_rows, g, f, _ = self.sld.T
+        self.sld_mask = (col[f] >= 0, col[g] >= 0)
+        for link, mask in ((f, self.sld_mask[0]), (g, self.sld_mask[1])):
+            for offset in (0, 1, 2):
+                flat.append(slot_rows[mask] * n + col[link][mask] + offset)
+        self.flat = np.concatenate(flat) if flat else np.zeros(0, dtype=int)
+        self.unknown_index = np.array([index[link] for link in self.unknown], dtype=int)
+        self.known_index = np.array([index[link] for link in self.known], dtype=int)
+        # Rows that are lengths (scaled by the size in the condition number) and angles.
+        self.length_rows = np.ones(self.rows, dtype=bool)
+        self.length_rows[self.prismatic[:, 3]] = False
+        self.length_rows[self.angle_rows] = False
 
-    def _r(self, pose: _Pose, link: str, point: str) -> Array:
-        """R(theta) (X0 - A0): the anchor-to-point vector of ``link``'s point."""
-        c, s = np.cos(pose.theta), np.sin(pose.theta)
-        d = self.scene.drawn(point) - self.anchor0[link]
-        return np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
+    def _stack(
+        self, known: Mapping[str, States], q: Array, qd: Array | None, order: int
+    ) -> tuple[Array, ...]:
+        """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero."""
+        M = q.shape[0]
+        L = len(self.names)
+        c, theta = np.empty((M, L, 2)), np.empty((M, L))
+        v = a = np.zeros((1, L, 2))
+        omega = alpha = np.zeros((1, L))
+        if order:
+            v, a = np.zeros((M, L, 2)), np.zeros((M, L, 2))
+            omega, alpha = np.zeros((M, L)), np.zeros((M, L))
+        for k, name in zip(self.known_index, self.known, strict=True):
+            s = known[name]
+            c[:, k], theta[:, k] = s.c, s.theta
+            if order:
+                v[:, k], omega[:, k], a[:, k], alpha[:, k] = s.v, s.omega, s.a, s.alpha
+        u = self.unknown_index
+        qs = q.reshape(M, -1, 3)
+        c[:, u], theta[:, u] = qs[..., :2], qs[..., 2]
+        if order == 2 and qd is not None:
+            qds = qd.reshape(M, -1, 3)
+            v[:, u], omega[:, u] = qds[..., :2], qds[..., 2]
+        return c, theta, v, omega, a, alpha
 
-    def _slot(self, joint: Joint, pose: _Pose) -> tuple[Array, Array]:
-        assert joint.axis is not None
-        c, s = np.cos(pose.theta), np.sin(pose.theta)
-        w = np.array([c * joint.axis[0] - s * joint.axis[1], s * joint.axis[0] + c * joint.axis[1]])
-        return w, _kperp(w)
+    def evaluate(
+        self,
+        known: Mapping[str, States],
+        q: Array,
+        qd: Array | None = None,
+        order: int = 0,
+        turns: Array | None = None,
+    ) -> tuple[Array, Array, Array]:
+        """(Phi, J, b) for M samples: (M, rows), (M, rows, n), (M, rows); ``q`` is (M, n).
+
+        ``order`` 1 or 2 gives the right-hand side of the velocity or acceleration equations
+        (order 2 needs the unknowns' rates ``qd``); ``turns`` (M, len(angles)) the held angles.
+        """
+        M = q.shape[0]
+        c, theta, v, omega, a, alpha = self._stack(known, q, qd, order)
+        cos, sin = np.cos(theta), np.sin(theta)
+        phi = np.zeros((M, self.rows))
+        J = np.empty((M, self.rows, self.n))
+        J[:] = self.unit
+        b = np.zeros((M, self.rows))
+
+        def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
+            """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
+            r = _rotate(d, cos[:, link], sin[:, link])
+            rate = None
+            if order == 1:
+                rate = v[:, link] + omega[:, link, None] * _kperp(r)
+            elif order == 2:
+                rate = (
+                    a[:, link]
+                    + alpha[:, link, None] * _kperp(r)
+                    - (omega[:, link] ** 2)[..., None] * r
+                )
+            return c[:, link] + r, r, rate
+
+        entries: list[Array] = []
+        if self.rev.size:
+            rows, i, j = self.rev.T
+            X_i, r_i, rate_i = side(i, self.rev_d[:, 0])
+            X_j, r_j, rate_j = side(j, self.rev_d[:, 1])
+            phi[:, rows], phi[:, rows + 1] = (X_i - X_j).transpose(2, 0, 1)
+            mi, mj = self.rev_mask
+            entries += [-r_i[:, mi, 1], r_i[:, mi, 0], r_j[:, mj, 1], -r_j[:, mj, 0]]
+            if rate_i is not None and rate_j is not None:
+                b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
+        if self.sld.size:
+            rows, g, f, _ = self.sld.T
+            w = _rotate(self.sld_d[:, 2], cos[:, g], sin[:, g])
+            n = _kperp(w)
+            X_f, r_f, rate_f = side(f, self.sld_d[:, 1])
+            X_g, r_g, rate_g = side(g, self.sld_d[:, 0])
+            d = X_f - X_g
+            wd = _dot(w, d)
+            phi[:, rows] = _dot(n, d)
+            # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
+            # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
+            theta_f = _dot(n, _kperp(r_f))
+            theta_g = -_dot(n, _kperp(r_g)) - wd
+            mf, mg = self.sld_mask
+            entries += [n[:, mf, 0], n[:, mf, 1], theta_f[:, mf]]
+            entries += [-n[:, mg, 0], -n[:, mg, 1], theta_g[:, mg]]
+            if order == 1 and rate_f is not None and rate_g is not None:
+                b[:, rows] = _dot(n, rate_g - rate_f) + omega[:, g] * wd
+            elif order == 2 and rate_f is not None and rate_g is not None:
+                v_f = v[:, f] + omega[:, f, None] * _kperp(r_f)
+                v_q = v[:, g] + omega[:, g, None] * _kperp(r_g)
+                b[:, rows] = (
+                    _dot(n, rate_g - rate_f)
+                    + 2.0 * omega[:, g] * _dot(w, v_f - v_q)
+                    + alpha[:, g] * wd
+                )
+        if self.flat.size:
+            J.reshape(M, -1)[:, self.flat] = np.concatenate(entries, axis=1)
+        if self.prismatic.size:
+            _, g, f, rows = self.prismatic.T
+            phi[:, rows] = theta[:, f] - theta[:, g]
+            if order:
+                rate = omega if order == 1 else alpha
+                b[:, rows] = rate[:, g] - rate[:, f]
+        if self.angle_rows.size:
+            held = theta[:, self.angle_links]
+            phi[:, self.angle_rows] = held if turns is None else held - turns
+            if order:
+                rate = omega if order == 1 else alpha
+                b[:, self.angle_rows] = -rate[:, self.angle_links]
+        return phi, J, b
 
     def equations(self, poses: Mapping[str, _Pose], order: int) -> tuple[Array, Array, Array]:
-        """(Phi, J, b): residual, Jacobian and the right-hand side of order 1 or 2 (0: zeros)."""
-        phi = np.zeros(self.rows)
-        J = np.zeros((self.rows, 3 * len(self.unknown)))
-        b = np.zeros(self.rows)
-        row = 0
+        """(Phi, J, b) at one sample, from single-sample poses (every link, known or not)."""
 
-        def add(link: str, k: int, grad_c: Array, grad_theta: float) -> None:
-            if link in self.column:
-                col = self.column[link]
-                J[k, col : col + 2] += grad_c
-                J[k, col + 2] += grad_theta
+        def states(p: _Pose) -> States:
+            return States(
+                p.c[None], np.array([p.theta]), p.v[None], np.array([p.omega]),
+                p.a[None], np.array([p.alpha]),
+            )  # fmt: skip
 
-        def point_term(link: str, point: str, n: Array, k: int, sign: float) -> None:
-            """sign n.X_link(point): Jacobian, and its known or quadratic part of b."""
-            pose = poses[link]
-            r = self._r(pose, link, point)
-            add(link, k, sign * n, sign * float(n @ _kperp(r)))
-            phi[k] += sign * float(n @ (pose.c + r))
-            known = link not in self.column
-            if order == 1 and known:
-                b[k] -= sign * float(n @ (pose.v + pose.omega * _kperp(r)))
-            elif order == 2:
-                quadratic = -(pose.omega**2) * r
-                full = pose.a + pose.alpha * _kperp(r) + quadratic
-                b[k] -= sign * float(n @ (full if known else quadratic))
+        known = {name: states(poses[name]) for name in self.known}
+        q = np.concatenate([np.append(poses[k].c, poses[k].theta) for k in self.unknown])
+        qd = np.concatenate([np.append(poses[k].v, poses[k].omega) for k in self.unknown])
+        phi, J, b = self.evaluate(known, q[None], qd[None], order)
+        return phi[0], J[0], b[0]
 
-        def angle_term(link: str, k: int, sign: float) -> None:
-            pose = poses[link]
-            add(link, k, np.zeros(2), sign)
-            phi[k] += sign * pose.theta
-            if link not in self.column and order:
-                b[k] -= sign * (pose.omega if order == 1 else pose.alpha)
+    def drawn(self) -> Array:
+        """q at the drawn pose: every unknown link's anchor where drawn, rotation 0."""
+        return np.concatenate([np.append(self.anchor0[link], 0.0) for link in self.unknown])
 
-        for joint in self.joints:
-            i, j = joint.links
-            if joint.type == "revolute":
-                for axis in (np.array([1.0, 0.0]), np.array([0.0, 1.0])):
-                    point_term(i, joint.point, axis, row, 1.0)
-                    point_term(j, joint.point, axis, row, -1.0)
-                    row += 1
-                continue
-            guide = poses[i]
-            w, n = self._slot(joint, guide)
-            point_term(j, joint.point, n, row, 1.0)
-            point_term(i, joint.point, n, row, -1.0)
-            # n turns with the guide: dn/dtheta_g = -w, so add -(w.d) to the guide's column
-            # and its rates' terms (-omega_g w.d, -alpha_g w.d - 2 omega_g w.(v_f - v_Q)).
-            f = poses[j]
-            d = f.c + self._r(f, j, joint.point) - guide.c - self._r(guide, i, joint.point)
-            add(i, row, np.zeros(2), -float(w @ d))
-            if i not in self.column and order == 1:
-                b[row] += guide.omega * float(w @ d)
-            if order == 2:
-                v_f = f.v + f.omega * _kperp(self._r(f, j, joint.point))
-                v_q = guide.v + guide.omega * _kperp(self._r(guide, i, joint.point))
-                b[row] += 2.0 * guide.omega * float(w @ (v_f - v_q))
-                if i not in self.column:
-                    b[row] += guide.alpha * float(w @ d)
-            row += 1
-            if joint.type == "prismatic":
-                angle_term(j, row, 1.0)
-                angle_term(i, row, -1.0)
-                row += 1
-        for link in self.drivers:
-            angle_term(link, row, 1.0)
-            row += 1
-        return phi, J, b
+    def motions(self, q: Array, qd: Array | None, qdd: Array | None) -> dict[str, LinkMotion]:
+        """The unknown links' motions from (N, n) coordinates and rates."""
+        out = {}
+        for index, link in enumerate(self.unknown):
+            s = slice(3 * index, 3 * index + 2)
+            anchor = PointMotion(
+                q[:, s], None if qd is None else qd[:, s], None if qdd is None else qdd[:, s]
+            )
+            out[link] = LinkMotion(
+                self.anchor0[link],
+                anchor,
+                q[:, 3 * index + 2],
+                None if qd is None else qd[:, 3 * index + 2],
+                None if qdd is None else qdd[:, 3 * index + 2],
+            )
+        return out
+
+
+def solve_linear(J: Array, b: Array) -> Array:
+    """x with J x = b for stacked systems (M, n, n) x (M, n): LU where square and regular, least
+    squares (pseudo-inverse) for a singular or non-square sample."""
+    if J.shape[-1] == J.shape[-2]:
+        try:
+            return np.linalg.solve(J, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            pass
+    return np.einsum("mij,mj->mi", np.linalg.pinv(J), b)
+
+
+def newton_raphson(
+    system: ConstraintSystem,
+    known: Mapping[str, States],
+    q: Array,
+    tolerance: float,
+    turns: Array | None = None,
+    polish: bool = True,
+    max_iterations: int = NEWTON_MAX_ITERATIONS,
+) -> tuple[Array, Array, int, Array]:
+    """Newton-Raphson q <- q - J^-1 Phi(q) on every sample at once, from the (M, n) ``q``.
+
+    Samples below ``tolerance`` stop; the others go on until all have stopped or after
+    ``max_iterations``. With ``polish`` one more step then takes a converged iterate to rounding
+    (quadratic convergence), kept only where it lowers the residual. Returns (q, residual norms
+    (M,), iterations, the length of each sample's first step (rotations times the size)).
+    """
+    iterations = 0
+    weights = np.tile([1.0, 1.0, system.scene.size], len(system.unknown))
+    first = np.zeros(q.shape[0])
+    while True:
+        phi, J, _ = system.evaluate(known, q, turns=turns)
+        residual = np.sqrt(np.einsum("mi,mi->m", phi, phi))
+        done = residual <= tolerance
+        if np.all(done | ~np.isfinite(residual)) or iterations >= max_iterations:
+            break
+        step = np.where(done[:, None], 0.0, solve_linear(J, phi))
+        if iterations == 0:
+            first = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
+        q = q - step
+        iterations += 1
+    if polish and np.any(done):
+        trial = q - solve_linear(J, phi)
+        phi_next = system.evaluate(known, trial, turns=turns)[0]
+        better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
+        take = done & (better < residual)
+        q = np.where(take[:, None], trial, q)
+        residual = np.where(take, better, residual)
+    return q, residual, iterations, first
+
+
+def rates(
+    system: ConstraintSystem, known: Mapping[str, States], q: Array, order: int
+) -> tuple[Array | None, Array | None]:
+    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves)."""
+    qd = qdd = None
+    if order >= 1:
+        _, J, b = system.evaluate(known, q, order=1)
+        qd = solve_linear(J, b)
+    if order >= 2:
+        _, J, b = system.evaluate(known, q, qd, order=2)
+        qdd = solve_linear(J, b)
+    return qd, qdd
+
+
+def states(links: Mapping[str, LinkMotion], scene: LinkageScene) -> dict[str, States]:
+    """Known links as ``States`` over their samples, each anchor moved to the link's first point
+    (the anchor of the constraint equations); rates not computed are zero."""
+    out = {}
+    for name, motion in links.items():
+        first = motion.point(scene.drawn(scene.links[name].points[0]))
+        zeros2 = np.zeros_like(first.p)
+        zeros = np.zeros(first.p.shape[0])
+        out[name] = States(
+            first.p,
+            np.broadcast_to(motion.theta, zeros.shape),
+            zeros2 if first.v is None else first.v,
+            zeros if motion.omega is None else np.broadcast_to(motion.omega, zeros.shape),
+            zeros2 if first.a is None else first.a,
+            zeros if motion.alpha is None else np.broadcast_to(motion.alpha, zeros.shape),
+        )
+    return out
 
 
 class KnownPoses:
-    """The known links' poses and rates sample by sample, each link's anchor moved once to its
-    first point (the anchor the constraint equations use)."""
+    """The known links' poses and rates sample by sample (single-sample ``_Pose`` values)."""
 
     def __init__(self, links: Mapping[str, LinkMotion], scene: LinkageScene) -> None:
-        self.links = links
-        self.first = {
-            name: motion.point(scene.drawn(scene.links[name].points[0]))
-            for name, motion in links.items()
-        }
+        self.states = states(links, scene)
 
     def at(self, k: int) -> dict[str, _Pose]:
-        zero = np.zeros(2)
-        poses = {}
-        for name, motion in self.links.items():
-            first = self.first[name]
-            poses[name] = _Pose(
-                first.p[k],
-                float(motion.theta[k]),
-                zero if first.v is None else first.v[k],
-                0.0 if motion.omega is None else float(motion.omega[k]),
-                zero if first.a is None else first.a[k],
-                0.0 if motion.alpha is None else float(motion.alpha[k]),
+        return {
+            name: _Pose(
+                s.c[k], float(s.theta[k]), s.v[k], float(s.omega[k]), s.a[k], float(s.alpha[k])
             )
-        return poses
-
-
-def _unknown_poses(system: ConstraintSystem, q: Array, qd: Array, qdd: Array) -> dict[str, _Pose]:
-    return {
-        link: _Pose(
-            q[3 * k : 3 * k + 2],
-            float(q[3 * k + 2]),
-            qd[3 * k : 3 * k + 2],
-            float(qd[3 * k + 2]),
-            qdd[3 * k : 3 * k + 2],
-            float(qdd[3 * k + 2]),
-        )
-        for k, link in enumerate(system.unknown)
-    }
-
-
-def _continuation_legs(
-    known: Mapping[str, LinkMotion], samples: int
-) -> list[list[tuple[int, tuple[int, ...]]]]:
-    """Samples in solving order, each with the already solved neighbours to predict from.
-
-    Continuation starts at the sample where the known links are nearest their drawn pose (the
-    drawn branch) and runs outwards in two legs, to the last sample and to the first.
-    """
-    away = np.zeros(samples)
-    for motion in known.values():
-        away += np.abs(np.angle(np.exp(1j * motion.theta)))
-    start = int(np.argmin(away))
-    legs = []
-    for leg in (list(range(start, samples)), list(range(start, -1, -1))):
-        legs.append([(k, tuple(leg[max(i - 2, 0) : i][::-1])) for i, k in enumerate(leg)])
-    legs[1] = legs[1][1:]  # the starting sample is solved once, in the first leg
-    return legs
-
-
-def _newton(
-    system: ConstraintSystem, fixed: Mapping[str, _Pose], q: Array, tolerance: float
-) -> tuple[Array, float, int]:
-    """Newton-Raphson q <- q - J^+ Phi(q) from ``q``: (solution, residual norm, iterations)."""
-    zero = np.zeros(q.size)
-    residual, iterations = np.inf, 0
-    while iterations < NEWTON_MAX_ITERATIONS:
-        phi, J, _ = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 0)
-        residual = float(np.linalg.norm(phi))
-        step = np.linalg.lstsq(J, phi, rcond=None)[0]
-        if residual <= tolerance:
-            # One more step polishes a converged iterate to rounding (quadratic convergence).
-            phi_next = system.equations(
-                {**fixed, **_unknown_poses(system, q - step, zero, zero)}, 0
-            )[0]
-            if float(np.linalg.norm(phi_next)) < residual:
-                q, residual = q - step, float(np.linalg.norm(phi_next))
-            break
-        q = q - step
-        iterations += 1
-    return q, residual, iterations
-
-
-def solve_group(
-    scene: LinkageScene,
-    group: Sequence[str],
-    known: Mapping[str, LinkMotion],
-    samples: int,
-    order: int,
-) -> tuple[dict[str, LinkMotion], NewtonReport]:
-    """Newton-Raphson for the links of ``group`` at every sample, then their rates.
-
-    Each sample starts from its neighbours' solutions extrapolated linearly (the first from the
-    drawn pose), which keeps the assembly branch along a sweep.
-    """
-    system = ConstraintSystem(scene, group)
-    n = 3 * len(group)
-    tolerance = NEWTON_TOLERANCE * scene.size
-    q_all = np.zeros((samples, n))
-    qd_all = np.zeros((samples, n))
-    qdd_all = np.zeros((samples, n))
-    converged = np.zeros(samples, dtype=bool)
-    worst_iterations, worst_residual = 0, 0.0
-    drawn = np.concatenate([np.append(system.anchor0[link], 0.0) for link in group])
-    known_poses = KnownPoses(known, scene)
-    for leg in _continuation_legs(known, samples):
-        for k, previous in leg:
-            q = drawn
-            if len(previous) == 2:
-                q = 2.0 * q_all[previous[0]] - q_all[previous[1]]
-            elif previous:
-                q = q_all[previous[0]]
-            fixed = known_poses.at(k)
-            q, residual, iterations = _newton(system, fixed, q, tolerance)
-            worst_iterations = max(worst_iterations, iterations)
-            worst_residual = max(worst_residual, residual)
-            q_all[k] = q
-            converged[k] = residual <= tolerance
-            if not converged[k]:
-                break  # past a limit position the rest of this leg cannot close either
-            zero = np.zeros(n)
-            if order >= 1:
-                _, J, b = system.equations({**fixed, **_unknown_poses(system, q, zero, zero)}, 1)
-                qd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
-            if order >= 2:
-                poses = {**fixed, **_unknown_poses(system, q, qd_all[k], zero)}
-                _, J, b = system.equations(poses, 2)
-                qdd_all[k] = np.linalg.lstsq(J, b, rcond=None)[0]
-    motions = {}
-    for index, link in enumerate(group):
-        s = slice(3 * index, 3 * index + 2)
-        anchor = PointMotion(
-            q_all[:, s], qd_all[:, s] if order >= 1 else None, qdd_all[:, s] if order >= 2 else None
-        )
-        motions[link] = LinkMotion(
-            system.anchor0[link],
-            anchor,
-            q_all[:, 3 * index + 2],
-            qd_all[:, 3 * index + 2] if order >= 1 else None,
-            qdd_all[:, 3 * index + 2] if order >= 2 else None,
-        )
-    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
-    if not np.all(converged):
-        message = (
-            f"Newton-Raphson did not close the loop of {', '.join(group)}: residual "
-            f"{worst_residual:.3g} m > tolerance {tolerance:.3g} m after {worst_iterations} "
-            "iterations"
-        )
-    report = NewtonReport(
-        tuple(group), converged, worst_iterations, worst_residual, tolerance, message
-    )
-    return motions, report
+            for name, s in self.states.items()
+        }
 
 
 def velocity_condition_number(
@@ -316,14 +453,17 @@ def velocity_condition_number(
     Scaling the rotation columns and the angle rows by the scene size makes J dimensionless, so
     the number does not change when every length is multiplied by k.
     """
-    moving = scene.moving_links
-    system = ConstraintSystem(scene, moving, drivers=True)
-    _, J, _ = system.equations(KnownPoses(links, scene).at(k), 0)
+    system = ConstraintSystem(scene, scene.moving_links, drivers=True)
+    at_k = {
+        name: States(*(x[k : k + 1] for x in (s.c, s.theta, s.v, s.omega, s.a, s.alpha)))
+        for name, s in states(links, scene).items()
+    }
+    q = np.concatenate([np.append(at_k[m].c[0], at_k[m].theta[0]) for m in system.unknown])
+    _, J, _ = system.evaluate(at_k, q[None])
+    J = J[0]
     size = scene.size
-    J = J.copy()
     J[:, 2::3] /= size
-    angle_rows = [r for r in range(J.shape[0]) if not np.any(J[r, 0::3]) and not np.any(J[r, 1::3])]
-    J[angle_rows] *= size
+    J[~system.length_rows] *= size
     if J.shape[0] != J.shape[1]:
         return float("inf")
     singular_values = np.linalg.svd(J, compute_uv=False)

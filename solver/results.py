@@ -301,6 +301,7 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
                 "iterations": r.iterations,
                 "residual_norm": r.residual_norm,
                 "tolerance": r.tolerance,
+                "relative_tolerance": r.relative_tolerance,
             }
             for r in d.newton
         ],
@@ -394,7 +395,7 @@ def _motion_arrays(
 
 def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
     """The /sweep body: arrays sample by sample."""
-    return {
+    body: JSON = {
         "driver": result.driver,
         "driver_angle": array(result.driver_angle),
         "samples": int(result.driver_angle.size),
@@ -406,6 +407,18 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
         "singular_samples": [int(k) for k in result.singular_samples],
         **_approach_fields(result.close_approaches, warnings),
     }
+    if result.motion.newton:  # how Newton-Raphson went over all the samples of each group
+        body["diagnostics"]["newton"] = [
+            {
+                "links": list(r.links),
+                "iterations": r.iterations,
+                "residual_norm": r.residual_norm,
+                "tolerance": r.tolerance,
+                "relative_tolerance": r.relative_tolerance,
+            }
+            for r in result.motion.newton
+        ]
+    return body
 
 
 def _approach_fields(found: tuple[CloseApproach, ...], warnings: list[str]) -> JSON:

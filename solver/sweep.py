@@ -31,7 +31,9 @@ from solver.analysis import (
     sliding_joints,
 )
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.continuation import Continuation
 from solver.errors import InvalidScene, LimitExceeded
+from solver.newton import newton_tolerance
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
@@ -117,9 +119,10 @@ def _joints_and_poles(
 class _Driven:
     """Assembles the linkage with the first driver turned by given angles, the others held."""
 
-    def __init__(self, scene: LinkageScene, plan: Plan) -> None:
+    def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
         self.scene, self.plan = scene, plan
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
+        self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
     def inputs(self, turns: Array) -> list[DriverInput]:
         n = turns.size
@@ -132,12 +135,21 @@ class _Driven:
     def run(self, turns: Array, order: int, start: float = 0.0) -> Motion:
         """The linkage at ``turns``, on the drawn branch at the turn nearest ``start``."""
         anchor = int(np.argmin(np.abs(turns - start)))
-        return assemble(self.scene, self.plan, self.inputs(turns), order, True, anchor)
+        return assemble(
+            self.scene,
+            self.plan,
+            self.inputs(turns),
+            order,
+            continuation=True,
+            anchor=anchor,
+            newton_groups=self.newton_groups,
+        )
 
     def closes(self, turn: float, strictly: bool = False) -> bool:
         """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
         (a limit found so lies inside the tolerance band and can be posed again)."""
-        motion = assemble(self.scene, self.plan, self.inputs(np.array([turn])), 0)
+        inputs = self.inputs(np.array([turn]))
+        motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
         return bool(motion.margin[0] >= 0.0) if strictly else bool(motion.feasible[0])
 
 
@@ -183,6 +195,15 @@ def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[fl
     return (min(begin, end), max(begin, end))
 
 
+def _newton_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
+    """The feasible range of a linkage with a Newton group: None if the driver turns fully, else
+    the turns of the two limit positions its branch meets either way from the drawn pose (found
+    by continuation to rounding, whatever the number of samples)."""
+    branch = driven.newton_groups.branch(tuple(given[0] for given in driven.given[1:]))
+    far = start + direction * 2.0 * math.pi
+    return branch.limits(min(start, far), max(start, far))
+
+
 def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
     """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
     n = motion.feasible.size
@@ -200,15 +221,21 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
                 values[k] = 0.5 * (values[before] + values[after])
 
 
-def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = None) -> Sweep:
-    """Turn the first driver through a revolution (or its feasible range) from its start angle."""
+def sweep(
+    scene: LinkageScene,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
+) -> Sweep:
+    """Turn the first driver through a revolution (or its feasible range) from its start angle;
+    ``tolerance`` is a Newton group's (relative to the size; default NEWTON_TOLERANCE)."""
     if not scene.drivers:
         raise InvalidScene("drivers: a sweep needs a driver")
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     plan = build_plan(scene)
-    driven = _Driven(scene, plan)
+    driven = _Driven(scene, plan, tolerance)
     start, omega, _ = driven.given[0]
     direction = -1.0 if omega < 0 else 1.0
     # The drawn pose closes by construction; a start at angle_deg must be checked.
@@ -219,7 +246,9 @@ def sweep(scene: LinkageScene, samples: int, quantities: Iterable[str] | None = 
     turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
     limits: tuple[float, ...] = ()
     motion = None
-    if samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+    if not plan.closed_form:
+        span = _newton_range(driven, start, direction)
+    elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
         motion = driven.run(turns, order, start)
         span = None if _turns_fully(motion) else _feasible_range(driven, start, direction)
     else:
@@ -283,9 +312,15 @@ class TimeSweep:
 
 
 def sweep_time(
-    scene: LinkageScene, t0: float, t1: float, samples: int, quantities: Iterable[str] | None = None
+    scene: LinkageScene,
+    t0: float,
+    t1: float,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
 ) -> TimeSweep:
-    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws)."""
+    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws);
+    ``tolerance`` as for ``sweep``."""
     if not 2 <= samples <= MAX_SAMPLES:
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
@@ -295,10 +330,13 @@ def sweep_time(
     plan = build_plan(scene)
     inputs = driver_inputs_over_time(scene, times)
     order = required_order(wanted, bool(scene.moving_points))
-    motion = assemble(scene, plan, inputs, order, continuation=True)
+    groups = Continuation(scene, newton_tolerance(tolerance))
+    motion = assemble(scene, plan, inputs, order, continuation=True, newton_groups=groups)
     require_feasible(motion, f"during t = {t0:g} .. {t1:g} s")
     if scene.moving_points and order < 2:
-        motion_for_points = assemble(scene, plan, inputs, 2, continuation=True)
+        motion_for_points = assemble(
+            scene, plan, inputs, 2, continuation=True, newton_groups=groups
+        )
     else:
         motion_for_points = motion
     moving = {

@@ -50,7 +50,7 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
     if isinstance(read.scene, LinkageScene):
         budget.instant(read.scene)
-    return respond(solver.analyze(read, request.quantities))
+    return respond(solver.analyze(read, request.quantities, tolerance=request.tolerance))
 
 
 @router.post(
@@ -69,9 +69,18 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
                 request.samples,
                 request.quantities,
                 speed_fluctuation=request.speed_fluctuation,
+                tolerance=request.tolerance,
             )
         )
-    return respond(solver.sweep_time(read, request.time_range, request.samples, request.quantities))
+    return respond(
+        solver.sweep_time(
+            read,
+            request.time_range,
+            request.samples,
+            request.quantities,
+            tolerance=request.tolerance,
+        )
+    )
 
 
 @router.post(

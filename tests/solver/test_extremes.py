@@ -485,7 +485,7 @@ def test_newton_six_bar_sweeps_its_feasible_range() -> None:
     """The drawn pose assembles, so the sweep over the driver's feasible range must too (issue 2:
     sweep over the feasible range, keeping the drawn branch): it reports the range, every sample
     closes the loop to 1e-12 of the size, and the samples bracket the drawn angle. 360 samples,
-    the API's default. Runs ~12 s: every sample of a Newton group is solved in Python."""
+    the API's default."""
     scene = parse_linkage(NEWTON_SIX_BAR)
     analyze(scene)  # the drawn pose itself is fine
     result = sweep(scene, 360, ["position"])

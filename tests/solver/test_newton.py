@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from solver import newton
+from solver import continuation
 from solver.analysis import analyze
 from solver.assembly import DriverInput, assemble
 from solver.newton import ConstraintSystem, KnownPoses
@@ -89,7 +89,9 @@ def test_newton_on_a_four_bar_equals_the_closed_form_dyad() -> None:
     inputs = [DriverInput(turns, np.full(7, 8 * math.pi), np.full(7, 3.0))]
     closed = assemble(scene, build_plan(scene), inputs, 2, continuation=True)
     known = {name: closed.links[name] for name in (scene.ground, "crank")}
-    solved, report = newton.solve_group(scene, ("coupler", "rocker"), known, 7, 2)
+    solved, report = continuation.solve_group(
+        scene, ("coupler", "rocker"), known, [turns], 2, continuation.Continuation(scene)
+    )
     assert np.all(report.converged)
     for link in ("coupler", "rocker"):
         np.testing.assert_allclose(solved[link].theta, closed.links[link].theta, atol=1e-12)
