@@ -473,6 +473,7 @@ class ProblemCode(StrEnum):
     not_found = "not_found"
     method_not_allowed = "method_not_allowed"
     internal_error = "internal_error"
+    busy = "busy"
 
 
 class Problem(Open):
@@ -490,6 +491,7 @@ class Problem(Open):
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
 PROBLEMS: dict[int | str, dict[str, Any]] = {
+    503: {"model": Problem, "description": "Every worker is busy (busy): retry after Retry-After s"},
     413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
     422: {
         "model": Problem,

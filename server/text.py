@@ -29,6 +29,8 @@ MAX_DIGITS = 400  # of a number literal: 1e400 is no longer a finite float anywa
 NAME_VALUES = frozenset(
     {"name", "link", "point", "body", "moving_point", "reaches", "center", "start", "through"}
 )
+# Of those, keys that may also hold coordinates (a mass's centre: dynamics-v1).
+NAME_OR_VECTOR = frozenset({"center"})
 # Keys whose list items are names.
 NAME_LISTS = frozenset({"links", "points"})
 _TEXT_CONTROLS = frozenset("\t\n\r")
@@ -124,7 +126,12 @@ def check(value: Any, path: str, depth: int, in_scene: bool, key: str = "") -> N
         _text(value, path)
         if in_scene and key in NAME_VALUES:
             _name(value, path)
-    elif in_scene and key in NAME_VALUES and value is not None:
+    elif (
+        in_scene
+        and key in NAME_VALUES
+        and value is not None
+        and not (key in NAME_OR_VECTOR and isinstance(value, list))
+    ):
         raise InvalidScene(f"{path}: expected a name (a string), got {type(value).__name__}")
     elif isinstance(value, dict):
         if isinstance(value, _Pairs):

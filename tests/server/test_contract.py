@@ -156,7 +156,7 @@ def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> Non
         for method, operation in operations.items():
             for status, response in operation["responses"].items():
                 media = set(response.get("content", {}))
-                if status.startswith("4"):
+                if status.startswith(("4", "5")):
                     assert media == {"application/problem+json"}, (path, method, status)
                 elif path == "/api/v1/exercises/export":  # a file in the requested format
                     assert media == {

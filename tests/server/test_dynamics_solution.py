@@ -136,5 +136,8 @@ def test_random_linkages_by_newton_euler(
 def test_printable_page_of_the_newton_euler_solution(client: TestClient) -> None:
     response = client.get("/api/v1/solution.html?preset=seed004&method=newton_euler")
     assert response.status_code == 200, response.text
-    assert response.text.count('<div class="figure"><svg') == 3
+    steps = response.text.split('<li class="step">')[1:]
+    free_body = [s for s in steps if "<h3>Free-body diagram of" in s]
+    assert len(free_body) == 3, "one free-body diagram per moving link"
+    assert all('<figure class="figure"><svg' in s for s in free_body)
     assert "Newton-Euler" in response.text
