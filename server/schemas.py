@@ -491,7 +491,7 @@ class Problem(Open):
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
 PROBLEMS: dict[int | str, dict[str, Any]] = {
-    503: {"model": Problem, "description": "Every worker is busy (busy): retry after Retry-After s"},
+    503: {"model": Problem, "description": "Every worker is busy (busy): see Retry-After"},
     413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
     422: {
         "model": Problem,
