@@ -131,7 +131,20 @@ async function plotImage(div, format) {
   if (!P || !div.data) throw new Error('this figure is not drawn yet');
   const box = div.getBoundingClientRect();
   const url = await P.toImage(div, { format, width: Math.max(box.width, 640), height: Math.max(box.height, 400), scale: format === 'png' ? 2 : 1 });
-  return (await fetch(url)).blob();
+  return dataUrlBlob(url);
+}
+
+/** A data: URL's bytes as a Blob, decoded here (a fetch of it would break the page's CSP). */
+function dataUrlBlob(url) {
+  const comma = url.indexOf(',');
+  const head = url.slice(5, comma); // "image/png;base64" or "image/svg+xml;charset=utf-8"
+  const type = head.split(';')[0];
+  const body = url.slice(comma + 1);
+  if (head.endsWith(';base64')) {
+    const bytes = Uint8Array.from(atob(body), (c) => c.charCodeAt(0));
+    return new Blob([bytes], { type });
+  }
+  return new Blob([decodeURIComponent(body)], { type });
 }
 
 /** Wire the export menu to the app (main.js's App: scene, track, analysis, units, loops). */

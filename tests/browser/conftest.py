@@ -124,8 +124,10 @@ class AppPage:
         self.page.wait_for_selector("#linkage .link, #spatial .body", state="attached")
         if self.page.locator("#linkage:not([hidden])").count():
             self.page.wait_for_function(
+                "() => ("
                 "document.getElementById('velocity-polygon').data !== undefined"
                 " || !document.getElementById('polygon-message').hidden"
+                ")"
             )
 
     def screenshot(self, name: str, selector: str | None = None) -> Path:

@@ -276,7 +276,7 @@ def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
     page.select_option("#units", "mm")
     page.check("#show-acceleration")
     page.click("#share")
-    page.wait_for_function("document.getElementById('share-url').value.includes('#s=')")
+    page.wait_for_function("() => (document.getElementById('share-url').value.includes('#s='))")
     url = page.input_value("#share-url")
     assert url.startswith(app.url) and "#s=" in url
 
@@ -303,7 +303,9 @@ def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
     # Playwright counts as hidden.
     other.wait_for_selector("#linkage .link", state="attached")
     wait_analysed(other)
-    other.wait_for_function("document.getElementById('velocity-polygon').data !== undefined")
+    other.wait_for_function(
+        "() => (document.getElementById('velocity-polygon').data !== undefined)"
+    )
     restored = view(other)
     assert restored == shown
     assert plot_data(other, "velocity-polygon") == polygon
@@ -335,7 +337,7 @@ def test_spatial_chain_example_renders(app: AppPage) -> None:
     app.screenshot("spatial-arm")
     # The camera travels in the share link too.
     page.click("#share")
-    page.wait_for_function("document.getElementById('share-url').value.includes('#s=')")
+    page.wait_for_function("() => (document.getElementById('share-url').value.includes('#s='))")
     other = app.new_page()
     other.goto(page.input_value("#share-url"))
     other.wait_for_selector("#spatial .body")
@@ -458,7 +460,7 @@ def test_printable_solution_page_with_figures(app: AppPage) -> None:
     formula is typeset; in print the figures are black and white. Screenshotted."""
     page = app.page
     page.goto(f"{app.url}/api/v1/solution.html?preset=quick_return&crank=0.12")
-    page.wait_for_function("document.querySelectorAll('.math.pending').length === 0")
+    page.wait_for_function("() => (document.querySelectorAll('.math.pending').length === 0)")
     assert page.locator(".math.error").count() == 0
     assert page.locator("figure.figure svg").count() >= 3
     box = page.locator("figure.figure svg").first.bounding_box()

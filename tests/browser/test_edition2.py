@@ -447,7 +447,7 @@ def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
     expected = [1000 * c for c in analysis["points"]["B"]["velocity"]]
     assert shown == pytest.approx(expected, rel=1e-3)
     page.select_option("#units", "si")
-    page.wait_for_function("!document.querySelector('#steps .step-units')")
+    page.wait_for_function("() => (!document.querySelector('#steps .step-units'))")
 
 
 # ---- draw and edit -----------------------------------------------------------------------------
@@ -541,11 +541,11 @@ def test_a_four_bar_drawn_from_scratch_analyses(app: AppPage) -> None:
         ("D", ("ground", "DC")),
     }
     # Saved in the share link.
-    page.wait_for_function("location.hash.startsWith('#s=')")
+    page.wait_for_function("() => (location.hash.startsWith('#s='))")
     other = app.new_page()
     other.goto(page.url)
     other.wait_for_function(
-        "document.getElementById('view-title').textContent === 'four-bar from scratch'"
+        "() => (document.getElementById('view-title').textContent === 'four-bar from scratch')"
     )
     app.screenshot("four-bar-from-scratch")
 

@@ -44,7 +44,7 @@ def test_the_printable_sheet_renders_with_its_figures(app: AppPage, with_solutio
         box = figures.nth(k).bounding_box()
         assert box is not None and box["width"] > 300 and box["height"] > 200
         assert figures.nth(k).locator("line, polygon").count() >= 3
-    page.wait_for_function("document.querySelectorAll('.tex .katex').length > 0")
+    page.wait_for_function("() => (document.querySelectorAll('.tex .katex').length > 0)")
     assert page.locator(".tex .katex-error").count() == 0
     pdf = page.pdf(format="A4")
     pages = len(re.findall(rb"/Type\s*/Page[^s]", pdf))
@@ -85,7 +85,7 @@ def test_the_instructor_page_generates_previews_and_downloads(app: AppPage) -> N
         for asked in exercise["asked"]:
             shown = card.locator(f'.key-value[data-key="{asked["key"]}"]').inner_text()
             assert float(shown) == pytest.approx(exercise["answers"][asked["key"]], rel=1e-5)
-    page.wait_for_function("document.querySelectorAll('#preview .tex .katex').length >= 2")
+    page.wait_for_function("() => (document.querySelectorAll('#preview .tex .katex').length >= 2)")
     with page.expect_download() as download_info:
         page.click('.downloads button[data-format="csv"]')
     download = download_info.value
@@ -131,7 +131,7 @@ def test_the_student_mode_checks_diagnoses_and_reveals_one_step_at_a_time(app: A
     assert page.locator("#st-steps li").count() == 1
     page.click("#next-step")
     assert page.locator("#st-steps li").count() == 2
-    page.wait_for_function("document.querySelectorAll('#st-steps .katex').length >= 1")
+    page.wait_for_function("() => (document.querySelectorAll('#st-steps .katex').length >= 1)")
     assert page.locator("#st-steps .step-error").count() == 0
     app.screenshot("exercises-student")
     # the share link carries the exercise id and opens the same exercise
@@ -147,5 +147,7 @@ def test_the_student_mode_checks_diagnoses_and_reveals_one_step_at_a_time(app: A
 def test_a_bad_share_link_says_why(app: AppPage) -> None:
     app.log.allow("422")
     open_page(app, "#id=not-an-id")
-    app.page.wait_for_function("document.getElementById('status').textContent.includes('id')")
+    app.page.wait_for_function(
+        "() => (document.getElementById('status').textContent.includes('id'))"
+    )
     assert "type:difficulty:seed:index" in app.page.inner_text("#status")
