@@ -170,3 +170,28 @@ def test_settings_from_the_environment() -> None:
 def test_bad_settings_are_named(name: str, value: str) -> None:
     with pytest.raises(ValueError, match=name):
         from_environment({name: value})
+
+
+def test_a_burst_of_slow_requests_leaves_a_worker_to_analyze() -> None:
+    """Two workers, two runaway sweeps: the second waits for the slow lane (all workers but
+    one), so /analyze is answered while both sweeps are still pending; then the clients leave."""
+    with server(
+        "lanes", KINEMATICS_WORKERS="2", KINEMATICS_TIME_LIMITS="/api/v1/sweep=120"
+    ) as base:
+        host, port = base.removeprefix("http://").split(":")
+        runaways = []
+        for _ in range(2):
+            connection = http.client.HTTPConnection(host, int(port), timeout=30)
+            connection.request(
+                "POST", "/api/v1/sweep", json.dumps(RUNAWAY), {"content-type": "application/json"}
+            )
+            runaways.append(connection)
+        time.sleep(0.5)
+        statuses = [request(base, "/api/v1/analyze", {"scene": FOUR_BAR})[0] for _ in range(3)]
+        assert statuses == [200, 200, 200]
+        for connection in runaways:  # still unanswered: nothing to read yet
+            assert connection.sock is not None
+            connection.sock.settimeout(0.01)
+            with pytest.raises(TimeoutError):
+                connection.sock.recv(1)
+            connection.close()
