@@ -142,10 +142,10 @@ class AppPage:
 
 @pytest.fixture
 def app(browser: Any, live_server: str) -> Iterator[AppPage]:
-    # bypass_csp: Playwright evaluates wait_for_function predicates with eval, which the app's
-    # Content-Security-Policy (no 'unsafe-eval') forbids. The policy itself, and that the pages
-    # need no inline script, are checked by tests/server/test_headers.py.
-    context = browser.new_context(viewport={"width": 1440, "height": 1000}, bypass_csp=True)
+    # The pages run under the server's Content-Security-Policy, as a student's do (a violation
+    # is a console error, which fails the test). Predicates are written as functions: Playwright
+    # evaluates a bare expression with eval when it polls, which the policy forbids.
+    context = browser.new_context(viewport={"width": 1440, "height": 1000})
     page = context.new_page()
     page.set_default_timeout(20_000)
     log = PageLog()
