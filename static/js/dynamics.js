@@ -10,6 +10,8 @@
 import * as api from './api.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { svgEl, setAttrs, arrowMarker } from './svg.js';
+import { LinkageView } from './linkage-view.js';
+import { trackFromSweep, frameAt } from './track.js';
 
 const ARROW_PX = 70; // the largest joint force of the cycle, on the drawing
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
@@ -41,8 +43,9 @@ function isFourBar(scene) {
 }
 
 export class DynamicsPanel {
-  constructor({ section, plots, hodograph, info, message, balance, arrows, onArrows }) {
-    Object.assign(this, { section, plots, hodograph, info, message, balance, arrows });
+  constructor({ section, plots, hodograph, info, message, balance, arrows, onArrows, balancedBox, balancedSvg }) {
+    Object.assign(this, { section, plots, hodograph, info, message, balance, arrows, balancedBox });
+    this.balancedView = new LinkageView(balancedSvg, { onDrag: () => {}, onDragEnd: () => {} });
     this.seq = 0;
     this.scene = null;
     this.sweep = null;
@@ -77,9 +80,9 @@ export class DynamicsPanel {
     if (isFourBar(scene)) {
       try {
         const answer = await api.balance(scene, counterweights(scene));
-        const balancedSweep = await api.sweep(answer.scene, samples, ['forces']);
+        const balancedSweep = await api.sweep(answer.scene, samples, ['position', 'forces']);
         if (seq !== this.seq) return;
-        this.balanced = { answer, sweep: balancedSweep };
+        this.balanced = { answer, sweep: balancedSweep, track: trackFromSweep(balancedSweep), shown: false };
       } catch (err) {
         this.balanced = { error: err.detail };
       }
@@ -151,6 +154,13 @@ export class DynamicsPanel {
     };
     P.react(this.hodograph, traces, layout, CONFIG);
     this.hodograph.dataset.note = note;
+    const side = this.balance.checked && this.balanced?.track;
+    this.balancedBox.hidden = !side;
+    if (side && !this.balanced.shown) {
+      this.balancedView.setScene(this.balanced.answer.scene, this.balanced.track);
+      this.balancedView.draw(frameAt(this.balanced.track, 0));
+      this.balanced.shown = true;
+    }
     this.balance.title = note;
   }
 
@@ -160,6 +170,10 @@ export class DynamicsPanel {
    * animation is the same sweep over the driver angle.
    */
   drawArrows(view, svg, frame, track, u) {
+    const b = this.balanced;
+    if (b?.shown && !this.balancedBox.hidden && track && b.track.n === track.n) {
+      this.balancedView.draw(frameAt(b.track, u)); // the balanced mechanism in step
+    }
     let g = svg.querySelector('g.layer-forces');
     const s = this.sweep;
     const on = this.arrows.checked && !this.section.hidden && s && track && track.param === 'angle' && s.samples === track.n;

@@ -79,6 +79,7 @@ class App {
       section: $('dynamics'), plots: $('dynamics-plots'), hodograph: $('dynamics-hodograph'),
       info: $('dynamics-info'), message: $('dynamics-message'), balance: $('dynamics-balance'),
       arrows: $('dynamics-arrows'), onArrows: () => this.drawFrame(),
+      balancedBox: $('dynamics-balanced'), balancedSvg: $('balanced-linkage'),
     });
     this.controls.setPlaying(this.playing);
     this.linkage = new LinkageView($('linkage'), {

@@ -43,6 +43,14 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
         return math.hypot(max(trace["x"]) - min(trace["x"]), max(trace["y"]) - min(trace["y"]))
 
     assert spread(balanced) < 0.25 * spread(unbalanced)
+    # the balanced mechanism beside it, moving with the animation
+    page.wait_for_selector(
+        "#dynamics-balanced:not([hidden]) #balanced-linkage .link", state="attached"
+    )
+    drawn = page.inner_html("#balanced-linkage")
+    wait_until(
+        lambda: page.inner_html("#balanced-linkage") != drawn, what="the balanced mechanism to move"
+    )
     app.screenshot("dynamics-seed004", "#dynamics")
     # joint forces as arrows on the animated linkage, following the frames
     page.check("#dynamics-arrows")
