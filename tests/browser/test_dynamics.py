@@ -75,10 +75,12 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     choose(app, "preset:seed004")
     page.wait_for_selector("#dynamics:not([hidden])")
     pause_and_wait(page)
+    page.click("#tab-solution")  # the worked solution has its own tab
     page.check("input[name='method'][value='newton_euler']")
     page.wait_for_selector("#steps .step-figure svg")
-    diagrams = page.locator("#steps .step-figure svg").filter(has_text="W_")
-    assert diagrams.count() == 3, "one free-body diagram per moving link, with its weight"
+    free_body = page.locator("#steps li").filter(has_text="Free-body diagram of")
+    assert free_body.count() == 3, "one free-body diagram per moving link"
+    assert free_body.locator(".step-figure svg").count() == 3
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
     assert "power balance" in page.inner_text("#steps")
     app.screenshot("newton-euler-solution", ".solution-panel")

@@ -540,10 +540,11 @@ def test_a_four_bar_drawn_from_scratch_analyses(app: AppPage) -> None:
         ("C", ("BC", "DC")),
         ("D", ("ground", "DC")),
     }
-    # Saved in the share link.
-    page.wait_for_function("() => (location.hash.startsWith('#s='))")
+    # Saved in the share link (asked for: the hash itself follows the view after a debounce).
+    page.click("#share")
+    page.wait_for_function("() => (document.getElementById('share-url').value.includes('#s='))")
     other = app.new_page()
-    other.goto(page.url)
+    other.goto(page.input_value("#share-url"))
     other.wait_for_function(
         "() => (document.getElementById('view-title').textContent === 'four-bar from scratch')"
     )

@@ -173,17 +173,18 @@ def test_bad_settings_are_named(name: str, value: str) -> None:
 
 
 def test_a_burst_of_slow_requests_leaves_a_worker_to_analyze() -> None:
-    """Two workers, two runaway sweeps: the second waits for the slow lane (all workers but
-    one), so /analyze is answered while both sweeps are still pending; then the clients leave."""
+    """Two workers, two runaway requests on a slow endpoint: the second waits for the slow lane
+    (all workers but one), so /analyze is answered while both are still pending; then the
+    clients leave."""
     with server(
-        "lanes", KINEMATICS_WORKERS="2", KINEMATICS_TIME_LIMITS="/api/v1/sweep=120"
+        "lanes", KINEMATICS_WORKERS="2", KINEMATICS_TIME_LIMITS="/api/v1/exercises=120"
     ) as base:
         host, port = base.removeprefix("http://").split(":")
         runaways = []
         for _ in range(2):
             connection = http.client.HTTPConnection(host, int(port), timeout=30)
             connection.request(
-                "POST", "/api/v1/sweep", json.dumps(RUNAWAY), {"content-type": "application/json"}
+                "POST", RUNAWAY_PATH, json.dumps(RUNAWAY), {"content-type": "application/json"}
             )
             runaways.append(connection)
         time.sleep(0.5)
