@@ -77,7 +77,8 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     pause_and_wait(page)
     page.click("#tab-solution")  # the worked solution has its own tab
     page.check("input[name='method'][value='newton_euler']")
-    page.wait_for_selector("#steps .step-figure svg")
+    # The vector method's figures are there already: wait for the Newton-Euler steps themselves.
+    page.wait_for_selector("#steps li:has-text('Free-body diagram of') .step-figure svg")
     free_body = page.locator("#steps li").filter(has_text="Free-body diagram of")
     assert free_body.count() == 3, "one free-body diagram per moving link"
     assert free_body.locator(".step-figure svg").count() == 3
