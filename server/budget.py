@@ -19,9 +19,11 @@ Every refusal states the product and the limit.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 
+import solver
 from solver.analysis import driver_input, normalise_quantities
 from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
@@ -104,3 +106,12 @@ def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:
             f"{at_least}{frequency:.6g} Hz = {at_least}{oscillations:,.0f} oscillations, more "
             f"than the limit of {MAX_OSCILLATIONS:,}; lower t_max"
         )
+
+
+def read_instant(doc: dict[str, Any], strict: bool) -> solver.ReadScene:
+    """A one-instant request's scene (/analyze, /solution), refused before any work if it
+    costs too much; its warnings kept for the result."""
+    read = solver.read_scene(doc, strict=strict)
+    if isinstance(read.scene, LinkageScene):
+        instant(read.scene)
+    return read

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from enum import StrEnum
 from pathlib import Path
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -38,6 +38,17 @@ STRICT: bool = Field(
 )
 
 
+NewtonTolerance = Annotated[
+    float | None,
+    Field(
+        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
+        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
+        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
+        "docs/BENCHMARKS.md. Reported in diagnostics."
+    ),
+]
+
+
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
@@ -47,13 +58,7 @@ class AnalyzeRequest(Strict):
         None, description="What to compute (default: all). The server computes only these."
     )
     strict: bool = STRICT
-    tolerance: float | None = Field(
-        None,
-        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
-        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
-        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
-        "docs/BENCHMARKS.md. Reported in diagnostics.",
-    )
+    tolerance: NewtonTolerance = None
 
 
 class SweepRequest(Strict):
@@ -80,13 +85,7 @@ class SweepRequest(Strict):
         description="dynamics-v1: the coefficient of speed fluctuation k for which the cycle "
         "gives the flywheel inertia energy_fluctuation / (k omega^2).",
     )
-    tolerance: float | None = Field(
-        None,
-        description="Newton-Raphson tolerance for linkages the closed-form dyads cannot solve "
-        "(triads, some six-bars): the loop-closure residual relative to the scene size, between "
-        "1e-15 and 1e-6 (default 1e-13). Looser is faster and less accurate; see "
-        "docs/BENCHMARKS.md. Reported in diagnostics.",
-    )
+    tolerance: NewtonTolerance = None
 
 
 class EventSpec(Strict):

@@ -22,7 +22,6 @@ from server.schemas import (
     TimeSweepResponse,
 )
 from server.workers import WorkerRoute
-from solver.errors import InvalidScene
 from solver.scene import LinkageScene
 
 router = APIRouter(
@@ -33,23 +32,13 @@ router = APIRouter(
 )
 
 
-def read_linkage(doc: dict[str, object], strict: bool, what: str) -> solver.ReadScene:
-    """The document read as a linkage (``invalid_scene`` for a spatial chain), warnings kept."""
-    read = solver.read_scene(doc, strict=strict)
-    if not isinstance(read.scene, LinkageScene):
-        raise InvalidScene(f"kind: {what} takes a 'linkage' scene")
-    return read
-
-
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
     response_model=AnalyzeResponse,
 )
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
-    read = solver.read_scene(request.scene, strict=request.strict)
-    if isinstance(read.scene, LinkageScene):
-        budget.instant(read.scene)
+    read = budget.read_instant(request.scene, request.strict)
     return respond(solver.analyze(read, request.quantities, tolerance=request.tolerance))
 
 
@@ -59,9 +48,10 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     response_model=SweepResponse | TimeSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
-    read = read_linkage(request.scene, request.strict, "a sweep")
-    assert isinstance(read.scene, LinkageScene)
-    budget.sweep(read.scene, request.samples, request.quantities, request.time_range is not None)
+    read = solver.read_scene(request.scene, strict=request.strict)
+    if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
+        timed = request.time_range is not None
+        budget.sweep(read.scene, request.samples, request.quantities, timed)
     if request.time_range is None:
         return respond(
             solver.sweep(
@@ -89,8 +79,8 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
     response_model=EventResponse,
 )
 def events_route(request: EventsRequest) -> ResultResponse:
-    read = read_linkage(request.scene, request.strict, "an event search")
-    assert isinstance(read.scene, LinkageScene)
+    read = solver.read_scene(request.scene, strict=request.strict)
     e = request.event
-    budget.event(read.scene, e.moving_point, e.t_max)
+    if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
+        budget.event(read.scene, e.moving_point, e.t_max)
     return respond(solver.find_event(read, e.moving_point, e.reaches, e.occurrence, e.t_max))

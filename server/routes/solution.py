@@ -22,7 +22,6 @@ from server.solution_page import solution_page
 from server.workers import WorkerRoute
 from solver.errors import InvalidScene
 from solver.presets import build_preset
-from solver.scene import LinkageScene
 
 router = APIRouter(
     tags=["solutions"],
@@ -67,20 +66,12 @@ class SolutionRequest(Strict):
     response_model=SolutionResponse,
 )
 def solution_route(request: SolutionRequest) -> ResultResponse:
-    read = _read(request.scene, request.strict)
+    read = budget.read_instant(request.scene, request.strict)
     return respond(solver.solve(read, request.method, request.digits))
 
 
-def _read(doc: dict[str, Any], strict: bool) -> solver.ReadScene:
-    """The scene of a solution request, refused before any work if it costs too much."""
-    read = solver.read_scene(doc, strict=strict)
-    if isinstance(read.scene, LinkageScene):
-        budget.instant(read.scene)
-    return read
-
-
 def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -> HTMLResponse:
-    solution = solver.solve(_read(doc, strict), method, digits)
+    solution = solver.solve(budget.read_instant(doc, strict), method, digits)
     return HTMLResponse(solution_page(doc, solution))
 
 

@@ -208,46 +208,40 @@ def _four_bar_text(v: Mapping[str, float], goal: str, point: bool) -> tuple[str,
     return f"{text} {goal}", givens_latex(rows)
 
 
-def four_bar_velocity(rng: random.Random, difficulty: str) -> Draft:
+def _four_bar_rates(rng: random.Random, difficulty: str, kind: str) -> Draft:
+    """The coupler's and the rocker's angular rates (and, above basic, C's and P's vector) of
+    ``kind`` 'velocity' or 'acceleration'."""
     point = difficulty == "challenging"
-    scene, v = _four_bar_scene(rng, difficulty, False, point)
+    accelerations = kind == "acceleration"
+    with_alpha = accelerations and difficulty != "basic"
+    scene, v = _four_bar_scene(rng, difficulty, with_alpha, point)
+    angular, of_point = (alpha_of, acceleration_of) if accelerations else (omega_of, velocity_of)
     asked: tuple[Asked, ...] = (
-        omega_of("coupler", "coupler", "BC"),
-        omega_of("rocker", "rocker", "DC"),
+        angular("coupler", "coupler", "BC"),
+        angular("rocker", "rocker", "DC"),
     )
     if difficulty != "basic":
-        asked += velocity_of("C")
+        asked += of_point("C")
     if point:
-        asked += velocity_of("P")
+        asked += of_point("P")
+    rates = "angular accelerations" if accelerations else "angular velocities"
+    vectors = "accelerations" if accelerations else "velocities"
     text, latex = _four_bar_text(
-        v, "Find the angular velocities of the coupler and the rocker"
-        + (" and the velocities asked." if difficulty != "basic" else "."), point,
+        v, f"Find the {rates} of the coupler and the rocker"
+        + (f" and the {vectors} asked." if difficulty != "basic" else "."), point,
     )  # fmt: skip
     return Draft(
-        "Four-bar: velocities", text, latex + r"\\" + asked_latex(asked), scene, asked,
+        f"Four-bar: {vectors}", text, latex + r"\\" + asked_latex(asked), scene, asked,
         scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
     )  # fmt: skip
+
+
+def four_bar_velocity(rng: random.Random, difficulty: str) -> Draft:
+    return _four_bar_rates(rng, difficulty, "velocity")
 
 
 def four_bar_acceleration(rng: random.Random, difficulty: str) -> Draft:
-    point = difficulty == "challenging"
-    scene, v = _four_bar_scene(rng, difficulty, difficulty != "basic", point)
-    asked: tuple[Asked, ...] = (
-        alpha_of("coupler", "coupler", "BC"),
-        alpha_of("rocker", "rocker", "DC"),
-    )
-    if difficulty != "basic":
-        asked += acceleration_of("C")
-    if point:
-        asked += acceleration_of("P")
-    text, latex = _four_bar_text(
-        v, "Find the angular accelerations of the coupler and the rocker"
-        + (" and the accelerations asked." if difficulty != "basic" else "."), point,
-    )  # fmt: skip
-    return Draft(
-        "Four-bar: accelerations", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
-    )  # fmt: skip
+    return _four_bar_rates(rng, difficulty, "acceleration")
 
 
 def _pole(link: str, kind: str, sub: str) -> tuple[Asked, ...]:
