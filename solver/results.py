@@ -236,13 +236,6 @@ def sliding_joint_fields(joint: SlidingJoint, convert: Callable[[Any], Any]) -> 
 FOUR_BAR = ("ground", "crank", "coupler", "rocker")
 
 
-def _warnings(found: list[str], result: object) -> list[str]:
-    """The request's warnings (unknown keys), then the solver's own about the result (a pose
-    near a change point), where the result carries any."""
-    noticed: tuple[str, ...] = getattr(result, "warnings", ())
-    return [*found, *noticed]
-
-
 def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
     """The /analyze body of a linkage."""
     wanted = holds(result.quantities)
@@ -310,7 +303,7 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
         if d.closest_approach is None
         else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
     }
-    body["warnings"] = _warnings(warnings, result)
+    body["warnings"] = [*warnings, *result.warnings]  # the request's, then the pose's
     return body
 
 

@@ -90,34 +90,21 @@ def link_state(scene: LinkageScene, motion: Motion) -> dict[str, tuple[Array, Ar
 def mass_elements(scene: LinkageScene, motion: Motion) -> list[MassElement]:
     """Every body and point mass with its motion (requires accelerations in ``motion``)."""
     dynamics = dynamics_of(scene)
-    elements = []
-    for body in dynamics.bodies:
-        link = motion.links[body.link]
-        G = link.point(np.array(body.center))
-        assert G.v is not None and G.a is not None
-        assert link.omega is not None and link.alpha is not None
-        elements.append(
-            MassElement(
-                body.link,
-                body.link,
-                body.mass,
-                body.inertia,
-                G.p,
-                G.v,
-                G.a,
-                link.omega,
-                link.alpha,
-            )
-        )
-    for pm in dynamics.point_masses:
-        link = motion.links[pm.link]
-        P = link.point(scene.drawn(pm.point))
+
+    def element(name: str, on: str, mass: float, inertia: float, at: Array) -> MassElement:
+        link = motion.links[on]
+        P = link.point(at)
         assert P.v is not None and P.a is not None
         assert link.omega is not None and link.alpha is not None
-        elements.append(
-            MassElement(pm.name, pm.link, pm.mass, 0.0, P.p, P.v, P.a, link.omega, link.alpha)
-        )
-    return elements
+        return MassElement(name, on, mass, inertia, P.p, P.v, P.a, link.omega, link.alpha)
+
+    return [
+        element(body.link, body.link, body.mass, body.inertia, np.array(body.center))
+        for body in dynamics.bodies
+    ] + [
+        element(pm.name, pm.link, pm.mass, 0.0, scene.drawn(pm.point))
+        for pm in dynamics.point_masses
+    ]
 
 
 def applied_loads(

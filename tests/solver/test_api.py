@@ -14,18 +14,17 @@ import subprocess
 import sys
 import warnings
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 import pytest
 
 import solver
-from solver import results
 from solver.presets import build_preset
 from solver.results import Result, holds
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain
+from tests.solver.test_branches import _near_crank_rocker
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "tests" / "reference" / "examples"
@@ -253,11 +252,14 @@ def test_a_read_scene_keeps_its_warnings_for_the_result() -> None:
 
 
 def test_the_solvers_own_warnings_follow_the_requests() -> None:
-    """A result's body lists the request's warnings first, then any the solver's result carries
-    (the near-change-point warnings of the core solver)."""
-    noticed = SimpleNamespace(warnings=("near a change point",))
-    assert results._warnings(["unknown key"], noticed) == ["unknown key", "near a change point"]
-    assert results._warnings(["unknown key"], object()) == ["unknown key"]
+    """A result's body lists the request's warnings first, then the solver's own (a pose within
+    1e-3 of the size of a change point, tests/solver/test_branches.py)."""
+    doc = _near_crank_rocker(1e-4, 179.0)
+    doc["drivers"][0]["angle"] = 120
+    found = solver.analyze(doc).warnings
+    assert len(found) == 2
+    assert found[0] == "drivers[0].angle is not a scene field; did you mean angle_deg?"
+    assert "change point" in found[1]
 
 
 def test_a_parsed_scene_carries_no_key_warnings() -> None:
