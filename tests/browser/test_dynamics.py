@@ -28,7 +28,8 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
     assert names[:3] == ["torque M (crank)", "mean torque", "power M ω"]
     assert {"|F| at O", "|F| at A", "|F| at B", "|F| at Gamma"} <= set(names)
     mean = traces[1]["y"][0]
-    assert mean == pytest.approx(-63.6456581982242, rel=1e-3)  # 241 samples, a kinked load law
+    # seed004-dynamics.json "mean_driving_torque"; 1e-3: 241 samples of a kinked load law
+    assert mean == pytest.approx(-63.6456581982242, rel=1e-3)
     assert "mean power -1600 W" in page.inner_text("#dynamics-info") or "-1599" in page.inner_text(
         "#dynamics-info"
     )
