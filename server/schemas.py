@@ -192,6 +192,7 @@ class DiagnosticsValues(Open):
     position_method: str
     newton: list[NewtonValues]
     driver_angles_deg: dict[str, float]
+    position_residual: float = 0.0  # m: |Phi| of the polished pose (0 at the drawn pose)
 
 
 class BodyValues(Open):

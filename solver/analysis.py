@@ -31,6 +31,7 @@ from solver.poles import (
     transmission_angle,
     velocity_poles,
 )
+from solver.polish import exact_turn, polish
 from solver.relative_motion import MovingPointMotion, coriolis_acceleration, moving_point_motion
 from solver.rigid import (
     Array,
@@ -108,6 +109,7 @@ class Diagnostics:
     newton: tuple[newton.NewtonReport, ...]
     driver_angles: dict[str, float]
     closest_approach: tuple[str, float] | None = None  # the group nearest its change point, m
+    position_residual: float = 0.0  # |Phi| of the polished position, m (0 at the drawn pose)
 
 
 @dataclass(frozen=True)
@@ -220,8 +222,10 @@ def solve_instant(
     order: int,
     time: float | None = None,
     newton_groups: Continuation | None = None,
-) -> tuple[Motion, dict[str, float]]:
-    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion).
+) -> tuple[Motion, dict[str, float], float]:
+    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion),
+    its position polished in extended precision away from the drawn pose (``solver.polish``;
+    the residual, m, is returned last).
 
     A Newton group takes the pose its branch reaches from the drawn pose (``solver.continuation``)
     as the driver turns to ``angle_deg`` as written (not reduced to one turn), which is how a
@@ -235,6 +239,12 @@ def solve_instant(
         for turn, (_, w, e) in zip(turns, given, strict=True)
     ]
     motion = assemble(scene, plan, inputs, order, newton_groups=newton_groups)
+    residual = 0.0
+    if any(turn != 0.0 for turn in turns) and np.all(motion.feasible):  # not the drawn pose
+        exact = [
+            exact_turn(scene, d, t, turn) for d, turn in zip(scene.drivers, turns, strict=True)
+        ]
+        motion, residual = polish(scene, inputs, exact, order, motion)
     angles = {
         d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
         for d, g in zip(scene.drivers, given, strict=True)
@@ -244,7 +254,7 @@ def solve_instant(
     if not angles:
         where = "at the drawn pose"
     require_feasible(motion, where)
-    return motion, angles
+    return motion, angles, residual
 
 
 def sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[SlidingJoint]:
@@ -395,7 +405,7 @@ def analyze(
     order = required_order(wanted, bool(scene.moving_points))
     plan = build_plan(scene)
     groups = Continuation(scene, newton.newton_tolerance(tolerance))
-    motion, angles = solve_instant(scene, plan, order, newton_groups=groups)
+    motion, angles, residual = solve_instant(scene, plan, order, newton_groups=groups)
     condition = None
     if order >= 1:
         condition = newton.velocity_condition_number(scene, motion.links, 0)
@@ -421,7 +431,9 @@ def analyze(
     )
     centres = _instant_centres(scene, plan, motion) if "poles" in wanted else []
     closest, warnings = near_change_point(motion)
-    diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles, closest)
+    diagnostics = Diagnostics(
+        condition, plan.closed_form, tuple(motion.newton), angles, closest, residual
+    )
     moving = {}
     if scene.moving_points:
         carriers = motion.links

@@ -23,9 +23,10 @@ come from following the branch by continuation (``solver.continuation``).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
+import mpmath as mp
 import numpy as np
 
 from solver.errors import InvalidScene
@@ -90,10 +91,19 @@ class States:
 
 def _rotate(d: Array, cos: Array, sin: Array) -> Array:
     """R(theta) d for (M, K) angles and (K, 2) drawn vectors: (M, K, 2)."""
-    out = np.empty((*cos.shape, 2))
+    out = np.empty((*cos.shape, 2), dtype=cos.dtype)
     out[..., 0] = cos * d[:, 0] - sin * d[:, 1]
     out[..., 1] = sin * d[:, 0] + cos * d[:, 1]
     return out
+
+
+def _cos_sin(theta: Array) -> tuple[Array, Array]:
+    """cos and sin elementwise, in the arithmetic of ``theta`` (mpmath for an object array)."""
+    if theta.dtype == object:
+        return np.vectorize(mp.cos, otypes=[object])(theta), np.vectorize(mp.sin, otypes=[object])(
+            theta
+        )
+    return np.cos(theta), np.sin(theta)
 
 
 def _kperp(r: Array) -> Array:
@@ -110,7 +120,9 @@ def _dot(a: Array, b: Array) -> Array:
 class ConstraintSystem:
     """The constraint equations of the joints touching ``unknown`` links, and one row per link
     in ``angles`` holding its rotation (a driver's given turn); ``drivers=True`` adds every
-    driver's row (the linkage's velocity system)."""
+    driver's row (the linkage's velocity system). ``exact`` converts the drawn coordinates and
+    axes; given (``solver.polish``: to 40-digit mpmath numbers, an object array), Phi is
+    evaluated in that arithmetic, J in double."""
 
     def __init__(
         self,
@@ -118,7 +130,9 @@ class ConstraintSystem:
         unknown: Sequence[str],
         drivers: bool = False,
         angles: Sequence[str] = (),
+        exact: Callable[[Array], Array] | None = None,
     ) -> None:
+        number = exact or (lambda x: np.asarray(x, dtype=float))
         self.scene = scene
         self.unknown = tuple(unknown)
         self.column = {link: 3 * k for k, link in enumerate(self.unknown)}
@@ -137,8 +151,9 @@ class ConstraintSystem:
         slot_offsets: list[tuple[Array, Array, Array]] = []
         for joint in joints:
             i, j = (index[link] for link in joint.links)
-            d_i = scene.drawn(joint.point) - self.anchor0[joint.links[0]]
-            d_j = scene.drawn(joint.point) - self.anchor0[joint.links[1]]
+            point = number(scene.drawn(joint.point))
+            d_i = point - number(self.anchor0[joint.links[0]])
+            d_j = point - number(self.anchor0[joint.links[1]])
             if joint.type == "revolute":
                 revolute.append((rows, i, j))
                 offsets.append((d_i, d_j))
@@ -147,16 +162,17 @@ class ConstraintSystem:
             assert joint.axis is not None
             prismatic = rows + 1 if joint.type == "prismatic" else -1
             sliding.append((rows, i, j, prismatic))
-            slot_offsets.append((d_i, d_j, np.array(joint.axis, dtype=float)))
+            slot_offsets.append((d_i, d_j, number(np.array(joint.axis, dtype=float))))
             rows += 2 if joint.type == "prismatic" else 1
         self.angle_rows = np.arange(rows, rows + len(self.angles))
         self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
         self.rows = rows + len(self.angles)
         self.n = 3 * len(self.unknown)
         self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
-        self.rev_d = np.array(offsets, dtype=float).reshape(-1, 2, 2)
+        dtype = object if exact else float
+        self.rev_d = np.array(offsets, dtype=dtype).reshape(-1, 2, 2)
         self.sld = np.array(sliding, dtype=int).reshape(-1, 4)
-        self.sld_d = np.array(slot_offsets, dtype=float).reshape(-1, 3, 2)
+        self.sld_d = np.array(slot_offsets, dtype=dtype).reshape(-1, 3, 2)
         self.prismatic = self.sld[self.sld[:, 3] >= 0]
         # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
         self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
@@ -203,12 +219,13 @@ class ConstraintSystem:
         """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero."""
         M = q.shape[0]
         L = len(self.names)
-        c, theta = np.empty((M, L, 2)), np.empty((M, L))
-        v = a = np.zeros((1, L, 2))
-        omega = alpha = np.zeros((1, L))
+        c, theta = np.empty((M, L, 2), dtype=q.dtype), np.empty((M, L), dtype=q.dtype)
+        kind = q.dtype
+        v = a = np.zeros((1, L, 2), dtype=kind)
+        omega = alpha = np.zeros((1, L), dtype=kind)
         if order:
-            v, a = np.zeros((M, L, 2)), np.zeros((M, L, 2))
-            omega, alpha = np.zeros((M, L)), np.zeros((M, L))
+            v, a = np.zeros((M, L, 2), dtype=kind), np.zeros((M, L, 2), dtype=kind)
+            omega, alpha = np.zeros((M, L), dtype=kind), np.zeros((M, L), dtype=kind)
         for k, name in zip(self.known_index, self.known, strict=True):
             s = known[name]
             c[:, k], theta[:, k] = s.c, s.theta
@@ -237,11 +254,11 @@ class ConstraintSystem:
         """
         M = q.shape[0]
         c, theta, v, omega, a, alpha = self._stack(known, q, qd, order)
-        cos, sin = np.cos(theta), np.sin(theta)
-        phi = np.zeros((M, self.rows))
-        J = np.empty((M, self.rows, self.n))
+        cos, sin = _cos_sin(theta)
+        phi = np.zeros((M, self.rows), dtype=q.dtype)
+        J = np.empty((M, self.rows, self.n), dtype=q.dtype)
         J[:] = self.unit
-        b = np.zeros((M, self.rows))
+        b = np.zeros((M, self.rows), dtype=q.dtype)
 
         def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
             """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""

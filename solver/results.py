@@ -302,6 +302,7 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
         "closest_approach": None
         if d.closest_approach is None
         else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
+        "position_residual": d.position_residual,
     }
     body["warnings"] = [*warnings, *result.warnings]  # the request's, then the pose's
     return body

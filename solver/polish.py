@@ -1,0 +1,152 @@
+"""A single instant's position polished in 40-digit arithmetic (issue 14).
+
+Newton-Raphson on the full constraint set, q <- q - J(q)^-1 Phi(q): every joint of every loop,
+with every moving link but the drivers unknown and each driver's link held at its given turn.
+Phi is evaluated with mpmath at 40 digits from the drawn coordinates and the drivers' angles
+taken as exact (``angle_deg`` converted to radians and the drawn angle subtracted at 40 digits
+too); the step is solved in double, so each step gains about -log10(cond eps) digits near the
+root (far from it, next to a change point, it halves the error), until the residual stops
+falling. The velocity and acceleration equations J qdot = b_v, J qddot = b_a are then evaluated
+at the 40-digit position and solved in double.
+
+Why 40 digits and not the 80-bit long double: next to a change point the position error is
+cond x the residual, which the rate equations amplify by cond again; with a residual of
+eps_ld = 1e-19 the rates are off by cond^2 x 1e-19 (1e-5 at cond 1e6); and the accelerations
+solved at a position rounded to double are off by cond^2 x eps (the rounded pose is that of a
+linkage whose lengths differ by eps). Evaluating J and b at the 40-digit pose and rounding them
+(not the pose) leaves the rates good to cond x eps, the rounding of one solve (see
+docs/ARCHITECTURE.md, "Polish at a posed angle").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import mpmath as mp
+import numpy as np
+
+from solver.assembly import DriverInput, Motion
+from solver.newton import ConstraintSystem, States, solve_linear, states
+from solver.rigid import LinkMotion
+from solver.scene import Driver, LinkageScene
+
+DIGITS = 40  # the arithmetic of Phi: a residual of 1e-40 L leaves cond 1e-40 L of position error
+MAX_STEPS = 30  # far from the root (a change point) each step halves the error; then 3 suffice
+_exact = np.vectorize(mp.mpf, otypes=[object])
+
+
+def exact_turn(scene: LinkageScene, driver: Driver, time: float, near: float) -> Any:
+    """theta_d = radians(angle_deg) - atan2(drawn) + omega t + alpha t^2 / 2 in 40 digits (the
+    law's own value for an ``angle_law``), the whole turns chosen nearest the double turn
+    ``near`` the closed form used."""
+    with mp.workdps(DIGITS):
+        if driver.angle_law is not None:
+            return mp.mpf(near)
+        turn = mp.mpf(0)
+        if driver.angle_deg is not None:
+            first, second = (scene.drawn(p) for p in scene.links[driver.link].points[:2])
+            d = [mp.mpf(second[k]) - mp.mpf(first[k]) for k in (0, 1)]
+            turn = mp.radians(mp.mpf(driver.angle_deg)) - mp.atan2(d[1], d[0])
+        t = mp.mpf(time)
+        turn += mp.mpf(driver.omega) * t + mp.mpf(driver.alpha) * t * t / 2
+        return turn + 2 * mp.pi * round(float((near - turn) / (2 * mp.pi)))
+
+
+def _held(
+    scene: LinkageScene, driver: Driver | None, turn: Any, rates: DriverInput | None
+) -> States:
+    """A driver's link (or the ground: None) at ``turn`` with its given rates, its first point
+    in 40 digits: pivot + R(turn) (first - pivot)."""
+    link = scene.ground if driver is None else driver.link
+    pivot = scene.links[link].points[0] if driver is None else driver.pivot
+    pivot0 = _exact(scene.drawn(pivot))
+    d = _exact(scene.drawn(scene.links[link].points[0])) - pivot0
+    cos, sin = mp.cos(turn), mp.sin(turn)
+    c = pivot0 + np.array([cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]], dtype=object)
+    r = np.array([-d[1], d[0]], dtype=object)  # k x d, turned below
+    r = np.array([cos * r[0] - sin * r[1], sin * r[0] + cos * r[1]], dtype=object)
+    omega = mp.mpf(0) if rates is None else mp.mpf(float(rates.omega[0]))
+    alpha = mp.mpf(0) if rates is None else mp.mpf(float(rates.alpha[0]))
+    # the first point's rates about the pivot: v = omega k x r, a = alpha k x r - omega^2 r
+    v = omega * r
+    a = alpha * r + omega * omega * np.array([-r[1], r[0]], dtype=object)
+    return States(
+        c[None],
+        np.array([turn], dtype=object),
+        v[None],
+        np.array([omega], dtype=object),
+        a[None],
+        np.array([alpha], dtype=object),
+    )
+
+
+def polish(
+    scene: LinkageScene,
+    inputs: Sequence[DriverInput],
+    turns: Sequence[Any],
+    order: int,
+    motion: Motion,
+) -> tuple[Motion, float]:
+    """The single-sample ``motion`` with its position polished at the drivers' 40-digit
+    ``turns`` (rates from ``inputs``) and its rates solved there (J and b evaluated in 40
+    digits, rounded, solved in double); and the final residual |Phi| in metres (rounded)."""
+    drivers = [d.link for d in scene.drivers]
+    unknown = [name for name in scene.moving_links if name not in drivers]
+    if not unknown:
+        return motion, 0.0
+    with mp.workdps(DIGITS):
+        system = ConstraintSystem(scene, unknown, exact=_exact)
+        known = {scene.ground: _held(scene, None, mp.mpf(0), None)}
+        for driver, turn, given in zip(scene.drivers, turns, inputs, strict=True):
+            known[driver.link] = _held(scene, driver, turn, given)
+        start = states(motion.links, scene)
+        q = _exact(np.concatenate([np.append(start[k].c[0], start[k].theta[0]) for k in unknown]))
+        q = q[None]
+        phi, J, _ = system.evaluate(known, q)
+        residual = mp.sqrt(np.sum(phi * phi))
+        for _ in range(MAX_STEPS):
+            trial = q - solve_linear(J.astype(float), phi.astype(float))
+            trial_phi, trial_J, _ = system.evaluate(known, trial)
+            trial_residual = mp.sqrt(np.sum(trial_phi * trial_phi))
+            if not trial_residual < residual:
+                break
+            q, phi, J, residual = trial, trial_phi, trial_J, trial_residual
+        qd = qdd = None
+        if order >= 1:
+            _, J, b = system.evaluate(known, q, order=1)
+            qd = solve_linear(J.astype(float), b.astype(float))
+        if order >= 2:
+            _, J, b = system.evaluate(known, q, qd, order=2)
+            qdd = solve_linear(J.astype(float), b.astype(float))
+        links = system.motions(
+            q.astype(float),
+            None if qd is None else qd.astype(float),
+            None if qdd is None else qdd.astype(float),
+        )
+    return _at(scene, motion, links), float(residual)
+
+
+def _at(scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion]) -> Motion:
+    """``motion`` with the ``solved`` links, and every point of a moving link placed from its
+    link (the first link listing it)."""
+    links = {**motion.links, **solved}
+    ground = set(scene.links[scene.ground].points)
+    points = dict(motion.points)
+    placed: set[str] = set()
+    for name in scene.moving_links:
+        for p in scene.links[name].points:
+            if p not in ground and p not in placed:
+                points[p] = links[name].point(scene.drawn(p))
+                placed.add(p)
+    return Motion(
+        links,
+        points,
+        motion.margin,
+        motion.conditioning,
+        motion.failures,
+        motion.newton,
+        motion.approaches,
+        motion.size,
+        motion.group_margins,
+    )
