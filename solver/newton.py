@@ -99,11 +99,11 @@ def _rotate(d: Array, cos: Array, sin: Array) -> Array:
 
 def _cos_sin(theta: Array) -> tuple[Array, Array]:
     """cos and sin elementwise, in the arithmetic of ``theta`` (mpmath for an object array)."""
-    if theta.dtype == object:
-        return np.vectorize(mp.cos, otypes=[object])(theta), np.vectorize(mp.sin, otypes=[object])(
-            theta
-        )
-    return np.cos(theta), np.sin(theta)
+    if theta.dtype != object:
+        return np.cos(theta), np.sin(theta)
+    pairs = np.empty((*theta.shape, 2), dtype=object)
+    pairs.reshape(-1, 2)[:] = [mp.cos_sin(x) for x in theta.flat]
+    return pairs[..., 0], pairs[..., 1]
 
 
 def _kperp(r: Array) -> Array:

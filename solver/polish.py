@@ -32,6 +32,7 @@ from solver.rigid import LinkMotion
 from solver.scene import Driver, LinkageScene
 
 DIGITS = 40  # the arithmetic of Phi: a residual of 1e-40 L leaves cond 1e-40 L of position error
+CONVERGED = 1e-36  # residual / size: a few roundings at 40 digits, nothing left to gain
 MAX_STEPS = 30  # far from the root (a change point) each step halves the error; then 3 suffice
 _exact = np.vectorize(mp.mpf, otypes=[object])
 
@@ -112,6 +113,8 @@ def polish(
             if not trial_residual < residual:
                 break
             q, phi, J, residual = trial, trial_phi, trial_J, trial_residual
+            if residual < CONVERGED * scene.size:
+                break
         qd = qdd = None
         if order >= 1:
             _, J, b = system.evaluate(known, q, order=1)

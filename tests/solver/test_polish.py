@@ -42,6 +42,7 @@ from tests.solver.test_conditioning import (
     slider_near_dead_centre,
     slider_rates,
 )
+from tests.solver.test_newton import TRIAD
 
 mp.mp.dps = 50
 Doc = dict[str, Any]
@@ -234,3 +235,83 @@ def test_drawn_pose_is_not_polished() -> None:
     result = analyze(parse_linkage(doc), ["position"])
     assert result.diagnostics.position_residual == 0.0
     assert np.array_equal(result.points["C"].position, doc["points"]["C"])
+
+
+# --- a triad (a Newton group) posed next to its limit positions -----------------------------------
+
+
+def _triad_parts(doc: Doc) -> tuple[Any, ...]:
+    """O, |OA|, A0 -> P1 length, the triangle's P1 -> P2 and P1 -> P3, G2, G3, |G2P2|, |G3P3|."""
+    pivot, A0, P1, P2, P3, G2, G3 = (_z(doc, p) for p in ("O", "A", "P1", "P2", "P3", "G2", "G3"))
+    return (
+        pivot,
+        abs(A0 - pivot),
+        abs(P1 - A0),
+        P2 - P1,
+        P3 - P1,
+        G2,
+        G3,
+        abs(P2 - G2),
+        abs(P3 - G3),
+    )
+
+
+def _triad_closure(doc: Doc, phi: Any, x: Any) -> tuple[Any, Any, dict[str, Any]]:
+    """The triad at crank angle phi with x = (angle of L1, turn psi of T): the two loop closures
+    |P2 - G2|^2 - l2^2, |P3 - G3|^2 - l3^2, and the points."""
+    pivot, a, l1, d2, d3, G2, G3, l2, l3 = _triad_parts(doc)
+    A = pivot + a * mp.expj(phi)
+    P1 = A + l1 * mp.expj(x[0])
+    turn = mp.expj(x[1])
+    P2, P3 = P1 + d2 * turn, P1 + d3 * turn
+    points = {"A": A, "P1": P1, "P2": P2, "P3": P3}
+    return abs(P2 - G2) ** 2 - l2 * l2, abs(P3 - G3) ** 2 - l3 * l3, points
+
+
+def _triad_solve(doc: Doc, phi: Any, start: Any) -> tuple[Any, Any]:
+    x = mp.findroot(lambda u, v: _triad_closure(doc, phi, (u, v))[:2], start)
+    return x[0], x[1]
+
+
+def triad_reference(doc: Doc, phi: Any, start: Any) -> tuple[Doc, dict[str, Any]]:
+    """The exact pose (Newton in 50 digits from ``start``) and the rates of L1 and T from the
+    implicit solution's derivatives d/dphi, d^2/dphi^2 (mpmath's numerical differentiation at
+    raised precision): omega = x' Omega, alpha = x'' Omega^2 + x' Alpha."""
+    x = _triad_solve(doc, phi, start)
+    points = _triad_closure(doc, phi, x)[2]
+    rates: dict[str, Any] = {"omega": {}, "alpha": {}}
+    for k, link in enumerate(("L1", "T")):
+
+        def angle(t: Any, k: int = k) -> Any:
+            return _triad_solve(doc, t, x)[k]
+
+        first, second = mp.diff(angle, phi, 1), mp.diff(angle, phi, 2)
+        rates["omega"][link] = first * OMEGA
+        rates["alpha"][link] = second * OMEGA**2 + first * ALPHA
+    return _with_points(doc, points), rates
+
+
+TRIAD_LIMITS = (mp.mpf("0.19680819239643638"), mp.mpf("1.3052330254995415"))  # rad, /sweep's
+
+
+@pytest.mark.parametrize("distance", DISTANCES)
+@pytest.mark.parametrize("limit", [0, 1], ids=["lower", "upper"])
+def test_triad_posed_next_to_a_limit_position(limit: int, distance: str) -> None:
+    """The triad of tests/solver/test_newton posed 1e-3 ... 1e-10 rad inside its limit positions
+    (from /sweep; a fold, so the limits are exact to rounding): answered to the same contract."""
+    doc = {**TRIAD, "drivers": [{"link": "crank", "omega": OMEGA, "alpha": ALPHA}]}
+    phi = TRIAD_LIMITS[limit] + (1 - 2 * limit) * mp.mpf(distance)
+    doc, phi = _posed(doc, phi)
+    scene = parse_linkage(doc)
+    result = analyze(scene, ["position", "velocity", "acceleration"])
+    P1, A = (mp.mpc(*result.points[p].position) for p in ("P1", "A"))
+    turn = mp.arg(mp.mpc(*result.points["P2"].position) - P1) - mp.arg(
+        _z(doc, "P2") - _z(doc, "P1")
+    )
+    exact, rates = triad_reference(doc, phi, (mp.arg(P1 - A), turn))
+    true_cond = exact_condition(_rounded(exact))
+    cond = result.diagnostics.condition_number
+    assert cond is not None and true_cond / 10.0 <= cond <= 10.0 * true_cond, (cond, true_cond)
+    err = errors(result, rates)
+    assert err <= (1e-9 if true_cond < 1e6 else true_cond * 1e-15), (err, true_cond)
+    assert result.diagnostics.position_residual <= RESIDUAL_BOUND * scene.size
