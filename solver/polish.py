@@ -28,13 +28,20 @@ import numpy as np
 
 from solver.assembly import DriverInput, Motion
 from solver.newton import ConstraintSystem, States, solve_linear, states
-from solver.rigid import LinkMotion
+from solver.rigid import Array, LinkMotion
 from solver.scene import Driver, LinkageScene
 
 DIGITS = 40  # the arithmetic of Phi: a residual of 1e-40 L leaves cond 1e-40 L of position error
 CONVERGED = 1e-36  # residual / size: a few roundings at 40 digits, nothing left to gain
 MAX_STEPS = 30  # far from the root (a change point) each step halves the error; then 3 suffice
-_exact = np.vectorize(mp.mpf, otypes=[object])
+
+
+def _exact(x: Array) -> Array:
+    """The doubles of ``x`` as 40-digit numbers (exactly: every double is one), an object array."""
+    x = np.asarray(x, dtype=float)
+    out = np.empty(x.shape, dtype=object)
+    out.reshape(-1)[:] = [mp.mpf(v) for v in x.flat]
+    return out
 
 
 def exact_turn(scene: LinkageScene, driver: Driver, time: float, near: float) -> Any:
@@ -70,8 +77,8 @@ def _held(
     omega = mp.mpf(0) if rates is None else mp.mpf(float(rates.omega[0]))
     alpha = mp.mpf(0) if rates is None else mp.mpf(float(rates.alpha[0]))
     # the first point's rates about the pivot: v = omega k x r, a = alpha k x r - omega^2 r
-    v = omega * r
-    a = alpha * r + omega * omega * np.array([-r[1], r[0]], dtype=object)
+    v = r * omega
+    a = r * alpha + np.array([-r[1], r[0]], dtype=object) * (omega * omega)
     return States(
         c[None],
         np.array([turn], dtype=object),
