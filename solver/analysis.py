@@ -244,7 +244,7 @@ def solve_instant(
         exact = [
             exact_turn(scene, d, t, turn) for d, turn in zip(scene.drivers, turns, strict=True)
         ]
-        motion, residual = polish(scene, inputs, exact, order, motion)
+        motion, residual = polish(scene, plan, inputs, exact, order, motion)
     angles = {
         d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
         for d, g in zip(scene.drivers, given, strict=True)

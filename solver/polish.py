@@ -20,7 +20,7 @@ docs/ARCHITECTURE.md, "Polish at a posed angle").
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import mpmath as mp
@@ -30,9 +30,12 @@ from solver.assembly import DriverInput, Motion
 from solver.newton import ConstraintSystem, States, solve_linear, states
 from solver.rigid import Array, LinkMotion
 from solver.scene import Driver, LinkageScene
+from solver.topology import CircleSpec, DyadStep, Plan
 
 DIGITS = 40  # the arithmetic of Phi: a residual of 1e-40 L leaves cond 1e-40 L of position error
 CONVERGED = 1e-36  # residual / size: a few roundings at 40 digits, nothing left to gain
+STALLED = 1e-30  # residual / size above this: Newton-Raphson did not reach the root
+SPREAD = 1e-7  # / size: a restart's offset, above the closed form's sqrt(16 eps) near tangency
 MAX_STEPS = 30  # far from the root (a change point) each step halves the error; then 3 suffice
 
 
@@ -91,6 +94,7 @@ def _held(
 
 def polish(
     scene: LinkageScene,
+    plan: Plan,
     inputs: Sequence[DriverInput],
     turns: Sequence[Any],
     order: int,
@@ -98,7 +102,11 @@ def polish(
 ) -> tuple[Motion, float]:
     """The single-sample ``motion`` with its position polished at the drivers' 40-digit
     ``turns`` (rates from ``inputs``) and its rates solved there (J and b evaluated in 40
-    digits, rounded, solved in double); and the final residual |Phi| in metres (rounded)."""
+    digits, rounded, solved in double); and the final residual |Phi| in metres (rounded).
+
+    Where Newton-Raphson stalls (a dyad within rounding of tangency in the closed form, placed
+    on its line of centres, where the two assemblies cannot be told apart), it starts again on
+    either side along J's null vector and keeps the root on the plan's drawn branches."""
     drivers = [d.link for d in scene.drivers]
     unknown = [name for name in scene.moving_links if name not in drivers]
     if not unknown:
@@ -110,18 +118,21 @@ def polish(
             known[driver.link] = _held(scene, driver, turn, given)
         start = states(motion.links, scene)
         q = _exact(np.concatenate([np.append(start[k].c[0], start[k].theta[0]) for k in unknown]))
-        q = q[None]
-        phi, J, _ = system.evaluate(known, q)
-        residual = mp.sqrt(np.sum(phi * phi))
-        for _ in range(MAX_STEPS):
-            trial = q - solve_linear(J.astype(float), phi.astype(float))
-            trial_phi, trial_J, _ = system.evaluate(known, trial)
-            trial_residual = mp.sqrt(np.sum(trial_phi * trial_phi))
-            if not trial_residual < residual:
-                break
-            q, phi, J, residual = trial, trial_phi, trial_J, trial_residual
-            if residual < CONVERGED * scene.size:
-                break
+        q, J, residual = _newton(system, known, q[None], scene.size)
+        conditioning = motion.conditioning
+        drawn = [side for side, _ in _sides(plan, lambda link, p: scene.drawn(p), lambda _: 0)]
+        if not residual < STALLED * scene.size and drawn:  # a dyad with two branches stalled
+            null = np.linalg.svd(J[0].astype(float))[2][-1]
+            for side in (1.0, -1.0):
+                found, found_J, found_residual = _newton(
+                    system, known, q + side * SPREAD * scene.size * null, scene.size
+                )
+                at = _sides(plan, *_placing(system, known, found[0]))
+                if found_residual < STALLED * scene.size and [s for s, _ in at] == drawn:
+                    q, J, residual = found, found_J, found_residual
+                    # the closed form's tangency within rounding (conditioning 0) is resolved
+                    conditioning = np.array([min(sine for _, sine in at)])
+                    break
         qd = qdd = None
         if order >= 1:
             _, J, b = system.evaluate(known, q, order=1)
@@ -134,12 +145,83 @@ def polish(
             None if qd is None else qd.astype(float),
             None if qdd is None else qdd.astype(float),
         )
-    return _at(scene, motion, links), float(residual)
+    return _at(scene, motion, links, conditioning), float(residual)
 
 
-def _at(scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion]) -> Motion:
-    """``motion`` with the ``solved`` links, and every point of a moving link placed from its
-    link (the first link listing it)."""
+def _newton(
+    system: ConstraintSystem, known: dict[str, States], q: Array, size: float
+) -> tuple[Array, Array, Any]:
+    """q <- q - J^-1 Phi(q) (Phi in 40 digits, the step in double) until the residual stops
+    falling or is below CONVERGED x size: (q, J, |Phi|)."""
+    phi, J, _ = system.evaluate(known, q)
+    residual = mp.sqrt(np.sum(phi * phi))
+    for _ in range(MAX_STEPS):
+        trial = q - solve_linear(J.astype(float), phi.astype(float))
+        trial_phi, trial_J, _ = system.evaluate(known, trial)
+        trial_residual = mp.sqrt(np.sum(trial_phi * trial_phi))
+        if not trial_residual < residual:
+            break
+        q, phi, J, residual = trial, trial_phi, trial_J, trial_residual
+        if residual < CONVERGED * size:
+            break
+    return q, J, residual
+
+
+Where = Callable[[str, str], Any]
+
+
+def _placing(
+    system: ConstraintSystem, known: dict[str, States], q: Array
+) -> tuple[Where, Callable[[str], Any]]:
+    """Where a link's point is, and a link's turn, at the coordinates ``q`` (40 digits)."""
+
+    def pose(link: str) -> tuple[Any, Any, Any]:
+        if link in system.column:
+            k = system.column[link]
+            return q[k], q[k + 1], q[k + 2]
+        return known[link].c[0, 0], known[link].c[0, 1], known[link].theta[0]
+
+    def where(link: str, point: str) -> Any:
+        x, y, theta = pose(link)
+        d = _exact(system.scene.drawn(point)) - _exact(system.anchor0[link])
+        cos, sin = mp.cos(theta), mp.sin(theta)
+        return np.array([x + cos * d[0] - sin * d[1], y + sin * d[0] + cos * d[1]], dtype=object)
+
+    return where, lambda link: pose(link)[2]
+
+
+def _sides(plan: Plan, where: Where, turn: Callable[[str], Any]) -> list[tuple[bool, float]]:
+    """Each two-branch dyad's branch, the sign of g1 x g2 (g = X - C for a circle about C, the
+    normal of a line; it changes sign between the two intersections), and |g1 x g2| / |g1| |g2|
+    (the sine between the two gradients, 0 at a tangency)."""
+    sides = []
+    for step in plan.steps:
+        if not isinstance(step, DyadStep):
+            continue
+        circle = next((spec for spec in step.loci if isinstance(spec, CircleSpec)), None)
+        if circle is None:  # a pin in two slots: one intersection
+            continue
+        X = where(circle.link, step.point)
+        g = []
+        for spec in step.loci:
+            if isinstance(spec, CircleSpec):
+                g.append(X - where(spec.link, spec.center))
+            else:
+                cos, sin = mp.cos(turn(spec.guide)), mp.sin(turn(spec.guide))
+                w = (cos * spec.direction0[0] - sin * spec.direction0[1],
+                     sin * spec.direction0[0] + cos * spec.direction0[1])  # fmt: skip
+                g.append((-w[1], w[0]))
+        cross = g[0][0] * g[1][1] - g[0][1] * g[1][0]
+        norms = mp.sqrt((g[0][0] ** 2 + g[0][1] ** 2) * (g[1][0] ** 2 + g[1][1] ** 2))
+        sides.append((bool(cross > 0), float(abs(cross) / norms)))
+    return sides
+
+
+def _at(
+    scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion], conditioning: Array
+) -> Motion:
+    """``motion`` with the ``solved`` links and ``conditioning``, and every point of a moving
+    link placed from its link (the first link listing it)."""
     links = {**motion.links, **solved}
     ground = set(scene.links[scene.ground].points)
     points = dict(motion.points)
@@ -153,7 +235,7 @@ def _at(scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion]) -> M
         links,
         points,
         motion.margin,
-        motion.conditioning,
+        conditioning,
         motion.failures,
         motion.newton,
         motion.approaches,

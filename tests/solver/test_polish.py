@@ -12,8 +12,8 @@ The contract (as at a drawn pose): every pose whose true condition number is bel
 answered; the rates are right to 1e-9 (relative to the largest rate of their kind; alpha's scale
 adds omega^2) where cond < 1e6 and to cond x 1e-15 above; the reported condition number is within
 a factor 10 of the exact pose's; the reported position residual is below 1e-30 of the size (Phi
-is evaluated in 40 digits, solver.polish). Not yet met: a change point 1e-10 rad away (h ~ 1e-10
-L, below the rounding of the closed form's h^2), still refused (SNAPPED).
+is evaluated in 40 digits, solver.polish). A change point 1e-10 rad away (h ~ 1e-10 L) is below
+the rounding of the closed form's h^2, which snaps to 0: the polish restarts on either side.
 """
 
 from __future__ import annotations
@@ -26,7 +26,6 @@ import numpy as np
 import pytest
 
 from solver.analysis import LinkageAnalysis, analyze
-from solver.errors import SingularConfiguration
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from tests.solver.test_conditioning import (
@@ -208,19 +207,10 @@ def measure(family: str, side: int, distance: str) -> tuple[float, float, float,
     return err, bound, cond, true_cond, result.diagnostics.position_residual / scene.size
 
 
-# h = 1e-10 L: the closed form's h^2 (good to eps L^2) snaps to 0, a start on the line of
-# centres from which Newton-Raphson cannot tell the two assemblies apart: still refused.
-SNAPPED = {("four_bar_change_point", "1e-10"), ("slider_change_point", "1e-10")}
-
-
 @pytest.mark.parametrize("distance", DISTANCES)
 @pytest.mark.parametrize("side", [1, -1], ids=["plus", "minus"])
 @pytest.mark.parametrize("family", list(FAMILIES))
 def test_posed_next_to_a_singular_pose(family: str, side: int, distance: str) -> None:
-    if (family, distance) in SNAPPED:  # not yet answered (see SNAPPED): refused as before
-        with pytest.raises(SingularConfiguration):
-            measure(family, side, distance)
-        return
     err, bound, cond, true_cond, residual = measure(family, side, distance)
     assert true_cond < 1e12
     assert true_cond / 10.0 <= cond <= 10.0 * true_cond, (cond, true_cond)
