@@ -7,7 +7,9 @@ taken as exact (``angle_deg`` converted to radians and the drawn angle subtracte
 too); the step is solved in double, so each step gains about -log10(cond eps) digits near the
 root (far from it, next to a change point, it halves the error), until the residual stops
 falling. The velocity and acceleration equations J qdot = b_v, J qddot = b_a are then evaluated
-at the 40-digit position and solved in double.
+at the 40-digit position and solved in double. Where the closed form snapped a dyad to
+tangency (its start on the line of centres, where Newton-Raphson stalls), it restarts on either
+side and keeps the root on the drawn branches.
 
 Why 40 digits and not the 80-bit long double: next to a change point the position error is
 cond x the residual, which the rate equations amplify by cond again; with a residual of
