@@ -21,8 +21,8 @@ from itertools import pairwise
 import numpy as np
 from scipy.optimize import brentq
 
-from solver.analysis import driver_inputs_over_time
 from solver.assembly import assemble, require_feasible
+from solver.drivers import driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded, NoEvent
 from solver.laws import parse_time_law
 from solver.relative_motion import moving_point_motion, path_geometry

@@ -20,24 +20,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.analysis import (
-    SlidingJoint,
-    drawn_angle,
-    driver_input,
-    driver_inputs_over_time,
-    link_poles,
-    normalise_quantities,
-    required_order,
-    sliding_joints,
-)
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.continuation import Continuation
+from solver.drivers import drawn_angle, driver_input, driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded
 from solver.newton import newton_tolerance
-from solver.poles import Poles
+from solver.poles import Poles, link_poles
+from solver.quantities import normalise_quantities, required_order
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
 from solver.scene import LinkageScene
+from solver.sliding_joints import SlidingJoint, sliding_joints
 from solver.topology import Plan, build_plan
 
 MAX_SAMPLES = 100_000

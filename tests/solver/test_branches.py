@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 import solver
-from solver.analysis import analyze
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweep import Sweep, sweep

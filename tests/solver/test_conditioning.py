@@ -22,8 +22,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.analysis import SINGULAR_CONDITION, analyze
 from solver.errors import SingularConfiguration
+from solver.instant import SINGULAR_CONDITION, analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 

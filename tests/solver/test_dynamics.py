@@ -11,9 +11,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.analysis import analyze
 from solver.dynamics.analysis import linkage_dynamics
 from solver.errors import InvalidExpression
+from solver.instant import analyze
 from solver.laws import parse_state_expression, parse_time_law
 from solver.rigid import cross
 from solver.scene import parse_linkage

@@ -29,8 +29,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.analysis import SINGULAR_CONDITION, LinkageAnalysis, analyze
 from solver.errors import SingularConfiguration
+from solver.instant import SINGULAR_CONDITION, LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweep import sweep
 

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from solver import continuation
-from solver.analysis import analyze
 from solver.assembly import DriverInput, assemble
+from solver.instant import analyze
 from solver.newton import ConstraintSystem, KnownPoses
 from solver.presets import build_preset
 from solver.rigid import cross

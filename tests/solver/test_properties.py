@@ -28,7 +28,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver.analysis import LinkageAnalysis, analyze
+from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweep import sweep
 from tests.linkage_strategies import FAMILIES, linkages

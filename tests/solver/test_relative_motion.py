@@ -31,8 +31,8 @@ import pytest
 from hypothesis import HealthCheck, assume, given, reject, settings
 from hypothesis import strategies as st
 
-from solver.analysis import analyze
 from solver.errors import InvalidScene, NotAssemblable, SingularConfiguration
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.relative_motion import MovingPointMotion
 from solver.scene import LinkageScene, parse_linkage

@@ -186,7 +186,7 @@ def test_every_mistake_names_an_existing_step(name: str, solution: Solution) -> 
 
 def test_vector_mistakes_are_all_placed() -> None:
     """No mistake of the vector method is lost by placing it (each finds its step)."""
-    from solver.analysis import analyze
+    from solver.instant import analyze
     from solver.steps.format import Formatter
     from solver.steps.linkage import LinkageContext, unit_scales
     from solver.steps.mistakes import linkage_mistakes

@@ -29,9 +29,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.errors import InvalidScene
+from solver.instant import LinkageAnalysis
 from solver.presets import PRESETS, build_preset
+from solver.quantities import QUANTITIES
 from solver.results import analysis_body, spatial_body
 from solver.scene import parse_linkage
 from solver.spatial import parse_spatial_chain

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from solver.analysis import analyze
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from solver.sweep import sweep, sweep_time
