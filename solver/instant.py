@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver import newton
+from solver import constraints, newton
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.continuation import Continuation
 from solver.drivers import drawn_angle, driver_input
@@ -166,7 +166,7 @@ def analyze(
     motion, angles = solve_instant(scene, plan, order, newton_groups=groups)
     condition = None
     if order >= 1:
-        condition = newton.velocity_condition_number(scene, motion.links, 0)
+        condition = constraints.velocity_condition_number(scene, motion.links, 0)
         if condition > SINGULAR_CONDITION or float(motion.conditioning[0]) == 0.0:
             where = ", ".join(f"{k} at {v:.6g} deg" for k, v in angles.items())
             raise SingularConfiguration(

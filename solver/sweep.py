@@ -143,7 +143,9 @@ class _Driven:
         (a limit found so lies inside the tolerance band and can be posed again)."""
         inputs = self.inputs(np.array([turn]))
         motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
-        return bool(motion.margin[0] >= 0.0) if strictly else bool(motion.feasible[0])
+        if strictly:
+            return bool(motion.margin[0] >= 0.0 and motion.converged[0])
+        return bool(motion.feasible[0])
 
 
 def _limit(driven: _Driven, inside: float, outside: float) -> float:

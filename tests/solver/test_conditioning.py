@@ -198,7 +198,7 @@ def exact_condition(doc: Doc) -> float:
     """The solver's condition number (velocity system, rotation columns scaled by the size) of
     the same pose, its Jacobian's singular values computed in 50 digits."""
     from solver.assembly import assemble
-    from solver.newton import ConstraintSystem, KnownPoses
+    from solver.constraints import ConstraintSystem, KnownPoses
     from solver.sweep import _Driven
     from solver.topology import build_plan
 

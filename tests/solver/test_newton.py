@@ -12,8 +12,8 @@ import pytest
 
 from solver import continuation
 from solver.assembly import DriverInput, assemble
+from solver.constraints import ConstraintSystem, KnownPoses
 from solver.instant import analyze
-from solver.newton import ConstraintSystem, KnownPoses
 from solver.presets import build_preset
 from solver.rigid import cross
 from solver.scene import parse_linkage

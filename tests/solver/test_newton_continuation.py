@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
+from solver.constraints import ConstraintSystem, States
 from solver.continuation import Branch
 from solver.errors import NotAssemblable
 from solver.instant import analyze
-from solver.newton import ConstraintSystem, States
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweep import Sweep, sweep
 from tests.linkage_strategies import condition_number, six_bars
