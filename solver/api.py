@@ -35,8 +35,8 @@ from solver.results import (
 )
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
-from solver.sweep import sweep as sweep_linkage
-from solver.sweep import sweep_time as sweep_linkage_time
+from solver.sweeps import sweep as sweep_linkage
+from solver.sweeps import sweep_time as sweep_linkage_time
 
 Scene = LinkageScene | SpatialChain
 

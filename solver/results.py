@@ -29,7 +29,7 @@ from solver.scene import LinkageScene
 from solver.sliding_joints import SlidingJoint
 from solver.spatial import SpatialAnalysis
 from solver.steps import Solution
-from solver.sweep import CloseApproach, Sweep, TimeSweep
+from solver.sweeps import CloseApproach, Sweep, TimeSweep
 
 JSON = dict[str, Any]
 

@@ -22,7 +22,7 @@ from solver.instant import LinkageAnalysis
 from solver.quantities import DYNAMIC_QUANTITIES
 from solver.rigid import Array
 from solver.scene import LinkageScene
-from solver.sweep import Sweep, TimeSweep
+from solver.sweeps import Sweep, TimeSweep
 
 JSON = dict[str, Any]
 Convert = Callable[[Array], Any]

@@ -27,7 +27,7 @@ import solver
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import Sweep, sweep
+from solver.sweeps import Sweep, sweep
 
 SAMPLE_COUNTS = (36, 360, 3600, 36000)
 EPSILONS = (1e-3, 1e-6, 1e-9, 1e-12)
@@ -417,7 +417,7 @@ def test_margin_rate_is_the_derivative_of_the_margin(kind: str) -> None:
 def test_time_sweep_warns_too() -> None:
     """A sweep over time (crank at 1 rad/s for one turn) finds the same close approach: 1e-4 m
     at crank 180 deg."""
-    from solver.sweep import sweep_time
+    from solver.sweeps import sweep_time
 
     scene = parse_linkage(_near_crank_rocker(1e-4))
     result = sweep_time(scene, 0.0, 2.0 * math.pi, 100, ["position"])

@@ -199,7 +199,7 @@ def exact_condition(doc: Doc) -> float:
     the same pose, its Jacobian's singular values computed in 50 digits."""
     from solver.assembly import assemble
     from solver.constraints import ConstraintSystem, KnownPoses
-    from solver.sweep import _Driven
+    from solver.sweeps import _Driven
     from solver.topology import build_plan
 
     scene = parse_linkage(doc)

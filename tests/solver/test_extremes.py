@@ -32,7 +32,7 @@ import pytest
 from solver.errors import SingularConfiguration
 from solver.instant import SINGULAR_CONDITION, LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep
+from solver.sweeps import sweep
 
 Doc = dict[str, Any]
 EPS = float(np.finfo(float).eps)

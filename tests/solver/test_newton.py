@@ -18,7 +18,7 @@ from solver.presets import build_preset
 from solver.rigid import cross
 from solver.scene import parse_linkage
 from solver.steps import solve
-from solver.sweep import sweep
+from solver.sweeps import sweep
 from solver.topology import (
     DriverStep,
     DyadStep,

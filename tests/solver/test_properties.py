@@ -30,7 +30,7 @@ from hypothesis import strategies as st
 
 from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep
+from solver.sweeps import sweep
 from tests.linkage_strategies import FAMILIES, linkages
 
 Doc = dict[str, Any]

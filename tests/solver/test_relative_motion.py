@@ -36,7 +36,7 @@ from solver.instant import analyze
 from solver.presets import build_preset
 from solver.relative_motion import MovingPointMotion
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep_time
+from solver.sweeps import sweep_time
 from tests.strategies import assemblable_presets
 
 CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"

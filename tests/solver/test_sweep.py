@@ -10,7 +10,7 @@ import numpy as np
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
-from solver.sweep import sweep, sweep_time
+from solver.sweeps import sweep, sweep_time
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
 ALL = ["position", "velocity", "acceleration", "poles", "components"]
