@@ -74,11 +74,11 @@ class Approach:
 class Motion:
     """The solved state of a linkage over N samples.
 
-    ``conditioning`` is the smallest sine of the angle between the two constraint gradients of any
-    group (0 at a dead centre); ``margin`` the smallest length margin m / size of any two-branch
-    group (negative where a group does not close); ``converged`` false where a Newton group's
-    Newton-Raphson did not converge; ``group_margins`` each two-branch group's m (metres), by
-    the point (or slot) it locates.
+    ``gradient_sine`` is the smallest sine of the angle between the two constraint gradients of
+    any group (0 at a dead centre); ``margin`` the smallest length margin m / size of any
+    two-branch group (negative where a group does not close); ``converged`` false where a Newton
+    group's Newton-Raphson did not converge; ``group_margins`` each two-branch group's m (metres),
+    by the point (or slot) it locates.
     With continuation, ``approaches`` lists every close approach found between samples: branch
     switches (the branches meet), near misses, and windows where the linkage cannot close.
     """
@@ -87,7 +87,7 @@ class Motion:
     points: dict[str, PointMotion]
     margin: Array
     converged: Array
-    conditioning: Array
+    gradient_sine: Array
     failures: list[str] = field(default_factory=list)
     newton: list[newton.NewtonReport] = field(default_factory=list)
     approaches: list[Approach] = field(default_factory=list)
@@ -118,7 +118,7 @@ class Motion:
             {k: point(m) for k, m in self.points.items()},
             self.margin[part],
             self.converged[part],
-            self.conditioning[part],
+            self.gradient_sine[part],
             self.failures,
             self.newton,
             self.approaches,
@@ -195,7 +195,7 @@ class _Assembler:
         self.points: dict[str, PointMotion] = {}
         self.margin = np.ones(self.samples)
         self.converged = np.ones(self.samples, dtype=bool)
-        self.conditioning = np.ones(self.samples)
+        self.gradient_sine = np.ones(self.samples)
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
         self.steps: tuple[Step, ...] = ()
@@ -297,8 +297,8 @@ class _Assembler:
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
         X[self.at_drawn] = self.scene.drawn(step.point)
-        self.conditioning = np.minimum(
-            self.conditioning, dyads.relative_determinant(first, second, X)
+        self.gradient_sine = np.minimum(
+            self.gradient_sine, dyads.relative_determinant(first, second, X)
         )
         self.points[step.point] = dyads.point_motion(first, second, X, self.order)
 
@@ -320,7 +320,7 @@ class _Assembler:
         solution = dyads.slotted_lever(
             pivot, pin, step.offset, sign, self.order, (self.at_drawn, drawn)
         )
-        self.conditioning = np.minimum(self.conditioning, solution.conditioning)
+        self.gradient_sine = np.minimum(self.gradient_sine, solution.gradient_sine)
         theta = solution.beta - drawn
         self.know(
             step.link,
@@ -374,7 +374,7 @@ class _Assembler:
             self.points,
             self.margin,
             self.converged,
-            self.conditioning,
+            self.gradient_sine,
             self.failures,
             self.reports,
             self.approaches,

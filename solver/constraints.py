@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.rigid import Array, LinkMotion, PointMotion
+from solver.rigid import Array, LinkMotion, PointMotion, dot, perp, rotate_by
 from solver.scene import LinkageScene
 
 
@@ -53,25 +53,6 @@ class States:
     omega: Array  # (M,)
     a: Array  # (M, 2)
     alpha: Array  # (M,)
-
-
-def _rotate(d: Array, cos: Array, sin: Array) -> Array:
-    """R(theta) d for (M, K) angles and (K, 2) drawn vectors: (M, K, 2)."""
-    out = np.empty((*cos.shape, 2))
-    out[..., 0] = cos * d[:, 0] - sin * d[:, 1]
-    out[..., 1] = sin * d[:, 0] + cos * d[:, 1]
-    return out
-
-
-def _kperp(r: Array) -> Array:
-    out = np.empty_like(r)
-    out[..., 0] = -r[..., 1]
-    out[..., 1] = r[..., 0]
-    return out
-
-
-def _dot(a: Array, b: Array) -> Array:
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
 class ConstraintSystem:
@@ -212,14 +193,14 @@ class ConstraintSystem:
 
         def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
             """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
-            r = _rotate(d, cos[:, link], sin[:, link])
+            r = rotate_by(d, cos[:, link], sin[:, link])
             rate = None
             if order == 1:
-                rate = v[:, link] + omega[:, link, None] * _kperp(r)
+                rate = v[:, link] + omega[:, link, None] * perp(r)
             elif order == 2:
                 rate = (
                     a[:, link]
-                    + alpha[:, link, None] * _kperp(r)
+                    + alpha[:, link, None] * perp(r)
                     - (omega[:, link] ** 2)[..., None] * r
                 )
             return c[:, link] + r, r, rate
@@ -236,28 +217,28 @@ class ConstraintSystem:
                 b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
         if self.sld.size:
             rows, g, f, _ = self.sld.T
-            w = _rotate(self.sld_d[:, 2], cos[:, g], sin[:, g])
-            n = _kperp(w)
+            w = rotate_by(self.sld_d[:, 2], cos[:, g], sin[:, g])
+            n = perp(w)
             X_f, r_f, rate_f = side(f, self.sld_d[:, 1])
             X_g, r_g, rate_g = side(g, self.sld_d[:, 0])
             d = X_f - X_g
-            wd = _dot(w, d)
-            phi[:, rows] = _dot(n, d)
+            wd = dot(w, d)
+            phi[:, rows] = dot(n, d)
             # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
             # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
-            theta_f = _dot(n, _kperp(r_f))
-            theta_g = -_dot(n, _kperp(r_g)) - wd
+            theta_f = dot(n, perp(r_f))
+            theta_g = -dot(n, perp(r_g)) - wd
             mf, mg = self.sld_mask
             entries += [n[:, mf, 0], n[:, mf, 1], theta_f[:, mf]]
             entries += [-n[:, mg, 0], -n[:, mg, 1], theta_g[:, mg]]
             if order == 1 and rate_f is not None and rate_g is not None:
-                b[:, rows] = _dot(n, rate_g - rate_f) + omega[:, g] * wd
+                b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
             elif order == 2 and rate_f is not None and rate_g is not None:
-                v_f = v[:, f] + omega[:, f, None] * _kperp(r_f)
-                v_q = v[:, g] + omega[:, g, None] * _kperp(r_g)
+                v_f = v[:, f] + omega[:, f, None] * perp(r_f)
+                v_q = v[:, g] + omega[:, g, None] * perp(r_g)
                 b[:, rows] = (
-                    _dot(n, rate_g - rate_f)
-                    + 2.0 * omega[:, g] * _dot(w, v_f - v_q)
+                    dot(n, rate_g - rate_f)
+                    + 2.0 * omega[:, g] * dot(w, v_f - v_q)
                     + alpha[:, g] * wd
                 )
         if self.flat.size:

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.assembly import Motion
-from solver.rigid import Array
+from solver.rigid import Array, cross
 from solver.scene import LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan
 
@@ -47,7 +47,7 @@ def grashof_class(ground: float, crank: float, coupler: float, rocker: float) ->
 def transmission_angle(B: Array, C: Array, D: Array) -> float:
     """The angle BCD between coupler CB and rocker CD at their joint C (0..pi)."""
     u, w = B - C, D - C
-    return float(np.arctan2(abs(u[0] * w[1] - u[1] * w[0]), u @ w))
+    return float(np.arctan2(abs(cross(u, w)), u @ w))
 
 
 def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[FourBarLoop]:

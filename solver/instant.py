@@ -31,7 +31,7 @@ from solver.sliding_joints import SlidingJoint, sliding_joints
 from solver.topology import Plan, build_plan
 
 # cond(J) above this: the velocity equations are singular to within rounding (a dead centre).
-SINGULAR_CONDITION = 1e12
+MAX_CONDITION_NUMBER = 1e12
 
 
 @dataclass(frozen=True)
@@ -167,7 +167,7 @@ def analyze(
     condition = None
     if order >= 1:
         condition = constraints.velocity_condition_number(scene, motion.links, 0)
-        if condition > SINGULAR_CONDITION or float(motion.conditioning[0]) == 0.0:
+        if condition > MAX_CONDITION_NUMBER or float(motion.gradient_sine[0]) == 0.0:
             where = ", ".join(f"{k} at {v:.6g} deg" for k, v in angles.items())
             raise SingularConfiguration(
                 f"dead centre{' with ' + where if where else ''}: the velocity equations are "

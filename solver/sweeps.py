@@ -39,7 +39,7 @@ PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 # linkage cannot close between two samples is found by the closest-approach search of assembly.
 SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
-SINGULAR_CONDITIONING = 1e-12  # sine of the angle between a group's constraint gradients
+MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
 
 
 @dataclass(frozen=True)
@@ -267,7 +267,7 @@ def sweep(
         motion, turns = motion.cut(slice(0, samples)), turns[:samples]
     require_feasible(motion, "during the sweep")
     singular = (
-        np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING)
+        np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
         if order
         else np.array([], dtype=int)
     )

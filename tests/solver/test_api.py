@@ -27,7 +27,7 @@ from solver.spatial import SpatialChain
 from tests.solver.test_branches import _near_crank_rocker
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ROOT / "tests" / "reference" / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 WEB = ("fastapi", "pydantic", "starlette", "httpx", "orjson", "uvicorn")
 
 

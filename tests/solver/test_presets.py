@@ -20,7 +20,7 @@ from solver.errors import InvalidScene, NotAssemblable
 from solver.presets import COINCIDENT, PRESETS, build_preset
 from tests.strategies import assemblable_presets
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 EXPECTED_NAMES = [
     "four_bar",
     "slider_crank",

@@ -43,7 +43,7 @@ from tests.strategies import assemblable_presets
 
 ROOT = Path(__file__).resolve().parents[2]
 REFERENCE = ROOT / "tests" / "reference"
-EXAMPLES = REFERENCE / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 KATEX_CHECK = ROOT / "tests" / "katex_check.mjs"
 CASES = json.loads((REFERENCE / "seed-cases.json").read_text())["cases"]
 RTOL = 1e-9
