@@ -80,7 +80,8 @@ class ConstraintSystem:
         )
         rows = 0
         revolute: list[tuple[int, int, int]] = []
-        sliding: list[tuple[int, int, int, int]] = []
+        sliding: list[tuple[int, int, int]] = []  # (slot row, guide, follower)
+        prismatic: list[tuple[int, int, int, int]] = []  # and the row of the equal angles
         offsets: list[tuple[Array, Array]] = []
         slot_offsets: list[tuple[Array, Array, Array]] = []
         for joint in joints:
@@ -93,19 +94,21 @@ class ConstraintSystem:
                 rows += 2
                 continue
             assert joint.axis is not None
-            prismatic = rows + 1 if joint.type == "prismatic" else -1
-            sliding.append((rows, i, j, prismatic))
+            sliding.append((rows, i, j))
             slot_offsets.append((d_i, d_j, np.array(joint.axis, dtype=float)))
-            rows += 2 if joint.type == "prismatic" else 1
+            if joint.type == "prismatic":
+                prismatic.append((rows, i, j, rows + 1))
+                rows += 1
+            rows += 1
         self.angle_rows = np.arange(rows, rows + len(self.angles))
         self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
         self.rows = rows + len(self.angles)
         self.n = 3 * len(self.unknown)
         self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
         self.rev_d = np.array(offsets, dtype=float).reshape(-1, 2, 2)
-        self.sld = np.array(sliding, dtype=int).reshape(-1, 4)
+        self.sld = np.array(sliding, dtype=int).reshape(-1, 3)
         self.sld_d = np.array(slot_offsets, dtype=float).reshape(-1, 3, 2)
-        self.prismatic = self.sld[self.sld[:, 3] >= 0]
+        self.prismatic = np.array(prismatic, dtype=int).reshape(-1, 4)
         # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
         self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
         unit = np.zeros((self.rows, self.n))
@@ -132,7 +135,7 @@ class ConstraintSystem:
         for link, mask in ((left, self.rev_mask[0]), (right, self.rev_mask[1])):
             for offset in (0, 1):
                 flat.append((first[mask] + offset) * n + col[link][mask] + 2)
-        slot_rows, g, f, _ = self.sld.T
+        slot_rows, g, f = self.sld.T
         self.sld_mask = (col[f] >= 0, col[g] >= 0)
         for link, mask in ((f, self.sld_mask[0]), (g, self.sld_mask[1])):
             for offset in (0, 1, 2):
@@ -216,7 +219,7 @@ class ConstraintSystem:
             if rate_i is not None and rate_j is not None:
                 b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
         if self.sld.size:
-            rows, g, f, _ = self.sld.T
+            rows, g, f = self.sld.T
             w = rotate_by(self.sld_d[:, 2], cos[:, g], sin[:, g])
             n = perp(w)
             X_f, r_f, rate_f = side(f, self.sld_d[:, 1])

@@ -1,4 +1,4 @@
-"""Tests of solver.relative_motion through solver.analysis: a point M moving along a path fixed in
+"""Tests of solver.relative_motion through solver.instant: a point M moving along a path fixed in
 a moving link (composite motion, scene-v1 ``moving_points``; issue 3, "Prove it").
 
 Sources of the expected values:
