@@ -22,6 +22,7 @@ docs/ARCHITECTURE.md, "Polish at a posed angle").
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -29,7 +30,7 @@ import mpmath as mp
 import numpy as np
 
 from solver.assembly import DriverInput, Motion
-from solver.newton import ConstraintSystem, States, solve_linear, states
+from solver.constraints import ConstraintSystem, States, solve_linear, states
 from solver.rigid import Array, LinkMotion
 from solver.scene import Driver, LinkageScene
 from solver.topology import CircleSpec, DyadStep, Plan
@@ -121,7 +122,7 @@ def polish(
         start = states(motion.links, scene)
         q = _exact(np.concatenate([np.append(start[k].c[0], start[k].theta[0]) for k in unknown]))
         q, J, residual = _newton(system, known, q[None], scene.size)
-        conditioning = motion.conditioning
+        gradient_sine = motion.gradient_sine
         drawn = [side for side, _ in _sides(plan, lambda link, p: scene.drawn(p), lambda _: 0)]
         if not residual < STALLED * scene.size and drawn:  # a dyad with two branches stalled
             null = np.linalg.svd(J[0].astype(float))[2][-1]
@@ -132,8 +133,8 @@ def polish(
                 at = _sides(plan, *_placing(system, known, found[0]))
                 if found_residual < STALLED * scene.size and [s for s, _ in at] == drawn:
                     q, J, residual = found, found_J, found_residual
-                    # the closed form's tangency within rounding (conditioning 0) is resolved
-                    conditioning = np.array([min(sine for _, sine in at)])
+                    # the closed form's tangency within rounding (gradient_sine 0) is resolved
+                    gradient_sine = np.array([min(sine for _, sine in at)])
                     break
         qd = qdd = None
         if order >= 1:
@@ -147,7 +148,7 @@ def polish(
             None if qd is None else qd.astype(float),
             None if qdd is None else qdd.astype(float),
         )
-    return _at(scene, motion, links, conditioning), float(residual)
+    return _at(scene, motion, links, gradient_sine), float(residual)
 
 
 def _newton(
@@ -220,9 +221,9 @@ def _sides(plan: Plan, where: Where, turn: Callable[[str], Any]) -> list[tuple[b
 
 
 def _at(
-    scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion], conditioning: Array
+    scene: LinkageScene, motion: Motion, solved: dict[str, LinkMotion], gradient_sine: Array
 ) -> Motion:
-    """``motion`` with the ``solved`` links and ``conditioning``, and every point of a moving
+    """``motion`` with the ``solved`` links and ``gradient_sine``, and every point of a moving
     link placed from its link (the first link listing it)."""
     links = {**motion.links, **solved}
     ground = set(scene.links[scene.ground].points)
@@ -233,14 +234,4 @@ def _at(
             if p not in ground and p not in placed:
                 points[p] = links[name].point(scene.drawn(p))
                 placed.add(p)
-    return Motion(
-        links,
-        points,
-        motion.margin,
-        conditioning,
-        motion.failures,
-        motion.newton,
-        motion.approaches,
-        motion.size,
-        motion.group_margins,
-    )
+    return dataclasses.replace(motion, links=links, points=points, gradient_sine=gradient_sine)

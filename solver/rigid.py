@@ -25,7 +25,7 @@ def dot(a: Array, b: Array) -> Array:
 
 def perp(a: Array) -> Array:
     """k x a: the vector a turned 90 degrees counter-clockwise."""
-    out = np.empty_like(a, dtype=float)
+    out = np.empty_like(a, dtype=np.result_type(a, float))  # object (40 digits) stays object
     out[..., 0] = -a[..., 1]
     out[..., 1] = a[..., 0]
     return out
@@ -33,11 +33,17 @@ def perp(a: Array) -> Array:
 
 def rotate(vector: Array, angle: Array) -> Array:
     """R(angle) vector for each sample: ``vector`` is (2,) or (N, 2), ``angle`` (N,)."""
-    c, s = np.cos(angle), np.sin(angle)
+    return rotate_by(vector, np.cos(angle), np.sin(angle))
+
+
+def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
+    """R vector = (cos x - sin y, sin x + cos y), the angle's cosine and sine given (broadcast:
+    (M, K) angles and (K, 2) vectors give (M, K, 2))."""
     x, y = vector[..., 0], vector[..., 1]
-    out = np.empty((*np.broadcast_shapes(c.shape, x.shape), 2))
-    out[..., 0] = c * x - s * y
-    out[..., 1] = s * x + c * y
+    kind = np.result_type(cos, x, float)  # object (40 digits, solver.polish) stays object
+    out = np.empty((*np.broadcast_shapes(cos.shape, x.shape), 2), dtype=kind)
+    out[..., 0] = cos * x - sin * y
+    out[..., 1] = sin * x + cos * y
     return out
 
 

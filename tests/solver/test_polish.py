@@ -25,7 +25,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.analysis import LinkageAnalysis, analyze
+from solver.instant import LinkageAnalysis, analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from tests.solver.test_conditioning import (
