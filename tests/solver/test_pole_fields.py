@@ -134,6 +134,10 @@ def test_instant_centre_thresholds_are_relative_to_speeds_and_size(size: float) 
     assert moving.links == ("i", "j") and moving.direction is not None
     turning = instant_centre("i", V, 2.0 + 1e-8 * motion / size, "j", V, 2.0, size)
     assert turning.links == ("i", "j") and turning.position is not None
+    # Two translating links (omega = 0): the reference is |V_i| + |V_j| alone.
+    sliding = np.array([3.0, -1.0]) * size
+    same = instant_centre("i", sliding, 0.0, "j", sliding * (1 + 1e-12), 0.0, size)
+    assert same.position is None and same.direction is None
     about_origin = instant_centre("i", np.zeros(2), 3.0, "j", np.zeros(2), -1.0, size)
     assert about_origin.position is not None
     np.testing.assert_allclose(about_origin.position, [0.0, 0.0], atol=1e-15)
