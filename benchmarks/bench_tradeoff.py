@@ -45,7 +45,7 @@ from benchmarks.bench_kinematics import SEED_004, Budget, closed_form, repeated,
 from benchmarks.bench_newton import FULL_TURN, reference_error  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
-from solver.sweep import sweep  # noqa: E402
+from solver.sweeps import sweep  # noqa: E402
 from solver.topology import DriverStep, NewtonStep, Plan, build_plan  # noqa: E402
 
 DOCS = ROOT / "docs"
@@ -169,7 +169,7 @@ def newton_plan(scene: LinkageScene) -> Plan:
 @contextmanager
 def forced_newton() -> Iterator[None]:
     """Sweeps in this block solve the closed-form groups by Newton-Raphson instead."""
-    with mock.patch.object(importlib.import_module("solver.sweep"), "build_plan", newton_plan):
+    with mock.patch.object(importlib.import_module("solver.sweeps"), "build_plan", newton_plan):
         yield
 
 

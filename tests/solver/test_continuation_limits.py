@@ -16,11 +16,11 @@ import re
 import pytest
 
 from benchmarks.bench_newton import FULL_TURN
-from solver.analysis import analyze
 from solver.continuation import Continuation
 from solver.errors import NotAssemblable
+from solver.instant import analyze
 from solver.scene import parse_linkage
-from solver.sweep import sweep
+from solver.sweeps import sweep
 from tests.solver.test_newton import TRIAD, with_angle
 
 DRAWN = math.atan2(0.2, 0.3)  # the crank O-A of TRIAD as drawn

@@ -15,7 +15,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver.poles import acceleration_poles, grashof_class, instant_centre, velocity_poles
+from solver.four_bar import grashof_class
+from solver.instant_centres import instant_centre
+from solver.poles import acceleration_poles, velocity_poles
 from solver.rigid import perp
 
 RNG = np.random.default_rng(8)
