@@ -16,6 +16,28 @@ const WIDTH = 1000;
 const MARGIN = 70;
 const BLOCK = [30, 18]; // slider block, px along and across the slot
 
+/**
+ * How the drawing fits a track into the viewBox, WIDTH wide: its box (the extent of every position
+ * plus 12% room for arrows and labels), k in viewBox px per metre, the offsets that centre it.
+ */
+function fitDrawing(track) {
+  const [x0, y0, x1, y1] = extent(track);
+  const dx = Math.max(x1 - x0, 1e-6);
+  const dy = Math.max(y1 - y0, 1e-6);
+  const size = Math.max(dx, dy);
+  // Room for arrows and labels around the mechanism.
+  const pad = size * 0.12;
+  const box = [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
+  const w = box[2] - box[0];
+  const h = box[3] - box[1];
+  const height = Math.min(Math.max((WIDTH * h) / w, WIDTH * 0.5), WIDTH * 0.9);
+  const k = Math.min((WIDTH - 2 * MARGIN) / w, (height - 2 * MARGIN) / h);
+  // Centre the drawing in the viewBox.
+  const ox = (WIDTH - k * w) / 2;
+  const oy = (height - k * h) / 2;
+  return { box, k, ox, oy, height, size };
+}
+
 export class LinkageView {
   /**
    * @param {SVGSVGElement} svg
@@ -61,23 +83,20 @@ export class LinkageView {
 
   // ---- geometry of the picture -------------------------------------------------------------
 
+  /**
+   * Screen pixels per metre of the drawing of `track`: the SVG is as wide as its box and as tall
+   * as the viewBox's proportions allow within its max-height (viewBox px where it is hidden).
+   */
+  pixelsPerMetre(track) {
+    const fit = fitDrawing(track);
+    const width = this.svg.getBoundingClientRect().width;
+    const tallest = parseFloat(getComputedStyle(this.svg).maxHeight) || Infinity;
+    return width ? fit.k * Math.min(width / WIDTH, tallest / fit.height) : fit.k;
+  }
+
   computeBox() {
-    const [x0, y0, x1, y1] = extent(this.track);
-    const dx = Math.max(x1 - x0, 1e-6);
-    const dy = Math.max(y1 - y0, 1e-6);
-    const size = Math.max(dx, dy);
-    // Room for arrows and labels around the mechanism.
-    const pad = size * 0.12;
-    const box = [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
-    const w = box[2] - box[0];
-    const h = box[3] - box[1];
-    const height = Math.min(Math.max((WIDTH * h) / w, WIDTH * 0.5), WIDTH * 0.9);
-    const k = Math.min((WIDTH - 2 * MARGIN) / w, (height - 2 * MARGIN) / h);
-    // Centre the drawing in the viewBox.
-    const ox = (WIDTH - k * w) / 2;
-    const oy = (height - k * h) / 2;
-    this.map = { box, k, ox, oy, height, size };
-    this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${Math.round(height)}`);
+    this.map = fitDrawing(this.track);
+    this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${Math.round(this.map.height)}`);
   }
 
   /** World (m, y up) to viewBox (px, y down). */

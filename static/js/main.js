@@ -14,7 +14,7 @@ import { renderPlots, moveCursor, available, quantityChoices } from './plots.js'
 import { cycleOrder, allSeries, xAxes, transmissionLoops } from './series.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { readHash, writeHash } from './share.js';
-import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentSources } from './track.js';
+import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentSources, samplesFor } from './track.js';
 import * as S from './scene.js';
 import { fmt, show } from './units.js';
 import { plotlyReady, katexReady } from './vendor.js';
@@ -24,7 +24,9 @@ import { renderMagnitudes } from './magnitudes.js';
 import { Editor } from './editor.js';
 import { DynamicsPanel } from './dynamics.js';
 
-const SAMPLES = 241; // 1.5 degrees apart over a revolution: smooth at any playback speed
+// The least samples per revolution (1.5 deg apart: smooth cycle plots, the dynamics' cycle means);
+// more where the drawing needs them (fetchTrack).
+const SAMPLES = 241;
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
 const DEBOUNCE_MS = 250; // analysis after the last slider/drag movement
 const QUANTITIES = ['position', 'velocity', 'acceleration'];
@@ -439,20 +441,31 @@ class App {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
     // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
     const quantities = timeDriven ? [...QUANTITIES, 'components'] : QUANTITIES;
+    // Samples per revolution: the fewest whose interpolation stays within half a pixel of the
+    // drawing (track.samplesFor), at least SAMPLES; a sharp turn the first sweep resolved only
+    // partly asks again (at most twice more).
+    const sweepFollowingTheDrawing = async (target) => {
+      let body = await api.sweep(target, SAMPLES, quantities, range);
+      let track = trackFromSweep(body);
+      for (let round = 0; round < 2; round++) {
+        const n = samplesFor(track, this.linkage.pixelsPerMetre(track), { least: SAMPLES });
+        if (n <= track.n) break;
+        body = await api.sweep(target, n, quantities, range);
+        track = trackFromSweep(body);
+      }
+      this.warnings(body.warnings);
+      return track;
+    };
     if (!timeDriven && scene.drivers?.length) {
       // A crank that turns fully is swept from 0 deg, so the samples (plots, CSV) fall on
       // round angles; one that cannot be assembled at 0 deg is swept from its drawn pose.
       try {
-        const body = await api.sweep(S.sceneAt(scene, 'angle', 0), SAMPLES, quantities);
-        this.warnings(body.warnings);
-        return trackFromSweep(body);
+        return await sweepFollowingTheDrawing(S.sceneAt(scene, 'angle', 0));
       } catch (err) {
         if (err.code === 'network') throw err;
       }
     }
-    const body = await api.sweep(scene, SAMPLES, quantities, range);
-    this.warnings(body.warnings);
-    return trackFromSweep(body);
+    return sweepFollowingTheDrawing(scene);
   }
 
   commitPlanar(scene, track, note, instant, keepChoices) {
@@ -505,7 +518,7 @@ class App {
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
     this.drawFrame();
     this.drawPlots();
-    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units, SAMPLES).then(() => this.drawFrame()));
+    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
     this.dirty = true;
     this.scheduleAnalysis(0);
     this.saveHash();

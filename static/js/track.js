@@ -124,6 +124,28 @@ export function indexOfValue(track, value) {
   return a + (d === 0 ? 0 : (target - v[a]) / d);
 }
 
+/**
+ * The fewest samples for which the animation's linear interpolation strays at most `px` screen
+ * pixels from the true path, at `pxPerMetre`: between samples h apart a smooth path is missed by
+ * at most h²/8 |p''|, i.e. |p[i+1] − 2p[i] + p[i−1]|/8, which falls as 1/n² (benchmarks/
+ * bench_tradeoff.py measures this estimate at 0.97 to 1.00 of the true error from 36 samples on).
+ * So n' = n √(e/px) from the largest estimate e of this track's n samples, and never fewer than
+ * `least` (for the cycle plots) nor more than `most`.
+ */
+export function samplesFor(track, pxPerMetre, { px = 0.5, least = 2, most = 3601 } = {}) {
+  let worst = 0;
+  for (const q of Object.values(track.points)) {
+    const p = q.position || [];
+    for (let i = 1; i + 1 < p.length; i++) {
+      if (!p[i - 1] || !p[i] || !p[i + 1]) continue;
+      const d = Math.hypot(p[i + 1][0] - 2 * p[i][0] + p[i - 1][0], p[i + 1][1] - 2 * p[i][1] + p[i - 1][1]);
+      worst = Math.max(worst, (d / 8) * pxPerMetre);
+    }
+  }
+  const n = Math.ceil(track.n * Math.sqrt(worst / px));
+  return Math.min(most, Math.max(least, n));
+}
+
 /** Bounding box of every position in the track: [xmin, ymin, xmax, ymax]. */
 export function extent(track) {
   let box = [Infinity, Infinity, -Infinity, -Infinity];
