@@ -41,6 +41,15 @@ from solver.scene import Joint, LinkageScene
 DENSE_LIMIT = 2_000_000
 
 
+def neighbour_mean(values: Array, singular: Array, cyclic: bool) -> None:
+    """values[k] = (values[k - 1] + values[k + 1]) / 2 at the ``singular`` samples, in place
+    (``cyclic``: over a whole revolution, else the ends repeat themselves)."""
+    n = values.shape[0]
+    for k in singular:
+        before, after = ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
+        values[k] = 0.5 * (values[before] + values[after])
+
+
 @dataclass(frozen=True)
 class System:
     """The Newton-Euler system A u = b of every sample: ``entries`` (row, column, values (N,))
@@ -82,11 +91,7 @@ class System:
                 "move the linkage, so its torque and the joint forces are not determined",
                 float("inf"),
             ) from None
-        for k in singular:
-            before, after = (
-                ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
-            )
-            u[k] = 0.5 * (u[before] + u[after])
+        neighbour_mean(u, singular, cyclic)
         return u
 
     def _solve_dense(self, rhs: Array, singular: Array) -> Array:
