@@ -98,9 +98,9 @@ def _polar(page: object) -> dict[str, object]:
     """The polar diagram's title, its annotations (the current vector) and the pixels per newton
     of its two axes, as Plotly laid them out."""
     data: dict[str, object] = page.evaluate(  # type: ignore[attr-defined]
-        """(id) => { const L = document.getElementById(id)._fullLayout;
+        """(id) => { const div = document.getElementById(id); const L = div._fullLayout;
                      const scale = (a) => a._length / (a.range[1] - a.range[0]);
-                     return {title: L.title.text, arrows: document.getElementById(id).layout.annotations.map(
+                     return {title: L.title.text, arrows: div.layout.annotations.map(
                                (a) => [a.x, a.y, a.ax, a.ay, a.axref, a.ayref, a.showarrow]),
                              px: [scale(L.xaxis), scale(L.yaxis)]}; }""",
         "dynamics-hodograph",
