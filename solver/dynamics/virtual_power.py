@@ -20,7 +20,7 @@ from solver.assembly import DriverInput, Motion, assemble
 from solver.dynamics.loads import AppliedForce, AppliedMoment, MassElement
 from solver.rigid import Array, dot, rigid_body_velocity
 from solver.scene import LinkageScene
-from solver.sweep import SINGULAR_CONDITIONING
+from solver.sweeps import MIN_GRADIENT_SINE
 from solver.topology import build_plan
 
 # The partial motion must be the analysed one: a point more than this (relative to the size) from
@@ -75,5 +75,5 @@ def virtual_power_torque(
     apart = np.zeros(motion.margin.size)
     for name, point in motion.points.items():
         apart = np.maximum(apart, np.hypot(*(partial.points[name].p - point.p).T))
-    undefined = (apart > SAME_POSE * size) | (partial.conditioning < SINGULAR_CONDITIONING)
+    undefined = (apart > SAME_POSE * size) | (partial.gradient_sine < MIN_GRADIENT_SINE)
     return np.where(undefined | ~np.isfinite(torque), np.nan, torque)
