@@ -151,3 +151,75 @@ def force_vector(doc: dict[str, Any], links: dict[str, Any]) -> tuple[float, flo
     if force["relative_to"] == "link":
         direction += link["angle"]
     return magnitude * math.cos(direction), magnitude * math.sin(direction)
+
+
+@st.composite
+def five_bars(draw: st.DrawFn) -> dict[str, Any]:
+    """A five-bar with two driven cranks, O1-A and O2-B, and the dyad A-C-B (links ``left`` =
+    [A, C], ``right`` = [B, C]), drawn posed, the triangle ACB kept away from flat, both cranks at
+    random omega and alpha: two degrees of freedom."""
+    d = draw(st.floats(0.5, 2.0))
+    r1, r2 = draw(st.floats(0.2, 1.0)), draw(st.floats(0.2, 1.0))
+    t1, t2 = draw(st.floats(-math.pi, math.pi)), draw(st.floats(-math.pi, math.pi))
+    A = complex(r1 * math.cos(t1), r1 * math.sin(t1))
+    B = complex(d + r2 * math.cos(t2), r2 * math.sin(t2))
+    span = abs(B - A)
+    if span < 0.1:
+        A, B = A - 0.1, B + 0.1
+    C = (A + B) / 2 + (B - A) * 1j * draw(st.sampled_from([-1, 1])) * draw(st.floats(0.3, 1.0))
+
+    def rate(largest: float) -> float:
+        value = draw(st.floats(0.5, largest)) * draw(st.sampled_from([-1, 1]))
+        return float(value)
+
+    def xy(z: complex) -> list[float]:
+        return [z.real, z.imag]
+
+    return {
+        "kind": "linkage",
+        "points": {"O1": [0.0, 0.0], "O2": [d, 0.0], "A": xy(A), "B": xy(B), "C": xy(C)},
+        "links": {
+            "ground": {"points": ["O1", "O2"], "ground": True},
+            "crank1": {"points": ["O1", "A"]},
+            "crank2": {"points": ["O2", "B"]},
+            "left": {"points": ["A", "C"]},
+            "right": {"points": ["B", "C"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "O1", "links": ["ground", "crank1"]},
+            {"type": "revolute", "point": "O2", "links": ["ground", "crank2"]},
+            {"type": "revolute", "point": "A", "links": ["crank1", "left"]},
+            {"type": "revolute", "point": "B", "links": ["crank2", "right"]},
+            {"type": "revolute", "point": "C", "links": ["left", "right"]},
+        ],
+        "drivers": [
+            {"link": "crank1", "omega": rate(20.0), "alpha": rate(50.0)},
+            {"link": "crank2", "omega": rate(20.0), "alpha": rate(50.0)},
+        ],
+    }
+
+
+def square_five_bar(omega: float, mass: float, g: float) -> dict[str, Any]:
+    """Cranks O1-A and O2-B upright (length 1, 2 m apart), the dyad's pin C at (1, 2) carrying a
+    point mass: both cranks at the same omega, so the dyad's links translate."""
+    return {
+        "kind": "linkage",
+        "points": {"O1": [0, 0], "O2": [2, 0], "A": [0, 1], "B": [2, 1], "C": [1, 2]},
+        "links": {
+            "ground": {"points": ["O1", "O2"], "ground": True},
+            "crank1": {"points": ["O1", "A"]},
+            "crank2": {"points": ["O2", "B"]},
+            "left": {"points": ["A", "C"]},
+            "right": {"points": ["B", "C"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "O1", "links": ["ground", "crank1"]},
+            {"type": "revolute", "point": "O2", "links": ["ground", "crank2"]},
+            {"type": "revolute", "point": "A", "links": ["crank1", "left"]},
+            {"type": "revolute", "point": "B", "links": ["crank2", "right"]},
+            {"type": "revolute", "point": "C", "links": ["left", "right"]},
+        ],
+        "drivers": [{"link": "crank1", "omega": omega}, {"link": "crank2", "omega": omega}],
+        "point_masses": [{"name": "mC", "link": "left", "point": "C", "mass": mass}],
+        "gravity": [0, -g],
+    }

@@ -11,15 +11,17 @@ import numpy as np
 from solver.assembly import Motion
 from solver.dynamics.energy import Energy, energy, power_balance_torque
 from solver.dynamics.loads import dynamics_of
-from solver.dynamics.newton_euler import ForceAnalysis, inverse_dynamics
+from solver.dynamics.newton_euler import ForceAnalysis, inverse_dynamics, neighbour_mean
+from solver.dynamics.virtual_power import partial_motion, virtual_power_torque
 from solver.rigid import Array
 from solver.scene import LinkageScene
 
 
 @dataclass(frozen=True)
 class DriverLoad:
-    """A driver's torque on its link, its power M omega, and the torque again from the power
-    balance (NaN where omega = 0, or where several drivers share the power)."""
+    """A driver's torque on its link, its power M omega, and the torque again without the joint
+    forces: from the power balance (one driver) or the virtual power of the driver's partial
+    motion (several); NaN where omega = 0 or that partial motion is undefined."""
 
     link: str
     torque: Array
@@ -42,21 +44,24 @@ def linkage_dynamics(
     times: Array,
     singular: Array | None = None,
     cyclic: bool = True,
+    anchor: int = 0,
 ) -> LinkageDynamics:
-    """Everything dynamics-v1 reports, at every sample of ``motion`` (accelerations required)."""
+    """Everything dynamics-v1 reports, at every sample of ``motion`` (accelerations required;
+    ``singular`` samples take their neighbours' mean, ``anchor`` is the sample where a sweep's
+    motion is on its drawn branch)."""
+    singular = np.array([], dtype=int) if singular is None else np.asarray(singular)
     result = inverse_dynamics(scene, motion, times, singular, cyclic)
     gravity = np.array(dynamics_of(scene).gravity)
     drivers = []
-    for driver in scene.drivers:
+    for index, driver in enumerate(scene.drivers):
         omega = motion.links[driver.link].omega
         assert omega is not None
         torque = result.torques[driver.link]
-        balance = np.full(times.size, np.nan)
-        if len(scene.drivers) == 1:
-            balance = power_balance_torque(
-                result.elements, result.forces, result.moments, gravity, omega
-            )
-        drivers.append(DriverLoad(driver.link, torque, torque * omega, balance))
+        check = np.where(
+            omega != 0.0, _independent_torque(scene, motion, result, gravity, index, anchor), np.nan
+        )
+        neighbour_mean(check, singular, cyclic)
+        drivers.append(DriverLoad(driver.link, torque, torque * omega, check))
     energies = energy(result.elements, gravity, times.size)
     inertia = np.full(times.size, np.nan)
     if scene.drivers:
@@ -64,6 +69,25 @@ def linkage_dynamics(
         assert omega is not None
         inertia = energies.equivalent_inertia(omega)
     return LinkageDynamics(result, drivers, energies, inertia, times)
+
+
+def _independent_torque(
+    scene: LinkageScene,
+    motion: Motion,
+    result: ForceAnalysis,
+    gravity: Array,
+    driver: int,
+    anchor: int,
+) -> Array:
+    """Driver ``driver``'s torque without the joint forces: the power balance of a single
+    driver, the virtual power of its partial motion when there are several."""
+    loads = (result.elements, result.forces, result.moments)
+    if len(scene.drivers) == 1:
+        omega = motion.links[scene.drivers[0].link].omega
+        assert omega is not None
+        return power_balance_torque(*loads, gravity, omega)
+    partial = partial_motion(scene, motion, driver, anchor)
+    return virtual_power_torque(partial, motion, scene.size, *loads, gravity)
 
 
 def sweep_times(scene: LinkageScene, driver_angle: Array, omega: float) -> Array:

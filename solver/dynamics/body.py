@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from solver.drivers import driver_input
 from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics, sweep_times
 from solver.dynamics.balance import Balance
 from solver.dynamics.cycle import cycle_figures
@@ -119,7 +120,11 @@ def add_sweep_dynamics(
     alpha = motion.links[result.driver].alpha
     assert omega is not None and alpha is not None
     times = sweep_times(scene, result.driver_angle, float(omega[0]))
-    dynamics = linkage_dynamics(scene, motion, times, result.singular_samples, result.feasible)
+    start = driver_input(scene, scene.drivers[0], scene.time)[0]  # as the sweep began
+    anchor = int(np.argmin(np.abs(motion.links[result.driver].theta - start)))
+    dynamics = linkage_dynamics(
+        scene, motion, times, result.singular_samples, result.feasible, anchor
+    )
     _add(body, dynamics, wanted, _samples)
     if (
         "forces" in wanted

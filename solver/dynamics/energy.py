@@ -42,15 +42,16 @@ class Energy:
 def energy(elements: list[MassElement], gravity: Array, samples: int) -> Energy:
     kinetic, potential = np.zeros(samples), np.zeros(samples)
     mass = 0.0
-    first = np.zeros((3, samples, 2))  # sum m r, sum m v, sum m a
+    first = [np.zeros((samples, 2)) for _ in range(3)]  # sum m r, sum m v, sum m a
     for e in elements:
         kinetic += 0.5 * (e.mass * dot(e.v, e.v) + e.inertia * e.omega**2)
         potential -= e.mass * (e.p @ gravity)
         mass += e.mass
-        first += e.mass * np.stack([e.p, e.v, e.a])
+        for total, vector in zip(first, (e.p, e.v, e.a), strict=True):
+            total += e.mass * vector
     if mass == 0.0:
         return Energy(kinetic, potential, 0.0, None, None, None)
-    return Energy(kinetic, potential, mass, *(first / mass))
+    return Energy(kinetic, potential, mass, *(total / mass for total in first))
 
 
 def energy_rate(elements: list[MassElement], gravity: Array, samples: int) -> Array:

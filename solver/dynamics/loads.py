@@ -9,6 +9,7 @@ from the rigid-body formulas. Force and moment expressions are evaluated on the 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -74,10 +75,14 @@ def dynamics_of(scene: LinkageScene) -> Dynamics:
     return EMPTY if scene.dynamics is None else scene.dynamics
 
 
-def link_state(scene: LinkageScene, motion: Motion) -> dict[str, tuple[Array, Array, Array]]:
-    """(angle in (-pi, pi], omega, alpha) of every link with two points, per sample."""
+def link_state(
+    scene: LinkageScene, motion: Motion, links: Iterable[str] | None = None
+) -> dict[str, tuple[Array, Array, Array]]:
+    """(angle in (-pi, pi], omega, alpha) per sample of every link with two points (of
+    ``links`` only, when given)."""
     state = {}
-    for name, link in scene.links.items():
+    for name in scene.links if links is None else links:
+        link = scene.links[name]
         if len(link.points) < 2:
             continue
         m = motion.links[name]
@@ -112,7 +117,10 @@ def applied_loads(
 ) -> tuple[list[AppliedForce], list[AppliedMoment]]:
     """The external forces and moments at every sample (their expressions evaluated)."""
     dynamics = dynamics_of(scene)
-    state = link_state(scene, motion)
+    read = {f.link for f in dynamics.forces if f.relative_to == "link"}
+    for expression in [f.magnitude for f in dynamics.forces] + [m.moment for m in dynamics.torques]:
+        read |= expression.links
+    state = link_state(scene, motion, sorted(read))  # the angles the loads read, no others
     forces = []
     for index, f in enumerate(dynamics.forces):
         link = motion.links[f.link]

@@ -41,6 +41,15 @@ from solver.scene import Joint, LinkageScene
 DENSE_LIMIT = 2_000_000
 
 
+def neighbour_mean(values: Array, singular: Array, cyclic: bool) -> None:
+    """values[k] = (values[k - 1] + values[k + 1]) / 2 at the ``singular`` samples, in place
+    (``cyclic``: over a whole revolution, else the ends repeat themselves)."""
+    n = values.shape[0]
+    for k in singular:
+        before, after = ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
+        values[k] = 0.5 * (values[before] + values[after])
+
+
 @dataclass(frozen=True)
 class System:
     """The Newton-Euler system A u = b of every sample: ``entries`` (row, column, values (N,))
@@ -82,23 +91,16 @@ class System:
                 "move the linkage, so its torque and the joint forces are not determined",
                 float("inf"),
             ) from None
-        for k in singular:
-            before, after = (
-                ((k - 1) % n, (k + 1) % n) if cyclic else (max(k - 1, 0), min(k + 1, n - 1))
-            )
-            u[k] = 0.5 * (u[before] + u[after])
+        neighbour_mean(u, singular, cyclic)
         return u
 
     def _solve_dense(self, rhs: Array, singular: Array) -> Array:
         """Every sample's block at once by LAPACK's LU (small systems)."""
         n, m = rhs.shape
-        summed: dict[int, Array] = {}  # entry (row, column) at row * m + column, summed
+        entries = np.zeros((m, m, n))  # samples last: each entry one contiguous write
         for row, column, values in self.entries:
-            key = row * m + column
-            summed[key] = summed[key] + values if key in summed else values
-        rows = np.zeros((m * m, n))  # samples last: each entry one contiguous write
-        rows[list(summed)] = np.stack(list(summed.values()))
-        A = rows.T.reshape(n, m, m)
+            entries[row, column] += values
+        A = entries.transpose(2, 0, 1)  # a view: LAPACK's gufunc copies each block anyway
         A[singular] = np.eye(m)
         return np.linalg.solve(A, rhs[..., None])[..., 0]
 
@@ -171,7 +173,8 @@ def newton_euler_system(
     unknowns: list[str] = []
     origins: list[tuple[str, int, int]] = []
     entries: list[tuple[int, int, Array]] = []
-    ones = np.ones(n)
+    constant = {sign: np.broadcast_to(sign, n) for sign in (1.0, -1.0)}  # views, no copies
+    arms: dict[tuple[str, str], Array] = {}  # (link, point): point - R_link
 
     def add_force(column: int, link: str, sign: float, point: Array, d: Array) -> None:
         if link == scene.ground:
@@ -181,18 +184,22 @@ def newton_euler_system(
         entries.append((r + 1, column, sign * d[:, 1]))
         entries.append((r + 2, column, sign * cross(point - reference[link], d)))
 
-    def add_component(column: int, link: str, sign: float, point: Array, axis: int) -> None:
-        """A force along x (axis 0) or y (1): the same as add_force with d = e_x or e_y."""
+    def add_component(
+        column: int, link: str, sign: float, name: str, point: Array, axis: int
+    ) -> None:
+        """A force along x (axis 0) or y (1) at point ``name``: add_force with d = e_x or e_y."""
         if link == scene.ground:
             return
         r = row[link]
-        arm = point - reference[link]  # (r x e_x)_z = -r_y, (r x e_y)_z = r_x
-        entries.append((r + axis, column, sign * ones))
+        if (link, name) not in arms:
+            arms[link, name] = point - reference[link]
+        arm = arms[link, name]  # (r x e_x)_z = -r_y, (r x e_y)_z = r_x
+        entries.append((r + axis, column, constant[sign]))
         entries.append((r + 2, column, (sign if axis else -sign) * arm[:, 1 - axis]))
 
     def add_moment(column: int, link: str, sign: float) -> None:
         if link != scene.ground:
-            entries.append((row[link] + 2, column, sign * ones))
+            entries.append((row[link] + 2, column, constant[sign]))
 
     for index, joint in enumerate(scene.joints):
         P = motion.points[joint.point].p
@@ -201,8 +208,8 @@ def newton_euler_system(
             for axis in (0, 1):
                 unknowns.append(f"F{'xy'[axis]}_{joint.point}")
                 origins.append(("joint", index, axis))
-                add_component(len(unknowns) - 1, second, 1.0, P, axis)
-                add_component(len(unknowns) - 1, first, -1.0, P, axis)
+                add_component(len(unknowns) - 1, second, 1.0, joint.point, P, axis)
+                add_component(len(unknowns) - 1, first, -1.0, joint.point, P, axis)
         else:
             normal = slot_normal(joint, motion)
             unknowns.append(f"N_{joint.point}")

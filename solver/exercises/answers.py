@@ -4,6 +4,8 @@ A path names a number of the /analyze response of the scene (``points.C.velocity
 ``links.coupler.omega``, ``joints.0.coriolis_acceleration.1``, ``moving_points.M.acceleration.0``,
 ``bodies.3.omega.2``); the solver's result objects carry the same names, so the path is walked on
 them directly. ``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
+Dynamics paths (``drivers.0.torque``, ``joints.1.force.0``, ``sweep[samples=720,k=4/100].cycle.
+flywheel_inertia``) are walked on the /analyze (or /sweep) body itself.
 Nothing here computes a kinematic quantity: every number is the solver's.
 """
 
@@ -11,11 +13,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from solver.api import analyze as analyze_body
+from solver.api import sweep as sweep_body
 from solver.errors import InvalidScene
 from solver.events import find_event
 from solver.instant import LinkageAnalysis, analyze
@@ -24,6 +28,9 @@ from solver.spatial import SpatialAnalysis, SpatialChain, analyze_spatial_chain,
 
 EVENT_OCCURRENCE = 1  # /events' defaults
 EVENT_T_MAX = 60.0
+# The roots of paths into the dynamics answers (dynamics-v1), besides joints.<k>.force.<axis> and
+# sweep[samples=N,k=P/100].cycle.<figure> (solver.exercises.dynamics).
+DYNAMIC_ROOTS = frozenset({"drivers", "frame_force", "frame_moment", "energy", "center_of_mass"})
 # The attributes a path may name (the /analyze field names that the result objects share).
 _FIELDS = frozenset(
     {
@@ -41,6 +48,16 @@ class Solved:
 
     scene: LinkageScene | SpatialChain
     analysis: LinkageAnalysis | SpatialAnalysis
+    document: Mapping[str, Any] = field(default_factory=dict)  # for the dynamics' bodies
+    bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
+
+    def dynamics(self, root: str) -> Mapping[str, Any]:
+        """The /analyze body with ``forces`` and ``energy``, or a /sweep body (``sweep[...]``
+        roots), computed once per root."""
+        key = root if root.startswith("sweep[") else ""
+        if key not in self.bodies:
+            self.bodies[key] = dynamic_body(self.document, key)
+        return self.bodies[key]
 
 
 def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain:
@@ -53,8 +70,31 @@ def solve_scene(doc: Mapping[str, Any]) -> Solved:
     """The scene analysed as /analyze analyses it, with every quantity."""
     scene = parse(doc)
     if isinstance(scene, LinkageScene):
-        return Solved(scene, analyze(scene))
-    return Solved(scene, analyze_spatial_chain(scene))
+        return Solved(scene, analyze(scene), doc)
+    return Solved(scene, analyze_spatial_chain(scene), doc)
+
+
+def parse_sweep_root(part: str) -> tuple[int, float] | None:
+    """(samples, speed_fluctuation) of a ``sweep[samples=N,k=P/100]`` path root, else None."""
+    if not (part.startswith("sweep[samples=") and part.endswith("/100]")):
+        return None
+    samples, _, k = part[len("sweep[samples=") : -len("/100]")].partition(",k=")
+    if not (samples.isdigit() and k.isdigit()):
+        return None
+    return int(samples), int(k) / 100
+
+
+def dynamic_body(doc: Mapping[str, Any], root: str) -> Mapping[str, Any]:
+    """The /analyze body with every kinematic quantity and ``forces`` and ``energy`` (root ""),
+    or the /sweep body with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
+    if not root:
+        quantities = ["position", "velocity", "acceleration", "forces", "energy"]
+        return analyze_body(doc, quantities).as_dict()
+    sweep = parse_sweep_root(root)
+    if sweep is None:
+        raise InvalidScene(f"path root {root!r}: expected sweep[samples=N,k=P/100]")
+    samples, k = sweep
+    return sweep_body(doc, samples, ["forces"], speed_fluctuation=k).as_dict()
 
 
 def _step(node: Any, part: str, path: str) -> Any:
@@ -78,6 +118,11 @@ def value_at(solved: Solved, path: str) -> float:
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: expected events.<moving point>.<target>.time")
         return find_event(solved.scene, parts[1], parts[2], EVENT_OCCURRENCE, EVENT_T_MAX).time
+    if parts[0] in DYNAMIC_ROOTS or parts[0].startswith("sweep[") or parts[2:3] == ["force"]:
+        if not isinstance(solved.scene, LinkageScene):
+            raise InvalidScene(f"path {path!r}: dynamics are defined for planar linkages only")
+        body: Any = solved.dynamics(parts[0])
+        return _number(body, parts[1:] if parts[0].startswith("sweep[") else parts, path)
     a = solved.analysis
     roots: dict[str, Any] = {"points": a.points}
     if isinstance(a, LinkageAnalysis):
@@ -86,8 +131,12 @@ def value_at(solved: Solved, path: str) -> float:
         roots["bodies"] = a.bodies
     if parts[0] not in roots:
         raise InvalidScene(f"path {path!r}: unknown root {parts[0]!r}")
-    node = roots[parts[0]]
-    for part in parts[1:]:
+    return _number(roots[parts[0]], parts[1:], path)
+
+
+def _number(node: Any, parts: Sequence[str], path: str) -> float:
+    """The number reached from ``node`` along ``parts``."""
+    for part in parts:
         node = _step(node, part, path)
     if node is None or np.ndim(node) != 0:
         raise InvalidScene(f"path {path!r} does not name a number")

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from solver.errors import KinematicsError
-from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.answers import Solved, parse_sweep_root, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
 from solver.instant import LinkageAnalysis
@@ -337,14 +337,70 @@ def _scene_mistakes(exercise: Exercise) -> list[WrongAnswers]:
     return out
 
 
-_FAMILIES: Mapping[str, Callable[[Solved], list[WrongAnswers]]] = {
-    "four_bar": lambda s: _four_bar(Numbers(s)),
-    "slider": lambda s: _slider(Numbers(s)),
-    "lever": lambda s: _lever(Numbers(s)),
-    "quick_return": lambda s: _quick_return(Numbers(s)),
-    "moving_point": _moving_point,
+# --- dynamics: the load terms a student leaves out, made in the scene; the flywheel's formula ----
+
+
+def _variant_values(exercise: Exercise, variant: Mapping[str, Any]) -> dict[str, float]:
+    """The asked values of the exercise's paths on a changed scene (the solver's)."""
+    solved = solve_scene(variant)
+    return {a.key: value_at(solved, a.path) for a in exercise.asked}
+
+
+def _dynamics_torque(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
+    scene = exercise.scene
+    at_rest = [{**d, "omega": 0.0, "alpha": 0.0} for d in scene["drivers"]]
+    return [
+        WrongAnswers(
+            "weights_left_out",
+            "This is what you get without the weights: the power balance (or the equations of "
+            "each link) must include m g of every link, whose power -m g . v_G is not zero.",
+            _variant_values(exercise, {**scene, "gravity": [0.0, 0.0]}),
+        ),
+        WrongAnswers(
+            "inertia_left_out",
+            "This is the static answer: the inertia forces -m a_G and moments -I_G alpha of the "
+            "moving links were left out (the crank turns, so the links accelerate).",
+            _variant_values(exercise, {**scene, "drivers": at_rest}),
+        ),
+    ]
+
+
+def _flywheel(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
+    first = next(a.path for a in exercise.asked if a.key == "flywheel_inertia")
+    root = first.split(".")[0]
+    found = parse_sweep_root(root)
+    assert found is not None
+    k = found[1]
+    omega = float(exercise.scene["drivers"][0]["omega"])
+    mean = value_at(solved, f"{root}.cycle.mean_torque")
+    fluctuation = value_at(solved, f"{root}.cycle.energy_fluctuation")
+    work = abs(mean) * 2.0 * math.pi
+    return [
+        WrongAnswers(
+            "mean_torque_for_fluctuation",
+            "This is the work of the mean torque over a revolution, not the energy fluctuation: "
+            "the flywheel must absorb the largest swing of the integral of (M - M_mean) d phi.",
+            {"energy_fluctuation": work, "flywheel_inertia": work / (k * omega**2)},
+        ),
+        WrongAnswers(
+            "flywheel_factor_two",
+            "This is twice the inertia: Delta E = I omega^2 k follows from (I/2)(omega_max^2 - "
+            "omega_min^2) with omega_max - omega_min = k omega; the 1/2 does not remain.",
+            {"flywheel_inertia": 2.0 * fluctuation / (k * omega**2)},
+        ),
+    ]
+
+
+_FAMILIES: Mapping[str, Callable[[Exercise, Solved], list[WrongAnswers]]] = {
+    "four_bar": lambda e, s: _four_bar(Numbers(s)),
+    "slider": lambda e, s: _slider(Numbers(s)),
+    "lever": lambda e, s: _lever(Numbers(s)),
+    "quick_return": lambda e, s: _quick_return(Numbers(s)),
+    "moving_point": lambda e, s: _moving_point(s),
     # The arm's joints are all revolute: no sliding, so no Coriolis term to get wrong.
-    "spatial": lambda s: [],
+    "spatial": lambda e, s: [],
+    "dynamics_torque": _dynamics_torque,
+    "flywheel": _flywheel,
 }
 
 
@@ -352,7 +408,7 @@ def typical_mistakes(exercise: Exercise) -> list[WrongAnswers]:
     """Every typical mistake that applies to the exercise, with the wrong answers it gives
     (only for the asked keys it changes)."""
     family = TYPES[exercise.id.type].mistakes
-    made = _FAMILIES[family](solve_scene(exercise.scene)) + _scene_mistakes(exercise)
+    made = _FAMILIES[family](exercise, solve_scene(exercise.scene)) + _scene_mistakes(exercise)
     asked = {a.key for a in exercise.asked}
     return [
         WrongAnswers(m.kind, m.sentence, {k: v for k, v in m.values.items() if k in asked})

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from solver.exercises.answers import parse
+from solver.exercises.answers import parse, parse_sweep_root, solve_scene, value_at
+from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
 from solver.laws import parse_time_law
 from solver.steps import Step, Value, solve
@@ -39,9 +40,52 @@ def _event_step(exercise: Exercise, key: str, path: str) -> Step:
     return Step("event.time", title, latex, text, values)
 
 
+def _cycle_step(exercise: Exercise) -> Step:
+    """Over a revolution: the mean torque, the energy fluctuation and the flywheel (/sweep's
+    cycle figures, the solver's)."""
+    solved = solve_scene(exercise.scene)
+    path = next(a.path for a in exercise.asked if a.key == "flywheel_inertia")
+    root = path.split(".")[0]
+    found = parse_sweep_root(root)
+    assert found is not None
+    k = found[1]
+    omega = float(exercise.scene["drivers"][0]["omega"])
+    figures = {
+        name: value_at(solved, f"{root}.cycle.{name}")
+        for name in ("mean_torque", "energy_fluctuation", "flywheel_inertia")
+    }
+    mean, swing, inertia = figures.values()
+    text = (
+        "Repeat the instant's analysis at every crank angle of a revolution (here "
+        f"{found[0]} of them): the driving torque M(phi). Its mean is {mean:.{DIGITS}g} N m. The "
+        "energy the crank gains above the mean, E(phi) = integral of (M - M_mean) d phi, swings "
+        f"by Delta E = {swing:.{DIGITS}g} J between its largest and smallest value. A flywheel "
+        f"with (I/2)(omega_max^2 - omega_min^2) = I k omega^2 = Delta E keeps the speed within k = "
+        f"{k:g}: I = Delta E / (k omega^2) = {inertia:.{DIGITS}g} kg m^2."
+    )
+    latex = (
+        rf"\bar M = {mean:.{DIGITS}g}\,\mathrm{{N\,m}},\quad \Delta E = \max_\varphi E - "
+        rf"\min_\varphi E = {swing:.{DIGITS}g}\,\mathrm{{J}},\quad I_F = \frac{{\Delta E}}"
+        rf"{{k\,\omega^2}} = \frac{{{swing:.{DIGITS}g}}}{{{k:g} \cdot {omega:.{DIGITS}g}^2}} = "
+        rf"{inertia:.{DIGITS}g}\,\mathrm{{kg\,m^2}}"
+    )
+    values = {
+        name: Value(value, unit, f"{value:.{DIGITS}g} {unit}", (root, "cycle", name))
+        for (name, value), unit in zip(figures.items(), ("N m", "J", "kg m^2"), strict=True)
+    }
+    return Step("dynamics.flywheel", "The flywheel over a revolution", latex, text, values)
+
+
 def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
-    """The steps as JSON, in the order a student should read them."""
-    steps = list(solve(parse(exercise.scene), "vector", DIGITS).steps)
+    """The steps as JSON, in the order a student should read them: the Newton-Euler method for
+    the dynamics types (and the cycle's flywheel), the vector method otherwise."""
+    family = TYPES[exercise.id.type].mistakes
+    dynamic = family in ("dynamics_torque", "flywheel")
+    steps = list(
+        solve(parse(exercise.scene), "newton_euler" if dynamic else "vector", DIGITS).steps
+    )
+    if family == "flywheel":
+        steps.append(_cycle_step(exercise))
     steps += [
         _event_step(exercise, a.key, a.path) for a in exercise.asked if a.path.startswith("events.")
     ]

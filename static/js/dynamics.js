@@ -2,10 +2,11 @@
 //
 // One /sweep with the quantities `forces` and `energy` per mechanism (not per frame): stacked
 // plots over the driver angle of the driving torque with its mean, the driver's power, the
-// magnitude of every joint force, the kinetic energy and the equivalent inertia; the frame force
-// as a hodograph (Fy against Fx over the cycle: the polar plot of the shaking force); the cycle's
-// figures. For a four-bar, "Compare balanced" asks /balance for counterweights as heavy as the
-// crank and the rocker and adds the balanced mechanism's frame force to the hodograph.
+// magnitude of every joint force, the kinetic energy and the equivalent inertia; the polar
+// diagram of the frame force (the tip of the shaking force over the cycle from O, with magnitude
+// circles, angle spokes and the current instant's vector); the cycle's figures. For a four-bar,
+// "Compare balanced" asks /balance for counterweights as heavy as the crank and the rocker and
+// adds the balanced mechanism's frame force to the polar diagram.
 
 import * as api from './api.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
@@ -24,6 +25,41 @@ export function hasDynamics(scene) {
 }
 
 const norm = (v) => Math.hypot(v[0], v[1]);
+const SPOKES = Array.from({ length: 12 }, (_, i) => (i * Math.PI) / 6); // every 30 degrees
+
+/** Magnitude circles at a round step (1, 2 or 5 times a power of ten), three to six of them,
+ * the outermost at or beyond ``largest``. */
+export function polarGrid(largest) {
+  const raw = largest / 4;
+  const decade = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * decade).find((v) => v >= raw);
+  const count = Math.max(1, Math.ceil(largest / step - 1e-9));
+  const rings = Array.from({ length: count }, (_, i) => (i + 1) * step);
+  return { rings, radius: rings[rings.length - 1] };
+}
+
+/** Circles of the given radii about O as one line broken by nulls. */
+function circles(radii) {
+  const x = [];
+  const y = [];
+  for (const r of radii) {
+    for (let i = 0; i <= 96; i += 1) {
+      x.push(r * Math.cos((i * Math.PI) / 48));
+      y.push(r * Math.sin((i * Math.PI) / 48));
+    }
+    x.push(null);
+    y.push(null);
+  }
+  return { x, y };
+}
+
+/** Spokes from O to ``radius`` every 30 degrees, one line broken by nulls. */
+function spokes(radius) {
+  return {
+    x: SPOKES.flatMap((a) => [0, radius * Math.cos(a), null]),
+    y: SPOKES.flatMap((a) => [0, radius * Math.sin(a), null]),
+  };
+}
 
 function grounded(scene) {
   const ground = Object.entries(scene.links).find(([, l]) => l.ground)?.[0];
@@ -63,6 +99,7 @@ export class DynamicsPanel {
     this.scene = scene;
     this.sweep = null;
     this.balanced = null;
+    this.instant = 0;
     this.balance.parentElement.hidden = !isFourBar(scene);
     this.message.hidden = true;
     let sweep;
@@ -132,25 +169,59 @@ export class DynamicsPanel {
       : 'The driver does not turn fully at constant speed: no cycle figures.';
   }
 
+  /**
+   * The polar diagram of the frame force, drawn as textbooks draw it on Plotly's cartesian axes
+   * (the vendored plotly-basic has no polar axes): the tip of the force vector over the cycle
+   * from the marked origin O, equal scales, magnitude circles labelled in N and angle spokes
+   * every 30 degrees labelled, and the current instant's vector as an arrow from O
+   * (``markInstant``). With "Compare balanced" the balanced mechanism's curve is added.
+   */
   drawHodograph() {
     const P = globalThis.Plotly;
     const s = this.sweep;
     if (!P || !s) return;
-    const traces = [{ x: s.frame_force.map((f) => f[0]), y: s.frame_force.map((f) => f[1]), name: 'frame force', mode: 'lines', line: { color: '#c0392b' } }];
+    const curves = [{ forces: s.frame_force, name: 'frame force (tip of F over the cycle)', color: '#c0392b' }];
     let note = '';
     if (this.balance.checked && this.balanced?.sweep) {
-      const b = this.balanced.sweep;
-      traces.push({ x: b.frame_force.map((f) => f[0]), y: b.frame_force.map((f) => f[1]), name: 'balanced', mode: 'lines', line: { color: '#27ae60' } });
+      curves.push({ forces: this.balanced.sweep.frame_force, name: 'balanced', color: '#27ae60' });
       note = this.balanced.answer.counterweights.map((w) => `${w.link}: ${fmt(w.mass)} kg at ${fmt(w.distance)} m from ${w.pivot}`).join('; ');
     } else if (this.balance.checked && this.balanced?.error) {
       note = this.balanced.error;
     }
+    const largest = Math.max(...curves.flatMap((c) => c.forces.map(norm)), 1e-300);
+    const { rings, radius } = polarGrid(largest);
+    const grid = { mode: 'lines', hoverinfo: 'skip', showlegend: false, line: { color: '#b8c2cc', width: 1 } };
+    const traces = [
+      { ...grid, name: 'magnitude circles', ...circles(rings) },
+      { ...grid, name: 'angle spokes', ...spokes(radius) },
+      {
+        name: 'magnitude labels', mode: 'text', hoverinfo: 'skip', showlegend: false,
+        x: rings.map((r) => r * Math.cos(Math.PI / 12)), y: rings.map((r) => r * Math.sin(Math.PI / 12)),
+        text: rings.map((r) => `${fmt(r, 3)} N`), textfont: { size: 10, color: '#6b7785' },
+      },
+      {
+        name: 'angle labels', mode: 'text', hoverinfo: 'skip', showlegend: false,
+        x: SPOKES.map((a) => 1.12 * radius * Math.cos(a)), y: SPOKES.map((a) => 1.12 * radius * Math.sin(a)),
+        text: SPOKES.map((a) => `${Math.round((a * 180) / Math.PI)}°`), textfont: { size: 10, color: '#6b7785' },
+      },
+      ...curves.map((c) => ({
+        name: c.name, mode: 'lines', line: { color: c.color, width: 2 },
+        x: c.forces.map((f) => f[0]), y: c.forces.map((f) => f[1]),
+        hovertemplate: '|F| %{customdata:.4g} N<br>Fx %{x:.4g} N, Fy %{y:.4g} N<extra></extra>',
+        customdata: c.forces.map(norm),
+      })),
+      { name: 'origin O', mode: 'markers+text', x: [0], y: [0], text: ['O'], textposition: 'bottom left', marker: { color: '#2c3e50', size: 7 }, hoverinfo: 'skip', showlegend: false },
+    ];
+    const axis = { range: [-1.25 * radius, 1.25 * radius], showgrid: false, zeroline: false, showticklabels: false, fixedrange: true };
     const layout = {
-      margin: { l: 64, r: 16, t: 16, b: 44 },
-      height: 320,
-      xaxis: { title: { text: 'Fx [N]' }, zeroline: true },
-      yaxis: { title: { text: 'Fy [N]' }, zeroline: true, scaleanchor: 'x' },
+      title: { text: 'Polar diagram of the frame force (shaking force): F on the frame, from O', font: { size: 13 } },
+      margin: { l: 16, r: 16, t: 40, b: 16 },
+      height: 380,
+      xaxis: axis,
+      yaxis: { ...axis, scaleanchor: 'x', scaleratio: 1 },
       showlegend: true,
+      legend: { orientation: 'h', y: -0.02 },
+      annotations: [this.instantArrow(this.instant ?? 0)],
     };
     P.react(this.hodograph, traces, layout, CONFIG);
     this.hodograph.dataset.note = note;
@@ -164,12 +235,44 @@ export class DynamicsPanel {
     this.balance.title = note;
   }
 
+  /** The arrow from O to the frame force at sample ``k`` (a Plotly annotation). */
+  instantArrow(k) {
+    const F = this.sweep.frame_force[k];
+    return {
+      name: 'current frame force', x: F[0], y: F[1], ax: 0, ay: 0, xref: 'x', yref: 'y', axref: 'x', ayref: 'y',
+      showarrow: true, arrowhead: 2, arrowsize: 1.3, arrowwidth: 2.5, arrowcolor: '#2c3e50', text: '',
+      hovertext: `F = (${fmt(F[0], 4)}, ${fmt(F[1], 4)}) N, |F| = ${fmt(norm(F), 4)} N`,
+    };
+  }
+
+  /** Move the current instant's arrow to the sample nearest ``u`` (when it changes; a relayout
+   * at most every 80 ms while the mechanism moves). */
+  markInstant(track, u) {
+    const s = this.sweep;
+    if (!s || this.section.hidden || !track || track.param !== 'angle' || s.samples !== track.n) return;
+    const k = Math.min(Math.max(Math.round(u), 0), s.samples - 1);
+    const now = performance.now();
+    if (k === this.instant || !this.hodograph.layout) return;
+    clearTimeout(this.instantTimer);
+    if (now - (this.instantDrawn ?? 0) < 80) {
+      this.instantTimer = setTimeout(() => this.markInstant(track, u), 80); // the last one is drawn
+      return;
+    }
+    this.instant = k;
+    this.instantDrawn = now;
+    const arrow = this.instantArrow(k);
+    globalThis.Plotly?.relayout(this.hodograph, {
+      'annotations[0].x': arrow.x, 'annotations[0].y': arrow.y, 'annotations[0].hovertext': arrow.hovertext,
+    });
+  }
+
   /**
    * Arrows of the joint forces on the animated linkage at fractional sample ``u`` (each the force
    * the joint's first link exerts on its second), when "Show joint forces" is on and the
    * animation is the same sweep over the driver angle.
    */
   drawArrows(view, svg, frame, track, u) {
+    this.markInstant(track, u);
     const b = this.balanced;
     if (b?.shown && !this.balancedBox.hidden && track && b.track.n === track.n) {
       this.balancedView.draw(frameAt(b.track, u)); // the balanced mechanism in step

@@ -10,10 +10,13 @@ import math
 
 import pytest
 
+from solver.presets import build_preset
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
 
 pytestmark = pytest.mark.browser
+
+FRAME_FORCE = "frame force (tip of F over the cycle)"
 
 
 def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) -> None:
@@ -35,10 +38,13 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
     )
     page.check("#dynamics-balance")
     wait_until(
-        lambda: len(json.loads(plot_data(page, "dynamics-hodograph"))) == 2,
+        lambda: (
+            "balanced" in {t["name"] for t in json.loads(plot_data(page, "dynamics-hodograph"))}
+        ),
         what="the balanced frame force",
     )
-    unbalanced, balanced = json.loads(plot_data(page, "dynamics-hodograph"))
+    curves = {t["name"]: t for t in json.loads(plot_data(page, "dynamics-hodograph"))}
+    unbalanced, balanced = curves[FRAME_FORCE], curves["balanced"]
 
     def spread(trace: dict[str, list[float]]) -> float:
         return math.hypot(max(trace["x"]) - min(trace["x"]), max(trace["y"]) - min(trace["y"]))
@@ -86,3 +92,62 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
     assert "power balance" in page.inner_text("#steps")
     app.screenshot("newton-euler-solution", ".solution-panel")
+
+
+def _polar(page: object) -> dict[str, object]:
+    """The polar diagram's title, its annotations (the current vector) and the pixels per newton
+    of its two axes, as Plotly laid them out."""
+    data: dict[str, object] = page.evaluate(  # type: ignore[attr-defined]
+        """(id) => { const div = document.getElementById(id); const L = div._fullLayout;
+                     const scale = (a) => a._length / (a.range[1] - a.range[0]);
+                     return {title: L.title.text, arrows: div.layout.annotations.map(
+                               (a) => [a.x, a.y, a.ax, a.ay, a.axref, a.ayref, a.showarrow]),
+                             px: [scale(L.xaxis), scale(L.yaxis)]}; }""",
+        "dynamics-hodograph",
+    )
+    return data
+
+
+def test_the_frame_force_is_a_polar_diagram(app: AppPage) -> None:
+    """Seed 004's frame force drawn as textbooks draw it: the tip of F over the cycle from the
+    marked origin O (the same vectors as /sweep gives), equal scales, magnitude circles labelled in
+    N reaching past the largest force, spokes every 30 degrees labelled, a title, and the current
+    instant's vector as an arrow from O that follows the animation."""
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    wait_until(lambda: plot_data(page, "dynamics-hodograph") != "[]", what="the polar diagram")
+    traces = {t["name"]: t for t in json.loads(plot_data(page, "dynamics-hodograph"))}
+    assert {"magnitude circles", "angle spokes", "magnitude labels", "angle labels"} <= set(traces)
+    assert traces["origin O"]["x"] == [0] and traces["origin O"]["y"] == [0]
+    status, sweep = app.post(
+        "/sweep", {"scene": build_preset("seed004", {}), "samples": 241, "quantities": ["forces"]}
+    )
+    assert status == 200
+    curve = traces[FRAME_FORCE]
+    expected = sweep["frame_force"]
+    assert curve["x"] == pytest.approx([f[0] for f in expected], rel=1e-12, abs=1e-9)
+    assert curve["y"] == pytest.approx([f[1] for f in expected], rel=1e-12, abs=1e-9)
+    largest = max(math.hypot(*f) for f in expected)
+    radii = [float(label.removesuffix(" N")) for label in traces["magnitude labels"]["text"]]
+    step = radii[0]
+    assert radii == pytest.approx([step * (i + 1) for i in range(len(radii))], rel=1e-9)
+    assert radii[-1] >= largest > radii[-1] - step, "the outer circle just encloses the curve"
+    assert 1 <= len(radii) <= 6
+    assert traces["angle labels"]["text"] == [f"{a}°" for a in range(0, 360, 30)]
+    polar = _polar(page)
+    assert "Polar diagram of the frame force" in str(polar["title"])
+    px, py = polar["px"]  # type: ignore[misc]
+    assert px == pytest.approx(py, rel=1e-6), "equal scales: a circle is drawn round"
+    ((x, y, ax, ay, axref, ayref, shown),) = polar["arrows"]  # type: ignore[misc]
+    assert (ax, ay, axref, ayref, shown) == (0, 0, "x", "y", True), "the arrow starts at O"
+    assert any(
+        x == pytest.approx(f[0], rel=1e-12) and y == pytest.approx(f[1], rel=1e-12)
+        for f in expected
+    ), "the arrow ends at the frame force of a sample"
+    wait_until(
+        lambda: _polar(page)["arrows"][0][:2] != [x, y],  # type: ignore[index]
+        what="the current vector to follow the animation",
+    )
+    app.screenshot("frame-force-polar-diagram", "#dynamics-hodograph")

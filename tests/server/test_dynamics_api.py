@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
-from tests.dynamics_cases import seed004_scene
+from tests.dynamics_cases import seed004_scene, square_five_bar
 
 
 def post(client: TestClient, path: str, body: dict[str, Any]) -> Any:
@@ -163,3 +163,16 @@ def test_forces_of_a_spatial_chain_are_refused(client: TestClient) -> None:
     )
     assert response.status_code == 422
     assert "planar linkages" in response.json()["detail"]
+
+
+def test_two_drivers_each_get_their_virtual_power_torque(client: TestClient) -> None:
+    """The five-bar worked by hand in tests/solver/test_virtual_power.py, over HTTP: T_1 =
+    -m (g - w^2) / 2 and T_2 = +m (g - w^2) / 2, from Newton-Euler and from virtual power."""
+    w, m, g = 1.5, 4.0, 9.81
+    body = post(
+        client, "analyze", {"scene": square_five_bar(w, m, g), "quantities": ["forces"]}
+    ).json()
+    expected = [-m * (g - w**2) / 2, m * (g - w**2) / 2]
+    for driver, torque in zip(body["drivers"], expected, strict=True):
+        assert driver["torque"] == pytest.approx(torque, rel=1e-12)
+        assert driver["torque_from_power_balance"] == pytest.approx(torque, rel=1e-12)

@@ -17,6 +17,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
+from solver.exercises.answers import DYNAMIC_ROOTS, parse_sweep_root
 from solver.exercises.mistakes import typical_mistakes
 from solver.exercises.model import within
 
@@ -43,11 +44,27 @@ def remote_value(
         )
         assert r.status_code == 200, r.text
         return at_path(r.json(), field)
-    if "analyze" not in cache:
-        r = client.post(f"{API}/analyze", json={"scene": scene})
+    root, _, rest = path.partition(".")
+    sweep = parse_sweep_root(root)
+    if sweep is not None:  # a cycle figure of /sweep (dynamics exercises)
+        if root not in cache:
+            samples, k = sweep
+            request = {"scene": scene, "samples": samples, "quantities": ["forces"]}
+            r = client.post(f"{API}/sweep", json=request | {"speed_fluctuation": k})
+            assert r.status_code == 200, r.text
+            cache[root] = r.json()
+        return at_path(cache[root], rest)
+    dynamic = root in DYNAMIC_ROOTS or path.split(".")[2:3] == ["force"]
+    key = "analyze-forces" if dynamic else "analyze"
+    if key not in cache:
+        quantities = ["position", "velocity", "acceleration", "forces", "energy"]
+        r = client.post(
+            f"{API}/analyze",
+            json={"scene": scene} | ({"quantities": quantities} if dynamic else {}),
+        )
         assert r.status_code == 200, r.text
-        cache["analyze"] = r.json()
-    return at_path(cache["analyze"], path)
+        cache[key] = r.json()
+    return at_path(cache[key], path)
 
 
 def assert_well_posed(exercise: dict[str, Any], analyzed: dict[str, Any] | None) -> None:

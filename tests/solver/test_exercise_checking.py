@@ -115,6 +115,10 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "rotation_sign",
         "degrees_for_radians",
         "alpha_in_normal_term",
+        "weights_left_out",
+        "inertia_left_out",
+        "mean_torque_for_fluctuation",
+        "flywheel_factor_two",
     }, diagnosed
 
 
