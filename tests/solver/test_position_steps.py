@@ -92,9 +92,25 @@ STEPHENSON: dict[str, Any] = {
 }
 
 
+def offset_lever() -> dict[str, Any]:
+    """The inverted slider-crank preset with its slot turned by 10 deg about the pin: the slot
+    no longer passes through the lever's pivot (offset c != 0)."""
+    doc = build_preset("inverted_slider_crank", {})
+    slot = next(j for j in doc["joints"] if j["type"] == "slider")
+    x, y = slot["axis"]
+    turn = math.radians(10.0)
+    slot["axis"] = [
+        x * math.cos(turn) - y * math.sin(turn),
+        x * math.sin(turn) + y * math.cos(turn),
+    ]
+    doc["title"] = "inverted slider-crank, offset slot"
+    return doc
+
+
 def documents() -> dict[str, dict[str, Any]]:
     docs = {name: build_preset(name, {}) for name in PRESETS}
     docs |= {name: json.loads((EXAMPLES / f"{name}.json").read_text()) for name in LINKAGE_SEEDS}
+    docs["offset_lever"] = offset_lever()
     return docs
 
 
@@ -170,6 +186,9 @@ def test_four_bar_closed_form_gives_the_solver_angles(name: str) -> None:
     np.testing.assert_allclose(d, points[dd].position - points[b].position, rtol=0, atol=1e-15)
     big_a, big_b = 2 * a4 * d[0], 2 * a4 * d[1]
     big_c = a3**2 - a4**2 - float(d @ d)
+    assert (v["A"], v["B"], v["C"]) == pytest.approx((big_a, big_b, big_c), rel=1e-12, abs=1e-15)
+    assert math.cos(v["gamma"]) == pytest.approx(v["cos gamma"], abs=1e-12)
+    assert v["cos gamma"] == pytest.approx(big_c / math.hypot(big_a, big_b), abs=1e-12)
     delta = math.atan2(big_b, big_a)
     gamma = math.acos(big_c / math.hypot(big_a, big_b))
     r_dc = points[c].position - points[dd].position
@@ -190,7 +209,7 @@ def test_four_bar_closed_form_gives_the_solver_angles(name: str) -> None:
 def test_slotted_lever_closed_form_gives_the_solver_angle(name: str, method: str) -> None:
     """s = +-sqrt(|w|^2 - c^2), beta = arg w - atan2(c, s): the slot's direction and the pin's
     distance from the pivot along it, as the solver has them (the lever's slot turned with it)."""
-    assert {"inverted_slider_crank", "quick_return", "S000-T2"} <= set(LEVERS)
+    assert {"inverted_slider_crank", "quick_return", "S000-T2", "offset_lever"} <= set(LEVERS)
     solution = SOLUTIONS[(name, method)]
     kind = "position.lever" if method == "vector" else "position.loop"
     step = next(s for s in steps(solution, kind) if "epsilon" in s.values)
@@ -215,6 +234,7 @@ def test_slotted_lever_closed_form_gives_the_solver_angle(name: str, method: str
     assert v[keys["b"]] == pytest.approx(wrapped(slot), abs=ANGLE_TOL)
     assert s == pytest.approx(v[keys["s"]], abs=1e-12)
     assert abs(c - lever.offset) < 1e-12
+    assert (abs(c) > 0.01) == (name == "offset_lever")
 
 
 def test_pin_in_a_turning_slot() -> None:
@@ -260,3 +280,11 @@ def test_every_new_position_step_renders_in_katex() -> None:
     kinds = ("position.lever", "position.loop")
     latex = [s.latex for sol in SOLUTIONS.values() for s in sol.steps if s.kind in kinds]
     assert latex and run_katex(latex) == []
+
+
+@pytest.mark.parametrize("method", ["vector", "loop"])
+def test_offset_lever_steps_re_evaluate(method: str) -> None:
+    """The one scene here not among the presets and seeds that test_steps re-evaluates."""
+    solution = SOLUTIONS[("offset_lever", method)]
+    assert solution.method == method
+    _check_solution(solution)
