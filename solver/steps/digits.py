@@ -53,7 +53,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def evaluate(relation: str, ops: Sequence[np.ndarray], factor: float) -> tuple[np.ndarray, float]:
     """(the relation's value, the size of the terms it is made of) from operand arrays."""
     ops = [np.atleast_1d(np.asarray(o, dtype=float)) for o in ops]
-    size = [float(np.linalg.norm(o)) for o in ops]
+    size = [math.sqrt(float(o.dot(o))) for o in ops]  # |o|, as numpy.linalg.norm has it
     if relation == "sum":
         value, scale = sum(ops[1:], ops[0]), sum(size)
     elif relation == "cross":
@@ -97,6 +97,7 @@ class ShownValues:
         self.values, self.references, self.fmt, self.digits = values, references, fmt, digits
         self.cleaned: dict[str, tuple[float, ...] | float] = {}
         self.cache: dict[tuple[str, int], np.ndarray] = {}
+        self.names: dict[str, tuple[float, str, int | None]] = {}
 
     def shown(self, key: str) -> np.ndarray:
         d = self.digits[key]
@@ -120,16 +121,22 @@ class ShownValues:
 
     def operand(self, name: str) -> tuple[str, np.ndarray]:
         """(value key, shown number) of an operand written 'name', '-name' or 'name[i]'."""
+        sign, key, index = self.names.get(name) or self.parse(name)
+        value = self.shown(key)
+        if index is not None:
+            value = np.array(value.reshape(-1)[index])
+        return key, sign * value
+
+    def parse(self, name: str) -> tuple[float, str, int | None]:
+        """(sign, value key, component or None) of an operand name, remembered."""
         sign = -1.0 if name.startswith("-") else 1.0
         key = name.lstrip("-")
         index = None
         if key.endswith("]") and key.rsplit("[", 1)[0] in self.values:
             key, rest = key.rsplit("[", 1)
             index = int(rest[:-1])
-        value = self.shown(key)
-        if index is not None:
-            value = np.array(value.reshape(-1)[index])
-        return key, sign * value
+        self.names[name] = (sign, key, index)
+        return sign, key, index
 
     def recomputes(self, check: Check) -> bool:
         """True when the check, evaluated with the shown operands, gives the shown result."""
