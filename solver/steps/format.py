@@ -54,6 +54,8 @@ class Formatter:
         self._numbers: dict[tuple[float, str, float, str], str] = {}
         self._others: dict[int, Formatter] = {}
         self._vectors: dict[tuple[tuple[float, ...], str], tuple[float, ...]] = {}
+        self._split: dict[tuple[float, str, float], tuple[str, int] | None] = {}
+        self._displays: dict[tuple[float | tuple[float, ...], str, float], str] = {}
 
     def with_digits(self, digits: int) -> Formatter:
         """The same formatter (scales) with ``digits`` significant digits, made once."""
@@ -85,7 +87,10 @@ class Formatter:
     # --- numbers --------------------------------------------------------------------------------
 
     def _parts(self, value: float, unit: str, reference: float) -> tuple[str, int] | None:
-        return _split(self.clean(value, unit, reference), self.digits)
+        key = (value, unit, reference)
+        if key not in self._split:
+            self._split[key] = _split(self.clean(value, unit, reference), self.digits)
+        return self._split[key]
 
     def _number(self, value: float, unit: str, reference: float, power: str) -> str:
         """The rounded number, fixed-point or as ``power`` (mantissa {0}, exponent {1})."""
@@ -145,9 +150,15 @@ class Formatter:
 
     def display(self, value: float | tuple[float, ...], unit: str, reference: float = 0.0) -> str:
         """The ``Value.display`` string: plain text with the unit."""
-        if isinstance(value, tuple):
-            return self.text_vector(value, unit)
-        return self.text_value(value, unit, reference)
+        key = (value, unit, reference)
+        found = self._displays.get(key)
+        if found is None:
+            if isinstance(value, tuple):
+                found = self.text_vector(value, unit)
+            else:
+                found = self.text_value(value, unit, reference)
+            self._displays[key] = found
+        return found
 
 
 def latex_unit(unit: str) -> str:
