@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -25,7 +26,15 @@ from solver.steps.builder import StepBuilder
 from solver.steps.format import latex_unit
 from solver.steps.linkage import LinkageContext
 from solver.steps.model import Step
-from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
+from solver.topology import (
+    CircleSpec,
+    DriverStep,
+    DyadStep,
+    LeverStep,
+    LineSpec,
+    NewtonStep,
+)
+from solver.topology import Step as PlanStep
 
 DEGREE = r"{}^{\circ}"
 
@@ -474,23 +483,25 @@ def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
     return b.build()
 
 
+def group_step(ctx: LinkageContext, step: PlanStep) -> Step | None:
+    """The position step of one group of the solver's plan (None: nothing to derive)."""
+    if isinstance(step, DriverStep):
+        return crank_step(ctx, step)
+    if isinstance(step, DyadStep):
+        circles = [s for s in step.loci if isinstance(s, CircleSpec)]
+        lines = [s for s in step.loci if isinstance(s, LineSpec)]
+        if len(circles) == 2:
+            return triangle_step(ctx, step, circles[0], circles[1])
+        if circles and lines:
+            return slider_step(ctx, step, circles[0], lines[0])
+    if isinstance(step, LeverStep):
+        return lever_step(ctx, step)
+    if isinstance(step, NewtonStep):
+        return newton_position_step(ctx, step)
+    return None
+
+
 def position_steps(ctx: LinkageContext) -> list[Step]:
     """The position analysis of the analysed pose, group by group of the solver's plan."""
-    out: list[Step] = []
-    for step in ctx.analysis.plan.steps:
-        if isinstance(step, DriverStep):
-            crank = crank_step(ctx, step)
-            if crank is not None:
-                out.append(crank)
-        elif isinstance(step, DyadStep):
-            circles = [s for s in step.loci if isinstance(s, CircleSpec)]
-            lines = [s for s in step.loci if isinstance(s, LineSpec)]
-            if len(circles) == 2:
-                out.append(triangle_step(ctx, step, circles[0], circles[1]))
-            elif circles and lines:
-                out.append(slider_step(ctx, step, circles[0], lines[0]))
-        elif isinstance(step, LeverStep):
-            out.append(lever_step(ctx, step))
-        elif isinstance(step, NewtonStep):
-            out.append(newton_position_step(ctx, step))
-    return out
+    built = (ctx.replayed(partial(group_step, ctx, step)) for step in ctx.analysis.plan.steps)
+    return [step for step in built if step is not None]
