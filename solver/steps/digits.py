@@ -58,7 +58,10 @@ def _times(a: Shown, b: Shown) -> Shown:
 
 
 def _dot(a: Shown, b: Shown) -> float:
-    return sum((x * y for x, y in zip(a, b, strict=True)), 0.0)
+    total = 0.0
+    for x, y in zip(a, b, strict=True):
+        total += x * y
+    return total
 
 
 def evaluate(relation: str, ops: Sequence[Shown], factor: float) -> tuple[Shown, float]:
@@ -183,13 +186,19 @@ def needed_digits(
     """The values that need more than ``fmt.digits`` digits for every check to recompute."""
     digits = dict.fromkeys(values, fmt.digits)
     shown = ShownValues(values, references, fmt, digits)
+    shown_checks = [c for c in checks if c.relation not in UNSHOWN]
+    keys = [[shown.operand(n)[0] for n in (c.result, *c.operands)] for c in shown_checks]
+    passed: dict[int, list[int]] = {}  # a check that recomputed, with its values' digits then
     for _ in range(MAX_DIGITS * max(1, len(values))):
         changed = False
-        for check in checks:
-            if check.relation in UNSHOWN or shown.recomputes(check):
+        for i, check in enumerate(shown_checks):
+            now = [digits[k] for k in keys[i]]
+            if passed.get(i) == now:
+                continue  # the same shown numbers recompute again
+            if shown.recomputes(check):
+                passed[i] = now
                 continue
-            for name in check.operands:
-                key = shown.operand(name)[0]
+            for key in keys[i][1:]:
                 if digits[key] < MAX_DIGITS:
                     digits[key] += 1
                     changed = True
