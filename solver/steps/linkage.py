@@ -113,6 +113,7 @@ class LinkageContext:
     shown_velocity: set[str] = field(default_factory=set)
     shown_acceleration: set[str] = field(default_factory=set)
     plan: DigitPlan | None = None  # digits per value, where the shown arithmetic needs more
+    slots: dict[tuple[str, str], SlotMotion] = field(default_factory=dict)  # made once each
 
     # --- the solver's numbers -------------------------------------------------------------------
 
@@ -170,6 +171,11 @@ class LinkageContext:
         paths in the response); for another point of a prismatic follower they are derived from
         the guide's rigid motion in the same way.
         """
+        if (guide, point) not in self.slots:
+            self.slots[(guide, point)] = self._slot(guide, point)
+        return self.slots[(guide, point)]
+
+    def _slot(self, guide: str, point: str) -> SlotMotion:
         index = 0
         for joint in self.scene.joints:
             if joint.type == "revolute":
