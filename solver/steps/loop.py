@@ -40,7 +40,7 @@ from solver.steps.linkage import (
     velocity_pole_step,
 )
 from solver.steps.model import Step
-from solver.steps.position import LeverNotation, lever_closed_form, wrap_turn
+from solver.steps.position import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, TwoPointStep
 
 
@@ -113,6 +113,29 @@ class _Term:
         operands = [k for k, _ in self.factors] + [self.angle[0]]
         b.check(self.kind, key, *operands, factor=self.factor)
         return key
+
+
+@dataclass(frozen=True)
+class FourBarClosedForm:
+    """The keys of a four-bar loop's closed form (``LoopMethod.four_bar_values``), the sign of
+    the drawn assembly and the whole turn ('', '2pi' or '-2pi') its angle sum needs."""
+
+    d: str
+    a: str
+    b: str
+    c: str
+    a3_sq: str
+    a4_sq: str
+    d_sq: str
+    radius: str
+    cos: str
+    gamma: str
+    delta: str
+    th13: str
+    th14: str
+    r_coupler: str
+    sign: float
+    turn: str
 
 
 @dataclass
@@ -424,17 +447,21 @@ class LoopMethod:
         A cos th14 + B sin th14 = C, A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2, so
         th14 = delta +- gamma with delta = arg d and cos gamma = C / (2 a4 |d|); then
         th13 = arg(d + a4 e^(i th14))."""
+        b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
+        found = self.four_bar_values(b, loop)
+        self.four_bar_lines(b, loop, found)
+        return b.build()
+
+    def four_bar_values(self, b: StepBuilder, loop: Loop) -> FourBarClosedForm:
+        """Put the closed form's numbers, with a check for each piece of arithmetic."""
         crank, coupler = loop.left
         ground, rocker = loop.right
-        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
-        b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
         self.register_member(b, crank)
         a3, th13 = self.register_member(b, coupler)
         self.register_member(b, ground)
         a4, th14 = self.register_member(b, rocker)
         r_ground = f"r({ground.first},{ground.second})"
         r_crank = f"r({crank.first},{crank.second})"
-        r_rocker = f"r({rocker.first},{rocker.second})"
         r_coupler = f"r({coupler.first},{coupler.second})"
         d_np = np.asarray(b.vector(r_ground)) - np.asarray(b.vector(r_crank))
         d = b.put("d", d_np, "m")
@@ -473,10 +500,19 @@ class LoopMethod:
         sign = 1.0 if off >= 0 else -1.0
         turn, _ = wrap_turn(b, b.scalar(delta) + sign * abs(off), b.scalar(th14))
         b.check("sum", th14, delta, gamma if sign > 0 else f"-{gamma}", *([turn] if turn else []))
-        b.check("sum", r_coupler, d, r_rocker)
+        b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
+        return FourBarClosedForm(
+            d, coef_a, coef_b, coef_c, squares[a3], squares[a4], squares[d_len], radius, cos,
+            gamma, delta, th13, th14, r_coupler, sign, turn,
+        )  # fmt: skip
+
+    def four_bar_lines(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
+        """Write the closed form: the loop rearranged, Re and Im, the elimination, the numbers."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
         t = {k: rf"\theta_{{1{k}}}" for k in (n1, n2, n3, n4)}
-        pm = "+" if sign > 0 else "-"
-        turn_tex = {"": "", "2pi": r" + 2\pi", "-2pi": r" - 2\pi"}[turn]
+        pm = "+" if f.sign > 0 else "-"
         b.line(
             rf"&a_{{{n3}}}\,e^{{i{t[n3]}}} = \vec{{d}} + a_{{{n4}}}\,e^{{i{t[n4]}}}, \quad "
             rf"\vec{{d}} = a_{{{n1}}}\,e^{{i{t[n1]}}} - a_{{{n2}}}\,e^{{i{t[n2]}}}"
@@ -494,36 +530,36 @@ class LoopMethod:
             rf"\frac{{C}}{{\sqrt{{A^2 + B^2}}}} = \frac{{C}}{{2a_{{{n4}}}|\vec{{d}}|}}"
         )
         b.line(
-            rf"&\vec{{d}} = {self.cx(b, d)}{latex_unit('m')}, \quad A = {b.numu(coef_a)}, \quad "
-            rf"B = {b.numu(coef_b)}, \quad C = {b.num(squares[a3])} - {b.num(squares[a4])} - "
-            rf"{b.num(squares[d_len])} = {b.numu(coef_c)}"
+            rf"&\vec{{d}} = {self.cx(b, f.d)}{latex_unit('m')}, \quad A = {b.numu(f.a)}, \quad "
+            rf"B = {b.numu(f.b)}, \quad C = {b.num(f.a3_sq)} - {b.num(f.a4_sq)} - "
+            rf"{b.num(f.d_sq)} = {b.numu(f.c)}"
         )
         b.line(
-            rf"&\cos\gamma = \frac{{{b.num(coef_c)}}}{{{b.num(radius)}}} = {b.num(cos)}, \quad "
-            rf"\gamma = {b.numu(gamma)}, \quad \delta = {b.numu(delta)}"
+            rf"&\cos\gamma = \frac{{{b.num(f.c)}}}{{{b.num(f.radius)}}} = {b.num(f.cos)}, \quad "
+            rf"\gamma = {b.numu(f.gamma)}, \quad \delta = {b.numu(f.delta)}"
         )
         b.line(
-            rf"&{t[n4]} = {b.num(delta)} {pm} {b.num(gamma)}{turn_tex} = "
-            rf"{tex.boxed_result(b.numu(th14))}, \quad {t[n3]} = \arg(\vec{{d}} + a_{{{n4}}}"
-            rf"e^{{i{t[n4]}}}) = \arg {self.cx(b, r_coupler)} = {tex.boxed_result(b.numu(th13))}"
+            rf"&{t[n4]} = {b.num(f.delta)} {pm} {b.num(f.gamma)}{TURN_LATEX[f.turn]} = "
+            rf"{tex.boxed_result(b.numu(f.th14))}, \quad {t[n3]} = \arg(\vec{{d}} + a_{{{n4}}}"
+            rf"e^{{i{t[n4]}}}) = \arg {self.cx(b, f.r_coupler)} = "
+            rf"{tex.boxed_result(b.numu(f.th13))}"
         )
         x = loop.joint
-        where = "left" if sign > 0 else "right"
+        where = "left" if f.sign > 0 else "right"
         b.say(
             f"Moving the crank to the right side, a{n3} e^(i theta1{n3}) = d + a{n4} e^(i "
-            f"theta1{n4}) with d = a{n1} e^(i theta1{n1}) - a{n2} e^(i theta1{n2}) = {b.txt(d)}, "
+            f"theta1{n4}) with d = a{n1} e^(i theta1{n1}) - a{n2} e^(i theta1{n2}) = {b.txt(f.d)}, "
             f"the vector from {crank.second} to {ground.second}. Squaring and adding the real and "
             f"imaginary parts eliminates theta1{n3}: A cos theta1{n4} + B sin theta1{n4} = C with "
-            f"A = 2 a{n4} d_x = {b.txtn(coef_a)}, B = 2 a{n4} d_y = {b.txtn(coef_b)} and C = "
-            f"a{n3}^2 - a{n4}^2 - |d|^2 = {b.txt(coef_c)}. So theta1{n4} = delta +- gamma with "
-            f"delta = arg d = {b.txt(delta)} and cos gamma = C / (2 a{n4} |d|) = {b.txtn(cos)}, "
-            f"gamma = {b.txt(gamma)}. The two signs are the two assemblies, {x} on the left or "
-            f"on the right of {crank.second}{ground.second}; the one taken is {x} on the {where}"
-            f" of {crank.second}{ground.second} (sign {pm}), as drawn (the solver keeps the "
-            f"drawn branch): theta1{n4} = "
-            f"{b.txt(th14)}, and theta1{n3} = arg(d + a{n4} e^(i theta1{n4})) = {b.txt(th13)}."
+            f"A = 2 a{n4} d_x = {b.txtn(f.a)}, B = 2 a{n4} d_y = {b.txtn(f.b)} and C = "
+            f"a{n3}^2 - a{n4}^2 - |d|^2 = {b.txt(f.c)}. So theta1{n4} = delta +- gamma with "
+            f"delta = arg d = {b.txt(f.delta)} and cos gamma = C / (2 a{n4} |d|) = "
+            f"{b.txtn(f.cos)}, gamma = {b.txt(f.gamma)}. The two signs are the two assemblies, "
+            f"{x} on the left or on the right of {crank.second}{ground.second}; the one taken is "
+            f"{x} on the {where} of {crank.second}{ground.second} (sign {pm}), as drawn (the "
+            f"solver keeps the drawn branch): theta1{n4} = {b.txt(f.th14)}, and theta1{n3} = "
+            f"arg(d + a{n4} e^(i theta1{n4})) = {b.txt(f.th13)}."
         )
-        return b.build()
 
     def lever_closed_form_step(self, loop: Loop, index: int) -> Step:
         """The slotted lever's loop a2 e^(i th12) = a1 e^(i th11) + (s + i c) e^(i beta): with

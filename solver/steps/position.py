@@ -263,6 +263,10 @@ class LeverNotation:
     beta_tex: str
 
 
+TURN_LATEX = {"": "", "2pi": r" + 2\pi", "-2pi": r" - 2\pi"}  # the whole turn of wrap_turn
+TURN_TEXT = {"": "", "2pi": " + 2 pi", "-2pi": " - 2 pi"}
+
+
 def wrap_turn(b: StepBuilder, value: float, target: float) -> tuple[str, float]:
     """The whole turns k (as an operand '2pi' or '-2pi', '' for none) with value + k 2 pi =
     target, and the corrected value: an angle found as a sum is written in (-pi, pi]."""
@@ -273,11 +277,30 @@ def wrap_turn(b: StepBuilder, value: float, target: float) -> tuple[str, float]:
     return ("2pi" if k > 0 else "-2pi"), value + math.copysign(2 * math.pi, k)
 
 
+@dataclass(frozen=True)
+class LeverClosedForm:
+    """The keys of a lever's closed form (``lever_values``) and the whole turn of beta."""
+
+    c: str
+    w2: str
+    c2: str
+    s: str
+    epsilon: str
+    theta_w: str
+    beta: str
+    turn: str
+
+
 def lever_closed_form(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> None:
     """(s + i c) e^(i beta) = w, w the vector from the lever's pivot to the pin (registered as
     ``w``): squared and added, s^2 + c^2 = |w|^2, so s = +-sqrt(|w|^2 - c^2); then beta =
     arg w - arg(s + i c). The offset c of the slot is a constant of the lever (from the pose);
     the sign of s is the drawn assembly (the pin ahead of the pivot along the slot, or behind)."""
+    lever_lines(b, w, n, lever_values(b, w, u_np, n))
+
+
+def lever_values(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> LeverClosedForm:
+    """Put the closed form's numbers, with a check for each piece of arithmetic."""
     w_np = np.asarray(b.vector(w))
     size = float(np.hypot(*w_np))  # c and arg(s + i c) at rounding level next to it are 0
     c = b.put(n.c, float(u_np[0] * w_np[1] - u_np[1] * w_np[0]), "m", reference=size)
@@ -300,43 +323,45 @@ def lever_closed_form(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation
     turn, beta_value = wrap_turn(b, b.scalar(theta_w) - b.scalar(eps), math.atan2(u_np[1], u_np[0]))
     beta = b.put(n.beta, beta_value, "rad")
     b.check("sum", beta, theta_w, f"-{eps}", *([turn] if turn else []))
-    pm = "+" if s_value >= 0 else "-"
-    w_ = "w"
-    turn_tex = {"": "", "2pi": r" + 2\pi", "-2pi": r" - 2\pi"}[turn]
+    return LeverClosedForm(c, w2, c2, s, eps, theta_w, beta, turn)
+
+
+def lever_lines(b: StepBuilder, w: str, n: LeverNotation, f: LeverClosedForm) -> None:
+    """Write the closed form: Re and Im, the elimination, the numbers, the assembly taken."""
+    ahead = b.scalar(f.s) >= 0
+    pm = "+" if ahead else "-"
     b.line(
-        rf"&\text{{Re: }} {n.s_tex}\cos{n.beta_tex} - {n.c_tex}\sin{n.beta_tex} = {w_}_x, "
-        rf"\quad \text{{Im: }} {n.s_tex}\sin{n.beta_tex} + {n.c_tex}\cos{n.beta_tex} = "
-        rf"{w_}_y"
+        rf"&\text{{Re: }} {n.s_tex}\cos{n.beta_tex} - {n.c_tex}\sin{n.beta_tex} = w_x, "
+        rf"\quad \text{{Im: }} {n.s_tex}\sin{n.beta_tex} + {n.c_tex}\cos{n.beta_tex} = w_y"
     )
     b.line(
-        rf"&{n.s_tex}^2 + {n.c_tex}^2 = |{w_}|^2 \;\Rightarrow\; {n.s_tex} = \pm"
-        rf"\sqrt{{|{w_}|^2 - {n.c_tex}^2}}, \quad {n.beta_tex} = \arg {w_} - "
+        rf"&{n.s_tex}^2 + {n.c_tex}^2 = |w|^2 \;\Rightarrow\; {n.s_tex} = \pm"
+        rf"\sqrt{{|w|^2 - {n.c_tex}^2}}, \quad {n.beta_tex} = \arg w - "
         rf"\arg({n.s_tex} + i\,{n.c_tex})"
     )
     b.line(
-        rf"&{w_} = {b.point(w)}{latex_unit('m')}, \quad |{w_}|^2 = {b.numu(w2)}, "
-        rf"\quad {n.c_tex} = {b.numu(c)}"
+        rf"&w = {b.point(w)}{latex_unit('m')}, \quad |w|^2 = {b.numu(f.w2)}, "
+        rf"\quad {n.c_tex} = {b.numu(f.c)}"
     )
     b.line(
-        rf"&{n.s_tex} = {pm}\sqrt{{{b.num(w2)} - {b.num(c2)}}} = "
-        rf"{tex.boxed_result(b.numu(s))}"
+        rf"&{n.s_tex} = {pm}\sqrt{{{b.num(f.w2)} - {b.num(f.c2)}}} = "
+        rf"{tex.boxed_result(b.numu(f.s))}"
     )
     b.line(
-        rf"&\arg {w_} = {b.numu(theta_w)}, \quad \arg({n.s_tex} + i\,{n.c_tex}) = "
-        rf"{b.numu(eps)}, \quad {n.beta_tex} = {b.num(theta_w)} - {tex.paren(b.num(eps))}"
-        rf"{turn_tex} = {tex.boxed_result(b.numu(beta))}"
+        rf"&\arg w = {b.numu(f.theta_w)}, \quad \arg({n.s_tex} + i\,{n.c_tex}) = "
+        rf"{b.numu(f.epsilon)}, \quad {n.beta_tex} = {b.num(f.theta_w)} - "
+        rf"{tex.paren(b.num(f.epsilon))}{TURN_LATEX[f.turn]} = {tex.boxed_result(b.numu(f.beta))}"
     )
-    where = "ahead of" if s_value >= 0 else "behind"
+    where = "ahead of" if ahead else "behind"
     b.say(
         "Written as (s + i c) e^(i beta) = w, the real and imaginary parts are s cos "
-        f"beta - c sin beta = w_x and s sin beta + c cos beta = w_y. Squaring and adding "
-        f"eliminates beta: s^2 + c^2 = |w|^2, with the slot's offset c = {b.txt(c)} from the "
-        f"pivot (a constant of the lever) and |w|^2 = {b.txt(w2)}, so s = +-sqrt(|w|^2 - c^2). "
-        f"Two assemblies: the pin {where} the pivot along the slot (sign {pm}) is the one drawn "
-        f"(the solver keeps the drawn branch): s = {b.txt(s)}. Then beta = arg w - arg(s + i c)"
-        f" = {b.txt(theta_w)} - {b.txt(eps)}"
-        + {"": "", "2pi": " + 2 pi", "-2pi": " - 2 pi"}[turn]
-        + f" = {b.txt(beta)}, the angle of the slot."
+        "beta - c sin beta = w_x and s sin beta + c cos beta = w_y. Squaring and adding "
+        f"eliminates beta: s^2 + c^2 = |w|^2, with the slot's offset c = {b.txt(f.c)} from the "
+        f"pivot (a constant of the lever) and |w|^2 = {b.txt(f.w2)}, so s = +-sqrt(|w|^2 - c^2)"
+        f". Two assemblies: the pin {where} the pivot along the slot (sign {pm}) is the one "
+        f"drawn (the solver keeps the drawn branch): s = {b.txt(f.s)}. Then beta = arg w - "
+        f"arg(s + i c) = {b.txt(f.theta_w)} - {b.txt(f.epsilon)}{TURN_TEXT[f.turn]} = "
+        f"{b.txt(f.beta)}, the angle of the slot."
     )
 
 
