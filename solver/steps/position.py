@@ -424,24 +424,24 @@ def _joint_equation(ctx: LinkageContext, joint_index: int) -> tuple[str, str]:
     return line
 
 
-def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
-    """Phi(q) = 0, the joints' equations in q = (x, y, theta) of each link of the group (its first
-    point and its rotation from the drawing), solved by Newton-Raphson q_(k+1) = q_k - J(q_k)^-1
-    Phi(q_k) from the drawn pose, the group's known neighbours where the solver put them."""
+def newton_iterations(ctx: LinkageContext, step: NewtonStep) -> tuple[list[float], bool]:
+    """|Phi(q_k)| of Newton-Raphson q_(k+1) = q_k - J(q_k)^-1 Phi(q_k) on the group's joint
+    equations from the drawn pose q_0, the group's known neighbours where the solver put them
+    (the solver's own ``newton_raphson``, one iteration more each time, until the solver's
+    tolerance), and whether the pose reached is the solver's."""
     scene = ctx.scene
-    b = ctx.builder("position.newton", f"Position of links {', '.join(step.links)}: Newton-Raphson")
     system = newton.ConstraintSystem(scene, step.links)
     known = newton.states({k: ctx.analysis.motion.links[k] for k in system.known}, scene)
-    report = next(r for r in ctx.analysis.diagnostics.newton if set(r.links) == set(step.links))
+    tolerance = group_report(ctx, step).tolerance
     q0 = system.drawn()[None]
     residuals: list[float] = []
     q = q0
     for k in range(MAX_SHOWN_ITERATIONS + 1):
         q, residual, done, _ = newton.newton_raphson(
-            system, known, q0, report.tolerance, polish=False, max_iterations=k
+            system, known, q0, tolerance, polish=False, max_iterations=k
         )
         residuals.append(float(residual[0]))
-        if done < k or residual[0] <= report.tolerance:
+        if done < k or residual[0] <= tolerance:
             break
     solver_q = np.concatenate(
         [
@@ -449,17 +449,37 @@ def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
             for k in step.links
         ]
     )
-    gap = float(
-        np.max(np.abs((q[0] - solver_q) * np.tile([1.0, 1.0, scene.size], len(step.links))))
-    )
+    weights = np.tile([1.0, 1.0, scene.size], len(step.links))
+    gap = float(np.max(np.abs((q[0] - solver_q) * weights)))
+    return residuals, gap <= 1e-9 * scene.size
+
+
+def group_report(ctx: LinkageContext, step: NewtonStep) -> newton.NewtonReport:
+    """The solver's diagnostics of the group: its iterations, residual and tolerance."""
+    return next(r for r in ctx.analysis.diagnostics.newton if set(r.links) == set(step.links))
+
+
+def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
+    """Phi(q) = 0, the joints' equations in q = (x, y, theta) of each link of the group (its first
+    point and its rotation from the drawing), solved numerically (``newton_iterations``)."""
+    b = ctx.builder("position.newton", f"Position of links {', '.join(step.links)}: Newton-Raphson")
+    residuals, same = newton_iterations(ctx, step)
+    report = group_report(ctx, step)
     for k, r in enumerate(residuals):
         b.put(f"|Phi(q_{k})|", r, "m")
     b.put("iterations (solver)", float(report.iterations), "")
     b.put("residual (solver)", report.residual_norm, "m")
     b.put("tolerance", report.tolerance, "m")
-    joints = [
-        n for n, joint in enumerate(scene.joints) if any(link in step.links for link in joint.links)
-    ]
+    newton_lines(b, ctx, step, residuals, same)
+    return b.build()
+
+
+def newton_lines(
+    b: StepBuilder, ctx: LinkageContext, step: NewtonStep, residuals: list[float], same: bool
+) -> None:
+    """Write the joints' equations, the iteration, the residuals and the solver's diagnostics."""
+    report = group_report(ctx, step)
+    joints = [n for n, joint in enumerate(ctx.scene.joints) if set(joint.links) & set(step.links)]
     equations = [_joint_equation(ctx, n) for n in joints]
     unknowns = ", ".join(
         rf"x_{{{tex.name(k)}}}, y_{{{tex.name(k)}}}, \theta_{{{tex.name(k)}}}" for k in step.links
@@ -476,14 +496,18 @@ def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
         r"&\begin{array}{c|" + "c" * len(residuals) + r"} k & " + header + r" \\ \hline "
         r"|\Phi(\vec{q}_k)|\ (\mathrm{m}) & " + row + r" \end{array}"
     )
+    plural = "" if report.iterations == 1 else "s"
     b.line(
-        rf"&\text{{solver: }} {report.iterations} \text{{ iteration"
-        + ("" if report.iterations == 1 else "s")
-        + rf", residual }} "
+        rf"&\text{{solver: }} {report.iterations} \text{{ iteration{plural}, residual }} "
         rf"{_power(report.residual_norm)}\,\mathrm{{m}} \le "
         rf"{_power(report.tolerance)}\,\mathrm{{m}}"
     )
-    same = gap <= 1e-9 * scene.size
+    reached = (
+        ", and the pose reached is the solver's."
+        if same
+        else ", and lands on another assembly than the solver's, which follows the "
+        "linkage continuously from its drawing (the branch rule): the solver's pose is used."
+    )
     b.say(
         f"Links {', '.join(step.links)} form no group with a closed-form solution: their joints "
         "give as many equations Phi(q) = 0 as unknowns, each link's first point (x, y) and its "
@@ -493,19 +517,11 @@ def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
         "Newton-Raphson: q(k+1) = q(k) - J(q(k))^-1 Phi(q(k)), J the Jacobian of Phi. Started "
         "from the drawn pose, the residual |Phi| falls as "
         + ", ".join(f"{r:.1e} m" for r in residuals)
-        + (
-            ", and the pose reached is the solver's."
-            if same
-            else ", and lands on another assembly than the solver's, which follows the "
-            "linkage continuously from its drawing (the branch rule): the solver's pose is used."
-        )
-        + f" The solver (solver diagnostics) took {report.iterations} iteration"
-        + ("" if report.iterations == 1 else "s")
-        + " from its "
-        f"continuation's start, to a residual of {report.residual_norm:.1e} m, below the "
+        + reached
+        + f" The solver (solver diagnostics) took {report.iterations} iteration{plural} from "
+        f"its continuation's start, to a residual of {report.residual_norm:.1e} m, below the "
         f"tolerance {report.tolerance:.1e} m: the numbers are exact to rounding."
     )
-    return b.build()
 
 
 def group_step(ctx: LinkageContext, step: PlanStep) -> Step | None:
