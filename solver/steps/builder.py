@@ -43,7 +43,6 @@ class StepBuilder:
         self.plan = plan
         self.plan_key = plan.key(kind, title) if plan is not None else None
         self.digits = plan.digits(self.plan_key) if plan and self.plan_key else {}
-        self.formatters: dict[int, Formatter] = {}
         self.values: dict[str, Value] = {}
         self.checks: list[Check] = []
         self.lines: list[str] = []
@@ -57,9 +56,7 @@ class StepBuilder:
         digits = self.digits.get(key, self.fmt.digits)
         if digits <= self.fmt.digits:
             return self.fmt
-        if digits not in self.formatters:
-            self.formatters[digits] = Formatter(digits, self.fmt.scales)
-        return self.formatters[digits]
+        return self.fmt.with_digits(digits)
 
     def put(
         self,

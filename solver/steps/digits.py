@@ -14,8 +14,6 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-import numpy as np
-
 from solver.steps.format import Formatter
 from solver.steps.model import Check, Value
 
@@ -38,50 +36,76 @@ def _ulp(x: float, digits: int) -> float:
     return 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
 
 
-def _perp(a: np.ndarray) -> np.ndarray:
-    return np.array([-a[1], a[0]])
+Shown = tuple[float, ...]  # a shown number: one component for a scalar, 2 or 3 for a vector
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    if a.size == 1 and b.size == 2:
-        return float(a[0]) * _perp(b)
-    if a.size == 2 and b.size == 2:
-        return np.array(float(a[0] * b[1] - a[1] * b[0]))
-    return np.cross(a, b)
+def _zip(a: Shown, b: Shown) -> zip[tuple[float, float]]:
+    """Components of a and b side by side, a scalar repeated against a vector."""
+    n = max(len(a), len(b))
+    return zip(a * n if len(a) == 1 else a, b * n if len(b) == 1 else b, strict=True)
 
 
-def evaluate(relation: str, ops: Sequence[np.ndarray], factor: float) -> tuple[np.ndarray, float]:
-    """(the relation's value, the size of the terms it is made of) from operand arrays."""
-    ops = [np.atleast_1d(np.asarray(o, dtype=float)) for o in ops]
-    size = [float(np.linalg.norm(o)) for o in ops]
+def _cross(a: Shown, b: Shown) -> Shown:
+    if len(a) == 1 and len(b) == 2:
+        return (a[0] * -b[1], a[0] * b[0])
+    if len(a) == 2 and len(b) == 2:
+        return (a[0] * b[1] - a[1] * b[0],)
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _times(a: Shown, b: Shown) -> Shown:
+    return tuple(x * y for x, y in _zip(a, b))
+
+
+def _dot(a: Shown, b: Shown) -> float:
+    total = 0.0
+    for x, y in zip(a, b, strict=True):
+        total += x * y
+    return total
+
+
+def evaluate(relation: str, ops: Sequence[Shown], factor: float) -> tuple[Shown, float]:
+    """(the relation's value, the size of the terms it is made of) from the shown operands, in
+    plain floats (a step's checks are a few hundred small sums and products)."""
+    size = [math.sqrt(_dot(o, o)) for o in ops]
     if relation == "sum":
-        value, scale = sum(ops[1:], ops[0]), sum(size)
+        value = ops[0]
+        for o in ops[1:]:
+            value = tuple(x + y for x, y in _zip(value, o))
+        scale = sum(size)
     elif relation == "cross":
         value, scale = _cross(ops[0], ops[1]), size[0] * size[1]
     elif relation == "product":
-        value, scale = math.prod(ops[1:], start=ops[0]), math.prod(size)
+        value = ops[0]
+        for o in ops[1:]:
+            value = _times(value, o)
+        scale = math.prod(size)
     elif relation == "quotient":
-        value, scale = ops[0] / ops[1], size[0] / max(size[1], 1e-300)
+        value = tuple(x / y for x, y in _zip(ops[0], ops[1]))
+        scale = size[0] / max(size[1], 1e-300)
     elif relation == "det2":
-        value = ops[0] * ops[3] - ops[1] * ops[2]
+        value = (ops[0][0] * ops[3][0] - ops[1][0] * ops[2][0],)
         scale = size[0] * size[3] + size[1] * size[2]
     elif relation == "linear":
-        value = sum((ops[k] * ops[k + 1] for k in range(2, len(ops), 2)), ops[0] * ops[1])
+        value = (sum(ops[k][0] * ops[k + 1][0] for k in range(0, len(ops), 2)),)
         scale = sum(size[k] * size[k + 1] for k in range(0, len(ops), 2))
     elif relation == "dot":
-        value, scale = np.array(float(np.dot(ops[0], ops[1]))), size[0] * size[1]
+        value, scale = (_dot(ops[0], ops[1]),), size[0] * size[1]
     elif relation in ("phasor", "iphasor"):
-        angle = float(ops[-1].reshape(-1)[0])
-        unit = np.array([math.cos(angle), math.sin(angle)])
-        value = math.prod(ops[1:-1], start=ops[0]) * (unit if relation == "phasor" else _perp(unit))
+        angle = ops[-1][0]
+        c, s = math.cos(angle), math.sin(angle)
+        magnitude = ops[0]
+        for o in ops[1:-1]:
+            magnitude = _times(magnitude, o)
+        value = _times(magnitude, (c, s) if relation == "phasor" else (-s, c))
         scale = math.prod(size[:-1])
     elif relation == "angle":
-        value, scale = np.array(math.atan2(ops[0][1], ops[0][0])), math.pi
+        value, scale = (math.atan2(ops[0][1], ops[0][0]),), math.pi
     elif relation == "norm":
-        value, scale = np.array(float(np.linalg.norm(ops[0]))), size[0]
+        value, scale = (size[0],), size[0]
     else:
         raise ValueError(f"unknown relation {relation}")
-    return factor * np.asarray(value, dtype=float), abs(factor) * scale
+    return tuple(factor * x for x in value), abs(factor) * scale
 
 
 class ShownValues:
@@ -96,9 +120,10 @@ class ShownValues:
     ) -> None:
         self.values, self.references, self.fmt, self.digits = values, references, fmt, digits
         self.cleaned: dict[str, tuple[float, ...] | float] = {}
-        self.cache: dict[tuple[str, int], np.ndarray] = {}
+        self.cache: dict[tuple[str, int], Shown] = {}
+        self.names: dict[str, tuple[float, str, int | None]] = {}
 
-    def shown(self, key: str) -> np.ndarray:
+    def shown(self, key: str) -> Shown:
         d = self.digits[key]
         found = self.cache.get((key, d))
         if found is not None:
@@ -111,25 +136,28 @@ class ShownValues:
                 else self.fmt.clean(v.value, v.unit, self.references[key])
             )
         clean = self.cleaned[key]
-        if isinstance(clean, tuple):
-            found = np.array([rounded(x, d) for x in clean])
-        else:
-            found = np.array(rounded(clean, d))
+        found = tuple(rounded(x, d) for x in (clean if isinstance(clean, tuple) else (clean,)))
         self.cache[(key, d)] = found
         return found
 
-    def operand(self, name: str) -> tuple[str, np.ndarray]:
+    def operand(self, name: str) -> tuple[str, Shown]:
         """(value key, shown number) of an operand written 'name', '-name' or 'name[i]'."""
+        sign, key, index = self.names.get(name) or self.parse(name)
+        value = self.shown(key)
+        if index is not None:
+            value = (value[index],)
+        return key, value if sign > 0 else tuple(-x for x in value)
+
+    def parse(self, name: str) -> tuple[float, str, int | None]:
+        """(sign, value key, component or None) of an operand name, remembered."""
         sign = -1.0 if name.startswith("-") else 1.0
         key = name.lstrip("-")
         index = None
         if key.endswith("]") and key.rsplit("[", 1)[0] in self.values:
             key, rest = key.rsplit("[", 1)
             index = int(rest[:-1])
-        value = self.shown(key)
-        if index is not None:
-            value = np.array(value.reshape(-1)[index])
-        return key, sign * value
+        self.names[name] = (sign, key, index)
+        return sign, key, index
 
     def recomputes(self, check: Check) -> bool:
         """True when the check, evaluated with the shown operands, gives the shown result."""
@@ -137,14 +165,13 @@ class ShownValues:
         value, scale = evaluate(check.relation, ops, check.factor)
         result_key, result = self.operand(check.result)
         d = self.digits[result_key]
-        diff = np.atleast_1d(value - result).astype(float)
+        diff = [x - r for x, r in _zip(value, result)]
         if check.relation == "angle":
-            diff = (diff + math.pi) % (2 * math.pi) - math.pi
-        result = np.atleast_1d(result)
-        largest = float(np.max(np.abs(result))) if result.size else 0.0
+            diff = [(x + math.pi) % (2 * math.pi) - math.pi for x in diff]
+        largest = max(abs(r) for r in result)
         floor = _ulp(largest if largest > 0 else scale, d)
-        for x, r in zip(diff, result, strict=True):
-            tolerance = TOLERANCE_ULP * max(_ulp(float(r), d), floor) * (1 + 1e-9)
+        for x, r in _zip(tuple(diff), result):
+            tolerance = TOLERANCE_ULP * max(_ulp(r, d), floor) * (1 + 1e-9)
             if abs(x) > tolerance + 1e-12 * scale:
                 return False
         return True
@@ -159,13 +186,19 @@ def needed_digits(
     """The values that need more than ``fmt.digits`` digits for every check to recompute."""
     digits = dict.fromkeys(values, fmt.digits)
     shown = ShownValues(values, references, fmt, digits)
+    shown_checks = [c for c in checks if c.relation not in UNSHOWN]
+    keys = [[shown.operand(n)[0] for n in (c.result, *c.operands)] for c in shown_checks]
+    passed: dict[int, list[int]] = {}  # a check that recomputed, with its values' digits then
     for _ in range(MAX_DIGITS * max(1, len(values))):
         changed = False
-        for check in checks:
-            if check.relation in UNSHOWN or shown.recomputes(check):
+        for i, check in enumerate(shown_checks):
+            now = [digits[k] for k in keys[i]]
+            if passed.get(i) == now:
+                continue  # the same shown numbers recompute again
+            if shown.recomputes(check):
+                passed[i] = now
                 continue
-            for name in check.operands:
-                key = shown.operand(name)[0]
+            for key in keys[i][1:]:
                 if digits[key] < MAX_DIGITS:
                     digits[key] += 1
                     changed = True

@@ -49,6 +49,22 @@ class Formatter:
             raise ValueError(f"digits must be 1..15, got {digits}")
         self.digits = digits
         self.scales = dict(scales or {})
+        # the same numbers are formatted again and again (a point's position in every step that
+        # uses it, every value twice in a solution's two builds): each is worked out once
+        self._numbers: dict[tuple[float, str, float, str], str] = {}
+        self._others: dict[int, Formatter] = {}
+        self._vectors: dict[tuple[tuple[float, ...], str], tuple[float, ...]] = {}
+        self._split: dict[tuple[float, str, float], tuple[str, int] | None] = {}
+        self._displays: dict[tuple[float | tuple[float, ...], str, float], str] = {}
+
+    def with_digits(self, digits: int) -> Formatter:
+        """The same formatter (scales) with ``digits`` significant digits, made once."""
+        if digits == self.digits:
+            return self
+        found = self._others.get(digits)
+        if found is None:
+            found = self._others[digits] = Formatter(digits, self.scales)
+        return found
 
     # --- cleaning -------------------------------------------------------------------------------
 
@@ -61,16 +77,30 @@ class Formatter:
         return 0.0 if self.is_noise(value, unit, reference) else value
 
     def clean_vector(self, vector: Sequence[float], unit: str = "") -> tuple[float, ...]:
-        length = math.sqrt(sum(x * x for x in vector))
-        return tuple(self.clean(x, unit, length) for x in vector)
+        key = (tuple(vector), unit)
+        found = self._vectors.get(key)
+        if found is None:
+            length = math.sqrt(sum(x * x for x in vector))
+            found = self._vectors[key] = tuple(self.clean(x, unit, length) for x in vector)
+        return found
 
     # --- numbers --------------------------------------------------------------------------------
 
     def _parts(self, value: float, unit: str, reference: float) -> tuple[str, int] | None:
-        return _split(self.clean(value, unit, reference), self.digits)
+        key = (value, unit, reference)
+        if key not in self._split:
+            self._split[key] = _split(self.clean(value, unit, reference), self.digits)
+        return self._split[key]
 
     def _number(self, value: float, unit: str, reference: float, power: str) -> str:
         """The rounded number, fixed-point or as ``power`` (mantissa {0}, exponent {1})."""
+        key = (value, unit, reference, power)
+        found = self._numbers.get(key)
+        if found is None:
+            found = self._numbers[key] = self._write(value, unit, reference, power)
+        return found
+
+    def _write(self, value: float, unit: str, reference: float, power: str) -> str:
         parts = self._parts(value, unit, reference)
         if parts is None:
             return "0"
@@ -120,9 +150,15 @@ class Formatter:
 
     def display(self, value: float | tuple[float, ...], unit: str, reference: float = 0.0) -> str:
         """The ``Value.display`` string: plain text with the unit."""
-        if isinstance(value, tuple):
-            return self.text_vector(value, unit)
-        return self.text_value(value, unit, reference)
+        key = (value, unit, reference)
+        found = self._displays.get(key)
+        if found is None:
+            if isinstance(value, tuple):
+                found = self.text_vector(value, unit)
+            else:
+                found = self.text_value(value, unit, reference)
+            self._displays[key] = found
+        return found
 
 
 def latex_unit(unit: str) -> str:

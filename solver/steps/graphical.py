@@ -314,4 +314,4 @@ def _with_figure(step: Step, figure: str) -> Step:
 def graphical_steps(ctx: LinkageContext) -> list[Step]:
     """The velocity and acceleration polygons, drawn and read at their scales."""
     polygons = Polygons(ctx)
-    return [polygons.velocity(), polygons.acceleration()]
+    return [ctx.replayed(polygons.velocity), ctx.replayed(polygons.acceleration)]

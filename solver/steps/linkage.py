@@ -11,8 +11,9 @@ cross products and sums written out are derived from those numbers and agree wit
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 import numpy as np
 
@@ -25,6 +26,8 @@ from solver.steps.builder import StepBuilder, Unknown, present_solution
 from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
+
+T = TypeVar("T")
 
 V0 = r"\vec{0}"
 VELOCITY, ACCELERATION = 1, 2  # the order of a time derivative
@@ -110,6 +113,7 @@ class LinkageContext:
     shown_velocity: set[str] = field(default_factory=set)
     shown_acceleration: set[str] = field(default_factory=set)
     plan: DigitPlan | None = None  # digits per value, where the shown arithmetic needs more
+    slots: dict[tuple[str, str], SlotMotion] = field(default_factory=dict)  # made once each
 
     # --- the solver's numbers -------------------------------------------------------------------
 
@@ -167,6 +171,11 @@ class LinkageContext:
         paths in the response); for another point of a prismatic follower they are derived from
         the guide's rigid motion in the same way.
         """
+        if (guide, point) not in self.slots:
+            self.slots[(guide, point)] = self._slot(guide, point)
+        return self.slots[(guide, point)]
+
+    def _slot(self, guide: str, point: str) -> SlotMotion:
         index = 0
         for joint in self.scene.joints:
             if joint.type == "revolute":
@@ -230,7 +239,34 @@ class LinkageContext:
     # --- names ----------------------------------------------------------------------------------
 
     def builder(self, kind: str, title: str) -> StepBuilder:
+        assert self.plan is not None, "steps are built inside LinkageContext.replayed"
         return StepBuilder(self.fmt, kind, title, self.plan)
+
+    def replayed(self, make: Callable[[], T], *state: set[str]) -> T:
+        """``make()``, whose steps show the digits their arithmetic needs to recompute: built
+        once with the solution's digits, and where a step needs more (``DigitPlan``), built
+        again with them from the same starting point (the shown points and vectors, and the
+        caller's ``state`` sets, restored). A part of a solution that needs no more digits is
+        built once."""
+        outer = self.plan
+        saved = (list(self.used_vectors), set(self.shown_velocity), set(self.shown_acceleration))
+        kept = [set(s) for s in state]
+        self.plan = DigitPlan()
+        try:
+            result = make()
+            if self.plan.replay():
+                self.used_vectors[:] = saved[0]
+                for now, before in zip(
+                    (self.shown_velocity, self.shown_acceleration, *state),
+                    (saved[1], saved[2], *kept),
+                    strict=True,
+                ):
+                    now.clear()
+                    now.update(before)
+                result = make()
+        finally:
+            self.plan = outer
+        return result
 
     def use(self, first: str, second: str) -> None:
         if (first, second) not in self.used_vectors:

@@ -40,6 +40,7 @@ from solver.steps.linkage import (
     velocity_pole_step,
 )
 from solver.steps.model import Step
+from solver.steps.position import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec, TwoPointStep
 
 
@@ -112,6 +113,29 @@ class _Term:
         operands = [k for k, _ in self.factors] + [self.angle[0]]
         b.check(self.kind, key, *operands, factor=self.factor)
         return key
+
+
+@dataclass(frozen=True)
+class FourBarClosedForm:
+    """The keys of a four-bar loop's closed form (``LoopMethod.four_bar_values``), the sign of
+    the drawn assembly and the whole turn ('', '2pi' or '-2pi') its angle sum needs."""
+
+    d: str
+    a: str
+    b: str
+    c: str
+    a3_sq: str
+    a4_sq: str
+    d_sq: str
+    radius: str
+    cos: str
+    gamma: str
+    delta: str
+    th13: str
+    th14: str
+    r_coupler: str
+    sign: float
+    turn: str
 
 
 @dataclass
@@ -414,6 +438,156 @@ class LoopMethod:
             f"a{n3} cos(theta1{n3} - phi{n4}) = {b.txt(s14)}. Of the two angles with this sine the "
             f"one taken has {branch}, the assembly as drawn: theta1{n3} = {b.txt(th13)}."
         )
+        return b.build()
+
+    def four_bar_closed_form_step(self, loop: Loop, index: int) -> Step:
+        """The rocker's angle of a four-bar loop a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) +
+        a4 e^(i th14): with d = a1 e^(i th11) - a2 e^(i th12), a3 e^(i th13) = d + a4 e^(i th14);
+        squaring and adding the real and imaginary parts eliminates th13 and leaves
+        A cos th14 + B sin th14 = C, A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2, so
+        th14 = delta +- gamma with delta = arg d and cos gamma = C / (2 a4 |d|); then
+        th13 = arg(d + a4 e^(i th14))."""
+        b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
+        found = self.four_bar_values(b, loop)
+        self.four_bar_lines(b, loop, found)
+        return b.build()
+
+    def four_bar_values(self, b: StepBuilder, loop: Loop) -> FourBarClosedForm:
+        """Put the closed form's numbers, with a check for each piece of arithmetic."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        self.register_member(b, crank)
+        a3, th13 = self.register_member(b, coupler)
+        self.register_member(b, ground)
+        a4, th14 = self.register_member(b, rocker)
+        r_ground = f"r({ground.first},{ground.second})"
+        r_crank = f"r({crank.first},{crank.second})"
+        r_coupler = f"r({coupler.first},{coupler.second})"
+        d_np = np.asarray(b.vector(r_ground)) - np.asarray(b.vector(r_crank))
+        d = b.put("d", d_np, "m")
+        b.check("sum", d, r_ground, f"-{r_crank}")
+        d_len = b.put("|d|", float(np.hypot(*d_np)), "m")
+        b.check("norm", d_len, d)
+        a4v = b.scalar(a4)
+        coef_a = b.put("A", 2 * a4v * d_np[0], "m^2")
+        coef_b = b.put("B", 2 * a4v * d_np[1], "m^2")
+        b.check("product", coef_a, a4, f"{d}[0]", factor=2.0)
+        b.check("product", coef_b, a4, f"{d}[1]", factor=2.0)
+        squares = {k: b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (a3, a4, d_len)}
+        for k, v in squares.items():
+            b.check("product", v, k, k)
+        sizes = sum(b.scalar(v) for v in squares.values())
+        coef_c = b.put(
+            "C",
+            b.scalar(squares[a3]) - b.scalar(squares[a4]) - b.scalar(squares[d_len]),
+            "m^2",
+            reference=sizes,
+        )
+        b.check("sum", coef_c, squares[a3], f"-{squares[a4]}", f"-{squares[d_len]}")
+        radius = b.put("R", 2 * a4v * b.scalar(d_len), "m^2")
+        b.check("product", radius, a4, d_len, factor=2.0)
+        cos = b.put("cos gamma", b.scalar(coef_c) / b.scalar(radius), "", reference=1.0)
+        b.check("quotient", cos, coef_c, radius)
+        delta = b.put("delta", math.atan2(d_np[1], d_np[0]), "rad")
+        b.check("angle", delta, d)
+        # gamma from the drawn pose (acos loses digits where the loop is nearly flat)
+        off = math.remainder(b.scalar(th14) - b.scalar(delta), 2 * math.pi)
+        gamma = b.put("gamma", abs(off), "rad")
+        one = b.put("1", 1.0, "")
+        unit = b.put("e^(i gamma)", (math.cos(abs(off)), math.sin(abs(off))), "")
+        b.check("phasor", unit, one, gamma)
+        b.check("sum", cos, f"{unit}[0]")
+        sign = 1.0 if off >= 0 else -1.0
+        turn, _ = wrap_turn(b, b.scalar(delta) + sign * abs(off), b.scalar(th14))
+        b.check("sum", th14, delta, gamma if sign > 0 else f"-{gamma}", *([turn] if turn else []))
+        b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
+        return FourBarClosedForm(
+            d, coef_a, coef_b, coef_c, squares[a3], squares[a4], squares[d_len], radius, cos,
+            gamma, delta, th13, th14, r_coupler, sign, turn,
+        )  # fmt: skip
+
+    def four_bar_lines(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
+        """Write the closed form: the loop rearranged, Re and Im, the elimination, the numbers."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
+        t = {k: rf"\theta_{{1{k}}}" for k in (n1, n2, n3, n4)}
+        pm = "+" if f.sign > 0 else "-"
+        b.line(
+            rf"&a_{{{n3}}}\,e^{{i{t[n3]}}} = \vec{{d}} + a_{{{n4}}}\,e^{{i{t[n4]}}}, \quad "
+            rf"\vec{{d}} = a_{{{n1}}}\,e^{{i{t[n1]}}} - a_{{{n2}}}\,e^{{i{t[n2]}}}"
+        )
+        b.line(
+            rf"&\text{{Re: }} a_{{{n3}}}\cos{t[n3]} = d_x + a_{{{n4}}}\cos{t[n4]}, \quad "
+            rf"\text{{Im: }} a_{{{n3}}}\sin{t[n3]} = d_y + a_{{{n4}}}\sin{t[n4]}"
+        )
+        b.line(
+            rf"&A\cos{t[n4]} + B\sin{t[n4]} = C, \quad A = 2a_{{{n4}}}d_x, \; B = 2a_{{{n4}}}d_y, "
+            rf"\; C = a_{{{n3}}}^2 - a_{{{n4}}}^2 - |\vec{{d}}|^2"
+        )
+        b.line(
+            rf"&{t[n4]} = \delta \pm \gamma, \quad \delta = \arg\vec{{d}}, \quad \cos\gamma = "
+            rf"\frac{{C}}{{\sqrt{{A^2 + B^2}}}} = \frac{{C}}{{2a_{{{n4}}}|\vec{{d}}|}}"
+        )
+        b.line(
+            rf"&\vec{{d}} = {self.cx(b, f.d)}{latex_unit('m')}, \quad A = {b.numu(f.a)}, \quad "
+            rf"B = {b.numu(f.b)}, \quad C = {b.num(f.a3_sq)} - {b.num(f.a4_sq)} - "
+            rf"{b.num(f.d_sq)} = {b.numu(f.c)}"
+        )
+        b.line(
+            rf"&\cos\gamma = \frac{{{b.num(f.c)}}}{{{b.num(f.radius)}}} = {b.num(f.cos)}, \quad "
+            rf"\gamma = {b.numu(f.gamma)}, \quad \delta = {b.numu(f.delta)}"
+        )
+        b.line(
+            rf"&{t[n4]} = {b.num(f.delta)} {pm} {b.num(f.gamma)}{TURN_LATEX[f.turn]} = "
+            rf"{tex.boxed_result(b.numu(f.th14))}, \quad {t[n3]} = \arg(\vec{{d}} + a_{{{n4}}}"
+            rf"e^{{i{t[n4]}}}) = \arg {self.cx(b, f.r_coupler)} = "
+            rf"{tex.boxed_result(b.numu(f.th13))}"
+        )
+        x = loop.joint
+        where = "left" if f.sign > 0 else "right"
+        b.say(
+            f"Moving the crank to the right side, a{n3} e^(i theta1{n3}) = d + a{n4} e^(i "
+            f"theta1{n4}) with d = a{n1} e^(i theta1{n1}) - a{n2} e^(i theta1{n2}) = {b.txt(f.d)}, "
+            f"the vector from {crank.second} to {ground.second}. Squaring and adding the real and "
+            f"imaginary parts eliminates theta1{n3}: A cos theta1{n4} + B sin theta1{n4} = C with "
+            f"A = 2 a{n4} d_x = {b.txtn(f.a)}, B = 2 a{n4} d_y = {b.txtn(f.b)} and C = "
+            f"a{n3}^2 - a{n4}^2 - |d|^2 = {b.txt(f.c)}. So theta1{n4} = delta +- gamma with "
+            f"delta = arg d = {b.txt(f.delta)} and cos gamma = C / (2 a{n4} |d|) = "
+            f"{b.txtn(f.cos)}, gamma = {b.txt(f.gamma)}. The two signs are the two assemblies, "
+            f"{x} on the left or on the right of {crank.second}{ground.second}; the one taken is "
+            f"{x} on the {where} of {crank.second}{ground.second} (sign {pm}), as drawn (the "
+            f"solver keeps the drawn branch): theta1{n4} = {b.txt(f.th14)}, and theta1{n3} = "
+            f"arg(d + a{n4} e^(i theta1{n4})) = {b.txt(f.th13)}."
+        )
+
+    def lever_closed_form_step(self, loop: Loop, index: int) -> Step:
+        """The slotted lever's loop a2 e^(i th12) = a1 e^(i th11) + (s + i c) e^(i beta): with
+        w = a2 e^(i th12) - a1 e^(i th11), (s + i c) e^(i beta) = w (``lever_closed_form``)."""
+        (crank,) = loop.left
+        ground, lever = loop.right
+        n1, n2, n3 = ground.number, crank.number, lever.number
+        b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
+        self.register_member(b, crank)
+        self.register_member(b, ground)
+        r_crank = f"r({crank.first},{crank.second})"
+        r_ground = f"r({ground.first},{ground.second})"
+        w = b.put("w", np.asarray(b.vector(r_crank)) - np.asarray(b.vector(r_ground)), "m")
+        b.check("sum", w, r_crank, f"-{r_ground}")
+        assert lever.slot is not None
+        b.line(
+            rf"&(s_{{1{n3}}} + i\,c_{{{n3}}})\,e^{{i\beta_{{{n3}}}}} = w = a_{{{n2}}}\,"
+            rf"e^{{i\theta_{{1{n2}}}}} - a_{{{n1}}}\,e^{{i\theta_{{1{n1}}}}}"
+        )
+        b.say(
+            f"The crank's side minus the ground vector gives the pin {loop.joint} seen from the "
+            f"lever's pivot {lever.first}: w = a{n2} e^(i theta1{n2}) - a{n1} e^(i theta1{n1}) "
+            f"= {b.txt(w)}."
+        )
+        notation = LeverNotation(
+            f"s1{n3}", f"c{n3}", f"beta{n3}", f"s_{{1{n3}}}", f"c_{{{n3}}}", rf"\beta_{{{n3}}}"
+        )
+        lever_closed_form(b, w, lever.slot.direction, notation)
         return b.build()
 
     def offset(self, b: StepBuilder, n: str) -> str:
@@ -793,8 +967,12 @@ class LoopMethod:
         out: list[Step] = []
         for i, loop in enumerate(self.loops, start=1):
             out.append(self.loop_step(loop, i))
-            if loop.kind == "slider-crank":
-                out.append(self.closed_form_step(loop, i))
+            closed_form = {
+                "slider-crank": self.closed_form_step,
+                "four-bar": self.four_bar_closed_form_step,
+                "slotted lever": self.lever_closed_form_step,
+            }[loop.kind]
+            out.append(closed_form(loop, i))
         for order in (VELOCITY, ACCELERATION):
             for i, loop in enumerate(self.loops, start=1):
                 out.append(self.derivative_step(loop, i, order))

@@ -15,15 +15,26 @@ Closed forms come first, then the numbers; the result is the solver's own positi
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
+from solver import newton
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.format import latex_unit
 from solver.steps.linkage import LinkageContext
 from solver.steps.model import Step
-from solver.topology import CircleSpec, DriverStep, DyadStep, LineSpec
+from solver.topology import (
+    CircleSpec,
+    DriverStep,
+    DyadStep,
+    LeverStep,
+    LineSpec,
+    NewtonStep,
+)
+from solver.topology import Step as PlanStep
 
 DEGREE = r"{}^{\circ}"
 
@@ -126,22 +137,80 @@ def triangle_step(
     return b.build()
 
 
+def carried_line(b: StepBuilder, ctx: LinkageContext, line: LineSpec) -> tuple[str, str]:
+    """The slot of a moving guide G now: Q = A + e^(i theta_G) (Q0 - A0) and u = e^(i (beta0 +
+    theta_G)), the drawn line (through Q0 along u0) turned with G about its first point A by
+    theta_G, the rotation of G since its drawing. Returns the keys of Q and u."""
+    g = line.guide
+    anchor = ctx.scene.links[g].points[0]
+    pa = _point(b, ctx, anchor)
+    turn = b.put(f"theta_rot({g})", float(ctx.analysis.motion.links[g].theta[0]), "rad")
+    d0_np = np.asarray(line.through0, dtype=float) - ctx.scene.drawn(anchor)
+    d0 = b.put("Q0 - A0", d0_np, "m")
+    size = b.put("|Q0 - A0|", float(np.hypot(*d0_np)), "m")
+    phi0 = b.put("phi0", math.atan2(d0_np[1], d0_np[0]), "rad")
+    phi = b.put("phi0 + theta_rot", b.scalar(phi0) + b.scalar(turn), "rad")
+    d = b.put(
+        "Q - A", b.scalar(size) * np.array([math.cos(b.scalar(phi)), math.sin(b.scalar(phi))]), "m"
+    )
+    q = b.put("Q", np.asarray(b.vector(pa)) + np.asarray(b.vector(d)), "m")
+    u0_np = np.asarray(line.direction0, dtype=float)
+    u0 = b.put("u0", u0_np / float(np.hypot(*u0_np)), "")
+    beta0 = b.put("beta0", math.atan2(u0_np[1], u0_np[0]), "rad")
+    beta = b.put("beta", b.scalar(beta0) + b.scalar(turn), "rad")
+    one = b.put("1", 1.0, "")
+    u = b.put("u", (math.cos(b.scalar(beta)), math.sin(b.scalar(beta))), "")
+    b.check("norm", size, d0)
+    b.check("angle", phi0, d0)
+    b.check("sum", phi, phi0, turn)
+    b.check("phasor", d, size, phi)
+    b.check("sum", q, pa, d)
+    b.check("angle", beta0, u0)
+    b.check("sum", beta, beta0, turn)
+    b.check("phasor", u, one, beta)
+    a = tex.name(anchor)
+    b.line(
+        rf"&Q = {a} + e^{{i\theta_{{{tex.name(g)}}}}}(Q_0 - {a}_0) = {b.point(pa)} + "
+        rf"{b.num(size)}\,e^{{i\,{tex.paren(b.num(phi))}}} = {b.point(q)}{latex_unit('m')}, "
+        rf"\quad \vec{{u}} = e^{{i(\beta_0 + \theta_{{{tex.name(g)}}})}} = "
+        rf"e^{{i\,{tex.paren(b.num(beta))}}} = {b.point(u)}"
+    )
+    b.say(
+        f"The slot is fixed in the moving link {g}: drawn through Q0 at {b.txtn(d0)} m from "
+        f"{anchor} along u0 = {b.txtn(u0)} (angle beta0 = {b.txt(beta0)}), and {g} has turned "
+        f"by theta_{g} = {b.txt(turn)} about {anchor} since its drawing. So the slot now passes "
+        f"through Q = {anchor} + e^(i theta_{g}) (Q0 - {anchor}0) = {b.txt(q)} along u = "
+        f"e^(i (beta0 + theta_{g})) = {b.txtn(u)}."
+    )
+    return q, u
+
+
 def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: LineSpec) -> Step:
     x, c = step.point, circle.center
-    b = ctx.builder("position.slider", f"Position of {x}: link {circle.link} and the fixed guide")
+    fixed = line.guide == ctx.scene.ground
+    b = ctx.builder(
+        "position.slider" if fixed else "position.slot",
+        f"Position of {x}: link {circle.link} and the "
+        + ("fixed guide" if fixed else f"slot of {line.guide}"),
+    )
     pc, target = _point(b, ctx, c), _point(b, ctx, x)
-    u_np = np.asarray(line.direction0, dtype=float)
-    u_np = u_np / float(np.hypot(*u_np))
-    q = b.put("Q", line.through0, "m")
-    u = b.put("u", u_np, "")
+    if fixed:
+        u_np = np.asarray(line.direction0, dtype=float)
+        u_np = u_np / float(np.hypot(*u_np))
+        q = b.put("Q", line.through0, "m")
+        u = b.put("u", u_np, "")
+    else:
+        q, u = carried_line(b, ctx, line)
+        u_np = np.asarray(b.vector(u))
+    q_np = np.asarray(b.vector(q))
     r = b.put(f"|{c}{x}|", circle.radius, "m")
-    cq = b.put(f"{c} - Q", ctx.pos(c) - np.asarray(line.through0), "m")
+    cq = b.put(f"{c} - Q", ctx.pos(c) - q_np, "m")
     b.check("sum", cq, pc, f"-{q}")
     h = b.put("h", float(u_np[0] * b.vector(cq)[1] - u_np[1] * b.vector(cq)[0]), "m")
     along = b.put("(C - Q).u", float(np.dot(b.vector(cq), u_np)), "m")
     b.check("cross", h, u, cq)
     b.check("dot", along, cq, u)
-    s_value = float(np.dot(ctx.pos(x) - np.asarray(line.through0), u_np))
+    s_value = float(np.dot(ctx.pos(x) - q_np, u_np))
     w = b.put("w", abs(s_value - b.scalar(along)), "m")  # sqrt(r^2 - h^2), from the pose
     r2, h2, w2 = (b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (r, h, w))
     for key, base in ((r2, r), (h2, h), (w2, w)):
@@ -167,8 +236,9 @@ def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: L
         rf"{tex.boxed_result(b.point(target) + latex_unit('m'))}"
     )
     where = "ahead of" if sign > 0 else "behind"
+    guide = "fixed guide" if fixed else f"slot of {line.guide}"
     b.say(
-        f"{x} is at r = {b.txt(r)} from {c} (link {circle.link}) and on the fixed guide through "
+        f"{x} is at r = {b.txt(r)} from {c} (link {circle.link}) and on the {guide} through "
         f"Q = {b.txt(q)} along u = {b.txtn(u)}. {c} is at h = {b.txt(h)} from the guide; the "
         f"circle meets it at w = sqrt(r^2 - h^2) = {b.txt(w)} on either side of the foot of "
         f"{c}. The assembly taken is {x} {where} the foot along u, as drawn: s = {b.txt(s)}, "
@@ -177,19 +247,302 @@ def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: L
     return b.build()
 
 
+# --- a pin in the turning slot of a lever about a known pivot ---------------------------------
+
+
+@dataclass(frozen=True)
+class LeverNotation:
+    """How a lever's closed form is written: the keys of s, c and beta and their LaTeX symbols;
+    w is the vector from the lever's pivot to the pin."""
+
+    s: str
+    c: str
+    beta: str
+    s_tex: str
+    c_tex: str
+    beta_tex: str
+
+
+TURN_LATEX = {"": "", "2pi": r" + 2\pi", "-2pi": r" - 2\pi"}  # the whole turn of wrap_turn
+TURN_TEXT = {"": "", "2pi": " + 2 pi", "-2pi": " - 2 pi"}
+
+
+def wrap_turn(b: StepBuilder, value: float, target: float) -> tuple[str, float]:
+    """The whole turns k (as an operand '2pi' or '-2pi', '' for none) with value + k 2 pi =
+    target, and the corrected value: an angle found as a sum is written in (-pi, pi]."""
+    k = round((target - value) / (2 * math.pi))
+    if k == 0:
+        return "", value
+    b.put("2pi", 2 * math.pi, "rad")
+    return ("2pi" if k > 0 else "-2pi"), value + math.copysign(2 * math.pi, k)
+
+
+@dataclass(frozen=True)
+class LeverClosedForm:
+    """The keys of a lever's closed form (``lever_values``) and the whole turn of beta."""
+
+    c: str
+    w2: str
+    c2: str
+    s: str
+    epsilon: str
+    theta_w: str
+    beta: str
+    turn: str
+
+
+def lever_closed_form(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> None:
+    """(s + i c) e^(i beta) = w, w the vector from the lever's pivot to the pin (registered as
+    ``w``): squared and added, s^2 + c^2 = |w|^2, so s = +-sqrt(|w|^2 - c^2); then beta =
+    arg w - arg(s + i c). The offset c of the slot is a constant of the lever (from the pose);
+    the sign of s is the drawn assembly (the pin ahead of the pivot along the slot, or behind)."""
+    lever_lines(b, w, n, lever_values(b, w, u_np, n))
+
+
+def lever_values(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> LeverClosedForm:
+    """Put the closed form's numbers, with a check for each piece of arithmetic."""
+    w_np = np.asarray(b.vector(w))
+    size = float(np.hypot(*w_np))  # c and arg(s + i c) at rounding level next to it are 0
+    c = b.put(n.c, float(u_np[0] * w_np[1] - u_np[1] * w_np[0]), "m", reference=size)
+    s_value = float(np.dot(w_np, u_np))
+    w2 = b.put("|w|^2", float(np.dot(w_np, w_np)), "m^2")
+    c2 = b.put(f"{n.c}^2", b.scalar(c) ** 2, "m^2", reference=size**2)
+    s2 = b.put(f"{n.s}^2", s_value**2, "m^2", reference=b.scalar(w2))
+    s = b.put(n.s, s_value, "m")
+    sc = b.put(f"({n.s}, {n.c})", (s_value, b.scalar(c)), "m")
+    eps = b.put("epsilon", math.atan2(b.scalar(c), s_value), "rad", reference=math.pi)
+    theta_w = b.put("theta_w", math.atan2(w_np[1], w_np[0]), "rad")
+    b.check("dot", w2, w, w)
+    b.check("product", c2, c, c)
+    b.check("sum", s2, w2, f"-{c2}")
+    b.check("product", s2, s, s)
+    b.check("sum", s, f"{sc}[0]")
+    b.check("sum", c, f"{sc}[1]")
+    b.check("angle", eps, sc)
+    b.check("angle", theta_w, w)
+    turn, beta_value = wrap_turn(b, b.scalar(theta_w) - b.scalar(eps), math.atan2(u_np[1], u_np[0]))
+    beta = b.put(n.beta, beta_value, "rad")
+    b.check("sum", beta, theta_w, f"-{eps}", *([turn] if turn else []))
+    return LeverClosedForm(c, w2, c2, s, eps, theta_w, beta, turn)
+
+
+def lever_lines(b: StepBuilder, w: str, n: LeverNotation, f: LeverClosedForm) -> None:
+    """Write the closed form: Re and Im, the elimination, the numbers, the assembly taken."""
+    ahead = b.scalar(f.s) >= 0
+    pm = "+" if ahead else "-"
+    b.line(
+        rf"&\text{{Re: }} {n.s_tex}\cos{n.beta_tex} - {n.c_tex}\sin{n.beta_tex} = w_x, "
+        rf"\quad \text{{Im: }} {n.s_tex}\sin{n.beta_tex} + {n.c_tex}\cos{n.beta_tex} = w_y"
+    )
+    b.line(
+        rf"&{n.s_tex}^2 + {n.c_tex}^2 = |w|^2 \;\Rightarrow\; {n.s_tex} = \pm"
+        rf"\sqrt{{|w|^2 - {n.c_tex}^2}}, \quad {n.beta_tex} = \arg w - "
+        rf"\arg({n.s_tex} + i\,{n.c_tex})"
+    )
+    b.line(
+        rf"&w = {b.point(w)}{latex_unit('m')}, \quad |w|^2 = {b.numu(f.w2)}, "
+        rf"\quad {n.c_tex} = {b.numu(f.c)}"
+    )
+    b.line(
+        rf"&{n.s_tex} = {pm}\sqrt{{{b.num(f.w2)} - {b.num(f.c2)}}} = "
+        rf"{tex.boxed_result(b.numu(f.s))}"
+    )
+    b.line(
+        rf"&\arg w = {b.numu(f.theta_w)}, \quad \arg({n.s_tex} + i\,{n.c_tex}) = "
+        rf"{b.numu(f.epsilon)}, \quad {n.beta_tex} = {b.num(f.theta_w)} - "
+        rf"{tex.paren(b.num(f.epsilon))}{TURN_LATEX[f.turn]} = {tex.boxed_result(b.numu(f.beta))}"
+    )
+    where = "ahead of" if ahead else "behind"
+    b.say(
+        "Written as (s + i c) e^(i beta) = w, the real and imaginary parts are s cos "
+        "beta - c sin beta = w_x and s sin beta + c cos beta = w_y. Squaring and adding "
+        f"eliminates beta: s^2 + c^2 = |w|^2, with the slot's offset c = {b.txt(f.c)} from the "
+        f"pivot (a constant of the lever) and |w|^2 = {b.txt(f.w2)}, so s = +-sqrt(|w|^2 - c^2)"
+        f". Two assemblies: the pin {where} the pivot along the slot (sign {pm}) is the one "
+        f"drawn (the solver keeps the drawn branch): s = {b.txt(f.s)}. Then beta = arg w - "
+        f"arg(s + i c) = {b.txt(f.theta_w)} - {b.txt(f.epsilon)}{TURN_TEXT[f.turn]} = "
+        f"{b.txt(f.beta)}, the angle of the slot."
+    )
+
+
+def lever_step(ctx: LinkageContext, step: LeverStep) -> Step:
+    """The lever's angle and the pin's distance along its slot, from the triangle pivot-pin."""
+    q, p = step.pivot, step.pin
+    b = ctx.builder("position.lever", f"Position of lever {step.link}: its slot through {p}")
+    pq, pp = _point(b, ctx, q), _point(b, ctx, p)
+    w = b.put(f"r({q},{p})", ctx.pos(p) - ctx.pos(q), "m")
+    b.check("sum", w, pp, f"-{pq}")
+    notation = LeverNotation("s", "c", "beta", "s", "c", r"\beta")
+    b.line(
+        rf"&w = {tex.name(p)} - {tex.name(q)} = (s + i\,c)\,e^{{i\beta}}, \quad s \text{{ along "
+        rf"the slot, }} c \text{{ its offset from }} {tex.name(q)}"
+    )
+    b.say(
+        f"Lever {step.link} turns about {q}; its slot passes through the pin {p}. From {q}, {p} "
+        f"is s along the slot and c across it: w = {p} - {q} = {b.txt(w)}."
+    )
+    lever_closed_form(b, w, ctx.slot(step.link, p).direction, notation)
+    return b.build()
+
+
+# --- a Newton group: the loop-closure equations solved numerically ---------------------------
+
+MAX_SHOWN_ITERATIONS = 12
+
+
+def _power(x: float) -> str:
+    """A residual in LaTeX with a power of ten (2 digits): rounding-level numbers are the point."""
+    if x == 0.0:
+        return "0"
+    mantissa, exponent = f"{x:.1e}".split("e")
+    return rf"{mantissa} \cdot 10^{{{int(exponent)}}}"
+
+
+def _joint_equation(ctx: LinkageContext, joint_index: int) -> tuple[str, str]:
+    """One joint's loop-closure equation (LaTeX, text): the joint's point as carried by either
+    link (a pin), on the guide's line (a slot), no relative turn (a prismatic joint)."""
+    joint = ctx.scene.joints[joint_index]
+    i, j = (tex.name(k) for k in joint.links)
+    p = tex.name(joint.point)
+    if joint.type == "revolute":
+        return (
+            rf"\vec{{r}}_{{{i}}} + e^{{i\theta_{{{i}}}}}\vec{{d}}_{{{p}}}^{{\,{i}}} = "
+            rf"\vec{{r}}_{{{j}}} + e^{{i\theta_{{{j}}}}}\vec{{d}}_{{{p}}}^{{\,{j}}}",
+            f"{joint.point} carried by {joint.links[0]} = {joint.point} carried by "
+            f"{joint.links[1]} (2 equations)",
+        )
+    g, f = tex.name(joint.guide), tex.name(joint.follower)
+    line = (
+        rf"\vec{{n}}_{{{g}}} \cdot ({p}^{{\,{f}}} - {p}^{{\,{g}}}) = 0",
+        f"{joint.point} of {joint.follower} on the slot line of {joint.guide} (normal n)",
+    )
+    if joint.type == "prismatic":
+        return (
+            line[0] + rf", \quad \theta_{{{f}}} = \theta_{{{g}}}",
+            line[1] + f", and {joint.follower} does not turn relative to {joint.guide}",
+        )
+    return line
+
+
+def newton_iterations(ctx: LinkageContext, step: NewtonStep) -> tuple[list[float], bool]:
+    """|Phi(q_k)| of Newton-Raphson q_(k+1) = q_k - J(q_k)^-1 Phi(q_k) on the group's joint
+    equations from the drawn pose q_0, the group's known neighbours where the solver put them
+    (the solver's own ``newton_raphson``, one iteration more each time, until the solver's
+    tolerance), and whether the pose reached is the solver's."""
+    scene = ctx.scene
+    system = newton.ConstraintSystem(scene, step.links)
+    known = newton.states({k: ctx.analysis.motion.links[k] for k in system.known}, scene)
+    tolerance = group_report(ctx, step).tolerance
+    q0 = system.drawn()[None]
+    residuals: list[float] = []
+    q = q0
+    for k in range(MAX_SHOWN_ITERATIONS + 1):
+        q, residual, done, _ = newton.newton_raphson(
+            system, known, q0, tolerance, polish=False, max_iterations=k
+        )
+        residuals.append(float(residual[0]))
+        if done < k or residual[0] <= tolerance:
+            break
+    solver_q = np.concatenate(
+        [
+            np.append(ctx.pos(scene.links[k].points[0]), ctx.analysis.motion.links[k].theta[0])
+            for k in step.links
+        ]
+    )
+    weights = np.tile([1.0, 1.0, scene.size], len(step.links))
+    gap = float(np.max(np.abs((q[0] - solver_q) * weights)))
+    return residuals, gap <= 1e-9 * scene.size
+
+
+def group_report(ctx: LinkageContext, step: NewtonStep) -> newton.NewtonReport:
+    """The solver's diagnostics of the group: its iterations, residual and tolerance."""
+    return next(r for r in ctx.analysis.diagnostics.newton if set(r.links) == set(step.links))
+
+
+def newton_position_step(ctx: LinkageContext, step: NewtonStep) -> Step:
+    """Phi(q) = 0, the joints' equations in q = (x, y, theta) of each link of the group (its first
+    point and its rotation from the drawing), solved numerically (``newton_iterations``)."""
+    b = ctx.builder("position.newton", f"Position of links {', '.join(step.links)}: Newton-Raphson")
+    residuals, same = newton_iterations(ctx, step)
+    report = group_report(ctx, step)
+    for k, r in enumerate(residuals):
+        b.put(f"|Phi(q_{k})|", r, "m")
+    b.put("iterations (solver)", float(report.iterations), "")
+    b.put("residual (solver)", report.residual_norm, "m")
+    b.put("tolerance", report.tolerance, "m")
+    newton_lines(b, ctx, step, residuals, same)
+    return b.build()
+
+
+def newton_lines(
+    b: StepBuilder, ctx: LinkageContext, step: NewtonStep, residuals: list[float], same: bool
+) -> None:
+    """Write the joints' equations, the iteration, the residuals and the solver's diagnostics."""
+    report = group_report(ctx, step)
+    joints = [n for n, joint in enumerate(ctx.scene.joints) if set(joint.links) & set(step.links)]
+    equations = [_joint_equation(ctx, n) for n in joints]
+    unknowns = ", ".join(
+        rf"x_{{{tex.name(k)}}}, y_{{{tex.name(k)}}}, \theta_{{{tex.name(k)}}}" for k in step.links
+    )
+    for latex, _ in equations:
+        b.line("&" + latex)
+    b.line(
+        rf"&\vec{{q}} = ({unknowns}), \quad \vec{{q}}_{{k+1}} = \vec{{q}}_k - "
+        rf"J(\vec{{q}}_k)^{{-1}}\,\Phi(\vec{{q}}_k), \quad \vec{{q}}_0 = \text{{drawn pose}}"
+    )
+    header = " & ".join(str(k) for k in range(len(residuals)))
+    row = " & ".join(_power(r) for r in residuals)
+    b.line(
+        r"&\begin{array}{c|" + "c" * len(residuals) + r"} k & " + header + r" \\ \hline "
+        r"|\Phi(\vec{q}_k)|\ (\mathrm{m}) & " + row + r" \end{array}"
+    )
+    plural = "" if report.iterations == 1 else "s"
+    b.line(
+        rf"&\text{{solver: }} {report.iterations} \text{{ iteration{plural}, residual }} "
+        rf"{_power(report.residual_norm)}\,\mathrm{{m}} \le "
+        rf"{_power(report.tolerance)}\,\mathrm{{m}}"
+    )
+    reached = (
+        ", and the pose reached is the solver's."
+        if same
+        else ", and lands on another assembly than the solver's, which follows the "
+        "linkage continuously from its drawing (the branch rule): the solver's pose is used."
+    )
+    b.say(
+        f"Links {', '.join(step.links)} form no group with a closed-form solution: their joints "
+        "give as many equations Phi(q) = 0 as unknowns, each link's first point (x, y) and its "
+        "rotation theta from the drawing: "
+        + "; ".join(text for _, text in equations)
+        + ". The equations are not linear in the angles, so they are solved numerically, by "
+        "Newton-Raphson: q(k+1) = q(k) - J(q(k))^-1 Phi(q(k)), J the Jacobian of Phi. Started "
+        "from the drawn pose, the residual |Phi| falls as "
+        + ", ".join(f"{r:.1e} m" for r in residuals)
+        + reached
+        + f" The solver (solver diagnostics) took {report.iterations} iteration{plural} from "
+        f"its continuation's start, to a residual of {report.residual_norm:.1e} m, below the "
+        f"tolerance {report.tolerance:.1e} m: the numbers are exact to rounding."
+    )
+
+
+def group_step(ctx: LinkageContext, step: PlanStep) -> Step | None:
+    """The position step of one group of the solver's plan (None: nothing to derive)."""
+    if isinstance(step, DriverStep):
+        return crank_step(ctx, step)
+    if isinstance(step, DyadStep):
+        circles = [s for s in step.loci if isinstance(s, CircleSpec)]
+        lines = [s for s in step.loci if isinstance(s, LineSpec)]
+        if len(circles) == 2:
+            return triangle_step(ctx, step, circles[0], circles[1])
+        if circles and lines:
+            return slider_step(ctx, step, circles[0], lines[0])
+    if isinstance(step, LeverStep):
+        return lever_step(ctx, step)
+    if isinstance(step, NewtonStep):
+        return newton_position_step(ctx, step)
+    return None
+
+
 def position_steps(ctx: LinkageContext) -> list[Step]:
     """The position analysis of the analysed pose, group by group of the solver's plan."""
-    out: list[Step] = []
-    for step in ctx.analysis.plan.steps:
-        if isinstance(step, DriverStep):
-            crank = crank_step(ctx, step)
-            if crank is not None:
-                out.append(crank)
-        elif isinstance(step, DyadStep):
-            circles = [s for s in step.loci if isinstance(s, CircleSpec)]
-            lines = [s for s in step.loci if isinstance(s, LineSpec)]
-            if len(circles) == 2:
-                out.append(triangle_step(ctx, step, circles[0], circles[1]))
-            elif circles and lines and lines[0].guide == ctx.scene.ground:
-                out.append(slider_step(ctx, step, circles[0], lines[0]))
-    return out
+    built = (ctx.replayed(partial(group_step, ctx, step)) for step in ctx.analysis.plan.steps)
+    return [step for step in built if step is not None]

@@ -65,40 +65,41 @@ def _fallback_step(requested: str, reason: str) -> Step:
 
 
 def _linkage_steps(
-    scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str, plan: DigitPlan
+    scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
-    were built in, and the method used."""
-    ctx = LinkageContext(scene, analysis, fmt, plan=plan)
+    were built in, and the method used. Each part is built where needed twice, by
+    ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
+    ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
     if method == "loop":
         try:
-            body = loop_steps(ctx)
+            body = ctx.replayed(lambda: loop_steps(ctx))
         except LoopUnavailable as why:
             reason = str(why)
             lead.append(_fallback_step("loop-closure", reason[:1].upper() + reason[1:] + "."))
-            ctx = LinkageContext(scene, analysis, fmt, plan=plan)
+            ctx = LinkageContext(scene, analysis, fmt)
             used = "vector"
             body = vector_steps(ctx)
     else:
         body = vector_steps(ctx)
-    body += moving_point_steps(ctx)
-    body += graphical_steps(ctx)
-    body.append(instant_centres_step(ctx))
+    body += ctx.replayed(lambda: moving_point_steps(ctx))
+    body += ctx.replayed(lambda: graphical_steps(ctx))
+    body.append(ctx.replayed(lambda: instant_centres_step(ctx)))
     if method == "newton_euler":
-        body += newton_euler_steps(ctx)
-    positions = positions_step(ctx)
+        body += ctx.replayed(lambda: newton_euler_steps(ctx))
+    positions = ctx.replayed(lambda: positions_step(ctx))
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
         *lead,
-        data_step(ctx, _SENTENCES[used]),
+        ctx.replayed(lambda: data_step(ctx, _SENTENCES[used])),
         positions,
-        *position_steps(ctx),
-        *classification_steps(ctx),
+        *ctx.replayed(lambda: position_steps(ctx)),
+        *ctx.replayed(lambda: classification_steps(ctx)),
         *body,
-        reading_step(ctx),
-        summary_step(ctx),
+        ctx.replayed(lambda: reading_step(ctx)),
+        ctx.replayed(lambda: summary_step(ctx)),
     ]
     return steps, ctx, used
 
@@ -106,10 +107,7 @@ def _linkage_steps(
 def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     analysis = analyze(scene)
     fmt = Formatter(digits, unit_scales(analysis, scene.size))
-    plan = DigitPlan()
-    steps, ctx, used = _linkage_steps(scene, analysis, fmt, method, plan)
-    if plan.replay():  # some arithmetic needs more digits to recompute: build again with them
-        steps, ctx, used = _linkage_steps(scene, analysis, fmt, method, plan)
+    steps, ctx, used = _linkage_steps(scene, analysis, fmt, method)
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)

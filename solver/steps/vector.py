@@ -19,6 +19,7 @@ equations a textbook writes:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
@@ -205,16 +206,17 @@ class VectorMethod:
     def steps(self) -> list[Step]:
         ctx = self.ctx
         out: list[Step] = []
+        state = (self.solved_omega, self.solved_alpha)
         for order in (VELOCITY, ACCELERATION):
-            fixed = fixed_points_step(ctx, order)
+            fixed = ctx.replayed(partial(fixed_points_step, ctx, order))
             if fixed is not None:
                 out.append(fixed)
             for step in ctx.analysis.plan.steps:
-                out += self.plan_step(step, order)
+                out += ctx.replayed(partial(self.plan_step, step, order), *state)
         for link in ctx.scene.moving_links:
-            out.append(velocity_pole_step(ctx, link))
+            out.append(ctx.replayed(partial(velocity_pole_step, ctx, link)))
         for link in ctx.scene.moving_links:
-            out.append(acceleration_pole_step(ctx, link))
+            out.append(ctx.replayed(partial(acceleration_pole_step, ctx, link)))
         return out
 
     def plan_step(self, step: object, order: int) -> list[Step]:
