@@ -4,22 +4,23 @@
 // at growing distances in eight directions around its anchor (the tip it names); the position
 // with the least cost wins: overlapping a label already placed costs most, then leaving the plot
 // area, then crossing a drawn line (arrows, images, ticks are lines), then distance. Labels are
-// placed in order of importance (poles, then images, then the rest) and become annotations
-// named "label:<text>" (xshift/yshift in pixels from the anchor).
+// placed in order of importance (poles, then images, then relative and component vectors at their
+// midpoints) and become annotations named "label:<text>" (xshift/yshift in pixels from the
+// anchor).
 
 const FONT = '600 14px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
 const HEIGHT = 17;
 const PAD = 2;
-const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110];
+const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110, 135, 165];
 const DIRECTIONS = [[1, -1], [-1, -1], [1, 1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
 
 let context = null;
 function textWidth(html) {
   context = context || document.createElement('canvas').getContext('2d');
   context.font = FONT;
-  // Subscripts are smaller: count them at 70 %.
-  const sub = [...html.matchAll(/<sub>(.*?)<\/sub>/g)].map((m) => m[1]).join('');
-  const main = html.replace(/<sub>.*?<\/sub>/g, '').replace(/<[^>]+>/g, '');
+  // Subscripts and superscripts are smaller: count them at 70 %.
+  const sub = [...html.matchAll(/<su[bp]>(.*?)<\/su[bp]>/g)].map((m) => m[1]).join('');
+  const main = html.replace(/<su[bp]>.*?<\/su[bp]>/g, '').replace(/<[^>]+>/g, '');
   return context.measureText(main).width + 0.7 * context.measureText(sub).width;
 }
 
