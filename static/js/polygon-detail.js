@@ -106,7 +106,7 @@ export async function renderDetail(P, main, detail, figure, kind, units) {
   const laid = {
     ...base,
     title: {
-      text: `Detail (dashed box) at its own scale: 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
+      text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
       font: { size: 13 }, x: 0.02, xanchor: 'left',
     },
     xaxis: { ...base.xaxis, range: x },

@@ -172,7 +172,8 @@ def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_
     page.wait_for_function(LABELS_PLACED, arg="acceleration-polygon-detail")
     detail = page.evaluate(DRAWN, "acceleration-polygon-detail")
     title = detail["title"]
-    cm_detail = scale_in(title, "own scale: ")
+    assert title.startswith("Acceleration detail (dashed box): 1 cm = "), title
+    cm_detail = scale_in(title, "(dashed box): ")
     cm_main = scale_in(title, "polygon: ")
     assert cm_detail < cm_main / 1.5, "the detail is drawn larger"
 
