@@ -57,7 +57,7 @@ export function renderMagnitudes(table, scene, analysis, polygons, units) {
   const segments = polygons?.segments || [];
   if (segments.length) {
     const body = el('tbody');
-    body.appendChild(row(['C relative to B', `|v_CB| [${u('velocity')}]`, `|aⁿ_CB| [${u('acceleration')}]`, `|aᵗ_CB| [${u('acceleration')}]`], true));
+    body.appendChild(row(['point rel. base', `|ω|·r [${u('velocity')}]`, `aⁿ = ω²r [${u('acceleration')}]`, `aᵗ = |α|·r [${u('acceleration')}]`], true));
     for (const seg of segments) {
       const tag = `${seg.point}${seg.base}`;
       body.appendChild(row([[`${seg.point} rel. ${seg.base} (`, ...symbol('v', tag), ', ', ...symbol('a', tag, 'n'), ', ', ...symbol('a', tag, 't'), ')'],
