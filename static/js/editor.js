@@ -39,6 +39,7 @@ export class Editor {
     this.ground = new Set();
     this.sliders = new Map(); // point -> {type: 'slider' | 'prismatic', guide: link name, deg: axis angle}
     this.driver = null;
+    this.motion = { omega: 10, alpha: 0 }; // the driver's, kept from a loaded scene
     this.pending = []; // points clicked with the link tool, not yet a link
     this.active = null; // the link the next clicked point joins
     this.view = { k: 400, ox: 120, oy: 380 }; // px per m, px of the world origin
@@ -77,7 +78,9 @@ export class Editor {
       const guide = j.links[0] === ground ? 'ground' : j.links[0];
       if (j.type !== 'revolute') this.sliders.set(j.point, { type: j.type, guide, deg: (Math.atan2(j.axis[1], j.axis[0]) * 180) / Math.PI });
     }
-    this.driver = scene.drivers?.[0]?.link || null;
+    const driver = scene.drivers?.[0];
+    this.driver = driver?.link || null;
+    if (Number.isFinite(driver?.omega)) this.motion = { omega: driver.omega, alpha: Number.isFinite(driver.alpha) ? driver.alpha : 0 };
     const xs = Object.values(this.points).map((p) => p[0]);
     const ys = Object.values(this.points).map((p) => p[1]);
     const w = Math.max(...xs) - Math.min(...xs) || 1;
@@ -297,7 +300,7 @@ export class Editor {
       points: structuredClone(this.points),
       links,
       joints: this.joints(),
-      drivers: driver ? [{ link: driver.name, omega: 10, alpha: 0 }] : [],
+      drivers: driver ? [{ link: driver.name, ...this.motion }] : [],
     };
     return { scene, problems };
   }

@@ -181,3 +181,39 @@ def test_gruebler_counts_a_slider_on_the_ground_as_a_pin_in_a_slot(app: AppPage)
     draw(app, [(0.0, 0.0), (0.1, 0.1), (0.5, 0.0)], "A", ["AB", "BC"])
     sliding(page, "slider", "ground", "0", (0.5, 0.0))
     assert page.get_attribute("#editor-dof", "data-f") == "1"
+
+
+def test_the_quick_return_opens_in_the_editor_with_its_slot_in_the_lever(app: AppPage) -> None:
+    """ "Start from the current mechanism" on the quick-return: the pin A in the lever's slot and
+    the ram C on the ground's guide come back as they were (axes to 1e-12), F = 3·3 − 2·3 − 2 = 1,
+    and the analysis equals /analyze of the preset's own scene (1e-9)."""
+    app.open()
+    page = app.page
+    page.select_option("#preset", "preset:quick_return")
+    page.wait_for_function(
+        "() => document.getElementById('preset').value === 'preset:quick_return'"
+    )
+    pause_and_wait(page)
+    original = exported_scene(page)
+    page.click("#new-mechanism")
+    page.click("#editor-from-current")
+    assert page.get_attribute("#editor-dof", "data-f") == "1"
+    assert "3·3 − 2·3 − 2 = 1" in page.inner_text("#editor-dof")
+    assert page.locator("#editor .editor-slider[data-guide='lever']").count() == 1
+    page.fill("#editor-title", "quick-return again")
+    page.click("#editor-done")
+    wait_until(lambda: page.inner_text("#view-title") == "quick-return again", what="it")
+    page.wait_for_selector("#linkage .link", state="attached")
+    pause_and_wait(page)
+    scene = exported_scene(page)
+    for a, b in zip(
+        sorted(scene["joints"], key=lambda j: j["point"]),
+        sorted(original["joints"], key=lambda j: j["point"]),
+        strict=True,
+    ):
+        assert (a["type"], a["links"]) == (b["type"], b["links"])
+        assert a.get("axis", [0, 0]) == pytest.approx(b.get("axis", [0, 0]), abs=1e-12)
+    assert scene["drivers"][0]["omega"] == original["drivers"][0]["omega"]
+    by_hand = {k: original[k] for k in ("kind", "points", "links", "joints", "drivers")}
+    by_hand["drivers"] = [{k: v for k, v in original["drivers"][0].items() if k != "angle_deg"}]
+    assert_page_analysis_is(app, by_hand)
