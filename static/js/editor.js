@@ -1,13 +1,17 @@
 // editor.js: "New mechanism": draw a planar linkage from scratch and get a scene-v1 document.
 //
 // Tools: place points (drag to move them), connect points into links (two clicks make a bar,
-// further clicks add points to it: a plate), mark fixed pivots, sliders on a fixed guide (axis
-// at the angle given), and the driver (a link pinned to the ground). Points snap to a grid.
+// further clicks add points to it: a plate), mark fixed pivots, sliders (a pin in a slot) and
+// prismatic joints (a block in a guide), each with its axis at the angle given and its guide
+// chosen (the ground or any link: a slot in a moving link), and the driver (a link pinned to the
+// ground). Points snap to a grid.
 // Joints follow from the drawing: a point shared by k links is k − 1 revolute joints (k when it
-// is a fixed pivot, pinned to the ground); a slider point is a slider joint of its first link on
-// the ground. The degrees of freedom are counted by Gruebler's equation
-//   F = 3 (n − 1) − 2 j
-// (n links counting the ground, j one-degree joints) and explained until F = 1 and a driver is
+// is a fixed pivot, pinned to the ground); a slider or prismatic point is that joint between its
+// guide and the first of its links that is not the guide (the follower), and revolute joints of
+// its other links on the follower. The degrees of freedom are counted by Gruebler's equation
+//   F = 3 (n − 1) − 2 j − j₂
+// (n links counting the ground, j one-degree joints: revolute and prismatic, j₂ two-degree
+// joints: a pin in a slot both slides and turns) and explained until F = 1 and a driver is
 // chosen; then the scene goes to the app, which analyses it at once.
 
 import { svgEl, clear } from './svg.js';
@@ -33,8 +37,9 @@ export class Editor {
     this.points = {}; // name -> [x, y] (m)
     this.links = []; // {name, points: []}
     this.ground = new Set();
-    this.sliders = new Map(); // point -> axis angle (deg)
+    this.sliders = new Map(); // point -> {type: 'slider' | 'prismatic', guide: link name, deg: axis angle}
     this.driver = null;
+    this.motion = { omega: 10, alpha: 0 }; // the driver's, kept from a loaded scene
     this.pending = []; // points clicked with the link tool, not yet a link
     this.active = null; // the link the next clicked point joins
     this.view = { k: 400, ox: 120, oy: 380 }; // px per m, px of the world origin
@@ -48,35 +53,41 @@ export class Editor {
 
   open(scene = null) {
     this.reset();
-    if (scene) this.load(scene);
+    const refused = scene ? this.load(scene) : '';
     $('editor-panel').hidden = false;
     this.render();
+    this.message(refused);
   }
 
   close() {
     $('editor-panel').hidden = true;
   }
 
-  /** Start from a scene: revolute joints and sliders on the ground only. */
+  /** Start from a scene: revolute, slider and prismatic joints (one sliding joint per point).
+   *  Returns why not ('' when loaded). */
   load(scene) {
     const ground = groundLink(scene);
-    if ((scene.joints || []).some((j) => j.type !== 'revolute' && !(j.type === 'slider' && j.links[0] === ground)) || scene.moving_points) {
-      this.message('This mechanism has joints the editor does not draw (moving guides, prismatic joints, moving points): starting from an empty sheet.');
-      return;
+    const sliding = (scene.joints || []).filter((j) => j.type !== 'revolute');
+    if (sliding.some((j) => !['slider', 'prismatic'].includes(j.type)) || new Set(sliding.map((j) => j.point)).size < sliding.length || scene.moving_points) {
+      return 'This mechanism has joints the editor does not draw (moving points, two sliding joints at one point): starting from an empty sheet.';
     }
     this.points = structuredClone(scene.points);
     for (const [name, l] of Object.entries(scene.links)) if (!l.ground) this.links.push({ name, points: [...l.points] });
     for (const j of scene.joints) {
       if (j.type === 'revolute' && j.links.includes(ground)) this.ground.add(j.point);
-      if (j.type === 'slider') this.sliders.set(j.point, (Math.atan2(j.axis[1], j.axis[0]) * 180) / Math.PI);
+      const guide = j.links[0] === ground ? 'ground' : j.links[0];
+      if (j.type !== 'revolute') this.sliders.set(j.point, { type: j.type, guide, deg: (Math.atan2(j.axis[1], j.axis[0]) * 180) / Math.PI });
     }
-    this.driver = scene.drivers?.[0]?.link || null;
+    const driver = scene.drivers?.[0];
+    this.driver = driver?.link || null;
+    if (Number.isFinite(driver?.omega)) this.motion = { omega: driver.omega, alpha: Number.isFinite(driver.alpha) ? driver.alpha : 0 };
     const xs = Object.values(this.points).map((p) => p[0]);
     const ys = Object.values(this.points).map((p) => p[1]);
     const w = Math.max(...xs) - Math.min(...xs) || 1;
     const h = Math.max(...ys) - Math.min(...ys) || 1;
     const k = Math.min((WIDTH - 200) / w, (HEIGHT - 160) / h);
     this.view = { k, ox: 100 - Math.min(...xs) * k, oy: HEIGHT - 80 + Math.min(...ys) * k };
+    return '';
   }
 
   // ---- coordinates ---------------------------------------------------------------------------
@@ -146,17 +157,20 @@ export class Editor {
         this.sliders.delete(hit);
         if (this.ground.has(hit)) this.ground.delete(hit);
         else this.ground.add(hit);
-      } else if (tool === 'slider' && hit) {
+      } else if ((tool === 'slider' || tool === 'prismatic') && hit) {
         this.ground.delete(hit);
-        if (this.sliders.has(hit)) this.sliders.delete(hit);
-        else this.sliders.set(hit, Number($('editor-axis').value) || 0);
+        if (this.sliders.get(hit)?.type === tool) this.sliders.delete(hit);
+        else this.sliders.set(hit, { type: tool, guide: $('editor-guide').value || 'ground', deg: Number($('editor-axis').value.replace(',', '.')) || 0 });
       } else if (tool === 'driver') {
         const link = this.hitLink(ev);
         if (link) this.driver = this.driver === link ? null : link;
       } else if (tool === 'delete') {
         const link = hit ? null : this.hitLink(ev);
         if (hit) this.removePoint(hit);
-        else if (link) this.links = this.links.filter((l) => l.name !== link);
+        else if (link) {
+          this.links = this.links.filter((l) => l.name !== link);
+          this.forgetRemovedLinks();
+        }
       }
       this.render();
     });
@@ -216,7 +230,14 @@ export class Editor {
     this.sliders.delete(name);
     for (const l of this.links) l.points = l.points.filter((p) => p !== name);
     this.links = this.links.filter((l) => l.points.length >= 2);
-    if (!this.links.some((l) => l.name === this.driver)) this.driver = null;
+    this.forgetRemovedLinks();
+  }
+
+  /** Drop the driver and the sliding joints whose link is gone. */
+  forgetRemovedLinks() {
+    const names = new Set(this.links.map((l) => l.name));
+    if (!names.has(this.driver)) this.driver = null;
+    for (const [p, j] of this.sliders) if (j.guide !== 'ground' && !names.has(j.guide)) this.sliders.delete(p);
   }
 
   // ---- the scene and its degrees of freedom ------------------------------------------------
@@ -227,11 +248,12 @@ export class Editor {
       const owners = this.links.filter((l) => l.points.includes(p)).map((l) => l.name);
       if (this.ground.has(p)) {
         for (const l of owners) joints.push({ type: 'revolute', point: p, links: ['ground', l] });
-      } else if (this.sliders.has(p) && owners.length) {
-        const deg = this.sliders.get(p);
+      } else if (this.sliders.has(p) && owners.some((l) => l !== this.sliders.get(p).guide)) {
+        const { type, guide, deg } = this.sliders.get(p);
+        const followers = owners.filter((l) => l !== guide);
         const a = (deg * Math.PI) / 180;
-        joints.push({ type: 'slider', point: p, links: ['ground', owners[0]], axis: [Number(Math.cos(a).toFixed(12)), Number(Math.sin(a).toFixed(12))] });
-        for (const l of owners.slice(1)) joints.push({ type: 'revolute', point: p, links: [owners[0], l] });
+        joints.push({ type, point: p, links: [guide, followers[0]], axis: [Number(Math.cos(a).toFixed(12)), Number(Math.sin(a).toFixed(12))] });
+        for (const l of followers.slice(1)) joints.push({ type: 'revolute', point: p, links: [followers[0], l] });
       } else {
         for (const l of owners.slice(1)) joints.push({ type: 'revolute', point: p, links: [owners[0], l] });
       }
@@ -239,17 +261,22 @@ export class Editor {
     return joints;
   }
 
-  /** Gruebler: F = 3 (n − 1) − 2 j, with its explanation. */
+  /** Gruebler: F = 3 (n − 1) − 2 j − j₂, with its explanation. */
   freedom() {
     const n = this.links.length + 1;
-    const j = this.joints().length;
-    const f = 3 * (n - 1) - 2 * j;
+    const joints = this.joints();
+    const j2 = joints.filter((jt) => jt.type === 'slider').length;
+    const j = joints.length - j2;
+    const f = 3 * (n - 1) - 2 * j - j2;
     let why;
     if (!this.links.length) why = 'Place points, then connect them into links.';
     else if (f === 1) why = 'One degree of freedom: one driver moves the whole mechanism.';
     else if (f <= 0) why = f === 0 ? 'A structure: nothing can move. Remove a link, or free a fixed pivot.' : 'An over-constrained structure: remove links or joints.';
     else why = `${f} degrees of freedom: one driver leaves the rest loose. Add a link between two moving points (each binary link with two new joints removes one), or fix a pivot.`;
-    return { n, j, f, text: `Gruebler: n = ${n} links (with the ground), j = ${j} joints, F = 3(n − 1) − 2j = 3·${n - 1} − 2·${j} = ${f}. ${why}` };
+    const count = j2
+      ? `j = ${j} one-degree joints (revolute, prismatic), j₂ = ${j2} pin${j2 > 1 ? 's' : ''} in a slot (two degrees: it slides and turns), F = 3(n − 1) − 2j − j₂ = 3·${n - 1} − 2·${j} − ${j2}`
+      : `j = ${j} joints, F = 3(n − 1) − 2j = 3·${n - 1} − 2·${j}`;
+    return { n, j, j2, f, text: `Gruebler: n = ${n} links (with the ground), ${count} = ${f}. ${why}` };
   }
 
   scene() {
@@ -257,6 +284,9 @@ export class Editor {
     const { f } = this.freedom();
     const loose = Object.keys(this.points).filter((p) => !this.ground.has(p) && !this.links.some((l) => l.points.includes(p)));
     if (loose.length) problems.push(`Points ${loose.join(', ')} belong to no link (connect or delete them).`);
+    for (const [p, { guide }] of this.sliders) {
+      if (!this.links.some((l) => l.name !== guide && l.points.includes(p))) problems.push(`The sliding point ${p} needs a link of its own besides its guide ${guide} (the pin or block that slides).`);
+    }
     if (!this.ground.size) problems.push('Mark at least one fixed pivot (tool "fixed pivot").');
     if (f !== 1) problems.push(`The drawing has F = ${f} degrees of freedom; a mechanism with one driver needs F = 1.`);
     const driver = this.links.find((l) => l.name === this.driver);
@@ -270,7 +300,7 @@ export class Editor {
       points: structuredClone(this.points),
       links,
       joints: this.joints(),
-      drivers: driver ? [{ link: driver.name, omega: 10, alpha: 0 }] : [],
+      drivers: driver ? [{ link: driver.name, ...this.motion }] : [],
     };
     return { scene, problems };
   }
@@ -281,6 +311,16 @@ export class Editor {
   }
 
   // ---- drawing -------------------------------------------------------------------------------
+
+  /** The guide choices of the slider and prismatic tools: the ground and every link. */
+  renderGuides() {
+    const select = $('editor-guide');
+    const names = ['ground', ...this.links.map((l) => l.name)];
+    if ([...select.options].map((o) => o.value).join('|') === names.join('|')) return;
+    const chosen = names.includes(select.value) ? select.value : 'ground';
+    select.replaceChildren(...names.map((n) => new Option(n === 'ground' ? 'the ground' : `link ${n}`, n)));
+    select.value = chosen;
+  }
 
   render() {
     const svg = this.svg;
@@ -296,9 +336,11 @@ export class Editor {
     }
     svgEl('text', { x: 10, y: HEIGHT - 10, class: 'view-note' }, svg).textContent = `grid ${GRID * 1000} mm (Shift: no snapping)`;
     const colours = ['#3b6ea5', '#2a9d8f', '#c8553d', '#8e5ea2', '#d08c2c', '#5b8c5a'];
+    const linkColour = {};
     this.links.forEach((l, i) => {
       const ps = l.points.map((p) => this.px(this.points[p]));
       const colour = colours[i % colours.length];
+      linkColour[l.name] = colour;
       const attrs = { stroke: colour, 'data-link': l.name, class: 'editor-link' };
       if (ps.length === 2) svgEl('line', { ...attrs, x1: ps[0][0], y1: ps[0][1], x2: ps[1][0], y2: ps[1][1], 'stroke-width': l.name === this.driver ? 14 : 10, 'stroke-linecap': 'round' }, svg);
       else svgEl('polygon', { ...attrs, points: ps.map((p) => p.join(',')).join(' '), fill: colour, 'fill-opacity': 0.2, 'stroke-width': 5 }, svg);
@@ -311,15 +353,25 @@ export class Editor {
         svgEl('path', { d: `M${x},${y} L${x - 13},${y + 20} L${x + 13},${y + 20} Z`, fill: '#eef0f3', stroke: COLOURS.ground, 'stroke-width': 1.5 }, svg);
       }
       if (this.sliders.has(name)) {
-        const a = (this.sliders.get(name) * Math.PI) / 180;
+        // The axis in the guide's colour (grey: the ground); a pin in a slot is a long block, a
+        // prismatic block a square between two guide lines.
+        const { type, guide, deg } = this.sliders.get(name);
+        const a = (deg * Math.PI) / 180;
         const [dx, dy] = [Math.cos(a) * 60, -Math.sin(a) * 60];
-        svgEl('line', { x1: x - dx, y1: y - dy, x2: x + dx, y2: y + dy, stroke: COLOURS.ground, 'stroke-width': 2, 'stroke-dasharray': '6 4' }, svg);
-        svgEl('rect', { x: x - 15, y: y - 9, width: 30, height: 18, rx: 3, fill: '#fff', stroke: COLOURS.ink, 'stroke-width': 2, transform: `rotate(${(-a * 180) / Math.PI} ${x} ${y})` }, svg);
+        const [nx, ny] = [-dy / 6, dx / 6];
+        const colour = guide === 'ground' ? COLOURS.ground : linkColour[guide];
+        const axis = { stroke: colour, 'stroke-width': 2, 'stroke-dasharray': '6 4', class: `editor-${type}`, 'data-guide': guide };
+        if (type === 'prismatic') {
+          for (const sgn of [1, -1]) svgEl('line', { ...axis, x1: x - dx + sgn * nx, y1: y - dy + sgn * ny, x2: x + dx + sgn * nx, y2: y + dy + sgn * ny }, svg);
+        } else svgEl('line', { ...axis, x1: x - dx, y1: y - dy, x2: x + dx, y2: y + dy }, svg);
+        const [w, h] = type === 'prismatic' ? [18, 18] : [30, 18];
+        svgEl('rect', { x: x - w / 2, y: y - h / 2, width: w, height: h, rx: 3, fill: '#fff', stroke: COLOURS.ink, 'stroke-width': 2, transform: `rotate(${-deg} ${x} ${y})` }, svg);
       }
       const chosen = this.pending.includes(name) || this.active?.points.includes(name);
       svgEl('circle', { cx: x, cy: y, r: 6, fill: chosen ? '#f59e0b' : '#fff', stroke: COLOURS.ink, 'stroke-width': 2.2, 'data-point': name, class: 'editor-point' }, svg);
       svgEl('text', { x: x + 10, y: y - 10, class: 'point-label' }, svg).textContent = name;
     }
+    this.renderGuides();
     const dof = this.freedom();
     $('editor-dof').textContent = dof.text;
     $('editor-dof').dataset.f = String(dof.f);

@@ -4,22 +4,24 @@
 // at growing distances in eight directions around its anchor (the tip it names); the position
 // with the least cost wins: overlapping a label already placed costs most, then leaving the plot
 // area, then crossing a drawn line (arrows, images, ticks are lines), then distance. Labels are
-// placed in order of importance (poles, then images, then the rest) and become annotations
-// named "label:<text>" (xshift/yshift in pixels from the anchor).
+// placed in order of importance (poles, then images, then relative and component vectors at their
+// midpoints) and become annotations named "label:<text>" (xshift/yshift in pixels from the
+// anchor; from 42 px on, ax/ay with a thin leader line to the anchor).
 
 const FONT = '600 14px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
 const HEIGHT = 17;
 const PAD = 2;
-const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110];
+const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110, 135, 165];
+const LEADER = 42; // px: labels placed this far from their anchor get a leader line
 const DIRECTIONS = [[1, -1], [-1, -1], [1, 1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
 
 let context = null;
 function textWidth(html) {
   context = context || document.createElement('canvas').getContext('2d');
   context.font = FONT;
-  // Subscripts are smaller: count them at 70 %.
-  const sub = [...html.matchAll(/<sub>(.*?)<\/sub>/g)].map((m) => m[1]).join('');
-  const main = html.replace(/<sub>.*?<\/sub>/g, '').replace(/<[^>]+>/g, '');
+  // Subscripts and superscripts are smaller: count them at 70 %.
+  const sub = [...html.matchAll(/<su[bp]>(.*?)<\/su[bp]>/g)].map((m) => m[1]).join('');
+  const main = html.replace(/<su[bp]>.*?<\/su[bp]>/g, '').replace(/<[^>]+>/g, '');
   return context.measureText(main).width + 0.7 * context.measureText(sub).width;
 }
 
@@ -91,14 +93,22 @@ export function placeLabels(div, entries, traces) {
       if (best.cost < 1e3 && best.cost - best.r < 25) break; // clear of labels, area and lines
     }
     placed.push(best.box);
-    out.push({
+    const label = {
       name: `label:${e.text}`,
       x: e.at[0], y: e.at[1], xref: 'x', yref: 'y', showarrow: false,
       xanchor: 'center', yanchor: 'middle',
       xshift: best.cx - ax, yshift: -(best.cy - ay),
       text: e.text, font: { size: 14, color: e.colour || '#1f2933' },
       bgcolor: 'rgba(255,255,255,0.75)', borderpad: 0,
-    });
+    };
+    // A label pushed far from what it names is tied to it by a thin leader line.
+    if (best.r >= LEADER) {
+      Object.assign(label, {
+        showarrow: true, arrowhead: 0, arrowwidth: 0.8, arrowcolor: e.colour || '#1f2933', standoff: 2,
+        ax: best.cx - ax, ay: best.cy - ay, xshift: 0, yshift: 0,
+      });
+    }
+    out.push(label);
   }
   return out;
 }

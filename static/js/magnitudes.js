@@ -1,6 +1,7 @@
 // magnitudes.js: the table beside the polygons: the magnitude of every vector the polygons draw,
-// as the server gave it (points: |v|, |a|; links: ω, α; sliders and moving points: transport,
-// relative and Coriolis parts), in the display units, named as in the polygons.
+// as the server gave it (points: |v|, |a|; links: ω, α; the image segments' relative parts
+// v_CB, aⁿ_CB, aᵗ_CB from /solution's `polygons`; sliders and moving points: transport, relative
+// and Coriolis parts), in the display units, named as in the polygons.
 
 import { componentSources } from './track.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
@@ -17,11 +18,23 @@ const mag = (v) => (v ? Math.hypot(v[0], v[1]) : null);
 
 function row(cells, head = false) {
   const tr = el('tr');
-  cells.forEach((c, i) => tr.appendChild(el(head || i === 0 ? 'th' : 'td', head ? { scope: 'col' } : i === 0 ? { scope: 'row' } : {}, c)));
+  cells.forEach((c, i) => {
+    const cell = el(head || i === 0 ? 'th' : 'td', head ? { scope: 'col' } : i === 0 ? { scope: 'row' } : {});
+    cell.append(...(Array.isArray(c) ? c : [c]));
+    tr.appendChild(cell);
+  });
   return tr;
 }
 
-export function renderMagnitudes(table, scene, analysis, units) {
+/** The polygons' label `symbol` with sub- and superscripts as nodes: [v, sub CB] etc. */
+function symbol(main, sub, sup = '') {
+  const nodes = [main];
+  if (sup) nodes.push(el('sup', {}, sup));
+  nodes.push(el('sub', {}, sub));
+  return nodes;
+}
+
+export function renderMagnitudes(table, scene, analysis, polygons, units) {
   table.replaceChildren();
   if (!analysis) return;
   const u = (kind) => unitLabel(kind, units);
@@ -40,14 +53,27 @@ export function renderMagnitudes(table, scene, analysis, units) {
     links.appendChild(row([`${name} (${numbers[name] ?? '?'})`, val('omega', l.omega), val('alpha', l.alpha)]));
   }
   table.append(points, links);
+  // The image segments B -> C as the polygons label them: v_CB = ω × r_BC, aⁿ_CB, aᵗ_CB.
+  const segments = polygons?.segments || [];
+  if (segments.length) {
+    const body = el('tbody');
+    body.appendChild(row(['point rel. base', `|ω|·r [${u('velocity')}]`, `aⁿ = ω²r [${u('acceleration')}]`, `aᵗ = |α|·r [${u('acceleration')}]`], true));
+    for (const seg of segments) {
+      const tag = `${seg.point}${seg.base}`;
+      body.appendChild(row([[`${seg.point} rel. ${seg.base} (`, ...symbol('v', tag), ', ', ...symbol('a', tag, 'n'), ', ', ...symbol('a', tag, 't'), ')'],
+        val('velocity', mag(seg.velocity)), val('acceleration', mag(seg.normal)), val('acceleration', mag(seg.tangential))]));
+    }
+    table.appendChild(body);
+  }
   const parts = componentSources(analysis);
   if (parts.length) {
     const body = el('tbody');
     body.appendChild(row(['part at', `|v| [${u('velocity')}]`, `|a| [${u('acceleration')}]`], true));
     for (const j of parts) {
-      body.appendChild(row([`${j.point} transport`, val('velocity', mag(j.transport_velocity)), val('acceleration', mag(j.transport_acceleration))]));
-      body.appendChild(row([`${j.point} relative`, val('velocity', mag(j.relative_velocity)), val('acceleration', mag(j.relative_acceleration))]));
-      body.appendChild(row([`${j.point} Coriolis`, '', val('acceleration', mag(j.coriolis_acceleration))]));
+      const p = j.point;
+      body.appendChild(row([[`${p} transport (`, ...symbol('v', `${p},tr`), ', ', ...symbol('a', `${p},tr`), ')'], val('velocity', mag(j.transport_velocity)), val('acceleration', mag(j.transport_acceleration))]));
+      body.appendChild(row([[`${p} relative (`, ...symbol('v', `${p},rel`), ', ', ...symbol('a', `${p},rel`), ')'], val('velocity', mag(j.relative_velocity)), val('acceleration', mag(j.relative_acceleration))]));
+      body.appendChild(row([[`${p} Coriolis (`, ...symbol('a', `${p},Cor`), ')'], '', val('acceleration', mag(j.coriolis_acceleration))]));
     }
     table.appendChild(body);
   }

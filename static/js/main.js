@@ -551,7 +551,7 @@ class App {
     this.paintSpatialInfo();
     this.viewMessage(note || '');
     clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
-    renderMagnitudes($('polygon-table'), scene, null, this.units);
+    renderMagnitudes($('polygon-table'), scene, null, null, this.units);
     this.polygonMessage('The polygons are drawn for planar linkages. The vectors of this spatial chain are listed under its drawing.');
     clearPolygons($('plots'));
     this.plotsMessage('A spatial chain is analysed at one instant: there is no cycle to plot.');
@@ -685,7 +685,7 @@ class App {
     await plotlyReady();
     if (!this.analysis) return;
     const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.polygons, this.units);
-    renderMagnitudes($('polygon-table'), this.scene, this.analysis, this.units);
+    renderMagnitudes($('polygon-table'), this.scene, this.analysis, this.polygons, this.units);
     this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
     const v = this.instantValue(this.analysisU ?? this.u);
     if (this.track && !this.track.static && v !== null) {

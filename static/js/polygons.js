@@ -2,9 +2,11 @@
 //
 // Drawn as a textbook draws them: every absolute vector from the pole of the polygon, labelled
 // with the lowercase name of its point (b for B); the image of each link joins the tips of its
-// points. In the acceleration polygon each image segment B->P is drawn as its normal part
-// (-omega^2 r, towards the base point) then its tangential part (alpha x r), and every slider or
-// moving point as transport + Coriolis + relative, head to tail.
+// points. In the velocity polygon each image segment B->P not from the pole is also drawn as the
+// arrow v_PB = omega x r; in the acceleration polygon as its normal part (-omega^2 r, towards the
+// base point) then its tangential part (alpha x r), and every slider or moving point as
+// transport + Coriolis + relative, head to tail. Each of these vectors is labelled at its
+// midpoint with the worked solution's name (v_PB, a^n_PB, a^t_PB, a_P,Cor, a_P,rel).
 //
 // Every vector is the server's: the segments, their base points and their order are those of the
 // worked solution (/solution's `polygons`); this module only places them head to tail.
@@ -15,6 +17,7 @@ import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
 import { imageName, POLYGON_POLE } from './notation.js';
 import { placeLabels } from './labels.js';
+import { renderDetail } from './polygon-detail.js';
 
 const TINY = 1e-12;
 
@@ -58,6 +61,13 @@ function vecText(symbol, v, kind, units) {
 }
 
 const add = (a, b) => [a[0] + b[0], a[1] + b[1]];
+const midpoint = (a, b) => [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
+
+/** v_CB, aⁿ_CB, aᵗ_CB: the vector of `seg.point` relative to `seg.base` (the worked solution's names). */
+const relativeName = (symbol, seg, part = '') => `${symbol}${part ? `<sup>${part}</sup>` : ''}<sub>${seg.point}${seg.base}</sub>`;
+
+/** v_B,rel, a_B,Cor: a part of the motion of a slider or moving point. */
+const slidingName = (symbol, point, part) => `${symbol}<sub>${point},${part}</sub>`;
 const norm = (a) => Math.hypot(a[0], a[1]);
 
 function baseLayout(title, kind, units) {
@@ -133,8 +143,10 @@ function poleLabel(pole, tips) {
   return atPole.length ? `${pole} ≡ ${atPole.join(', ')}` : pole;
 }
 
-export function velocityFigure(scene, analysis, units) {
+export function velocityFigure(scene, analysis, polygons, units) {
   const tips = collect(scene, analysis, 'velocity', units);
+  const segments = polygons?.segments || [];
+  const parts = []; // labels of the relative and component vectors, after the points'
   const traces = [...linkImages(scene, analysis, tips, 'velocity')];
   const abs = [];
   const lab = [];
@@ -143,6 +155,18 @@ export function velocityFigure(scene, analysis, units) {
     abs.push([[0, 0], v, vecText(`v_${name}`, v, 'velocity', units)]);
     lab.push([v, lower(name)]);
   }
+  // Relative velocities v_PB = ω × r_BP of the image segments, in the vector method's order
+  // (a segment from a point at the pole is the absolute vector itself: not drawn twice).
+  const relative = [];
+  for (const seg of segments) {
+    const vBase = tips[seg.base];
+    if (!vBase || !tips[seg.point] || norm(vBase) < TINY) continue;
+    const vr = seg.velocity.map((c) => toDisplay('velocity', c, units));
+    if (norm(vr) < TINY) continue;
+    relative.push([vBase, add(vBase, vr), vecText(`v_${seg.point}${seg.base}`, vr, 'velocity', units)]);
+    parts.push([midpoint(vBase, add(vBase, vr)), relativeName('v', seg), COLOURS.velocity]);
+  }
+  traces.push(arrows('v relative to a point, ω×r', relative, COLOURS.velocity, { width: 1.4, dash: 'dot' }));
   traces.push(arrows('absolute velocity', abs, COLOURS.velocity));
   const tr = [];
   const rel = [];
@@ -152,14 +176,17 @@ export function velocityFigure(scene, analysis, units) {
     const vr = j.relative_velocity.map((c) => toDisplay('velocity', c, units));
     if (norm(vt) > TINY) {
       tr.push([[0, 0], vt, vecText(`v_${j.point},tr`, vt, 'velocity', units)]);
-      lab.push([vt, `${lower(j.point)}<sub>tr</sub>`, 'bottom left']);
+      lab.push([vt, `${lower(j.point)}<sub>tr</sub>`, COLOURS.transport]);
     }
-    if (norm(vr) > TINY) rel.push([vt, add(vt, vr), vecText(`v_${j.point},rel`, vr, 'velocity', units)]);
+    if (norm(vr) > TINY) {
+      rel.push([vt, add(vt, vr), vecText(`v_${j.point},rel`, vr, 'velocity', units)]);
+      parts.push([midpoint(vt, add(vt, vr)), slidingName('v', j.point, 'rel'), COLOURS.relative]);
+    }
   }
   traces.push(arrows('transport velocity', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('relative velocity', rel, COLOURS.relative, { width: 2 }));
   lab.unshift([[0, 0], poleLabel(POLYGON_POLE.velocity, tips)]);
-  return { traces, labels: lab, layout: baseLayout('Velocity polygon', 'velocity', units) };
+  return { traces, labels: [...lab, ...parts], layout: baseLayout('Velocity polygon', 'velocity', units) };
 }
 
 export function accelerationFigure(scene, analysis, polygons, units) {
@@ -167,6 +194,7 @@ export function accelerationFigure(scene, analysis, polygons, units) {
   const traces = [...linkImages(scene, analysis, tips, 'acceleration')];
   const abs = [];
   const lab = [];
+  const parts = []; // labels of the component vectors, after the points'
   for (const [name, a] of Object.entries(tips)) {
     if (norm(a) < TINY) continue;
     abs.push([[0, 0], a, vecText(`a_${name}`, a, 'acceleration', units)]);
@@ -181,8 +209,15 @@ export function accelerationFigure(scene, analysis, polygons, units) {
     const an = seg.normal.map((c) => toDisplay('acceleration', c, units));
     const at = seg.tangential.map((c) => toDisplay('acceleration', c, units));
     const tag = `${seg.point}${seg.base}`;
-    if (norm(an) > TINY) normal.push([aBase, add(aBase, an), vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);
-    if (norm(at) > TINY) tangential.push([add(aBase, an), add(add(aBase, an), at), vecText(`aᵗ_${tag}`, at, 'acceleration', units)]);
+    const corner = add(aBase, an);
+    if (norm(an) > TINY) {
+      normal.push([aBase, corner, vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);
+      parts.push([midpoint(aBase, corner), relativeName('a', seg, 'n'), COLOURS.normal]);
+    }
+    if (norm(at) > TINY) {
+      tangential.push([corner, add(corner, at), vecText(`aᵗ_${tag}`, at, 'acceleration', units)]);
+      parts.push([midpoint(corner, add(corner, at)), relativeName('a', seg, 't'), COLOURS.tangential]);
+    }
   }
   traces.push(arrows('normal part −ω²r', normal, COLOURS.normal, { width: 1.8 }));
   traces.push(arrows('tangential part α×r', tangential, COLOURS.tangential, { width: 1.8 }));
@@ -200,11 +235,17 @@ export function accelerationFigure(scene, analysis, polygons, units) {
     const ar = conv(j.relative_acceleration);
     if (norm(at) > TINY) {
       tr.push([[0, 0], at, vecText(`a_${j.point},tr`, at, 'acceleration', units)]);
-      lab.push([at, `${lower(j.point)}<sub>tr</sub>`, 'bottom left']);
+      lab.push([at, `${lower(j.point)}<sub>tr</sub>`, COLOURS.transport]);
     }
-    if (norm(ac) > TINY) cor.push([at, add(at, ac), vecText(`a_${j.point},Cor = 2ω×v_rel`, ac, 'acceleration', units)]);
-    else zeroCoriolis.push(j.point);
-    if (norm(ar) > TINY) rel.push([add(at, ac), add(add(at, ac), ar), vecText(`a_${j.point},rel`, ar, 'acceleration', units)]);
+    const atc = add(at, ac);
+    if (norm(ac) > TINY) {
+      cor.push([at, atc, vecText(`a_${j.point},Cor = 2ω×v_rel`, ac, 'acceleration', units)]);
+      parts.push([midpoint(at, atc), slidingName('a', j.point, 'Cor'), COLOURS.coriolis]);
+    } else zeroCoriolis.push(j.point);
+    if (norm(ar) > TINY) {
+      rel.push([atc, add(atc, ar), vecText(`a_${j.point},rel`, ar, 'acceleration', units)]);
+      parts.push([midpoint(atc, add(atc, ar)), slidingName('a', j.point, 'rel'), COLOURS.relative]);
+    }
   }
   traces.push(arrows('transport', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('Coriolis 2ω×v_rel', cor, COLOURS.coriolis, { width: 2.2 }));
@@ -219,7 +260,7 @@ export function accelerationFigure(scene, analysis, polygons, units) {
       font: { size: 11, color: COLOURS.coriolis },
     });
   }
-  return { traces, labels: lab, layout };
+  return { traces, labels: [...lab, ...parts], layout };
 }
 
 /** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
@@ -227,19 +268,25 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
   const P = plotly();
   if (!P) return false;
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
-    const v = velocityFigure(scene, analysis, units);
-    P.react(velDiv, v.traces, v.layout, CONFIG).then(() => placeFigureLabels(P, velDiv, v));
+    const v = velocityFigure(scene, analysis, polygons, units);
+    velDiv.dataset.detail = 'pending';
+    P.react(velDiv, v.traces, v.layout, CONFIG)
+      .then(() => placeFigureLabels(P, velDiv, v))
+      .then(() => renderDetail(P, velDiv, detailOf(velDiv), v, 'velocity', units));
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
     const a = accelerationFigure(scene, analysis, polygons, units);
-    P.react(accDiv, a.traces, a.layout, CONFIG).then(() => placeFigureLabels(P, accDiv, a));
+    accDiv.dataset.detail = 'pending';
+    P.react(accDiv, a.traces, a.layout, CONFIG)
+      .then(() => placeFigureLabels(P, accDiv, a))
+      .then(() => renderDetail(P, accDiv, detailOf(accDiv), a, 'acceleration', units));
   }
   return true;
 }
 
 /** Labels of the tips and poles placed once Plotly has fixed the scale (labels.js). */
 function placeFigureLabels(P, div, figure) {
-  const entries = figure.labels.map(([at, text]) => ({ at, text }));
+  const entries = figure.labels.map(([at, text, colour]) => ({ at, text, colour }));
   const annotations = [...(figure.layout.annotations || []), ...placeLabels(div, entries, figure.traces)];
   // Drawn again on the ranges the labels were placed on: Plotly would otherwise widen them to
   // fit the annotations, and a label's pixel offset would no longer match its neighbours'.
@@ -253,8 +300,18 @@ function placeFigureLabels(P, div, figure) {
   return P.react(div, figure.traces, layout, CONFIG);
 }
 
+/** The panel under a polygon that shows part of it at its own scale (polygon-detail.js). */
+const detailOf = (div) => document.getElementById(`${div.id}-detail`);
+
 export function clearPolygons(...divs) {
   const P = plotly();
   if (!P) return;
-  for (const d of divs) P.purge(d);
+  for (const d of divs) {
+    P.purge(d);
+    const detail = detailOf(d);
+    if (detail) {
+      P.purge(detail);
+      detail.hidden = true;
+    }
+  }
 }

@@ -342,19 +342,54 @@ LABEL_BOXES = """(id) => {
                       return [g.textContent, r.left, r.top, r.right, r.bottom]; });
 }"""
 
+DETAIL_DONE = """(id) => { const d = document.getElementById(id).dataset.detail;
+                          return d === 'shown' || d === 'none'; }"""
+
 LABELS_PLACED = """(id) => (document.getElementById(id).layout?.annotations || [])
     .some((a) => String(a.name || '').startsWith('label:'))"""
 
 
-def label_overlaps(page: Any, div: str) -> list[tuple[str, str]]:
+def label_overlaps(page: Any, div: str, required: bool = True) -> list[tuple[str, str]]:
     boxes = page.evaluate(LABEL_BOXES, div)
-    assert boxes, f"no labels in {div}"
+    assert boxes or not required, f"no labels in {div}"
     clashes = []
     for i, a in enumerate(boxes):
         for b in boxes[i + 1 :]:
             if a[1] < b[3] and b[1] < a[3] and a[2] < b[4] and b[2] < a[4]:
                 clashes.append((a[0], b[0]))
     return clashes
+
+
+# Each arrow trace of relative and component vectors, and how its labels' text is recognised.
+PART_LABELS = {
+    "v relative to a point, ω×r": r"^v<sub>[^,<]+</sub>$",
+    "normal part −ω²r": r"^a<sup>n</sup>",
+    "tangential part α×r": r"^a<sup>t</sup>",
+    "Coriolis 2ω×v_rel": r",Cor</sub>$",
+    "relative velocity": r"^v<sub>[^<]+,rel</sub>$",
+    "relative": r"^a<sub>[^<]+,rel</sub>$",
+}
+
+PART_COUNTS = """(args) => {
+    const [id, patterns] = args;
+    const div = document.getElementById(id);
+    const labels = (div.layout.annotations || [])
+        .filter((a) => String(a.name || '').startsWith('label:'));
+    const out = {};
+    for (const [trace, pattern] of Object.entries(patterns)) {
+        const t = div.data.find((d) => d.name === trace);
+        const arrows = t ? t.x.filter((x) => x === null).length : 0;
+        const re = new RegExp(pattern);
+        out[trace] = [arrows, labels.filter((a) => re.test(a.text)).length];
+    }
+    return out;
+}"""
+
+
+def unlabelled_parts(page: Any, div: str) -> dict[str, list[int]]:
+    """Traces of relative/component vectors whose arrows and labels do not pair one to one."""
+    counts: dict[str, list[int]] = page.evaluate(PART_COUNTS, [div, PART_LABELS])
+    return {name: c for name, c in counts.items() if c[0] != c[1]}
 
 
 def test_no_two_polygon_labels_overlap_on_any_preset_or_seed_example(app: AppPage) -> None:
@@ -370,6 +405,13 @@ def test_no_two_polygon_labels_overlap_on_any_preset_or_seed_example(app: AppPag
         for div in ("velocity-polygon", "acceleration-polygon"):
             page.wait_for_function(LABELS_PLACED, arg=div)
             assert label_overlaps(page, div) == [], f"{value}: labels overlap in {div}"
+            assert unlabelled_parts(page, div) == {}, f"{value}: unlabelled vectors in {div}"
+            # The detail at its own scale (polygon-detail.js), when the polygon needs one: "shown"
+            # is set after its last draw, labels included (possibly none: no tip in its frame).
+            page.wait_for_function(DETAIL_DONE, arg=div)
+            if page.get_attribute(f"#{div}", "data-detail") == "shown":
+                detail = f"{div}-detail"
+                assert label_overlaps(page, detail, False) == [], f"{value}: in {detail}"
         if value == "preset:quick_return":
             app.screenshot("quick-return-polygons", ".polygons-panel")
 

@@ -1,0 +1,122 @@
+// polygon-detail.js: a second panel showing part of a polygon at its own scale, for polygons
+// too elongated to read (the quick-return and groove acceleration polygons squash into slivers).
+//
+// Rule (stated in docs/FRONTEND.md): with L the longest drawn segment and s the shortest one
+// that is not negligible (s >= L/1000; shorter ones are under a pixel at any size the page
+// gives the polygon and are listed in the magnitudes table), the detail is shown when
+//   s < L/12,  or  the polygon's bounding box is more than 5 times as long as it is wide and
+//   s < L/5.
+// It frames the shortest segment and the short ones (< L/5) next to it, grown only while the
+// frame stays under 5 s across (7 s with its margins), so that s is at least 1/7 of the
+// detail's extent. The region is marked by a dashed box in the polygon; both scales are written
+// as "1 cm = …" (a CSS centimetre, 96/2.54 px), from the pixels per unit Plotly laid out.
+
+import { placeLabels } from './labels.js';
+import { fmt, unitLabel } from './units.js';
+
+export const DETAIL_RULE = { negligible: 1e-3, short: 1 / 12, aspect: 5, sliver: 1 / 5, frame: 5 };
+const CM = 96 / 2.54; // CSS px in a CSS centimetre
+const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
+
+/** The drawn line segments of `traces` in data units: [[x1, y1], [x2, y2], length]. */
+function segmentsOf(traces) {
+  const out = [];
+  for (const t of traces) {
+    if (!String(t.mode || '').includes('lines') || !Array.isArray(t.x)) continue;
+    for (let i = 0; i + 1 < t.x.length; i++) {
+      if (t.x[i] === null || t.x[i + 1] === null) continue;
+      const a = [t.x[i], t.y[i]];
+      const b = [t.x[i + 1], t.y[i + 1]];
+      const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+      if (len > 0) out.push([a, b, len]);
+    }
+  }
+  return out;
+}
+
+const boxOf = (points) => ({
+  x0: Math.min(...points.map((p) => p[0])),
+  x1: Math.max(...points.map((p) => p[0])),
+  y0: Math.min(...points.map((p) => p[1])),
+  y1: Math.max(...points.map((p) => p[1])),
+});
+const extent = (b) => Math.max(b.x1 - b.x0, b.y1 - b.y0);
+const gap = (a, b) => Math.hypot(Math.max(0, a.x0 - b.x1, b.x0 - a.x1), Math.max(0, a.y0 - b.y1, b.y0 - a.y1));
+
+/** The region to show in detail, {x: [x0, x1], y: [y0, y1], shortest, longest}, or null. */
+export function detailRegion(traces) {
+  const segs = segmentsOf(traces);
+  if (!segs.length) return null;
+  const L = Math.max(...segs.map((s) => s[2]));
+  const seen = segs.filter((s) => s[2] >= DETAIL_RULE.negligible * L).sort((a, b) => a[2] - b[2]);
+  const s = seen[0][2];
+  const all = boxOf(segs.flatMap(([a, b]) => [a, b]));
+  const width = Math.min(all.x1 - all.x0, all.y1 - all.y0);
+  const sliver = extent(all) > DETAIL_RULE.aspect * width;
+  if (!(s < DETAIL_RULE.short * L || (sliver && s < DETAIL_RULE.sliver * L))) return null;
+  let frame = boxOf([seen[0][0], seen[0][1]]);
+  for (const [a, b, len] of seen.slice(1)) {
+    if (len >= DETAIL_RULE.sliver * L) break;
+    const box = boxOf([a, b]);
+    const grown = boxOf([[frame.x0, frame.y0], [frame.x1, frame.y1], a, b]);
+    if (gap(frame, box) < 2 * len && extent(grown) <= DETAIL_RULE.frame * s) frame = grown;
+  }
+  const pad = Math.max(0.2 * extent(frame), s / 2);
+  return { x: [frame.x0 - pad, frame.x1 + pad], y: [frame.y0 - pad, frame.y1 + pad], shortest: s, longest: L };
+}
+
+/** Pixels per data unit of a laid-out Plotly div (equal on both axes). */
+const pxPerUnit = (div) => {
+  const xa = div._fullLayout.xaxis;
+  return xa._length / (xa.range[1] - xa.range[0]);
+};
+
+/**
+ * Draw `figure` (polygons.js) zoomed on its detail region in `detail`, and mark the region in the
+ * polygon `main` (already drawn with its labels); hide `detail` when no detail is needed. When
+ * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
+ */
+export async function renderDetail(P, main, detail, figure, kind, units) {
+  const region = detailRegion(figure.traces);
+  if (!region) {
+    detail.hidden = true;
+    P.purge(detail);
+    await P.relayout(main, { shapes: [] });
+    main.dataset.detail = 'none';
+    return;
+  }
+  detail.hidden = false;
+  const base = {
+    ...figure.layout,
+    annotations: [],
+    showlegend: false,
+    margin: { l: 44, r: 12, t: 44, b: 24 },
+    xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
+    yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
+  };
+  await P.react(detail, figure.traces, base, CONFIG);
+  // Equal scales: the region centred in the plot area at the larger of the two fits' scales.
+  const { xaxis, yaxis } = detail._fullLayout;
+  const k = Math.min(xaxis._length / (region.x[1] - region.x[0]), yaxis._length / (region.y[1] - region.y[0]));
+  const cx = (region.x[0] + region.x[1]) / 2;
+  const cy = (region.y[0] + region.y[1]) / 2;
+  const x = [cx - xaxis._length / (2 * k), cx + xaxis._length / (2 * k)];
+  const y = [cy - yaxis._length / (2 * k), cy + yaxis._length / (2 * k)];
+  const u = unitLabel(kind, units);
+  const laid = {
+    ...base,
+    title: {
+      text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
+      font: { size: 13 }, x: 0.02, xanchor: 'left',
+    },
+    xaxis: { ...base.xaxis, range: x },
+    yaxis: { ...base.yaxis, range: y },
+  };
+  await P.react(detail, figure.traces, laid, CONFIG);
+  const inside = ([px, py]) => px >= x[0] && px <= x[1] && py >= y[0] && py <= y[1];
+  const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
+  await P.react(detail, figure.traces, { ...laid, annotations: placeLabels(detail, entries, figure.traces) }, CONFIG);
+  const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
+  await P.relayout(main, { shapes: [box] });
+  main.dataset.detail = 'shown';
+}

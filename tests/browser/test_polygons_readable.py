@@ -1,0 +1,203 @@
+"""Readable polygons (issue 13): labelled relative and component vectors with their magnitudes,
+and a detail at its own scale for polygons too elongated to read. Debian's Chromium against the
+real server, like test_app.py.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import pause_and_wait
+from tests.browser.test_edition2 import DETAIL_DONE, LABELS_PLACED, exported_scene
+
+pytestmark = pytest.mark.browser
+
+ANCHORS = """(id) => Object.fromEntries((document.getElementById(id).layout.annotations || [])
+    .filter((a) => String(a.name || '').startsWith('label:')).map((a) => [a.text, [a.x, a.y]]))"""
+
+
+def analysed_instant(app: AppPage) -> dict[str, Any]:
+    """/analyze of the scene shown, at the analysed instant (independent of /solution)."""
+    page = app.page
+    angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    scene = exported_scene(page)
+    scene["drivers"][0]["angle_deg"] = math.degrees(angle)
+    status, analysis = app.post("/analyze", {"scene": scene})
+    assert status == 200, analysis
+    return analysis
+
+
+def test_relative_and_component_vectors_are_labelled_at_their_midpoints(app: AppPage) -> None:
+    """Four-bar, coupler segment B -> C: v_CB = ω₃ × r_BC from b, aⁿ_CB = −ω₃² r_BC from b,
+    aᵗ_CB = α₃ × r_BC after it; the labels sit at the midpoints (1e-9 relative, the server's
+    numbers drawn as they are), the table lists |v_CB| = |ω₃| |BC|, |aⁿ_CB| = ω₃² |BC| and
+    |aᵗ_CB| = |α₃| |BC| (1e-3 relative: the table shows 4 significant digits)."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    for div in ("velocity-polygon", "acceleration-polygon"):
+        page.wait_for_function(LABELS_PLACED, arg=div)
+    a = analysed_instant(app)
+    pts = a["points"]
+    coupler = a["links"]["coupler"]
+    w, al = coupler["omega"], coupler["alpha"]
+    r = [pts["C"]["position"][i] - pts["B"]["position"][i] for i in (0, 1)]
+    bc = math.hypot(*r)
+    v_cb = [-w * r[1], w * r[0]]
+    a_n = [-w * w * r[0], -w * w * r[1]]
+    a_t = [-al * r[1], al * r[0]]
+    v_b, a_b = pts["B"]["velocity"], pts["B"]["acceleration"]
+
+    vel = page.evaluate(ANCHORS, "velocity-polygon")
+    acc = page.evaluate(ANCHORS, "acceleration-polygon")
+    mid = [v_b[i] + v_cb[i] / 2 for i in (0, 1)]
+    assert vel["v<sub>CB</sub>"] == pytest.approx(mid, rel=1e-9, abs=1e-12)
+    mid = [a_b[i] + a_n[i] / 2 for i in (0, 1)]
+    assert acc["a<sup>n</sup><sub>CB</sub>"] == pytest.approx(mid, rel=1e-9, abs=1e-12)
+    mid = [a_b[i] + a_n[i] + a_t[i] / 2 for i in (0, 1)]
+    assert acc["a<sup>t</sup><sub>CB</sub>"] == pytest.approx(mid, rel=1e-9, abs=1e-12)
+
+    page.click("#magnitudes summary")
+    row = page.locator("#polygon-table tr", has_text="C rel. B")
+    row.wait_for()
+    assert "vCB, anCB, atCB" in row.locator("th").inner_text().replace("\n", "")
+    cells = [float(c) for c in row.locator("td").all_inner_texts()]
+    expected = [abs(w) * bc, w * w * bc, abs(al) * bc]
+    assert cells == pytest.approx(expected, rel=1e-3)
+    assert math.hypot(*v_cb) == pytest.approx(
+        math.hypot(*(pts["C"]["velocity"][i] - v_b[i] for i in (0, 1))), rel=1e-9
+    ), "the closed form agrees with the server's v_C − v_B"
+
+
+def test_slider_parts_are_labelled_and_listed(app: AppPage) -> None:
+    """Quick-return: the slotted lever's slider C has v_C,rel, a_C,rel and a_C,Cor labelled, and
+    the table's |a_C,Cor| is 2 |ω_guide| |v_C,rel| (1e-3 relative)."""
+    app.open()
+    page = app.page
+    page.select_option("#preset", "preset:quick_return")
+    page.wait_for_function(
+        "() => document.getElementById('preset').value === 'preset:quick_return'"
+    )
+    page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
+    pause_and_wait(page)
+    page.wait_for_function(LABELS_PLACED, arg="acceleration-polygon")
+    texts = set(page.evaluate(ANCHORS, "acceleration-polygon"))
+    a = analysed_instant(app)
+    joint = next(j for j in a["joints"] if any(j.get("coriolis_acceleration") or [0]))
+    p = joint["point"]
+    assert {f"a<sub>{p},Cor</sub>", f"a<sub>{p},rel</sub>"} <= texts, texts
+    assert f"v<sub>{p},rel</sub>" in set(page.evaluate(ANCHORS, "velocity-polygon"))
+    page.click("#magnitudes summary")
+    row = page.locator("#polygon-table tr", has_text=f"{p} Coriolis")
+    row.wait_for()
+    shown = float(row.locator("td").all_inner_texts()[-1])
+    coriolis = 2 * abs(joint["omega_guide"]) * math.hypot(*joint["relative_velocity"])
+    assert shown == pytest.approx(coriolis, rel=1e-3)
+
+
+# ---- a detail at its own scale for elongated polygons ------------------------------------------
+
+# Every drawn line segment of a figure, in data units and in the figure's pixels (Plotly's own
+# data-to-pixel mapping of the laid-out axes), with the axes' ranges.
+DRAWN = """(id) => {
+    const div = document.getElementById(id);
+    const xa = div._fullLayout.xaxis, ya = div._fullLayout.yaxis;
+    const segs = [];
+    for (const t of div.data) {
+        if (!String(t.mode || '').includes('lines')) continue;
+        for (let i = 0; i + 1 < t.x.length; i++) {
+            if (t.x[i] === null || t.x[i + 1] === null) continue;
+            segs.push([t.x[i], t.y[i], t.x[i + 1], t.y[i + 1],
+                       xa.l2p(t.x[i]), ya.l2p(t.y[i]), xa.l2p(t.x[i + 1]), ya.l2p(t.y[i + 1])]);
+        }
+    }
+    return {segs, x: xa.range, y: ya.range,
+            title: div.querySelector('.gtitle') ? div.querySelector('.gtitle').textContent : ''};
+}"""
+
+CSS_CM = 96 / 2.54  # CSS px
+
+SET_SLIDER = """(f) => { const e = document.getElementById('crank-angle');
+    e.value = String(+e.min + f * (e.max - e.min));
+    e.dispatchEvent(new Event('input', {bubbles: true}));
+    e.dispatchEvent(new Event('change', {bubbles: true})); }"""
+
+
+def set_instant(page: Any, fraction: float) -> None:
+    """Move the crank-angle (or time) slider to `fraction` of its range and wait for the analysis
+    of that instant and its polygons' details."""
+    page.evaluate(SET_SLIDER, fraction)
+    page.wait_for_function(
+        """(f) => { const e = document.getElementById('crank-angle');
+                   const d = document.getElementById('linkage').dataset;
+                   return Math.abs(+e.value - (+e.min + f * (e.max - e.min))) < 1
+                          && d.analysed === d.instant; }""",
+        arg=fraction,
+    )
+
+
+def scale_in(title: str, prefix: str) -> float:
+    """The value of "<prefix>1 cm = <value> <unit>" in a title."""
+    return float(title.split(f"{prefix}1 cm = ")[1].split(" ")[0])
+
+
+@pytest.mark.parametrize("scene", ["preset:quick_return", "example:S003-T2-rotating-carrier.json"])
+def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_scale(
+    app: AppPage, scene: str
+) -> None:
+    """The rule (docs/FRONTEND.md): L the longest segment, s the shortest not under L/1000;
+    a detail when s < L/12 (or a sliver with s < L/5). In the detail s is at least 20 px long
+    (in the polygon it is not); the detail's "1 cm = X" and the polygon's "1 cm = Y" agree with
+    the pixels of every segment, in both directions (1 %); the two scales differ."""
+    app.open()
+    page = app.page
+    page.select_option("#preset", scene)
+    page.wait_for_function("(v) => document.getElementById('preset').value === v", arg=scene)
+    page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
+    pause_and_wait(page)
+    set_instant(page, 0.35)
+    page.wait_for_function(DETAIL_DONE, arg="acceleration-polygon")
+    main = page.evaluate(DRAWN, "acceleration-polygon")
+    lengths = [math.hypot(s[2] - s[0], s[3] - s[1]) for s in main["segs"]]
+    longest = max(lengths)
+    seen = [(n, i) for i, n in enumerate(lengths) if n >= 1e-3 * longest]
+    shortest, k = min(seen)
+    assert shortest < longest / 12, "this scene's acceleration polygon is elongated"
+    assert page.get_attribute("#acceleration-polygon", "data-detail") == "shown"
+    assert page.locator("#acceleration-polygon-detail").is_visible()
+    page.wait_for_function(LABELS_PLACED, arg="acceleration-polygon-detail")
+    detail = page.evaluate(DRAWN, "acceleration-polygon-detail")
+    title = detail["title"]
+    assert title.startswith("Acceleration detail (dashed box): 1 cm = "), title
+    cm_detail = scale_in(title, "(dashed box): ")
+    cm_main = scale_in(title, "polygon: ")
+    assert cm_detail < cm_main / 1.5, "the detail is drawn larger"
+
+    def px(seg: list[float]) -> float:
+        return math.hypot(seg[6] - seg[4], seg[7] - seg[5])
+
+    s_main, s_detail = main["segs"][k], detail["segs"][k]
+    assert s_detail[:4] == s_main[:4], "the same segment in both figures"
+    inside = lambda seg: all(  # noqa: E731
+        detail["x"][0] <= x <= detail["x"][1] and detail["y"][0] <= y <= detail["y"][1]
+        for x, y in ((seg[0], seg[1]), (seg[2], seg[3]))
+    )
+    assert inside(s_detail), "the shortest segment is in the detail"
+    assert px(s_detail) >= 20 > px(s_main) * 1.4
+    # Plotly's data-to-pixel map is linear past the ranges too: every segment checks the scale.
+    assert len(detail["segs"]) >= 3
+    for seg in detail["segs"]:
+        length = math.hypot(seg[2] - seg[0], seg[3] - seg[1])
+        assert px(seg) == pytest.approx(length / cm_detail * CSS_CM, rel=0.01)
+    for seg in main["segs"]:
+        length = math.hypot(seg[2] - seg[0], seg[3] - seg[1])
+        assert px(seg) == pytest.approx(length / cm_main * CSS_CM, rel=0.01)
+    boxes = page.evaluate(
+        "() => document.getElementById('acceleration-polygon').layout.shapes.map((s) => s.type)"
+    )
+    assert boxes == ["rect"], "the detail's region is marked in the polygon"
+    app.screenshot(f"detail-{scene.split(':')[1].split('.')[0]}", ".polygons-panel")
