@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, Literal
@@ -307,7 +307,9 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
     return tuple(joints)
 
 
-def _ground_pivot(link: str, joints: Sequence[Joint], ground: str) -> str | None:
+def ground_pivot(link: str, joints: Iterable[Joint], ground: str) -> str | None:
+    """The point of the revolute joint between ``link`` and the ground, or None if it has none
+    (the fixed pivot a driver turns about, a link's velocity pole)."""
     for joint in joints:
         if joint.type == "revolute" and set(joint.links) == {link, ground}:
             return joint.point
@@ -330,7 +332,7 @@ def _parse_drivers(
         if link in seen:
             raise _where(f"{path}.link", f"link '{link}' is driven twice")
         seen.add(link)
-        pivot = _ground_pivot(link, joints, ground)
+        pivot = ground_pivot(link, joints, ground)
         if pivot is None:
             raise _where(
                 f"{path}.link",

@@ -15,6 +15,8 @@ from html import escape
 from itertools import pairwise
 from typing import Any
 
+from solver.scene import Joint, ground_pivot, parse_linkage
+
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
 INK = "#1f2937"
 LINK = "#2563eb"
@@ -143,15 +145,12 @@ def _driver_label(driver: Mapping[str, Any]) -> tuple[float, str]:
     return omega or 1.0, label
 
 
-def _pivot(scene: Mapping[str, Any], ground: str, link: str) -> str:
-    """The point of the revolute joint between ``link`` and the ground."""
-    return str(
-        next(
-            j["point"]
-            for j in scene["joints"]
-            if j["type"] == "revolute" and set(j["links"]) == {ground, link}
-        )
-    )
+def _pivot(joints: Sequence[Joint], ground: str, link: str) -> str:
+    """The point of the revolute joint between ``link`` and the ground (a figure's turning links
+    have one)."""
+    pivot = ground_pivot(link, joints, ground)
+    assert pivot is not None, link
+    return pivot
 
 
 def _disc_radius(pivot: Point, centre: Point, start: Point) -> float:
@@ -163,6 +162,7 @@ def _linkage(scene: Mapping[str, Any]) -> str:
     pts: dict[str, Point] = {k: (float(v[0]), float(v[1])) for k, v in scene["points"].items()}
     links = scene["links"]
     ground = next(k for k, v in links.items() if v.get("ground"))
+    joints = parse_linkage(scene).joints
     extent = list(pts.values())
     arcs = []
     for mp in scene.get("moving_points", []):
@@ -174,7 +174,7 @@ def _linkage(scene: Mapping[str, Any]) -> str:
             extent += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
     for mp in scene.get("moving_points", []):
         if mp["path"]["type"] == "arc":
-            o = pts[_pivot(scene, ground, mp["link"])]
+            o = pts[_pivot(joints, ground, mp["link"])]
             reach = _disc_radius(o, pts[mp["path"]["center"]], pts[mp["path"]["start"]])
             extent += [(o[0] - reach, o[1] - reach), (o[0] + reach, o[1] + reach)]
     canvas = Canvas(extent)
@@ -205,7 +205,7 @@ def _linkage(scene: Mapping[str, Any]) -> str:
         if name == ground or len(members) < 2:
             continue
         if name in discs:  # a turning disc carrying a groove: drawn as the disc itself
-            pivot = pts[_pivot(scene, ground, name)]
+            pivot = pts[_pivot(joints, ground, name)]
             path = next(m["path"] for m in scene["moving_points"] if m["link"] == name)
             radius = _disc_radius(pivot, pts[path["center"]], pts[path["start"]])
             x, y = canvas.px(pivot)
@@ -239,7 +239,7 @@ def _linkage(scene: Mapping[str, Any]) -> str:
         canvas.text(start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
     for driver in scene["drivers"]:
         omega, label = _driver_label(driver)
-        _rotation(canvas, pts[_pivot(scene, ground, driver["link"])], omega, label)
+        _rotation(canvas, pts[_pivot(joints, ground, driver["link"])], omega, label)
     _scale_bar(canvas)
     return canvas.svg(str(scene.get("title", "linkage")))
 

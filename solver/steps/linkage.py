@@ -20,7 +20,7 @@ import numpy as np
 from solver.instant import LinkageAnalysis
 from solver.laws import parse_time_law
 from solver.rigid import perp
-from solver.scene import Joint, LinkageScene
+from solver.scene import Joint, LinkageScene, ground_pivot
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, present_solution
 from solver.steps.digits import DigitPlan
@@ -159,10 +159,7 @@ class LinkageContext:
 
     def ground_pivot(self, link: str) -> str | None:
         """The point of a revolute joint between ``link`` and the ground, if any."""
-        for joint in self.scene.joints:
-            if joint.type == "revolute" and set(joint.links) == {link, self.scene.ground}:
-                return joint.point
-        return None
+        return ground_pivot(link, self.scene.joints, self.scene.ground)
 
     def slot(self, guide: str, point: str) -> SlotMotion:
         """The motion of ``point`` in the slot of ``guide``: transport, relative, Coriolis.

@@ -60,6 +60,30 @@ def test_the_numbers_are_the_solvers() -> None:
     assert result["points"]["C"]["velocity"] == pytest.approx((1.0, 0.5), abs=1e-12)
 
 
+def test_solver_sweeps_and_solver_sweep_do_not_clash() -> None:
+    """In a fresh interpreter: after ``import solver.sweeps`` and every other module of the
+    package, ``solver.sweeps`` is the module and ``solver.sweep`` (every public name) is still the
+    function it was, and it still sweeps."""
+    code = "; ".join(
+        [
+            "import importlib, inspect, json, pkgutil",
+            "import solver.sweeps",
+            "from solver import sweep",
+            "public = {name: getattr(solver, name) for name in solver.__all__}",
+            "modules = pkgutil.walk_packages(solver.__path__, 'solver.')",
+            "[importlib.import_module(module.name) for module in modules]",
+            "assert all(getattr(solver, name) is public[name] for name in public)",
+            "assert inspect.ismodule(solver.sweeps) and solver.sweep is sweep",
+            f"doc = json.loads(open({str(EXAMPLES / 'S000-T1.json')!r}).read())",
+            "assert solver.sweep(doc, 4)['samples'] == 4",
+        ]
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+
+
 def test_linkage_only_calls_refuse_a_spatial_chain() -> None:
     doc = example("S002-spatial-arm")
     with pytest.raises(solver.InvalidScene, match="takes a 'linkage' scene"):

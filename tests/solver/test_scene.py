@@ -1,10 +1,11 @@
 """Reading a scene (solver.scene): a key the contract does not know is named with its path and
-the nearest valid name.
+the nearest valid name; the one ground-pivot finder.
 """
 
 from __future__ import annotations
 
-from solver.scene import unknown_keys
+from solver.presets import build_preset
+from solver.scene import ground_pivot, parse_linkage, unknown_keys
 from tests.solver.test_api import example
 
 
@@ -32,3 +33,19 @@ def test_unknown_keys_name_the_key_its_path_and_the_nearest_name() -> None:
         "joints[0].rate_ddot is not a scene field; did you mean rate_dot?",
         "points.A.bodyy is not a scene field; did you mean body?",
     ]
+
+
+def test_the_ground_pivot_is_the_revolute_joint_with_the_ground() -> None:
+    """S000-T1: crank A-B, coupler B-C, rocker D-C. The quick-return's crank slides in the
+    lever (a slider, not a pivot) but turns about O2; the ram's rod has no ground pivot."""
+    scene = parse_linkage(example("S000-T1"))
+    pivots = {link: ground_pivot(link, scene.joints, scene.ground) for link in scene.links}
+    assert {link: pivot for link, pivot in pivots.items() if pivot is not None} == {
+        "crank": "A",
+        "rocker": "D",
+    }
+    assert [driver.pivot for driver in scene.drivers] == ["A"]
+    shaper = parse_linkage(build_preset("quick_return", {}))
+    assert ground_pivot("crank", shaper.joints, "ground") == "O2"
+    assert ground_pivot("lever", shaper.joints, "ground") == "O4"
+    assert ground_pivot("rod", shaper.joints, "ground") is None  # it slides on the ground
