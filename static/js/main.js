@@ -548,7 +548,7 @@ class App {
     this.spatial.setCamera(this.camera.yaw, this.camera.pitch);
     this.spatial.setExtent(this.track ? extentOf(this.track) : null);
     this.spatial.setScene(scene);
-    this.spatialFields.show(this.spatialBase, scene);
+    this.spatialFields.show(this.spatialBase, scene, edited);
     this.viewMessage(note || '');
     clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
     renderMagnitudes($('polygon-table'), scene, null, this.units);

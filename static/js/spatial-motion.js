@@ -143,9 +143,10 @@ export class SpatialFields {
     this.base = null;
   }
 
-  show(base, current) {
+  /** Fields for `current`, built from `base` (the chain as opened); `edited`: keep the offsets. */
+  show(base, current, edited = false) {
     this.base = base;
-    this.offsets = this.offsets && this.offsets.length === base.joints.length ? this.offsets : base.joints.map(() => 0);
+    if (!edited || !this.offsets) this.offsets = base.joints.map(() => 0);
     this.lengths = base.joints.map((_, k) => {
       const ends = lengthEnds(current, k);
       return ends ? norm(sub(ends[1], ends[0])) : null;
@@ -166,12 +167,6 @@ export class SpatialFields {
       }
     });
     this.container.replaceChildren(...rows);
-    this.container.hidden = false;
-  }
-
-  hide() {
-    this.container.hidden = true;
-    this.offsets = null;
   }
 
   field(id, label, value, accept) {
