@@ -259,6 +259,16 @@ def test_finite_differences_of_the_sweep(doc: dict[str, Any], t: float) -> None:
 
 @pytest.mark.parametrize("doc", [seed_002(), turntable_slider(1.3, 0.4, -0.7)])
 def test_time_zero_is_the_instant_exactly(doc: dict[str, Any]) -> None:
+    assert_time_zero_is_the_instant(doc)
+
+
+@settings(max_examples=30, deadline=None)
+@given(chains())
+def test_random_chain_at_time_zero_is_the_instant_exactly(doc: dict[str, Any]) -> None:
+    assert_time_zero_is_the_instant(doc)
+
+
+def assert_time_zero_is_the_instant(doc: dict[str, Any]) -> None:
     over = solver.sweep_time(doc, (0.0, 1.0), 4, ALL)
     instant = solver.analyze(doc, ALL)
     for name, p in instant["points"].items():
