@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.analysis import normalise_quantities
 from solver.errors import InvalidScene, LimitExceeded
+from solver.quantities import normalise_quantities
 from solver.scene import MAX_TIME
 from solver.spatial import (
     GROUND,
@@ -32,7 +32,7 @@ from solver.spatial import (
     SpatialPoint,
     analyze_spatial_chain,
 )
-from solver.sweep import MAX_SAMPLES
+from solver.sweeps import MAX_SAMPLES
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ SVG = "{http://www.w3.org/2000/svg}"
 RTOL = 1e-3
 C30 = math.cos(math.radians(30))
 PROJECTION = np.array([[-C30, C30, 0.0], [-0.5, -0.5, 1.0]])
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 
 
 def figure_of(solution: Any) -> ET.Element:
@@ -180,6 +180,8 @@ def test_no_planar_method_is_faked() -> None:
 @pytest.mark.skipif(NODE is None, reason="node is not installed: KaTeX cannot run")
 def test_spatial_solution_renders_in_katex() -> None:
     docs = [seed_002(), turntable_slider(1.3, 0.4, -0.7)]
-    docs += [json.loads(p.read_text()) for p in EXAMPLES.glob("*spatial*.json")]
+    spatial = [json.loads(p.read_text()) for p in EXAMPLES.glob("*spatial*.json")]
+    assert spatial
+    docs += spatial
     latex = [s["latex"] for doc in docs for s in solver.solve(doc)["steps"] if s["latex"]]
     assert run_katex(latex) == []
