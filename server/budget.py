@@ -3,7 +3,8 @@
 Scene sizes are bounded by the parsers (200 points, 100 links, ...) and a time law by
 ``solver.laws`` (500 characters, ``MAX_COMPOSITION`` levels), but their products are not:
 
-- response size: samples x (points + links + joints + moving points) x quantities, at most
+- response size: samples x (points + links + joints + moving points) x quantities (a spatial
+  chain: points + bodies + joints), at most
   ``MAX_SWEEP_VALUES`` (about 20 MB of JSON; 200 points x 100,000 samples x every quantity
   made 2.5 GB);
 - Newton-Raphson work: links solved by Newton-Raphson x the samples at which they are solved
@@ -29,6 +30,7 @@ from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
 from solver.quantities import normalise_quantities
 from solver.scene import MAX_TIME, LinkageScene
+from solver.spatial import SpatialChain
 from solver.sweeps import BISECTION_STEPS, PROBE_SAMPLES
 from solver.topology import NewtonStep, build_plan
 
@@ -82,6 +84,19 @@ def sweep(
         _newton(scene, samples, "over the time range")
     else:
         _newton(scene, samples + FEASIBLE_RANGE_SEARCH, "with the feasible-range search")
+
+
+def spatial_sweep(chain: SpatialChain, samples: int, quantities: Iterable[str] | None) -> None:
+    """/sweep of a spatial chain over time: the response's size (bodies, points and joints)."""
+    wanted = normalise_quantities(["position"] if quantities is None else quantities)
+    entries = len(chain.points) + 2 * len(chain.joints)  # a body and its joint per joint
+    values = samples * entries * len(wanted)
+    if values > MAX_SWEEP_VALUES:
+        raise LimitExceeded(
+            f"response size: {samples} samples x {entries} bodies, joints and points x "
+            f"{len(wanted)} quantities = {values:,}, more than the limit of "
+            f"{MAX_SWEEP_VALUES:,}; ask for fewer samples or quantities"
+        )
 
 
 def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:

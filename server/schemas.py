@@ -63,9 +63,12 @@ class AnalyzeRequest(Strict):
 
 class SweepRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 'linkage' document.", examples=[_example("S000-T1")]
+        description="A scene-v1 document: a 'linkage', or a 'spatial_chain' with time_range.",
+        examples=[_example("S000-T1")],
     )
-    samples: int = Field(360, description="Samples over the revolution (or feasible range).")
+    samples: int = Field(
+        360, description="Samples over the revolution (or feasible range, or time range)."
+    )
     quantities: list[Quantity] | None = Field(
         None,
         description="Default: position only. 'poles': each link's velocity and acceleration "
@@ -75,7 +78,8 @@ class SweepRequest(Strict):
     time_range: list[float] | None = Field(
         None,
         description="[t0, t1] (s): sweep in time through the scene's time laws instead "
-        "of a driver revolution.",
+        "of a driver revolution; a spatial_chain's joints move from its pose at t = 0 by "
+        "q(t) = rate t + rate_dot t^2 / 2.",
     )
     strict: bool = STRICT
     speed_fluctuation: float | None = Field(
@@ -278,6 +282,40 @@ class TimeSweepResponse(Open):
     links: dict[str, SweepLinkValues]
     joints: list[SweepJointValues] | None = None
     moving_points: dict[str, SweepMovingPointValues]
+    feasible: bool
+    limits: list[float]
+    warnings: list[str] = WARNINGS
+
+
+class SpatialSweepBodyValues(Open):
+    omega: Vectors | None = Field(None, description="rad/s, per sample")
+    alpha: Vectors | None = Field(None, description="rad/s^2, per sample")
+
+
+class SpatialSweepPointValues(SweepPointValues):
+    acceleration_terms: dict[str, Vectors] | None = None
+
+
+class SpatialSweepJointValues(Open):
+    name: str
+    type: Literal["revolute", "prismatic"]
+    origin: Vectors | None = Field(None, description="m, the joint origin at each sample")
+    axis: Vectors | None = Field(None, description="the unit axis at each sample")
+    displacement: list[float] | None = Field(
+        None, description="q(t) = rate t + rate_dot t^2 / 2 from the scene's pose (rad or m)"
+    )
+    rate: list[float] | None = Field(None, description="rate + rate_dot t (rad/s or m/s)")
+
+
+class SpatialTimeSweepResponse(Open):
+    """A spatial chain over a time range: each joint moves from the scene's pose at t = 0 by
+    q(t) = rate t + rate_dot t^2 / 2 (arrays over time)."""
+
+    time: list[float]
+    samples: int
+    bodies: dict[str, SpatialSweepBodyValues]
+    points: dict[str, SpatialSweepPointValues]
+    joints: list[SpatialSweepJointValues]
     feasible: bool
     limits: list[float]
     warnings: list[str] = WARNINGS

@@ -35,6 +35,7 @@ from solver.results import (
 )
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
+from solver.spatial_sweep import sweep_spatial_time
 from solver.sweeps import sweep as sweep_linkage
 from solver.sweeps import sweep_time as sweep_linkage_time
 
@@ -140,7 +141,9 @@ def sweep(
     feasible range with the limit positions (POST /sweep). Default quantity: position. With
     ``forces``, a revolution at constant speed also gets its ``cycle`` (and the flywheel inertia
     for the coefficient of ``speed_fluctuation``)."""
-    parsed, found = _linkage(scene, strict, "a sweep")
+    parsed, found = _linkage(
+        scene, strict, "a sweep over a revolution (a spatial_chain is swept with a time range)"
+    )
     result = sweep_linkage(parsed, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
     return SweepResult(body)
@@ -155,12 +158,20 @@ def sweep_time(
     strict: bool = False,
     tolerance: float | None = None,
 ) -> TimeSweepResult:
-    """The linkage and its moving points at ``samples`` instants over ``time_range`` = (t0, t1)
-    through its time laws (POST /sweep with ``time_range``). Default quantity: position."""
-    parsed, found = _linkage(scene, strict, "a sweep")
+    """The scene at ``samples`` instants over ``time_range`` = (t0, t1) (POST /sweep with
+    ``time_range``): a linkage and its moving points through its time laws, or a spatial chain
+    whose joints move from the scene's pose at t = 0 as q(t) = rate t + rate_dot t^2 / 2.
+    Default quantity: position."""
+    parsed, found = _scene(scene, strict)
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
+    if isinstance(parsed, SpatialChain):
+        wanted = normalise_quantities(quantities)
+        if wanted & set(DYNAMIC_QUANTITIES):
+            raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
+        chain = sweep_spatial_time(parsed, t0, t1, samples, quantities)
+        return TimeSweepResult(results.spatial_time_sweep_body(chain, found))
     result = sweep_linkage_time(parsed, t0, t1, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.time_sweep_body(result, found), result)
     return TimeSweepResult(body)

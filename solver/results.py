@@ -28,6 +28,7 @@ from solver.rigid import Array
 from solver.scene import LinkageScene
 from solver.sliding_joints import SlidingJoint
 from solver.spatial import SpatialAnalysis
+from solver.spatial_sweep import SpatialSweep
 from solver.steps import Solution
 from solver.sweeps import CloseApproach, Sweep, TimeSweep
 
@@ -148,7 +149,8 @@ class SweepResult(Result):
 
 
 class TimeSweepResult(Result):
-    """The scene over a time range (POST /sweep with ``time_range``): arrays over ``time``."""
+    """The scene over a time range (POST /sweep with ``time_range``): arrays over ``time``; a
+    linkage's points, links and moving points, or a spatial chain's bodies, points and joints."""
 
     __slots__ = ()
 
@@ -311,28 +313,61 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
 
 def spatial_body(result: SpatialAnalysis, quantities: frozenset[str], warnings: list[str]) -> JSON:
     """The /analyze body of a spatial chain (with the five acceleration terms as an extra)."""
-    wanted = holds(quantities)
+    body = _spatial_fields(result, holds(quantities), vector)
+    body["warnings"] = list(warnings)
+    return body
+
+
+def _spatial_fields(
+    result: SpatialAnalysis, wanted: Contents, convert: Callable[[Any], Any]
+) -> JSON:
+    """Bodies' omega and alpha, points' vectors and acceleration terms (each converted)."""
     body: JSON = {"bodies": {}, "points": {}}
     for name, b in result.bodies.items():
         out: JSON = {}
         if wanted.velocity:
-            out["omega"] = vector(b.omega)
+            out["omega"] = convert(b.omega)
         if wanted.acceleration:
-            out["alpha"] = vector(b.alpha)
+            out["alpha"] = convert(b.alpha)
         body["bodies"][name] = out
     for name, p in result.points.items():
-        out = wanted.point(vector(p.position), vector(p.velocity), vector(p.acceleration))
+        out = wanted.point(convert(p.position), convert(p.velocity), convert(p.acceleration))
         if wanted.components:
             out["acceleration_terms"] = {
-                "origin": vector(p.a_origin),
-                "tangential": vector(p.tangential),
-                "centripetal": vector(p.centripetal),
-                "coriolis": vector(p.coriolis),
-                "relative": vector(p.relative),
+                "origin": convert(p.a_origin),
+                "tangential": convert(p.tangential),
+                "centripetal": convert(p.centripetal),
+                "coriolis": convert(p.coriolis),
+                "relative": convert(p.relative),
             }
         body["points"][name] = out
-    body["warnings"] = list(warnings)
     return body
+
+
+def spatial_time_sweep_body(result: SpatialSweep, warnings: list[str]) -> JSON:
+    """The /sweep body of a spatial chain over a time range: arrays follow ``time``; bodies and
+    points as in /analyze, sample by sample, and each joint's pose (origin, axis, displacement
+    q(t)) with positions and its rate with velocities."""
+    wanted = holds(result.quantities)
+    joints = []
+    for joint in result.moved.joints:
+        out: JSON = {"name": joint.name, "type": joint.type}
+        if wanted.position:
+            out["origin"] = array(joint.origin)
+            out["axis"] = array(joint.axis)
+            out["displacement"] = array(result.displacement[joint.name])
+        if wanted.velocity:
+            out["rate"] = array(np.ravel(joint.rate))
+        joints.append(out)
+    return {
+        "time": array(result.time),
+        "samples": int(result.time.size),
+        **_spatial_fields(result.analysis, wanted, array),
+        "joints": joints,
+        "feasible": True,
+        "limits": [],
+        "warnings": list(warnings),
+    }
 
 
 def link_angles(scene: LinkageScene, motion: Motion) -> dict[str, Array | None]:

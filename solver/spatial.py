@@ -1,10 +1,13 @@
-"""Velocity and acceleration of a serial chain of joints in space, at one instant.
+"""Velocity and acceleration of a serial chain of joints in space, at one instant (or at many).
 
 Joint k connects body k-1 (the ground for k = 1) to body k, named by the joint. Its ``origin`` and
 unit ``axis`` are world coordinates at the instant; the axis is fixed in body k-1 and turns with it.
 The analysis walks the chain link by link, as in the textbook: compose the angular velocities and
 accelerations, carry the velocity and acceleration of each joint origin along, then apply the
 five-term formula a = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel at each point.
+
+Every formula is written on the last axis, so the same walk serves a chain at N instants at once
+(``solver.spatial_sweep``): vectors then have shape (N, 3) and rates (N, 1).
 """
 
 from __future__ import annotations
@@ -25,14 +28,17 @@ GROUND = "ground"
 JointType = Literal["revolute", "prismatic"]
 
 
+Rate = float | np.ndarray  # a number at an instant, an (N, 1) column over N instants
+
+
 @dataclass(frozen=True)
 class SpatialJoint:
     name: str
     type: JointType
-    origin: np.ndarray
+    origin: np.ndarray  # (3,), or (N, 3) over N instants
     axis: np.ndarray  # unit vector
-    rate: float
-    rate_dot: float
+    rate: Rate
+    rate_dot: Rate
 
 
 @dataclass(frozen=True)
@@ -223,7 +229,8 @@ def sliding_terms(omega_parent: np.ndarray, joint: SpatialJoint) -> tuple[np.nda
     if joint.type == "prismatic":
         v_rel = joint.rate * joint.axis
         return v_rel, joint.rate_dot * joint.axis, 2.0 * np.cross(omega_parent, v_rel)
-    return np.zeros(3), np.zeros(3), np.zeros(3)
+    zero = np.zeros_like(joint.axis)
+    return zero, zero, zero
 
 
 def five_term_acceleration(
@@ -251,7 +258,7 @@ class _Guide:
 def analyze_spatial_chain(chain: SpatialChain) -> SpatialAnalysis:
     """Walk the chain from the ground: omega, alpha and the joint-origin motion of every body,
     then the velocity and the five-term acceleration of every point."""
-    zero = np.zeros(3)
+    zero = np.zeros_like(chain.joints[0].origin)  # (3,) or (N, 3)
     parent = BodyMotion(zero, zero, zero, zero, zero, zero)  # the ground
     bodies: dict[str, BodyMotion] = {}
     guides: dict[str, _Guide] = {}
@@ -273,7 +280,8 @@ def analyze_spatial_chain(chain: SpatialChain) -> SpatialAnalysis:
     points: dict[str, PointMotion] = {}
     for point in chain.points:
         if point.body == GROUND:
-            points[point.name] = PointMotion(point.position, *(np.zeros(3) for _ in range(7)))
+            rest = np.zeros_like(point.position)
+            points[point.name] = PointMotion(point.position, *(rest for _ in range(7)))
             continue
         body, guide = bodies[point.body], guides[point.body]
         r = point.position - body.origin

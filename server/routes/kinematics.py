@@ -17,6 +17,7 @@ from server.schemas import (
     AnalyzeResponse,
     EventResponse,
     EventsRequest,
+    SpatialTimeSweepResponse,
     SweepRequest,
     SweepResponse,
     TimeSweepResponse,
@@ -44,14 +45,17 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
 
 @router.post(
     "/sweep",
-    summary="The linkage over one revolution of its first driver (or its feasible range)",
-    response_model=SweepResponse | TimeSweepResponse,
+    summary="The linkage over one revolution of its first driver (or its feasible range), or "
+    "the scene over a time range",
+    response_model=SweepResponse | TimeSweepResponse | SpatialTimeSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
-    if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
-        timed = request.time_range is not None
+    timed = request.time_range is not None
+    if isinstance(read.scene, LinkageScene):
         budget.sweep(read.scene, request.samples, request.quantities, timed)
+    elif timed:  # a spatial chain moves in time only: without a time range the solver refuses
+        budget.spatial_sweep(read.scene, request.samples, request.quantities)
     if request.time_range is None:
         return respond(
             solver.sweep(

@@ -608,7 +608,7 @@ def spatial_mistakes(
     out: list[Mistake] = []
     for joint in chain.joints:
         body = analysis.bodies[joint.name]
-        if joint.type == "revolute" and np.linalg.norm(body.axis_rate) * abs(joint.rate) > 0:
+        if joint.type == "revolute" and joint.rate != 0 and np.linalg.norm(body.axis_rate) > 0:
             wrong = body.alpha - joint.rate * body.axis_rate
             scale = max(1.0, float(np.linalg.norm(body.alpha)))
             if float(np.linalg.norm(wrong - body.alpha)) > 1e-12 * scale:

@@ -5,13 +5,21 @@ k-1 and turns with it, de_k/dt = omega_{k-1} x e_k; alpha_k = alpha_{k-1} + rate
 rate_k de_k/dt. The joint origins carry the velocity and acceleration along, and every point gets
 v_P = v_O + omega x r and the five-term acceleration
 a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel, each term written out.
+
+The data step carries an axonometric figure of the chain (``chain_figure``); a ``reading`` step
+says each body's rotation and each point's motion in words. Kennedy's theorem, instant centres
+and the graphical polygons are planar methods and are not offered here (docs/SOLUTIONS.md).
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
+
 import numpy as np
 
 from solver.spatial import GROUND, SpatialAnalysis, SpatialChain, SpatialJoint
+from solver.steps import figures
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.digits import DigitPlan
@@ -19,6 +27,10 @@ from solver.steps.format import Formatter, latex_unit
 from solver.steps.model import Step
 
 V0 = r"\vec{0}"
+# The isometric drawing: x towards the viewer on the lower left, y to the lower right, z up,
+# full length along each axis: (X, Y) = (cos 30 (y - x), z - sin 30 (x + y)).
+ISOMETRIC = np.array([[-math.cos(math.pi / 6), math.cos(math.pi / 6), 0.0], [-0.5, -0.5, 1.0]])
+OMEGA_PAPER_CM = 3.0  # the largest omega is drawn at most this long
 UNITS = r"\mathbf{E}_1 & \mathbf{E}_2 & \mathbf{E}_3"
 
 
@@ -450,15 +462,212 @@ class SpatialSteps:
         b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
         return b.build()
 
+    def reading(self) -> Step:
+        """Reading the answer: each body turns with |omega| about the unit axis u = omega/|omega|,
+        counter-clockwise seen from the tip of u (the right-hand rule); omega . alpha > 0 means
+        |omega| grows. Each point moves with speed |v| along v/|v|; v . a > 0 means it speeds up."""
+        b = self.builder("reading", "Reading the answer")
+        for name, body in self.analysis.bodies.items():
+            n = tex.name(name)
+            w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
+            al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
+            size = float(np.linalg.norm(body.omega))
+            speed = b.put(f"|omega({name})|", size, "rad/s")
+            b.check("norm", speed, w)
+            if b.is_zero(speed):
+                words = f"body {name} does not turn at this instant"
+                b.line(
+                    rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)} \quad \Rightarrow \text{{"
+                    + tex.escape_text(words)
+                    + "}"
+                )
+                b.say(f"omega({name}) = {b.txt(w)}: {words}.")
+                continue
+            axis = b.put(f"u({name})", body.omega / size, "")
+            power = b.put(
+                f"omega.alpha({name})",
+                float(np.dot(body.omega, body.alpha)),
+                "rad^2/s^3",
+                reference=size * float(np.linalg.norm(body.alpha)),
+            )
+            b.check("dot", power, w, al)
+            trend = (
+                "at a steady rate"
+                if b.is_zero(power)
+                else "speeding up"
+                if float(np.dot(body.omega, body.alpha)) > 0
+                else "slowing down"
+            )
+            turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
+            if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
+                trend += ", and the axis itself turns (alpha is not along omega)"
+            words = (
+                f"body {name} turns at {b.txt(speed)} about the axis u = {b.txtn(axis)} (nearest "
+                f"{_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, {trend}"
+            )
+            b.line(
+                rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{u}}_{{{n}}} = "
+                rf"\vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = "
+                rf"({', '.join(b.entries(axis))}), \quad \vec{{\omega}}_{{{n}}} \cdot "
+                rf"\vec{{\alpha}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+                + tex.escape_text(f"counter-clockwise about u, {trend}")
+                + "}"
+            )
+            b.say(
+                f"omega({name}) = {b.txt(w)}, alpha({name}) = {b.txt(al)}: {words} (omega . "
+                f"alpha = {b.txt(power)}: the same sense means the rotation speeds up)."
+            )
+        for point in self.chain.points:
+            motion = self.analysis.points[point.name]
+            n = tex.name(point.name)
+            v = b.put(
+                f"v({point.name})", motion.velocity, "m/s", ("points", point.name, "velocity")
+            )
+            a = b.put(
+                f"a({point.name})",
+                motion.acceleration,
+                "m/s^2",
+                ("points", point.name, "acceleration"),
+            )
+            size = float(np.linalg.norm(motion.velocity))
+            speed = b.put(f"|v({point.name})|", size, "m/s")
+            b.check("norm", speed, v)
+            if b.is_zero(speed):
+                words = f"{point.name} is at rest at this instant"
+                b.line(
+                    rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)} \quad \Rightarrow \text{{"
+                    + tex.escape_text(words)
+                    + "}"
+                )
+                b.say(f"v({point.name}) = {b.txt(v)}: {words}.")
+                continue
+            power = b.put(
+                f"v.a({point.name})",
+                float(np.dot(motion.velocity, motion.acceleration)),
+                "m^2/s^3",
+                reference=size * float(np.linalg.norm(motion.acceleration)),
+            )
+            b.check("dot", power, v, a)
+            trend = (
+                "at a steady speed"
+                if b.is_zero(power)
+                else "speeding up"
+                if float(np.dot(motion.velocity, motion.acceleration)) > 0
+                else "slowing down"
+            )
+            words = (
+                f"{point.name} moves at a speed of {b.txt(speed)}, mostly "
+                f"{_nearest_axis(motion.velocity)}, {trend}"
+            )
+            b.line(
+                rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
+                rf"\vec{{a}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+                + tex.escape_text(words)
+                + "}"
+            )
+            b.say(
+                f"v({point.name}) = {b.txt(v)}, a({point.name}) = {b.txt(a)}: {words} (v . a = "
+                f"{b.txt(power)}: the same sense means speeding up)."
+            )
+        return b.build()
+
+    def figure(self) -> str:
+        """The chain at the instant in an isometric drawing: the joint axes (dashed, through their
+        origins), the bodies from joint to joint and to their points, the fixed frame E1, E2, E3,
+        and each body's omega from its joint origin at its own stated scale."""
+        project = ISOMETRIC
+        origins = [j.origin for j in self.chain.joints]
+        places = origins + [p.position for p in self.chain.points]
+        drawn = [project @ x for x in places]
+        per_mm = figures.model_scale([*drawn, np.zeros(2)])
+        extent = figures.PAPER * per_mm  # m: the drawing's size
+        omegas = {name: b.omega for name, b in self.analysis.bodies.items()}
+        largest = max((float(np.linalg.norm(w)) for w in omegas.values()), default=0.0)
+        k = figures.nice_scale(largest, OMEGA_PAPER_CM)
+        to_model = 10.0 * per_mm / k  # (rad/s) -> cm on paper -> m of the drawing
+        segments: list[tuple[np.ndarray, np.ndarray, str]] = []
+        arrows: list[figures.Arrow] = []
+        marks: dict[tuple[float, ...], tuple[np.ndarray, list[str], bool]] = {}
+
+        def mark(at: np.ndarray, label: str, fixed: bool) -> None:
+            """One dot per place, its labels joined: 'O3 = A' where a point sits on an origin."""
+            key = tuple(np.round(at / max(extent, 1e-300), 9))
+            place = marks.setdefault(key, (at, [], fixed))
+            place[1].append(label)
+
+        half = 0.12 * extent
+        attached: dict[str, list[np.ndarray]] = {GROUND: []}
+        for joint in self.chain.joints:
+            attached[joint.name] = [joint.origin]
+        for index, joint in enumerate(self.chain.joints):
+            parent = self.parent_name(index)
+            attached[parent].append(joint.origin)
+            ends = (joint.origin - half * joint.axis, joint.origin + half * joint.axis)
+            segments.append((project @ ends[0], project @ ends[1], "position"))
+            mark(joint.origin, f"O{joint.name}", index == 0)
+            start = project @ joint.origin
+            arrows.append(
+                figures.Arrow(
+                    start,
+                    start + to_model * (project @ omegas[joint.name]),
+                    f"omega({joint.name})",
+                    f"ω{joint.name}",
+                    "absolute",
+                )
+            )
+        for point in self.chain.points:
+            attached[point.body].append(point.position)
+            mark(point.position, point.name, point.body == GROUND)
+        for body, where in attached.items():  # body k from its joint origin to what it carries
+            if body == GROUND:
+                continue
+            segments += [(project @ where[0], project @ x, "link") for x in where[1:]]
+        dots = [
+            figures.Dot(project @ at, " = ".join(dict.fromkeys(labels)), fixed)
+            for at, labels, fixed in marks.values()
+        ]
+        corner = np.min(drawn, axis=0) - 0.2 * extent  # the frame E1, E2, E3 below on the left
+        for i, label in enumerate(("E1", "E2", "E3")):
+            unit = np.zeros(3)
+            unit[i] = 0.25 * extent
+            arrows.append(figures.Arrow(corner, corner + project @ unit, label, label, "position"))
+        length_scale = 10.0 * per_mm
+        caption = (
+            f"Isometric view: lengths 1 cm = {length_scale:g} m; "
+            f"{figures.scale_text(k, 'rad/s')} for omega"
+        )
+        title = f"The chain at the instant{': ' + self.chain.title if self.chain.title else ''}"
+        return figures.svg(
+            title,
+            arrows,
+            dots,
+            segments,
+            per_mm,
+            caption,
+            {
+                "data-scale": f"{k:g}",
+                "data-unit": "rad/s",
+                "data-length-scale": f"{length_scale:g}",
+                "data-projection": ";".join(",".join(f"{x:.17g}" for x in row) for row in project),
+            },
+        )
+
     def steps(self) -> list[Step]:
-        out = [self.data()]
+        out = [replace(self.data(), figure=self.figure())]
         for index, joint in enumerate(self.chain.joints):
             out += self.body_steps(index, joint)
         for point in self.chain.points:
             if point.name not in self.shown:
                 out += self.point_steps(point.name)
+        out.append(self.reading())
         out.append(self.summary())
         return out
+
+
+def _nearest_axis(vector: np.ndarray) -> str:
+    """The fixed axis closest to a vector's direction, with its sign: '+E3', '-E1'."""
+    i = int(np.argmax(np.abs(vector)))
+    return f"{'+' if vector[i] > 0 else '-'}E{i + 1}"
 
 
 def spatial_steps(

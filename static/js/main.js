@@ -9,6 +9,7 @@ import * as api from './api.js';
 import { Controls, POSE_PARAMETER } from './controls.js';
 import { LinkageView } from './linkage-view.js';
 import { SpatialView } from './spatial-view.js';
+import { SpatialFields, spatialTrack, sweepRequest, chainAt, extentOf, renderSpatialPlots } from './spatial-motion.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
 import { renderPlots, moveCursor, available, quantityChoices } from './plots.js';
 import { cycleOrder, allSeries, xAxes, transmissionLoops } from './series.js';
@@ -113,6 +114,11 @@ class App {
     $('editor-from-current').addEventListener('click', () => this.editor.open(S.isSpatial(this.scene) ? null : this.scene));
     this.spatial = new SpatialView($('spatial'), {
       onRotate: (yaw, pitch) => { this.camera = { yaw, pitch }; this.saveHash(); },
+    });
+    // Joint offsets and lengths of a spatial chain: a change is a new geometry (spatial-motion.js).
+    this.spatialFields = new SpatialFields($('spatial-fields'), (scene) => {
+      this.spatialEdit = true;
+      this.loadScene(scene).catch((err) => this.status(`This chain cannot be analysed: ${err.detail || err.message}`, 'error'));
     });
     requestAnimationFrame((t) => this.tick(t));
 
@@ -526,38 +532,62 @@ class App {
 
   async loadSpatial(scene, seq) {
     this.dynamics.show(scene, this.units, SAMPLES); // hides the panel: no masses in space
-    let analysis = null;
+    const edited = this.spatialEdit;
+    this.spatialEdit = false;
+    let sweep = null;
     let note = null;
+    const { samples, quantities, timeRange } = sweepRequest(scene);
     try {
-      analysis = await api.analyze(scene);
-      this.warnings(analysis.warnings);
+      sweep = await api.sweep(scene, samples, quantities, timeRange);
+      this.warnings(sweep.warnings);
     } catch (err) {
-      if (err.code !== 'network') throw err;
+      if (err.code !== 'network' && !edited) throw err;
       note = `The server cannot analyse this spatial chain: ${err.detail}`;
     }
     if (seq !== this.geometrySeq) return;
+    if (!edited) this.spatialBase = scene; // the fields edit the chain as it was opened
     this.scene = scene;
-    this.track = null;
-    this.analysis = analysis;
+    this.track = sweep ? spatialTrack(sweep) : null;
+    this.analysis = null;
+    this.u = 0;
     showView('spatial');
     $('view-title').textContent = scene.title || 'Spatial chain';
     $('instant-readout').textContent = '';
-    this.controls.setInstantRange('angle', 0, 0, false);
-    this.setPlaying(false, { analyse: false });
+    this.mechanismFacts(null); // Grashof and transmission angles are planar facts
+    if (this.track) this.controls.setInstantRange('time', timeRange[0], timeRange[1], true);
+    else this.controls.setInstantRange('angle', 0, 0, false);
+    this.setPlaying(this.playing && !!this.track, { analyse: false });
     this.spatial.setOptions({ ...this.controls.options(), units: this.units });
     this.spatial.setCamera(this.camera.yaw, this.camera.pitch);
+    this.spatial.setExtent(this.track ? extentOf(this.track) : null);
     this.spatial.setScene(scene);
-    this.spatial.setAnalysis(analysis);
-    this.paintSpatialInfo();
+    this.spatialFields.show(this.spatialBase, scene, edited);
     this.viewMessage(note || '');
     clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
     renderMagnitudes($('polygon-table'), scene, null, null, this.units);
     this.polygonMessage('The polygons are drawn for planar linkages. The vectors of this spatial chain are listed under its drawing.');
-    clearPolygons($('plots'));
-    this.plotsMessage('A spatial chain is analysed at one instant: there is no cycle to plot.');
-    this.markFirstFrame();
+    $('plots-title').textContent = 'Over time';
+    this.drawPlots();
+    this.dirty = true;
+    this.drawFrame();
     this.requestSolution();
     this.saveHash();
+  }
+
+  /** The spatial chain at the animation's instant: drawn, and its values listed. */
+  drawSpatialFrame() {
+    if (!this.track) {
+      this.spatial.setAnalysis(null);
+      return;
+    }
+    const { scene, analysis } = chainAt(this.scene, this.track, this.u);
+    this.spatial.setScene(scene);
+    this.spatial.setAnalysis(analysis);
+    this.paintSpatialInfo();
+    const value = this.instantValue();
+    this.controls.setInstant(value);
+    $('spatial').dataset.instant = String(value);
+    this.markFirstFrame();
   }
 
   paintSpatialInfo() {
@@ -587,7 +617,11 @@ class App {
 
   /** One request per pause: /solution carries the analysis (results), the polygons and the steps. */
   async analyzeNow() {
-    if (!this.scene || S.isSpatial(this.scene)) return;
+    if (!this.scene) return;
+    if (S.isSpatial(this.scene)) {
+      if (!this.playing) this.requestSolution();
+      return;
+    }
     const seq = ++this.analysisSeq;
     this.solutionSeq += 1; // a solution asked for earlier must not replace this one
     const solutionSeq = this.solutionSeq;
@@ -638,13 +672,18 @@ class App {
   async requestSolution() {
     if (!this.scene) return;
     const seq = ++this.solutionSeq;
-    const target = S.isSpatial(this.scene) ? this.scene : this.instantScene(this.analysisU ?? this.u);
+    const target = S.isSpatial(this.scene) ? this.spatialInstant() : this.instantScene(this.analysisU ?? this.u);
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
       if (seq === this.solutionSeq) this.showSolution(sol);
     } catch (err) {
       if (seq === this.solutionSeq) this.solutionFailed(err);
     }
+  }
+
+  /** A spatial chain at the sample nearest the animation's instant (the server's own pose). */
+  spatialInstant() {
+    return this.track ? chainAt(this.scene, this.track, Math.round(this.u)).scene : this.scene;
   }
 
   showSolution(solution) {
@@ -704,6 +743,13 @@ class App {
     }
     const div = $('plots');
     const t = this.track;
+    if (t?.spatial) {
+      clearPolygons(div);
+      await renderSpatialPlots(div, t, window.Plotly);
+      $('plot-facts').replaceChildren();
+      this.plotsMessage('');
+      return;
+    }
     if (!t || t.n < 2) {
       clearPolygons(div);
       this.plotsMessage(t ? 'No sweep from the server, so there is no cycle to plot.' : '');
@@ -816,6 +862,7 @@ class App {
   }
 
   drawFrame() {
+    if (S.isSpatial(this.scene)) return this.drawSpatialFrame();
     const exact = !this.playing && this.analysis && this.analysisU === this.u;
     const frame = exact ? frameFromAnalysis(this.analysis) : frameAt(this.track, this.u);
     this.linkage.draw(frame);
@@ -943,8 +990,8 @@ function showView(which) {
   $('linkage').toggleAttribute('hidden', which !== 'linkage');
   $('spatial').toggleAttribute('hidden', which !== 'spatial');
   $('spatial-info').toggleAttribute('hidden', which !== 'spatial');
-  // A spatial chain is one instant: no motion controls, no dimensions to edit.
-  document.querySelector('.motion').toggleAttribute('hidden', which === 'spatial');
+  // A spatial chain moves in time (spatial-motion.js): its own fields replace the dimensions.
+  $('spatial-fields').toggleAttribute('hidden', which !== 'spatial');
   $('dimensions').toggleAttribute('hidden', which === 'spatial');
   $('plot-choices').toggleAttribute('hidden', which === 'spatial');
   for (const el of document.querySelectorAll('.planar-only')) el.toggleAttribute('hidden', which === 'spatial');

@@ -1,7 +1,9 @@
 // spatial-view.js: a rotatable axonometric SVG of a spatial chain (kind spatial_chain).
 //
-// The chain is drawn at its one instant: joint axes (dashed), the bodies as bars from joint to
-// joint and to their points, and the server's velocity and acceleration vectors at the points.
+// The chain is drawn at one instant (the app moves it over time: spatial-motion.js): joint axes
+// (dashed), the bodies as bars from joint to joint and to their points, and the server's velocity
+// and acceleration vectors at the points. Each point's circle carries its world position in
+// data-position. With an extent (every position over the motion) the frame stays still.
 // Dragging (or the arrow keys when the drawing has focus) turns the camera; the projection is
 // the only arithmetic here and it is pure drawing.
 
@@ -22,6 +24,7 @@ export class SpatialView {
     this.options = { showVelocity: true, showAcceleration: false, units: 'si' };
     this.scene = null;
     this.analysis = null;
+    this.extent = null;
     svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
     this.installControls();
   }
@@ -30,6 +33,11 @@ export class SpatialView {
     this.scene = scene;
     this.analysis = null;
     this.render();
+  }
+
+  /** Every position the chain takes (a list of [x, y, z]), or null: the frame is fitted to it. */
+  setExtent(points) {
+    this.extent = points;
   }
 
   setAnalysis(analysis) {
@@ -60,8 +68,11 @@ export class SpatialView {
 
   frameScale() {
     const pts = [[0, 0, 0]];
-    for (const j of this.scene.joints || []) pts.push(j.origin);
-    for (const p of Object.values(this.scene.points || {})) pts.push(this.positionOf(p));
+    if (this.extent) pts.push(...this.extent);
+    else {
+      for (const j of this.scene.joints || []) pts.push(j.origin);
+      for (const p of Object.values(this.scene.points || {})) pts.push(this.positionOf(p));
+    }
     const mid = [0, 1, 2].map((i) => (Math.min(...pts.map((p) => p[i])) + Math.max(...pts.map((p) => p[i]))) / 2);
     const radius = Math.max(...pts.map((p) => Math.hypot(p[0] - mid[0], p[1] - mid[1], p[2] - mid[2])), 1e-3);
     this.radius = radius;
@@ -141,7 +152,7 @@ export class SpatialView {
         const tip = this.project(pos.map((c, i) => c + (v[i] / m) * reach));
         svgEl('line', { x1: x, y1: y, x2: tip[0], y2: tip[1], stroke: COLOURS[q], 'stroke-width': 2.6, 'marker-end': marks[q], class: `vector vector-${q}` }, svg);
       }
-      svgEl('circle', { cx: x, cy: y, r: 5, fill: COLOURS.ink, class: 'point' }, svg);
+      svgEl('circle', { cx: x, cy: y, r: 5, fill: COLOURS.ink, class: 'point', 'data-point': name, 'data-position': pos.join(',') }, svg);
       svgEl('text', { x: x + 9, y: y - 9, class: 'point-label' }, svg).textContent = name;
     }
     svgEl('text', { x: 14, y: H - 14, class: 'view-note' }, svg).textContent =

@@ -44,9 +44,11 @@ def calls(name: str) -> list[tuple[str, dict[str, Any], solver.Result]]:
         ("/analyze", {"scene": doc, "quantities": ["position"]}, solver.analyze(doc, ["position"])),
         ("/solution", {"scene": doc, "method": "loop"}, solver.solve(doc, "loop")),
     ]
-    if doc["kind"] != "linkage":
-        return out
     wanted = ["position", "velocity", "acceleration", "poles", "components"]
+    if doc["kind"] == "spatial_chain":  # swept in time only
+        request = {"scene": doc, "samples": SAMPLES, "quantities": wanted, "time_range": [0, 1]}
+        out.append(("/sweep", request, solver.sweep_time(doc, (0, 1), SAMPLES, wanted)))
+        return out
     if not doc.get("moving_points"):
         request = {"scene": doc, "samples": SAMPLES, "quantities": wanted}
         out.append(("/sweep", request, solver.sweep(doc, SAMPLES, wanted)))
