@@ -12,7 +12,9 @@ COPY pyproject.toml README.md requirements.lock ./
 COPY solver ./solver
 COPY server ./server
 COPY static ./static
-RUN python -m pip install --no-cache-dir -r requirements.lock .
+# The lock with its hashes, then the project alone (it adds no dependency of its own).
+RUN python -m pip install --no-cache-dir --require-hashes -r requirements.lock \
+    && python -m pip install --no-cache-dir --no-deps .
 
 USER 10001
 EXPOSE 8000
