@@ -50,8 +50,7 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
     if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
-        timed = request.time_range is not None
-        budget.sweep(read.scene, request.samples, request.quantities, timed)
+        budget.sweep(read.scene, request.samples, request.quantities, request.time_range)
     if request.time_range is None:
         return respond(
             solver.sweep(
