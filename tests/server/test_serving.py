@@ -13,6 +13,8 @@ from __future__ import annotations
 import contextlib
 import http.client
 import json
+import multiprocessing
+import os
 import threading
 import time
 import urllib.request
@@ -22,7 +24,7 @@ from typing import Any
 
 import pytest
 
-from server import budget
+from server import budget, workers
 from server.local import serve_locally
 from server.settings import TIME_LIMITS, Settings, from_environment
 from solver import read_scene
@@ -158,6 +160,7 @@ def test_settings_from_the_environment() -> None:
             "KINEMATICS_QUEUE_WAIT": "2.5",
             "KINEMATICS_TIME_LIMITS": " /api/v1/sweep=20 , /api/v1/x=0.5",
             "KINEMATICS_TIME_LIMIT": "4",
+            "KINEMATICS_WORKER_NICE": "5",
             "KINEMATICS_CORS_ORIGINS": "https://a.example, https://b.example",
         }
     )
@@ -166,6 +169,7 @@ def test_settings_from_the_environment() -> None:
     assert settings.time_limit_of("/api/v1/x") == 0.5
     assert settings.time_limit_of("/api/v1/analyze") == TIME_LIMITS["/api/v1/analyze"] == 2.0
     assert settings.time_limit_of("/api/v1/dynamics") == 4.0
+    assert settings.worker_nice == 5 and Settings().worker_nice == 10
     assert settings.cors_origins == ("https://a.example", "https://b.example")
     assert from_environment({}) == Settings()
     assert Settings().workers >= 1 and Settings().cors_origins == ()
@@ -179,11 +183,26 @@ def test_settings_from_the_environment() -> None:
         ("KINEMATICS_QUEUE_WAIT", "inf"),
         ("KINEMATICS_TIME_LIMITS", "sweep=2"),
         ("KINEMATICS_TIME_LIMITS", "/api/v1/sweep=0"),
+        ("KINEMATICS_WORKER_NICE", "20"),
+        ("KINEMATICS_WORKER_NICE", "-1"),
     ],
 )
 def test_bad_settings_are_named(name: str, value: str) -> None:
     with pytest.raises(ValueError, match=name):
         from_environment({name: value})
+
+
+def test_workers_run_below_the_servers_cpu_priority() -> None:
+    """So that the event loop (/health) gets a core before the solver on a busy machine."""
+    worker = workers.Worker(multiprocessing.get_context("forkserver"), 7)
+    try:
+        wanted = min(os.getpriority(os.PRIO_PROCESS, 0) + 7, 19)
+        deadline = time.monotonic() + 30
+        while os.getpriority(os.PRIO_PROCESS, worker.process.pid) != wanted:  # once it runs
+            assert time.monotonic() < deadline, "the worker never lowered its priority"
+            time.sleep(0.05)
+    finally:
+        worker.stop()
 
 
 def test_a_burst_of_slow_requests_leaves_a_worker_to_analyze() -> None:
