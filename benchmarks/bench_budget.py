@@ -1,27 +1,27 @@
 """The cost budget's Newton-Raphson model (server/budget.py) against measured times.
 
-Run from the repository root (about a minute on a quiet core):
+Run from the repository root (about 3 minutes on a loaded 2-core machine):
 
     python -m benchmarks.bench_budget
 
-The budget charges a request ``links solved by Newton-Raphson x samples`` link-samples before
-any work: a sweep its samples plus the feasible-range search (``budget.FEASIBLE_RANGE_SEARCH``),
-an instant one sample per ``budget.TURN_PER_CORRECTION`` of driver turn from the drawn pose,
-and refuses more than ``budget.MAX_NEWTON_WORK``. This script times, on one core, what such
-requests cost:
+Before any work the budget estimates the seconds of one core that the links solved by
+Newton-Raphson take, ``budget.newton_work(...) x budget.SAMPLE_COST``: links x (samples +
+``SETUP_SAMPLES`` + ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose),
+and refuses a request whose estimate passes its endpoint's time limit / ``budget.SAFETY``. This
+script times, on one core, what such requests really cost:
 
-- sweeps (positions, velocities and accelerations: every quantity that costs Newton work) of
-  Stephenson III six-bars (``tests.server.test_budget.triads``: 1 to 8 triads on one crank, one
-  Newton-Raphson group of 4 to 32 links) over 20 to 1,440 samples;
-- instants (/analyze's solver call) of the same linkages with an angle law that puts the crank
-  1 to 10^4 radians from the drawn pose (the continuation walks there).
+- sweeps (positions, velocities and accelerations) of Stephenson III six-bars
+  (``tests.server.test_budget.triads``: 1 to 8 triads on one crank, between limit positions:
+  one Newton-Raphson group of 4 to 32 links) and of a fully turning triad
+  (``benchmarks.bench_newton.FULL_TURN``) over 20 to 1,440 samples;
+- instants (/analyze's solver call) of the fully turning triad 1 to 100 rad from the drawn pose,
+  and time sweeps of it turning 10 and 100 rad (the continuation walks there).
 
-For each it prints the charge, the measured seconds and the seconds per link-sample, then the
-largest of these rates and what the limit costs at it: ``MAX_NEWTON_WORK x rate``, which must
-stay below the smallest endpoint time limit that charges Newton work (/analyze, 2 s) divided by
-the stated safety factor ``budget.SAFETY``. Each time is the best of ``--repeats`` runs (the
-machine is shared: the least disturbed run is the cost). Printed only; docs/SERVING.md quotes a
-run.
+For each it prints the charge, the estimate, the measured time and measured / estimated; the
+largest ratio must stay at most 1 (then a request the budget accepts ends within its time limit
+unless the machine is more than ``SAFETY`` times slower than when it was fitted). Each time is
+the best of ``--repeats`` runs (the machine is shared: the least disturbed run is the cost).
+Printed only; docs/SERVING.md quotes a run.
 """
 
 from __future__ import annotations
