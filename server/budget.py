@@ -29,9 +29,10 @@ import numpy as np
 
 import solver
 from server.settings import TIME_LIMITS
-from solver.analysis import driver_inputs_over_time, normalise_quantities
+from solver.drivers import driver_inputs_over_time
 from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
+from solver.quantities import normalise_quantities
 from solver.scene import MAX_TIME, LinkageScene
 from solver.topology import NewtonStep, build_plan
 
