@@ -7,7 +7,7 @@
 | ``KINEMATICS_QUEUE_WAIT`` | 10 | seconds a request may wait for a worker before it is answered 503 |
 | ``KINEMATICS_TIME_LIMITS`` | see ``TIME_LIMITS`` | ``/api/v1/sweep=20,/api/v1/analyze=1``: seconds of work per endpoint |
 | ``KINEMATICS_TIME_LIMIT`` | 10 | seconds of work for an endpoint not listed |
-| ``KINEMATICS_WORKER_NICE`` | 10 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core |
+| ``KINEMATICS_WORKER_NICE`` | 0 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core; 10 in the Dockerfile (a machine of its own) |
 | ``KINEMATICS_CORS_ORIGINS`` | none | ``https://a.example,https://b.example``: origins allowed to call the API from a browser |
 """  # noqa: E501
 
@@ -41,7 +41,7 @@ class Settings:
     queue_wait: float = 10.0
     time_limits: Mapping[str, float] = field(default_factory=lambda: dict(TIME_LIMITS))
     time_limit: float = 10.0
-    worker_nice: int = 10
+    worker_nice: int = 0
     cors_origins: tuple[str, ...] = ()
 
     def time_limit_of(self, path: str) -> float:

@@ -169,7 +169,7 @@ def test_settings_from_the_environment() -> None:
     assert settings.time_limit_of("/api/v1/x") == 0.5
     assert settings.time_limit_of("/api/v1/analyze") == TIME_LIMITS["/api/v1/analyze"] == 2.0
     assert settings.time_limit_of("/api/v1/dynamics") == 4.0
-    assert settings.worker_nice == 5 and Settings().worker_nice == 10
+    assert settings.worker_nice == 5 and Settings().worker_nice == 0
     assert settings.cors_origins == ("https://a.example", "https://b.example")
     assert from_environment({}) == Settings()
     assert Settings().workers >= 1 and Settings().cors_origins == ()
@@ -194,7 +194,8 @@ def test_bad_settings_are_named(name: str, value: str) -> None:
 
 def test_workers_run_below_the_servers_cpu_priority() -> None:
     """So that the event loop (/health) gets a core before the solver on a busy machine."""
-    worker = workers.Worker(multiprocessing.get_context("forkserver"), 7)
+    # A forked worker: this process's forkserver would keep no preload for the app's own pool.
+    worker = workers.Worker(multiprocessing.get_context("fork"), 7)
     try:
         wanted = min(os.getpriority(os.PRIO_PROCESS, 0) + 7, 19)
         deadline = time.monotonic() + 30
