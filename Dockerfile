@@ -12,7 +12,9 @@ COPY pyproject.toml README.md requirements.lock ./
 COPY solver ./solver
 COPY server ./server
 COPY static ./static
-RUN python -m pip install --no-cache-dir -r requirements.lock .
+# The lock with its hashes, then the project alone (it adds no dependency of its own).
+RUN python -m pip install --no-cache-dir --require-hashes -r requirements.lock \
+    && python -m pip install --no-cache-dir --no-deps .
 
 USER 10001
 EXPOSE 8000
@@ -20,7 +22,10 @@ HEALTHCHECK --interval=30s --timeout=3s --start-period=10s --retries=3 \
   CMD ["python", "-c", "import urllib.request, sys; sys.exit(0 if urllib.request.urlopen('http://127.0.0.1:8000/health', timeout=2).status == 200 else 1)"]
 # One uvicorn process; the solver runs in KINEMATICS_WORKERS worker processes (default: the
 # container's cores), with the queue and time limits of server/settings.py. Override with -e.
+# The workers run 10 nice levels below the server: in its own container the event loop
+# (/health) gets a core first (docs/SERVING.md, "What held /health back").
 ENV KINEMATICS_QUEUE=128 \
+    KINEMATICS_WORKER_NICE=10 \
     KINEMATICS_QUEUE_WAIT=10 \
     KINEMATICS_TIME_LIMIT=10
 CMD ["uvicorn", "server.app:app", "--host", "0.0.0.0", "--port", "8000", "--timeout-graceful-shutdown", "15"]

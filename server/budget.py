@@ -7,10 +7,13 @@ Scene sizes are bounded by the parsers (200 points, 100 links, ...) and a time l
   chain: points + bodies + joints), at most
   ``MAX_SWEEP_VALUES`` (about 20 MB of JSON; 200 points x 100,000 samples x every quantity
   made 2.5 GB);
-- Newton-Raphson work: links solved by Newton-Raphson x the samples at which they are solved
-  (a sweep adds its feasible-range search, an instant its continuation steps from the drawn
-  pose), at most ``MAX_NEWTON_WORK`` link-samples (about 5 s on one core; a 20-sample sweep of
-  a linkage with 24 triads took 45 s);
+- Newton-Raphson work: an estimate of the seconds of one core that the links solved by
+  Newton-Raphson take, ``links x (samples + SETUP_SAMPLES + turn x SAMPLES_PER_RADIAN) x
+  SAMPLE_COST`` (a sweep's samples, its path tracing and feasible-range search, and the radians
+  the continuation walks from the drawn pose), at most the endpoint's default time limit divided
+  by ``SAFETY``; and no Newton-Raphson group larger than ``MAX_GROUP_LINKS`` links (past it the
+  cost grows far faster than the model: 64 links took 50 s for 20 samples). The constants are
+  fitted to ``benchmarks/bench_budget.py`` (docs/SERVING.md quotes a run);
 - an event search: t_max x the frequency of the moving point's law, at most
   ``MAX_OSCILLATIONS`` (the search resolves every turning point of s(t)).
 
@@ -19,56 +22,88 @@ Every refusal states the product and the limit.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import math
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
 
 import solver
-from solver.drivers import driver_input
+from server.settings import TIME_LIMITS
+from solver.drivers import driver_inputs_over_time
 from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
 from solver.quantities import normalise_quantities
 from solver.scene import MAX_TIME, LinkageScene
 from solver.spatial import SpatialChain
-from solver.sweeps import BISECTION_STEPS, PROBE_SAMPLES
 from solver.topology import NewtonStep, build_plan
 
 MAX_SWEEP_VALUES = 500_000
-MAX_NEWTON_WORK = 25_000  # link-samples; measured about 0.2 to 0.3 ms each
 MAX_OSCILLATIONS = 5_000
-FEASIBLE_RANGE_SEARCH = 2 * PROBE_SAMPLES + 2 * BISECTION_STEPS  # samples, at most
 EVENT_GRID = 4097  # samples of |M - P| in an event search off M's carrier (solver.events)
 FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
-# A Newton group reaches a pose by following its path from the drawn pose (solver.continuation):
-# the work is estimated as one correction per this much driver turn (a cost model, not a rule).
-TURN_PER_CORRECTION = np.radians(5.0)
+# The Newton-Raphson cost model, fitted by benchmarks/bench_budget.py (best of 3, shared 2-core
+# machine): the largest rate measured per link-sample (groups of up to 32 links, positions,
+# velocities and accelerations), a sweep's fixed work in samples, and the continuation's cost per
+# radian of driver turn in samples.
+SAMPLE_COST = 70e-6  # s of one core per link-sample
+SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
+SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
+MAX_GROUP_LINKS = 32  # the largest group measured
+SAFETY = 2.0  # refused past the time limit / SAFETY: an estimate off by 2x still ends in time
 
 
-def _newton_links(scene: LinkageScene) -> int:
-    return sum(len(s.links) for s in build_plan(scene).steps if isinstance(s, NewtonStep))
+def newton_groups(scene: LinkageScene) -> list[int]:
+    """The size (links) of each group that ``scene`` solves by Newton-Raphson."""
+    return [len(s.links) for s in build_plan(scene).steps if isinstance(s, NewtonStep)]
 
 
-def _newton(scene: LinkageScene, samples: int, what: str) -> None:
-    links = _newton_links(scene)
-    if links * samples > MAX_NEWTON_WORK:
+def newton_work(scene: LinkageScene, samples: int, turn: float) -> float:
+    """Link-samples: links x (samples + SETUP_SAMPLES + turn x SAMPLES_PER_RADIAN)."""
+    return sum(newton_groups(scene)) * (samples + SETUP_SAMPLES + SAMPLES_PER_RADIAN * turn)
+
+
+def _newton(scene: LinkageScene, samples: int, turn: float, what: str, path: str) -> None:
+    """Refuse Newton-Raphson work estimated past ``path``'s default time limit / SAFETY."""
+    groups = newton_groups(scene)
+    if not groups:
+        return
+    if max(groups) > MAX_GROUP_LINKS:
         raise LimitExceeded(
-            f"Newton-Raphson work: {links} links solved by Newton-Raphson x {samples} samples "
-            f"({what}) = {links * samples:,} link-samples, more than the limit of "
-            f"{MAX_NEWTON_WORK:,}; use fewer samples"
+            f"Newton-Raphson work: a group of {max(groups)} links solved together by "
+            f"Newton-Raphson, more than the limit of {MAX_GROUP_LINKS} links"
+        )
+    work = newton_work(scene, samples, turn)
+    seconds, allowed = work * SAMPLE_COST, TIME_LIMITS[path] / SAFETY
+    if seconds > allowed:
+        raise LimitExceeded(
+            f"Newton-Raphson work: {sum(groups)} links solved by Newton-Raphson x ({samples} "
+            f"samples {what} + {SETUP_SAMPLES} for tracing the path + {turn:.4g} rad from the "
+            f"drawn pose x {SAMPLES_PER_RADIAN}) = {work:,.0f} link-samples x "
+            f"{SAMPLE_COST * 1e6:g} us = {seconds:.4g} s of estimated work, more than the limit "
+            f"of {allowed:.4g} s ({path}'s time limit of {TIME_LIMITS[path]:g} s / safety "
+            f"factor {SAFETY:g}); use fewer samples or a pose nearer the drawn one"
         )
 
 
+def driver_turn(scene: LinkageScene, times: np.ndarray) -> float:
+    """Radians the drivers turn from the drawn pose to reach every one of ``times`` (both ways)."""
+    turns = np.concatenate([d.theta for d in driver_inputs_over_time(scene, times)] + [[0.0]])
+    return float(np.max(turns) - np.min(turns))
+
+
 def instant(scene: LinkageScene) -> None:
-    """/analyze and /solution of a linkage: Newton groups x continuation steps to the pose."""
-    if not _newton_links(scene):
-        return
-    turned = max((abs(driver_input(scene, d, scene.time)[0]) for d in scene.drivers), default=0.0)
-    _newton(scene, 1 + int(turned / TURN_PER_CORRECTION), "continuation steps to the pose")
+    """/analyze and /solution of a linkage: one sample, reached from the drawn pose."""
+    _newton(
+        scene, 1, driver_turn(scene, np.array([scene.time])), "(one instant)", "/api/v1/analyze"
+    )
 
 
 def sweep(
-    scene: LinkageScene, samples: int, quantities: Iterable[str] | None, in_time: bool
+    scene: LinkageScene,
+    samples: int,
+    quantities: Iterable[str] | None,
+    time_range: Sequence[float] | None = None,
 ) -> None:
     """/sweep: the response's size, and the Newton work with the feasible-range search."""
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
@@ -80,10 +115,16 @@ def sweep(
             f"points x {len(wanted)} quantities = {values:,}, more than the limit of "
             f"{MAX_SWEEP_VALUES:,}; ask for fewer samples or quantities"
         )
-    if in_time:
-        _newton(scene, samples, "over the time range")
+    if time_range is not None:
+        valid = len(time_range) == 2 and all(math.isfinite(t) for t in time_range)
+        grid = (
+            np.linspace(time_range[0], time_range[-1], min(samples, FREQUENCY_GRID))
+            if valid
+            else np.zeros(1)
+        )
+        _newton(scene, samples, driver_turn(scene, grid), "over the time range", "/api/v1/sweep")
     else:
-        _newton(scene, samples + FEASIBLE_RANGE_SEARCH, "with the feasible-range search")
+        _newton(scene, samples, 0.0, "over the revolution", "/api/v1/sweep")
 
 
 def spatial_sweep(chain: SpatialChain, samples: int, quantities: Iterable[str] | None) -> None:
@@ -107,8 +148,8 @@ def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:
     mp = next((m for m in scene.moving_points if m.name == moving_point), None)
     if mp is None or not 0.0 < t_max <= MAX_TIME:
         return  # the solver's own message
-    _newton(scene, EVENT_GRID, "the distance search")
     grid = np.linspace(0.0, t_max, FREQUENCY_GRID + 1)
+    _newton(scene, EVENT_GRID, driver_turn(scene, grid), "of the distance search", "/api/v1/events")
     rate = parse_time_law(mp.s_law).evaluate(grid)[1]
     turns = int(np.count_nonzero(np.diff(np.sign(rate)) != 0))
     # s' changes sign twice a period; past a quarter of the grid the grid no longer resolves it.

@@ -7,6 +7,7 @@
 | ``KINEMATICS_QUEUE_WAIT`` | 10 | seconds a request may wait for a worker before it is answered 503 |
 | ``KINEMATICS_TIME_LIMITS`` | see ``TIME_LIMITS`` | ``/api/v1/sweep=20,/api/v1/analyze=1``: seconds of work per endpoint |
 | ``KINEMATICS_TIME_LIMIT`` | 10 | seconds of work for an endpoint not listed |
+| ``KINEMATICS_WORKER_NICE`` | 0 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core; 10 in the Dockerfile (a machine of its own) |
 | ``KINEMATICS_CORS_ORIGINS`` | none | ``https://a.example,https://b.example``: origins allowed to call the API from a browser |
 """  # noqa: E501
 
@@ -40,6 +41,7 @@ class Settings:
     queue_wait: float = 10.0
     time_limits: Mapping[str, float] = field(default_factory=lambda: dict(TIME_LIMITS))
     time_limit: float = 10.0
+    worker_nice: int = 0
     cors_origins: tuple[str, ...] = ()
 
     def time_limit_of(self, path: str) -> float:
@@ -72,6 +74,13 @@ def _limits(text: str) -> dict[str, float]:
     return limits
 
 
+def _niceness(env: Mapping[str, str]) -> int:
+    value = int(_number(env, "KINEMATICS_WORKER_NICE", Settings.worker_nice, integer=True))
+    if value > 19:
+        raise ValueError(f"KINEMATICS_WORKER_NICE={value}: expected 0 to 19")
+    return value
+
+
 def from_environment(env: Mapping[str, str] = os.environ) -> Settings:
     """The settings from ``KINEMATICS_*`` variables; ValueError names a bad one."""
     default = Settings()
@@ -82,5 +91,6 @@ def from_environment(env: Mapping[str, str] = os.environ) -> Settings:
         queue_wait=_number(env, "KINEMATICS_QUEUE_WAIT", default.queue_wait),
         time_limits=_limits(env.get("KINEMATICS_TIME_LIMITS", "")),
         time_limit=_number(env, "KINEMATICS_TIME_LIMIT", default.time_limit),
+        worker_nice=_niceness(env),
         cors_origins=tuple(o.strip() for o in origins.split(",") if o.strip()),
     )

@@ -95,9 +95,14 @@ def answer(key: str, kwargs: dict[str, Any]) -> Answer:
     return result.status_code, result.raw_headers, bytes(result.body)
 
 
-def serve(connection: Connection) -> None:
-    """A worker's loop: one request at a time until the server closes the pipe."""
+def serve(connection: Connection, niceness: int) -> None:
+    """A worker's loop: one request at a time until the server closes the pipe.
+
+    The worker runs ``niceness`` below the server's CPU priority: on a machine whose cores are
+    all busy the server's event loop (``/health``, reading requests, sending answers) is
+    scheduled first instead of waiting for a worker's time slice to end."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the server, which stops us
+    os.nice(niceness)
     while True:
         try:
             key, kwargs = connection.recv()
@@ -112,9 +117,9 @@ def serve(connection: Connection) -> None:
 class Worker:
     """One worker process and the server's end of its pipe."""
 
-    def __init__(self, context: Any) -> None:
+    def __init__(self, context: Any, niceness: int) -> None:
         self.connection, child = context.Pipe()
-        self.process = context.Process(target=serve, args=(child,), daemon=True)
+        self.process = context.Process(target=serve, args=(child, niceness), daemon=True)
         self.process.start()
         child.close()
 
@@ -160,7 +165,9 @@ class Pool:
 
     async def start(self) -> None:
         for _ in range(self.settings.workers):
-            self.idle.put_nowait(await self._in_thread(Worker, self.context))
+            self.idle.put_nowait(
+                await self._in_thread(Worker, self.context, self.settings.worker_nice)
+            )
 
     async def close(self) -> None:
         await asyncio.gather(*self.tasks, return_exceptions=True)
@@ -173,7 +180,9 @@ class Pool:
 
         async def replace() -> None:
             await self._in_thread(worker.stop)
-            self.idle.put_nowait(await self._in_thread(Worker, self.context))
+            self.idle.put_nowait(
+                await self._in_thread(Worker, self.context, self.settings.worker_nice)
+            )
 
         task = asyncio.get_running_loop().create_task(replace())
         self.tasks.add(task)

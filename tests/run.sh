@@ -13,8 +13,10 @@ if ! python3 -m venv .venv; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq python3-venv >/dev/null
   python3 -m venv .venv
 fi
-.venv/bin/python -m pip install --quiet --upgrade pip
-.venv/bin/python -m pip install --quiet -r requirements-test.lock -e '.[test]'
+# The same install as the README's: the lock with its hashes (pip itself included), then the
+# project without dependencies (an editable install cannot be hashed).
+.venv/bin/python -m pip install --quiet --require-hashes -r requirements-test.lock
+.venv/bin/python -m pip install --quiet --no-deps -e .
 
 # The browser tests drive Debian's Chromium (no browser download works offline).
 if [ ! -x /usr/bin/chromium ]; then
@@ -27,17 +29,29 @@ fi
 .venv/bin/mypy
 .venv/bin/hadolint Dockerfile
 
-# Dependency audit against the PyPI advisory service. Known vulnerabilities fail the run; an
-# unreachable service, or pinned versions the service does not know, are reported, not fatal.
+# Dependency audit, offline: the locks against a local copy of the PyPA advisory database
+# (tests/advisories.py; docs/SERVING.md says how to get and refresh it). A known vulnerability
+# in a pinned version fails the run; a missing database is reported, not fatal.
+if [ ! -d "${ADVISORY_DATABASE:-.advisory-database}/vulns" ]; then
+  timeout 120 git clone --quiet --depth 1 https://github.com/pypa/advisory-database .advisory-database \
+    || echo "advisories: WARNING: no advisory database and none could be cloned; SKIPPED"
+fi
+status=0
+.venv/bin/python -m tests.advisories requirements.lock requirements-test.lock || status=$?
+if [ "$status" = 1 ]; then exit 1; fi
+
+# The same audit against PyPI's advisory service where it can be reached (it also knows the
+# GitHub advisories). Unreachable, or pinned versions it does not know (a private or local
+# package index), is reported as a warning: the offline audit above is the one that counts.
 if audit=$(.venv/bin/pip-audit -r requirements-test.lock --no-deps --progress-spinner off 2>&1); then
   echo "pip-audit: no known vulnerabilities in requirements-test.lock"
   if grep -q "could not be audited" <<<"$audit"; then
     echo "pip-audit: WARNING: some pinned versions are unknown to the advisory service and were"
-    echo "           NOT audited (a private or local package index?):"
+    echo "           NOT audited by it:"
     grep "could not be audited" <<<"$audit" | sed 's/^/           /'
   fi
 elif grep -qiE "connection|timed out|max retries|name resolution|network" <<<"$audit"; then
-  echo "pip-audit: WARNING: the advisory service could not be reached; the audit was SKIPPED"
+  echo "pip-audit: WARNING: the advisory service could not be reached; SKIPPED"
 else
   echo "$audit"
   exit 1

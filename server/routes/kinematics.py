@@ -51,10 +51,9 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
-    timed = request.time_range is not None
     if isinstance(read.scene, LinkageScene):
-        budget.sweep(read.scene, request.samples, request.quantities, timed)
-    elif timed:  # a spatial chain moves in time only: without a time range the solver refuses
+        budget.sweep(read.scene, request.samples, request.quantities, request.time_range)
+    elif request.time_range is not None:  # a spatial chain moves in time only
         budget.spatial_sweep(read.scene, request.samples, request.quantities)
     if request.time_range is None:
         return respond(

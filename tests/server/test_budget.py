@@ -19,10 +19,12 @@ import pytest
 import sympy
 from fastapi.testclient import TestClient
 
+import solver
 from server import budget
 from server.app import app
 from solver.errors import LimitExceeded
 from solver.laws import MAX_COMPOSITION, composition_depth, parse_time_law
+from solver.scene import LinkageScene
 from tests.server.test_errors import FOUR_BAR, assert_problem
 from tests.solver.test_newton import TRIAD
 
@@ -104,27 +106,49 @@ def test_a_sweep_just_inside_the_response_budget_answers() -> None:
     assert "more than the limit" in refused("/api/v1/sweep", body)
 
 
-def test_newton_work_of_a_sweep_is_bounded() -> None:
-    detail = refused("/api/v1/sweep", {"scene": triads(8), "samples": 20})
-    work = 32 * (20 + budget.FEASIBLE_RANGE_SEARCH)
-    assert f"32 links solved by Newton-Raphson x {20 + budget.FEASIBLE_RANGE_SEARCH}" in detail
-    assert f"= {work:,} link-samples" in detail
-    assert f"limit of {budget.MAX_NEWTON_WORK:,}" in detail
+def test_newton_work_of_a_sweep_is_bounded_at_half_its_time_limit() -> None:
+    """32 links by Newton-Raphson: 32 x (samples + 720) link-samples x 70 us must stay within
+    /sweep's 10 s / 2 = 5 s, so 1,512 samples are allowed and 1,513 refused (by hand: 32 x
+    2,232 x 70 us = 4.99968 s, 32 x 2,233 x 70 us = 5.00192 s)."""
+    scene = solver.read_scene(triads(8)).scene
+    assert isinstance(scene, LinkageScene)
+    budget.sweep(scene, 1512, None)  # no refusal (and no work: the budget only counts)
+    detail = refused("/api/v1/sweep", {"scene": triads(8), "samples": 1513})
+    assert "32 links solved by Newton-Raphson x (1513 samples over the revolution + 720" in detail
+    assert "= 71,456 link-samples x 70 us = 5.002 s of estimated work" in detail
+    assert "more than the limit of 5 s (/api/v1/sweep's time limit of 10 s / safety factor 2)" in (
+        detail
+    )
 
 
-def test_newton_work_of_a_time_sweep_is_bounded() -> None:
+def test_a_newton_group_past_the_measured_sizes_is_refused() -> None:
+    detail = refused("/api/v1/sweep", {"scene": triads(9), "samples": 20})
+    assert "a group of 36 links solved together by Newton-Raphson" in detail
+    assert "more than the limit of 32 links" in detail
+
+
+def test_newton_work_of_a_time_sweep_counts_the_turn_from_the_drawn_pose() -> None:
+    """omega 2, alpha 0.5: the crank turns 2 + 0.25 = 2.25 rad by t = 1 s; 4 x (20,000 + 720 +
+    2.25 x 60) = 83,420 link-samples x 70 us = 5.839 s."""
     body = {"scene": triads(1), "samples": 20_000, "time_range": [0, 1]}
-    assert "4 links solved by Newton-Raphson x 20000 samples" in refused("/api/v1/sweep", body)
+    detail = refused("/api/v1/sweep", body)
+    assert "4 links solved by Newton-Raphson x (20000 samples over the time range" in detail
+    assert "+ 2.25 rad from the drawn pose x 60) = 83,420 link-samples x 70 us = 5.839 s" in detail
 
 
 def test_continuation_to_a_far_pose_is_bounded() -> None:
-    """An angle law at t = 1e5 s puts the crank 1e8 rad from the drawn pose: Newton groups
-    would walk there in 5-degree continuation steps."""
+    """An angle law at t = 1e5 s puts the crank 1e8 rad from the drawn pose, which the
+    continuation would walk; /analyze allows 2 s / 2 = 1 s: 4 x (1 + 720 + 60 x turn) x 70 us
+    <= 1 s for a turn up to 47.51 rad."""
     scene = triads(1)
     scene["drivers"] = [{"link": "crank", "angle_law": "1000*t"}]
     scene["time"] = 1e5
     for path in ("/api/v1/analyze", "/api/v1/solution"):
-        assert "continuation steps to the pose" in refused(path, {"scene": scene})
+        assert "1e+08 rad from the drawn pose" in refused(path, {"scene": scene})
+    scene["time"] = 0.0474  # 47.4 rad: inside
+    budget.instant(solver.read_scene(scene).scene)  # type: ignore[arg-type]
+    scene["time"] = 0.0476  # 47.6 rad: outside
+    assert "47.6 rad from the drawn pose" in refused("/api/v1/analyze", {"scene": scene})
 
 
 def test_a_triad_at_its_drawn_pose_still_answers() -> None:
