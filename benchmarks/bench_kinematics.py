@@ -40,10 +40,10 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
 import numpy as np  # noqa: E402
 
 from server.local import serve_locally  # noqa: E402
-from solver.analysis import LinkageAnalysis, analyze  # noqa: E402
+from solver.instant import LinkageAnalysis, analyze  # noqa: E402
 from solver.presets import PRESETS, build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
-from solver.sweep import Sweep, sweep  # noqa: E402
+from solver.sweeps import Sweep, sweep  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 START, END = "<!-- kinematics:start -->", "<!-- kinematics:end -->"

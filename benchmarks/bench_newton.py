@@ -38,7 +38,7 @@ import numpy as np  # noqa: E402
 
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import parse_linkage  # noqa: E402
-from solver.sweep import sweep  # noqa: E402
+from solver.sweeps import sweep  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 START, END = "<!-- newton:start -->", "<!-- newton:end -->"

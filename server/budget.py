@@ -24,11 +24,12 @@ from typing import Any
 import numpy as np
 
 import solver
-from solver.analysis import driver_input, normalise_quantities
+from solver.drivers import driver_input
 from solver.errors import LimitExceeded
 from solver.laws import parse_time_law
+from solver.quantities import normalise_quantities
 from solver.scene import MAX_TIME, LinkageScene
-from solver.sweep import BISECTION_STEPS, PROBE_SAMPLES
+from solver.sweeps import BISECTION_STEPS, PROBE_SAMPLES
 from solver.topology import NewtonStep, build_plan
 
 MAX_SWEEP_VALUES = 500_000

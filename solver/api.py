@@ -20,11 +20,12 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from solver import analysis, events, results
+from solver import events, instant, results
 from solver import steps as worked
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
 from solver.errors import InvalidScene
 from solver.polygons import polygons
+from solver.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_quantities
 from solver.results import (
     AnalysisResult,
     EventResult,
@@ -34,8 +35,8 @@ from solver.results import (
 )
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
-from solver.sweep import sweep as sweep_linkage
-from solver.sweep import sweep_time as sweep_linkage_time
+from solver.sweeps import sweep as sweep_linkage
+from solver.sweeps import sweep_time as sweep_linkage_time
 
 Scene = LinkageScene | SpatialChain
 
@@ -116,12 +117,12 @@ def analyze(
     acceleration, poles, components (default: all); only those are computed. ``tolerance``: a
     Newton group's residual relative to the scene size (1e-15 to 1e-6, default 1e-13)."""
     parsed, found = _scene(scene, strict)
-    wanted = analysis.normalise_quantities(quantities)
+    wanted = normalise_quantities(quantities)
     if isinstance(parsed, LinkageScene):
-        result = analysis.analyze(parsed, wanted, tolerance)
+        result = instant.analyze(parsed, wanted, tolerance)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
         return AnalysisResult(body)
-    if wanted & set(analysis.DYNAMIC_QUANTITIES):
+    if wanted & set(DYNAMIC_QUANTITIES):
         raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
     return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
 
@@ -200,7 +201,7 @@ def solve(
     parsed, found = _scene(scene, strict)
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
-        body = results.spatial_body(solution.analysis, frozenset(analysis.QUANTITIES), found)
+        body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
         return SolutionResult(results.solution_body(solution, body, None, found))
     # The polygons follow the vector method's steps, whichever method the solution uses.
     vector = (

@@ -74,10 +74,11 @@ class Approach:
 class Motion:
     """The solved state of a linkage over N samples.
 
-    ``conditioning`` is the smallest sine of the angle between the two constraint gradients of any
-    group (0 at a dead centre); ``margin`` the smallest length margin m / size of any two-branch
-    group (negative where a group does not close; -1 where Newton-Raphson did not converge);
-    ``group_margins`` each two-branch group's m (metres), by the point (or slot) it locates.
+    ``gradient_sine`` is the smallest sine of the angle between the two constraint gradients of
+    any group (0 at a dead centre); ``margin`` the smallest length margin m / size of any
+    two-branch group (negative where a group does not close); ``converged`` false where a Newton
+    group's Newton-Raphson did not converge; ``group_margins`` each two-branch group's m (metres),
+    by the point (or slot) it locates.
     With continuation, ``approaches`` lists every close approach found between samples: branch
     switches (the branches meet), near misses, and windows where the linkage cannot close.
     """
@@ -85,7 +86,8 @@ class Motion:
     links: dict[str, LinkMotion]
     points: dict[str, PointMotion]
     margin: Array
-    conditioning: Array
+    converged: Array
+    gradient_sine: Array
     failures: list[str] = field(default_factory=list)
     newton: list[newton.NewtonReport] = field(default_factory=list)
     approaches: list[Approach] = field(default_factory=list)
@@ -94,8 +96,9 @@ class Motion:
 
     @property
     def feasible(self) -> Array:
-        """Samples where every group closed (to the coincidence tolerance)."""
-        return self.margin >= -dyads.COINCIDENCE_TOLERANCE
+        """Samples where every group closed (to the coincidence tolerance) and every Newton group
+        converged."""
+        return (self.margin >= -dyads.COINCIDENCE_TOLERANCE) & self.converged
 
     def cut(self, part: slice) -> Motion:
         """The same motion at the samples ``part`` only (approaches kept as found)."""
@@ -114,7 +117,8 @@ class Motion:
             links,
             {k: point(m) for k, m in self.points.items()},
             self.margin[part],
-            self.conditioning[part],
+            self.converged[part],
+            self.gradient_sine[part],
             self.failures,
             self.newton,
             self.approaches,
@@ -190,7 +194,8 @@ class _Assembler:
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
         self.margin = np.ones(self.samples)
-        self.conditioning = np.ones(self.samples)
+        self.converged = np.ones(self.samples, dtype=bool)
+        self.gradient_sine = np.ones(self.samples)
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
         self.steps: tuple[Step, ...] = ()
@@ -206,11 +211,13 @@ class _Assembler:
             if p not in self.points:
                 self.points[p] = motion.point(self.scene.drawn(p))
 
+    def closed(self) -> Array:
+        """Samples where every group so far closed (and every Newton group converged)."""
+        return (self.margin >= -dyads.COINCIDENCE_TOLERANCE) & self.converged
+
     def close(self, margin: Array, message: Callable[[], str]) -> None:
         """Record a group's relative margin, and its message where it newly fails to close."""
-        tolerance = dyads.COINCIDENCE_TOLERANCE
-        failing = margin < -tolerance
-        if np.any(failing & (self.margin >= -tolerance)):
+        if np.any((margin < -dyads.COINCIDENCE_TOLERANCE) & self.closed()):
             self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
@@ -290,8 +297,8 @@ class _Assembler:
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
         X[self.at_drawn] = self.scene.drawn(step.point)
-        self.conditioning = np.minimum(
-            self.conditioning, dyads.relative_determinant(first, second, X)
+        self.gradient_sine = np.minimum(
+            self.gradient_sine, dyads.relative_determinant(first, second, X)
         )
         self.points[step.point] = dyads.point_motion(first, second, X, self.order)
 
@@ -313,7 +320,7 @@ class _Assembler:
         solution = dyads.slotted_lever(
             pivot, pin, step.offset, sign, self.order, (self.at_drawn, drawn)
         )
-        self.conditioning = np.minimum(self.conditioning, solution.conditioning)
+        self.gradient_sine = np.minimum(self.gradient_sine, solution.gradient_sine)
         theta = solution.beta - drawn
         self.know(
             step.link,
@@ -366,7 +373,8 @@ class _Assembler:
             self.links,
             self.points,
             self.margin,
-            self.conditioning,
+            self.converged,
+            self.gradient_sine,
             self.failures,
             self.reports,
             self.approaches,
@@ -384,7 +392,9 @@ class _Assembler:
             self.newton_groups or Continuation(self.scene),
         )
         self.reports.append(report)
-        self.close(np.where(report.converged, 0.0, -1.0), lambda: report.message)
+        if np.any(~report.converged & self.closed()):
+            self.failures.append(report.message)
+        self.converged = self.converged & report.converged
         for link, motion in solved.items():
             self.know(link, motion)
 

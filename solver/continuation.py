@@ -33,9 +33,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver import newton
+from solver import constraints, newton
+from solver.constraints import ConstraintSystem, States
 from solver.errors import NotAssemblable
-from solver.newton import ConstraintSystem, NewtonReport, States
+from solver.newton import NewtonReport
 from solver.rigid import Array, LinkMotion
 from solver.scene import LinkageScene
 
@@ -373,7 +374,7 @@ def solve_group(
     samples = turns[0].size if turns else 1
     tolerance = continuation.tolerance * scene.size
     polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
-    states = newton.states({name: known[name] for name in system.known}, scene)
+    states = constraints.states({name: known[name] for name in system.known}, scene)
     q = np.tile(system.drawn(), (samples, 1))
     residual = np.zeros(samples)
     reached = np.ones(samples, dtype=bool)
@@ -410,7 +411,7 @@ def solve_group(
             branch.refine(way[bad])
             todo = todo[bad]
     converged = reached & settled
-    qd, qdd = newton.rates(system, states, q, order)
+    qd, qdd = constraints.rates(system, states, q, order)
     motions = system.motions(q, qd, qdd)
     worst = float(np.max(residual, initial=0.0))
     message = f"Newton-Raphson closed the loop of {', '.join(group)}"

@@ -251,7 +251,7 @@ class LeverSolution:
     beta: Array
     omega: Array | None
     alpha: Array | None
-    conditioning: Array
+    gradient_sine: Array
 
 
 def lever_margin(pivot: PointMotion, pin: PointMotion, offset: float) -> tuple[Array, Array | None]:
@@ -299,5 +299,5 @@ def slotted_lever(
             assert pin.a is not None and pivot.a is not None
             a_rel = pin.a - pivot.a
             alpha = (cross(u, a_rel) - 2.0 * omega * dot(u, v_rel) - omega**2 * offset) / safe
-    conditioning = np.abs(u_r) / np.sqrt(np.where(r2 > 0.0, r2, 1.0))
-    return LeverSolution(beta, omega, alpha, conditioning)
+    gradient_sine = np.abs(u_r) / np.sqrt(np.where(r2 > 0.0, r2, 1.0))
+    return LeverSolution(beta, omega, alpha, gradient_sine)

@@ -21,12 +21,12 @@ from itertools import pairwise
 import numpy as np
 from scipy.optimize import brentq
 
-from solver.analysis import driver_inputs_over_time
 from solver.assembly import assemble, require_feasible
+from solver.drivers import driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded, NoEvent
 from solver.laws import parse_time_law
 from solver.relative_motion import moving_point_motion, path_geometry
-from solver.rigid import Array, dot
+from solver.rigid import Array, cross, dot
 from solver.scene import MAX_TIME, LinkageScene, MovingPoint
 from solver.topology import build_plan
 
@@ -54,7 +54,7 @@ def _path_levels(scene: LinkageScene, mp: MovingPoint, target: str) -> tuple[flo
         assert route.through is not None
         u = scene.drawn(route.through) - start
         u = u / math.hypot(*u)
-        off = abs(u[0] * (point - start)[1] - u[1] * (point - start)[0])
+        off = abs(cross(u, point - start))
         if off > ON_PATH_TOLERANCE * max(math.hypot(*(point - start)), scene.size):
             raise NoEvent(
                 f"{target} is {off:.6g} m off the line along which {mp.name} moves, "

@@ -1,4 +1,4 @@
-"""Velocity poles, acceleration poles, instant centres (Kennedy), and four-bar classification.
+"""Velocity poles and acceleration poles of a moving link.
 
 A pole that does not exist (a translating link, a link at rest) is ``None``: the threshold
 ``POLE_TOLERANCE`` compares omega L (or sqrt(omega^4 + alpha^2) L) with the point's velocity
@@ -12,7 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from solver.assembly import Motion
 from solver.rigid import Array, dot, perp
+from solver.scene import LinkageScene
 
 POLE_TOLERANCE = 1e-10
 
@@ -56,64 +58,12 @@ def acceleration_poles(X: Array, a_X: Array, omega: Array, alpha: Array, size: f
     return Poles(X - r_GX, exists)
 
 
-@dataclass(frozen=True)
-class InstantCentre:
-    """The instant centre of links i and j: a point, or a direction at infinity (relative
-    translation); both ``None`` when the two links are at rest relative to each other."""
-
-    links: tuple[str, str]
-    position: Array | None
-    direction: Array | None
-
-
-def instant_centre(
-    link_i: str, V_i: Array, omega_i: float, link_j: str, V_j: Array, omega_j: float, size: float
-) -> InstantCentre:
-    """The point P with v_i(P) = v_j(P): P = k x (V_i - V_j) / (omega_i - omega_j).
-
-    ``V`` is the velocity of the link's point at the world origin (v_A - omega k x A), so each
-    link's velocity field is v(P) = V + omega k x P.
-    """
-    dv = V_i - V_j
-    dw = omega_i - omega_j
-    speed = float(np.hypot(*dv))
-    reference = float(np.hypot(*V_i) + np.hypot(*V_j)) + (abs(omega_i) + abs(omega_j)) * size
-    if speed + abs(dw) * size <= POLE_TOLERANCE * reference:  # at rest relative to each other
-        return InstantCentre((link_i, link_j), None, None)
-    if abs(dw) * size <= POLE_TOLERANCE * (speed + abs(dw) * size):  # relative translation
-        return InstantCentre((link_i, link_j), None, perp(dv) / speed)
-    return InstantCentre((link_i, link_j), perp(dv) / dw, None)
-
-
-@dataclass(frozen=True)
-class FourBarLoop:
-    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad)."""
-
-    links: tuple[str, str, str, str]
-    lengths: tuple[float, float, float, float]
-    grashof: str
-    transmission_angle: float
-
-
-def grashof_class(ground: float, crank: float, coupler: float, rocker: float) -> str:
-    """Grashof's criterion s + l <= p + q, and which link is the shortest."""
-    lengths = [ground, crank, coupler, rocker]
-    s, l_ = min(lengths), max(lengths)
-    spread = s + l_ - (sum(lengths) - s - l_)
-    if abs(spread) <= 1e-12 * l_:
-        return "change-point"
-    if spread > 0:
-        return "non-Grashof triple-rocker"
-    shortest = int(np.argmin(lengths))
+def link_poles(scene: LinkageScene, motion: Motion, link: str) -> tuple[Poles, Poles]:
+    """The velocity and acceleration poles of a moving link at every sample of ``motion``."""
+    m = motion.links[link]
+    X = m.anchor
+    assert X.v is not None and X.a is not None and m.omega is not None and m.alpha is not None
     return (
-        "Grashof double-crank",
-        "Grashof crank-rocker",
-        "Grashof double-rocker",
-        "Grashof rocker-crank",
-    )[shortest]
-
-
-def transmission_angle(B: Array, C: Array, D: Array) -> float:
-    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi)."""
-    u, w = B - C, D - C
-    return float(np.arctan2(abs(u[0] * w[1] - u[1] * w[0]), u @ w))
+        velocity_poles(X.p, X.v, m.omega, scene.size),
+        acceleration_poles(X.p, X.a, m.omega, m.alpha, scene.size),
+    )

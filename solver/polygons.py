@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis
+from solver.instant import LinkageAnalysis
 from solver.rigid import perp
 from solver.scene import LinkageScene
 from solver.steps import Step

@@ -20,15 +20,16 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis, SlidingJoint
 from solver.assembly import Motion
+from solver.instant import LinkageAnalysis
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion
 from solver.rigid import Array
 from solver.scene import LinkageScene
+from solver.sliding_joints import SlidingJoint
 from solver.spatial import SpatialAnalysis
 from solver.steps import Solution
-from solver.sweep import CloseApproach, Sweep, TimeSweep
+from solver.sweeps import CloseApproach, Sweep, TimeSweep
 
 JSON = dict[str, Any]
 

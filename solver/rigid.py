@@ -33,11 +33,16 @@ def perp(a: Array) -> Array:
 
 def rotate(vector: Array, angle: Array) -> Array:
     """R(angle) vector for each sample: ``vector`` is (2,) or (N, 2), ``angle`` (N,)."""
-    c, s = np.cos(angle), np.sin(angle)
+    return rotate_by(vector, np.cos(angle), np.sin(angle))
+
+
+def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
+    """R vector = (cos x - sin y, sin x + cos y), the angle's cosine and sine given (broadcast:
+    (M, K) angles and (K, 2) vectors give (M, K, 2))."""
     x, y = vector[..., 0], vector[..., 1]
-    out = np.empty((*np.broadcast_shapes(c.shape, x.shape), 2))
-    out[..., 0] = c * x - s * y
-    out[..., 1] = s * x + c * y
+    out = np.empty((*np.broadcast_shapes(cos.shape, x.shape), 2))
+    out[..., 0] = cos * x - sin * y
+    out[..., 1] = sin * x + cos * y
     return out
 
 

@@ -29,8 +29,8 @@ from typing import Any
 from hypothesis import assume
 from hypothesis import strategies as st
 
-from solver.analysis import analyze
 from solver.errors import KinematicsError
+from solver.instant import analyze
 from solver.presets import PRESETS, build_preset
 from solver.scene import parse_linkage
 from tests.strategies import assemblable_presets

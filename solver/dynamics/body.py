@@ -15,13 +15,14 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import DYNAMIC_QUANTITIES, LinkageAnalysis
 from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics, sweep_times
 from solver.dynamics.balance import Balance
 from solver.dynamics.cycle import cycle_figures
+from solver.instant import LinkageAnalysis
+from solver.quantities import DYNAMIC_QUANTITIES
 from solver.rigid import Array
 from solver.scene import LinkageScene
-from solver.sweep import Sweep, TimeSweep
+from solver.sweeps import Sweep, TimeSweep
 
 JSON = dict[str, Any]
 Convert = Callable[[Array], Any]

@@ -16,9 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
 from solver.events import find_event
+from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.spatial import SpatialAnalysis, SpatialChain, analyze_spatial_chain, parse_spatial_chain
 

@@ -18,11 +18,11 @@ from typing import Any
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis
 from solver.errors import KinematicsError
 from solver.exercises.answers import Solved, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
+from solver.instant import LinkageAnalysis
 from solver.rigid import Array, perp, rigid_body_acceleration
 
 DEGREES = 180.0 / math.pi

@@ -17,7 +17,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from solver.analysis import LinkageAnalysis
+from solver.instant import LinkageAnalysis
 from solver.laws import parse_time_law
 from solver.rigid import perp
 from solver.scene import Joint, LinkageScene

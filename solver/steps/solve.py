@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from solver.analysis import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
+from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene
 from solver.spatial import SpatialChain, analyze_spatial_chain
 from solver.steps import latex as tex

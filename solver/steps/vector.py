@@ -23,7 +23,7 @@ from functools import partial
 
 import numpy as np
 
-from solver.newton import ConstraintSystem, KnownPoses
+from solver.constraints import ConstraintSystem, KnownPoses
 from solver.rigid import perp
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, linear_latex, linear_text, present_solution

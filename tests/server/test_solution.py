@@ -2,7 +2,7 @@
 
 Sources: the spec ../shared/spec/scene-v1.md (/solution: steps with title, latex, text; results =
 the /analyze response; errors as problem+json with a stable code), and the reference scenes of
-tests/reference/examples. The arithmetic of the steps is re-evaluated with ``verify`` of
+server/examples. The arithmetic of the steps is re-evaluated with ``verify`` of
 tests/solver/test_steps.py (independent of solver.steps).
 """
 
@@ -21,7 +21,7 @@ from server.app import app
 from solver.presets import PRESETS
 from tests.solver.test_steps import unit_floors, verify
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 SCENES = sorted(p.stem for p in EXAMPLES.glob("*.json"))
 PROBLEM = "application/problem+json"
 client = TestClient(app)

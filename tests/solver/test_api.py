@@ -24,10 +24,10 @@ from solver.presets import build_preset
 from solver.results import Result, holds
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain
-from tests.solver.test_branches import _near_crank_rocker
+from tests.solver.test_assembly import _near_crank_rocker
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ROOT / "tests" / "reference" / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 WEB = ("fastapi", "pydantic", "starlette", "httpx", "orjson", "uvicorn")
 
 
@@ -165,32 +165,6 @@ def _arrays(result: Result) -> list[tuple[str, np.ndarray]]:
 # --- typos are never silent ----------------------------------------------------------------------
 
 
-def test_unknown_keys_name_the_key_its_path_and_the_nearest_name() -> None:
-    doc = example("S003-T2-rotating-carrier")
-    doc["drivers"][0]["angle"] = 120
-    doc["drivers"][0]["omegaa"] = 1.0
-    doc["links"]["carrier"]["grond"] = True
-    doc["moving_points"][0]["path"]["centre"] = "P"
-    doc["titel"] = "x"
-    doc["zzz"] = 1
-    assert unknown_keys(doc) == [
-        "titel is not a scene field; did you mean title?",
-        "zzz is not a scene field; the fields are drivers, forces, gravity, joints, kind, links, "
-        "masses, moving_points, point_masses, points, time, title, torques",
-        "links.carrier.grond is not a scene field; did you mean ground?",
-        "drivers[0].angle is not a scene field; did you mean angle_deg?",
-        "drivers[0].omegaa is not a scene field; did you mean omega?",
-        "moving_points[0].path.centre is not a scene field; did you mean center?",
-    ]
-    spatial = example("S002-spatial-arm")
-    spatial["joints"][0]["rate_ddot"] = 0.0
-    spatial["points"]["A"]["bodyy"] = "2"
-    assert unknown_keys(spatial) == [
-        "joints[0].rate_ddot is not a scene field; did you mean rate_dot?",
-        "points.A.bodyy is not a scene field; did you mean body?",
-    ]
-
-
 def test_a_typo_is_a_warning_and_strict_makes_it_an_error() -> None:
     doc = example("S000-T1")
     doc["drivers"][0]["angle"] = 120
@@ -253,7 +227,7 @@ def test_a_read_scene_keeps_its_warnings_for_the_result() -> None:
 
 def test_the_solvers_own_warnings_follow_the_requests() -> None:
     """A result's body lists the request's warnings first, then the solver's own (a pose within
-    1e-3 of the size of a change point, tests/solver/test_branches.py)."""
+    1e-3 of the size of a change point, tests/solver/test_assembly.py)."""
     doc = _near_crank_rocker(1e-4, 179.0)
     doc["drivers"][0]["angle"] = 120
     found = solver.analyze(doc).warnings

@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from solver.analysis import analyze
 from solver.dynamics.analysis import linkage_dynamics
+from solver.instant import analyze
 from solver.presets import PRESETS, build_preset
 from solver.scene import parse_linkage
 from tests.dynamics_cases import EXPECTED, seed004_scene

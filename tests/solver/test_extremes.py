@@ -29,10 +29,10 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.analysis import SINGULAR_CONDITION, LinkageAnalysis, analyze
 from solver.errors import SingularConfiguration
+from solver.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep
+from solver.sweeps import sweep
 
 Doc = dict[str, Any]
 EPS = float(np.finfo(float).eps)
@@ -127,7 +127,7 @@ def closed_form(doc: Doc, crank_angle: Any | None = None) -> dict[str, Any]:
 def assert_within_condition_bound(result: LinkageAnalysis, exact: dict[str, Any]) -> float:
     """Compare omega, alpha, v_C, a_C with the closed form to 10 cond^2 eps (module doc)."""
     cond = result.diagnostics.condition_number
-    assert cond is not None and cond < SINGULAR_CONDITION
+    assert cond is not None and cond < MAX_CONDITION_NUMBER
     bound = 10.0 * cond**2 * EPS
     omegas = [float(w) for w in exact["omega"]]
     alphas = [float(a) for a in exact["alpha"]]
@@ -270,7 +270,7 @@ def test_exactly_at_a_dead_centre_is_a_singular_configuration(doc: Doc) -> None:
     with pytest.raises(SingularConfiguration) as raised:
         analyze(parse_linkage(doc))
     assert "dead centre" in raised.value.message
-    assert raised.value.condition_number > SINGULAR_CONDITION
+    assert raised.value.condition_number > MAX_CONDITION_NUMBER
 
 
 # --- lengths and speeds over many decades --------------------------------------------------------

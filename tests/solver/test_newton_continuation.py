@@ -20,12 +20,12 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from solver.analysis import analyze
+from solver.constraints import ConstraintSystem, States
 from solver.continuation import Branch
 from solver.errors import NotAssemblable
-from solver.newton import ConstraintSystem, States
+from solver.instant import analyze
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import Sweep, sweep
+from solver.sweeps import Sweep, sweep
 from tests.linkage_strategies import condition_number, six_bars
 from tests.solver.test_extremes import S000_T1, T1_LIMIT
 from tests.solver.test_newton import TRIAD, with_angle

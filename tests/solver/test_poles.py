@@ -1,11 +1,29 @@
-"""The threshold that tells a slowly turning link from a translating one (poles.POLE_TOLERANCE):
-a pole a million sizes away is still a pole; rounding noise (1e-13 of the speed) is not."""
+"""Velocity and acceleration poles (solver.poles).
+
+The threshold that tells a slowly turning link from a translating one (poles.POLE_TOLERANCE):
+a pole a million sizes away is still a pole; rounding noise (1e-13 of the speed) is not. On
+random linkages (the families and helpers of test_properties.py) the poles reproduce every
+point's velocity and acceleration."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from solver.poles import acceleration_poles, velocity_poles
+from tests.linkage_strategies import FAMILIES
+from tests.solver.test_properties import (
+    IDENTITY_TOL,
+    PROPERTY,
+    draw_linkage,
+    group_scales,
+    norm,
+    perp,
+)
 
 
 def test_slowly_turning_link_has_a_far_velocity_pole() -> None:
@@ -28,3 +46,38 @@ def test_slowly_turning_link_has_a_far_acceleration_pole() -> None:
     assert position is not None
     np.testing.assert_allclose(position, [0.0, 1e6], rtol=1e-12)
     assert acceleration_poles(X, a, np.zeros(1), np.array([1e-13]), 1.0).at(0) is None
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+@PROPERTY
+@given(data=st.data())
+def test_poles_reproduce_the_velocity_and_acceleration_fields(
+    family: str, data: st.DataObject
+) -> None:
+    """The velocity pole P of a link gives v_X = omega k x (X - P) for every point X of the link;
+    the acceleration pole G gives a_X = alpha k x (X - G) - omega^2 (X - G). A missing pole means
+    a translating (or resting) link: then omega (omega^4 + alpha^2) is negligible against the
+    field. Tolerance 1e-9 of max(group magnitude, the rate times |X - pole|): a far pole carries
+    the rounding of its own magnitude."""
+    _, scene, result = draw_linkage(data, family)
+    v_scale, a_scale, _, _ = group_scales(result)
+    for name in scene.moving_links:
+        link = result.links[name]
+        w, al = link.omega, link.alpha
+        for x in scene.links[name].points:
+            X = result.points[x]
+            if link.velocity_pole is None:
+                assert abs(w) * scene.size <= 1e-9 * v_scale, name
+            else:
+                r = X.position - link.velocity_pole
+                expected = w * perp(r)
+                assert norm(X.velocity - expected) <= IDENTITY_TOL * max(
+                    v_scale, abs(w) * norm(r)
+                ), name
+            if link.acceleration_pole is None:
+                assert math.hypot(w**2, al) * scene.size <= 1e-9 * a_scale, name
+            else:
+                r = X.position - link.acceleration_pole
+                expected = al * perp(r) - w**2 * r
+                reach = math.hypot(w**2, al) * norm(r)
+                assert norm(X.acceleration - expected) <= IDENTITY_TOL * max(a_scale, reach), name

@@ -20,7 +20,7 @@ from solver.errors import InvalidScene, NotAssemblable
 from solver.presets import COINCIDENT, PRESETS, build_preset
 from tests.strategies import assemblable_presets
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 EXPECTED_NAMES = [
     "four_bar",
     "slider_crank",
@@ -464,7 +464,7 @@ def test_assemblable_draws_realise_their_parameters(case: tuple[str, dict[str, f
 
 @pytest.mark.parametrize("name", EXPECTED_NAMES)
 def test_default_documents_parse_and_analyze_to_their_drawn_pose(name: str) -> None:
-    analysis = pytest.importorskip("solver.analysis")
+    analysis = pytest.importorskip("solver.instant")
     scene_module = pytest.importorskip("solver.scene")
     parse = getattr(scene_module, "parse_scene", None) or scene_module.parse_linkage
     doc = build_preset(name, {})

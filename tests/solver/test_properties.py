@@ -4,9 +4,9 @@ lever (prismatic joint) and random Watt and Stephenson six-bars (``tests.linkage
 Each property is a theorem of plane kinematics that any correct answer satisfies, so no reference
 values are needed: velocities are derivatives of positions and accelerations of velocities
 (central finite differences), lengths scale out, rigid links have similar velocity images
-(Mehmke), the slider split obeys v = v_tr + v_rel, a = a_tr + a_rel + a_cor with
-a_cor = 2 omega_guide x v_rel, the loop closes along a whole sweep, the instant centres obey
-Kennedy, and the poles reproduce every point's velocity and acceleration.
+(Mehmke), and the loop closes along a whole sweep. The same families and helpers serve the
+property tests of the slider split (test_sliding_joints.py), of the instant centres
+(test_instant_centres.py, Kennedy) and of the poles (test_poles.py).
 
 Tolerances are stated next to each test. ``L`` is the scene's size (diagonal of the drawn points'
 bounding box), and a tolerance "relative to the group" is relative to the largest magnitude of
@@ -28,9 +28,9 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver.analysis import LinkageAnalysis, analyze
+from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep
+from solver.sweeps import sweep
 from tests.linkage_strategies import FAMILIES, linkages
 
 Doc = dict[str, Any]
@@ -323,94 +323,6 @@ def test_relative_velocity_of_two_points_is_perpendicular(family: str, data: st.
             assert abs(norm(v_rel) - abs(omega) * norm(r)) <= IDENTITY_TOL * v_scale, (name, x, y)
 
 
-# --- sliders -------------------------------------------------------------------------------------
-
-
-def _guide_frame(
-    scene: LinkageScene, result: LinkageAnalysis, guide: str
-) -> tuple[np.ndarray, float, float, float]:
-    """(a point G of the guide now, its rotation from the drawn pose, omega, alpha); ground: 0."""
-    if guide == scene.ground:
-        return scene.drawn(scene.links[guide].points[0]), 0.0, 0.0, 0.0
-    g0, g1 = scene.links[guide].points[:2]
-    now = result.points[g1].position - result.points[g0].position
-    drawn = scene.drawn(g1) - scene.drawn(g0)
-    turn = math.atan2(now[1], now[0]) - math.atan2(drawn[1], drawn[0])
-    link = result.links[guide]
-    return result.points[g0].position, turn, link.omega, link.alpha
-
-
-@pytest.mark.parametrize("family", SLIDER_FAMILIES)
-@PROPERTY
-@given(data=st.data())
-def test_slider_components(family: str, data: st.DataObject) -> None:
-    """At every slider and prismatic joint (scene-v1 'joints'; textbook composite motion):
-
-    - the transport velocity/acceleration are those of the guide's point coinciding with P,
-      computed here from the guide's own point G: v_G + omega_g k x GP, a_G + alpha_g k x GP -
-      omega_g^2 GP;
-    - v_tr + v_rel = v_P and a_tr + a_rel + a_cor = a_P (the absolute values of /analyze);
-    - v_rel and a_rel are along the slot (the slot is a straight line fixed in the guide);
-    - a_cor = 2 omega_guide k x v_rel, with omega_guide the guide link's own omega;
-    - on a ground guide the transport terms and the Coriolis term are exactly zero (the carrier
-      does not move; ERRATA E000-T3-3 is the textbook mistake this guards against);
-    - a block in a prismatic joint turns with its guide.
-
-    Tolerance 1e-9 of the group's largest magnitude (identities within one answer)."""
-    _, scene, result = draw_linkage(data, family)
-    v_scale, a_scale, w_scale, al_scale = group_scales(result)
-    assert result.joints, "the family has a sliding joint"
-    axes = {(j.point, j.links): j.axis for j in scene.joints if j.type != "revolute"}
-    for joint in result.joints:
-        guide, follower = joint.links
-        G, turn, omega_g, alpha_g = _guide_frame(scene, result, guide)
-        P = result.points[joint.point]
-        axis = np.array(axes[(joint.point, joint.links)])
-        u = np.array(
-            [
-                math.cos(turn) * axis[0] - math.sin(turn) * axis[1],
-                math.sin(turn) * axis[0] + math.cos(turn) * axis[1],
-            ]
-        )
-        if guide == scene.ground:
-            assert np.all(joint.coriolis_acceleration == 0.0)
-            assert np.all(joint.transport_velocity == 0.0)
-            assert np.all(joint.transport_acceleration == 0.0)
-            assert joint.omega_guide == 0.0
-            v_G = a_G = np.zeros(2)
-        else:
-            v_G, a_G = (
-                result.points[scene.links[guide].points[0]].velocity,
-                result.points[scene.links[guide].points[0]].acceleration,
-            )
-        GP = P.position - G
-        v_tr = v_G + omega_g * perp(GP)
-        a_tr = a_G + alpha_g * perp(GP) - omega_g**2 * GP
-        assert abs(joint.omega_guide - omega_g) <= IDENTITY_TOL * w_scale
-        assert norm(joint.transport_velocity - v_tr) <= IDENTITY_TOL * v_scale
-        assert norm(joint.transport_acceleration - a_tr) <= IDENTITY_TOL * a_scale
-        assert norm(joint.transport_velocity + joint.relative_velocity - P.velocity) <= (
-            IDENTITY_TOL * v_scale
-        )
-        assert (
-            norm(
-                joint.transport_acceleration
-                + joint.relative_acceleration
-                + joint.coriolis_acceleration
-                - P.acceleration
-            )
-            <= IDENTITY_TOL * a_scale
-        )
-        assert abs(cross(joint.relative_velocity, u)) <= IDENTITY_TOL * v_scale
-        assert abs(cross(joint.relative_acceleration, u)) <= IDENTITY_TOL * a_scale
-        a_cor = 2.0 * omega_g * perp(joint.relative_velocity)
-        assert norm(joint.coriolis_acceleration - a_cor) <= IDENTITY_TOL * a_scale
-        if joint.type == "prismatic":
-            block = result.links[follower]
-            assert abs(block.omega - omega_g) <= IDENTITY_TOL * w_scale
-            assert abs(block.alpha - alpha_g) <= IDENTITY_TOL * al_scale
-
-
 # --- loop closure over a sweep -------------------------------------------------------------------
 
 LOOP_CLOSURE_TOL = 1e-12  # of the linkage size, at every sample (issue 2)
@@ -484,128 +396,3 @@ def check_loop_closure(doc: Doc) -> None:
 
 def nearest_sample(angles: np.ndarray, target: float) -> int:
     return int(np.argmin(np.abs(np.angle(np.exp(1j * (angles - target))))))
-
-
-# --- instant centres and poles ------------------------------------------------------------------
-
-
-@pytest.mark.parametrize("family", FAMILIES)
-@PROPERTY
-@given(data=st.data())
-def test_instant_centres_obey_kennedy(family: str, data: st.DataObject) -> None:
-    """Kennedy's theorem: the three instant centres of any three links lie on one line (where two
-    are points; with one at infinity the other two lie on a line in its direction). Also, the
-    centre of two links joined by a revolute is the joint, and that of a slider's guide and
-    follower lies on the normal to the slot through the pin (at infinity, normal to the slot, for
-    a prismatic joint). Tolerance: 1e-8 on the sine of the angle between the two chords (rounding
-    of centres far away grows with their distance), 1e-9 L on the joint positions."""
-    _, scene, result = draw_linkage(data, family)
-    centres = {frozenset(c.links): c for c in result.instant_centres}
-    names = list(scene.links)
-    assert len(centres) == len(names) * (len(names) - 1) // 2
-    size = scene.size
-    for i, j, k in combinations(names, 3):
-        trio = [centres[frozenset(pair)] for pair in ((i, j), (j, k), (i, k))]
-        points = [c.position for c in trio if c.position is not None]
-        directions = [c.direction for c in trio if c.direction is not None]
-        if len(points) == 3:
-            a, b = points[1] - points[0], points[2] - points[0]
-            if min(norm(a), norm(b)) > 1e-6 * size:
-                assert abs(cross(a, b)) <= 1e-8 * norm(a) * norm(b), (i, j, k, points)
-        elif len(points) == 2 and len(directions) == 1:
-            chord = points[1] - points[0]
-            if norm(chord) > 1e-6 * size:
-                assert abs(cross(chord, directions[0])) <= 1e-8 * norm(chord), (i, j, k)
-    omegas = {name: (0.0 if name == scene.ground else result.links[name].omega) for name in names}
-    for joint in scene.joints:
-        centre = centres[frozenset(joint.links)]
-        X = result.points[joint.point].position
-        if joint.type == "revolute":
-            wi, wj = (omegas[n] for n in joint.links)
-            if abs(wi - wj) <= 1e-9 * (abs(wi) + abs(wj)):
-                continue  # no relative rotation: the centre is at infinity or undefined (rest)
-            assert centre.position is not None, joint
-            spread = (abs(wi) + abs(wj)) / abs(wi - wj)  # cancellation in k x dv / d(omega)
-            assert norm(centre.position - X) <= 1e-9 * size * max(1.0, spread), joint
-            continue
-        assert joint.axis is not None
-        _, turn, _, _ = _guide_frame(scene, result, joint.guide)
-        u = np.array(
-            [
-                math.cos(turn) * joint.axis[0] - math.sin(turn) * joint.axis[1],
-                math.sin(turn) * joint.axis[0] + math.cos(turn) * joint.axis[1],
-            ]
-        )
-        if centre.position is not None:
-            off = centre.position - X
-            assert abs(float(off @ u)) <= 1e-8 * max(size, norm(off)), joint
-        elif centre.direction is not None:
-            assert abs(float(centre.direction @ u)) <= 1e-8, joint
-
-
-# Found by the Kennedy test: a block in a slotted lever at the instant it does not slide (the
-# crank pin on the line of the two pivots): block and lever move as one body, v_rel = 0 exactly.
-BLOCK_AT_RELATIVE_REST: Doc = {
-    "kind": "linkage",
-    "points": {"O": [0.0, 0.0], "A": [0.9, 0.0], "C": [0.3, 0.0], "D": [2.3, 0.0]},
-    "links": {
-        "ground": {"points": ["O", "C"], "ground": True},
-        "crank": {"points": ["O", "A"]},
-        "lever": {"points": ["C", "D"]},
-        "block": {"points": ["A"]},
-    },
-    "joints": [
-        {"type": "revolute", "point": "O", "links": ["ground", "crank"]},
-        {"type": "revolute", "point": "C", "links": ["ground", "lever"]},
-        {"type": "revolute", "point": "A", "links": ["crank", "block"]},
-        {"type": "prismatic", "point": "A", "links": ["lever", "block"], "axis": [1.0, 0.0]},
-    ],
-    "drivers": [{"link": "crank", "omega": 10.0, "alpha": 0.0}],
-}
-
-
-def test_prismatic_pair_at_relative_rest_has_no_centre_along_the_slot() -> None:
-    """The centre of a prismatic pair is at infinity normal to the slot, or does not exist when
-    the pair does not move relative to itself (scene-v1: null where none exists). Here v_rel = 0
-    exactly, so a direction along the slot (1, 0) can only come from rounding noise."""
-    result = solve(BLOCK_AT_RELATIVE_REST)
-    (joint,) = result.joints
-    assert np.all(joint.relative_velocity == 0.0)
-    (centre,) = [c for c in result.instant_centres if set(c.links) == {"lever", "block"}]
-    assert centre.position is None
-    assert centre.direction is None or abs(float(centre.direction[0])) <= 1e-8
-
-
-@pytest.mark.parametrize("family", FAMILIES)
-@PROPERTY
-@given(data=st.data())
-def test_poles_reproduce_the_velocity_and_acceleration_fields(
-    family: str, data: st.DataObject
-) -> None:
-    """The velocity pole P of a link gives v_X = omega k x (X - P) for every point X of the link;
-    the acceleration pole G gives a_X = alpha k x (X - G) - omega^2 (X - G). A missing pole means
-    a translating (or resting) link: then omega (omega^4 + alpha^2) is negligible against the
-    field. Tolerance 1e-9 of max(group magnitude, the rate times |X - pole|): a far pole carries
-    the rounding of its own magnitude."""
-    _, scene, result = draw_linkage(data, family)
-    v_scale, a_scale, _, _ = group_scales(result)
-    for name in scene.moving_links:
-        link = result.links[name]
-        w, al = link.omega, link.alpha
-        for x in scene.links[name].points:
-            X = result.points[x]
-            if link.velocity_pole is None:
-                assert abs(w) * scene.size <= 1e-9 * v_scale, name
-            else:
-                r = X.position - link.velocity_pole
-                expected = w * perp(r)
-                assert norm(X.velocity - expected) <= IDENTITY_TOL * max(
-                    v_scale, abs(w) * norm(r)
-                ), name
-            if link.acceleration_pole is None:
-                assert math.hypot(w**2, al) * scene.size <= 1e-9 * a_scale, name
-            else:
-                r = X.position - link.acceleration_pole
-                expected = al * perp(r) - w**2 * r
-                reach = math.hypot(w**2, al) * norm(r)
-                assert norm(X.acceleration - expected) <= IDENTITY_TOL * max(a_scale, reach), name

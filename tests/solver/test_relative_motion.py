@@ -1,4 +1,4 @@
-"""Tests of solver.relative_motion through solver.analysis: a point M moving along a path fixed in
+"""Tests of solver.relative_motion through solver.instant: a point M moving along a path fixed in
 a moving link (composite motion, scene-v1 ``moving_points``; issue 3, "Prove it").
 
 Sources of the expected values:
@@ -31,12 +31,12 @@ import pytest
 from hypothesis import HealthCheck, assume, given, reject, settings
 from hypothesis import strategies as st
 
-from solver.analysis import analyze
 from solver.errors import InvalidScene, NotAssemblable, SingularConfiguration
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.relative_motion import MovingPointMotion
 from solver.scene import LinkageScene, parse_linkage
-from solver.sweep import sweep_time
+from solver.sweeps import sweep_time
 from tests.strategies import assemblable_presets
 
 CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"

@@ -26,7 +26,7 @@ from solver.scene import parse_linkage
 from solver.steps import Solution, solve
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ROOT / "tests" / "reference" / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 LINKAGES = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] == "linkage"
 )

@@ -1,6 +1,6 @@
 """Worked solutions, second edition (issue 12): the defects a lecturer found, mended.
 
-Every seed scene (tests/reference/examples, both methods) and every preset at its defaults:
+Every seed scene (server/examples, both methods) and every preset at its defaults:
 no printed number is rounding noise; the moving point is in the Results; the event time of seed
 003 (tests/reference/seed-cases.json: t = sqrt(3) s and 1.474810 s) is inside its solution; one
 symbol per angle; the spatial chain computes each point once; an all-revolute dyad is not called
@@ -24,7 +24,7 @@ from solver.spatial import parse_spatial_chain
 from solver.steps import Solution, solve
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ROOT / "tests" / "reference" / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 CASES = json.loads((ROOT / "tests" / "reference" / "seed-cases.json").read_text())["cases"]
 SEEDS = sorted(p.stem for p in EXAMPLES.glob("*.json"))
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:(?: \\cdot | x )10\^\{?(-?\d+)\}?)?")
@@ -186,7 +186,7 @@ def test_every_mistake_names_an_existing_step(name: str, solution: Solution) -> 
 
 def test_vector_mistakes_are_all_placed() -> None:
     """No mistake of the vector method is lost by placing it (each finds its step)."""
-    from solver.analysis import analyze
+    from solver.instant import analyze
     from solver.steps.format import Formatter
     from solver.steps.linkage import LinkageContext, unit_scales
     from solver.steps.mistakes import linkage_mistakes

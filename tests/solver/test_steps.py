@@ -29,9 +29,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.analysis import QUANTITIES, LinkageAnalysis
 from solver.errors import InvalidScene
+from solver.instant import LinkageAnalysis
 from solver.presets import PRESETS, build_preset
+from solver.quantities import QUANTITIES
 from solver.results import analysis_body, spatial_body
 from solver.scene import parse_linkage
 from solver.spatial import parse_spatial_chain
@@ -42,7 +43,7 @@ from tests.strategies import assemblable_presets
 
 ROOT = Path(__file__).resolve().parents[2]
 REFERENCE = ROOT / "tests" / "reference"
-EXAMPLES = REFERENCE / "examples"
+EXAMPLES = ROOT / "server" / "examples"
 KATEX_CHECK = ROOT / "tests" / "katex_check.mjs"
 CASES = json.loads((REFERENCE / "seed-cases.json").read_text())["cases"]
 RTOL = 1e-9

@@ -17,8 +17,8 @@ import math
 
 import pytest
 
-from solver.analysis import analyze
-from solver.poles import FourBarLoop
+from solver.four_bar import FourBarLoop
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 

@@ -7,12 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
-from solver.analysis import analyze
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
-from solver.sweep import sweep, sweep_time
+from solver.sweeps import sweep, sweep_time
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 ALL = ["position", "velocity", "acceleration", "poles", "components"]
 
 

@@ -20,24 +20,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.analysis import (
-    SlidingJoint,
-    drawn_angle,
-    driver_input,
-    driver_inputs_over_time,
-    link_poles,
-    normalise_quantities,
-    required_order,
-    sliding_joints,
-)
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.continuation import Continuation
+from solver.drivers import drawn_angle, driver_input, driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded
 from solver.newton import newton_tolerance
-from solver.poles import Poles
+from solver.poles import Poles, link_poles
+from solver.quantities import normalise_quantities, required_order
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
 from solver.scene import LinkageScene
+from solver.sliding_joints import SlidingJoint, sliding_joints
 from solver.topology import Plan, build_plan
 
 MAX_SAMPLES = 100_000
@@ -46,7 +39,7 @@ PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 # linkage cannot close between two samples is found by the closest-approach search of assembly.
 SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
-SINGULAR_CONDITIONING = 1e-12  # sine of the angle between a group's constraint gradients
+MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
 
 
 @dataclass(frozen=True)
@@ -150,7 +143,9 @@ class _Driven:
         (a limit found so lies inside the tolerance band and can be posed again)."""
         inputs = self.inputs(np.array([turn]))
         motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
-        return bool(motion.margin[0] >= 0.0) if strictly else bool(motion.feasible[0])
+        if strictly:
+            return bool(motion.margin[0] >= 0.0 and motion.converged[0])
+        return bool(motion.feasible[0])
 
 
 def _limit(driven: _Driven, inside: float, outside: float) -> float:
@@ -272,7 +267,7 @@ def sweep(
         motion, turns = motion.cut(slice(0, samples)), turns[:samples]
     require_feasible(motion, "during the sweep")
     singular = (
-        np.flatnonzero(motion.conditioning < SINGULAR_CONDITIONING)
+        np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
         if order
         else np.array([], dtype=int)
     )

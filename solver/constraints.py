@@ -1,0 +1,383 @@
+"""Loop-closure equations in link coordinates, their Jacobian, the velocity and acceleration
+solves, and the condition number of the velocity equations.
+
+Every moving link has coordinates q = (x, y, theta): the world position of its anchor (its first
+point) and its rotation from the drawn pose, so a point drawn at X0 is at
+X = c + R(theta) (X0 - A0). The joints give the constraints
+
+- revolute at P between links i, j:  X_i(P) - X_j(P) = 0
+- slider at P (guide g, follower f):  n_g . (X_f(P) - Q_g) = 0, Q_g the guide's point drawn at P
+- prismatic: the slider equation and theta_f - theta_g = 0
+- a driver whose angle is given: theta_d - turn_d = 0
+
+with the analytic Jacobian J = dPhi/dq. Velocities solve J qdot = b_v and accelerations
+J qddot = b_a (the known links' motion and the quadratic velocity terms on the right). The same
+system with every moving link unknown and the drivers' rows added is the linkage's velocity
+system, whose (dimensionless) condition number is reported.
+
+Everything is evaluated for M samples at once: Phi is (M, rows), J (M, rows, 3 x unknown links),
+so the equations of every sample of a sweep are solved together with ``numpy.linalg.solve`` on
+the stacked Jacobians (Newton-Raphson on them is ``solver.newton``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.rigid import Array, LinkMotion, PointMotion, dot, perp, rotate_by
+from solver.scene import LinkageScene
+
+
+@dataclass(frozen=True)
+class _Pose:
+    """One link at one sample: anchor position, rotation from drawn, and rates (if known)."""
+
+    c: Array
+    theta: float
+    v: Array
+    omega: float
+    a: Array
+    alpha: float
+
+
+@dataclass(frozen=True)
+class States:
+    """Known links over M samples: anchor (first point) position, rotation from drawn, rates."""
+
+    c: Array  # (M, 2)
+    theta: Array  # (M,)
+    v: Array  # (M, 2)
+    omega: Array  # (M,)
+    a: Array  # (M, 2)
+    alpha: Array  # (M,)
+
+
+class ConstraintSystem:
+    """The constraint equations of the joints touching ``unknown`` links, and one row per link
+    in ``angles`` holding its rotation (a driver's given turn); ``drivers=True`` adds every
+    driver's row (the linkage's velocity system)."""
+
+    def __init__(
+        self,
+        scene: LinkageScene,
+        unknown: Sequence[str],
+        drivers: bool = False,
+        angles: Sequence[str] = (),
+    ) -> None:
+        self.scene = scene
+        self.unknown = tuple(unknown)
+        self.column = {link: 3 * k for k, link in enumerate(self.unknown)}
+        self.names = tuple(scene.links)
+        index = {name: k for k, name in enumerate(self.names)}
+        self.anchor0 = {name: scene.drawn(link.points[0]) for name, link in scene.links.items()}
+        self.angles = tuple(d.link for d in scene.drivers) if drivers else tuple(angles)
+        joints = [j for j in scene.joints if j.links[0] in self.column or j.links[1] in self.column]
+        self.known = tuple(
+            sorted({link for j in joints for link in j.links if link not in self.column})
+        )
+        rows = 0
+        revolute: list[tuple[int, int, int]] = []
+        sliding: list[tuple[int, int, int]] = []  # (slot row, guide, follower)
+        prismatic: list[tuple[int, int, int, int]] = []  # and the row of the equal angles
+        offsets: list[tuple[Array, Array]] = []
+        slot_offsets: list[tuple[Array, Array, Array]] = []
+        for joint in joints:
+            i, j = (index[link] for link in joint.links)
+            d_i = scene.drawn(joint.point) - self.anchor0[joint.links[0]]
+            d_j = scene.drawn(joint.point) - self.anchor0[joint.links[1]]
+            if joint.type == "revolute":
+                revolute.append((rows, i, j))
+                offsets.append((d_i, d_j))
+                rows += 2
+                continue
+            assert joint.axis is not None
+            sliding.append((rows, i, j))
+            slot_offsets.append((d_i, d_j, np.array(joint.axis, dtype=float)))
+            if joint.type == "prismatic":
+                prismatic.append((rows, i, j, rows + 1))
+                rows += 1
+            rows += 1
+        self.angle_rows = np.arange(rows, rows + len(self.angles))
+        self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
+        self.rows = rows + len(self.angles)
+        self.n = 3 * len(self.unknown)
+        self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
+        self.rev_d = np.array(offsets, dtype=float).reshape(-1, 2, 2)
+        self.sld = np.array(sliding, dtype=int).reshape(-1, 3)
+        self.sld_d = np.array(slot_offsets, dtype=float).reshape(-1, 3, 2)
+        self.prismatic = np.array(prismatic, dtype=int).reshape(-1, 4)
+        # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
+        self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
+        unit = np.zeros((self.rows, self.n))
+        for row, i, j in self.rev:
+            for link, sign in ((i, 1.0), (j, -1.0)):
+                if self.col[link] >= 0:
+                    unit[row, self.col[link]] += sign
+                    unit[row + 1, self.col[link] + 1] += sign
+        for _, i, j, angle_row in self.prismatic:
+            for link, sign in ((j, 1.0), (i, -1.0)):
+                if self.col[link] >= 0:
+                    unit[angle_row, self.col[link] + 2] += sign
+        for row, link in zip(self.angle_rows, self.angle_links, strict=True):
+            if self.col[link] >= 0:
+                unit[row, self.col[link] + 2] += 1.0
+        self.unit = unit
+        # Where the pose-dependent entries of J go (flat indices into a (rows, n) matrix): the
+        # rotation columns of both sides of each revolute joint's two rows, then each slider's
+        # follower (x, y, theta) and guide (x, y, theta) columns; the masks pick unknown sides.
+        n, col = self.n, self.col
+        first, left, right = self.rev.T
+        self.rev_mask = (col[left] >= 0, col[right] >= 0)
+        flat = []
+        for link, mask in ((left, self.rev_mask[0]), (right, self.rev_mask[1])):
+            for offset in (0, 1):
+                flat.append((first[mask] + offset) * n + col[link][mask] + 2)
+        slot_rows, g, f = self.sld.T
+        self.sld_mask = (col[f] >= 0, col[g] >= 0)
+        for link, mask in ((f, self.sld_mask[0]), (g, self.sld_mask[1])):
+            for offset in (0, 1, 2):
+                flat.append(slot_rows[mask] * n + col[link][mask] + offset)
+        self.flat = np.concatenate(flat) if flat else np.zeros(0, dtype=int)
+        self.unknown_index = np.array([index[link] for link in self.unknown], dtype=int)
+        self.known_index = np.array([index[link] for link in self.known], dtype=int)
+        # Rows that are lengths (scaled by the size in the condition number) and angles.
+        self.length_rows = np.ones(self.rows, dtype=bool)
+        self.length_rows[self.prismatic[:, 3]] = False
+        self.length_rows[self.angle_rows] = False
+
+    def _stack(
+        self, known: Mapping[str, States], q: Array, qd: Array | None, order: int
+    ) -> tuple[Array, ...]:
+        """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero."""
+        M = q.shape[0]
+        L = len(self.names)
+        c, theta = np.empty((M, L, 2)), np.empty((M, L))
+        v = a = np.zeros((1, L, 2))
+        omega = alpha = np.zeros((1, L))
+        if order:
+            v, a = np.zeros((M, L, 2)), np.zeros((M, L, 2))
+            omega, alpha = np.zeros((M, L)), np.zeros((M, L))
+        for k, name in zip(self.known_index, self.known, strict=True):
+            s = known[name]
+            c[:, k], theta[:, k] = s.c, s.theta
+            if order:
+                v[:, k], omega[:, k], a[:, k], alpha[:, k] = s.v, s.omega, s.a, s.alpha
+        u = self.unknown_index
+        qs = q.reshape(M, -1, 3)
+        c[:, u], theta[:, u] = qs[..., :2], qs[..., 2]
+        if order == 2 and qd is not None:
+            qds = qd.reshape(M, -1, 3)
+            v[:, u], omega[:, u] = qds[..., :2], qds[..., 2]
+        return c, theta, v, omega, a, alpha
+
+    def evaluate(
+        self,
+        known: Mapping[str, States],
+        q: Array,
+        qd: Array | None = None,
+        order: int = 0,
+        turns: Array | None = None,
+    ) -> tuple[Array, Array, Array]:
+        """(Phi, J, b) for M samples: (M, rows), (M, rows, n), (M, rows); ``q`` is (M, n).
+
+        ``order`` 1 or 2 gives the right-hand side of the velocity or acceleration equations
+        (order 2 needs the unknowns' rates ``qd``); ``turns`` (M, len(angles)) the held angles.
+        """
+        M = q.shape[0]
+        c, theta, v, omega, a, alpha = self._stack(known, q, qd, order)
+        cos, sin = np.cos(theta), np.sin(theta)
+        phi = np.zeros((M, self.rows))
+        J = np.empty((M, self.rows, self.n))
+        J[:] = self.unit
+        b = np.zeros((M, self.rows))
+
+        def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
+            """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
+            r = rotate_by(d, cos[:, link], sin[:, link])
+            rate = None
+            if order == 1:
+                rate = v[:, link] + omega[:, link, None] * perp(r)
+            elif order == 2:
+                rate = (
+                    a[:, link]
+                    + alpha[:, link, None] * perp(r)
+                    - (omega[:, link] ** 2)[..., None] * r
+                )
+            return c[:, link] + r, r, rate
+
+        entries: list[Array] = []
+        if self.rev.size:
+            rows, i, j = self.rev.T
+            X_i, r_i, rate_i = side(i, self.rev_d[:, 0])
+            X_j, r_j, rate_j = side(j, self.rev_d[:, 1])
+            phi[:, rows], phi[:, rows + 1] = (X_i - X_j).transpose(2, 0, 1)
+            mi, mj = self.rev_mask
+            entries += [-r_i[:, mi, 1], r_i[:, mi, 0], r_j[:, mj, 1], -r_j[:, mj, 0]]
+            if rate_i is not None and rate_j is not None:
+                b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
+        if self.sld.size:
+            rows, g, f = self.sld.T
+            w = rotate_by(self.sld_d[:, 2], cos[:, g], sin[:, g])
+            n = perp(w)
+            X_f, r_f, rate_f = side(f, self.sld_d[:, 1])
+            X_g, r_g, rate_g = side(g, self.sld_d[:, 0])
+            d = X_f - X_g
+            wd = dot(w, d)
+            phi[:, rows] = dot(n, d)
+            # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
+            # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
+            theta_f = dot(n, perp(r_f))
+            theta_g = -dot(n, perp(r_g)) - wd
+            mf, mg = self.sld_mask
+            entries += [n[:, mf, 0], n[:, mf, 1], theta_f[:, mf]]
+            entries += [-n[:, mg, 0], -n[:, mg, 1], theta_g[:, mg]]
+            if order == 1 and rate_f is not None and rate_g is not None:
+                b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
+            elif order == 2 and rate_f is not None and rate_g is not None:
+                v_f = v[:, f] + omega[:, f, None] * perp(r_f)
+                v_q = v[:, g] + omega[:, g, None] * perp(r_g)
+                b[:, rows] = (
+                    dot(n, rate_g - rate_f)
+                    + 2.0 * omega[:, g] * dot(w, v_f - v_q)
+                    + alpha[:, g] * wd
+                )
+        if self.flat.size:
+            J.reshape(M, -1)[:, self.flat] = np.concatenate(entries, axis=1)
+        if self.prismatic.size:
+            _, g, f, rows = self.prismatic.T
+            phi[:, rows] = theta[:, f] - theta[:, g]
+            if order:
+                rate = omega if order == 1 else alpha
+                b[:, rows] = rate[:, g] - rate[:, f]
+        if self.angle_rows.size:
+            held = theta[:, self.angle_links]
+            phi[:, self.angle_rows] = held if turns is None else held - turns
+            if order:
+                rate = omega if order == 1 else alpha
+                b[:, self.angle_rows] = -rate[:, self.angle_links]
+        return phi, J, b
+
+    def equations(self, poses: Mapping[str, _Pose], order: int) -> tuple[Array, Array, Array]:
+        """(Phi, J, b) at one sample, from single-sample poses (every link, known or not)."""
+
+        def states(p: _Pose) -> States:
+            return States(
+                p.c[None], np.array([p.theta]), p.v[None], np.array([p.omega]),
+                p.a[None], np.array([p.alpha]),
+            )  # fmt: skip
+
+        known = {name: states(poses[name]) for name in self.known}
+        q = np.concatenate([np.append(poses[k].c, poses[k].theta) for k in self.unknown])
+        qd = np.concatenate([np.append(poses[k].v, poses[k].omega) for k in self.unknown])
+        phi, J, b = self.evaluate(known, q[None], qd[None], order)
+        return phi[0], J[0], b[0]
+
+    def drawn(self) -> Array:
+        """q at the drawn pose: every unknown link's anchor where drawn, rotation 0."""
+        return np.concatenate([np.append(self.anchor0[link], 0.0) for link in self.unknown])
+
+    def motions(self, q: Array, qd: Array | None, qdd: Array | None) -> dict[str, LinkMotion]:
+        """The unknown links' motions from (N, n) coordinates and rates."""
+        out = {}
+        for index, link in enumerate(self.unknown):
+            s = slice(3 * index, 3 * index + 2)
+            anchor = PointMotion(
+                q[:, s], None if qd is None else qd[:, s], None if qdd is None else qdd[:, s]
+            )
+            out[link] = LinkMotion(
+                self.anchor0[link],
+                anchor,
+                q[:, 3 * index + 2],
+                None if qd is None else qd[:, 3 * index + 2],
+                None if qdd is None else qdd[:, 3 * index + 2],
+            )
+        return out
+
+
+def solve_linear(J: Array, b: Array) -> Array:
+    """x with J x = b for stacked systems (M, n, n) x (M, n): LU where square and regular, least
+    squares (pseudo-inverse) for a singular or non-square sample."""
+    if J.shape[-1] == J.shape[-2]:
+        try:
+            return np.linalg.solve(J, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            pass
+    return np.einsum("mij,mj->mi", np.linalg.pinv(J), b)
+
+
+def rates(
+    system: ConstraintSystem, known: Mapping[str, States], q: Array, order: int
+) -> tuple[Array | None, Array | None]:
+    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves)."""
+    qd = qdd = None
+    if order >= 1:
+        _, J, b = system.evaluate(known, q, order=1)
+        qd = solve_linear(J, b)
+    if order >= 2:
+        _, J, b = system.evaluate(known, q, qd, order=2)
+        qdd = solve_linear(J, b)
+    return qd, qdd
+
+
+def states(links: Mapping[str, LinkMotion], scene: LinkageScene) -> dict[str, States]:
+    """Known links as ``States`` over their samples, each anchor moved to the link's first point
+    (the anchor of the constraint equations); rates not computed are zero."""
+    out = {}
+    for name, motion in links.items():
+        first = motion.point(scene.drawn(scene.links[name].points[0]))
+        zeros2 = np.zeros_like(first.p)
+        zeros = np.zeros(first.p.shape[0])
+        out[name] = States(
+            first.p,
+            np.broadcast_to(motion.theta, zeros.shape),
+            zeros2 if first.v is None else first.v,
+            zeros if motion.omega is None else np.broadcast_to(motion.omega, zeros.shape),
+            zeros2 if first.a is None else first.a,
+            zeros if motion.alpha is None else np.broadcast_to(motion.alpha, zeros.shape),
+        )
+    return out
+
+
+class KnownPoses:
+    """The known links' poses and rates sample by sample (single-sample ``_Pose`` values)."""
+
+    def __init__(self, links: Mapping[str, LinkMotion], scene: LinkageScene) -> None:
+        self.states = states(links, scene)
+
+    def at(self, k: int) -> dict[str, _Pose]:
+        return {
+            name: _Pose(
+                s.c[k], float(s.theta[k]), s.v[k], float(s.omega[k]), s.a[k], float(s.alpha[k])
+            )
+            for name, s in self.states.items()
+        }
+
+
+def velocity_condition_number(
+    scene: LinkageScene, links: Mapping[str, LinkMotion], k: int
+) -> float:
+    """cond(J) of the whole velocity system (drivers included), angle columns scaled by the size.
+
+    Scaling the rotation columns and the angle rows by the scene size makes J dimensionless, so
+    the number does not change when every length is multiplied by k.
+    """
+    system = ConstraintSystem(scene, scene.moving_links, drivers=True)
+    at_k = {
+        name: States(*(x[k : k + 1] for x in (s.c, s.theta, s.v, s.omega, s.a, s.alpha)))
+        for name, s in states(links, scene).items()
+    }
+    q = np.concatenate([np.append(at_k[m].c[0], at_k[m].theta[0]) for m in system.unknown])
+    _, J, _ = system.evaluate(at_k, q[None])
+    J = J[0]
+    size = scene.size
+    J[:, 2::3] /= size
+    J[~system.length_rows] *= size
+    if J.shape[0] != J.shape[1]:
+        return float("inf")
+    singular_values = np.linalg.svd(J, compute_uv=False)
+    if singular_values[-1] == 0.0:
+        return float("inf")
+    return float(singular_values[0] / singular_values[-1])

@@ -1,0 +1,214 @@
+"""One instant of a planar linkage in full: ``analyze(scene, quantities)``.
+
+Positions, velocities and accelerations of every point and link, poles, the transport / relative /
+Coriolis split at every slider and prismatic joint, instant centres, four-bar loops and the
+condition number of the velocity equations. Only the requested quantities are computed (a
+position-only request never differentiates anything).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from solver import constraints, newton
+from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.continuation import Continuation
+from solver.drivers import drawn_angle, driver_input
+from solver.dyads import COINCIDENCE_TOLERANCE
+from solver.errors import SingularConfiguration
+from solver.four_bar import FourBarLoop, four_bar_loops
+from solver.instant_centres import InstantCentre, instant_centres
+from solver.poles import link_poles
+from solver.quantities import normalise_quantities, required_order
+from solver.relative_motion import MovingPointMotion, moving_point_motion
+from solver.rigid import Array
+from solver.scene import LinkageScene
+from solver.sliding_joints import SlidingJoint, sliding_joints
+from solver.topology import Plan, build_plan
+
+# cond(J) above this: the velocity equations are singular to within rounding (a dead centre).
+MAX_CONDITION_NUMBER = 1e12
+
+
+@dataclass(frozen=True)
+class PointResult:
+    position: Array | None = None
+    velocity: Array | None = None
+    acceleration: Array | None = None
+
+
+@dataclass(frozen=True)
+class LinkResult:
+    """A moving link: absolute angle (first to second point; None with one point), rates, poles."""
+
+    angle: float | None = None
+    omega: float | None = None
+    alpha: float | None = None
+    velocity_pole: Array | None = None
+    acceleration_pole: Array | None = None
+
+
+@dataclass(frozen=True)
+class Diagnostics:
+    """How the answer was obtained and how much to trust it."""
+
+    condition_number: float | None
+    closed_form: bool
+    newton: tuple[newton.NewtonReport, ...]
+    driver_angles: dict[str, float]
+    closest_approach: tuple[str, float] | None = None  # the group nearest its change point, m
+
+
+@dataclass(frozen=True)
+class LinkageAnalysis:
+    quantities: frozenset[str]
+    points: dict[str, PointResult]
+    links: dict[str, LinkResult]
+    joints: list[SlidingJoint]
+    instant_centres: list[InstantCentre]
+    four_bar_loops: list[FourBarLoop]
+    diagnostics: Diagnostics
+    plan: Plan
+    motion: Motion = field(repr=False)
+    moving_points: dict[str, MovingPointMotion] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
+
+
+def near_change_point(motion: Motion) -> tuple[tuple[str, float] | None, tuple[str, ...]]:
+    """The two-branch group with the smallest length margin at the (single) pose, and a warning
+    where its two branches are closer than the warning margin without meeting."""
+    margins = {name: float(m[0]) for name, m in motion.group_margins.items()}
+    if not margins:
+        return None, ()
+    name = min(margins, key=lambda k: margins[k])
+    margin = margins[name]
+    if not COINCIDENCE_TOLERANCE * motion.size < margin < WARNING_MARGIN * motion.size:
+        return (name, margin), ()
+    return (name, margin), (
+        f"the two assemblies of {name} are within {margin:.2g} m of a change point at this pose; "
+        "a real mechanism with clearance could switch assembly here",
+    )
+
+
+def solve_instant(
+    scene: LinkageScene,
+    plan: Plan,
+    order: int,
+    time: float | None = None,
+    newton_groups: Continuation | None = None,
+) -> tuple[Motion, dict[str, float]]:
+    """Assemble the linkage at the drivers' requested angles (index 0 of the returned motion).
+
+    A Newton group takes the pose its branch reaches from the drawn pose (``solver.continuation``)
+    as the driver turns to ``angle_deg`` as written (not reduced to one turn), which is how a
+    sweep's ``driver_angle`` reads.
+    """
+    t = scene.time if time is None else time
+    given = [driver_input(scene, d, t) for d in scene.drivers]
+    turns = [driver_input(scene, d, t, wrap=plan.closed_form)[0] for d in scene.drivers]
+    inputs = [
+        DriverInput(np.array([turn]), np.array([w]), np.array([e]))
+        for turn, (_, w, e) in zip(turns, given, strict=True)
+    ]
+    motion = assemble(scene, plan, inputs, order, newton_groups=newton_groups)
+    angles = {
+        d.link: math.degrees(drawn_angle(scene, d.link) + g[0])
+        for d, g in zip(scene.drivers, given, strict=True)
+        if len(scene.links[d.link].points) >= 2
+    }
+    where = "at " + ", ".join(f"{k} angle {v:.6g} deg" for k, v in angles.items())
+    if not angles:
+        where = "at the drawn pose"
+    require_feasible(motion, where)
+    return motion, angles
+
+
+def _link_results(
+    scene: LinkageScene, motion: Motion, quantities: frozenset[str]
+) -> dict[str, LinkResult]:
+    results = {}
+    for name in scene.moving_links:
+        link = motion.links[name]
+        points = scene.links[name].points
+        angle = None
+        if len(points) >= 2 and "position" in quantities:
+            d = motion.points[points[1]].p[0] - motion.points[points[0]].p[0]
+            angle = math.atan2(d[1], d[0])
+        omega = None if link.omega is None else float(link.omega[0])
+        alpha = None if link.alpha is None else float(link.alpha[0])
+        v_pole = a_pole = None
+        if "poles" in quantities:
+            v_poles, a_poles = link_poles(scene, motion, name)
+            v_pole, a_pole = v_poles.at(0), a_poles.at(0)
+        results[name] = LinkResult(
+            angle,
+            omega if "velocity" in quantities or "poles" in quantities else None,
+            alpha if "acceleration" in quantities or "poles" in quantities else None,
+            v_pole,
+            a_pole,
+        )
+    return results
+
+
+def analyze(
+    scene: LinkageScene, quantities: Iterable[str] | None = None, tolerance: float | None = None
+) -> LinkageAnalysis:
+    """The linkage at its drivers' angles: drawn, ``angle_deg``, or ``angle_law`` at ``time``;
+    ``tolerance`` is a Newton group's (relative to the size; default newton.NEWTON_TOLERANCE)."""
+    wanted = normalise_quantities(quantities)
+    order = required_order(wanted, bool(scene.moving_points))
+    plan = build_plan(scene)
+    groups = Continuation(scene, newton.newton_tolerance(tolerance))
+    motion, angles = solve_instant(scene, plan, order, newton_groups=groups)
+    condition = None
+    if order >= 1:
+        condition = constraints.velocity_condition_number(scene, motion.links, 0)
+        if condition > MAX_CONDITION_NUMBER or float(motion.gradient_sine[0]) == 0.0:
+            where = ", ".join(f"{k} at {v:.6g} deg" for k, v in angles.items())
+            raise SingularConfiguration(
+                f"dead centre{' with ' + where if where else ''}: the velocity equations are "
+                f"singular (condition number {condition:.3g}), so the driver cannot move the "
+                "linkage here",
+                condition,
+            )
+    points = {
+        name: PointResult(
+            m.p[0] if "position" in wanted else None,
+            m.v[0] if "velocity" in wanted and m.v is not None else None,
+            m.a[0] if "acceleration" in wanted and m.a is not None else None,
+        )
+        for name, m in motion.points.items()
+        if name in scene.points
+    }
+    joints = (
+        [j.at(0) for j in sliding_joints(scene, motion, order)] if "components" in wanted else []
+    )
+    centres = instant_centres(scene, plan, motion) if "poles" in wanted else []
+    closest, warnings = near_change_point(motion)
+    diagnostics = Diagnostics(condition, plan.closed_form, tuple(motion.newton), angles, closest)
+    moving = {}
+    if scene.moving_points:
+        carriers = motion.links
+        if order < 2:  # a position-only request: M's position comes with its parts
+            carriers = solve_instant(scene, plan, 2, newton_groups=groups)[0].links
+        moving = {
+            mp.name: moving_point_motion(scene, mp, carriers[mp.link], np.array([scene.time])).at(0)
+            for mp in scene.moving_points
+        }
+    return LinkageAnalysis(
+        wanted,
+        points,
+        _link_results(scene, motion, wanted),
+        joints,
+        centres,
+        four_bar_loops(scene, plan, motion),
+        diagnostics,
+        plan,
+        motion,
+        moving,
+        warnings,
+    )

@@ -1,0 +1,37 @@
+"""Which quantities a request asks for, and the order of derivatives they need.
+
+The kinematic quantities are ``QUANTITIES``; the dynamic ones (dynamics-v1) are computed only
+when asked for. ``required_order`` is 0 for positions, 1 for velocities, 2 for accelerations.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from solver.errors import InvalidScene
+
+QUANTITIES = ("position", "velocity", "acceleration", "poles", "components")
+DYNAMIC_QUANTITIES = ("forces", "energy")  # dynamics-v1: computed by solver.dynamics
+
+
+def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:
+    """The requested quantities; the default is every kinematic one (the dynamic ones, which
+    dynamics-v1 adds, only when asked for)."""
+    if quantities is None:
+        return frozenset(QUANTITIES)
+    chosen = frozenset(quantities)
+    allowed = (*QUANTITIES, *DYNAMIC_QUANTITIES)
+    unknown = sorted(chosen - set(allowed))
+    if unknown:
+        raise InvalidScene(f"quantities: unknown {unknown}; allowed: {', '.join(allowed)}")
+    return chosen
+
+
+def required_order(quantities: frozenset[str], moving_points: bool = False) -> int:
+    """0 for positions, 1 to velocities, 2 to accelerations (poles, components, forces and
+    energy need both; so do moving points, whose velocity and acceleration parts come together)."""
+    if quantities & {"acceleration", "poles", "components", *DYNAMIC_QUANTITIES} or (
+        moving_points and quantities - {"position"}
+    ):
+        return 2
+    return 1 if "velocity" in quantities else 0
