@@ -20,7 +20,7 @@ from functools import partial
 
 import numpy as np
 
-from solver import newton
+from solver import constraints, newton
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.format import latex_unit
@@ -430,8 +430,8 @@ def newton_iterations(ctx: LinkageContext, step: NewtonStep) -> tuple[list[float
     (the solver's own ``newton_raphson``, one iteration more each time, until the solver's
     tolerance), and whether the pose reached is the solver's."""
     scene = ctx.scene
-    system = newton.ConstraintSystem(scene, step.links)
-    known = newton.states({k: ctx.analysis.motion.links[k] for k in system.known}, scene)
+    system = constraints.ConstraintSystem(scene, step.links)
+    known = constraints.states({k: ctx.analysis.motion.links[k] for k in system.known}, scene)
     tolerance = group_report(ctx, step).tolerance
     q0 = system.drawn()[None]
     residuals: list[float] = []

@@ -28,7 +28,7 @@ from solver.steps import Solution, Step, solve
 from solver.topology import DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
 from tests.solver.test_steps import NODE, _check_solution, run_katex
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "reference" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 LINKAGE_SEEDS = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] == "linkage"
 )
