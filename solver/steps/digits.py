@@ -16,6 +16,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from solver.rigid import cross, perp
 from solver.steps.format import Formatter
 from solver.steps.model import Check, Value
 
@@ -38,15 +39,12 @@ def _ulp(x: float, digits: int) -> float:
     return 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
 
 
-def _perp(a: np.ndarray) -> np.ndarray:
-    return np.array([-a[1], a[0]])
-
-
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """omega k x b (a scalar a), the planar a x b (a number), or the spatial a x b."""
     if a.size == 1 and b.size == 2:
-        return float(a[0]) * _perp(b)
+        return float(a[0]) * perp(b)
     if a.size == 2 and b.size == 2:
-        return np.array(float(a[0] * b[1] - a[1] * b[0]))
+        return np.array(float(cross(a, b)))
     return np.cross(a, b)
 
 
@@ -73,7 +71,7 @@ def evaluate(relation: str, ops: Sequence[np.ndarray], factor: float) -> tuple[n
     elif relation in ("phasor", "iphasor"):
         angle = float(ops[-1].reshape(-1)[0])
         unit = np.array([math.cos(angle), math.sin(angle)])
-        value = math.prod(ops[1:-1], start=ops[0]) * (unit if relation == "phasor" else _perp(unit))
+        value = math.prod(ops[1:-1], start=ops[0]) * (unit if relation == "phasor" else perp(unit))
         scale = math.prod(size[:-1])
     elif relation == "angle":
         value, scale = np.array(math.atan2(ops[0][1], ops[0][0])), math.pi
