@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from solver.dyads import Circle, Line, Locus, intersect
+from solver.dyads import Circle, Line, Locus, intersect, slotted_lever
 from solver.errors import InvalidScene, NotAssemblable
 from solver.rigid import PointMotion
 
@@ -195,10 +195,12 @@ def _on_horizontal_guide(
 def _slot_direction(
     pivot: complex, pin: complex, offset: float, *, names: str, where: str
 ) -> complex:
-    """Unit direction u of a lever pivoted at ``pivot`` whose slot passes through ``pin``.
+    """Unit direction u of a lever pivoted at ``pivot`` whose slot passes through ``pin`` (the
+    solver's slotted lever, ``dyads.slotted_lever``).
 
     The slot is the line pivot + offset iu + s u (offset to the left of u), so with d = pin - pivot,
-    u = d/|d| exp(-i asin(offset/|d|)) and the pin sits at s = sqrt(|d|^2 - offset^2) >= 0.
+    u = exp(i beta), beta = arg d - atan2(offset, s), and the pin sits at s = sqrt(|d|^2 -
+    offset^2) >= 0.
     """
     d = pin - pivot
     if abs(d) < abs(offset) or d == 0:
@@ -206,7 +208,8 @@ def _slot_direction(
             f"|{names}| = {abs(d):.6g} m < |slot_offset| = {abs(offset):.6g} m {where}: "
             "the pin cannot reach the slot line"
         )
-    return d / abs(d) * cmath.exp(-1j * math.asin(offset / abs(d)))
+    lever = slotted_lever(_fixed(pivot), _fixed(pin), offset, np.array([1.0]), order=0)
+    return cmath.exp(1j * float(lever.beta[0]))
 
 
 def _at(origin: complex, unit: complex, along: float, left: float) -> complex:
