@@ -4,8 +4,9 @@ A preset turns a few named parameters (SI units, angles in degrees) into a JSON-
 drawn at the given crank angle: the four-bar, the slider-crank, the inverted slider-crank, the
 crank-and-slotted-lever quick-return and the slider with a coupler extension. The pose is found in
 closed form: every point is the crank pin, the intersection of two circles or of a circle with a
-line (the solver's own dyads, ``dyads.intersect``), or a point fixed in a link's frame;
-``assembly`` picks one of two mirror branches. Planar vectors are complex numbers here (x + iy),
+line, a point fixed in a link's frame, and a slotted lever's direction is that of its slot through
+the pin (the solver's own dyads: ``dyads.intersect``, ``dyads.slotted_lever``); ``assembly``
+picks one of two mirror branches. Planar vectors are complex numbers here (x + iy),
 so a turn by 90 degrees is a product with ``1j``.
 """
 
