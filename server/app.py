@@ -16,6 +16,8 @@ from server.routes import dynamics, exercises, kinematics, presets, solution
 from server.settings import Settings, from_environment
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
+# The app's list of example scenes (file, title, description); the scenes are server/examples.
+EXAMPLE_INDEX = Path(__file__).resolve().parent / "example_index.json"
 API_PREFIX = "/api/v1"
 SWAGGER_PAGE = """<!doctype html>
 <html lang="en">
@@ -103,9 +105,15 @@ def _serve_static(app: FastAPI) -> None:
     """The front end: index.html at /, each folder of static/ mounted at its own path.
 
     Not one mount at "/": that would answer every unknown /api path itself (a 405 for a POST,
-    a 404 for the wrong method on a real route) instead of the API's own 404 and 405.
+    a 404 for the wrong method on a real route) instead of the API's own 404 and 405. The example
+    scenes at /examples are the one copy in server/examples (the OpenAPI page's examples too),
+    listed for the app by /examples/index.json.
     """
     index = STATIC / "index.html"
+    app.add_api_route(
+        "/examples/index.json", _file_route(EXAMPLE_INDEX), methods=["GET"], include_in_schema=False
+    )
+    app.mount("/examples", StaticFiles(directory=schemas.EXAMPLES), name="examples")
 
     @app.get("/", include_in_schema=False)
     def front_end() -> FileResponse:

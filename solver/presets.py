@@ -3,9 +3,11 @@
 A preset turns a few named parameters (SI units, angles in degrees) into a JSON-ready document
 drawn at the given crank angle: the four-bar, the slider-crank, the inverted slider-crank, the
 crank-and-slotted-lever quick-return and the slider with a coupler extension. The pose is found in
-closed form: every point is the crank pin, the intersection of two circles, of a circle with a
-line, or a point fixed in a link's frame; ``assembly`` picks one of two mirror branches. Planar
-vectors are complex numbers here (x + iy), so a turn by 90 degrees is a product with ``1j``.
+closed form: every point is the crank pin, the intersection of two circles or of a circle with a
+line, a point fixed in a link's frame, and a slotted lever's direction is that of its slot through
+the pin (the solver's own dyads: ``dyads.intersect``, ``dyads.slotted_lever``); ``assembly``
+picks one of two mirror branches. Planar vectors are complex numbers here (x + iy),
+so a turn by 90 degrees is a product with ``1j``.
 """
 
 from __future__ import annotations
@@ -18,7 +20,11 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
+import numpy as np
+
+from solver.dyads import Circle, Line, Locus, intersect, slotted_lever
 from solver.errors import InvalidScene, NotAssemblable
+from solver.rigid import PointMotion
 
 MIN_LENGTH = 1e-4  # m
 MAX_LENGTH = 1e4  # m
@@ -116,10 +122,12 @@ def _circle_circle(
     names: tuple[str, str, str],
     where: str,
 ) -> complex:
-    """The point X with |X - p| = r_p and |X - q| = r_q, to the left of p -> q if ``left``.
+    """The point X with |X - p| = r_p and |X - q| = r_q, to the left of p -> q if ``left``
+    (the solver's RRR dyad, ``dyads.intersect``).
 
-    With d = |q - p|, X = p + (a + ih) (q - p)/d, a = (d^2 + r_p^2 - r_q^2) / 2d, h = +-sqrt(r_p^2 -
-    a^2). ``names`` = (PQ, r_p, r_q) name the distance and the two radii in the error message.
+    With d = |q - p| the circles meet where |r_p - r_q| <= d <= r_p + r_q (within
+    ``CLOSURE_TOLERANCE``). ``names`` = (PQ, r_p, r_q) name the distance and the two radii in the
+    error message.
     """
     pq, rp, rq = names
     d = abs(q - p)
@@ -127,9 +135,7 @@ def _circle_circle(
         raise NotAssemblable(f"|{pq}| = {d:.6g} m > {rp} + {rq} = {r_p + r_q:.6g} m {where}")
     if d < abs(r_p - r_q) * (1 - CLOSURE_TOLERANCE) or d == 0:
         raise NotAssemblable(f"|{pq}| = {d:.6g} m < |{rp} - {rq}| = {abs(r_p - r_q):.6g} m {where}")
-    a = (d * d + r_p * r_p - r_q * r_q) / (2 * d)
-    h = math.sqrt(max(r_p * r_p - a * a, 0.0))
-    return p + complex(a, h if left else -h) * (q - p) / d
+    return _dyad_point(Circle(_fixed(p), r_p, "p", rp), Circle(_fixed(q), r_q, "q", rq), left)
 
 
 def _circle_line(
@@ -142,20 +148,33 @@ def _circle_line(
     names: tuple[str, str, str],
     where: str,
 ) -> complex:
-    """The point X on the line q + s u (|u| = 1) with |X - c| = r, further along u if ``forward``.
+    """The point X on the line q + s u (|u| = 1) with |X - c| = r, further along u if ``forward``
+    (the solver's RRP dyad, ``dyads.intersect``).
 
-    In the line's frame c is w = (c - q)/u; X = q + (Re w +- sqrt(r^2 - Im(w)^2)) u. ``names`` =
-    (C, line, r) name the centre, the line and the radius in the error message.
+    They meet where the distance Im((c - q) conj(u)) from the line to c is at most r (within
+    ``CLOSURE_TOLERANCE``). ``names`` = (C, line, r) name the centre, the line and the radius in
+    the error message.
     """
     centre, line, radius = names
-    w = (c - q) / u
-    if abs(w.imag) > r * (1 + CLOSURE_TOLERANCE):
+    distance = abs(((c - q) * u.conjugate()).imag)
+    if distance > r * (1 + CLOSURE_TOLERANCE):
         raise NotAssemblable(
-            f"the distance from {centre} to {line} is {abs(w.imag):.6g} m > {radius} = "
+            f"the distance from {centre} to {line} is {distance:.6g} m > {radius} = "
             f"{r:.6g} m {where}"
         )
-    s = math.sqrt(max(r * r - w.imag * w.imag, 0.0))
-    return q + (w.real + (s if forward else -s)) * u
+    slot = Line(_fixed(q), np.array([[u.real, u.imag]], dtype=float), None, None, line)
+    return _dyad_point(Circle(_fixed(c), r, centre, radius), slot, forward)
+
+
+def _fixed(z: complex) -> PointMotion:
+    """The point z as the solver's one-sample position."""
+    return PointMotion(np.array([[z.real, z.imag]]))
+
+
+def _dyad_point(first: Locus, second: Locus, positive: bool) -> complex:
+    """The branch X = base + sign h offset of the two loci (sign +1 if ``positive``)."""
+    x = intersect(first, second, "X").point(np.array([1.0 if positive else -1.0]))
+    return complex(x[0, 0], x[0, 1])
 
 
 def _on_horizontal_guide(
@@ -177,10 +196,12 @@ def _on_horizontal_guide(
 def _slot_direction(
     pivot: complex, pin: complex, offset: float, *, names: str, where: str
 ) -> complex:
-    """Unit direction u of a lever pivoted at ``pivot`` whose slot passes through ``pin``.
+    """Unit direction u of a lever pivoted at ``pivot`` whose slot passes through ``pin`` (the
+    solver's slotted lever, ``dyads.slotted_lever``).
 
     The slot is the line pivot + offset iu + s u (offset to the left of u), so with d = pin - pivot,
-    u = d/|d| exp(-i asin(offset/|d|)) and the pin sits at s = sqrt(|d|^2 - offset^2) >= 0.
+    u = exp(i beta), beta = arg d - atan2(offset, s), and the pin sits at s = sqrt(|d|^2 -
+    offset^2) >= 0.
     """
     d = pin - pivot
     if abs(d) < abs(offset) or d == 0:
@@ -188,7 +209,8 @@ def _slot_direction(
             f"|{names}| = {abs(d):.6g} m < |slot_offset| = {abs(offset):.6g} m {where}: "
             "the pin cannot reach the slot line"
         )
-    return d / abs(d) * cmath.exp(-1j * math.asin(offset / abs(d)))
+    lever = slotted_lever(_fixed(pivot), _fixed(pin), offset, np.array([1.0]), order=0)
+    return cmath.exp(1j * float(lever.beta[0]))
 
 
 def _at(origin: complex, unit: complex, along: float, left: float) -> complex:

@@ -15,7 +15,7 @@ from itertools import combinations, pairwise
 
 import numpy as np
 
-from solver.rigid import perp
+from solver.rigid import cross, perp
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.figures import Arrow, Dot, model_scale, scale_text, svg
@@ -24,10 +24,6 @@ from solver.steps.linkage import LinkageContext
 from solver.steps.model import Step
 
 Pair = frozenset[str]
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> float:
-    return float(a[0] * b[1] - a[1] * b[0])
 
 
 class Kennedy:
@@ -111,7 +107,7 @@ class Kennedy:
                     lines.append(("", self.loci[pair]))
                 found = None
                 for (k, first), (m, second) in combinations(lines, 2):
-                    det = _cross(first[1], second[1])
+                    det = float(cross(first[1], second[1]))
                     scale = float(np.hypot(*first[1]) * np.hypot(*second[1]))
                     if abs(det) > 1e-9 * scale:
                         found = (k, m, first, second)
@@ -157,14 +153,14 @@ class Kennedy:
         ck = b.put(f"{name}: B", c, "m")
         d2k = b.put(f"{name}: d2", d2, "m")
         w = b.put(f"{name}: B-A", c - a, "m")
-        det = b.put(f"{name}: d1 x d2", _cross(d1, d2), "m^2")
+        det = b.put(f"{name}: d1 x d2", float(cross(d1, d2)), "m^2")
         num = b.put(
             f"{name}: (B-A) x d2",
-            _cross(c - a, d2),
+            float(cross(c - a, d2)),
             "m^2",
             reference=float(np.hypot(*(c - a)) * np.hypot(*d2)),
         )
-        t = b.put(f"{name}: t", _cross(c - a, d2) / _cross(d1, d2), "")
+        t = b.put(f"{name}: t", float(cross(c - a, d2)) / float(cross(d1, d2)), "")
         step = b.put(f"{name}: t d1", b.scalar(t) * d1, "m")
         point = a + b.scalar(t) * d1
         pk = b.put(name, point, "m")

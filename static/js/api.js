@@ -86,7 +86,7 @@ export async function solutionPage(scene, method, digits = 4) {
   return response.text();
 }
 
-/** Static example scenes shipped with the page (not part of the API). */
+/** The seed example scenes, served from server/examples at /examples (not part of the API). */
 export async function getExample(file) {
   const response = await fetch(`examples/${encodeURIComponent(file)}`);
   if (!response.ok) {

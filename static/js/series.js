@@ -9,7 +9,7 @@
 //   - a slider on a fixed guide: its position s = (r − r₀)·e, velocity v·e and acceleration a·e
 //     along the guide's unit vector e (the point's own vectors, which lie along e);
 //   - the transmission angle μ = ∠BCD of a four-bar loop the server reported (the same formula
-//     as the solver's poles.transmission_angle), from the swept positions;
+//     as the solver's four_bar.transmission_angle), from the swept positions;
 //   - the quick-return time ratio: the crank angles between the zero crossings of the ram's
 //     velocity (its limit positions), interpolated linearly between samples.
 
@@ -104,7 +104,7 @@ export function transmissionLoops(scene, loops) {
   return out;
 }
 
-/** μ = ∠BCD in 0..π (solver/poles.py transmission_angle). */
+/** μ = ∠BCD in 0..π (solver/four_bar.py transmission_angle). */
 export function angleBCD(B, C, D) {
   const u = [B[0] - C[0], B[1] - C[1]];
   const w = [D[0] - C[0], D[1] - C[1]];
