@@ -4,8 +4,8 @@ A runaway request is stopped at its endpoint's time limit and answered ``limit_e
 the limit while the server keeps answering; a full queue is answered 503 with Retry-After (not a
 dropped connection); a client that disconnects stops its work. The runaways are legal requests
 inside the cost budget: a Newton-Raphson sweep at the edge of the budget (0.5 to 0.9 s on an
-idle core here, 1.5 to 4 s on a busy one) and a hundred exercises with their worked solutions (about 3 s on an idle
-core), so each server here runs ONE worker with small limits.
+idle core here, 1.5 to 4 s on a busy one) and a hundred exercises with their worked solutions
+(about 3 s on an idle core), so each server here runs ONE worker with small limits.
 """
 
 from __future__ import annotations
