@@ -32,21 +32,7 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_polish.py`
 import solver.instant as analysis  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
-
-TRIAD: dict[str, Any] = {
-    "kind": "linkage",
-    "points": {"O": [0, 0], "A": [0.3, 0.2], "P1": [1.0, 1.0], "P2": [1.6, 1.2],
-               "P3": [1.3, 0.5], "G2": [2.2, 1.9], "G3": [1.8, -0.3]},
-    "links": {"ground": {"points": ["O", "G2", "G3"], "ground": True},
-              "crank": {"points": ["O", "A"]}, "T": {"points": ["P1", "P2", "P3"]},
-              "L1": {"points": ["A", "P1"]}, "L2": {"points": ["G2", "P2"]},
-              "L3": {"points": ["G3", "P3"]}},
-    "joints": [{"type": "revolute", "point": p, "links": pair} for p, pair in (
-        ("O", ["ground", "crank"]), ("A", ["crank", "L1"]), ("P1", ["L1", "T"]),
-        ("P2", ["T", "L2"]), ("P3", ["T", "L3"]), ("G2", ["L2", "ground"]),
-        ("G3", ["L3", "ground"]))],
-    "drivers": [{"link": "crank", "omega": 2.0, "alpha": 0.5}],
-}  # fmt: skip
+from tests.solver.test_newton import TRIAD  # noqa: E402
 
 
 def posed(doc: dict[str, Any], degrees: float) -> LinkageScene:

@@ -25,7 +25,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.instant import LinkageAnalysis, analyze
+from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from tests.solver.test_conditioning import (
@@ -33,6 +33,7 @@ from tests.solver.test_conditioning import (
     OMEGA,
     _cross,
     _z,
+    errors,
     exact_condition,
     four_bar_near_dead_centre,
     four_bar_rates,
@@ -177,19 +178,6 @@ FAMILIES: dict[str, Family] = {
     "slider_change_point": (slider_change_point, slider_pose, slider_rates),
     "inverted_dead_centre": (inverted_dead_centre, inverted_pose, inverted_rates),
 }
-
-
-def errors(result: LinkageAnalysis, rates: dict[str, Any]) -> float:
-    """The largest rate error relative to the largest rate of its kind (alpha: + omega^2)."""
-    worst = 0.0
-    for kind in ("omega", "alpha"):
-        scale = max(abs(float(v)) for v in rates[kind].values())
-        if kind == "alpha":
-            scale += max(abs(float(v)) for v in rates["omega"].values()) ** 2
-        for link, value in rates[kind].items():
-            got = getattr(result.links[link], kind)
-            worst = max(worst, abs(got - float(value)) / scale)
-    return worst
 
 
 def measure(family: str, side: int, distance: str) -> tuple[float, float, float, float, float]:
