@@ -153,6 +153,27 @@ def force_vector(doc: dict[str, Any], links: dict[str, Any]) -> tuple[float, flo
     return magnitude * math.cos(direction), magnitude * math.sin(direction)
 
 
+def five_bar_topology() -> dict[str, Any]:
+    """The five-bar's links and joints, a fresh copy: cranks O1-A and O2-B, the dyad A-C-B
+    (``left``, ``right``)."""
+    return {
+        "links": {
+            "ground": {"points": ["O1", "O2"], "ground": True},
+            "crank1": {"points": ["O1", "A"]},
+            "crank2": {"points": ["O2", "B"]},
+            "left": {"points": ["A", "C"]},
+            "right": {"points": ["B", "C"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "O1", "links": ["ground", "crank1"]},
+            {"type": "revolute", "point": "O2", "links": ["ground", "crank2"]},
+            {"type": "revolute", "point": "A", "links": ["crank1", "left"]},
+            {"type": "revolute", "point": "B", "links": ["crank2", "right"]},
+            {"type": "revolute", "point": "C", "links": ["left", "right"]},
+        ],
+    }
+
+
 @st.composite
 def five_bars(draw: st.DrawFn) -> dict[str, Any]:
     """A five-bar with two driven cranks, O1-A and O2-B, and the dyad A-C-B (links ``left`` =
@@ -178,20 +199,7 @@ def five_bars(draw: st.DrawFn) -> dict[str, Any]:
     return {
         "kind": "linkage",
         "points": {"O1": [0.0, 0.0], "O2": [d, 0.0], "A": xy(A), "B": xy(B), "C": xy(C)},
-        "links": {
-            "ground": {"points": ["O1", "O2"], "ground": True},
-            "crank1": {"points": ["O1", "A"]},
-            "crank2": {"points": ["O2", "B"]},
-            "left": {"points": ["A", "C"]},
-            "right": {"points": ["B", "C"]},
-        },
-        "joints": [
-            {"type": "revolute", "point": "O1", "links": ["ground", "crank1"]},
-            {"type": "revolute", "point": "O2", "links": ["ground", "crank2"]},
-            {"type": "revolute", "point": "A", "links": ["crank1", "left"]},
-            {"type": "revolute", "point": "B", "links": ["crank2", "right"]},
-            {"type": "revolute", "point": "C", "links": ["left", "right"]},
-        ],
+        **five_bar_topology(),
         "drivers": [
             {"link": "crank1", "omega": rate(20.0), "alpha": rate(50.0)},
             {"link": "crank2", "omega": rate(20.0), "alpha": rate(50.0)},
@@ -205,20 +213,7 @@ def square_five_bar(omega: float, mass: float, g: float) -> dict[str, Any]:
     return {
         "kind": "linkage",
         "points": {"O1": [0, 0], "O2": [2, 0], "A": [0, 1], "B": [2, 1], "C": [1, 2]},
-        "links": {
-            "ground": {"points": ["O1", "O2"], "ground": True},
-            "crank1": {"points": ["O1", "A"]},
-            "crank2": {"points": ["O2", "B"]},
-            "left": {"points": ["A", "C"]},
-            "right": {"points": ["B", "C"]},
-        },
-        "joints": [
-            {"type": "revolute", "point": "O1", "links": ["ground", "crank1"]},
-            {"type": "revolute", "point": "O2", "links": ["ground", "crank2"]},
-            {"type": "revolute", "point": "A", "links": ["crank1", "left"]},
-            {"type": "revolute", "point": "B", "links": ["crank2", "right"]},
-            {"type": "revolute", "point": "C", "links": ["left", "right"]},
-        ],
+        **five_bar_topology(),
         "drivers": [{"link": "crank1", "omega": omega}, {"link": "crank2", "omega": omega}],
         "point_masses": [{"name": "mC", "link": "left", "point": "C", "mass": mass}],
         "gravity": [0, -g],

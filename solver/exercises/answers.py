@@ -22,6 +22,7 @@ from solver.api import analyze as analyze_body
 from solver.api import sweep as sweep_body
 from solver.errors import InvalidScene
 from solver.events import find_event
+from solver.exercises.model import Exercise
 from solver.instant import LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.spatial import SpatialAnalysis, SpatialChain, analyze_spatial_chain, parse_spatial_chain
@@ -82,6 +83,18 @@ def parse_sweep_root(part: str) -> tuple[int, float] | None:
     if not (samples.isdigit() and k.isdigit()):
         return None
     return int(samples), int(k) / 100
+
+
+def flywheel_request(exercise: Exercise) -> tuple[str, int, float, float]:
+    """(path root, samples, k, the driver's omega) of a flywheel exercise: the /sweep request its
+    ``flywheel_inertia`` answer names (``sweep[samples=N,k=P/100]``)."""
+    path = next(a.path for a in exercise.asked if a.key == "flywheel_inertia")
+    root = path.split(".")[0]
+    found = parse_sweep_root(root)
+    if found is None:
+        raise InvalidScene(f"path root {root!r}: expected sweep[samples=N,k=P/100]")
+    samples, k = found
+    return root, samples, k, float(exercise.scene["drivers"][0]["omega"])
 
 
 def dynamic_body(doc: Mapping[str, Any], root: str) -> Mapping[str, Any]:

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from solver.errors import KinematicsError
-from solver.exercises.answers import Solved, parse_sweep_root, solve_scene, value_at
+from solver.exercises.answers import Solved, flywheel_request, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
 from solver.instant import LinkageAnalysis
@@ -366,12 +366,7 @@ def _dynamics_torque(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
 
 
 def _flywheel(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
-    first = next(a.path for a in exercise.asked if a.key == "flywheel_inertia")
-    root = first.split(".")[0]
-    found = parse_sweep_root(root)
-    assert found is not None
-    k = found[1]
-    omega = float(exercise.scene["drivers"][0]["omega"])
+    root, _, k, omega = flywheel_request(exercise)
     mean = value_at(solved, f"{root}.cycle.mean_torque")
     fluctuation = value_at(solved, f"{root}.cycle.energy_fluctuation")
     work = abs(mean) * 2.0 * math.pi

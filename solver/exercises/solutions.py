@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from solver.exercises.answers import parse, parse_sweep_root, solve_scene, value_at
+from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
 from solver.laws import parse_time_law
@@ -44,12 +44,7 @@ def _cycle_step(exercise: Exercise) -> Step:
     """Over a revolution: the mean torque, the energy fluctuation and the flywheel (/sweep's
     cycle figures, the solver's)."""
     solved = solve_scene(exercise.scene)
-    path = next(a.path for a in exercise.asked if a.key == "flywheel_inertia")
-    root = path.split(".")[0]
-    found = parse_sweep_root(root)
-    assert found is not None
-    k = found[1]
-    omega = float(exercise.scene["drivers"][0]["omega"])
+    root, samples, k, omega = flywheel_request(exercise)
     figures = {
         name: value_at(solved, f"{root}.cycle.{name}")
         for name in ("mean_torque", "energy_fluctuation", "flywheel_inertia")
@@ -57,7 +52,7 @@ def _cycle_step(exercise: Exercise) -> Step:
     mean, swing, inertia = figures.values()
     text = (
         "Repeat the instant's analysis at every crank angle of a revolution (here "
-        f"{found[0]} of them): the driving torque M(phi). Its mean is {mean:.{DIGITS}g} N m. The "
+        f"{samples} of them): the driving torque M(phi). Its mean is {mean:.{DIGITS}g} N m. The "
         "energy the crank gains above the mean, E(phi) = integral of (M - M_mean) d phi, swings "
         f"by Delta E = {swing:.{DIGITS}g} J between its largest and smallest value. A flywheel "
         f"with (I/2)(omega_max^2 - omega_min^2) = I k omega^2 = Delta E keeps the speed within k = "
