@@ -39,6 +39,7 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
 
 import numpy as np  # noqa: E402
 
+from benchmarks.sections import markers, write_section  # noqa: E402
 from server.local import serve_locally  # noqa: E402
 from solver.instant import LinkageAnalysis, analyze  # noqa: E402
 from solver.presets import PRESETS, build_preset  # noqa: E402
@@ -46,7 +47,7 @@ from solver.scene import LinkageScene, parse_linkage  # noqa: E402
 from solver.sweeps import Sweep, sweep  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
-START, END = "<!-- kinematics:start -->", "<!-- kinematics:end -->"
+START, END = markers("kinematics")
 ALL = ("position", "velocity", "acceleration")
 SIZES = (360, 3600, 36000)
 TRADE_SIZES = (36, 360, 3600, 36000)
@@ -700,15 +701,7 @@ animation and the plots.
 
 def write_doc(report: str) -> None:
     """Replace what stands between the kinematics markers; everything else is kept."""
-    text = DOC.read_text() if DOC.exists() else TEMPLATE
-    if START not in text or END not in text:
-        text = text.rstrip() + f"\n\n## Kinematics: solver and API\n\n{START}\n{END}\n"
-    head, rest = text.split(START, 1)
-    tail = rest.split(END, 1)[1]
-    DOC.parent.mkdir(parents=True, exist_ok=True)
-    temporary = DOC.with_suffix(".md.tmp")
-    temporary.write_text(f"{head}{START}\n{report}\n{END}{tail}")
-    os.replace(temporary, DOC)
+    write_section(DOC, "kinematics", "Kinematics: solver and API", report, TEMPLATE)
 
 
 def profile(budget: Budget) -> None:

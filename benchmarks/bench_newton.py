@@ -36,12 +36,12 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_newton.py`
 import mpmath as mp  # noqa: E402
 import numpy as np  # noqa: E402
 
+from benchmarks.sections import write_section  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import parse_linkage  # noqa: E402
 from solver.sweeps import sweep  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
-START, END = "<!-- newton:start -->", "<!-- newton:end -->"
 ALL = ["position", "velocity", "acceleration"]
 TOLERANCES = (1e-15, 1e-13, 1e-10, 1e-8, 1e-6)
 
@@ -199,13 +199,7 @@ def main() -> None:
     ])  # fmt: skip
     print(report)
     if not args.no_write:
-        text = DOC.read_text()
-        block = f"{START}\n{report}\n{END}"
-        if START in text:
-            text = text[: text.index(START)] + block + text[text.index(END) + len(END) :]
-        else:
-            text = text.rstrip("\n") + "\n\n## Newton groups\n\n" + block + "\n"
-        DOC.write_text(text)
+        write_section(DOC, "newton", "Newton groups", report)
 
 
 if __name__ == "__main__":

@@ -43,13 +43,13 @@ import numpy as np  # noqa: E402
 
 from benchmarks.bench_kinematics import SEED_004, Budget, closed_form, repeated, table  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN, reference_error  # noqa: E402
+from benchmarks.sections import write_section  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
 from solver.sweeps import sweep  # noqa: E402
 from solver.topology import DriverStep, NewtonStep, Plan, build_plan  # noqa: E402
 
 DOCS = ROOT / "docs"
-START, END = "<!-- tradeoff:start -->", "<!-- tradeoff:end -->"
 ALL = ["position", "velocity", "acceleration"]
 SAMPLE_COUNTS = (36, 72, 144, 360, 720, 1440, 3600)
 PEER_COUNTS = (360, 3600)
@@ -567,14 +567,7 @@ def write(report: str, fig: dict[str, Any]) -> None:
     (DOCS / "tradeoff.json").write_text(json.dumps(fig, indent=1) + "\n")
     (DOCS / "tradeoff.html").write_text(HTML.replace("{figure}", json.dumps(fig)))
     (DOCS / "tradeoff.svg").write_text(svg(fig))
-    doc = DOCS / "BENCHMARKS.md"
-    text = doc.read_text()
-    block = f"{START}\n{report}\n{END}"
-    if START in text:
-        text = text[: text.index(START)] + block + text[text.index(END) + len(END) :]
-    else:
-        text = text.rstrip("\n") + "\n\n## Speed against accuracy (issue 8)\n\n" + block + "\n"
-    doc.write_text(text)
+    write_section(DOCS / "BENCHMARKS.md", "tradeoff", "Speed against accuracy (issue 8)", report)
 
 
 def main() -> None:

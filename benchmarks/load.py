@@ -46,12 +46,12 @@ import httpx
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.sections import write_section  # noqa: E402
 from server.local import serve_locally  # noqa: E402
 from tests.dynamics_cases import seed004_scene  # noqa: E402
 from tests.server.test_serving import NEWTON_RUNAWAY  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
-START, END = "<!-- load:start -->", "<!-- load:end -->"
 FOUR_BAR = json.loads((ROOT / "server" / "examples" / "S000-T1.json").read_text())
 ANALYZE = ("POST", "/api/v1/analyze", {"scene": FOUR_BAR})
 SWEEP = ("POST", "/api/v1/sweep", {"scene": FOUR_BAR, "samples": 360})
@@ -230,11 +230,7 @@ BURST_HEAD = [
 
 def write_doc(report: str) -> None:
     """Replace what stands between the load markers (a section appended if missing)."""
-    text = DOC.read_text()
-    if START not in text:
-        text = text.rstrip() + f"\n\n## Serving under load\n\n{START}\n{END}\n"
-    head, rest = text.split(START, 1)
-    DOC.write_text(f"{head}{START}\n{report}\n{END}{rest.split(END, 1)[1]}")
+    write_section(DOC, "load", "Serving under load", report)
 
 
 def main() -> None:
