@@ -13,18 +13,29 @@ folder is enough), outside git: ``.advisory-database/`` at the repository root o
 
     python -m tests.advisories requirements.lock requirements-test.lock
 
-prints the snapshot it read (commit and date when it is a git checkout) and every vulnerable
-pin; the exit status is 1 if there is one, 2 if the database is missing, else 0.
+prints the snapshot it read (commit and date when it is a git checkout, else its SNAPSHOT file)
+and every vulnerable pin; the exit status is 1 if there is one, 2 if the database is missing or
+does not cover every pinned package, else 0.
+
+Where no checkout can be had (CI has no network to GitHub), the audit reads the extract committed
+in ``tests/reference/advisories``: every advisory of one snapshot for the packages the locks pin,
+and a SNAPSHOT file naming the snapshot and the packages it was extracted for. Refresh it from a
+checkout with::
+
+    python -m tests.advisories --extract tests/reference/advisories \\
+        requirements.lock requirements-test.lock
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +45,11 @@ from packaging.version import InvalidVersion, Version
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT_DATABASE = ROOT / ".advisory-database"
+EXTRACT = ROOT / "tests" / "reference" / "advisories"
+STALE_DAYS = 90  # older snapshots are audited, with a warning that they miss recent advisories
+SNAPSHOT = (
+    "SNAPSHOT"  # an extract's provenance: "snapshot: <commit> of <date>", then "packages: ..."
+)
 
 
 @dataclass(frozen=True)
@@ -131,7 +147,10 @@ def audit(database: Path, locked: dict[str, str]) -> Iterator[Finding]:
 
 
 def snapshot(database: Path) -> str:
-    """The database's git commit and date, or 'not a git checkout'."""
+    """The database's git commit and date: a checkout's, an extract's from its SNAPSHOT file, or
+    'not a git checkout'."""
+    if (database / SNAPSHOT).is_file():
+        return _snapshot_fields(database)["snapshot"] + " (an extract)"
     result = subprocess.run(
         ["git", "-C", str(database), "log", "-1", "--format=%H of %cI"],
         capture_output=True,
@@ -139,6 +158,42 @@ def snapshot(database: Path) -> str:
         check=False,
     )
     return result.stdout.strip() if result.returncode == 0 else "not a git checkout"
+
+
+def _age_in_days(described: str) -> int | None:
+    """Days since the date in ``snapshot()``'s description, if it names one."""
+    try:
+        taken = datetime.fromisoformat(described.split(" of ", 1)[1].split(" ", 1)[0])
+    except (IndexError, ValueError):
+        return None
+    return (datetime.now(UTC) - taken).days
+
+
+def _snapshot_fields(extract: Path) -> dict[str, str]:
+    lines = (extract / SNAPSHOT).read_text().splitlines()
+    return dict(line.split(": ", 1) for line in lines if ": " in line)
+
+
+def extracted_for(extract: Path) -> set[str]:
+    """The packages an extract holds every advisory of (none if it is a full checkout)."""
+    if not (extract / SNAPSHOT).is_file():
+        return set()
+    return set(_snapshot_fields(extract)["packages"].split())
+
+
+def extract(database: Path, into: Path, locked: dict[str, str]) -> None:
+    """Copy the advisories of the pinned packages from a checkout into ``into``, with a SNAPSHOT
+    file naming the checkout's commit and the packages (so that a package pinned later, with no
+    advisory copied, is known to be missing rather than clean)."""
+    folders = _folders(database)
+    shutil.rmtree(into / "vulns", ignore_errors=True)
+    for package in sorted(locked):
+        if package in folders:
+            shutil.copytree(folders[package], into / "vulns" / folders[package].name)
+    (into / "vulns").mkdir(parents=True, exist_ok=True)
+    (into / SNAPSHOT).write_text(
+        f"snapshot: {snapshot(database)}\npackages: {' '.join(sorted(locked))}\n"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -151,6 +206,12 @@ def main(argv: list[str] | None = None) -> int:
         help="a checkout of pypa/advisory-database (default: $ADVISORY_DATABASE or "
         ".advisory-database)",
     )
+    parser.add_argument(
+        "--extract",
+        type=Path,
+        metavar="FOLDER",
+        help="copy the pinned packages' advisories from --database into FOLDER instead of auditing",
+    )
     args = parser.parse_args(argv)
     if not (args.database / "vulns").is_dir():
         print(f"advisories: no advisory database at {args.database} (see docs/SERVING.md)")
@@ -158,11 +219,26 @@ def main(argv: list[str] | None = None) -> int:
     locked: dict[str, str] = {}
     for lock in args.locks:
         locked.update(pins(lock))
+    if args.extract:
+        extract(args.database, args.extract, locked)
+        print(f"advisories: the advisories of {len(locked)} packages copied into {args.extract}")
+        return 0
+    covered = extracted_for(args.database)
+    if covered and not covered >= set(locked):
+        missing = ", ".join(sorted(set(locked) - covered))
+        print(f"advisories: the extract at {args.database} does not cover {missing}; refresh it")
+        return 2
     findings = list(audit(args.database, locked))
     print(
         f"advisories: {len(locked)} pinned packages checked against the PyPA advisory database "
         f"at {args.database} ({snapshot(args.database)}): {len(findings)} known vulnerabilities"
     )
+    age = _age_in_days(snapshot(args.database))
+    if age is not None and age > STALE_DAYS:
+        print(
+            f"advisories: WARNING: the snapshot is {age} days old: advisories published since are"
+            " not checked (docs/SERVING.md says how to refresh it)"
+        )
     for finding in findings:
         print(f"  VULNERABLE {finding}")
     return 1 if findings else 0

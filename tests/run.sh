@@ -29,16 +29,15 @@ fi
 .venv/bin/mypy
 .venv/bin/hadolint Dockerfile
 
-# Dependency audit, offline: the locks against a local copy of the PyPA advisory database
+# Dependency audit, offline: the locks against a copy of the PyPA advisory database
 # (tests/advisories.py; docs/SERVING.md says how to get and refresh it). A known vulnerability
-# in a pinned version fails the run; a missing database is reported, not fatal.
+# in a pinned version fails the run. With no checkout and no network to clone one (CI), the
+# audit reads the extract committed in tests/reference/advisories and says how old it is.
 if [ ! -d "${ADVISORY_DATABASE:-.advisory-database}/vulns" ]; then
   timeout 120 git clone --quiet --depth 1 https://github.com/pypa/advisory-database .advisory-database \
-    || echo "advisories: WARNING: no advisory database and none could be cloned; SKIPPED"
+    || export ADVISORY_DATABASE=tests/reference/advisories
 fi
-status=0
-.venv/bin/python -m tests.advisories requirements.lock requirements-test.lock || status=$?
-if [ "$status" = 1 ]; then exit 1; fi
+.venv/bin/python -m tests.advisories requirements.lock requirements-test.lock
 
 # The same audit against PyPI's advisory service where it can be reached (it also knows the
 # GitHub advisories). Unreachable, or pinned versions it does not know (a private or local

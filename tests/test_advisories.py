@@ -99,3 +99,44 @@ def test_listed_versions_names_and_withdrawals() -> None:
     assert not advisories.affects(
         {**listed, "withdrawn": "2024-01-01T00:00:00Z"}, "some-pkg", "1.0"
     )
+
+
+def test_the_committed_extract_covers_every_pin_and_finds_nothing(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The audit CI runs without network: the extract must hold every package the locks pin (a
+    dependency added to a lock without refreshing the extract fails here)."""
+    locked = {**advisories.pins(LOCKS[0]), **advisories.pins(LOCKS[1])}
+    assert advisories.extracted_for(advisories.EXTRACT) >= set(locked)
+    assert advisories.main([*map(str, LOCKS), "--database", str(advisories.EXTRACT)]) == 0
+    assert f"{len(locked)} pinned packages checked" in capsys.readouterr().out
+
+
+def test_an_extract_keeps_the_pinned_packages_advisories_and_knows_what_it_lacks(
+    tmp_path: Path,
+) -> None:
+    version = advisories.pins(LOCKS[0])["numpy"]
+    full = database(tmp_path / "full", "NumPy", advisory("numpy", [{"introduced": "0"}]))
+    database(tmp_path / "full", "unpinned-pkg", advisory("unpinned-pkg", [{"introduced": "0"}]))
+    into = tmp_path / "extract"
+    advisories.extract(full, into, {"numpy": version, "scipy": "1.0"})
+    assert sorted(p.name for p in (into / "vulns").iterdir()) == ["NumPy"]
+    assert advisories.extracted_for(into) == {"numpy", "scipy"}
+    assert advisories.main([str(LOCKS[0]), "--database", str(into)]) == 2  # the lock pins more
+    advisories.extract(full, into, advisories.pins(LOCKS[0]))
+    assert advisories.main([str(LOCKS[0]), "--database", str(into)]) == 1  # numpy's advisory
+
+
+def test_a_stale_snapshot_is_audited_with_a_warning(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    db = database(tmp_path, "numpy", advisory("numpy", [{"introduced": "0"}, {"fixed": "0.1"}]))
+    (db / advisories.SNAPSHOT).write_text(
+        "snapshot: abc of 2020-01-01T00:00:00+00:00\npackages: numpy\n"
+    )
+    assert advisories.main([str(LOCKS[0]), "--database", str(db)]) == 2  # covers numpy only
+    pinned_numpy = tmp_path / "numpy.lock"
+    pinned_numpy.write_text(f"numpy=={advisories.pins(LOCKS[0])['numpy']}\n")
+    assert advisories.main([str(pinned_numpy), "--database", str(db)]) == 0
+    out = capsys.readouterr().out
+    assert "abc of 2020-01-01" in out and "days old" in out
