@@ -27,13 +27,14 @@ from solver.constraints import ConstraintSystem, KnownPoses
 from solver.rigid import perp
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder, Unknown, linear_latex, linear_text, present_solution
-from solver.steps.format import latex_unit
+from solver.steps.format import Formatter, latex_unit
 from solver.steps.linkage import (
     ACCELERATION,
     MOTION,
     V0,
     VELOCITY,
     LinkageContext,
+    SlotMotion,
     a_sym,
     a_vec,
     acceleration_pole_step,
@@ -52,6 +53,13 @@ from solver.steps.linkage import (
     w_vec,
 )
 from solver.steps.model import Step
+from solver.steps.relative import (
+    Carrier,
+    TransportTerms,
+    check_transport,
+    origin_column,
+    transport_terms,
+)
 from solver.topology import (
     CircleSpec,
     DriverStep,
@@ -139,6 +147,86 @@ def _register_side(b: StepBuilder, side: Side) -> None:
     b.put(side.known_key, side.known, side.unit)
     for t in side.terms:
         b.put(t.of, t.of_value, t.of_unit)
+
+
+@dataclass(frozen=True)
+class KnownAcceleration:
+    """a_C - omega_L^2 r_CX, the known part of a_X through link L (``value``, put as ``key``),
+    and the keys of its terms a_C, omega_L, r_CX and -omega_L^2 r_CX."""
+
+    key: str
+    value: np.ndarray
+    base: str
+    omega: str
+    r: str
+    normal: str
+
+
+def circle_known_acceleration(
+    b: StepBuilder, ctx: LinkageContext, spec: CircleSpec, point: str, r_np: np.ndarray
+) -> KnownAcceleration:
+    """a_C - omega_L^2 r_CX with its terms, each piece of arithmetic checked."""
+    link, center = spec.link, spec.center
+    omega = ctx.omega(link)
+    base = put_motion(b, ctx, center, ACCELERATION)
+    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    r = b.put(f"r({center},{point})", r_np, "m")
+    n = b.put(f"normal({center},{point})", -(omega**2) * r_np, "m/s^2")
+    value = ctx.acc(center) - omega**2 * r_np
+    key = b.put(f"known({point} via {link})", value, "m/s^2")
+    b.check("product", n, w, w, r, factor=-1.0)
+    b.check("sum", key, base, n)
+    return KnownAcceleration(key, value, base, w, r, n)
+
+
+@dataclass(frozen=True)
+class TwoPointRate:
+    """The keys of omega = (r x (v_S - v_F))_z / |r|^2 between the points F and S (``first``,
+    ``second``): d = v_S - v_F, (r x d)_z, |r|^2 and the rate."""
+
+    first: str
+    second: str
+    diff: str
+    cross: str
+    r2: str
+    value: str
+
+
+def component_equation(
+    b: StepBuilder,
+    i: int,
+    terms: list[tuple[Term, float]],
+    sides: tuple[Side, Side],
+    prefix: str,
+) -> tuple[list[str], str]:
+    """Component i of left = right with the unknowns to the left: sum_j c_ij x_j = b_i,
+    c_ij = +-(k x r)_i or +-u_i, b_i = right_i - left_i, written with a positive lead.
+    Returns the keys of the coefficients and of b_i."""
+    left, right = sides
+    raw = [sign * float(t.coefficient[i]) for t, sign in terms]
+    largest = max(abs(c) for c in raw)
+    leading = next((c for c in raw if not b.fmt.is_zero(c, "", largest)), 1.0)
+    row_sign = -1.0 if leading < 0 else 1.0
+    coefficients = []
+    for j, (t, sign) in enumerate(terms):
+        key = b.put(f"{prefix}c{i + 1}{j + 1}", row_sign * raw[j], t.of_unit)
+        coefficients.append(key)
+        if t.kind == "perp":  # k x r = (-r_y, r_x)
+            factor = row_sign * sign * (-1.0 if i == 0 else 1.0)
+            b.check("product", key, f"{t.of}[{1 - i}]", factor=factor)
+        else:
+            b.check("product", key, f"{t.of}[{i}]", factor=row_sign * sign)
+    rhs = b.put(f"{prefix}b{i + 1}", row_sign * float(right.known[i] - left.known[i]), left.unit)
+    sum_of = (f"{right.known_key}[{i}]", f"-{left.known_key}[{i}]")
+    b.check("sum", rhs, *sum_of, factor=row_sign)
+    return coefficients, rhs
+
+
+def bmatrix(fmt: Formatter, rows: list[list[float]]) -> str:
+    """A matrix in LaTeX; entries at rounding-noise level next to the largest are shown as 0."""
+    largest = max((abs(x) for row in rows for x in row), default=0.0)
+    body = r" \\ ".join(" & ".join(fmt.latex(x, reference=largest) for x in row) for row in rows)
+    return r"\begin{bmatrix} " + body + r" \end{bmatrix}"
 
 
 class VectorMethod:
@@ -257,78 +345,86 @@ class VectorMethod:
     # --- dyads ----------------------------------------------------------------------------------
 
     def circle_side(self, point: str, spec: CircleSpec, order: int) -> tuple[Step, Side]:
-        ctx = self.ctx
-        link, center = spec.link, spec.center
-        ctx.use(center, point)
-        r_np = ctx.pos(point) - ctx.pos(center)
-        unknown = self.unknown_rate(link, order)
-        rkey = f"r({center},{point})"
+        """X through link L from its known point C: v_X = v_C + omega_L x r_CX (a_X = a_C +
+        alpha_L x r_CX - omega_L^2 r_CX), the rate of L unknown."""
+        self.ctx.use(spec.center, point)
         if order == VELOCITY:
-            b = ctx.builder(
-                "velocity.dyad.side",
-                f"Velocity of {point} through link {link} ({unknown.text} unknown)",
-            )
-            vc = b.put(f"v({center})", ctx.vel(center), "m/s", ("points", center, "velocity"))
-            b.put(rkey, r_np, "m")
-            side = Side(
-                f"v({center})", ctx.vel(center), "m/s", [Term(unknown, "perp", rkey, r_np, "m")]
-            )
-            base = V0 if ctx.is_fixed(center) and b.is_zero(vc) else b.col(vc)
-            expansion = rotation_column(b, r_np, unknown.latex)
-            b.line(
-                rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
-                rf"{r_vec(center, point)} = {base} + "
-                rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))}"
-            )
-            b.line(
-                rf"&\phantom{{{v_vec(point)}}} = {base} + {expansion} = {side_column(b, side)}"
-                rf"{latex_unit('m/s')}"
-            )
-            b.say(
-                f"{point} is a point of link {link}, which also carries {center}: v({point}) = "
-                f"v({center}) + omega({link}) cross r({center},{point}) = {b.txt(vc)} + "
-                f"(0, 0, {unknown.text}) cross {b.txtn(rkey)} = {side_text(b, side)} m/s, "
-                f"with {unknown.text} unknown."
-            )
-            return b.build(), side
+            return self.circle_velocity_side(point, spec)
+        return self.circle_acceleration_side(point, spec)
+
+    def circle_velocity_side(self, point: str, spec: CircleSpec) -> tuple[Step, Side]:
+        """v_X = v_C + omega_L x r_CX, omega_L unknown: a column linear in omega_L."""
+        ctx, link, center = self.ctx, spec.link, spec.center
+        r_np = ctx.pos(point) - ctx.pos(center)
+        unknown = self.unknown_rate(link, VELOCITY)
+        rkey = f"r({center},{point})"
+        b = ctx.builder(
+            "velocity.dyad.side",
+            f"Velocity of {point} through link {link} ({unknown.text} unknown)",
+        )
+        vc = put_motion(b, ctx, center, VELOCITY)
+        b.put(rkey, r_np, "m")
+        side = Side(vc, ctx.vel(center), "m/s", [Term(unknown, "perp", rkey, r_np, "m")])
+        base = origin_column(b, ctx, center, vc)
+        b.line(
+            rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
+            rf"{r_vec(center, point)} = {base} + "
+            rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))}"
+        )
+        b.line(
+            rf"&\phantom{{{v_vec(point)}}} = {base} + "
+            rf"{rotation_column(b, r_np, unknown.latex)} = {side_column(b, side)}"
+            rf"{latex_unit('m/s')}"
+        )
+        b.say(
+            f"{point} is a point of link {link}, which also carries {center}: v({point}) = "
+            f"v({center}) + omega({link}) cross r({center},{point}) = {b.txt(vc)} + "
+            f"(0, 0, {unknown.text}) cross {b.txtn(rkey)} = {side_text(b, side)} m/s, "
+            f"with {unknown.text} unknown."
+        )
+        return b.build(), side
+
+    def circle_acceleration_side(self, point: str, spec: CircleSpec) -> tuple[Step, Side]:
+        """a_X = a_C + alpha_L x r_CX - omega_L^2 r_CX, alpha_L unknown: the known part
+        a_C - omega_L^2 r_CX plus a column linear in alpha_L."""
+        ctx, link, center = self.ctx, spec.link, spec.center
+        r_np = ctx.pos(point) - ctx.pos(center)
+        unknown = self.unknown_rate(link, ACCELERATION)
         b = ctx.builder(
             "acceleration.dyad.side",
             f"Acceleration of {point} through link {link} ({unknown.text} unknown)",
         )
-        omega = ctx.omega(link)
-        ac = b.put(f"a({center})", ctx.acc(center), "m/s^2", ("points", center, "acceleration"))
-        w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
-        b.put(rkey, r_np, "m")
-        n = b.put(f"normal({center},{point})", -(omega**2) * r_np, "m/s^2")
-        known = ctx.acc(center) - omega**2 * r_np
-        side = Side(
-            f"known({point} via {link})", known, "m/s^2", [Term(unknown, "perp", rkey, r_np, "m")]
-        )
-        b.put(side.known_key, known, "m/s^2")
-        b.check("product", n, w, w, rkey, factor=-1.0)
-        b.check("sum", side.known_key, ac, n)
-        base = V0 if ctx.is_fixed(center) and b.is_zero(ac) else b.col(ac)
-        expansion = rotation_column(b, r_np, unknown.latex)
+        known = circle_known_acceleration(b, ctx, spec, point, r_np)
+        terms = [Term(unknown, "perp", known.r, r_np, "m")]
+        side = Side(known.key, known.value, "m/s^2", terms)
+        self.circle_acceleration_lines(b, point, spec, known, side)
+        return b.build(), side
+
+    def circle_acceleration_lines(
+        self, b: StepBuilder, point: str, spec: CircleSpec, known: KnownAcceleration, side: Side
+    ) -> None:
+        link, center, k = spec.link, spec.center, side.terms[0]
+        base = origin_column(b, self.ctx, center, known.base)
         b.line(
             rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
             rf" - \omega_{{{tex.name(link)}}}^2\,{r_vec(center, point)}"
         )
         b.line(
             rf"&\phantom{{{a_vec(point)}}} = {base} + "
-            rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))} - "
-            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)}"
+            rf"{tex.determinant3(det_row_z_symbol(k.unknown.latex), b.entries(known.r))} - "
+            rf"{tex.paren(b.num(known.omega))}^2 \cdot {b.col(known.r)}"
         )
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {base} + {expansion} + {b.col(n)} = "
+            rf"&\phantom{{{a_vec(point)}}} = {base} + "
+            rf"{rotation_column(b, k.of_value, k.unknown.latex)} + {b.col(known.normal)} = "
             rf"{side_column(b, side)}{latex_unit('m/s^2')}"
         )
         b.say(
             f"Through link {link}: a({point}) = a({center}) + alpha({link}) cross "
             f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term "
-            f"-({b.txtn(w)}) squared times {b.txtn(rkey)} = {b.txt(n)} is known; "
-            f"{unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2."
+            f"-({b.txtn(known.omega)}) squared times {b.txtn(known.r)} = {b.txt(known.normal)} "
+            f"is known; {k.unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2."
         )
-        return b.build(), side
 
     def transport_step(self, point: str, guide: str, order: int) -> Step | None:
         """v_tr = v_G + omega x r_GX (a_tr = a_G + alpha x r_GX - omega^2 r_GX): the point of
@@ -339,195 +435,249 @@ class VectorMethod:
         sliding = ctx.slot(guide, point)
         g = ctx.reference_point(guide)
         ctx.use(g, point)
-        r_np = ctx.pos(point) - ctx.pos(g)
-        omega, alpha = ctx.omega(guide), ctx.alpha(guide)
         what = MOTION[order][0]
         b = ctx.builder(
             f"{what}.transport", f"Transport {what} of {point} (the point of {guide} under {point})"
         )
         tr = sliding.put(b, f"transport_{what}", point)
-        r = b.put(f"r({g},{point})", r_np, "m")
-        w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
-        sub = tex.name(point) + r",\mathrm{tr}"
+        r = b.put(f"r({g},{point})", ctx.pos(point) - ctx.pos(g), "m")
+        w = b.put(f"omega({guide})", ctx.omega(guide), "rad/s", ctx.link_source(guide, "omega"))
         if order == VELOCITY:
-            vg = b.put(f"v({g})", ctx.vel(g), "m/s", ("points", g, "velocity"))
-            wxr = b.put(f"omega x r({g},{point})", k_cross(omega, r_np), "m/s")
-            b.check("cross", wxr, w, r)
-            b.check("sum", tr, vg, wxr)
-            base = V0 if ctx.is_fixed(g) and b.is_zero(vg) else b.col(vg)
-            b.line(
-                rf"&\vec{{v}}_{{{sub}}} = {v_vec(g)} + {w_vec(guide)} \times {r_vec(g, point)}"
-                rf" = {base} + {tex.determinant3(det_row_z(b, w), b.entries(r))} = "
-                rf"{b.colu(tr)}"
-            )
-            b.say(
-                f"The transport velocity of {point} is the velocity of the point of {guide} "
-                f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
-                f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}."
-            )
+            self.transport_velocity(b, (g, point), guide, tr, (r, w))
         else:
-            ag = b.put(f"a({g})", ctx.acc(g), "m/s^2", ("points", g, "acceleration"))
-            al = b.put(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
-            t = b.put(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
-            n = b.put(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
-            b.check("cross", t, al, r)
-            b.check("product", n, w, w, r, factor=-1.0)
-            b.check("sum", tr, ag, t, n)
-            base = V0 if ctx.is_fixed(g) and b.is_zero(ag) else b.col(ag)
-            b.line(
-                rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
-                rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
-                rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-                rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
-            )
-            b.line(
-                rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
-                rf"{b.colu(tr)}"
-            )
-            b.say(
-                f"The transport acceleration of {point} is the acceleration of the point of "
-                f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
-                f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
-                f"{b.txt(n)} = {b.txt(tr)}."
-            )
+            self.transport_acceleration(b, (g, point), guide, tr, (r, w))
         return b.build()
 
+    def transport_velocity(
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+    ) -> None:
+        """v_tr = v_G + omega x r_GX, with r and omega (``rw``) already put."""
+        ctx, (g, point), (r, w) = self.ctx, pair, rw
+        vg = put_motion(b, ctx, g, VELOCITY)
+        wxr = b.put(
+            f"omega x r({g},{point})", k_cross(ctx.omega(guide), np.asarray(b.vector(r))), "m/s"
+        )
+        b.check("cross", wxr, w, r)
+        b.check("sum", tr, vg, wxr)
+        b.line(
+            rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{tr}}}} = {v_vec(g)} + {w_vec(guide)} "
+            rf"\times {r_vec(g, point)} = {origin_column(b, ctx, g, vg)} + "
+            rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
+        )
+        b.say(
+            f"The transport velocity of {point} is the velocity of the point of {guide} "
+            f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
+            f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}."
+        )
+
+    def transport_acceleration(
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+    ) -> None:
+        """a_tr = a_G + alpha x r_GX - omega^2 r_GX, with r and omega (``rw``) already put."""
+        ctx, (g, point), (r, w) = self.ctx, pair, rw
+        r_np, omega, alpha = np.asarray(b.vector(r)), ctx.omega(guide), ctx.alpha(guide)
+        ag = put_motion(b, ctx, g, ACCELERATION)
+        al = b.put(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
+        t = b.put(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
+        n = b.put(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
+        b.check("cross", t, al, r)
+        b.check("product", n, w, w, r, factor=-1.0)
+        b.check("sum", tr, ag, t, n)
+        sub, base = tex.name(point) + r",\mathrm{tr}", origin_column(b, ctx, g, ag)
+        b.line(
+            rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
+            rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
+            rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
+            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
+            rf"{b.colu(tr)}"
+        )
+        b.say(
+            f"The transport acceleration of {point} is the acceleration of the point of "
+            f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
+            f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
+            f"{b.txt(n)} = {b.txt(tr)}."
+        )
+
     def coriolis_step(self, point: str, guide: str) -> Step:
-        """a_cor = 2 omega_guide x v_rel, or why it is zero."""
+        """a_Cor = 2 omega_guide x v_rel, or why it is zero."""
         ctx = self.ctx
         sliding = ctx.slot(guide, point)
-        omega = sliding.omega_guide
         b = ctx.builder("acceleration.coriolis", f"Coriolis acceleration of {point}")
         cor = sliding.put(b, "coriolis_acceleration", point)
-        w = b.put(f"omega({guide})", omega, "rad/s", ctx.link_source(guide, "omega"))
+        w = b.put(f"omega({guide})", sliding.omega_guide, "rad/s", ctx.link_source(guide, "omega"))
         vrel = sliding.put(b, "relative_velocity", point)
         b.check("cross", cor, w, vrel, factor=2.0)
-        sub = tex.name(point) + r",\mathrm{Cor}"
         formula = (
-            rf"\vec{{a}}_{{{sub}}} = 2\,{w_vec(guide)} \times "
+            rf"\vec{{a}}_{{{tex.name(point)},\mathrm{{Cor}}}} = 2\,{w_vec(guide)} \times "
             rf"\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}}"
         )
         if guide == ctx.scene.ground:
-            b.line(
-                rf"&{formula} = 2 \cdot {V0} \times \vec{{v}}_{{{tex.name(point)},"
-                rf"\mathrm{{rel}}}} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}"
-            )
-            follower = sliding.joint.follower
+            self.coriolis_in_ground(b, sliding, point, formula)
+        elif b.is_zero(w) or b.is_zero(vrel):
+            self.coriolis_zero_now(b, (point, guide), formula, w, vrel)
+        else:
+            self.coriolis_product(b, sliding, (point, guide), formula, (cor, w, vrel))
+        return b.build()
+
+    def coriolis_in_ground(
+        self, b: StepBuilder, sliding: SlotMotion, point: str, formula: str
+    ) -> None:
+        """a_Cor = 2 . 0 x v_rel = 0 in a slot of the ground (the follower's rate not in it)."""
+        ctx = self.ctx
+        b.line(
+            rf"&{formula} = 2 \cdot {V0} \times \vec{{v}}_{{{tex.name(point)},"
+            rf"\mathrm{{rel}}}} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}"
+        )
+        follower = sliding.joint.follower
+        b.say(
+            f"The Coriolis acceleration of {point} is zero: the slot is fixed in the ground, "
+            "which does not rotate (omega of the guide = 0), so there is no transport "
+            "rotation to turn the relative velocity."
+        )
+        if follower != ctx.scene.ground and not ctx.fmt.is_zero(ctx.omega(follower), "rad/s"):
             b.say(
-                f"The Coriolis acceleration of {point} is zero: the slot is fixed in the ground, "
-                "which does not rotate (omega of the guide = 0), so there is no transport "
-                "rotation to turn the relative velocity."
+                f"The angular velocity of link {follower} (omega({follower}) = "
+                f"{ctx.fmt.text_value(ctx.omega(follower), 'rad/s')}) does not enter the "
+                "Coriolis term: only the guide's rotation does."
             )
-            if follower != ctx.scene.ground and not ctx.fmt.is_zero(ctx.omega(follower), "rad/s"):
-                b.say(
-                    f"The angular velocity of link {follower} (omega({follower}) = "
-                    f"{ctx.fmt.text_value(ctx.omega(follower), 'rad/s')}) does not enter the "
-                    "Coriolis term: only the guide's rotation does."
-                )
-        elif b.is_zero(w):
+
+    def coriolis_zero_now(
+        self, b: StepBuilder, pair: tuple[str, str], formula: str, w: str, vrel: str
+    ) -> None:
+        """a_Cor = 0 at this instant: the guide does not turn now, or the point does not slide."""
+        point, guide = pair
+        zero = tex.boxed_result(V0 + latex_unit("m/s^2"))
+        if b.is_zero(w):
             b.line(
                 rf"&{formula} = 2 \cdot {tex.column(['0', '0', b.num(w)])} \times "
-                rf"{b.col(vrel)} = {tex.boxed_result(V0 + latex_unit('m/s^2'))}"
+                rf"{b.col(vrel)} = {zero}"
             )
             b.say(
                 f"The Coriolis acceleration of {point} is zero at this instant: the guide "
                 f"{guide} does not rotate now (omega({guide}) = {b.txt(w)})."
             )
-        elif b.is_zero(vrel):
-            b.line(
-                rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = "
-                rf"{tex.boxed_result(V0 + latex_unit('m/s^2'))}"
-            )
-            b.say(
-                f"The Coriolis acceleration of {point} is zero at this instant: {point} does "
-                f"not slide relative to {guide} now (v_rel = 0)."
-            )
-        else:
-            half = b.put(
-                f"omega x v_rel({point})", k_cross(omega, sliding.relative_velocity), "m/s^2"
-            )
-            b.check("cross", half, w, vrel)
-            b.line(
-                rf"&{formula} = 2 \cdot "
-                rf"{tex.determinant3(det_row_z(b, w), b.entries(vrel))} = 2 \cdot "
-                rf"{b.col(half)} = {tex.boxed_result(b.colu(cor))}"
-            )
-            b.say(
-                f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
-                f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
-                f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
-                f"of {point} along the slot (not its absolute velocity)."
-            )
-        return b.build()
+            return
+        b.line(rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = {zero}")
+        b.say(
+            f"The Coriolis acceleration of {point} is zero at this instant: {point} does "
+            f"not slide relative to {guide} now (v_rel = 0)."
+        )
+
+    def coriolis_product(
+        self,
+        b: StepBuilder,
+        sliding: SlotMotion,
+        pair: tuple[str, str],
+        formula: str,
+        keys: tuple[str, str, str],
+    ) -> None:
+        """a_Cor = 2 omega x v_rel, omega x v_rel written out (``keys``: a_Cor, omega, v_rel)."""
+        (point, guide), (cor, w, vrel) = pair, keys
+        half = b.put(
+            f"omega x v_rel({point})",
+            k_cross(sliding.omega_guide, sliding.relative_velocity),
+            "m/s^2",
+        )
+        b.check("cross", half, w, vrel)
+        b.line(
+            rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))} = "
+            rf"2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+        )
+        b.say(
+            f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
+            f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
+            f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
+            f"of {point} along the slot (not its absolute velocity)."
+        )
 
     def line_side(
         self, point: str, spec: LineSpec, order: int, two_slots: bool
     ) -> tuple[list[Step], Side]:
-        ctx = self.ctx
+        """X in the slot of a guide: v_X = v_tr + s' u (a_X = a_tr + s'' u + a_Cor), the
+        sliding rate unknown; preceded by the transport (and Coriolis) steps."""
         guide = spec.guide
-        sliding = ctx.slot(guide, point)
-        u_np = sliding.direction
-        unknown = self.unknown_slide(point, guide, order, two_slots)
-        steps: list[Step] = []
         transport = self.transport_step(point, guide, order)
-        if transport is not None:
-            steps.append(transport)
-        what, unit = MOTION[order]
-        ukey = f"u({point}/{guide})"
-        sub = tex.name(point)
+        steps = [] if transport is None else [transport]
         if order == ACCELERATION:
             steps.append(self.coriolis_step(point, guide))
-        b = ctx.builder(
+        unknown = self.unknown_slide(point, guide, order, two_slots)
+        what = MOTION[order][0]
+        b = self.ctx.builder(
             f"{what}.dyad.side",
             f"{what.capitalize()} of {point} in the slot of {guide} ({unknown.text} unknown)",
         )
-        tr_value = getattr(sliding, f"transport_{what}")
+        side, parts = self.slot_side(b, point, guide, order, unknown)
         if order == VELOCITY:
-            known_key, known = f"v_tr({point})", tr_value
+            self.slot_velocity_lines(b, point, guide, side, *parts)
         else:
-            known_key = f"known({point} in {guide})"
-            known = tr_value + sliding.coriolis_acceleration
-        side = Side(known_key, known, unit, [Term(unknown, "dir", ukey, u_np, "")])
+            self.slot_acceleration_lines(b, point, guide, side, *parts)
+        return [*steps, b.build()], side
+
+    def slot_side(
+        self, b: StepBuilder, point: str, guide: str, order: int, unknown: Unknown
+    ) -> tuple[Side, list[str]]:
+        """The known part of X's motion in the slot, v_tr (a_tr + a_Cor), and the term s' u
+        (s'' u); returns the side and the keys of v_tr (a_tr and a_Cor)."""
+        sliding = self.ctx.slot(guide, point)
+        what, unit = MOTION[order]
+        ukey = f"u({point}/{guide})"
+        known_key, known = f"v_tr({point})", getattr(sliding, f"transport_{what}")
+        if order == ACCELERATION:
+            known_key, known = f"known({point} in {guide})", known + sliding.coriolis_acceleration
+        side = Side(known_key, known, unit, [Term(unknown, "dir", ukey, sliding.direction, "")])
         tr = sliding.put(b, f"transport_{what}", point)
-        b.put(ukey, u_np, "")
-        fixed = guide == ctx.scene.ground
-        if order == VELOCITY:
-            b.line(
-                rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
-                rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}"
+        b.put(ukey, sliding.direction, "")
+        if order == ACCELERATION:
+            cor = sliding.put(b, "coriolis_acceleration", point)
+            b.put(known_key, known, unit)
+            b.check("sum", known_key, tr, cor)
+            return side, [tr, cor]
+        return side, [tr]
+
+    def slot_velocity_lines(
+        self, b: StepBuilder, point: str, guide: str, side: Side, tr: str
+    ) -> None:
+        unknown, ukey, sub = side.terms[0].unknown, side.terms[0].of, tex.name(point)
+        fixed = guide == self.ctx.scene.ground
+        b.line(
+            rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
+            rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}"
+        )
+        b.line(
+            rf"&\phantom{{{v_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
+            rf"{b.col(ukey)} = {side_column(b, side)}{latex_unit('m/s')}"
+        )
+        if fixed:
+            b.say(
+                f"{point} slides in a slot fixed in the ground: its transport velocity is "
+                f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
+                f"u = {b.txtn(ukey)}."
             )
-            tr_tex = V0 if fixed else b.col(tr)
-            b.line(
-                rf"&\phantom{{{v_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} = "
-                rf"{side_column(b, side)}{latex_unit('m/s')}"
+        else:
+            b.say(
+                f"{point} slides in the slot of the moving link {guide}: v({point}) = "
+                f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
+                f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
             )
-            if fixed:
-                b.say(
-                    f"{point} slides in a slot fixed in the ground: its transport velocity is "
-                    f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
-                    f"u = {b.txtn(ukey)}."
-                )
-            else:
-                b.say(
-                    f"{point} slides in the slot of the moving link {guide}: v({point}) = "
-                    f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
-                    f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
-                )
-            return [*steps, b.build()], side
-        cor = sliding.put(b, "coriolis_acceleration", point)
-        b.put(known_key, known, unit)
-        b.check("sum", known_key, tr, cor)
+
+    def slot_acceleration_lines(
+        self, b: StepBuilder, point: str, guide: str, side: Side, tr: str, cor: str
+    ) -> None:
+        unknown, ukey, sub = side.terms[0].unknown, side.terms[0].of, tex.name(point)
+        fixed = guide == self.ctx.scene.ground
         b.line(
             rf"&{a_vec(point)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
             rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, \quad "
             rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}}"
         )
-        tr_tex = V0 if fixed else b.col(tr)
-        cor_tex = V0 if b.is_zero(cor) else b.col(cor)
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {tr_tex} + {unknown.latex} {b.col(ukey)} + "
-            rf"{cor_tex} = {side_column(b, side)}{latex_unit('m/s^2')}"
+            rf"&\phantom{{{a_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
+            rf"{b.col(ukey)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
+            rf"{side_column(b, side)}{latex_unit('m/s^2')}"
         )
         if fixed:
             b.say(
@@ -540,7 +690,6 @@ class VectorMethod:
                 f"a_Cor({point}) = {b.txt(tr)} + {unknown.text} times {b.txtn(ukey)} + "
                 f"{b.txt(cor)} = {side_text(b, side)} m/s^2."
             )
-        return [*steps, b.build()], side
 
     def equate(
         self, kind: str, title: str, left: Side, right: Side, sentence: str, prefix: str
@@ -552,36 +701,9 @@ class VectorMethod:
         b.line(rf"&{side_column(b, left)} = {side_column(b, right)}")
         b.say(sentence + f" {side_text(b, left)} = {side_text(b, right)}.")
         terms = [(t, 1.0) for t in left.terms] + [(t, -1.0) for t in right.terms]
-        coefficients: list[list[str]] = [[], []]
-        rhs = []
-        for i in range(2):
-            raw = [sign * float(t.coefficient[i]) for t, sign in terms]
-            largest = max(abs(c) for c in raw)
-            leading = next((c for c in raw if not b.fmt.is_zero(c, "", largest)), 1.0)
-            row_sign = -1.0 if leading < 0 else 1.0  # write each equation with a positive lead
-            for j, (t, sign) in enumerate(terms):
-                key = b.put(f"{prefix}c{i + 1}{j + 1}", row_sign * raw[j], t.of_unit)
-                coefficients[i].append(key)
-                if t.kind == "perp":  # k x r = (-r_y, r_x)
-                    b.check(
-                        "product",
-                        key,
-                        f"{t.of}[{1 - i}]",
-                        factor=row_sign * sign * (-1.0 if i == 0 else 1.0),
-                    )
-                else:
-                    b.check("product", key, f"{t.of}[{i}]", factor=row_sign * sign)
-            rhs_key = b.put(
-                f"{prefix}b{i + 1}", row_sign * float(right.known[i] - left.known[i]), left.unit
-            )
-            b.check(
-                "sum",
-                rhs_key,
-                f"{right.known_key}[{i}]",
-                f"-{left.known_key}[{i}]",
-                factor=row_sign,
-            )
-            rhs.append(rhs_key)
+        rows = [component_equation(b, i, terms, (left, right), prefix) for i in range(2)]
+        coefficients = [row[0] for row in rows]
+        rhs = [row[1] for row in rows]
         present_solution(b, [t.unknown for t, _ in terms], coefficients, rhs, prefix)
         return b.build()
 
@@ -683,103 +805,19 @@ class VectorMethod:
     # --- slotted lever --------------------------------------------------------------------------
 
     def lever(self, step: LeverStep, order: int) -> list[Step]:
-        """The pin P (known) in the slot of a lever turning about Q: omega_lever and s_dot."""
+        """The pin P (known) in the slot of a lever turning about Q: v_P = v_Q + omega x r_QP +
+        s' u (a_P = a_Q + alpha x r_QP - omega^2 r_QP + s'' u + a_Cor), solved for the lever's
+        rate and the sliding rate."""
         ctx = self.ctx
         lever, pivot, pin = step.link, step.pivot, step.pin
-        sliding = ctx.slot(lever, pin)
         ctx.use(pivot, pin)
-        r_np = ctx.pos(pin) - ctx.pos(pivot)
-        u_np = sliding.direction
-        rate = self.unknown_rate(lever, order)
-        slide = self.unknown_slide(pin, lever, order, False)
-        rkey, ukey = f"r({pivot},{pin})", f"u({pin}/{lever})"
-        terms = [Term(rate, "perp", rkey, r_np, "m"), Term(slide, "dir", ukey, u_np, "")]
-        out: list[Step] = []
-        sub = tex.name(pin)
-        omega = ctx.omega(lever)
         if order == VELOCITY:
-            b = ctx.builder(
-                "velocity.lever.side",
-                f"Velocity of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
-            )
-            vq = b.put(f"v({pivot})", ctx.vel(pivot), "m/s", ("points", pivot, "velocity"))
-            vp = b.put(f"v({pin})", ctx.vel(pin), "m/s", ("points", pin, "velocity"))
-            b.put(rkey, r_np, "m")
-            b.put(ukey, u_np, "")
-            known_side = Side(vp, ctx.vel(pin), "m/s")
-            lever_side = Side(vq, ctx.vel(pivot), "m/s", terms)
-            base = V0 if ctx.is_fixed(pivot) and b.is_zero(vq) else b.col(vq)
-            b.line(
-                rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-                rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
-                rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = "
-                rf"{b.col(ukey)}"
-            )
-            b.line(
-                rf"&\phantom{{{v_vec(pin)}}} = {base} + "
-                rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} + "
-                rf"{slide.latex} {b.col(ukey)} = {side_column(b, lever_side)}"
-                rf"{latex_unit('m/s')}"
-            )
-            b.say(
-                f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = "
-                f"{b.txt(vp)} is known. Relative connection: {pin} slides in the slot of "
-                f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
-                f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
-                f"{side_text(b, lever_side)} m/s, with {rate.text} and {slide.text} unknown."
-            )
-            out.append(b.build())
-            what = "velocity"
+            out, what = [], "velocity"
+            side_step, lever_side, known_side = self.lever_velocity_side(step)
         else:
-            out.append(self.coriolis_step(pin, lever))
-            cor_value = sliding.coriolis_acceleration
-            assert cor_value is not None
-            b = ctx.builder(
-                "acceleration.lever.side",
-                f"Acceleration of {pin} in the slot of "
-                f"{lever} ({rate.text} and {slide.text} unknown)",
-            )
-            aq = b.put(f"a({pivot})", ctx.acc(pivot), "m/s^2", ("points", pivot, "acceleration"))
-            ap = b.put(f"a({pin})", ctx.acc(pin), "m/s^2", ("points", pin, "acceleration"))
-            w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
-            b.put(rkey, r_np, "m")
-            b.put(ukey, u_np, "")
-            n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-            cor = sliding.put(b, "coriolis_acceleration", pin)
-            known = ctx.acc(pivot) - omega**2 * r_np + cor_value
-            known_key = f"known({pin} in {lever})"
-            b.put(known_key, known, "m/s^2")
-            b.check("product", n, w, w, rkey, factor=-1.0)
-            b.check("sum", known_key, aq, n, cor)
-            known_side = Side(ap, ctx.acc(pin), "m/s^2")
-            lever_side = Side(known_key, known, "m/s^2", terms)
-            base = V0 if ctx.is_fixed(pivot) and b.is_zero(aq) else b.col(aq)
-            b.line(
-                rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-                rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
-                rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
-                rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
-                rf"{r_vec(pivot, pin)}"
-            )
-            b.line(
-                rf"&\phantom{{{a_vec(pin)}}} = {base} + "
-                rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} - "
-                rf"{tex.paren(b.num(w))}^2 \cdot {b.col(rkey)} + {slide.latex} {b.col(ukey)}"
-                rf" + {b.col(cor)}"
-            )
-            b.line(
-                rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, lever_side)}"
-                rf"{latex_unit('m/s^2')}"
-            )
-            b.say(
-                f"Geometric connection: a({pin}) = {b.txt(ap)} is known from its crank. "
-                f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
-                f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
-                f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
-                f"term {b.txt(cor)}: a({pin}) = {side_text(b, lever_side)} m/s^2."
-            )
-            out.append(b.build())
-            what = "acceleration"
+            out, what = [self.coriolis_step(pin, lever)], "acceleration"
+            side_step, lever_side, known_side = self.lever_acceleration_side(step)
+        out.append(side_step)
         out.append(
             self.equate(
                 f"{what}.lever.solve",
@@ -796,72 +834,198 @@ class VectorMethod:
         out += self.remaining(lever, pivot, order)
         return out
 
-    def lever_parts(self, step: LeverStep, order: int) -> Step:
-        """The transport and relative parts at the pin with the solved numbers."""
-        ctx = self.ctx
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        sliding = ctx.slot(lever, pin)
+    def lever_terms(self, step: LeverStep, order: int) -> list[Term]:
+        """omega k x r_QP and s' u (alpha k x r_QP and s'' u): the lever's unknown terms."""
+        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
         r_np = ctx.pos(pin) - ctx.pos(pivot)
-        omega, alpha = ctx.omega(lever), ctx.alpha(lever)
-        sub = tex.name(pin)
-        if order == VELOCITY:
-            b = ctx.builder("velocity.lever.parts", f"Transport and relative velocity of {pin}")
-            vq = b.put(f"v({pivot})", ctx.vel(pivot), "m/s", ("points", pivot, "velocity"))
-            w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
-            r = b.put(f"r({pivot},{pin})", r_np, "m")
-            wxr = b.put(f"omega x r({pivot},{pin})", k_cross(omega, r_np), "m/s")
-            tr = sliding.put(b, "transport_velocity", pin)
-            slide = self.unknown_slide(pin, lever, order, False)
-            s = b.put(slide.key, slide.value, "m/s")
-            u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-            rel = sliding.put(b, "relative_velocity", pin)
-            b.check("cross", wxr, w, r)
-            b.check("sum", tr, vq, wxr)
-            base = "" if ctx.is_fixed(pivot) and b.is_zero(vq) else b.col(vq) + " + "
-            moving = "" if not base else f"{v_vec(pivot)} + "
-            b.line(
-                rf"&\vec{{v}}_{{{sub},\mathrm{{tr}}}} = {moving}{w_vec(lever)} \times "
-                rf"{r_vec(pivot, pin)} = {base}"
-                rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
-            )
-            relative_line(b, "v", sub, slide.latex, s, u, rel)
-            b.say(
-                f"With omega({lever}) = {b.txt(w)}: the transport velocity of {pin} (the point "
-                f"of {lever} under the pin) is {b.txt(tr)}; the relative velocity along the "
-                f"slot is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}."
-            )
-            return b.build()
-        b = ctx.builder("acceleration.lever.parts", f"Transport and relative acceleration of {pin}")
-        aq = b.put(f"a({pivot})", ctx.acc(pivot), "m/s^2", ("points", pivot, "acceleration"))
-        w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
-        al = b.put(f"alpha({lever})", alpha, "rad/s^2", ctx.link_source(lever, "alpha"))
-        r = b.put(f"r({pivot},{pin})", r_np, "m")
-        t = b.put(f"alpha x r({pivot},{pin})", k_cross(alpha, r_np), "m/s^2")
-        n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-        tr = sliding.put(b, "transport_acceleration", pin)
-        slide = self.unknown_slide(pin, lever, order, False)
-        s = b.put(slide.key, slide.value, "m/s^2")
-        u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-        rel = sliding.put(b, "relative_acceleration", pin)
-        b.check("cross", t, al, r)
-        b.check("product", n, w, w, r, factor=-1.0)
-        b.check("sum", tr, aq, t, n)
-        base = "" if ctx.is_fixed(pivot) and b.is_zero(aq) else b.col(aq) + " + "
-        moving = "" if not base else f"{a_vec(pivot)} + "
-        b.line(
-            rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = {moving}{al_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = "
-            rf"{base}{tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)} = {base}{b.col(t)} + {b.col(n)} = "
-            rf"{b.colu(tr)}"
+        return [
+            Term(self.unknown_rate(lever, order), "perp", f"r({pivot},{pin})", r_np, "m"),
+            Term(
+                self.unknown_slide(pin, lever, order, False),
+                "dir",
+                f"u({pin}/{lever})",
+                ctx.slot(lever, pin).direction,
+                "",
+            ),
+        ]
+
+    def lever_velocity_side(self, step: LeverStep) -> tuple[Step, Side, Side]:
+        """v_P = v_Q + omega x r_QP + s' u, omega and s' unknown; v_P known from its crank.
+        Returns the step, the lever's side and the pin's."""
+        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
+        terms = self.lever_terms(step, VELOCITY)
+        rate, slide = (t.unknown for t in terms)
+        b = ctx.builder(
+            "velocity.lever.side",
+            f"Velocity of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
         )
-        relative_line(b, "a", sub, slide.latex, s, u, rel)
+        vq = put_motion(b, ctx, pivot, VELOCITY)
+        vp = put_motion(b, ctx, pin, VELOCITY)
+        for t in terms:
+            b.put(t.of, t.of_value, t.of_unit)
+        lever_side = Side(vq, ctx.vel(pivot), "m/s", terms)
+        self.lever_velocity_lines(b, step, lever_side, vp)
+        return b.build(), lever_side, Side(vp, ctx.vel(pin), "m/s")
+
+    def lever_velocity_lines(self, b: StepBuilder, step: LeverStep, side: Side, vp: str) -> None:
+        lever, pivot, pin = step.link, step.pivot, step.pin
+        (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
+        sub, base = tex.name(pin), origin_column(b, self.ctx, pivot, side.known_key)
+        b.line(
+            rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
+            rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = "
+            rf"{b.col(ukey)}"
+        )
+        b.line(
+            rf"&\phantom{{{v_vec(pin)}}} = {base} + "
+            rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} + "
+            rf"{slide.latex} {b.col(ukey)} = {side_column(b, side)}{latex_unit('m/s')}"
+        )
         b.say(
-            f"With alpha({lever}) = {b.txt(al)}: the transport acceleration of {pin} is "
-            f"{b.txt(t)} + {b.txt(n)} = {b.txt(tr)}; the relative acceleration along the slot "
-            f"is {b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}."
+            f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = "
+            f"{b.txt(vp)} is known. Relative connection: {pin} slides in the slot of "
+            f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
+            f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
+            f"{side_text(b, side)} m/s, with {rate.text} and {slide.text} unknown."
+        )
+
+    def lever_acceleration_side(self, step: LeverStep) -> tuple[Step, Side, Side]:
+        """a_P = a_Q + alpha x r_QP - omega^2 r_QP + s'' u + a_Cor, alpha and s'' unknown; a_P
+        known from its crank. Returns the step, the lever's side and the pin's."""
+        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
+        terms = self.lever_terms(step, ACCELERATION)
+        rate, slide = (t.unknown for t in terms)
+        b = ctx.builder(
+            "acceleration.lever.side",
+            f"Acceleration of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
+        )
+        aq = put_motion(b, ctx, pivot, ACCELERATION)
+        ap = put_motion(b, ctx, pin, ACCELERATION)
+        known, cor = self.lever_known_acceleration(b, step, aq, terms)
+        lever_side = Side(known.key, known.value, "m/s^2", terms)
+        self.lever_acceleration_lines(b, step, lever_side, known, (ap, cor))
+        return b.build(), lever_side, Side(ap, ctx.acc(pin), "m/s^2")
+
+    def lever_known_acceleration(
+        self, b: StepBuilder, step: LeverStep, aq: str, terms: list[Term]
+    ) -> tuple[KnownAcceleration, str]:
+        """a_Q - omega^2 r_QP + a_Cor, the known part of a_P through the lever, with its terms
+        (and r_QP and u) put and checked; returns it and the key of a_Cor."""
+        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
+        sliding = ctx.slot(lever, pin)
+        assert sliding.coriolis_acceleration is not None
+        omega, r_np = ctx.omega(lever), terms[0].of_value
+        w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
+        for t in terms:
+            b.put(t.of, t.of_value, t.of_unit)
+        n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
+        cor = sliding.put(b, "coriolis_acceleration", pin)
+        value = ctx.acc(pivot) - omega**2 * r_np + sliding.coriolis_acceleration
+        key = b.put(f"known({pin} in {lever})", value, "m/s^2")
+        b.check("product", n, w, w, terms[0].of, factor=-1.0)
+        b.check("sum", key, aq, n, cor)
+        return KnownAcceleration(key, value, aq, w, terms[0].of, n), cor
+
+    def lever_acceleration_lines(
+        self,
+        b: StepBuilder,
+        step: LeverStep,
+        side: Side,
+        known: KnownAcceleration,
+        pin_keys: tuple[str, str],
+    ) -> None:
+        """``pin_keys``: the keys of a_P and a_Cor."""
+        lever, pivot, pin = step.link, step.pivot, step.pin
+        (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
+        (ap, cor), sub = pin_keys, tex.name(pin)
+        b.line(
+            rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
+            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
+            rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
+            rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
+            rf"{r_vec(pivot, pin)}"
+        )
+        b.line(
+            rf"&\phantom{{{a_vec(pin)}}} = {origin_column(b, self.ctx, pivot, known.base)} + "
+            rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} - "
+            rf"{tex.paren(b.num(known.omega))}^2 \cdot {b.col(rkey)} + {slide.latex} "
+            rf"{b.col(ukey)} + {b.col(cor)}"
+        )
+        b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, side)}{latex_unit('m/s^2')}")
+        b.say(
+            f"Geometric connection: a({pin}) = {b.txt(ap)} is known from its crank. "
+            f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
+            f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
+            f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
+            f"term {b.txt(cor)}: a({pin}) = {side_text(b, side)} m/s^2."
+        )
+
+    def lever_parts(self, step: LeverStep, order: int) -> Step:
+        """v_tr = v_Q + omega x r_QP and v_rel = s' u at the pin (a_tr = a_Q + alpha x r_QP -
+        omega^2 r_QP and a_rel = s'' u), with the solved numbers."""
+        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
+        sliding = ctx.slot(lever, pin)
+        what, unit = MOTION[order]
+        b = ctx.builder(f"{what}.lever.parts", f"Transport and relative {what} of {pin}")
+        carrier = Carrier(
+            lever, ctx.omega(lever), ctx.alpha(lever), partial(ctx.link_source, lever)
+        )
+        r_np = ctx.pos(pin) - ctx.pos(pivot)
+        terms = transport_terms(b, ctx, carrier, (pivot, pin), r_np, order, f"({pivot},{pin})")
+        tr = sliding.put(b, f"transport_{what}", pin)
+        slide = self.unknown_slide(pin, lever, order, False)
+        s = b.put(slide.key, slide.value, unit)
+        u = b.put(f"u({pin}/{lever})", sliding.direction, "")
+        rel = sliding.put(b, f"relative_{what}", pin)
+        check_transport(b, terms, tr)
+        if order == VELOCITY:
+            transport = self.lever_transport_velocity(b, step, terms, tr)
+        else:
+            transport = self.lever_transport_acceleration(b, step, terms, tr)
+        relative_line(b, what[0], tex.name(pin), slide.latex, s, u, rel)
+        b.say(
+            f"{transport}; the relative {what} along the slot is {b.txt(s)} times "
+            f"{b.txtn(u)} = {b.txt(rel)}."
         )
         return b.build()
+
+    def lever_transport_velocity(
+        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: str
+    ) -> str:
+        """Write v_tr = v_Q + omega x r_QP; returns the sentence that says it."""
+        lever, pivot, pin = step.link, step.pivot, step.pin
+        moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
+        base, start = (b.col(terms.base) + " + ", f"{v_vec(pivot)} + ") if moving else ("", "")
+        b.line(
+            rf"&\vec{{v}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{w_vec(lever)} \times "
+            rf"{r_vec(pivot, pin)} = {base}"
+            rf"{tex.determinant3(det_row_z(b, terms.omega), b.entries(terms.r))} = {b.colu(tr)}"
+        )
+        return (
+            f"With omega({lever}) = {b.txt(terms.omega)}: the transport velocity of {pin} (the "
+            f"point of {lever} under the pin) is {b.txt(tr)}"
+        )
+
+    def lever_transport_acceleration(
+        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: str
+    ) -> str:
+        """Write a_tr = a_Q + alpha x r_QP - omega^2 r_QP; returns the sentence that says it."""
+        lever, pivot, pin = step.link, step.pivot, step.pin
+        moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
+        base, start = (b.col(terms.base) + " + ", f"{a_vec(pivot)} + ") if moving else ("", "")
+        r, t, n = terms.r, terms.rotation, terms.normal
+        b.line(
+            rf"&\vec{{a}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{al_vec(lever)} \times "
+            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = "
+            rf"{base}{tex.determinant3(det_row_z(b, terms.alpha), b.entries(r))} - "
+            rf"{tex.paren(b.num(terms.omega))}^2 \cdot {b.col(r)} = {base}{b.col(t)} + "
+            rf"{b.col(n)} = {b.colu(tr)}"
+        )
+        return (
+            f"With alpha({lever}) = {b.txt(terms.alpha)}: the transport acceleration of {pin} "
+            f"is {b.txt(t)} + {b.txt(n)} = {b.txt(tr)}"
+        )
 
     # --- links known from two points, guided links, Newton groups -------------------------------
 
@@ -879,15 +1043,24 @@ class VectorMethod:
         """omega = (r x (v_S - v_F)) / |r|^2  (alpha likewise: the normal term is along r)."""
         ctx = self.ctx
         ctx.use(first, second)
+        rate = self.unknown_rate(link, order)
+        b = ctx.builder(f"{MOTION[order][0]}.two_points", f"{rate.text} from two known points")
+        values = self.two_point_values(b, (first, second), order, rate)
+        self.two_point_lines(b, link, order, rate, values)
+        return b.build()
+
+    def two_point_values(
+        self, b: StepBuilder, pair: tuple[str, str], order: int, rate: Unknown
+    ) -> TwoPointRate:
+        """v_F, v_S, r = S - F, d = v_S - v_F, (r x d)_z, |r|^2 and the rate, each checked."""
+        ctx, (first, second) = self.ctx, pair
         r_np = ctx.pos(second) - ctx.pos(first)
         field_name, unit = MOTION[order]
-        letter = field_name[0]
-        rate = self.unknown_rate(link, order)
-        b = ctx.builder(f"{field_name}.two_points", f"{rate.text} from two known points")
         x1 = put_motion(b, ctx, first, order)
         x2 = put_motion(b, ctx, second, order)
         r = b.put(f"r({first},{second})", r_np, "m")
-        diff = b.put(f"d{letter}", np.asarray(b.vector(x2)) - np.asarray(b.vector(x1)), unit)
+        dv = np.asarray(b.vector(x2)) - np.asarray(b.vector(x1))
+        diff = b.put(f"d{field_name[0]}", dv, unit)
         dv = np.asarray(b.vector(diff))
         cross = b.put(
             "r x d",
@@ -901,33 +1074,37 @@ class VectorMethod:
         b.check("cross", cross, r, diff)
         b.check("dot", r2, r, r)
         b.check("quotient", value, cross, r2)
-        sym = letter
+        return TwoPointRate(first, second, diff, cross, r2, value)
+
+    def two_point_lines(
+        self, b: StepBuilder, link: str, order: int, rate: Unknown, v: TwoPointRate
+    ) -> None:
+        first, second = v.first, v.second
+        r = r_vec(first, second)
         if order == VELOCITY:
             b.line(
-                rf"&{v_vec(second)} = {v_vec(first)} + {w_vec(link)} \times "
-                rf"{r_vec(first, second)} \;\Rightarrow\; {rate.latex} = "
-                rf"\frac{{({r_vec(first, second)} \times ({v_vec(second)} - {v_vec(first)}))_z}}"
-                rf"{{|{r_vec(first, second)}|^2}}"
+                rf"&{v_vec(second)} = {v_vec(first)} + {w_vec(link)} \times {r} \;\Rightarrow\; "
+                rf"{rate.latex} = \frac{{({r} \times ({v_vec(second)} - {v_vec(first)}))_z}}"
+                rf"{{|{r}|^2}}"
             )
         else:
             b.line(
-                rf"&{a_vec(second)} = {a_vec(first)} + {al_vec(link)} \times "
-                rf"{r_vec(first, second)} - \omega^2 {r_vec(first, second)} \;\Rightarrow\; "
-                rf"{rate.latex} = \frac{{({r_vec(first, second)} \times ({a_vec(second)} - "
-                rf"{a_vec(first)}))_z}}{{|{r_vec(first, second)}|^2}}"
+                rf"&{a_vec(second)} = {a_vec(first)} + {al_vec(link)} \times {r} - \omega^2 {r}"
+                rf" \;\Rightarrow\; {rate.latex} = \frac{{({r} \times ({a_vec(second)} - "
+                rf"{a_vec(first)}))_z}}{{|{r}|^2}}"
             )
         b.line(
-            rf"&{rate.latex} = \frac{{{b.num(cross)}}}{{{b.num(r2)}}} = "
-            rf"{tex.boxed_result(b.numu(value))}"
+            rf"&{rate.latex} = \frac{{{b.num(v.cross)}}}{{{b.num(v.r2)}}} = "
+            rf"{tex.boxed_result(b.numu(v.value))}"
         )
+        sym = MOTION[order][0][0]
         b.say(
             f"Both {first} and {second} are known points of link {link}. Crossing "
-            f"r({first},{second}) with {sym}({second}) - {sym}({first}) = {b.txt(diff)} "
+            f"r({first},{second}) with {sym}({second}) - {sym}({first}) = {b.txt(v.diff)} "
             + ("" if order == VELOCITY else "(the normal term is along r and drops out) ")
-            + f"gives {b.txtn(cross)}; divided by |r|^2 = {b.txt(r2)}: {rate.text} = "
-            f"{b.txt(value)}."
+            + f"gives {b.txtn(v.cross)}; divided by |r|^2 = {b.txt(v.r2)}: {rate.text} = "
+            f"{b.txt(v.value)}."
         )
-        return b.build()
 
     def guided(self, step: GuidedStep, order: int) -> list[Step]:
         ctx = self.ctx
@@ -970,25 +1147,10 @@ class VectorMethod:
                 rf"{rate}_{{{tex.name(link)}}}",
             ]
             solution += [float(motion[0]), float(motion[1]), turn]
-        fmt = ctx.fmt
-
-        def matrix(rows: list[list[float]]) -> str:
-            # entries at rounding-noise level next to the largest are shown as 0
-            largest = max((abs(x) for row in rows for x in row), default=0.0)
-            body = r" \\ ".join(
-                " & ".join(fmt.latex(x, reference=largest) for x in row) for row in rows
-            )
-            return r"\begin{bmatrix} " + body + r" \end{bmatrix}"
-
+        column = tex.column(unknowns)
         b.line(
-            matrix(J.tolist())
-            + tex.column(unknowns)
-            + " = "
-            + matrix([[x] for x in rhs])
-            + r"\quad\Rightarrow\quad "
-            + tex.column(unknowns)
-            + " = "
-            + matrix([[x] for x in solution])
+            f"{bmatrix(ctx.fmt, J.tolist())}{column} = {bmatrix(ctx.fmt, [[x] for x in rhs])}"
+            rf"\quad\Rightarrow\quad {column} = {bmatrix(ctx.fmt, [[x] for x in solution])}"
         )
 
     def newton(self, step: NewtonStep, order: int) -> list[Step]:
