@@ -21,7 +21,9 @@ from typing import Any
 import numpy as np
 
 from solver.assembly import Motion
-from solver.instant import LinkageAnalysis
+from solver.four_bar import FourBarLoop
+from solver.instant import Diagnostics, LinkageAnalysis, LinkResult
+from solver.instant_centres import InstantCentre
 from solver.poles import Poles
 from solver.relative_motion import MovingPointMotion
 from solver.rigid import Array
@@ -247,20 +249,8 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
             name: wanted.point(vector(p.position), vector(p.velocity), vector(p.acceleration))
             for name, p in result.points.items()
         },
-        "links": {},
+        "links": {name: _link_fields(link, wanted) for name, link in result.links.items()},
     }
-    for name, link in result.links.items():
-        out: JSON = {}
-        if wanted.position:
-            out["angle"] = link.angle
-        if wanted.omega:
-            out["omega"] = link.omega
-        if wanted.alpha:
-            out["alpha"] = link.alpha
-        if wanted.poles:
-            out["velocity_pole"] = vector(link.velocity_pole)
-            out["acceleration_pole"] = vector(link.acceleration_pole)
-        body["links"][name] = out
     if wanted.components:
         body["joints"] = [sliding_joint_fields(j, vector) for j in result.joints]
     if result.moving_points:
@@ -268,26 +258,52 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
             name: moving_point_fields(m, wanted, vector) for name, m in result.moving_points.items()
         }
     if wanted.poles:
-        body["instant_centres"] = [
-            {
-                "links": list(c.links),
-                "position": vector(c.position),
-                "direction_at_infinity": vector(c.direction),
-            }
-            for c in result.instant_centres
-        ]
-    body["four_bar_loops"] = [
-        {
-            "links": dict(zip(FOUR_BAR, loop.links, strict=True)),
-            "lengths": dict(zip(FOUR_BAR, loop.lengths, strict=True)),
-            "grashof": loop.grashof,
-            "transmission_angle": loop.transmission_angle,
-            "transmission_angle_deg": math.degrees(loop.transmission_angle),
-        }
-        for loop in result.four_bar_loops
-    ]
-    d = result.diagnostics
-    body["diagnostics"] = {
+        body["instant_centres"] = [_instant_centre_fields(c) for c in result.instant_centres]
+    body["four_bar_loops"] = [_four_bar_fields(loop) for loop in result.four_bar_loops]
+    body["diagnostics"] = _diagnostics_fields(result.diagnostics)
+    body["warnings"] = [*warnings, *result.warnings]  # the request's, then the pose's
+    return body
+
+
+def _link_fields(link: LinkResult, wanted: Contents) -> JSON:
+    """A link's requested angle, rates and poles."""
+    out: JSON = {}
+    if wanted.position:
+        out["angle"] = link.angle
+    if wanted.omega:
+        out["omega"] = link.omega
+    if wanted.alpha:
+        out["alpha"] = link.alpha
+    if wanted.poles:
+        out["velocity_pole"] = vector(link.velocity_pole)
+        out["acceleration_pole"] = vector(link.acceleration_pole)
+    return out
+
+
+def _instant_centre_fields(c: InstantCentre) -> JSON:
+    """An instant centre: its two links and its position (or its direction at infinity)."""
+    return {
+        "links": list(c.links),
+        "position": vector(c.position),
+        "direction_at_infinity": vector(c.direction),
+    }
+
+
+def _four_bar_fields(loop: FourBarLoop) -> JSON:
+    """A four-bar loop: links and lengths by role, Grashof class, transmission angle."""
+    return {
+        "links": dict(zip(FOUR_BAR, loop.links, strict=True)),
+        "lengths": dict(zip(FOUR_BAR, loop.lengths, strict=True)),
+        "grashof": loop.grashof,
+        "transmission_angle": loop.transmission_angle,
+        "transmission_angle_deg": math.degrees(loop.transmission_angle),
+    }
+
+
+def _diagnostics_fields(d: Diagnostics) -> JSON:
+    """How the pose was found (closed form or Newton, each Newton group's report) and how far it
+    is from a change point."""
+    return {
         "condition_number": d.condition_number,
         "position_method": "closed-form dyads" if d.closed_form else "dyads and Newton-Raphson",
         "newton": [
@@ -307,8 +323,6 @@ def analysis_body(result: LinkageAnalysis, warnings: list[str]) -> JSON:
         else {"point": d.closest_approach[0], "margin": d.closest_approach[1]},
         "position_residual": d.position_residual,
     }
-    body["warnings"] = [*warnings, *result.warnings]  # the request's, then the pose's
-    return body
 
 
 def spatial_body(result: SpatialAnalysis, quantities: frozenset[str], warnings: list[str]) -> JSON:

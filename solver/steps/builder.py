@@ -261,29 +261,15 @@ def present_solution(
     solution: directly where a row has one unknown, else (or always with ``cramer``) by Cramer's
     rule with the determinants written out (``det2``/``quotient`` checks).
     """
-    fmt = b.fmt
     for u in unknowns:
         b.put(u.key, u.value, u.unit, u.source)
-    n = len(unknowns)
-    scales = []
-    for i in range(n):
-        scale = max(abs(b.scalar(c)) for c in coefficients[i])
-        terms = [(b.scalar(coefficients[i][j]), unknowns[j].latex) for j in range(n)]
-        terms_text = [(b.scalar(coefficients[i][j]), unknowns[j].text) for j in range(n)]
-        scales.append(scale)
-        row = max((b.fmt_of(c) for c in coefficients[i]), key=lambda f: f.digits)
-        b.line("&" + linear_latex(row, None, terms, scale) + " = " + b.num(rhs[i]))
-        b.say(f"Equation {i + 1}: {linear_text(row, None, terms_text, scale)} = {b.txtn(rhs[i])}.")
-        operands: list[str] = []
-        for j in range(n):
-            operands += [coefficients[i][j], unknowns[j].key]
-        b.check("linear", rhs[i], *operands)
-    if n == 1:
+    scales = [_equation(b, unknowns, coefficients[i], rhs[i], i) for i in range(len(unknowns))]
+    if len(unknowns) == 1:
         b.check("quotient", unknowns[0].key, rhs[0], coefficients[0][0])
         _result(b, unknowns[0], _fraction(b, rhs[0], coefficients[0][0]))
         return
     single = [
-        [j for j in range(2) if not fmt.is_zero(b.scalar(coefficients[i][j]), "", scales[i])]
+        [j for j in range(2) if not b.fmt.is_zero(b.scalar(coefficients[i][j]), "", scales[i])]
         for i in range(2)
     ]
     if cramer:
@@ -296,67 +282,125 @@ def present_solution(
         return
     direct = next((i for i in range(2) if len(single[i]) == 1), None)
     if direct is not None:
-        j = single[direct][0]
-        other_row, other = 1 - direct, 1 - j
-        u, w = unknowns[j], unknowns[other]
-        b.check("quotient", u.key, rhs[direct], coefficients[direct][j])
-        b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
-        _result(b, u, _fraction(b, rhs[direct], coefficients[direct][j]))
-        c_key = coefficients[other_row][other]
-        c_other = b.scalar(c_key)
-        if fmt.is_zero(c_other, "", scales[other_row]):
-            b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
-            return
-        rest = b.put(
-            f"{prefix}rest",
-            b.scalar(rhs[other_row]) - b.scalar(coefficients[other_row][j]) * u.value,
-            "",
-            reference=abs(b.scalar(rhs[other_row]))
-            + abs(b.scalar(coefficients[other_row][j]) * u.value),
-        )
-        b.check("quotient", w.key, rest, coefficients[other_row][other])
-        b.line(
-            rf"&{term(b.fmt_of(c_key), c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
-            rf"{tex.paren(b.num(coefficients[other_row][j]))} \cdot "
-            rf"{tex.paren(b.num(u.key))} = {b.num(rest)}"
-        )
-        b.say(
-            f"Substituting into equation {other_row + 1}: "
-            f"{term_text(b.fmt_of(c_key), c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
-        )
-        _result(b, w, _fraction(b, rest, coefficients[other_row][other]))
+        _substitution(b, unknowns, coefficients, rhs, prefix, (direct, single[direct][0]), scales)
         return
-    c = coefficients
+    determinants = _cramer_values(b, unknowns, coefficients, rhs, prefix)
+    _write_cramer(b, unknowns, determinants)
 
-    def size(key: str) -> float:
-        return max(abs(b.scalar(key)), b.references[key])
 
-    det = b.put(
-        f"{prefix}D",
-        b.scalar(c[0][0]) * b.scalar(c[1][1]) - b.scalar(c[0][1]) * b.scalar(c[1][0]),
+def _equation(
+    b: StepBuilder, unknowns: Sequence[Unknown], row: Sequence[str], rhs: str, i: int
+) -> float:
+    """Equation i + 1, c_i1 u1 + c_i2 u2 = b_i, written with its ``linear`` check; returns the
+    size of its largest coefficient (what a coefficient displaying as 0 is measured against)."""
+    n = len(unknowns)
+    scale = max(abs(b.scalar(c)) for c in row)
+    terms = [(b.scalar(row[j]), unknowns[j].latex) for j in range(n)]
+    terms_text = [(b.scalar(row[j]), unknowns[j].text) for j in range(n)]
+    fmt = max((b.fmt_of(c) for c in row), key=lambda f: f.digits)
+    b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs))
+    b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = {b.txtn(rhs)}.")
+    operands: list[str] = []
+    for j in range(n):
+        operands += [row[j], unknowns[j].key]
+    b.check("linear", rhs, *operands)
+    return scale
+
+
+def _substitution(
+    b: StepBuilder,
+    unknowns: Sequence[Unknown],
+    c: Sequence[Sequence[str]],
+    rhs: Sequence[str],
+    prefix: str,
+    pivot: tuple[int, int],
+    scales: Sequence[float],
+) -> None:
+    """Row d of ``pivot`` = (d, j) has the single unknown u = b_d / c_dj; the other row o then
+    gives w = (b_o - c_oj u) / c_ow, the rest b_o - c_oj u written out."""
+    direct, j = pivot
+    other_row, other = 1 - direct, 1 - j
+    u, w = unknowns[j], unknowns[other]
+    b.check("quotient", u.key, rhs[direct], c[direct][j])
+    b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
+    _result(b, u, _fraction(b, rhs[direct], c[direct][j]))
+    c_key = c[other_row][other]
+    c_other = b.scalar(c_key)
+    if b.fmt.is_zero(c_other, "", scales[other_row]):
+        b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
+        return
+    known = b.scalar(c[other_row][j]) * u.value
+    rest = b.put(
+        f"{prefix}rest",
+        b.scalar(rhs[other_row]) - known,
         "",
-        reference=size(c[0][0]) * size(c[1][1]) + size(c[0][1]) * size(c[1][0]),
+        reference=abs(b.scalar(rhs[other_row])) + abs(known),
     )
-    b.check("det2", det, c[0][0], c[0][1], c[1][0], c[1][1])
-    matrix = tex.determinant2([[b.num(c[i][k]) for k in range(2)] for i in range(2)])
-    b.line(rf"&D = {matrix} = {b.num(det)}")
-    b.say(f"By Cramer's rule, the determinant of the coefficients is D = {b.txtn(det)}.")
+    b.check("quotient", w.key, rest, c_key)
+    b.line(
+        rf"&{term(b.fmt_of(c_key), c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
+        rf"{tex.paren(b.num(c[other_row][j]))} \cdot {tex.paren(b.num(u.key))} = {b.num(rest)}"
+    )
+    b.say(
+        f"Substituting into equation {other_row + 1}: "
+        f"{term_text(b.fmt_of(c_key), c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
+    )
+    _result(b, w, _fraction(b, rest, c_key))
+
+
+Matrix2 = tuple[tuple[str, str], tuple[str, str]]
+
+
+def _det2(b: StepBuilder, key: str, m: Matrix2) -> str:
+    """D = m11 m22 - m12 m21 with its ``det2`` check; its reference is the size of the two
+    products (a value or the size it was computed from, whichever is larger)."""
+
+    def size(k: str) -> float:
+        return max(abs(b.scalar(k)), b.references[k])
+
+    (m11, m12), (m21, m22) = m
+    value = b.scalar(m11) * b.scalar(m22) - b.scalar(m12) * b.scalar(m21)
+    reference = size(m11) * size(m22) + size(m12) * size(m21)
+    b.put(key, value, "", reference=reference)
+    b.check("det2", key, m11, m12, m21, m22)
+    return key
+
+
+def _cramer_values(
+    b: StepBuilder,
+    unknowns: Sequence[Unknown],
+    c: Sequence[Sequence[str]],
+    rhs: Sequence[str],
+    prefix: str,
+) -> list[tuple[str, Matrix2]]:
+    """Cramer's rule u_j = D_j / D, D = det c and D_j = det c with column j replaced by b:
+    [(D, c), (D1, its matrix), (D2, its matrix)], each with its checks."""
+    matrix: Matrix2 = ((c[0][0], c[0][1]), (c[1][0], c[1][1]))
+    out = [(_det2(b, f"{prefix}D", matrix), matrix)]
     for j in range(2):
-        columns = [[rhs[i] if k == j else c[i][k] for k in range(2)] for i in range(2)]
-        value = b.scalar(columns[0][0]) * b.scalar(columns[1][1]) - b.scalar(
-            columns[0][1]
-        ) * b.scalar(columns[1][0])
-        dj = b.put(
-            f"{prefix}D{j + 1}",
-            value,
-            "",
-            reference=size(columns[0][0]) * size(columns[1][1])
-            + size(columns[0][1]) * size(columns[1][0]),
+        column: Matrix2 = (
+            ((rhs[0], c[0][1]), (rhs[1], c[1][1]))
+            if j == 0
+            else ((c[0][0], rhs[0]), (c[1][0], rhs[1]))
         )
-        b.check("det2", dj, columns[0][0], columns[0][1], columns[1][0], columns[1][1])
-        b.check("quotient", unknowns[j].key, dj, det)
-        matrix = tex.determinant2([[b.num(columns[i][k]) for k in range(2)] for i in range(2)])
-        b.line(rf"&D_{j + 1} = {matrix} = {b.num(dj)}")
+        out.append((_det2(b, f"{prefix}D{j + 1}", column), column))
+        b.check("quotient", unknowns[j].key, out[-1][0], out[0][0])
+    return out
+
+
+def _write_cramer(
+    b: StepBuilder, unknowns: Sequence[Unknown], determinants: list[tuple[str, Matrix2]]
+) -> None:
+    """Write D, then D_j and u_j = D_j / D for each unknown (``_cramer_values``)."""
+
+    def written(m: Matrix2) -> str:
+        return tex.determinant2([[b.num(m[i][k]) for k in range(2)] for i in range(2)])
+
+    (det, matrix), *columns = determinants
+    b.line(rf"&D = {written(matrix)} = {b.num(det)}")
+    b.say(f"By Cramer's rule, the determinant of the coefficients is D = {b.txtn(det)}.")
+    for j, (dj, column) in enumerate(columns):
+        b.line(rf"&D_{j + 1} = {written(column)} = {b.num(dj)}")
         b.say(f"D{j + 1}, with column {j + 1} replaced by the right-hand sides, is {b.txtn(dj)}.")
         _result(b, unknowns[j], rf"\frac{{D_{j + 1}}}{{D}} = \frac{{{b.num(dj)}}}{{{b.num(det)}}}")
 

@@ -90,63 +90,13 @@ def svg(
     """An SVG drawing: model coordinates (y up) times ``1 / per_mm`` give millimetres."""
     points = [a.start for a in arrows] + [a.end for a in arrows] + [d.at for d in dots]
     points += [p for s in segments for p in s[:2]]
-    if not points:
-        points = [np.zeros(2)]
-    xs = [float(p[0]) / per_mm for p in points]
-    ys = [-float(p[1]) / per_mm for p in points]
-    x0, y0 = min(xs) - MARGIN, min(ys) - MARGIN
-    width, height = max(xs) - min(xs) + 2 * MARGIN, max(ys) - min(ys) + 2 * MARGIN + 8.0
-
-    def at(p: np.ndarray) -> tuple[float, float]:
-        return float(p[0]) / per_mm, -float(p[1]) / per_mm
-
+    x0, y0, width, height = _frame(points or [np.zeros(2)], per_mm)
     body = [_defs(), f"<title>{escape(title)}</title>"]
-    for a, b, style in segments:
-        (x1, y1), (x2, y2) = at(a), at(b)
-        colour, dash = STYLE.get(style, ("#000000", ""))
-        width_mm = "1.4" if style == "link" else "0.35"
-        stroke = "#222222" if style == "link" else colour
-        body.append(
-            f'<line class="{style}" x1="{x1:.4f}" y1="{y1:.4f}" x2="{x2:.4f}" y2="{y2:.4f}" '
-            f'stroke="{stroke}" stroke-width="{width_mm}" stroke-linecap="round"'
-            + (f' stroke-dasharray="{dash}"' if dash and style != "link" else "")
-            + "/>"
-        )
+    body += [_segment(_paper(a, per_mm), _paper(b, per_mm), style) for a, b, style in segments]
     for arrow in arrows:
-        (x1, y1), (x2, y2) = at(arrow.start), at(arrow.end)
-        if math.hypot(x2 - x1, y2 - y1) < SHORTEST:
-            continue  # a vector at the rounding level, or shorter than a pen can draw
-        colour, dash = STYLE[arrow.style]
-        body.append(
-            f'<line class="{arrow.style}" data-vector={quoteattr(arrow.name)} '
-            f'x1="{x1:.6f}" y1="{y1:.6f}" x2="{x2:.6f}" y2="{y2:.6f}" stroke="{colour}" '
-            f'stroke-width="0.45" marker-end="url(#head-{arrow.style})"'
-            + (f' stroke-dasharray="{dash}"' if dash else "")
-            + "/>"
-        )
-        if arrow.label:
-            mx, my = (x1 + x2) / 2, (y1 + y2) / 2
-            length = math.hypot(x2 - x1, y2 - y1) or 1.0
-            nx, ny = -(y2 - y1) / length * 2.5, (x2 - x1) / length * 2.5
-            body.append(
-                f'<text x="{mx + nx:.2f}" y="{my + ny:.2f}" font-size="3" fill="{colour}" '
-                f'text-anchor="middle">{escape(arrow.label)}</text>'
-            )
+        body += _arrow(arrow, per_mm)
     for dot in dots:
-        x, y = at(dot.at)
-        body.append(
-            f'<circle cx="{x:.4f}" cy="{y:.4f}" r="0.9" fill="#ffffff" stroke="#000000" '
-            'stroke-width="0.35"/>'
-        )
-        if dot.fixed:
-            body.append(
-                f'<path d="M{x - 2.5:.2f},{y + 3:.2f} L{x:.2f},{y + 0.9:.2f} L{x + 2.5:.2f},'
-                f'{y + 3:.2f} z" fill="none" stroke="#000000" stroke-width="0.3"/>'
-            )
-        body.append(
-            f'<text x="{x + 1.6:.2f}" y="{y - 1.6:.2f}" font-size="3.4" fill="#000000">'
-            f"{escape(dot.label)}</text>"
-        )
+        body += _dot(dot, per_mm)
     body.append(
         f'<text x="{x0 + 2:.2f}" y="{y0 + height - 2.5:.2f}" font-size="3.4" fill="#000000">'
         f"{escape(caption)}</text>"
@@ -157,6 +107,78 @@ def svg(
         f'height="{height:.1f}mm" viewBox="{x0:.3f} {y0:.3f} {width:.3f} {height:.3f}"'
         f' font-family="sans-serif"{extra}>' + "".join(body) + "</svg>"
     )
+
+
+def _paper(p: np.ndarray, per_mm: float) -> tuple[float, float]:
+    """(x, -y) / per_mm: a model point in millimetres of paper, y down as SVG draws."""
+    return float(p[0]) / per_mm, -float(p[1]) / per_mm
+
+
+def _frame(points: Sequence[np.ndarray], per_mm: float) -> tuple[float, float, float, float]:
+    """The view box (x0, y0, width, height) in mm: the points with a margin, and room for the
+    caption below."""
+    xs = [float(p[0]) / per_mm for p in points]
+    ys = [-float(p[1]) / per_mm for p in points]
+    x0, y0 = min(xs) - MARGIN, min(ys) - MARGIN
+    return x0, y0, max(xs) - min(xs) + 2 * MARGIN, max(ys) - min(ys) + 2 * MARGIN + 8.0
+
+
+def _segment(start: tuple[float, float], end: tuple[float, float], style: str) -> str:
+    """A line of the drawing: a link as a thick bar, anything else in its style's colour."""
+    (x1, y1), (x2, y2) = start, end
+    colour, dash = STYLE.get(style, ("#000000", ""))
+    width_mm = "1.4" if style == "link" else "0.35"
+    stroke = "#222222" if style == "link" else colour
+    return (
+        f'<line class="{style}" x1="{x1:.4f}" y1="{y1:.4f}" x2="{x2:.4f}" y2="{y2:.4f}" '
+        f'stroke="{stroke}" stroke-width="{width_mm}" stroke-linecap="round"'
+        + (f' stroke-dasharray="{dash}"' if dash and style != "link" else "")
+        + "/>"
+    )
+
+
+def _arrow(arrow: Arrow, per_mm: float) -> list[str]:
+    """A vector as a line with an arrowhead and ``data-vector``, its label beside its middle
+    (2.5 mm along the normal); nothing for a vector shorter than ``SHORTEST``."""
+    (x1, y1), (x2, y2) = _paper(arrow.start, per_mm), _paper(arrow.end, per_mm)
+    if math.hypot(x2 - x1, y2 - y1) < SHORTEST:
+        return []  # a vector at the rounding level, or shorter than a pen can draw
+    colour, dash = STYLE[arrow.style]
+    out = [
+        f'<line class="{arrow.style}" data-vector={quoteattr(arrow.name)} '
+        f'x1="{x1:.6f}" y1="{y1:.6f}" x2="{x2:.6f}" y2="{y2:.6f}" stroke="{colour}" '
+        f'stroke-width="0.45" marker-end="url(#head-{arrow.style})"'
+        + (f' stroke-dasharray="{dash}"' if dash else "")
+        + "/>"
+    ]
+    if arrow.label:
+        mx, my = (x1 + x2) / 2, (y1 + y2) / 2
+        length = math.hypot(x2 - x1, y2 - y1) or 1.0
+        nx, ny = -(y2 - y1) / length * 2.5, (x2 - x1) / length * 2.5
+        out.append(
+            f'<text x="{mx + nx:.2f}" y="{my + ny:.2f}" font-size="3" fill="{colour}" '
+            f'text-anchor="middle">{escape(arrow.label)}</text>'
+        )
+    return out
+
+
+def _dot(dot: Dot, per_mm: float) -> list[str]:
+    """A point as a small circle with its label (and a ground hatch under a fixed one)."""
+    x, y = _paper(dot.at, per_mm)
+    out = [
+        f'<circle cx="{x:.4f}" cy="{y:.4f}" r="0.9" fill="#ffffff" stroke="#000000" '
+        'stroke-width="0.35"/>'
+    ]
+    if dot.fixed:
+        out.append(
+            f'<path d="M{x - 2.5:.2f},{y + 3:.2f} L{x:.2f},{y + 0.9:.2f} L{x + 2.5:.2f},'
+            f'{y + 3:.2f} z" fill="none" stroke="#000000" stroke-width="0.3"/>'
+        )
+    out.append(
+        f'<text x="{x + 1.6:.2f}" y="{y - 1.6:.2f}" font-size="3.4" fill="#000000">'
+        f"{escape(dot.label)}</text>"
+    )
+    return out
 
 
 def model_scale(points: Sequence[np.ndarray]) -> float:

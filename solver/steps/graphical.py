@@ -76,21 +76,35 @@ class Polygons:
         ]
 
     def velocity(self) -> Step:
+        """The velocity polygon from the pole p at the scale k_v: for each link the image of
+        v_Y = v_X + omega x r_XY, for a slot v = v_tr + v_rel."""
         ctx = self.ctx
-        velocities = {p: ctx.vel(p) for p in self.moving}
+        moving = {p: ctx.vel(p) for p in self.moving}
         extra = {name: np.asarray(m.velocity) for name, m in ctx.analysis.moving_points.items()}
-        k = polygon_scale([*velocities.values(), *extra.values()])
+        k = polygon_scale([*moving.values(), *extra.values()])
         b = ctx.builder("graphical.velocity", "Velocity polygon (graphical method)")
         kv = b.put("k_v", k, "m/s")
         b.say(
             f"Scale k_v: {scale_text(k, 'm/s')}. From the pole p (all fixed points have their "
             "image at p) the construction runs link by link:"
         )
+        arrows, order = self.velocity_arrows(moving)
+        b.say("; ".join(order) + ".")
+        velocities = {**moving, **extra}
+        self.lengths(b, kv, velocities, "v", "m/s")
+        self.mehmke(b, "v")
+        caption = f"Velocity polygon, {scale_text(k, 'm/s')}"
+        return _with_figure(b.build(), _polygon("Velocity polygon", arrows, velocities, k, caption))
+
+    def velocity_arrows(self, moving: dict[str, np.ndarray]) -> tuple[list[Arrow], list[str]]:
+        """The relative velocities v_Y - v_X of each link and the transport and relative parts
+        at a slot or of a moving point, with the order of the construction in words."""
+        ctx = self.ctx
         arrows: list[Arrow] = []
         order = []
         for link, x, y in link_pairs(ctx):
-            vx = velocities.get(x, np.zeros(2))
-            vy = velocities.get(y, np.zeros(2))
+            vx = moving.get(x, np.zeros(2))
+            vy = moving.get(y, np.zeros(2))
             if float(np.hypot(*(vy - vx))) > 0:
                 arrows.append(Arrow(vx, vy, f"v({y})-v({x})", f"{y}{x}".lower(), "relative"))
             order.append(
@@ -100,9 +114,10 @@ class Polygons:
         for guide, point in slot_points(ctx):
             slot = ctx.slot(guide, point)
             if guide != ctx.scene.ground:
-                arrows.append(
-                    Arrow(np.zeros(2), slot.transport_velocity, f"v_tr({point})", "", "transport")
+                transport = Arrow(
+                    np.zeros(2), slot.transport_velocity, f"v_tr({point})", "", "transport"
                 )
+                arrows.append(transport)
             arrows.append(
                 Arrow(slot.transport_velocity, slot.velocity, f"v_rel({point})", "", "relative")
             )
@@ -111,42 +126,15 @@ class Polygons:
                 "velocity along the slot"
             )
         for name, m in ctx.analysis.moving_points.items():
-            arrows.append(
-                Arrow(
-                    np.zeros(2), np.asarray(m.transport_velocity), f"v_tr({name})", "", "transport"
-                )
-            )
-            arrows.append(
-                Arrow(
-                    np.asarray(m.transport_velocity),
-                    np.asarray(m.velocity),
-                    f"v_rel({name})",
-                    "",
-                    "relative",
-                )
-            )
-            velocities[name] = np.asarray(m.velocity)
-        for p, v in velocities.items():
-            if float(np.hypot(*v)) > 0:
-                arrows.insert(0, Arrow(np.zeros(2), v, f"v({p})", "", "absolute"))
-        b.say("; ".join(order) + ".")
-        self.lengths(b, kv, velocities, "v", "m/s")
-        self.mehmke(b, "v")
-        dots = [Dot(np.zeros(2), "p")] + [
-            Dot(v, p.lower()) for p, v in velocities.items() if float(np.hypot(*v)) > 0
-        ]
-        figure = svg(
-            "Velocity polygon",
-            arrows,
-            dots,
-            [],
-            k / 10.0,
-            f"Velocity polygon, {scale_text(k, 'm/s')}",
-            {"data-kind": "velocity", "data-scale": repr(k), "data-unit": "m/s"},
-        )
-        return _with_figure(b.build(), figure)
+            v_tr, v = np.asarray(m.transport_velocity), np.asarray(m.velocity)
+            arrows.append(Arrow(np.zeros(2), v_tr, f"v_tr({name})", "", "transport"))
+            arrows.append(Arrow(v_tr, v, f"v_rel({name})", "", "relative"))
+        return arrows, order
 
     def acceleration(self) -> Step:
+        """The acceleration polygon from the pole p' at the scale k_a: for each link the normal
+        part -omega^2 r_XY and the tangential part alpha x r_XY, for a slot a = a_tr + a_cor +
+        a_rel."""
         ctx = self.ctx
         accelerations = {p: ctx.acc(p) for p in self.moving}
         for name, m in ctx.analysis.moving_points.items():
@@ -160,6 +148,19 @@ class Polygons:
             "that point), then the tangential part alpha x r (perpendicular to the link) lead to "
             "the image of the next point; at a slot, the transport, Coriolis and relative parts."
         )
+        arrows = self.link_acceleration_arrows(accelerations) + self.slot_acceleration_arrows()
+        self.lengths(b, ka, accelerations, "a", "m/s^2")
+        self.mehmke(b, "a")
+        caption = (
+            f"Acceleration polygon, {scale_text(k, 'm/s^2')}; n normal, t tangential, "
+            "tr transport, Cor Coriolis, rel relative"
+        )
+        figure = _polygon("Acceleration polygon", arrows, accelerations, k, caption)
+        return _with_figure(b.build(), figure)
+
+    def link_acceleration_arrows(self, accelerations: dict[str, np.ndarray]) -> list[Arrow]:
+        """a_Y = a_X + (-omega^2 r_XY) + alpha x r_XY: the normal then the tangential part."""
+        ctx = self.ctx
         arrows: list[Arrow] = []
         for link, x, y in link_pairs(ctx):
             r = ctx.pos(y) - ctx.pos(x)
@@ -169,58 +170,31 @@ class Polygons:
             if float(np.hypot(*normal)) > 0:
                 arrows.append(Arrow(ax, ax + normal, f"an({link}:{x},{y})", f"n {y}{x}", "normal"))
             if float(np.hypot(*tangential)) > 0:
-                arrows.append(
-                    Arrow(
-                        ax + normal,
-                        ax + normal + tangential,
-                        f"at({link}:{x},{y})",
-                        f"t {y}{x}",
-                        "tangential",
-                    )
-                )
+                end = ax + normal + tangential
+                name = f"at({link}:{x},{y})"
+                arrows.append(Arrow(ax + normal, end, name, f"t {y}{x}", "tangential"))
+        return arrows
+
+    def slot_acceleration_arrows(self) -> list[Arrow]:
+        """a = a_tr + a_cor + a_rel at every slot and of every moving point, from the pole."""
+        ctx = self.ctx
         parts: list[tuple[str, np.ndarray, np.ndarray, np.ndarray]] = []
         for guide, point in slot_points(ctx):
             slot = ctx.slot(guide, point)
-            assert (
-                slot.transport_acceleration is not None and slot.coriolis_acceleration is not None
-            )
-            parts.append(
-                (point, slot.transport_acceleration, slot.coriolis_acceleration, ctx.acc(point))
-            )
+            tr, cor = slot.transport_acceleration, slot.coriolis_acceleration
+            assert tr is not None and cor is not None
+            parts.append((point, tr, cor, ctx.acc(point)))
         for name, m in ctx.analysis.moving_points.items():
-            parts.append(
-                (
-                    name,
-                    np.asarray(m.transport_acceleration),
-                    np.asarray(m.coriolis_acceleration),
-                    np.asarray(m.acceleration),
-                )
-            )
+            tr, cor = np.asarray(m.transport_acceleration), np.asarray(m.coriolis_acceleration)
+            parts.append((name, tr, cor, np.asarray(m.acceleration)))
+        arrows: list[Arrow] = []
         for point, tr, cor, total in parts:
             if float(np.hypot(*tr)) > 0:
                 arrows.append(Arrow(np.zeros(2), tr, f"a_tr({point})", "tr", "transport"))
             if float(np.hypot(*cor)) > 0:
                 arrows.append(Arrow(tr, tr + cor, f"a_cor({point})", "Cor", "coriolis"))
             arrows.append(Arrow(tr + cor, total, f"a_rel({point})", "rel", "relative"))
-        for p, a in accelerations.items():
-            if float(np.hypot(*a)) > 0:
-                arrows.insert(0, Arrow(np.zeros(2), a, f"a({p})", "", "absolute"))
-        self.lengths(b, ka, accelerations, "a", "m/s^2")
-        self.mehmke(b, "a")
-        dots = [Dot(np.zeros(2), "p'")] + [
-            Dot(a, p.lower() + "'") for p, a in accelerations.items() if float(np.hypot(*a)) > 0
-        ]
-        figure = svg(
-            "Acceleration polygon",
-            arrows,
-            dots,
-            [],
-            k / 10.0,
-            f"Acceleration polygon, {scale_text(k, 'm/s^2')}; n normal, t tangential, "
-            "tr transport, Cor Coriolis, rel relative",
-            {"data-kind": "acceleration", "data-scale": repr(k), "data-unit": "m/s^2"},
-        )
-        return _with_figure(b.build(), figure)
+        return arrows
 
     def lengths(
         self, b: StepBuilder, scale: str, vectors: dict[str, np.ndarray], letter: str, unit: str
@@ -305,6 +279,21 @@ class Polygons:
                 f"similar to the triangle {x}{y}{z}, every side times {what} = {b.txt(factor)}; "
                 f"so the image of the third point {z} follows from those of {x} and {y}."
             )
+
+
+def _polygon(
+    title: str, arrows: list[Arrow], images: dict[str, np.ndarray], k: float, caption: str
+) -> str:
+    """The polygon's figure at 1 cm = k: the absolute vectors from the pole first (p for the
+    velocities, p' for the accelerations), then ``arrows``, and a dot at every image."""
+    velocity = title.startswith("Velocity")
+    letter, prime = ("v", "") if velocity else ("a", "'")
+    drawn = [(p, v) for p, v in images.items() if float(np.hypot(*v)) > 0]
+    absolute = [Arrow(np.zeros(2), v, f"{letter}({p})", "", "absolute") for p, v in drawn]
+    dots = [Dot(np.zeros(2), "p" + prime)] + [Dot(v, p.lower() + prime) for p, v in drawn]
+    kind, unit = ("velocity", "m/s") if velocity else ("acceleration", "m/s^2")
+    attributes = {"data-kind": kind, "data-scale": repr(k), "data-unit": unit}
+    return svg(title, absolute[::-1] + arrows, dots, [], k / 10.0, caption, attributes)
 
 
 def _with_figure(step: Step, figure: str) -> Step:

@@ -116,6 +116,22 @@ class _Term:
 
 
 @dataclass(frozen=True)
+class SliderCrankClosedForm:
+    """The keys of a slider-crank loop's closed form (``LoopMethod.slider_crank_values``) and the
+    branch of the drawn assembly (the sign of cos(th13 - phi))."""
+
+    a3: str
+    th13: str
+    s14: str
+    c: str
+    lift: str
+    sin13: str
+    q2: str
+    q3: str
+    branch: str
+
+
+@dataclass(frozen=True)
 class FourBarClosedForm:
     """The keys of a four-bar loop's closed form (``LoopMethod.four_bar_values``), the sign of
     the drawn assembly and the whole turn ('', '2pi' or '-2pi') its angle sum needs."""
@@ -187,66 +203,76 @@ class LoopMethod:
             raise LoopUnavailable("the linkage has no closed loop (only driven links)")
 
     def dyad_loop(self, step: DyadStep) -> Loop:
-        ctx, ground = self.ctx, self.ctx.scene.ground
+        """The loop an RRR dyad (two circles) or an RRP dyad on a fixed guide closes."""
         x = step.point
         circles = [s for s in step.loci if isinstance(s, CircleSpec)]
         lines = [s for s in step.loci if isinstance(s, LineSpec)]
         if len(circles) == 2:
-            fixed = [c for c in circles if ctx.is_fixed(c.center)]
-            moving = [c for c in circles if not ctx.is_fixed(c.center)]
-            if len(fixed) != 1 or len(moving) != 1:
-                raise LoopUnavailable(
-                    f"the dyad at {x} is not a four-bar loop (one centre on a "
-                    "crank, the other fixed)"
-                )
-            coupler, rocker = moving[0], fixed[0]
-            crank = self.crank_of(coupler.center)
-            pivot = self.rotating[crank]
-            for link in (coupler.link, rocker.link):
-                self.number(link)
-            self.solved.update((coupler.link, rocker.link))
-            self.rotating[rocker.link] = rocker.center
-            return Loop(
-                "four-bar",
-                [
-                    Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
-                    Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
-                ],
-                [
-                    Member("ground", pivot, rocker.center, self.numbers[ground]),
-                    Member("rotating", rocker.center, x, self.numbers[rocker.link], rocker.link),
-                ],
-                [coupler.link, rocker.link],
-                joint=x,
-            )
+            return self.four_bar_loop(x, circles[0], circles[1])
         if len(circles) == 1 and len(lines) == 1:
-            coupler, line = circles[0], lines[0]
-            if line.guide != ground:
-                raise LoopUnavailable(
-                    f"{x} slides in a moving slot of {line.guide}: not a slider-crank loop"
-                )
-            if ctx.is_fixed(coupler.center):
-                raise LoopUnavailable(f"the dyad at {x} turns about a fixed point: no loop")
-            crank = self.crank_of(coupler.center)
-            pivot = self.rotating[crank]
-            self.number(coupler.link)
-            slider_number = str(len(self.numbers) + 1)
-            self.numbers[f"slider at {x}"] = slider_number
-            self.solved.add(coupler.link)
-            slot = ctx.slot(line.guide, x)
-            return Loop(
-                "slider-crank",
-                [
-                    Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
-                    Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
-                ],
-                [Member("slider", pivot, x, slider_number, slot=slot)],
-                [coupler.link],
-                slot,
-                joint=x,
-            )
+            return self.slider_crank_loop(x, circles[0], lines[0])
         raise LoopUnavailable(
             f"{x} is carried by two slots: not a four-bar, slider-crank or slotted-lever loop"
+        )
+
+    def four_bar_loop(self, x: str, first: CircleSpec, second: CircleSpec) -> Loop:
+        """a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) + a4 e^(i th14): crank, coupler about
+        the crank's moving point, ground, rocker about a fixed pivot."""
+        ctx, ground = self.ctx, self.ctx.scene.ground
+        fixed = [c for c in (first, second) if ctx.is_fixed(c.center)]
+        moving = [c for c in (first, second) if not ctx.is_fixed(c.center)]
+        if len(fixed) != 1 or len(moving) != 1:
+            raise LoopUnavailable(
+                f"the dyad at {x} is not a four-bar loop (one centre on a crank, the other fixed)"
+            )
+        coupler, rocker = moving[0], fixed[0]
+        crank = self.crank_of(coupler.center)
+        pivot = self.rotating[crank]
+        for link in (coupler.link, rocker.link):
+            self.number(link)
+        self.solved.update((coupler.link, rocker.link))
+        self.rotating[rocker.link] = rocker.center
+        return Loop(
+            "four-bar",
+            [
+                Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
+            ],
+            [
+                Member("ground", pivot, rocker.center, self.numbers[ground]),
+                Member("rotating", rocker.center, x, self.numbers[rocker.link], rocker.link),
+            ],
+            [coupler.link, rocker.link],
+            joint=x,
+        )
+
+    def slider_crank_loop(self, x: str, coupler: CircleSpec, line: LineSpec) -> Loop:
+        """a2 e^(i th12) + a3 e^(i th13) = (s14 + i c1) e^(i phi): crank, coupler about the
+        crank's moving point, the slider along a fixed guide."""
+        ctx = self.ctx
+        if line.guide != ctx.scene.ground:
+            raise LoopUnavailable(
+                f"{x} slides in a moving slot of {line.guide}: not a slider-crank loop"
+            )
+        if ctx.is_fixed(coupler.center):
+            raise LoopUnavailable(f"the dyad at {x} turns about a fixed point: no loop")
+        crank = self.crank_of(coupler.center)
+        pivot = self.rotating[crank]
+        self.number(coupler.link)
+        slider_number = str(len(self.numbers) + 1)
+        self.numbers[f"slider at {x}"] = slider_number
+        self.solved.add(coupler.link)
+        slot = ctx.slot(line.guide, x)
+        return Loop(
+            "slider-crank",
+            [
+                Member("rotating", pivot, coupler.center, self.numbers[crank], crank),
+                Member("rotating", coupler.center, x, self.numbers[coupler.link], coupler.link),
+            ],
+            [Member("slider", pivot, x, slider_number, slot=slot)],
+            [coupler.link],
+            slot,
+            joint=x,
         )
 
     def lever_loop(self, step: LeverStep) -> Loop:
@@ -381,32 +407,32 @@ class LoopMethod:
         """Seed 001's position for a slider-crank loop, in the guide's frame (times e^(-i phi)):
         imaginary part a2 sin(th12 - phi) + a3 sin(th13 - phi) = c gives th13, the real part
         s14 = a2 cos(th12 - phi) + a3 cos(th13 - phi)."""
-        crank, coupler = loop.left
-        slider = loop.right[0]
-        n2, n3, n4 = crank.number, coupler.number, slider.number
         b = self.ctx.builder("position.loop", f"Loop {index}: the position in closed form")
+        found = self.slider_crank_values(b, loop)
+        self.slider_crank_lines(b, loop, found)
+        return b.build()
+
+    def slider_crank_values(self, b: StepBuilder, loop: Loop) -> SliderCrankClosedForm:
+        """sin(th13 - phi) = (c - a2 sin(th12 - phi)) / a3 and s14 = a2 cos(th12 - phi) +
+        a3 cos(th13 - phi), each piece of arithmetic put with its check."""
+        crank, coupler = loop.left
+        n2, n3, n4 = crank.number, coupler.number, loop.right[0].number
         a2, th12 = self.register_member(b, crank)
         a3, th13 = self.register_member(b, coupler)
-        s14, phi = self.register_member(b, slider)
+        s14, phi = self.register_member(b, loop.right[0])
         c = f"c{n4}"
         one = b.put("1", 1.0, "")
         rel = {}
         for name, th in ((n2, th12), (n3, th13)):
             d = b.put(f"theta1{name} - phi{n4}", b.scalar(th) - b.scalar(phi), "rad")
             b.check("sum", d, th, f"-{phi}")
-            e = b.put(
-                f"e^(i(theta1{name} - phi{n4}))", (math.cos(b.scalar(d)), math.sin(b.scalar(d))), ""
-            )
-            b.check("phasor", e, one, d)
-            rel[name] = e
+            turned = (math.cos(b.scalar(d)), math.sin(b.scalar(d)))
+            rel[name] = b.put(f"e^(i(theta1{name} - phi{n4}))", turned, "")
+            b.check("phasor", rel[name], one, d)
         lift = b.put(f"a{n2} sin", b.scalar(a2) * b.vector(rel[n2])[1], "m")
         b.check("product", lift, a2, f"{rel[n2]}[1]")
-        num = b.put(
-            f"c{n4} - a{n2} sin",
-            b.scalar(c) - b.scalar(lift),
-            "m",
-            reference=abs(b.scalar(c)) + abs(b.scalar(lift)),
-        )
+        reference = abs(b.scalar(c)) + abs(b.scalar(lift))
+        num = b.put(f"c{n4} - a{n2} sin", b.scalar(c) - b.scalar(lift), "m", reference=reference)
         b.check("sum", num, c, f"-{lift}")
         sin13 = b.put(f"sin(theta1{n3} - phi{n4})", b.scalar(num) / b.scalar(a3), "", reference=1.0)
         b.check("quotient", sin13, num, a3)
@@ -417,6 +443,11 @@ class LoopMethod:
         b.check("product", q3, a3, f"{rel[n3]}[0]")
         b.check("sum", s14, q2, q3)
         branch = "cos(theta13 - phi) > 0" if b.vector(rel[n3])[0] >= 0 else "cos(theta13 - phi) < 0"
+        return SliderCrankClosedForm(a3, th13, s14, c, lift, sin13, q2, q3, branch)
+
+    def slider_crank_lines(self, b: StepBuilder, loop: Loop, f: SliderCrankClosedForm) -> None:
+        """Write the closed form: Im and Re in the guide's frame, then the numbers."""
+        n2, n3, n4 = loop.left[0].number, loop.left[1].number, loop.right[0].number
         t2, t3, p4 = f"\\theta_{{1{n2}}}", f"\\theta_{{1{n3}}}", f"\\varphi_{{{n4}}}"
         sin2, sin3 = rf"\sin({t2} - {p4})", rf"\sin({t3} - {p4})"
         cos2, cos3 = rf"\cos({t2} - {p4})", rf"\cos({t3} - {p4})"
@@ -425,20 +456,19 @@ class LoopMethod:
             rf"{sin3} = \frac{{c_{{{n4}}} - a_{{{n2}}} {sin2}}}{{a_{{{n3}}}}}"
         )
         b.line(rf"&\text{{Re: }} s_{{1{n4}}} = a_{{{n2}}} {cos2} + a_{{{n3}}} {cos3}")
-        fraction = rf"\frac{{{b.num(c)} - {tex.paren(b.num(lift))}}}{{{b.num(a3)}}}"
-        b.line(rf"&{sin3} = {fraction} = {b.num(sin13)}, \quad {t3} = {b.numu(th13)}")
+        fraction = rf"\frac{{{b.num(f.c)} - {tex.paren(b.num(f.lift))}}}{{{b.num(f.a3)}}}"
+        b.line(rf"&{sin3} = {fraction} = {b.num(f.sin13)}, \quad {t3} = {b.numu(f.th13)}")
         b.line(
-            rf"&s_{{1{n4}}} = {b.num(q2)} {tex.signed(b.num(q3))} = "
-            rf"{tex.boxed_result(b.numu(s14))}"
+            rf"&s_{{1{n4}}} = {b.num(f.q2)} {tex.signed(b.num(f.q3))} = "
+            rf"{tex.boxed_result(b.numu(f.s14))}"
         )
         b.say(
             f"Turned into the guide's frame (times e^(-i phi{n4})), the imaginary part of the loop "
             f"gives sin(theta1{n3} - phi{n4}) = (c{n4} - a{n2} sin(theta1{n2} - phi{n4}))/a{n3} = "
-            f"{b.txtn(sin13)}, and the real part s1{n4} = a{n2} cos(theta1{n2} - phi{n4}) + "
-            f"a{n3} cos(theta1{n3} - phi{n4}) = {b.txt(s14)}. Of the two angles with this sine the "
-            f"one taken has {branch}, the assembly as drawn: theta1{n3} = {b.txt(th13)}."
+            f"{b.txtn(f.sin13)}, and the real part s1{n4} = a{n2} cos(theta1{n2} - phi{n4}) + "
+            f"a{n3} cos(theta1{n3} - phi{n4}) = {b.txt(f.s14)}. Of the two angles with this sine "
+            f"the one taken has {f.branch}, the assembly as drawn: theta1{n3} = {b.txt(f.th13)}."
         )
-        return b.build()
 
     def four_bar_closed_form_step(self, loop: Loop, index: int) -> Step:
         """The rocker's angle of a four-bar loop a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) +
@@ -616,94 +646,71 @@ class LoopMethod:
     def derivative_terms(
         self, loop: Loop, order: int, b: StepBuilder
     ) -> tuple[list[_Term], list[_Term]]:
-        """The terms of the first (order 1) or second (order 2) time derivative of each side."""
-        ctx = self.ctx
+        """The terms of the first (order 1) or second (order 2) time derivative of each side:
+        d/dt a e^(i th) = i a omega e^(i th), d/dt (s e^(i phi)) = s-dot e^(i phi) (the ground
+        vector is constant)."""
         sides: tuple[list[_Term], list[_Term]] = ([], [])
         for side, terms in ((loop.left, sides[0]), (loop.right, sides[1])):
             for m in side:
                 a, th = self.register_member(b, m)
-                n = m.number
-                if m.kind == "ground":
-                    continue
                 if m.kind == "slider":
-                    assert m.slot is not None
                     u = self.slide_unknown(m, order)
-                    terms.append(
-                        _Term(
-                            rf"{u.latex}\,e^{{i\varphi_{{{n}}}}}",
-                            f"{u.text} e^(i phi{n})",
-                            "phasor",
-                            [],
-                            (th, b.scalar(th)),
-                            1.0,
-                            u,
-                        )
-                    )
-                    continue
-                link = m.link
-                assert link is not None
-                omega, alpha = ctx.omega(link), ctx.alpha(link)
-                w_key = b.put(f"omega1{n}", omega, "rad/s", ("links", link, "omega"))
-                unknown = link in loop.unknown_links
-                rate = self.rate_unknown(link, n, order)
-                av, thv = b.scalar(a), b.scalar(th)
-                a_f = (a, av)
-                if m.kind == "slot":
-                    su = self.slide_unknown(m, order)
-                    beta = (f"beta{n}", b.scalar(f"beta{n}"))
-                    terms.append(
-                        _Term(
-                            rf"{su.latex}\,e^{{i\beta_{{{n}}}}}",
-                            f"{su.text} e^(i beta{n})",
-                            "phasor",
-                            [],
-                            beta,
-                            1.0,
-                            su,
-                        )
-                    )
-                    if order == ACCELERATION:
-                        sdot = self.slide_value(m, VELOCITY)
-                        sd_key = b.put(f"s_dot1{n}", sdot, "m/s")
-                        terms.append(
-                            _Term(
-                                rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}",
-                                f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)",
-                                "iphasor",
-                                [(w_key, omega), (sd_key, sdot)],
-                                beta,
-                                2.0,
-                            )
-                        )
-                if order == VELOCITY:
-                    name, known = "omega", (w_key, omega)
-                else:
-                    al_key = b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha"))
-                    name, known = "alpha", (al_key, alpha)
-                terms.append(  # d/dt a e^(i theta) = i a omega e^(i theta) (alpha likewise)
-                    _Term(
-                        rf"i\,a_{{{n}}}\,\{name}_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}",
-                        f"i a{n} {name}1{n} e^(i theta1{n})",
-                        "iphasor",
-                        [a_f] if unknown else [a_f, known],
-                        (th, thv),
-                        1.0,
-                        rate if unknown else None,
-                    )
-                )
-                if order == VELOCITY:
-                    continue
-                terms.append(
-                    _Term(
-                        rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}",
-                        f"- a{n} omega1{n} squared e^(i theta1{n})",
-                        "phasor",
-                        [a_f, (w_key, omega), (w_key, omega)],
-                        (th, thv),
-                        -1.0,
-                    )
-                )
+                    angle = (th, b.scalar(th))
+                    phasor = rf"{u.latex}\,e^{{i\varphi_{{{m.number}}}}}"
+                    text = f"{u.text} e^(i phi{m.number})"
+                    terms.append(_Term(phasor, text, "phasor", [], angle, 1.0, u))
+                elif m.kind != "ground":
+                    terms += self.link_terms(b, m, (a, th), order, m.link in loop.unknown_links)
         return sides
+
+    def link_terms(
+        self, b: StepBuilder, m: Member, keys: tuple[str, str], order: int, unknown: bool
+    ) -> list[_Term]:
+        """d/dt a e^(i th) = i a omega e^(i th); d2/dt2 = i a alpha e^(i th) - a omega^2 e^(i th)
+        (after the slot's own terms for a turning slot, ``slot_terms``)."""
+        link, n = m.link, m.number
+        assert link is not None
+        omega = self.ctx.omega(link)
+        w_key = b.put(f"omega1{n}", omega, "rad/s", ("links", link, "omega"))
+        a_f, angle = (keys[0], b.scalar(keys[0])), (keys[1], b.scalar(keys[1]))
+        terms = self.slot_terms(b, m, (w_key, omega), order) if m.kind == "slot" else []
+        if order == VELOCITY:
+            name, known = "omega", (w_key, omega)
+        else:
+            alpha = self.ctx.alpha(link)
+            name = "alpha"
+            known = (b.put(f"alpha1{n}", alpha, "rad/s^2", ("links", link, "alpha")), alpha)
+        phasor = rf"i\,a_{{{n}}}\,\{name}_{{1{n}}}\,e^{{i\theta_{{1{n}}}}}"
+        text = f"i a{n} {name}1{n} e^(i theta1{n})"
+        if unknown:
+            rate = self.rate_unknown(link, n, order)
+            terms.append(_Term(phasor, text, "iphasor", [a_f], angle, 1.0, rate))
+        else:
+            terms.append(_Term(phasor, text, "iphasor", [a_f, known], angle, 1.0))
+        if order == ACCELERATION:
+            phasor = rf"-a_{{{n}}}\,\omega_{{1{n}}}^2\,e^{{i\theta_{{1{n}}}}}"
+            text = f"- a{n} omega1{n} squared e^(i theta1{n})"
+            omega2 = [a_f, (w_key, omega), (w_key, omega)]
+            terms.append(_Term(phasor, text, "phasor", omega2, angle, -1.0))
+        return terms
+
+    def slot_terms(
+        self, b: StepBuilder, m: Member, omega: tuple[str, float], order: int
+    ) -> list[_Term]:
+        """The pin's slide in a turning slot: s-dot e^(i beta) (velocity); s-ddot e^(i beta) +
+        2 i omega s-dot e^(i beta), the Coriolis term (acceleration)."""
+        n = m.number
+        su = self.slide_unknown(m, order)
+        beta = (f"beta{n}", b.scalar(f"beta{n}"))
+        phasor = rf"{su.latex}\,e^{{i\beta_{{{n}}}}}"
+        terms = [_Term(phasor, f"{su.text} e^(i beta{n})", "phasor", [], beta, 1.0, su)]
+        if order == ACCELERATION:
+            s_dot = b.put(f"s_dot1{n}", self.slide_value(m, VELOCITY), "m/s")
+            coriolis = rf"2\,i\,\omega_{{1{n}}}\,\dot{{s}}_{{1{n}}}\,e^{{i\beta_{{{n}}}}}"
+            text = f"2 i omega1{n} s-dot1{n} e^(i beta{n}) (Coriolis)"
+            factors = [omega, (s_dot, self.slide_value(m, VELOCITY))]
+            terms.append(_Term(coriolis, text, "iphasor", factors, beta, 2.0))
+        return terms
 
     def rate_unknown(self, link: str, n: str, order: int) -> Unknown:
         ctx = self.ctx
@@ -767,41 +774,107 @@ class LoopMethod:
         return number + r"\," + t.unknown.latex
 
     def derivative_step(self, loop: Loop, index: int, order: int) -> Step:
-        ctx = self.ctx
+        """The loop differentiated once (twice): the terms with the unknown rates to the left,
+        the known terms to the right, sum(col_j u_j) = -sum(known), solved by Cramer's rule."""
         what, unit = MOTION[order]
-        b = ctx.builder(
+        b = self.ctx.builder(
             f"loop.{what}",
             f"Loop {index}: {what} equation "
             f"({'first' if order == VELOCITY else 'second'} time derivative)",
         )
         left, right = self.derivative_terms(loop, order, b)
-        known_keys: list[tuple[str, float]] = []
+        shown, known, columns = self.put_terms(b, left + right, len(left), unit)
+        coefficients, rhs = self.loop_system(b, known, columns, unit)
+        self.derivative_lines(b, (left, right), shown)
+        self.derivative_sentences(b, loop, index, order, (left, right))
+        b.say(
+            "Unknowns to the left, known terms to the right; the real and imaginary parts are "
+            "two linear equations:"
+        )
+        present_solution(b, [u for u, _, _ in columns], coefficients, rhs, "", cramer=True)
+        if loop.slot is not None and loop.kind != "four-bar":
+            self.slide_in_slot(b, loop, [u for u, _, _ in columns], order)
+        return b.build()
+
+    def put_terms(
+        self, b: StepBuilder, terms: list[_Term], n_left: int, unit: str
+    ) -> tuple[list[str], list[tuple[str, float]], list[tuple[Unknown, str, float]]]:
+        """Put each term's value: a known term as term1, term2... and the coefficient of an
+        unknown as col(u); returns the keys in order, the known terms and the unknowns' columns,
+        each with its side (+1 left, -1 right)."""
+        shown: list[str] = []
+        known: list[tuple[str, float]] = []
         columns: list[tuple[Unknown, str, float]] = []
-        shown: dict[int, str] = {}
-        for side_sign, terms in ((1.0, left), (-1.0, right)):
-            for t in terms:
-                if t.unknown is not None:
-                    key = t.put(b, f"col({t.unknown.key})", "")
-                    columns.append((t.unknown, key, side_sign))
-                else:
-                    key = t.put(b, f"term{len(known_keys) + 1}", unit)
-                    known_keys.append((key, side_sign))
-                shown[id(t)] = key
+        for k, t in enumerate(terms):
+            side_sign = 1.0 if k < n_left else -1.0
+            if t.unknown is not None:
+                shown.append(t.put(b, f"col({t.unknown.key})", ""))
+                columns.append((t.unknown, shown[-1], side_sign))
+            else:
+                shown.append(t.put(b, f"term{len(known) + 1}", unit))
+                known.append((shown[-1], side_sign))
+        return shown, known, columns
+
+    def loop_system(
+        self,
+        b: StepBuilder,
+        known: list[tuple[str, float]],
+        columns: list[tuple[Unknown, str, float]],
+        unit: str,
+    ) -> tuple[list[list[str]], list[str]]:
+        """sum(side * col_j) u_j = -sum(side * known) in real and imaginary parts: the
+        coefficients c_ij and right-hand sides b_i, with their checks."""
+        known_total = np.zeros(2)
+        for k, s in known:
+            known_total = known_total + s * np.asarray(b.vector(k))
+        rhs_vec = b.put("rhs", -known_total, unit)
+        b.check("sum", rhs_vec, *[("-" if s > 0 else "") + k for k, s in known])
+        coefficients: list[list[str]] = [[], []]
+        rhs = []
+        known_size = sum(math.hypot(*b.vector(k)) for k, _ in known)
+        for i in range(2):
+            for j, (_, key, sign) in enumerate(columns):
+                reference = math.hypot(*b.vector(key))
+                c = b.put(f"c{i + 1}{j + 1}", sign * b.vector(key)[i], "", reference=reference)
+                b.check("sum", c, f"{'-' if sign < 0 else ''}{key}[{i}]")
+                coefficients[i].append(c)
+            bi = b.put(f"b{i + 1}", b.vector(rhs_vec)[i], "", reference=known_size)
+            b.check("sum", bi, f"{rhs_vec}[{i}]")
+            rhs.append(bi)
+        return coefficients, rhs
+
+    def derivative_lines(
+        self,
+        b: StepBuilder,
+        sides: tuple[list[_Term], list[_Term]],
+        shown: list[str],
+    ) -> None:
+        """Write the differentiated loop in symbols, then with the numbers (``shown``: the keys
+        of the terms, left side first)."""
+        left, right = sides
         sym_left = " + ".join(t.latex for t in left).replace("+ -", "- ")
         sym_right = " + ".join(t.latex for t in right).replace("+ -", "- ") or "0"
         b.line(rf"&{sym_left} = {sym_right}")
-        num_left = join_sum([self.term_latex_number(b, t, shown[id(t)]) for t in left])
-        num_right = join_sum([self.term_latex_number(b, t, shown[id(t)]) for t in right])
+        numbers = [
+            self.term_latex_number(b, t, k) for t, k in zip(left + right, shown, strict=True)
+        ]
+        num_left, num_right = join_sum(numbers[: len(left)]), join_sum(numbers[len(left) :])
         b.line(rf"&{num_left} = {num_right}")
-        text_left = " + ".join(t.text for t in left).replace("+ -", "-")
-        text_right = (" + ".join(t.text for t in right) or "0").replace("+ -", "-")
+
+    def derivative_sentences(
+        self, b: StepBuilder, loop: Loop, index: int, order: int, sides: tuple[list[_Term], ...]
+    ) -> None:
+        """Say how the loop was differentiated, and why it is the vector method's equation."""
+        text_left = " + ".join(t.text for t in sides[0]).replace("+ -", "-")
+        text_right = (" + ".join(t.text for t in sides[1]) or "0").replace("+ -", "-")
+        sliding = any(m.kind in ("slider", "slot") for m in (*loop.left, *loop.right))
         b.say(
             f"Differentiating the loop {'once' if order == VELOCITY else 'twice'} with respect "
             "to time ("
             + (
                 "the lengths a of the links are constant, while the slider's s varies and is "
                 "differentiated as an unknown; "
-                if any(m.kind in ("slider", "slot") for m in (*loop.left, *loop.right))
+                if sliding
                 else "the lengths of the links are constant; "
             )
             + "d/dt e^(i theta) = i omega e^(i theta)): "
@@ -818,45 +891,24 @@ class LoopMethod:
                 "The term 2 i omega s-dot e^(i beta) is the Coriolis acceleration of the pin in "
                 "the turning slot (with the factor 2)."
             )
-        # unknowns to the left, knowns to the right: sum(side * col * u) = -sum(side * known)
-        known_total = np.zeros(2)
-        for k, s in known_keys:
-            known_total = known_total + s * np.asarray(b.vector(k))
-        rhs_vec = b.put("rhs", -known_total, unit)
-        b.check("sum", rhs_vec, *[("-" if s > 0 else "") + k for k, s in known_keys])
-        coefficients: list[list[str]] = [[], []]
-        rhs = []
-        known_size = sum(math.hypot(*b.vector(k)) for k, _ in known_keys)
-        for i in range(2):
-            for j, (_, key, sign) in enumerate(columns):
-                c = b.put(
-                    f"c{i + 1}{j + 1}",
-                    sign * b.vector(key)[i],
-                    "",
-                    reference=math.hypot(*b.vector(key)),
-                )
-                b.check("sum", c, f"{'-' if sign < 0 else ''}{key}[{i}]")
-                coefficients[i].append(c)
-            bi = b.put(f"b{i + 1}", b.vector(rhs_vec)[i], "", reference=known_size)
-            b.check("sum", bi, f"{rhs_vec}[{i}]")
-            rhs.append(bi)
+
+    def slide_in_slot(
+        self, b: StepBuilder, loop: Loop, unknowns: list[Unknown], order: int
+    ) -> None:
+        """s-dot (s-ddot) = u . v_rel (a_rel): the sliding unknown is the relative motion's
+        component along the slot."""
+        assert loop.slot is not None
+        what, unit = MOTION[order]
+        field_name = "relative_velocity" if order == VELOCITY else "relative_acceleration"
+        rel = getattr(loop.slot, field_name)
+        r = b.put(f"{what[0]}_rel({loop.joint})", rel, unit, loop.slot.source(field_name))
+        direction = b.put("u", loop.slot.direction, "")
+        slide = next(u for u in unknowns if u.key.startswith("s_"))
+        b.check("dot", slide.key, r, direction)
         b.say(
-            "Unknowns to the left, known terms to the right; the real and imaginary parts are "
-            "two linear equations:"
+            f"{slide.text} is the component along the slot of the relative "
+            f"{what} of {loop.joint}: {b.txt(r)}."
         )
-        present_solution(b, [u for u, _, _ in columns], coefficients, rhs, "", cramer=True)
-        if loop.slot is not None and loop.kind != "four-bar":
-            field_name = "relative_velocity" if order == VELOCITY else "relative_acceleration"
-            rel = getattr(loop.slot, field_name)
-            r = b.put(f"{what[0]}_rel({loop.joint})", rel, unit, loop.slot.source(field_name))
-            direction = b.put("u", loop.slot.direction, "")
-            slide = next(u_ for u_, _, _ in columns if u_.key.startswith("s_"))
-            b.check("dot", slide.key, r, direction)
-            b.say(
-                f"{slide.text} is the component along the slot of the relative "
-                f"{what} of {loop.joint}: {b.txt(r)}."
-            )
-        return b.build()
 
     def joint_motion_step(self, loop: Loop, index: int, order: int) -> Step | None:
         """v (a) of the loop's joint as the sum of the left side's derivative terms."""
