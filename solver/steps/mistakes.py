@@ -19,6 +19,7 @@ import numpy as np
 
 from solver.relative_motion import MovingPointMotion
 from solver.rigid import perp
+from solver.scene import MovingPoint
 from solver.spatial import SpatialAnalysis, SpatialChain
 from solver.steps.format import Formatter
 from solver.steps.linkage import LinkageContext, k_cross
@@ -337,115 +338,141 @@ class LinkageMistakes:
     # --- moving points --------------------------------------------------------------------------
 
     def moving_points(self) -> None:
-        ctx, fmt = self.ctx, self.fmt
-        moving: dict[str, MovingPointMotion] = getattr(ctx.analysis, "moving_points", {}) or {}
-        for mp in ctx.scene.moving_points:
+        """The slips with a point moving on a link (seed 003): the carrier's rate in v_rel, the
+        factor 2 of a_Cor = 2 omega x v_rel, a_Cor on a translating carrier, the sense of
+        a_rel^tau and the transport velocity taken at the path's centre."""
+        moving: dict[str, MovingPointMotion] = getattr(self.ctx.analysis, "moving_points", {}) or {}
+        for mp in self.ctx.scene.moving_points:
             m = moving.get(mp.name)
             if m is None:
                 continue
-            omega = float(m.omega_carrier)
-            v_rel = np.asarray(m.relative_velocity)
-            if (
-                mp.path.type == "arc"
-                and mp.path.center is not None
-                and self.nonzero(omega, "rad/s")
-            ):
-                radius = float(np.hypot(*(np.asarray(m.position) - ctx.pos(mp.path.center))))
-                speed = float(np.hypot(*v_rel))
-                if speed > 0:
-                    tau = v_rel / speed * np.sign(float(m.s_dot) or 1.0)
-                    wrong = v_rel + omega * radius * tau
-                    self.out.append(
-                        _mistake(
-                            fmt,
-                            "relative.carrier_rate",
-                            "No carrier rate in the relative velocity",
-                            f"The relative velocity of {mp.name} is what an observer on {mp.link} "
-                            "sees: s-dot along the path's tangent. Adding the carrier's rotation "
-                            "(R (theta-dot + phi-dot)) counts the transport motion twice.",
-                            wrong,
-                            v_rel,
-                            "m/s",
-                            ("relative.relative_velocity", mp.name),
-                        )
-                    )
-                self.out.append(
-                    _mistake(
-                        fmt,
-                        "coriolis.factor_2",
-                        "The factor 2 in the Coriolis term",
-                        f"a_Cor({mp.name}) = 2 omega({mp.link}) x v_rel, not omega x v_rel.",
-                        k_cross(omega, v_rel),
-                        np.asarray(m.coriolis_acceleration),
-                        "m/s^2",
-                        ("relative.coriolis", mp.name),
-                    )
-                )
-            if not self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s"):
-                turning = [
-                    j
-                    for j in ctx.scene.joints
-                    if j.type == "revolute"
-                    and mp.link in j.links
-                    and self.nonzero(
-                        ctx.omega(j.links[0] if j.links[1] == mp.link else j.links[1]), "rad/s"
-                    )
-                ]
-                if turning:
-                    joint = turning[0]
-                    other = joint.links[0] if joint.links[1] == mp.link else joint.links[1]
-                    self.out.append(
-                        _mistake(
-                            fmt,
-                            "coriolis.translating_carrier",
-                            "No Coriolis term on a translating carrier",
-                            f"The carrier {mp.link} translates (omega = 0), so a_Cor = 0 "
-                            f"even though link {other} that drives it turns "
-                            f"(omega({other}) = {fmt.text_value(ctx.omega(other), 'rad/s')}); the "
-                            "Coriolis term uses the carrier's angular velocity only.",
-                            2.0 * k_cross(ctx.omega(other), v_rel),
-                            np.asarray(m.coriolis_acceleration),
-                            "m/s^2",
-                            ("relative.coriolis", mp.name),
-                        )
-                    )
-            tangential = np.asarray(m.relative_tangential)
-            if mp.path.type == "arc" and self.nonzero(tangential, "m/s^2"):
-                self.out.append(
-                    _mistake(
-                        fmt,
-                        "relative.tangential_sense",
-                        "The sense of the tangential relative acceleration",
-                        f"a_rel^tau = s-double-dot tau points along the direction of increasing s "
-                        f"({mp.path.direction} on the arc). Writing it as eps_rel x r with "
-                        "eps_rel counter-clockwise when M runs clockwise (seed 003, task 1) "
-                        "reverses it.",
-                        np.asarray(m.relative_acceleration) - 2.0 * tangential,
-                        np.asarray(m.relative_acceleration),
-                        "m/s^2",
-                        ("relative.relative_acceleration", mp.name),
-                    )
-                )
-            if (
-                mp.path.type == "arc"
-                and mp.path.center is not None
-                and self.nonzero(omega, "rad/s")
-            ):
-                centre = mp.path.center
-                self.out.append(
-                    _mistake(
-                        fmt,
-                        "relative.transport_point",
-                        "Transport velocity at M itself",
-                        "The transport velocity is the velocity of the carrier's point that "
-                        f"coincides with {mp.name} (omega x r to {mp.name}), not that of the "
-                        f"path's centre {centre} or of another reference point.",
-                        ctx.vel(centre),
-                        np.asarray(m.transport_velocity),
-                        "m/s",
-                        ("relative.transport_velocity", mp.name),
-                    )
-                )
+            centre = self.turning_arc_centre(mp, m)
+            if centre is not None:
+                self.carrier_rate(mp, m, centre)
+                self.coriolis_factor(mp, m)
+            self.translating_carrier(mp, m)
+            self.tangential_sense(mp, m)
+            if centre is not None:
+                self.transport_point(mp, m, centre)
+
+    def turning_arc_centre(self, mp: MovingPoint, m: MovingPointMotion) -> str | None:
+        """The centre of an arc path on a carrier that turns (omega != 0), else None."""
+        if mp.path.type == "arc" and self.nonzero(float(m.omega_carrier), "rad/s"):
+            return mp.path.center
+        return None
+
+    def carrier_rate(self, mp: MovingPoint, m: MovingPointMotion, centre: str) -> None:
+        """v_rel = s_dot tau; the slip adds the carrier's rotation, v_rel + omega R tau."""
+        v_rel = np.asarray(m.relative_velocity)
+        speed = float(np.hypot(*v_rel))
+        if speed == 0:
+            return
+        radius = float(np.hypot(*(np.asarray(m.position) - self.ctx.pos(centre))))
+        tau = v_rel / speed * np.sign(float(m.s_dot) or 1.0)
+        self.out.append(
+            _mistake(
+                self.fmt,
+                "relative.carrier_rate",
+                "No carrier rate in the relative velocity",
+                f"The relative velocity of {mp.name} is what an observer on {mp.link} "
+                "sees: s-dot along the path's tangent. Adding the carrier's rotation "
+                "(R (theta-dot + phi-dot)) counts the transport motion twice.",
+                v_rel + float(m.omega_carrier) * radius * tau,
+                v_rel,
+                "m/s",
+                ("relative.relative_velocity", mp.name),
+            )
+        )
+
+    def coriolis_factor(self, mp: MovingPoint, m: MovingPointMotion) -> None:
+        """a_Cor = 2 omega x v_rel; the slip drops the 2."""
+        self.out.append(
+            _mistake(
+                self.fmt,
+                "coriolis.factor_2",
+                "The factor 2 in the Coriolis term",
+                f"a_Cor({mp.name}) = 2 omega({mp.link}) x v_rel, not omega x v_rel.",
+                k_cross(float(m.omega_carrier), np.asarray(m.relative_velocity)),
+                np.asarray(m.coriolis_acceleration),
+                "m/s^2",
+                ("relative.coriolis", mp.name),
+            )
+        )
+
+    def turning_neighbour(self, link: str) -> str | None:
+        """A link that turns (omega != 0) and is pinned to ``link`` by a revolute joint."""
+        ctx = self.ctx
+        for joint in ctx.scene.joints:
+            if joint.type != "revolute" or link not in joint.links:
+                continue
+            other = joint.links[0] if joint.links[1] == link else joint.links[1]
+            if self.nonzero(ctx.omega(other), "rad/s"):
+                return other
+        return None
+
+    def translating_carrier(self, mp: MovingPoint, m: MovingPointMotion) -> None:
+        """a_Cor = 2 omega_carrier x v_rel = 0 on a translating carrier; the slip takes the
+        omega of the turning link that drives it."""
+        v_rel = np.asarray(m.relative_velocity)
+        if self.nonzero(float(m.omega_carrier), "rad/s") or not self.nonzero(v_rel, "m/s"):
+            return
+        other = self.turning_neighbour(mp.link)
+        if other is None:
+            return
+        self.out.append(
+            _mistake(
+                self.fmt,
+                "coriolis.translating_carrier",
+                "No Coriolis term on a translating carrier",
+                f"The carrier {mp.link} translates (omega = 0), so a_Cor = 0 even though link "
+                f"{other} that drives it turns (omega({other}) = "
+                f"{self.fmt.text_value(self.ctx.omega(other), 'rad/s')}); the Coriolis term "
+                "uses the carrier's angular velocity only.",
+                2.0 * k_cross(self.ctx.omega(other), v_rel),
+                np.asarray(m.coriolis_acceleration),
+                "m/s^2",
+                ("relative.coriolis", mp.name),
+            )
+        )
+
+    def tangential_sense(self, mp: MovingPoint, m: MovingPointMotion) -> None:
+        """a_rel = a_rel^n + s_ddot tau; the slip reverses the tangential part:
+        a_rel - 2 a_rel^tau."""
+        tangential = np.asarray(m.relative_tangential)
+        if mp.path.type != "arc" or not self.nonzero(tangential, "m/s^2"):
+            return
+        self.out.append(
+            _mistake(
+                self.fmt,
+                "relative.tangential_sense",
+                "The sense of the tangential relative acceleration",
+                f"a_rel^tau = s-double-dot tau points along the direction of increasing s "
+                f"({mp.path.direction} on the arc). Writing it as eps_rel x r with "
+                "eps_rel counter-clockwise when M runs clockwise (seed 003, task 1) "
+                "reverses it.",
+                np.asarray(m.relative_acceleration) - 2.0 * tangential,
+                np.asarray(m.relative_acceleration),
+                "m/s^2",
+                ("relative.relative_acceleration", mp.name),
+            )
+        )
+
+    def transport_point(self, mp: MovingPoint, m: MovingPointMotion, centre: str) -> None:
+        """v_transport = v of the carrier's point at M; the slip takes the path centre's v."""
+        self.out.append(
+            _mistake(
+                self.fmt,
+                "relative.transport_point",
+                "Transport velocity at M itself",
+                "The transport velocity is the velocity of the carrier's point that "
+                f"coincides with {mp.name} (omega x r to {mp.name}), not that of the "
+                f"path's centre {centre} or of another reference point.",
+                self.ctx.vel(centre),
+                np.asarray(m.transport_velocity),
+                "m/s",
+                ("relative.transport_velocity", mp.name),
+            )
+        )
 
     # --- the other slips of the seeds (ERRATA.md) ------------------------------------------------
 
@@ -601,86 +628,105 @@ def linkage_mistakes(ctx: LinkageContext) -> list[Mistake]:
     return LinkageMistakes(ctx).all()
 
 
+# What every spatial solution warns about, with no number to compute.
+SPATIAL_NOTES = (
+    Mistake(
+        "spatial.unit_vectors",
+        "Cross products of unit vectors",
+        "Unit vectors cross in cyclic order: E1 x E2 = E3, E2 x E3 = E1, E3 x E1 = "
+        "E2 (and reversed order gives the minus sign). E3 x E1 is E2, not E1.",
+        anchors=(("spatial.axis_rate", ""),),
+    ),
+    Mistake(
+        "spatial.rigid_points",
+        "Coriolis and relative terms of fixed points",
+        "A point fixed in its body has v_rel = 0 and a_rel = 0: of the five terms "
+        "only a_O, alpha x r and omega x (omega x r) remain. They reappear for a "
+        "point carried by a prismatic joint.",
+        anchors=(("spatial.point.acceleration", ""),),
+    ),
+)
+
+
 def spatial_mistakes(
     chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter
 ) -> list[Mistake]:
     """The typical mistakes for a spatial chain (seed 002)."""
-    out: list[Mistake] = []
+    found = (
+        _axis_rate_mistake(chain, analysis, fmt),
+        _centripetal_order_mistake(chain, analysis, fmt),
+        _spatial_coriolis_mistake(chain, analysis, fmt),
+    )
+    return [m for m in found if m is not None] + list(SPATIAL_NOTES)
+
+
+def _axis_rate_mistake(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter
+) -> Mistake | None:
+    """alpha_k = alpha_{k-1} + rate_dot e + rate (omega x e); the slip leaves out the last term,
+    at the first revolute joint where that changes alpha."""
     for joint in chain.joints:
         body = analysis.bodies[joint.name]
-        if joint.type == "revolute" and joint.rate != 0 and np.linalg.norm(body.axis_rate) > 0:
-            wrong = body.alpha - joint.rate * body.axis_rate
-            scale = max(1.0, float(np.linalg.norm(body.alpha)))
-            if float(np.linalg.norm(wrong - body.alpha)) > 1e-12 * scale:
-                out.append(
-                    _mistake(
-                        fmt,
-                        "spatial.axis_rate",
-                        "The turning axis in alpha",
-                        f"Axis e({joint.name}) is fixed in the body before it, which turns: "
-                        "d/dt (rate e) = rate-dot e + rate (omega x e). Leaving out omega x e "
-                        f"gives a wrong alpha({joint.name}).",
-                        wrong,
-                        body.alpha,
-                        "rad/s^2",
-                        ("spatial.alpha", f"body {joint.name}"),
-                    )
-                )
-                break
+        if joint.type != "revolute" or joint.rate == 0 or np.linalg.norm(body.axis_rate) == 0:
+            continue
+        wrong = body.alpha - joint.rate * body.axis_rate
+        scale = max(1.0, float(np.linalg.norm(body.alpha)))
+        if float(np.linalg.norm(wrong - body.alpha)) > 1e-12 * scale:
+            return _mistake(
+                fmt,
+                "spatial.axis_rate",
+                "The turning axis in alpha",
+                f"Axis e({joint.name}) is fixed in the body before it, which turns: "
+                "d/dt (rate e) = rate-dot e + rate (omega x e). Leaving out omega x e "
+                f"gives a wrong alpha({joint.name}).",
+                wrong,
+                body.alpha,
+                "rad/s^2",
+                ("spatial.alpha", f"body {joint.name}"),
+            )
+    return None
+
+
+def _centripetal_order_mistake(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter
+) -> Mistake | None:
+    """omega x (omega x r) written (omega x r) x omega: a - 2 a_n, at the first point with one."""
     for point in chain.points:
         motion = analysis.points[point.name]
         if np.linalg.norm(motion.centripetal) > 0:
-            out.append(
-                _mistake(
-                    fmt,
-                    "spatial.centripetal_order",
-                    "The order in omega x (omega x r)",
-                    f"The centripetal term of {point.name} is omega x (omega x r), pointing "
-                    "towards the axis; (omega x r) x omega has the opposite sign.",
-                    motion.acceleration - 2.0 * motion.centripetal,
-                    motion.acceleration,
-                    "m/s^2",
-                    ("spatial.point.acceleration", f"of {point.name}"),
-                )
+            return _mistake(
+                fmt,
+                "spatial.centripetal_order",
+                "The order in omega x (omega x r)",
+                f"The centripetal term of {point.name} is omega x (omega x r), pointing "
+                "towards the axis; (omega x r) x omega has the opposite sign.",
+                motion.acceleration - 2.0 * motion.centripetal,
+                motion.acceleration,
+                "m/s^2",
+                ("spatial.point.acceleration", f"of {point.name}"),
             )
-            break
+    return None
+
+
+def _spatial_coriolis_mistake(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter
+) -> Mistake | None:
+    """a_Cor = 2 omega x v_rel written without the 2: a - a_Cor / 2, at the first point with one."""
     for point in chain.points:
         motion = analysis.points[point.name]
         if float(np.linalg.norm(motion.coriolis)) > 0:
-            out.append(
-                _mistake(
-                    fmt,
-                    "coriolis.factor_2",
-                    "The factor 2 in the Coriolis term",
-                    f"{point.name} is carried by a sliding joint in a turning body: its Coriolis "
-                    "term is 2 omega x v_rel, not omega x v_rel.",
-                    motion.acceleration - 0.5 * motion.coriolis,
-                    motion.acceleration,
-                    "m/s^2",
-                    ("spatial.point.acceleration", f"of {point.name}"),
-                )
+            return _mistake(
+                fmt,
+                "coriolis.factor_2",
+                "The factor 2 in the Coriolis term",
+                f"{point.name} is carried by a sliding joint in a turning body: its Coriolis "
+                "term is 2 omega x v_rel, not omega x v_rel.",
+                motion.acceleration - 0.5 * motion.coriolis,
+                motion.acceleration,
+                "m/s^2",
+                ("spatial.point.acceleration", f"of {point.name}"),
             )
-            break
-    out.append(
-        Mistake(
-            "spatial.unit_vectors",
-            "Cross products of unit vectors",
-            "Unit vectors cross in cyclic order: E1 x E2 = E3, E2 x E3 = E1, E3 x E1 = "
-            "E2 (and reversed order gives the minus sign). E3 x E1 is E2, not E1.",
-            anchors=(("spatial.axis_rate", ""),),
-        )
-    )
-    out.append(
-        Mistake(
-            "spatial.rigid_points",
-            "Coriolis and relative terms of fixed points",
-            "A point fixed in its body has v_rel = 0 and a_rel = 0: of the five terms "
-            "only a_O, alpha x r and omega x (omega x r) remain. They reappear for a "
-            "point carried by a prismatic joint.",
-            anchors=(("spatial.point.acceleration", ""),),
-        )
-    )
-    return out
+    return None
 
 
 def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:

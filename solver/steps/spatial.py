@@ -33,6 +33,7 @@ from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
+from solver.steps.linkage import speed_trend
 from solver.steps.model import Step
 
 V0 = r"\vec{0}"
@@ -616,7 +617,7 @@ class SpatialSteps:
         axis = b.put(f"u({name})", body.omega / size, "")
         power = _put_power(b, f"omega.alpha({name})", body.omega, body.alpha, "rad^2/s^3")
         b.check("dot", power, w, al)
-        trend = _trend(b, power, "at a steady rate")
+        trend = speed_trend(b, power, "at a steady rate")
         turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
         if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
             trend += ", and the axis itself turns (alpha is not along omega)"
@@ -653,7 +654,7 @@ class SpatialSteps:
         b.check("dot", power, v, a)
         words = (
             f"{name} moves at a speed of {b.txt(speed)}, mostly "
-            f"{_nearest_axis(motion.velocity)}, {_trend(b, power, 'at a steady speed')}"
+            f"{_nearest_axis(motion.velocity)}, {speed_trend(b, power, 'at a steady speed')}"
         )
         b.line(
             rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
@@ -760,13 +761,6 @@ def _put_power(b: StepBuilder, key: str, rate: np.ndarray, change: np.ndarray, u
     """x . x_dot, which has the sign of d|x|/dt; shown as 0 below the rounding of |x| |x_dot|."""
     reference = float(np.linalg.norm(rate)) * float(np.linalg.norm(change))
     return b.put(key, float(np.dot(rate, change)), unit, reference=reference)
-
-
-def _trend(b: StepBuilder, power: str, steady: str) -> str:
-    """The sign of x . x_dot in words: steady (shown as 0), speeding up or slowing down."""
-    if b.is_zero(power):
-        return steady
-    return "speeding up" if b.scalar(power) > 0 else "slowing down"
 
 
 def _write_at_rest(b: StepBuilder, size: str, speed: str, words: str) -> None:
