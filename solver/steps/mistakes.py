@@ -22,7 +22,7 @@ from solver.rigid import perp
 from solver.scene import MovingPoint
 from solver.spatial import SpatialAnalysis, SpatialChain
 from solver.steps.format import Formatter
-from solver.steps.linkage import LinkageContext, k_cross
+from solver.steps.linkage import LinkageContext, SlotMotion, k_cross
 from solver.steps.model import Mistake, Step, Value
 from solver.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
 
@@ -86,6 +86,15 @@ def _solve2(columns: tuple[np.ndarray, np.ndarray], rhs: np.ndarray) -> np.ndarr
     return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
 
 
+def _lever_anchors(step: LeverStep) -> tuple[tuple[str, str], ...]:
+    """Where a slip in a lever's Coriolis term shows: its Coriolis, lever or loop step."""
+    return (
+        ("acceleration.coriolis", step.pin),
+        ("acceleration.lever", step.pin),
+        ("loop.acceleration", ""),
+    )
+
+
 class LinkageMistakes:
     def __init__(self, ctx: LinkageContext) -> None:
         self.ctx = ctx
@@ -111,19 +120,34 @@ class LinkageMistakes:
                         self.slot_coriolis(step, spec)
 
     def lever_coriolis(self, step: LeverStep) -> None:
-        ctx, fmt = self.ctx, self.fmt
-        slot = ctx.slot(step.link, step.pin)
-        omega = slot.omega_guide
-        v_rel = slot.relative_velocity
+        """a_Cor = 2 omega x v_rel of a pin in a turning lever's slot: the slips of the factor 2
+        and of the absolute velocity."""
+        slot = self.ctx.slot(step.link, step.pin)
         assert slot.coriolis_acceleration is not None
-        if not (self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s")):
+        if not (
+            self.nonzero(slot.omega_guide, "rad/s") and self.nonzero(slot.relative_velocity, "m/s")
+        ):
             return
-        right = slot.coriolis_acceleration
-        half = k_cross(omega, v_rel)
+        self.lever_factor_2(step, slot)
+        v_abs = self.ctx.vel(step.pin)
+        if self.nonzero(v_abs - slot.relative_velocity, "m/s"):
+            self.lever_absolute_velocity(step, slot, v_abs)
+
+    def lever_alpha_without_2(self, step: LeverStep, slot: SlotMotion) -> float:
+        """The lever's alpha from a_P = a_O + alpha k x r - omega^2 r + a_rel u + a_Cor with
+        a_Cor halved: [k x r, u] (alpha, a_rel) = a_P - a_O + omega^2 r - omega k x v_rel."""
+        ctx = self.ctx
         r = ctx.pos(step.pin) - ctx.pos(step.pivot)
-        u = slot.direction
         base = ctx.acc(step.pin) - ctx.acc(step.pivot) + ctx.omega(step.link) ** 2 * r
-        alpha_wrong = _solve2((perp(r), u), base - half)[0]
+        half = k_cross(slot.omega_guide, slot.relative_velocity)
+        alpha: float = _solve2((perp(r), slot.direction), base - half)[0]
+        return alpha
+
+    def lever_factor_2(self, step: LeverStep, slot: SlotMotion) -> None:
+        """omega x v_rel for 2 omega x v_rel, and the lever's alpha that follows from it."""
+        fmt = self.fmt
+        assert slot.coriolis_acceleration is not None
+        alpha_wrong = self.lever_alpha_without_2(step, slot)
         self.out.append(
             _mistake(
                 fmt,
@@ -135,90 +159,94 @@ class LinkageMistakes:
                 "that move faster. Without the 2, a_Cor is wrong and so is the lever's angular "
                 f"acceleration: alpha({step.link}) would come out as "
                 f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
-                f"{fmt.text_value(ctx.alpha(step.link), 'rad/s^2')}.",
-                half,
-                right,
+                f"{fmt.text_value(self.ctx.alpha(step.link), 'rad/s^2')}.",
+                k_cross(slot.omega_guide, slot.relative_velocity),
+                slot.coriolis_acceleration,
                 "m/s^2",
-                ("acceleration.coriolis", step.pin),
-                ("acceleration.lever", step.pin),
-                ("loop.acceleration", ""),
+                *_lever_anchors(step),
             )
         )
-        v_abs = ctx.vel(step.pin)
-        if self.nonzero(v_abs - v_rel, "m/s"):
+
+    def lever_absolute_velocity(self, step: LeverStep, slot: SlotMotion, v_abs: np.ndarray) -> None:
+        """2 omega x v_abs for 2 omega x v_rel."""
+        fmt = self.fmt
+        assert slot.coriolis_acceleration is not None
+        self.out.append(
+            _mistake(
+                fmt,
+                "coriolis.absolute_velocity",
+                "Relative, not absolute, velocity in Coriolis",
+                f"a_Cor = 2 omega({step.link}) x v_rel uses the velocity of {step.pin} "
+                f"relative to the slot ({fmt.text_vector(tuple(slot.relative_velocity), 'm/s')}), "
+                f"not its absolute velocity ({fmt.text_vector(tuple(v_abs), 'm/s')}).",
+                2.0 * k_cross(slot.omega_guide, v_abs),
+                slot.coriolis_acceleration,
+                "m/s^2",
+                *_lever_anchors(step),
+            )
+        )
+
+    def slot_coriolis(self, step: DyadStep, spec: LineSpec) -> None:
+        """a_Cor = 2 omega_guide x v_rel of a dyad's point in a slot: none on a fixed guide, the
+        factor 2 in a turning one."""
+        ctx = self.ctx
+        slot = ctx.slot(spec.guide, step.point)
+        assert slot.coriolis_acceleration is not None
+        if spec.guide == ctx.scene.ground:
+            self.fixed_guide_coriolis(step, slot)
+            return
+        if self.nonzero(slot.omega_guide, "rad/s") and self.nonzero(slot.relative_velocity, "m/s"):
             self.out.append(
                 _mistake(
-                    fmt,
-                    "coriolis.absolute_velocity",
-                    "Relative, not absolute, velocity in Coriolis",
-                    f"a_Cor = 2 omega({step.link}) x v_rel uses the velocity of {step.pin} "
-                    f"relative to the slot ({fmt.text_vector(tuple(v_rel), 'm/s')}), "
-                    f"not its absolute velocity ({fmt.text_vector(tuple(v_abs), 'm/s')}).",
-                    2.0 * k_cross(omega, v_abs),
-                    right,
+                    self.fmt,
+                    "coriolis.factor_2",
+                    "The factor 2 in the Coriolis term",
+                    f"The Coriolis acceleration of {step.point} in the turning slot of "
+                    f"{spec.guide} is 2 omega({spec.guide}) x v_rel, not omega x v_rel.",
+                    k_cross(slot.omega_guide, slot.relative_velocity),
+                    slot.coriolis_acceleration,
                     "m/s^2",
-                    ("acceleration.coriolis", step.pin),
-                    ("acceleration.lever", step.pin),
+                    ("acceleration.coriolis", step.point),
                     ("loop.acceleration", ""),
                 )
             )
 
-    def slot_coriolis(self, step: DyadStep, spec: LineSpec) -> None:
-        ctx, fmt = self.ctx, self.fmt
-        point = step.point
-        slot = ctx.slot(spec.guide, point)
-        v_rel = slot.relative_velocity
-        assert slot.coriolis_acceleration is not None
-        right = slot.coriolis_acceleration
-        circle = next((s for s in step.loci if isinstance(s, CircleSpec)), None)
-        if spec.guide == ctx.scene.ground:
-            follower = slot.joint.follower
-            omega_f = ctx.omega(follower)
-            if not (self.nonzero(omega_f, "rad/s") and self.nonzero(v_rel, "m/s")):
-                return
-            wrong = 2.0 * k_cross(omega_f, v_rel)
-            consequence = ""
-            if circle is not None:
-                r = ctx.pos(point) - ctx.pos(circle.center)
-                base = ctx.acc(circle.center) - ctx.omega(circle.link) ** 2 * r
-                alpha_wrong = _solve2((perp(r), -slot.direction), wrong - base)[0]
-                consequence = (
-                    f" Carried into the equations it gives alpha({circle.link}) = "
-                    f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
-                    f"{fmt.text_value(ctx.alpha(circle.link), 'rad/s^2')}."
-                )
-            self.out.append(
-                _mistake(
-                    fmt,
-                    "coriolis.fixed_guide",
-                    "No Coriolis term on a fixed guide",
-                    f"{point} slides in a slot fixed in the ground. The Coriolis term is "
-                    "2 omega_guide x v_rel with the angular velocity of the guide, which is zero; "
-                    f"the angular velocity of link {follower} ({fmt.text_value(omega_f, 'rad/s')}) "
-                    f"does not belong in it." + consequence,
-                    wrong,
-                    right,
-                    "m/s^2",
-                    ("acceleration.coriolis", point),
-                )
-            )
+    def fixed_guide_coriolis(self, step: DyadStep, slot: SlotMotion) -> None:
+        """2 omega_follower x v_rel on a fixed guide, where a_Cor = 0, and what it does to the
+        circle's link: [k x r, -u] (alpha, a_rel) = a_Cor - (a_C - omega^2 r)."""
+        ctx, fmt, point = self.ctx, self.fmt, step.point
+        follower = slot.joint.follower
+        omega_f = ctx.omega(follower)
+        if not (self.nonzero(omega_f, "rad/s") and self.nonzero(slot.relative_velocity, "m/s")):
             return
-        omega = slot.omega_guide
-        if self.nonzero(omega, "rad/s") and self.nonzero(v_rel, "m/s"):
-            self.out.append(
-                _mistake(
-                    fmt,
-                    "coriolis.factor_2",
-                    "The factor 2 in the Coriolis term",
-                    f"The Coriolis acceleration of {point} in the turning slot of {spec.guide} is "
-                    f"2 omega({spec.guide}) x v_rel, not omega x v_rel.",
-                    k_cross(omega, v_rel),
-                    right,
-                    "m/s^2",
-                    ("acceleration.coriolis", point),
-                    ("loop.acceleration", ""),
-                )
+        assert slot.coriolis_acceleration is not None
+        wrong = 2.0 * k_cross(omega_f, slot.relative_velocity)
+        consequence = ""
+        circle = next((s for s in step.loci if isinstance(s, CircleSpec)), None)
+        if circle is not None:
+            r = ctx.pos(point) - ctx.pos(circle.center)
+            base = ctx.acc(circle.center) - ctx.omega(circle.link) ** 2 * r
+            alpha_wrong = _solve2((perp(r), -slot.direction), wrong - base)[0]
+            consequence = (
+                f" Carried into the equations it gives alpha({circle.link}) = "
+                f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
+                f"{fmt.text_value(ctx.alpha(circle.link), 'rad/s^2')}."
             )
+        self.out.append(
+            _mistake(
+                fmt,
+                "coriolis.fixed_guide",
+                "No Coriolis term on a fixed guide",
+                f"{point} slides in a slot fixed in the ground. The Coriolis term is "
+                "2 omega_guide x v_rel with the angular velocity of the guide, which is zero; "
+                f"the angular velocity of link {follower} ({fmt.text_value(omega_f, 'rad/s')}) "
+                f"does not belong in it." + consequence,
+                wrong,
+                slot.coriolis_acceleration,
+                "m/s^2",
+                ("acceleration.coriolis", point),
+            )
+        )
 
     # --- signs and orders -----------------------------------------------------------------------
 
@@ -233,14 +261,22 @@ class LinkageMistakes:
         return None
 
     def signs(self) -> None:
-        ctx, fmt = self.ctx, self.fmt
+        """The slips with a driven link's rotation about its pivot O and a point P of it:
+        a_P = a_O + alpha x r - omega^2 r and v_P = v_O + omega x r, r = r(O, P)."""
         found = self.first_rotation()
         if found is None:
             return
         link, pivot, point = found
+        self.normal_sign(link, pivot, point)
+        self.cross_order(link, pivot, point)
+        if self.nonzero(self.ctx.alpha(link) - self.ctx.omega(link), "rad/s^2"):
+            self.omega_for_alpha(link, pivot, point)
+
+    def normal_sign(self, link: str, pivot: str, point: str) -> None:
+        """+omega^2 r for the normal term -omega^2 r."""
+        ctx, fmt = self.ctx, self.fmt
         r = ctx.pos(point) - ctx.pos(pivot)
         omega, alpha = ctx.omega(link), ctx.alpha(link)
-        a_right = ctx.acc(point)
         self.out.append(
             _mistake(
                 fmt,
@@ -252,44 +288,56 @@ class LinkageMistakes:
                 f"{fmt.text(omega**2, '1/s^2')} is "
                 "positive). Writing +omega^2 r turns it outwards.",
                 ctx.acc(pivot) + k_cross(alpha, r) + omega**2 * r,
-                a_right,
+                ctx.acc(point),
                 "m/s^2",
                 ("acceleration.rigid", f"of {point} ("),
             )
         )
+
+    def cross_order(self, link: str, pivot: str, point: str) -> None:
+        """r x omega for omega x r: v_O - omega x r."""
+        ctx = self.ctx
+        r = ctx.pos(point) - ctx.pos(pivot)
         self.out.append(
             _mistake(
-                fmt,
+                self.fmt,
                 "cross.order",
                 "The order of the cross product",
                 f"v({point}) = v({pivot}) + omega x r({pivot},{point}); r x omega = -(omega x r) "
                 "reverses the relative velocity. In the determinant, the row of omega comes before "
                 "the row of r.",
-                ctx.vel(pivot) - k_cross(omega, r),
+                ctx.vel(pivot) - k_cross(ctx.omega(link), r),
                 ctx.vel(point),
                 "m/s",
                 ("velocity.rigid", f"of {point} ("),
             )
         )
-        if self.nonzero(alpha - omega, "rad/s^2"):
-            self.out.append(
-                _mistake(
-                    fmt,
-                    "labels.omega_alpha",
-                    "alpha, not omega, in the tangential term",
-                    f"The tangential acceleration is alpha x r, with the angular acceleration "
-                    f"alpha({link}) = {fmt.text_value(alpha, 'rad/s^2')}; writing omega x r there "
-                    f"(omega({link}) = {fmt.text_value(omega, 'rad/s')}) mixes up the two labels.",
-                    ctx.acc(pivot) + k_cross(omega, r) - omega**2 * r,
-                    a_right,
-                    "m/s^2",
-                    ("acceleration.rigid", f"of {point} ("),
-                )
+
+    def omega_for_alpha(self, link: str, pivot: str, point: str) -> None:
+        """omega x r for the tangential term alpha x r."""
+        ctx, fmt = self.ctx, self.fmt
+        r = ctx.pos(point) - ctx.pos(pivot)
+        omega, alpha = ctx.omega(link), ctx.alpha(link)
+        self.out.append(
+            _mistake(
+                fmt,
+                "labels.omega_alpha",
+                "alpha, not omega, in the tangential term",
+                f"The tangential acceleration is alpha x r, with the angular acceleration "
+                f"alpha({link}) = {fmt.text_value(alpha, 'rad/s^2')}; writing omega x r there "
+                f"(omega({link}) = {fmt.text_value(omega, 'rad/s')}) mixes up the two labels.",
+                ctx.acc(pivot) + k_cross(omega, r) - omega**2 * r,
+                ctx.acc(point),
+                "m/s^2",
+                ("acceleration.rigid", f"of {point} ("),
             )
+        )
 
     def unknowns(self) -> None:
-        """An RRR dyad: two different links, two different unknowns."""
-        ctx, fmt = self.ctx, self.fmt
+        """An RRR dyad: two different links, two different unknowns. The slip takes the driven
+        link's omega for the unknown one in v_P = v_C + omega x r(C, P), at the first dyad whose
+        circle is centred on a driven link."""
+        ctx = self.ctx
         drivers = {s.link for s in ctx.analysis.plan.steps if isinstance(s, DriverStep)}
         for step in ctx.analysis.plan.steps:
             if not isinstance(step, DyadStep):
@@ -300,40 +348,43 @@ class LinkageMistakes:
             known = next(
                 (d for d in drivers if circles[0].center in ctx.scene.links[d].points), None
             )
-            first = circles[0]
-            r = ctx.pos(step.point) - ctx.pos(first.center)
-            if known is not None and known != first.link:
-                wrong = ctx.vel(first.center) + k_cross(ctx.omega(known), r)
-                text = (
-                    f"In v({step.point}) = v({first.center}) + omega x r({first.center},"
-                    f"{step.point}), omega is the unknown angular velocity of link "
-                    f"{first.link}, not the known omega({known}) of the driven link."
-                )
-                if len(circles) == 2:
-                    second = circles[1].link
-                    text += (
-                        f" The two unknowns belong to different links: omega({first.link}) ="
-                        f" {fmt.text_value(ctx.omega(first.link), 'rad/s')} and "
-                        f"omega({second}) = {fmt.text_value(ctx.omega(second), 'rad/s')} "
-                        f"(likewise alpha({first.link}) = "
-                        f"{fmt.text_value(ctx.alpha(first.link), 'rad/s^2')} and "
-                        f"alpha({second}) = {fmt.text_value(ctx.alpha(second), 'rad/s^2')});"
-                        " giving them one symbol mixes them up."
-                    )
-                self.out.append(
-                    _mistake(
-                        fmt,
-                        "unknowns.which_link",
-                        "Whose omega is unknown",
-                        text,
-                        wrong,
-                        ctx.vel(step.point),
-                        "m/s",
-                        ("velocity.dyad.side", f"through link {first.link}"),
-                        ("velocity.dyad", step.point),
-                    )
-                )
+            if known is not None and known != circles[0].link:
+                self.which_link(step, circles, known)
                 return
+
+    def which_link(self, step: DyadStep, circles: list[CircleSpec], known: str) -> None:
+        """v_C + omega(known) x r(C, P) for v_C + omega(first) x r(C, P)."""
+        ctx, fmt, first = self.ctx, self.fmt, circles[0]
+        r = ctx.pos(step.point) - ctx.pos(first.center)
+        text = (
+            f"In v({step.point}) = v({first.center}) + omega x r({first.center},"
+            f"{step.point}), omega is the unknown angular velocity of link "
+            f"{first.link}, not the known omega({known}) of the driven link."
+        )
+        if len(circles) == 2:
+            second = circles[1].link
+            text += (
+                f" The two unknowns belong to different links: omega({first.link}) ="
+                f" {fmt.text_value(ctx.omega(first.link), 'rad/s')} and "
+                f"omega({second}) = {fmt.text_value(ctx.omega(second), 'rad/s')} "
+                f"(likewise alpha({first.link}) = "
+                f"{fmt.text_value(ctx.alpha(first.link), 'rad/s^2')} and "
+                f"alpha({second}) = {fmt.text_value(ctx.alpha(second), 'rad/s^2')});"
+                " giving them one symbol mixes them up."
+            )
+        self.out.append(
+            _mistake(
+                fmt,
+                "unknowns.which_link",
+                "Whose omega is unknown",
+                text,
+                ctx.vel(first.center) + k_cross(ctx.omega(known), r),
+                ctx.vel(step.point),
+                "m/s",
+                ("velocity.dyad.side", f"through link {first.link}"),
+                ("velocity.dyad", step.point),
+            )
+        )
 
     # --- moving points --------------------------------------------------------------------------
 
