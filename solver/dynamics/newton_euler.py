@@ -158,76 +158,93 @@ def slot_normal(joint: Joint, motion: Motion) -> Array:
     return perp(rotate(np.array(joint.axis), motion.links[joint.guide].theta))
 
 
-def newton_euler_system(
-    scene: LinkageScene,
-    motion: Motion,
-    elements: list[MassElement],
-    forces: list[AppliedForce],
-    moments: list[AppliedMoment],
-) -> System:
-    """Build A u = b (see the module docstring) at every sample."""
-    links = scene.moving_links
-    row = {name: 3 * i for i, name in enumerate(links)}
-    reference = {name: motion.links[name].anchor.p for name in links}
-    n = motion.margin.size
-    unknowns: list[str] = []
-    origins: list[tuple[str, int, int]] = []
-    entries: list[tuple[int, int, Array]] = []
-    constant = {sign: np.broadcast_to(sign, n) for sign in (1.0, -1.0)}  # views, no copies
-    arms: dict[tuple[str, str], Array] = {}  # (link, point): point - R_link
+class _Columns:
+    """The columns of A being assembled: one per unknown, with its name and origin, and the
+    (row, column, values) entries it adds to the equations of the links it acts on."""
 
-    def add_force(column: int, link: str, sign: float, point: Array, d: Array) -> None:
-        if link == scene.ground:
+    def __init__(self, scene: LinkageScene, motion: Motion) -> None:
+        self.ground = scene.ground
+        self.row = {name: 3 * i for i, name in enumerate(scene.moving_links)}
+        self.reference = {name: motion.links[name].anchor.p for name in scene.moving_links}
+        n = motion.margin.size
+        self.constant = {sign: np.broadcast_to(sign, n) for sign in (1.0, -1.0)}  # no copies
+        self.arms: dict[tuple[str, str], Array] = {}  # (link, point): point - R_link
+        self.unknowns: list[str] = []
+        self.origins: list[tuple[str, int, int]] = []
+        self.entries: list[tuple[int, int, Array]] = []
+
+    def new(self, name: str, origin: tuple[str, int, int]) -> int:
+        """A new unknown (column); returns its index."""
+        self.unknowns.append(name)
+        self.origins.append(origin)
+        return len(self.unknowns) - 1
+
+    def force(self, column: int, link: str, sign: float, point: Array, d: Array) -> None:
+        """sign F along d at ``point``: (d_x, d_y, ((point - R_link) x d)_z) in link's rows."""
+        if link == self.ground:
             return
-        r = row[link]
-        entries.append((r, column, sign * d[:, 0]))
-        entries.append((r + 1, column, sign * d[:, 1]))
-        entries.append((r + 2, column, sign * cross(point - reference[link], d)))
+        r = self.row[link]
+        self.entries.append((r, column, sign * d[:, 0]))
+        self.entries.append((r + 1, column, sign * d[:, 1]))
+        self.entries.append((r + 2, column, sign * cross(point - self.reference[link], d)))
 
-    def add_component(
-        column: int, link: str, sign: float, name: str, point: Array, axis: int
+    def component(
+        self, column: int, link: str, sign: float, name: str, point: Array, axis: int
     ) -> None:
-        """A force along x (axis 0) or y (1) at point ``name``: add_force with d = e_x or e_y."""
-        if link == scene.ground:
+        """A force along x (axis 0) or y (1) at point ``name``: ``force`` with d = e_x or e_y,
+        (r x e_x)_z = -r_y, (r x e_y)_z = r_x."""
+        if link == self.ground:
             return
-        r = row[link]
-        if (link, name) not in arms:
-            arms[link, name] = point - reference[link]
-        arm = arms[link, name]  # (r x e_x)_z = -r_y, (r x e_y)_z = r_x
-        entries.append((r + axis, column, constant[sign]))
-        entries.append((r + 2, column, (sign if axis else -sign) * arm[:, 1 - axis]))
+        r = self.row[link]
+        if (link, name) not in self.arms:
+            self.arms[link, name] = point - self.reference[link]
+        arm = self.arms[link, name]
+        self.entries.append((r + axis, column, self.constant[sign]))
+        self.entries.append((r + 2, column, (sign if axis else -sign) * arm[:, 1 - axis]))
 
-    def add_moment(column: int, link: str, sign: float) -> None:
-        if link != scene.ground:
-            entries.append((row[link] + 2, column, constant[sign]))
+    def moment(self, column: int, link: str, sign: float) -> None:
+        """sign M in link's moment equation."""
+        if link != self.ground:
+            self.entries.append((self.row[link] + 2, column, self.constant[sign]))
 
+
+def _joint_columns(columns: _Columns, scene: LinkageScene, motion: Motion) -> None:
+    """Each joint's force (+F on its second link, -F on its first): Fx, Fy of a revolute joint,
+    the normal force N of a slot and the moment M of a prismatic joint; each driver's torque."""
     for index, joint in enumerate(scene.joints):
         P = motion.points[joint.point].p
         first, second = joint.links
         if joint.type == "revolute":
             for axis in (0, 1):
-                unknowns.append(f"F{'xy'[axis]}_{joint.point}")
-                origins.append(("joint", index, axis))
-                add_component(len(unknowns) - 1, second, 1.0, joint.point, P, axis)
-                add_component(len(unknowns) - 1, first, -1.0, joint.point, P, axis)
-        else:
-            normal = slot_normal(joint, motion)
-            unknowns.append(f"N_{joint.point}")
-            origins.append(("joint", index, 0))
-            add_force(len(unknowns) - 1, second, 1.0, P, normal)
-            add_force(len(unknowns) - 1, first, -1.0, P, normal)
-            if joint.type == "prismatic":
-                unknowns.append(f"M_{joint.point}")
-                origins.append(("joint", index, 2))
-                add_moment(len(unknowns) - 1, second, 1.0)
-                add_moment(len(unknowns) - 1, first, -1.0)
+                column = columns.new(f"F{'xy'[axis]}_{joint.point}", ("joint", index, axis))
+                columns.component(column, second, 1.0, joint.point, P, axis)
+                columns.component(column, first, -1.0, joint.point, P, axis)
+            continue
+        normal = slot_normal(joint, motion)
+        column = columns.new(f"N_{joint.point}", ("joint", index, 0))
+        columns.force(column, second, 1.0, P, normal)
+        columns.force(column, first, -1.0, P, normal)
+        if joint.type == "prismatic":
+            column = columns.new(f"M_{joint.point}", ("joint", index, 2))
+            columns.moment(column, second, 1.0)
+            columns.moment(column, first, -1.0)
     for index, driver in enumerate(scene.drivers):
-        unknowns.append(f"M_{driver.link}")
-        origins.append(("driver", index, 0))
-        add_moment(len(unknowns) - 1, driver.link, 1.0)
+        columns.moment(columns.new(f"M_{driver.link}", ("driver", index, 0)), driver.link, 1.0)
 
+
+def _right_hand_side(
+    scene: LinkageScene,
+    columns: _Columns,
+    elements: list[MassElement],
+    forces: list[AppliedForce],
+    moments: list[AppliedMoment],
+    n: int,
+) -> Array:
+    """b per link: (m a - m g, I alpha + (r - R) x (m a - m g)) of its masses, minus its applied
+    forces (F, (r - R) x F) and moments."""
+    row, reference = columns.row, columns.reference
     gravity = np.array(dynamics_of(scene).gravity)
-    rhs = np.zeros((n, 3 * len(links)))
+    rhs = np.zeros((n, 3 * len(scene.moving_links)))
     for e in elements:
         r = row[e.link]
         inertial = e.mass * (e.a - gravity)  # m a - m g
@@ -239,8 +256,30 @@ def newton_euler_system(
         rhs[:, r + 2] -= cross(f.position - reference[f.link], f.force)
     for m in moments:
         rhs[:, row[m.link] + 2] -= m.moment
+    return rhs
+
+
+def newton_euler_system(
+    scene: LinkageScene,
+    motion: Motion,
+    elements: list[MassElement],
+    forces: list[AppliedForce],
+    moments: list[AppliedMoment],
+) -> System:
+    """Build A u = b (see the module docstring) at every sample."""
+    columns = _Columns(scene, motion)
+    _joint_columns(columns, scene, motion)
+    rhs = _right_hand_side(scene, columns, elements, forces, moments, motion.margin.size)
+    links = scene.moving_links
     equations = tuple(f"{kind}({name})" for name in links for kind in ("Fx", "Fy", "Mz"))
-    return System(tuple(unknowns), tuple(origins), equations, tuple(entries), rhs, reference)
+    return System(
+        tuple(columns.unknowns),
+        tuple(columns.origins),
+        equations,
+        tuple(columns.entries),
+        rhs,
+        columns.reference,
+    )
 
 
 def inverse_dynamics(

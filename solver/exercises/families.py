@@ -492,6 +492,82 @@ def _moving(key: str, field: str, label: str, unit: str, symbol: str) -> tuple[A
     return vector_of("moving_points", "M", field, key, label, unit, symbol, "xy")
 
 
+@dataclass(frozen=True)
+class Carrier:
+    """The body M moves on and M's path in it: the points, the path, the words and the givens."""
+
+    name: str
+    points: dict[str, list[float]]
+    on: list[str]
+    path: dict[str, str]
+    where: str
+    size: float  # m: the farthest the path reaches from O
+    rows: list[tuple[str, float, str]]
+
+
+def _groove_disc(rng: random.Random) -> Carrier:
+    """A disc with a circular groove of radius R centred at Q, |OQ| = q: M runs from S (below Q)
+    by the angle SQT to T, S = Q + R (cos -90, sin -90), T = Q + R (cos phi, sin phi)."""
+    q = pick(rng, 0.1, 0.3, 0.05)
+    radius = pick(rng, 0.05, 0.15, 0.01)
+    turn_deg = pick(rng, 90.0, 270.0, 45.0)
+    direction = "ccw" if rng.random() < 0.5 else "cw"
+    side = 1.0 if direction == "ccw" else -1.0
+    start_angle = math.radians(-90.0)
+    points = {"O": [0.0, 0.0], "Q": [q, 0.0]}
+    points["S"] = [q + radius * math.cos(start_angle), radius * math.sin(start_angle)]
+    phi = start_angle + side * math.radians(turn_deg)
+    points["T"] = [q + radius * math.cos(phi), radius * math.sin(phi)]
+    where = (
+        f"a circular groove of radius {num(radius)} m centred at Q, {num(q)} m from O; M "
+        f"starts at S (straight below Q) and runs {'counter-' if side > 0 else ''}clockwise "
+        f"round the groove; T is {num(turn_deg)} deg further round"
+    )
+    path = {"type": "arc", "center": "Q", "start": "S", "direction": direction}
+    rows = [("|OQ|", q, "m"), ("R", radius, "m"), (r"\angle SQT", turn_deg, "deg")]
+    return Carrier("disc", points, ["O", "Q", "S", "T"], path, where, q + radius, rows)
+
+
+def _slotted_rod(rng: random.Random) -> Carrier:
+    """A rod with a straight slot at the angle theta from x: S = |OS| u, T = (|OS| + |ST|) u,
+    u = (cos theta, sin theta)."""
+    start = pick(rng, 0.05, 0.15, 0.05)
+    length = pick(rng, 0.2, 0.5, 0.05)
+    angle = math.radians(pick(rng, 0.0, 60.0, 15.0))
+    unit = (math.cos(angle), math.sin(angle))
+    points = {
+        "O": [0.0, 0.0],
+        "S": [start * unit[0], start * unit[1]],
+        "T": [(start + length) * unit[0], (start + length) * unit[1]],
+    }
+    where = (
+        f"a straight slot along the rod, from S ({num(start)} m from O) outwards to its end T "
+        f"({num(length)} m further); M starts at S"
+    )
+    path = {"type": "line", "start": "S", "through": "T"}
+    rows = [("|OS|", start, "m"), ("|ST|", length, "m")]
+    return Carrier("rod", points, ["O", "S", "T"], path, where, start + length, rows)
+
+
+def _moving_point_scene(carrier: Carrier, law: str, s_law: str, t1: float) -> dict[str, Any]:
+    """The carrier turning about O by phi(t) = law, M on its path by s(t) = s_law, at t1."""
+    return {
+        "kind": "linkage",
+        "title": "point moving on a turning " + carrier.name,
+        "points": carrier.points,
+        "links": {
+            "ground": {"points": ["O"], "ground": True},
+            carrier.name: {"points": carrier.on},
+        },
+        "joints": [{"type": "revolute", "point": "O", "links": ["ground", carrier.name]}],
+        "drivers": [{"link": carrier.name, "angle_law": law}],
+        "moving_points": [
+            {"name": "M", "link": carrier.name, "path": carrier.path, "s_law": s_law}
+        ],
+        "time": t1,
+    }
+
+
 def moving_point(rng: random.Random, difficulty: str) -> Draft:
     """A disc (or a rod) turning about O by a time law, and M moving along a groove (or a slot)
     fixed in it by s(t) = c t^2: at t1, M's velocity, its Coriolis and absolute acceleration; and
@@ -502,54 +578,7 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
     c = pick(rng, 0.02, 0.1, 0.01)
     t1 = pick(rng, 0.5, 2.0, 0.5)
     law = f"{num(omega)}*t" + (f" + {num(epsilon / 2)}*t^2" if epsilon else "")
-    if groove:
-        q = pick(rng, 0.1, 0.3, 0.05)
-        radius = pick(rng, 0.05, 0.15, 0.01)
-        turn_deg = pick(rng, 90.0, 270.0, 45.0)
-        direction = "ccw" if rng.random() < 0.5 else "cw"
-        side = 1.0 if direction == "ccw" else -1.0
-        start_angle = math.radians(-90.0)
-        points = {"O": [0.0, 0.0], "Q": [q, 0.0]}
-        points["S"] = [q + radius * math.cos(start_angle), radius * math.sin(start_angle)]
-        phi = start_angle + side * math.radians(turn_deg)
-        points["T"] = [q + radius * math.cos(phi), radius * math.sin(phi)]
-        path = {"type": "arc", "center": "Q", "start": "S", "direction": direction}
-        carrier, on = "disc", ["O", "Q", "S", "T"]
-        where = (
-            f"a circular groove of radius {num(radius)} m centred at Q, {num(q)} m from O; M "
-            f"starts at S (straight below Q) and runs {'counter-' if side > 0 else ''}clockwise "
-            f"round the groove; T is {num(turn_deg)} deg further round"
-        )
-        size = q + radius
-        rows = [("|OQ|", q, "m"), ("R", radius, "m"), (r"\angle SQT", turn_deg, "deg")]
-    else:
-        start = pick(rng, 0.05, 0.15, 0.05)
-        length = pick(rng, 0.2, 0.5, 0.05)
-        angle = math.radians(pick(rng, 0.0, 60.0, 15.0))
-        unit = (math.cos(angle), math.sin(angle))
-        points = {
-            "O": [0.0, 0.0],
-            "S": [start * unit[0], start * unit[1]],
-            "T": [(start + length) * unit[0], (start + length) * unit[1]],
-        }
-        path = {"type": "line", "start": "S", "through": "T"}
-        carrier, on = "rod", ["O", "S", "T"]
-        where = (
-            f"a straight slot along the rod, from S ({num(start)} m from O) outwards to its end T "
-            f"({num(length)} m further); M starts at S"
-        )
-        size = start + length
-        rows = [("|OS|", start, "m"), ("|ST|", length, "m")]
-    scene = {
-        "kind": "linkage",
-        "title": "point moving on a turning " + carrier,
-        "points": points,
-        "links": {"ground": {"points": ["O"], "ground": True}, carrier: {"points": on}},
-        "joints": [{"type": "revolute", "point": "O", "links": ["ground", carrier]}],
-        "drivers": [{"link": carrier, "angle_law": law}],
-        "moving_points": [{"name": "M", "link": carrier, "path": path, "s_law": f"{num(c)}*t^2"}],
-        "time": t1,
-    }
+    carrier = _groove_disc(rng) if groove else _slotted_rod(rng)
     asked: tuple[Asked, ...] = _moving("v_M", "velocity", "velocity of M", "m/s", "v_{M")
     asked += _moving(
         "a_cor_M", "coriolis_acceleration", "Coriolis acceleration of M", "m/s^2",
@@ -559,10 +588,11 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
         asked += _moving("a_M", "acceleration", "acceleration of M", "m/s^2", "a_{M")
         asked += (Asked("t_M_T", "time at which M reaches T", "s", "events.M.T.time", "t_{T}"),)
     text = (
-        f"A {carrier} turns about the fixed pivot O by the angle phi(t) = {law.replace('*', ' ')}"
-        f" rad (phi counter-clockwise positive: the {carrier} turns {sense(omega)}). It carries "
-        f"{where}, by the law s(t) = {num(c)} t^2 (s in m, t in s). Drawn at t = 0. At "
-        f"t = {num(t1)} s find the velocity of M and its Coriolis acceleration"
+        f"A {carrier.name} turns about the fixed pivot O by the angle phi(t) = "
+        f"{law.replace('*', ' ')} rad (phi counter-clockwise positive: the {carrier.name} turns "
+        f"{sense(omega)}). It carries {carrier.where}, by the law s(t) = {num(c)} t^2 (s in m, "
+        f"t in s). Drawn at t = 0. At t = {num(t1)} s find the velocity of M and its Coriolis "
+        "acceleration"
         + (
             ", its absolute acceleration, and the time at which M reaches T."
             if difficulty != "basic"
@@ -572,65 +602,82 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
     latex = (
         rf"\varphi(t) = {law.replace('*', ' ')}"
         + rf",\; s(t) = {num(c)}\,t^2,\; t_1 = {num(t1)}\,\mathrm{{s}},\; "
-        + givens_latex(rows)
+        + givens_latex(carrier.rows)
     )
     rates = max(omega * omega, abs(epsilon), 1.0)
     return Draft(
-        "Point moving on a turning " + carrier, text, latex + r"\\" + asked_latex(asked), scene,
-        asked,
-        {"m/s": max(abs(omega), 1.0) * size, "m/s^2": rates * size, "s": 1.0},
+        "Point moving on a turning " + carrier.name, text, latex + r"\\" + asked_latex(asked),
+        _moving_point_scene(carrier, law, f"{num(c)}*t^2", t1), asked,
+        {"m/s": max(abs(omega), 1.0) * carrier.size, "m/s^2": rates * carrier.size, "s": 1.0},
     )  # fmt: skip
 
 
 # --- spatial arm ---------------------------------------------------------------------------------
 
 
-def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
-    """The arm of seed 002: a column turning about z, an arm hinged about x at its top, and a
-    forearm turning about its own axis, carrying the tool point B off that axis."""
+@dataclass(frozen=True)
+class Arm:
+    """The arm of seed 002 drawn: lengths |OO2| = l1 (tilted from z), |O2A| = l2 along
+    e3 = (0, cos d, -sin d), |AB| = l3 along x; the relative rates and their rates of change."""
+
+    l1: float
+    tilt: float  # rad: OO2 from z in the y-z plane
+    l2: float
+    down: float  # rad: body 2 below the y axis
+    l3: float
+    rates: list[float]
+    rate_dots: list[float]
+
+
+def _draw_arm(rng: random.Random, difficulty: str) -> Arm:
+    """The arm's lengths, angles and rates, drawn in the order of the book's givens."""
     l1 = pick(rng, 0.8, 1.5, 0.1)
     tilt = math.radians(pick(rng, 15.0, 45.0, 15.0))
     l2 = pick(rng, 0.4, 0.8, 0.1)
     down = math.radians(pick(rng, 15.0, 60.0, 15.0))
     l3 = pick(rng, 0.1, 0.3, 0.05)
-    o2 = [0.0, l1 * math.sin(tilt), l1 * math.cos(tilt)]
-    e3 = [0.0, math.cos(down), -math.sin(down)]
-    a = [o2[k] + l2 * e3[k] for k in range(3)]
-    b = [a[0] + l3, a[1], a[2]]
     rates = [rate(rng, 1, 3, signed=difficulty != "basic") for _ in range(3)]
     rate_dots = [rate(rng, 1, 5) if difficulty == "challenging" else 0.0 for _ in range(3)]
+    return Arm(l1, tilt, l2, down, l3, rates, rate_dots)
+
+
+def _arm_scene(arm: Arm) -> dict[str, Any]:
+    """O2 = l1 (0, sin tilt, cos tilt), A = O2 + l2 e3, B = A + l3 E1; axes z, x and e3."""
+    o2 = [0.0, arm.l1 * math.sin(arm.tilt), arm.l1 * math.cos(arm.tilt)]
+    e3 = [0.0, math.cos(arm.down), -math.sin(arm.down)]
+    a = [o2[k] + arm.l2 * e3[k] for k in range(3)]
+    b = [a[0] + arm.l3, a[1], a[2]]
     axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], e3]
     origins = [[0.0, 0.0, 0.0], o2, a]
-    scene = {
+    joints = [
+        {
+            "name": str(k + 1),
+            "type": "revolute",
+            "origin": origins[k],
+            "axis": axes[k],
+            "rate": arm.rates[k],
+            "rate_dot": arm.rate_dots[k],
+        }
+        for k in range(3)
+    ]
+    return {
         "kind": "spatial_chain",
         "title": "spatial arm",
-        "joints": [
-            {
-                "name": str(k + 1),
-                "type": "revolute",
-                "origin": origins[k],
-                "axis": axes[k],
-                "rate": rates[k],
-                "rate_dot": rate_dots[k],
-            }
-            for k in range(3)
-        ],
+        "joints": joints,
         "points": {"A": {"body": "2", "position": a}, "B": {"body": "3", "position": b}},
     }
-    asked: tuple[Asked, ...] = vector_of(
-        "bodies", "3", "omega", "omega_3", "angular velocity of body 3", "rad/s",
-        r"\omega_{3", "xyz",
-    )  # fmt: skip
-    if difficulty != "basic":
-        asked += velocity_of("B", "xyz")
-    asked += acceleration_of("B", "xyz") if difficulty != "basic" else ()
-    text = (
+
+
+def _arm_text(arm: Arm, difficulty: str) -> str:
+    """The statement of the spatial arm in words."""
+    rates, rate_dots = arm.rates, arm.rate_dots
+    return (
         f"A spatial arm: body 1 turns about the vertical z axis through O at {rates[0]:g} rad/s; "
-        f"at its top O2, {num(l1)} m from O in the y-z plane at {math.degrees(tilt):g} deg from "
-        f"z, body 2 is hinged about the x axis at {rates[1]:g} rad/s relative to body 1; at A, "
-        f"{num(l2)} m from O2 along body 2 (pointing {math.degrees(down):g} deg below the y "
-        f"axis), body 3 turns about that same direction at {rates[2]:g} rad/s relative to body "
-        f"2, and carries the point B, {num(l3)} m from A along x."
+        f"at its top O2, {num(arm.l1)} m from O in the y-z plane at {math.degrees(arm.tilt):g} "
+        f"deg from z, body 2 is hinged about the x axis at {rates[1]:g} rad/s relative to body "
+        f"1; at A, {num(arm.l2)} m from O2 along body 2 (pointing {math.degrees(arm.down):g} deg "
+        f"below the y axis), body 3 turns about that same direction at {rates[2]:g} rad/s "
+        f"relative to body 2, and carries the point B, {num(arm.l3)} m from A along x."
         + (
             f" The relative rates change at {rate_dots[0]:g}, {rate_dots[1]:g} and "
             f"{rate_dots[2]:g} rad/s^2."
@@ -640,20 +687,33 @@ def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
         + " Find the angular velocity of body 3"
         + (" and the velocity and acceleration of B." if difficulty != "basic" else ".")
     )
+
+
+def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
+    """The arm of seed 002: a column turning about z, an arm hinged about x at its top, and a
+    forearm turning about its own axis, carrying the tool point B off that axis."""
+    arm = _draw_arm(rng, difficulty)
+    asked: tuple[Asked, ...] = vector_of(
+        "bodies", "3", "omega", "omega_3", "angular velocity of body 3", "rad/s",
+        r"\omega_{3", "xyz",
+    )  # fmt: skip
+    if difficulty != "basic":
+        asked += velocity_of("B", "xyz")
+    asked += acceleration_of("B", "xyz") if difficulty != "basic" else ()
     latex = givens_latex(
         [
-            ("|OO_2|", l1, "m"),
-            ("|O_2A|", l2, "m"),
-            ("|AB|", l3, "m"),
-            (r"\omega_{1}", rates[0], "rad/s"),
-            (r"\omega_{21}", rates[1], "rad/s"),
-            (r"\omega_{32}", rates[2], "rad/s"),
+            ("|OO_2|", arm.l1, "m"),
+            ("|O_2A|", arm.l2, "m"),
+            ("|AB|", arm.l3, "m"),
+            (r"\omega_{1}", arm.rates[0], "rad/s"),
+            (r"\omega_{21}", arm.rates[1], "rad/s"),
+            (r"\omega_{32}", arm.rates[2], "rad/s"),
         ]
     )
-    largest = max(abs(r) for r in rates) + max(abs(r) for r in rate_dots) ** 0.5
+    largest = max(abs(r) for r in arm.rates) + max(abs(r) for r in arm.rate_dots) ** 0.5
     return Draft(
-        "Spatial arm", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        scales(largest, 0.0, l1 + l2 + l3),
+        "Spatial arm", _arm_text(arm, difficulty), latex + r"\\" + asked_latex(asked),
+        _arm_scene(arm), asked, scales(largest, 0.0, arm.l1 + arm.l2 + arm.l3),
     )  # fmt: skip
 
 

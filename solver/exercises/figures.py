@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from html import escape
 from itertools import pairwise
 from typing import Any
@@ -158,28 +159,74 @@ def _disc_radius(pivot: Point, centre: Point, start: Point) -> float:
     return 1.1 * (math.dist(pivot, centre) + math.dist(centre, start))
 
 
+@dataclass(frozen=True)
+class _Linkage:
+    """A planar scene read for drawing: its points (m), ground link and parsed joints."""
+
+    scene: Mapping[str, Any]
+    pts: dict[str, Point]
+    ground: str
+    joints: Sequence[Joint]
+
+    @property
+    def moving_points(self) -> list[Mapping[str, Any]]:
+        return list(self.scene.get("moving_points", []))
+
+    def pivot(self, link: str) -> Point:
+        return self.pts[_pivot(self.joints, self.ground, link)]
+
+
 def _linkage(scene: Mapping[str, Any]) -> str:
-    pts: dict[str, Point] = {k: (float(v[0]), float(v[1])) for k, v in scene["points"].items()}
+    """Guides and paths first, then the links, then pivots, blocks, points and rotations."""
     links = scene["links"]
-    ground = next(k for k, v in links.items() if v.get("ground"))
-    joints = parse_linkage(scene).joints
-    extent = list(pts.values())
+    drawing = _Linkage(
+        scene,
+        {k: (float(v[0]), float(v[1])) for k, v in scene["points"].items()},
+        next(k for k, v in links.items() if v.get("ground")),
+        parse_linkage(scene).joints,
+    )
+    arcs = _arc_paths(drawing)
+    canvas = Canvas(_extent(drawing, arcs))
+    _draw_paths(canvas, drawing, arcs)
+    for name, link in links.items():
+        _draw_link(canvas, drawing, name, [drawing.pts[p] for p in link["points"]])
+    _draw_marks(canvas, drawing)
+    _scale_bar(canvas)
+    return canvas.svg(str(scene.get("title", "linkage")))
+
+
+def _arc_paths(drawing: _Linkage) -> list[tuple[Point, float]]:
+    """The centre and radius r = |C S| of each moving point's arc path."""
     arcs = []
-    for mp in scene.get("moving_points", []):
+    for mp in drawing.moving_points:
         path = mp["path"]
         if path["type"] == "arc":
-            c, s = pts[path["center"]], pts[path["start"]]
-            r = math.dist(c, s)
-            arcs.append((c, r))
-            extent += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
-    for mp in scene.get("moving_points", []):
+            c, s = drawing.pts[path["center"]], drawing.pts[path["start"]]
+            arcs.append((c, math.dist(c, s)))
+    return arcs
+
+
+def _extent(drawing: _Linkage, arcs: Sequence[tuple[Point, float]]) -> list[Point]:
+    """The points to fit on the canvas: the scene's points, each arc path's and each disc's box."""
+    extent = list(drawing.pts.values())
+    for c, r in arcs:
+        extent += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
+    for mp in drawing.moving_points:
         if mp["path"]["type"] == "arc":
-            o = pts[_pivot(joints, ground, mp["link"])]
-            reach = _disc_radius(o, pts[mp["path"]["center"]], pts[mp["path"]["start"]])
+            o = drawing.pivot(mp["link"])
+            pts, path = drawing.pts, mp["path"]
+            reach = _disc_radius(o, pts[path["center"]], pts[path["start"]])
             extent += [(o[0] - reach, o[1] - reach), (o[0] + reach, o[1] + reach)]
-    canvas = Canvas(extent)
-    sliders = [j for j in scene["joints"] if j["type"] != "revolute"]
-    for j in sliders:
+    return extent
+
+
+def _draw_paths(canvas: Canvas, drawing: _Linkage, arcs: Sequence[tuple[Point, float]]) -> None:
+    """Each slider's guide (solid when fixed, dashed on a moving link) through its point along
+    its axis, each arc path dashed, each straight path as a wide slot."""
+    pts, ground = drawing.pts, drawing.ground
+    for j in drawing.scene["joints"]:
+        if j["type"] == "revolute":
+            continue
         p, u = pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1]))
         n = math.hypot(*u)
         u = (u[0] / n, u[1] / n)
@@ -196,37 +243,45 @@ def _linkage(scene: Mapping[str, Any]) -> str:
             f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * canvas.scale:.1f}" fill="none" '
             f'stroke="{GUIDE}" stroke-width="1.4" stroke-dasharray="5 3"/>'
         )
-    for mp in scene.get("moving_points", []):
+    for mp in drawing.moving_points:
         if mp["path"]["type"] == "line":
             canvas.line(pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
-    discs = {mp["link"] for mp in scene.get("moving_points", []) if mp["path"]["type"] == "arc"}
-    for name, link in links.items():
-        members = [pts[p] for p in link["points"]]
-        if name == ground or len(members) < 2:
-            continue
-        if name in discs:  # a turning disc carrying a groove: drawn as the disc itself
-            pivot = pts[_pivot(joints, ground, name)]
-            path = next(m["path"] for m in scene["moving_points"] if m["link"] == name)
-            radius = _disc_radius(pivot, pts[path["center"]], pts[path["start"]])
-            x, y = canvas.px(pivot)
-            canvas.add(
-                f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius * canvas.scale:.1f}" '
-                f'fill="#dbeafe" fill-opacity="0.5" stroke="{LINK}" stroke-width="2.5"/>'
-            )
-            continue
-        if len(members) >= 3:
-            poly = " ".join("{:.1f},{:.1f}".format(*canvas.px(m)) for m in members)
-            canvas.add(
-                f'<polygon points="{poly}" fill="#dbeafe" fill-opacity="0.6" stroke="{LINK}" '
-                'stroke-width="2.5" stroke-linejoin="round"/>'
-            )
-        else:
-            canvas.line(members[0], members[1], LINK, 3.5)
+
+
+def _draw_link(canvas: Canvas, drawing: _Linkage, name: str, members: list[Point]) -> None:
+    """A moving link: a disc where it carries a groove, a plate with three or more points, else a
+    bar."""
+    if name == drawing.ground or len(members) < 2:
+        return
+    paths = [mp["path"] for mp in drawing.moving_points if mp["link"] == name]
+    if any(path["type"] == "arc" for path in paths):  # a turning disc carrying a groove
+        pivot, path = drawing.pivot(name), paths[0]
+        radius = _disc_radius(pivot, drawing.pts[path["center"]], drawing.pts[path["start"]])
+        x, y = canvas.px(pivot)
+        canvas.add(
+            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius * canvas.scale:.1f}" '
+            f'fill="#dbeafe" fill-opacity="0.5" stroke="{LINK}" stroke-width="2.5"/>'
+        )
+    elif len(members) >= 3:
+        poly = " ".join("{:.1f},{:.1f}".format(*canvas.px(m)) for m in members)
+        canvas.add(
+            f'<polygon points="{poly}" fill="#dbeafe" fill-opacity="0.6" stroke="{LINK}" '
+            'stroke-width="2.5" stroke-linejoin="round"/>'
+        )
+    else:
+        canvas.line(members[0], members[1], LINK, 3.5)
+
+
+def _draw_marks(canvas: Canvas, drawing: _Linkage) -> None:
+    """The fixed pivots hatched, the sliders' blocks, every point labelled, each moving point's
+    start, and each driver's rotation about its pivot."""
+    pts, scene = drawing.pts, drawing.scene
     for j in scene["joints"]:
-        if j["type"] == "revolute" and ground in j["links"]:
+        if j["type"] == "revolute" and drawing.ground in j["links"]:
             _ground_pivot(canvas, pts[j["point"]])
-    for j in sliders:
-        _block(canvas, pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1])))
+    for j in scene["joints"]:
+        if j["type"] != "revolute":
+            _block(canvas, pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1])))
     for name, p in pts.items():
         x, y = canvas.px(p)
         canvas.add(
@@ -234,14 +289,12 @@ def _linkage(scene: Mapping[str, Any]) -> str:
             'stroke-width="1.4"/>'
         )
         canvas.text(p, name)
-    for mp in scene.get("moving_points", []):
+    for mp in drawing.moving_points:
         start = pts[mp["path"]["start"]]
         canvas.text(start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
     for driver in scene["drivers"]:
         omega, label = _driver_label(driver)
-        _rotation(canvas, pts[_pivot(joints, ground, driver["link"])], omega, label)
-    _scale_bar(canvas)
-    return canvas.svg(str(scene.get("title", "linkage")))
+        _rotation(canvas, drawing.pivot(driver["link"]), omega, label)
 
 
 def _oblique(p: Sequence[float]) -> Point:

@@ -19,6 +19,7 @@ import numpy as np
 
 from solver.instant import LinkageAnalysis
 from solver.laws import parse_time_law
+from solver.relative_motion import MovingPointMotion
 from solver.rigid import perp
 from solver.scene import Joint, LinkageScene, ground_pivot
 from solver.steps import latex as tex
@@ -341,38 +342,18 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
         w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
         al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
         if driver.angle_law is not None:
-            law = parse_time_law(driver.angle_law)
-            t = b.put("t", scene.time, "s")
-            sub = "_{" + tex.name(link) + "}"
-            phi, dphi, ddphi = (
-                rf"{head}{sub}" for head in (r"\varphi", r"\dot{\varphi}", r"\ddot{\varphi}")
-            )
-            b.line(
-                rf"&{phi}(t) = {tex.law(law.expression, ctx.fmt.digits)}, \quad "
-                rf"{dphi}(t) = {tex.law(law.first_derivative, ctx.fmt.digits)}, \quad "
-                rf"{ddphi}(t) = {tex.law(law.second_derivative, ctx.fmt.digits)}"
-            )
-            b.line(
-                rf"&t = {b.numu(t)}: \quad {w_sym(link)} = {dphi}(t) = {b.numu(w)}, "
-                rf"\quad {a_sym(link)} = {ddphi}(t) = {b.numu(al)}"
-            )
-            b.say(
-                f"Link {link} turns by phi(t) = {driver.angle_law} (rad) from its drawn pose; "
-                f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
-                f"alpha({link}) = {b.txt(al)}."
-            )
-        else:
-            b.line(
-                rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
-                rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
-                rf"{latex_unit('rad/s^2')}"
-            )
-            b.say(
-                f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
-                f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}."
-            )
-    angles = ctx.analysis.diagnostics.driver_angles
-    for link, degrees in angles.items():
+            _write_time_law(ctx, b, link, driver.angle_law, (w, al))
+            continue
+        b.line(
+            rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
+            rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
+            rf"{latex_unit('rad/s^2')}"
+        )
+        b.say(
+            f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
+            f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}."
+        )
+    for link, degrees in ctx.analysis.diagnostics.driver_angles.items():
         key = b.put(f"angle({link})", math.radians(degrees), "rad")
         b.line(
             rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}{{}}^{{\circ}} "
@@ -383,16 +364,46 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
             "the x axis."
         )
     for joint in scene.joints:
-        if joint.type == "revolute":
-            continue
-        guide, follower = joint.links
-        fixed = guide == scene.ground
-        b.say(
-            f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
-            + (" (a fixed guide)." if fixed else " (a moving guide).")
-            + (" The block cannot turn relative to the guide." if joint.type == "prismatic" else "")
-        )
+        if joint.type != "revolute":
+            b.say(_slot_sentence(joint, joint.links[0] == scene.ground))
     return b.build()
+
+
+def _write_time_law(
+    ctx: LinkageContext, b: StepBuilder, link: str, angle_law: str, keys: tuple[str, str]
+) -> None:
+    """omega = phi_dot(t), alpha = phi_ddot(t) of a driver turned by the time law phi(t)."""
+    w, al = keys
+    law = parse_time_law(angle_law)
+    t = b.put("t", ctx.scene.time, "s")
+    sub = "_{" + tex.name(link) + "}"
+    phi, dphi, ddphi = (
+        rf"{head}{sub}" for head in (r"\varphi", r"\dot{\varphi}", r"\ddot{\varphi}")
+    )
+    b.line(
+        rf"&{phi}(t) = {tex.law(law.expression, ctx.fmt.digits)}, \quad "
+        rf"{dphi}(t) = {tex.law(law.first_derivative, ctx.fmt.digits)}, \quad "
+        rf"{ddphi}(t) = {tex.law(law.second_derivative, ctx.fmt.digits)}"
+    )
+    b.line(
+        rf"&t = {b.numu(t)}: \quad {w_sym(link)} = {dphi}(t) = {b.numu(w)}, "
+        rf"\quad {a_sym(link)} = {ddphi}(t) = {b.numu(al)}"
+    )
+    b.say(
+        f"Link {link} turns by phi(t) = {angle_law} (rad) from its drawn pose; "
+        f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
+        f"alpha({link}) = {b.txt(al)}."
+    )
+
+
+def _slot_sentence(joint: Joint, fixed: bool) -> str:
+    """The words for a sliding joint: which point slides in which link's slot."""
+    guide, follower = joint.links
+    return (
+        f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
+        + (" (a fixed guide)." if fixed else " (a moving guide).")
+        + (" The block cannot turn relative to the guide." if joint.type == "prismatic" else "")
+    )
 
 
 def positions_step(ctx: LinkageContext) -> Step:
@@ -556,8 +567,7 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
     result = ctx.analysis.links[link]
     b = ctx.builder("poles.velocity", f"Velocity pole of link {link}")
     sub = "P_{" + tex.name(link) + "}"
-    omega = ctx.omega(link)
-    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
     if result.velocity_pole is None:
         b.line(
             rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
@@ -579,43 +589,51 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
     )
     b.say("It lies on the perpendiculars to the velocities of two points, drawn through them.")
     for x in points:
-        v = ctx.vel(x)
-        r_np = ctx.pos(x) - result.velocity_pole
-        vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
-        px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
-        r = b.put(f"r(P,{x})", r_np, "m")
-        d = b.put(
-            f"r(P,{x}).v({x})",
-            float(np.dot(r_np, v)),
-            "m^2/s",
-            reference=float(np.hypot(*r_np) * np.hypot(*v)),
-        )
-        b.check("cross", vx, w, r)
-        b.check("sum", pole, px, f"-{r}")
-        b.check("dot", d, r, vx)
-        rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
-        vxv = b.entries(vx)
-        expanded = tex.column(
-            ["-" + tex.paren(b.num(w)) + r"\, " + ry, b.num(w) + r"\, " + rx, "0"]
-        )
-        b.line(
-            rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
-            rf"{expanded}"
-        )
-        b.line(
-            rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
-            rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-            rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-            rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
-        )
-        b.say(
-            f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
-            f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
-            f"r(P,{x}) = {b.txt(pole)}."
-        )
+        _velocity_pole_from(ctx, b, link, x, result.velocity_pole)
     if len(points) == 2:
         b.say(f"Check: {points[0]} and {points[1]} give the same pole.")
     return b.build()
+
+
+def _velocity_pole_from(
+    ctx: LinkageContext, b: StepBuilder, link: str, x: str, pole_np: np.ndarray
+) -> None:
+    """v_X = omega x r_PX solved for r_PX = (v_y / omega, -v_x / omega), then P = X - r_PX;
+    r_PX . v_X = 0 shows the pole on the perpendicular to v_X."""
+    sub = "P_{" + tex.name(link) + "}"
+    w, pole = f"omega({link})", f"P({link})"
+    v = ctx.vel(x)
+    r_np = ctx.pos(x) - pole_np
+    vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
+    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    r = b.put(f"r(P,{x})", r_np, "m")
+    d = b.put(
+        f"r(P,{x}).v({x})",
+        float(np.dot(r_np, v)),
+        "m^2/s",
+        reference=float(np.hypot(*r_np) * np.hypot(*v)),
+    )
+    b.check("cross", vx, w, r)
+    b.check("sum", pole, px, f"-{r}")
+    b.check("dot", d, r, vx)
+    rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+    vxv = b.entries(vx)
+    expanded = tex.column(["-" + tex.paren(b.num(w)) + r"\, " + ry, b.num(w) + r"\, " + rx, "0"])
+    b.line(
+        rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
+        rf"{expanded}"
+    )
+    b.line(
+        rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
+        rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
+    )
+    b.say(
+        f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
+        f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
+        f"r(P,{x}) = {b.txt(pole)}."
+    )
 
 
 def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
@@ -623,9 +641,8 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     result = ctx.analysis.links[link]
     b = ctx.builder("poles.acceleration", f"Acceleration pole of link {link}")
     sub = "G_{" + tex.name(link) + "}"
-    omega, alpha = ctx.omega(link), ctx.alpha(link)
-    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
-    al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
     if result.acceleration_pole is None:
         b.line(
             rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
@@ -642,9 +659,22 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     if at_pivot is not None:
         return at_pivot
     points = ctx.scene.links[link].points[:2]
-    x = points[-1]
+    _acceleration_pole_from(ctx, b, link, points[-1], result.acceleration_pole)
+    if len(points) == 2 and points[0] != points[-1]:
+        _acceleration_pole_check(ctx, b, link, points[0], result.acceleration_pole)
+    return b.build()
+
+
+def _acceleration_pole_from(
+    ctx: LinkageContext, b: StepBuilder, link: str, x: str, pole_np: np.ndarray
+) -> None:
+    """a_X = alpha x r_GX - omega^2 r_GX: the 2x2 system
+    [-omega^2, -alpha; alpha, -omega^2] r_GX = a_X solved by Cramer's rule, then G = X - r_GX."""
+    sub = "G_{" + tex.name(link) + "}"
+    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
     a = ctx.acc(x)
-    r_np = ctx.pos(x) - result.acceleration_pole
+    r_np = ctx.pos(x) - pole_np
     ax = b.put(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
     px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
     rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
@@ -657,15 +687,7 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
         rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
         rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}"
     )
-    w2 = omega**2
-    c11 = b.put("c11", -w2, "")
-    c12 = b.put("c12", -alpha, "")
-    c21 = b.put("c21", alpha, "")
-    c22 = b.put("c22", -w2, "")
-    b.check("product", c11, w, w, factor=-1.0)
-    b.check("product", c12, al, factor=-1.0)
-    b.check("product", c21, al)
-    b.check("product", c22, w, w, factor=-1.0)
+    coefficients = _pole_coefficients(b, omega, alpha, w, al)
     b1 = b.put("b1", float(a[0]), "m/s^2")
     b2 = b.put("b2", float(a[1]), "m/s^2")
     b.check("sum", b1, f"{ax}[0]")
@@ -680,35 +702,56 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
         Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
         Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1])),
     ]
-    present_vector_unknowns(b, unknowns, [[c11, c12], [c21, c22]], [b1, b2], "G:")
+    present_vector_unknowns(b, unknowns, coefficients, [b1, b2], "G:")
     b.check("sum", pole, px, f"-{r}")
     b.line(
         rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
         rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
     )
     b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
-    if len(points) == 2 and points[0] != x:
-        y = points[0]
-        ry_np = ctx.pos(y) - result.acceleration_pole
-        ay = b.put(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
-        ry = b.put(f"r(G,{y})", ry_np, "m")
-        py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
-        t = b.put(f"alpha x r(G,{y})", k_cross(alpha, ry_np), "m/s^2")
-        n = b.put(f"normal(G,{y})", -w2 * ry_np, "m/s^2")
-        b.check("sum", ry, py, f"-{pole}")
-        b.check("cross", t, al, ry)
-        b.check("product", n, w, w, ry, factor=-1.0)
-        b.check("sum", ay, t, n)
-        b.line(
-            rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
-            rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
-            rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}"
-        )
-        b.say(
-            f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
-            f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}."
-        )
-    return b.build()
+
+
+def _pole_coefficients(
+    b: StepBuilder, omega: float, alpha: float, w: str, al: str
+) -> list[list[str]]:
+    """The matrix of a_X = alpha x r - omega^2 r in r: [[-omega^2, -alpha], [alpha, -omega^2]]."""
+    w2 = omega**2
+    c11 = b.put("c11", -w2, "")
+    c12 = b.put("c12", -alpha, "")
+    c21 = b.put("c21", alpha, "")
+    c22 = b.put("c22", -w2, "")
+    b.check("product", c11, w, w, factor=-1.0)
+    b.check("product", c12, al, factor=-1.0)
+    b.check("product", c21, al)
+    b.check("product", c22, w, w, factor=-1.0)
+    return [[c11, c12], [c21, c22]]
+
+
+def _acceleration_pole_check(
+    ctx: LinkageContext, b: StepBuilder, link: str, y: str, pole_np: np.ndarray
+) -> None:
+    """The check at a second point Y: a_Y = alpha x r_GY - omega^2 r_GY."""
+    sub = "G_{" + tex.name(link) + "}"
+    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    ry_np = ctx.pos(y) - pole_np
+    ay = b.put(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
+    ry = b.put(f"r(G,{y})", ry_np, "m")
+    py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
+    t = b.put(f"alpha x r(G,{y})", k_cross(ctx.alpha(link), ry_np), "m/s^2")
+    n = b.put(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
+    b.check("sum", ry, py, f"-{pole}")
+    b.check("cross", t, al, ry)
+    b.check("product", n, w, w, ry, factor=-1.0)
+    b.check("sum", ay, t, n)
+    b.line(
+        rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
+        rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
+        rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}"
+    )
+    b.say(
+        f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
+        f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}."
+    )
 
 
 def present_vector_unknowns(
@@ -754,95 +797,113 @@ def _trend(fmt: Formatter, rate: float, rate_unit: str, change: float, change_un
 def reading_step(ctx: LinkageContext) -> Step:
     """Reading the answer: each rotation's sense in words and whether the link speeds up or slows
     down (omega and alpha of the same sign: speeding up), each slider's direction of motion."""
-    fmt, b = ctx.fmt, ctx.builder("reading", "Reading the answer")
+    b = ctx.builder("reading", "Reading the answer")
     for link in ctx.scene.moving_links:
-        omega, alpha = ctx.omega(link), ctx.alpha(link)
-        w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
-        al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
-        w_sense = "" if b.is_zero(w) else SENSE[1 if omega > 0 else -1]
-        a_sense = "" if b.is_zero(al) else SENSE[1 if alpha > 0 else -1]
-        trend = _trend(fmt, omega, "rad/s", alpha, "rad/s^2")
-        if not w_sense:
-            words = f"link {link} does not turn at this instant" + (
-                f"; alpha {a_sense} starts it turning {a_sense}" if a_sense else ""
-            )
-        elif not a_sense:
-            words = f"omega {w_sense}, alpha zero: link {link} turns {w_sense} at a steady rate"
-        else:
-            words = f"omega {w_sense}, alpha {a_sense}: link {link} is {trend}"
-        b.line(
-            rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} \quad "
-            rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
-        )
-        b.say(f"omega({link}) = {b.txt(w)}, alpha({link}) = {b.txt(al)}: {words}.")
-    index = 0
+        _read_link(ctx, b, link)
     for joint in ctx.scene.joints:
-        if joint.type == "revolute":
-            continue
-        slot = ctx.slot(joint.guide, joint.point)
-        index += 1
-        assert slot.relative_acceleration is not None
-        point = joint.point
-        rel = slot.put(b, "relative_velocity", point)
-        arel = slot.put(b, "relative_acceleration", point)
-        v, a = slot.relative_velocity, slot.relative_acceleration
-        power = b.put(
-            f"v_rel.a_rel({point})",
-            float(np.dot(v, a)),
-            "m^2/s^3",
-            reference=float(np.hypot(*v) * np.hypot(*a)),
-        )
-        b.check("dot", power, rel, arel)
-        frame = "" if joint.guide == ctx.scene.ground else f" relative to link {joint.guide}"
-        if b.is_zero(rel):
-            words = f"{point} does not slide{frame} at this instant"
-        else:
-            heading = b.put(f"heading({point})", math.atan2(v[1], v[0]), "rad")
-            b.check("angle", heading, rel)
-            trend = "speeding up" if float(np.dot(v, a)) > 0 else "slowing down"
-            if b.is_zero(power):
-                trend = "at a steady rate"
-            words = f"{point} slides {direction_words(math.atan2(v[1], v[0]))}{frame}, {trend}"
-        b.line(
-            rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = {b.point(rel)}"
-            rf"{latex_unit('m/s')}, \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = "
-            rf"{b.point(arel)}{latex_unit('m/s^2')} \quad "
-            rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
-        )
-        b.say(
-            f"v_rel({point}) = {b.txt(rel)}, a_rel({point}) = {b.txt(arel)} (their dot product "
-            f"{b.txt(power)}: the same sense means speeding up): {words}."
-        )
+        if joint.type != "revolute":
+            _read_slider(ctx, b, joint)
     for name, m in ctx.analysis.moving_points.items():
-        source = ("moving_points", name)
-        vk = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
-        ak = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
-        speed = b.put(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
-        power = b.put(
-            f"v.a({name})",
-            float(np.dot(m.velocity, m.acceleration)),
-            "m^2/s^3",
-            reference=float(np.hypot(*m.velocity) * np.hypot(*m.acceleration)),
-        )
-        b.check("norm", speed, vk)
-        b.check("dot", power, vk, ak)
-        vv = np.asarray(m.velocity, dtype=float)
-        if b.is_zero(vk):
-            words = f"{name} is momentarily at rest"
-        else:
-            trend = "speeding up" if float(np.dot(vv, m.acceleration)) > 0 else "slowing down"
-            if b.is_zero(power):
-                trend = "at a steady speed"
-            words = (
-                f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed "
-                f"{b.txt(speed)}, {trend}"
-            )
-        b.line(
-            rf"&|\vec{{v}}_{{{tex.name(name)}}}| = {b.numu(speed)} \quad \Rightarrow "
-            rf"\text{{{tex.escape_text(words)}}}"
-        )
-        b.say(f"v({name}) = {b.txt(vk)}, a({name}) = {b.txt(ak)}: {words}.")
+        _read_moving_point(b, name, m)
     return b.build()
+
+
+def _rotation_words(link: str, w_sense: str, a_sense: str, trend: str) -> str:
+    """A link's rotation in words from the senses of omega and alpha ('' where zero)."""
+    if not w_sense:
+        return f"link {link} does not turn at this instant" + (
+            f"; alpha {a_sense} starts it turning {a_sense}" if a_sense else ""
+        )
+    if not a_sense:
+        return f"omega {w_sense}, alpha zero: link {link} turns {w_sense} at a steady rate"
+    return f"omega {w_sense}, alpha {a_sense}: link {link} is {trend}"
+
+
+def _read_link(ctx: LinkageContext, b: StepBuilder, link: str) -> None:
+    """omega and alpha of one link: the senses of rotation, speeding up where omega alpha > 0."""
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
+    al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
+    w_sense = "" if b.is_zero(w) else SENSE[1 if omega > 0 else -1]
+    a_sense = "" if b.is_zero(al) else SENSE[1 if alpha > 0 else -1]
+    trend = _trend(ctx.fmt, omega, "rad/s", alpha, "rad/s^2")
+    words = _rotation_words(link, w_sense, a_sense, trend)
+    b.line(
+        rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} \quad "
+        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+    )
+    b.say(f"omega({link}) = {b.txt(w)}, alpha({link}) = {b.txt(al)}: {words}.")
+
+
+def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
+    """v_rel and a_rel of a sliding joint: its direction, speeding up where v_rel . a_rel > 0."""
+    slot = ctx.slot(joint.guide, joint.point)
+    assert slot.relative_acceleration is not None
+    point = joint.point
+    rel = slot.put(b, "relative_velocity", point)
+    arel = slot.put(b, "relative_acceleration", point)
+    v, a = slot.relative_velocity, slot.relative_acceleration
+    power = b.put(
+        f"v_rel.a_rel({point})",
+        float(np.dot(v, a)),
+        "m^2/s^3",
+        reference=float(np.hypot(*v) * np.hypot(*a)),
+    )
+    b.check("dot", power, rel, arel)
+    frame = "" if joint.guide == ctx.scene.ground else f" relative to link {joint.guide}"
+    if b.is_zero(rel):
+        words = f"{point} does not slide{frame} at this instant"
+    else:
+        heading = b.put(f"heading({point})", math.atan2(v[1], v[0]), "rad")
+        b.check("angle", heading, rel)
+        trend = speed_trend(b, power, "at a steady rate")
+        words = f"{point} slides {direction_words(math.atan2(v[1], v[0]))}{frame}, {trend}"
+    b.line(
+        rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = {b.point(rel)}"
+        rf"{latex_unit('m/s')}, \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = "
+        rf"{b.point(arel)}{latex_unit('m/s^2')} \quad "
+        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+    )
+    b.say(
+        f"v_rel({point}) = {b.txt(rel)}, a_rel({point}) = {b.txt(arel)} (their dot product "
+        f"{b.txt(power)}: the same sense means speeding up): {words}."
+    )
+
+
+def _read_moving_point(b: StepBuilder, name: str, m: MovingPointMotion) -> None:
+    """|v| and v . a of a moving point: its direction, speeding up where v . a > 0."""
+    source = ("moving_points", name)
+    vk = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+    ak = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+    speed = b.put(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
+    power = b.put(
+        f"v.a({name})",
+        float(np.dot(m.velocity, m.acceleration)),
+        "m^2/s^3",
+        reference=float(np.hypot(*m.velocity) * np.hypot(*m.acceleration)),
+    )
+    b.check("norm", speed, vk)
+    b.check("dot", power, vk, ak)
+    vv = np.asarray(m.velocity, dtype=float)
+    if b.is_zero(vk):
+        words = f"{name} is momentarily at rest"
+    else:
+        words = (
+            f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed "
+            f"{b.txt(speed)}, {speed_trend(b, power, 'at a steady speed')}"
+        )
+    b.line(
+        rf"&|\vec{{v}}_{{{tex.name(name)}}}| = {b.numu(speed)} \quad \Rightarrow "
+        rf"\text{{{tex.escape_text(words)}}}"
+    )
+    b.say(f"v({name}) = {b.txt(vk)}, a({name}) = {b.txt(ak)}: {words}.")
+
+
+def speed_trend(b: StepBuilder, power: str, steady: str) -> str:
+    """The sign of v . a in words: steady (shown as 0), speeding up or slowing down."""
+    if b.is_zero(power):
+        return steady
+    return "speeding up" if b.scalar(power) > 0 else "slowing down"
 
 
 def summary_step(ctx: LinkageContext) -> Step:

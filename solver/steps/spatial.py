@@ -15,15 +15,25 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 
-from solver.spatial import GROUND, SpatialAnalysis, SpatialChain, SpatialJoint
+from solver.spatial import (
+    GROUND,
+    BodyMotion,
+    PointMotion,
+    SpatialAnalysis,
+    SpatialChain,
+    SpatialJoint,
+    SpatialPoint,
+)
 from solver.steps import figures
 from solver.steps import latex as tex
 from solver.steps.builder import StepBuilder
 from solver.steps.digits import DigitPlan
 from solver.steps.format import Formatter, latex_unit
+from solver.steps.linkage import speed_trend
 from solver.steps.model import Step
 
 V0 = r"\vec{0}"
@@ -55,6 +65,63 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
         ),
         "rad/s^2": largest([b.alpha for b in analysis.bodies.values()]),
     }
+
+
+class ParentMotion(NamedTuple):
+    """Body k-1 at the instant (zeros for the ground): omega, alpha, origin O_{k-1} and its
+    velocity and acceleration."""
+
+    omega: np.ndarray
+    alpha: np.ndarray
+    origin: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+class OriginTerms(NamedTuple):
+    """The terms carrying joint k's origin with body k-1, r = O_k - O_{k-1}:
+    v_{O_k} = v_{O_{k-1}} + omega x r + v_rel and
+    a_{O_k} = a_{O_{k-1}} + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+
+    r: np.ndarray
+    omega_x_r: np.ndarray
+    alpha_x_r: np.ndarray
+    centripetal: np.ndarray
+    v_rel: np.ndarray
+    coriolis: np.ndarray
+    a_rel: np.ndarray
+
+
+def origin_terms(joint: SpatialJoint, parent: ParentMotion) -> OriginTerms:
+    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates;
+    v_rel = v_k e_k, 2 omega x v_rel and a_rel = v_dot_k e_k of joint k's sliding."""
+    r = joint.origin - parent.origin
+    v_rel = joint.rate * joint.axis
+    return OriginTerms(
+        r,
+        np.cross(parent.omega, r),
+        np.cross(parent.alpha, r),
+        np.cross(parent.omega, np.cross(parent.omega, r)),
+        v_rel,
+        2.0 * np.cross(parent.omega, v_rel),
+        joint.rate_dot * joint.axis,
+    )
+
+
+class FiveTerms(NamedTuple):
+    """The keys of a point's five-term acceleration in its step:
+    a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+
+    a_origin: str
+    alpha: str
+    omega: str
+    r: str
+    tangential: str
+    omega_x_r: str
+    centripetal: str
+    coriolis: str
+    relative: str
+    a: str
 
 
 class SpatialSteps:
@@ -111,15 +178,15 @@ class SpatialSteps:
     def parent_name(self, index: int) -> str:
         return GROUND if index == 0 else self.chain.joints[index - 1].name
 
-    def parent_vectors(
-        self, index: int
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def parent_motion(self, index: int) -> ParentMotion:
         """omega, alpha, origin, v_origin, a_origin of body k-1 (zeros for the ground)."""
         if index == 0:
             z = np.zeros(3)
-            return z, z, z, z, z
+            return ParentMotion(z, z, z, z, z)
         body = self.analysis.bodies[self.chain.joints[index - 1].name]
-        return (body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin)
+        return ParentMotion(
+            body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin
+        )
 
     def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> str:
         """omega_{k-1} (or alpha_{k-1}) of body k-1; the ground's is zero and has no source."""
@@ -140,45 +207,66 @@ class SpatialSteps:
         return None
 
     def body_steps(self, index: int, joint: SpatialJoint) -> list[Step]:
+        """omega_k, de_k/dt and alpha_k of body k, then the motion of its joint origin O_k."""
+        parent = self.parent_motion(index)
+        out = [
+            self.omega_step(index, joint, parent),
+            self.axis_rate_step(index, joint, parent),
+            self.alpha_step(index, joint, parent),
+        ]
+        at_origin = self.point_at_origin(index, joint)
+        if at_origin is not None:
+            self.shown.add(at_origin)
+            out += self.point_steps(at_origin, f" (the origin O{joint.name} of joint {joint.name})")
+        else:
+            terms = origin_terms(joint, parent)
+            out.append(self.origin_velocity_step(index, joint, parent, terms))
+            out.append(self.origin_acceleration_step(index, joint, parent, terms))
+        return out
+
+    def omega_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """omega_k = omega_{k-1} + omega_k e_k (a revolute joint), omega_k = omega_{k-1} (a
+        prismatic one)."""
         body = self.analysis.bodies[joint.name]
-        w_parent, al_parent, o_parent, v_parent, a_parent = self.parent_vectors(index)
-        parent = self.parent_name(index)
-        n, p = tex.name(joint.name), tex.name(parent)
-        out = []
-        # angular velocity
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
         b = self.builder("spatial.omega", f"Angular velocity of body {joint.name}")
-        wp = self.parent_rate(b, index, "omega", w_parent)
+        wp = self.parent_rate(b, index, "omega", parent.omega)
         w = b.put(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
         e = b.put(f"e({joint.name})", joint.axis, "")
-        if joint.type == "revolute":
-            q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
-            term = b.put(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
-            b.check("product", term, q, e)
-            b.check("sum", w, wp, term)
-            b.line(
-                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
-                rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
-                rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}"
-            )
-            b.say(
-                f"Angular velocities add: omega({joint.name}) = omega({parent}) + "
-                f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
-                f"{b.txt(w)}."
-            )
-        else:
+        if joint.type != "revolute":
             b.check("sum", w, wp)
             b.line(
-                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = "
-                rf"{tex.boxed_result(b.colu(w))}"
+                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = {tex.boxed_result(b.colu(w))}"
             )
             b.say(
-                f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent}) = "
+                f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent_name}) = "
                 f"{b.txt(w)}."
             )
-        out.append(b.build())
-        # the turning axis
+            return b.build()
+        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
+        term = b.put(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
+        b.check("product", term, q, e)
+        b.check("sum", w, wp, term)
+        b.line(
+            rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
+            rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
+            rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}"
+        )
+        b.say(
+            f"Angular velocities add: omega({joint.name}) = omega({parent_name}) + "
+            f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
+            f"{b.txt(w)}."
+        )
+        return b.build()
+
+    def axis_rate_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """de_k/dt = omega_{k-1} x e_k: the axis is fixed in body k-1 and turns with it."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
         b = self.builder("spatial.axis_rate", f"Rate of change of the axis of joint {joint.name}")
-        wp = self.parent_rate(b, index, "omega", w_parent)
+        wp = self.parent_rate(b, index, "omega", parent.omega)
         e = b.put(f"e({joint.name})", joint.axis, "")
         ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
         b.check("cross", ed, wp, e)
@@ -188,179 +276,199 @@ class SpatialSteps:
             rf"{tex.boxed_result(b.colu(ed))}"
         )
         b.say(
-            f"The axis e({joint.name}) is fixed in body {parent}, so it turns with "
-            f"omega({parent}): its rate of change is omega({parent}) cross e({joint.name}) = "
-            f"{b.txt(ed)}."
+            f"The axis e({joint.name}) is fixed in body {parent_name}, so it turns with "
+            f"omega({parent_name}): its rate of change is omega({parent_name}) cross "
+            f"e({joint.name}) = {b.txt(ed)}."
         )
-        out.append(b.build())
-        # angular acceleration
+        return b.build()
+
+    def alpha_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """alpha_k = alpha_{k-1} + omega_dot_k e_k + omega_k de_k/dt (a revolute joint),
+        alpha_k = alpha_{k-1} (a prismatic one)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
         b = self.builder("spatial.alpha", f"Angular acceleration of body {joint.name}")
-        alp = self.parent_rate(b, index, "alpha", al_parent)
+        alp = self.parent_rate(b, index, "alpha", parent.alpha)
         al = b.put(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
-        if joint.type == "revolute":
-            e = b.put(f"e({joint.name})", joint.axis, "")
-            ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
-            q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
-            qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
-            t1 = b.put(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
-            t2 = b.put(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
-            b.check("product", t1, qd, e)
-            b.check("product", t2, q, ed)
-            b.check("sum", al, alp, t1, t2)
-            b.line(
-                rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
-                rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
-                rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
-                rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}"
-            )
-            b.say(
-                f"Differentiating omega({joint.name}) = omega({parent}) + rate e: "
-                f"alpha({joint.name}) = alpha({parent}) + rate-dot e + rate times de/dt = "
-                f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
-                "from the turning axis; leaving it out is a common mistake."
-            )
-        else:
+        if joint.type != "revolute":
             b.check("sum", al, alp)
             b.line(
                 rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} = "
                 rf"{tex.boxed_result(b.colu(al))}"
             )
-            b.say(f"alpha({joint.name}) = alpha({parent}) = {b.txt(al)} (prismatic joint).")
-        out.append(b.build())
-        at_origin = self.point_at_origin(index, joint)
-        if at_origin is not None:
-            self.shown.add(at_origin)
-            out += self.point_steps(at_origin, f" (the origin O{joint.name} of joint {joint.name})")
-        else:
-            out += self.origin_steps(
-                index, joint, w_parent, al_parent, o_parent, v_parent, a_parent
-            )
-        return out
+            b.say(f"alpha({joint.name}) = alpha({parent_name}) = {b.txt(al)} (prismatic joint).")
+            return b.build()
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
+        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
+        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
+        t1 = b.put(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
+        t2 = b.put(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
+        b.check("product", t1, qd, e)
+        b.check("product", t2, q, ed)
+        b.check("sum", al, alp, t1, t2)
+        b.line(
+            rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
+            rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
+            rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
+            rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}"
+        )
+        b.say(
+            f"Differentiating omega({joint.name}) = omega({parent_name}) + rate e: "
+            f"alpha({joint.name}) = alpha({parent_name}) + rate-dot e + rate times de/dt = "
+            f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
+            "from the turning axis; leaving it out is a common mistake."
+        )
+        return b.build()
 
-    def origin_steps(
-        self,
-        index: int,
-        joint: SpatialJoint,
-        w_parent: np.ndarray,
-        al_parent: np.ndarray,
-        o_parent: np.ndarray,
-        v_parent: np.ndarray,
-        a_parent: np.ndarray,
-    ) -> list[Step]:
+    def origin_velocity_step(
+        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+    ) -> Step:
+        """v_{O_k} = v_{O_{k-1}} + omega_{k-1} x r (+ v_k e_k where joint k slides)."""
         body = self.analysis.bodies[joint.name]
-        parent = self.parent_name(index)
-        n, p = tex.name(joint.name), tex.name(parent)
-        r_np = joint.origin - o_parent
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
         origin_p = "O_{" + p + "}" if index else "O"
-        out = []
         b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
-        vp = b.put(f"v(O{parent})", v_parent, "m/s")
-        wp = self.parent_rate(b, index, "omega", w_parent)
-        r = b.put("r", r_np, "m")
-        wxr = b.put("omega x r", np.cross(w_parent, r_np), "m/s")
+        vp = b.put(f"v(O{parent_name})", parent.velocity, "m/s")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        r = b.put("r", terms.r, "m")
+        wxr = b.put("omega x r", terms.omega_x_r, "m/s")
         v = b.put(f"v(O{joint.name})", body.velocity_origin, "m/s")
         b.check("cross", wxr, wp, r)
-        terms = [vp, wxr]
-        extra = ""
+        parts = [vp, wxr]
         if joint.type == "prismatic":
             e = b.put(f"e({joint.name})", joint.axis, "")
             q = b.put(f"rate({joint.name})", joint.rate, "m/s")
-            rel = b.put("v_rel", joint.rate * joint.axis, "m/s")
-            b.check("product", rel, q, e)
-            terms.append(rel)
-            extra = rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}"
-        b.check("sum", v, *terms)
+            parts.append(b.put("v_rel", terms.v_rel, "m/s"))
+            b.check("product", parts[2], q, e)
+        b.check("sum", v, *parts)
+        sliding = len(parts) > 2
         b.line(
             rf"&\vec{{v}}_{{O_{{{n}}}}} = \vec{{v}}_{{{origin_p}}} + \vec{{\omega}}_{{{p}}} "
-            rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}{extra} = {self.col(b, vp)} + "
-            rf"{tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
-            + (rf" + {b.col(terms[2])}" if len(terms) > 2 else "")
+            rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}"
+            + (rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}" if sliding else "")
+            + rf" = {self.col(b, vp)} + {tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
+            + (rf" + {b.col(parts[2])}" if sliding else "")
             + rf" = {tex.boxed_result(b.colu(v))}"
         )
         b.say(
-            f"The origin O{joint.name} of joint {joint.name} moves with body {parent}: "
-            f"v = v(O{parent}) + omega({parent}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
-            + (f" + {b.txt(terms[2])} (sliding)" if len(terms) > 2 else "")
+            f"The origin O{joint.name} of joint {joint.name} moves with body {parent_name}: "
+            f"v = v(O{parent_name}) + omega({parent_name}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
+            + (f" + {b.txt(parts[2])} (sliding)" if sliding else "")
             + f" = {b.txt(v)}."
         )
-        out.append(b.build())
+        return b.build()
+
+    def origin_acceleration_step(
+        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+    ) -> Step:
+        """a_{O_k} = a_{O_{k-1}} + alpha_{k-1} x r + omega_{k-1} x (omega_{k-1} x r)
+        (+ 2 omega_{k-1} x v_rel + a_rel where joint k slides)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
         b = self.builder(
             "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
         )
-        ap = b.put(f"a(O{parent})", a_parent, "m/s^2")
-        wp = self.parent_rate(b, index, "omega", w_parent)
-        alp = self.parent_rate(b, index, "alpha", al_parent)
-        r = b.put("r", r_np, "m")
-        t = b.put("alpha x r", np.cross(al_parent, r_np), "m/s^2")
-        inner = b.put("omega x r", np.cross(w_parent, r_np), "m/s")
-        c = b.put("omega x (omega x r)", np.cross(w_parent, np.cross(w_parent, r_np)), "m/s^2")
+        ap = b.put(f"a(O{parent_name})", parent.acceleration, "m/s^2")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        alp = self.parent_rate(b, index, "alpha", parent.alpha)
+        r = b.put("r", terms.r, "m")
+        t = b.put("alpha x r", terms.alpha_x_r, "m/s^2")
+        inner = b.put("omega x r", terms.omega_x_r, "m/s")
+        c = b.put("omega x (omega x r)", terms.centripetal, "m/s^2")
         a = b.put(f"a(O{joint.name})", body.acceleration_origin, "m/s^2")
         b.check("cross", t, alp, r)
         b.check("cross", inner, wp, r)
         b.check("cross", c, wp, inner)
-        terms = [ap, t, c]
+        parts = [ap, t, c]
         if joint.type == "prismatic":
-            e = b.put(f"e({joint.name})", joint.axis, "")
-            q = b.put(f"rate({joint.name})", joint.rate, "m/s")
-            qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
-            rel_v = b.put("v_rel", joint.rate * joint.axis, "m/s")
-            cor = b.put(
-                "2 omega x v_rel", 2.0 * np.cross(w_parent, joint.rate * joint.axis), "m/s^2"
-            )
-            rel_a = b.put("a_rel", joint.rate_dot * joint.axis, "m/s^2")
-            b.check("product", rel_v, q, e)
-            b.check("cross", cor, wp, rel_v, factor=2.0)
-            b.check("product", rel_a, qd, e)
-            terms += [cor, rel_a]
-        b.check("sum", a, *terms)
+            parts += self.sliding_terms(b, joint, terms, wp)
+        b.check("sum", a, *parts)
+        self.write_origin_acceleration(b, index, joint, parts, a)
+        return b.build()
+
+    def sliding_terms(
+        self, b: StepBuilder, joint: SpatialJoint, terms: OriginTerms, wp: str
+    ) -> list[str]:
+        """2 omega_{k-1} x v_rel and a_rel = v_dot_k e_k of a sliding joint k, v_rel = v_k e_k."""
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        q = b.put(f"rate({joint.name})", joint.rate, "m/s")
+        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
+        rel_v = b.put("v_rel", terms.v_rel, "m/s")
+        cor = b.put("2 omega x v_rel", terms.coriolis, "m/s^2")
+        rel_a = b.put("a_rel", terms.a_rel, "m/s^2")
+        b.check("product", rel_v, q, e)
+        b.check("cross", cor, wp, rel_v, factor=2.0)
+        b.check("product", rel_a, qd, e)
+        return [cor, rel_a]
+
+    def write_origin_acceleration(
+        self, b: StepBuilder, index: int, joint: SpatialJoint, parts: list[str], a: str
+    ) -> None:
+        """The equation a_{O_k} = a_{O_{k-1}} + ... and its sum, in LaTeX and in words."""
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        origin_p = "O_{" + p + "}" if index else "O"
+        sliding = joint.type == "prismatic"
         b.line(
             rf"&\vec{{a}}_{{O_{{{n}}}}} = \vec{{a}}_{{{origin_p}}} + \vec{{\alpha}}_{{{p}}} "
             rf"\times \vec{{r}} + \vec{{\omega}}_{{{p}}} \times (\vec{{\omega}}_{{{p}}} \times "
             rf"\vec{{r}})"
             + (
-                r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + "
-                r"\vec{a}_{\mathrm{rel}}"
-                if joint.type == "prismatic"
+                r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + \vec{a}_{\mathrm{rel}}"
+                if sliding
                 else ""
             )
         )
         b.line(
             r"&\phantom{\vec{a}} = "
-            + " + ".join(self.col(b, k) for k in terms)
+            + " + ".join(self.col(b, k) for k in parts)
             + rf" = {tex.boxed_result(b.colu(a))}"
         )
         b.say(
-            f"Acceleration of O{joint.name}: a(O{parent}) + alpha({parent}) cross r + "
-            f"omega({parent}) cross (omega({parent}) cross r)"
-            + (" + 2 omega cross v_rel + a_rel" if joint.type == "prismatic" else "")
+            f"Acceleration of O{joint.name}: a(O{parent_name}) + alpha({parent_name}) cross r + "
+            f"omega({parent_name}) cross (omega({parent_name}) cross r)"
+            + (" + 2 omega cross v_rel + a_rel" if sliding else "")
             + " = "
-            + " + ".join(b.txt(k) for k in terms)
+            + " + ".join(b.txt(k) for k in parts)
             + f" = {b.txt(a)}."
         )
-        out.append(b.build())
-        return out
 
     def point_steps(self, name: str, role: str = "") -> list[Step]:
+        """The velocity and the five-term acceleration of a point of a moving body (one step
+        for a point of the ground)."""
         point = next(p for p in self.chain.points if p.name == name)
-        motion = self.analysis.points[name]
         if point.body == GROUND:
-            b = self.builder("spatial.point.fixed", f"Point {name} (fixed)")
-            v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
-            a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
-            b.line(rf"&\vec{{v}}_{{{tex.name(name)}}} = \vec{{a}}_{{{tex.name(name)}}} = {V0}")
-            b.say(f"{name} is a point of the ground: v = {b.txt(v)}, a = {b.txt(a)}.")
-            return [b.build()]
+            return [self.fixed_point_step(point)]
+        return [self.point_velocity_step(point, role), self.point_acceleration_step(point, role)]
+
+    def fixed_point_step(self, point: SpatialPoint) -> Step:
+        """v_P = a_P = 0 for a point of the ground."""
+        name = point.name
+        motion = self.analysis.points[name]
+        b = self.builder("spatial.point.fixed", f"Point {name} (fixed)")
+        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        b.line(rf"&\vec{{v}}_{{{tex.name(name)}}} = \vec{{a}}_{{{tex.name(name)}}} = {V0}")
+        b.say(f"{name} is a point of the ground: v = {b.txt(v)}, a = {b.txt(a)}.")
+        return b.build()
+
+    def point_velocity_step(self, point: SpatialPoint, role: str) -> Step:
+        """v_P = v_O + omega x r, r from the body's joint origin O to P."""
+        name = point.name
         body = self.analysis.bodies[point.body]
-        joint = next(j for j in self.chain.joints if j.name == point.body)
         r_np = point.position - body.origin
         n, k = tex.name(name), tex.name(point.body)
-        out = []
         b = self.builder("spatial.point.velocity", f"Velocity of {name}{role}")
         vo = b.put(f"v(O{point.body})", body.velocity_origin, "m/s")
         w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
         r = b.put(f"r(O{point.body},{name})", r_np, "m")
         wxr = b.put("omega x r", np.cross(body.omega, r_np), "m/s")
-        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        v = b.put(
+            f"v({name})", self.analysis.points[name].velocity, "m/s", ("points", name, "velocity")
+        )
         b.check("cross", wxr, w, r)
         b.check("sum", v, vo, wxr)
         b.line(
@@ -376,7 +484,14 @@ class SpatialSteps:
             f"{name} is fixed in body {point.body}: v({name}) = v(O{point.body}) + "
             f"omega({point.body}) cross r = {b.txt(vo)} + {b.txt(wxr)} = {b.txt(v)}."
         )
-        out.append(b.build())
+        return b.build()
+
+    def point_acceleration_step(self, point: SpatialPoint, role: str) -> Step:
+        """a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+        name = point.name
+        motion = self.analysis.points[name]
+        body = self.analysis.bodies[point.body]
+        r_np = point.position - body.origin
         b = self.builder(
             "spatial.point.acceleration", f"Acceleration of {name}{role}: the five-term formula"
         )
@@ -395,6 +510,12 @@ class SpatialSteps:
         b.check("cross", inner, w, r)
         b.check("cross", c, w, inner)
         b.check("sum", a, ao, t, c, cor, rel)
+        self.write_five_terms(b, point, FiveTerms(ao, al, w, r, t, inner, c, cor, rel, a))
+        return b.build()
+
+    def write_five_terms(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> None:
+        """The five-term formula, its cross products and its sum, in LaTeX and in words."""
+        n, k = tex.name(point.name), tex.name(point.body)
         b.line(
             rf"&\vec{{a}}_{{{n}}} = \vec{{a}}_{{O_{{{k}}}}} + \vec{{\alpha}}_{{{k}}} \times "
             rf"\vec{{r}} + \vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times "
@@ -403,36 +524,43 @@ class SpatialSteps:
         )
         b.line(
             rf"&\vec{{\alpha}}_{{{k}}} \times \vec{{r}} = "
-            rf"{tex.determinant3(b.entries(al), b.entries(r), UNITS)} = {b.col(t)}, \quad "
-            rf"\vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
-            rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)} = {b.col(inner)}"
+            rf"{tex.determinant3(b.entries(keys.alpha), b.entries(keys.r), UNITS)} = "
+            rf"{b.col(keys.tangential)}, \quad \vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
+            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.r), UNITS)} = "
+            rf"{b.col(keys.omega_x_r)}"
         )
         b.line(
             rf"&\vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times \vec{{r}}) = "
-            rf"{tex.determinant3(b.entries(w), b.entries(inner), UNITS)} = {b.col(c)}"
+            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.omega_x_r), UNITS)} = "
+            rf"{b.col(keys.centripetal)}"
         )
+        terms = (keys.a_origin, keys.tangential, keys.centripetal, keys.coriolis, keys.relative)
         b.line(
-            rf"&\vec{{a}}_{{{n}}} = {self.col(b, ao)} + {self.col(b, t)} + {self.col(b, c)} + "
-            rf"{self.col(b, cor)} + {self.col(b, rel)} = {tex.boxed_result(b.colu(a))}"
+            rf"&\vec{{a}}_{{{n}}} = {' + '.join(self.col(b, key) for key in terms)} = "
+            rf"{tex.boxed_result(b.colu(keys.a))}"
         )
+        b.say(
+            f"Five-term formula for {point.name} with r = r(O{point.body},{point.name}) = "
+            f"{b.txt(keys.r)}: a_O = {b.txt(keys.a_origin)}; alpha cross r = "
+            f"{b.txt(keys.tangential)}; omega cross (omega cross r) = "
+            f"{b.txt(keys.centripetal)}; {self.relative_terms_why(b, point, keys)}. Sum: "
+            f"a({point.name}) = {b.txt(keys.a)}."
+        )
+
+    def relative_terms_why(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> str:
+        """Why 2 omega x v_rel and a_rel are what they are: a sliding joint, or a fixed point."""
+        joint = next(j for j in self.chain.joints if j.name == point.body)
         if joint.type == "prismatic":
             parent = self.parent_of(joint)
-            why = (
+            return (
                 f"joint {joint.name} slides, so the Coriolis term 2 omega({parent}) cross "
-                f"v_rel = {b.txt(cor)} and the relative term {b.txt(rel)} appear"
+                f"v_rel = {b.txt(keys.coriolis)} and the relative term {b.txt(keys.relative)} "
+                "appear"
             )
-        else:
-            why = (
-                f"{name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
-                "and relative terms are zero"
-            )
-        b.say(
-            f"Five-term formula for {name} with r = r(O{point.body},{name}) = {b.txt(r)}: "
-            f"a_O = {b.txt(ao)}; alpha cross r = {b.txt(t)}; omega cross (omega cross r) = "
-            f"{b.txt(c)}; {why}. Sum: a({name}) = {b.txt(a)}."
+        return (
+            f"{point.name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
+            "and relative terms are zero"
         )
-        out.append(b.build())
-        return out
 
     def parent_of(self, joint: SpatialJoint) -> str:
         index = self.chain.joints.index(joint)
@@ -468,164 +596,89 @@ class SpatialSteps:
         |omega| grows. Each point moves with speed |v| along v/|v|; v . a > 0 means it speeds up."""
         b = self.builder("reading", "Reading the answer")
         for name, body in self.analysis.bodies.items():
-            n = tex.name(name)
-            w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
-            al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
-            size = float(np.linalg.norm(body.omega))
-            speed = b.put(f"|omega({name})|", size, "rad/s")
-            b.check("norm", speed, w)
-            if b.is_zero(speed):
-                words = f"body {name} does not turn at this instant"
-                b.line(
-                    rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)} \quad \Rightarrow \text{{"
-                    + tex.escape_text(words)
-                    + "}"
-                )
-                b.say(f"omega({name}) = {b.txt(w)}: {words}.")
-                continue
-            axis = b.put(f"u({name})", body.omega / size, "")
-            power = b.put(
-                f"omega.alpha({name})",
-                float(np.dot(body.omega, body.alpha)),
-                "rad^2/s^3",
-                reference=size * float(np.linalg.norm(body.alpha)),
-            )
-            b.check("dot", power, w, al)
-            trend = (
-                "at a steady rate"
-                if b.is_zero(power)
-                else "speeding up"
-                if float(np.dot(body.omega, body.alpha)) > 0
-                else "slowing down"
-            )
-            turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
-            if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
-                trend += ", and the axis itself turns (alpha is not along omega)"
-            words = (
-                f"body {name} turns at {b.txt(speed)} about the axis u = {b.txtn(axis)} (nearest "
-                f"{_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, {trend}"
-            )
-            b.line(
-                rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{u}}_{{{n}}} = "
-                rf"\vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = "
-                rf"({', '.join(b.entries(axis))}), \quad \vec{{\omega}}_{{{n}}} \cdot "
-                rf"\vec{{\alpha}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
-                + tex.escape_text(f"counter-clockwise about u, {trend}")
-                + "}"
-            )
-            b.say(
-                f"omega({name}) = {b.txt(w)}, alpha({name}) = {b.txt(al)}: {words} (omega . "
-                f"alpha = {b.txt(power)}: the same sense means the rotation speeds up)."
-            )
+            self.read_body(b, name, body)
         for point in self.chain.points:
-            motion = self.analysis.points[point.name]
-            n = tex.name(point.name)
-            v = b.put(
-                f"v({point.name})", motion.velocity, "m/s", ("points", point.name, "velocity")
-            )
-            a = b.put(
-                f"a({point.name})",
-                motion.acceleration,
-                "m/s^2",
-                ("points", point.name, "acceleration"),
-            )
-            size = float(np.linalg.norm(motion.velocity))
-            speed = b.put(f"|v({point.name})|", size, "m/s")
-            b.check("norm", speed, v)
-            if b.is_zero(speed):
-                words = f"{point.name} is at rest at this instant"
-                b.line(
-                    rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)} \quad \Rightarrow \text{{"
-                    + tex.escape_text(words)
-                    + "}"
-                )
-                b.say(f"v({point.name}) = {b.txt(v)}: {words}.")
-                continue
-            power = b.put(
-                f"v.a({point.name})",
-                float(np.dot(motion.velocity, motion.acceleration)),
-                "m^2/s^3",
-                reference=size * float(np.linalg.norm(motion.acceleration)),
-            )
-            b.check("dot", power, v, a)
-            trend = (
-                "at a steady speed"
-                if b.is_zero(power)
-                else "speeding up"
-                if float(np.dot(motion.velocity, motion.acceleration)) > 0
-                else "slowing down"
-            )
-            words = (
-                f"{point.name} moves at a speed of {b.txt(speed)}, mostly "
-                f"{_nearest_axis(motion.velocity)}, {trend}"
-            )
-            b.line(
-                rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
-                rf"\vec{{a}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
-                + tex.escape_text(words)
-                + "}"
-            )
-            b.say(
-                f"v({point.name}) = {b.txt(v)}, a({point.name}) = {b.txt(a)}: {words} (v . a = "
-                f"{b.txt(power)}: the same sense means speeding up)."
-            )
+            self.read_point(b, point.name, self.analysis.points[point.name])
         return b.build()
+
+    def read_body(self, b: StepBuilder, name: str, body: BodyMotion) -> None:
+        """|omega|, u = omega/|omega| and omega . alpha of one body, said in words."""
+        n = tex.name(name)
+        w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
+        al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
+        size = float(np.linalg.norm(body.omega))
+        speed = b.put(f"|omega({name})|", size, "rad/s")
+        b.check("norm", speed, w)
+        if b.is_zero(speed):
+            words = f"body {name} does not turn at this instant"
+            _write_at_rest(b, rf"|\vec{{\omega}}_{{{n}}}|", speed, words)
+            b.say(f"omega({name}) = {b.txt(w)}: {words}.")
+            return
+        axis = b.put(f"u({name})", body.omega / size, "")
+        power = _put_power(b, f"omega.alpha({name})", body.omega, body.alpha, "rad^2/s^3")
+        b.check("dot", power, w, al)
+        trend = speed_trend(b, power, "at a steady rate")
+        turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
+        if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
+            trend += ", and the axis itself turns (alpha is not along omega)"
+        words = (
+            f"body {name} turns at {b.txt(speed)} about the axis u = {b.txtn(axis)} (nearest "
+            f"{_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, {trend}"
+        )
+        b.line(
+            rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{u}}_{{{n}}} = "
+            rf"\vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = "
+            rf"({', '.join(b.entries(axis))}), \quad \vec{{\omega}}_{{{n}}} \cdot "
+            rf"\vec{{\alpha}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+            + tex.escape_text(f"counter-clockwise about u, {trend}")
+            + "}"
+        )
+        b.say(
+            f"omega({name}) = {b.txt(w)}, alpha({name}) = {b.txt(al)}: {words} (omega . "
+            f"alpha = {b.txt(power)}: the same sense means the rotation speeds up)."
+        )
+
+    def read_point(self, b: StepBuilder, name: str, motion: PointMotion) -> None:
+        """|v| and v . a of one point, said in words."""
+        n = tex.name(name)
+        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        speed = b.put(f"|v({name})|", float(np.linalg.norm(motion.velocity)), "m/s")
+        b.check("norm", speed, v)
+        if b.is_zero(speed):
+            words = f"{name} is at rest at this instant"
+            _write_at_rest(b, rf"|\vec{{v}}_{{{n}}}|", speed, words)
+            b.say(f"v({name}) = {b.txt(v)}: {words}.")
+            return
+        power = _put_power(b, f"v.a({name})", motion.velocity, motion.acceleration, "m^2/s^3")
+        b.check("dot", power, v, a)
+        words = (
+            f"{name} moves at a speed of {b.txt(speed)}, mostly "
+            f"{_nearest_axis(motion.velocity)}, {speed_trend(b, power, 'at a steady speed')}"
+        )
+        b.line(
+            rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
+            rf"\vec{{a}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+            + tex.escape_text(words)
+            + "}"
+        )
+        b.say(
+            f"v({name}) = {b.txt(v)}, a({name}) = {b.txt(a)}: {words} (v . a = "
+            f"{b.txt(power)}: the same sense means speeding up)."
+        )
 
     def figure(self) -> str:
         """The chain at the instant in an isometric drawing: the joint axes (dashed, through their
         origins), the bodies from joint to joint and to their points, the fixed frame E1, E2, E3,
         and each body's omega from its joint origin at its own stated scale."""
         project = ISOMETRIC
-        origins = [j.origin for j in self.chain.joints]
-        places = origins + [p.position for p in self.chain.points]
+        places = [j.origin for j in self.chain.joints] + [p.position for p in self.chain.points]
         drawn = [project @ x for x in places]
         per_mm = figures.model_scale([*drawn, np.zeros(2)])
         extent = figures.PAPER * per_mm  # m: the drawing's size
-        omegas = {name: b.omega for name, b in self.analysis.bodies.items()}
-        largest = max((float(np.linalg.norm(w)) for w in omegas.values()), default=0.0)
-        k = figures.nice_scale(largest, OMEGA_PAPER_CM)
-        to_model = 10.0 * per_mm / k  # (rad/s) -> cm on paper -> m of the drawing
-        segments: list[tuple[np.ndarray, np.ndarray, str]] = []
-        arrows: list[figures.Arrow] = []
-        marks: dict[tuple[float, ...], tuple[np.ndarray, list[str], bool]] = {}
-
-        def mark(at: np.ndarray, label: str, fixed: bool) -> None:
-            """One dot per place, its labels joined: 'O3 = A' where a point sits on an origin."""
-            key = tuple(np.round(at / max(extent, 1e-300), 9))
-            place = marks.setdefault(key, (at, [], fixed))
-            place[1].append(label)
-
-        half = 0.12 * extent
-        attached: dict[str, list[np.ndarray]] = {GROUND: []}
-        for joint in self.chain.joints:
-            attached[joint.name] = [joint.origin]
-        for index, joint in enumerate(self.chain.joints):
-            parent = self.parent_name(index)
-            attached[parent].append(joint.origin)
-            ends = (joint.origin - half * joint.axis, joint.origin + half * joint.axis)
-            segments.append((project @ ends[0], project @ ends[1], "position"))
-            mark(joint.origin, f"O{joint.name}", index == 0)
-            start = project @ joint.origin
-            arrows.append(
-                figures.Arrow(
-                    start,
-                    start + to_model * (project @ omegas[joint.name]),
-                    f"omega({joint.name})",
-                    f"ω{joint.name}",
-                    "absolute",
-                )
-            )
-        for point in self.chain.points:
-            attached[point.body].append(point.position)
-            mark(point.position, point.name, point.body == GROUND)
-        for body, where in attached.items():  # body k from its joint origin to what it carries
-            if body == GROUND:
-                continue
-            segments += [(project @ where[0], project @ x, "link") for x in where[1:]]
-        dots = [
-            figures.Dot(project @ at, " = ".join(dict.fromkeys(labels)), fixed)
-            for at, labels, fixed in marks.values()
-        ]
+        omegas = [float(np.linalg.norm(b.omega)) for b in self.analysis.bodies.values()]
+        k = figures.nice_scale(max(omegas, default=0.0), OMEGA_PAPER_CM)
+        segments, arrows, dots = self.chain_drawing(extent, 10.0 * per_mm / k)
         corner = np.min(drawn, axis=0) - 0.2 * extent  # the frame E1, E2, E3 below on the left
         for i, label in enumerate(("E1", "E2", "E3")):
             unit = np.zeros(3)
@@ -652,6 +705,46 @@ class SpatialSteps:
             },
         )
 
+    def chain_drawing(
+        self, extent: float, to_model: float
+    ) -> tuple[list[tuple[np.ndarray, np.ndarray, str]], list[figures.Arrow], list[figures.Dot]]:
+        """The joint axes, each body's omega (to_model: rad/s -> m of the drawing), the bodies
+        from their joint origin to what they carry, and a dot per place, projected."""
+        project = ISOMETRIC
+        segments: list[tuple[np.ndarray, np.ndarray, str]] = []
+        arrows: list[figures.Arrow] = []
+        marks: dict[tuple[float, ...], tuple[np.ndarray, list[str], bool]] = {}
+
+        def mark(at: np.ndarray, label: str, fixed: bool) -> None:
+            """One dot per place, its labels joined: 'O3 = A' where a point sits on an origin."""
+            key = tuple(np.round(at / max(extent, 1e-300), 9))
+            marks.setdefault(key, (at, [], fixed))[1].append(label)
+
+        half = 0.12 * extent
+        attached: dict[str, list[np.ndarray]] = {GROUND: []}
+        attached.update({joint.name: [joint.origin] for joint in self.chain.joints})
+        for index, joint in enumerate(self.chain.joints):
+            attached[self.parent_name(index)].append(joint.origin)
+            ends = (joint.origin - half * joint.axis, joint.origin + half * joint.axis)
+            segments.append((project @ ends[0], project @ ends[1], "position"))
+            mark(joint.origin, f"O{joint.name}", index == 0)
+            start = project @ joint.origin
+            tip = start + to_model * (project @ self.analysis.bodies[joint.name].omega)
+            arrows.append(
+                figures.Arrow(start, tip, f"omega({joint.name})", f"ω{joint.name}", "absolute")
+            )
+        for point in self.chain.points:
+            attached[point.body].append(point.position)
+            mark(point.position, point.name, point.body == GROUND)
+        for body, where in attached.items():  # body k from its joint origin to what it carries
+            if body != GROUND:
+                segments += [(project @ where[0], project @ x, "link") for x in where[1:]]
+        dots = [
+            figures.Dot(project @ at, " = ".join(dict.fromkeys(labels)), fixed)
+            for at, labels, fixed in marks.values()
+        ]
+        return segments, arrows, dots
+
     def steps(self) -> list[Step]:
         out = [replace(self.data(), figure=self.figure())]
         for index, joint in enumerate(self.chain.joints):
@@ -662,6 +755,17 @@ class SpatialSteps:
         out.append(self.reading())
         out.append(self.summary())
         return out
+
+
+def _put_power(b: StepBuilder, key: str, rate: np.ndarray, change: np.ndarray, unit: str) -> str:
+    """x . x_dot, which has the sign of d|x|/dt; shown as 0 below the rounding of |x| |x_dot|."""
+    reference = float(np.linalg.norm(rate)) * float(np.linalg.norm(change))
+    return b.put(key, float(np.dot(rate, change)), unit, reference=reference)
+
+
+def _write_at_rest(b: StepBuilder, size: str, speed: str, words: str) -> None:
+    """|x| = 0 => the words saying the body or point does not move."""
+    b.line(rf"&{size} = {b.numu(speed)} \quad \Rightarrow \text{{" + tex.escape_text(words) + "}")
 
 
 def _nearest_axis(vector: np.ndarray) -> str:
