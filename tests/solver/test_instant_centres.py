@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from solver.presets import build_preset
 from tests.linkage_strategies import FAMILIES
 from tests.solver.test_properties import (
     PROPERTY,
@@ -110,3 +111,40 @@ def test_prismatic_pair_at_relative_rest_has_no_centre_along_the_slot() -> None:
     (centre,) = [c for c in result.instant_centres if set(c.links) == {"lever", "block"}]
     assert centre.position is None
     assert centre.direction is None or abs(float(centre.direction[0])) <= 1e-8
+
+
+def _line_intersection(P: np.ndarray, Q: np.ndarray, R: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """The point where line PQ meets line RS (Cramer's rule on P + s (Q - P) = R + t (S - R))."""
+    d1, d2, r = Q - P, S - R, R - P
+    s = (r[0] * d2[1] - r[1] * d2[0]) / (d1[0] * d2[1] - d1[1] * d2[0])
+    return P + s * d1
+
+
+@pytest.mark.parametrize("omega", [0.0, 3.7, -25.0])
+def test_four_bar_instant_centres_by_kennedy_at_rest_and_moving(omega: float) -> None:
+    """A four-bar's six instant centres from its geometry alone (Kennedy's theorem, e.g. Norton,
+    Design of Machinery, sec. 6.4): the four joints, I(ground, coupler) where the crank line AB
+    meets the rocker line DC, and I(crank, rocker) where the coupler line BC meets the ground
+    line AD. They are the same with the crank at rest (omega = 0: the centres of the pose, not
+    "none") as turning either way; to 1e-12 of the size."""
+    doc = build_preset(
+        "four_bar",
+        {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.7, "crank_angle_deg": 60.0},
+    )
+    doc["drivers"][0]["omega"] = omega
+    result = solve(doc)
+    A, B, C, D = (np.asarray(result.points[p].position) for p in "ABCD")
+    expected = {
+        frozenset({"ground", "crank"}): A,
+        frozenset({"crank", "coupler"}): B,
+        frozenset({"coupler", "rocker"}): C,
+        frozenset({"rocker", "ground"}): D,
+        frozenset({"ground", "coupler"}): _line_intersection(A, B, D, C),
+        frozenset({"crank", "rocker"}): _line_intersection(B, C, A, D),
+    }
+    centres = {frozenset(c.links): c for c in result.instant_centres}
+    assert set(centres) == set(expected)
+    for pair, point in expected.items():
+        centre = centres[pair]
+        assert centre.position is not None and centre.direction is None, pair
+        np.testing.assert_allclose(centre.position, point, rtol=0, atol=1e-12, err_msg=str(pair))
