@@ -13,6 +13,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from solver.presets import build_preset
+from tests.dynamics_cases import five_bar_topology
 from tests.linkage_strategies import FAMILIES
 from tests.solver.test_properties import (
     PROPERTY,
@@ -110,3 +112,80 @@ def test_prismatic_pair_at_relative_rest_has_no_centre_along_the_slot() -> None:
     (centre,) = [c for c in result.instant_centres if set(c.links) == {"lever", "block"}]
     assert centre.position is None
     assert centre.direction is None or abs(float(centre.direction[0])) <= 1e-8
+
+
+def _line_intersection(P: np.ndarray, Q: np.ndarray, R: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """The point where line PQ meets line RS (Cramer's rule on P + s (Q - P) = R + t (S - R))."""
+    d1, d2, r = Q - P, S - R, R - P
+    s = (r[0] * d2[1] - r[1] * d2[0]) / (d1[0] * d2[1] - d1[1] * d2[0])
+    return P + s * d1
+
+
+@pytest.mark.parametrize("omega", [0.0, 3.7, -25.0])
+def test_four_bar_instant_centres_by_kennedy_at_rest_and_moving(omega: float) -> None:
+    """A four-bar's six instant centres from its geometry alone (Kennedy's theorem, e.g. Norton,
+    Design of Machinery, sec. 6.4): the four joints, I(ground, coupler) where the crank line AB
+    meets the rocker line DC, and I(crank, rocker) where the coupler line BC meets the ground
+    line AD. They are the same with the crank at rest (omega = 0: the centres of the pose, not
+    "none") as turning either way; to 1e-12 of the size."""
+    doc = build_preset(
+        "four_bar",
+        {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.7, "crank_angle_deg": 60.0},
+    )
+    doc["drivers"][0]["omega"] = omega
+    result = solve(doc)
+    A, B, C, D = (np.asarray(result.points[p].position) for p in "ABCD")
+    expected = {
+        frozenset({"ground", "crank"}): A,
+        frozenset({"crank", "coupler"}): B,
+        frozenset({"coupler", "rocker"}): C,
+        frozenset({"rocker", "ground"}): D,
+        frozenset({"ground", "coupler"}): _line_intersection(A, B, D, C),
+        frozenset({"crank", "rocker"}): _line_intersection(B, C, A, D),
+    }
+    centres = {frozenset(c.links): c for c in result.instant_centres}
+    assert set(centres) == set(expected)
+    for pair, point in expected.items():
+        centre = centres[pair]
+        assert centre.position is not None and centre.direction is None, pair
+        np.testing.assert_allclose(centre.position, point, rtol=0, atol=1e-12, err_msg=str(pair))
+
+
+def test_five_bar_with_one_crank_at_rest_is_a_four_bar() -> None:
+    """A five-bar (cranks O1-A, O2-B, dyad A-C-B) with crank2 at rest and crank1 turning: crank2
+    moves with the ground, so the two have no instant centre (both fields vanish exactly: none,
+    not a direction 0/0), and the rest is the four-bar O1-A-C-B: I(ground, left) =
+    I(crank2, left) where the crank line O1A meets the rocker line BC, I(ground, right) =
+    I(crank2, right) = B, and I(crank1, right) where line AC meets line O1B; to 1e-12."""
+    doc: Doc = {
+        "kind": "linkage",
+        "points": {
+            "O1": [0.0, 0.0],
+            "O2": [1.2, 0.0],
+            "A": [0.2, 0.45],
+            "B": [1.5, 0.4],
+            "C": [0.9, 1.1],
+        },
+        **five_bar_topology(),
+        "drivers": [
+            {"link": "crank1", "omega": 2.0, "alpha": 0.0},
+            {"link": "crank2", "omega": 0.0, "alpha": 0.0},
+        ],
+    }
+    result = solve(doc)
+    O1, A, B, C = (np.asarray(result.points[p].position) for p in ("O1", "A", "B", "C"))
+    centres = {frozenset(c.links): c for c in result.instant_centres}
+    rest = centres[frozenset({"ground", "crank2"})]
+    assert rest.position is None and rest.direction is None
+    expected = {
+        ("ground", "left"): _line_intersection(O1, A, B, C),
+        ("crank2", "left"): _line_intersection(O1, A, B, C),
+        ("ground", "right"): B,
+        ("crank2", "right"): B,
+        ("crank1", "right"): _line_intersection(A, C, O1, B),
+        ("ground", "crank1"): O1,
+    }
+    for pair, point in expected.items():
+        centre = centres[frozenset(pair)]
+        assert centre.position is not None, pair
+        np.testing.assert_allclose(centre.position, point, rtol=0, atol=1e-12, err_msg=str(pair))

@@ -1,0 +1,121 @@
+"""A Newton group's sweep does not depend on how finely its path is refined (issue 8: mutation
+testing found the path's refinement, ``Branch.refine``, reached by no test).
+
+A sample's starting value is interpolated on the followed path; when its first Newton step is
+longer than ``continuation.BRANCH_GAP`` of the size, the path segment holding it is split and the
+sample solved again. With the default gap (1e-2) the interpolation is so good that no case we
+know of splits a segment, so these tests lower the gap to 1e-8, which splits segments around
+most samples several times over. The answer must not change: the same feasibility and limits, the
+same pose at every sample (to 1e-12 m, rounding of the final Newton-Raphson polish), on the
+rocking triad (two limit positions) and the fully turning one, at 36 and 37 samples.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+from benchmarks.bench_newton import FULL_TURN
+from solver import continuation
+from solver.constraints import ConstraintSystem, States
+from solver.errors import NotAssemblable
+from solver.scene import LinkageScene, parse_linkage
+from solver.sweeps import Sweep, sweep
+from tests.solver.test_newton import TRIAD
+from tests.solver.test_newton_continuation import two_driver_triad
+
+
+def _sweep(doc: dict[str, Any], samples: int) -> Sweep:
+    return sweep(parse_linkage(doc), samples, ["position", "velocity"])
+
+
+@pytest.mark.parametrize("samples", [36, 37])
+@pytest.mark.parametrize("name", ["rocking triad", "full-turn triad"])
+def test_a_finely_refined_path_gives_the_same_sweep(
+    name: str, samples: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    doc = TRIAD if name == "rocking triad" else FULL_TURN
+    coarse = _sweep(doc, samples)
+    monkeypatch.setattr(continuation, "BRANCH_GAP", 1e-8)
+    fine = _sweep(doc, samples)
+    assert fine.feasible == coarse.feasible == (name == "full-turn triad")
+    np.testing.assert_allclose(fine.limits, coarse.limits, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(fine.driver_angle, coarse.driver_angle)
+    assert fine.singular_samples.size == coarse.singular_samples.size == 0
+    for point, motion in coarse.motion.points.items():
+        refined = fine.motion.points[point]
+        np.testing.assert_allclose(refined.p, motion.p, rtol=0, atol=1e-12)
+        assert motion.v is not None and refined.v is not None
+        np.testing.assert_allclose(refined.v, motion.v, rtol=0, atol=1e-9 * np.abs(motion.v).max())
+
+
+def _path_to(scene: LinkageScene, second: float, firsts: np.ndarray) -> list[np.ndarray]:
+    """Every moving link's coordinates with the second driver at turn ``second`` and the first at
+    each of ``firsts``, reached from the drawn pose by the branch rule (the second driver turned
+    first, the first held at 0; then the first), by small-step natural continuation: each step
+    (at most 1e-2 rad) predicted linearly from the one before and closed by least-squares
+    Newton-Raphson to 1e-14. Independent of the solver's arclength continuation."""
+    system = ConstraintSystem(scene, scene.moving_links, drivers=True)
+    zero2, zero = np.zeros((1, 2)), np.zeros(1)
+    ground = States(system.anchor0[scene.ground][None], zero, zero2, zero, zero2, zero)
+    known = {scene.ground: ground}
+
+    def walk(q: np.ndarray, turns: np.ndarray, index: int, target: float) -> np.ndarray:
+        previous, step = q, 0.0
+        while turns[index] != target:
+            dt = float(np.clip(target - turns[index], -1e-2, 1e-2))
+            guess = q + (q - previous) * (dt / step if step else 0.0)
+            turns[index] += dt
+            for _ in range(30):
+                phi, J, _ = system.evaluate(known, guess[None], turns=turns[None])
+                guess = guess - np.linalg.lstsq(J[0], phi[0], rcond=None)[0]
+                if np.linalg.norm(phi) < 1e-14:
+                    break
+            assert np.linalg.norm(phi) < 1e-12, "the reference path lost the loop"
+            previous, q, step = q, guess, dt
+        return q
+
+    staged = walk(system.drawn(), np.zeros(2), 1, second)
+    out: dict[float, np.ndarray] = {}
+    for sense in (1.0, -1.0):
+        q, turns = staged, np.array([0.0, second])
+        for target in sorted((float(t) for t in firsts if (t >= 0) == (sense > 0)), key=abs):
+            q = out[target] = walk(q, turns, 0, target)
+    return [out[float(t)] for t in firsts]
+
+
+def _drawn_angle(doc: dict[str, Any], pivot: str, tip: str) -> float:
+    (x0, y0), (x1, y1) = doc["points"][pivot], doc["points"][tip]
+    return math.atan2(y1 - y0, x1 - x0)
+
+
+def test_second_driver_turned_far_then_the_first_swept_follows_the_branch_rule() -> None:
+    """The two-driver triad (a Newton group between two driven cranks) with its second crank
+    turned 60 deg from the drawn pose: every sample of a 12-sample sweep of the first crank,
+    limit positions included, equals the reference path (second crank turned first, then the
+    first) to 1e-9 m."""
+    doc = two_driver_triad()
+    doc["drivers"][1]["angle_deg"] = -150.0
+    scene = parse_linkage(doc)
+    result = sweep(scene, 12, ["position"])
+    assert not result.feasible
+    second = math.radians(-150.0) - _drawn_angle(doc, "H", "G2")
+    first = result.driver_angle - _drawn_angle(doc, "O", "A")
+    reference = _path_to(scene, second, first)
+    system = ConstraintSystem(scene, scene.moving_links)
+    for k, q in enumerate(reference):
+        for index, link in enumerate(system.unknown):
+            anchor = result.motion.links[link].point(scene.drawn(scene.links[link].points[0]))
+            np.testing.assert_allclose(anchor.p[k], q[3 * index : 3 * index + 2], atol=1e-9)
+
+
+def test_second_driver_out_of_reach_names_it() -> None:
+    """The second crank asked 70 deg the other way (beyond its limit position at +8.9 deg from
+    the drawn pose): not assemblable, and the message names the driver that cannot be turned."""
+    doc = two_driver_triad()
+    doc["drivers"][1]["angle_deg"] = -20.0
+    with pytest.raises(NotAssemblable, match=r"turning driver 2 \(crank2\) from its drawn pose"):
+        sweep(parse_linkage(doc), 12, ["position"])
