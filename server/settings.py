@@ -9,7 +9,7 @@
 | ``KINEMATICS_TIME_LIMIT`` | 10 | seconds of work for an endpoint not listed |
 | ``KINEMATICS_WORKER_NICE`` | 0 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core; 10 in the Dockerfile (a machine of its own) |
 | ``KINEMATICS_CORS_ORIGINS`` | none | ``https://a.example,https://b.example``: origins allowed to call the API from a browser |
-| ``KINEMATICS_SERVER_TIMING`` | 0 | 1: every response says how long the server spent on it (``Server-Timing``: in the app, waiting for a worker, in the worker), for load tests |
+| ``KINEMATICS_SERVER_TIMING`` | 0 | 1: every response says how long the server spent on it (``Server-Timing``: in the app, waiting for a worker, the round trip to it, its own time), for load tests |
 """  # noqa: E501
 
 from __future__ import annotations

@@ -2,7 +2,9 @@
 
 ``app;dur=`` is the time from the moment the app received the request (uvicorn has parsed its
 head) to the moment it started the response, in milliseconds; requests run in the worker pool add
-``queue`` (waiting for a worker) and ``worker`` (the round trip to it) from ``server.workers``. A
+``queue`` (waiting for a worker), ``worker`` (the round trip to it) and ``solve`` (the worker's
+own time on it: the rest of ``worker`` is pickling, the pipe and a thread's hand-over) from
+``server.workers``. A
 client's latency minus ``app`` is what the server's front (reading sockets, parsing HTTP, an event
 loop waiting for a core) and the client itself added: ``benchmarks/load.py`` reports both.
 """

@@ -110,7 +110,9 @@ def serve(connection: Connection, niceness: int) -> None:
             key, kwargs = connection.recv()
         except (EOFError, OSError):
             return
-        connection.send(answer(key, kwargs))
+        started = time.perf_counter()
+        result = answer(key, kwargs)
+        connection.send((result, time.perf_counter() - started))
 
 
 # --- in the server ------------------------------------------------------------------------------
@@ -125,10 +127,11 @@ class Worker:
         self.process.start()
         child.close()
 
-    def roundtrip(self, key: str, kwargs: dict[str, Any]) -> Answer:
-        """Send one request and wait for its answer (in a thread; EOFError if killed)."""
+    def roundtrip(self, key: str, kwargs: dict[str, Any]) -> tuple[Answer, float]:
+        """Send one request and wait for its answer and the seconds the worker spent on it (in
+        a thread; EOFError if killed)."""
         self.connection.send((key, kwargs))
-        result: Answer = self.connection.recv()
+        result: tuple[Answer, float] = self.connection.recv()
         return result
 
     def stop(self) -> None:
@@ -293,12 +296,15 @@ class Pool:
                     )
                 raise RuntimeError("a worker stopped while answering") from work.exception()
             self._release(worker)
-            status, headers, body = work.result()
+            (status, headers, body), solve = work.result()
             response = Response(body, status_code=status)
             response.raw_headers = headers
             if self.settings.server_timing:
                 queue, run = started - arrived, time.perf_counter() - started
-                timing = f"queue;dur={queue * 1e3:.2f}, worker;dur={run * 1e3:.2f}"
+                timing = ", ".join(
+                    f"{name};dur={seconds * 1e3:.2f}"
+                    for name, seconds in (("queue", queue), ("worker", run), ("solve", solve))
+                )
                 response.raw_headers = [*headers, (b"server-timing", timing.encode())]
             return response
         finally:
