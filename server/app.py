@@ -14,6 +14,7 @@ from fastapi.staticfiles import StaticFiles
 from server import headers, problems, schemas, workers
 from server.routes import dynamics, exercises, kinematics, presets, solution
 from server.settings import Settings, from_environment
+from server.timing import ServerTiming
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
 # The app's list of example scenes (file, title, description); the scenes are server/examples.
@@ -68,6 +69,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     )
     app.state.settings = settings
     headers.install(app, settings)
+    if settings.server_timing:  # outermost: the whole of the app's time
+        app.add_middleware(ServerTiming)
     problems.install(app)
     _publish_problems(app)
     app.add_exception_handler(workers.Busy, workers.busy_problem)

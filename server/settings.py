@@ -9,6 +9,7 @@
 | ``KINEMATICS_TIME_LIMIT`` | 10 | seconds of work for an endpoint not listed |
 | ``KINEMATICS_WORKER_NICE`` | 0 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core; 10 in the Dockerfile (a machine of its own) |
 | ``KINEMATICS_CORS_ORIGINS`` | none | ``https://a.example,https://b.example``: origins allowed to call the API from a browser |
+| ``KINEMATICS_SERVER_TIMING`` | 0 | 1: every response says how long the server spent on it (``Server-Timing``: in the app, waiting for a worker, the round trip to it, its own time), for load tests |
 """  # noqa: E501
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ class Settings:
     time_limit: float = 10.0
     worker_nice: int = 0
     cors_origins: tuple[str, ...] = ()
+    server_timing: bool = False
 
     def time_limit_of(self, path: str) -> float:
         """Seconds of work allowed for a request to ``path``."""
@@ -81,6 +83,13 @@ def _niceness(env: Mapping[str, str]) -> int:
     return value
 
 
+def _switch(env: Mapping[str, str], name: str) -> bool:
+    text = env.get(name, "").strip()
+    if text not in ("", "0", "1"):
+        raise ValueError(f"{name}={text!r}: expected 0 or 1")
+    return text == "1"
+
+
 def from_environment(env: Mapping[str, str] = os.environ) -> Settings:
     """The settings from ``KINEMATICS_*`` variables; ValueError names a bad one."""
     default = Settings()
@@ -93,4 +102,5 @@ def from_environment(env: Mapping[str, str] = os.environ) -> Settings:
         time_limit=_number(env, "KINEMATICS_TIME_LIMIT", default.time_limit),
         worker_nice=_niceness(env),
         cors_origins=tuple(o.strip() for o in origins.split(",") if o.strip()),
+        server_timing=_switch(env, "KINEMATICS_SERVER_TIMING"),
     )

@@ -33,6 +33,8 @@ import math
 import multiprocessing
 import os
 import signal
+import time
+from collections import deque
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from multiprocessing.connection import Connection
@@ -108,7 +110,9 @@ def serve(connection: Connection, niceness: int) -> None:
             key, kwargs = connection.recv()
         except (EOFError, OSError):
             return
-        connection.send(answer(key, kwargs))
+        started = time.perf_counter()
+        result = answer(key, kwargs)
+        connection.send((result, time.perf_counter() - started))
 
 
 # --- in the server ------------------------------------------------------------------------------
@@ -123,10 +127,11 @@ class Worker:
         self.process.start()
         child.close()
 
-    def roundtrip(self, key: str, kwargs: dict[str, Any]) -> Answer:
-        """Send one request and wait for its answer (in a thread; EOFError if killed)."""
+    def roundtrip(self, key: str, kwargs: dict[str, Any]) -> tuple[Answer, float]:
+        """Send one request and wait for its answer and the seconds the worker spent on it (in
+        a thread; EOFError if killed)."""
         self.connection.send((key, kwargs))
-        result: Answer = self.connection.recv()
+        result: tuple[Answer, float] = self.connection.recv()
         return result
 
     def stop(self) -> None:
@@ -153,7 +158,9 @@ class Pool:
         self.context.set_forkserver_preload(["server.app"])
         # Threads that wait on the workers' pipes (and start replacements).
         self.threads = ThreadPoolExecutor(2 * settings.workers + 2, "worker-pipe")
-        self.idle: asyncio.Queue[Worker] = asyncio.Queue()
+        self.idle: list[Worker] = []
+        # Requests waiting for a worker, oldest first: a freed worker goes to the oldest.
+        self.waiters: deque[asyncio.Future[Worker]] = deque()
         # Endpoints allowed more than QUICK_LIMIT s share all workers but one, so a burst of
         # sweeps never holds back /analyze.
         self.slow_lane = asyncio.Semaphore(max(1, settings.workers - 1))
@@ -165,14 +172,38 @@ class Pool:
 
     async def start(self) -> None:
         for _ in range(self.settings.workers):
-            self.idle.put_nowait(
-                await self._in_thread(Worker, self.context, self.settings.worker_nice)
-            )
+            self._release(await self._in_thread(Worker, self.context, self.settings.worker_nice))
 
     async def close(self) -> None:
         await asyncio.gather(*self.tasks, return_exceptions=True)
-        while not self.idle.empty():
-            await self._in_thread(self.idle.get_nowait().stop)
+        while self.idle:
+            await self._in_thread(self.idle.pop().stop)
+
+    def _release(self, worker: Worker) -> None:
+        """``worker`` is free: it goes to the request that has waited longest, else to idle."""
+        while self.waiters:
+            waiter = self.waiters.popleft()
+            if not waiter.done():  # not cancelled (its client left, or it timed out)
+                waiter.set_result(worker)
+                return
+        self.idle.append(worker)
+
+    async def _take(self) -> Worker:
+        """A worker, first come first served: an idle one only when nobody waits before us.
+
+        Not an asyncio.Queue: there a request arriving just as a worker is freed takes it
+        before the request woken for it runs, which then queues again at the back (a request
+        could be passed over many times: the long tail of /analyze at 100 clients)."""
+        if self.idle and not self.waiters:
+            return self.idle.pop()
+        waiter: asyncio.Future[Worker] = asyncio.get_running_loop().create_future()
+        self.waiters.append(waiter)
+        try:
+            return await waiter
+        except asyncio.CancelledError:
+            if waiter.done() and not waiter.cancelled():  # handed a worker as it was cancelled
+                self._release(waiter.result())
+            raise
         self.threads.shutdown(wait=False, cancel_futures=True)
 
     def _replace(self, worker: Worker) -> None:
@@ -180,9 +211,7 @@ class Pool:
 
         async def replace() -> None:
             await self._in_thread(worker.stop)
-            self.idle.put_nowait(
-                await self._in_thread(Worker, self.context, self.settings.worker_nice)
-            )
+            self._release(await self._in_thread(Worker, self.context, self.settings.worker_nice))
 
         task = asyncio.get_running_loop().create_task(replace())
         self.tasks.add(task)
@@ -209,7 +238,7 @@ class Pool:
             if lane is not None:
                 await lane.acquire()
                 held = True
-            return await self.idle.get()
+            return await self._take()
 
         self.waiting += 1
         get = asyncio.ensure_future(take())
@@ -225,7 +254,7 @@ class Pool:
         get.cancel()
         with contextlib.suppress(asyncio.CancelledError):
             worker = await get  # it may have been handed a worker as it was cancelled
-            self.idle.put_nowait(worker)
+            self._release(worker)
         if held and lane is not None:
             lane.release()
         if gone in done:
@@ -241,6 +270,7 @@ class Pool:
         limit = self.settings.time_limit_of(request.url.path)
         lane = self.slow_lane if limit > QUICK_LIMIT else None
         gone = asyncio.ensure_future(_disconnected(request.receive))
+        arrived = time.perf_counter()
         try:
             worker = await self._acquire(gone, lane)
         except Busy:
@@ -250,6 +280,7 @@ class Pool:
             gone.cancel()
             return Response(status_code=499)  # nobody reads it: the client has left
         try:
+            started = time.perf_counter()
             work = asyncio.ensure_future(self._in_thread(worker.roundtrip, key, kwargs))
             either: set[asyncio.Future[Any]] = {work, gone}
             done, _ = await asyncio.wait(either, timeout=limit, return_when="FIRST_COMPLETED")
@@ -264,10 +295,17 @@ class Pool:
                         f"{request.url.path} and was stopped"
                     )
                 raise RuntimeError("a worker stopped while answering") from work.exception()
-            self.idle.put_nowait(worker)
-            status, headers, body = work.result()
+            self._release(worker)
+            (status, headers, body), solve = work.result()
             response = Response(body, status_code=status)
             response.raw_headers = headers
+            if self.settings.server_timing:
+                queue, run = started - arrived, time.perf_counter() - started
+                timing = ", ".join(
+                    f"{name};dur={seconds * 1e3:.2f}"
+                    for name, seconds in (("queue", queue), ("worker", run), ("solve", solve))
+                )
+                response.raw_headers = [*headers, (b"server-timing", timing.encode())]
             return response
         finally:
             gone.cancel()

@@ -10,6 +10,7 @@ idle core here, 1.5 to 4 s on a busy one) and a hundred exercises with their wor
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import http.client
 import json
@@ -23,8 +24,10 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from fastapi.testclient import TestClient
 
 from server import budget, workers
+from server.app import create_app
 from server.local import serve_locally
 from server.settings import TIME_LIMITS, Settings, from_environment
 from solver import read_scene
@@ -75,6 +78,7 @@ def one_worker() -> Iterator[str]:
         KINEMATICS_WORKERS="1",
         KINEMATICS_QUEUE="1",
         KINEMATICS_TIME_LIMITS="/api/v1/exercises=2,/api/v1/sweep=0.25",
+        KINEMATICS_SERVER_TIMING="1",
     ) as base:
         yield base
 
@@ -116,7 +120,12 @@ def test_a_runaway_request_is_stopped_at_its_limit_while_the_server_answers(
     assert body["code"] == "limit_exceeded"
     assert "time limit of 0.25 s for /api/v1/sweep" in body["detail"]  # not the budget's refusal
     # the stopped worker was replaced: the next requests are answered
-    assert request(one_worker, "/api/v1/analyze", {"scene": FOUR_BAR})[0] == 200
+    status, headers, _ = request(one_worker, "/api/v1/analyze", {"scene": FOUR_BAR})
+    assert status == 200
+    timing = dict(entry.strip().split(";dur=") for entry in headers["server-timing"].split(","))
+    assert set(timing) == {"app", "queue", "worker", "solve"}
+    app, queue, worker, solve = (float(timing[k]) for k in ("app", "queue", "worker", "solve"))
+    assert queue >= 0 and 0 < solve <= worker and queue + worker <= app < 60_000  # ms, nested
     assert request(one_worker, "/api/v1/sweep", {"scene": FOUR_BAR, "samples": 36})[0] == 200
 
 
@@ -163,6 +172,7 @@ def test_settings_from_the_environment() -> None:
             "KINEMATICS_TIME_LIMIT": "4",
             "KINEMATICS_WORKER_NICE": "5",
             "KINEMATICS_CORS_ORIGINS": "https://a.example, https://b.example",
+            "KINEMATICS_SERVER_TIMING": "1",
         }
     )
     assert (settings.workers, settings.queue, settings.queue_wait) == (3, 7, 2.5)
@@ -172,6 +182,7 @@ def test_settings_from_the_environment() -> None:
     assert settings.time_limit_of("/api/v1/dynamics") == 4.0
     assert settings.worker_nice == 5 and Settings().worker_nice == 0
     assert settings.cors_origins == ("https://a.example", "https://b.example")
+    assert settings.server_timing and not Settings().server_timing
     assert from_environment({}) == Settings()
     assert Settings().workers >= 1 and Settings().cors_origins == ()
 
@@ -186,6 +197,7 @@ def test_settings_from_the_environment() -> None:
         ("KINEMATICS_TIME_LIMITS", "/api/v1/sweep=0"),
         ("KINEMATICS_WORKER_NICE", "20"),
         ("KINEMATICS_WORKER_NICE", "-1"),
+        ("KINEMATICS_SERVER_TIMING", "yes"),
     ],
 )
 def test_bad_settings_are_named(name: str, value: str) -> None:
@@ -231,3 +243,48 @@ def test_a_burst_of_slow_requests_leaves_a_worker_to_analyze() -> None:
             with pytest.raises(TimeoutError):
                 connection.sock.recv(1)
             connection.close()
+
+
+def test_server_timing_only_when_asked() -> None:
+    """``KINEMATICS_SERVER_TIMING=1`` adds the app's time to every response; the default adds
+    nothing (a server does not tell the world how long it works unless told to)."""
+    for timed in (False, True):
+        client = TestClient(create_app(Settings(workers=0, server_timing=timed)))
+        response = client.get("/health")
+        assert response.status_code == 200
+        assert ("server-timing" in response.headers) == timed
+    assert response.headers["server-timing"].startswith("app;dur=")
+    assert float(response.headers["server-timing"].removeprefix("app;dur=")) >= 0
+
+
+def test_a_freed_worker_goes_to_the_request_that_waited_longest() -> None:
+    """First come, first served: six requests wait for the one worker, the sixth arriving just
+    as the worker is freed (an asyncio.Queue would hand the worker to that newcomer, and the
+    request woken for it would queue again at the back); each takes the worker in turn."""
+
+    async def scenario() -> list[int]:
+        pool = workers.Pool(Settings(workers=1))
+        never: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+        pool._release(object())  # type: ignore[arg-type]  # stands for a worker process
+        order: list[int] = []
+
+        async def client(number: int) -> None:
+            worker = await pool._acquire(never, None)
+            assert worker is not None
+            order.append(number)
+            await asyncio.sleep(0.001)  # works a moment
+            pool._release(worker)
+
+        held = await pool._acquire(never, None)
+        assert held is not None
+        waiting = [asyncio.create_task(client(n)) for n in range(5)]
+        await asyncio.sleep(0.01)  # all five wait
+        newcomer = asyncio.create_task(client(5))
+        await asyncio.sleep(0)  # the newcomer is about to ask for a worker ...
+        pool._release(held)  # ... as the worker is freed
+        await asyncio.gather(*waiting, newcomer)
+        pool.threads.shutdown()
+        never.cancel()
+        return order
+
+    assert asyncio.run(scenario()) == [0, 1, 2, 3, 4, 5]
