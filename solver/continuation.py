@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solver import constraints, newton
-from solver.constraints import ConstraintSystem, States
+from solver.constraints import ConstraintSystem, LinearForm, States
 from solver.errors import NotAssemblable
 from solver.newton import NewtonReport
 from solver.rigid import Array, LinkMotion
@@ -114,6 +114,10 @@ class Branch:
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
+        form = self.system.linear
+        self.linear: tuple[LinearForm, Array] | None = None
+        if form is not None:  # the ground's part of F, the same at every pose
+            self.linear = (form, form.known_terms(self.known, 1, 0, self.held)[0][0])
         x0 = (self.system.drawn() if start is None else start) / self.scale
         self.legs: dict[int, _Leg] = {}
         for sense in (1, -1):
@@ -122,9 +126,15 @@ class Branch:
             self.legs[sense] = _Leg([0.0], [x0], [self._tangent(self._f(x0)[1], tau)])
 
     def _f(self, x: Array) -> tuple[Array, Array]:
-        """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
-        phi, J, _ = self.system.evaluate(self.known, (x * self.scale)[None], turns=self.held)
-        return phi[0] / self.row_scale, J[0] * self.jacobian_scale
+        """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x (one pose: by the
+        linear form's products where there is one, the ground's part of F computed once)."""
+        if self.linear is not None:
+            form, ground = self.linear
+            phi, J = form.pose(x * self.scale, ground)
+        else:
+            phis, Js, _ = self.system.evaluate(self.known, (x * self.scale)[None], turns=self.held)
+            phi, J = phis[0], Js[0]
+        return phi / self.row_scale, J * self.jacobian_scale
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
