@@ -278,6 +278,17 @@ class ConstraintSystem:
                 b[:, self.angle_rows] = -rate[:, self.angle_links]
         return phi, J, b
 
+    def residual(
+        self, known: Mapping[str, States], samples: int, turns: Array | None = None
+    ) -> Callable[[Array], tuple[Array, Array]]:
+        """q -> (Phi(q), J(q)) for (M, n) q with the known links and held ``turns`` fixed (the
+        iterations of Newton-Raphson): the known links' part computed once where linear."""
+        if self.linear is not None:
+            form = self.linear
+            fixed = form.known_terms(known, samples, 0, turns)[0]
+            return lambda q: form.pose(q, fixed)
+        return lambda q: self.evaluate(known, q, turns=turns)[:2]
+
     def _revolute_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
         """X_i - X_j into Phi and the rate terms into b (in place); J's rotation entries."""
         if not self.rev.size:
@@ -452,7 +463,10 @@ class LinearForm:
 
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
     """(M, K) from K per-sample arrays (each (M,) or broadcast to it)."""
-    return np.stack([np.broadcast_to(a, (samples,)) for a in arrays], axis=1)
+    out = np.empty((samples, len(arrays)))
+    for k, a in enumerate(arrays):
+        out[:, k] = a
+    return out
 
 
 def solve_linear(J: Array, b: Array) -> Array:

@@ -32,9 +32,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.linalg.lapack import dgesv
 
 from solver import constraints, newton
-from solver.constraints import ConstraintSystem, LinearForm, States
+from solver.constraints import ConstraintSystem, States
 from solver.errors import NotAssemblable
 from solver.newton import NewtonReport
 from solver.rigid import Array, LinkMotion
@@ -44,7 +45,7 @@ NODE_TOLERANCE = 1e-9  # a path node's residual, relative to the scene size (sam
 LIMIT_TOLERANCE = 1e-13  # the residual of a limit position's node (the limits are answers)
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
-MAX_TANGENT_TURN = math.radians(15.0)
+MAX_TANGENT_TURN = math.radians(30.0)
 MAX_CORRECTION = 0.1  # the corrector may move the predictor by this fraction of the step
 CONTRACTION = 0.3  # each corrector step at most this fraction of the one before
 CORRECTOR_ITERATIONS = 8
@@ -63,13 +64,25 @@ POLISH_ITERATIONS = 12
 
 
 def _solve(A: Array, rhs: Array) -> Array:
-    """A x = rhs: LU for a square regular A, least squares otherwise."""
+    """A x = rhs: LU (LAPACK's dgesv, called directly: numpy.linalg.solve's checks cost three
+    times the solve of a small system) for a square regular A, least squares otherwise."""
     if A.shape[0] == A.shape[1]:
-        try:
-            return np.linalg.solve(A, rhs)
-        except np.linalg.LinAlgError:
-            pass
+        x, info = dgesv(A, rhs)[2:]
+        if info == 0:
+            return np.asarray(x)
     return np.linalg.lstsq(A, rhs, rcond=None)[0]
+
+
+def _norm(v: Array) -> float:
+    """|v| for a vector (numpy.linalg.norm's generality costs more than the product)."""
+    return math.sqrt(float(v @ v))
+
+
+def _bordered(J: Array, row: Array) -> Array:
+    """[J; row]: the Jacobian with one more row."""
+    A = np.empty((J.shape[0] + 1, J.shape[1]))
+    A[:-1], A[-1] = J, row
+    return A
 
 
 @dataclass
@@ -82,6 +95,17 @@ class _Leg:
     tau: list[Array]
     h: float = 0.1
     limit: float | None = None
+
+
+def _predict(leg: _Leg, h: float) -> Array:
+    """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, the
+    curvature kappa = dtau/ds estimated from the last two nodes' tangents (first order from the
+    drawn pose)."""
+    x, tau = leg.x[-1], leg.tau[-1]
+    if len(leg.s) < 2:
+        return x + h * tau
+    kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
+    return x + h * tau + (0.5 * h * h) * kappa
 
 
 class Branch:
@@ -114,10 +138,7 @@ class Branch:
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
-        form = self.system.linear
-        self.linear: tuple[LinearForm, Array] | None = None
-        if form is not None:  # the ground's part of F, the same at every pose
-            self.linear = (form, form.known_terms(self.known, 1, 0, self.held)[0][0])
+        self.equations = self.system.residual(self.known, 1, self.held)
         x0 = (self.system.drawn() if start is None else start) / self.scale
         self.legs: dict[int, _Leg] = {}
         for sense in (1, -1):
@@ -126,23 +147,17 @@ class Branch:
             self.legs[sense] = _Leg([0.0], [x0], [self._tangent(self._f(x0)[1], tau)])
 
     def _f(self, x: Array) -> tuple[Array, Array]:
-        """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x (one pose: by the
-        linear form's products where there is one, the ground's part of F computed once)."""
-        if self.linear is not None:
-            form, ground = self.linear
-            phi, J = form.pose(x * self.scale, ground)
-        else:
-            phis, Js, _ = self.system.evaluate(self.known, (x * self.scale)[None], turns=self.held)
-            phi, J = phis[0], Js[0]
-        return phi / self.row_scale, J * self.jacobian_scale
+        """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
+        phi, J = self.equations((x * self.scale)[None])
+        return phi[0] / self.row_scale, J[0] * self.jacobian_scale
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
-        A = np.vstack((J, previous))
+        A = _bordered(J, previous)
         rhs = np.zeros(A.shape[0])
         rhs[-1] = 1.0
         z = _solve(A, rhs)
-        return z / np.linalg.norm(z)
+        return z / _norm(z)
 
     def _correct(
         self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
@@ -153,12 +168,12 @@ class Branch:
         last = np.inf
         for iteration in range(CORRECTOR_ITERATIONS + 1):
             F, J = self._f(x)
-            if np.linalg.norm(F) <= tolerance:
+            if _norm(F) <= tolerance:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
-            dx = _solve(np.vstack((J, tau)), np.append(F, tau @ (x - predicted)))
-            step = float(np.linalg.norm(dx))
+            dx = _solve(_bordered(J, tau), np.append(F, tau @ (x - predicted)))
+            step = _norm(dx)
             if not np.isfinite(step) or step > CONTRACTION * last:
                 break  # not contracting: too long a step
             x, last = x - dx, step
@@ -172,19 +187,23 @@ class Branch:
         leg = self.legs[sense]
         while leg.limit is None and sense * (self._turn(leg.x[-1]) - target) < 0.0:
             x, tau, h = leg.x[-1], leg.tau[-1], leg.h
-            new, J, ok, _ = self._correct(x + h * tau, tau)
+            predicted = _predict(leg, h)
+            new, J, ok, _ = self._correct(predicted, tau)
             tau_new, grow = tau, 0.5
             if ok:  # near the predictor (not on a neighbouring strand of the path), gently turning
                 tau_new = self._tangent(J, tau)
                 turn = math.acos(min(1.0, float(tau_new @ tau)))
-                moved = float(np.linalg.norm(new - x - h * tau)) / h
-                # Both grow about linearly with h: aim at 0.6 of their bounds with the next step.
-                grow = 0.6 * min(MAX_TANGENT_TURN / max(turn, 1e-12), MAX_CORRECTION / moved)
+                moved = _norm(new - predicted) / h
+                # The turn grows like h, the predictor's error like h^2 (second order): aim at
+                # 0.6 of their bounds with the next step.
+                grow = 0.6 * min(
+                    MAX_TANGENT_TURN / max(turn, 1e-12), math.sqrt(MAX_CORRECTION / moved)
+                )
                 ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
             if ok:  # the cubic between the two nodes must stay on the path (the samples' start)
-                chord = float(np.linalg.norm(new - x))
+                chord = _norm(new - x)
                 middle = 0.5 * (x + new) + 0.125 * chord * (tau - tau_new)
-                ok = float(np.linalg.norm(self._f(middle)[0])) <= INTERPOLATION_RESIDUAL
+                ok = _norm(self._f(middle)[0]) <= INTERPOLATION_RESIDUAL
                 grow = grow if ok else 0.5
             if not ok:
                 leg.h = h * min(max(grow, 0.25), 0.5)
@@ -224,7 +243,7 @@ class Branch:
                 b, g_b = s, g
                 g_a = g_a / 2.0 if kept == -1 else g_a
                 kept = -1
-        leg.s.append(leg.s[-1] + float(np.linalg.norm(point - x)))
+        leg.s.append(leg.s[-1] + _norm(point - x))
         leg.x.append(point)
         leg.tau.append(tangent)
         leg.limit = self._turn(point)
@@ -299,14 +318,14 @@ class Branch:
             segments = np.clip(np.searchsorted(t_nodes, sense * mine) - 1, 0, len(leg.s) - 2)
             for k in sorted(set(segments.tolist()), reverse=True):
                 x, tau = leg.x[k], leg.tau[k]
-                chord = float(np.linalg.norm(leg.x[k + 1] - x))
+                chord = _norm(leg.x[k + 1] - x)
                 for fraction in (0.5, 0.25, 0.125, 0.0625):  # the middle, or nearer node k
                     new, J, ok, _ = self._correct(x + fraction * chord * tau, tau)
                     if ok:
                         break
                 if not ok:
                     continue
-                leg.s.insert(k + 1, leg.s[k] + float(np.linalg.norm(new - x)))
+                leg.s.insert(k + 1, leg.s[k] + _norm(new - x))
                 leg.x.insert(k + 1, new)
                 leg.tau.insert(k + 1, self._tangent(J, tau))
 
