@@ -401,56 +401,83 @@ def solve_group(
     """
     system = ConstraintSystem(scene, group)
     samples = turns[0].size if turns else 1
-    tolerance = continuation.tolerance * scene.size
-    polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
     states = constraints.states({name: known[name] for name in system.known}, scene)
-    q = np.tile(system.drawn(), (samples, 1))
-    residual = np.zeros(samples)
-    reached = np.ones(samples, dtype=bool)
-    settled = np.zeros(samples, dtype=bool)
-    iterations = 0
-    whole = ConstraintSystem(scene, scene.moving_links)
-    columns = np.concatenate([np.arange(whole.column[g], whole.column[g] + 3) for g in group])
-    weights = np.tile([1.0, 1.0, scene.size], len(group))
-    held = np.stack(turns[1:], axis=1) if len(turns) > 1 else np.zeros((samples, 0))
-    keys = {tuple(row) for row in held.tolist()} if turns else {()}
-    for key in keys:
-        todo = np.flatnonzero(np.all(held == np.array(key), axis=1) if key else np.ones(samples))
-        branch = continuation.branch(key) if turns else None
+    polish = _Polish(system, states, samples, continuation)
+    if not turns:
+        polish.run(np.arange(samples), None, None)
+    else:  # one branch per set of the other drivers' turns
+        held = np.stack(turns[1:], axis=1) if len(turns) > 1 else np.zeros((samples, 0))
+        for key in np.unique(held, axis=0) if held.shape[1] else held[:1]:
+            todo = np.flatnonzero(np.all(held == key, axis=1))
+            polish.run(todo, continuation.branch(tuple(key.tolist())), turns[0])
+    qd, qdd = constraints.rates(system, states, polish.q, order)
+    motions = system.motions(polish.q, qd, qdd)
+    converged = polish.reached & polish.settled
+    worst = float(np.max(polish.residual, initial=0.0))
+    tolerance = continuation.tolerance * scene.size
+    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
+    if not np.all(converged):
+        at = turns[0] if turns else np.zeros(samples)
+        message = _failure(scene, group, at, polish.reached, worst, tolerance, polish.iterations)
+    report = NewtonReport(
+        tuple(group), converged, polish.iterations, worst, tolerance, message,
+        continuation.tolerance,
+    )  # fmt: skip
+    return motions, report
+
+
+class _Polish:
+    """Every sample of a Newton group polished by batched Newton-Raphson from the branch's
+    interpolated path (``q``, ``residual``; ``reached`` by the branch rule; ``settled`` on the
+    root its start points at), the path refined around samples that did not settle."""
+
+    def __init__(
+        self,
+        system: ConstraintSystem,
+        states: Mapping[str, States],
+        samples: int,
+        continuation: Continuation,
+    ) -> None:
+        self.system, self.states = system, states
+        scene = system.scene
+        self.size = scene.size
+        self.tolerance = continuation.tolerance * scene.size
+        self.polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
+        self.q = np.tile(system.drawn(), (samples, 1))
+        self.residual = np.zeros(samples)
+        self.reached = np.ones(samples, dtype=bool)
+        self.settled = np.zeros(samples, dtype=bool)
+        self.iterations = 0
+        column = {link: 3 * k for k, link in enumerate(scene.moving_links)}
+        self.columns = np.concatenate([column[g] + np.arange(3) for g in system.unknown])
+        self.weights = np.tile([1.0, 1.0, scene.size], len(system.unknown))
+
+    def run(self, todo: Array, branch: Branch | None, turns: Array | None) -> None:
+        """Polish the samples ``todo`` (at the first driver's ``turns``, on ``branch``)."""
         for attempt in range(MAX_REFINEMENTS + 1):
-            q0 = q[todo]
+            q0 = self.q[todo]
             way = np.zeros(todo.size)
-            if branch is not None:
-                x, reached[todo], way = branch.guesses(turns[0][todo])
-                q0 = x[:, columns]
-            part = {name: _take(s, todo) for name, s in states.items()}
-            q[todo], residual[todo], its, first = newton.newton_raphson(
-                system, part, q0, tolerance, polish=polish, max_iterations=POLISH_ITERATIONS
-            )
-            iterations = max(iterations, its)
-            moved = np.sqrt(
-                np.einsum("mi,mi->m", (q[todo] - q0) * weights, (q[todo] - q0) * weights)
-            )
+            if branch is not None and turns is not None:
+                x, self.reached[todo], way = branch.guesses(turns[todo])
+                q0 = x[:, self.columns]
+            part = {name: _take(s, todo) for name, s in self.states.items()}
+            self.q[todo], self.residual[todo], its, first = newton.newton_raphson(
+                self.system, part, q0, self.tolerance, polish=self.polish,
+                max_iterations=POLISH_ITERATIONS,
+            )  # fmt: skip
+            self.iterations = max(self.iterations, its)
+            step = (self.q[todo] - q0) * self.weights
+            moved = np.sqrt(np.einsum("mi,mi->m", step, step))
             # Converged to the root its start points at: about one first step away, and close.
-            good = (residual[todo] <= tolerance) & (moved <= 2.0 * first + 1e-9 * scene.size)
-            settled[todo] = good & (first <= BRANCH_GAP * scene.size)
-            bad = reached[todo] & ~settled[todo]
+            good = (self.residual[todo] <= self.tolerance) & (
+                moved <= 2.0 * first + 1e-9 * self.size
+            )
+            self.settled[todo] = good & (first <= BRANCH_GAP * self.size)
+            bad = self.reached[todo] & ~self.settled[todo]
             if branch is None or not np.any(bad) or attempt == MAX_REFINEMENTS:
                 break
             branch.refine(way[bad])
             todo = todo[bad]
-    converged = reached & settled
-    qd, qdd = constraints.rates(system, states, q, order)
-    motions = system.motions(q, qd, qdd)
-    worst = float(np.max(residual, initial=0.0))
-    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
-    if not np.all(converged):
-        at = turns[0] if turns else np.zeros(samples)
-        message = _failure(scene, group, at, reached, worst, tolerance, iterations)
-    report = NewtonReport(
-        tuple(group), converged, iterations, worst, tolerance, message, continuation.tolerance
-    )
-    return motions, report
 
 
 def _take(states: States, index: Array) -> States:
