@@ -29,7 +29,7 @@ import mpmath as mp
 import numpy as np
 
 from solver.rigid import Array, LinkMotion, PointMotion, dot, perp, rotate_by
-from solver.scene import LinkageScene
+from solver.scene import Joint, LinkageScene
 
 
 @dataclass(frozen=True)
@@ -65,6 +65,35 @@ def _cos_sin(theta: Array) -> tuple[Array, Array]:
     return pairs[..., 0], pairs[..., 1]
 
 
+@dataclass(frozen=True)
+class _Links:
+    """Every link's (M, L) state arrays at once, the cosine and sine of its rotation, and the
+    order of the rates wanted (``ConstraintSystem.evaluate``)."""
+
+    c: Array
+    cos: Array
+    sin: Array
+    v: Array
+    omega: Array
+    a: Array
+    alpha: Array
+    order: int
+
+    def side(self, link: Array, d: Array) -> tuple[Array, Array, Array | None]:
+        """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
+        r = rotate_by(d, self.cos[:, link], self.sin[:, link])
+        rate = None
+        if self.order == 1:
+            rate = self.v[:, link] + self.omega[:, link, None] * perp(r)
+        elif self.order == 2:
+            rate = (
+                self.a[:, link]
+                + self.alpha[:, link, None] * perp(r)
+                - (self.omega[:, link] ** 2)[..., None] * r
+            )
+        return self.c[:, link] + r, r, rate
+
+
 class ConstraintSystem:
     """The constraint equations of the joints touching ``unknown`` links, and one row per link
     in ``angles`` holding its rotation (a driver's given turn); ``drivers=True`` adds every
@@ -92,6 +121,33 @@ class ConstraintSystem:
         self.known = tuple(
             sorted({link for j in joints for link in j.links if link not in self.column})
         )
+        rows = self._joint_rows(joints, index, number, exact is not None)
+        self.angle_rows = np.arange(rows, rows + len(self.angles))
+        self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
+        self.rows = rows + len(self.angles)
+        self.n = 3 * len(self.unknown)
+        # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
+        self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
+        self._jacobian_layout()
+        self.unknown_index = np.array([index[link] for link in self.unknown], dtype=int)
+        self.known_index = np.array([index[link] for link in self.known], dtype=int)
+        # Rows that are lengths (scaled by the size in the condition number) and angles.
+        self.length_rows = np.ones(self.rows, dtype=bool)
+        self.length_rows[self.prismatic[:, 3]] = False
+        self.length_rows[self.angle_rows] = False
+        # The fast evaluation where the equations are linear in (q, cos theta, sin theta).
+        self.linear = None if exact or self.sld.size else LinearForm(self)
+
+    def _joint_rows(
+        self,
+        joints: Sequence[Joint],
+        index: Mapping[str, int],
+        number: Callable[[Array], Array],
+        exact: bool,
+    ) -> int:
+        """The joints' rows: revolute (two each), slider (one) and prismatic (slider and equal
+        angles), with each side's drawn anchor-to-joint vector; returns the number of rows."""
+        scene = self.scene
         rows = 0
         revolute: list[tuple[int, int, int]] = []
         sliding: list[tuple[int, int, int]] = []  # (slot row, guide, follower)
@@ -115,18 +171,19 @@ class ConstraintSystem:
                 prismatic.append((rows, i, j, rows + 1))
                 rows += 1
             rows += 1
-        self.angle_rows = np.arange(rows, rows + len(self.angles))
-        self.angle_links = np.array([index[link] for link in self.angles], dtype=int)
-        self.rows = rows + len(self.angles)
-        self.n = 3 * len(self.unknown)
-        self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
         dtype = object if exact else float
+        self.rev = np.array(revolute, dtype=int).reshape(-1, 3)
         self.rev_d = np.array(offsets, dtype=dtype).reshape(-1, 2, 2)
         self.sld = np.array(sliding, dtype=int).reshape(-1, 3)
         self.sld_d = np.array(slot_offsets, dtype=dtype).reshape(-1, 3, 2)
         self.prismatic = np.array(prismatic, dtype=int).reshape(-1, 4)
-        # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
-        self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
+        return rows
+
+    def _jacobian_layout(self) -> None:
+        """J's constant unit entries (``unit``), and where its pose-dependent entries go (flat
+        indices into a (rows, n) matrix, ``flat``): the rotation columns of both sides of each
+        revolute joint's two rows, then each slider's follower (x, y, theta) and guide
+        (x, y, theta) columns; the masks pick the unknown sides."""
         unit = np.zeros((self.rows, self.n))
         for row, i, j in self.rev:
             for link, sign in ((i, 1.0), (j, -1.0)):
@@ -141,9 +198,6 @@ class ConstraintSystem:
             if self.col[link] >= 0:
                 unit[row, self.col[link] + 2] += 1.0
         self.unit = unit
-        # Where the pose-dependent entries of J go (flat indices into a (rows, n) matrix): the
-        # rotation columns of both sides of each revolute joint's two rows, then each slider's
-        # follower (x, y, theta) and guide (x, y, theta) columns; the masks pick unknown sides.
         n, col = self.n, self.col
         first, left, right = self.rev.T
         self.rev_mask = (col[left] >= 0, col[right] >= 0)
@@ -157,12 +211,6 @@ class ConstraintSystem:
             for offset in (0, 1, 2):
                 flat.append(slot_rows[mask] * n + col[link][mask] + offset)
         self.flat = np.concatenate(flat) if flat else np.zeros(0, dtype=int)
-        self.unknown_index = np.array([index[link] for link in self.unknown], dtype=int)
-        self.known_index = np.array([index[link] for link in self.known], dtype=int)
-        # Rows that are lengths (scaled by the size in the condition number) and angles.
-        self.length_rows = np.ones(self.rows, dtype=bool)
-        self.length_rows[self.prismatic[:, 3]] = False
-        self.length_rows[self.angle_rows] = False
 
     def _stack(
         self, known: Mapping[str, States], q: Array, qd: Array | None, order: int
@@ -202,65 +250,18 @@ class ConstraintSystem:
 
         ``order`` 1 or 2 gives the right-hand side of the velocity or acceleration equations
         (order 2 needs the unknowns' rates ``qd``); ``turns`` (M, len(angles)) the held angles.
+        Without sliding or prismatic joints, in double: by the matrix products of ``LinearForm``.
         """
+        if self.linear is not None and q.dtype != object:
+            return self.linear.evaluate(known, q, qd, order, turns)
         M = q.shape[0]
         c, theta, v, omega, a, alpha = self._stack(known, q, qd, order)
-        cos, sin = _cos_sin(theta)
+        links = _Links(c, *_cos_sin(theta), v, omega, a, alpha, order)
         phi = np.zeros((M, self.rows), dtype=q.dtype)
         J = np.empty((M, self.rows, self.n), dtype=q.dtype)
         J[:] = self.unit
         b = np.zeros((M, self.rows), dtype=q.dtype)
-
-        def side(link: Array, d: Array) -> tuple[Array, Array, Array | None]:
-            """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
-            r = rotate_by(d, cos[:, link], sin[:, link])
-            rate = None
-            if order == 1:
-                rate = v[:, link] + omega[:, link, None] * perp(r)
-            elif order == 2:
-                rate = (
-                    a[:, link]
-                    + alpha[:, link, None] * perp(r)
-                    - (omega[:, link] ** 2)[..., None] * r
-                )
-            return c[:, link] + r, r, rate
-
-        entries: list[Array] = []
-        if self.rev.size:
-            rows, i, j = self.rev.T
-            X_i, r_i, rate_i = side(i, self.rev_d[:, 0])
-            X_j, r_j, rate_j = side(j, self.rev_d[:, 1])
-            phi[:, rows], phi[:, rows + 1] = (X_i - X_j).transpose(2, 0, 1)
-            mi, mj = self.rev_mask
-            entries += [-r_i[:, mi, 1], r_i[:, mi, 0], r_j[:, mj, 1], -r_j[:, mj, 0]]
-            if rate_i is not None and rate_j is not None:
-                b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
-        if self.sld.size:
-            rows, g, f = self.sld.T
-            w = rotate_by(self.sld_d[:, 2], cos[:, g], sin[:, g])
-            n = perp(w)
-            X_f, r_f, rate_f = side(f, self.sld_d[:, 1])
-            X_g, r_g, rate_g = side(g, self.sld_d[:, 0])
-            d = X_f - X_g
-            wd = dot(w, d)
-            phi[:, rows] = dot(n, d)
-            # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
-            # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
-            theta_f = dot(n, perp(r_f))
-            theta_g = -dot(n, perp(r_g)) - wd
-            mf, mg = self.sld_mask
-            entries += [n[:, mf, 0], n[:, mf, 1], theta_f[:, mf]]
-            entries += [-n[:, mg, 0], -n[:, mg, 1], theta_g[:, mg]]
-            if order == 1 and rate_f is not None and rate_g is not None:
-                b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
-            elif order == 2 and rate_f is not None and rate_g is not None:
-                v_f = v[:, f] + omega[:, f, None] * perp(r_f)
-                v_q = v[:, g] + omega[:, g, None] * perp(r_g)
-                b[:, rows] = (
-                    dot(n, rate_g - rate_f)
-                    + 2.0 * omega[:, g] * dot(w, v_f - v_q)
-                    + alpha[:, g] * wd
-                )
+        entries = self._revolute_rows(links, phi, b) + self._slider_rows(links, phi, b)
         if self.flat.size:
             J.reshape(M, -1)[:, self.flat] = np.concatenate(entries, axis=1)
         if self.prismatic.size:
@@ -276,6 +277,67 @@ class ConstraintSystem:
                 rate = omega if order == 1 else alpha
                 b[:, self.angle_rows] = -rate[:, self.angle_links]
         return phi, J, b
+
+    def residual(
+        self, known: Mapping[str, States], samples: int, turns: Array | None = None
+    ) -> Callable[[Array], tuple[Array, Array]]:
+        """q -> (Phi(q), J(q)) for (M, n) q with the known links and held ``turns`` fixed (the
+        iterations of Newton-Raphson): the known links' part computed once where linear."""
+        if self.linear is not None:
+            form = self.linear
+            fixed = form.known_terms(known, samples, 0, turns)[0]
+            return lambda q: form.pose(q, fixed)
+        return lambda q: self.evaluate(known, q, turns=turns)[:2]
+
+    def _revolute_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
+        """X_i - X_j into Phi and the rate terms into b (in place); J's rotation entries."""
+        if not self.rev.size:
+            return []
+        rows, i, j = self.rev.T
+        X_i, r_i, rate_i = links.side(i, self.rev_d[:, 0])
+        X_j, r_j, rate_j = links.side(j, self.rev_d[:, 1])
+        phi[:, rows], phi[:, rows + 1] = (X_i - X_j).transpose(2, 0, 1)
+        if rate_i is not None and rate_j is not None:
+            b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
+        mi, mj = self.rev_mask
+        return [-r_i[:, mi, 1], r_i[:, mi, 0], r_j[:, mj, 1], -r_j[:, mj, 0]]
+
+    def _slider_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
+        """n_g . (X_f - X_g) into Phi and its rate terms into b (in place); J's entries."""
+        if not self.sld.size:
+            return []
+        rows, g, f = self.sld.T
+        w = rotate_by(self.sld_d[:, 2], links.cos[:, g], links.sin[:, g])
+        n = perp(w)
+        X_f, r_f, rate_f = links.side(f, self.sld_d[:, 1])
+        X_g, r_g, rate_g = links.side(g, self.sld_d[:, 0])
+        d = X_f - X_g
+        wd = dot(w, d)
+        phi[:, rows] = dot(n, d)
+        # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
+        # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
+        theta_f = dot(n, perp(r_f))
+        theta_g = -dot(n, perp(r_g)) - wd
+        omega, order = links.omega, links.order
+        if order == 1 and rate_f is not None and rate_g is not None:
+            b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
+        elif order == 2 and rate_f is not None and rate_g is not None:
+            v_f = links.v[:, f] + omega[:, f, None] * perp(r_f)
+            v_q = links.v[:, g] + omega[:, g, None] * perp(r_g)
+            b[:, rows] = (
+                dot(n, rate_g - rate_f)
+                + 2.0 * omega[:, g] * dot(w, v_f - v_q)
+                + links.alpha[:, g] * wd
+            )
+        mf, mg = self.sld_mask
+        return [
+            n[:, mf, 0],
+            n[:, mf, 1],
+            theta_f[:, mf],
+            -n[:, mg, 0],
+            -n[:, mg, 1],
+            theta_g[:, mg],
+        ]
 
     def equations(self, poses: Mapping[str, _Pose], order: int) -> tuple[Array, Array, Array]:
         """(Phi, J, b) at one sample, from single-sample poses (every link, known or not)."""
@@ -312,6 +374,99 @@ class ConstraintSystem:
                 None if qdd is None else qdd[:, 3 * index + 2],
             )
         return out
+
+
+class LinearForm:
+    """Phi(q) = K_q q + K_c cos(theta) + K_s sin(theta) + Phi_known(t): the rows of revolute
+    joints (X = c + R(theta) d) and of held angles are linear in each link's (x, y, theta) and
+    the cosine and sine of its rotation, with constant K.
+
+    So J = K_q + (K_s cos - K_c sin) in the rotation columns, b_v = -Phi_known' and
+    b_a = -Phi_known'' + (K_c cos + K_s sin) omega^2 (the unknowns' centripetal terms): a few
+    matrix products per evaluation, for one pose or M samples at once. The same equations as
+    ``ConstraintSystem.evaluate`` (a test compares them), which also handles sliding and
+    prismatic joints (not linear in these terms) and 40-digit arithmetic.
+    """
+
+    def __init__(self, system: ConstraintSystem) -> None:
+        links = len(system.names)
+        Kq = np.zeros((system.rows, 3 * links))
+        Kc, Ks = np.zeros((system.rows, links)), np.zeros((system.rows, links))
+        for (row, i, j), (d_i, d_j) in zip(system.rev, system.rev_d, strict=True):
+            for link, (dx, dy), sign in ((i, d_i, 1.0), (j, d_j, -1.0)):
+                Kq[row, 3 * link] += sign
+                Kq[row + 1, 3 * link + 1] += sign
+                Kc[row : row + 2, link] += sign * np.array([dx, dy])
+                Ks[row : row + 2, link] += sign * np.array([-dy, dx])
+        for row, link in zip(system.angle_rows, system.angle_links, strict=True):
+            Kq[row, 3 * link + 2] += 1.0
+        self.angle_rows = system.angle_rows
+        self.known = system.known
+        parts = []
+        for index in (system.unknown_index, system.known_index):
+            columns = (3 * index[:, None] + np.arange(3)).ravel()
+            parts.append((Kq[:, columns], Kc[:, index], Ks[:, index]))
+        (self.q, self.c, self.s), (self.known_q, self.known_c, self.known_s) = parts
+
+    def pose(self, q: Array, known: Array) -> tuple[Array, Array]:
+        """(Phi, J) at q ((n,) or (M, n)), given the known links' part of Phi (``known_terms``)."""
+        cos, sin = np.cos(q[..., 2::3]), np.sin(q[..., 2::3])
+        phi = q @ self.q.T + cos @ self.c.T + sin @ self.s.T + known
+        J = np.empty((*q.shape[:-1], *self.q.shape))
+        J[...] = self.q
+        J[..., 2::3] += self.s * cos[..., None, :] - self.c * sin[..., None, :]
+        return phi, J
+
+    def known_terms(
+        self, known: Mapping[str, States], samples: int, order: int, turns: Array | None
+    ) -> tuple[Array, Array]:
+        """The known links' part of Phi (minus the held angles' ``turns``) and of b at ``order``
+        (-Phi_known' or -Phi_known''), each (M, rows)."""
+        phi = np.zeros((samples, self.q.shape[0]))
+        b = np.zeros_like(phi)
+        if self.known:
+            s = [known[name] for name in self.known]
+            theta = _columns([x.theta for x in s], samples)
+            cos, sin = np.cos(theta), np.sin(theta)
+            q = _columns([c for x in s for c in (x.c[..., 0], x.c[..., 1], x.theta)], samples)
+            phi += q @ self.known_q.T + cos @ self.known_c.T + sin @ self.known_s.T
+            if order:
+                omega = _columns([x.omega for x in s], samples)
+                dot_q = [(x.v, x.omega) if order == 1 else (x.a, x.alpha) for x in s]
+                rates = _columns([c for v, w in dot_q for c in (v[..., 0], v[..., 1], w)], samples)
+                w = rates[:, 2::3]  # omega (order 1) or alpha (order 2)
+                squared = omega**2 if order == 2 else np.zeros_like(omega)
+                b -= rates @ self.known_q.T
+                b -= (w * cos - squared * sin) @ self.known_s.T
+                b += (w * sin + squared * cos) @ self.known_c.T
+        if turns is not None and self.angle_rows.size:
+            phi[:, self.angle_rows] -= turns
+        return phi, b
+
+    def evaluate(
+        self,
+        known: Mapping[str, States],
+        q: Array,
+        qd: Array | None,
+        order: int,
+        turns: Array | None,
+    ) -> tuple[Array, Array, Array]:
+        """(Phi, J, b) for M samples, as ``ConstraintSystem.evaluate``."""
+        phi_known, b = self.known_terms(known, q.shape[0], order, turns)
+        phi, J = self.pose(q, phi_known)
+        if order == 2 and qd is not None:
+            squared = qd[:, 2::3] ** 2
+            theta = q[:, 2::3]
+            b += (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
+        return phi, J, b
+
+
+def _columns(arrays: Sequence[Array], samples: int) -> Array:
+    """(M, K) from K per-sample arrays (each (M,) or broadcast to it)."""
+    out = np.empty((samples, len(arrays)))
+    for k, a in enumerate(arrays):
+        out[:, k] = a
+    return out
 
 
 def solve_linear(J: Array, b: Array) -> Array:

@@ -32,6 +32,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.linalg.lapack import dgesv
 
 from solver import constraints, newton
 from solver.constraints import ConstraintSystem, States
@@ -44,7 +45,7 @@ NODE_TOLERANCE = 1e-9  # a path node's residual, relative to the scene size (sam
 LIMIT_TOLERANCE = 1e-13  # the residual of a limit position's node (the limits are answers)
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
-MAX_TANGENT_TURN = math.radians(15.0)
+MAX_TANGENT_TURN = math.radians(30.0)
 MAX_CORRECTION = 0.1  # the corrector may move the predictor by this fraction of the step
 CONTRACTION = 0.3  # each corrector step at most this fraction of the one before
 CORRECTOR_ITERATIONS = 8
@@ -63,13 +64,25 @@ POLISH_ITERATIONS = 12
 
 
 def _solve(A: Array, rhs: Array) -> Array:
-    """A x = rhs: LU for a square regular A, least squares otherwise."""
+    """A x = rhs: LU (LAPACK's dgesv, called directly: numpy.linalg.solve's checks cost three
+    times the solve of a small system) for a square regular A, least squares otherwise."""
     if A.shape[0] == A.shape[1]:
-        try:
-            return np.linalg.solve(A, rhs)
-        except np.linalg.LinAlgError:
-            pass
+        x, info = dgesv(A, rhs)[2:]
+        if info == 0:
+            return np.asarray(x)
     return np.linalg.lstsq(A, rhs, rcond=None)[0]
+
+
+def _norm(v: Array) -> float:
+    """|v| for a vector (numpy.linalg.norm's generality costs more than the product)."""
+    return math.sqrt(float(v @ v))
+
+
+def _bordered(J: Array, row: Array) -> Array:
+    """[J; row]: the Jacobian with one more row."""
+    A = np.empty((J.shape[0] + 1, J.shape[1]))
+    A[:-1], A[-1] = J, row
+    return A
 
 
 @dataclass
@@ -82,6 +95,17 @@ class _Leg:
     tau: list[Array]
     h: float = 0.1
     limit: float | None = None
+
+
+def _predict(leg: _Leg, h: float) -> Array:
+    """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, the
+    curvature kappa = dtau/ds estimated from the last two nodes' tangents (first order from the
+    drawn pose)."""
+    x, tau = leg.x[-1], leg.tau[-1]
+    if len(leg.s) < 2:
+        return x + h * tau
+    kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
+    return x + h * tau + (0.5 * h * h) * kappa
 
 
 class Branch:
@@ -114,6 +138,7 @@ class Branch:
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
+        self.equations = self.system.residual(self.known, 1, self.held)
         x0 = (self.system.drawn() if start is None else start) / self.scale
         self.legs: dict[int, _Leg] = {}
         for sense in (1, -1):
@@ -123,16 +148,16 @@ class Branch:
 
     def _f(self, x: Array) -> tuple[Array, Array]:
         """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
-        phi, J, _ = self.system.evaluate(self.known, (x * self.scale)[None], turns=self.held)
+        phi, J = self.equations((x * self.scale)[None])
         return phi[0] / self.row_scale, J[0] * self.jacobian_scale
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
-        A = np.vstack((J, previous))
+        A = _bordered(J, previous)
         rhs = np.zeros(A.shape[0])
         rhs[-1] = 1.0
         z = _solve(A, rhs)
-        return z / np.linalg.norm(z)
+        return z / _norm(z)
 
     def _correct(
         self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
@@ -143,12 +168,12 @@ class Branch:
         last = np.inf
         for iteration in range(CORRECTOR_ITERATIONS + 1):
             F, J = self._f(x)
-            if np.linalg.norm(F) <= tolerance:
+            if _norm(F) <= tolerance:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
-            dx = _solve(np.vstack((J, tau)), np.append(F, tau @ (x - predicted)))
-            step = float(np.linalg.norm(dx))
+            dx = _solve(_bordered(J, tau), np.append(F, tau @ (x - predicted)))
+            step = _norm(dx)
             if not np.isfinite(step) or step > CONTRACTION * last:
                 break  # not contracting: too long a step
             x, last = x - dx, step
@@ -162,19 +187,23 @@ class Branch:
         leg = self.legs[sense]
         while leg.limit is None and sense * (self._turn(leg.x[-1]) - target) < 0.0:
             x, tau, h = leg.x[-1], leg.tau[-1], leg.h
-            new, J, ok, _ = self._correct(x + h * tau, tau)
+            predicted = _predict(leg, h)
+            new, J, ok, _ = self._correct(predicted, tau)
             tau_new, grow = tau, 0.5
             if ok:  # near the predictor (not on a neighbouring strand of the path), gently turning
                 tau_new = self._tangent(J, tau)
                 turn = math.acos(min(1.0, float(tau_new @ tau)))
-                moved = float(np.linalg.norm(new - x - h * tau)) / h
-                # Both grow about linearly with h: aim at 0.6 of their bounds with the next step.
-                grow = 0.6 * min(MAX_TANGENT_TURN / max(turn, 1e-12), MAX_CORRECTION / moved)
+                moved = _norm(new - predicted) / h
+                # The turn grows like h, the predictor's error like h^2 (second order): aim at
+                # 0.6 of their bounds with the next step.
+                grow = 0.6 * min(
+                    MAX_TANGENT_TURN / max(turn, 1e-12), math.sqrt(MAX_CORRECTION / moved)
+                )
                 ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
             if ok:  # the cubic between the two nodes must stay on the path (the samples' start)
-                chord = float(np.linalg.norm(new - x))
+                chord = _norm(new - x)
                 middle = 0.5 * (x + new) + 0.125 * chord * (tau - tau_new)
-                ok = float(np.linalg.norm(self._f(middle)[0])) <= INTERPOLATION_RESIDUAL
+                ok = _norm(self._f(middle)[0]) <= INTERPOLATION_RESIDUAL
                 grow = grow if ok else 0.5
             if not ok:
                 leg.h = h * min(max(grow, 0.25), 0.5)
@@ -214,7 +243,7 @@ class Branch:
                 b, g_b = s, g
                 g_a = g_a / 2.0 if kept == -1 else g_a
                 kept = -1
-        leg.s.append(leg.s[-1] + float(np.linalg.norm(point - x)))
+        leg.s.append(leg.s[-1] + _norm(point - x))
         leg.x.append(point)
         leg.tau.append(tangent)
         leg.limit = self._turn(point)
@@ -289,14 +318,14 @@ class Branch:
             segments = np.clip(np.searchsorted(t_nodes, sense * mine) - 1, 0, len(leg.s) - 2)
             for k in sorted(set(segments.tolist()), reverse=True):
                 x, tau = leg.x[k], leg.tau[k]
-                chord = float(np.linalg.norm(leg.x[k + 1] - x))
+                chord = _norm(leg.x[k + 1] - x)
                 for fraction in (0.5, 0.25, 0.125, 0.0625):  # the middle, or nearer node k
                     new, J, ok, _ = self._correct(x + fraction * chord * tau, tau)
                     if ok:
                         break
                 if not ok:
                     continue
-                leg.s.insert(k + 1, leg.s[k] + float(np.linalg.norm(new - x)))
+                leg.s.insert(k + 1, leg.s[k] + _norm(new - x))
                 leg.x.insert(k + 1, new)
                 leg.tau.insert(k + 1, self._tangent(J, tau))
 
@@ -372,56 +401,83 @@ def solve_group(
     """
     system = ConstraintSystem(scene, group)
     samples = turns[0].size if turns else 1
-    tolerance = continuation.tolerance * scene.size
-    polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
     states = constraints.states({name: known[name] for name in system.known}, scene)
-    q = np.tile(system.drawn(), (samples, 1))
-    residual = np.zeros(samples)
-    reached = np.ones(samples, dtype=bool)
-    settled = np.zeros(samples, dtype=bool)
-    iterations = 0
-    whole = ConstraintSystem(scene, scene.moving_links)
-    columns = np.concatenate([np.arange(whole.column[g], whole.column[g] + 3) for g in group])
-    weights = np.tile([1.0, 1.0, scene.size], len(group))
-    held = np.stack(turns[1:], axis=1) if len(turns) > 1 else np.zeros((samples, 0))
-    keys = {tuple(row) for row in held.tolist()} if turns else {()}
-    for key in keys:
-        todo = np.flatnonzero(np.all(held == np.array(key), axis=1) if key else np.ones(samples))
-        branch = continuation.branch(key) if turns else None
+    polish = _Polish(system, states, samples, continuation)
+    if not turns:
+        polish.run(np.arange(samples), None, None)
+    else:  # one branch per set of the other drivers' turns
+        held = np.stack(turns[1:], axis=1) if len(turns) > 1 else np.zeros((samples, 0))
+        for key in np.unique(held, axis=0) if held.shape[1] else held[:1]:
+            todo = np.flatnonzero(np.all(held == key, axis=1))
+            polish.run(todo, continuation.branch(tuple(key.tolist())), turns[0])
+    qd, qdd = constraints.rates(system, states, polish.q, order)
+    motions = system.motions(polish.q, qd, qdd)
+    converged = polish.reached & polish.settled
+    worst = float(np.max(polish.residual, initial=0.0))
+    tolerance = continuation.tolerance * scene.size
+    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
+    if not np.all(converged):
+        at = turns[0] if turns else np.zeros(samples)
+        message = _failure(scene, group, at, polish.reached, worst, tolerance, polish.iterations)
+    report = NewtonReport(
+        tuple(group), converged, polish.iterations, worst, tolerance, message,
+        continuation.tolerance,
+    )  # fmt: skip
+    return motions, report
+
+
+class _Polish:
+    """Every sample of a Newton group polished by batched Newton-Raphson from the branch's
+    interpolated path (``q``, ``residual``; ``reached`` by the branch rule; ``settled`` on the
+    root its start points at), the path refined around samples that did not settle."""
+
+    def __init__(
+        self,
+        system: ConstraintSystem,
+        states: Mapping[str, States],
+        samples: int,
+        continuation: Continuation,
+    ) -> None:
+        self.system, self.states = system, states
+        scene = system.scene
+        self.size = scene.size
+        self.tolerance = continuation.tolerance * scene.size
+        self.polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
+        self.q = np.tile(system.drawn(), (samples, 1))
+        self.residual = np.zeros(samples)
+        self.reached = np.ones(samples, dtype=bool)
+        self.settled = np.zeros(samples, dtype=bool)
+        self.iterations = 0
+        column = {link: 3 * k for k, link in enumerate(scene.moving_links)}
+        self.columns = np.concatenate([column[g] + np.arange(3) for g in system.unknown])
+        self.weights = np.tile([1.0, 1.0, scene.size], len(system.unknown))
+
+    def run(self, todo: Array, branch: Branch | None, turns: Array | None) -> None:
+        """Polish the samples ``todo`` (at the first driver's ``turns``, on ``branch``)."""
         for attempt in range(MAX_REFINEMENTS + 1):
-            q0 = q[todo]
+            q0 = self.q[todo]
             way = np.zeros(todo.size)
-            if branch is not None:
-                x, reached[todo], way = branch.guesses(turns[0][todo])
-                q0 = x[:, columns]
-            part = {name: _take(s, todo) for name, s in states.items()}
-            q[todo], residual[todo], its, first = newton.newton_raphson(
-                system, part, q0, tolerance, polish=polish, max_iterations=POLISH_ITERATIONS
-            )
-            iterations = max(iterations, its)
-            moved = np.sqrt(
-                np.einsum("mi,mi->m", (q[todo] - q0) * weights, (q[todo] - q0) * weights)
-            )
+            if branch is not None and turns is not None:
+                x, self.reached[todo], way = branch.guesses(turns[todo])
+                q0 = x[:, self.columns]
+            part = {name: _take(s, todo) for name, s in self.states.items()}
+            self.q[todo], self.residual[todo], its, first = newton.newton_raphson(
+                self.system, part, q0, self.tolerance, polish=self.polish,
+                max_iterations=POLISH_ITERATIONS,
+            )  # fmt: skip
+            self.iterations = max(self.iterations, its)
+            step = (self.q[todo] - q0) * self.weights
+            moved = np.sqrt(np.einsum("mi,mi->m", step, step))
             # Converged to the root its start points at: about one first step away, and close.
-            good = (residual[todo] <= tolerance) & (moved <= 2.0 * first + 1e-9 * scene.size)
-            settled[todo] = good & (first <= BRANCH_GAP * scene.size)
-            bad = reached[todo] & ~settled[todo]
+            good = (self.residual[todo] <= self.tolerance) & (
+                moved <= 2.0 * first + 1e-9 * self.size
+            )
+            self.settled[todo] = good & (first <= BRANCH_GAP * self.size)
+            bad = self.reached[todo] & ~self.settled[todo]
             if branch is None or not np.any(bad) or attempt == MAX_REFINEMENTS:
                 break
             branch.refine(way[bad])
             todo = todo[bad]
-    converged = reached & settled
-    qd, qdd = constraints.rates(system, states, q, order)
-    motions = system.motions(q, qd, qdd)
-    worst = float(np.max(residual, initial=0.0))
-    message = f"Newton-Raphson closed the loop of {', '.join(group)}"
-    if not np.all(converged):
-        at = turns[0] if turns else np.zeros(samples)
-        message = _failure(scene, group, at, reached, worst, tolerance, iterations)
-    report = NewtonReport(
-        tuple(group), converged, iterations, worst, tolerance, message, continuation.tolerance
-    )
-    return motions, report
 
 
 def _take(states: States, index: Array) -> States:

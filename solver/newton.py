@@ -69,8 +69,9 @@ def newton_raphson(
     iterations = 0
     weights = np.tile([1.0, 1.0, system.scene.size], len(system.unknown))
     first = np.zeros(q.shape[0])
+    equations = system.residual(known, q.shape[0], turns)
     while True:
-        phi, J, _ = system.evaluate(known, q, turns=turns)
+        phi, J = equations(q)
         residual = np.sqrt(np.einsum("mi,mi->m", phi, phi))
         done = residual <= tolerance
         if np.all(done | ~np.isfinite(residual)) or iterations >= max_iterations:
@@ -82,7 +83,7 @@ def newton_raphson(
         iterations += 1
     if polish and np.any(done):
         trial = q - solve_linear(J, phi)
-        phi_next = system.evaluate(known, trial, turns=turns)[0]
+        phi_next = equations(trial)[0]
         better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
         take = done & (better < residual)
         q = np.where(take[:, None], trial, q)
