@@ -49,7 +49,10 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
 
 def scale(factor: Array, vector: Array) -> Array:
     """factor[i] * vector[i] for each sample (column by column: faster than broadcasting)."""
-    out = np.empty(np.broadcast_shapes((*np.shape(factor), 2), vector.shape))
+    shape = np.shape(factor)
+    if shape != vector.shape[:-1]:
+        shape = np.broadcast_shapes(shape, vector.shape[:-1])
+    out = np.empty((*shape, 2))
     np.multiply(vector[..., 0], factor, out=out[..., 0])
     np.multiply(vector[..., 1], factor, out=out[..., 1])
     return out
@@ -118,9 +121,16 @@ def link_from_two_points(P0: Array, Q0: Array, P: PointMotion, Q: PointMotion) -
     return LinkMotion(P0, P, theta, omega, alpha)
 
 
+def repeat(point: Array, samples: int) -> Array:
+    """The (2,) ``point`` at each of ``samples`` samples, (N, 2), a new array."""
+    out = np.empty((samples, 2))
+    out[:] = point
+    return out
+
+
 def fixed_link(anchor0: Array, samples: int) -> LinkMotion:
     """The ground: at rest in its drawn pose."""
     zeros2 = np.zeros((samples, 2))
     zeros = np.zeros(samples)
-    anchor = PointMotion(np.broadcast_to(anchor0, (samples, 2)).copy(), zeros2, zeros2)
+    anchor = PointMotion(repeat(anchor0, samples), zeros2, zeros2)
     return LinkMotion(anchor0, anchor, zeros, zeros, zeros)
