@@ -299,7 +299,8 @@ class _Assembler:
         cut = dyads.intersect(first, second, step.point)
         self.close(cut.margin / self.scene.size, cut.describe)
         self.last = (cut.margin, cut.margin_rate)
-        if np.all(np.isfinite(cut.margin)):  # two branches (a pin in two slots has one)
+        # Two branches wherever a circle is involved (a pin in two slots has one).
+        if isinstance(first, dyads.Circle) or isinstance(second, dyads.Circle):
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
         X[self.at_drawn] = self.scene.drawn(step.point)
@@ -337,8 +338,9 @@ class _Assembler:
         self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
         at_rest = np.zeros((self.samples, 2))
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            drawn = np.broadcast_to(self.scene.drawn(p), (self.samples, 2))
-            self.points[p] = PointMotion(drawn, at_rest, at_rest)
+            self.points[p] = PointMotion(
+                repeat(self.scene.drawn(p), self.samples), at_rest, at_rest
+            )
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(step)
