@@ -27,6 +27,7 @@ from solver.rigid import (
     PointMotion,
     fixed_link,
     link_from_two_points,
+    repeat,
     rotate,
 )
 from solver.scene import LinkageScene
@@ -143,6 +144,10 @@ def candidate_minima(margin: Array, size: float) -> Array:
     smooth minimum within half a step of k and for a V-shaped one, |d| at coincident centres)."""
     if margin.size < 3:
         return np.array([], dtype=int)
+    # Every such bound is at least min(m) - max |m_k+1 - m_k|: where that clears the threshold,
+    # no sample is a candidate (the common case, a linkage far from its change points).
+    if margin.min() - np.abs(np.diff(margin)).max() >= WARNING_MARGIN * size:
+        return np.array([], dtype=int)
     m, before, after = margin[1:-1], margin[:-2], margin[2:]
     low = m - np.maximum(before - m, after - m)
     found = (m < before) & (m <= after) & (low < WARNING_MARGIN * size)
@@ -217,7 +222,8 @@ class _Assembler:
 
     def close(self, margin: Array, message: Callable[[], str]) -> None:
         """Record a group's relative margin, and its message where it newly fails to close."""
-        if np.any((margin < -dyads.COINCIDENCE_TOLERANCE) & self.closed()):
+        fails = margin < -dyads.COINCIDENCE_TOLERANCE
+        if fails.any() and np.any(fails & self.closed()):
             self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
@@ -233,7 +239,7 @@ class _Assembler:
         given = self.inputs[step.driver]
         pivot0 = self.scene.drawn(step.pivot)
         zeros = np.zeros((self.samples, 2))
-        anchor = PointMotion(np.broadcast_to(pivot0, (self.samples, 2)).copy(), zeros, zeros)
+        anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
         self.know(
             step.link,
             LinkMotion(
@@ -293,14 +299,13 @@ class _Assembler:
         cut = dyads.intersect(first, second, step.point)
         self.close(cut.margin / self.scene.size, cut.describe)
         self.last = (cut.margin, cut.margin_rate)
-        if np.all(np.isfinite(cut.margin)):  # two branches (a pin in two slots has one)
+        # Two branches wherever a circle is involved (a pin in two slots has one).
+        if isinstance(first, dyads.Circle) or isinstance(second, dyads.Circle):
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
         X[self.at_drawn] = self.scene.drawn(step.point)
-        self.gradient_sine = np.minimum(
-            self.gradient_sine, dyads.relative_determinant(first, second, X)
-        )
-        self.points[step.point] = dyads.point_motion(first, second, X, self.order)
+        self.points[step.point], sine = dyads.point_motion(first, second, X, self.order)
+        self.gradient_sine = np.minimum(self.gradient_sine, sine)
 
     def lever(self, index: int, step: LeverStep) -> None:
         pivot, pin = self.points[step.pivot], self.points[step.pin]
@@ -333,8 +338,9 @@ class _Assembler:
         self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
         at_rest = np.zeros((self.samples, 2))
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            drawn = np.broadcast_to(self.scene.drawn(p), (self.samples, 2))
-            self.points[p] = PointMotion(drawn, at_rest, at_rest)
+            self.points[p] = PointMotion(
+                repeat(self.scene.drawn(p), self.samples), at_rest, at_rest
+            )
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(step)

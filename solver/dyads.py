@@ -188,60 +188,55 @@ def _constraint_row(locus: Locus, X: Array) -> Array:
     return X - locus.center.p if isinstance(locus, Circle) else perp(locus.direction)
 
 
-def _velocity_rhs(locus: Locus, X: Array) -> Array:
-    """Circle: (X-C).v_X = (X-C).v_C.   Line: n.v_X = n.v_Q + omega w.(X - Q)."""
+def _velocity_rhs(locus: Locus, row: Array, X: Array) -> Array:
+    """Circle: (X-C).v_X = (X-C).v_C.   Line: n.v_X = n.v_Q + omega w.(X - Q).
+    (``row`` is the constraint's gradient, X - C or n.)"""
     if isinstance(locus, Circle):
         assert locus.center.v is not None
-        return dot(X - locus.center.p, locus.center.v)
+        return dot(row, locus.center.v)
     assert locus.through.v is not None and locus.omega is not None
-    n, w = perp(locus.direction), locus.direction
-    return dot(n, locus.through.v) + locus.omega * dot(w, X - locus.through.p)
+    return dot(row, locus.through.v) + locus.omega * dot(locus.direction, X - locus.through.p)
 
 
-def _acceleration_rhs(locus: Locus, X: Array, v_X: Array) -> Array:
+def _acceleration_rhs(locus: Locus, row: Array, X: Array, v_X: Array) -> Array:
     """Circle: (X-C).a_X = (X-C).a_C - |v_X - v_C|^2.
     Line: n.a_X = n.a_Q + 2 omega w.(v_X - v_Q) + alpha w.(X - Q)."""
     if isinstance(locus, Circle):
         assert locus.center.v is not None and locus.center.a is not None
         v_rel = v_X - locus.center.v
-        return dot(X - locus.center.p, locus.center.a) - dot(v_rel, v_rel)
+        return dot(row, locus.center.a) - dot(v_rel, v_rel)
     Q = locus.through
     assert Q.v is not None and Q.a is not None
     assert locus.omega is not None and locus.alpha is not None
-    n, w = perp(locus.direction), locus.direction
-    return dot(n, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v) + locus.alpha * dot(w, X - Q.p)
+    w = locus.direction
+    return dot(row, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v) + locus.alpha * dot(w, X - Q.p)
 
 
-def solve_2x2(row1: Array, row2: Array, rhs1: Array, rhs2: Array) -> Array:
-    """Cramer's rule for [row1; row2] x = [rhs1; rhs2]: x = (|b r2|, |r1 b|) / |r1 r2|."""
-    det = cross(row1, row2)
-    safe = np.where(det != 0.0, det, np.inf)
-    return np.stack(
-        (
-            (rhs1 * row2[:, 1] - rhs2 * row1[:, 1]) / safe,
-            (row1[:, 0] * rhs2 - row2[:, 0] * rhs1) / safe,
-        ),
-        axis=-1,
-    )
+def solve_2x2(row1: Array, row2: Array, rhs1: Array, rhs2: Array, det: Array) -> Array:
+    """Cramer's rule for [row1; row2] x = [rhs1; rhs2]: x = (|b r2|, |r1 b|) / |r1 r2|, with
+    ``det`` = |r1 r2| (inf where it is 0)."""
+    out = np.empty((det.size, 2))
+    np.divide(rhs1 * row2[:, 1] - rhs2 * row1[:, 1], det, out=out[:, 0])
+    np.divide(row1[:, 0] * rhs2 - row2[:, 0] * rhs1, det, out=out[:, 1])
+    return out
 
 
-def relative_determinant(first: Locus, second: Locus, X: Array) -> Array:
-    """|det G| / (|g1| |g2|): sine of the angle between the gradients (0: dead centre)."""
+def point_motion(first: Locus, second: Locus, X: Array, order: int) -> tuple[PointMotion, Array]:
+    """Velocity and acceleration of X from the differentiated constraints G v_X = b (2x2,
+    Cramer), and sin(g1, g2) = |det G| / (|g1| |g2|), the sine of the angle between the
+    gradients (0: a dead centre)."""
     g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
+    det = cross(g1, g2)
     norms = np.sqrt(dot(g1, g1) * dot(g2, g2))
-    return np.abs(cross(g1, g2)) / np.where(norms > 0.0, norms, 1.0)
-
-
-def point_motion(first: Locus, second: Locus, X: Array, order: int) -> PointMotion:
-    """Velocity and acceleration of X from the differentiated constraints (2x2, Cramer)."""
+    sine = np.abs(det) / np.where(norms > 0.0, norms, 1.0)
     if order < 1:
-        return PointMotion(X)
-    g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
-    v = solve_2x2(g1, g2, _velocity_rhs(first, X), _velocity_rhs(second, X))
+        return PointMotion(X), sine
+    det = np.where(det != 0.0, det, np.inf)
+    v = solve_2x2(g1, g2, _velocity_rhs(first, g1, X), _velocity_rhs(second, g2, X), det)
     if order < 2:
-        return PointMotion(X, v)
-    a = solve_2x2(g1, g2, _acceleration_rhs(first, X, v), _acceleration_rhs(second, X, v))
-    return PointMotion(X, v, a)
+        return PointMotion(X, v), sine
+    rhs1, rhs2 = _acceleration_rhs(first, g1, X, v), _acceleration_rhs(second, g2, X, v)
+    return PointMotion(X, v, solve_2x2(g1, g2, rhs1, rhs2, det)), sine
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 Array = np.ndarray
+FLOAT = np.dtype(float)
 
 
 def cross(a: Array, b: Array) -> Array:
@@ -25,7 +26,10 @@ def dot(a: Array, b: Array) -> Array:
 
 def perp(a: Array) -> Array:
     """k x a: the vector a turned 90 degrees counter-clockwise."""
-    out = np.empty_like(a, dtype=np.result_type(a, float))  # object (40 digits) stays object
+    if a.dtype == FLOAT:
+        out = np.empty(a.shape)
+    else:  # object (40 digits) stays object
+        out = np.empty_like(a, dtype=np.result_type(a, float))
     out[..., 0] = -a[..., 1]
     out[..., 1] = a[..., 0]
     return out
@@ -40,8 +44,11 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
     """R vector = (cos x - sin y, sin x + cos y), the angle's cosine and sine given (broadcast:
     (M, K) angles and (K, 2) vectors give (M, K, 2))."""
     x, y = vector[..., 0], vector[..., 1]
-    kind = np.result_type(cos, x, float)  # object (40 digits, solver.polish) stays object
-    out = np.empty((*np.broadcast_shapes(cos.shape, x.shape), 2), dtype=kind)
+    if cos.dtype == FLOAT and x.dtype == FLOAT and x.shape in ((), cos.shape):
+        out = np.empty((*cos.shape, 2))
+    else:  # object (40 digits, solver.polish) stays object
+        kind = np.result_type(cos, x, float)
+        out = np.empty((*np.broadcast_shapes(cos.shape, x.shape), 2), dtype=kind)
     out[..., 0] = cos * x - sin * y
     out[..., 1] = sin * x + cos * y
     return out
@@ -49,7 +56,10 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
 
 def scale(factor: Array, vector: Array) -> Array:
     """factor[i] * vector[i] for each sample (column by column: faster than broadcasting)."""
-    out = np.empty(np.broadcast_shapes((*np.shape(factor), 2), vector.shape))
+    shape = np.shape(factor)
+    if shape != vector.shape[:-1]:
+        shape = np.broadcast_shapes(shape, vector.shape[:-1])
+    out = np.empty((*shape, 2))
     np.multiply(vector[..., 0], factor, out=out[..., 0])
     np.multiply(vector[..., 1], factor, out=out[..., 1])
     return out
@@ -118,9 +128,16 @@ def link_from_two_points(P0: Array, Q0: Array, P: PointMotion, Q: PointMotion) -
     return LinkMotion(P0, P, theta, omega, alpha)
 
 
+def repeat(point: Array, samples: int) -> Array:
+    """The (2,) ``point`` at each of ``samples`` samples, (N, 2), a new array."""
+    out = np.empty((samples, 2))
+    out[:] = point
+    return out
+
+
 def fixed_link(anchor0: Array, samples: int) -> LinkMotion:
     """The ground: at rest in its drawn pose."""
     zeros2 = np.zeros((samples, 2))
     zeros = np.zeros(samples)
-    anchor = PointMotion(np.broadcast_to(anchor0, (samples, 2)).copy(), zeros2, zeros2)
+    anchor = PointMotion(repeat(anchor0, samples), zeros2, zeros2)
     return LinkMotion(anchor0, anchor, zeros, zeros, zeros)

@@ -24,6 +24,8 @@ import numpy as np
 import pytest
 
 import solver
+from solver import dyads
+from solver.assembly import WARNING_MARGIN, candidate_minima
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
@@ -387,8 +389,43 @@ def test_time_sweep_warns_too() -> None:
 @pytest.mark.parametrize("fraction", [0.5, 2.0])
 def test_warning_threshold_is_1e_3_of_the_size(fraction: float) -> None:
     """The same crank-rocker with its margin at 0.5e-3 and 2e-3 of its size: warned about below
-    1e-3 of the size only (assembly.WARNING_MARGIN)."""
+    1e-3 of the size only (WARNING_MARGIN)."""
     size = parse_linkage(_near_crank_rocker(1e-3)).size
     scene = parse_linkage(_near_crank_rocker(fraction * 1e-3 * size))
     warned = sweep(scene, 360, ["position"]).warnings
     assert (len(warned) == 1) == (fraction < 1.0)
+
+
+def _unscreened_minima(margin: np.ndarray, size: float) -> np.ndarray:
+    """The local minima whose bound m_k - max(m_k-1 - m_k, m_k+1 - m_k) dips below the warning
+    margin, sample by sample (what candidate_minima finds, without its quick screen)."""
+    m, before, after = margin[1:-1], margin[:-2], margin[2:]
+    low = m - np.maximum(before - m, after - m)
+    found = (m < before) & (m <= after) & (low < WARNING_MARGIN * size)
+    found &= m >= -dyads.COINCIDENCE_TOLERANCE * size
+    return np.flatnonzero(found) + 1
+
+
+@pytest.mark.parametrize("slope", [0.5, 1.0, 2.0, 4.0, 1e3])
+def test_candidate_screen_never_skips_a_v_shaped_minimum(slope: float) -> None:
+    """Every sample 1.5 to 2.5 times the warning margin above zero, the margin V-shaped between
+    two samples (a steep slope, coarse samples): the bound says the minimum could dip below the
+    threshold, and the quick screen (min(m) - max |dm| clears it) must not skip it."""
+    size, w = 2.0, WARNING_MARGIN * 2.0
+    k = np.arange(40)
+    margin = 1.5 * w + slope * w * np.abs(k - 20.5)
+    found = candidate_minima(margin, size)
+    assert np.array_equal(found, _unscreened_minima(margin, size))
+    assert (found.size > 0) == (1.5 * w + 0.5 * slope * w - slope * w < w)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_candidate_screen_agrees_with_the_full_test(seed: int) -> None:
+    """Random smooth margins with minima near and far from the threshold: the same candidates
+    with and without the quick screen."""
+    rng = np.random.default_rng(seed)
+    u = np.linspace(0.0, 2.0 * np.pi, int(rng.integers(3, 400)))
+    size = float(rng.uniform(0.1, 10.0))
+    depth = WARNING_MARGIN * size * float(rng.choice([0.01, 0.5, 1.0, 2.0, 50.0]))
+    margin = depth + size * float(rng.uniform(0.0, 0.3)) * (1.0 - np.cos(u - rng.uniform(0, 6)))
+    assert np.array_equal(candidate_minima(margin, size), _unscreened_minima(margin, size))
