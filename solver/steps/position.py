@@ -255,6 +255,7 @@ def carried_line_values(
 
 
 def carried_line_lines(b: StepBuilder, g: str, anchor: str, v: CarriedLine) -> None:
+    """Write Q = A + e^(i theta_G) (Q0 - A0) and u = e^(i (beta0 + theta_G)) with the numbers."""
     a, gn = tex.name(anchor), tex.name(g)
     b.line(
         rf"&Q = {a} + e^{{i\theta_{{{gn}}}}}(Q_0 - {a}_0) = {b.point(v.anchor)} + "
