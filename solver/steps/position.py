@@ -71,12 +71,41 @@ def crank_step(ctx: LinkageContext, step: DriverStep) -> Step | None:
     return b.build()
 
 
+@dataclass(frozen=True)
+class TriangleValues:
+    """The keys of X = C1 + r1 e^(i (theta_d +- gamma)) in the triangle C1 X C2: C1, X, r1,
+    r2, d = |C1 C2|, the squares r1^2, r2^2, d^2, 2 r1 d, cos gamma, gamma, theta_d and theta;
+    ``sign`` +1 where X lies on the left of C1 C2 (the drawn assembly), -1 on its right."""
+
+    p1: str
+    target: str
+    r1: str
+    r2: str
+    d: str
+    squares: tuple[str, str, str]
+    den: str
+    cos: str
+    gamma: str
+    theta_d: str
+    angle: str
+    sign: float
+
+
 def triangle_step(
     ctx: LinkageContext, step: DyadStep, first: CircleSpec, second: CircleSpec
 ) -> Step:
-    x = step.point
-    c1, c2 = first.center, second.center
+    """cos gamma = (r1^2 + d^2 - r2^2) / (2 r1 d), X = C1 + r1 e^(i (theta_d +- gamma))."""
+    x, c1, c2 = step.point, first.center, second.center
     b = ctx.builder("position.triangle", f"Position of {x}: the triangle {c1}{x}{c2}")
+    triangle_lines(b, x, (first, second), triangle_values(b, ctx, x, first, second))
+    return b.build()
+
+
+def triangle_values(
+    b: StepBuilder, ctx: LinkageContext, x: str, first: CircleSpec, second: CircleSpec
+) -> TriangleValues:
+    """The triangle's numbers, with a check for each piece of arithmetic."""
+    c1, c2 = first.center, second.center
     p1, p2, target = _point(b, ctx, c1), _point(b, ctx, c2), _point(b, ctx, x)
     r1 = b.put(f"|{c1}{x}|", first.radius, "m")
     r2 = b.put(f"|{c2}{x}|", second.radius, "m")
@@ -85,6 +114,18 @@ def triangle_step(
     d = b.put(f"|{c1}{c2}|", float(np.hypot(*dv)), "m")
     b.check("sum", dk, p2, f"-{p1}")
     b.check("norm", d, dk)
+    squares, den, cos = cosine_law(b, r1, r2, d)
+    rx = ctx.pos(x) - ctx.pos(c1)
+    gamma, theta_d, angle, sign = triangle_angle(b, dv, rx, cos, dk)
+    arm = b.put(f"r({c1},{x})", rx, "m")
+    b.check("phasor", arm, r1, angle)
+    b.check("sum", target, p1, arm)
+    return TriangleValues(p1, target, r1, r2, d, squares, den, cos, gamma, theta_d, angle, sign)
+
+
+def cosine_law(b: StepBuilder, r1: str, r2: str, d: str) -> tuple[tuple[str, str, str], str, str]:
+    """cos gamma = (r1^2 + d^2 - r2^2) / (2 r1 d): the keys of (r1^2, r2^2, d^2), of 2 r1 d
+    and of cos gamma."""
     sq = {k: b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (r1, r2, d)}
     for k, v in sq.items():
         b.check("product", v, k, k)
@@ -94,9 +135,17 @@ def triangle_step(
     b.check("sum", num, sq[r1], sq[d], f"-{sq[r2]}")
     b.check("product", den, r1, d, factor=2.0)
     b.check("quotient", cos, num, den)
-    rx = ctx.pos(x) - ctx.pos(c1)
+    return (sq[r1], sq[r2], sq[d]), den, cos
+
+
+def triangle_angle(
+    b: StepBuilder, dv: np.ndarray, rx: np.ndarray, cos: str, dk: str
+) -> tuple[str, str, str, float]:
+    """gamma, the angle at C1 between C1 C2 (``dv``) and C1 X (``rx``), theta_d = arg C1 C2
+    and theta = theta_d +- gamma, the sign that of X's side of C1 C2 (as drawn). gamma comes
+    from the drawn geometry (acos loses digits where the triangle is nearly flat) and is
+    checked against cos gamma. Returns the keys of gamma, theta_d, theta and the sign."""
     side = float(dv[0] * rx[1] - dv[1] * rx[0])
-    # the angle from the drawn geometry (acos loses digits where the triangle is nearly flat)
     gamma_value = math.atan2(abs(side), float(np.dot(dv, rx)))
     gamma = b.put("gamma", gamma_value, "rad")
     one = b.put("1", 1.0, "")
@@ -108,43 +157,77 @@ def triangle_step(
     sign = 1.0 if side >= 0 else -1.0
     angle = b.put("theta", b.scalar(theta_d) + sign * gamma_value, "rad")
     b.check("sum", angle, theta_d, gamma if sign > 0 else f"-{gamma}")
-    arm = b.put(f"r({c1},{x})", rx, "m")
-    b.check("phasor", arm, r1, angle)
-    b.check("sum", target, p1, arm)
-    where = "left" if sign > 0 else "right"
-    pm = "+" if sign > 0 else "-"
+    return gamma, theta_d, angle, sign
+
+
+def triangle_lines(
+    b: StepBuilder, x: str, circles: tuple[CircleSpec, CircleSpec], v: TriangleValues
+) -> None:
+    """Write the law of cosines, its numbers and the assembly taken."""
+    (first, second), pm = circles, "+" if v.sign > 0 else "-"
+    c1, c2 = first.center, second.center
+    r1_sq, r2_sq, d_sq = v.squares
     b.line(
         rf"&\cos\gamma = \frac{{r_1^2 + d^2 - r_2^2}}{{2\,r_1\,d}}, \quad "
         rf"{tex.name(x)} = {tex.name(c1)} + r_1\,e^{{i(\theta_d {pm} \gamma)}}"
     )
     b.line(
-        rf"&d = |{tex.name(c1)}{tex.name(c2)}| = {b.numu(d)}, \quad \cos\gamma = "
-        rf"\frac{{{b.num(sq[r1])} + {b.num(sq[d])} - {b.num(sq[r2])}}}{{{b.num(den)}}} = "
-        rf"{b.num(cos)}, \quad \gamma = {b.numu(gamma)}, \quad \theta_d = {b.numu(theta_d)}"
+        rf"&d = |{tex.name(c1)}{tex.name(c2)}| = {b.numu(v.d)}, \quad \cos\gamma = "
+        rf"\frac{{{b.num(r1_sq)} + {b.num(d_sq)} - {b.num(r2_sq)}}}{{{b.num(v.den)}}} = "
+        rf"{b.num(v.cos)}, \quad \gamma = {b.numu(v.gamma)}, \quad \theta_d = "
+        rf"{b.numu(v.theta_d)}"
     )
     b.line(
-        rf"&{tex.name(x)} = {b.point(p1)} + {b.num(r1)}\,e^{{i\,{tex.paren(b.num(angle))}}} = "
-        rf"{tex.boxed_result(b.point(target) + latex_unit('m'))}"
+        rf"&{tex.name(x)} = {b.point(v.p1)} + {b.num(v.r1)}\,e^{{i\,{tex.paren(b.num(v.angle))}}}"
+        rf" = {tex.boxed_result(b.point(v.target) + latex_unit('m'))}"
     )
     b.say(
-        f"{x} is at {b.txt(r1)} from {c1} (link {first.link}) and {b.txt(r2)} from {c2} (link "
-        f"{second.link}); {c1}{c2} = {b.txt(d)}. The law of cosines gives cos gamma = "
-        f"(r1^2 + d^2 - r2^2)/(2 r1 d) = {b.txtn(cos)}, gamma = {b.txt(gamma)}, the angle at "
-        f"{c1} between {c1}{c2} (at theta_d = {b.txt(theta_d)}) and {c1}{x}. Two assemblies "
-        f"close the triangle, theta_d + gamma and theta_d - gamma; the one taken is {x} on the "
-        f"{where} of {c1}{c2}, as drawn (the solver keeps the drawn branch): {x} = {b.txt(target)}."
+        f"{x} is at {b.txt(v.r1)} from {c1} (link {first.link}) and {b.txt(v.r2)} from {c2} "
+        f"(link {second.link}); {c1}{c2} = {b.txt(v.d)}. The law of cosines gives cos gamma = "
+        f"(r1^2 + d^2 - r2^2)/(2 r1 d) = {b.txtn(v.cos)}, gamma = {b.txt(v.gamma)}, the angle "
+        f"at {c1} between {c1}{c2} (at theta_d = {b.txt(v.theta_d)}) and {c1}{x}. Two "
+        "assemblies close the triangle, theta_d + gamma and theta_d - gamma; the one taken is "
+        f"{x} on the {'left' if v.sign > 0 else 'right'} of {c1}{c2}, as drawn (the solver "
+        f"keeps the drawn branch): {x} = {b.txt(v.target)}."
     )
-    return b.build()
+
+
+@dataclass(frozen=True)
+class CarriedLine:
+    """The keys of a moving guide's slot now, Q = A + |Q0 - A0| e^(i (phi0 + theta_rot)) and
+    u = e^(i (beta0 + theta_rot)): A, theta_rot, Q0 - A0, |Q0 - A0|, phi0 + theta_rot, Q, u0,
+    beta0, beta and u."""
+
+    anchor: str
+    turn: str
+    d0: str
+    size: str
+    phi: str
+    q: str
+    u0: str
+    beta0: str
+    beta: str
+    u: str
 
 
 def carried_line(b: StepBuilder, ctx: LinkageContext, line: LineSpec) -> tuple[str, str]:
     """The slot of a moving guide G now: Q = A + e^(i theta_G) (Q0 - A0) and u = e^(i (beta0 +
     theta_G)), the drawn line (through Q0 along u0) turned with G about its first point A by
     theta_G, the rotation of G since its drawing. Returns the keys of Q and u."""
-    g = line.guide
-    anchor = ctx.scene.links[g].points[0]
+    anchor = ctx.scene.links[line.guide].points[0]
+    v = carried_line_values(b, ctx, line, anchor)
+    carried_line_lines(b, line.guide, anchor, v)
+    return v.q, v.u
+
+
+def carried_line_values(
+    b: StepBuilder, ctx: LinkageContext, line: LineSpec, anchor: str
+) -> CarriedLine:
+    """Q and u of the slot now, with a check for each piece of arithmetic."""
     pa = _point(b, ctx, anchor)
-    turn = b.put(f"theta_rot({g})", float(ctx.analysis.motion.links[g].theta[0]), "rad")
+    turn = b.put(
+        f"theta_rot({line.guide})", float(ctx.analysis.motion.links[line.guide].theta[0]), "rad"
+    )
     d0_np = np.asarray(line.through0, dtype=float) - ctx.scene.drawn(anchor)
     d0 = b.put("Q0 - A0", d0_np, "m")
     size = b.put("|Q0 - A0|", float(np.hypot(*d0_np)), "m")
@@ -168,41 +251,77 @@ def carried_line(b: StepBuilder, ctx: LinkageContext, line: LineSpec) -> tuple[s
     b.check("angle", beta0, u0)
     b.check("sum", beta, beta0, turn)
     b.check("phasor", u, one, beta)
-    a = tex.name(anchor)
+    return CarriedLine(pa, turn, d0, size, phi, q, u0, beta0, beta, u)
+
+
+def carried_line_lines(b: StepBuilder, g: str, anchor: str, v: CarriedLine) -> None:
+    """Write Q = A + e^(i theta_G) (Q0 - A0) and u = e^(i (beta0 + theta_G)) with the numbers."""
+    a, gn = tex.name(anchor), tex.name(g)
     b.line(
-        rf"&Q = {a} + e^{{i\theta_{{{tex.name(g)}}}}}(Q_0 - {a}_0) = {b.point(pa)} + "
-        rf"{b.num(size)}\,e^{{i\,{tex.paren(b.num(phi))}}} = {b.point(q)}{latex_unit('m')}, "
-        rf"\quad \vec{{u}} = e^{{i(\beta_0 + \theta_{{{tex.name(g)}}})}} = "
-        rf"e^{{i\,{tex.paren(b.num(beta))}}} = {b.point(u)}"
+        rf"&Q = {a} + e^{{i\theta_{{{gn}}}}}(Q_0 - {a}_0) = {b.point(v.anchor)} + "
+        rf"{b.num(v.size)}\,e^{{i\,{tex.paren(b.num(v.phi))}}} = {b.point(v.q)}"
+        rf"{latex_unit('m')}, \quad \vec{{u}} = e^{{i(\beta_0 + \theta_{{{gn}}})}} = "
+        rf"e^{{i\,{tex.paren(b.num(v.beta))}}} = {b.point(v.u)}"
     )
     b.say(
-        f"The slot is fixed in the moving link {g}: drawn through Q0 at {b.txtn(d0)} m from "
-        f"{anchor} along u0 = {b.txtn(u0)} (angle beta0 = {b.txt(beta0)}), and {g} has turned "
-        f"by theta_{g} = {b.txt(turn)} about {anchor} since its drawing. So the slot now passes "
-        f"through Q = {anchor} + e^(i theta_{g}) (Q0 - {anchor}0) = {b.txt(q)} along u = "
-        f"e^(i (beta0 + theta_{g})) = {b.txtn(u)}."
+        f"The slot is fixed in the moving link {g}: drawn through Q0 at {b.txtn(v.d0)} m from "
+        f"{anchor} along u0 = {b.txtn(v.u0)} (angle beta0 = {b.txt(v.beta0)}), and {g} has "
+        f"turned by theta_{g} = {b.txt(v.turn)} about {anchor} since its drawing. So the slot "
+        f"now passes through Q = {anchor} + e^(i theta_{g}) (Q0 - {anchor}0) = {b.txt(v.q)} "
+        f"along u = e^(i (beta0 + theta_{g})) = {b.txtn(v.u)}."
     )
-    return q, u
+
+
+@dataclass(frozen=True)
+class SliderValues:
+    """The keys of X = Q + ((C - Q) . u +- w) u: Q, u, r, h = u x (C - Q), (C - Q) . u,
+    w = sqrt(r^2 - h^2), r^2, h^2, s and X; ``sign`` +1 where X is ahead of C's foot along u
+    (the drawn assembly), -1 behind it."""
+
+    q: str
+    u: str
+    r: str
+    h: str
+    along: str
+    w: str
+    r2: str
+    h2: str
+    s: str
+    target: str
+    sign: float
 
 
 def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: LineSpec) -> Step:
-    x, c = step.point, circle.center
+    """h = u x (C - Q), w = sqrt(r^2 - h^2), X = Q + ((C - Q) . u +- w) u."""
+    x = step.point
     fixed = line.guide == ctx.scene.ground
+    guide = "fixed guide" if fixed else f"slot of {line.guide}"
     b = ctx.builder(
         "position.slider" if fixed else "position.slot",
-        f"Position of {x}: link {circle.link} and the "
-        + ("fixed guide" if fixed else f"slot of {line.guide}"),
+        f"Position of {x}: link {circle.link} and the {guide}",
     )
+    v = slider_values(b, ctx, x, circle, line)
+    slider_lines(b, x, circle, guide, v)
+    return b.build()
+
+
+def slot_now(b: StepBuilder, ctx: LinkageContext, line: LineSpec) -> tuple[str, str]:
+    """The keys of Q and u of a slot now: as drawn in the ground, else ``carried_line``."""
+    if line.guide != ctx.scene.ground:
+        return carried_line(b, ctx, line)
+    u_np = np.asarray(line.direction0, dtype=float)
+    return b.put("Q", line.through0, "m"), b.put("u", u_np / float(np.hypot(*u_np)), "")
+
+
+def slider_values(
+    b: StepBuilder, ctx: LinkageContext, x: str, circle: CircleSpec, line: LineSpec
+) -> SliderValues:
+    """The circle-line intersection's numbers, with a check for each piece of arithmetic;
+    w comes from the pose (the distance of X from C's foot)."""
+    c = circle.center
     pc, target = _point(b, ctx, c), _point(b, ctx, x)
-    if fixed:
-        u_np = np.asarray(line.direction0, dtype=float)
-        u_np = u_np / float(np.hypot(*u_np))
-        q = b.put("Q", line.through0, "m")
-        u = b.put("u", u_np, "")
-    else:
-        q, u = carried_line(b, ctx, line)
-        u_np = np.asarray(b.vector(u))
-    q_np = np.asarray(b.vector(q))
+    q, u = slot_now(b, ctx, line)
+    q_np, u_np = np.asarray(b.vector(q)), np.asarray(b.vector(u))
     r = b.put(f"|{c}{x}|", circle.radius, "m")
     cq = b.put(f"{c} - Q", ctx.pos(c) - q_np, "m")
     b.check("sum", cq, pc, f"-{q}")
@@ -211,7 +330,7 @@ def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: L
     b.check("cross", h, u, cq)
     b.check("dot", along, cq, u)
     s_value = float(np.dot(ctx.pos(x) - q_np, u_np))
-    w = b.put("w", abs(s_value - b.scalar(along)), "m")  # sqrt(r^2 - h^2), from the pose
+    w = b.put("w", abs(s_value - b.scalar(along)), "m")
     r2, h2, w2 = (b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (r, h, w))
     for key, base in ((r2, r), (h2, h), (w2, w)):
         b.check("product", key, base, base)
@@ -222,29 +341,31 @@ def slider_step(ctx: LinkageContext, step: DyadStep, circle: CircleSpec, line: L
     offset = b.put("s u", s_value * u_np, "m")
     b.check("product", offset, s, u)
     b.check("sum", target, q, offset)
-    pm = "+" if sign > 0 else "-"
+    return SliderValues(q, u, r, h, along, w, r2, h2, s, target, sign)
+
+
+def slider_lines(b: StepBuilder, x: str, circle: CircleSpec, guide: str, v: SliderValues) -> None:
+    """Write the closed form, its numbers and the assembly taken."""
+    c, pm = circle.center, "+" if v.sign > 0 else "-"
     b.line(
         rf"&h = \vec{{u}} \times ({tex.name(c)} - Q), \quad w = \sqrt{{r^2 - h^2}}, \quad "
         rf"{tex.name(x)} = Q + ((\,{tex.name(c)} - Q) \cdot \vec{{u}} {pm} w)\,\vec{{u}}"
     )
     b.line(
-        rf"&h = {b.numu(h)}, \quad w = \sqrt{{{b.num(r2)} - {b.num(h2)}}} = {b.numu(w)}, "
-        rf"\quad s = {b.num(along)} {pm} {b.num(w)} = {b.numu(s)}"
+        rf"&h = {b.numu(v.h)}, \quad w = \sqrt{{{b.num(v.r2)} - {b.num(v.h2)}}} = "
+        rf"{b.numu(v.w)}, \quad s = {b.num(v.along)} {pm} {b.num(v.w)} = {b.numu(v.s)}"
     )
     b.line(
-        rf"&{tex.name(x)} = {b.point(q)} + {tex.paren(b.num(s))}\,{b.point(u)} = "
-        rf"{tex.boxed_result(b.point(target) + latex_unit('m'))}"
+        rf"&{tex.name(x)} = {b.point(v.q)} + {tex.paren(b.num(v.s))}\,{b.point(v.u)} = "
+        rf"{tex.boxed_result(b.point(v.target) + latex_unit('m'))}"
     )
-    where = "ahead of" if sign > 0 else "behind"
-    guide = "fixed guide" if fixed else f"slot of {line.guide}"
     b.say(
-        f"{x} is at r = {b.txt(r)} from {c} (link {circle.link}) and on the {guide} through "
-        f"Q = {b.txt(q)} along u = {b.txtn(u)}. {c} is at h = {b.txt(h)} from the guide; the "
-        f"circle meets it at w = sqrt(r^2 - h^2) = {b.txt(w)} on either side of the foot of "
-        f"{c}. The assembly taken is {x} {where} the foot along u, as drawn: s = {b.txt(s)}, "
-        f"{x} = {b.txt(target)}."
+        f"{x} is at r = {b.txt(v.r)} from {c} (link {circle.link}) and on the {guide} through "
+        f"Q = {b.txt(v.q)} along u = {b.txtn(v.u)}. {c} is at h = {b.txt(v.h)} from the guide; "
+        f"the circle meets it at w = sqrt(r^2 - h^2) = {b.txt(v.w)} on either side of the foot "
+        f"of {c}. The assembly taken is {x} {'ahead of' if v.sign > 0 else 'behind'} the foot "
+        f"along u, as drawn: s = {b.txt(v.s)}, {x} = {b.txt(v.target)}."
     )
-    return b.build()
 
 
 # --- a pin in the turning slot of a lever about a known pivot ---------------------------------
@@ -502,17 +623,29 @@ def newton_lines(
         rf"{_power(report.residual_norm)}\,\mathrm{{m}} \le "
         rf"{_power(report.tolerance)}\,\mathrm{{m}}"
     )
+    b.say(newton_text(step, [text for _, text in equations], report, residuals, same))
+
+
+def newton_text(
+    step: NewtonStep,
+    equations: list[str],
+    report: newton.NewtonReport,
+    residuals: list[float],
+    same: bool,
+) -> str:
+    """The Newton step in words: the equations, the iteration, the residuals, the solver's."""
+    plural = "" if report.iterations == 1 else "s"
     reached = (
         ", and the pose reached is the solver's."
         if same
         else ", and lands on another assembly than the solver's, which follows the "
         "linkage continuously from its drawing (the branch rule): the solver's pose is used."
     )
-    b.say(
+    return (
         f"Links {', '.join(step.links)} form no group with a closed-form solution: their joints "
         "give as many equations Phi(q) = 0 as unknowns, each link's first point (x, y) and its "
         "rotation theta from the drawing: "
-        + "; ".join(text for _, text in equations)
+        + "; ".join(equations)
         + ". The equations are not linear in the angles, so they are solved numerically, by "
         "Newton-Raphson: q(k+1) = q(k) - J(q(k))^-1 Phi(q(k)), J the Jacobian of Phi. Started "
         "from the drawn pose, the residual |Phi| falls as "

@@ -224,6 +224,7 @@ class MovingPointSteps:
         return b.build()
 
     def law_values(self, b: StepBuilder) -> LawValues:
+        """t, s(t), s'(t) and s''(t), the solver's numbers with their paths."""
         return LawValues(
             b.put("t", self.ctx.scene.time, "s"),
             b.put("s", float(self.m.s), "m", self.src("s")),
@@ -232,6 +233,7 @@ class MovingPointSteps:
         )
 
     def law_lines(self, b: StepBuilder, v: LawValues) -> None:
+        """Write s(t), s'(t), s''(t) as formulas, then their values at t."""
         law, digits = parse_time_law(self.mp.s_law), self.ctx.fmt.digits
         b.line(
             rf"&s(t) = {tex.law(law.expression, digits)}, \quad \dot{{s}}(t) = "
@@ -268,6 +270,7 @@ class MovingPointSteps:
         return ArcValues(c, r, angle, d)
 
     def arc_lines(self, b: StepBuilder, m: str, v: ArcValues) -> None:
+        """Write M = C + R (cos psi, sin psi) with the numbers."""
         route = self.mp.path
         assert route.center is not None
         sense = "counter-clockwise" if self.turn > 0 else "clockwise"
@@ -300,6 +303,7 @@ class MovingPointSteps:
         return LineValues(s0, u, d)
 
     def line_lines(self, b: StepBuilder, m: str, v: LineValues) -> None:
+        """Write M = P_0 + s u with the numbers."""
         route = self.mp.path
         b.line(
             rf"&{self.n} = {tex.name(route.start)} + s\,\vec{{u}} = {b.point(v.start)} + "
@@ -327,6 +331,7 @@ class MovingPointSteps:
         return transport_terms(b, self.ctx, carrier, (a, self.name), r_np, order)
 
     def velocity_steps(self) -> list[Step]:
+        """v_tr, v_rel and v = v_tr + v_rel of M, one step each."""
         return [
             self.transport_velocity_step(),
             self.relative_velocity_step(),
@@ -397,6 +402,7 @@ class MovingPointSteps:
     # --- acceleration ---------------------------------------------------------------------------
 
     def acceleration_steps(self) -> list[Step]:
+        """a_tr, a_rel, a_Cor and a = a_tr + a_rel + a_Cor of M, one step each."""
         return [
             self.transport_acceleration_step(),
             self.relative_acceleration_step(),
@@ -439,6 +445,7 @@ class MovingPointSteps:
     def transport_acceleration_lines(
         self, b: StepBuilder, v: TransportTerms, tr: str, parts: TransportParts
     ) -> None:
+        """Write a_tr = a_A + alpha x r - omega^2 r, then its parts a_tr^tau and a_tr^n."""
         sub, k, a = self.n, tex.name(self.carrier), v.origin
         base = origin_column(b, self.ctx, a, v.base)
         b.line(
@@ -461,6 +468,7 @@ class MovingPointSteps:
     def transport_acceleration_text(
         self, b: StepBuilder, v: TransportTerms, tr: str, parts: TransportParts
     ) -> None:
+        """Say a_tr (or that the carrier translates) and its two parts."""
         carrier, a = self.carrier, v.origin
         if b.is_zero(v.omega) and b.is_zero(v.alpha):
             b.say(
@@ -493,6 +501,7 @@ class MovingPointSteps:
         return b.build()
 
     def relative_acceleration_values(self, b: StepBuilder) -> RelativeAcceleration:
+        """s', s'', tau, n, 1/R and the parts s'' tau and (s'^2 / R) n of a_rel."""
         tau, normal, curvature = self.tangent_normal()
         return RelativeAcceleration(
             b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
@@ -512,6 +521,7 @@ class MovingPointSteps:
     def relative_acceleration_lines(
         self, b: StepBuilder, v: RelativeAcceleration, rel: str
     ) -> None:
+        """Write a_rel^tau = s'' tau, a_rel^n = (s'^2 / R) n (0 on a line) and their sum."""
         sub, curved = self.n, b.scalar(v.curvature) != 0.0
         b.line(
             rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{rel}}}} = \ddot{{s}}\,\vec{{\tau}} = "
@@ -633,6 +643,7 @@ class MovingPointSteps:
         return b.build() if found else None
 
     def event_lines(self, b: StepBuilder, turns: int, where: str, lv: str, te: str) -> None:
+        """Write s(t) = k pi R solved for its first root t_k."""
         law = parse_time_law(self.mp.s_law)
         factor = "" if turns == 1 else "2"
         b.line(

@@ -403,6 +403,8 @@ class VectorMethod:
     def circle_acceleration_lines(
         self, b: StepBuilder, point: str, spec: CircleSpec, known: KnownAcceleration, side: Side
     ) -> None:
+        """Write a_X = a_C + alpha_L x r_CX - omega_L^2 r_CX, expanded to a column linear in
+        alpha_L."""
         link, center, k = spec.link, spec.center, side.terms[0]
         base = origin_column(b, self.ctx, center, known.base)
         b.line(
@@ -640,6 +642,7 @@ class VectorMethod:
     def slot_velocity_lines(
         self, b: StepBuilder, point: str, guide: str, side: Side, tr: str
     ) -> None:
+        """Write v_X = v_tr + s' u (v_tr = 0 in a slot of the ground) as a column linear in s'."""
         unknown, ukey, sub = side.terms[0].unknown, side.terms[0].of, tex.name(point)
         fixed = guide == self.ctx.scene.ground
         b.line(
@@ -667,6 +670,8 @@ class VectorMethod:
     def slot_acceleration_lines(
         self, b: StepBuilder, point: str, guide: str, side: Side, tr: str, cor: str
     ) -> None:
+        """Write a_X = a_tr + s'' u + a_Cor (a_tr = a_Cor = 0 in a slot of the ground) as a
+        column linear in s''."""
         unknown, ukey, sub = side.terms[0].unknown, side.terms[0].of, tex.name(point)
         fixed = guide == self.ctx.scene.ground
         b.line(
@@ -868,6 +873,7 @@ class VectorMethod:
         return b.build(), lever_side, Side(vp, ctx.vel(pin), "m/s")
 
     def lever_velocity_lines(self, b: StepBuilder, step: LeverStep, side: Side, vp: str) -> None:
+        """Write v_P = v_Q + omega x r_QP + s' u, expanded to a column linear in omega and s'."""
         lever, pivot, pin = step.link, step.pivot, step.pin
         (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
         sub, base = tex.name(pin), origin_column(b, self.ctx, pivot, side.known_key)
@@ -1079,6 +1085,7 @@ class VectorMethod:
     def two_point_lines(
         self, b: StepBuilder, link: str, order: int, rate: Unknown, v: TwoPointRate
     ) -> None:
+        """Write omega = (r x (v_S - v_F))_z / |r|^2 (alpha likewise) and its numbers."""
         first, second = v.first, v.second
         r = r_vec(first, second)
         if order == VELOCITY:
