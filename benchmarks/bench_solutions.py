@@ -3,12 +3,12 @@
     git archive <commit> | (mkdir -p /tmp/base && tar -x -C /tmp/base)
     python -m benchmarks.bench_solutions --baseline /tmp/base
 
-Each preset at its defaults, ``solver.solve(doc, "vector", 4).as_dict()`` (parse, analysis,
-steps, the /solution body), timed in a fresh interpreter per tree and round, the two trees
-alternating so that both see the same load. Prints the median over rounds of each round's p50,
-wall clock and CPU time of the process (the CPU time is what a quiet machine would take, less
-sensitive to the other processes on a loaded one). Issue 12's target: under 20 ms for the
-slowest preset on a quiet machine.
+Each preset at its defaults, ``solver.solve(doc, method, 4).as_dict()`` (``--method``, vector
+by default: parse, analysis, steps, the /solution body), timed in a fresh interpreter per tree
+and round, the two trees alternating so that both see the same load. Prints the median over
+rounds of each round's p50, wall clock and CPU time of the process (the CPU time is what a quiet
+machine would take, less sensitive to the other processes on a loaded one). Issue 12's target:
+under 20 ms for the slowest preset on a quiet machine.
 """
 
 from __future__ import annotations
@@ -32,11 +32,11 @@ out = {{}}
 for name in PRESETS:
     doc = build_preset(name, {{}})
     for _ in range(3):
-        solver.solve(doc, "vector", 4).as_dict()
+        solver.solve(doc, {method!r}, 4).as_dict()
     wall, cpu = [], []
     for _ in range({calls}):
         w, c = time.perf_counter(), time.process_time()
-        solver.solve(doc, "vector", 4).as_dict()
+        solver.solve(doc, {method!r}, 4).as_dict()
         wall.append(time.perf_counter() - w)
         cpu.append(time.process_time() - c)
     out[name] = [statistics.median(wall), statistics.median(cpu)]
@@ -45,8 +45,8 @@ print(json.dumps(out))
 """
 
 
-def measure(tree: Path, calls: int) -> dict[str, list[float]]:
-    code = MEASURE.format(tree=str(tree), calls=calls)
+def measure(tree: Path, calls: int, method: str) -> dict[str, list[float]]:
+    code = MEASURE.format(tree=str(tree), calls=calls, method=method)
     done = subprocess.run(
         [sys.executable, "-c", code], cwd=tree, capture_output=True, text=True, check=True
     )
@@ -59,14 +59,18 @@ def main() -> None:
     parser.add_argument("--baseline", type=Path, required=True, help="an exported older tree")
     parser.add_argument("--calls", type=int, default=15, help="solutions per preset and round")
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--method", default="vector", help="vector, loop or newton_euler")
     args = parser.parse_args()
     trees = {"baseline": args.baseline.resolve(), "current": ROOT}
     load = os.getloadavg()[0]
     runs: dict[str, list[dict[str, list[float]]]] = {k: [] for k in trees}
     for _ in range(args.rounds):
         for key, tree in trees.items():
-            runs[key].append(measure(tree, args.calls))
-    print(f"load average (1 min) before {load:.2f}, after {os.getloadavg()[0]:.2f}; 2 cores")
+            runs[key].append(measure(tree, args.calls, args.method))
+    print(
+        f"method {args.method}; load average (1 min) before {load:.2f}, after "
+        f"{os.getloadavg()[0]:.2f}; 2 cores"
+    )
     print("| preset | baseline wall | current wall | ratio | baseline CPU | current CPU | ratio |")
     print("|---|---|---|---|---|---|---|")
     for name in runs["current"][0]:
