@@ -36,6 +36,7 @@ from solver.results import (
 from solver.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
 from solver.spatial_sweep import sweep_spatial_time
+from solver.steps.solve import vector_method_steps
 from solver.sweeps import sweep as sweep_linkage
 from solver.sweeps import sweep_time as sweep_linkage_time
 
@@ -215,12 +216,12 @@ def solve(
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
         return SolutionResult(results.solution_body(solution, body, None, found))
     # The polygons follow the vector method's steps, whichever method the solution uses.
-    vector = (
-        solution
+    vector_steps = (
+        solution.steps
         if solution.method in ("vector", "newton_euler")
-        else worked.solve(parsed, "vector", digits)
+        else vector_method_steps(parsed, solution.analysis, digits)
     )
-    shapes = polygons(parsed, vector.analysis, vector.steps)
+    shapes = polygons(parsed, solution.analysis, vector_steps)
     body = results.analysis_body(solution.analysis, found)
     if solution.method == "newton_euler":  # its steps' numbers point into forces and energy
         add_dynamics_results(body, parsed, solution.analysis)

@@ -79,13 +79,20 @@ def holds(quantities: frozenset[str]) -> Contents:
 # --- freezing ------------------------------------------------------------------------------------
 
 
+ATOMS = frozenset({str, float, int, bool, type(None)})  # the JSON leaves, frozen as they are
+
+
 def freeze(value: Any) -> Any:
     """A deep, read-only copy: mappings as ``MappingProxyType``, lists as tuples, arrays copied
-    with ``writeable = False``."""
-    if isinstance(value, Mapping):
+    with ``writeable = False``. (The exact-type tests come first: a body has thousands of leaves
+    and dicts, and an ``isinstance`` against the ``Mapping`` ABC costs several times more.)"""
+    kind = type(value)
+    if kind in ATOMS:
+        return value
+    if kind is dict or isinstance(value, Mapping):
         return MappingProxyType({key: freeze(item) for key, item in value.items()})
     if isinstance(value, list | tuple):
-        return tuple(freeze(item) for item in value)
+        return tuple([freeze(item) for item in value])
     if isinstance(value, np.ndarray):
         copy = np.array(value, copy=True, order="C")
         copy.flags.writeable = False
@@ -95,7 +102,10 @@ def freeze(value: Any) -> Any:
 
 def thaw(value: Any) -> Any:
     """The plain JSON-shaped body of a frozen value: dicts and lists (read-only arrays kept)."""
-    if isinstance(value, Mapping):
+    kind = type(value)
+    if kind in ATOMS:
+        return value
+    if kind is MappingProxyType or isinstance(value, Mapping):
         return {key: thaw(item) for key, item in value.items()}
     if isinstance(value, tuple):
         return [thaw(item) for item in value]

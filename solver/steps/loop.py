@@ -344,6 +344,8 @@ class LoopMethod:
     # --- the steps ------------------------------------------------------------------------------
 
     def loop_step(self, loop: Loop, index: int) -> Step:
+        """The loop closes: sum of the left side's vectors = sum of the right side's, both the
+        position of the joint relative to the loop's first pivot."""
         ctx = self.ctx
         title = f"Loop {index}: the {loop.kind} closing at {loop.joint}"
         b = ctx.builder("loop.position", title)
@@ -352,48 +354,55 @@ class LoopMethod:
             f"Links are numbered {legend}. Every vector of the loop is written as a complex "
             "number: length times e to the i times its angle from the x axis."
         )
-        lhs: list[str] = []
-        rhs: list[str] = []
-        lhs_num: list[str] = []
-        rhs_num: list[str] = []
-        z_left: list[str] = []
-        z_right: list[str] = []
-        for side, out, num, zs in (
-            (loop.left, lhs, lhs_num, z_left),
-            (loop.right, rhs, rhs_num, z_right),
-        ):
-            for m in side:
-                a, th = self.register_member(b, m)
-                n = m.number
-                if m.kind == "slider":
-                    out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\varphi_{{{n}}}}}")
-                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'phi{n}')}}}")
-                elif m.kind == "slot":
-                    out.append(rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i\beta_{{{n}}}}}")
-                    num.append(rf"{self.offset(b, n)}\,e^{{i\,{self.deg(b, f'beta{n}')}}}")
-                else:
-                    out.append(rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}")
-                    num.append(rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}")
-                z = b.put(f"z({m.first},{m.second})", ctx.pos(m.second) - ctx.pos(m.first), "m")
-                if m.kind == "slider":
-                    b.check("sum", z, f"r({m.first},{m.second})")
-                else:
-                    b.check("phasor", z, a, th)
-                zs.append(z)
+        members = [self.loop_member(b, m) for m in (*loop.left, *loop.right)]
         total = b.put(f"z({loop.joint})", ctx.pos(loop.joint) - ctx.pos(loop.left[0].first), "m")
-        b.check("sum", total, *z_left)
-        b.check("sum", total, *z_right)
-        b.line("&" + " + ".join(lhs) + " = " + " + ".join(rhs))
-        b.line("&" + " + ".join(lhs_num) + " = " + " + ".join(rhs_num))
+        b.check("sum", total, *[z for _, _, z in members[: len(loop.left)]])
+        b.check("sum", total, *[z for _, _, z in members[len(loop.left) :]])
+        self.loop_lines(b, loop, members, total)
+        return b.build()
+
+    def loop_member(self, b: StepBuilder, m: Member) -> tuple[str, str, str]:
+        """A member's keys: a (s for a slider), theta (its guide's angle) and z, its vector as a
+        complex number, = a e^(i theta) (the sum of its ends' positions for a slider)."""
+        a, th = self.register_member(b, m)
+        z = b.put(f"z({m.first},{m.second})", self.ctx.pos(m.second) - self.ctx.pos(m.first), "m")
+        if m.kind == "slider":
+            b.check("sum", z, f"r({m.first},{m.second})")
+        else:
+            b.check("phasor", z, a, th)
+        return a, th, z
+
+    def member_latex(self, b: StepBuilder, m: Member, a: str, th: str) -> tuple[str, str]:
+        """The member in symbols and with its numbers: a e^(i theta), (s + i c) e^(i phi)."""
+        n = m.number
+        if m.kind in ("slider", "slot"):
+            angle = r"\varphi" if m.kind == "slider" else r"\beta"
+            degrees = self.deg(b, f"{angle_name(m)}{n}")
+            return (
+                rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i{angle}_{{{n}}}}}",
+                rf"{self.offset(b, n)}\,e^{{i\,{degrees}}}",
+            )
+        return rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}", rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}"
+
+    def loop_lines(
+        self, b: StepBuilder, loop: Loop, members: list[tuple[str, str, str]], total: str
+    ) -> None:
+        """Write the loop in symbols, with its numbers and its value; say it with the data."""
+        written = [
+            self.member_latex(b, m, a, th)
+            for m, (a, th, _) in zip((*loop.left, *loop.right), members, strict=True)
+        ]
+        left, right = written[: len(loop.left)], written[len(loop.left) :]
+        b.line("&" + " + ".join(s for s, _ in left) + " = " + " + ".join(s for s, _ in right))
+        b.line("&" + " + ".join(n for _, n in left) + " = " + " + ".join(n for _, n in right))
         b.line(rf"&\text{{both sides}} = {self.cx(b, total)}{latex_unit('m')}")
         data = []
         for key in b.values:
             if key[0] in "asc" and "(" not in key and key not in ("a", "s", "c"):
                 data.append(f"{key} = {b.txt(key)}")
             elif key.startswith(("theta1", "phi", "beta")):
-                data.append(
-                    f"{key} = {b.txt(key)} ({ctx.fmt.text(math.degrees(b.scalar(key)), 'deg')} deg)"
-                )
+                degrees = self.ctx.fmt.text(math.degrees(b.scalar(key)), "deg")
+                data.append(f"{key} = {b.txt(key)} ({degrees} deg)")
         b.say(
             f"Loop closure: {' + '.join(self.member_text(m) for m in loop.left)} = "
             f"{' + '.join(self.member_text(m) for m in loop.right)}. With "
@@ -401,7 +410,6 @@ class LoopMethod:
             + f", both sides give the position of {loop.joint} relative to "
             f"{loop.left[0].first}: {b.txt(total)}."
         )
-        return b.build()
 
     def closed_form_step(self, loop: Loop, index: int) -> Step:
         """Seed 001's position for a slider-crank loop, in the guide's frame (times e^(-i phi)):
@@ -483,7 +491,8 @@ class LoopMethod:
         return b.build()
 
     def four_bar_values(self, b: StepBuilder, loop: Loop) -> FourBarClosedForm:
-        """Put the closed form's numbers, with a check for each piece of arithmetic."""
+        """Put the closed form's numbers, with a check for each piece of arithmetic:
+        d = a1 e^(i th11) - a2 e^(i th12), then ``eliminate_coupler`` and ``rocker_angle``."""
         crank, coupler = loop.left
         ground, rocker = loop.right
         self.register_member(b, crank)
@@ -498,7 +507,20 @@ class LoopMethod:
         b.check("sum", d, r_ground, f"-{r_crank}")
         d_len = b.put("|d|", float(np.hypot(*d_np)), "m")
         b.check("norm", d_len, d)
-        a4v = b.scalar(a4)
+        coef_a, coef_b, coef_c, squares, radius, cos = self.eliminate_coupler(b, a3, a4, d, d_len)
+        gamma, delta, sign, turn = self.rocker_angle(b, th14, d, cos)
+        b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
+        return FourBarClosedForm(
+            d, coef_a, coef_b, coef_c, *squares, radius, cos, gamma, delta, th13, th14,
+            r_coupler, sign, turn,
+        )  # fmt: skip
+
+    def eliminate_coupler(
+        self, b: StepBuilder, a3: str, a4: str, d: str, d_len: str
+    ) -> tuple[str, str, str, tuple[str, str, str], str, str]:
+        """A cos th14 + B sin th14 = C with A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2,
+        and cos gamma = C / R, R = 2 a4 |d|: the keys of A, B, C, the three squares, R, cos."""
+        a4v, d_np = b.scalar(a4), b.vector(d)
         coef_a = b.put("A", 2 * a4v * d_np[0], "m^2")
         coef_b = b.put("B", 2 * a4v * d_np[1], "m^2")
         b.check("product", coef_a, a4, f"{d}[0]", factor=2.0)
@@ -506,18 +528,23 @@ class LoopMethod:
         squares = {k: b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (a3, a4, d_len)}
         for k, v in squares.items():
             b.check("product", v, k, k)
+        sq3, sq4, sq_d = squares[a3], squares[a4], squares[d_len]
         sizes = sum(b.scalar(v) for v in squares.values())
-        coef_c = b.put(
-            "C",
-            b.scalar(squares[a3]) - b.scalar(squares[a4]) - b.scalar(squares[d_len]),
-            "m^2",
-            reference=sizes,
-        )
-        b.check("sum", coef_c, squares[a3], f"-{squares[a4]}", f"-{squares[d_len]}")
+        value = b.scalar(sq3) - b.scalar(sq4) - b.scalar(sq_d)
+        coef_c = b.put("C", value, "m^2", reference=sizes)
+        b.check("sum", coef_c, sq3, f"-{sq4}", f"-{sq_d}")
         radius = b.put("R", 2 * a4v * b.scalar(d_len), "m^2")
         b.check("product", radius, a4, d_len, factor=2.0)
         cos = b.put("cos gamma", b.scalar(coef_c) / b.scalar(radius), "", reference=1.0)
         b.check("quotient", cos, coef_c, radius)
+        return coef_a, coef_b, coef_c, (sq3, sq4, sq_d), radius, cos
+
+    def rocker_angle(
+        self, b: StepBuilder, th14: str, d: str, cos: str
+    ) -> tuple[str, str, float, str]:
+        """th14 = delta +- gamma (+ a whole turn), delta = arg d, gamma >= 0 with cos gamma = C/R:
+        the keys of gamma and delta, the sign of the drawn assembly and the turn."""
+        d_np = b.vector(d)
         delta = b.put("delta", math.atan2(d_np[1], d_np[0]), "rad")
         b.check("angle", delta, d)
         # gamma from the drawn pose (acos loses digits where the loop is nearly flat)
@@ -530,11 +557,7 @@ class LoopMethod:
         sign = 1.0 if off >= 0 else -1.0
         turn, _ = wrap_turn(b, b.scalar(delta) + sign * abs(off), b.scalar(th14))
         b.check("sum", th14, delta, gamma if sign > 0 else f"-{gamma}", *([turn] if turn else []))
-        b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
-        return FourBarClosedForm(
-            d, coef_a, coef_b, coef_c, squares[a3], squares[a4], squares[d_len], radius, cos,
-            gamma, delta, th13, th14, r_coupler, sign, turn,
-        )  # fmt: skip
+        return gamma, delta, sign, turn
 
     def four_bar_lines(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
         """Write the closed form: the loop rearranged, Re and Im, the elimination, the numbers."""
@@ -574,6 +597,14 @@ class LoopMethod:
             rf"e^{{i{t[n4]}}}) = \arg {self.cx(b, f.r_coupler)} = "
             rf"{tex.boxed_result(b.numu(f.th13))}"
         )
+        self.four_bar_sentence(b, loop, f)
+
+    def four_bar_sentence(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
+        """Say the closed form: the elimination of th13, then the assembly taken."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
+        pm = "+" if f.sign > 0 else "-"
         x = loop.joint
         where = "left" if f.sign > 0 else "right"
         b.say(
@@ -959,7 +990,7 @@ class LoopMethod:
     def point_step(self, link: str, base: str, point: str, order: int) -> Step:
         """X = B + b e^(i theta) on a known link: v_X = v_B + i b omega e^(i theta), a_X too."""
         ctx = self.ctx
-        what, unit = MOTION[order]
+        what, _ = MOTION[order]
         b = ctx.builder(f"loop.{what}.point", f"{what.capitalize()} of {point} (link {link})")
         r_np = ctx.pos(point) - ctx.pos(base)
         r = b.put(f"r({base},{point})", r_np, "m")
@@ -968,51 +999,71 @@ class LoopMethod:
         b.check("norm", bl, r)
         b.check("angle", th, r)
         w = b.put("omega", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-        x0 = put_motion(b, ctx, base, order)
-        x1 = put_motion(b, ctx, point, order)
-        sub = f"1{self.numbers[link]}"
+        ends = (put_motion(b, ctx, base, order), put_motion(b, ctx, point, order))
         if order == VELOCITY:
             t = b.put(
-                "i b omega e^(i theta)", ctx.omega(link) * np.array([-r_np[1], r_np[0]]), unit
+                "i b omega e^(i theta)", ctx.omega(link) * np.array([-r_np[1], r_np[0]]), "m/s"
             )
             b.check("iphasor", t, bl, w, th)
-            b.check("sum", x1, x0, t)
-            b.line(
-                rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
-                rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu(bl)}, \quad "
-                rf"\theta = {self.deg(b, th)}"
+            b.check("sum", ends[1], ends[0], t)
+            self.point_velocity_lines(b, (link, base, point), ends, t)
+        else:
+            al = b.put("alpha", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+            t = b.put(
+                "i b alpha e^(i theta)", ctx.alpha(link) * np.array([-r_np[1], r_np[0]]), "m/s^2"
             )
-            b.line(
-                rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
-                rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}"
-            )
-            b.say(
-                f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
-                f"{b.txt(bl)}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
-                f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}."
-            )
-            return b.build()
-        al = b.put("alpha", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
-        tt = ctx.alpha(link) * np.array([-r_np[1], r_np[0]])
-        nn = -(ctx.omega(link) ** 2) * r_np
-        t = b.put("i b alpha e^(i theta)", tt, unit)
-        n = b.put("normal term", nn, unit)
-        b.check("iphasor", t, bl, al, th)
-        b.check("phasor", n, bl, w, w, th, factor=-1.0)
-        b.check("sum", x1, x0, t, n)
+            n = b.put("normal term", -(ctx.omega(link) ** 2) * r_np, "m/s^2")
+            b.check("iphasor", t, bl, al, th)
+            b.check("phasor", n, bl, w, w, th, factor=-1.0)
+            b.check("sum", ends[1], ends[0], t, n)
+            self.point_acceleration_lines(b, (link, base, point), ends, (t, n))
+        return b.build()
+
+    def point_velocity_lines(
+        self, b: StepBuilder, where: tuple[str, str, str], ends: tuple[str, str], t: str
+    ) -> None:
+        """Write v_X = v_B + i b omega e^(i theta) with its numbers (``where``: link, B, X)."""
+        link, base, point = where
+        x0, x1 = ends
+        sub = f"1{self.numbers[link]}"
+        b.line(
+            rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
+            rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu('b')}, \quad "
+            rf"\theta = {self.deg(b, 'theta')}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
+            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit('m/s'))}"
+        )
+        b.say(
+            f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
+            f"{b.txt('b')}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
+            f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}."
+        )
+
+    def point_acceleration_lines(
+        self,
+        b: StepBuilder,
+        where: tuple[str, str, str],
+        ends: tuple[str, str],
+        parts: tuple[str, str],
+    ) -> None:
+        """Write a_X = a_B + i b alpha e^(i theta) - b omega^2 e^(i theta) with its numbers."""
+        link, base, point = where
+        (x0, x1), (t, n) = ends, parts
+        sub = f"1{self.numbers[link]}"
         b.line(
             rf"&\vec{{a}}_{{{tex.name(point)}}} = \vec{{a}}_{{{tex.name(base)}}} + "
             rf"i\,b\,\alpha_{{{sub}}}\,e^{{i\theta}} - b\,\omega_{{{sub}}}^2\,e^{{i\theta}}"
         )
         b.line(
             rf"&\phantom{{\vec{{a}}}} = {self.cx(b, x0)} + {self.cx(b, t)} + {self.cx(b, n)} = "
-            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit(unit))}"
+            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit('m/s^2'))}"
         )
         b.say(
             f"Differentiating again: a({point}) = a({base}) + i b alpha e^(i theta) - b omega "
             f"squared e^(i theta) = {b.txt(x0)} + {b.txt(t)} + {b.txt(n)} = {b.txt(x1)}."
         )
-        return b.build()
 
     def steps(self) -> list[Step]:
         self.analyse()

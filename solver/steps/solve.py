@@ -76,15 +76,15 @@ def _linkage_steps(
     if method == "loop":
         try:
             body = ctx.replayed(lambda: loop_steps(ctx))
+            body += ctx.replayed(lambda: moving_point_steps(ctx))
         except LoopUnavailable as why:
             reason = str(why)
             lead.append(_fallback_step("loop-closure", reason[:1].upper() + reason[1:] + "."))
             ctx = LinkageContext(scene, analysis, fmt)
             used = "vector"
-            body = vector_steps(ctx)
+            body = _vector_method(ctx)
     else:
-        body = vector_steps(ctx)
-    body += ctx.replayed(lambda: moving_point_steps(ctx))
+        body = _vector_method(ctx)
     body += ctx.replayed(lambda: graphical_steps(ctx))
     body.append(ctx.replayed(lambda: instant_centres_step(ctx)))
     if method == "newton_euler":
@@ -104,9 +104,26 @@ def _linkage_steps(
     return steps, ctx, used
 
 
+def _formatter(scene: LinkageScene, analysis: LinkageAnalysis, digits: int) -> Formatter:
+    """Numbers with ``digits`` significant digits, the units scaled to the scene's size."""
+    return Formatter(digits, unit_scales(analysis, scene.size))
+
+
+def _vector_method(ctx: LinkageContext) -> list[Step]:
+    """The vector method's steps: the plan's groups, then the moving points."""
+    return vector_steps(ctx) + ctx.replayed(lambda: moving_point_steps(ctx))
+
+
+def vector_method_steps(scene: LinkageScene, analysis: LinkageAnalysis, digits: int) -> list[Step]:
+    """The vector method's steps alone, as the vector solution of ``analysis`` holds them (what
+    the polygons follow, whichever method a solution uses), without the solution's other steps
+    and mistakes."""
+    return _vector_method(LinkageContext(scene, analysis, _formatter(scene, analysis, digits)))
+
+
 def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     analysis = analyze(scene)
-    fmt = Formatter(digits, unit_scales(analysis, scene.size))
+    fmt = _formatter(scene, analysis, digits)
     steps, ctx, used = _linkage_steps(scene, analysis, fmt, method)
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
