@@ -328,6 +328,28 @@ def _coriolis_of(joint: int, point: str) -> tuple[Asked, ...]:
     )  # fmt: skip
 
 
+def _inverted_slider_crank_text(v: Mapping[str, float], difficulty: str) -> str:
+    """The statement of the inverted slider-crank in words."""
+    return (
+        f"In the inverted slider-crank the crank OA = {num(v['crank'])} m turns about the fixed "
+        f"pivot O; its pin A carries a block sliding in the slot of the lever CD, pivoted at C, "
+        f"{num(v['ground'])} m to the right of O"
+        + (
+            f"; the slot runs {num(v['slot_offset'])} m from C (left of C->D)"
+            if v["slot_offset"]
+            else "; the slot runs through C"
+        )
+        + f". The crank is drawn at {num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("A", "O", v["omega"], v["alpha"])
+        + " Find the lever's angular velocity"
+        + (
+            " and the block's sliding velocity."
+            if difficulty == "basic"
+            else ", its angular acceleration and the Coriolis acceleration of A."
+        )
+    )
+
+
 def inverted_slider_crank(rng: random.Random, difficulty: str) -> Draft:
     ground = pick(rng, 0.2, 0.5, 0.05)
     crank = round(ground * pick(rng, 0.3, 0.7, 0.1), 10)
@@ -348,24 +370,6 @@ def inverted_slider_crank(rng: random.Random, difficulty: str) -> Draft:
         )  # fmt: skip
     else:
         asked += (alpha_of("lever", "slotted lever", "CD"), *_coriolis_of(0, "A"))
-    text = (
-        f"In the inverted slider-crank the crank OA = {num(crank)} m turns about the fixed pivot "
-        f"O; its pin A carries a block sliding in the slot of the lever CD, pivoted at C, "
-        f"{num(ground)} m to the right of O"
-        + (
-            f"; the slot runs {num(v['slot_offset'])} m from C (left of C->D)"
-            if v["slot_offset"]
-            else "; the slot runs through C"
-        )
-        + f". The crank is drawn at {num(v['crank_angle_deg'])} deg. "
-        + crank_sentence("A", "O", v["omega"], v["alpha"])
-        + " Find the lever's angular velocity"
-        + (
-            " and the block's sliding velocity."
-            if difficulty == "basic"
-            else ", its angular acceleration and the Coriolis acceleration of A."
-        )
-    )
     latex = givens_latex(
         [
             ("|OA|", crank, "m"),
@@ -377,9 +381,29 @@ def inverted_slider_crank(rng: random.Random, difficulty: str) -> Draft:
         ]
     )
     return Draft(
-        "Inverted slider-crank (Coriolis)", text, latex + r"\\" + asked_latex(asked), scene,
-        asked, scales(v["omega"], v["alpha"], ground + crank),
+        "Inverted slider-crank (Coriolis)", _inverted_slider_crank_text(v, difficulty),
+        latex + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], v["alpha"], ground + crank),
     )  # fmt: skip
+
+
+def _quick_return_text(v: Mapping[str, float], difficulty: str) -> str:
+    """The statement of the crank-and-slotted-lever quick-return mechanism in words."""
+    return (
+        f"In the crank-and-slotted-lever quick-return mechanism the crank O2A = "
+        f"{num(v['crank'])} m turns about O2; its pin A slides in the slot of the lever O4B = "
+        f"{num(v['lever'])} m, pivoted at O4 {num(v['ground'])} m below O2. The link BC = "
+        f"{num(v['rod'])} m drives the ram C along the horizontal guide y = "
+        f"{num(v['ram_height'])} m. The crank is drawn at {num(v['crank_angle_deg'])} deg. "
+        + crank_sentence("A", "O2", v["omega"], v["alpha"])
+        + " Find the lever's angular velocity and the ram's velocity"
+        + (
+            ", the lever's angular acceleration and the Coriolis acceleration of A"
+            if difficulty != "basic"
+            else ""
+        )
+        + (" and the ram's acceleration." if difficulty == "challenging" else ".")
+    )
 
 
 def quick_return(rng: random.Random, difficulty: str) -> Draft:
@@ -405,21 +429,6 @@ def quick_return(rng: random.Random, difficulty: str) -> Draft:
         asked += (alpha_of("lever", "slotted lever", "O_4B"), *_coriolis_of(0, "A"))
     if difficulty == "challenging":
         asked += (acceleration_of("C", "x")[0],)
-    text = (
-        f"In the crank-and-slotted-lever quick-return mechanism the crank O2A = {num(crank)} m "
-        f"turns about O2; its pin A slides in the slot of the lever O4B = {num(lever)} m, pivoted "
-        f"at O4 {num(ground)} m below O2. The link BC = {num(v['rod'])} m drives the ram C along "
-        f"the horizontal guide y = {num(v['ram_height'])} m. The crank is drawn at "
-        f"{num(v['crank_angle_deg'])} deg. "
-        + crank_sentence("A", "O2", v["omega"], v["alpha"])
-        + " Find the lever's angular velocity and the ram's velocity"
-        + (
-            ", the lever's angular acceleration and the Coriolis acceleration of A"
-            if difficulty != "basic"
-            else ""
-        )
-        + (" and the ram's acceleration." if difficulty == "challenging" else ".")
-    )
     latex = givens_latex(
         [
             ("|O_2A|", crank, "m"),
@@ -433,8 +442,8 @@ def quick_return(rng: random.Random, difficulty: str) -> Draft:
         ]
     )
     return Draft(
-        "Quick-return mechanism (Coriolis)", text, latex + r"\\" + asked_latex(asked), scene,
-        asked, scales(v["omega"], v["alpha"], lever),
+        "Quick-return mechanism (Coriolis)", _quick_return_text(v, difficulty),
+        latex + r"\\" + asked_latex(asked), scene, asked, scales(v["omega"], v["alpha"], lever),
     )  # fmt: skip
 
 

@@ -509,36 +509,48 @@ def rigid_acceleration_step(
     t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
     n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
-    w2key = b.put(f"omega^2({link})", omega**2, "1/s^2")
+    w2 = b.put(f"omega^2({link})", omega**2, "1/s^2")
     b.check("cross", t, al, r)
-    b.check("product", w2key, w, w)
-    b.check("product", n, w2key, r, factor=-1.0)
+    b.check("product", w2, w, w)
+    b.check("product", n, w2, r, factor=-1.0)
     b.check("sum", ay, ax, t, n)
-    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
-    w2 = b.num(w2key)
+    if reason:
+        b.say(reason)
+    _write_rigid_acceleration(
+        ctx, b, (link, base, target), V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
+    )
+    ctx.shown_acceleration.add(target)
+    return b.build()
+
+
+def _write_rigid_acceleration(
+    ctx: LinkageContext, b: StepBuilder, names: tuple[str, str, str], base_tex: str
+) -> None:
+    """The equation a_Y = a_X + alpha x r - omega^2 r, its determinant and its sum, in LaTeX and
+    in words (the values registered by ``rigid_acceleration_step``)."""
+    link, base, target = names
+    ax, w, r = f"a({base})", f"omega({link})", f"r({base},{target})"
+    t, n, ay = f"alpha x r({base},{target})", f"normal({base},{target})", f"a({target})"
+    w2 = f"omega^2({link})"
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
     )
     b.line(
         rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
-        rf"{tex.determinant3(det_row_z(b, al), b.entries(r))} - {tex.paren(b.num(w))}^2 \cdot "
-        rf"{b.col(r)}"
+        rf"{tex.determinant3(det_row_z(b, f'alpha({link})'), b.entries(r))} - "
+        rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
     )
     b.line(
-        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {w2} \cdot {b.col(r)} = "
-        rf"{base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}"
+        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {b.num(w2)} \cdot "
+        rf"{b.col(r)} = {base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}"
     )
-    if reason:
-        b.say(reason)
     b.say(
         f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
         f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
         f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
-        f"-{b.txtn(w2key)} times r, pointing from {target} towards {base}."
+        f"-{b.txtn(w2)} times r, pointing from {target} towards {base}."
     )
-    ctx.shown_acceleration.add(target)
-    return b.build()
 
 
 def _pole_at_pivot(
