@@ -14,6 +14,7 @@ cos mu = (b^2 + c^2 - |BD|^2) / (2 b c), |BD|^2 = a^2 + g^2 - 2 a g cos(theta2).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import pytest
 
@@ -90,3 +91,60 @@ def test_a_linkage_1e_9_off_the_equality_is_not_a_change_point(eps: float) -> No
     only the equality within rounding (1e-12 of the longest link) is a change point."""
     loop = _loop(1.0, 0.4, 0.9, 0.5 + eps, 30.0)
     assert loop.grashof == ("Grashof crank-rocker" if eps > 0 else "non-Grashof triple-rocker")
+
+
+def _shifted_six_bar() -> dict[str, Any]:
+    """A crank A-B driving a slider (rod B-S, block S on a horizontal guide) and a Watt six-bar
+    (four-bar A-B-C-D, then rocker D-C-E driving the dyad E-G-F), drawn away from the origin
+    (every point shifted by (3, -2)). The plan solves the slider's dyad first, then the loop
+    A-B-C-D, then E-G-F, whose input is a rocker, not a driven crank."""
+    points = {"A": (0.0, 0.0), "B": (0.12, 0.35), "S": (-0.9, -0.3), "C": (0.9, 0.8),
+              "D": (1.0, 0.0), "E": (1.5, 0.6), "F": (2.4, 0.0), "G": (2.2, 0.9)}  # fmt: skip
+    bars = [
+        "ground crank A",
+        "crank rod B",
+        "rod block S",
+        "crank coupler B",
+        "coupler rocker C",
+        "rocker ground D",
+        "rocker coupler2 E",
+        "coupler2 rocker2 G",
+        "rocker2 ground F",
+    ]
+    return {
+        "kind": "linkage",
+        "points": {name: [x + 3.0, y - 2.0] for name, (x, y) in points.items()},
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "rod": {"points": ["B", "S"]},
+            "block": {"points": ["S"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C", "E"]},
+            "coupler2": {"points": ["E", "G"]},
+            "rocker2": {"points": ["F", "G"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": p, "links": [a, b]} for a, b, p in map(str.split, bars)
+        ]
+        + [{"type": "prismatic", "point": "S", "links": ["ground", "block"], "axis": [1.0, 0.0]}],
+        "drivers": [{"link": "crank", "omega": 2.0, "alpha": 0.0}],
+    }
+
+
+def test_the_driven_four_bar_inside_a_six_bar_away_from_the_origin() -> None:
+    """Only the loop ground-crank-coupler-rocker is a four-bar loop (found after the slider's
+    dyad; the rocker-driven loop E-G-F is not one), its lengths are the drawn |AD|, |AB|, |BC|,
+    |DC| wherever the linkage is drawn (1e-12), Grashof: s + l = 0.37 + 1 < p + q with the crank
+    shortest, a crank-rocker, and mu at the drawn pose is the law of cosines' (1e-12 rad)."""
+    doc = _shifted_six_bar()
+    P = {name: complex(*xy) for name, xy in doc["points"].items()}
+    (loop,) = analyze(parse_linkage(doc), ["position"]).four_bar_loops
+    assert loop.links == ("ground", "crank", "coupler", "rocker")
+    g, a, b, c = (abs(P[q] - P[p]) for p, q in ("AD", "AB", "BC", "DC"))
+    assert loop.lengths == pytest.approx((g, a, b, c), abs=1e-12)
+    assert loop.grashof == "Grashof crank-rocker"
+    bd2 = abs(P["D"] - P["B"]) ** 2
+    assert loop.transmission_angle == pytest.approx(
+        math.acos((b * b + c * c - bd2) / (2.0 * b * c)), abs=1e-12
+    )
