@@ -22,6 +22,7 @@ from solver.four_bar import FourBarLoop
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
+from tests.dynamics_cases import five_bar_topology
 
 # (ground, crank, coupler, rocker, drawn crank angle in degrees) -> textbook class
 CASES = {
@@ -147,4 +148,49 @@ def test_the_driven_four_bar_inside_a_six_bar_away_from_the_origin() -> None:
     bd2 = abs(P["D"] - P["B"]) ** 2
     assert loop.transmission_angle == pytest.approx(
         math.acos((b * b + c * c - bd2) / (2.0 * b * c)), abs=1e-12
+    )
+
+
+def test_a_four_bar_on_a_five_bar_crank_is_found_after_the_five_bar() -> None:
+    """A five-bar (cranks O1-A, O2-B, both driven, dyad A-C-B) with a four-bar O1-A-E-F on its
+    first crank: the plan closes the five-bar's dyad first (no ground pivot: not a four-bar
+    loop), then E. The four-bar is still found, with the drawn lengths |O1F|, |O1A|, |AE|, |FE|
+    (1e-12), a crank-rocker (s + l = 0.49 + 1.02 < p + q = 1.87, the crank shortest) and the
+    law of cosines' transmission angle (1e-12 rad)."""
+    doc: dict[str, Any] = {
+        "kind": "linkage",
+        "points": {
+            "O1": [0.0, 0.0],
+            "O2": [1.2, 0.0],
+            "A": [0.2, 0.45],
+            "B": [1.5, 0.4],
+            "C": [0.9, 1.1],
+            "F": [-1.0, 0.2],
+            "E": [-0.6, 1.0],
+        },
+        **five_bar_topology(),
+        "drivers": [
+            {"link": "crank1", "omega": 2.0, "alpha": 0.0},
+            {"link": "crank2", "omega": 1.0, "alpha": 0.0},
+        ],
+    }
+    doc["links"] |= {
+        "ground": {"points": ["O1", "O2", "F"], "ground": True},
+        "coupler": {"points": ["A", "E"]},
+        "rocker": {"points": ["F", "E"]},
+    }
+    doc["joints"] += [
+        {"type": "revolute", "point": "A", "links": ["crank1", "coupler"]},
+        {"type": "revolute", "point": "E", "links": ["coupler", "rocker"]},
+        {"type": "revolute", "point": "F", "links": ["rocker", "ground"]},
+    ]
+    P = {name: complex(*xy) for name, xy in doc["points"].items()}
+    (loop,) = analyze(parse_linkage(doc), ["position"]).four_bar_loops
+    assert loop.links == ("ground", "crank1", "coupler", "rocker")
+    g, a, b, c = (abs(P[q] - P[p]) for p, q in (("O1", "F"), ("O1", "A"), ("A", "E"), ("F", "E")))
+    assert loop.lengths == pytest.approx((g, a, b, c), abs=1e-12)
+    assert loop.grashof == "Grashof crank-rocker"
+    fa2 = abs(P["A"] - P["F"]) ** 2
+    assert loop.transmission_angle == pytest.approx(
+        math.acos((b * b + c * c - fa2) / (2.0 * b * c)), abs=1e-12
     )
