@@ -14,6 +14,7 @@ cos mu = (b^2 + c^2 - |BD|^2) / (2 b c), |BD|^2 = a^2 + g^2 - 2 a g cos(theta2).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import pytest
 
@@ -21,6 +22,7 @@ from solver.four_bar import FourBarLoop
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
+from tests.dynamics_cases import five_bar_topology
 
 # (ground, crank, coupler, rocker, drawn crank angle in degrees) -> textbook class
 CASES = {
@@ -90,3 +92,105 @@ def test_a_linkage_1e_9_off_the_equality_is_not_a_change_point(eps: float) -> No
     only the equality within rounding (1e-12 of the longest link) is a change point."""
     loop = _loop(1.0, 0.4, 0.9, 0.5 + eps, 30.0)
     assert loop.grashof == ("Grashof crank-rocker" if eps > 0 else "non-Grashof triple-rocker")
+
+
+def _shifted_six_bar() -> dict[str, Any]:
+    """A crank A-B driving a slider (rod B-S, block S on a horizontal guide) and a Watt six-bar
+    (four-bar A-B-C-D, then rocker D-C-E driving the dyad E-G-F), drawn away from the origin
+    (every point shifted by (3, -2)). The plan solves the slider's dyad first, then the loop
+    A-B-C-D, then E-G-F, whose input is a rocker, not a driven crank."""
+    points = {"A": (0.0, 0.0), "B": (0.12, 0.35), "S": (-0.9, -0.3), "C": (0.9, 0.8),
+              "D": (1.0, 0.0), "E": (1.5, 0.6), "F": (2.4, 0.0), "G": (2.2, 0.9)}  # fmt: skip
+    bars = [
+        "ground crank A",
+        "crank rod B",
+        "rod block S",
+        "crank coupler B",
+        "coupler rocker C",
+        "rocker ground D",
+        "rocker coupler2 E",
+        "coupler2 rocker2 G",
+        "rocker2 ground F",
+    ]
+    return {
+        "kind": "linkage",
+        "points": {name: [x + 3.0, y - 2.0] for name, (x, y) in points.items()},
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "rod": {"points": ["B", "S"]},
+            "block": {"points": ["S"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C", "E"]},
+            "coupler2": {"points": ["E", "G"]},
+            "rocker2": {"points": ["F", "G"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": p, "links": [a, b]} for a, b, p in map(str.split, bars)
+        ]
+        + [{"type": "prismatic", "point": "S", "links": ["ground", "block"], "axis": [1.0, 0.0]}],
+        "drivers": [{"link": "crank", "omega": 2.0, "alpha": 0.0}],
+    }
+
+
+def test_the_driven_four_bar_inside_a_six_bar_away_from_the_origin() -> None:
+    """Only the loop ground-crank-coupler-rocker is a four-bar loop (found after the slider's
+    dyad; the rocker-driven loop E-G-F is not one), its lengths are the drawn |AD|, |AB|, |BC|,
+    |DC| wherever the linkage is drawn (1e-12), Grashof: s + l = 0.37 + 1 < p + q with the crank
+    shortest, a crank-rocker, and mu at the drawn pose is the law of cosines' (1e-12 rad)."""
+    doc = _shifted_six_bar()
+    P = {name: complex(*xy) for name, xy in doc["points"].items()}
+    (loop,) = analyze(parse_linkage(doc), ["position"]).four_bar_loops
+    assert loop.links == ("ground", "crank", "coupler", "rocker")
+    g, a, b, c = (abs(P[q] - P[p]) for p, q in ("AD", "AB", "BC", "DC"))
+    assert loop.lengths == pytest.approx((g, a, b, c), abs=1e-12)
+    assert loop.grashof == "Grashof crank-rocker"
+    bd2 = abs(P["D"] - P["B"]) ** 2
+    assert loop.transmission_angle == pytest.approx(
+        math.acos((b * b + c * c - bd2) / (2.0 * b * c)), abs=1e-12
+    )
+
+
+def test_a_four_bar_on_a_five_bar_crank_is_found_after_the_five_bar() -> None:
+    """A five-bar (cranks O1-A, O2-B, both driven, dyad A-C-B) with a four-bar O1-A-E-F on its
+    first crank: the plan closes the five-bar's dyad first (no ground pivot: not a four-bar
+    loop), then E. The four-bar is still found, with the drawn lengths |O1F|, |O1A|, |AE|, |FE|
+    (1e-12), a crank-rocker (s + l = 0.49 + 1.02 < p + q = 1.87, the crank shortest) and the
+    law of cosines' transmission angle (1e-12 rad)."""
+    doc: dict[str, Any] = {
+        "kind": "linkage",
+        "points": {
+            "O1": [0.0, 0.0],
+            "O2": [1.2, 0.0],
+            "A": [0.2, 0.45],
+            "B": [1.5, 0.4],
+            "C": [0.9, 1.1],
+            "F": [-1.0, 0.2],
+            "E": [-0.6, 1.0],
+        },
+        **five_bar_topology(),
+        "drivers": [
+            {"link": "crank1", "omega": 2.0, "alpha": 0.0},
+            {"link": "crank2", "omega": 1.0, "alpha": 0.0},
+        ],
+    }
+    doc["links"] |= {
+        "ground": {"points": ["O1", "O2", "F"], "ground": True},
+        "coupler": {"points": ["A", "E"]},
+        "rocker": {"points": ["F", "E"]},
+    }
+    doc["joints"] += [
+        {"type": "revolute", "point": "A", "links": ["crank1", "coupler"]},
+        {"type": "revolute", "point": "E", "links": ["coupler", "rocker"]},
+        {"type": "revolute", "point": "F", "links": ["rocker", "ground"]},
+    ]
+    P = {name: complex(*xy) for name, xy in doc["points"].items()}
+    (loop,) = analyze(parse_linkage(doc), ["position"]).four_bar_loops
+    assert loop.links == ("ground", "crank1", "coupler", "rocker")
+    g, a, b, c = (abs(P[q] - P[p]) for p, q in (("O1", "F"), ("O1", "A"), ("A", "E"), ("F", "E")))
+    assert loop.lengths == pytest.approx((g, a, b, c), abs=1e-12)
+    assert loop.grashof == "Grashof crank-rocker"
+    fa2 = abs(P["A"] - P["F"]) ** 2
+    assert loop.transmission_angle == pytest.approx(
+        math.acos((b * b + c * c - fa2) / (2.0 * b * c)), abs=1e-12
+    )

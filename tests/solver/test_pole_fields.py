@@ -17,7 +17,7 @@ import pytest
 
 from solver.four_bar import grashof_class
 from solver.instant_centres import instant_centre
-from solver.poles import acceleration_poles, velocity_poles
+from solver.poles import POLE_TOLERANCE, acceleration_poles, velocity_poles
 from solver.rigid import perp
 
 RNG = np.random.default_rng(8)
@@ -143,3 +143,24 @@ def test_instant_centre_thresholds_are_relative_to_speeds_and_size(size: float) 
     about_origin = instant_centre("i", np.zeros(2), 3.0, "j", np.zeros(2), -1.0, size)
     assert about_origin.position is not None
     np.testing.assert_allclose(about_origin.position, [0.0, 0.0], atol=1e-15)
+
+
+@pytest.mark.parametrize("size", [1e-3, 1.0, 1e3])
+def test_the_thresholds_hold_at_the_boundary(size: float) -> None:
+    """The boundary itself, omega size = POLE_TOLERANCE x the speed exactly: the test is
+    omega size <= POLE_TOLERANCE (speed + omega size) for a translation, so the boundary
+    translates (no pole; no instant centre, a direction) and 1e-6 beyond it turns. Likewise the
+    acceleration pole with sqrt(omega^4 + alpha^2) size against |a|."""
+    X = np.zeros((1, 2))
+    speed = 3.0 * size
+    v = np.array([[speed, 0.0]])
+    for factor, turns in ((1.0, False), (1.0 + 1e-6, True)):
+        omega = factor * POLE_TOLERANCE * speed / size
+        assert velocity_poles(X, v, np.array([omega]), size).exists[0] == turns
+        centre = instant_centre("i", v[0], omega, "j", np.zeros(2), 0.0, size)
+        assert (centre.position is not None) == turns
+        assert (centre.direction is not None) == (not turns)
+        a = v * 10.0
+        alpha = factor * POLE_TOLERANCE * 10.0 * speed / size
+        poles = acceleration_poles(X, a, np.zeros(1), np.array([alpha]), size)
+        assert poles.exists[0] == turns
