@@ -4,8 +4,9 @@ The server's one event loop only parses requests and moves bytes; every endpoint
 whose ``route_class`` is ``server.edge.WorkerRoute`` runs in one of ``workers`` processes
 (``server.settings``). A request
 
-1. waits for an idle worker: at most ``queue`` requests wait, each at most ``queue_wait``
-   seconds; past either it is answered 503 with ``Retry-After`` (never a dropped connection);
+1. waits for an idle worker, first come first served: at most ``queue`` requests wait, each
+   at most ``queue_wait`` seconds; past either it is answered 503 with ``Retry-After`` (never a
+   dropped connection);
 2. runs its endpoint in the worker, which sends back the finished response (status, headers and
    body bytes; a solver error becomes its problem+json there);
 3. is stopped when it runs past its endpoint's time limit (answered ``limit_exceeded`` with the
@@ -178,6 +179,7 @@ class Pool:
         await asyncio.gather(*self.tasks, return_exceptions=True)
         while self.idle:
             await self._in_thread(self.idle.pop().stop)
+        self.threads.shutdown(wait=False, cancel_futures=True)
 
     def _release(self, worker: Worker) -> None:
         """``worker`` is free: it goes to the request that has waited longest, else to idle."""
@@ -204,7 +206,6 @@ class Pool:
             if waiter.done() and not waiter.cancelled():  # handed a worker as it was cancelled
                 self._release(waiter.result())
             raise
-        self.threads.shutdown(wait=False, cancel_futures=True)
 
     def _replace(self, worker: Worker) -> None:
         """Kill ``worker`` and put a fresh one in its place (in the background)."""
