@@ -22,6 +22,7 @@ the stacked Jacobians (Newton-Raphson on them is ``solver.newton``).
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -279,15 +280,32 @@ class ConstraintSystem:
         return phi, J, b
 
     def residual(
-        self, known: Mapping[str, States], samples: int, turns: Array | None = None
+        self,
+        known: Mapping[str, States],
+        samples: int,
+        turns: Array | None = None,
+        scale: tuple[Array, Array] | None = None,
     ) -> Callable[[Array], tuple[Array, Array]]:
-        """q -> (Phi(q), J(q)) for (M, n) q with the known links and held ``turns`` fixed (the
-        iterations of Newton-Raphson): the known links' part computed once where linear."""
+        """q -> (Phi(q), J(q)) for (M, n) q, or (n,) q where ``samples`` is 1, with the known
+        links and held ``turns`` fixed (the iterations of Newton-Raphson): the known links'
+        part computed once where linear. ``scale`` (per column, per row): the equations in
+        scaled coordinates x = q / column, Phi / row and J column / row."""
+        column, row = scale if scale is not None else (np.ones(self.n), np.ones(self.rows))
         if self.linear is not None:
-            form = self.linear
+            form = self.linear.scaled(column, row)
             fixed = form.known_terms(known, samples, 0, turns)[0]
+            fixed = fixed[0] if samples == 1 else fixed
             return lambda q: form.pose(q, fixed)
-        return lambda q: self.evaluate(known, q, turns=turns)[:2]
+        jacobian_scale = column[None, :] / row[:, None]
+
+        def general(x: Array) -> tuple[Array, Array]:
+            phi, J, _ = self.evaluate(known, np.atleast_2d(x * column), turns=turns)
+            shape = x.shape[:-1]
+            return (phi / row).reshape(*shape, -1), (J * jacobian_scale).reshape(
+                *shape, *J.shape[1:]
+            )
+
+        return general
 
     def _revolute_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
         """X_i - X_j into Phi and the rate terms into b (in place); J's rotation entries."""
@@ -408,6 +426,17 @@ class LinearForm:
             parts.append((Kq[:, columns], Kc[:, index], Ks[:, index]))
         (self.q, self.c, self.s), (self.known_q, self.known_c, self.known_s) = parts
 
+    def scaled(self, column: Array, row: Array) -> LinearForm:
+        """The same equations in scaled coordinates (``ConstraintSystem.residual``): Phi / row
+        at x = q / column (rotations unscaled: column is 1 there)."""
+        assert np.all(column[2::3] == 1.0)
+        out = copy.copy(self)
+        out.q = self.q * column[None, :] / row[:, None]
+        out.c, out.s = self.c / row[:, None], self.s / row[:, None]
+        out.known_q = self.known_q / row[:, None]
+        out.known_c, out.known_s = self.known_c / row[:, None], self.known_s / row[:, None]
+        return out
+
     def pose(self, q: Array, known: Array) -> tuple[Array, Array]:
         """(Phi, J) at q ((n,) or (M, n)), given the known links' part of Phi (``known_terms``)."""
         cos, sin = np.cos(q[..., 2::3]), np.sin(q[..., 2::3])
@@ -416,6 +445,12 @@ class LinearForm:
         J[...] = self.q
         J[..., 2::3] += self.s * cos[..., None, :] - self.c * sin[..., None, :]
         return phi, J
+
+    def bending(self, q: Array, tangent: Array) -> Array:
+        """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` (one pose): the
+        right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0 once more)."""
+        theta, turning = q[2::3], tangent[2::3] ** 2
+        return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
 
     def known_terms(
         self, known: Mapping[str, States], samples: int, order: int, turns: Array | None
