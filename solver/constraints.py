@@ -489,11 +489,16 @@ class LinearForm:
         """(Phi, J, b) for M samples, as ``ConstraintSystem.evaluate``."""
         phi_known, b = self.known_terms(known, q.shape[0], order, turns)
         phi, J = self.pose(q, phi_known)
-        if order == 2 and qd is not None:
-            squared = qd[:, 2::3] ** 2
-            theta = q[:, 2::3]
-            b += (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
-        return phi, J, b
+        return phi, J, b + self.centripetal(q, qd) if order == 2 else b
+
+    def centripetal(self, q: Array, qd: Array | None) -> Array:
+        """The unknowns' part of b_a: (K_c cos + K_s sin) omega^2, (M, rows)."""
+        if qd is None:
+            return np.zeros((q.shape[0], self.q.shape[0]))
+        squared, theta = qd[:, 2::3] ** 2, q[:, 2::3]
+        return np.asarray(
+            (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
+        )
 
 
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
@@ -518,13 +523,18 @@ def solve_linear(J: Array, b: Array) -> Array:
 def rates(
     system: ConstraintSystem, known: Mapping[str, States], q: Array, order: int
 ) -> tuple[Array | None, Array | None]:
-    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves)."""
+    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves; J
+    evaluated once where the equations are linear in (q, cos, sin): b_a needs no J there)."""
     qd = qdd = None
     if order >= 1:
         _, J, b = system.evaluate(known, q, order=1)
         qd = solve_linear(J, b)
     if order >= 2:
-        _, J, b = system.evaluate(known, q, qd, order=2)
+        if system.linear is not None:
+            b = system.linear.known_terms(known, q.shape[0], 2, None)[1]
+            b += system.linear.centripetal(q, qd)
+        else:
+            _, J, b = system.evaluate(known, q, qd, order=2)
         qdd = solve_linear(J, b)
     return qd, qdd
 
