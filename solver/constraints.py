@@ -307,6 +307,13 @@ class ConstraintSystem:
 
         return general
 
+    def solve(self, J: Array, b: Array) -> Array:
+        """x with J x = b for (M, n, n) J from ``evaluate``: ``LinearForm.solve`` where linear,
+        else ``solve_linear``."""
+        if self.linear is not None and J.dtype != object:
+            return self.linear.solve(J, b)
+        return solve_linear(J, b)
+
     def _revolute_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
         """X_i - X_j into Phi and the rate terms into b (in place); J's rotation entries."""
         if not self.rev.size:
@@ -425,6 +432,7 @@ class LinearForm:
             columns = (3 * index[:, None] + np.arange(3)).ravel()
             parts.append((Kq[:, columns], Kc[:, index], Ks[:, index]))
         (self.q, self.c, self.s), (self.known_q, self.known_c, self.known_s) = parts
+        self.reduction = _translations_eliminated(self.q)
 
     def scaled(self, column: Array, row: Array) -> LinearForm:
         """The same equations in scaled coordinates (``ConstraintSystem.residual``): Phi / row
@@ -451,6 +459,26 @@ class LinearForm:
         right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0 once more)."""
         theta, turning = q[2::3], tangent[2::3] ** 2
         return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
+
+    def solve(self, J: Array, b: Array) -> Array:
+        """x with J x = b for (M, n, n) J from ``pose``, the translations eliminated: with
+        J = [A | J_theta] (A the constant translation columns) and Q^T A = 0,
+        Q^T J_theta x_theta = Q^T b (one rotation per link: an (M, U, U) system) and then
+        x_c = A^+ (b - J_theta x_theta). Without that structure, or singular: ``solve_linear``."""
+        if self.reduction is None:
+            return solve_linear(J, b)
+        Q, pseudo_inverse = self.reduction
+        J_theta = J[..., 2::3]
+        try:
+            x_theta = np.linalg.solve(Q.T @ J_theta, (b @ Q)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return solve_linear(J, b)
+        M = b.shape[0]
+        x = np.empty((M, self.q.shape[1]))
+        x[:, 2::3] = x_theta
+        rest = b - np.einsum("mij,mj->mi", J_theta, x_theta)
+        x.reshape(M, -1, 3)[..., :2] = (rest @ pseudo_inverse.T).reshape(M, -1, 2)
+        return x
 
     def known_terms(
         self, known: Mapping[str, States], samples: int, order: int, turns: Array | None
@@ -501,6 +529,21 @@ class LinearForm:
         )
 
 
+def _translations_eliminated(Kq: Array) -> tuple[Array, Array] | None:
+    """(Q, A^+) for ``LinearForm.solve``: A the translation columns of J (constant: K_q's x and
+    y columns), Q an orthonormal basis of the rows' space orthogonal to A's columns; None
+    unless J is square and A of full column rank (every link's translation fixed by its
+    rows)."""
+    rows, n = Kq.shape
+    A = Kq.reshape(rows, -1, 3)[..., :2].reshape(rows, -1)
+    if rows != n or A.shape[1] == 0:
+        return None
+    U, singular, _ = np.linalg.svd(A)
+    if singular[-1] <= 1e-9 * singular[0]:
+        return None
+    return U[:, A.shape[1] :], np.linalg.pinv(A)
+
+
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
     """(M, K) from K per-sample arrays (each (M,) or broadcast to it)."""
     out = np.empty((samples, len(arrays)))
@@ -528,14 +571,14 @@ def rates(
     qd = qdd = None
     if order >= 1:
         _, J, b = system.evaluate(known, q, order=1)
-        qd = solve_linear(J, b)
+        qd = system.solve(J, b)
     if order >= 2:
         if system.linear is not None:
             b = system.linear.known_terms(known, q.shape[0], 2, None)[1]
             b += system.linear.centripetal(q, qd)
         else:
             _, J, b = system.evaluate(known, q, qd, order=2)
-        qdd = solve_linear(J, b)
+        qdd = system.solve(J, b)
     return qd, qdd
 
 
