@@ -184,11 +184,13 @@ def main() -> None:
         "",
         speed_table,
         "",
-        "Where a triad's time goes (cProfile): at 360 samples mostly the path following, which is "
-        "sequential (a few tens of nodes per turn, each a Newton correction of three or four "
-        "evaluations of the loop equations at one pose, dominated by numpy's per-call overhead); "
-        "at 3600 samples the batched polish and rates (a few evaluations and stacked solves on "
-        "(N, 12, 12)) take a growing share.",
+        "Where a triad's time goes (cProfile with process time): at 360 samples about half in "
+        "the path following, which is sequential (some 36 nodes per turn of the full-turning "
+        "triad, each a second-order prediction and a Newton correction: about four evaluations "
+        "of the loop equations as matrix products, `constraints.LinearForm`, and three 15x15 "
+        "LAPACK solves), half in the batched polish and rates (about six stacked solves on "
+        "(N, 12, 12) and as many evaluations); at 3600 samples the stacked solves and the "
+        "filling of the stacked Jacobians dominate.",
         "",
         "### Newton tolerance: time against error",
         "",

@@ -22,6 +22,7 @@ the stacked Jacobians (Newton-Raphson on them is ``solver.newton``).
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -279,15 +280,39 @@ class ConstraintSystem:
         return phi, J, b
 
     def residual(
-        self, known: Mapping[str, States], samples: int, turns: Array | None = None
+        self,
+        known: Mapping[str, States],
+        samples: int,
+        turns: Array | None = None,
+        scale: tuple[Array, Array] | None = None,
     ) -> Callable[[Array], tuple[Array, Array]]:
-        """q -> (Phi(q), J(q)) for (M, n) q with the known links and held ``turns`` fixed (the
-        iterations of Newton-Raphson): the known links' part computed once where linear."""
+        """q -> (Phi(q), J(q)) for (M, n) q, or (n,) q where ``samples`` is 1, with the known
+        links and held ``turns`` fixed (the iterations of Newton-Raphson): the known links'
+        part computed once where linear. ``scale`` (per column, per row): the equations in
+        scaled coordinates x = q / column, Phi / row and J column / row."""
+        column, row = scale if scale is not None else (np.ones(self.n), np.ones(self.rows))
         if self.linear is not None:
-            form = self.linear
+            form = self.linear.scaled(column, row)
             fixed = form.known_terms(known, samples, 0, turns)[0]
+            fixed = fixed[0] if samples == 1 else fixed
             return lambda q: form.pose(q, fixed)
-        return lambda q: self.evaluate(known, q, turns=turns)[:2]
+        jacobian_scale = column[None, :] / row[:, None]
+
+        def general(x: Array) -> tuple[Array, Array]:
+            phi, J, _ = self.evaluate(known, np.atleast_2d(x * column), turns=turns)
+            shape = x.shape[:-1]
+            return (phi / row).reshape(*shape, -1), (J * jacobian_scale).reshape(
+                *shape, *J.shape[1:]
+            )
+
+        return general
+
+    def solve(self, J: Array, b: Array) -> Array:
+        """x with J x = b for (M, n, n) J from ``evaluate``: ``LinearForm.solve`` where linear,
+        else ``solve_linear``."""
+        if self.linear is not None and J.dtype != object:
+            return self.linear.solve(J, b)
+        return solve_linear(J, b)
 
     def _revolute_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
         """X_i - X_j into Phi and the rate terms into b (in place); J's rotation entries."""
@@ -407,6 +432,18 @@ class LinearForm:
             columns = (3 * index[:, None] + np.arange(3)).ravel()
             parts.append((Kq[:, columns], Kc[:, index], Ks[:, index]))
         (self.q, self.c, self.s), (self.known_q, self.known_c, self.known_s) = parts
+        self.reduction = _translations_eliminated(self.q)
+
+    def scaled(self, column: Array, row: Array) -> LinearForm:
+        """The same equations in scaled coordinates (``ConstraintSystem.residual``): Phi / row
+        at x = q / column (rotations unscaled: column is 1 there)."""
+        assert np.all(column[2::3] == 1.0)
+        out = copy.copy(self)
+        out.q = self.q * column[None, :] / row[:, None]
+        out.c, out.s = self.c / row[:, None], self.s / row[:, None]
+        out.known_q = self.known_q / row[:, None]
+        out.known_c, out.known_s = self.known_c / row[:, None], self.known_s / row[:, None]
+        return out
 
     def pose(self, q: Array, known: Array) -> tuple[Array, Array]:
         """(Phi, J) at q ((n,) or (M, n)), given the known links' part of Phi (``known_terms``)."""
@@ -416,6 +453,32 @@ class LinearForm:
         J[...] = self.q
         J[..., 2::3] += self.s * cos[..., None, :] - self.c * sin[..., None, :]
         return phi, J
+
+    def bending(self, q: Array, tangent: Array) -> Array:
+        """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` (one pose): the
+        right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0 once more)."""
+        theta, turning = q[2::3], tangent[2::3] ** 2
+        return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
+
+    def solve(self, J: Array, b: Array) -> Array:
+        """x with J x = b for (M, n, n) J from ``pose``, the translations eliminated: with
+        J = [A | J_theta] (A the constant translation columns) and Q^T A = 0,
+        Q^T J_theta x_theta = Q^T b (one rotation per link: an (M, U, U) system) and then
+        x_c = A^+ (b - J_theta x_theta). Without that structure, or singular: ``solve_linear``."""
+        if self.reduction is None:
+            return solve_linear(J, b)
+        Q, pseudo_inverse = self.reduction
+        J_theta = J[..., 2::3]
+        try:
+            x_theta = np.linalg.solve(Q.T @ J_theta, (b @ Q)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return solve_linear(J, b)
+        M = b.shape[0]
+        x = np.empty((M, self.q.shape[1]))
+        x[:, 2::3] = x_theta
+        rest = b - np.einsum("mij,mj->mi", J_theta, x_theta)
+        x.reshape(M, -1, 3)[..., :2] = (rest @ pseudo_inverse.T).reshape(M, -1, 2)
+        return x
 
     def known_terms(
         self, known: Mapping[str, States], samples: int, order: int, turns: Array | None
@@ -454,11 +517,31 @@ class LinearForm:
         """(Phi, J, b) for M samples, as ``ConstraintSystem.evaluate``."""
         phi_known, b = self.known_terms(known, q.shape[0], order, turns)
         phi, J = self.pose(q, phi_known)
-        if order == 2 and qd is not None:
-            squared = qd[:, 2::3] ** 2
-            theta = q[:, 2::3]
-            b += (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
-        return phi, J, b
+        return phi, J, b + self.centripetal(q, qd) if order == 2 else b
+
+    def centripetal(self, q: Array, qd: Array | None) -> Array:
+        """The unknowns' part of b_a: (K_c cos + K_s sin) omega^2, (M, rows)."""
+        if qd is None:
+            return np.zeros((q.shape[0], self.q.shape[0]))
+        squared, theta = qd[:, 2::3] ** 2, q[:, 2::3]
+        return np.asarray(
+            (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
+        )
+
+
+def _translations_eliminated(Kq: Array) -> tuple[Array, Array] | None:
+    """(Q, A^+) for ``LinearForm.solve``: A the translation columns of J (constant: K_q's x and
+    y columns), Q an orthonormal basis of the rows' space orthogonal to A's columns; None
+    unless J is square and A of full column rank (every link's translation fixed by its
+    rows)."""
+    rows, n = Kq.shape
+    A = Kq.reshape(rows, -1, 3)[..., :2].reshape(rows, -1)
+    if rows != n or A.shape[1] == 0:
+        return None
+    U, singular, _ = np.linalg.svd(A)
+    if singular[-1] <= 1e-9 * singular[0]:
+        return None
+    return U[:, A.shape[1] :], np.linalg.pinv(A)
 
 
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
@@ -483,14 +566,19 @@ def solve_linear(J: Array, b: Array) -> Array:
 def rates(
     system: ConstraintSystem, known: Mapping[str, States], q: Array, order: int
 ) -> tuple[Array | None, Array | None]:
-    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves)."""
+    """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves; J
+    evaluated once where the equations are linear in (q, cos, sin): b_a needs no J there)."""
     qd = qdd = None
     if order >= 1:
         _, J, b = system.evaluate(known, q, order=1)
-        qd = solve_linear(J, b)
+        qd = system.solve(J, b)
     if order >= 2:
-        _, J, b = system.evaluate(known, q, qd, order=2)
-        qdd = solve_linear(J, b)
+        if system.linear is not None:
+            b = system.linear.known_terms(known, q.shape[0], 2, None)[1]
+            b += system.linear.centripetal(q, qd)
+        else:
+            _, J, b = system.evaluate(known, q, qd, order=2)
+        qdd = system.solve(J, b)
     return qd, qdd
 
 

@@ -95,17 +95,17 @@ class _Leg:
     tau: list[Array]
     h: float = 0.1
     limit: float | None = None
+    kappa: Array | None = None  # the path's curvature dtau/ds at the last node, where known
 
 
 def _predict(leg: _Leg, h: float) -> Array:
-    """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, the
-    curvature kappa = dtau/ds estimated from the last two nodes' tangents (first order from the
-    drawn pose)."""
-    x, tau = leg.x[-1], leg.tau[-1]
-    if len(leg.s) < 2:
-        return x + h * tau
-    kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
-    return x + h * tau + (0.5 * h * h) * kappa
+    """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, with its
+    curvature kappa = dtau/ds (``Branch._curvature``), else estimated from the last two nodes'
+    tangents (first order from the drawn pose)."""
+    x, tau, kappa = leg.x[-1], leg.tau[-1], leg.kappa
+    if kappa is None and len(leg.s) >= 2:
+        kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
+    return x + h * tau if kappa is None else x + h * tau + (0.5 * h * h) * kappa
 
 
 class Branch:
@@ -133,23 +133,27 @@ class Branch:
         size = scene.size
         self.scale = np.tile([size, size, 1.0], len(self.system.unknown))
         self.row_scale = np.where(self.system.length_rows, size, 1.0)
-        self.jacobian_scale = self.scale[None, :] / self.row_scale[:, None]
         ground = scene.ground
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
-        self.equations = self.system.residual(self.known, 1, self.held)
+        form = self.system.linear
+        self.form = None if form is None else form.scaled(self.scale, self.row_scale)
+        self.equations = self.system.residual(
+            self.known, 1, self.held, (self.scale, self.row_scale)
+        )
         x0 = (self.system.drawn() if start is None else start) / self.scale
         self.legs: dict[int, _Leg] = {}
         for sense in (1, -1):
             tau = np.zeros(x0.size)
             tau[self.free] = sense
-            self.legs[sense] = _Leg([0.0], [x0], [self._tangent(self._f(x0)[1], tau)])
+            J = self._f(x0)[1]
+            tau = self._tangent(J, tau)
+            self.legs[sense] = _Leg([0.0], [x0], [tau], kappa=self._curvature(x0, tau, J))
 
     def _f(self, x: Array) -> tuple[Array, Array]:
         """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
-        phi, J = self.equations((x * self.scale)[None])
-        return phi[0] / self.row_scale, J[0] * self.jacobian_scale
+        return self.equations(x)
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
@@ -158,6 +162,14 @@ class Branch:
         rhs[-1] = 1.0
         z = _solve(A, rhs)
         return z / _norm(z)
+
+    def _curvature(self, x: Array, tau: Array, J: Array) -> Array | None:
+        """kappa = x'' at a node x with tangent tau: [J; tau] kappa = [bending; 0] (the second
+        derivative of F(x(s)) = 0, and tau . kappa = 0 for a unit tangent); None without the
+        linear form (a slider: the predictor estimates it from two tangents)."""
+        if self.form is None:
+            return None
+        return _solve(_bordered(J, tau), np.append(self.form.bending(x, tau), 0.0))
 
     def _correct(
         self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
@@ -216,6 +228,7 @@ class Branch:
             leg.s.append(leg.s[-1] + chord)
             leg.x.append(new)
             leg.tau.append(tau_new)
+            leg.kappa = self._curvature(new, tau_new, J)
             leg.h = min(h * min(grow, 2.0), MAX_STEP)
         return leg
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.constraints import ConstraintSystem, States, solve_linear
+from solver.constraints import ConstraintSystem, States
 from solver.errors import InvalidScene
 from solver.rigid import Array
 
@@ -76,13 +76,13 @@ def newton_raphson(
         done = residual <= tolerance
         if np.all(done | ~np.isfinite(residual)) or iterations >= max_iterations:
             break
-        step = np.where(done[:, None], 0.0, solve_linear(J, phi))
+        step = np.where(done[:, None], 0.0, system.solve(J, phi))
         if iterations == 0:
             first = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
         q = q - step
         iterations += 1
     if polish and np.any(done):
-        trial = q - solve_linear(J, phi)
+        trial = q - system.solve(J, phi)
         phi_next = equations(trial)[0]
         better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
         take = done & (better < residual)

@@ -93,3 +93,25 @@ def test_sliders_and_40_digits_keep_the_joint_by_joint_equations() -> None:
     triad = parse_linkage(TRIAD)
     exact = ConstraintSystem(triad, triad.moving_links, exact=lambda x: np.asarray(x, dtype=object))
     assert exact.linear is None
+
+
+def test_solve_with_the_translations_eliminated_equals_lu() -> None:
+    """J x = b solved as an (M, U, U) system in the rotations, then the translations by A^+,
+    equals numpy's LU on the whole (M, n, n) J at random poses (to 1e-12 of |x| where
+    cond(J) < 1e4); a system that is not square has no such reduction."""
+    scene = parse_linkage(TRIAD)
+    system = ConstraintSystem(scene, ("T", "L1", "L2", "L3"))
+    assert system.linear is not None and system.linear.reduction is not None
+    rng = np.random.default_rng(3)
+    samples = 40
+    known = {name: _random_states(rng, samples) for name in system.known}
+    q, b = rng.normal(size=(2, samples, system.n))
+    _, J, _ = system.evaluate(known, q)
+    x = system.solve(J, b)
+    lu = np.linalg.solve(J, b[..., None])[..., 0]
+    well = np.linalg.cond(J) < 1e4
+    assert np.sum(well) >= 10
+    for k in np.flatnonzero(well):
+        np.testing.assert_allclose(x[k], lu[k], rtol=0.0, atol=1e-12 * np.linalg.norm(lu[k]))
+    path = ConstraintSystem(scene, scene.moving_links)  # the crank's angle free: 14 x 15
+    assert path.linear is not None and path.linear.reduction is None

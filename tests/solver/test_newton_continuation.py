@@ -275,3 +275,22 @@ def test_triad_limits_solve_the_fold_equations(doc: Doc) -> None:
         z = fsolve(extended, np.concatenate([x0, v0]), xtol=1e-14)
         assert np.linalg.norm(extended(z)) < 1e-12
         assert leg.limit == pytest.approx(z[branch.free], abs=1e-12)
+
+
+@pytest.mark.parametrize("sense", [1, -1])
+def test_path_curvature_equals_the_turning_of_its_tangents(sense: int) -> None:
+    """The predictor's curvature kappa = dtau/ds at a node of the path (from the second
+    derivative of the loop equations) equals (tau(ds) - tau(0)) / ds of the tangents at a node
+    ds = 1e-5 further, to 1e-3 of |kappa| (the difference quotient's error is O(ds)); the node
+    is a few steps from the drawn pose, where no link's rotation is 0."""
+    branch = Branch(parse_linkage(TRIAD))
+    leg = branch.extend(sense, sense * 0.3)
+    x, tau = leg.x[3], leg.tau[3]
+    assert np.all(np.abs(np.sin(x[2::3])) > 1e-3)
+    kappa = branch._curvature(x, tau, branch._f(x)[1])
+    assert kappa is not None and np.linalg.norm(kappa) > 0.1
+    ds = 1e-5
+    node, J, converged, _ = branch._correct(x + ds * tau, tau, 1e-15)
+    assert converged
+    turning = (branch._tangent(J, tau) - tau) / np.linalg.norm(node - x)
+    np.testing.assert_allclose(turning, kappa, atol=1e-3 * np.linalg.norm(kappa))
