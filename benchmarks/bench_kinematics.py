@@ -40,7 +40,9 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_kinematics.py`
 import numpy as np  # noqa: E402
 
 from benchmarks.sections import markers, write_section  # noqa: E402
+from server import budget as budget_check  # noqa: E402
 from server.local import serve_locally  # noqa: E402
+from solver.errors import LimitExceeded  # noqa: E402
 from solver.instant import LinkageAnalysis, analyze  # noqa: E402
 from solver.presets import PRESETS, build_preset  # noqa: E402
 from solver.scene import LinkageScene, parse_linkage  # noqa: E402
@@ -521,19 +523,16 @@ def measure_http(doc: dict[str, Any], budget: Budget, res: Results) -> str:
             ["/analyze one instant, everything", ms(s.p50), ms(s.p99), str(s.count), f"{one():,}"]
         )
         for n, count in zip(SIZES, budget.http_sweeps, strict=True):
-            post = poster(
-                client, "/api/v1/sweep", {"scene": doc, "samples": n, "quantities": list(ALL)}
-            )
+            what = f"/sweep {n} samples, all quantities"
+            try:
+                budget_check.sweep(parse_linkage(doc), n, ALL)  # the server's own limits
+            except LimitExceeded as refused:  # answered 413
+                rows.append([what, f"refused (413): {str(refused).split(';')[0]}", "", "", ""])
+                continue
+            body = {"scene": doc, "samples": n, "quantities": list(ALL)}
+            post = poster(client, "/api/v1/sweep", body)
             s = latencies(post, count, warmup=2)
-            rows.append(
-                [
-                    f"/sweep {n} samples, all quantities",
-                    ms(s.p50),
-                    ms(s.p99),
-                    str(s.count),
-                    f"{post():,}",
-                ]
-            )
+            rows.append([what, ms(s.p50), ms(s.p99), str(s.count), f"{post():,}"])
         post = poster(client, "/api/v1/solution", {"scene": doc, "method": "vector"})
         s = latencies(post, budget.solution_calls, warmup=3)
         rows.append(
