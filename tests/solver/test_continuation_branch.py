@@ -13,6 +13,7 @@ rocking triad (two limit positions) and the fully turning one, at 36 and 37 samp
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from benchmarks.bench_newton import FULL_TURN
 from solver import continuation
 from solver.constraints import ConstraintSystem, States
 from solver.errors import NotAssemblable
+from solver.instant import analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweeps import Sweep, sweep
 from tests.solver.test_newton import TRIAD
@@ -119,3 +121,20 @@ def test_second_driver_out_of_reach_names_it() -> None:
     doc["drivers"][1]["angle_deg"] = -20.0
     with pytest.raises(NotAssemblable, match=r"turning driver 2 \(crank2\) from its drawn pose"):
         sweep(parse_linkage(doc), 12, ["position"])
+
+
+def test_a_pose_beyond_a_limit_off_the_origin_reports_the_absolute_crank_angle() -> None:
+    """The rocking triad drawn 3 m right and 2 m up (its crank's drawn angle unchanged,
+    atan2(0.2, 0.3)), posed 0.5 rad beyond its upper limit: the message gives the crank's
+    absolute angle (to 1e-3 deg, as printed) and says why in full."""
+    triad: dict[str, Any] = TRIAD
+    shifted = {**triad, "points": {p: [x + 3.0, y + 2.0] for p, (x, y) in triad["points"].items()}}
+    limit = sweep(parse_linkage(shifted), 36).limits[1]
+    beyond = math.degrees(limit + 0.5)
+    doc = {**shifted, "drivers": [{**triad["drivers"][0], "angle_deg": beyond}]}
+    with pytest.raises(NotAssemblable) as caught:
+        analyze(parse_linkage(doc))
+    message = str(caught.value)
+    assert "turning crank from its drawn pose either way meets a limit position first" in message
+    (angle,) = set(re.findall(r"crank angle (\S+) deg", message))
+    assert float(angle) == pytest.approx(beyond, abs=1e-3)
