@@ -13,6 +13,7 @@ rocking triad (two limit positions) and the fully turning one, at 36 and 37 samp
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from benchmarks.bench_newton import FULL_TURN
 from solver import continuation
 from solver.constraints import ConstraintSystem, States
 from solver.errors import NotAssemblable
+from solver.instant import analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweeps import Sweep, sweep
 from tests.solver.test_newton import TRIAD
@@ -52,10 +54,11 @@ def test_a_finely_refined_path_gives_the_same_sweep(
         np.testing.assert_allclose(refined.v, motion.v, rtol=0, atol=1e-9 * np.abs(motion.v).max())
 
 
-def _path_to(scene: LinkageScene, second: float, firsts: np.ndarray) -> list[np.ndarray]:
-    """Every moving link's coordinates with the second driver at turn ``second`` and the first at
-    each of ``firsts``, reached from the drawn pose by the branch rule (the second driver turned
-    first, the first held at 0; then the first), by small-step natural continuation: each step
+def _path_to(scene: LinkageScene, others: list[float], firsts: np.ndarray) -> list[np.ndarray]:
+    """Every moving link's coordinates with the other drivers at turns ``others`` and the first at
+    each of ``firsts``, reached from the drawn pose by the branch rule (the other drivers turned
+    one after the other, those not yet turned and the first held at 0; then the first), by
+    small-step natural continuation: each step
     (at most 1e-2 rad) predicted linearly from the one before and closed by least-squares
     Newton-Raphson to 1e-14. Independent of the solver's arclength continuation."""
     system = ConstraintSystem(scene, scene.moving_links, drivers=True)
@@ -78,10 +81,12 @@ def _path_to(scene: LinkageScene, second: float, firsts: np.ndarray) -> list[np.
             previous, q, step = q, guess, dt
         return q
 
-    staged = walk(system.drawn(), np.zeros(2), 1, second)
+    staged, turns = system.drawn(), np.zeros(1 + len(others))
+    for index, turn in enumerate(others, start=1):
+        staged = walk(staged, turns, index, turn)
     out: dict[float, np.ndarray] = {}
     for sense in (1.0, -1.0):
-        q, turns = staged, np.array([0.0, second])
+        q, turns = staged, np.array([0.0, *others])
         for target in sorted((float(t) for t in firsts if (t >= 0) == (sense > 0)), key=abs):
             q = out[target] = walk(q, turns, 0, target)
     return [out[float(t)] for t in firsts]
@@ -104,7 +109,39 @@ def test_second_driver_turned_far_then_the_first_swept_follows_the_branch_rule()
     assert not result.feasible
     second = math.radians(-150.0) - _drawn_angle(doc, "H", "G2")
     first = result.driver_angle - _drawn_angle(doc, "O", "A")
-    reference = _path_to(scene, second, first)
+    reference = _path_to(scene, [second], first)
+    system = ConstraintSystem(scene, scene.moving_links)
+    for k, q in enumerate(reference):
+        for index, link in enumerate(system.unknown):
+            anchor = result.motion.links[link].point(scene.drawn(scene.links[link].points[0]))
+            np.testing.assert_allclose(anchor.p[k], q[3 * index : 3 * index + 2], atol=1e-9)
+
+
+def test_three_drivers_are_turned_in_order_then_the_first_swept() -> None:
+    """The triad with both of its ground pivots on driven cranks (H-G2 turned 60 deg, J-G3 20
+    deg): the second crank is turned first (the third held at its drawn pose), then the third,
+    then the first swept; every sample of 12 equals that reference path to 1e-9 m."""
+    doc = two_driver_triad()
+    doc["points"]["J"] = [1.8, -0.9]
+    doc["links"] |= {
+        "ground": {"points": ["O", "H", "J"], "ground": True},
+        "crank3": {"points": ["J", "G3"]},
+    }
+    doc["joints"] = [j for j in doc["joints"] if j["point"] != "G3"] + [
+        {"type": "revolute", "point": "G3", "links": ["L3", "crank3"]},
+        {"type": "revolute", "point": "J", "links": ["ground", "crank3"]},
+    ]
+    doc["drivers"][1]["angle_deg"] = -150.0
+    doc["drivers"].append({"link": "crank3", "omega": 0.3, "alpha": 0.0, "angle_deg": 110.0})
+    scene = parse_linkage(doc)
+    result = sweep(scene, 12, ["position"])
+    assert not result.feasible
+    others = [
+        math.radians(-150.0) - _drawn_angle(doc, "H", "G2"),
+        math.radians(110.0) - _drawn_angle(doc, "J", "G3"),
+    ]
+    first = result.driver_angle - _drawn_angle(doc, "O", "A")
+    reference = _path_to(scene, others, first)
     system = ConstraintSystem(scene, scene.moving_links)
     for k, q in enumerate(reference):
         for index, link in enumerate(system.unknown):
@@ -117,5 +154,26 @@ def test_second_driver_out_of_reach_names_it() -> None:
     the drawn pose): not assemblable, and the message names the driver that cannot be turned."""
     doc = two_driver_triad()
     doc["drivers"][1]["angle_deg"] = -20.0
-    with pytest.raises(NotAssemblable, match=r"turning driver 2 \(crank2\) from its drawn pose"):
+    with pytest.raises(
+        NotAssemblable,
+        match=r"turning driver 2 \(crank2\) from its drawn pose either way meets a limit position "
+        "first",
+    ):
         sweep(parse_linkage(doc), 12, ["position"])
+
+
+def test_a_pose_beyond_a_limit_off_the_origin_reports_the_absolute_crank_angle() -> None:
+    """The rocking triad drawn 3 m right and 2 m up (its crank's drawn angle unchanged,
+    atan2(0.2, 0.3)), posed 0.5 rad beyond its upper limit: the message gives the crank's
+    absolute angle (to 1e-3 deg, as printed) and says why in full."""
+    triad: dict[str, Any] = TRIAD
+    shifted = {**triad, "points": {p: [x + 3.0, y + 2.0] for p, (x, y) in triad["points"].items()}}
+    limit = sweep(parse_linkage(shifted), 36).limits[1]
+    beyond = math.degrees(limit + 0.5)
+    doc = {**shifted, "drivers": [{**triad["drivers"][0], "angle_deg": beyond}]}
+    with pytest.raises(NotAssemblable) as caught:
+        analyze(parse_linkage(doc))
+    message = str(caught.value)
+    assert "turning crank from its drawn pose either way meets a limit position first" in message
+    (angle,) = set(re.findall(r"crank angle (\S+) deg", message))
+    assert float(angle) == pytest.approx(beyond, abs=1e-3)
