@@ -188,9 +188,9 @@ def main() -> None:
         "the path following, which is sequential (some 36 nodes per turn of the full-turning "
         "triad, each a second-order prediction and a Newton correction: about four evaluations "
         "of the loop equations as matrix products, `constraints.LinearForm`, and three 15x15 "
-        "LAPACK solves), half in the batched polish and rates (about six stacked solves on "
-        "(N, 12, 12) and as many evaluations); at 3600 samples the stacked solves and the "
-        "filling of the stacked Jacobians dominate.",
+        "LAPACK solves), half in the batched polish and rates (about six evaluations and six "
+        "stacked solves, the translations eliminated: (N, 4, 4) systems); at 3600 samples the "
+        "filling of the stacked Jacobians and the stacked solves dominate.",
         "",
         "### Newton tolerance: time against error",
         "",
