@@ -216,10 +216,10 @@ HOSTILE: list[tuple[str, int | None]] = [
 
 @pytest.mark.parametrize(("text", "position"), HOSTILE, ids=[repr(h[0][:24]) for h in HOSTILE])
 def test_hostile_input_is_rejected_quickly(text: str, position: int | None) -> None:
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time: other processes on the machine do not count
     with pytest.raises(InvalidExpression) as caught:
         parse_time_law(text)
-    assert time.perf_counter() - start < 0.5  # a loose guard: real figures are microseconds
+    assert time.process_time() - start < 0.5  # a loose guard: real figures are microseconds
     error = caught.value
     assert error.code == "invalid_expression" and error.expression == text
     assert 0 <= error.position <= max(len(text), MAX_LENGTH)
