@@ -133,10 +133,12 @@ class AppPage:
     def screenshot(self, name: str, selector: str | None = None) -> Path:
         SCREENSHOTS.mkdir(parents=True, exist_ok=True)
         path = SCREENSHOTS / f"{name}.png"
+        # A long page (a printable sheet with its solutions) takes seconds to paint on a loaded
+        # machine: the picture is an artifact, not a check, so it gets a minute.
         if selector:
-            self.page.locator(selector).screenshot(path=str(path))
+            self.page.locator(selector).screenshot(path=str(path), timeout=60_000)
         else:
-            self.page.screenshot(path=str(path), full_page=True)
+            self.page.screenshot(path=str(path), full_page=True, timeout=60_000)
         return path
 
 
