@@ -293,12 +293,14 @@ class ConstraintSystem:
         links and held ``turns`` fixed (the iterations of Newton-Raphson): the known links'
         part computed once where linear. ``scale`` (per column, per row): the equations in
         scaled coordinates x = q / column, Phi / row and J column / row."""
-        column, row = scale if scale is not None else (np.ones(self.n), np.ones(self.rows))
         if self.linear is not None and self._dense(samples):
-            form = self.linear.scaled(column, row)
+            form = self.linear if scale is None else self.linear.scaled(*scale)
             fixed = form.known_terms(known, samples, 0, turns)[0]
             fixed = fixed[0] if samples == 1 else fixed
             return lambda q: form.pose(q, fixed)
+        if scale is None:
+            return lambda q: self.evaluate(known, q, turns=turns)[:2]
+        column, row = scale
         jacobian_scale = column[None, :] / row[:, None]
 
         def general(x: Array) -> tuple[Array, Array]:
