@@ -169,11 +169,11 @@ def test_second_driver_out_of_reach_names_it() -> None:
 
 
 def test_a_pose_beyond_a_limit_off_the_origin_reports_the_absolute_crank_angle() -> None:
-    """The rocking triad drawn 3 m right and 2 m up (its crank's drawn angle unchanged,
+    """The rocking triad drawn 3 m right and 2 m down (its crank's drawn angle unchanged,
     atan2(0.2, 0.3)), posed 0.5 rad beyond its upper limit: the message gives the crank's
     absolute angle (to 1e-3 deg, as printed) and says why in full."""
     triad: dict[str, Any] = TRIAD
-    shifted = {**triad, "points": {p: [x + 3.0, y + 2.0] for p, (x, y) in triad["points"].items()}}
+    shifted = {**triad, "points": {p: [x + 3.0, y - 2.0] for p, (x, y) in triad["points"].items()}}
     limit = sweep(parse_linkage(shifted), 36).limits[1]
     beyond = math.degrees(limit + 0.5)
     doc = {**shifted, "drivers": [{**triad["drivers"][0], "angle_deg": beyond}]}
