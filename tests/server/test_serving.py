@@ -31,6 +31,7 @@ from server.app import create_app
 from server.local import serve_locally
 from server.settings import TIME_LIMITS, Settings, from_environment
 from solver import read_scene
+from tests import run_apart
 from tests.server.test_budget import triads
 from tests.server.test_errors import FOUR_BAR
 
@@ -290,4 +291,4 @@ def test_a_freed_worker_goes_to_the_request_that_waited_longest() -> None:
         never.cancel()
         return order
 
-    assert asyncio.run(scenario()) == [0, 1, 2, 3, 4, 5]
+    assert run_apart(scenario()) == [0, 1, 2, 3, 4, 5]
