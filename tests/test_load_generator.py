@@ -7,6 +7,7 @@ from __future__ import annotations
 import asyncio
 
 from benchmarks.load import Connection, Tally
+from tests import run_apart
 
 ANSWER = (
     b"HTTP/1.1 200 OK\r\ncontent-length: 5\r\n"
@@ -51,7 +52,7 @@ async def scripted(answers: list[bytes]) -> tuple[Tally, list[int]]:
 
 
 def test_answers_are_read_whole_on_one_connection_with_the_apps_time() -> None:
-    tally, connections = asyncio.run(scripted([ANSWER] * 4))
+    tally, connections = run_apart(scripted([ANSWER] * 4))
     assert tally.statuses == {200: 4} and tally.dropped == 0
     assert tally.app == [0.0125] * 4  # seconds
     assert len(tally.latencies) == 4 and connections == [0]  # one keep-alive connection
@@ -59,7 +60,7 @@ def test_answers_are_read_whole_on_one_connection_with_the_apps_time() -> None:
 
 def test_a_dropped_connection_is_counted_and_opened_again() -> None:
     busy = b"HTTP/1.1 503 Service Unavailable\r\ncontent-length: 0\r\n\r\n"
-    tally, connections = asyncio.run(scripted([ANSWER, b"", busy, ANSWER]))
+    tally, connections = run_apart(scripted([ANSWER, b"", busy, ANSWER]))
     assert tally.dropped == 1 and tally.statuses == {200: 2, 503: 1}
     assert tally.errors == 2 and tally.app == [0.0125, 0.0125]
     assert connections == [0, 1]
