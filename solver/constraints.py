@@ -25,6 +25,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import mpmath as mp
 import numpy as np
@@ -448,12 +449,18 @@ class LinearForm:
     def _derive(self) -> None:
         """What the evaluations read from K: the rotation entries of J that vary (a revolute
         row touches two links: their flat indices into (rows, n), the link and the entries of
-        K_q, K_c, K_s there) and the elimination of the translations (``solve``)."""
+        K_q, K_c, K_s there); the elimination of the translations waits for ``solve``."""
         rows, links = np.nonzero((self.c != 0.0) | (self.s != 0.0))
         self.flat = rows * self.q.shape[1] + 3 * links + 2
         self.links = links
         self.entries = self.q[rows, 3 * links + 2], self.c[rows, links], self.s[rows, links]
-        self.reduction = _translations_eliminated(self.q)
+        self.__dict__.pop("reduction", None)  # a scaled copy eliminates with its own K_q
+
+    @cached_property
+    def reduction(self) -> tuple[Array, Array] | None:
+        """``_translations_eliminated(K_q)``, computed at the first ``solve`` (an SVD: a third of
+        building the form, which the condition number of one instant never solves with)."""
+        return _translations_eliminated(self.q)
 
     def scaled(self, column: Array, row: Array) -> LinearForm:
         """The same equations in scaled coordinates (``ConstraintSystem.residual``): Phi / row
