@@ -10,6 +10,8 @@ Cross-origin calls are refused by browsers unless ``KINEMATICS_CORS_ORIGINS`` li
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from fastapi import FastAPI
 from starlette.middleware.cors import CORSMiddleware
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
@@ -38,6 +40,26 @@ HEADERS = [
 ]
 
 
+Headers = list[tuple[bytes, bytes]]
+
+
+async def edit_headers(
+    app: ASGIApp, scope: Scope, receive: Receive, send: Send, edit: Callable[[Headers], Headers]
+) -> None:
+    """Run ``app`` with the headers of its HTTP response passed through ``edit`` (for the
+    ASGI middlewares here and in ``server.timing``)."""
+    if scope["type"] != "http":
+        await app(scope, receive, send)
+        return
+
+    async def edited(message: Message) -> None:
+        if message["type"] == "http.response.start":
+            message = {**message, "headers": edit(list(message.get("headers", [])))}
+        await send(message)
+
+    await app(scope, receive, edited)
+
+
 class SecurityHeaders:
     """ASGI middleware: add ``HEADERS`` to every HTTP response."""
 
@@ -45,18 +67,12 @@ class SecurityHeaders:
         self.app = app
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
+        await edit_headers(self.app, scope, receive, send, _with_security_headers)
 
-        async def with_headers(message: Message) -> None:
-            if message["type"] == "http.response.start":
-                present = {name.lower() for name, _ in message.get("headers", [])}
-                extra = [(n, v) for n, v in HEADERS if n not in present]
-                message = {**message, "headers": [*message.get("headers", []), *extra]}
-            await send(message)
 
-        await self.app(scope, receive, with_headers)
+def _with_security_headers(headers: Headers) -> Headers:
+    present = {name.lower() for name, _ in headers}
+    return [*headers, *((n, v) for n, v in HEADERS if n not in present)]
 
 
 def install(app: FastAPI, settings: Settings) -> None:

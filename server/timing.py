@@ -13,7 +13,9 @@ from __future__ import annotations
 
 import time
 
-from starlette.types import ASGIApp, Message, Receive, Scope, Send
+from starlette.types import ASGIApp, Receive, Scope, Send
+
+from server.headers import Headers, edit_headers
 
 
 class ServerTiming:
@@ -23,22 +25,16 @@ class ServerTiming:
         self.app = app
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
         arrived = time.perf_counter()
 
-        async def timed(message: Message) -> None:
-            if message["type"] == "http.response.start":
-                entry = f"app;dur={(time.perf_counter() - arrived) * 1e3:.2f}"
-                headers = []
-                for name, value in message.get("headers", []):
-                    if name.lower() == b"server-timing":
-                        entry = f"{entry}, {value.decode()}"
-                    else:
-                        headers.append((name, value))
-                headers.append((b"server-timing", entry.encode()))
-                message = {**message, "headers": headers}
-            await send(message)
+        def timed(headers: Headers) -> Headers:
+            entry = f"app;dur={(time.perf_counter() - arrived) * 1e3:.2f}"
+            kept = []
+            for name, value in headers:
+                if name.lower() == b"server-timing":
+                    entry = f"{entry}, {value.decode()}"
+                else:
+                    kept.append((name, value))
+            return [*kept, (b"server-timing", entry.encode())]
 
-        await self.app(scope, receive, timed)
+        await edit_headers(self.app, scope, receive, send, timed)
