@@ -174,6 +174,17 @@ def five_bar_topology() -> dict[str, Any]:
     }
 
 
+def five_bar_points() -> dict[str, list[float]]:
+    """A five-bar drawn off any symmetry (cranks O1-A and O2-B, dyad A-C-B), a fresh copy."""
+    return {
+        "O1": [0.0, 0.0],
+        "O2": [1.2, 0.0],
+        "A": [0.2, 0.45],
+        "B": [1.5, 0.4],
+        "C": [0.9, 1.1],
+    }
+
+
 @st.composite
 def five_bars(draw: st.DrawFn) -> dict[str, Any]:
     """A five-bar with two driven cranks, O1-A and O2-B, and the dyad A-C-B (links ``left`` =

@@ -22,7 +22,7 @@ from solver.four_bar import FourBarLoop
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
-from tests.dynamics_cases import five_bar_topology
+from tests.dynamics_cases import five_bar_points, five_bar_topology
 
 # (ground, crank, coupler, rocker, drawn crank angle in degrees) -> textbook class
 CASES = {
@@ -159,15 +159,7 @@ def test_a_four_bar_on_a_five_bar_crank_is_found_after_the_five_bar() -> None:
     law of cosines' transmission angle (1e-12 rad)."""
     doc: dict[str, Any] = {
         "kind": "linkage",
-        "points": {
-            "O1": [0.0, 0.0],
-            "O2": [1.2, 0.0],
-            "A": [0.2, 0.45],
-            "B": [1.5, 0.4],
-            "C": [0.9, 1.1],
-            "F": [-1.0, 0.2],
-            "E": [-0.6, 1.0],
-        },
+        "points": {**five_bar_points(), "F": [-1.0, 0.2], "E": [-0.6, 1.0]},
         **five_bar_topology(),
         "drivers": [
             {"link": "crank1", "omega": 2.0, "alpha": 0.0},

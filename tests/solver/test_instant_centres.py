@@ -14,7 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from solver.presets import build_preset
-from tests.dynamics_cases import five_bar_topology
+from tests.dynamics_cases import five_bar_points, five_bar_topology
 from tests.linkage_strategies import FAMILIES
 from tests.solver.test_properties import (
     PROPERTY,
@@ -159,13 +159,7 @@ def test_five_bar_with_one_crank_at_rest_is_a_four_bar() -> None:
     I(crank2, right) = B, and I(crank1, right) where line AC meets line O1B; to 1e-12."""
     doc: Doc = {
         "kind": "linkage",
-        "points": {
-            "O1": [0.0, 0.0],
-            "O2": [1.2, 0.0],
-            "A": [0.2, 0.45],
-            "B": [1.5, 0.4],
-            "C": [0.9, 1.1],
-        },
+        "points": five_bar_points(),
         **five_bar_topology(),
         "drivers": [
             {"link": "crank1", "omega": 2.0, "alpha": 0.0},
