@@ -216,6 +216,32 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
                 values[k] = 0.5 * (values[before] + values[after])
 
 
+def _cycle(
+    driven: _Driven, samples: int, order: int, start: float, direction: float
+) -> tuple[Array, Motion, tuple[float, float] | None]:
+    """The driver's turns from ``start`` and the motion over them: a full revolution with one
+    sample more than asked, back at the start (so the last interval is searched too), or, where
+    the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
+    (that range, the limits, is returned too; None for a full revolution)."""
+    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
+    if not driven.plan.closed_form:
+        span = _newton_range(driven, start, direction)
+    elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+        motion = driven.run(turns, order, start)
+        if _turns_fully(motion):
+            return turns, motion, None
+        span = _feasible_range(driven, start, direction)
+    else:
+        span = _feasible_range(driven, start, direction)
+    if span is None:
+        return turns, driven.run(turns, order, start), None
+    low, high = span
+    turns = low + (high - low) * (np.arange(samples) + 0.5) / samples
+    if direction < 0:
+        turns = turns[::-1]
+    return turns, driven.run(turns, order, start), span
+
+
 def sweep(
     scene: LinkageScene,
     samples: int,
@@ -237,26 +263,8 @@ def sweep(
     if start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
     order = required_order(wanted)
-    # One sample more than asked, back at the start: the last interval is searched too.
-    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
-    limits: tuple[float, ...] = ()
-    motion = None
-    if not plan.closed_form:
-        span = _newton_range(driven, start, direction)
-    elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
-        motion = driven.run(turns, order, start)
-        span = None if _turns_fully(motion) else _feasible_range(driven, start, direction)
-    else:
-        span = _feasible_range(driven, start, direction)
-    if span is not None:
-        low, high = span
-        turns = low + (high - low) * (np.arange(samples) + 0.5) / samples
-        if direction < 0:
-            turns = turns[::-1]
-        limits = span
-        motion = None
-    if motion is None:
-        motion = driven.run(turns, order, start)
+    turns, motion, span = _cycle(driven, samples, order, start, direction)
+    limits: tuple[float, ...] = span or ()
     drawn = (
         drawn_angle(scene, scene.drivers[0].link)
         if len(scene.links[scene.drivers[0].link].points) >= 2
