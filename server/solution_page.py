@@ -50,35 +50,46 @@ def _driver_motion(d: Mapping[str, Any]) -> str:
 def _scene_tables(doc: Mapping[str, Any]) -> str:
     """The scene's data as tables (from the validated document)."""
     if doc.get("kind") == "spatial_chain":
-        return _table(
-            "Joints (origin m, rate rad/s or m/s)",
-            ["joint", "type", "origin", "axis", "rate", "rate of rate"],
-            (
-                [
-                    _e(j.get("name")),
-                    _e(j.get("type")),
-                    _vector(j.get("origin")),
-                    _vector(j.get("axis")),
-                    _e(j.get("rate")),
-                    _e(j.get("rate_dot", 0)),
-                ]
-                for j in doc.get("joints", [])
-            ),
-        ) + _table(
-            "Points (m)",
-            ["point", "body", "position"],
-            (
-                [_e(n), _e(p.get("body")), _vector(p.get("position"))]
-                for n, p in doc.get("points", {}).items()
-            ),
-        )
-    parts = [
+        return _chain_tables(doc)
+    instant = f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>" if "time" in doc else ""
+    return _linkage_tables(doc) + _moving_point_table(doc.get("moving_points", [])) + instant
+
+
+def _chain_tables(doc: Mapping[str, Any]) -> str:
+    """A spatial chain's joints and points."""
+    return _table(
+        "Joints (origin m, rate rad/s or m/s)",
+        ["joint", "type", "origin", "axis", "rate", "rate of rate"],
+        (
+            [
+                _e(j.get("name")),
+                _e(j.get("type")),
+                _vector(j.get("origin")),
+                _vector(j.get("axis")),
+                _e(j.get("rate")),
+                _e(j.get("rate_dot", 0)),
+            ]
+            for j in doc.get("joints", [])
+        ),
+    ) + _table(
+        "Points (m)",
+        ["point", "body", "position"],
+        (
+            [_e(n), _e(p.get("body")), _vector(p.get("position"))]
+            for n, p in doc.get("points", {}).items()
+        ),
+    )
+
+
+def _linkage_tables(doc: Mapping[str, Any]) -> str:
+    """A linkage's drawn points, links, joints and drivers."""
+    return (
         _table(
             "Points as drawn (m)",
             ["point", "position"],
             ([_e(n), _vector(xy)] for n, xy in doc.get("points", {}).items()),
-        ),
-        _table(
+        )
+        + _table(
             "Links",
             ["link", "points", ""],
             (
@@ -89,8 +100,8 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
                 ]
                 for n, link in doc.get("links", {}).items()
             ),
-        ),
-        _table(
+        )
+        + _table(
             "Joints (slider and prismatic: links = guide, follower)",
             ["type", "point", "links", "slot axis"],
             (
@@ -102,33 +113,32 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
                 ]
                 for j in doc.get("joints", [])
             ),
-        ),
-        _table(
+        )
+        + _table(
             "Drivers",
             ["link", "motion"],
             ([_e(d.get("link")), _driver_motion(d)] for d in doc.get("drivers", [])),
-        ),
-    ]
-    moving = doc.get("moving_points", [])
-    if moving:
-        parts.append(
-            _table(
-                "Moving points (s in m, t in s)",
-                ["point", "carrier", "path", "s(t)"],
-                (
-                    [
-                        _e(m.get("name")),
-                        _e(m.get("link")),
-                        _e(json.dumps(m.get("path"))),
-                        _e(m.get("s_law")),
-                    ]
-                    for m in moving
-                ),
-            )
         )
-    if "time" in doc:
-        parts.append(f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>")
-    return "".join(parts)
+    )
+
+
+def _moving_point_table(moving: Sequence[Mapping[str, Any]]) -> str:
+    """The points moving along paths on links, if any."""
+    if not moving:
+        return ""
+    return _table(
+        "Moving points (s in m, t in s)",
+        ["point", "carrier", "path", "s(t)"],
+        (
+            [
+                _e(m.get("name")),
+                _e(m.get("link")),
+                _e(json.dumps(m.get("path"))),
+                _e(m.get("s_law")),
+            ]
+            for m in moving
+        ),
+    )
 
 
 def _inline_svg(figure: str) -> str:
