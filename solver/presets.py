@@ -696,16 +696,7 @@ def _seed004(v: Mapping[str, float]) -> dict[str, Any]:
         where=where,
     )  # fmt: skip
     d = gamma + (b - gamma) / abs(b - gamma) * (v["rocker"] + v["extension"])
-    phi3_min = math.inf
-    for reach in (v["coupler"] - v["crank"], v["coupler"] + v["crank"]):
-        try:  # B at a fold of the crank and the coupler, on the same side of the ground line
-            fold = _circle_circle(
-                o, abs(reach), gamma, v["rocker"], left=True, names=("OGamma", "OB", "rocker"),
-                where="at a fold of the crank and the coupler",
-            )  # fmt: skip
-        except NotAssemblable:
-            continue
-        phi3_min = min(phi3_min, math.atan2((fold - gamma).real, (fold - gamma).imag))
+    phi3_min = _least_phi3(o, gamma, v)
     phi3_c = math.radians(v["force_on_deg"])
     if not phi3_min < phi3_c:
         raise InvalidScene(
@@ -740,6 +731,23 @@ def _seed004(v: Mapping[str, float]) -> dict[str, Any]:
          "direction_deg": 90.0, "relative_to": "link"}
     ]  # fmt: skip
     return doc
+
+
+def _least_phi3(o: complex, gamma: complex, v: Mapping[str, float]) -> float:
+    """Seed 004's least phi3 over the cycle: B where the crank and the coupler fold over (|OB| =
+    coupler - crank or coupler + crank), on the drawn side of the ground line; inf if neither
+    fold assembles."""
+    least = math.inf
+    for reach in (v["coupler"] - v["crank"], v["coupler"] + v["crank"]):
+        try:
+            fold = _circle_circle(
+                o, abs(reach), gamma, v["rocker"], left=True, names=("OGamma", "OB", "rocker"),
+                where="at a fold of the crank and the coupler",
+            )  # fmt: skip
+        except NotAssemblable:
+            continue
+        least = min(least, math.atan2((fold - gamma).real, (fold - gamma).imag))
+    return least
 
 
 def _mass(name: str, default: float, description: str) -> PresetParameter:
