@@ -63,6 +63,17 @@ def newton_work(scene: LinkageScene, samples: int, turn: float) -> float:
     return sum(newton_groups(scene)) * (samples + SETUP_SAMPLES + SAMPLES_PER_RADIAN * turn)
 
 
+def _response_size(samples: int, entries: int, what: str, quantities: int) -> None:
+    """samples x entries x quantities values in a sweep's response, at most MAX_SWEEP_VALUES."""
+    values = samples * entries * quantities
+    if values > MAX_SWEEP_VALUES:
+        raise LimitExceeded(
+            f"response size: {samples} samples x {entries} {what} x {quantities} quantities = "
+            f"{values:,}, more than the limit of {MAX_SWEEP_VALUES:,}; ask for fewer samples or "
+            "quantities"
+        )
+
+
 def _newton(scene: LinkageScene, samples: int, turn: float, what: str, path: str) -> None:
     """Refuse Newton-Raphson work estimated past ``path``'s default time limit / SAFETY."""
     groups = newton_groups(scene)
@@ -108,13 +119,7 @@ def sweep(
     """/sweep: the response's size, and the Newton work with the feasible-range search."""
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     entries = len(scene.points) + len(scene.links) + len(scene.joints) + len(scene.moving_points)
-    values = samples * entries * len(wanted)
-    if values > MAX_SWEEP_VALUES:
-        raise LimitExceeded(
-            f"response size: {samples} samples x {entries} points, links, joints and moving "
-            f"points x {len(wanted)} quantities = {values:,}, more than the limit of "
-            f"{MAX_SWEEP_VALUES:,}; ask for fewer samples or quantities"
-        )
+    _response_size(samples, entries, "points, links, joints and moving points", len(wanted))
     if time_range is not None:
         valid = len(time_range) == 2 and all(math.isfinite(t) for t in time_range)
         grid = (
@@ -131,13 +136,7 @@ def spatial_sweep(chain: SpatialChain, samples: int, quantities: Iterable[str] |
     """/sweep of a spatial chain over time: the response's size (bodies, points and joints)."""
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     entries = len(chain.points) + 2 * len(chain.joints)  # a body and its joint per joint
-    values = samples * entries * len(wanted)
-    if values > MAX_SWEEP_VALUES:
-        raise LimitExceeded(
-            f"response size: {samples} samples x {entries} bodies, joints and points x "
-            f"{len(wanted)} quantities = {values:,}, more than the limit of "
-            f"{MAX_SWEEP_VALUES:,}; ask for fewer samples or quantities"
-        )
+    _response_size(samples, entries, "bodies, joints and points", len(wanted))
 
 
 def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:

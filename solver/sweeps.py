@@ -42,8 +42,18 @@ BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
 MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
 
 
+class _Warned:
+    """A sweep's warnings in words: one per close approach of two branches."""
+
+    close_approaches: tuple[CloseApproach, ...]
+
+    @property
+    def warnings(self) -> list[str]:
+        return [a.warning for a in self.close_approaches]
+
+
 @dataclass(frozen=True)
-class Sweep:
+class Sweep(_Warned):
     """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle."""
 
     scene: LinkageScene
@@ -57,10 +67,6 @@ class Sweep:
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
-
-    @property
-    def warnings(self) -> list[str]:
-        return [a.warning for a in self.close_approaches]
 
 
 @dataclass(frozen=True)
@@ -296,7 +302,7 @@ def sweep(
 
 
 @dataclass(frozen=True)
-class TimeSweep:
+class TimeSweep(_Warned):
     """The linkage and its moving points over ``time`` (for animating time laws)."""
 
     scene: LinkageScene
@@ -308,10 +314,6 @@ class TimeSweep:
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
-
-    @property
-    def warnings(self) -> list[str]:
-        return [a.warning for a in self.close_approaches]
 
 
 def sweep_time(

@@ -81,6 +81,38 @@ def _circle_circle(p: complex, r_p: float, q: complex, r_q: float, left: bool) -
     return p + complex(a, h if left else -h) * (q - p) / d
 
 
+def stephenson_six_bar(
+    points: dict[str, list[float]], driver: dict[str, Any], title: str | None = None
+) -> dict[str, Any]:
+    """The Stephenson six-bar ``six_bars(newton=True)`` draws, at given ``points`` (A, B, C, D,
+    X, Q, Y): the four-bar A-B-C-D with the dyad X-Q-Y from the ground (X) to the coupler (Y),
+    driven by ``driver`` (a scene driver, on ``dyad_in``)."""
+    pairs = (
+        ("A", ["ground", "crank"]),
+        ("B", ["crank", "coupler"]),
+        ("C", ["coupler", "rocker"]),
+        ("D", ["rocker", "ground"]),
+        ("X", ["ground", "dyad_in"]),
+        ("Q", ["dyad_in", "dyad_out"]),
+        ("Y", ["dyad_out", "coupler"]),
+    )
+    return {
+        "kind": "linkage",
+        **({"title": title} if title else {}),
+        "points": points,
+        "links": {
+            "ground": {"points": ["A", "D", "X"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C", "Y"]},
+            "rocker": {"points": ["D", "C"]},
+            "dyad_in": {"points": ["X", "Q"]},
+            "dyad_out": {"points": ["Q", "Y"]},
+        },
+        "joints": [{"type": "revolute", "point": p, "links": links} for p, links in pairs],
+        "drivers": [driver],
+    }
+
+
 @st.composite
 def six_bars(
     draw: st.DrawFn, max_condition: float = MAX_CONDITION, newton: bool | None = None

@@ -116,6 +116,11 @@ def test_second_driver_turned_far_then_the_first_swept_follows_the_branch_rule()
     second = math.radians(-150.0) - _drawn_angle(doc, "H", "G2")
     first = result.driver_angle - _drawn_angle(doc, "O", "A")
     reference = _path_to(scene, [second], first)
+    assert_follows(result, scene, reference)
+
+
+def assert_follows(result: Sweep, scene: LinkageScene, reference: list[np.ndarray]) -> None:
+    """Every sample's link anchors equal the reference path's coordinates to 1e-9 m."""
     system = ConstraintSystem(scene, scene.moving_links)
     for k, q in enumerate(reference):
         for index, link in enumerate(system.unknown):
@@ -148,11 +153,7 @@ def test_three_drivers_are_turned_in_order_then_the_first_swept() -> None:
     ]
     first = result.driver_angle - _drawn_angle(doc, "O", "A")
     reference = _path_to(scene, others, first)
-    system = ConstraintSystem(scene, scene.moving_links)
-    for k, q in enumerate(reference):
-        for index, link in enumerate(system.unknown):
-            anchor = result.motion.links[link].point(scene.drawn(scene.links[link].points[0]))
-            np.testing.assert_allclose(anchor.p[k], q[3 * index : 3 * index + 2], atol=1e-9)
+    assert_follows(result, scene, reference)
 
 
 def test_second_driver_out_of_reach_names_it() -> None:

@@ -33,6 +33,7 @@ from solver.errors import SingularConfiguration
 from solver.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweeps import sweep
+from tests.linkage_strategies import stephenson_six_bar
 
 Doc = dict[str, Any]
 EPS = float(np.finfo(float).eps)
@@ -434,9 +435,8 @@ def test_reported_limit_positions_can_be_posed() -> None:
 # solver closes crank, coupler, rocker and dyad_out together by Newton-Raphson. Its driver turns
 # only between about -6.2 and +0.09 deg from the drawn pose. (Found by the six-bar strategy of
 # tests/linkage_strategies.py.)
-NEWTON_SIX_BAR: Doc = {
-    "kind": "linkage",
-    "points": {
+NEWTON_SIX_BAR: Doc = stephenson_six_bar(
+    {
         "A": [0.0, 0.0],
         "B": [0.5, 0.0],
         "C": [0.5625, 0.24206145913796356],
@@ -445,28 +445,8 @@ NEWTON_SIX_BAR: Doc = {
         "Y": [0.25793854086203644, 0.0625],
         "Q": [1.4408680864789296, -0.11139407478282459],
     },
-    "links": {
-        "ground": {"points": ["A", "D", "X"], "ground": True},
-        "crank": {"points": ["A", "B"]},
-        "coupler": {"points": ["B", "C", "Y"]},
-        "rocker": {"points": ["D", "C"]},
-        "dyad_in": {"points": ["X", "Q"]},
-        "dyad_out": {"points": ["Q", "Y"]},
-    },
-    "joints": [
-        {"type": "revolute", "point": p, "links": pair}
-        for p, pair in (
-            ("A", ["ground", "crank"]),
-            ("B", ["crank", "coupler"]),
-            ("C", ["coupler", "rocker"]),
-            ("D", ["rocker", "ground"]),
-            ("X", ["ground", "dyad_in"]),
-            ("Q", ["dyad_in", "dyad_out"]),
-            ("Y", ["dyad_out", "coupler"]),
-        )
-    ],
-    "drivers": [{"link": "dyad_in", "omega": 1.0, "alpha": 0.0}],
-}
+    {"link": "dyad_in", "omega": 1.0, "alpha": 0.0},
+)
 
 
 def _link_length_residual(scene: LinkageScene, positions: dict[str, np.ndarray]) -> float:

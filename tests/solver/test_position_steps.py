@@ -26,6 +26,7 @@ from solver.presets import PRESETS, build_preset
 from solver.scene import parse_linkage
 from solver.steps import Solution, Step, solve
 from solver.topology import DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
+from tests.linkage_strategies import stephenson_six_bar
 from tests.solver.test_steps import NODE, _check_solution, run_katex
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
@@ -56,10 +57,8 @@ PIN_IN_TURNING_SLOT: dict[str, Any] = {
 # A Stephenson six-bar driven by dyad_in (from tests.linkage_strategies): the four-bar loop
 # A-B-C-D and the dyad X-Q-Y on the coupler close only together, a Newton group; analysed 5 deg
 # from its drawing so that Newton-Raphson has work to do.
-STEPHENSON: dict[str, Any] = {
-    "kind": "linkage",
-    "title": "Stephenson six-bar (ground-coupler, driver dyad_in)",
-    "points": {
+STEPHENSON: dict[str, Any] = stephenson_six_bar(
+    {
         "A": [0.0, 0.0],
         "B": [0.5, 0.0],
         "C": [0.75, 0.4330127018922193],
@@ -68,28 +67,9 @@ STEPHENSON: dict[str, Any] = {
         "Y": [0.875, 0.649519052838329],
         "Q": [0.13397459621556138, 0.0669872981077807],
     },
-    "links": {
-        "ground": {"points": ["A", "D", "X"], "ground": True},
-        "crank": {"points": ["A", "B"]},
-        "coupler": {"points": ["B", "C", "Y"]},
-        "rocker": {"points": ["D", "C"]},
-        "dyad_in": {"points": ["X", "Q"]},
-        "dyad_out": {"points": ["Q", "Y"]},
-    },
-    "joints": [
-        {"type": "revolute", "point": p, "links": links}
-        for p, links in (
-            ("A", ["ground", "crank"]),
-            ("B", ["crank", "coupler"]),
-            ("C", ["coupler", "rocker"]),
-            ("D", ["rocker", "ground"]),
-            ("X", ["ground", "dyad_in"]),
-            ("Q", ["dyad_in", "dyad_out"]),
-            ("Y", ["dyad_out", "coupler"]),
-        )
-    ],
-    "drivers": [{"link": "dyad_in", "omega": 1.0, "alpha": 0.0, "angle_deg": -86.82855334700785}],
-}
+    {"link": "dyad_in", "omega": 1.0, "alpha": 0.0, "angle_deg": -86.82855334700785},
+    "Stephenson six-bar (ground-coupler, driver dyad_in)",
+)
 
 
 def offset_lever() -> dict[str, Any]:

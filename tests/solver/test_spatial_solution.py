@@ -25,6 +25,7 @@ from hypothesis import given, settings
 import solver
 from solver.spatial import parse_spatial_chain
 from solver.steps import solve
+from solver.steps.format import NOISE
 from tests.solver.test_spatial_sweep import chains, seed_002, turntable_slider
 from tests.solver.test_steps import NODE, _check_solution, run_katex
 
@@ -123,13 +124,14 @@ def sentences(text: str) -> dict[str, str]:
 
 
 def trends(value: float, reference: float) -> set[str]:
-    """What the reading may say of v . a (or omega . alpha): steady when it is rounding noise,
-    its sign when it is clearly not; between 1e-12 and 1e-6 of |v||a| the reading's own rule
-    (whether the product displays as zero at the digits shown) may say either."""
+    """What the reading may say of v . a (or omega . alpha). It writes steady where the product
+    is rounding noise, |v . a| <= NOISE x max(|v||a|, the largest value of its unit in the
+    solution), so at or below NOISE x |v||a| only steady; above 1e5 x NOISE x |v||a| (rates in
+    these chains differ by less than 1e5) only the sign; in between either."""
     sign = "speeding up" if value > 0 else "slowing down"
-    if abs(value) <= 1e-12 * reference:
+    if abs(value) <= NOISE * reference:
         return {"steady"}
-    return {sign} if abs(value) > 1e-6 * reference else {"steady", sign}
+    return {sign} if abs(value) > 1e5 * NOISE * reference else {"steady", sign}
 
 
 def says_one_of(sentence: str, words: set[str]) -> bool:
