@@ -647,25 +647,69 @@ class KnownPoses:
         }
 
 
+def velocity_jacobian(
+    scene: LinkageScene, links: Mapping[str, LinkMotion], k: int
+) -> tuple[Array, Array]:
+    """J = dPhi/dq of the whole velocity system at sample ``k``, and which of its rows are
+    lengths (not angles). Every moving link is unknown, its (x, y, theta) columns in
+    ``scene.moving_links`` order; the rows are ``ConstraintSystem``'s: each joint in order, then
+    theta_d of each driver. With r = R(theta) (P0 - A0) a joint's arm from its link's anchor: a
+    revolute pair of rows [I | k x r_i] - [I | k x r_j]; a slider [n | n.(k x r_f)] -
+    [n | n.(k x r_g) + w.(X_f - X_g)], w the slot's axis turned with the guide, n = k x w; a
+    prismatic joint adds theta_f - theta_g. The matrix of ``ConstraintSystem(scene,
+    scene.moving_links, drivers=True).evaluate``, built at one pose without the system's layout
+    (a test compares the two entry by entry)."""
+    column = {name: 3 * m for m, name in enumerate(scene.moving_links)}
+    theta = np.array([links[name].theta[k] for name in scene.links], dtype=float)
+    turn = dict(zip(scene.links, zip(np.cos(theta), np.sin(theta), strict=True), strict=True))
+    rows: list[Array] = []
+    lengths: list[bool] = []
+
+    def arm(link: str, point: str) -> Array:
+        return rotate_by(scene.drawn(point) - scene.drawn(scene.links[link].points[0]), *turn[link])
+
+    def row(length: bool, *entries: tuple[str, int, float]) -> None:
+        out = np.zeros(3 * len(column))
+        for link, offset, value in entries:
+            if link in column:
+                out[column[link] + offset] = value
+        rows.append(out)
+        lengths.append(length)
+
+    for joint in scene.joints:
+        i, j = joint.links
+        r_i, r_j = arm(i, joint.point), arm(j, joint.point)
+        if joint.type == "revolute":
+            row(True, (i, 0, 1.0), (i, 2, -r_i[1]), (j, 0, -1.0), (j, 2, r_j[1]))
+            row(True, (i, 1, 1.0), (i, 2, r_i[0]), (j, 1, -1.0), (j, 2, -r_j[0]))
+            continue
+        assert joint.axis is not None
+        w = rotate_by(np.array(joint.axis), *turn[i])
+        n = perp(w)
+        c_i, c_j = (links[x].point(scene.drawn(scene.links[x].points[0])).p[k] for x in (i, j))
+        wd = float(dot(w, (c_j + r_j) - (c_i + r_i)))
+        f, g = float(dot(n, perp(r_j))), float(-dot(n, perp(r_i)) - wd)
+        row(True, (j, 0, n[0]), (j, 1, n[1]), (j, 2, f), (i, 0, -n[0]), (i, 1, -n[1]), (i, 2, g))
+        if joint.type == "prismatic":
+            row(False, (j, 2, 1.0), (i, 2, -1.0))
+    for driver in scene.drivers:
+        row(False, (driver.link, 2, 1.0))
+    return np.array(rows), np.array(lengths)
+
+
 def velocity_condition_number(
     scene: LinkageScene, links: Mapping[str, LinkMotion], k: int
 ) -> float:
-    """cond(J) of the whole velocity system (drivers included), angle columns scaled by the size.
+    """cond(J) = sigma_max / sigma_min of the whole velocity system (drivers included,
+    ``velocity_jacobian``), angle columns scaled by the size.
 
     Scaling the rotation columns and the angle rows by the scene size makes J dimensionless, so
     the number does not change when every length is multiplied by k.
     """
-    system = ConstraintSystem(scene, scene.moving_links, drivers=True)
-    at_k = {
-        name: States(*(x[k : k + 1] for x in (s.c, s.theta, s.v, s.omega, s.a, s.alpha)))
-        for name, s in states(links, scene).items()
-    }
-    q = np.concatenate([np.append(at_k[m].c[0], at_k[m].theta[0]) for m in system.unknown])
-    _, J, _ = system.evaluate(at_k, q[None])
-    J = J[0]
+    J, length_rows = velocity_jacobian(scene, links, k)
     size = scene.size
     J[:, 2::3] /= size
-    J[~system.length_rows] *= size
+    J[~length_rows] *= size
     if J.shape[0] != J.shape[1]:
         return float("inf")
     singular_values = np.linalg.svd(J, compute_uv=False)
