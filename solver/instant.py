@@ -22,7 +22,7 @@ from solver.dyads import COINCIDENCE_TOLERANCE
 from solver.errors import SingularConfiguration
 from solver.four_bar import FourBarLoop, four_bar_loops
 from solver.instant_centres import InstantCentre, instant_centres
-from solver.poles import link_poles
+from solver.poles import poles_at
 from solver.polish import exact_turn, polish
 from solver.quantities import normalise_quantities, required_order
 from solver.relative_motion import MovingPointMotion, moving_point_motion
@@ -141,25 +141,22 @@ def _link_results(
     scene: LinkageScene, motion: Motion, quantities: frozenset[str]
 ) -> dict[str, LinkResult]:
     results = {}
-    for name in scene.moving_links:
+    poles = poles_at(scene, motion, 0) if "poles" in quantities else None
+    rates = "velocity" in quantities or "poles" in quantities
+    accelerations = "acceleration" in quantities or "poles" in quantities
+    for m, name in enumerate(scene.moving_links):
         link = motion.links[name]
         points = scene.links[name].points
         angle = None
         if len(points) >= 2 and "position" in quantities:
             d = motion.points[points[1]].p[0] - motion.points[points[0]].p[0]
             angle = math.atan2(d[1], d[0])
-        omega = None if link.omega is None else float(link.omega[0])
-        alpha = None if link.alpha is None else float(link.alpha[0])
-        v_pole = a_pole = None
-        if "poles" in quantities:
-            v_poles, a_poles = link_poles(scene, motion, name)
-            v_pole, a_pole = v_poles.at(0), a_poles.at(0)
         results[name] = LinkResult(
             angle,
-            omega if "velocity" in quantities or "poles" in quantities else None,
-            alpha if "acceleration" in quantities or "poles" in quantities else None,
-            v_pole,
-            a_pole,
+            float(link.omega[0]) if rates and link.omega is not None else None,
+            float(link.alpha[0]) if accelerations and link.alpha is not None else None,
+            None if poles is None else poles[0].at(m),
+            None if poles is None else poles[1].at(m),
         )
     return results
 

@@ -7,6 +7,7 @@ where the two links translate relative to each other.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from itertools import combinations
 
@@ -29,23 +30,38 @@ class InstantCentre:
     direction: Array | None
 
 
-def instant_centre(
-    link_i: str, V_i: Array, omega_i: float, link_j: str, V_j: Array, omega_j: float, size: float
-) -> InstantCentre:
-    """The point P with v_i(P) = v_j(P): P = k x (V_i - V_j) / (omega_i - omega_j).
+def centres_of_pairs(
+    pairs: Sequence[tuple[str, str]],
+    V_i: Array,
+    omega_i: Array,
+    V_j: Array,
+    omega_j: Array,
+    size: float,
+) -> list[InstantCentre]:
+    """The point P with v_i(P) = v_j(P) for each pair (i, j) (row k of the (K, 2) ``V`` and (K,)
+    ``omega`` arrays): P = k x (V_i - V_j) / (omega_i - omega_j).
 
     ``V`` is the velocity of the link's point at the world origin (v_A - omega k x A), so each
     link's velocity field is v(P) = V + omega k x P.
     """
     dv = V_i - V_j
     dw = omega_i - omega_j
-    speed = float(np.hypot(*dv))
-    reference = float(np.hypot(*V_i) + np.hypot(*V_j)) + (abs(omega_i) + abs(omega_j)) * size
-    if speed + abs(dw) * size <= POLE_TOLERANCE * reference:  # at rest relative to each other
-        return InstantCentre((link_i, link_j), None, None)
-    if abs(dw) * size <= POLE_TOLERANCE * (speed + abs(dw) * size):  # relative translation
-        return InstantCentre((link_i, link_j), None, perp(dv) / speed)
-    return InstantCentre((link_i, link_j), perp(dv) / dw, None)
+    speed = np.hypot(dv[:, 0], dv[:, 1])
+    reference = np.hypot(V_i[:, 0], V_i[:, 1]) + np.hypot(V_j[:, 0], V_j[:, 1])
+    reference += (np.abs(omega_i) + np.abs(omega_j)) * size
+    turning = np.abs(dw) * size
+    at_rest = speed + turning <= POLE_TOLERANCE * reference  # relative to each other
+    translating = turning <= POLE_TOLERANCE * (speed + turning)
+    normal = perp(dv)
+    centres = []
+    for k, links in enumerate(pairs):
+        if at_rest[k]:
+            centres.append(InstantCentre(links, None, None))
+        elif translating[k]:
+            centres.append(InstantCentre(links, None, normal[k] / speed[k]))
+        else:
+            centres.append(InstantCentre(links, normal[k] / dw[k], None))
+    return centres
 
 
 def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[InstantCentre]:
@@ -61,13 +77,11 @@ def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Ins
             for d in scene.drivers
         ]
         motion = assemble(scene, plan, unit, 1)
-    fields = {}
-    for name in scene.links:
-        link = motion.links[name]
-        assert link.anchor.v is not None and link.omega is not None
-        omega = float(link.omega[0])
-        fields[name] = (link.anchor.v[0] - omega * perp(link.anchor.p[0]), omega)
-    return [
-        instant_centre(i, *fields[i], j, *fields[j], scene.size)
-        for i, j in combinations(scene.links, 2)
-    ]
+    links = [motion.links[name] for name in scene.links]
+    p, v = (np.array([getattr(m.anchor, order)[0] for m in links]) for order in ("p", "v"))
+    omega = np.array([m.omega[0] for m in links if m.omega is not None])
+    assert omega.shape == (len(links),)
+    V = v - omega[:, None] * perp(p)  # each link's velocity field at the origin
+    i, j = np.array(list(combinations(range(len(links)), 2))).T
+    pairs = list(combinations(scene.links, 2))
+    return centres_of_pairs(pairs, V[i], omega[i], V[j], omega[j], scene.size)

@@ -67,3 +67,16 @@ def link_poles(scene: LinkageScene, motion: Motion, link: str) -> tuple[Poles, P
         velocity_poles(X.p, X.v, m.omega, scene.size),
         acceleration_poles(X.p, X.a, m.omega, m.alpha, scene.size),
     )
+
+
+def poles_at(scene: LinkageScene, motion: Motion, k: int) -> tuple[Poles, Poles]:
+    """``link_poles`` of every moving link at sample ``k`` in one call: row m of the velocity and
+    the acceleration poles is link ``scene.moving_links[m]`` (the links stacked as samples)."""
+    links = [motion.links[name] for name in scene.moving_links]
+    anchors = [m.anchor for m in links]
+    p, v, a = (np.array([getattr(x, order)[k] for x in anchors]) for order in ("p", "v", "a"))
+    omega, alpha = (np.array([getattr(m, rate)[k] for m in links]) for rate in ("omega", "alpha"))
+    return (
+        velocity_poles(p, v, omega, scene.size),
+        acceleration_poles(p, a, omega, alpha, scene.size),
+    )

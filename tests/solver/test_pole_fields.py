@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from solver.four_bar import grashof_class
-from solver.instant_centres import instant_centre
+from solver.instant_centres import InstantCentre, centres_of_pairs
 from solver.poles import POLE_TOLERANCE, acceleration_poles, velocity_poles
 from solver.rigid import perp
 
@@ -75,14 +75,25 @@ def field(V: np.ndarray, omega: float, P: np.ndarray) -> np.ndarray:
     return V + omega * perp(P)
 
 
+def instant_centre(
+    V_i: np.ndarray, omega_i: float, V_j: np.ndarray, omega_j: float, size: float
+) -> InstantCentre:
+    """The instant centre of one pair of links."""
+    omegas = np.array([omega_i]), np.array([omega_j])
+    return centres_of_pairs([("i", "j")], V_i[None], omegas[0], V_j[None], omegas[1], size)[0]
+
+
 def test_instant_centre_is_where_two_velocity_fields_agree() -> None:
-    for _ in range(20):
-        V_i, V_j = RNG.uniform(-5.0, 5.0, (2, 2))
-        w_i, w_j = RNG.uniform(-10.0, 10.0, 2)
-        centre = instant_centre("i", V_i, w_i, "j", V_j, w_j, 1.0)
+    """20 random pairs of fields at once (each pair's centre from its own row)."""
+    V_i, V_j = RNG.uniform(-5.0, 5.0, (2, 20, 2))
+    w_i, w_j = RNG.uniform(-10.0, 10.0, (2, 20))
+    pairs = [(f"i{k}", f"j{k}") for k in range(20)]
+    centres = centres_of_pairs(pairs, V_i, w_i, V_j, w_j, 1.0)
+    for k, centre in enumerate(centres):
+        assert centre.links == pairs[k]
         assert centre.position is not None and centre.direction is None
-        gap = field(V_i, w_i, centre.position) - field(V_j, w_j, centre.position)
-        assert np.hypot(*gap) <= 1e-12 * (np.hypot(*V_i) + np.hypot(*V_j))
+        gap = field(V_i[k], w_i[k], centre.position) - field(V_j[k], w_j[k], centre.position)
+        assert np.hypot(*gap) <= 1e-12 * (np.hypot(*V_i[k]) + np.hypot(*V_j[k]))
 
 
 @pytest.mark.parametrize("size", [1e-3, 1.0, 1e3])
@@ -91,18 +102,18 @@ def test_instant_centre_at_infinity_and_at_rest(size: float) -> None:
     velocity (a unit vector); equal fields: no centre. Rates differing by 1e-8 of the
     velocities' scale still give a (far) point; by 1e-12, a translation."""
     V_i, V_j = np.array([1.0, 2.0]) * size, np.array([-0.5, 0.25]) * size
-    translation = instant_centre("i", V_i, 2.0, "j", V_j, 2.0, size)
+    translation = instant_centre(V_i, 2.0, V_j, 2.0, size)
     assert translation.position is None and translation.direction is not None
     dv = V_i - V_j
     np.testing.assert_allclose(translation.direction, perp(dv) / np.hypot(*dv), atol=1e-15)
-    rest = instant_centre("i", V_i, 2.0, "j", V_i.copy(), 2.0, size)
+    rest = instant_centre(V_i, 2.0, V_i.copy(), 2.0, size)
     assert rest.position is None and rest.direction is None
     speed = float(np.hypot(*dv)) / size
-    far = instant_centre("i", V_i, 2.0 + 1e-8 * speed, "j", V_j, 2.0, size)
+    far = instant_centre(V_i, 2.0 + 1e-8 * speed, V_j, 2.0, size)
     assert far.position is not None
     gap = field(V_i, 2.0 + 1e-8 * speed, far.position) - field(V_j, 2.0, far.position)
     assert np.hypot(*gap) <= 1e-6 * size  # the point lies 1e8 sizes away: rounding grows with it
-    near = instant_centre("i", V_i, 2.0 + 1e-12 * speed, "j", V_j, 2.0, size)
+    near = instant_centre(V_i, 2.0 + 1e-12 * speed, V_j, 2.0, size)
     assert near.position is None and near.direction is not None
 
 
@@ -130,17 +141,17 @@ def test_instant_centre_thresholds_are_relative_to_speeds_and_size(size: float) 
     turning about the origin at different rates meet there, however small the linkage."""
     V = np.array([1e-3, 0.0]) * size
     motion = 4.0 * size  # (|omega_i| + |omega_j|) size dominates the reference
-    rest = instant_centre("i", V, 2.0, "j", V + np.array([1e-12 * motion, 0.0]), 2.0, size)
+    rest = instant_centre(V, 2.0, V + np.array([1e-12 * motion, 0.0]), 2.0, size)
     assert rest.links == ("i", "j") and rest.position is None and rest.direction is None
-    moving = instant_centre("i", V, 2.0, "j", V + np.array([1e-8 * motion, 0.0]), 2.0, size)
+    moving = instant_centre(V, 2.0, V + np.array([1e-8 * motion, 0.0]), 2.0, size)
     assert moving.links == ("i", "j") and moving.direction is not None
-    turning = instant_centre("i", V, 2.0 + 1e-8 * motion / size, "j", V, 2.0, size)
+    turning = instant_centre(V, 2.0 + 1e-8 * motion / size, V, 2.0, size)
     assert turning.links == ("i", "j") and turning.position is not None
     # Two translating links (omega = 0): the reference is |V_i| + |V_j| alone.
     sliding = np.array([3.0, -1.0]) * size
-    same = instant_centre("i", sliding, 0.0, "j", sliding * (1 + 1e-12), 0.0, size)
+    same = instant_centre(sliding, 0.0, sliding * (1 + 1e-12), 0.0, size)
     assert same.position is None and same.direction is None
-    about_origin = instant_centre("i", np.zeros(2), 3.0, "j", np.zeros(2), -1.0, size)
+    about_origin = instant_centre(np.zeros(2), 3.0, np.zeros(2), -1.0, size)
     assert about_origin.position is not None
     np.testing.assert_allclose(about_origin.position, [0.0, 0.0], atol=1e-15)
 
@@ -157,7 +168,7 @@ def test_the_thresholds_hold_at_the_boundary(size: float) -> None:
     for factor, turns in ((1.0, False), (1.0 + 1e-6, True)):
         omega = factor * POLE_TOLERANCE * speed / size
         assert velocity_poles(X, v, np.array([omega]), size).exists[0] == turns
-        centre = instant_centre("i", v[0], omega, "j", np.zeros(2), 0.0, size)
+        centre = instant_centre(v[0], omega, np.zeros(2), 0.0, size)
         assert (centre.position is not None) == turns
         assert (centre.direction is not None) == (not turns)
         a = v * 10.0
