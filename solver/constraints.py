@@ -660,13 +660,16 @@ def velocity_jacobian(
     scene.moving_links, drivers=True).evaluate``, built at one pose without the system's layout
     (a test compares the two entry by entry)."""
     column = {name: 3 * m for m, name in enumerate(scene.moving_links)}
+    index = {name: m for m, name in enumerate(scene.links)}
     theta = np.array([links[name].theta[k] for name in scene.links], dtype=float)
-    turn = dict(zip(scene.links, zip(np.cos(theta), np.sin(theta), strict=True), strict=True))
+    cos, sin = np.cos(theta), np.sin(theta)
+    ends = [(link, joint.point) for joint in scene.joints for link in joint.links]
+    drawn = np.array([scene.drawn(point) for _, point in ends])
+    anchors = np.array([scene.drawn(scene.links[link].points[0]) for link, _ in ends])
+    which = [index[link] for link, _ in ends]
+    arms = rotate_by(drawn - anchors, cos[which], sin[which])  # r_i, r_j of each joint in turn
     rows: list[Array] = []
     lengths: list[bool] = []
-
-    def arm(link: str, point: str) -> Array:
-        return rotate_by(scene.drawn(point) - scene.drawn(scene.links[link].points[0]), *turn[link])
 
     def row(length: bool, *entries: tuple[str, int, float]) -> None:
         out = np.zeros(3 * len(column))
@@ -676,15 +679,14 @@ def velocity_jacobian(
         rows.append(out)
         lengths.append(length)
 
-    for joint in scene.joints:
+    for joint, r_i, r_j in zip(scene.joints, arms[::2], arms[1::2], strict=True):
         i, j = joint.links
-        r_i, r_j = arm(i, joint.point), arm(j, joint.point)
         if joint.type == "revolute":
             row(True, (i, 0, 1.0), (i, 2, -r_i[1]), (j, 0, -1.0), (j, 2, r_j[1]))
             row(True, (i, 1, 1.0), (i, 2, r_i[0]), (j, 1, -1.0), (j, 2, -r_j[0]))
             continue
         assert joint.axis is not None
-        w = rotate_by(np.array(joint.axis), *turn[i])
+        w = rotate_by(np.array(joint.axis), cos[index[i]], sin[index[i]])
         n = perp(w)
         c_i, c_j = (links[x].point(scene.drawn(scene.links[x].points[0])).p[k] for x in (i, j))
         wd = float(dot(w, (c_j + r_j) - (c_i + r_i)))
