@@ -113,7 +113,9 @@ def solve_instant(
     """
     t = scene.time if time is None else time
     given = [driver_input(scene, d, t) for d in scene.drivers]
-    turns = [driver_input(scene, d, t, wrap=plan.closed_form)[0] for d in scene.drivers]
+    turns = [g[0] for g in given]  # reduced to one turn, unless a Newton group follows them
+    if not plan.closed_form:
+        turns = [driver_input(scene, d, t, wrap=False)[0] for d in scene.drivers]
     inputs = [
         DriverInput(np.array([turn]), np.array([w]), np.array([e]))
         for turn, (_, w, e) in zip(turns, given, strict=True)
