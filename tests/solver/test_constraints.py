@@ -10,7 +10,13 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.constraints import ConstraintSystem, KnownPoses, States, velocity_jacobian
+from solver.constraints import (
+    ConstraintSystem,
+    KnownPoses,
+    States,
+    velocity_condition_number,
+    velocity_jacobian,
+)
 from solver.errors import KinematicsError
 from solver.instant import analyze
 from solver.presets import build_preset
@@ -40,7 +46,9 @@ def test_velocity_jacobian_is_the_constraint_systems(doc: dict[str, object], tur
     """The velocity system's J built at one pose (``velocity_jacobian``, the condition number's)
     equals ``ConstraintSystem(scene, moving links, drivers=True)``'s, entry by entry to 1e-15
     of its largest entry, and so do the rows that are lengths: every preset family, the block
-    in a slotted lever (prismatic) and six-bars, the driver turned away from the drawn pose."""
+    in a slotted lever (prismatic) and six-bars, the driver turned away from the drawn pose. The
+    condition number is numpy's cond of that J scaled (rel 1e-12 cond: entries that differ by
+    rounding move the smallest singular value by about 1e-15 cond of itself)."""
     drivers = doc["drivers"]
     assert isinstance(drivers, list)
     drivers[0]["angle_deg"] = turn
@@ -54,6 +62,11 @@ def test_velocity_jacobian_is_the_constraint_systems(doc: dict[str, object], tur
     _, expected, _ = system.equations(KnownPoses(motion.links, scene).at(0), 0)
     np.testing.assert_allclose(J, expected, rtol=0.0, atol=1e-15 * np.max(np.abs(expected)))
     assert np.array_equal(lengths, system.length_rows)
+    # cond of that J, rotation columns over the size and angle rows times it: numpy's 2-norm cond
+    expected[:, 2::3] /= scene.size
+    expected[~system.length_rows] *= scene.size
+    condition = velocity_condition_number(scene, motion.links, 0)
+    assert condition == pytest.approx(np.linalg.cond(expected), rel=1e-12 * max(condition, 1.0))
 
 
 def test_triad_rates_satisfy_the_differentiated_loop_equations() -> None:
