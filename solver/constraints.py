@@ -688,7 +688,7 @@ def velocity_jacobian(
         assert joint.axis is not None
         w = rotate_by(np.array(joint.axis), cos[index[i]], sin[index[i]])
         n = perp(w)
-        c_i, c_j = (links[x].point(scene.drawn(scene.links[x].points[0])).p[k] for x in (i, j))
+        c_i, c_j = (_anchor(scene, links[x], x)[k] for x in (i, j))
         wd = float(dot(w, (c_j + r_j) - (c_i + r_i)))
         f, g = float(dot(n, perp(r_j))), float(-dot(n, perp(r_i)) - wd)
         row(True, (j, 0, n[0]), (j, 1, n[1]), (j, 2, f), (i, 0, -n[0]), (i, 1, -n[1]), (i, 2, g))
@@ -697,6 +697,12 @@ def velocity_jacobian(
     for driver in scene.drivers:
         row(False, (driver.link, 2, 1.0))
     return np.array(rows), np.array(lengths)
+
+
+def _anchor(scene: LinkageScene, motion: LinkMotion, link: str) -> Array:
+    """The positions of the link's first point (the anchor of the constraint equations)."""
+    positions = LinkMotion(motion.anchor0, PointMotion(motion.anchor.p), motion.theta)
+    return positions.point(scene.drawn(scene.links[link].points[0])).p
 
 
 def velocity_condition_number(
