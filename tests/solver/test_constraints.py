@@ -98,10 +98,11 @@ def test_sliders_and_40_digits_keep_the_joint_by_joint_equations() -> None:
 def test_solve_with_the_translations_eliminated_equals_lu() -> None:
     """J x = b solved as an (M, U, U) system in the rotations, then the translations by A^+,
     equals numpy's LU on the whole (M, n, n) J at random poses (to 1e-12 of |x| where
-    cond(J) < 1e4); a system that is not square has no such reduction."""
+    cond(J) < 1e4); a system with one more unknown than rows (the path's, the crank's angle
+    free) has the reduction but is not square, and is solved by least squares."""
     scene = parse_linkage(TRIAD)
     system = ConstraintSystem(scene, ("T", "L1", "L2", "L3"))
-    assert system.linear is not None and system.linear.reduction is not None
+    assert system.linear is not None and system.linear.rotations is not None
     rng = np.random.default_rng(3)
     samples = 40
     known = {name: _random_states(rng, samples) for name in system.known}
@@ -114,4 +115,5 @@ def test_solve_with_the_translations_eliminated_equals_lu() -> None:
     for k in np.flatnonzero(well):
         np.testing.assert_allclose(x[k], lu[k], rtol=0.0, atol=1e-12 * np.linalg.norm(lu[k]))
     path = ConstraintSystem(scene, scene.moving_links)  # the crank's angle free: 14 x 15
-    assert path.linear is not None and path.linear.reduction is None
+    assert path.linear is not None and path.linear.rotations is not None
+    assert not path.linear.rotations.square and path.rotations(1) is None
