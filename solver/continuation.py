@@ -41,7 +41,7 @@ from solver.newton import NewtonReport
 from solver.rigid import Array, LinkMotion
 from solver.scene import LinkageScene
 
-NODE_TOLERANCE = 1e-11  # a path node's residual, relative to the scene size (samples are polished)
+NODE_TOLERANCE = 1e-9  # a path node's residual, relative to the scene size (samples are polished)
 LIMIT_TOLERANCE = 1e-13  # the residual of a limit position's node (the limits are answers)
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
@@ -113,6 +113,19 @@ class _Leg:
         """Take the last node off."""
         for nodes in (self.s, self.x, self.tau, self.kappa):
             nodes.pop()
+
+    def middle(self) -> Array:
+        """The quintic interpolant of the last segment (``_quintic``) at its middle:
+        (x0 + x1)/2 + 5h/32 (tau0 - tau1) + h^2/64 (kappa0 + kappa1), h the segment's arclength
+        (a curvature not known: (tau1 - tau0)/h, which gives the cubic's middle)."""
+        h = self.s[-1] - self.s[-2]
+        (x0, x1), (tau0, tau1) = self.x[-2:], self.tau[-2:]
+        kappa0, kappa1 = self.kappa[-2:]
+        if kappa0 is None or kappa1 is None:
+            kappa0 = kappa1 = (tau1 - tau0) / h
+        return np.asarray(
+            0.5 * (x0 + x1) + (5.0 * h / 32.0) * (tau0 - tau1) + (h * h / 64.0) * (kappa0 + kappa1)
+        )
 
     def arrays(self, first: int = 0) -> tuple[Array, Array, Array, Array]:
         """Nodes ``first`` onwards as arrays: s, x, tau, and kappa (a curvature not known is
@@ -215,16 +228,16 @@ class Branch:
         """Newton-Raphson on [F(x); tau . (x - predicted)] = 0 from the predictor: the point,
         dF/dx there, whether it converged and in how many iterations."""
         x = predicted
-        last = np.inf
+        last = math.inf  # squared lengths, as the residual's: no square roots
         for iteration in range(CORRECTOR_ITERATIONS + 1):
             F, J = self._f(x)
-            if _norm(F) <= tolerance:
+            if float(F @ F) <= tolerance * tolerance:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
             dx = _bordered_solve(J, tau, F, float(tau @ (x - predicted)))
-            step = _norm(dx)
-            if not np.isfinite(step) or step > CONTRACTION * last:
+            step = float(dx @ dx)
+            if not math.isfinite(step) or step > CONTRACTION * CONTRACTION * last:
                 break  # not contracting: too long a step
             x, last = x - dx, step
         return x, J, False, iteration
@@ -253,7 +266,7 @@ class Branch:
             if ok:  # the quintic between the two nodes must stay on the path (the samples' start)
                 kappa = self._curvature(new, tau_new, J)
                 leg.insert(len(leg.s), new, tau_new, kappa)
-                middle = _horner(_quintic(leg.arrays(-2), np.zeros(1, dtype=int))[:, 0], 0.5)
+                middle = leg.middle()
                 ok = _norm(self._f(middle)[0]) <= INTERPOLATION_RESIDUAL
                 grow = grow if ok else 0.5
                 if not ok or sense * tau_new[self.free] <= 0.0:
@@ -393,7 +406,7 @@ class Branch:
             rate = _horner(slope, u)
             step = (_horner(turn, u) - turns) / np.where(rate != 0.0, rate, 1.0)
             u = np.clip(u - step, 0.0, 1.0)
-            if np.max(np.abs(step)) <= 1e-15:
+            if np.max(np.abs(step)) <= 1e-12:  # the samples are polished from here
                 break
         return _horner(quintic, u[:, None])
 

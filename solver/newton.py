@@ -23,6 +23,9 @@ Jacobian = TypeVar("Jacobian")
 NEWTON_TOLERANCE = 1e-13  # residual, relative to the scene size (the default)
 TOLERANCE_BOUNDS = (1e-15, 1e-6)  # a user's choice of the Newton tolerance must lie in here
 NEWTON_MAX_ITERATIONS = 50
+# A sample whose residual is at most this (times the size) is not polished: the evaluation of
+# Phi rounds at a few eps of the size, so a step from there moves it by rounding only.
+ROUNDING = 4.0 * float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
@@ -65,12 +68,16 @@ def newton_raphson(
 
     Samples below ``tolerance`` stop; the others go on until all have stopped or after
     ``max_iterations``. With ``polish`` one more step then takes a converged iterate to rounding
-    (quadratic convergence), kept only where it lowers the residual. Returns (q, residual norms
+    (quadratic convergence), kept only where it lowers the residual (not taken where all are
+    already at ``ROUNDING``). Returns (q, residual norms
     (M,), iterations, the length of each sample's first step (rotations times the size)).
     """
     weights = np.tile([1.0, 1.0, system.scene.size], len(system.unknown))
     equations = system.residual(known, q.shape[0], turns)
-    return iterate(equations, system.solve, q, weights, tolerance, polish, max_iterations)
+    size = system.scene.size
+    return iterate(
+        equations, system.solve, q, weights, (tolerance, ROUNDING * size), polish, max_iterations
+    )
 
 
 def newton_rotations(
@@ -99,7 +106,9 @@ def newton_rotations(
             return rotations.rates(*J, phi, solve_linear)
 
     weights = np.tile([1.0, 1.0, size], q.shape[1] // 3)
-    return iterate(equations, solve, q, weights, tolerance, polish, max_iterations)
+    return iterate(
+        equations, solve, q, weights, (tolerance, ROUNDING * size), polish, max_iterations
+    )
 
 
 def iterate(
@@ -107,12 +116,15 @@ def iterate(
     solve: Callable[[Jacobian, Array], Array],
     q: Array,
     weights: Array,
-    tolerance: float,
+    tolerances: tuple[float, float],
     polish: bool,
     max_iterations: int,
 ) -> tuple[Array, Array, int, Array]:
     """q <- q - J^-1 Phi(q) with (Phi, J) = ``equations(q)`` and J^-1 b = ``solve(J, b)``, as
-    ``newton_raphson`` describes; ``weights`` per coordinate for the first step's length."""
+    ``newton_raphson`` describes; ``weights`` per coordinate for the first step's length;
+    ``tolerances``: the residual that stops a sample, and the one below which it is not
+    polished."""
+    tolerance, rounding = tolerances
     iterations = 0
     first = np.zeros(q.shape[0])
     while True:
@@ -126,7 +138,7 @@ def iterate(
             first = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
         q = q - step
         iterations += 1
-    if polish and np.any(done):
+    if polish and np.any(done & (residual > rounding)):
         trial = q - solve(J, phi)
         phi_next = equations(trial)[0]
         better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
