@@ -9,20 +9,23 @@ turns with the first held at 0. A sweep and a single instant apply the same rule
 a swept angle returns the swept pose.
 
 **Following the path** (``Branch``): pseudo-arclength continuation on the whole linkage's loop
-equations F(x) = 0 (every moving link unknown, the first driver's angle free, lengths scaled by
-the scene size): from a node x_k with unit tangent tau_k (the null vector of dF/dx), the
-predictor x_k + h tau_k is corrected by Newton-Raphson on [F(x); tau_k . (x - x_pred)] = 0. A step
-is accepted when the corrector contracts and converges and the tangent turns by less than
-MAX_TANGENT_TURN; otherwise h is halved (down to MIN_STEP); an easy step doubles h (up to
-MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path) shows
-as a change of sign of the tangent's driver component; it is located by regula falsi on that
-component, to rounding, so the limits do not depend on the number of samples.
+equations F(y) = 0 (the first driver's angle free), in the moving links' rotations alone where
+the equations are linear in them (``constraints.Rotations``: the translations are eliminated and
+follow from the rotations; 4 equations in 5 angles for a Stephenson III triad), else in every
+link's (x, y, theta) with lengths scaled by the scene size: from a node y_k with unit tangent
+tau_k (the null vector of dF/dy), the predictor y_k + h tau_k + h^2/2 kappa_k is corrected by
+Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is accepted when the corrector
+contracts and converges, the tangent turns by less than MAX_TANGENT_TURN and the quintic between
+the two nodes stays on the path; otherwise h is halved (down to MIN_STEP); an easy step doubles h
+(up to MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path)
+shows as a change of sign of the tangent's driver component; it is located by regula falsi on
+that component, to rounding, so the limits do not depend on the number of samples.
 
-**Every sample at once** (``solve_group``): each sample's starting value is the cubic Hermite
-interpolant of the path between its two nodes (in arclength, solved for the sample's turn); the
-group's coordinates are then polished by Newton-Raphson on all samples together (stacked
-Jacobians, ``numpy.linalg.solve`` on (N, n, n)), and the velocities and accelerations solved the
-same way.
+**Every sample at once** (``solve_group``): each sample's starting value is the quintic Hermite
+interpolant of the path between its two nodes (positions, tangents and curvatures, in
+arclength; solved for the sample's turn); the group's coordinates are then polished by
+Newton-Raphson on all samples together (``newton.newton_rotations``: (N, U, U) solves in the
+rotations, the Jacobian never formed), and the velocities and accelerations solved the same way.
 """
 
 from __future__ import annotations
