@@ -563,7 +563,9 @@ class _Polish:
         """Newton-Raphson on the samples ``todo`` from ``q0`` (``newton.newton_rotations`` where
         the group's equations are linear in (q, cos, sin)): q, residuals, iterations, and the
         lengths of each sample's first step and of its whole move (rotations times the size)."""
-        part = {name: _take(s, todo) for name, s in self.states.items()}
+        part = self.states
+        if todo.size < self.q.shape[0]:
+            part = {name: _take(s, todo) for name, s in self.states.items()}
         rotations, linear = self.system.rotations(todo.size), self.system.linear
         if rotations is None or linear is None:
             q, residual, its, first = newton.newton_raphson(
