@@ -185,12 +185,14 @@ def main() -> None:
         speed_table,
         "",
         "Where a triad's time goes (cProfile with process time): at 360 samples about half in "
-        "the path following, which is sequential (some 36 nodes per turn of the full-turning "
-        "triad, each a second-order prediction and a Newton correction: about four evaluations "
-        "of the loop equations as matrix products, `constraints.LinearForm`, and three 15x15 "
-        "LAPACK solves), half in the batched polish and rates (about six evaluations and six "
-        "stacked solves, the translations eliminated: (N, 4, 4) systems); at 3600 samples the "
-        "filling of the stacked Jacobians and the stacked solves dominate.",
+        "the path following, which is sequential (some 35 nodes per turn of the full-turning "
+        "triad, each a second-order prediction and a Newton correction in the links' rotations "
+        "alone, `constraints.Rotations`: 4 equations in 5 angles, about four evaluations of one "
+        "complex product and four 5x5 LAPACK solves, all numpy call overhead on tiny arrays), "
+        "the rest the batched polish and rates from quintic starting values (two Newton "
+        "iterations, a polishing step and the rates: five stacked (N, 4, 4) solves, the "
+        "Jacobian never formed whole) and the set-up of the two constraint systems; at 3600 "
+        "samples the stacked solves (numpy.linalg.solve, about 0.25 us a 4x4 system) dominate.",
         "",
         "### Newton tolerance: time against error",
         "",
