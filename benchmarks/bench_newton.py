@@ -78,19 +78,20 @@ PARTIAL = triad({
 
 
 def p50_alternating(calls: dict[str, Callable[[], object]], repeats: int) -> dict[str, float]:
-    """Median seconds per call of each function, the functions alternating repeat by repeat."""
+    """Median seconds of process time (CPU, so other processes' load inflates it less than the
+    wall clock) per call of each function, the functions alternating repeat by repeat."""
     times: dict[str, list[float]] = {name: [] for name in calls}
     for fn in calls.values():
         fn()  # warm up
     for _ in range(repeats):
         for name, fn in calls.items():
-            number, start = 0, time.perf_counter()
+            number, start = 0, time.process_time()
             while True:
                 fn()
                 number += 1
-                if time.perf_counter() - start > 0.05:
+                if time.process_time() - start > 0.05:
                     break
-            times[name].append((time.perf_counter() - start) / number)
+            times[name].append((time.process_time() - start) / number)
     return {name: float(np.median(t)) for name, t in times.items()}
 
 
@@ -174,7 +175,8 @@ def main() -> None:
         f"({time.perf_counter() - began:.0f} s; 1-minute load average before the run "
         f"{load:.2f}, after {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores: a load above 0 "
         "means other processes competed, and every row of a table was measured in the same "
-        "run, alternating, so the ratios hold better than the times).",
+        "run, alternating, so the ratios hold better than the times; times are the process's "
+        "CPU time).",
         "",
         "### Newton groups: speed against a four-bar (same run)",
         "",
