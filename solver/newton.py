@@ -90,10 +90,11 @@ def newton_rotations(
     polish: bool = True,
     max_iterations: int = NEWTON_MAX_ITERATIONS,
 ) -> tuple[Array, Array, int, Array]:
-    """``newton_raphson`` on a group whose equations are linear in (q, cos, sin), J never
-    formed: Phi = K_q q + K_c cos + K_s sin + k by matrix products (``known`` = k) and the step
-    J^-1 Phi by ``Rotations.rates`` (an (M, U, U) solve in the rotations, then the translations;
-    least squares in the rotations where a sample is singular)."""
+    """q <- q - J^-1 Phi(q) as ``newton_raphson``, on a group whose equations are linear in
+    (q, cos, sin), J never formed: Phi = K_q q + K_c cos + K_s sin + k by matrix products
+    (``known`` = k) and the step J^-1 Phi by ``Rotations.rates`` (an (M, U, U) solve in the
+    rotations, then the translations; least squares in the rotations where a sample is
+    singular)."""
 
     def equations(x: Array) -> tuple[Array, tuple[Array, Array]]:
         theta = x[:, 2::3]
