@@ -78,19 +78,20 @@ PARTIAL = triad({
 
 
 def p50_alternating(calls: dict[str, Callable[[], object]], repeats: int) -> dict[str, float]:
-    """Median seconds per call of each function, the functions alternating repeat by repeat."""
+    """Median seconds of process time (CPU, so other processes' load inflates it less than the
+    wall clock) per call of each function, the functions alternating repeat by repeat."""
     times: dict[str, list[float]] = {name: [] for name in calls}
     for fn in calls.values():
         fn()  # warm up
     for _ in range(repeats):
         for name, fn in calls.items():
-            number, start = 0, time.perf_counter()
+            number, start = 0, time.process_time()
             while True:
                 fn()
                 number += 1
-                if time.perf_counter() - start > 0.05:
+                if time.process_time() - start > 0.05:
                     break
-            times[name].append((time.perf_counter() - start) / number)
+            times[name].append((time.process_time() - start) / number)
     return {name: float(np.median(t)) for name, t in times.items()}
 
 
@@ -174,7 +175,8 @@ def main() -> None:
         f"({time.perf_counter() - began:.0f} s; 1-minute load average before the run "
         f"{load:.2f}, after {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores: a load above 0 "
         "means other processes competed, and every row of a table was measured in the same "
-        "run, alternating, so the ratios hold better than the times).",
+        "run, alternating, so the ratios hold better than the times; times are the process's "
+        "CPU time).",
         "",
         "### Newton groups: speed against a four-bar (same run)",
         "",
@@ -185,12 +187,14 @@ def main() -> None:
         speed_table,
         "",
         "Where a triad's time goes (cProfile with process time): at 360 samples about half in "
-        "the path following, which is sequential (some 36 nodes per turn of the full-turning "
-        "triad, each a second-order prediction and a Newton correction: about four evaluations "
-        "of the loop equations as matrix products, `constraints.LinearForm`, and three 15x15 "
-        "LAPACK solves), half in the batched polish and rates (about six evaluations and six "
-        "stacked solves, the translations eliminated: (N, 4, 4) systems); at 3600 samples the "
-        "filling of the stacked Jacobians and the stacked solves dominate.",
+        "the path following, which is sequential (some 35 nodes per turn of the full-turning "
+        "triad, each a second-order prediction and a Newton correction in the links' rotations "
+        "alone, `constraints.Rotations`: 4 equations in 5 angles, about four evaluations of one "
+        "complex product and four 5x5 LAPACK solves, all numpy call overhead on tiny arrays), "
+        "the rest the batched polish and rates from quintic starting values (two Newton "
+        "iterations, a polishing step and the rates: five stacked (N, 4, 4) solves, the "
+        "Jacobian never formed whole) and the set-up of the two constraint systems; at 3600 "
+        "samples the stacked solves (numpy.linalg.solve, about 0.25 us a 4x4 system) dominate.",
         "",
         "### Newton tolerance: time against error",
         "",

@@ -319,6 +319,14 @@ class ConstraintSystem:
         unknowns on 1512 samples took 60 ms against 30 ms joint by joint)."""
         return self.linear is not None and (samples == 1 or self.n <= DENSE_UNKNOWNS)
 
+    def rotations(self, samples: int) -> Rotations | None:
+        """The square equations in the rotations alone (``Rotations``) where they are the
+        cheaper evaluation on ``samples`` samples (``_dense``), else None."""
+        if self.linear is None or not self._dense(samples):
+            return None
+        rotations = self.linear.rotations
+        return rotations if rotations is not None and rotations.square else None
+
     def solve(self, J: Array, b: Array) -> Array:
         """x with J x = b for (M, n, n) J from ``evaluate``: ``LinearForm.solve`` where linear,
         else ``solve_linear``."""
@@ -454,13 +462,15 @@ class LinearForm:
         self.flat = rows * self.q.shape[1] + 3 * links + 2
         self.links = links
         self.entries = self.q[rows, 3 * links + 2], self.c[rows, links], self.s[rows, links]
-        self.__dict__.pop("reduction", None)  # a scaled copy eliminates with its own K_q
+        self.__dict__.pop("rotations", None)  # a scaled copy eliminates with its own K_q
 
     @cached_property
-    def reduction(self) -> tuple[Array, Array] | None:
-        """``_translations_eliminated(K_q)``, computed at the first ``solve`` (an SVD: a third of
-        building the form, which the condition number of one instant never solves with)."""
-        return _translations_eliminated(self.q)
+    def rotations(self) -> Rotations | None:
+        """The equations in the rotations alone (``Rotations``), built at their first use (an
+        SVD: a third of building the form, which the condition number of one instant never
+        solves with); None unless every link's translation is fixed by its rows."""
+        eliminated = _translations_eliminated(self.q)
+        return None if eliminated is None else Rotations(self, *eliminated)
 
     def scaled(self, column: Array, row: Array) -> LinearForm:
         """The same equations in scaled coordinates (``ConstraintSystem.residual``): Phi / row
@@ -477,13 +487,23 @@ class LinearForm:
     def pose(self, q: Array, known: Array) -> tuple[Array, Array]:
         """(Phi, J) at q ((n,) or (M, n)), given the known links' part of Phi (``known_terms``)."""
         cos, sin = np.cos(q[..., 2::3]), np.sin(q[..., 2::3])
-        phi = q @ self.q.T + cos @ self.c.T + sin @ self.s.T + known
+        phi = self.residual(q, known, cos, sin)
         J = np.empty((*q.shape[:-1], *self.q.shape))
         J[...] = self.q
         constant, c, s = self.entries
         rotation = constant + s * cos[..., self.links] - c * sin[..., self.links]
         J.reshape(*q.shape[:-1], -1)[..., self.flat] = rotation
         return phi, J
+
+    def residual(
+        self, q: Array, known: Array, cos: Array | None = None, sin: Array | None = None
+    ) -> Array:
+        """Phi = K_q q + K_c cos(theta) + K_s sin(theta) + Phi_known at q ((n,) or (M, n)), given
+        the known links' part (``known_terms``) and, if already computed, cos and sin theta."""
+        theta = q[..., 2::3]
+        cos = np.cos(theta) if cos is None else cos
+        sin = np.sin(theta) if sin is None else sin
+        return np.asarray(q @ self.q.T + cos @ self.c.T + sin @ self.s.T + known)
 
     def bending(self, q: Array, tangent: Array) -> Array:
         """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` (one pose): the
@@ -496,20 +516,17 @@ class LinearForm:
         J = [A | J_theta] (A the constant translation columns) and Q^T A = 0,
         Q^T J_theta x_theta = Q^T b (one rotation per link: an (M, U, U) system) and then
         x_c = A^+ (b - J_theta x_theta). Without that structure, or singular: ``solve_linear``."""
-        if self.reduction is None:
+        rotations = self.rotations
+        if rotations is None or not rotations.square:
             return solve_linear(J, b)
-        Q, pseudo_inverse = self.reduction
         J_theta = J[..., 2::3]
+        Q = rotations.Q
         try:
             x_theta = np.linalg.solve(Q.T @ J_theta, (b @ Q)[..., None])[..., 0]
         except np.linalg.LinAlgError:
             return solve_linear(J, b)
-        M = b.shape[0]
-        x = np.empty((M, self.q.shape[1]))
-        x[:, 2::3] = x_theta
         rest = b - np.einsum("mij,mj->mi", J_theta, x_theta)
-        x.reshape(M, -1, 3)[..., :2] = (rest @ pseudo_inverse.T).reshape(M, -1, 2)
-        return x
+        return rotations.assemble(x_theta, rest @ rotations.pseudo_inverse.T)
 
     def known_terms(
         self, known: Mapping[str, States], samples: int, order: int, turns: Array | None
@@ -561,18 +578,102 @@ class LinearForm:
 
 
 def _translations_eliminated(Kq: Array) -> tuple[Array, Array] | None:
-    """(Q, A^+) for ``LinearForm.solve``: A the translation columns of J (constant: K_q's x and
-    y columns), Q an orthonormal basis of the rows' space orthogonal to A's columns; None
-    unless J is square and A of full column rank (every link's translation fixed by its
-    rows)."""
-    rows, n = Kq.shape
+    """(Q, A^+) for ``Rotations``: A the translation columns of J (constant: K_q's x and y
+    columns), Q an orthonormal basis of the rows' space orthogonal to A's columns; None unless
+    A has full column rank (every link's translation fixed by its rows)."""
+    rows = Kq.shape[0]
     A = Kq.reshape(rows, -1, 3)[..., :2].reshape(rows, -1)
-    if rows != n or A.shape[1] == 0:
+    if A.shape[1] == 0 or A.shape[1] > rows:
         return None
-    U, singular, _ = np.linalg.svd(A)
+    U, singular, Vt = np.linalg.svd(A)
     if singular[-1] <= 1e-9 * singular[0]:
         return None
-    return U[:, A.shape[1] :], np.linalg.pinv(A)
+    columns = A.shape[1]
+    return U[:, columns:], (Vt.T / singular) @ U[:, :columns].T  # A^+ = V S^-1 U_1^T
+
+
+class Rotations:
+    """The loop equations in the unknown links' rotations theta alone. With
+    Phi = A c + r(theta) + k (A the constant translation columns, r(theta) = K_theta theta +
+    K_c cos theta + K_s sin theta, k the known links' part) and Q^T A = 0 (Q orthonormal):
+
+        G(theta) = Q^T (r(theta) + k) = 0,   c = -A^+ (r(theta) + k),
+
+    dG/dtheta = Q^T K_theta + Q^T K_s diag(cos) - Q^T K_c diag(sin) = Q^T J_theta. Where G = 0
+    these c close every row exactly; elsewhere |Phi(c, theta)| = |G(theta)| (the least-squares
+    translations). Newton-Raphson in theta takes the same steps as on the whole system (its
+    rotation part does not depend on c), on (U, U) instead of (3U, 3U) systems.
+    """
+
+    def __init__(self, form: LinearForm, Q: Array, pseudo_inverse: Array) -> None:
+        self.Q, self.pseudo_inverse = Q, pseudo_inverse
+        self.k_theta, self.k_c, self.k_s = form.q[:, 2::3], form.c, form.s
+        self.t, self.c, self.s = Q.T @ self.k_theta, Q.T @ form.c, Q.T @ form.s
+        self.complex = self.c - 1j * self.s
+        self.held = bool(np.any(self.t))  # rows holding an unknown's angle (a driver's)
+        self.square = self.t.shape[0] == self.t.shape[1]
+
+    def fixed(self, known: Array) -> Array:
+        """Q^T k: the known links' part of G, from theirs of Phi (``LinearForm.known_terms``)."""
+        return np.asarray(known @ self.Q)
+
+    def pose(self, theta: Array, fixed: Array) -> tuple[Array, Array]:
+        """(G, dG/dtheta) at theta ((U,) or (M, U)), given ``fixed`` = Q^T k: with
+        P = (C - i S) exp(i theta) (per column), G = sum of Re P + fixed and dG/dtheta = -Im P
+        (the fewest numpy calls: this is the path following's evaluation, one pose at a time)."""
+        P = self.complex * np.exp(1j * theta)[..., None, :]
+        G = P.real.sum(axis=-1) + fixed
+        J = -P.imag
+        if self.held:
+            G += theta @ self.t.T
+            J += self.t
+        return G, J
+
+    def jacobian(self, theta: Array) -> Array:
+        """dG/dtheta at (M, U) theta."""
+        J = self.s * np.cos(theta)[..., None, :] - self.c * np.sin(theta)[..., None, :]
+        return J + self.t if self.held else J
+
+    def bending(self, theta: Array, tangent: Array) -> Array:
+        """(C cos + S sin) theta'^2 along a path theta(s) with theta' = ``tangent`` (one pose):
+        the right-hand side of dG/dtheta theta'' = ... (differentiating dG/dtheta theta' = 0)."""
+        turning = tangent**2
+        return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
+
+    def translations(self, theta: Array, known: Array) -> Array:
+        """c = -A^+ (r(theta) + k) at (M, U) theta, k (M, rows) or (rows,): (M, 2U)."""
+        r = np.cos(theta) @ self.k_c.T + np.sin(theta) @ self.k_s.T + known
+        if self.held:
+            r += theta @ self.k_theta.T
+        return np.asarray(-(r @ self.pseudo_inverse.T))
+
+    def rates(
+        self,
+        theta: Array,
+        jacobian: Array,
+        b: Array,
+        solve: Callable[[Array, Array], Array] | None = None,
+    ) -> Array:
+        """x with J x = b (J the whole system's at (M, U) theta, b (M, rows)): dG/dtheta
+        x_theta = Q^T b with ``jacobian`` = dG/dtheta (LU, or ``solve``), then
+        x_c = A^+ (b - J_theta x_theta), J_theta x_theta = K_theta x_theta +
+        K_s (cos x_theta) - K_c (sin x_theta)."""
+        if solve is None:
+            x_theta = np.linalg.solve(jacobian, (b @ self.Q)[..., None])[..., 0]
+        else:
+            x_theta = solve(jacobian, b @ self.Q)
+        turned = (np.cos(theta) * x_theta) @ self.k_s.T - (np.sin(theta) * x_theta) @ self.k_c.T
+        if self.held:
+            turned += x_theta @ self.k_theta.T
+        return self.assemble(x_theta, (b - turned) @ self.pseudo_inverse.T)
+
+    @staticmethod
+    def assemble(theta: Array, c: Array) -> Array:
+        """(M, 3U) coordinates (x, y, theta per link) from (M, U) rotations and (M, 2U) c."""
+        M, links = theta.shape
+        x = np.empty((M, links, 3))
+        x[..., 2], x[..., :2] = theta, c.reshape(M, links, 2)
+        return x.reshape(M, -1)
 
 
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
@@ -599,6 +700,12 @@ def rates(
 ) -> tuple[Array | None, Array | None]:
     """qdot from J qdot = b_v and qddot from J qddot = b_a at every sample (stacked solves; J
     evaluated once where the equations are linear in (q, cos, sin): b_a needs no J there)."""
+    rotations = system.rotations(q.shape[0])
+    if rotations is not None and system.linear is not None and order:
+        try:
+            return _rotation_rates(system.linear, rotations, known, q, order)
+        except np.linalg.LinAlgError:  # a singular sample: least squares below
+            pass
     qd = qdd = None
     if order >= 1:
         _, J, b = system.evaluate(known, q, order=1)
@@ -611,6 +718,20 @@ def rates(
             _, J, b = system.evaluate(known, q, qd, order=2)
         qdd = system.solve(J, b)
     return qd, qdd
+
+
+def _rotation_rates(
+    form: LinearForm, rotations: Rotations, known: Mapping[str, States], q: Array, order: int
+) -> tuple[Array | None, Array | None]:
+    """``rates`` by ``Rotations.rates``: dG/dtheta evaluated once for both solves, b_v =
+    -Phi_known' and b_a = -Phi_known'' + (K_c cos + K_s sin) omega^2."""
+    theta = q[:, 2::3]
+    J = rotations.jacobian(theta)
+    qd = rotations.rates(theta, J, form.known_terms(known, q.shape[0], 1, None)[1])
+    if order < 2:
+        return qd, None
+    b = form.known_terms(known, q.shape[0], 2, None)[1] + form.centripetal(q, qd)
+    return qd, rotations.rates(theta, J, b)
 
 
 def states(links: Mapping[str, LinkMotion], scene: LinkageScene) -> dict[str, States]:

@@ -9,26 +9,29 @@ turns with the first held at 0. A sweep and a single instant apply the same rule
 a swept angle returns the swept pose.
 
 **Following the path** (``Branch``): pseudo-arclength continuation on the whole linkage's loop
-equations F(x) = 0 (every moving link unknown, the first driver's angle free, lengths scaled by
-the scene size): from a node x_k with unit tangent tau_k (the null vector of dF/dx), the
-predictor x_k + h tau_k is corrected by Newton-Raphson on [F(x); tau_k . (x - x_pred)] = 0. A step
-is accepted when the corrector contracts and converges and the tangent turns by less than
-MAX_TANGENT_TURN; otherwise h is halved (down to MIN_STEP); an easy step doubles h (up to
-MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path) shows
-as a change of sign of the tangent's driver component; it is located by regula falsi on that
-component, to rounding, so the limits do not depend on the number of samples.
+equations F(y) = 0 (the first driver's angle free), in the moving links' rotations alone where
+the equations are linear in them (``constraints.Rotations``: the translations are eliminated and
+follow from the rotations; 4 equations in 5 angles for a Stephenson III triad), else in every
+link's (x, y, theta) with lengths scaled by the scene size: from a node y_k with unit tangent
+tau_k (the null vector of dF/dy), the predictor y_k + h tau_k + h^2/2 kappa_k is corrected by
+Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is accepted when the corrector
+contracts and converges, the tangent turns by less than MAX_TANGENT_TURN and the quintic between
+the two nodes stays on the path; otherwise h is halved (down to MIN_STEP); an easy step doubles h
+(up to MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path)
+shows as a change of sign of the tangent's driver component; it is located by regula falsi on
+that component, to rounding, so the limits do not depend on the number of samples.
 
-**Every sample at once** (``solve_group``): each sample's starting value is the cubic Hermite
-interpolant of the path between its two nodes (in arclength, solved for the sample's turn); the
-group's coordinates are then polished by Newton-Raphson on all samples together (stacked
-Jacobians, ``numpy.linalg.solve`` on (N, n, n)), and the velocities and accelerations solved the
-same way.
+**Every sample at once** (``solve_group``): each sample's starting value is the quintic Hermite
+interpolant of the path between its two nodes (positions, tangents and curvatures, in
+arclength; solved for the sample's turn); the group's coordinates are then polished by
+Newton-Raphson on all samples together (``newton.newton_rotations``: (N, U, U) solves in the
+rotations, the Jacobian never formed), and the velocities and accelerations solved the same way.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -63,26 +66,27 @@ MAX_REFINEMENTS = 12
 POLISH_ITERATIONS = 12
 
 
-def _solve(A: Array, rhs: Array) -> Array:
-    """A x = rhs: LU (LAPACK's dgesv, called directly: numpy.linalg.solve's checks cost three
-    times the solve of a small system) for a square regular A, least squares otherwise."""
+def _bordered_solve(J: Array, row: Array, top: Array | None, last: float) -> Array:
+    """[J; row] z = [top; last] (top None: zeros): LU (LAPACK's dgesv, called directly:
+    numpy.linalg.solve's checks cost three times the solve of a small system) where square and
+    regular, least squares otherwise."""
+    rows = J.shape[0]
+    A = np.empty((rows + 1, J.shape[1]))
+    A[:rows], A[rows] = J, row
+    b = np.zeros(rows + 1)
+    if top is not None:
+        b[:rows] = top
+    b[rows] = last
     if A.shape[0] == A.shape[1]:
-        x, info = dgesv(A, rhs)[2:]
+        x, info = dgesv(A, b)[2:]
         if info == 0:
             return np.asarray(x)
-    return np.linalg.lstsq(A, rhs, rcond=None)[0]
+    return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
 def _norm(v: Array) -> float:
     """|v| for a vector (numpy.linalg.norm's generality costs more than the product)."""
     return math.sqrt(float(v @ v))
-
-
-def _bordered(J: Array, row: Array) -> Array:
-    """[J; row]: the Jacobian with one more row."""
-    A = np.empty((J.shape[0] + 1, J.shape[1]))
-    A[:-1], A[-1] = J, row
-    return A
 
 
 @dataclass
@@ -93,16 +97,53 @@ class _Leg:
     s: list[float]
     x: list[Array]
     tau: list[Array]
+    kappa: list[Array | None]  # the path's curvature dtau/ds at each node, where known
     h: float = 0.1
     limit: float | None = None
-    kappa: Array | None = None  # the path's curvature dtau/ds at the last node, where known
+
+    def insert(self, k: int, x: Array, tau: Array, kappa: Array | None) -> None:
+        """A node at index k (k = len: appended), its arclength from node k - 1 that of a
+        circular arc with their chord c and mean squared curvature: c (1 + c^2 |kappa|^2 / 24)."""
+        chord = _norm(x - self.x[k - 1])
+        before = self.kappa[k - 1]
+        bend = 0.0 if kappa is None or before is None else 0.5 * (kappa @ kappa + before @ before)
+        self.s.insert(k, self.s[k - 1] + chord * (1.0 + chord * chord * bend / 24.0))
+        self.x.insert(k, x)
+        self.tau.insert(k, tau)
+        self.kappa.insert(k, kappa)
+
+    def remove(self) -> None:
+        """Take the last node off."""
+        for nodes in (self.s, self.x, self.tau, self.kappa):
+            nodes.pop()
+
+    def middle(self) -> Array:
+        """The quintic interpolant of the last segment (``_quintic``) at its middle:
+        (x0 + x1)/2 + 5h/32 (tau0 - tau1) + h^2/64 (kappa0 + kappa1), h the segment's arclength
+        (a curvature not known: (tau1 - tau0)/h, which gives the cubic's middle)."""
+        h = self.s[-1] - self.s[-2]
+        (x0, x1), (tau0, tau1) = self.x[-2:], self.tau[-2:]
+        kappa0, kappa1 = self.kappa[-2:]
+        if kappa0 is None or kappa1 is None:
+            kappa0 = kappa1 = (tau1 - tau0) / h
+        return np.asarray(
+            0.5 * (x0 + x1) + (5.0 * h / 32.0) * (tau0 - tau1) + (h * h / 64.0) * (kappa0 + kappa1)
+        )
+
+    def arrays(self, first: int = 0) -> tuple[Array, Array, Array, Array]:
+        """Nodes ``first`` onwards as arrays: s, x, tau, and kappa (a curvature not known is
+        estimated from the tangents by centred differences)."""
+        s, X, T = np.array(self.s[first:]), np.array(self.x[first:]), np.array(self.tau[first:])
+        if all(kappa is not None for kappa in self.kappa[first:]):
+            return s, X, T, np.array(self.kappa[first:])
+        return s, X, T, np.gradient(T, s, axis=0) if len(s) > 1 else np.zeros_like(T)
 
 
 def _predict(leg: _Leg, h: float) -> Array:
     """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, with its
     curvature kappa = dtau/ds (``Branch._curvature``), else estimated from the last two nodes'
     tangents (first order from the drawn pose)."""
-    x, tau, kappa = leg.x[-1], leg.tau[-1], leg.kappa
+    x, tau, kappa = leg.x[-1], leg.tau[-1], leg.kappa[-1]
     if kappa is None and len(leg.s) >= 2:
         kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
     return x + h * tau if kappa is None else x + h * tau + (0.5 * h * h) * kappa
@@ -129,47 +170,60 @@ class Branch:
         self.system = ConstraintSystem(scene, scene.moving_links, angles=others)
         self.held = np.array([held]).reshape(1, len(others))
         self.free_driver = free
-        self.free = self.system.column[drivers[free]] + 2
         size = scene.size
         self.scale = np.tile([size, size, 1.0], len(self.system.unknown))
-        self.row_scale = np.where(self.system.length_rows, size, 1.0)
         ground = scene.ground
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
-        form = self.system.linear
-        self.form = None if form is None else form.scaled(self.scale, self.row_scale)
-        self.equations = self.system.residual(
-            self.known, 1, self.held, (self.scale, self.row_scale)
-        )
         x0 = (self.system.drawn() if start is None else start) / self.scale
+        self._path(x0, self.system.column[drivers[free]])
         self.legs: dict[int, _Leg] = {}
         for sense in (1, -1):
-            tau = np.zeros(x0.size)
+            tau = np.zeros(self.y0.size)
             tau[self.free] = sense
-            J = self._f(x0)[1]
+            J = self._f(self.y0)[1]
             tau = self._tangent(J, tau)
-            self.legs[sense] = _Leg([0.0], [x0], [tau], kappa=self._curvature(x0, tau, J))
+            self.legs[sense] = _Leg([0.0], [self.y0], [tau], [self._curvature(self.y0, tau, J)])
+
+    def _path(self, x0: Array, column: int) -> None:
+        """The coordinates y the path is followed in, from the scaled drawn coordinates x0: the
+        rotations alone where the equations are linear in them (``constraints.Rotations``: the
+        translations follow from them), else x; ``free`` the first driver's index in y."""
+        form = self.system.linear
+        row_scale = np.where(self.system.length_rows, self.scene.size, 1.0)
+        scaled = None if form is None else form.scaled(self.scale, row_scale)
+        rotations = None if scaled is None else scaled.rotations
+        self.bending: Callable[[Array, Array], Array] | None = None
+        if scaled is None or rotations is None:
+            self.equations = self.system.residual(self.known, 1, self.held, (self.scale, row_scale))
+            self.bending = None if scaled is None else scaled.bending
+            self.lift: Callable[[Array], Array] = lambda y: y
+            self.y0, self.free = x0, column + 2
+            return
+        known = scaled.known_terms(self.known, 1, 0, self.held)[0][0]
+        fixed = rotations.fixed(known)
+        self.equations = lambda y: rotations.pose(y, fixed)
+        self.bending = rotations.bending
+        self.lift = lambda y: rotations.assemble(y, rotations.translations(y, known))
+        self.y0, self.free = x0[2::3], column // 3
 
     def _f(self, x: Array) -> tuple[Array, Array]:
-        """Scaled residual F(x) and Jacobian dF/dx at scaled coordinates x."""
+        """Scaled residual F(y) and Jacobian dF/dy at path coordinates y."""
         return self.equations(x)
 
     def _tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
-        A = _bordered(J, previous)
-        rhs = np.zeros(A.shape[0])
-        rhs[-1] = 1.0
-        z = _solve(A, rhs)
+        z = _bordered_solve(J, previous, None, 1.0)
         return z / _norm(z)
 
     def _curvature(self, x: Array, tau: Array, J: Array) -> Array | None:
         """kappa = x'' at a node x with tangent tau: [J; tau] kappa = [bending; 0] (the second
         derivative of F(x(s)) = 0, and tau . kappa = 0 for a unit tangent); None without the
         linear form (a slider: the predictor estimates it from two tangents)."""
-        if self.form is None:
+        if self.bending is None:
             return None
-        return _solve(_bordered(J, tau), np.append(self.form.bending(x, tau), 0.0))
+        return _bordered_solve(J, tau, self.bending(x, tau), 0.0)
 
     def _correct(
         self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
@@ -177,16 +231,16 @@ class Branch:
         """Newton-Raphson on [F(x); tau . (x - predicted)] = 0 from the predictor: the point,
         dF/dx there, whether it converged and in how many iterations."""
         x = predicted
-        last = np.inf
+        last = math.inf  # squared lengths, as the residual's: no square roots
         for iteration in range(CORRECTOR_ITERATIONS + 1):
             F, J = self._f(x)
-            if _norm(F) <= tolerance:
+            if float(F @ F) <= tolerance * tolerance:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
-            dx = _solve(_bordered(J, tau), np.append(F, tau @ (x - predicted)))
-            step = _norm(dx)
-            if not np.isfinite(step) or step > CONTRACTION * last:
+            dx = _bordered_solve(J, tau, F, float(tau @ (x - predicted)))
+            step = float(dx @ dx)
+            if not math.isfinite(step) or step > CONTRACTION * CONTRACTION * last:
                 break  # not contracting: too long a step
             x, last = x - dx, step
         return x, J, False, iteration
@@ -212,11 +266,14 @@ class Branch:
                     MAX_TANGENT_TURN / max(turn, 1e-12), math.sqrt(MAX_CORRECTION / moved)
                 )
                 ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
-            if ok:  # the cubic between the two nodes must stay on the path (the samples' start)
-                chord = _norm(new - x)
-                middle = 0.5 * (x + new) + 0.125 * chord * (tau - tau_new)
+            if ok:  # the quintic between the two nodes must stay on the path (the samples' start)
+                kappa = self._curvature(new, tau_new, J)
+                leg.insert(len(leg.s), new, tau_new, kappa)
+                middle = leg.middle()
                 ok = _norm(self._f(middle)[0]) <= INTERPOLATION_RESIDUAL
                 grow = grow if ok else 0.5
+                if not ok or sense * tau_new[self.free] <= 0.0:
+                    leg.remove()
             if not ok:
                 leg.h = h * min(max(grow, 0.25), 0.5)
                 if leg.h < MIN_STEP:  # the path cannot be continued (a bifurcation): stop here
@@ -225,10 +282,6 @@ class Branch:
             if sense * tau_new[self.free] <= 0.0:
                 self._limit(leg, sense, h, sense * float(tau_new[self.free]))
                 break
-            leg.s.append(leg.s[-1] + chord)
-            leg.x.append(new)
-            leg.tau.append(tau_new)
-            leg.kappa = self._curvature(new, tau_new, J)
             leg.h = min(h * min(grow, 2.0), MAX_STEP)
         return leg
 
@@ -256,9 +309,7 @@ class Branch:
                 b, g_b = s, g
                 g_a = g_a / 2.0 if kept == -1 else g_a
                 kept = -1
-        leg.s.append(leg.s[-1] + _norm(point - x))
-        leg.x.append(point)
-        leg.tau.append(tangent)
+        leg.insert(len(leg.s), point, tangent, self._curvature(point, tangent, J))
         leg.limit = self._turn(point)
 
     def reaches(self, turn: float) -> bool:
@@ -285,7 +336,7 @@ class Branch:
         """Interpolated coordinates (unscaled, (K, n)) at ``turns`` by the branch rule, which
         turns the path reaches, and the turns as reached (the other way round: t -+ 2 pi)."""
         turns = np.array(turns, dtype=float)
-        x = np.zeros((turns.size, self.scale.size))
+        x = np.zeros((turns.size, self.y0.size))
         reached = np.zeros(turns.size, dtype=bool)
         for sense in (1, -1):
             mine = (turns >= 0.0) if sense > 0 else (turns < 0.0)
@@ -301,8 +352,8 @@ class Branch:
         for sense in (1, -1):
             mine = reached & ((turns >= 0.0) if sense > 0 else (turns < 0.0))
             if np.any(mine):
-                x[mine] = self._interpolate(self.legs[sense], sense, turns[mine])
-        return x * self.scale, reached, turns
+                x[mine] = self._segments(self.legs[sense], sense, turns[mine])
+        return self.lift(x) * self.scale, reached, turns
 
     def pose(self, turn: float, tolerance: float) -> Array | None:
         """The linkage's coordinates at the free driver's ``turn`` (None if not reached),
@@ -338,37 +389,59 @@ class Branch:
                         break
                 if not ok:
                     continue
-                leg.s.insert(k + 1, leg.s[k] + _norm(new - x))
-                leg.x.insert(k + 1, new)
-                leg.tau.insert(k + 1, self._tangent(J, tau))
+                tangent = self._tangent(J, tau)
+                leg.insert(k + 1, new, tangent, self._curvature(new, tangent, J))
 
-    def _interpolate(self, leg: _Leg, sense: int, turns: Array) -> Array:
-        """Cubic Hermite interpolation in arclength between the nodes bracketing each turn."""
-        X = np.array(leg.x)
-        T = np.array(leg.tau)
-        s = np.array(leg.s)
-        t_nodes = sense * X[:, self.free]
-        k = np.clip(np.searchsorted(t_nodes, sense * turns) - 1, 0, len(leg.s) - 2)
-        h = (s[k + 1] - s[k])[:, None]
-        x0, x1, d0, d1 = X[k], X[k + 1], T[k] * h, T[k + 1] * h
-        t0, t1 = x0[:, self.free], x1[:, self.free]
-        u = np.clip((turns - t0) / np.where(t1 != t0, t1 - t0, 1.0), 0.0, 1.0)
+    def _segments(self, leg: _Leg, sense: int, turns: Array) -> Array:
+        """The coordinates at ``turns`` on the leg: in the segment between the nodes bracketing
+        each, the u in [0, 1] where the quintic's driver turn is the turn (Newton-Raphson on the
+        monotone t(u)), then the quintic there."""
+        nodes = leg.arrays()
         f = self.free
-        for _ in range(6):  # Newton on the monotone cubic t(u) = turn
-            h00, h10, h01, h11 = _hermite(u)
-            g00, g10 = 6 * u**2 - 6 * u, 3 * u**2 - 4 * u + 1
-            g01, g11 = 6 * u - 6 * u**2, 3 * u**2 - 2 * u
-            t = h00 * t0 + h10 * d0[:, f] + h01 * t1 + h11 * d1[:, f]
-            dt = g00 * t0 + g10 * d0[:, f] + g01 * t1 + g11 * d1[:, f]
-            u = np.clip(u - (t - turns) / np.where(dt != 0.0, dt, 1.0), 0.0, 1.0)
-        h00, h10, h01, h11 = _hermite(u)
-        return h00[:, None] * x0 + h10[:, None] * d0 + h01[:, None] * x1 + h11[:, None] * d1
+        t_nodes = sense * nodes[1][:, f]
+        k = np.clip(np.searchsorted(t_nodes, sense * turns) - 1, 0, len(leg.s) - 2)
+        quintic = _quintic(nodes, k)
+        turn = quintic[..., f]
+        t0, t1 = nodes[1][k, f], nodes[1][k + 1, f]
+        u = np.clip((turns - t0) / np.where(t1 != t0, t1 - t0, 1.0), 0.0, 1.0)
+        slope = turn[1:] * np.arange(1.0, 6.0)[:, None]
+        for _ in range(8):
+            rate = _horner(slope, u)
+            step = (_horner(turn, u) - turns) / np.where(rate != 0.0, rate, 1.0)
+            u = np.clip(u - step, 0.0, 1.0)
+            if np.max(np.abs(step)) <= 1e-12:  # the samples are polished from here
+                break
+        return _horner(quintic, u[:, None])
 
 
-def _hermite(u: Array) -> tuple[Array, Array, Array, Array]:
-    """The cubic Hermite basis h00, h10, h01, h11 at u in [0, 1]."""
-    u2, u3 = u * u, u * u * u
-    return 2 * u3 - 3 * u2 + 1, u3 - 2 * u2 + u, 3 * u2 - 2 * u3, u3 - u2
+# The quintic Hermite basis (value, first and second derivative at u = 0 and 1) as monomials:
+# x(u) = sum_j u^j sum_i QUINTIC[j, i] data_i, data (x0, x0', x0'', x1'', x1', x1).
+_QUINTIC = np.array([
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.5, 0.0, 0.0, 0.0],
+    [-10.0, -6.0, -1.5, 0.5, -4.0, 10.0],
+    [15.0, 8.0, 1.5, -1.0, 7.0, -15.0],
+    [-6.0, -3.0, -0.5, 0.5, -3.0, 6.0],
+])  # fmt: skip
+
+
+def _quintic(nodes: tuple[Array, Array, Array, Array], k: Array) -> Array:
+    """The monomial coefficients (6, K, n) of the quintic Hermite interpolant in u in [0, 1] of
+    segments k (node k to k + 1: positions, and tangents and curvatures in arclength, times the
+    segment's arclength h and h^2); ``nodes`` from ``_Leg.arrays``."""
+    s, X, T, K = nodes
+    h = (s[k + 1] - s[k])[:, None]
+    data = np.stack([X[k], T[k] * h, K[k] * h * h, K[k + 1] * h * h, T[k + 1] * h, X[k + 1]])
+    return np.tensordot(_QUINTIC, data, axes=1)
+
+
+def _horner(coefficients: Array, u: Array | float) -> Array:
+    """sum_j coefficients[j] u^j by Horner's rule."""
+    value = coefficients[-1]
+    for c in coefficients[-2::-1]:
+        value = value * u + c
+    return value
 
 
 @dataclass
@@ -473,14 +546,8 @@ class _Polish:
             if branch is not None and turns is not None:
                 x, self.reached[todo], way = branch.guesses(turns[todo])
                 q0 = x[:, self.columns]
-            part = {name: _take(s, todo) for name, s in self.states.items()}
-            self.q[todo], self.residual[todo], its, first = newton.newton_raphson(
-                self.system, part, q0, self.tolerance, polish=self.polish,
-                max_iterations=POLISH_ITERATIONS,
-            )  # fmt: skip
+            self.q[todo], self.residual[todo], its, first, moved = self._newton(todo, q0)
             self.iterations = max(self.iterations, its)
-            step = (self.q[todo] - q0) * self.weights
-            moved = np.sqrt(np.einsum("mi,mi->m", step, step))
             # Converged to the root its start points at: about one first step away, and close.
             good = (self.residual[todo] <= self.tolerance) & (
                 moved <= 2.0 * first + 1e-9 * self.size
@@ -491,6 +558,27 @@ class _Polish:
                 break
             branch.refine(way[bad])
             todo = todo[bad]
+
+    def _newton(self, todo: Array, q0: Array) -> tuple[Array, Array, int, Array, Array]:
+        """Newton-Raphson on the samples ``todo`` from ``q0`` (``newton.newton_rotations`` where
+        the group's equations are linear in (q, cos, sin)): q, residuals, iterations, and the
+        lengths of each sample's first step and of its whole move (rotations times the size)."""
+        part = self.states
+        if todo.size < self.q.shape[0]:
+            part = {name: _take(s, todo) for name, s in self.states.items()}
+        rotations, linear = self.system.rotations(todo.size), self.system.linear
+        if rotations is None or linear is None:
+            q, residual, its, first = newton.newton_raphson(
+                self.system, part, q0, self.tolerance, polish=self.polish,
+                max_iterations=POLISH_ITERATIONS,
+            )  # fmt: skip
+        else:
+            q, residual, its, first = newton.newton_rotations(
+                linear, rotations, linear.known_terms(part, todo.size, 0, None)[0], q0,
+                self.size, self.tolerance, polish=self.polish, max_iterations=POLISH_ITERATIONS,
+            )  # fmt: skip
+        step = (q - q0) * self.weights
+        return q, residual, its, first, np.sqrt(np.einsum("mi,mi->m", step, step))
 
 
 def _take(states: States, index: Array) -> States:

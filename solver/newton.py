@@ -9,18 +9,23 @@ by continuation (``solver.continuation``).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
-from solver.constraints import ConstraintSystem, States
+from solver.constraints import ConstraintSystem, LinearForm, Rotations, States, solve_linear
 from solver.errors import InvalidScene
 from solver.rigid import Array
 
+Jacobian = TypeVar("Jacobian")
 NEWTON_TOLERANCE = 1e-13  # residual, relative to the scene size (the default)
 TOLERANCE_BOUNDS = (1e-15, 1e-6)  # a user's choice of the Newton tolerance must lie in here
 NEWTON_MAX_ITERATIONS = 50
+# A sample whose residual is at most this (times the size) is not polished: the evaluation of
+# Phi rounds at a few eps of the size, so a step from there moves it by rounding only.
+ROUNDING = 4.0 * float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
@@ -63,26 +68,79 @@ def newton_raphson(
 
     Samples below ``tolerance`` stop; the others go on until all have stopped or after
     ``max_iterations``. With ``polish`` one more step then takes a converged iterate to rounding
-    (quadratic convergence), kept only where it lowers the residual. Returns (q, residual norms
+    (quadratic convergence), kept only where it lowers the residual (not taken where all are
+    already at ``ROUNDING``). Returns (q, residual norms
     (M,), iterations, the length of each sample's first step (rotations times the size)).
     """
-    iterations = 0
     weights = np.tile([1.0, 1.0, system.scene.size], len(system.unknown))
-    first = np.zeros(q.shape[0])
     equations = system.residual(known, q.shape[0], turns)
+    size = system.scene.size
+    return iterate(
+        equations, system.solve, q, weights, (tolerance, ROUNDING * size), polish, max_iterations
+    )
+
+
+def newton_rotations(
+    form: LinearForm,
+    rotations: Rotations,
+    known: Array,
+    q: Array,
+    size: float,
+    tolerance: float,
+    polish: bool = True,
+    max_iterations: int = NEWTON_MAX_ITERATIONS,
+) -> tuple[Array, Array, int, Array]:
+    """q <- q - J^-1 Phi(q) as ``newton_raphson``, on a group whose equations are linear in
+    (q, cos, sin), J never formed: Phi = K_q q + K_c cos + K_s sin + k by matrix products
+    (``known`` = k) and the step J^-1 Phi by ``Rotations.rates`` (an (M, U, U) solve in the
+    rotations, then the translations; least squares in the rotations where a sample is
+    singular)."""
+
+    def equations(x: Array) -> tuple[Array, tuple[Array, Array]]:
+        theta = x[:, 2::3]
+        return form.residual(x, known), (theta, rotations.jacobian(theta))
+
+    def solve(J: tuple[Array, Array], phi: Array) -> Array:
+        try:
+            return rotations.rates(*J, phi)
+        except np.linalg.LinAlgError:
+            return rotations.rates(*J, phi, solve_linear)
+
+    weights = np.tile([1.0, 1.0, size], q.shape[1] // 3)
+    return iterate(
+        equations, solve, q, weights, (tolerance, ROUNDING * size), polish, max_iterations
+    )
+
+
+def iterate(
+    equations: Callable[[Array], tuple[Array, Jacobian]],
+    solve: Callable[[Jacobian, Array], Array],
+    q: Array,
+    weights: Array,
+    tolerances: tuple[float, float],
+    polish: bool,
+    max_iterations: int,
+) -> tuple[Array, Array, int, Array]:
+    """q <- q - J^-1 Phi(q) with (Phi, J) = ``equations(q)`` and J^-1 b = ``solve(J, b)``, as
+    ``newton_raphson`` describes; ``weights`` per coordinate for the first step's length;
+    ``tolerances``: the residual that stops a sample, and the one below which it is not
+    polished."""
+    tolerance, rounding = tolerances
+    iterations = 0
+    first = np.zeros(q.shape[0])
     while True:
         phi, J = equations(q)
         residual = np.sqrt(np.einsum("mi,mi->m", phi, phi))
         done = residual <= tolerance
         if np.all(done | ~np.isfinite(residual)) or iterations >= max_iterations:
             break
-        step = np.where(done[:, None], 0.0, system.solve(J, phi))
+        step = np.where(done[:, None], 0.0, solve(J, phi))
         if iterations == 0:
             first = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
         q = q - step
         iterations += 1
-    if polish and np.any(done):
-        trial = q - system.solve(J, phi)
+    if polish and np.any(done & (residual > rounding)):
+        trial = q - solve(J, phi)
         phi_next = equations(trial)[0]
         better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
         take = done & (better < residual)

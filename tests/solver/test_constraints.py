@@ -142,10 +142,11 @@ def test_sliders_and_40_digits_keep_the_joint_by_joint_equations() -> None:
 def test_solve_with_the_translations_eliminated_equals_lu() -> None:
     """J x = b solved as an (M, U, U) system in the rotations, then the translations by A^+,
     equals numpy's LU on the whole (M, n, n) J at random poses (to 1e-12 of |x| where
-    cond(J) < 1e4); a system that is not square has no such reduction."""
+    cond(J) < 1e4); a system with one more unknown than rows (the path's, the crank's angle
+    free) has the reduction but is not square, and is solved by least squares."""
     scene = parse_linkage(TRIAD)
     system = ConstraintSystem(scene, ("T", "L1", "L2", "L3"))
-    assert system.linear is not None and system.linear.reduction is not None
+    assert system.linear is not None and system.linear.rotations is not None
     rng = np.random.default_rng(3)
     samples = 40
     known = {name: _random_states(rng, samples) for name in system.known}
@@ -158,4 +159,54 @@ def test_solve_with_the_translations_eliminated_equals_lu() -> None:
     for k in np.flatnonzero(well):
         np.testing.assert_allclose(x[k], lu[k], rtol=0.0, atol=1e-12 * np.linalg.norm(lu[k]))
     path = ConstraintSystem(scene, scene.moving_links)  # the crank's angle free: 14 x 15
-    assert path.linear is not None and path.linear.reduction is None
+    assert path.linear is not None and path.linear.rotations is not None
+    assert not path.linear.rotations.square and path.rotations(1) is None
+
+
+@pytest.mark.parametrize("case", ["group", "held angles"])
+def test_the_rotations_alone_equal_the_projected_loop_equations(case: str) -> None:
+    """constraints.Rotations at random poses: G(theta) = Q^T Phi(c, theta) for any c (Q^T A = 0
+    to rounding), dG/dtheta = Q^T J_theta (and a central difference of G, to 1e-7), the
+    translations c = -A^+ (...) leave |Phi| = |G| (least squares), and x = rates(J, b) solves
+    the whole J x = b (LU, 1e-12 of |x| where cond(J) < 1e4; square systems only). With held
+    angles (the path of a two-driver linkage) the angle rows enter G through K_theta."""
+    scene = parse_linkage(TRIAD)
+    unknown = ("T", "L1", "L2", "L3") if case == "group" else scene.moving_links
+    system = ConstraintSystem(scene, unknown, angles=("crank",) if case != "group" else ())
+    form = system.linear
+    assert form is not None and form.rotations is not None
+    rotations = form.rotations
+    assert rotations.held == (case != "group") and rotations.square
+    rng = np.random.default_rng(11)
+    samples = 30
+    known = {name: _random_states(rng, samples) for name in system.known}
+    q = rng.normal(size=(samples, system.n))
+    turns = rng.normal(size=(samples, len(system.angles)))
+    k = form.known_terms(known, samples, 0, turns)[0]
+    phi, J, _ = system.evaluate(known, q, turns=turns)
+    theta = q[:, 2::3]
+    G, dG = rotations.pose(theta, rotations.fixed(k))
+    np.testing.assert_allclose(G, phi @ rotations.Q, rtol=0.0, atol=1e-13)
+    np.testing.assert_allclose(dG, rotations.jacobian(theta), rtol=0.0, atol=1e-15)
+    np.testing.assert_allclose(dG, rotations.Q.T @ J[..., 2::3], rtol=0.0, atol=1e-13)
+    h = 1e-6
+    for u in range(theta.shape[1]):
+        step = np.zeros_like(theta)
+        step[:, u] = h
+        fd = (
+            rotations.pose(theta + step, rotations.fixed(k))[0]
+            - rotations.pose(theta - step, rotations.fixed(k))[0]
+        ) / (2 * h)
+        np.testing.assert_allclose(fd, dG[..., u], rtol=0.0, atol=1e-7)
+    c = rotations.translations(theta, k)
+    closed = rotations.assemble(theta, c)
+    np.testing.assert_allclose(closed[:, 2::3], theta, rtol=0.0, atol=0.0)
+    least = form.residual(closed, k)
+    np.testing.assert_allclose(np.linalg.norm(least, axis=1), np.linalg.norm(G, axis=1), rtol=1e-9)
+    b = rng.normal(size=phi.shape)
+    x = rotations.rates(theta, dG, b)
+    lu = np.linalg.solve(J, b[..., None])[..., 0]
+    well = np.linalg.cond(J) < 1e4
+    assert np.sum(well) >= 10
+    for m in np.flatnonzero(well):
+        np.testing.assert_allclose(x[m], lu[m], rtol=0.0, atol=1e-12 * np.linalg.norm(lu[m]))
