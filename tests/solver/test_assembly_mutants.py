@@ -1,0 +1,128 @@
+"""What mutation testing of solver.assembly found untested (issue 8), tested through solver.sweep:
+
+- a full-turn sweep's velocities, accelerations and link rates (the sweep trims its extra
+  samples with ``Motion.cut``): against the Heron closed form of the four-bar
+  (tests.solver.test_assembly.four_bar_C) differentiated by central differences in the crank
+  angle, and a coupler point against the rigid-body rotation of the drawn one;
+- the closest approach of a group downstream of a group that switches branch at a true change
+  point (a parallelogram passing its change points, driving a dyad that comes within 2e-4 m of
+  its own): the approach is evaluated between samples with the upstream group on the branch it
+  has switched to, and matches the closed form of the parallelogram.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+import solver
+from solver.presets import build_preset
+from solver.scene import parse_linkage
+from solver.sweeps import sweep
+from tests.solver.test_assembly import four_bar_C
+
+ALL = ["position", "velocity", "acceleration"]
+
+
+def _angle(p: np.ndarray) -> np.ndarray:
+    return np.unwrap(np.arctan2(p[:, 1], p[:, 0]))
+
+
+def test_full_turn_sweep_rates_match_the_differentiated_closed_form() -> None:
+    """Crank-rocker (g 1, crank 0.4, coupler 0.9, rocker 0.7) driven at omega = 2 rad/s, 90
+    samples over a full turn: C's velocity and acceleration are omega dC/dtheta and
+    omega^2 d^2C/dtheta^2 of the closed form (central differences, step 1e-4: to 1e-6 m/s and
+    1e-5 m/s^2); the rocker's omega and alpha likewise from its angle atan2(C - D); the coupler
+    point P turns rigidly with BC (P - B = R(angle BC - angle B0C0)(P0 - B0), to 1e-9 m)."""
+    omega = 2.0
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.7}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": omega})
+    scene = parse_linkage(doc)
+    body = solver.sweep(doc, 90, ALL).as_dict()
+    assert body["feasible"] and len(body["driver_angle"]) == 90
+    theta, h = np.asarray(body["driver_angle"]), 1e-4
+    C = four_bar_C(scene, theta)
+    ahead, behind = four_bar_C(scene, theta + h), four_bar_C(scene, theta - h)
+    got = body["points"]["C"]
+    np.testing.assert_allclose(got["position"], C, atol=1e-9)
+    np.testing.assert_allclose(got["velocity"], omega * (ahead - behind) / (2 * h), atol=1e-6)
+    second = omega**2 * (ahead - 2.0 * C + behind) / h**2
+    np.testing.assert_allclose(got["acceleration"], second, atol=1e-5)
+
+    D = np.array(doc["points"]["D"])
+    phi = [_angle(X - D) for X in (C, ahead, behind)]
+    rocker = body["links"]["rocker"]
+    np.testing.assert_allclose(rocker["omega"], omega * (phi[1] - phi[2]) / (2 * h), atol=1e-6)
+    alpha = omega**2 * (phi[1] - 2.0 * phi[0] + phi[2]) / h**2
+    np.testing.assert_allclose(rocker["alpha"], alpha, atol=1e-5)
+
+    B0, C0, P0 = (np.array(doc["points"][p]) for p in "BCP")
+    B = body["points"]["B"]["position"]
+    turn = _angle(C - B) - math.atan2(*(C0 - B0)[::-1])
+    c, s = np.cos(turn), np.sin(turn)
+    r = P0 - B0
+    P = B + np.stack((c * r[0] - s * r[1], s * r[0] + c * r[1]), axis=-1)
+    np.testing.assert_allclose(body["points"]["P"]["position"], P, atol=1e-9)
+
+
+def _parallelogram_with_dyad(start_deg: float, gap: float) -> dict[str, Any]:
+    """Parallelogram A(0,0) B C D(1,0) (crank = rocker = 0.4, coupler = ground = 1), and a dyad
+    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = (1, 1.5) on the ground). On the parallelogram
+    C = D + 0.4 (cos t, sin t), so |CF| is largest, |DF| + 0.4 = 1.9, at t = -90 deg: the dyad's
+    closest approach is r1 + r2 - 1.9 = gap there."""
+    t = math.radians(start_deg)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    C = np.array([B[0] + 1.0, B[1]])
+    F = np.array([1.0, 1.5])
+    r1, r2 = 1.0, 0.9 + gap
+    d_vec = F - C
+    d = math.hypot(*d_vec)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    u = d_vec / d
+    E = C + a * u + math.sqrt(r1 * r1 - a * a) * np.array([-u[1], u[0]])
+    return {
+        "kind": "linkage",
+        "title": "parallelogram driving a dyad",
+        "points": {
+            "A": [0.0, 0.0],
+            "B": B,
+            "C": C.tolist(),
+            "D": [1.0, 0.0],
+            "E": E.tolist(),
+            "F": F.tolist(),
+        },
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": ["C", "E"]},
+            "link": {"points": ["F", "E"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
+            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
+            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
+            {"type": "revolute", "point": "C", "links": ["rocker", "arm"]},
+            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
+            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
+            {"type": "revolute", "point": "F", "links": ["link", "ground"]},
+        ],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
+def test_close_approach_downstream_of_a_switching_parallelogram() -> None:
+    """Swept from 60 deg with 100 samples (3.6 deg apart, none at -90 deg): the parallelogram
+    passes its change points at 180 and 360 deg and stays a parallelogram (C = B + (1, 0) to
+    1e-9 m everywhere); the dyad's one close approach, between samples after the first switch,
+    is gap = 2e-4 m (to 1e-12 m) at crank -90 deg (to 1e-6 rad)."""
+    gap = 2e-4
+    result = sweep(parse_linkage(_parallelogram_with_dyad(60.0, gap)), 100, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+    (approach,) = [a for a in result.close_approaches if a.point == "E"]
+    assert abs(approach.margin - gap) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle + math.pi / 2, 2 * math.pi)) <= 1e-6
