@@ -16,6 +16,7 @@ import math
 from typing import Any
 
 import numpy as np
+import pytest
 
 import solver
 from solver.presets import build_preset
@@ -114,13 +115,15 @@ def _parallelogram_with_dyad(start_deg: float, gap: float) -> dict[str, Any]:
     }
 
 
-def test_close_approach_downstream_of_a_switching_parallelogram() -> None:
-    """Swept from 60 deg with 100 samples (3.6 deg apart, none at -90 deg): the parallelogram
-    passes its change points at 180 and 360 deg and stays a parallelogram (C = B + (1, 0) to
-    1e-9 m everywhere); the dyad's one close approach, between samples after the first switch,
-    is gap = 2e-4 m (to 1e-12 m) at crank -90 deg (to 1e-6 rad)."""
+@pytest.mark.parametrize("start_deg", [60.0, 200.0])
+def test_close_approach_downstream_of_a_switching_parallelogram(start_deg: float) -> None:
+    """Swept with 100 samples (3.6 deg apart, none at -90 deg) from 60 deg (the approach comes
+    after one switch) and from 200 deg (before any): the parallelogram passes its change points
+    at 180 and 360 deg and stays a parallelogram (C = B + (1, 0) to 1e-9 m everywhere); the
+    dyad's one close approach, between samples, is gap = 2e-4 m (to 1e-12 m) at crank -90 deg
+    (to 1e-6 rad)."""
     gap = 2e-4
-    result = sweep(parse_linkage(_parallelogram_with_dyad(60.0, gap)), 100, ["position"])
+    result = sweep(parse_linkage(_parallelogram_with_dyad(start_deg, gap)), 100, ["position"])
     B, C = (result.motion.points[p].p for p in "BC")
     assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
     (approach,) = [a for a in result.close_approaches if a.point == "E"]

@@ -246,3 +246,63 @@ def test_slotted_lever_at_unit_distance_and_on_its_pivot() -> None:
     assert lever.gradient_sine[0] == 0.0
     margin, rate = dyads.lever_margin(pivot, on_pivot, 0.0)
     assert margin[0] == 0.0 and rate is not None and np.isfinite(rate[0])
+
+
+def _circle_and_line_at(distance: float, angle: float) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """A circle of radius 1000 m about C and a slot at ``distance`` from C with direction angle
+    ``angle``: the loci, the foot F of the perpendicular from C, and the slot's direction w."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    w = np.array([math.cos(angle), math.sin(angle)])
+    C = np.array([0.3, -0.7])
+    F = C + distance * np.array([-w[1], w[0]])
+    circle = dyads.Circle(PointMotion(C[None, :]), 1000.0, "C", "c")
+    line = dyads.Line(PointMotion((F + 2.7 * w)[None, :]), w[None, :], None, None, "guide")
+    return circle, line, F, w
+
+
+def _two_circles_at(distance: float, angle: float) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """Circles of radii 1000 m and 600 m whose centres are ``distance`` apart in direction
+    ``angle``: the loci, the foot F on the line of centres (a = (r1^2 - r2^2 + d^2) / 2d from
+    C1) and the unit normal to it (the common chord's direction)."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    u = np.array([math.cos(angle), math.sin(angle)])
+    C1 = np.array([0.3, -0.7])
+    C2 = C1 + distance * u
+    a = (1000.0**2 - 600.0**2 + distance**2) / (2.0 * distance)
+    loci = (dyads.Circle(PointMotion(C[None, :]), r, "C", "c") for C, r in ((C1, 1e3), (C2, 600.0)))
+    return *loci, C1 + a * u, np.array([-u[1], u[0]])
+
+
+@pytest.mark.parametrize("kind", ["circle-line", "circle-circle"])
+def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> None:
+    """Radius 1000 m: at an exact tangency (slot at distance r, or centres r1 + r2 apart) h^2 is
+    rounding noise of a few eps r^2 (1e-10 m^2 here): the point is the tangent point, to 1e-8 m,
+    not sqrt(noise) ~ 1e-5 m off. A half-chord of about 1e-3 m (h^2 ~ 1e-6 m^2, 1e-12 r^2:
+    far above the noise) is kept: X = F +- h n, h from the closed form (Pythagoras, or Heron's
+    area for two circles), to 1e-6 m. Twenty directions each."""
+    from solver import dyads
+
+    for k in range(1, 21):
+        angle = 0.3 * k
+        if kind == "circle-line":
+            first, second, F, w = _circle_and_line_at(1000.0, angle)
+        else:
+            first, second, F, w = _two_circles_at(1600.0, angle)
+        cut = dyads.intersect(first, second, "X")
+        for sign in (1.0, -1.0):
+            assert math.hypot(*(cut.point(np.array([sign]))[0] - F)) <= 1e-8, (k, sign)
+        h = 1e-3
+        if kind == "circle-line":
+            first, second, F, w = _circle_and_line_at(math.sqrt((1e3 - h) * (1e3 + h)), angle)
+        else:
+            d = 1600.0 - 1.5e-9  # h^2 ~ 2 (r1 r2 / (r1 + r2)) (r1 + r2 - d) = 1.1e-6 m^2
+            s = 0.5 * (1e3 + 600.0 + d)
+            h = 2.0 * math.sqrt(s * (s - 1e3) * (s - 600.0) * 0.5 * (1600.0 - d)) / d
+            first, second, F, w = _two_circles_at(d, angle)
+        cut = dyads.intersect(first, second, "X")
+        X = cut.point(np.ones(1))[0]
+        assert min(math.hypot(*(X - F - h * w)), math.hypot(*(X - F + h * w))) <= 1e-6, k
