@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 import solver
+from solver.errors import NotAssemblable
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from solver.sweeps import sweep
@@ -129,3 +130,50 @@ def test_close_approach_downstream_of_a_switching_parallelogram(start_deg: float
     (approach,) = [a for a in result.close_approaches if a.point == "E"]
     assert abs(approach.margin - gap) <= 1e-12
     assert abs(math.remainder(approach.driver_angle + math.pi / 2, 2 * math.pi)) <= 1e-6
+
+
+def _inverted(crank: float, drawn_deg: float) -> dict[str, Any]:
+    values = {"crank": crank, "ground": 1.0, "lever": 1.5, "slot_offset": 0.2}
+    return build_preset("inverted_slider_crank", {**values, "crank_angle_deg": drawn_deg})
+
+
+def test_slotted_lever_that_cannot_close_says_why() -> None:
+    """Inverted slider-crank (crank OA 0.9, ground OC 1, slot 0.2 m off the lever's pivot C)
+    drawn at 180 deg, swept from 0 deg: there |CA| = 1 - 0.9 = 0.1 m < 0.2 m, so no slot of the
+    lever passes through A, and the error says so with the offset."""
+    doc = _inverted(0.9, 180.0)
+    doc["drivers"][0]["angle_deg"] = 0.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.sweep(doc, 36)
+    assert str(error.value.message) == (
+        "the linkage cannot be closed at the sweep's starting angle: |CA| is shorter than the "
+        "offset 0.2 m of the slot of 'lever' from its pivot C"
+    )
+
+
+def test_slotted_lever_close_approach_is_named_after_its_slot() -> None:
+    """The same linkage with crank 0.8 - 1e-4: |CA| = 1 - crank is least at crank 0 deg, 1e-4 m
+    more than the offset: the one close approach is the slot's, margin 1e-4 m (to 1e-12 m) at
+    0 deg (to 1e-6 rad)."""
+    result = sweep(parse_linkage(_inverted(0.8 - 1e-4, 90.0)), 100, ["position"])
+    (approach,) = result.close_approaches
+    assert approach.point == "the slot of 'lever'"
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
+
+
+def test_close_approach_of_an_accelerating_crank_found_at_its_angle() -> None:
+    """A sweep over time of the crank-rocker 1e-4 inside the Grashof equality, the crank
+    accelerating (theta = 30 deg + 0.5 t + 0.4 t^2 / 2, so the samples are not evenly spaced in
+    angle): between samples the drivers follow each sample interval's own step, and the closest
+    approach, 1e-4 m (to 1e-10 m), is at crank 180 deg (the closed form: |BD| is largest there;
+    to 1e-6 rad)."""
+    from solver.sweeps import sweep_time
+
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 + 1e-4}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 0.5})
+    doc["drivers"][0]["alpha"] = 0.4
+    result = sweep_time(parse_linkage(doc), 0.0, 4.5, 37, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-10
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
