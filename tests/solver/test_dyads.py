@@ -306,3 +306,21 @@ def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> Non
         cut = dyads.intersect(first, second, "X")
         X = cut.point(np.ones(1))[0]
         assert min(math.hypot(*(X - F - h * w)), math.hypot(*(X - F + h * w))) <= 1e-6, k
+
+
+def test_slot_message_shows_the_worst_sample() -> None:
+    """A circle of radius 0.3 about the origin and the slot y = s at s = 0.35, 0.5, 0.4: the
+    loci fail to meet at every sample, worst (least margin 0.3 - |s|) at s = 0.5; the message
+    gives that distance."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    s = np.array([0.35, 0.5, 0.4])
+    centre = PointMotion(np.zeros((3, 2)))
+    through = PointMotion(np.stack((np.full(3, 0.2), s), axis=-1))
+    direction = np.tile([1.0, 0.0], (3, 1))
+    slot = dyads.Line(through, direction, None, None, "guide")
+    cut = dyads.intersect(dyads.Circle(centre, 0.3, "A", "crank"), slot, "B")
+    assert cut.message == (
+        "the distance from A to the slot of B in 'guide' is 0.5 m > |AB| = 0.3 m"
+    )
