@@ -162,18 +162,20 @@ def test_slotted_lever_close_approach_is_named_after_its_slot() -> None:
     assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
 
 
-def test_close_approach_of_an_accelerating_crank_found_at_its_angle() -> None:
-    """A sweep over time of the crank-rocker 1e-4 inside the Grashof equality, the crank
-    accelerating (theta = 30 deg + 0.5 t + 0.4 t^2 / 2, so the samples are not evenly spaced in
-    angle): between samples the drivers follow each sample interval's own step, and the closest
-    approach, 1e-4 m (to 1e-10 m), is at crank 180 deg (the closed form: |BD| is largest there;
-    to 1e-6 rad)."""
+@pytest.mark.parametrize("end", [4.5, 4.4])
+def test_close_approach_of_an_accelerating_crank_found_at_its_angle(end: float) -> None:
+    """A sweep over time (37 samples, t = 0 to ``end``) of the crank-rocker 1e-4 inside the
+    Grashof equality, the crank accelerating (theta = 30 deg + 0.5 t + 0.4 t^2 / 2, so the
+    samples are not evenly spaced in angle; 180 deg falls just before the nearest sample for
+    end = 4.5 s, just after it for 4.4 s): between samples the drivers follow each interval's
+    own step, and the closest approach, 1e-4 m (to 1e-10 m), is at crank 180 deg (the closed
+    form: |BD| is largest there; to 1e-6 rad)."""
     from solver.sweeps import sweep_time
 
     values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 + 1e-4}
     doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 0.5})
     doc["drivers"][0]["alpha"] = 0.4
-    result = sweep_time(parse_linkage(doc), 0.0, 4.5, 37, ["position"])
+    result = sweep_time(parse_linkage(doc), 0.0, end, 37, ["position"])
     (approach,) = result.close_approaches
     assert abs(approach.margin - 1e-4) <= 1e-10
     assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
