@@ -179,3 +179,16 @@ def test_close_approach_of_an_accelerating_crank_found_at_its_angle(end: float) 
     (approach,) = result.close_approaches
     assert abs(approach.margin - 1e-4) <= 1e-10
     assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
+
+
+@pytest.mark.parametrize("samples", [2, 3, 4])
+def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
+    """The crank-rocker 1e-4 inside the Grashof equality swept with 2, 3 and 4 samples: the
+    close approach (1e-4 m, to 1e-12 m, at crank 180 deg, to 1e-6 rad: the closed form) is
+    found between them however few they are."""
+    from tests.solver.test_assembly import _near_crank_rocker
+
+    result = sweep(parse_linkage(_near_crank_rocker(1e-4)), samples, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
