@@ -433,3 +433,60 @@ def test_first_occurrence_cost_does_not_grow_with_t_max() -> None:
     assert result is not None, "find_event(t_max = 1000 s, occurrence 1) took more than 8 s"
     assert result[0] == "ok", result[1]
     _assert_time(result[1], 1.4748096336326841, "first return")
+
+
+# --- where the event happens, meetings at t_max, bad requests (mutation testing, issue 8) ---
+
+
+def test_event_position_is_the_target_where_it_is_at_that_time() -> None:
+    """The event's position is where M and the target coincide: the target T of the disc turned
+    by phi(t) = 0.7 t - 0.2 t^2 about O (closed form), to 1e-8 m; for a ground target G, G
+    itself (to the coincidence tolerance, 1e-7 of the scene size)."""
+    radius, c, beta = 0.4, 0.9, 1.3
+    doc = arc_disc(f"{c}*t^2", radius, (0.3, -0.2), 0.5, "ccw", radius * beta)
+    event = find_event(parse_linkage(doc), "M", "T", 2, 60.0)
+    t = event.time
+    _assert_time(t, math.sqrt((radius * beta + 2 * math.pi * radius) / c), "second meeting", 1e-9)
+    phi = 0.7 * t - 0.2 * t * t
+    T0 = doc["points"]["T"]
+    want = [
+        math.cos(phi) * T0[0] - math.sin(phi) * T0[1],
+        math.sin(phi) * T0[0] + math.cos(phi) * T0[1],
+    ]
+    np.testing.assert_allclose(event.position, want, atol=1e-8)
+    ground, _ = _ground_point_case(0.5, 0.5)
+    scene = parse_linkage(ground)
+    at_G = find_event(scene, "M", "G", 1, 20.0).position
+    assert math.hypot(*(at_G - np.array(ground["points"]["G"]))) <= 1e-7 * scene.size
+
+
+def test_meeting_exactly_at_t_max_counts() -> None:
+    """0 < t <= t_max includes t_max: s = t^2 on a circle meets a target 1 m of arc ahead at
+    t = 1 s, found with t_max = 1 s; M circling at 1 rad/s meets the ground point 2 rad ahead at
+    t = 2 s, found with t_max = 2 s (the last sample of the distance grid)."""
+    doc = arc_disc("t^2", 0.5, (0.1, 0.2), 0.3, "cw", 1.0)
+    _assert_time(_event_time(doc, "T", 1, 1.0), 1.0, "on the carrier", 1e-9)
+    ground, t_k = _ground_point_case(0.0, 1.0)
+    _assert_time(_event_time(ground, "G", 1, 2.0), t_k(1), "off the carrier")
+
+
+def test_bad_event_requests_are_refused() -> None:
+    """Unknown names: invalid_scene; occurrence outside 1..10000 and t_max outside (0, 1e6] s:
+    limit_exceeded (the bounds themselves are accepted)."""
+    from solver.errors import InvalidScene, LimitExceeded
+
+    scene = parse_linkage(arc_disc("t", 0.5, (0.1, 0.2), 0.3, "cw", 1.0))
+    with pytest.raises(InvalidScene, match=r"event\.moving_point: unknown moving point 'N'"):
+        find_event(scene, "N", "T", 1, 10.0)
+    with pytest.raises(InvalidScene, match=r"event\.reaches: unknown point 'Q'"):
+        find_event(scene, "M", "Q", 1, 10.0)
+    for occurrence in (0, 10_001):
+        with pytest.raises(LimitExceeded, match=r"event\.occurrence"):
+            find_event(scene, "M", "T", occurrence, 10.0)
+    for t_max in (0.0, -1.0, 1e6 * (1 + 1e-15)):
+        with pytest.raises(LimitExceeded, match=r"event\.t_max"):
+            find_event(scene, "M", "T", 1, t_max)
+    assert find_event(scene, "M", "T", 1, 1e6).time == pytest.approx(1.0, rel=1e-9)
+    # s = t on a circle of radius 0.5 meets T (1 m of arc ahead) at 1, 1 + pi, 1 + 2 pi s
+    with pytest.raises(NoEvent, match=r"M reaches T 3 time\(s\) in 0 < t <= 10 s, not 10000"):
+        find_event(scene, "M", "T", 10_000, 10.0)

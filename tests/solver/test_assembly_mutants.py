@@ -1,0 +1,194 @@
+"""What mutation testing of solver.assembly found untested (issue 8), tested through solver.sweep:
+
+- a full-turn sweep's velocities, accelerations and link rates (the sweep trims its extra
+  samples with ``Motion.cut``): against the Heron closed form of the four-bar
+  (tests.solver.test_assembly.four_bar_C) differentiated by central differences in the crank
+  angle, and a coupler point against the rigid-body rotation of the drawn one;
+- the closest approach of a group downstream of a group that switches branch at a true change
+  point (a parallelogram passing its change points, driving a dyad that comes within 2e-4 m of
+  its own): the approach is evaluated between samples with the upstream group on the branch it
+  has switched to, and matches the closed form of the parallelogram.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+import solver
+from solver.errors import NotAssemblable
+from solver.presets import build_preset
+from solver.scene import parse_linkage
+from solver.sweeps import sweep
+from tests.solver.test_assembly import four_bar_C
+
+ALL = ["position", "velocity", "acceleration"]
+
+
+def _angle(p: np.ndarray) -> np.ndarray:
+    return np.unwrap(np.arctan2(p[:, 1], p[:, 0]))
+
+
+def test_full_turn_sweep_rates_match_the_differentiated_closed_form() -> None:
+    """Crank-rocker (g 1, crank 0.4, coupler 0.9, rocker 0.7) driven at omega = 2 rad/s, 90
+    samples over a full turn: C's velocity and acceleration are omega dC/dtheta and
+    omega^2 d^2C/dtheta^2 of the closed form (central differences, step 1e-4: to 1e-6 m/s and
+    1e-5 m/s^2); the rocker's omega and alpha likewise from its angle atan2(C - D); the coupler
+    point P turns rigidly with BC (P - B = R(angle BC - angle B0C0)(P0 - B0), to 1e-9 m)."""
+    omega = 2.0
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.7}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": omega})
+    scene = parse_linkage(doc)
+    body = solver.sweep(doc, 90, ALL).as_dict()
+    assert body["feasible"] and len(body["driver_angle"]) == 90
+    theta, h = np.asarray(body["driver_angle"]), 1e-4
+    C = four_bar_C(scene, theta)
+    ahead, behind = four_bar_C(scene, theta + h), four_bar_C(scene, theta - h)
+    got = body["points"]["C"]
+    np.testing.assert_allclose(got["position"], C, atol=1e-9)
+    np.testing.assert_allclose(got["velocity"], omega * (ahead - behind) / (2 * h), atol=1e-6)
+    second = omega**2 * (ahead - 2.0 * C + behind) / h**2
+    np.testing.assert_allclose(got["acceleration"], second, atol=1e-5)
+
+    D = np.array(doc["points"]["D"])
+    phi = [_angle(X - D) for X in (C, ahead, behind)]
+    rocker = body["links"]["rocker"]
+    np.testing.assert_allclose(rocker["omega"], omega * (phi[1] - phi[2]) / (2 * h), atol=1e-6)
+    alpha = omega**2 * (phi[1] - 2.0 * phi[0] + phi[2]) / h**2
+    np.testing.assert_allclose(rocker["alpha"], alpha, atol=1e-5)
+
+    B0, C0, P0 = (np.array(doc["points"][p]) for p in "BCP")
+    B = body["points"]["B"]["position"]
+    turn = _angle(C - B) - math.atan2(*(C0 - B0)[::-1])
+    c, s = np.cos(turn), np.sin(turn)
+    r = P0 - B0
+    P = B + np.stack((c * r[0] - s * r[1], s * r[0] + c * r[1]), axis=-1)
+    np.testing.assert_allclose(body["points"]["P"]["position"], P, atol=1e-9)
+
+
+def _parallelogram_with_dyad(start_deg: float, gap: float) -> dict[str, Any]:
+    """Parallelogram A(0,0) B C D(1,0) (crank = rocker = 0.4, coupler = ground = 1), and a dyad
+    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = (1, 1.5) on the ground). On the parallelogram
+    C = D + 0.4 (cos t, sin t), so |CF| is largest, |DF| + 0.4 = 1.9, at t = -90 deg: the dyad's
+    closest approach is r1 + r2 - 1.9 = gap there."""
+    t = math.radians(start_deg)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    C = np.array([B[0] + 1.0, B[1]])
+    F = np.array([1.0, 1.5])
+    r1, r2 = 1.0, 0.9 + gap
+    d_vec = F - C
+    d = math.hypot(*d_vec)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    u = d_vec / d
+    E = C + a * u + math.sqrt(r1 * r1 - a * a) * np.array([-u[1], u[0]])
+    return {
+        "kind": "linkage",
+        "title": "parallelogram driving a dyad",
+        "points": {
+            "A": [0.0, 0.0],
+            "B": B,
+            "C": C.tolist(),
+            "D": [1.0, 0.0],
+            "E": E.tolist(),
+            "F": F.tolist(),
+        },
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": ["C", "E"]},
+            "link": {"points": ["F", "E"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
+            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
+            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
+            {"type": "revolute", "point": "C", "links": ["rocker", "arm"]},
+            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
+            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
+            {"type": "revolute", "point": "F", "links": ["link", "ground"]},
+        ],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
+@pytest.mark.parametrize("start_deg", [60.0, 200.0])
+def test_close_approach_downstream_of_a_switching_parallelogram(start_deg: float) -> None:
+    """Swept with 100 samples (3.6 deg apart, none at -90 deg) from 60 deg (the approach comes
+    after one switch) and from 200 deg (before any): the parallelogram passes its change points
+    at 180 and 360 deg and stays a parallelogram (C = B + (1, 0) to 1e-9 m everywhere); the
+    dyad's one close approach, between samples, is gap = 2e-4 m (to 1e-12 m) at crank -90 deg
+    (to 1e-6 rad)."""
+    gap = 2e-4
+    result = sweep(parse_linkage(_parallelogram_with_dyad(start_deg, gap)), 100, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+    (approach,) = [a for a in result.close_approaches if a.point == "E"]
+    assert abs(approach.margin - gap) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle + math.pi / 2, 2 * math.pi)) <= 1e-6
+
+
+def _inverted(crank: float, drawn_deg: float) -> dict[str, Any]:
+    values = {"crank": crank, "ground": 1.0, "lever": 1.5, "slot_offset": 0.2}
+    return build_preset("inverted_slider_crank", {**values, "crank_angle_deg": drawn_deg})
+
+
+def test_slotted_lever_that_cannot_close_says_why() -> None:
+    """Inverted slider-crank (crank OA 0.9, ground OC 1, slot 0.2 m off the lever's pivot C)
+    drawn at 180 deg, swept from 0 deg: there |CA| = 1 - 0.9 = 0.1 m < 0.2 m, so no slot of the
+    lever passes through A, and the error says so with the offset."""
+    doc = _inverted(0.9, 180.0)
+    doc["drivers"][0]["angle_deg"] = 0.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.sweep(doc, 36)
+    assert str(error.value.message) == (
+        "the linkage cannot be closed at the sweep's starting angle: |CA| is shorter than the "
+        "offset 0.2 m of the slot of 'lever' from its pivot C"
+    )
+
+
+def test_slotted_lever_close_approach_is_named_after_its_slot() -> None:
+    """The same linkage with crank 0.8 - 1e-4: |CA| = 1 - crank is least at crank 0 deg, 1e-4 m
+    more than the offset: the one close approach is the slot's, margin 1e-4 m (to 1e-12 m) at
+    0 deg (to 1e-6 rad)."""
+    result = sweep(parse_linkage(_inverted(0.8 - 1e-4, 90.0)), 100, ["position"])
+    (approach,) = result.close_approaches
+    assert approach.point == "the slot of 'lever'"
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
+
+
+@pytest.mark.parametrize("end", [4.5, 4.4])
+def test_close_approach_of_an_accelerating_crank_found_at_its_angle(end: float) -> None:
+    """A sweep over time (37 samples, t = 0 to ``end``) of the crank-rocker 1e-4 inside the
+    Grashof equality, the crank accelerating (theta = 30 deg + 0.5 t + 0.4 t^2 / 2, so the
+    samples are not evenly spaced in angle; 180 deg falls just before the nearest sample for
+    end = 4.5 s, just after it for 4.4 s): between samples the drivers follow each interval's
+    own step, and the closest approach, 1e-4 m (to 1e-10 m), is at crank 180 deg (the closed
+    form: |BD| is largest there; to 1e-6 rad)."""
+    from solver.sweeps import sweep_time
+
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 + 1e-4}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 0.5})
+    doc["drivers"][0]["alpha"] = 0.4
+    result = sweep_time(parse_linkage(doc), 0.0, end, 37, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-10
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
+
+
+@pytest.mark.parametrize("samples", [2, 3, 4])
+def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
+    """The crank-rocker 1e-4 inside the Grashof equality swept with 2, 3 and 4 samples: the
+    close approach (1e-4 m, to 1e-12 m, at crank 180 deg, to 1e-6 rad: the closed form) is
+    found between them however few they are."""
+    from tests.solver.test_assembly import _near_crank_rocker
+
+    result = sweep(parse_linkage(_near_crank_rocker(1e-4)), samples, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
