@@ -658,7 +658,7 @@ class App {
         this.linkage.setScene(this.scene, this.track);
       }
       this.linkage.setAnalysis(this.analysis);
-      this.drawPolygons();
+      const polygons = this.drawPolygons();
       this.mechanismFacts(this.analysis);
       const loops = this.analysis.four_bar_loops || [];
       if (JSON.stringify(loops.map((l) => l.links)) !== JSON.stringify(this.loops.map((l) => l.links))) {
@@ -667,6 +667,9 @@ class App {
       } else {
         moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
       }
+      // Marked analysed once the polygons of this instant are being drawn (their details
+      // "pending"), so that a detail marked done is never the previous instant's.
+      await polygons;
       $('linkage').dataset.analysed = String(this.instantValue(u));
       await katexReady();
       if (solutionSeq === this.solutionSeq) this.showSolution(solution);
