@@ -366,9 +366,8 @@ def _drivers_power_step(d: _Dynamics) -> Step:
         b.check("product", power, M, w)
         terms.append(power)
         products.append(rf"{tex.paren(b.num(M))} \cdot {tex.paren(b.num(w))}")
-        texts.append(
-            f"M_{link} omega({link}) = {tex.paren(b.txtn(M))} x {tex.paren(b.txtn(w))} = {b.txt(power)}"
-        )
+        product = f"{tex.paren(b.txtn(M))} x {tex.paren(b.txtn(w))}"
+        texts.append(f"M_{link} omega({link}) = {product} = {b.txt(power)}")
     total = b.put("P_drivers", sum(float(dr.power[0]) for dr in d.result.drivers), "W")
     b.check("sum", total, *terms)
     kT, kV, kP, net = _energy_rate(d, b, "dT/dt + dV/dt - P_loads")
