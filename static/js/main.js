@@ -670,6 +670,7 @@ class App {
       // Marked analysed once the polygons of this instant are being drawn (their details
       // "pending"), so that a detail marked done is never the previous instant's.
       await polygons;
+      if (seq !== this.analysisSeq) return; // a newer instant is being analysed
       $('linkage').dataset.analysed = String(this.instantValue(u));
       await katexReady();
       if (solutionSeq === this.solutionSeq) this.showSolution(solution);
