@@ -22,6 +22,7 @@ from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics
 from solver.dynamics.loads import dynamics_of
 from solver.rigid import cross, dot
 from solver.steps import latex as tex
+from solver.steps.builder import StepBuilder
 from solver.steps.free_body import Arrow, Couple, figure
 from solver.steps.linkage import LinkageContext, k_cross
 from solver.steps.model import Mistake, Step, Value
@@ -289,13 +290,10 @@ def _solution_step(d: _Dynamics) -> Step:
     return b.build()
 
 
-def _power_step(d: _Dynamics) -> Step | None:
-    ctx = d.ctx
-    if len(ctx.scene.drivers) != 1:
-        return None
-    link = ctx.scene.drivers[0].link
-    omega = ctx.omega(link)
-    b = ctx.builder("dynamics.power_balance", "Check: the driving torque from the power balance")
+def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[str, str, str, str]:
+    """dT/dt + dV/dt - P_loads, with dT/dt = sum (m a_G . v_G + I omega alpha), dV/dt =
+    -sum m g . v_G and P_loads the power of the loads: the keys of the three terms and of the
+    net (``net_key``)."""
     elements, g = d.forces.elements, d.gravity
     dT = sum(
         e.mass * float(dot(e.a[0], e.v[0])) + e.inertia * float(e.omega[0] * e.alpha[0])
@@ -307,12 +305,27 @@ def _power_step(d: _Dynamics) -> Step | None:
     )
     kT, kV = b.put("dT/dt", dT, "W"), b.put("dV/dt", dV, "W")
     kP = b.put("P_loads", P, "W")
-    net = b.put("M omega", dT + dV - P, "W")
-    kw = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    net = b.put(net_key, dT + dV - P, "W")
     b.check("sum", net, kT, kV, "-" + kP)
+    return kT, kV, kP, net
+
+
+def _energy_latex(b: StepBuilder, kT: str, kV: str, kP: str) -> str:
+    return rf"{b.num(kT)} {tex.signed(b.num(kV))} - {tex.paren(b.num(kP))}"
+
+
+def _power_step(d: _Dynamics) -> Step:
+    """M omega = dT/dt + dV/dt - P_loads: the single driver's torque again, without the joint
+    forces."""
+    ctx = d.ctx
+    link = ctx.scene.drivers[0].link
+    omega = ctx.omega(link)
+    b = ctx.builder("dynamics.power_balance", "Check: the driving torque from the power balance")
+    kT, kV, kP, net = _energy_rate(d, b, "M omega")
+    kw = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
     b.line(
         r"&M\,\omega = \frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = "
-        rf"{b.num(kT)} {tex.signed(b.num(kV))} - {tex.paren(b.num(kP))} = {b.numu(net)}"
+        rf"{_energy_latex(b, kT, kV, kP)} = {b.numu(net)}"
     )
     if omega == 0.0:
         b.say("The driver is at rest (omega = 0): the power balance does not give its torque.")
@@ -337,6 +350,49 @@ def _power_step(d: _Dynamics) -> Step | None:
     return b.build()
 
 
+def _drivers_power_step(d: _Dynamics) -> Step:
+    """sum_i M_i omega_i = dT/dt + dV/dt - P_loads: the drivers' total power (each M_i omega_i
+    from the Newton-Euler torques) against the energy rate and the loads' power."""
+    ctx = d.ctx
+    b = ctx.builder("dynamics.power_balance", "Check: the drivers' power from the power balance")
+    terms, products, texts = [], [], []
+    for i, driver in enumerate(ctx.scene.drivers):
+        link = driver.link
+        M = b.put(f"M_{link}", float(d.forces.torques[link][0]), MOMENT, ("drivers", i, "torque"))
+        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        power = b.put(
+            f"P({link})", float(d.result.drivers[i].power[0]), "W", ("drivers", i, "power")
+        )
+        b.check("product", power, M, w)
+        terms.append(power)
+        products.append(rf"{tex.paren(b.num(M))} \cdot {tex.paren(b.num(w))}")
+        product = f"{tex.paren(b.txtn(M))} x {tex.paren(b.txtn(w))}"
+        texts.append(f"M_{link} omega({link}) = {product} = {b.txt(power)}")
+    total = b.put("P_drivers", sum(float(dr.power[0]) for dr in d.result.drivers), "W")
+    b.check("sum", total, *terms)
+    kT, kV, kP, net = _energy_rate(d, b, "dT/dt + dV/dt - P_loads")
+    b.check("sum", net, total)
+    symbols = " + ".join(
+        rf"M_{{{tex.name(dr.link)}}}\,\omega_{{{tex.name(dr.link)}}}" for dr in ctx.scene.drivers
+    )
+    b.line(
+        rf"&\textstyle\sum_i M_i\,\omega_i = {symbols} = {' + '.join(products)} = {b.numu(total)}"
+    )
+    b.line(
+        r"&\frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = "
+        rf"{_energy_latex(b, kT, kV, kP)} = {tex.boxed_result(b.numu(net))}"
+    )
+    b.say(
+        "Frictionless joints do no work, so the drivers' total power goes into the kinetic and "
+        "potential energy and against the loads: sum of M_i omega_i = dT/dt + dV/dt - P_loads. "
+        f"Drivers: {'; '.join(texts)}; in total {b.txt(total)}. Energy and loads: "
+        f"{b.txt(kT)} + ({b.txt(kV)}) - ({b.txt(kP)}) = {b.txt(net)}, the same. With several "
+        "drivers the balance checks only their total; each torque alone is checked by the "
+        "virtual power of its driver's own motion (torque_from_power_balance)."
+    )
+    return b.build()
+
+
 def newton_euler_steps(ctx: LinkageContext) -> list[Step]:
     """The dynamics steps of one instant (after the kinematics)."""
     d = _Dynamics(ctx)
@@ -346,9 +402,10 @@ def newton_euler_steps(ctx: LinkageContext) -> list[Step]:
         steps.append(_free_body_step(d, link))
         steps.append(_equations_step(d, link))
     steps += [_system_step(d), _solution_step(d)]
-    power = _power_step(d)
-    if power is not None:
-        steps.append(power)
+    if len(ctx.scene.drivers) == 1:
+        steps.append(_power_step(d))
+    elif ctx.scene.drivers:
+        steps.append(_drivers_power_step(d))
     return steps
 
 

@@ -106,16 +106,22 @@ export function drawingSvg(svg) {
   return { text: new XMLSerializer().serializeToString(copy), width: w, height: h };
 }
 
+/** An image loaded from `url` (a blob: or data: URL). */
+async function loadImage(url, what) {
+  const img = new Image();
+  await new Promise((resolve, reject) => {
+    img.onload = resolve;
+    img.onerror = () => reject(new Error(`${what} could not be rasterised`));
+    img.src = url;
+  });
+  return img;
+}
+
 /** Rasterise an SVG document (text) at `scale` into a PNG blob. */
 async function svgToPng(text, width, height, scale = 2) {
   const url = URL.createObjectURL(new Blob([text], { type: 'image/svg+xml' }));
   try {
-    const img = new Image();
-    await new Promise((resolve, reject) => {
-      img.onload = resolve;
-      img.onerror = () => reject(new Error('the drawing could not be rasterised'));
-      img.src = url;
-    });
+    const img = await loadImage(url, 'the drawing');
     const canvas = Object.assign(document.createElement('canvas'), { width: width * scale, height: height * scale });
     const ctx = canvas.getContext('2d');
     ctx.drawImage(img, 0, 0, canvas.width, canvas.height);
@@ -132,6 +138,59 @@ async function plotImage(div, format) {
   const box = div.getBoundingClientRect();
   const url = await P.toImage(div, { format, width: Math.max(box.width, 640), height: Math.max(box.height, 400), scale: format === 'png' ? 2 : 1 });
   return dataUrlBlob(url);
+}
+
+/**
+ * A polygon as the student sees it: the polygon and, when it is shown, its detail panel under
+ * it (polygon-detail.js), stacked in one PNG or SVG. Each panel keeps its on-screen proportions,
+ * magnified alike to at least 640 px wide (so the "1 cm = …" scales hold in an SVG of a panel at
+ * least that wide).
+ */
+async function polygonImage(main, format) {
+  const P = globalThis.Plotly;
+  if (!P || !main.data) throw new Error('this figure is not drawn yet');
+  const detail = $(`${main.id}-detail`);
+  const panels = detail && !detail.hidden && detail.data ? [main, detail] : [main];
+  const box = main.getBoundingClientRect();
+  const zoom = Math.max(1, 640 / box.width);
+  const width = Math.round(box.width * zoom);
+  const scale = format === 'png' ? 2 : 1;
+  const images = [];
+  for (const div of panels) {
+    const height = Math.round(div.getBoundingClientRect().height * zoom);
+    images.push({ url: await P.toImage(div, { format, width, height, scale }), height });
+  }
+  const total = images.reduce((sum, im) => sum + im.height, 0);
+  return format === 'png' ? stackPng(images, width, total, scale) : stackSvg(images, width, total);
+}
+
+/** PNG images (data: URLs, `scale` px per CSS px) one under the other on one canvas. */
+async function stackPng(images, width, height, scale) {
+  const canvas = Object.assign(document.createElement('canvas'), { width: width * scale, height: height * scale });
+  const ctx = canvas.getContext('2d');
+  let y = 0;
+  for (const { url, height: h } of images) {
+    const img = await loadImage(url, 'a panel');
+    ctx.drawImage(img, 0, y * scale, width * scale, h * scale);
+    y += h;
+  }
+  return new Promise((resolve) => canvas.toBlob(resolve, 'image/png'));
+}
+
+/** SVG documents (data: URLs) nested one under the other in one SVG document. */
+async function stackSvg(images, width, height) {
+  const NS = 'http://www.w3.org/2000/svg';
+  const root = document.createElementNS(NS, 'svg');
+  Object.entries({ xmlns: NS, width, height, viewBox: `0 0 ${width} ${height}` }).forEach(([k, v]) => root.setAttribute(k, String(v)));
+  let y = 0;
+  for (const { url, height: h } of images) {
+    const text = await dataUrlBlob(url).text();
+    const panel = document.importNode(new DOMParser().parseFromString(text, 'image/svg+xml').documentElement, true);
+    panel.setAttribute('y', String(y));
+    root.append(panel);
+    y += h;
+  }
+  return new Blob([new XMLSerializer().serializeToString(root)], { type: 'image/svg+xml' });
 }
 
 /** A data: URL's bytes as a Blob, decoded here (a fetch of it would break the page's CSP). */
@@ -178,6 +237,8 @@ export function installExport(app) {
       const svg = isSpatial(app.scene) ? $('spatial') : $('linkage');
       const { text, width, height } = drawingSvg(svg);
       blob = format === 'svg' ? new Blob([text], { type: 'image/svg+xml' }) : await svgToPng(text, width, height);
+    } else if (which.endsWith('-polygon')) {
+      blob = await polygonImage($(which), format);
     } else {
       blob = await plotImage($(which), format);
     }

@@ -11,6 +11,7 @@ import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawn
 import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
 import { velocityPoleName, accelerationPoleName, linkNumbers } from './notation.js';
+import { measureLabel, aroundPoint, besideBar, boxAt, markerBox, placeAll } from './drawing-labels.js';
 
 const WIDTH = 1000;
 const MARGIN = 70;
@@ -155,6 +156,9 @@ export class LinkageView {
     const g = this.layers.ground;
     const ground = groundLink(scene);
     const gpts = scene.links[ground]?.points || [];
+    // What the names must not cover: the pivots' triangles and hatching, the guides' axes.
+    this.fixedMarks = [];
+    this.fixedBars = [];
     // The frame line between ground points, dashed: it is the fixed link, not a bar.
     for (let i = 0; i + 1 < gpts.length; i++) {
       const [a, b] = [this.px(scene.points[gpts[i]]), this.px(scene.points[gpts[i + 1]])];
@@ -167,6 +171,7 @@ export class LinkageView {
   }
 
   drawPivot(g, [x, y]) {
+    this.fixedMarks.push({ x0: x - 20, x1: x + 20, y0: y, y1: y + 28 });
     svgEl('path', { d: `M${x},${y} L${x - 13},${y + 20} L${x + 13},${y + 20} Z`, fill: '#eef0f3', stroke: COLOURS.ground, 'stroke-width': 1.5, class: 'ground-pivot' }, g);
     svgEl('rect', { x: x - 20, y: y + 20, width: 40, height: 8, fill: this.hatch, stroke: 'none', class: 'ground-hatch' }, g);
     svgEl('line', { x1: x - 20, y1: y + 20, x2: x + 20, y2: y + 20, stroke: COLOURS.ground, 'stroke-width': 1.5 }, g);
@@ -188,6 +193,7 @@ export class LinkageView {
     const pad = (BLOCK[0] / this.map.k) * 1.2;
     const a = this.px([base[0] + (lo - pad) * axis[0], base[1] + (lo - pad) * axis[1]]);
     const b = this.px([base[0] + (hi + pad) * axis[0], base[1] + (hi + pad) * axis[1]]);
+    this.fixedBars.push([a, b]);
     const d = unit([b[0] - a[0], b[1] - a[1]]);
     const n = [-d[1], d[0]];
     const h = BLOCK[1] / 2 + 1.5;
@@ -247,10 +253,6 @@ export class LinkageView {
         const poly = svgEl('polygon', { fill: colour, 'fill-opacity': 0.22, stroke: colour, 'stroke-width': 5, 'stroke-linejoin': 'round', class: 'link', 'data-link': name }, this.layers.links);
         this.linkNodes.push({ name, pts, kind: 'plate', nodes: [poly] });
       }
-      const label = svgEl('text', { class: 'link-label', fill: colour, 'text-anchor': 'middle' }, this.layers.labels);
-      // The link's number names its poles (I₁₃, Γ₁₃).
-      label.textContent = `${name} (${linkNumbers(scene)[name]})`;
-      this.linkNodes.push({ name, pts, kind: 'label', nodes: [label] });
     }
     // Slots in moving guides and blocks of sliders.
     this.slotNodes = [];
@@ -295,13 +297,23 @@ export class LinkageView {
     }
   }
 
+  /**
+   * The names of the points, then of the moving links (with the number that names their poles,
+   * I₁₃, Γ₁₃), centred where drawing-labels.js places them each frame.
+   */
   buildLabels() {
     this.labelNodes = [];
-    const names = [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)];
-    for (const name of names) {
-      const t = svgEl('text', { class: 'point-label' }, this.layers.labels);
-      t.textContent = name;
-      this.labelNodes.push({ name, node: t });
+    const add = (text, attrs, named) => {
+      const node = svgEl('text', { 'text-anchor': 'middle', 'dominant-baseline': 'central', ...attrs }, this.layers.labels);
+      node.textContent = text;
+      this.labelNodes.push({ ...named, node, size: measureLabel(node), last: -1 });
+    };
+    for (const name of [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)]) {
+      add(name, { class: 'point-label' }, { point: name });
+    }
+    const numbers = linkNumbers(this.scene);
+    for (const name of movingLinks(this.scene)) {
+      add(`${name} (${numbers[name]})`, { class: 'link-label', fill: this.colours[name] }, { link: name });
     }
   }
 
@@ -353,6 +365,7 @@ export class LinkageView {
       }
     }
     const notes = [];
+    this.poleMarks = [];
     if (this.analysis && opt.showPoles) notes.push(...this.buildPoles());
     this.buildNotes(notes);
   }
@@ -362,6 +375,7 @@ export class LinkageView {
     // A link turning about a fixed pivot has both poles there; marking them only hides the pivot.
     const atFixed = (p) => this.isGroundPoint(p);
     const colourOf = (link) => this.colours[link] || COLOURS.pole;
+    const labels = [];
     for (const [name, l] of Object.entries(this.analysis.links || {})) {
       for (const [key, naming, shape] of [['velocity_pole', velocityPoleName, 'circle'], ['acceleration_pole', accelerationPoleName, 'diamond']]) {
         const p = l[key];
@@ -379,12 +393,34 @@ export class LinkageView {
         } else {
           svgEl('path', { d: 'M0,-7 L7,0 L0,7 L-7,0 Z', fill: '#ffffff', stroke: COLOURS.acceleration, 'stroke-width': 2 }, g);
         }
-        const t = svgEl('text', { x: 9, y: 16, class: 'pole-label', fill: colourOf(name) }, g);
+        const t = svgEl('text', { class: 'pole-label', fill: colourOf(name), 'text-anchor': 'middle', 'dominant-baseline': 'central' }, g);
         t.textContent = label;
+        this.poleMarks.push(markerBox([x, y], 8));
+        labels.push({ node: t, at: [x, y], size: measureLabel(t), last: -1 });
         svgEl('title', {}, g).textContent = `${label}: ${key === 'velocity_pole' ? 'velocity pole (instant centre with the ground)' : 'acceleration pole'} of link ${name}`;
       }
     }
+    this.placePoleLabels(labels);
     return offView.length ? [`Poles outside the picture: ${offView.join(', ')}`] : [];
+  }
+
+  /**
+   * The poles' names around their markers, clear of each other, of every pole marker and of the
+   * joints where the analysed instant has them; the names of points and links then keep clear
+   * of these (poleMarks) whenever the poles are shown.
+   */
+  placePoleLabels(labels) {
+    const markers = [...this.fixedMarks, ...this.poleMarks];
+    for (const group of [this.analysis.points, this.analysis.moving_points]) {
+      for (const q of Object.values(group || {})) if (q.position) markers.push(markerBox(this.px(q.position), 8));
+    }
+    for (const label of labels) label.candidates = aroundPoint(label.at, label.size);
+    const chosen = placeAll(labels, markers, [], { x0: 0, y0: 0, x1: WIDTH, y1: this.map.height });
+    labels.forEach((label, i) => {
+      const at = label.candidates[chosen[i]].at;
+      setAttrs(label.node, { x: (at[0] - label.at[0]).toFixed(1), y: (at[1] - label.at[1]).toFixed(1) });
+      this.poleMarks.push(boxAt(at, label.size));
+    });
   }
 
   isGroundPoint(p) {
@@ -424,24 +460,51 @@ export class LinkageView {
   draw(frame) {
     this.lastFrame = frame;
     if (!this.map) return;
-    const P = (name) => frame.position[name];
+    const bars = [...this.drawLinks(frame), ...this.drawSlots(frame)];
+    this.drawPaths(frame);
+    for (const { name, node } of this.jointNodes) {
+      const p = frame.position[name];
+      if (!p) {
+        node.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const [cx, cy] = this.px(p);
+      setAttrs(node, { cx, cy, visibility: null });
+    }
+    this.drawLabels(frame, bars);
+    if (this.handle) {
+      const p = frame.position[this.handle.handle];
+      if (p) {
+        const [cx, cy] = this.px(p);
+        setAttrs(this.handle.node, { cx, cy });
+      }
+    }
+    this.drawVectors(frame);
+  }
+
+  /** Bars, plates and discs at the frame; returns the bars' axes (px) for the label placer. */
+  drawLinks(frame) {
+    const bars = [];
     for (const { name, pts, kind, nodes } of this.linkNodes) {
-      const ps = pts.map(P).filter(Boolean).map((p) => this.px(p));
-      if (ps.length < (kind === 'label' ? 1 : 2)) continue;
+      const ps = pts.map((n) => frame.position[n]).filter(Boolean).map((p) => this.px(p));
+      if (ps.length < 2) continue;
       if (kind === 'bar') {
         for (const n of nodes) setAttrs(n, { x1: ps[0][0], y1: ps[0][1], x2: ps[1][0], y2: ps[1][1] });
+        bars.push([ps[0], ps[1]]);
       } else if (kind === 'plate') {
         setAttrs(nodes[0], { points: hullOrder(ps).map((p) => p.join(',')).join(' ') });
       } else if (kind === 'disc') {
         setAttrs(nodes[0], this.discAt(name, frame));
         setAttrs(nodes[1], { points: hullOrder(ps).map((p) => p.join(',')).join(' ') });
-      } else {
-        // Link name beside its middle, pushed off the bar so it does not sit on a label.
-        const c = centroid(ps);
-        const d = ps.length > 1 ? unit([ps[1][0] - ps[0][0], ps[1][1] - ps[0][1]]) : [1, 0];
-        setAttrs(nodes[0], { x: c[0] - d[1] * 18, y: c[1] + d[0] * 18 + 4 });
       }
     }
+    return bars;
+  }
+
+  /** Slotted bars along their axes and the sliders' blocks; returns the slots' axes (px). */
+  drawSlots(frame) {
+    const P = (name) => frame.position[name];
+    const bars = [];
     for (const { joint, guide, nodes } of this.slotNodes) {
       const p = P(joint.point);
       if (!p) continue;
@@ -457,6 +520,7 @@ export class LinkageView {
       const a = this.px([p[0] + lo * axis[0], p[1] + lo * axis[1]]);
       const b = this.px([p[0] + hi * axis[0], p[1] + hi * axis[1]]);
       for (const n of nodes) setAttrs(n, { x1: a[0], y1: a[1], x2: b[0], y2: b[1] });
+      bars.push([a, b]);
     }
     for (const { joint, guide, node } of this.blockNodes) {
       const p = P(joint.point);
@@ -466,6 +530,12 @@ export class LinkageView {
       const deg = (-Math.atan2(axis[1], axis[0]) * 180) / Math.PI;
       setAttrs(node, { transform: `translate(${x.toFixed(2)},${y.toFixed(2)}) rotate(${deg.toFixed(2)})` });
     }
+    return bars;
+  }
+
+  /** The grooves of moving points, where their links are in this frame. */
+  drawPaths(frame) {
+    const P = (name) => frame.position[name];
     for (const { m, nodes } of this.paths) {
       const path = m.path || {};
       let attrs;
@@ -485,29 +555,39 @@ export class LinkageView {
       }
       for (const n of nodes) setAttrs(n, attrs);
     }
+  }
+
+  /**
+   * Point and link names, none on another nor on a marker (joints, fixed pivots, blocks, the
+   * poles when shown): a point's name around it, a bar's beside its middle, a plate's around its
+   * centroid (drawing-labels.js).
+   */
+  drawLabels(frame, bars) {
+    const markers = [...this.fixedMarks];
     for (const { name, node } of this.jointNodes) {
-      const p = P(name);
-      if (!p) {
-        node.setAttribute('visibility', 'hidden');
-        continue;
-      }
-      const [cx, cy] = this.px(p);
-      setAttrs(node, { cx, cy, visibility: null });
+      const p = frame.position[name];
+      if (p) markers.push(markerBox(this.px(p), Number(node.getAttribute('r')) + 2));
     }
-    for (const { name, node } of this.labelNodes) {
-      const p = P(name);
-      if (!p) continue;
-      const [x, y] = this.px(p);
-      setAttrs(node, { x: x + 10, y: y - 10 });
+    for (const { joint } of this.blockNodes) {
+      const p = frame.position[joint.point];
+      if (p) markers.push(markerBox(this.px(p), BLOCK[0] / 2));
     }
-    if (this.handle) {
-      const p = P(this.handle.handle);
-      if (p) {
-        const [cx, cy] = this.px(p);
-        setAttrs(this.handle.node, { cx, cy });
-      }
+    if (frame.exact) markers.push(...this.poleMarks);
+    const shown = [];
+    for (const label of this.labelNodes) {
+      const pts = label.point ? [label.point] : this.scene.links[label.link].points;
+      const ps = pts.map((n) => frame.position[n]).filter(Boolean).map((p) => this.px(p));
+      const bar = label.link && ps.length === 2;
+      if (!ps.length) continue;
+      label.candidates = bar ? besideBar(ps[0], ps[1], label.size, 6) : aroundPoint(centroid(ps), label.size);
+      shown.push(label);
     }
-    this.drawVectors(frame);
+    const chosen = placeAll(shown, markers, [...this.fixedBars, ...bars], { x0: 0, y0: 0, x1: WIDTH, y1: this.map.height });
+    shown.forEach((label, i) => {
+      label.last = chosen[i];
+      const [x, y] = label.candidates[chosen[i]].at;
+      setAttrs(label.node, { x: x.toFixed(1), y: y.toFixed(1) });
+    });
   }
 
   drawVectors(frame) {

@@ -118,7 +118,7 @@ class App {
     // Joint offsets and lengths of a spatial chain: a change is a new geometry (spatial-motion.js).
     this.spatialFields = new SpatialFields($('spatial-fields'), (scene) => {
       this.spatialEdit = true;
-      this.loadScene(scene).catch((err) => this.status(`This chain cannot be analysed: ${err.detail || err.message}`, 'error'));
+      this.loadScene(scene, { keepInstant: true }).catch((err) => this.status(`This chain cannot be analysed: ${err.detail || err.message}`, 'error'));
     });
     requestAnimationFrame((t) => this.tick(t));
 
@@ -253,7 +253,7 @@ class App {
   }
 
   snapshot() {
-    return this.scene ? { scene: this.scene, source: structuredClone(this.source) } : null;
+    return this.scene ? { scene: this.scene, source: structuredClone(this.source), spatial: this.spatialEdits() } : null;
   }
 
   remember(before) {
@@ -268,7 +268,7 @@ class App {
     const state = this.history.pop();
     if (!state) return;
     this.future.push(this.snapshot());
-    await this.restore({ ...state, view: { ...this.shareState().view, playing: false } });
+    await this.restore({ ...state, view: { ...this.shareState().view, spatial: state.spatial, playing: false } });
     this.paintHistory();
   }
 
@@ -276,7 +276,7 @@ class App {
     const state = this.future.pop();
     if (!state) return;
     this.history.push(this.snapshot());
-    await this.restore({ ...state, view: { ...this.shareState().view, playing: false } });
+    await this.restore({ ...state, view: { ...this.shareState().view, spatial: state.spatial, playing: false } });
     this.paintHistory();
   }
 
@@ -312,7 +312,7 @@ class App {
   /** Load a chosen mechanism; an error has no field to sit next to, so it goes to the status line. */
   async commitOrReport(scene, view, instant = null) {
     try {
-      await this.loadScene(scene, view ? { instant: view.view?.instant, keepChoices: true } : { instant });
+      await this.loadScene(scene, view ? { instant: view.view?.instant, spatial: view.view?.spatial, keepChoices: true } : { instant });
     } catch (err) {
       this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
     }
@@ -412,11 +412,11 @@ class App {
    * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
    * server's error (and leaves the page as it was) when the scene is not acceptable.
    */
-  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant } = {}) {
+  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null } = {}) {
     const seq = ++this.geometrySeq;
-    if (S.isSpatial(scene)) return this.loadSpatial(scene, seq);
-    const timeDriven = S.isTimeDriven(scene);
     const previous = keepInstant && this.track ? valueAt(this.track, this.u) : null;
+    if (S.isSpatial(scene)) return this.loadSpatial(scene, seq, previous ?? instant, spatial);
+    const timeDriven = S.isTimeDriven(scene);
     let track;
     let note = null;
     try {
@@ -530,10 +530,15 @@ class App {
     this.saveHash();
   }
 
-  async loadSpatial(scene, seq) {
+  /**
+   * A spatial chain swept over time, shown at `instant` (s; the start when null). `spatial`: the
+   * chain as opened and the fields' joint offsets, when a share link carries an edited chain.
+   */
+  async loadSpatial(scene, seq, instant = null, spatial = null) {
     this.dynamics.show(scene, this.units, SAMPLES); // hides the panel: no masses in space
     const edited = this.spatialEdit;
     this.spatialEdit = false;
+    const shared = sharedSpatialEdits(spatial);
     let sweep = null;
     let note = null;
     const { samples, quantities, timeRange } = sweepRequest(scene);
@@ -545,11 +550,13 @@ class App {
       note = `The server cannot analyse this spatial chain: ${err.detail}`;
     }
     if (seq !== this.geometrySeq) return;
-    if (!edited) this.spatialBase = scene; // the fields edit the chain as it was opened
+    // The fields edit the chain as it was opened (a share link of an edited chain carries it).
+    if (shared) this.spatialBase = shared.base;
+    else if (!edited) this.spatialBase = scene;
     this.scene = scene;
     this.track = sweep ? spatialTrack(sweep) : null;
     this.analysis = null;
-    this.u = 0;
+    this.u = this.track && instant !== null && instant !== undefined ? indexOfValue(this.track, instant) : 0;
     showView('spatial');
     $('view-title').textContent = scene.title || 'Spatial chain';
     $('instant-readout').textContent = '';
@@ -561,7 +568,7 @@ class App {
     this.spatial.setCamera(this.camera.yaw, this.camera.pitch);
     this.spatial.setExtent(this.track ? extentOf(this.track) : null);
     this.spatial.setScene(scene);
-    this.spatialFields.show(this.spatialBase, scene, edited);
+    this.spatialFields.show(this.spatialBase, scene, shared ? shared.offsets : edited ? this.spatialFields.offsets : null);
     this.viewMessage(note || '');
     clearPolygons($('velocity-polygon'), $('acceleration-polygon'));
     renderMagnitudes($('polygon-table'), scene, null, null, this.units);
@@ -651,7 +658,7 @@ class App {
         this.linkage.setScene(this.scene, this.track);
       }
       this.linkage.setAnalysis(this.analysis);
-      this.drawPolygons();
+      const polygons = this.drawPolygons();
       this.mechanismFacts(this.analysis);
       const loops = this.analysis.four_bar_loops || [];
       if (JSON.stringify(loops.map((l) => l.links)) !== JSON.stringify(this.loops.map((l) => l.links))) {
@@ -660,6 +667,10 @@ class App {
       } else {
         moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
       }
+      // Marked analysed once the polygons of this instant are being drawn (their details
+      // "pending"), so that a detail marked done is never the previous instant's.
+      await polygons;
+      if (seq !== this.analysisSeq) return; // a newer instant is being analysed
       $('linkage').dataset.analysed = String(this.instantValue(u));
       await katexReady();
       if (solutionSeq === this.solutionSeq) this.showSolution(solution);
@@ -894,8 +905,15 @@ class App {
         plot: this.plot,
         method: this.method,
         camera: this.camera,
+        spatial: this.spatialEdits(),
       },
     };
+  }
+
+  /** An edited spatial chain's fields: the chain as opened and the joint offsets (else null). */
+  spatialEdits() {
+    const edited = S.isSpatial(this.scene) && this.spatialBase && this.spatialBase !== this.scene;
+    return edited ? { base: this.spatialBase, offsets: [...this.spatialFields.offsets] } : null;
   }
 
   saveHash() {
@@ -983,6 +1001,15 @@ class App {
 /** Scenes moved by time laws are not edited by dragging (their paths name points). */
 function timeDrivenScene(scene) {
   return S.isTimeDriven(scene);
+}
+
+/** The spatial fields' state from a link, when it is well formed (else null: offsets start at 0). */
+function sharedSpatialEdits(spatial) {
+  const base = spatial?.base;
+  const offsets = spatial?.offsets;
+  if (!base || !S.isSpatial(base) || !Array.isArray(base.joints) || !Array.isArray(offsets)) return null;
+  if (offsets.length !== base.joints.length || !offsets.every(Number.isFinite)) return null;
+  return { base, offsets };
 }
 
 /** Show one of the two drawings. SVG elements have no `hidden` property: use the attribute. */

@@ -75,14 +75,15 @@ const pxPerUnit = (div) => {
  * Draw `figure` (polygons.js) zoomed on its detail region in `detail`, and mark the region in the
  * polygon `main` (already drawn with its labels); hide `detail` when no detail is needed. When
  * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
+ * `current()` false: a newer drawing of `main` has begun, stop here.
  */
-export async function renderDetail(P, main, detail, figure, kind, units) {
+export async function renderDetail(P, main, detail, figure, kind, units, current) {
   const region = detailRegion(figure.traces);
   if (!region) {
     detail.hidden = true;
     P.purge(detail);
     await P.relayout(main, { shapes: [] });
-    main.dataset.detail = 'none';
+    if (current()) main.dataset.detail = 'none';
     return;
   }
   detail.hidden = false;
@@ -95,6 +96,7 @@ export async function renderDetail(P, main, detail, figure, kind, units) {
     yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
   };
   await P.react(detail, figure.traces, base, CONFIG);
+  if (!current()) return;
   // Equal scales: the region centred in the plot area at the larger of the two fits' scales.
   const { xaxis, yaxis } = detail._fullLayout;
   const k = Math.min(xaxis._length / (region.x[1] - region.x[0]), yaxis._length / (region.y[1] - region.y[0]));
@@ -113,9 +115,11 @@ export async function renderDetail(P, main, detail, figure, kind, units) {
     yaxis: { ...base.yaxis, range: y },
   };
   await P.react(detail, figure.traces, laid, CONFIG);
+  if (!current()) return;
   const inside = ([px, py]) => px >= x[0] && px <= x[1] && py >= y[0] && py <= y[1];
   const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
   await P.react(detail, figure.traces, { ...laid, annotations: placeLabels(detail, entries, figure.traces) }, CONFIG);
+  if (!current()) return;
   const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
   await P.relayout(main, { shapes: [box] });
   main.dataset.detail = 'shown';

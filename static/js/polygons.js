@@ -268,20 +268,29 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
   const P = plotly();
   if (!P) return false;
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
-    const v = velocityFigure(scene, analysis, polygons, units);
-    velDiv.dataset.detail = 'pending';
-    P.react(velDiv, v.traces, v.layout, CONFIG)
-      .then(() => placeFigureLabels(P, velDiv, v))
-      .then(() => renderDetail(P, velDiv, detailOf(velDiv), v, 'velocity', units));
+    drawPolygon(P, velDiv, velocityFigure(scene, analysis, polygons, units), 'velocity', units);
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
-    const a = accelerationFigure(scene, analysis, polygons, units);
-    accDiv.dataset.detail = 'pending';
-    P.react(accDiv, a.traces, a.layout, CONFIG)
-      .then(() => placeFigureLabels(P, accDiv, a))
-      .then(() => renderDetail(P, accDiv, detailOf(accDiv), a, 'acceleration', units));
+    drawPolygon(P, accDiv, accelerationFigure(scene, analysis, polygons, units), 'acceleration', units);
   }
   return true;
+}
+
+const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
+
+/**
+ * One polygon: its figure, then its labels, then its detail (each step waits for Plotly). A newer
+ * drawing of the same div stops what is left of an older one, so a fast series of instants never
+ * leaves one instant's labels or detail on another's polygon, nor marks a detail done too early.
+ */
+function drawPolygon(P, div, figure, kind, units) {
+  const turn = (turns.get(div) || 0) + 1;
+  turns.set(div, turn);
+  const current = () => turns.get(div) === turn;
+  div.dataset.detail = 'pending';
+  P.react(div, figure.traces, figure.layout, CONFIG)
+    .then(() => current() && placeFigureLabels(P, div, figure))
+    .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 
 /** Labels of the tips and poles placed once Plotly has fixed the scale (labels.js). */
@@ -307,6 +316,7 @@ export function clearPolygons(...divs) {
   const P = plotly();
   if (!P) return;
   for (const d of divs) {
+    turns.set(d, (turns.get(d) || 0) + 1);
     P.purge(d);
     const detail = detailOf(d);
     if (detail) {

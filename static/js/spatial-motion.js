@@ -143,10 +143,10 @@ export class SpatialFields {
     this.base = null;
   }
 
-  /** Fields for `current`, built from `base` (the chain as opened); `edited`: keep the offsets. */
-  show(base, current, edited = false) {
+  /** Fields for `current`, built from `base` (the chain as opened), with these joint offsets (none: 0). */
+  show(base, current, offsets = null) {
     this.base = base;
-    if (!edited || !this.offsets) this.offsets = base.joints.map(() => 0);
+    this.offsets = offsets ? [...offsets] : base.joints.map(() => 0);
     this.lengths = base.joints.map((_, k) => {
       const ends = lengthEnds(current, k);
       return ends ? norm(sub(ends[1], ends[0])) : null;

@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import math
 from typing import Any
+from xml.etree import ElementTree
 
 import pytest
 
 from tests.browser.conftest import AppPage
-from tests.browser.test_app import pause_and_wait
-from tests.browser.test_edition2 import DETAIL_DONE, LABELS_PLACED, exported_scene
+from tests.browser.test_app import choose, pause_and_wait
+from tests.browser.test_edition2 import DETAIL_DONE, LABELS_PLACED, download, exported_scene
 
 pytestmark = pytest.mark.browser
 
@@ -201,3 +202,58 @@ def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_
     )
     assert boxes == ["rect"], "the detail's region is marked in the polygon"
     app.screenshot(f"detail-{scene.split(':')[1].split('.')[0]}", ".polygons-panel")
+
+
+PANEL_SIZES = """(id) => [id, `${id}-detail`].map((k) => document.getElementById(k))
+    .filter((d) => !d.hidden && d.data).map((d) => {
+        const b = d.getBoundingClientRect();
+        return [b.width, b.height];
+    })"""
+
+
+def png_size(content: bytes) -> tuple[int, int]:
+    assert content[:8] == b"\x89PNG\r\n\x1a\n"
+    return int.from_bytes(content[16:20], "big"), int.from_bytes(content[20:24], "big")
+
+
+def choose_figure(page: Any, div: str, fmt: str) -> None:
+    """Open the export menu (it closes after each export) and choose a figure and a format."""
+    if not page.evaluate("document.getElementById('export-menu').open"):
+        page.click("#export-menu summary")
+    page.select_option("#export-figure-which", div)
+    page.select_option("#export-figure-format", fmt)
+
+
+def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None:
+    """The quick-return at 35 % of the turn: its acceleration polygon has a detail panel. The
+    polygon's PNG and SVG hold the polygon and, under it, each panel shown on the page: the PNG
+    is as wide as the polygon (magnified to 640 px at least, 2 px per CSS px) and as tall as the
+    panels together; the SVG nests one document per panel, the detail at the polygon's height,
+    with the detail's title and scale as the page shows them."""
+    app.open()
+    page = app.page
+    choose(app, "preset:quick_return")
+    page.wait_for_selector("#linkage .slider-block", state="attached")
+    pause_and_wait(page)
+    set_instant(page, 0.35)
+    for div in ("velocity-polygon", "acceleration-polygon"):
+        page.wait_for_function(DETAIL_DONE, arg=div)
+    assert page.get_attribute("#acceleration-polygon", "data-detail") == "shown"
+    title = page.evaluate(DRAWN, "acceleration-polygon-detail")["title"]
+    scale = f"(dashed box): 1 cm = {title.split('(dashed box): 1 cm = ')[1].split(' ')[0]}"
+    for div in ("velocity-polygon", "acceleration-polygon"):
+        panels = page.evaluate(PANEL_SIZES, div)
+        assert len(panels) == (2 if page.get_attribute(f"#{div}", "data-detail") == "shown" else 1)
+        zoom = max(1.0, 640 / panels[0][0])
+        heights = [round(h * zoom) for _, h in panels]
+        choose_figure(page, div, "png")
+        _, png = download(page, "#export-figure")
+        assert png_size(png) == (2 * round(panels[0][0] * zoom), 2 * sum(heights)), (div, panels)
+        choose_figure(page, div, "svg")
+        _, svg = download(page, "#export-figure")
+        root = ElementTree.fromstring(svg)
+        nested = [e for e in root if e.tag.endswith("svg")]
+        assert [float(e.get("y", "0")) for e in nested] == [0.0, *heights[:1]][: len(panels)]
+        assert float(root.get("height", "0")) == sum(heights)
+        text = "".join(root.itertext())
+        assert (scale in text) == (div == "acceleration-polygon"), (div, scale)

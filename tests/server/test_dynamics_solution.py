@@ -5,6 +5,7 @@ are well-formed SVG with one arrow per force."""
 
 from __future__ import annotations
 
+import cmath
 import math
 import xml.etree.ElementTree as ET
 from typing import Any
@@ -15,7 +16,13 @@ from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.dynamics_cases import EXPECTED, seed004_scene, with_masses_and_loads
+from tests.dynamics_cases import (
+    EXPECTED,
+    five_bar_points,
+    five_bar_topology,
+    seed004_scene,
+    with_masses_and_loads,
+)
 from tests.linkage_strategies import linkages
 from tests.solver.test_steps import unit_floors, verify
 
@@ -141,3 +148,91 @@ def test_printable_page_of_the_newton_euler_solution(client: TestClient) -> None
     assert len(free_body) == 3, "one free-body diagram per moving link"
     assert all('<figure class="figure"><svg' in s for s in free_body)
     assert "Newton-Euler" in response.text
+
+
+def _two_crank_five_bar(time: float = 0.0) -> dict[str, Any]:
+    """The five-bar of five_bar_points driven by both cranks (omega, alpha each), with masses,
+    gravity, a force at C on ``left`` and a moment on ``right``, drawn ``time`` s after the drawn
+    pose: each crank turned by omega t + alpha t^2 / 2 about its pivot and turning at
+    omega + alpha t, C where the circles about A and B meet on the same side of AB, and the
+    centre of mass of ``left`` moved with A and C."""
+    drawn = five_bar_points()
+    points = dict(drawn)
+    rates = {"crank1": (3.0, -2.0, "O1", "A"), "crank2": (-5.0, 4.0, "O2", "B")}
+    drivers = []
+    for link, (w, al, pivot, tip) in rates.items():
+        turn = cmath.exp(1j * (w * time + al * time**2 / 2))
+        o, p = complex(*drawn[pivot]), complex(*drawn[tip])
+        z = o + (p - o) * turn
+        points[tip] = [z.real, z.imag]
+        drivers.append({"link": link, "omega": w + al * time, "alpha": al})
+    a0, b0, c0 = (complex(*drawn[k]) for k in "ABC")
+    a, b = complex(*points["A"]), complex(*points["B"])
+    r1, r2, d = abs(c0 - a0), abs(c0 - b0), abs(b - a)
+    along = (r1**2 - r2**2 + d**2) / (2 * d)
+    side = 1 if ((b0 - a0).conjugate() * (c0 - a0)).imag > 0 else -1
+    c = a + (b - a) / d * complex(along, side * math.sqrt(r1**2 - along**2))
+    points["C"] = [c.real, c.imag]
+    # The centre of mass of ``left`` is fixed in it: carried from the drawn A, C to these.
+    g = a + (complex(0.6, 0.8) - a0) * (c - a) / (c0 - a0)
+    return {
+        "kind": "linkage",
+        "points": points,
+        **five_bar_topology(),
+        "drivers": drivers,
+        "masses": {
+            "crank1": {"mass": 2.0, "bar": ["O1", "A"]},
+            "crank2": {"mass": 3.0, "bar": ["O2", "B"]},
+            "left": {"mass": 4.0, "center": [g.real, g.imag], "inertia": 0.2},
+            "right": {"mass": 5.0, "bar": ["B", "C"]},
+        },
+        "gravity": [0.0, -9.81],
+        "forces": [
+            {"name": "F", "link": "left", "point": "C", "magnitude": 40, "direction_deg": -60}
+        ],
+        "torques": [{"name": "M_r", "link": "right", "moment": 7.5}],
+    }
+
+
+def _analyze(client: TestClient, scene: dict[str, Any], quantities: list[str]) -> Any:
+    response = client.post("/api/v1/analyze", json={"scene": scene, "quantities": quantities})
+    assert response.status_code == 200, response.text
+    return response.json()
+
+
+def test_power_balance_of_two_drivers(client: TestClient) -> None:
+    """A five-bar driven by both cranks: the check is the drivers' total power, each term
+    M_i omega_i the analysis's torque times its crank's omega (1e-12), equal to d(T + V)/dt
+    minus the loads' power, where d(T + V)/dt is the central difference of /analyze's energies
+    at t = +-1e-4 s (1e-6 of the largest term) and the loads' power is F . v_C + M omega_right
+    from /analyze's velocities (1e-12)."""
+    body = solve(client, _two_crank_five_bar())
+    check(body)
+    (step,) = [s for s in body["steps"] if s["kind"] == "dynamics.power_balance"]
+    values = {key: v["value"] for key, v in step["values"].items()}
+    a = _analyze(client, _two_crank_five_bar(), ["velocity", "forces"])
+    terms = []
+    for driver in a["drivers"]:
+        link = driver["link"]
+        expected = driver["torque"] * a["links"][link]["omega"]
+        assert values[f"P({link})"] == pytest.approx(expected, rel=1e-12)
+        terms.append(expected)
+    assert values["P_drivers"] == pytest.approx(sum(terms), rel=1e-12)
+    assert min(abs(t) for t in terms) > 1.0  # both drivers do work here
+
+    h = 1e-4
+    energy = []
+    for t in (-h, h):
+        e = _analyze(client, _two_crank_five_bar(t), ["energy"])["energy"]
+        energy.append(e["kinetic"] + e["potential"])
+    rate = (energy[1] - energy[0]) / (2 * h)
+    c = a["points"]["C"]["velocity"]
+    force = [40 * math.cos(math.radians(-60)), 40 * math.sin(math.radians(-60))]
+    loads = force[0] * c[0] + force[1] * c[1] + 7.5 * a["links"]["right"]["omega"]
+    assert values["P_loads"] == pytest.approx(loads, rel=1e-12)
+    size = max(abs(values["dT/dt"]), abs(values["dV/dt"]), abs(loads))
+    assert values["dT/dt"] + values["dV/dt"] == pytest.approx(rate, abs=1e-6 * size)
+    assert values["dT/dt + dV/dt - P_loads"] == pytest.approx(rate - loads, abs=1e-6 * size)
+    assert values["P_drivers"] == pytest.approx(rate - loads, abs=1e-6 * size)
+    assert "M_{\\text{crank1}}\\,\\omega_{\\text{crank1}}" in step["latex"]
+    assert "M_crank2 omega(crank2)" in step["text"]
