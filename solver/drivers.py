@@ -7,6 +7,7 @@ pose to ``angle_deg``), or the driver's ``angle_law``.
 from __future__ import annotations
 
 import math
+from typing import TypeVar
 
 import numpy as np
 
@@ -15,6 +16,8 @@ from solver.errors import InvalidScene
 from solver.laws import parse_time_law
 from solver.rigid import Array
 from solver.scene import Driver, LinkageScene
+
+T = TypeVar("T", float, Array)
 
 
 def drawn_angle(scene: LinkageScene, link: str) -> float:
@@ -47,10 +50,16 @@ def driver_motion(
     """
     if driver.angle_law is not None:
         return DriverInput(*parse_time_law(driver.angle_law).evaluate(times))
-    return DriverInput(
-        _start_turn(scene, driver, wrap) + driver.omega * times + 0.5 * driver.alpha * times**2,
-        driver.omega + driver.alpha * times,
-        np.full(times.size, driver.alpha),
+    turn, omega = _uniformly_accelerated(_start_turn(scene, driver, wrap), driver, times)
+    return DriverInput(turn, omega, np.full(times.size, driver.alpha))
+
+
+def _uniformly_accelerated(start: float, driver: Driver, t: T) -> tuple[T, T]:
+    """phi = phi_0 + omega t + alpha t^2 / 2 and its rate omega + alpha t, at a time ``t`` (a
+    float) or at times (an array): the same operations either way, so the same numbers."""
+    return (
+        start + driver.omega * t + 0.5 * driver.alpha * (t * t),
+        driver.omega + driver.alpha * t,
     )
 
 
@@ -58,6 +67,9 @@ def driver_input(
     scene: LinkageScene, driver: Driver, time: float, wrap: bool = True
 ) -> tuple[float, float, float]:
     """(rotation from the drawn pose, omega, alpha) of a driver at one instant."""
+    if driver.angle_law is None:  # in floats (numpy's one-sample arrays cost a microsecond a step)
+        turn, omega = _uniformly_accelerated(_start_turn(scene, driver, wrap), driver, float(time))
+        return turn, omega, float(driver.alpha)
     at = driver_motion(scene, driver, np.array([time]), wrap)
     return float(at.theta[0]), float(at.omega[0]), float(at.alpha[0])
 

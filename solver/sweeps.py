@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.compiled_plan import compiled_plan
 from solver.continuation import Continuation
 from solver.drivers import drawn_angle, driver_input, driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded
@@ -120,6 +121,7 @@ class _Driven:
 
     def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
         self.scene, self.plan = scene, plan
+        self.compiled = compiled_plan(scene, plan)
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
         self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
@@ -131,13 +133,21 @@ class _Driven:
             inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
         return inputs
 
-    def run(self, turns: Array, order: int, start: float = 0.0) -> Motion:
-        """The linkage at ``turns``, on the drawn branch at the turn nearest ``start``."""
-        anchor = int(np.argmin(np.abs(turns - start)))
+    def run(
+        self, turns: Array, order: int, start: float | None = 0.0, keep: int | None = None
+    ) -> Motion:
+        """The linkage at ``turns``, on the drawn branch at the turn nearest ``start`` (None:
+        at the first turn); by the compiled plan where it can decide alone (then only the first
+        ``keep`` samples, if given, are returned)."""
+        inputs = self.inputs(turns)
+        motion = None if self.compiled is None else self.compiled.run(inputs, order, keep)
+        if motion is not None:
+            return motion
+        anchor = 0 if start is None else int(np.argmin(np.abs(turns - start)))
         return assemble(
             self.scene,
             self.plan,
-            self.inputs(turns),
+            inputs,
             order,
             continuation=True,
             anchor=anchor,
@@ -186,11 +196,11 @@ def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[fl
     """None if the driver turns fully, else the (low, high) turns bounding the start's interval."""
     step = 2.0 * math.pi / PROBE_SAMPLES
     turns = start + direction * step * np.arange(PROBE_SAMPLES + 1)
-    motion = assemble(driven.scene, driven.plan, driven.inputs(turns), 0, continuation=True)
+    motion = driven.run(turns, 0, None)
     if _turns_fully(motion):
         return None
     behind_turns = start - direction * step * np.arange(PROBE_SAMPLES + 1)
-    behind = assemble(driven.scene, driven.plan, driven.inputs(behind_turns), 0, continuation=True)
+    behind = driven.run(behind_turns, 0, None)
     end = _limit(driven, *_first_failure(motion, turns))
     begin = _limit(driven, *_first_failure(behind, behind_turns))
     return (min(begin, end), max(begin, end))
@@ -233,7 +243,7 @@ def _cycle(
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
     elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
-        motion = driven.run(turns, order, start)
+        motion = driven.run(turns, order, start, keep=samples)
         if _turns_fully(motion):
             return turns, motion, None
         span = _feasible_range(driven, start, direction)
@@ -277,8 +287,10 @@ def sweep(
         else 0.0
     )
     approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
-    if span is None:
-        motion, turns = motion.cut(slice(0, samples)), turns[:samples]
+    if span is None:  # the closing sample off (the compiled plan returns the rest alone)
+        if motion.margin.size > samples:
+            motion = motion.cut(slice(0, samples))
+        turns = turns[:samples]
     require_feasible(motion, "during the sweep")
     singular = (
         np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
