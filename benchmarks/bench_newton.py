@@ -193,8 +193,9 @@ def main() -> None:
         "complex product and four 5x5 LAPACK solves, all numpy call overhead on tiny arrays), "
         "the rest the batched polish and rates from quintic starting values (two Newton "
         "iterations, a polishing step and the rates: five stacked (N, 4, 4) solves, the "
-        "Jacobian never formed whole) and the set-up of the two constraint systems; at 3600 "
-        "samples the stacked solves (numpy.linalg.solve, about 0.25 us a 4x4 system) dominate.",
+        "Jacobian never formed whole); the two constraint systems are built once per parsed "
+        "scene (`constraints.constraint_system`), not per sweep. At 3600 samples the stacked "
+        "solves (numpy.linalg.solve, about 0.25 us a 4x4 system) dominate.",
         "",
         "### Newton tolerance: time against error",
         "",

@@ -23,6 +23,7 @@ the stacked Jacobians (Newton-Raphson on them is ``solver.newton``).
 from __future__ import annotations
 
 import copy
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -114,7 +115,7 @@ class ConstraintSystem:
         exact: Callable[[Array], Array] | None = None,
     ) -> None:
         number = exact or (lambda x: np.asarray(x, dtype=float))
-        self.scene = scene
+        self._scene = weakref.ref(scene)  # not kept alive by its cached systems
         self.unknown = tuple(unknown)
         self.column = {link: 3 * k for k, link in enumerate(self.unknown)}
         self.names = tuple(scene.links)
@@ -141,6 +142,25 @@ class ConstraintSystem:
         self.length_rows[self.angle_rows] = False
         # The fast evaluation where the equations are linear in (q, cos theta, sin theta).
         self.linear = None if exact or self.sld.size else LinearForm(self)
+
+    @property
+    def scene(self) -> LinkageScene:
+        """The scene, held weakly: a system in ``constraint_system``'s cache must not keep its
+        scene alive (the cache forgets the scene's systems when the scene is freed)."""
+        scene = self._scene()
+        assert scene is not None, "a constraint system outlived its scene"
+        return scene
+
+    @cached_property
+    def scaled(self) -> tuple[Array, Array, LinearForm | None]:
+        """(column, row, form): the equations in coordinates x = q / column with lengths in scene
+        sizes (column = (size, size, 1) per link, row = size on the length rows, 1 on the
+        angles'), Phi / row, and their ``LinearForm`` (None where not linear): the path
+        following's (``continuation.Branch``)."""
+        size = self.scene.size
+        column = np.tile([size, size, 1.0], len(self.unknown))
+        row = np.where(self.length_rows, size, 1.0)
+        return column, row, None if self.linear is None else self.linear.scaled(column, row)
 
     def _joint_rows(
         self,
@@ -419,6 +439,30 @@ class ConstraintSystem:
                 None if qdd is None else qdd[:, 3 * index + 2],
             )
         return out
+
+
+_SYSTEMS: dict[int, dict[tuple[tuple[str, ...], tuple[str, ...]], ConstraintSystem]] = {}
+# by id of a live scene, as topology._PLANS: a scene is immutable, so are its systems
+
+
+def constraint_system(
+    scene: LinkageScene, unknown: Sequence[str], angles: Sequence[str] = ()
+) -> ConstraintSystem:
+    """``ConstraintSystem(scene, unknown, angles=angles)`` built once per scene object and
+    forgotten with it (the pattern of ``topology.build_plan``): every sweep of one parsed scene,
+    its branches and their poses share it (building the triad's two systems was an eighth of a
+    360-sample sweep). Nothing changes a system once built (its ``cached_property`` values are
+    functions of it alone), so every reuse gives the same results."""
+    key = id(scene)
+    systems = _SYSTEMS.get(key)
+    if systems is None:
+        systems = _SYSTEMS[key] = {}
+        weakref.finalize(scene, _SYSTEMS.pop, key, None)
+    which = (tuple(unknown), tuple(angles))
+    system = systems.get(which)
+    if system is None:
+        system = systems[which] = ConstraintSystem(scene, unknown, angles=angles)
+    return system
 
 
 class LinearForm:

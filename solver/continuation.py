@@ -167,11 +167,10 @@ class Branch:
         drivers = [d.link for d in scene.drivers]
         others = drivers[:free] + drivers[free + 1 :]
         self.scene = scene
-        self.system = ConstraintSystem(scene, scene.moving_links, angles=others)
+        self.system = constraints.constraint_system(scene, scene.moving_links, others)
         self.held = np.array([held]).reshape(1, len(others))
         self.free_driver = free
-        size = scene.size
-        self.scale = np.tile([size, size, 1.0], len(self.system.unknown))
+        self.scale = self.system.scaled[0]
         ground = scene.ground
         anchor = self.system.anchor0[ground][None]
         zero2, zero = np.zeros((1, 2)), np.zeros(1)
@@ -190,9 +189,7 @@ class Branch:
         """The coordinates y the path is followed in, from the scaled drawn coordinates x0: the
         rotations alone where the equations are linear in them (``constraints.Rotations``: the
         translations follow from them), else x; ``free`` the first driver's index in y."""
-        form = self.system.linear
-        row_scale = np.where(self.system.length_rows, self.scene.size, 1.0)
-        scaled = None if form is None else form.scaled(self.scale, row_scale)
+        _, row_scale, scaled = self.system.scaled
         rotations = None if scaled is None else scaled.rotations
         self.bending: Callable[[Array, Array], Array] | None = None
         if scaled is None or rotations is None:
@@ -362,7 +359,7 @@ class Branch:
         if not reached[0]:
             return None
         drivers = [d.link for d in self.scene.drivers]
-        system = ConstraintSystem(self.scene, self.scene.moving_links, angles=drivers)
+        system = constraints.constraint_system(self.scene, self.scene.moving_links, drivers)
         angles = list(self.held[0])
         angles.insert(self.free_driver, turn)
         q, _, _, _ = newton.newton_raphson(
@@ -485,7 +482,7 @@ def solve_group(
     ``turns`` are the drivers' turns per sample; the group's known neighbours come from
     ``known`` (the closed-form groups solved before it).
     """
-    system = ConstraintSystem(scene, group)
+    system = constraints.constraint_system(scene, group)
     samples = turns[0].size if turns else 1
     states = constraints.states({name: known[name] for name in system.known}, scene)
     polish = _Polish(system, states, samples, continuation)

@@ -1,0 +1,58 @@
+"""constraints.constraint_system keeps one ConstraintSystem per live scene object and set of
+unknowns (issue 8: a Newton group's sweep built its two systems on every sweep), as
+topology.build_plan keeps plans: reused, the systems give the same sweep to the last bit."""
+
+from __future__ import annotations
+
+import gc
+
+import numpy as np
+
+from benchmarks.bench_newton import FULL_TURN, PARTIAL
+from solver import constraints
+from solver.scene import parse_linkage
+from solver.sweeps import Sweep, sweep
+
+ALL = ["position", "velocity", "acceleration"]
+
+
+def _bytes(result: Sweep) -> bytes:
+    """Every number of a sweep: angles, limits, each link's and point's motion, residuals."""
+    motion = result.motion
+    parts: list[object] = [result.driver_angle, result.limits, motion.converged]
+    for link in sorted(motion.links):
+        m = motion.links[link]
+        parts += [m.anchor.p, m.anchor.v, m.anchor.a, m.theta, m.omega, m.alpha]
+    for point in sorted(motion.points):
+        p = motion.points[point]
+        parts += [p.p, p.v, p.a]
+    parts += [(r.residual_norm, r.iterations) for r in motion.newton]
+    return b"".join(np.asarray(x, dtype=float).tobytes() for x in parts)
+
+
+def test_sweeps_of_one_scene_share_its_systems_and_are_identical() -> None:
+    scene = parse_linkage(FULL_TURN)
+    first = _bytes(sweep(scene, 360, ALL))
+    systems = dict(constraints._SYSTEMS[id(scene)])
+    assert len(systems) == 2  # the branch's (whole linkage) and the group's
+    again = _bytes(sweep(scene, 360, ALL))
+    assert constraints._SYSTEMS[id(scene)] == systems  # the same objects, none built again
+    assert again == first
+    assert _bytes(sweep(parse_linkage(FULL_TURN), 360, ALL)) == first  # as built afresh
+
+
+def test_one_system_per_scene_and_unknowns_forgotten_with_the_scene() -> None:
+    scene = parse_linkage(FULL_TURN)
+    moving = scene.moving_links
+    system = constraints.constraint_system(scene, moving)
+    assert constraints.constraint_system(scene, list(moving)) is system
+    held = constraints.constraint_system(scene, moving, ["crank"])
+    assert held is not system and held.angles == ("crank",)
+    key = id(scene)
+    del scene, system, held
+    gc.collect()
+    assert key not in constraints._SYSTEMS
+    # A later scene (whatever its id) is given systems of its own, not the freed scene's.
+    other = parse_linkage(PARTIAL)
+    assert constraints.constraint_system(other, other.moving_links).scene is other
+    assert _bytes(sweep(other, 36, ALL)) == _bytes(sweep(parse_linkage(PARTIAL), 36, ALL))
