@@ -239,11 +239,14 @@ class ConstraintSystem:
     def _stack(
         self, known: Mapping[str, States], q: Array, qd: Array | None, order: int
     ) -> tuple[Array, ...]:
-        """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero."""
+        """Every link's (M, L) state arrays; the unknowns' rates are qd (order 2) or zero.
+
+        A link in no equation of the group (the frame of a five-bar's dyad) stays at zero: its
+        cos and sin are taken with the others' and never read (in 40 digits, not a None)."""
         M = q.shape[0]
         L = len(self.names)
         kind = q.dtype
-        c, theta = np.empty((M, L, 2), dtype=kind), np.empty((M, L), dtype=kind)
+        c, theta = np.zeros((M, L, 2), dtype=kind), np.zeros((M, L), dtype=kind)
         v = a = np.zeros((1, L, 2), dtype=kind)
         omega = alpha = np.zeros((1, L), dtype=kind)
         if order:
