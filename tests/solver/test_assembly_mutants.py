@@ -192,3 +192,18 @@ def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
     (approach,) = result.close_approaches
     assert abs(approach.margin - 1e-4) <= 1e-12
     assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
+
+
+def test_newton_group_that_cannot_close_is_refused_with_its_loop() -> None:
+    """The triad of tests/solver/test_newton.py (drawn at crank 33.7 deg) rocks between its limit
+    positions, 11.3 and 74.8 deg (its sweep's limits): analysed at 120 deg, where Newton-Raphson
+    cannot close it, it is refused (never an unconverged answer), naming the loop that failed."""
+    from tests.solver.test_newton import TRIAD, with_angle
+
+    lower, upper = solver.sweep(TRIAD, 36).as_dict()["limits"]
+    assert math.degrees(lower) < 33.7 < math.degrees(upper) < 120.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(with_angle(TRIAD, 120.0))
+    message = str(error.value.message)
+    assert message.startswith("the linkage cannot be closed at crank angle 120 deg: ")
+    assert "the loop of T, L1, L2, L3 cannot be closed at crank angle 120 deg" in message
