@@ -207,3 +207,16 @@ def test_newton_group_that_cannot_close_is_refused_with_its_loop() -> None:
     message = str(error.value.message)
     assert message.startswith("the linkage cannot be closed at crank angle 120 deg: ")
     assert "the loop of T, L1, L2, L3 cannot be closed at crank angle 120 deg" in message
+
+
+@pytest.mark.parametrize("scale", [1.0, 1000.0, 1e-3])
+def test_parallelogram_with_samples_on_its_change_points_at_any_scale(scale: float) -> None:
+    """A parallelogram (ground = coupler = s, crank = rocker = 0.4 s) drawn at 60 deg and swept
+    with 360 samples: two samples fall on its change points (180 and 360 deg), where the margin
+    is rounding noise of either sign. It stays a parallelogram, C = B + (s, 0) to 1e-9 s, at
+    s = 1, 1000 and 1e-3 m (the tolerance scales with the size)."""
+    values = {"ground": scale, "crank": 0.4 * scale, "coupler": scale, "rocker": 0.4 * scale}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 60.0, "assembly": 0.0})
+    result = sweep(parse_linkage(doc), 360, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([scale, 0.0])).max() <= 1e-9 * scale
