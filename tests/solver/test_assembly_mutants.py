@@ -192,3 +192,73 @@ def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
     (approach,) = result.close_approaches
     assert abs(approach.margin - 1e-4) <= 1e-12
     assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
+
+
+def test_newton_group_that_cannot_close_is_refused_with_its_loop() -> None:
+    """The triad of tests/solver/test_newton.py (drawn at crank 33.7 deg) rocks between its limit
+    positions, 11.3 and 74.8 deg (its sweep's limits): analysed at 120 deg, where Newton-Raphson
+    cannot close it, it is refused (never an unconverged answer), naming the loop that failed."""
+    from tests.solver.test_newton import TRIAD, with_angle
+
+    lower, upper = solver.sweep(TRIAD, 36).as_dict()["limits"]
+    assert math.degrees(lower) < 33.7 < math.degrees(upper) < 120.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(with_angle(TRIAD, 120.0))
+    message = str(error.value.message)
+    assert message.startswith("the linkage cannot be closed at crank angle 120 deg: ")
+    assert "the loop of T, L1, L2, L3 cannot be closed at crank angle 120 deg" in message
+
+
+@pytest.mark.parametrize("scale", [1.0, 1000.0, 1e-3])
+def test_parallelogram_with_samples_on_its_change_points_at_any_scale(scale: float) -> None:
+    """A parallelogram (ground = coupler = s, crank = rocker = 0.4 s) drawn at 60 deg and swept
+    with 360 samples: two samples fall on its change points (180 and 360 deg), where the margin
+    is rounding noise of either sign. It stays a parallelogram, C = B + (s, 0) to 1e-9 s, at
+    s = 1, 1000 and 1e-3 m (the tolerance scales with the size)."""
+    values = {"ground": scale, "crank": 0.4 * scale, "coupler": scale, "rocker": 0.4 * scale}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 60.0, "assembly": 0.0})
+    result = sweep(parse_linkage(doc), 360, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([scale, 0.0])).max() <= 1e-9 * scale
+
+
+def test_window_between_samples_where_the_linkage_cannot_close_is_refused() -> None:
+    """The crank-rocker 1e-6 outside the Grashof equality (b + c = g + a - 1e-6) swept over
+    time, crank at 30 deg + t rad, samples every 0.1 s: every sample closes, but at crank
+    180 deg (t = pi - pi/6 = 2.618 s, between samples 26 and 27) |BD| = g + a exceeds b + c by
+    1e-6 m (closed form); the sweep is refused with those numbers."""
+    from solver.sweeps import sweep_time
+
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 - 1e-6}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 1.0})
+    with pytest.raises(NotAssemblable) as error:
+        sweep_time(parse_linkage(doc), 0.0, 4.0, 41, ["position"])
+    assert str(error.value.message) == (
+        "the linkage cannot be closed during t = 0 .. 4 s: the loci of C fail to meet by "
+        "1e-06 m between samples 26 and 27"
+    )
+
+
+def test_four_bar_that_cannot_close_names_its_links() -> None:
+    """The crank-rocker with b + c = 1.39 < g + a = 1.4, swept from crank 180 deg, where
+    |BD| = g + a = 1.4 m: refused, the message naming the dyad's point C through its links."""
+    values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.49}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 1.0})
+    doc["drivers"][0]["angle_deg"] = 180.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.sweep(doc, 36)
+    assert str(error.value.message) == (
+        "the linkage cannot be closed at the sweep's starting angle: "
+        "|BD| = 1.4 m > |BC| + |DC| = 0.9 + 0.49 = 1.39 m"
+    )
+
+
+def test_slider_crank_closest_approach_in_the_analysis() -> None:
+    """In-line slider-crank, rod = crank + 1e-4 = 1.0001 m, analysed at crank 89 deg: its
+    circle-line group's margin is rod - |B_y| = 1.0001 - sin 89 deg (closed form, to 1e-12 m),
+    reported as the closest approach of C."""
+    values = {"crank": 1.0, "rod": 1.0001, "offset": 0.0, "crank_angle_deg": 89.0}
+    closest = solver.analyze(build_preset("slider_crank", values)).as_dict()["diagnostics"]
+    approach = closest["closest_approach"]
+    assert approach["point"] == "C"
+    assert abs(approach["margin"] - (1.0001 - math.sin(math.radians(89.0)))) <= 1e-12
