@@ -27,7 +27,7 @@ import numpy as np
 
 from solver import dyads
 from solver.assembly import DriverInput, Motion, candidate_minima
-from solver.rigid import Array, LinkMotion, PointMotion, fixed_link, repeat
+from solver.rigid import Array, LinkMotion, PointMotion, repeat
 from solver.scene import LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, TwoPointStep
 
@@ -85,6 +85,11 @@ class _TwoPoint:
 _Step = _Drive | _Dyad | _TwoPoint
 
 
+def _positive(x: Array) -> Array:
+    """np.where(x > 0, x, 1.0): ``x`` itself where every x is positive (the common case)."""
+    return x if x.min() > 0.0 else np.where(x > 0.0, x, 1.0)
+
+
 def _sub(a: Column, b: Column) -> Column:
     """a - b; a - (+0.0) is a exactly (a fixed point's rate or coordinate), so not computed."""
     if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0.0:
@@ -103,7 +108,8 @@ class CompiledPlan:
         self.fixed = {
             p: (float(scene.drawn(p)[0]), float(scene.drawn(p)[1])) for p in ground.points
         }
-        self.ground_anchor = scene.drawn(ground.points[0])
+        self.ground_points = ground.points
+        self.ground_anchor0 = scene.drawn(ground.points[0])
 
     def run(
         self, inputs: Sequence[DriverInput], order: int, keep: int | None = None
@@ -131,11 +137,16 @@ class _Run:
         self.drawn_samples = np.flatnonzero(at_drawn)
         self.cols: dict[str, _Point] = {}
         self.points: dict[str, PointMotion] = {}
-        self.links: dict[str, LinkMotion] = {plan.ground: fixed_link(plan.ground_anchor, n)}
         at_rest = np.zeros((n, 2))
         for p, (x, y) in plan.fixed.items():
             self.cols[p] = _Point(x, y)
             self.points[p] = PointMotion(repeat(np.array((x, y)), n), at_rest, at_rest)
+        # The ground (``rigid.fixed_link``) and the drivers' pivots share the fixed points' arrays.
+        zeros = np.zeros(n)
+        anchor = self.points[plan.ground_points[0]]
+        self.links: dict[str, LinkMotion] = {
+            plan.ground: LinkMotion(plan.ground_anchor0, anchor, zeros, zeros, zeros)
+        }
         self.margin = np.ones(self.n)
         self.gradient_sine = np.ones(self.n)
         self.group_margins: dict[str, Array] = {}
@@ -200,13 +211,10 @@ class _Run:
         given = self.inputs[step.driver]
         omega = given.omega if self.order >= 1 else None
         alpha = given.alpha if self.order >= 2 else None
-        pivot0 = step.carried.anchor0
         kept = self.kept
-        zeros = np.zeros((kept.stop, 2))
-        anchor = PointMotion(repeat(pivot0, kept.stop), zeros, zeros)
         self.links[step.link] = LinkMotion(
-            pivot0,
-            anchor,
+            step.carried.anchor0,
+            self.points[step.pivot],
             given.theta[kept],
             None if omega is None else omega[kept],
             None if alpha is None else alpha[kept],
@@ -220,10 +228,9 @@ class _Run:
         r1, r2 = step.first.radius, step.second.radius
         dx, dy = _sub(c2.x, c1.x), _sub(c2.y, c1.y)
         d = np.sqrt(dx * dx + dy * dy)
-        positive = d > 0.0
-        safe_d = np.where(positive, d, 1.0)
+        safe_d = _positive(d)
         ux, uy = dx / safe_d, dy / safe_d
-        if not positive.all():
+        if safe_d is not d:  # coincident centres somewhere
             ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
         a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
         h2 = r1**2 - a**2
@@ -260,11 +267,12 @@ class _Run:
         g2x, g2y = _sub(X.x, c2.x), _sub(X.y, c2.y)
         det = g1x * g2y - g1y * g2x
         norms = np.sqrt((g1x * g1x + g1y * g1y) * (g2x * g2x + g2y * g2y))
-        sine = np.abs(det) / np.where(norms > 0.0, norms, 1.0)
+        sine = np.abs(det) / _positive(norms)
         self.gradient_sine = np.minimum(self.gradient_sine, sine)
         if self.order < 1:
             return
-        det = np.where(det != 0.0, det, np.inf)
+        if not np.all(det):
+            det = np.where(det != 0.0, det, np.inf)
         rhs1 = g1x * c1.vx + g1y * c1.vy
         rhs2 = g2x * c2.vx + g2y * c2.vy
         np.divide(rhs1 * g2y - rhs2 * g1y, det, out=v[:, 0])
@@ -319,6 +327,8 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
     steps: list[_Step] = []
     for step in plan.steps:
         if isinstance(step, DriverStep):
+            if step.pivot not in fixed:
+                return None
             carried = _carried(scene, step.link, step.pivot, known)
             steps.append(_Drive(step.link, step.pivot, step.driver, carried))
         elif isinstance(step, DyadStep):

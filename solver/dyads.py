@@ -83,7 +83,10 @@ class Intersection:
 
 def _root(h2: Array, r2: float | Array) -> Array:
     """sqrt(h^2), a tangency within rounding (h^2 <= TANGENCY_TOLERANCE r^2) snapped to zero."""
-    return np.sqrt(np.where(h2 > TANGENCY_TOLERANCE * r2, h2, 0.0))
+    floor = TANGENCY_TOLERANCE * r2
+    if isinstance(floor, float) and h2.min() > floor:  # no tangency anywhere (the common case)
+        return np.sqrt(h2)
+    return np.sqrt(np.where(h2 > floor, h2, 0.0))
 
 
 def intersect(first: Locus, second: Locus, name: str) -> Intersection:

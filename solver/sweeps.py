@@ -9,7 +9,8 @@ samples are spread strictly inside it (at a limit position itself the velocity e
 singular). Close approaches of a group's two branches (within 1e-3 of the size) are reported.
 Samples that land exactly on a change point (a parallelogram's crossing: the velocity equations
 singular, the motion smooth) take their rates from their two neighbours and are listed in
-``singular_samples``.
+``singular_samples``. A plan of drivers, RRR dyads and two-point links runs compiled
+(``compiled_plan``: the same numbers, column by column) wherever that needs no branch search.
 """
 
 from __future__ import annotations
