@@ -9,6 +9,8 @@
 // mechanism plays. Sizes are measured once per label (canvas text metrics of the label's own
 // computed font), so a frame never asks the browser for a layout.
 
+import { overlaps, segmentHitsBox } from './boxes.js';
+
 const PAD = 2; // px of white halo around each label (the labels' paint-order stroke)
 const BLOCKED = 1e6; // on another label or on a joint marker
 const OUTSIDE = 1e3; // beyond the picture's edge
@@ -32,26 +34,6 @@ export function measureLabel(node) {
 
 /** The box {x0, y0, x1, y1} of a label of size {w, h} centred at (cx, cy). */
 export const boxAt = ([cx, cy], { w, h }) => ({ x0: cx - w / 2, x1: cx + w / 2, y0: cy - h / 2, y1: cy + h / 2 });
-const overlaps = (a, b) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-
-/** True when the segment a-b passes through the box (Liang–Barsky clipping). */
-function segmentHitsBox([x1, y1], [x2, y2], b) {
-  let t0 = 0;
-  let t1 = 1;
-  const dx = x2 - x1;
-  const dy = y2 - y1;
-  for (const [p, q] of [[-dx, x1 - b.x0], [dx, b.x1 - x1], [-dy, y1 - b.y0], [dy, b.y1 - y1]]) {
-    if (p === 0) {
-      if (q < 0) return false;
-      continue;
-    }
-    const r = q / p;
-    if (p < 0) t0 = Math.max(t0, r);
-    else t1 = Math.min(t1, r);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
 
 /** Centres around a point: the box's nearest edge r px from it, in eight directions. */
 export function aroundPoint([x, y], { w, h }) {

@@ -8,6 +8,8 @@
 // midpoints) and become annotations named "label:<text>" (xshift/yshift in pixels from the
 // anchor; from 42 px on, ax/ay with a thin leader line to the anchor).
 
+import { overlaps, segmentHitsBox } from './boxes.js';
+
 const FONT = '600 14px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
 const HEIGHT = 17;
 const PAD = 2;
@@ -23,27 +25,6 @@ function textWidth(html) {
   const sub = [...html.matchAll(/<su[bp]>(.*?)<\/su[bp]>/g)].map((m) => m[1]).join('');
   const main = html.replace(/<su[bp]>.*?<\/su[bp]>/g, '').replace(/<[^>]+>/g, '');
   return context.measureText(main).width + 0.7 * context.measureText(sub).width;
-}
-
-const overlaps = (a, b) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-
-function segmentHitsBox([x1, y1], [x2, y2], b) {
-  // Liang–Barsky clipping of the segment against the box.
-  let t0 = 0;
-  let t1 = 1;
-  const dx = x2 - x1;
-  const dy = y2 - y1;
-  for (const [p, q] of [[-dx, x1 - b.x0], [dx, b.x1 - x1], [-dy, y1 - b.y0], [dy, b.y1 - y1]]) {
-    if (p === 0) {
-      if (q < 0) return false;
-      continue;
-    }
-    const r = q / p;
-    if (p < 0) t0 = Math.max(t0, r);
-    else t1 = Math.min(t1, r);
-    if (t0 > t1) return false;
-  }
-  return true;
 }
 
 /** Line segments of the figure's traces, in pixels of the plot area. */

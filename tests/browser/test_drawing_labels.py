@@ -100,6 +100,6 @@ def test_names_in_the_drawing_never_overlap(app: AppPage) -> None:
         found[f"{name} analysed"] = clashes(view)
         for stop in range(STOPS):
             value = move_slider(page, stop)
-            found[f"{name} at slider {value}"] = clashes(page.evaluate(SHOWN))
+            found[f"{name} at stop {stop} (slider {value})"] = clashes(page.evaluate(SHOWN))
     assert not {k: v for k, v in found.items() if v}
     assert len(found) >= 14 * STOPS and poles >= 4, (len(found), poles)
