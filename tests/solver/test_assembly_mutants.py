@@ -158,6 +158,8 @@ def test_slotted_lever_close_approach_is_named_after_its_slot() -> None:
     result = sweep(parse_linkage(_inverted(0.8 - 1e-4, 90.0)), 100, ["position"])
     (approach,) = result.close_approaches
     assert approach.point == "the slot of 'lever'"
+    assert approach.margin == pytest.approx((1.0 - (0.8 - 1e-4)) - 0.2, rel=0, abs=1e-12)
+    assert math.remainder(approach.driver_angle, 2 * math.pi) == pytest.approx(0.0, abs=1e-6)
     assert abs(approach.margin - 1e-4) <= 1e-12
     assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
 
