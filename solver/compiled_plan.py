@@ -254,7 +254,7 @@ class _Run:
         close somewhere or the branch search would look at it."""
         size = self.plan.size
         relative = margin / size
-        if np.any(relative < -dyads.COINCIDENCE_TOLERANCE) or candidate_minima(margin, size).size:
+        if relative.min() < -dyads.COINCIDENCE_TOLERANCE or candidate_minima(margin, size).size:
             return False
         self.margin = np.minimum(self.margin, relative)
         self.group_margins[point] = margin

@@ -134,21 +134,32 @@ class _Driven:
             inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
         return inputs
 
+    def compiled_run(self, turns: Array, order: int, keep: int | None = None) -> Motion | None:
+        """The linkage at ``turns`` by the compiled plan, where it can decide alone (then only
+        the first ``keep`` samples, if given, are returned): every sample closes and no window
+        between two samples fails to (the compiled plan hands back wherever the branch search
+        would look); else None."""
+        return None if self.compiled is None else self.compiled.run(self.inputs(turns), order, keep)
+
     def run(
-        self, turns: Array, order: int, start: float | None = 0.0, keep: int | None = None
+        self,
+        turns: Array,
+        order: int,
+        start: float | None = 0.0,
+        keep: int | None = None,
+        compiled: bool = True,
     ) -> Motion:
         """The linkage at ``turns``, on the drawn branch at the turn nearest ``start`` (None:
-        at the first turn); by the compiled plan where it can decide alone (then only the first
-        ``keep`` samples, if given, are returned)."""
-        inputs = self.inputs(turns)
-        motion = None if self.compiled is None else self.compiled.run(inputs, order, keep)
+        at the first turn); by the compiled plan where it can decide alone (``compiled_run``;
+        not tried again if ``compiled`` is false: it was, and handed back)."""
+        motion = self.compiled_run(turns, order, keep) if compiled else None
         if motion is not None:
             return motion
         anchor = 0 if start is None else int(np.argmin(np.abs(turns - start)))
         return assemble(
             self.scene,
             self.plan,
-            inputs,
+            self.inputs(turns),
             order,
             continuation=True,
             anchor=anchor,
@@ -233,18 +244,24 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
                 values[k] = 0.5 * (values[before] + values[after])
 
 
+def _revolution(samples: int, start: float, direction: float) -> Array:
+    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start)."""
+    return start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
+
+
 def _cycle(
     driven: _Driven, samples: int, order: int, start: float, direction: float
 ) -> tuple[Array, Motion, tuple[float, float] | None]:
     """The driver's turns from ``start`` and the motion over them: a full revolution with one
     sample more than asked, back at the start (so the last interval is searched too), or, where
     the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
-    (that range, the limits, is returned too; None for a full revolution)."""
-    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
+    (that range, the limits, is returned too; None for a full revolution). Called where
+    the compiled plan handed the revolution back (in ``sweep``): it is not tried again."""
+    turns = _revolution(samples, start, direction)
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
     elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
-        motion = driven.run(turns, order, start, keep=samples)
+        motion = driven.run(turns, order, start, keep=samples, compiled=False)
         if _turns_fully(motion):
             return turns, motion, None
         span = _feasible_range(driven, start, direction)
@@ -276,28 +293,34 @@ def sweep(
     driven = _Driven(scene, plan, tolerance)
     start, omega, _ = driven.given[0]
     direction = -1.0 if omega < 0 else 1.0
-    # The drawn pose closes by construction; a start at angle_deg must be checked.
-    if start != 0.0 and not driven.closes(start):
-        require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
     order = required_order(wanted)
-    turns, motion, span = _cycle(driven, samples, order, start, direction)
-    limits: tuple[float, ...] = span or ()
     drawn = (
         drawn_angle(scene, scene.drivers[0].link)
         if len(scene.links[scene.drivers[0].link].points) >= 2
         else 0.0
     )
-    approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
-    if span is None:  # the closing sample off (the compiled plan returns the rest alone)
-        if motion.margin.size > samples:
-            motion = motion.cut(slice(0, samples))
+    span: tuple[float, float] | None = None
+    approaches: tuple[CloseApproach, ...] = ()
+    # A revolution the compiled plan alone turns (``_Driven.compiled_run``) closes at every
+    # sample (the first is the start) and between: nothing to check again, no approach to warn.
+    turns = _revolution(samples, start, direction)
+    probing = samples >= SELF_PROBING_SAMPLES  # (the sweep is its own feasibility probe)
+    motion = driven.compiled_run(turns, order, keep=samples) if probing else None
+    if motion is not None:
         turns = turns[:samples]
-    require_feasible(motion, "during the sweep")
-    singular = (
-        np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
-        if order
-        else np.array([], dtype=int)
-    )
+    else:
+        # The drawn pose closes by construction; a start at angle_deg must be checked.
+        if start != 0.0 and not driven.closes(start):
+            require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
+        turns, motion, span = _cycle(driven, samples, order, start, direction)
+        approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
+        if span is None:  # the closing sample off
+            motion, turns = motion.cut(slice(0, samples)), turns[:samples]
+        require_feasible(motion, "during the sweep")
+    limits: tuple[float, ...] = span or ()
+    singular = np.array([], dtype=int)
+    if order and motion.gradient_sine.min() < MIN_GRADIENT_SINE:  # (one pass where none is)
+        singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
     return Sweep(

@@ -6,7 +6,9 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+from solver.errors import NotAssemblable
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import parse_linkage
@@ -70,3 +72,16 @@ def test_translating_carrier_has_no_velocity_pole_over_time() -> None:
     crank_poles, _ = result.poles["crank1"]
     assert np.all(crank_poles.exists[1:])  # the crank turns about O1 once it moves
     np.testing.assert_allclose(crank_poles.position[1:], 0.0, atol=1e-12)
+
+
+def test_a_start_that_cannot_close_is_reported_however_many_samples() -> None:
+    """A triple rocker (ground 1, crank 0.8, coupler 0.51, rocker 0.61: 1.51 > 1.41, not
+    Grashof) started at 180 deg, where B to D is 1.8 > 0.51 + 0.61: the sweep refuses at its
+    starting angle, whether it probes first (36 samples) or turns compiled (360)."""
+    doc = build_preset("four_bar", {})
+    doc["points"] = {"A": [0.0, 0.0], "B": [0.4, 0.4 * math.sqrt(3.0)], "C": [0.9, 0.6]}
+    doc["points"] |= {"D": [1.0, 0.0], "P": [0.6, 0.7]}
+    for samples in (36, 360):
+        with pytest.raises(NotAssemblable, match="at the sweep's starting angle"):
+            sweep(parse_linkage(at_angle(doc, math.pi)), samples, ALL)
+    assert sweep(parse_linkage(doc), 360, ALL).limits  # feasible at the drawn pose, not fully
