@@ -324,3 +324,52 @@ def test_slot_message_shows_the_worst_sample() -> None:
     assert cut.message == (
         "the distance from A to the slot of B in 'guide' is 0.5 m > |AB| = 0.3 m"
     )
+
+
+# --- the 200 mutants of intersect, _root, point_motion ... run after the merge (issue 8) ----------
+
+
+def test_a_line_and_a_circle_meet_in_either_order() -> None:
+    """intersect(line, circle) = intersect(circle, line): the x axis and the unit circle about
+    (0.5, 0.6) meet at x = 0.5 -+ 0.8 (Pythagoras: 0.6^2 + 0.8^2 = 1)."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    line = dyads.Line(PointMotion(np.array([[0.0, 0.0]])), np.array([[1.0, 0.0]]), None, None, "g")
+    circle = dyads.Circle(PointMotion(np.array([[0.5, 0.6]])), 1.0, "A", "crank")
+    for first, second in ((line, circle), (circle, line)):
+        cut = dyads.intersect(first, second, "B")
+        ends = sorted(cut.point(np.array([s]))[0][0] for s in (1.0, -1.0))
+        np.testing.assert_allclose(ends, [0.5 - 0.8, 0.5 + 0.8], rtol=0, atol=1e-15)
+
+
+def test_parallel_slots_are_named_in_the_message() -> None:
+    """Two parallel slots: the message names the pin and both guides."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    def slot(y: float, guide: str) -> dyads.Line:
+        p = PointMotion(np.array([[0.0, y]]))
+        return dyads.Line(p, np.array([[1.0, 0.0]]), None, None, guide)
+
+    cut = dyads.intersect(slot(0.0, "frame"), slot(1.0, "slider"), "P")
+    assert cut.message == "the two slots that carry P (in 'frame' and 'slider') are parallel"
+
+
+def test_rates_where_the_determinant_is_exactly_one() -> None:
+    """X = (0, 1) on circles about C1 = (0, 0) and C2 = (1, 0): rows X - C1 = (0, 1) and
+    X - C2 = (-1, 1), det = 1 exactly (a determinant of 1 is not a dead centre). By hand from
+    (X - C_i).(v_X - v_i) = 0 with v1 = (0.3, 0.7), v2 = (0.4, 0.1): v_y = 0.7 and
+    -v_x + v_y = -0.4 + 0.1, so v_X = (1.0, 0.7)."""
+    from solver import dyads
+    from solver.rigid import PointMotion
+
+    def centre(p: list[float], v: list[float]) -> PointMotion:
+        return PointMotion(np.array([p]), np.array([v]))
+
+    first = dyads.Circle(centre([0.0, 0.0], [0.3, 0.7]), 1.0, "C1", "a")
+    second = dyads.Circle(centre([1.0, 0.0], [0.4, 0.1]), math.sqrt(2.0), "C2", "b")
+    motion, sine = dyads.point_motion(first, second, np.array([[0.0, 1.0]]), 1)
+    assert motion.v is not None
+    np.testing.assert_allclose(motion.v[0], [1.0, 0.7], rtol=0, atol=1e-15)
+    assert sine[0] == pytest.approx(1.0 / math.sqrt(2.0), rel=1e-15)
