@@ -137,15 +137,19 @@ def _inverted(crank: float, drawn_deg: float) -> dict[str, Any]:
     return build_preset("inverted_slider_crank", {**values, "crank_angle_deg": drawn_deg})
 
 
+def _refusal_from(doc: dict[str, Any], angle_deg: float) -> str:
+    """The message of the refusal of a 36-sample sweep of ``doc`` started at ``angle_deg``."""
+    doc["drivers"][0]["angle_deg"] = angle_deg
+    with pytest.raises(NotAssemblable) as error:
+        solver.sweep(doc, 36)
+    return str(error.value.message)
+
+
 def test_slotted_lever_that_cannot_close_says_why() -> None:
     """Inverted slider-crank (crank OA 0.9, ground OC 1, slot 0.2 m off the lever's pivot C)
     drawn at 180 deg, swept from 0 deg: there |CA| = 1 - 0.9 = 0.1 m < 0.2 m, so no slot of the
     lever passes through A, and the error says so with the offset."""
-    doc = _inverted(0.9, 180.0)
-    doc["drivers"][0]["angle_deg"] = 0.0
-    with pytest.raises(NotAssemblable) as error:
-        solver.sweep(doc, 36)
-    assert str(error.value.message) == (
+    assert _refusal_from(_inverted(0.9, 180.0), 0.0) == (
         "the linkage cannot be closed at the sweep's starting angle: |CA| is shorter than the "
         "offset 0.2 m of the slot of 'lever' from its pivot C"
     )
@@ -246,10 +250,7 @@ def test_four_bar_that_cannot_close_names_its_links() -> None:
     |BD| = g + a = 1.4 m: refused, the message naming the dyad's point C through its links."""
     values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.49}
     doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 1.0})
-    doc["drivers"][0]["angle_deg"] = 180.0
-    with pytest.raises(NotAssemblable) as error:
-        solver.sweep(doc, 36)
-    assert str(error.value.message) == (
+    assert _refusal_from(doc, 180.0) == (
         "the linkage cannot be closed at the sweep's starting angle: "
         "|BD| = 1.4 m > |BC| + |DC| = 0.9 + 0.49 = 1.39 m"
     )
