@@ -553,10 +553,12 @@ class LinearForm:
         return np.asarray(q @ self.q.T + cos @ self.c.T + sin @ self.s.T + known)
 
     def bending(self, q: Array, tangent: Array) -> Array:
-        """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` (one pose): the
-        right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0 once more)."""
-        theta, turning = q[2::3], tangent[2::3] ** 2
-        return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
+        """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` ((n,) or
+        (M, n)): the right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0
+        once more)."""
+        theta, turning = q[..., 2::3], tangent[..., 2::3] ** 2
+        cos, sin = np.cos(theta) * turning, np.sin(theta) * turning
+        return np.asarray(cos @ self.c.T + sin @ self.s.T)
 
     def solve(self, J: Array, b: Array) -> Array:
         """x with J x = b for (M, n, n) J from ``pose``, the translations eliminated: with
@@ -676,16 +678,20 @@ class Rotations:
             J += self.t
         return G, J
 
-    def jacobian(self, theta: Array) -> Array:
-        """dG/dtheta at (M, U) theta."""
-        J = self.s * np.cos(theta)[..., None, :] - self.c * np.sin(theta)[..., None, :]
+    def jacobian(self, theta: Array, cos: Array | None = None, sin: Array | None = None) -> Array:
+        """dG/dtheta at (M, U) theta (its cosines and sines, if already computed)."""
+        cos = np.cos(theta) if cos is None else cos
+        sin = np.sin(theta) if sin is None else sin
+        J = self.s * cos[..., None, :] - self.c * sin[..., None, :]
         return J + self.t if self.held else J
 
     def bending(self, theta: Array, tangent: Array) -> Array:
-        """(C cos + S sin) theta'^2 along a path theta(s) with theta' = ``tangent`` (one pose):
-        the right-hand side of dG/dtheta theta'' = ... (differentiating dG/dtheta theta' = 0)."""
+        """(C cos + S sin) theta'^2 along a path theta(s) with theta' = ``tangent`` ((U,) or
+        (M, U)): the right-hand side of dG/dtheta theta'' = ... (differentiating
+        dG/dtheta theta' = 0)."""
         turning = tangent**2
-        return np.asarray(self.c @ (np.cos(theta) * turning) + self.s @ (np.sin(theta) * turning))
+        cos, sin = np.cos(theta) * turning, np.sin(theta) * turning
+        return np.asarray(cos @ self.c.T + sin @ self.s.T)
 
     def translations(self, theta: Array, known: Array) -> Array:
         """c = -A^+ (r(theta) + k) at (M, U) theta, k (M, rows) or (rows,): (M, 2U)."""

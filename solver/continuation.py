@@ -45,11 +45,11 @@ from solver.rigid import Array, LinkMotion
 from solver.scene import LinkageScene
 
 NODE_TOLERANCE = 1e-9  # a path node's residual, relative to the scene size (samples are polished)
-LIMIT_TOLERANCE = 1e-13  # the residual of a limit position's node (the limits are answers)
+LIMIT_TOLERANCE = 1e-15  # a limit position's residual: rounding, ~4 eps (the limits are answers)
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
-MAX_TANGENT_TURN = math.radians(30.0)
-MAX_CORRECTION = 0.1  # the corrector may move the predictor by this fraction of the step
+MAX_TANGENT_TURN = math.radians(60.0)
+MAX_CORRECTION = 0.3  # the corrector may move the predictor by this fraction of the step
 CONTRACTION = 0.3  # each corrector step at most this fraction of the one before
 CORRECTOR_ITERATIONS = 8
 # Residual (scaled) allowed at the middle of the cubic between two nodes: the samples' starting
@@ -84,6 +84,20 @@ def _bordered_solve(J: Array, row: Array, top: Array | None, last: float) -> Arr
     return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
+def _bordered_solves(J: Array, rows: Array, top: Array, last: Array) -> Array:
+    """[J_k; row_k] z_k = [top_k; last_k] for K stacked systems (LU; numpy.linalg.LinAlgError
+    where one is singular or they are not square)."""
+    A = np.concatenate([J, rows[:, None, :]], axis=1)
+    b = np.concatenate([top, last[:, None]], axis=1)
+    return np.asarray(np.linalg.solve(A, b[..., None])[..., 0])
+
+
+def _arc(chord: Array | float, bend: Array | float) -> Array | float:
+    """The length of a circular arc on ``chord`` with squared curvature ``bend``:
+    c (1 + c^2 kappa^2 / 24) (the arc's series to second order)."""
+    return chord * (1.0 + chord * chord * bend / 24.0)
+
+
 def _norm(v: Array) -> float:
     """|v| for a vector (numpy.linalg.norm's generality costs more than the product)."""
     return math.sqrt(float(v @ v))
@@ -100,6 +114,7 @@ class _Leg:
     kappa: list[Array | None]  # the path's curvature dtau/ds at each node, where known
     h: float = 0.1
     limit: float | None = None
+    halved: tuple[Array, Array, Array, Array] | None = None  # ``Branch._halved``, while valid
 
     def insert(self, k: int, x: Array, tau: Array, kappa: Array | None) -> None:
         """A node at index k (k = len: appended), its arclength from node k - 1 that of a
@@ -107,15 +122,17 @@ class _Leg:
         chord = _norm(x - self.x[k - 1])
         before = self.kappa[k - 1]
         bend = 0.0 if kappa is None or before is None else 0.5 * (kappa @ kappa + before @ before)
-        self.s.insert(k, self.s[k - 1] + chord * (1.0 + chord * chord * bend / 24.0))
+        self.s.insert(k, self.s[k - 1] + float(_arc(chord, bend)))
         self.x.insert(k, x)
         self.tau.insert(k, tau)
         self.kappa.insert(k, kappa)
+        self.halved = None
 
     def remove(self) -> None:
         """Take the last node off."""
         for nodes in (self.s, self.x, self.tau, self.kappa):
             nodes.pop()
+        self.halved = None
 
     def middle(self) -> Array:
         """The quintic interpolant of the last segment (``_quintic``) at its middle:
@@ -140,13 +157,18 @@ class _Leg:
 
 
 def _predict(leg: _Leg, h: float) -> Array:
-    """x + h tau + h^2/2 kappa: the second-order Taylor step from the leg's last node, with its
-    curvature kappa = dtau/ds (``Branch._curvature``), else estimated from the last two nodes'
-    tangents (first order from the drawn pose)."""
+    """x + h tau + h^2/2 kappa + h^3/6 kappa': the Taylor step from the leg's last node, with
+    its curvature kappa = dtau/ds (``Branch._curvature``) and kappa' from the last two nodes'
+    curvatures; where the curvatures are not known (no linear form), kappa from the last two
+    nodes' tangents (first order from the drawn pose)."""
     x, tau, kappa = leg.x[-1], leg.tau[-1], leg.kappa[-1]
-    if kappa is None and len(leg.s) >= 2:
-        kappa = (tau - leg.tau[-2]) / (leg.s[-1] - leg.s[-2])
-    return x + h * tau if kappa is None else x + h * tau + (0.5 * h * h) * kappa
+    if len(leg.s) < 2:
+        return x + h * tau if kappa is None else x + h * tau + (0.5 * h * h) * kappa
+    step = leg.s[-1] - leg.s[-2]
+    before = leg.kappa[-2]
+    if kappa is None or before is None:
+        return x + h * tau + (0.5 * h * h / step) * (tau - leg.tau[-2])
+    return x + h * tau + (0.5 * h * h) * kappa + (h * h * h / (6.0 * step)) * (kappa - before)
 
 
 class Branch:
@@ -284,17 +306,26 @@ class Branch:
 
     def _limit(self, leg: _Leg, sense: int, h: float, beyond: float) -> None:
         """The limit position between the last node and the step h past it (where the tangent's
-        driver component, ``beyond`` there, changed sign): the zero of that component along the
-        step by regula falsi (Illinois), appended as a node. The turn is stationary at the
+        driver component g, ``beyond`` there, changed sign): the zero of g along the step,
+        appended as a node. Trial points s are corrected from the node's second-order
+        prediction x + s tau + s^2/2 kappa (on the plane normal to tau at s, as
+        tau . kappa = 0); the next trial
+        is Newton's, s - g / g' with g' = kappa's driver component over tau . tangent (the
+        arclength per unit s), where it falls inside the bracket (the first from the node's
+        kappa), else regula falsi's (Illinois) on the bracket. The turn is stationary at the
         limit, so a component c left over moves it by only ~ c^2."""
-        x, tau = leg.x[-1], leg.tau[-1]
+        x, tau, kappa0 = leg.x[-1], leg.tau[-1], leg.kappa[-1]
         a, b = 0.0, h
         g_a, g_b = sense * float(tau[self.free]), beyond
+        s = math.nan if kappa0 is None else -g_a / (sense * float(kappa0[self.free]))
         point, tangent, kept = x, tau, 0
         for _ in range(FOLD_ITERATIONS):
-            s = (a * g_b - b * g_a) / (g_b - g_a)
-            point, J, _, _ = self._correct(x + s * tau, tau, LIMIT_TOLERANCE)
+            if not a < s < b:
+                s = (a * g_b - b * g_a) / (g_b - g_a)
+            predicted = x + s * tau if kappa0 is None else x + s * tau + (0.5 * s * s) * kappa0
+            point, J, _, _ = self._correct(predicted, tau, LIMIT_TOLERANCE)
             tangent = self._tangent(J, tau)
+            kappa = self._curvature(point, tangent, J)
             g = sense * float(tangent[self.free])
             if abs(g) <= FOLD_TANGENT or b - a <= FOLD_XTOL:
                 break
@@ -306,7 +337,9 @@ class Branch:
                 b, g_b = s, g
                 g_a = g_a / 2.0 if kept == -1 else g_a
                 kept = -1
-        leg.insert(len(leg.s), point, tangent, self._curvature(point, tangent, J))
+            slope = math.nan if kappa is None else sense * float(kappa[self.free])
+            s = s - g * float(tau @ tangent) / slope if slope != 0.0 else math.nan
+        leg.insert(len(leg.s), point, tangent, kappa)
         leg.limit = self._turn(point)
 
     def reaches(self, turn: float) -> bool:
@@ -389,14 +422,64 @@ class Branch:
                 tangent = self._tangent(J, tau)
                 leg.insert(k + 1, new, tangent, self._curvature(new, tangent, J))
 
+    def _halved(self, leg: _Leg) -> tuple[Array, Array, Array, Array]:
+        """The leg's nodes (``_Leg.arrays``) with a node added at the middle of every segment,
+        all segments at once (the samples' quintic starting values come 2^6 times closer: its
+        error goes as h^6, so a path followed with long steps still starts every sample within
+        one Newton-Raphson step of rounding). Each middle is corrected from the quintic's by
+        Newton-Raphson on [F(x); tau . (x - middle)] = 0, tau the quintic's unit tangent there
+        (stacked bordered solves), and gets its tangent and curvature as a node does; a middle
+        whose corrector does not converge within the step rules (``extend``) is left out, and
+        without the curvature (``bending``) the nodes are returned as they are."""
+        if leg.halved is not None:
+            return leg.halved
+        nodes = leg.arrays()
+        leg.halved = nodes
+        if self.bending is None or len(leg.s) < 2:
+            return nodes
+        s, X, T, K = nodes
+        segments = np.arange(s.size - 1)
+        quintic = _quintic(nodes, segments)
+        middle = _horner(quintic, 0.5)
+        tau = _horner(quintic[1:] * np.arange(1.0, 6.0)[:, None, None], 0.5)  # dx/du
+        tau /= np.sqrt(np.einsum("ki,ki->k", tau, tau))[:, None]
+        x, zero = middle, np.zeros(segments.size)
+        try:
+            for _ in range(CORRECTOR_ITERATIONS):
+                F, J = self._f(x)
+                if np.max(np.einsum("kr,kr->k", F, F)) <= NODE_TOLERANCE**2:
+                    break
+                x = x - _bordered_solves(J, tau, F, np.einsum("ki,ki->k", tau, x - middle))
+            F, J = self._f(x)
+            tangent = _bordered_solves(J, tau, np.zeros_like(F), np.ones(segments.size))
+            tangent /= np.sqrt(np.einsum("ki,ki->k", tangent, tangent))[:, None]
+            kappa = _bordered_solves(J, tangent, self.bending(x, tangent), zero)
+        except np.linalg.LinAlgError:
+            return nodes
+        moved = np.sqrt(np.einsum("ki,ki->k", x - middle, x - middle))
+        good = (np.einsum("kr,kr->k", F, F) <= NODE_TOLERANCE**2) & (
+            moved <= MAX_CORRECTION * 0.5 * np.diff(s)
+        )
+        order = np.argsort(np.concatenate([2 * np.arange(s.size), 2 * segments[good] + 1]))
+        X2, T2, K2 = (
+            np.concatenate([a, b[good]])[order] for a, b in ((X, x), (T, tangent), (K, kappa))
+        )
+        chords = np.diff(X2, axis=0)
+        chord = np.sqrt(np.einsum("ki,ki->k", chords, chords))
+        squared = np.einsum("ki,ki->k", K2, K2)
+        bend = 0.5 * (squared[1:] + squared[:-1])
+        s2 = np.concatenate([[0.0], np.cumsum(_arc(chord, bend))])
+        leg.halved = (s2, X2, T2, K2)
+        return leg.halved
+
     def _segments(self, leg: _Leg, sense: int, turns: Array) -> Array:
         """The coordinates at ``turns`` on the leg: in the segment between the nodes bracketing
         each, the u in [0, 1] where the quintic's driver turn is the turn (Newton-Raphson on the
         monotone t(u)), then the quintic there."""
-        nodes = leg.arrays()
+        nodes = self._halved(leg)
         f = self.free
         t_nodes = sense * nodes[1][:, f]
-        k = np.clip(np.searchsorted(t_nodes, sense * turns) - 1, 0, len(leg.s) - 2)
+        k = np.clip(np.searchsorted(t_nodes, sense * turns) - 1, 0, t_nodes.size - 2)
         quintic = _quintic(nodes, k)
         turn = quintic[..., f]
         t0, t1 = nodes[1][k, f], nodes[1][k + 1, f]

@@ -68,13 +68,20 @@ def newton_raphson(
 
     Samples below ``tolerance`` stop; the others go on until all have stopped or after
     ``max_iterations``. With ``polish`` one more step then takes a converged iterate to rounding
-    (quadratic convergence), kept only where it lowers the residual (not taken where all are
-    already at ``ROUNDING``). Returns (q, residual norms
+    (quadratic convergence), kept only where it lowers the residual (taken only where a sample
+    is not already at ``ROUNDING``). Returns (q, residual norms
     (M,), iterations, the length of each sample's first step (rotations times the size)).
     """
     weights = np.tile([1.0, 1.0, system.scene.size], len(system.unknown))
-    equations = system.residual(known, q.shape[0], turns)
+    whole = system.residual(known, q.shape[0], turns)
     size = system.scene.size
+
+    def equations(x: Array, index: Array) -> tuple[Array, Array]:
+        full = np.array(q)  # the general evaluation takes every sample: the others as they were
+        full[index] = x
+        phi, J = whole(full)
+        return phi[index], J[index]
+
     return iterate(
         equations, system.solve, q, weights, (tolerance, ROUNDING * size), polish, max_iterations
     )
@@ -96,9 +103,11 @@ def newton_rotations(
     rotations, then the translations; least squares in the rotations where a sample is
     singular)."""
 
-    def equations(x: Array) -> tuple[Array, tuple[Array, Array]]:
+    def equations(x: Array, index: Array) -> tuple[Array, tuple[Array, Array]]:
         theta = x[:, 2::3]
-        return form.residual(x, known), (theta, rotations.jacobian(theta))
+        cos, sin = np.cos(theta), np.sin(theta)
+        phi = form.residual(x, known[index], cos, sin)
+        return phi, (theta, rotations.jacobian(theta, cos, sin))
 
     def solve(J: tuple[Array, Array], phi: Array) -> Array:
         try:
@@ -113,7 +122,7 @@ def newton_rotations(
 
 
 def iterate(
-    equations: Callable[[Array], tuple[Array, Jacobian]],
+    equations: Callable[[Array, Array], tuple[Array, Jacobian]],
     solve: Callable[[Jacobian, Array], Array],
     q: Array,
     weights: Array,
@@ -121,29 +130,44 @@ def iterate(
     polish: bool,
     max_iterations: int,
 ) -> tuple[Array, Array, int, Array]:
-    """q <- q - J^-1 Phi(q) with (Phi, J) = ``equations(q)`` and J^-1 b = ``solve(J, b)``, as
-    ``newton_raphson`` describes; ``weights`` per coordinate for the first step's length;
-    ``tolerances``: the residual that stops a sample, and the one below which it is not
-    polished."""
+    """q <- q - J^-1 Phi(q) with (Phi, J) = ``equations(q[index], index)`` for the samples
+    ``index`` still iterating and J^-1 b = ``solve(J, b)``, as ``newton_raphson`` describes (a
+    sample that has stopped is neither evaluated nor solved again); ``weights`` per coordinate
+    for the first step's length; ``tolerances``: the residual that stops a sample, and the one
+    below which it is not polished."""
     tolerance, rounding = tolerances
-    iterations = 0
+    q = np.array(q, dtype=float)
+    residual = np.zeros(q.shape[0])
     first = np.zeros(q.shape[0])
-    while True:
-        phi, J = equations(q)
-        residual = np.sqrt(np.einsum("mi,mi->m", phi, phi))
-        done = residual <= tolerance
-        if np.all(done | ~np.isfinite(residual)) or iterations >= max_iterations:
+    active = np.arange(q.shape[0])
+    iterations = 0
+    while active.size:
+        phi, J = equations(q[active], active)
+        residual[active] = norm = np.sqrt(np.einsum("mi,mi->m", phi, phi))
+        going = (norm > tolerance) & np.isfinite(norm)
+        if iterations >= max_iterations or not np.any(going):
             break
-        step = np.where(done[:, None], 0.0, solve(J, phi))
+        if not np.all(going):
+            phi, J = phi[going], _take(J, going)
+            active = active[going]
+        step = solve(J, phi)
         if iterations == 0:
-            first = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
-        q = q - step
+            first[active] = np.sqrt(np.einsum("mi,mi->m", step * weights, step * weights))
+        q[active] -= step
         iterations += 1
-    if polish and np.any(done & (residual > rounding)):
-        trial = q - solve(J, phi)
-        phi_next = equations(trial)[0]
+    unpolished = np.flatnonzero((residual <= tolerance) & (residual > rounding))
+    if polish and unpolished.size:
+        phi, J = equations(q[unpolished], unpolished)
+        trial = q[unpolished] - solve(J, phi)
+        phi_next = equations(trial, unpolished)[0]
         better = np.sqrt(np.einsum("mi,mi->m", phi_next, phi_next))
-        take = done & (better < residual)
-        q = np.where(take[:, None], trial, q)
-        residual = np.where(take, better, residual)
+        take = better < residual[unpolished]
+        q[unpolished[take]], residual[unpolished[take]] = trial[take], better[take]
     return q, residual, iterations, first
+
+
+def _take(J: Jacobian, rows: Array) -> Jacobian:
+    """The samples ``rows`` of a stacked Jacobian (an array, or a tuple of arrays)."""
+    if isinstance(J, tuple):
+        return tuple(part[rows] for part in J)  # type: ignore[return-value]
+    return J[rows]  # type: ignore[index]

@@ -217,9 +217,9 @@ def test_samples_start_from_the_quintic_through_each_nodes_tangent_and_curvature
 def test_a_segments_arclength_is_its_arcs_so_the_starts_are_close() -> None:
     """The quintic's parameter is arclength, so a segment's length is taken as that of a
     circular arc on its chord, c (1 + c^2 |kappa|^2 / 24), not the chord: the full-turning
-    triad's 360 starting values then lie within 1.5e-4 m of the polished poses (median 2.5e-6
-    m; with the chord alone 2.8e-4 and 5e-6: a regression bound, the measured values being
-    9e-5 and 1e-6)."""
+    triad's 360 starting values then lie within 3e-4 m of the polished poses (median 1.5e-6
+    m; with the chord alone 5e-4 and 2.6e-6: a regression bound, the measured values being
+    2.2e-4 and 7e-7 on the path with every segment halved, ``Branch._halved``)."""
     scene = parse_linkage(FULL_TURN)
     result = sweep(scene, 360, ["position"])
     branch = continuation.Branch(scene)
@@ -230,4 +230,4 @@ def test_a_segments_arclength_is_its_arcs_so_the_starts_are_close() -> None:
         [np.stack([*links[g].anchor.p.T, links[g].theta], 1) for g in scene.moving_links], axis=1
     )
     error = np.max(np.abs(starts - solved), axis=1)
-    assert np.max(error) <= 1.5e-4 and np.median(error) <= 2.5e-6
+    assert np.max(error) <= 3e-4 and np.median(error) <= 1.5e-6
