@@ -55,6 +55,9 @@ CORRECTOR_ITERATIONS = 8
 # Residual (scaled) allowed at the middle of the cubic between two nodes: the samples' starting
 # values are that close to the path, well inside Newton-Raphson's quadratic convergence.
 INTERPOLATION_RESIDUAL = 1e-3
+# Where a leg's middles lie further than this from the path, its samples would start where
+# Newton-Raphson needs a second iteration: every segment is halved first (``Branch._halved``).
+HALVING_RESIDUAL = 1e-5
 FOLD_TANGENT = 1e-8  # the tangent's driver component at a located limit (turn error ~ 1e-16)
 FOLD_XTOL = 1e-12  # or the bracket on the arclength this short
 FOLD_ITERATIONS = 60
@@ -115,6 +118,7 @@ class _Leg:
     h: float = 0.1
     limit: float | None = None
     halved: tuple[Array, Array, Array, Array] | None = None  # ``Branch._halved``, while valid
+    gap: float = 0.0  # the largest residual at a segment's middle found by ``Branch.extend``
 
     def insert(self, k: int, x: Array, tau: Array, kappa: Array | None) -> None:
         """A node at index k (k = len: appended), its arclength from node k - 1 that of a
@@ -288,11 +292,13 @@ class Branch:
             if ok:  # the quintic between the two nodes must stay on the path (the samples' start)
                 kappa = self._curvature(new, tau_new, J)
                 leg.insert(len(leg.s), new, tau_new, kappa)
-                middle = leg.middle()
-                ok = _norm(self._f(middle)[0]) <= INTERPOLATION_RESIDUAL
+                gap = _norm(self._f(leg.middle())[0])
+                ok = gap <= INTERPOLATION_RESIDUAL
                 grow = grow if ok else 0.5
                 if not ok or sense * tau_new[self.free] <= 0.0:
                     leg.remove()
+                else:
+                    leg.gap = max(leg.gap, gap)
             if not ok:
                 leg.h = h * min(max(grow, 0.25), 0.5)
                 if leg.h < MIN_STEP:  # the path cannot be continued (a bifurcation): stop here
@@ -424,9 +430,11 @@ class Branch:
 
     def _halved(self, leg: _Leg) -> tuple[Array, Array, Array, Array]:
         """The leg's nodes (``_Leg.arrays``) with a node added at the middle of every segment,
-        all segments at once (the samples' quintic starting values come 2^6 times closer: its
-        error goes as h^6, so a path followed with long steps still starts every sample within
-        one Newton-Raphson step of rounding). Each middle is corrected from the quintic's by
+        all segments at once, where a middle checked by ``extend`` lay further than
+        HALVING_RESIDUAL from the path (the samples' quintic starting values then come 2^6 times
+        closer, its error going as h^6, and most settle in one Newton-Raphson iteration; a leg
+        followed closely, as between limit positions, is returned as it is, halving costing
+        more there than it saves). Each middle is corrected from the quintic's by
         Newton-Raphson on [F(x); tau . (x - middle)] = 0, tau the quintic's unit tangent there
         (stacked bordered solves), and gets its tangent and curvature as a node does; a middle
         whose corrector does not converge within the step rules (``extend``) is left out, and
@@ -435,7 +443,7 @@ class Branch:
             return leg.halved
         nodes = leg.arrays()
         leg.halved = nodes
-        if self.bending is None or len(leg.s) < 2:
+        if self.bending is None or len(leg.s) < 2 or leg.gap <= HALVING_RESIDUAL:
             return nodes
         s, X, T, K = nodes
         segments = np.arange(s.size - 1)
