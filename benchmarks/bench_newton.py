@@ -6,12 +6,14 @@ Run from the repository root:
     python -m benchmarks.bench_newton --no-write  # print only
 
 It prints a markdown report and writes it into docs/BENCHMARKS.md between the markers
-``<!-- newton:start -->`` and ``<!-- newton:end -->``. Two tables:
+``<!-- newton:start -->`` and ``<!-- newton:end -->``. Three tables:
 
 - **Speed.** ``sweep(scene, N, [position, velocity, acceleration])`` of the seed-004 four-bar
   (closed-form dyads) and of two Stephenson III triads (Newton-Raphson: one turning fully, one
   between two limit positions), scene parsed once, the three alternating repeat by repeat; p50
   over the repeats and the ratio to the four-bar's p50 (the target: at most 10x at 360 samples).
+- **Over HTTP.** The same three as /sweep requests (360 samples, all quantities) to the server
+  on loopback: the wall-clock p50 of the whole request and its ratio to the four-bar's.
 - **Tolerance.** A 360-sample sweep of the full-turning triad at each Newton tolerance: its p50
   time, its largest residual, and the largest position error of P1, P2, P3 over 12 samples
   against a 50-digit reference (mpmath.findroot on the triad's six length equations at the same
@@ -21,6 +23,7 @@ It prints a markdown report and writes it into docs/BENCHMARKS.md between the ma
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 import time
@@ -37,6 +40,7 @@ import mpmath as mp  # noqa: E402
 import numpy as np  # noqa: E402
 
 from benchmarks.sections import write_section  # noqa: E402
+from server.local import serve_locally  # noqa: E402
 from solver.presets import build_preset  # noqa: E402
 from solver.scene import parse_linkage  # noqa: E402
 from solver.sweeps import sweep  # noqa: E402
@@ -115,6 +119,44 @@ def speed(repeats: int) -> str:
     return header + "\n".join(rows)
 
 
+def http_table(repeats: int) -> str:
+    """/sweep over HTTP on loopback (uvicorn in a subprocess, ``server.local.serve_locally``),
+    360 samples with all quantities, the three linkages alternating: p50 wall-clock latency of
+    the whole request (parse, solve, JSON) and its ratio to the four-bar's."""
+    import httpx
+
+    docs = {
+        "four-bar": build_preset("four_bar", {}),
+        "triad (full turn)": FULL_TURN,
+        "triad (two limits)": PARTIAL,
+    }
+    times: dict[str, list[float]] = {name: [] for name in docs}
+    with serve_locally(timeout=60.0) as base, httpx.Client(base_url=base, timeout=60.0) as client:
+        bodies = {
+            name: json.dumps({"scene": doc, "samples": 360, "quantities": ALL}).encode()
+            for name, doc in docs.items()
+        }
+        for round_ in range(5 * repeats + 3):
+            for name, body in bodies.items():
+                began = time.perf_counter()
+                reply = client.post(
+                    "/api/v1/sweep", content=body, headers={"content-type": "application/json"}
+                )
+                if reply.status_code != 200:
+                    raise RuntimeError(f"/sweep {name}: {reply.status_code} {reply.text[:300]}")
+                if round_ >= 3:  # the first rounds warm up
+                    times[name].append(time.perf_counter() - began)
+    base = float(np.median(times["four-bar"]))
+    rows = [
+        f"| {name} | {float(np.median(t)) * 1e3:.3g} ms | {float(np.median(t)) / base:.1f}x |"
+        for name, t in times.items()
+    ]
+    return (
+        "| /sweep, 360 samples, all quantities | p50 | / four-bar |\n|---|---|---|\n"
+        + "\n".join(rows)
+    )
+
+
 def reference_error(result: Any, doc: dict[str, Any], every: int) -> float:
     """Largest |P - P_ref| of P1, P2, P3 over every ``every``-th sample, P_ref in 50 digits."""
     mp.mp.dps = 50
@@ -169,6 +211,7 @@ def main() -> None:
     load = os.getloadavg()[0]
     began = time.perf_counter()
     speed_table = speed(args.repeats)
+    http = http_table(args.repeats)
     tol_table = tolerance_table(max(args.repeats // 3, 3))
     report = "\n".join([
         f"Measured {datetime.now(UTC):%Y-%m-%d %H:%M} UTC by `python -m benchmarks.bench_newton` "
@@ -186,16 +229,28 @@ def main() -> None:
         "",
         speed_table,
         "",
-        "Where a triad's time goes (cProfile with process time): at 360 samples about half in "
-        "the path following, which is sequential (some 35 nodes per turn of the full-turning "
-        "triad, each a second-order prediction and a Newton correction in the links' rotations "
-        "alone, `constraints.Rotations`: 4 equations in 5 angles, about four evaluations of one "
-        "complex product and four 5x5 LAPACK solves, all numpy call overhead on tiny arrays), "
-        "the rest the batched polish and rates from quintic starting values (two Newton "
-        "iterations, a polishing step and the rates: five stacked (N, 4, 4) solves, the "
-        "Jacobian never formed whole); the two constraint systems are built once per parsed "
-        "scene (`constraints.constraint_system`), not per sweep. At 3600 samples the stacked "
-        "solves (numpy.linalg.solve, about 0.25 us a 4x4 system) dominate.",
+        "Where a triad's time goes (cProfile with process time, 360 samples): about 40 % in "
+        "the path following, which is sequential: 20 nodes per turn of the full-turning triad "
+        "(steps up to a 60 deg turn of the tangent, a third-order predictor), each about five "
+        "evaluations of the loop equations in the links' rotations (`constraints.Rotations`: 4 "
+        "equations in 5 angles) and five 5x5 LAPACK solves, then every segment of that leg "
+        "halved at once (`Branch._halved`, stacked solves; the rocking triad's legs, followed "
+        "closely between its limit positions, are not); the rest is the batched work on all "
+        "samples: quintic starting values, Newton-Raphson (one iteration on every sample, a "
+        "second on those still above tolerance, about half), the rates (two stacked (N, 4, 4) "
+        "solves) and the links' motions. Each numpy call on these tiny arrays costs 3 to 15 us "
+        "whatever it computes, so a node costs some 60 us and the batched work about 40 calls "
+        "plus four stacked solves: we found no way to the 10x target in numpy (a plain-"
+        "Python corrector was slower: a 5x5 elimination 20 us against 5 us for `dgesv`). "
+        "Compiled code (numba, or a C extension) would be needed, at the cost of a compiler or "
+        "a JIT warm-up of seconds in the default install; not done.",
+        "",
+        "End to end, over HTTP on loopback (uvicorn in a subprocess, one client with "
+        "keep-alive, the three alternating; wall-clock p50 of the whole request: parse, solve, "
+        "JSON of every point's position, velocity and acceleration), what a user of /sweep "
+        "waits:",
+        "",
+        http,
         "",
         "### Newton tolerance: time against error",
         "",
