@@ -14,12 +14,13 @@ the equations are linear in them (``constraints.Rotations``: the translations ar
 follow from the rotations; 4 equations in 5 angles for a Stephenson III triad), else in every
 link's (x, y, theta) with lengths scaled by the scene size: from a node y_k with unit tangent
 tau_k (the null vector of dF/dy), the predictor y_k + h tau_k + h^2/2 kappa_k + h^3/6 kappa'_k
-(``_predict``) is corrected by Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is accepted when the corrector
-contracts and converges, the tangent turns by less than MAX_TANGENT_TURN and the quintic between
-the two nodes stays on the path; otherwise h is halved (down to MIN_STEP); an easy step doubles h
-(up to MAX_STEP). A limit position (a fold: the driver's turn reaches an extremum along the path)
-shows as a change of sign of the tangent's driver component; it is located by safeguarded
-Newton on that component, to rounding, so the limits do not depend on the number of samples.
+(``_predict``) is corrected by Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is
+accepted when the corrector contracts and converges, the tangent turns by less than
+MAX_TANGENT_TURN and the quintic between the two nodes stays on the path; otherwise h is halved
+(down to MIN_STEP); an easy step doubles h (up to MAX_STEP). A limit position (a fold: the
+driver's turn reaches an extremum along the path) shows as a change of sign of the tangent's
+driver component; it is located by safeguarded Newton on that component, to rounding, so the
+limits do not depend on the number of samples.
 Where the path was followed with long steps (a middle further than HALVING_RESIDUAL from it),
 every segment of the leg is then halved at once (``Branch._halved``).
 
