@@ -94,6 +94,9 @@ class Motion:
     approaches: list[Approach] = field(default_factory=list)
     size: float = 1.0
     group_margins: dict[str, Array] = field(default_factory=dict)
+    # With continuation, per two-branch step (its index in the plan): its branch sign at the first
+    # sample and the fractional samples where it switches (``branches_at``).
+    flips: dict[int, tuple[float, list[float]]] = field(default_factory=dict)
 
     @property
     def feasible(self) -> Array:
@@ -125,6 +128,7 @@ class Motion:
             self.approaches,
             self.size,
             {k: m[part] for k, m in self.group_margins.items()},
+            self.flips,
         )
 
     @property
@@ -162,18 +166,26 @@ def candidate_minima(margin: Array, size: float) -> Array:
     return np.flatnonzero(found)
 
 
-def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: Array) -> list[DriverInput]:
-    """The drivers at fractional samples u = k + x, -1 <= x <= 1 (thetas linear between samples;
-    x <= 0 at the last sample), with rates d theta / du: the path the continuation follows
+def branches_at(flips: Mapping[int, tuple[float, list[float]]], u: float) -> dict[int, float]:
+    """The branch sign of each two-branch step at fractional sample u of a motion assembled with
+    continuation (``Motion.flips``): its sign at the first sample, times -1 for every switch
+    before u."""
+    return {
+        step: first * (-1.0) ** sum(1 for at in switches if at < u)
+        for step, (first, switches) in flips.items()
+    }
+
+
+def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list[DriverInput]:
+    """The drivers at fractional sample u = k + x, -1 <= x <= 1 (x <= 0 at the last sample;
+    thetas linear between samples), with rates d theta / du: the path the continuation follows
     between two samples."""
     out = []
     for given in inputs:
         theta = given.theta
-        last = k + 1 == theta.size
-        backward = float(theta[k] - theta[k - 1]) if k > 0 else 0.0
-        forward = 0.0 if last else float(theta[k + 1] - theta[k])
-        step = np.where((x < 0.0) | last, backward, forward)
-        out.append(DriverInput(theta[k] + x * step, step, np.zeros(x.size)))
+        backward = x < 0.0 or k + 1 == theta.size
+        step = float(theta[k] - theta[k - 1] if backward else theta[k + 1] - theta[k])
+        out.append(DriverInput(np.array([theta[k] + x * step]), np.array([step]), np.zeros(1)))
     return out
 
 
@@ -291,12 +303,8 @@ class _Assembler:
         is searched from its closing sample, the same pose)."""
 
         def evaluate(x: float) -> tuple[float, float]:
-            signs = {
-                j: first * (-1.0) ** sum(1 for at in switches if at < k + x)
-                for j, (first, switches) in self.flips.items()
-            }
-            inputs = interpolated_inputs(self.inputs, k, np.array([x]))
-            probe = _Assembler(self.scene, inputs, 1, False, signs)
+            inputs = interpolated_inputs(self.inputs, k, x)
+            probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
             m, rate = probe.last
             return float(m[0]), 0.0 if rate is None else float(rate[0])
@@ -408,6 +416,7 @@ class _Assembler:
             self.approaches,
             self.scene.size,
             self.group_margins,
+            self.flips,
         )
 
     def newton_group(self, step: NewtonStep) -> None:
@@ -435,12 +444,14 @@ def assemble(
     continuation: bool = False,
     anchor: int = 0,
     newton_groups: Continuation | None = None,
+    signs: Mapping[int, float] | None = None,
 ) -> Motion:
     """Positions (order 0), velocities (1) and accelerations (2) of every link and point; with
     continuation the drawn branch holds at sample ``anchor``; ``newton_groups`` carries a Newton
-    group's tolerance and the branches already followed."""
+    group's tolerance and the branches already followed; ``signs`` forces the branch of the
+    two-branch steps it names (``branches_at``: an instant on a motion followed before)."""
     return _Assembler(
-        scene, inputs, order, continuation, anchor=anchor, newton_groups=newton_groups
+        scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
     ).run(plan)
 
 
