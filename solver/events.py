@@ -6,9 +6,11 @@ requested occurrence; in each window s(t) is split at the zeros of s'(t) into mo
 so every level between a piece's end values is crossed exactly once there and is found by
 Brent's method. A window is narrowed until s'(t) turns at most a few times in it, so a fast
 oscillation is resolved however long the search. For any other target the distance
-|M(t) - P(t)| is sampled with the linkage, and at each local minimum the root of
-d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken; a minimum below ``COINCIDENCE_TOLERANCE`` of the
-scene size counts as a meeting.
+|M(t) - P(t)| is sampled with the linkage (assembled with continuation from t = 0), and at each
+local minimum (the first and last samples' on their one side) the root of
+d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken, the instants between samples assembled on the
+branches the samples followed; a minimum below ``COINCIDENCE_TOLERANCE`` of the scene size
+counts as a meeting. The event's position is that of the linkage followed from t = 0.
 """
 
 from __future__ import annotations
