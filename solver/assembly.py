@@ -94,6 +94,9 @@ class Motion:
     approaches: list[Approach] = field(default_factory=list)
     size: float = 1.0
     group_margins: dict[str, Array] = field(default_factory=dict)
+    # With continuation, per two-branch step (its index in the plan): its branch sign at the first
+    # sample and the fractional samples where it switches (``branches_at``).
+    flips: dict[int, tuple[float, list[float]]] = field(default_factory=dict)
 
     @property
     def feasible(self) -> Array:
@@ -125,6 +128,7 @@ class Motion:
             self.approaches,
             self.size,
             {k: m[part] for k, m in self.group_margins.items()},
+            self.flips,
         )
 
     @property
@@ -141,27 +145,46 @@ class Motion:
 def candidate_minima(margin: Array, size: float) -> Array:
     """Samples k at a local minimum of the margin whose neighbourhood may dip below the warning
     threshold: m_k - max(m_k-1 - m_k, m_k+1 - m_k) < WARNING_MARGIN size (a bound that holds for a
-    smooth minimum within half a step of k and for a V-shaped one, |d| at coincident centres)."""
-    if margin.size < 3:
+    smooth minimum within half a step of k and for a V-shaped one, |d| at coincident centres).
+    The first and the last sample count with their one neighbour: a minimum between the first two
+    samples, nearer the first, has no sample before it (a revolution's closing sample is the
+    first's pose, but the interval before it is searched from the last sample)."""
+    if margin.size < 2:
         return np.array([], dtype=int)
     # Every such bound is at least min(m) - max |m_k+1 - m_k|: where that clears the threshold,
     # no sample is a candidate (the common case, a linkage far from its change points).
     if margin.min() - np.abs(np.diff(margin)).max() >= WARNING_MARGIN * size:
         return np.array([], dtype=int)
-    m, before, after = margin[1:-1], margin[:-2], margin[2:]
-    low = m - np.maximum(before - m, after - m)
-    found = (m < before) & (m <= after) & (low < WARNING_MARGIN * size)
-    found &= m >= -dyads.COINCIDENCE_TOLERANCE * size  # an infeasible sample is reported as such
-    return np.flatnonzero(found) + 1
+    before = np.concatenate([[np.inf], margin[:-1]])
+    after = np.concatenate([margin[1:], [np.inf]])
+    rise = np.maximum(
+        np.where(np.isinf(before), -np.inf, before - margin),
+        np.where(np.isinf(after), -np.inf, after - margin),
+    )
+    found = (margin < before) & (margin <= after) & (margin - rise < WARNING_MARGIN * size)
+    found &= margin >= -dyads.COINCIDENCE_TOLERANCE * size  # an infeasible sample is reported so
+    return np.flatnonzero(found)
+
+
+def branches_at(flips: Mapping[int, tuple[float, list[float]]], u: float) -> dict[int, float]:
+    """The branch sign of each two-branch step at fractional sample u of a motion assembled with
+    continuation (``Motion.flips``): its sign at the first sample, times -1 for every switch
+    before u."""
+    return {
+        step: first * (-1.0) ** sum(1 for at in switches if at < u)
+        for step, (first, switches) in flips.items()
+    }
 
 
 def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list[DriverInput]:
-    """The drivers at fractional sample u = k + x, -1 <= x <= 1 (thetas linear between samples),
-    with rates d theta / du: the path the continuation follows between two samples."""
+    """The drivers at fractional sample u = k + x, -1 <= x <= 1 (x <= 0 at the last sample;
+    thetas linear between samples), with rates d theta / du: the path the continuation follows
+    between two samples."""
     out = []
     for given in inputs:
         theta = given.theta
-        step = float(theta[k] - theta[k - 1] if x < 0.0 else theta[k + 1] - theta[k])
+        backward = x < 0.0 or k + 1 == theta.size
+        step = float(theta[k] - theta[k - 1] if backward else theta[k + 1] - theta[k])
         out.append(DriverInput(np.array([theta[k] + x * step]), np.array([step]), np.zeros(1)))
     return out
 
@@ -261,6 +284,8 @@ class _Assembler:
         switches: list[float] = []
         for k in candidate_minima(margin, size):
             approach = self.closest_approach(index, point, int(k))
+            if approach is None:
+                continue
             self.approaches.append(approach)
             if abs(approach.margin) <= dyads.COINCIDENCE_TOLERANCE * size:
                 switches.append(approach.at)
@@ -270,25 +295,30 @@ class _Assembler:
         self.flips[index] = (float(sign[0]), switches)
         return sign
 
-    def closest_approach(self, index: int, point: str, k: int) -> Approach:
-        """The minimum of group ``index``'s margin between samples k - 1 and k + 1: Brent's method
-        on the root of dm/du (or on m itself where dm/du does not change sign there)."""
+    def closest_approach(self, index: int, point: str, k: int) -> Approach | None:
+        """The minimum of group ``index``'s margin between samples k - 1 and k + 1 (k alone on
+        the side of a first or last sample): Brent's method on the root of dm/du (or on m itself
+        where dm/du does not change sign there). None where the margin falls on beyond a first
+        or last sample: no minimum lies inside (a revolution's interval before its first sample
+        is searched from its closing sample, the same pose)."""
 
         def evaluate(x: float) -> tuple[float, float]:
-            signs = {
-                j: first * (-1.0) ** sum(1 for at in switches if at < k + x)
-                for j, (first, switches) in self.flips.items()
-            }
-            probe = _Assembler(self.scene, interpolated_inputs(self.inputs, k, x), 1, False, signs)
+            inputs = interpolated_inputs(self.inputs, k, x)
+            probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
             m, rate = probe.last
             return float(m[0]), 0.0 if rate is None else float(rate[0])
 
-        if evaluate(-1.0)[1] < 0.0 < evaluate(1.0)[1]:
-            x = brentq(lambda x: evaluate(x)[1], -1.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
+        low = -1.0 if k > 0 else 0.0
+        high = 1.0 if k + 1 < self.samples else 0.0
+        rate_low, rate_high = evaluate(low)[1], evaluate(high)[1]
+        if (k == 0 and rate_low > 0.0) or (k + 1 == self.samples and rate_high < 0.0):
+            return None
+        if rate_low < 0.0 < rate_high:
+            x = brentq(lambda x: evaluate(x)[1], low, high, xtol=1e-15, rtol=4.0 * EPS)
         else:
             found = minimize_scalar(
-                lambda x: evaluate(x)[0], bounds=(-1.0, 1.0), method="bounded",
+                lambda x: evaluate(x)[0], bounds=(low, high), method="bounded",
                 options={"xatol": 1e-12},
             )  # fmt: skip
             x = float(found.x)
@@ -386,6 +416,7 @@ class _Assembler:
             self.approaches,
             self.scene.size,
             self.group_margins,
+            self.flips,
         )
 
     def newton_group(self, step: NewtonStep) -> None:
@@ -413,12 +444,14 @@ def assemble(
     continuation: bool = False,
     anchor: int = 0,
     newton_groups: Continuation | None = None,
+    signs: Mapping[int, float] | None = None,
 ) -> Motion:
     """Positions (order 0), velocities (1) and accelerations (2) of every link and point; with
     continuation the drawn branch holds at sample ``anchor``; ``newton_groups`` carries a Newton
-    group's tolerance and the branches already followed."""
+    group's tolerance and the branches already followed; ``signs`` forces the branch of the
+    two-branch steps it names (``branches_at``: an instant on a motion followed before)."""
     return _Assembler(
-        scene, inputs, order, continuation, anchor=anchor, newton_groups=newton_groups
+        scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
     ).run(plan)
 
 

@@ -6,9 +6,11 @@ requested occurrence; in each window s(t) is split at the zeros of s'(t) into mo
 so every level between a piece's end values is crossed exactly once there and is found by
 Brent's method. A window is narrowed until s'(t) turns at most a few times in it, so a fast
 oscillation is resolved however long the search. For any other target the distance
-|M(t) - P(t)| is sampled with the linkage, and at each local minimum the root of
-d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken; a minimum below ``COINCIDENCE_TOLERANCE`` of the
-scene size counts as a meeting.
+|M(t) - P(t)| is sampled with the linkage (assembled with continuation from t = 0), and at each
+local minimum (the first and last samples' on their one side) the root of
+d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken, the instants between samples assembled on the
+branches the samples followed; a minimum below ``COINCIDENCE_TOLERANCE`` of the scene size
+counts as a meeting. The event's position is that of the linkage followed from t = 0.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from itertools import pairwise
 import numpy as np
 from scipy.optimize import brentq
 
-from solver.assembly import assemble, require_feasible
+from solver.assembly import assemble, branches_at, require_feasible
 from solver.drivers import driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded, NoEvent
 from solver.laws import parse_time_law
@@ -158,42 +160,45 @@ def _crossings_of_levels(
 def _meetings_off_carrier(
     scene: LinkageScene, mp: MovingPoint, target: str, t_max: float
 ) -> list[float]:
-    """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance)."""
+    """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance): sampled on
+    the distance grid, assembled with continuation from t = 0, each minimum (a first or last
+    sample's included, on its one side) refined by Brent's method on the rate of approach, the
+    instants between samples assembled on the branches followed there (``branches_at``)."""
     plan = build_plan(scene)
+    grid = np.linspace(0.0, t_max, DISTANCE_GRID + 1)
+    swept = assemble(scene, plan, driver_inputs_over_time(scene, grid), 0, continuation=True)
+    require_feasible(swept, "while searching for the event")
+    law = parse_time_law(mp.s_law)
+    on_grid = path_geometry(scene, mp, law.evaluate(grid)[0]).point
+    d = np.hypot(*(swept.links[mp.link].point(on_grid).p - swept.points[target].p).T)
 
-    def state(times: Array, order: int) -> tuple[Array, Array | None, Array, Array | None]:
-        motion = assemble(
-            scene, plan, driver_inputs_over_time(scene, times), order, continuation=times.size > 2
-        )
+    def at(t: float, order: int) -> tuple[Array, Array, Array, Array]:
+        """M, v_M, P, v_P at t, on the branches the grid's continuation followed."""
+        times = np.array([t])
+        signs = branches_at(swept.flips, t / t_max * DISTANCE_GRID)
+        motion = assemble(scene, plan, driver_inputs_over_time(scene, times), order, signs=signs)
         require_feasible(motion, "while searching for the event")
-        P = motion.points[target]
-        if order == 0:
-            law = parse_time_law(mp.s_law)
-            drawn = path_geometry(scene, mp, law.evaluate(times)[0]).point
-            return motion.links[mp.link].point(drawn).p, None, P.p, None
         M = moving_point_motion(scene, mp, motion.links[mp.link], times)
+        P = motion.points[target]
+        assert P.v is not None
         return M.position, M.velocity, P.p, P.v
 
     def approach(t: float) -> float:
         """d(|M - P|^2)/dt / 2 = (M - P).(v_M - v_P): negative while M closes in."""
-        m, v_m, p, v_p = state(np.array([t]), 2)
-        assert v_m is not None and v_p is not None
+        m, v_m, p, v_p = at(t, 2)
         return float(dot(m - p, v_m - v_p)[0])
 
-    grid = np.linspace(0.0, t_max, DISTANCE_GRID + 1)
-    m, _, p, _ = state(grid, 0)
-    d = np.hypot(*(m - p).T)
     tolerance = COINCIDENCE_TOLERANCE * scene.size
+    before = np.concatenate([[np.inf], d[:-1]])
+    after = np.concatenate([d[1:], [np.inf]])
     times = []
-    for k in np.flatnonzero((d[1:-1] <= d[:-2]) & (d[1:-1] <= d[2:])) + 1:
-        a, b = grid[k - 1], grid[k + 1]
+    for k in np.flatnonzero((d <= before) & (d <= after)).tolist():
+        a, b = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, DISTANCE_GRID)])
         fa, fb = approach(a), approach(b)
         t = float(grid[k]) if fa * fb > 0.0 else brentq(approach, a, b, xtol=1e-15 * t_max)
-        m_t, _, p_t, _ = state(np.array([t]), 0)
+        m_t, _, p_t, _ = at(t, 2)
         if float(np.hypot(*(m_t - p_t)[0])) <= tolerance:
             times.append(t)
-    if d[-1] <= tolerance:
-        times.append(t_max)
     return times
 
 
@@ -226,8 +231,11 @@ def find_event(
             f"0 < t <= {t_max:g} s, not {occurrence}"
         )
     time = distinct[occurrence - 1]
-    plan = build_plan(scene)
-    motion = assemble(scene, plan, driver_inputs_over_time(scene, np.array([time])), 0)
+    # The linkage at that time on the branches followed from t = 0 (as finely as the grid).
+    followed = np.linspace(0.0, time, 2 + math.ceil(DISTANCE_GRID * time / t_max))
+    motion = assemble(
+        scene, build_plan(scene), driver_inputs_over_time(scene, followed), 0, continuation=True
+    )
     require_feasible(motion, f"at t = {time:.6g} s")
-    drawn = path_geometry(scene, mp, parse_time_law(mp.s_law).evaluate(np.array([time]))[0])
-    return Event(time, motion.links[mp.link].point(drawn.point).p[0])
+    drawn = path_geometry(scene, mp, parse_time_law(mp.s_law).evaluate(followed[-1:])[0])
+    return Event(time, motion.links[mp.link].point(drawn.point).p[-1])
