@@ -23,9 +23,10 @@ Jacobian = TypeVar("Jacobian")
 NEWTON_TOLERANCE = 1e-13  # residual, relative to the scene size (the default)
 TOLERANCE_BOUNDS = (1e-15, 1e-6)  # a user's choice of the Newton tolerance must lie in here
 NEWTON_MAX_ITERATIONS = 50
-# A sample whose residual is at most this (times the size) is not polished: the evaluation of
-# Phi rounds at a few eps of the size, so a step from there moves it by rounding only.
-ROUNDING = 4.0 * float(np.finfo(float).eps)
+# A sample whose residual is at most this (times the size) takes no polishing step: a step from
+# there moves it by rounding only. (At 4 eps, taken sample by sample, the full-turning triad kept
+# residuals of 2.4e-15 m and errors of 2e-15 m against 50 digits; at eps, 6e-16 m and 6e-16 m.)
+ROUNDING = float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
