@@ -265,3 +265,65 @@ def test_slider_crank_closest_approach_in_the_analysis() -> None:
     approach = closest["closest_approach"]
     assert approach["point"] == "C"
     assert abs(approach["margin"] - (1.0001 - math.sin(math.radians(89.0)))) <= 1e-12
+
+
+def _parallelogram(start_deg: float) -> dict[str, Any]:
+    """Parallelogram A(0,0) B C D(1,0), crank = rocker = 0.4, coupler = ground = 1, drawn (and
+    swept from) crank ``start_deg``: C = B + (1, 0) there. Its change points are at 0 and
+    180 deg, where B, C, A, D line up."""
+    t = math.radians(start_deg)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    doc = build_preset("four_bar", {"ground": 1.0, "crank": 0.4, "coupler": 1.0, "rocker": 0.4})
+    doc["points"].update(B=B, C=[B[0] + 1.0, B[1]])
+    del doc["points"]["P"]
+    doc["links"]["coupler"]["points"] = ["B", "C"]
+    doc["drivers"][0]["omega"] = 1.0
+    return doc
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): candidate_minima never takes the first sample of a full revolution, "
+    "so a change point between samples 0 and 1 nearer sample 0 is not switched at",
+)
+@pytest.mark.parametrize(("samples", "start_deg"), [(36, 179.0), (360, 179.7), (3600, 179.96)])
+def test_parallelogram_started_just_before_its_change_point_stays_one(
+    samples: int, start_deg: float
+) -> None:
+    """The parallelogram drawn and swept from just before its change point at 180 deg (less
+    than half a sample step before it: the margin's smallest sample is the first): it must stay
+    a parallelogram, C = B + (1, 0) to 1e-9 m at every sample, as it does from any other start
+    (test_parallelogram_with_samples_on_its_change_points_at_any_scale). Today it takes the
+    anti-parallelogram after the first sample (|C - B - (1, 0)| up to 0.73 m)."""
+    result = sweep(parse_linkage(_parallelogram(start_deg)), samples, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+def test_parallelogram_started_just_after_its_change_point_stays_one() -> None:
+    """The same parallelogram swept with 36 samples from 181 deg (the change point at 180 deg is
+    now in the revolution's last interval, after its last kept sample) and from 90 deg: a
+    parallelogram at every sample (C = B + (1, 0) to 1e-9 m)."""
+    for start_deg in (181.0, 90.0):
+        result = sweep(parse_linkage(_parallelogram(start_deg)), 36, ["position"])
+        B, C = (result.motion.points[p].p for p in "BC")
+        assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): a close approach nearest the first (= last) sample of a full "
+    "revolution is never examined, so it is not reported",
+)
+@pytest.mark.parametrize("start_deg", [179.0, 181.0])
+def test_close_approach_next_to_the_first_sample_is_reported(start_deg: float) -> None:
+    """The crank-rocker 1e-4 inside the Grashof equality drawn and swept (36 samples) from 1 deg
+    before or after its closest approach at 180 deg: the approach, 1e-4 m at 180 deg (closed
+    form), must be reported as it is from 30 deg (test_close_approach_found_with_the_fewest_
+    samples). Today the sweep reports none and gives no warning."""
+    from tests.solver.test_assembly import _near_crank_rocker
+
+    result = sweep(parse_linkage(_near_crank_rocker(1e-4, start_deg)), 36, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
