@@ -355,21 +355,21 @@ def _coupler_point(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 def _farthest() -> tuple[float, float]:
     """(crank angle, |PF|) where the coupler point is farthest from F: the closed form on a
-    0.1 deg grid, then bounded Brent on it within a grid step (xatol 1e-12 rad)."""
-    from scipy.optimize import minimize_scalar
+    0.1 deg grid, then the root of d|PF|^2/dtheta (central differences, step 1e-5 rad) by
+    Brent's method within a grid step (to about 1e-9 rad)."""
+    from scipy.optimize import brentq
 
-    def distance(t: float) -> float:
-        return float(np.hypot(*(_coupler_point(np.array([t]))[2][0] - _DIPS["F"])))
+    def squared(t: float) -> float:
+        gap = _coupler_point(np.array([t]))[2][0] - _DIPS["F"]
+        return float(gap @ gap)
+
+    def slope(t: float) -> float:
+        return (squared(t + 1e-5) - squared(t - 1e-5)) / 2e-5
 
     grid = np.linspace(0.0, 2.0 * math.pi, 3601)
     k = int(np.argmax(np.hypot(*(_coupler_point(grid)[2] - _DIPS["F"]).T)))
-    found = minimize_scalar(
-        lambda t: -distance(t),
-        bounds=(grid[k - 1], grid[k + 1]),
-        method="bounded",
-        options={"xatol": 1e-12},
-    )
-    return float(found.x), -float(found.fun)
+    at = float(brentq(slope, grid[k - 1], grid[k + 1], xtol=1e-14))
+    return at, math.sqrt(squared(at))
 
 
 def _two_dips(gap: float, start_deg: float) -> dict[str, Any]:
@@ -416,20 +416,22 @@ def _two_dips(gap: float, start_deg: float) -> dict[str, Any]:
     }
 
 
-def _deepest_dip_reported(samples: int) -> None:
-    """Swept from crank 104 deg with ``samples`` samples, the one close approach is the deeper
-    dip: 1e-4 m (to 1e-11 m) where |PF| is largest (353.3 deg; to 1e-6 rad)."""
+def _deepest_dip_reported(samples: int, start_deg: float) -> None:
+    """Swept from crank ``start_deg`` with ``samples`` samples, the one close approach is the
+    deeper dip of E's margin: 1e-4 m (to 1e-14 m) where |PF| is largest (353.3 deg; to
+    5e-8 rad: a minimum's place is known to about the square root of rounding)."""
     at, _ = _farthest()
-    result = sweep(parse_linkage(_two_dips(1e-4, 104.0)), samples, ["position"])
+    result = sweep(parse_linkage(_two_dips(1e-4, start_deg)), samples, ["position"])
     (approach,) = result.close_approaches
-    assert abs(approach.margin - 1e-4) <= 1e-11
-    assert abs(math.remainder(approach.driver_angle - at, 2 * math.pi)) <= 1e-6
+    assert approach.point == "E"
+    assert abs(approach.margin - 1e-4) <= 1e-14
+    assert abs(math.remainder(approach.driver_angle - at, 2 * math.pi)) <= 5e-8
 
 
 def test_deeper_of_two_dips_is_reported() -> None:
     """36 samples (10 deg apart): the two dips of the margin (30.3 and 353.3 deg) are sampled
     minima of their own, and the deeper one, 1e-4 m, is the close approach reported."""
-    _deepest_dip_reported(36)
+    _deepest_dip_reported(36, 104.0)
 
 
 @pytest.mark.xfail(
@@ -442,4 +444,13 @@ def test_deeper_of_two_dips_between_two_coarse_samples_is_reported() -> None:
     """15 samples (24 deg apart; 344, 8 and 32 deg among them): both dips lie between the
     samples at 344 and 32 deg, around the one sampled minimum at 8 deg. The deeper, 1e-4 m at
     353.3 deg, must be the approach reported, as with 36 samples."""
-    _deepest_dip_reported(15)
+    _deepest_dip_reported(15, 104.0)
+
+
+def test_dip_where_the_margin_falls_at_both_neighbours_is_found() -> None:
+    """12 samples (30 deg apart) from 90 deg: the sampled minimum is at 0 deg, its neighbours at
+    330 and 30 deg; the margin still falls at 30 deg (towards its second dip at 30.3 deg), so
+    dm/du does not change sign between them and Brent's method runs on the margin itself. The
+    approach is the deeper dip (to 1e-14 m and 5e-8 rad: Brent's own tolerance, 1e-5 by
+    default, would miss both)."""
+    _deepest_dip_reported(12, 90.0)
