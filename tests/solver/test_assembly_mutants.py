@@ -454,3 +454,45 @@ def test_dip_where_the_margin_falls_at_both_neighbours_is_found() -> None:
     approach is the deeper dip (to 1e-14 m and 5e-8 rad: Brent's own tolerance, 1e-5 by
     default, would miss both)."""
     _deepest_dip_reported(12, 90.0)
+
+
+def test_slider_crank_that_cannot_close_names_its_guide() -> None:
+    """Offset slider-crank (crank 1, rod 1.5, guide y = 0.8 m in the ground) swept from crank
+    -90 deg: B = (0, -1) lies 1.8 m from the guide, farther than the rod, 1.5 m: refused, the
+    message naming the slot's link (hand values)."""
+    values = {"crank": 1.0, "rod": 1.5, "offset": 0.8, "crank_angle_deg": 90.0}
+    assert _refusal_from(build_preset("slider_crank", values), -90.0) == (
+        "the linkage cannot be closed at the sweep's starting angle: the distance from B to "
+        "the slot of C in 'ground' is 1.8 m > |BC| = 1.5 m"
+    )
+
+
+def test_time_sweep_of_a_parallelogram_past_its_change_point_after_the_first_sample() -> None:
+    """The parallelogram drawn at crank 173 deg, swept over time (omega 1 rad/s, 37 samples over
+    t = 0 .. 2 pi s, 10 deg apart): its change points at 180 and 360 deg lie 7 and 3 deg before
+    samples 1 and 19. The drawn branch holds at the first sample, and the parallelogram stays
+    one at every sample: C = B + (1, 0) to 1e-9 m."""
+    from solver.sweeps import sweep_time
+
+    result = sweep_time(parse_linkage(_parallelogram(173.0)), 0.0, 2 * math.pi, 37, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+@pytest.mark.parametrize("tolerance", [1e-6, 1e-15])
+def test_newton_tolerance_asked_for_is_the_one_applied(tolerance: float) -> None:
+    """The triad of tests/solver/test_newton.py swept (36 samples), and swept over time
+    (t = 0 .. 0.1 s: crank 33.7 to 45.5 deg), with a Newton tolerance of 1e-6 and of 1e-15
+    (the bounds): every Newton report states that relative tolerance, the absolute one
+    tolerance * size, and a residual within it."""
+    from solver.sweeps import sweep_time
+    from tests.solver.test_newton import TRIAD
+
+    scene = parse_linkage(TRIAD)
+    swept = sweep(scene, 36, ["position"], tolerance).motion.newton
+    timed = sweep_time(scene, 0.0, 0.1, 5, ["position"], tolerance).motion.newton
+    assert swept and timed
+    for report in swept + timed:
+        assert report.relative_tolerance == tolerance
+        assert report.tolerance == pytest.approx(tolerance * scene.size, rel=1e-12)
+        assert report.residual_norm <= report.tolerance
