@@ -496,3 +496,32 @@ def test_newton_tolerance_asked_for_is_the_one_applied(tolerance: float) -> None
         assert report.relative_tolerance == tolerance
         assert report.tolerance == pytest.approx(tolerance * scene.size, rel=1e-12)
         assert report.residual_norm <= report.tolerance
+
+
+def test_structure_without_drivers_is_analysed_at_its_drawn_pose() -> None:
+    """A triangle truss (A(0,0), D(1,0) on the ground, E(0.3, 0.4) on two links, no degree of
+    freedom, no driver): analysed at its drawn pose, at rest; the dyad's margin is
+    |AE| + |DE| - |AD| = 0.5 + sqrt(0.65) - 1 (Pythagoras; to 1e-15 m)."""
+    doc = {
+        "kind": "linkage",
+        "title": "truss",
+        "points": {"A": [0.0, 0.0], "D": [1.0, 0.0], "E": [0.3, 0.4]},
+        "links": {
+            "ground": {"points": ["A", "D"], "ground": True},
+            "l1": {"points": ["A", "E"]},
+            "l2": {"points": ["D", "E"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "A", "links": ["ground", "l1"]},
+            {"type": "revolute", "point": "D", "links": ["ground", "l2"]},
+            {"type": "revolute", "point": "E", "links": ["l1", "l2"]},
+        ],
+        "drivers": [],
+    }
+    body = solver.analyze(doc).as_dict()
+    E = body["points"]["E"]
+    assert E["position"] == pytest.approx([0.3, 0.4], abs=1e-15)
+    assert E["velocity"] == [0.0, 0.0] and E["acceleration"] == [0.0, 0.0]
+    approach = body["diagnostics"]["closest_approach"]
+    assert approach["point"] == "E"
+    assert abs(approach["margin"] - (0.5 + math.sqrt(0.65) - 1.0)) <= 1e-15
