@@ -525,3 +525,23 @@ def test_structure_without_drivers_is_analysed_at_its_drawn_pose() -> None:
     approach = body["diagnostics"]["closest_approach"]
     assert approach["point"] == "E"
     assert abs(approach["margin"] - (0.5 + math.sqrt(0.65) - 1.0)) <= 1e-15
+
+
+def test_full_turn_sweep_of_a_newton_group_keeps_its_report() -> None:
+    """The triad of tests/solver/test_newton.py with its crank cut to |OA| = 0.018 m (A at
+    (0.015, 0.01)) turns fully: swept with 36 samples, every sample closes the loop (each link's
+    length and the ternary link's sides as drawn, to 1e-12 m: the constraints themselves), and
+    the diagnostics keep the triad's Newton report, its residual within its tolerance."""
+    from tests.solver.test_newton import TRIAD
+
+    doc = {**TRIAD, "points": {**TRIAD["points"], "A": [0.015, 0.01]}}
+    body = solver.sweep(doc, 36).as_dict()
+    assert body["feasible"] and len(body["driver_angle"]) == 36
+    xy = {p: np.asarray(body["points"][p]["position"]) for p in doc["points"]}
+    for first, second in ("OA", ("A", "P1"), ("G2", "P2"), ("G3", "P3"), ("P1", "P2"),
+                          ("P2", "P3"), ("P1", "P3")):  # fmt: skip
+        drawn = math.dist(doc["points"][first], doc["points"][second])
+        assert np.abs(np.hypot(*(xy[first] - xy[second]).T) - drawn).max() <= 1e-12
+    (report,) = body["diagnostics"]["newton"]
+    assert report["links"] == ["T", "L1", "L2", "L3"]
+    assert report["residual_norm"] <= report["tolerance"]
