@@ -545,3 +545,131 @@ def test_full_turn_sweep_of_a_newton_group_keeps_its_report() -> None:
     (report,) = body["diagnostics"]["newton"]
     assert report["links"] == ["T", "L1", "L2", "L3"]
     assert report["residual_norm"] <= report["tolerance"]
+
+
+def _circle_point(P: list[float], Q: list[float], r1: float, r2: float) -> list[float]:
+    """The point X with |XP| = r1, |XQ| = r2 to the left of P -> Q."""
+    p, q = np.array(P), np.array(Q)
+    d = math.dist(P, Q)
+    u = (q - p) / d
+    along = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d)
+    return (p + along * u + math.sqrt(r1 * r1 - along * along) * np.array([-u[1], u[0]])).tolist()
+
+
+def _crank_with_two_dyads(rocker: float = 0.5) -> dict[str, Any]:
+    """Crank A(0,0)-B (0.4, drawn at 60 deg) driving two dyads: B-C-D (|BC| 0.8, |DC| =
+    ``rocker``, D = (1, 0)) and B-E-G (|BE| 0.7, |GE| 0.6, G = (0.8, -0.6)). With rocker 0.5
+    the first cannot close where |BD| > 1.3 (crank beyond 131.5 deg); the second cannot where
+    |BG| > 1.3 (crank 94.6 to 191.6 deg)."""
+    t = math.radians(60.0)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    revolute = [("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"),
+                ("D", "rocker", "ground"), ("B", "crank", "arm"), ("E", "arm", "link"),
+                ("G", "link", "ground")]  # fmt: skip
+    return {
+        "kind": "linkage",
+        "title": "a crank driving two dyads",
+        "points": {
+            "A": [0.0, 0.0],
+            "B": B,
+            "C": _circle_point(B, [1.0, 0.0], 0.8, rocker),
+            "D": [1.0, 0.0],
+            "E": _circle_point([0.8, -0.6], B, 0.6, 0.7),
+            "G": [0.8, -0.6],
+        },
+        "links": {
+            "ground": {"points": ["A", "D", "G"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": ["B", "E"]},
+            "link": {"points": ["G", "E"]},
+        },
+        "joints": [{"type": "revolute", "point": p, "links": [a, b]} for p, a, b in revolute],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
+def _crank_point(degrees: float | np.ndarray) -> np.ndarray:
+    t = np.radians(degrees)
+    return 0.4 * np.stack((np.cos(t), np.sin(t)), axis=-1)
+
+
+def test_two_groups_failing_at_one_pose_name_the_first() -> None:
+    """The crank with two dyads analysed at crank 160 deg, where neither closes: refused with
+    the first group's numbers only (|BD| from B = 0.4 (cos 160, sin 160) deg; the group after
+    one that failed is not blamed)."""
+    doc = _crank_with_two_dyads()
+    doc["drivers"][0]["angle_deg"] = 160.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(doc)
+    BD = math.dist(_crank_point(160.0), (1.0, 0.0))
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 160 deg: |BD| = {BD:.6g} m > "
+        "|BC| + |DC| = 0.8 + 0.5 = 1.3 m"
+    )
+
+
+def test_two_groups_failing_at_different_samples_are_both_named() -> None:
+    """The crank with two dyads swept over time, crank 60 deg + t rad, t = 0 .. 1.5 s in 16
+    samples: B-C-D fails from 131.5 deg on, B-E-G from 94.6 deg on, where B-C-D still closes:
+    both are named, each at its worst sample (|BD| and |BG| from the closed form of B)."""
+    from solver.sweeps import sweep_time
+
+    with pytest.raises(NotAssemblable) as error:
+        sweep_time(parse_linkage(_crank_with_two_dyads()), 0.0, 1.5, 16, ["position"])
+    B = _crank_point(60.0 + np.degrees(np.linspace(0.0, 1.5, 16)))
+    BD = np.hypot(*(B - (1.0, 0.0)).T).max()
+    BG = np.hypot(*(B - (0.8, -0.6)).T).max()
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed during t = 0 .. 1.5 s: |BD| = {BD:.6g} m > |BC| + |DC| = "
+        f"0.8 + 0.5 = 1.3 m; |BG| = {BG:.6g} m > |BE| + |GE| = 0.7 + 0.6 = 1.3 m"
+    )
+
+
+def test_newton_group_after_a_failing_dyad_is_not_blamed() -> None:
+    """The triad of tests/solver/test_newton.py with a dyad A-E-G on its crank (|AE| 0.9,
+    |GE| 0.87, G = (-1, -1)), which cannot close at crank 45 deg: |AG| = 1.77477 > 1.77 m (A at
+    |OA| = sqrt 0.13 m, 45 deg). The dyad is solved first; the triad, which cannot follow its
+    branch past the dyad's limit either, is not named."""
+    from tests.solver.test_newton import TRIAD, with_angle
+
+    doc = {
+        **TRIAD,
+        "points": {**TRIAD["points"], "G": [-1.0, -1.0]},
+        "links": {
+            **TRIAD["links"],
+            "ground": {"points": ["O", "G2", "G3", "G"], "ground": True},
+            "arm": {"points": ["A", "E"]},
+            "link": {"points": ["G", "E"]},
+        },
+        "joints": TRIAD["joints"]
+        + [
+            {"type": "revolute", "point": "A", "links": ["crank", "arm"]},
+            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
+            {"type": "revolute", "point": "G", "links": ["link", "ground"]},
+        ],
+    }
+    doc["points"]["E"] = _circle_point([0.3, 0.2], [-1.0, -1.0], 0.9, 0.87)
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(with_angle(doc, 45.0))
+    A = math.sqrt(0.13) * np.array([math.cos(math.pi / 4), math.sin(math.pi / 4)])
+    AG = math.dist(A, (-1.0, -1.0))
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 45 deg: |AG| = {AG:.6g} m > "
+        "|AE| + |GE| = 0.9 + 0.87 = 1.77 m"
+    )
+
+
+def test_group_at_its_dead_centre_is_not_blamed_for_the_next() -> None:
+    """The crank with two dyads, rocker 0.6 (|BC| + |DC| = 1.4 = |AD| + |AB|), analysed at
+    crank 180 deg: B-C-D is at its dead centre there (margin 0 to rounding: it closes), B-E-G
+    cannot close, |BG| = sqrt(1.2^2 + 0.6^2) = 1.34164 > 1.3 m: refused naming B-E-G only."""
+    doc = _crank_with_two_dyads(rocker=0.6)
+    doc["drivers"][0]["angle_deg"] = 180.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(doc)
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 180 deg: |BG| = {math.sqrt(1.8):.6g} m > "
+        "|BE| + |GE| = 0.7 + 0.6 = 1.3 m"
+    )
