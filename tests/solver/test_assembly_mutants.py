@@ -69,15 +69,20 @@ def test_full_turn_sweep_rates_match_the_differentiated_closed_form() -> None:
     np.testing.assert_allclose(body["points"]["P"]["position"], P, atol=1e-9)
 
 
-def _parallelogram_with_dyad(start_deg: float, gap: float) -> dict[str, Any]:
+def _parallelogram_with_dyad(
+    start_deg: float, gap: float, far_deg: float = -90.0
+) -> dict[str, Any]:
     """Parallelogram A(0,0) B C D(1,0) (crank = rocker = 0.4, coupler = ground = 1), and a dyad
-    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = (1, 1.5) on the ground). On the parallelogram
-    C = D + 0.4 (cos t, sin t), so |CF| is largest, |DF| + 0.4 = 1.9, at t = -90 deg: the dyad's
-    closest approach is r1 + r2 - 1.9 = gap there."""
+    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = D - 1.5 (cos f, sin f) on the ground, f = ``far_deg``:
+    F = (1, 1.5) by default). On the parallelogram C = D + 0.4 (cos t, sin t), so |CF| is
+    largest, |DF| + 0.4 = 1.9, at t = f: the dyad's closest approach is r1 + r2 - 1.9 = gap
+    there."""
     t = math.radians(start_deg)
     B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
     C = np.array([B[0] + 1.0, B[1]])
-    F = np.array([1.0, 1.5])
+    F = np.array([1.0, 0.0]) - 1.5 * np.array(
+        [math.cos(math.radians(far_deg)), math.sin(math.radians(far_deg))]
+    )
     r1, r2 = 1.0, 0.9 + gap
     d_vec = F - C
     d = math.hypot(*d_vec)
@@ -673,3 +678,18 @@ def test_group_at_its_dead_centre_is_not_blamed_for_the_next() -> None:
         f"the linkage cannot be closed at crank angle 180 deg: |BG| = {math.sqrt(1.8):.6g} m > "
         "|BE| + |GE| = 0.7 + 0.6 = 1.3 m"
     )
+
+
+def test_close_approach_just_after_an_upstream_switch() -> None:
+    """The parallelogram driving a dyad, F = D - 1.5 (cos 182, sin 182 deg), so that |CF| is
+    largest, |DF| + 0.4 = 1.9, at crank 182 deg, 2 deg after the parallelogram's change point;
+    swept with 36 samples from 58 deg (samples at 178 and 188 deg). Between samples the
+    parallelogram is taken on the branch it has switched to at 180 deg: the approach is
+    gap = 2e-4 m (to 1e-12 m) at 182 deg (to 1e-6 rad), and C = B + (1, 0) throughout."""
+    gap = 2e-4
+    result = sweep(parse_linkage(_parallelogram_with_dyad(58.0, gap, 182.0)), 36, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+    (approach,) = [a for a in result.close_approaches if a.point == "E"]
+    assert abs(approach.margin - gap) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.radians(182.0), 2 * math.pi)) <= 1e-6
