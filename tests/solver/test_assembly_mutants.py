@@ -305,6 +305,21 @@ def test_parallelogram_started_just_before_its_change_point_stays_one(
     assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): candidate_minima never takes the first sample of a time sweep either",
+)
+def test_time_sweep_of_a_parallelogram_started_just_before_its_change_point() -> None:
+    """The parallelogram drawn at crank 179 deg, swept over time (omega 1 rad/s, t = 0 .. 1 s,
+    11 samples 5.7 deg apart; the change point at 180 deg is nearer the first sample than the
+    second): a parallelogram at every sample, C = B + (1, 0) to 1e-9 m. Today 0.51 m off."""
+    from solver.sweeps import sweep_time
+
+    result = sweep_time(parse_linkage(_parallelogram(179.0)), 0.0, 1.0, 11, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
 def test_parallelogram_started_just_after_its_change_point_stays_one() -> None:
     """The same parallelogram swept with 36 samples from 181 deg (the change point at 180 deg is
     now in the revolution's last interval, after its last kept sample) and from 90 deg: a
