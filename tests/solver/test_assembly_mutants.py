@@ -69,15 +69,20 @@ def test_full_turn_sweep_rates_match_the_differentiated_closed_form() -> None:
     np.testing.assert_allclose(body["points"]["P"]["position"], P, atol=1e-9)
 
 
-def _parallelogram_with_dyad(start_deg: float, gap: float) -> dict[str, Any]:
+def _parallelogram_with_dyad(
+    start_deg: float, gap: float, far_deg: float = -90.0
+) -> dict[str, Any]:
     """Parallelogram A(0,0) B C D(1,0) (crank = rocker = 0.4, coupler = ground = 1), and a dyad
-    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = (1, 1.5) on the ground). On the parallelogram
-    C = D + 0.4 (cos t, sin t), so |CF| is largest, |DF| + 0.4 = 1.9, at t = -90 deg: the dyad's
-    closest approach is r1 + r2 - 1.9 = gap there."""
+    C-E-F (|CE| = 1, |FE| = 0.9 + gap, F = D - 1.5 (cos f, sin f) on the ground, f = ``far_deg``:
+    F = (1, 1.5) by default). On the parallelogram C = D + 0.4 (cos t, sin t), so |CF| is
+    largest, |DF| + 0.4 = 1.9, at t = f: the dyad's closest approach is r1 + r2 - 1.9 = gap
+    there."""
     t = math.radians(start_deg)
     B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
     C = np.array([B[0] + 1.0, B[1]])
-    F = np.array([1.0, 1.5])
+    F = np.array([1.0, 0.0]) - 1.5 * np.array(
+        [math.cos(math.radians(far_deg)), math.sin(math.radians(far_deg))]
+    )
     r1, r2 = 1.0, 0.9 + gap
     d_vec = F - C
     d = math.hypot(*d_vec)
@@ -265,3 +270,441 @@ def test_slider_crank_closest_approach_in_the_analysis() -> None:
     approach = closest["closest_approach"]
     assert approach["point"] == "C"
     assert abs(approach["margin"] - (1.0001 - math.sin(math.radians(89.0)))) <= 1e-12
+
+
+def _parallelogram(start_deg: float) -> dict[str, Any]:
+    """Parallelogram A(0,0) B C D(1,0), crank = rocker = 0.4, coupler = ground = 1, drawn (and
+    swept from) crank ``start_deg``: C = B + (1, 0) there. Its change points are at 0 and
+    180 deg, where B, C, A, D line up."""
+    t = math.radians(start_deg)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    doc = build_preset("four_bar", {"ground": 1.0, "crank": 0.4, "coupler": 1.0, "rocker": 0.4})
+    doc["points"].update(B=B, C=[B[0] + 1.0, B[1]])
+    del doc["points"]["P"]
+    doc["links"]["coupler"]["points"] = ["B", "C"]
+    doc["drivers"][0]["omega"] = 1.0
+    return doc
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): candidate_minima never takes the first sample of a full revolution, "
+    "so a change point between samples 0 and 1 nearer sample 0 is not switched at",
+)
+@pytest.mark.parametrize(("samples", "start_deg"), [(36, 179.0), (360, 179.7), (3600, 179.96)])
+def test_parallelogram_started_just_before_its_change_point_stays_one(
+    samples: int, start_deg: float
+) -> None:
+    """The parallelogram drawn and swept from just before its change point at 180 deg (less
+    than half a sample step before it: the margin's smallest sample is the first): it must stay
+    a parallelogram, C = B + (1, 0) to 1e-9 m at every sample, as it does from any other start
+    (test_parallelogram_with_samples_on_its_change_points_at_any_scale). Today it takes the
+    anti-parallelogram after the first sample (|C - B - (1, 0)| up to 0.73 m)."""
+    result = sweep(parse_linkage(_parallelogram(start_deg)), samples, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): candidate_minima never takes the first sample of a time sweep either",
+)
+def test_time_sweep_of_a_parallelogram_started_just_before_its_change_point() -> None:
+    """The parallelogram drawn at crank 179 deg, swept over time (omega 1 rad/s, t = 0 .. 1 s,
+    11 samples 5.7 deg apart; the change point at 180 deg is nearer the first sample than the
+    second): a parallelogram at every sample, C = B + (1, 0) to 1e-9 m. Today 0.51 m off."""
+    from solver.sweeps import sweep_time
+
+    result = sweep_time(parse_linkage(_parallelogram(179.0)), 0.0, 1.0, 11, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+def test_parallelogram_started_just_after_its_change_point_stays_one() -> None:
+    """The same parallelogram swept with 36 samples from 181 deg (the change point at 180 deg is
+    now in the revolution's last interval, after its last kept sample) and from 90 deg: a
+    parallelogram at every sample (C = B + (1, 0) to 1e-9 m)."""
+    for start_deg in (181.0, 90.0):
+        result = sweep(parse_linkage(_parallelogram(start_deg)), 36, ["position"])
+        B, C = (result.motion.points[p].p for p in "BC")
+        assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): a close approach nearest the first (= last) sample of a full "
+    "revolution is never examined, so it is not reported",
+)
+@pytest.mark.parametrize("start_deg", [179.0, 181.0])
+def test_close_approach_next_to_the_first_sample_is_reported(start_deg: float) -> None:
+    """The crank-rocker 1e-4 inside the Grashof equality drawn and swept (36 samples) from 1 deg
+    before or after its closest approach at 180 deg: the approach, 1e-4 m at 180 deg (closed
+    form), must be reported as it is from 30 deg (test_close_approach_found_with_the_fewest_
+    samples). Today the sweep reports none and gives no warning."""
+    from tests.solver.test_assembly import _near_crank_rocker
+
+    result = sweep(parse_linkage(_near_crank_rocker(1e-4, start_deg)), 36, ["position"])
+    (approach,) = result.close_approaches
+    assert abs(approach.margin - 1e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.pi, 2 * math.pi)) <= 1e-6
+
+
+# A crank-rocker (ground 1, crank 0.487, coupler 1.155, rocker 0.682) whose coupler point P
+# (1.879 along BC, 0.165 to its left, from B) drives a dyad P-E-F, F = (-2.32, -2.595) on the
+# ground: |PF| has two local maxima 37 deg apart (crank 30.3 and 353.3 deg), so the dyad's margin
+# r1 + r2 - |PF| dips twice within two samples of a coarse sweep.
+_DIPS = {"a": 0.487, "b": 1.155, "c": 0.682, "P": (1.879, 0.165), "F": (-2.32, -2.595)}
+
+
+def _coupler_point(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """B, C, P of the _DIPS four-bar at crank angles ``theta`` (C left of B -> D: Heron)."""
+    a, b, c = _DIPS["a"], _DIPS["b"], _DIPS["c"]
+    B = a * np.stack((np.cos(theta), np.sin(theta)), axis=-1)
+    e = np.array([1.0, 0.0]) - B
+    d = np.hypot(*e.T)
+    along = (d * d + b * b - c * c) / (2.0 * d)
+    h = np.sqrt((b + c + d) * (b + c - d) * (d + b - c) * (d - b + c)) / (2.0 * d)
+    u = e / d[:, None]
+    left = np.stack((-u[:, 1], u[:, 0]), axis=-1)
+    C = B + along[:, None] * u + h[:, None] * left
+    w = (C - B) / b
+    along_p, left_p = _DIPS["P"]
+    P = B + along_p * w + left_p * np.stack((-w[:, 1], w[:, 0]), axis=-1)
+    return B, C, P
+
+
+def _farthest() -> tuple[float, float]:
+    """(crank angle, |PF|) where the coupler point is farthest from F: the closed form on a
+    0.1 deg grid, then the root of d|PF|^2/dtheta (central differences, step 1e-5 rad) by
+    Brent's method within a grid step (to about 1e-9 rad)."""
+    from scipy.optimize import brentq
+
+    def squared(t: float) -> float:
+        gap = _coupler_point(np.array([t]))[2][0] - _DIPS["F"]
+        return float(gap @ gap)
+
+    def slope(t: float) -> float:
+        return (squared(t + 1e-5) - squared(t - 1e-5)) / 2e-5
+
+    grid = np.linspace(0.0, 2.0 * math.pi, 3601)
+    k = int(np.argmax(np.hypot(*(_coupler_point(grid)[2] - _DIPS["F"]).T)))
+    at = float(brentq(slope, grid[k - 1], grid[k + 1], xtol=1e-14))
+    return at, math.sqrt(squared(at))
+
+
+def _two_dips(gap: float, start_deg: float) -> dict[str, Any]:
+    """The _DIPS six-bar drawn at crank ``start_deg``, r1 = r2 = (max |PF| + gap) / 2."""
+    B, C, P = (x[0] for x in _coupler_point(np.array([math.radians(start_deg)])))
+    F = np.array(_DIPS["F"])
+    r = 0.5 * (_farthest()[1] + gap)
+    half = 0.5 * (F - P)
+    E = (
+        P
+        + half
+        + math.sqrt(r * r - half @ half) / math.hypot(*half) * np.array([-half[1], half[0]])
+    )
+    return {
+        "kind": "linkage",
+        "title": "a coupler point driving a dyad",
+        "points": {
+            "A": [0.0, 0.0],
+            "B": B.tolist(),
+            "C": C.tolist(),
+            "D": [1.0, 0.0],
+            "P": P.tolist(),
+            "E": E.tolist(),
+            "F": F.tolist(),
+        },
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C", "P"]},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": ["P", "E"]},
+            "link": {"points": ["F", "E"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
+            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
+            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
+            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
+            {"type": "revolute", "point": "P", "links": ["coupler", "arm"]},
+            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
+            {"type": "revolute", "point": "F", "links": ["link", "ground"]},
+        ],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
+def _deepest_dip_reported(samples: int, start_deg: float) -> None:
+    """Swept from crank ``start_deg`` with ``samples`` samples, the one close approach is the
+    deeper dip of E's margin: 1e-4 m (to 1e-14 m) where |PF| is largest (353.3 deg; to
+    5e-8 rad: a minimum's place is known to about the square root of rounding)."""
+    at, _ = _farthest()
+    result = sweep(parse_linkage(_two_dips(1e-4, start_deg)), samples, ["position"])
+    (approach,) = result.close_approaches
+    assert approach.point == "E"
+    assert abs(approach.margin - 1e-4) <= 1e-14
+    assert abs(math.remainder(approach.driver_angle - at, 2 * math.pi)) <= 5e-8
+
+
+def test_deeper_of_two_dips_is_reported() -> None:
+    """36 samples (10 deg apart): the two dips of the margin (30.3 and 353.3 deg) are sampled
+    minima of their own, and the deeper one, 1e-4 m, is the close approach reported."""
+    _deepest_dip_reported(36, 104.0)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug (issue 8): with two dips of the margin between samples k - 1 and k + 1, "
+    "closest_approach's Brent on dm/du stops on whichever root it meets first (here the "
+    "shallower dip, 0.033 m, not warned), so the 1e-4 m near miss goes unreported",
+)
+def test_deeper_of_two_dips_between_two_coarse_samples_is_reported() -> None:
+    """15 samples (24 deg apart; 344, 8 and 32 deg among them): both dips lie between the
+    samples at 344 and 32 deg, around the one sampled minimum at 8 deg. The deeper, 1e-4 m at
+    353.3 deg, must be the approach reported, as with 36 samples."""
+    _deepest_dip_reported(15, 104.0)
+
+
+def test_dip_where_the_margin_falls_at_both_neighbours_is_found() -> None:
+    """12 samples (30 deg apart) from 90 deg: the sampled minimum is at 0 deg, its neighbours at
+    330 and 30 deg; the margin still falls at 30 deg (towards its second dip at 30.3 deg), so
+    dm/du does not change sign between them and Brent's method runs on the margin itself. The
+    approach is the deeper dip (to 1e-14 m and 5e-8 rad: Brent's own tolerance, 1e-5 by
+    default, would miss both)."""
+    _deepest_dip_reported(12, 90.0)
+
+
+def test_slider_crank_that_cannot_close_names_its_guide() -> None:
+    """Offset slider-crank (crank 1, rod 1.5, guide y = 0.8 m in the ground) swept from crank
+    -90 deg: B = (0, -1) lies 1.8 m from the guide, farther than the rod, 1.5 m: refused, the
+    message naming the slot's link (hand values)."""
+    values = {"crank": 1.0, "rod": 1.5, "offset": 0.8, "crank_angle_deg": 90.0}
+    assert _refusal_from(build_preset("slider_crank", values), -90.0) == (
+        "the linkage cannot be closed at the sweep's starting angle: the distance from B to "
+        "the slot of C in 'ground' is 1.8 m > |BC| = 1.5 m"
+    )
+
+
+def test_time_sweep_of_a_parallelogram_past_its_change_point_after_the_first_sample() -> None:
+    """The parallelogram drawn at crank 173 deg, swept over time (omega 1 rad/s, 37 samples over
+    t = 0 .. 2 pi s, 10 deg apart): its change points at 180 and 360 deg lie 7 and 3 deg before
+    samples 1 and 19. The drawn branch holds at the first sample, and the parallelogram stays
+    one at every sample: C = B + (1, 0) to 1e-9 m."""
+    from solver.sweeps import sweep_time
+
+    result = sweep_time(parse_linkage(_parallelogram(173.0)), 0.0, 2 * math.pi, 37, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+
+
+@pytest.mark.parametrize("tolerance", [1e-6, 1e-15])
+def test_newton_tolerance_asked_for_is_the_one_applied(tolerance: float) -> None:
+    """The triad of tests/solver/test_newton.py swept (36 samples), and swept over time
+    (t = 0 .. 0.1 s: crank 33.7 to 45.5 deg), with a Newton tolerance of 1e-6 and of 1e-15
+    (the bounds): every Newton report states that relative tolerance, the absolute one
+    tolerance * size, and a residual within it."""
+    from solver.sweeps import sweep_time
+    from tests.solver.test_newton import TRIAD
+
+    scene = parse_linkage(TRIAD)
+    swept = sweep(scene, 36, ["position"], tolerance).motion.newton
+    timed = sweep_time(scene, 0.0, 0.1, 5, ["position"], tolerance).motion.newton
+    assert swept and timed
+    for report in swept + timed:
+        assert report.relative_tolerance == tolerance
+        assert report.tolerance == pytest.approx(tolerance * scene.size, rel=1e-12)
+        assert report.residual_norm <= report.tolerance
+
+
+def test_structure_without_drivers_is_analysed_at_its_drawn_pose() -> None:
+    """A triangle truss (A(0,0), D(1,0) on the ground, E(0.3, 0.4) on two links, no degree of
+    freedom, no driver): analysed at its drawn pose, at rest; the dyad's margin is
+    |AE| + |DE| - |AD| = 0.5 + sqrt(0.65) - 1 (Pythagoras; to 1e-15 m)."""
+    doc = {
+        "kind": "linkage",
+        "title": "truss",
+        "points": {"A": [0.0, 0.0], "D": [1.0, 0.0], "E": [0.3, 0.4]},
+        "links": {
+            "ground": {"points": ["A", "D"], "ground": True},
+            "l1": {"points": ["A", "E"]},
+            "l2": {"points": ["D", "E"]},
+        },
+        "joints": [
+            {"type": "revolute", "point": "A", "links": ["ground", "l1"]},
+            {"type": "revolute", "point": "D", "links": ["ground", "l2"]},
+            {"type": "revolute", "point": "E", "links": ["l1", "l2"]},
+        ],
+        "drivers": [],
+    }
+    body = solver.analyze(doc).as_dict()
+    E = body["points"]["E"]
+    assert E["position"] == pytest.approx([0.3, 0.4], abs=1e-15)
+    assert E["velocity"] == [0.0, 0.0] and E["acceleration"] == [0.0, 0.0]
+    approach = body["diagnostics"]["closest_approach"]
+    assert approach["point"] == "E"
+    assert abs(approach["margin"] - (0.5 + math.sqrt(0.65) - 1.0)) <= 1e-15
+
+
+def test_full_turn_sweep_of_a_newton_group_keeps_its_report() -> None:
+    """The triad of tests/solver/test_newton.py with its crank cut to |OA| = 0.018 m (A at
+    (0.015, 0.01)) turns fully: swept with 36 samples, every sample closes the loop (each link's
+    length and the ternary link's sides as drawn, to 1e-12 m: the constraints themselves), and
+    the diagnostics keep the triad's Newton report, its residual within its tolerance."""
+    from tests.solver.test_newton import TRIAD
+
+    doc = {**TRIAD, "points": {**TRIAD["points"], "A": [0.015, 0.01]}}
+    body = solver.sweep(doc, 36).as_dict()
+    assert body["feasible"] and len(body["driver_angle"]) == 36
+    xy = {p: np.asarray(body["points"][p]["position"]) for p in doc["points"]}
+    for first, second in ("OA", ("A", "P1"), ("G2", "P2"), ("G3", "P3"), ("P1", "P2"),
+                          ("P2", "P3"), ("P1", "P3")):  # fmt: skip
+        drawn = math.dist(doc["points"][first], doc["points"][second])
+        assert np.abs(np.hypot(*(xy[first] - xy[second]).T) - drawn).max() <= 1e-12
+    (report,) = body["diagnostics"]["newton"]
+    assert report["links"] == ["T", "L1", "L2", "L3"]
+    assert report["residual_norm"] <= report["tolerance"]
+
+
+def _circle_point(P: list[float], Q: list[float], r1: float, r2: float) -> list[float]:
+    """The point X with |XP| = r1, |XQ| = r2 to the left of P -> Q."""
+    p, q = np.array(P), np.array(Q)
+    d = math.dist(P, Q)
+    u = (q - p) / d
+    along = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d)
+    return (p + along * u + math.sqrt(r1 * r1 - along * along) * np.array([-u[1], u[0]])).tolist()
+
+
+def _crank_with_two_dyads(rocker: float = 0.5) -> dict[str, Any]:
+    """Crank A(0,0)-B (0.4, drawn at 60 deg) driving two dyads: B-C-D (|BC| 0.8, |DC| =
+    ``rocker``, D = (1, 0)) and B-E-G (|BE| 0.7, |GE| 0.6, G = (0.8, -0.6)). With rocker 0.5
+    the first cannot close where |BD| > 1.3 (crank beyond 131.5 deg); the second cannot where
+    |BG| > 1.3 (crank 94.6 to 191.6 deg)."""
+    t = math.radians(60.0)
+    B = [0.4 * math.cos(t), 0.4 * math.sin(t)]
+    revolute = [("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"),
+                ("D", "rocker", "ground"), ("B", "crank", "arm"), ("E", "arm", "link"),
+                ("G", "link", "ground")]  # fmt: skip
+    return {
+        "kind": "linkage",
+        "title": "a crank driving two dyads",
+        "points": {
+            "A": [0.0, 0.0],
+            "B": B,
+            "C": _circle_point(B, [1.0, 0.0], 0.8, rocker),
+            "D": [1.0, 0.0],
+            "E": _circle_point([0.8, -0.6], B, 0.6, 0.7),
+            "G": [0.8, -0.6],
+        },
+        "links": {
+            "ground": {"points": ["A", "D", "G"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": ["B", "C"]},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": ["B", "E"]},
+            "link": {"points": ["G", "E"]},
+        },
+        "joints": [{"type": "revolute", "point": p, "links": [a, b]} for p, a, b in revolute],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
+def _crank_point(degrees: float | np.ndarray) -> np.ndarray:
+    t = np.radians(degrees)
+    return 0.4 * np.stack((np.cos(t), np.sin(t)), axis=-1)
+
+
+def test_two_groups_failing_at_one_pose_name_the_first() -> None:
+    """The crank with two dyads analysed at crank 160 deg, where neither closes: refused with
+    the first group's numbers only (|BD| from B = 0.4 (cos 160, sin 160) deg; the group after
+    one that failed is not blamed)."""
+    doc = _crank_with_two_dyads()
+    doc["drivers"][0]["angle_deg"] = 160.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(doc)
+    BD = math.dist(_crank_point(160.0), (1.0, 0.0))
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 160 deg: |BD| = {BD:.6g} m > "
+        "|BC| + |DC| = 0.8 + 0.5 = 1.3 m"
+    )
+
+
+def test_two_groups_failing_at_different_samples_are_both_named() -> None:
+    """The crank with two dyads swept over time, crank 60 deg + t rad, t = 0 .. 1.5 s in 16
+    samples: B-C-D fails from 131.5 deg on, B-E-G from 94.6 deg on, where B-C-D still closes:
+    both are named, each at its worst sample (|BD| and |BG| from the closed form of B)."""
+    from solver.sweeps import sweep_time
+
+    with pytest.raises(NotAssemblable) as error:
+        sweep_time(parse_linkage(_crank_with_two_dyads()), 0.0, 1.5, 16, ["position"])
+    B = _crank_point(60.0 + np.degrees(np.linspace(0.0, 1.5, 16)))
+    BD = np.hypot(*(B - (1.0, 0.0)).T).max()
+    BG = np.hypot(*(B - (0.8, -0.6)).T).max()
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed during t = 0 .. 1.5 s: |BD| = {BD:.6g} m > |BC| + |DC| = "
+        f"0.8 + 0.5 = 1.3 m; |BG| = {BG:.6g} m > |BE| + |GE| = 0.7 + 0.6 = 1.3 m"
+    )
+
+
+def test_newton_group_after_a_failing_dyad_is_not_blamed() -> None:
+    """The triad of tests/solver/test_newton.py with a dyad A-E-G on its crank (|AE| 0.9,
+    |GE| 0.87, G = (-1, -1)), which cannot close at crank 45 deg: |AG| = 1.77477 > 1.77 m (A at
+    |OA| = sqrt 0.13 m, 45 deg). The dyad is solved first; the triad, which cannot follow its
+    branch past the dyad's limit either, is not named."""
+    from tests.solver.test_newton import TRIAD, with_angle
+
+    doc = {
+        **TRIAD,
+        "points": {**TRIAD["points"], "G": [-1.0, -1.0]},
+        "links": {
+            **TRIAD["links"],
+            "ground": {"points": ["O", "G2", "G3", "G"], "ground": True},
+            "arm": {"points": ["A", "E"]},
+            "link": {"points": ["G", "E"]},
+        },
+        "joints": TRIAD["joints"]
+        + [
+            {"type": "revolute", "point": "A", "links": ["crank", "arm"]},
+            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
+            {"type": "revolute", "point": "G", "links": ["link", "ground"]},
+        ],
+    }
+    doc["points"]["E"] = _circle_point([0.3, 0.2], [-1.0, -1.0], 0.9, 0.87)
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(with_angle(doc, 45.0))
+    A = math.sqrt(0.13) * np.array([math.cos(math.pi / 4), math.sin(math.pi / 4)])
+    AG = math.dist(A, (-1.0, -1.0))
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 45 deg: |AG| = {AG:.6g} m > "
+        "|AE| + |GE| = 0.9 + 0.87 = 1.77 m"
+    )
+
+
+def test_group_at_its_dead_centre_is_not_blamed_for_the_next() -> None:
+    """The crank with two dyads, rocker 0.6 (|BC| + |DC| = 1.4 = |AD| + |AB|), analysed at
+    crank 180 deg: B-C-D is at its dead centre there (margin 0 to rounding: it closes), B-E-G
+    cannot close, |BG| = sqrt(1.2^2 + 0.6^2) = 1.34164 > 1.3 m: refused naming B-E-G only."""
+    doc = _crank_with_two_dyads(rocker=0.6)
+    doc["drivers"][0]["angle_deg"] = 180.0
+    with pytest.raises(NotAssemblable) as error:
+        solver.analyze(doc)
+    assert str(error.value.message) == (
+        f"the linkage cannot be closed at crank angle 180 deg: |BG| = {math.sqrt(1.8):.6g} m > "
+        "|BE| + |GE| = 0.7 + 0.6 = 1.3 m"
+    )
+
+
+def test_close_approach_just_after_an_upstream_switch() -> None:
+    """The parallelogram driving a dyad, F = D - 1.5 (cos 182, sin 182 deg), so that |CF| is
+    largest, |DF| + 0.4 = 1.9, at crank 182 deg, 2 deg after the parallelogram's change point;
+    swept with 36 samples from 58 deg (samples at 178 and 188 deg). Between samples the
+    parallelogram is taken on the branch it has switched to at 180 deg: the approach is
+    gap = 2e-4 m (to 1e-12 m) at 182 deg (to 1e-6 rad), and C = B + (1, 0) throughout."""
+    gap = 2e-4
+    result = sweep(parse_linkage(_parallelogram_with_dyad(58.0, gap, 182.0)), 36, ["position"])
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+    (approach,) = [a for a in result.close_approaches if a.point == "E"]
+    assert abs(approach.margin - gap) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle - math.radians(182.0), 2 * math.pi)) <= 1e-6
