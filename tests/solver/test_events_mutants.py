@@ -13,11 +13,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import mpmath
 import numpy as np
 import pytest
 
 import solver
-from solver.errors import NoEvent, NotAssemblable
+from solver import events
+from solver.errors import LimitExceeded, NoEvent, NotAssemblable
 
 T_RTOL = 1e-9
 
@@ -109,15 +111,84 @@ def test_tangential_touch_just_past_the_start_of_an_arc() -> None:
 
 def test_near_touch_at_millimetre_scale_is_not_a_meeting() -> None:
     """A slot at millimetre scale, T 0.5 mm along it: s = 0.5e-3 (2t - t^2) reaches T at t = 1 s
-    (a touch, counted once); s = 0.5e-3 (1 - 1e-7) (2t - t^2) turns back 5e-11 m short of T
-    (1e-7 of the path travelled, far above rounding): M never reaches T."""
+    (a touch, counted once); s = 0.5e-3 (1 - 1e-9) (2t - t^2) turns back 5e-13 m short of T
+    (1e-9 of the path travelled, a million times its rounding): M never reaches T."""
     reaches = _slot("0.5e-3*(2*t - t^2)", [1e-3, 1e-3], {"T": 0.5e-3})
     _assert_time(_time(reaches, "T", 1, 3.0), 1.0, "touch", 1e-6)
     with pytest.raises(NoEvent):
         _time(reaches, "T", 2, 3.0)
-    short = _slot("0.5e-3*(1 - 1e-7)*(2*t - t^2)", [1e-3, 1e-3], {"T": 0.5e-3})
+    short = _slot("0.5e-3*(1 - 1e-9)*(2*t - t^2)", [1e-3, 1e-3], {"T": 0.5e-3})
     with pytest.raises(NoEvent):
         _time(short, "T", 1, 3.0)
+
+
+def test_tangential_touch_from_above_on_an_arc_and_the_next_crossing() -> None:
+    """M on a circle of radius R = 0.3 m (period 2 pi R): s = -(pi R / 2)(2t - t^2) goes back a
+    quarter turn and turns there at t = 1 s, touching T, which lies three quarters of a turn
+    ahead (the copy s = -pi R / 2 of its level 3 pi R / 2): the lowest s of the piece is the
+    touch. Then M comes forward again and passes T's copy 3 pi R / 2 when
+    2t - t^2 = -3, t = 3 s (closed form); the next copy, 7 pi R / 2, at 1 + sqrt 8 = 3.83 s,
+    is past t_max = 3.5 s. Tolerance 1e-6 (the touch is a double root)."""
+    R = 0.3
+    doc = _disc(
+        "-0.3*pi/2*(2*t - t^2)",
+        {"type": "arc", "center": "C", "start": "S", "direction": "ccw"},
+        {"C": [0.2, 0.5], "S": [0.2 + R, 0.5], "T": [0.2, 0.5 - R]},
+    )
+    _assert_time(_time(doc, "T", 1, 3.5), 1.0, "touch", 1e-6)
+    _assert_time(_time(doc, "T", 2, 3.5), 3.0, "crossing after the touch", 1e-6)
+    with pytest.raises(NoEvent):
+        _time(doc, "T", 3, 3.5)
+
+
+def _mp_root(f: Any, low: float, high: float) -> float:
+    """The root of f in [low, high] (a sign change), by mpmath's Illinois method."""
+    return float(mpmath.findroot(f, (mpmath.mpf(low), mpmath.mpf(high)), solver="illinois"))
+
+
+def test_search_stops_at_the_occurrence_asked_for() -> None:
+    """s = 0.01 sin(1000 t) - t on a slot rises to about 8.4 mm, crosses T at 5 mm twice on the
+    way up and down, and then never again (its later peaks are 0.01 - t < 5 mm): the two
+    crossings (mpmath roots of the closed form either side of its peak at
+    1.47 ms, 1e-9) are found with
+    t_max = 1e6 s, the largest allowed, without searching on to t_max (the law turns every
+    3 ms, so a search to 1e6 s would pass the 4e6-sample limit)."""
+    mpmath.mp.dps = 40
+
+    def s(t: Any) -> Any:
+        return mpmath.mpf("0.01") * mpmath.sin(1000 * t) - t - mpmath.mpf("0.005")
+
+    doc = _slot("0.01*sin(1000*t) - t", [0.25, 0.25], {"T": 0.005})
+    _assert_time(_time(doc, "T", 1, 1e6), _mp_root(s, 0.0, 1.47e-3), "first")
+    _assert_time(_time(doc, "T", 2, 1e6), _mp_root(s, 1.47e-3, 3.14e-3), "second")
+    with pytest.raises(NoEvent):
+        _time(doc, "T", 3, 1.0)
+
+
+def test_too_fast_a_law_is_refused_when_the_samples_run_out(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """s = 0.2 sin(1000 t) never reaches T (0.3 m along the slot); the search windows shrink
+    to a few of its 6.3 ms periods, so up to t_max = 60 s it needs about 5000 windows of 65
+    samples. With the sample limit lowered to 100 windows (6500 samples) the search is
+    refused (limit_exceeded), with the limit and t_max in the message."""
+    monkeypatch.setattr(events, "MAX_SEARCH_SAMPLES", 6500)
+    doc = _slot("0.2*sin(1000*t)", [0.25, 0.25], {"T": 0.3})
+    message = r"M moves too fast to search up to t_max = 60 s \(more than 6500 samples\)"
+    with pytest.raises(LimitExceeded, match=message):
+        _time(doc, "T", 1, 60.0)
+
+
+def test_a_crossing_at_the_resolution_of_t_zero_is_the_start() -> None:
+    """s = 1e-6 (t - 1e-7)(t - 5e5) on a slot from S: M is 5e-8 m ahead of S at
+    t = 0 and crosses it at 1e-7 s and at 5e5 s. Searched up to t_max = 1e6 s, times are
+    resolved to 1e-12 t_max = 1e-6 s, so the crossing at 1e-7 s is the start itself (t = 0
+    does not count; reading of 'after t = 0'): the first meeting is the one at 5e5 s (closed
+    form), and there is no second."""
+    doc = _slot("1e-6*(t - 1e-7)*(t - 5e5)", [0.25, 0.25], {})
+    _assert_time(_time(doc, "S", 1, 1e6), 5e5, "the root at 5e5 s")
+    with pytest.raises(NoEvent):
+        _time(doc, "S", 2, 1e6)
 
 
 # --- targets off M's carrier: the distance search (_meetings_off_carrier) ---
