@@ -58,6 +58,52 @@ def _slot(s_law: str, start: list[float], targets: dict[str, float]) -> dict[str
     return _disc(s_law, {"type": "line", "start": "S", "through": "L"}, points)
 
 
+# --- is the target on M's path at all (_path_levels) ---
+
+
+@pytest.mark.parametrize(
+    ("origin", "scale"),
+    [((0.0, 0.0), 1e-3), ((0.0, 0.0), 1.0), ((1000.0, -1000.0), 1.0)],
+    ids=["millimetres", "metres", "far-from-the-origin"],
+)
+def test_target_just_off_a_slot_is_never_reached(origin: tuple[float, float], scale: float) -> None:
+    """A slot along +x from S; T lies 0.3 scale along it and 1e-7 scale m to its side (1e-7 of
+    the scene's size, a hundred times the on-path tolerance, 1e-9 of the size): M never reaches
+    it, at millimetre or metre scale, next to the origin or 1.4 km from it (the tolerance is
+    relative to the scene's size, not to the coordinates). On the slot, T is met at
+    s = 0.3 scale = scale t^2, t = sqrt(0.3) (closed form)."""
+    x, y = origin[0] + 0.25 * scale, origin[1] + 0.25 * scale
+    doc = _slot(f"{scale!r}*t^2", [x, y], {"T": 0.3 * scale})
+    doc["points"]["O"] = list(origin)  # the disc's pivot, and L, at the slot's scale
+    doc["points"]["L"] = [x + scale, y]
+    _assert_time(_time(doc, "T", 1, 3.0), math.sqrt(0.3), "on the slot")
+    doc["points"]["T"][1] = y + 1e-7 * scale
+    with pytest.raises(NoEvent, match=r"^T is 1e-0?\d+ m off the line along which M moves, so M"):
+        _time(doc, "T", 1, 3.0)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e3])
+def test_target_just_off_an_arc_is_never_reached(scale: float) -> None:
+    """M on a circle of radius R = 0.3 scale about C; T at 1 rad along it but 1e-7 R outside
+    (a hundred times the on-path tolerance, 1e-9 R): never reached, at every
+    scale; on the circle it is met where R t = R, t = 1 s (closed form, s = R t)."""
+    R = 0.3 * scale
+    C = [0.2 * scale, 0.5 * scale]
+
+    def arc_doc(r_t: float) -> dict[str, Any]:
+        points = {
+            "C": C,
+            "S": [C[0] + R, C[1]],
+            "T": [C[0] + r_t * math.cos(1.0), C[1] + r_t * math.sin(1.0)],
+        }
+        path = {"type": "arc", "center": "C", "start": "S", "direction": "ccw"}
+        return _disc(f"{R!r}*t", path, points)
+
+    _assert_time(_time(arc_doc(R), "T", 1, 3.0), 1.0, "on the arc")
+    with pytest.raises(NoEvent, match=r"^T is not on the arc of M: \|CT\| = .* m, radius .* m$"):
+        _time(arc_doc(R * (1 + 1e-7)), "T", 1, 3.0)
+
+
 # --- turning points and tangential touches on M's carrier (_zeros, _levels_crossed) ---
 
 
