@@ -394,6 +394,16 @@ def test_search_past_the_reach_of_the_linkage_is_refused_with_its_reason() -> No
         _time(doc, "G", 1, 10.0)
 
 
+def test_meeting_on_the_carrier_where_the_linkage_cannot_close_is_refused() -> None:
+    """The same four-bar (it closes only while the crank is within 53.1 deg of the ground line);
+    M runs along the coupler at s = 0.5 t and reaches C (s = |BC| = 0.5) at t = 1 s, when the
+    crank has turned 1 rad = 57.3 deg: the time is known without assembling, but there is no
+    position, so the event is refused (not_assemblable) and the message gives the time."""
+    doc = _four_bar([0.6, 0.0], [1.0, 0.3], [0.5, -2.0], "0.5*t")
+    with pytest.raises(NotAssemblable, match=r"the linkage cannot be closed at t = 1 s: "):
+        _time(doc, "C", 1, 10.0)
+
+
 def _parallelogram(drawn_deg: float, G: list[float], s_law: str = "0.5") -> dict[str, Any]:
     """Crank AB = rocker DC = 0.4, coupler BC = ground AD = 1, drawn as a parallelogram
     (C = B + (1, 0)) with the crank at ``drawn_deg``. Followed continuously it stays one
