@@ -159,6 +159,9 @@ def test_slider_triad_sweep_equals_the_50_digit_reference(samples: int) -> None:
             q = path[turn][3 * index : 3 * index + 2]
             np.testing.assert_allclose(anchor.p[k], q, rtol=0.0, atol=1e-9)
     check_against_analyze(doc, result, every=max(samples // 4, 1))
+    drawn = analyze(scene, ["position"])  # turn 0: the drawn pose, the start of both legs
+    for name, point in doc["points"].items():
+        np.testing.assert_allclose(drawn.points[name].position, point, rtol=0.0, atol=1e-14)
 
 
 def test_slider_triad_limits_are_the_folds_of_its_equations() -> None:
@@ -218,15 +221,17 @@ def test_slider_triad_rates_equal_finite_differences() -> None:
 
 @pytest.mark.parametrize(
     ("turn", "refused"),
-    [(2.0 * math.pi - 0.2, 2.0 * math.pi - 0.5), (0.5 - 2.0 * math.pi, 0.8 - 2.0 * math.pi)],
-)
+    [(2.0 * math.pi - 0.2, 2.0 * math.pi - 0.5), (0.5 - 2.0 * math.pi, 0.8 - 2.0 * math.pi),
+     (0.0, 0.8), (0.0, -0.45)],
+)  # fmt: skip
 def test_a_turn_beyond_a_limit_is_reached_the_other_way_round(turn: float, refused: float) -> None:
     """The rocking triad (limits -0.391 and +0.717 rad from its drawn pose) asked at a turn past
     a limit but within the other one once reduced by a whole turn: posed there (the branch
     rule's "other way round"), equal to the 50-digit roots at the reduced turn and to /analyze
-    at the reduced angle; a turn reduced past the other limit too is refused."""
+    at the reduced angle; a turn reduced past the other limit too is refused, as are turns just
+    past either limit (0.8 and -0.45 rad), with the reason."""
     drawn = math.degrees(drawn_crank(TRIAD))
-    reduced = turn - math.copysign(2.0 * math.pi, turn)
+    reduced = turn - math.copysign(2.0 * math.pi, turn) if turn else 0.0
     far = analyze(parse_linkage(with_angle(TRIAD, drawn + math.degrees(turn))), ["position"])
     near = analyze(parse_linkage(with_angle(TRIAD, drawn + math.degrees(reduced))), ["position"])
     points = np.array([far.points[p].position for p in UNKNOWN])
