@@ -1,0 +1,292 @@
+"""Newton groups' branch following (solver/continuation.py) against independent values: tests
+added for the mutants that survived the fourth session's mutation run (issue 8).
+
+Sources:
+
+- A 50-digit reference (mpmath): the triad's length equations (and a slot's line equation)
+  solved by mpmath.findroot at the sample's crank angle, started from the solver's answer, as
+  benchmarks/bench_newton.py does; its limit positions as folds of those equations (the
+  Jacobian in the unknown points singular, the crank angle an unknown too), likewise.
+- The branch: a natural-continuation reference path (small crank steps from the drawn pose,
+  tests/solver/test_newton_continuation.py), independent of the solver's pseudo-arclength
+  continuation.
+- Central finite differences of positions for the rates.
+
+The slider triad (the rocking triad of tests/solver/test_newton.py with its link L3 replaced by
+a slot in the ground for P3) is the Newton group whose equations are not linear in the links'
+rotations alone: it is followed in every link's (x, y, theta), its path's curvature estimated
+from the tangents (``Branch._path``'s second case, ``_predict`` and ``_Leg.middle`` without a
+curvature), which no other test reaches.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from typing import Any
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from solver import continuation
+from solver.constraints import ConstraintSystem
+from solver.errors import NotAssemblable
+from solver.instant import analyze
+from solver.scene import parse_linkage
+from solver.sweeps import sweep
+from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.test_newton_continuation import (
+    TRIADS,
+    check_against_analyze,
+    reference_poses,
+    triads,
+)
+
+Doc = dict[str, Any]
+AXIS = (1.0, 0.3)  # the slot's direction
+UNKNOWN = ("P1", "P2", "P3")
+
+
+def slider_triad() -> Doc:
+    """The rocking triad with P3 of the ternary link T in a slot of the ground (direction AXIS
+    through P3 as drawn) instead of on the rocker L3."""
+    doc: Doc = copy.deepcopy(TRIAD)
+    del doc["links"]["L3"], doc["points"]["G3"]
+    doc["links"]["ground"]["points"] = ["O", "G2"]
+    doc["joints"] = [j for j in doc["joints"] if j["point"] not in ("P3", "G3")]
+    doc["joints"].append(
+        {"type": "slider", "point": "P3", "links": ["ground", "T"], "axis": list(AXIS)}
+    )
+    return doc
+
+
+def _equations(doc: Doc) -> Any:
+    """F(z, turn) = 0 of a triad with unknown points z = (P1, P2, P3) in 50 digits: squared
+    lengths of L1, L2 (and L3) and of T's three sides less their drawn values, and for a slot
+    P3's offset across it; the crank point A turned by ``turn`` about O."""
+    drawn = {k: mp.matrix([mp.mpf(v[0]), mp.mpf(v[1])]) for k, v in doc["points"].items()}
+    pairs = [("A", "P1"), ("P1", "P2"), ("P1", "P3"), ("P2", "P3"), ("G2", "P2")]
+    if "G3" in drawn:
+        pairs.append(("G3", "P3"))
+    squared = [mp.fsum((drawn[a][i] - drawn[b][i]) ** 2 for i in (0, 1)) for a, b in pairs]
+
+    def F(z: Any, turn: Any) -> list[Any]:
+        c, s = mp.cos(turn), mp.sin(turn)
+        pivot, A0 = drawn["O"], drawn["A"]
+        at = dict(drawn)
+        at["A"] = mp.matrix([
+            pivot[0] + c * (A0[0] - pivot[0]) - s * (A0[1] - pivot[1]),
+            pivot[1] + s * (A0[0] - pivot[0]) + c * (A0[1] - pivot[1]),
+        ])  # fmt: skip
+        for k, name in enumerate(UNKNOWN):
+            at[name] = mp.matrix([z[2 * k], z[2 * k + 1]])
+        rows = [
+            mp.fsum((at[a][i] - at[b][i]) ** 2 for i in (0, 1)) - squared[k]
+            for k, (a, b) in enumerate(pairs)
+        ]
+        if "G3" not in drawn:
+            d = at["P3"] - drawn["P3"]
+            rows.append(AXIS[0] * d[1] - AXIS[1] * d[0])
+        return rows
+
+    return F
+
+
+def reference_points(doc: Doc, turn: float, start: np.ndarray) -> np.ndarray:
+    """P1, P2, P3 ((3, 2)) at the crank's ``turn`` from its drawn pose, solved in 50 digits
+    from ``start``."""
+    F = _equations(doc)
+    with mp.workdps(50):
+        root = mp.findroot(lambda *z: F(z, mp.mpf(turn)), [mp.mpf(float(v)) for v in start.flat])
+        assert mp.norm(mp.matrix(F(root, mp.mpf(turn)))) < mp.mpf(10) ** -40
+        return np.array([float(root[i]) for i in range(6)]).reshape(3, 2)
+
+
+def reference_limit(doc: Doc, turn: float, start: np.ndarray) -> float:
+    """The crank's turn at a limit position (a fold: F = 0 and det dF/dz = 0, seven equations
+    in z and the turn) in 50 digits, from ``turn`` and points ``start``."""
+    F = _equations(doc)
+
+    def fold(*unknowns: Any) -> list[Any]:
+        z, turn = unknowns[:6], unknowns[6]
+        J = mp.matrix(6, 6)
+        h = mp.mpf(10) ** -30
+        for j in range(6):  # dF/dz by a complex step: exact to the working precision
+            shifted = list(z)
+            shifted[j] += mp.mpc(0, h)
+            for i, value in enumerate(F(shifted, turn)):
+                J[i, j] = mp.im(value) / h
+        return [*F(z, turn), mp.det(J)]
+
+    with mp.workdps(50):
+        guess = [mp.mpf(float(v)) for v in start.flat] + [mp.mpf(turn)]
+        root = mp.findroot(fold, guess)
+        assert mp.norm(mp.matrix(fold(*root))) < mp.mpf(10) ** -35
+        return float(root[6])
+
+
+def drawn_crank(doc: Doc) -> float:
+    (x0, y0), (x1, y1) = doc["points"]["O"], doc["points"]["A"]
+    return math.atan2(y1 - y0, x1 - x0)
+
+
+def swept_points(result: Any, k: int) -> np.ndarray:
+    return np.array([result.motion.points[p].p[k] for p in UNKNOWN])
+
+
+@pytest.mark.parametrize("samples", [12, 360])
+def test_slider_triad_sweep_equals_the_50_digit_reference(samples: int) -> None:
+    """Every sample (every 30th of 360) equals the 50-digit roots to 1e-12 m and the natural
+    continuation path from the drawn pose to 1e-9 m (the branch kept); /analyze at swept angles
+    gives the swept pose."""
+    doc = slider_triad()
+    scene = parse_linkage(doc)
+    result = sweep(scene, samples, ["position"])
+    assert not result.feasible
+    turns = result.driver_angle - drawn_crank(doc)
+    every = max(samples // 12, 1)
+    for k in range(0, samples, every):
+        swept = swept_points(result, k)
+        reference = reference_points(doc, float(turns[k]), swept)
+        np.testing.assert_allclose(swept, reference, rtol=0.0, atol=1e-12)
+    limits = tuple(limit - drawn_crank(doc) for limit in result.limits)
+    path = reference_poses(scene, turns[::every], limits)
+    system = ConstraintSystem(scene, scene.moving_links)
+    for k, turn in zip(range(0, samples, every), turns[::every], strict=True):
+        for index, link in enumerate(system.unknown):
+            anchor = result.motion.links[link].point(scene.drawn(scene.links[link].points[0]))
+            q = path[turn][3 * index : 3 * index + 2]
+            np.testing.assert_allclose(anchor.p[k], q, rtol=0.0, atol=1e-9)
+    check_against_analyze(doc, result, every=max(samples // 4, 1))
+    drawn = analyze(scene, ["position"])  # turn 0: the drawn pose, the start of both legs
+    for name, point in doc["points"].items():
+        np.testing.assert_allclose(drawn.points[name].position, point, rtol=0.0, atol=1e-14)
+
+
+def test_slider_triad_limits_are_the_folds_of_its_equations() -> None:
+    """The sweep's limit positions (36 and 360 samples) equal the 50-digit folds to 1e-12 rad,
+    each solved from the swept sample next to it."""
+    doc = slider_triad()
+    scene = parse_linkage(doc)
+    coarse, fine = sweep(scene, 36, ["position"]), sweep(scene, 360, ["position"])
+    np.testing.assert_allclose(coarse.limits, fine.limits, rtol=0.0, atol=1e-12)
+    drawn = drawn_crank(doc)
+    for k, limit in zip((0, -1), fine.limits, strict=True):
+        turn = float(fine.driver_angle[k]) - drawn
+        exact = reference_limit(doc, turn, swept_points(fine, k))
+        assert limit - drawn == pytest.approx(exact, abs=1e-12)
+
+
+@pytest.mark.parametrize("index", [0, 4])
+def test_limits_far_from_the_drawn_pose_whichever_way_the_crank_turns(index: int) -> None:
+    """Two random triads of tests/solver/test_newton_continuation.py whose limit positions lie
+    far from the drawn pose (triad 0: +2.04 rad, triad 4: -3.90 rad, more than half a turn): a
+    sweep with the crank turning either way (omega +-2 rad/s) has the same limits, equal to the
+    50-digit folds to 1e-12 rad (the path followed past the first reach, whichever leg met its
+    limit first)."""
+    doc = triads(TRIADS)[index]
+    drawn = drawn_crank(doc)
+    for omega in (2.0, -2.0):
+        turning = {**doc, "drivers": [{"link": "crank", "omega": omega, "alpha": 0.0}]}
+        result = sweep(parse_linkage(turning), 36, ["position"])
+        assert not result.feasible
+        low, high = sorted(result.limits)
+        for limit, k in ((low, int(np.argmin(result.driver_angle))),
+                         (high, int(np.argmax(result.driver_angle)))):  # fmt: skip
+            start = swept_points(result, k)
+            exact = reference_limit(doc, float(result.driver_angle[k]) - drawn, start)
+            assert limit - drawn == pytest.approx(exact, abs=1e-12), (omega, limit)
+
+
+def test_slider_triad_rates_equal_finite_differences() -> None:
+    """/analyze of the slider triad 20 deg from its drawn pose: velocities and accelerations of
+    P1, P2, P3 equal central differences of positions and velocities at +-1e-4 deg (truncation
+    ~ 3e-12 relative; positions exact to ~1e-15), to 1e-6 relative."""
+    omega = 2.0
+    doc = {**slider_triad(), "drivers": [{"link": "crank", "omega": omega, "alpha": 0.0}]}
+    angle, h = math.degrees(drawn_crank(doc)) + 20.0, 1e-4
+    at = {d: analyze(parse_linkage(with_angle(doc, angle + d * h))) for d in (-1, 0, 1)}
+    step = math.radians(h) / omega  # seconds between the two neighbours and the middle
+    for name in UNKNOWN:
+        before, middle, after = (at[d].points[name] for d in (-1, 0, 1))
+        assert before.position is not None and after.position is not None
+        assert before.velocity is not None and after.velocity is not None
+        assert middle.velocity is not None and middle.acceleration is not None
+        fd_v = (after.position - before.position) / (2 * step)
+        fd_a = (after.velocity - before.velocity) / (2 * step)
+        np.testing.assert_allclose(middle.velocity, fd_v, rtol=1e-6)
+        np.testing.assert_allclose(middle.acceleration, fd_a, rtol=1e-6)
+
+
+@pytest.mark.parametrize(
+    ("turn", "refused"),
+    [(2.0 * math.pi - 0.2, 2.0 * math.pi - 0.5), (0.5 - 2.0 * math.pi, 0.8 - 2.0 * math.pi),
+     (0.0, 0.8), (0.0, -0.45)],
+)  # fmt: skip
+def test_a_turn_beyond_a_limit_is_reached_the_other_way_round(turn: float, refused: float) -> None:
+    """The rocking triad (limits -0.391 and +0.717 rad from its drawn pose) asked at a turn past
+    a limit but within the other one once reduced by a whole turn: posed there (the branch
+    rule's "other way round"), equal to the 50-digit roots at the reduced turn and to /analyze
+    at the reduced angle; a turn reduced past the other limit too is refused, as are turns just
+    past either limit (0.8 and -0.45 rad), with the reason."""
+    drawn = math.degrees(drawn_crank(TRIAD))
+    reduced = turn - math.copysign(2.0 * math.pi, turn) if turn else 0.0
+    far = analyze(parse_linkage(with_angle(TRIAD, drawn + math.degrees(turn))), ["position"])
+    near = analyze(parse_linkage(with_angle(TRIAD, drawn + math.degrees(reduced))), ["position"])
+    points = np.array([far.points[p].position for p in UNKNOWN])
+    np.testing.assert_allclose(points, reference_points(TRIAD, reduced, points), atol=1e-12)
+    np.testing.assert_allclose(
+        points, np.array([near.points[p].position for p in UNKNOWN]), atol=1e-12
+    )
+    with pytest.raises(NotAssemblable, match="meets a limit position first"):
+        analyze(parse_linkage(with_angle(TRIAD, drawn + math.degrees(refused))))
+
+
+def _polynomial(coefficients: np.ndarray, s: float, derivative: int = 0) -> np.ndarray:
+    """The derivative of order ``derivative`` at s of sum_j coefficients[j] s^j (vectors)."""
+    poly = np.polynomial.polynomial
+    return np.asarray(poly.polyval(s, poly.polyder(coefficients, derivative)))
+
+
+def _leg(coefficients: np.ndarray, nodes: list[float], curvature: bool) -> continuation._Leg:
+    """A leg through p(s) at the arclengths ``nodes``: positions, derivatives p' as tangents and,
+    with ``curvature``, p'' as curvatures (the interpolants are Hermite's in s, whatever p)."""
+    at = [[_polynomial(coefficients, s, d) for s in nodes] for d in (0, 1, 2)]
+    kappa: list[np.ndarray | None] = list(at[2]) if curvature else [None] * len(nodes)
+    return continuation._Leg(list(nodes), at[0], at[1], kappa)
+
+
+def test_a_segments_middle_and_the_predictor_are_exact_for_polynomials() -> None:
+    """``_Leg.middle`` is the quintic Hermite interpolant's value at the middle of the last
+    segment: exact for a quintic p(s) (and, with the curvatures estimated from the tangents, the
+    cubic's: exact for a cubic); ``_predict`` is the second-order Taylor step, exact for a
+    quadratic, with its curvature estimated from the last two tangents where not known; and
+    ``_Leg.arrays`` estimates unknown curvatures exactly for a quadratic (linear tangents)."""
+    rng = np.random.default_rng(8)
+    quintic, cubic, quadratic = (rng.uniform(-2.0, 2.0, (n, 3)) for n in (6, 4, 3))
+    s0, h = 0.3, 0.45
+    for p, curvature in ((quintic, True), (cubic, False)):
+        middle = _leg(p, [0.1, s0, s0 + h], curvature).middle()
+        np.testing.assert_allclose(middle, _polynomial(p, s0 + h / 2), rtol=0.0, atol=1e-14)
+    for nodes, curvature in (([s0], True), ([0.1, s0], False), ([-0.4, 0.1, s0], False)):
+        predicted = continuation._predict(_leg(quadratic, nodes, curvature), h)
+        np.testing.assert_allclose(predicted, _polynomial(quadratic, s0 + h), atol=1e-14)
+    kappa = _leg(quadratic, [-0.4, 0.1, s0, s0 + h], False).arrays(1)[3]
+    np.testing.assert_allclose(kappa, np.tile(2.0 * quadratic[2], (3, 1)), atol=1e-13)
+
+
+def test_a_new_nodes_arclength_is_that_of_the_arc_through_it() -> None:
+    """``_Leg.insert`` measures a segment on a path of curvature |kappa| as the circular arc
+    on its chord c: s = c (1 + c^2 |kappa|^2 / 24), within (3/640) c^5 |kappa|^4 of the exact
+    arc. Nodes on the unit circle 0.2 apart (chord 0.19967) after a node on a straight line
+    (curvature 0: only the segment's own two ends count): the arc's length 0.2 to 2e-6."""
+    angles = (0.0, 0.2, 0.4)
+    x = [np.array([math.cos(a), math.sin(a)]) for a in angles]
+    tau = [np.array([-math.sin(a), math.cos(a)]) for a in angles]
+    kappa = [-xk for xk in x]
+    line = x[0] - 0.2 * tau[0]
+    leg = continuation._Leg([-0.2, 0.0], [line, x[0]], [tau[0], tau[0]], [np.zeros(2), kappa[0]])
+    for k in (1, 2):
+        leg.insert(k + 1, x[k], tau[k], kappa[k])
+        assert leg.s[k + 1] - leg.s[k] == pytest.approx(0.2, abs=2e-6)
