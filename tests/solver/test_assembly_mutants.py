@@ -286,11 +286,6 @@ def _parallelogram(start_deg: float) -> dict[str, Any]:
     return doc
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug (issue 8): candidate_minima never takes the first sample of a full revolution, "
-    "so a change point between samples 0 and 1 nearer sample 0 is not switched at",
-)
 @pytest.mark.parametrize(("samples", "start_deg"), [(36, 179.0), (360, 179.7), (3600, 179.96)])
 def test_parallelogram_started_just_before_its_change_point_stays_one(
     samples: int, start_deg: float
@@ -298,21 +293,19 @@ def test_parallelogram_started_just_before_its_change_point_stays_one(
     """The parallelogram drawn and swept from just before its change point at 180 deg (less
     than half a sample step before it: the margin's smallest sample is the first): it must stay
     a parallelogram, C = B + (1, 0) to 1e-9 m at every sample, as it does from any other start
-    (test_parallelogram_with_samples_on_its_change_points_at_any_scale). Today it takes the
-    anti-parallelogram after the first sample (|C - B - (1, 0)| up to 0.73 m)."""
+    (test_parallelogram_with_samples_on_its_change_points_at_any_scale). Before the first sample
+    was screened (``candidate_minima``) it took the anti-parallelogram after the first sample
+    (|C - B - (1, 0)| up to 0.73 m)."""
     result = sweep(parse_linkage(_parallelogram(start_deg)), samples, ["position"])
     B, C = (result.motion.points[p].p for p in "BC")
     assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug (issue 8): candidate_minima never takes the first sample of a time sweep either",
-)
 def test_time_sweep_of_a_parallelogram_started_just_before_its_change_point() -> None:
     """The parallelogram drawn at crank 179 deg, swept over time (omega 1 rad/s, t = 0 .. 1 s,
     11 samples 5.7 deg apart; the change point at 180 deg is nearer the first sample than the
-    second): a parallelogram at every sample, C = B + (1, 0) to 1e-9 m. Today 0.51 m off."""
+    second): a parallelogram at every sample, C = B + (1, 0) to 1e-9 m (0.51 m off before the
+    first sample was screened)."""
     from solver.sweeps import sweep_time
 
     result = sweep_time(parse_linkage(_parallelogram(179.0)), 0.0, 1.0, 11, ["position"])
@@ -330,17 +323,12 @@ def test_parallelogram_started_just_after_its_change_point_stays_one() -> None:
         assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug (issue 8): a close approach nearest the first (= last) sample of a full "
-    "revolution is never examined, so it is not reported",
-)
 @pytest.mark.parametrize("start_deg", [179.0, 181.0])
 def test_close_approach_next_to_the_first_sample_is_reported(start_deg: float) -> None:
     """The crank-rocker 1e-4 inside the Grashof equality drawn and swept (36 samples) from 1 deg
     before or after its closest approach at 180 deg: the approach, 1e-4 m at 180 deg (closed
     form), must be reported as it is from 30 deg (test_close_approach_found_with_the_fewest_
-    samples). Today the sweep reports none and gives no warning."""
+    samples). Before the first and last samples were screened the sweep reported none."""
     from tests.solver.test_assembly import _near_crank_rocker
 
     result = sweep(parse_linkage(_near_crank_rocker(1e-4, start_deg)), 36, ["position"])
@@ -456,9 +444,9 @@ def test_deeper_of_two_dips_is_reported() -> None:
 
 @pytest.mark.xfail(
     strict=True,
-    reason="bug (issue 8): with two dips of the margin between samples k - 1 and k + 1, "
-    "closest_approach's Brent on dm/du stops on whichever root it meets first (here the "
-    "shallower dip, 0.033 m, not warned), so the 1e-4 m near miss goes unreported",
+    reason="limitation (issue 8, docs/ARCHITECTURE.md): both dips of the margin lie between "
+    "samples k - 1 and k + 1, the sampled minimum k near the maximum that parts them, so the "
+    "screen's bound (candidate_minima) flags no sample and the 1e-4 m near miss goes unreported",
 )
 def test_deeper_of_two_dips_between_two_coarse_samples_is_reported() -> None:
     """15 samples (24 deg apart; 344, 8 and 32 deg among them): both dips lie between the

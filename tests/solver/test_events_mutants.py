@@ -340,12 +340,6 @@ def test_meetings_within_the_first_and_last_sample_of_the_distance_grid() -> Non
     _assert_time(_time(_counter_rotating(0.5), "P", 2, last), t_2, "second, 0.7 ms before t_max")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="events.py bug: a meeting off M's carrier within the first (or last) interval of the "
-    "4096-interval distance grid, nearer to t = 0 (or t_max) than to the next sample, is not a "
-    "local minimum of the sampled distance (only interior samples are candidates): missed",
-)
 def test_meetings_nearer_the_ends_of_the_distance_grid_than_its_next_sample() -> None:
     """As above with the meetings 0.3 ms from t = 0 and from t_max (a sample every 1 ms):
     t_1 = 0.3 ms and t_2 = (0.5 + 2 pi) / 2 s must both be found (closed form)."""
@@ -454,13 +448,6 @@ def test_point_of_the_crossed_assembly_is_never_reached_by_the_parallelogram() -
         _time(_parallelogram(60.0, G.tolist()), "G", 1, 10.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="events.py bug: past a change point the single instants of an event (the rate of "
-    "approach and the distance at a candidate meeting off M's carrier, and the event's "
-    "position) are assembled on the drawn branch without continuation from t = 0, so the "
-    "parallelogram is taken crossed there: the meeting is missed, the position is wrong",
-)
 def test_parallelogram_meets_a_ground_point_past_its_change_point() -> None:
     """The parallelogram drawn at 60 deg, at 1 rad/s: M is at G = (0.5, 0) + 0.4 (cos, sin)
     200 deg when the crank has turned 140 deg, t = 140 pi / 180 s (closed form, 1e-6)."""
@@ -468,11 +455,6 @@ def test_parallelogram_meets_a_ground_point_past_its_change_point() -> None:
     _assert_time(_time(_parallelogram(60.0, G), "G", 1, 10.0), math.radians(140.0), "", 1e-6)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="events.py bug: the event's position past a change point is assembled on the drawn "
-    "branch (the crossed four-bar), not on the branch followed from t = 0",
-)
 def test_event_position_past_the_change_point_is_on_the_parallelogram() -> None:
     """M runs along the coupler of the parallelogram (drawn at 60 deg) at s = 0.25 t and reaches
     C (s = 1) at t = 4 s (closed form), crank at 60 deg + 4 rad = 289 deg, past the change
