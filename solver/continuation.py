@@ -319,11 +319,10 @@ class Branch:
         driver component g, ``beyond`` there, changed sign): the zero of g along the step,
         appended as a node. Trial points s are corrected from the node's second-order
         prediction x + s tau + s^2/2 kappa (on the plane normal to tau at s, as
-        tau . kappa = 0); the next trial
-        is Newton's, s - g / g' with g' = kappa's driver component over tau . tangent (the
-        arclength per unit s), where it falls inside the bracket (the first from the node's
-        kappa), else regula falsi's (Illinois) on the bracket. The turn is stationary at the
-        limit, so a component c left over moves it by only ~ c^2."""
+        tau . kappa = 0); the next trial is Newton's, s - g / g' with g' = kappa's driver
+        component over tau . tangent (the arclength per unit s), where it falls inside the
+        bracket (the first from the node's kappa), else regula falsi's (Illinois) on it. The
+        turn is stationary at the limit, so a component c left over moves it by only ~ c^2."""
         x, tau, kappa0 = leg.x[-1], leg.tau[-1], leg.kappa[-1]
         a, b = 0.0, h
         g_a, g_b = sense * float(tau[self.free]), beyond
