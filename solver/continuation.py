@@ -456,12 +456,12 @@ class Branch:
         tau /= np.sqrt(np.einsum("ki,ki->k", tau, tau))[:, None]
         x, zero = middle, np.zeros(segments.size)
         try:
+            F, J = self._f(x)
             for _ in range(CORRECTOR_ITERATIONS):
-                F, J = self._f(x)
                 if np.max(np.einsum("kr,kr->k", F, F)) <= NODE_TOLERANCE**2:
                     break
                 x = x - _bordered_solves(J, tau, F, np.einsum("ki,ki->k", tau, x - middle))
-            F, J = self._f(x)
+                F, J = self._f(x)
             tangent = _bordered_solves(J, tau, np.zeros_like(F), np.ones(segments.size))
             tangent /= np.sqrt(np.einsum("ki,ki->k", tangent, tangent))[:, None]
             kappa = _bordered_solves(J, tangent, self.bending(x, tangent), zero)

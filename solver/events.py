@@ -172,11 +172,12 @@ def _meetings_off_carrier(
     on_grid = path_geometry(scene, mp, law.evaluate(grid)[0]).point
     d = np.hypot(*(swept.links[mp.link].point(on_grid).p - swept.points[target].p).T)
 
-    def at(t: float, order: int) -> tuple[Array, Array, Array, Array]:
-        """M, v_M, P, v_P at t, on the branches the grid's continuation followed."""
+    def at(t: float) -> tuple[Array, Array, Array, Array]:
+        """M, v_M, P, v_P at t, on the branches the grid's continuation followed (assembled to
+        order 2: ``moving_point_motion`` takes the carrier's accelerations)."""
         times = np.array([t])
         signs = branches_at(swept.flips, t / t_max * DISTANCE_GRID)
-        motion = assemble(scene, plan, driver_inputs_over_time(scene, times), order, signs=signs)
+        motion = assemble(scene, plan, driver_inputs_over_time(scene, times), 2, signs=signs)
         require_feasible(motion, "while searching for the event")
         M = moving_point_motion(scene, mp, motion.links[mp.link], times)
         P = motion.points[target]
@@ -185,7 +186,7 @@ def _meetings_off_carrier(
 
     def approach(t: float) -> float:
         """d(|M - P|^2)/dt / 2 = (M - P).(v_M - v_P): negative while M closes in."""
-        m, v_m, p, v_p = at(t, 2)
+        m, v_m, p, v_p = at(t)
         return float(dot(m - p, v_m - v_p)[0])
 
     tolerance = COINCIDENCE_TOLERANCE * scene.size
@@ -196,7 +197,7 @@ def _meetings_off_carrier(
         a, b = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, DISTANCE_GRID)])
         fa, fb = approach(a), approach(b)
         t = float(grid[k]) if fa * fb > 0.0 else brentq(approach, a, b, xtol=1e-15 * t_max)
-        m_t, _, p_t, _ = at(t, 2)
+        m_t, _, p_t, _ = at(t)
         if float(np.hypot(*(m_t - p_t)[0])) <= tolerance:
             times.append(t)
     return times

@@ -69,6 +69,44 @@ def test_full_turn_sweep_rates_match_the_differentiated_closed_form() -> None:
     np.testing.assert_allclose(body["points"]["P"]["position"], P, atol=1e-9)
 
 
+def _driving_a_dyad(
+    points: dict[str, list[float]],
+    pin: str,
+    F: np.ndarray,
+    radii: tuple[float, float],
+    title: str,
+) -> dict[str, Any]:
+    """The four-bar A-B-C-D (crank AB at 1 rad/s) whose coupler point ``pin`` (C, or a point P
+    of the coupler) drives a dyad pin-E-F: |pin E| = r1, |FE| = r2, F on the ground, E drawn on
+    the left of pin -> F (the two circles' intersection)."""
+    X = np.array(points[pin])
+    r1, r2 = radii
+    d_vec = F - X
+    d = math.hypot(*d_vec)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    u = d_vec / d
+    E = X + a * u + math.sqrt(r1 * r1 - a * a) * np.array([-u[1], u[0]])
+    coupler = ["B", "C"] if pin == "C" else ["B", "C", pin]
+    pairs = [("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"),
+             ("D", "rocker", "ground"), (pin, "rocker" if pin == "C" else "coupler", "arm"),
+             ("E", "arm", "link"), ("F", "link", "ground")]  # fmt: skip
+    return {
+        "kind": "linkage",
+        "title": title,
+        "points": {**points, "E": E.tolist(), "F": F.tolist()},
+        "links": {
+            "ground": {"points": ["A", "D", "F"], "ground": True},
+            "crank": {"points": ["A", "B"]},
+            "coupler": {"points": coupler},
+            "rocker": {"points": ["D", "C"]},
+            "arm": {"points": [pin, "E"]},
+            "link": {"points": ["F", "E"]},
+        },
+        "joints": [{"type": "revolute", "point": p, "links": [a, b]} for p, a, b in pairs],
+        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
+    }
+
+
 def _parallelogram_with_dyad(
     start_deg: float, gap: float, far_deg: float = -90.0
 ) -> dict[str, Any]:
@@ -83,42 +121,10 @@ def _parallelogram_with_dyad(
     F = np.array([1.0, 0.0]) - 1.5 * np.array(
         [math.cos(math.radians(far_deg)), math.sin(math.radians(far_deg))]
     )
-    r1, r2 = 1.0, 0.9 + gap
-    d_vec = F - C
-    d = math.hypot(*d_vec)
-    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
-    u = d_vec / d
-    E = C + a * u + math.sqrt(r1 * r1 - a * a) * np.array([-u[1], u[0]])
-    return {
-        "kind": "linkage",
-        "title": "parallelogram driving a dyad",
-        "points": {
-            "A": [0.0, 0.0],
-            "B": B,
-            "C": C.tolist(),
-            "D": [1.0, 0.0],
-            "E": E.tolist(),
-            "F": F.tolist(),
-        },
-        "links": {
-            "ground": {"points": ["A", "D", "F"], "ground": True},
-            "crank": {"points": ["A", "B"]},
-            "coupler": {"points": ["B", "C"]},
-            "rocker": {"points": ["D", "C"]},
-            "arm": {"points": ["C", "E"]},
-            "link": {"points": ["F", "E"]},
-        },
-        "joints": [
-            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
-            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
-            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
-            {"type": "revolute", "point": "C", "links": ["rocker", "arm"]},
-            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
-            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
-            {"type": "revolute", "point": "F", "links": ["link", "ground"]},
-        ],
-        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
-    }
+    return _driving_a_dyad(
+        {"A": [0.0, 0.0], "B": B, "C": C.tolist(), "D": [1.0, 0.0]},
+        "C", F, (1.0, 0.9 + gap), "parallelogram driving a dyad",
+    )  # fmt: skip
 
 
 @pytest.mark.parametrize("start_deg", [60.0, 200.0])
@@ -383,45 +389,11 @@ def _farthest() -> tuple[float, float]:
 def _two_dips(gap: float, start_deg: float) -> dict[str, Any]:
     """The _DIPS six-bar drawn at crank ``start_deg``, r1 = r2 = (max |PF| + gap) / 2."""
     B, C, P = (x[0] for x in _coupler_point(np.array([math.radians(start_deg)])))
-    F = np.array(_DIPS["F"])
     r = 0.5 * (_farthest()[1] + gap)
-    half = 0.5 * (F - P)
-    E = (
-        P
-        + half
-        + math.sqrt(r * r - half @ half) / math.hypot(*half) * np.array([-half[1], half[0]])
-    )
-    return {
-        "kind": "linkage",
-        "title": "a coupler point driving a dyad",
-        "points": {
-            "A": [0.0, 0.0],
-            "B": B.tolist(),
-            "C": C.tolist(),
-            "D": [1.0, 0.0],
-            "P": P.tolist(),
-            "E": E.tolist(),
-            "F": F.tolist(),
-        },
-        "links": {
-            "ground": {"points": ["A", "D", "F"], "ground": True},
-            "crank": {"points": ["A", "B"]},
-            "coupler": {"points": ["B", "C", "P"]},
-            "rocker": {"points": ["D", "C"]},
-            "arm": {"points": ["P", "E"]},
-            "link": {"points": ["F", "E"]},
-        },
-        "joints": [
-            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
-            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
-            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
-            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
-            {"type": "revolute", "point": "P", "links": ["coupler", "arm"]},
-            {"type": "revolute", "point": "E", "links": ["arm", "link"]},
-            {"type": "revolute", "point": "F", "links": ["link", "ground"]},
-        ],
-        "drivers": [{"link": "crank", "omega": 1.0, "alpha": 0.0}],
-    }
+    return _driving_a_dyad(
+        {"A": [0.0, 0.0], "B": B.tolist(), "C": C.tolist(), "D": [1.0, 0.0], "P": P.tolist()},
+        "P", np.array(_DIPS["F"]), (r, r), "a coupler point driving a dyad",
+    )  # fmt: skip
 
 
 def _deepest_dip_reported(samples: int, start_deg: float) -> None:
