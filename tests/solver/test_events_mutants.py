@@ -20,6 +20,7 @@ import pytest
 import solver
 from solver import events
 from solver.errors import LimitExceeded, NoEvent, NotAssemblable
+from solver.presets import build_preset
 
 T_RTOL = 1e-9
 
@@ -366,32 +367,20 @@ def _four_bar(B: list[float], C: list[float], G: list[float], s_law: str) -> dic
     """A(0, 0), B, C, D(1, 0) drawn as given (the link lengths are the drawn distances); the crank
     AB turns at 1 rad/s from its drawn angle; M moves on a slot of the coupler from B through C
     by ``s_law``; G is a ground point."""
-    return {
-        "kind": "linkage",
-        "title": "four-bar",
-        "points": {"A": [0.0, 0.0], "B": B, "C": C, "D": [1.0, 0.0], "G": G},
-        "links": {
-            "ground": {"points": ["A", "D", "G"], "ground": True},
-            "crank": {"points": ["A", "B"]},
-            "coupler": {"points": ["B", "C"]},
-            "rocker": {"points": ["D", "C"]},
-        },
-        "joints": [
-            {"type": "revolute", "point": "A", "links": ["ground", "crank"]},
-            {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
-            {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
-            {"type": "revolute", "point": "D", "links": ["rocker", "ground"]},
-        ],
-        "drivers": [{"link": "crank", "angle_law": "t"}],
-        "moving_points": [
-            {
-                "name": "M",
-                "link": "coupler",
-                "path": {"type": "line", "start": "B", "through": "C"},
-                "s_law": s_law,
-            }
-        ],
-    }
+    doc = build_preset("four_bar", {})  # its links and joints; the points drawn as given
+    doc["points"] = {"A": [0.0, 0.0], "B": B, "C": C, "D": [1.0, 0.0], "G": G}
+    doc["links"]["ground"]["points"].append("G")
+    doc["links"]["coupler"]["points"] = ["B", "C"]
+    doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
+    doc["moving_points"] = [
+        {
+            "name": "M",
+            "link": "coupler",
+            "path": {"type": "line", "start": "B", "through": "C"},
+            "s_law": s_law,
+        }
+    ]
+    return doc
 
 
 def test_search_past_the_reach_of_the_linkage_is_refused_with_its_reason() -> None:
