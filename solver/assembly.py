@@ -4,9 +4,9 @@ Runs a ``Plan`` (see ``topology``) vectorised over samples. The branch of each t
 the drawn one (the same orientation of the dyad's triangle, as the spec asks for a single pose).
 With ``continuation=True`` (a sweep) it switches only where the group's two branches meet between
 two samples within rounding: the closest approach of the branches over the continuous driver
-path is found by Brent's method wherever the samples say it could come near, so a parallelogram
-stays a parallelogram through its change points and a linkage 1e-12 off a change point keeps its
-assembly, at any sample count.
+path is found by Brent's method wherever the samples' margins and their rates say it could come
+near (``candidate_intervals``), so a parallelogram stays a parallelogram through its change
+points and a linkage 1e-12 off a change point keeps its assembly, at any sample count.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -142,13 +143,150 @@ class Motion:
         return [a for a in self.approaches if a.margin > dyads.COINCIDENCE_TOLERANCE * self.size]
 
 
+# A point fixed, or turned by a driver about its ground pivot: (driver, |P - pivot|), a fixed
+# point's radius 0. Along the path such a point moves at |P - pivot| |d theta / du|.
+Reach = tuple[int, float]
+# A driver that moves along the path: (driver, its steps delta_k = theta_k+1 - theta_k, their
+# largest magnitude).
+PathStep = tuple[int, Array, float]
+
+
+def driven_reach(scene: LinkageScene, steps: Sequence[Step]) -> dict[str, Reach]:
+    """The reach of every point fixed or carried by a driven link (drivers turn about ground
+    pivots)."""
+    reach = {p: (0, 0.0) for p in scene.links[scene.ground].points}
+    for step in steps:
+        if isinstance(step, DriverStep):
+            pivot = scene.drawn(step.pivot)
+            for p in scene.links[step.link].points:
+                reach.setdefault(p, (step.driver, float(np.hypot(*(scene.drawn(p) - pivot)))))
+    return reach
+
+
+def group_reach(
+    step: DyadStep | LeverStep, ground: str, reach: Mapping[str, Reach]
+) -> tuple[Reach, ...] | None:
+    """The reach of the points a group's margin is measured between (two circles' centres, a
+    circle's centre and a slot in the ground, a lever's pivot and pin), or None where one of them
+    moves otherwise (located by a dyad or a Newton group, a slot in a moving link)."""
+    if isinstance(step, LeverStep):
+        names = [step.pivot, step.pin]
+    else:
+        names = []
+        for spec in step.loci:
+            if isinstance(spec, CircleSpec):
+                names.append(spec.center)
+            elif spec.guide != ground:
+                return None
+    if any(p not in reach for p in names):
+        return None
+    return tuple(reach[p] for p in names)
+
+
+def path_steps(inputs: Sequence[DriverInput]) -> list[PathStep]:
+    """The drivers that move along the path (thetas linear between samples), with their steps."""
+    path = []
+    for driver, given in enumerate(inputs):
+        delta = np.diff(given.theta)
+        largest = float(np.abs(delta).max()) if delta.size else 0.0
+        if largest > 0.0:
+            path.append((driver, delta, largest))
+    return path
+
+
+def rates_alone(inputs: Sequence[DriverInput], order: int, path: Sequence[PathStep]) -> bool:
+    """Whether a run's velocities (``order`` >= 1) are at the rate of the one driver that moves
+    along the path alone (non-zero at every sample, every other driver at rest): then a margin's
+    rate over that driver's rate is dm/dtheta."""
+    if order < 1 or len(path) != 1:
+        return False
+    moving = path[0][0]
+    return all(
+        bool(np.all(given.omega != 0.0)) if driver == moving else not given.omega.any()
+        for driver, given in enumerate(inputs)
+    )
+
+
+def unit_rate(inputs: Sequence[DriverInput], driver: int) -> list[DriverInput]:
+    """The same driver angles with ``driver`` turning at unit rate and every other at rest."""
+    n = inputs[0].theta.size
+    return [
+        DriverInput(given.theta, np.full(n, float(j == driver)), np.zeros(n))
+        for j, given in enumerate(inputs)
+    ]
+
+
+def lipschitz_clear(
+    margin: Array, reaches: Sequence[Reach], path: Sequence[PathStep], size: float
+) -> bool:
+    """Whether the margin of a group measured between points of the given reaches stays above
+    WARNING_MARGIN size between every two samples, whatever its shape: m is 1-Lipschitz in those
+    points, so |dm/du| <= G = sum |P - pivot| max |delta| and m >= (m_k + m_k+1 - G) / 2 between
+    samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN size clears every interval."""
+    largest = {driver: step for driver, _, step in path}
+    bound = sum(radius * largest.get(driver, 0.0) for driver, radius in reaches)
+    return bool(margin.min() - 0.5 * bound >= WARNING_MARGIN * size)
+
+
+def path_rates(sensitivities: Sequence[Array], path: Sequence[PathStep]) -> tuple[Array, Array]:
+    """(p, q): dm/du at the start and at the end of each interval along its own direction,
+    p_k = sum_i g_i,k delta_i,k and q_k = sum_i g_i,k+1 delta_i,k (g_i = dm/dtheta_i)."""
+    falls = sum(g[:-1] * delta for g, (_, delta, _) in zip(sensitivities, path, strict=True))
+    rises = sum(g[1:] * delta for g, (_, delta, _) in zip(sensitivities, path, strict=True))
+    return np.asarray(falls), np.asarray(rises)
+
+
+def screen(
+    margin: Array,
+    pieces: Sequence[Array],
+    sensitivities: Sequence[Sequence[Array]],
+    path: Sequence[PathStep],
+    size: float,
+    closed: Array | None = None,
+) -> list[tuple[int, int]]:
+    """The intervals the branch search examines, in the order of the path: (k, j), piece j of a
+    group's margin (``dyads.Piece``: the margin is the smallest of its smooth pieces) between
+    samples k and k + 1 that both close (``closed``: where every group so far closes; None:
+    all), from each piece's rates along the path (``path_rates``; ``sensitivities[i][j]`` is
+    dm_j/dtheta for the i-th moving driver) and from the margin's values:
+
+    - every interval that ``candidate_intervals`` finds for a piece (sound for a piece no steeper
+      between its samples than at one of them, a piece convex there among them);
+    - beside every sample that ``candidate_minima`` finds, the intervals where a piece turns from
+      falling to rising, or, where none does, both, for the piece that is the margin there.
+    """
+    minima = candidate_minima(margin, size)
+    # candidate_intervals' bound is at least min(m) - max(|p|, |q|) / 2, and |p|, |q| <=
+    # sum_i max |g_i| max |delta_i|: where that clears the threshold, it finds nothing (the
+    # common case, a linkage far from its change points).
+    largest = [step for _, _, step in path]
+    steepest = max(
+        sum(np.abs(g).max() * step for g, step in zip(of_piece, largest, strict=True))
+        for of_piece in zip(*sensitivities, strict=True)
+    )
+    if not minima.size and margin.min() - 0.5 * steepest >= WARNING_MARGIN * size:
+        return []
+    found: set[tuple[int, int]] = set()
+    turns = []
+    for j, values in enumerate(pieces):
+        falls, rises = path_rates([of_driver[j] for of_driver in sensitivities], path)
+        found |= {(int(k), j) for k in candidate_intervals(values, falls, rises, size)}
+        turns.append((falls < 0.0) & (rises >= 0.0))
+    for k in minima:
+        beside = [int(i) for i in (k - 1, k) if 0 <= i < margin.size - 1]
+        turning = {(i, j) for j, turn in enumerate(turns) for i in beside if turn[i]}
+        active = int(np.argmin([values[k] for values in pieces]))
+        found |= turning or {(i, active) for i in beside}
+    # (Where a sample does not close, the group's rates there are those of a pose that is not.)
+    return sorted((k, j) for k, j in found if closed is None or (closed[k] and closed[k + 1]))
+
+
 def candidate_minima(margin: Array, size: float) -> Array:
     """Samples k at a local minimum of the margin whose neighbourhood may dip below the warning
-    threshold: m_k - max(m_k-1 - m_k, m_k+1 - m_k) < WARNING_MARGIN size (a bound that holds for a
-    smooth minimum within half a step of k and for a V-shaped one, |d| at coincident centres).
-    The first and the last sample count with their one neighbour: a minimum between the first two
-    samples, nearer the first, has no sample before it (a revolution's closing sample is the
-    first's pose, but the interval before it is searched from the last sample)."""
+    threshold by its values alone: m_k - max(m_k-1 - m_k, m_k+1 - m_k) < WARNING_MARGIN size (a
+    bound that holds for a margin convex between samples k - 1 and k + 1, and generous where it
+    is not: a V as deep as its steeper side). The first and the last sample count with their one
+    neighbour."""
     if margin.size < 2:
         return np.array([], dtype=int)
     # Every such bound is at least min(m) - max |m_k+1 - m_k|: where that clears the threshold,
@@ -166,6 +304,25 @@ def candidate_minima(margin: Array, size: float) -> Array:
     return np.flatnonzero(found)
 
 
+def candidate_intervals(margin: Array, falls: Array, rises: Array, size: float) -> Array:
+    """Intervals k (samples k to k + 1) where a piece of a margin may dip below WARNING_MARGIN
+    size, by its values and its rates p, q at both ends (``path_rates``). Where its rate between
+    them is nowhere steeper than at an end (a piece convex there, or steepest at a sample),
+    |dm/du| <= G = max(|p|, |q|), so m >= (m_k + m_k+1 - G) / 2 there. Candidates: the intervals
+    where that bound falls below the threshold and the piece turns from falling to rising
+    (p < 0 <= q), or does not but both samples clear the threshold (a dip hidden between them);
+    not those beside a sample already below it without a turn (the minimum there is searched
+    where the piece turns)."""
+    floor = WARNING_MARGIN * size
+    # G also takes |m_k+1 - m_k| (no more than G within the class): outside it, so that the
+    # bound is never above the lower sample.
+    steepest = np.maximum(np.maximum(np.abs(falls), np.abs(rises)), np.abs(np.diff(margin)))
+    before, after = margin[:-1], margin[1:]
+    lowest = np.minimum(before, after)
+    turns = (falls < 0.0) & (rises >= 0.0)
+    return np.flatnonzero((0.5 * (before + after - steepest) < floor) & (turns | (lowest >= floor)))
+
+
 def branches_at(flips: Mapping[int, tuple[float, list[float]]], u: float) -> dict[int, float]:
     """The branch sign of each two-branch step at fractional sample u of a motion assembled with
     continuation (``Motion.flips``): its sign at the first sample, times -1 for every switch
@@ -177,14 +334,12 @@ def branches_at(flips: Mapping[int, tuple[float, list[float]]], u: float) -> dic
 
 
 def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list[DriverInput]:
-    """The drivers at fractional sample u = k + x, -1 <= x <= 1 (x <= 0 at the last sample;
-    thetas linear between samples), with rates d theta / du: the path the continuation follows
-    between two samples."""
+    """The drivers at fractional sample u = k + x, 0 <= x <= 1 (thetas linear between samples k
+    and k + 1), with rates d theta / du: the path the continuation follows between two samples."""
     out = []
     for given in inputs:
         theta = given.theta
-        backward = x < 0.0 or k + 1 == theta.size
-        step = float(theta[k] - theta[k - 1] if backward else theta[k + 1] - theta[k])
+        step = float(theta[k + 1] - theta[k])
         out.append(DriverInput(np.array([theta[k] + x * step]), np.array([step]), np.zeros(1)))
     return out
 
@@ -192,9 +347,9 @@ def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list
 class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``).
 
-    ``signs`` forces the branch of given steps (used to evaluate a group between two samples with
-    the branches its inputs were given there); with continuation, each group is on its drawn
-    branch at sample ``anchor``.
+    ``signs`` forces the branch of given steps, one sign or one per sample (used to evaluate a
+    group between two samples, or its rate at unit driver rate, with the branches chosen there);
+    with continuation, each group is on its drawn branch at sample ``anchor``.
     """
 
     def __init__(
@@ -203,7 +358,7 @@ class _Assembler:
         inputs: Sequence[DriverInput],
         order: int,
         continuation: bool,
-        signs: Mapping[int, float] | None = None,
+        signs: Mapping[int, float | Array] | None = None,
         anchor: int = 0,
         newton_groups: Continuation | None = None,
     ) -> None:
@@ -211,6 +366,7 @@ class _Assembler:
         self.newton_groups = newton_groups
         self.inputs = inputs
         self.order = order
+        self.rates = order  # the orders computed: 1 where a screen needs rates at order 0
         self.continuation = continuation
         self.signs = signs or {}
         self.samples = len(inputs[0].theta) if inputs else 1
@@ -221,6 +377,7 @@ class _Assembler:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
+        self.resting: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
         self.margin = np.ones(self.samples)
         self.converged = np.ones(self.samples, dtype=bool)
         self.gradient_sine = np.ones(self.samples)
@@ -229,8 +386,9 @@ class _Assembler:
         self.steps: tuple[Step, ...] = ()
         self.anchor = anchor
         self.flips: dict[int, tuple[float, list[float]]] = {}  # sign at sample 0, switches
+        self.sign_of: dict[int, Array] = {}  # each two-branch step's sign per sample
         self.approaches: list[Approach] = []
-        self.last: tuple[Array, Array | None] = (np.ones(1), None)  # last group's m, dm/du
+        self.last: tuple[dyads.Piece, ...] = ()  # the last group's pieces of its margin
         self.group_margins: dict[str, Array] = {}
 
     def know(self, link: str, motion: LinkMotion) -> None:
@@ -263,18 +421,35 @@ class _Assembler:
         pivot0 = self.scene.drawn(step.pivot)
         zeros = np.zeros((self.samples, 2))
         anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
+        self.resting.add(id(anchor))
         self.know(
             step.link,
             LinkMotion(
                 pivot0,
                 anchor,
                 given.theta,
-                given.omega if self.order >= 1 else None,
-                given.alpha if self.order >= 2 else None,
+                given.omega if self.rates >= 1 else None,
+                given.alpha if self.rates >= 2 else None,
             ),
         )
 
-    def branch(self, index: int, point: str, drawn: float, margin: Array) -> Array:
+    @cached_property
+    def path(self) -> list[PathStep]:
+        return path_steps(self.inputs)
+
+    @cached_property
+    def reach(self) -> dict[str, Reach]:
+        return driven_reach(self.scene, self.steps)
+
+    def branch(
+        self,
+        index: int,
+        step: DyadStep | LeverStep,
+        point: str,
+        drawn: float,
+        margin: Array,
+        pieces: tuple[dyads.Piece, ...],
+    ) -> Array:
         """The branch sign per sample: the drawn one, switched after every closest approach
         between samples where the two branches meet within rounding (a change point)."""
         sign = np.full(self.samples, self.signs.get(index, drawn))
@@ -282,8 +457,8 @@ class _Assembler:
             return sign
         size = self.scene.size
         switches: list[float] = []
-        for k in candidate_minima(margin, size):
-            approach = self.closest_approach(index, point, int(k))
+        for k, piece in self.candidates(index, step, margin, pieces):
+            approach = self.closest_approach(index, point, k, piece)
             if approach is None:
                 continue
             self.approaches.append(approach)
@@ -293,34 +468,75 @@ class _Assembler:
         if sign[self.anchor] != drawn:  # the drawn branch holds at the anchor sample
             sign *= -1.0
         self.flips[index] = (float(sign[0]), switches)
+        self.sign_of[index] = sign
         return sign
 
-    def closest_approach(self, index: int, point: str, k: int) -> Approach | None:
-        """The minimum of group ``index``'s margin between samples k - 1 and k + 1 (k alone on
-        the side of a first or last sample): Brent's method on the root of dm/du (or on m itself
-        where dm/du does not change sign there). None where the margin falls on beyond a first
-        or last sample: no minimum lies inside (a revolution's interval before its first sample
-        is searched from its closing sample, the same pose)."""
+    def candidates(
+        self, index: int, step: DyadStep | LeverStep, margin: Array, pieces: tuple[dyads.Piece, ...]
+    ) -> list[tuple[int, int]]:
+        """The intervals and pieces where group ``index``'s margin may dip below the warning
+        threshold (``screen``); none where it is measured between points that turn with drivers
+        and its Lipschitz bound clears the threshold (``lipschitz_clear``)."""
+        size = self.scene.size
+        reaches = group_reach(step, self.scene.ground, self.reach)
+        if not (self.path and pieces) or (
+            reaches is not None and lipschitz_clear(margin, reaches, self.path, size)
+        ):
+            return []
+        sensitivities = [self.sensitivities(index, driver, pieces) for driver, _, _ in self.path]
+        values = [values for values, _ in pieces]
+        return screen(margin, values, sensitivities, self.path, size, self.closed())
 
-        def evaluate(x: float) -> tuple[float, float]:
+    def sensitivities(
+        self, index: int, driver: int, pieces: tuple[dyads.Piece, ...]
+    ) -> list[Array]:
+        """dm_j/dtheta of each piece of group ``index`` for one driver, per sample: the pieces'
+        rates over the driver's rate where this run's velocities are that driver's alone
+        (``rates_alone``), else from a run of the plan up to the group at unit rate of that
+        driver, on the branches chosen so far."""
+        source = self
+        if not rates_alone(self.inputs, self.rates, self.path):
+            source = _Assembler(
+                self.scene, unit_rate(self.inputs, driver), 1, False, self.sign_of,
+                newton_groups=self.newton_groups,
+            )  # fmt: skip
+            source.run_steps(self.steps[: index + 1])
+            pieces = source.last
+        omega = source.inputs[driver].omega
+        out = []
+        for _, rate in pieces:
+            assert rate is not None  # (velocities computed)
+            out.append(rate / omega)
+        return out
+
+    def closest_approach(self, index: int, point: str, k: int, piece: int) -> Approach | None:
+        """The minimum of a piece of group ``index``'s margin between samples k and k + 1
+        (``screen``): Brent's method on the root of its rate where the rates at both ends
+        bracket one, else bounded Brent minimisation of the piece, None where that finds it no
+        lower inside than at both ends (a minimum beyond a first or last sample is not there:
+        a revolution's interval before its first sample is searched from its closing sample,
+        the same pose); the margin there, the smallest of the pieces."""
+
+        def evaluate(x: float) -> tuple[float, float, float]:
             inputs = interpolated_inputs(self.inputs, k, x)
             probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
-            m, rate = probe.last
-            return float(m[0]), 0.0 if rate is None else float(rate[0])
+            values, rate = probe.last[piece]
+            assert rate is not None
+            margin = min(float(other[0]) for other, _ in probe.last)
+            return margin, float(values[0]), float(rate[0])
 
-        low = -1.0 if k > 0 else 0.0
-        high = 1.0 if k + 1 < self.samples else 0.0
-        rate_low, rate_high = evaluate(low)[1], evaluate(high)[1]
-        if (k == 0 and rate_low > 0.0) or (k + 1 == self.samples and rate_high < 0.0):
-            return None
-        if rate_low < 0.0 < rate_high:
-            x = brentq(lambda x: evaluate(x)[1], low, high, xtol=1e-15, rtol=4.0 * EPS)
+        _, start, rate_low = evaluate(0.0)
+        _, end, rate_high = evaluate(1.0)
+        if rate_low < 0.0 <= rate_high:
+            x = brentq(lambda x: evaluate(x)[2], 0.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
         else:
             found = minimize_scalar(
-                lambda x: evaluate(x)[0], bounds=(low, high), method="bounded",
+                lambda x: evaluate(x)[1], bounds=(0.0, 1.0), method="bounded",
                 options={"xatol": 1e-12},
             )  # fmt: skip
+            if not found.fun < min(start, end):
+                return None
             x = float(found.x)
         return Approach(point, k + x, evaluate(x)[0])
 
@@ -328,18 +544,19 @@ class _Assembler:
         first, second = (self.locus(spec) for spec in step.loci)
         cut = dyads.intersect(first, second, step.point)
         self.close(cut.margin / self.scene.size, cut.describe)
-        self.last = (cut.margin, cut.margin_rate)
+        self.last = cut.pieces
         # Two branches wherever a circle is involved (a pin in two slots has one).
         if isinstance(first, dyads.Circle) or isinstance(second, dyads.Circle):
             self.group_margins[step.point] = cut.margin
-        X = cut.point(self.branch(index, step.point, step.sign, cut.margin))
+        X = cut.point(self.branch(index, step, step.point, step.sign, cut.margin, cut.pieces))
         X[self.at_drawn] = self.scene.drawn(step.point)
-        self.points[step.point], sine = dyads.point_motion(first, second, X, self.order)
+        self.points[step.point], sine = dyads.point_motion(first, second, X, self.rates)
         self.gradient_sine = np.minimum(self.gradient_sine, sine)
 
     def lever(self, index: int, step: LeverStep) -> None:
         pivot, pin = self.points[step.pivot], self.points[step.pin]
-        margin, rate = dyads.lever_margin(pivot, pin, step.offset)
+        piece = dyads.lever_margin(pivot, pin, step.offset)
+        margin = piece[0]
         self.close(
             margin / self.scene.size,
             lambda: (
@@ -347,13 +564,13 @@ class _Assembler:
                 f"{abs(step.offset):.6g} m of the slot of '{step.link}' from its pivot {step.pivot}"
             ),
         )
-        self.last = (margin, rate)
+        self.last = (piece,)
         label = f"the slot of '{step.link}'"
         self.group_margins[label] = margin
-        sign = self.branch(index, label, step.sign, margin)
+        sign = self.branch(index, step, label, step.sign, margin, self.last)
         drawn = math.atan2(step.direction0[1], step.direction0[0])
         solution = dyads.slotted_lever(
-            pivot, pin, step.offset, sign, self.order, (self.at_drawn, drawn)
+            pivot, pin, step.offset, sign, self.rates, (self.at_drawn, drawn)
         )
         self.gradient_sine = np.minimum(self.gradient_sine, solution.gradient_sine)
         theta = solution.beta - drawn
@@ -371,6 +588,7 @@ class _Assembler:
             self.points[p] = PointMotion(
                 repeat(self.scene.drawn(p), self.samples), at_rest, at_rest
             )
+            self.resting.add(id(self.points[p]))
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(step)
@@ -404,10 +622,18 @@ class _Assembler:
                 self.newton_group(step)
 
     def run(self, plan: Plan) -> Motion:
+        self.steps = plan.steps
+        if self.continuation and self.order == 0 and len(self.path) == 1 and self.rated:
+            # The screen of a group measured from moving points needs the pieces' rates: this
+            # run computes velocities at unit rate of the moving driver (``sensitivities``).
+            self.inputs, self.rates = unit_rate(self.inputs, self.path[0][0]), 1
         self.run_steps(plan.steps)
+        links, points = self.links, self.points
+        if self.rates > self.order:
+            links, points = self.positions_only()
         return Motion(
-            self.links,
-            self.points,
+            links,
+            points,
             self.margin,
             self.converged,
             self.gradient_sine,
@@ -419,13 +645,47 @@ class _Assembler:
             self.flips,
         )
 
+    @property
+    def rated(self) -> bool:
+        """Whether a two-branch group of the plan is measured from points that do not turn with
+        drivers (``group_reach``): its screen needs a velocity analysis."""
+        ground = self.scene.ground
+        return any(
+            group_reach(step, ground, self.reach) is None
+            for step in self.steps
+            if isinstance(step, LeverStep)
+            or (isinstance(step, DyadStep) and any(isinstance(s, CircleSpec) for s in step.loci))
+        )
+
+    def positions_only(self) -> tuple[dict[str, LinkMotion], dict[str, PointMotion]]:
+        """The links and points as a run at order 0 gives them, from one that computed
+        velocities for the screen: every rate dropped but those at rest by construction (the
+        ground's, its points', a driver's pivot's, and a link's guided by the ground)."""
+        ground = self.links[self.scene.ground]
+
+        def still(motion: PointMotion) -> PointMotion:
+            return motion if id(motion) in self.resting else PointMotion(motion.p)
+
+        links = {
+            name: link
+            if link is ground
+            else LinkMotion(
+                link.anchor0,
+                still(link.anchor),
+                link.theta,
+                *((link.omega, link.alpha) if link.omega is ground.omega else (None, None)),
+            )
+            for name, link in self.links.items()
+        }
+        return links, {name: still(motion) for name, motion in self.points.items()}
+
     def newton_group(self, step: NewtonStep) -> None:
         solved, report = solve_group(
             self.scene,
             step.links,
             self.links,
             [given.theta for given in self.inputs],
-            self.order,
+            self.rates,
             self.newton_groups or Continuation(self.scene),
         )
         self.reports.append(report)

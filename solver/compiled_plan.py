@@ -8,25 +8,42 @@ preallocated (N, 2) arrays. A fixed point's coordinates stay plain floats (its r
 The formulas are those of ``rigid`` and ``dyads``, evaluated in the same order of floating-point
 operations (x - y computed as x + (-y), a product by a negated factor as the negated product,
 v - 0 as v: all exact in IEEE arithmetic), so the answers are the general assembler's bit for
-bit (tests/solver/test_compiled_plan.py). What a sweep does not need is left out: the rate of a
-group's margin (used only by the closest-approach search) and the branch search itself. Wherever
-that search has something to examine (``assembly.candidate_minima``) or a group does not close,
-``run`` returns None and the general assembler (``assembly._Assembler``) runs instead, so the
-branch guarantees, the close-approach warnings and the failure messages are unchanged.
+bit (tests/solver/test_compiled_plan.py). The branch search itself is left out: its screen runs
+here as in ``assembly._Assembler.candidates``, on the same numbers, and wherever it has something
+to examine (``assembly.screen``) or a group does not close, ``run`` returns None and the general
+assembler runs instead, so the branch guarantees, the close-approach warnings and the failure
+messages are unchanged. A dyad's margin rates are computed only where the screen needs them:
+where its centres turn with drivers and its Lipschitz bound does not clear (from their
+velocities, or at unit driver rate, 0 + k x (P - pivot)), and for a dyad on a moving centre (a
+six-bar's second dyad), whose run therefore computes velocities, at unit rate of the moving
+driver where they are not at its rate alone (``assembly.rates_alone``).
 """
 
 from __future__ import annotations
 
 import math
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import cast
 
 import numpy as np
 
 from solver import dyads
-from solver.assembly import DriverInput, Motion, candidate_minima
+from solver.assembly import (
+    DriverInput,
+    Motion,
+    PathStep,
+    Reach,
+    driven_reach,
+    group_reach,
+    lipschitz_clear,
+    path_steps,
+    rates_alone,
+    screen,
+    unit_rate,
+)
 from solver.rigid import Array, LinkMotion, PointMotion, repeat
 from solver.scene import LinkageScene
 from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, TwoPointStep
@@ -71,6 +88,7 @@ class _Dyad:
     second: CircleSpec
     sign: float
     drawn: tuple[float, float]
+    reach: tuple[Reach, ...] | None  # its centres' (``assembly.group_reach``)
 
 
 @dataclass(frozen=True)
@@ -110,6 +128,8 @@ class CompiledPlan:
         }
         self.ground_points = ground.points
         self.ground_anchor0 = scene.drawn(ground.points[0])
+        # A dyad on a moving centre: its screen needs the rates of a velocity analysis.
+        self.rated = any(isinstance(step, _Dyad) and step.reach is None for step in steps)
 
     def run(
         self, inputs: Sequence[DriverInput], order: int, keep: int | None = None
@@ -119,16 +139,39 @@ class CompiledPlan:
         or its margin dips where the branch search looks). ``keep``: only the first ``keep``
         samples are returned (all are checked), as ``Motion.cut`` would give them."""
         n = inputs[0].theta.size
-        return _Run(self, inputs, order, slice(0, n if keep is None else keep)).motion()
+        kept = slice(0, n if keep is None else keep)
+        path = path_steps(inputs)
+        if not (self.rated and path) or rates_alone(inputs, order, path):
+            return _Run(self, inputs, order, kept, path).motion()
+        if len(path) > 1:  # (the general assembler takes a run per moving driver)
+            return None
+        # The screen at unit rate of the moving driver (``assembly._Assembler.sensitivities``); at
+        # order 0 that run is the answer, its velocities dropped.
+        screened = _Run(self, unit_rate(inputs, path[0][0]), 0, kept, path, velocities=1).motion()
+        if screened is None or order == 0:
+            return screened
+        return _Run(self, inputs, order, kept, path, screening=False).motion()
 
 
 class _Run:
     """One run of a compiled plan over one set of inputs."""
 
     def __init__(
-        self, plan: CompiledPlan, inputs: Sequence[DriverInput], order: int, kept: slice
+        self,
+        plan: CompiledPlan,
+        inputs: Sequence[DriverInput],
+        order: int,
+        kept: slice,
+        path: list[PathStep],
+        velocities: int = 0,
+        screening: bool = True,
     ) -> None:
+        """``order``: the orders returned; ``velocities``: computed at least to this order;
+        ``screening``: the branch search's screen runs (not where it ran at unit driver rate)."""
         self.plan, self.inputs, self.order, self.kept = plan, inputs, order, kept
+        self.computed = max(order, velocities)
+        self.path, self.screening = path, screening
+        self.turned: dict[str, tuple[int, Array, Array]] = {}  # driver, R(theta) r0 of its points
         self.n = inputs[0].theta.size
         n = kept.stop
         at_drawn = inputs[0].theta == 0.0
@@ -150,6 +193,11 @@ class _Run:
         self.margin = np.ones(self.n)
         self.gradient_sine = np.ones(self.n)
         self.group_margins: dict[str, Array] = {}
+
+    @cached_property
+    def alone(self) -> bool:
+        """Whether the velocities computed are at the moving driver's rate alone."""
+        return rates_alone(self.inputs, self.computed, self.path)
 
     def motion(self) -> Motion | None:
         for step in self.plan.steps:
@@ -185,10 +233,17 @@ class _Run:
         )
 
     def carry(
-        self, rigid: _Rigid, anchor: _Point, theta: Array, omega: Array | None, alpha: Array | None
+        self,
+        rigid: _Rigid,
+        anchor: _Point,
+        theta: Array,
+        omega: Array | None,
+        alpha: Array | None,
+        driver: int | None = None,
     ) -> None:
         """Points fixed in a link: p = p_A + R(theta) r0, v = v_A + omega k x r,
-        a = a_A + alpha k x r - omega^2 r (``rigid.LinkMotion.point``)."""
+        a = a_A + alpha k x r - omega^2 r (``rigid.LinkMotion.point``); ``driver``: the link is
+        that driver's, turning about its fixed pivot (r kept for the rates at unit rate)."""
         if not rigid.names:
             return
         cos, sin = np.cos(theta), np.sin(theta)
@@ -199,6 +254,8 @@ class _Run:
             ry = sin * x0 + cos * y0
             np.add(anchor.x, rx, out=p[:, 0])
             np.add(anchor.y, ry, out=p[:, 1])
+            if driver is not None:
+                self.turned[name] = (driver, rx, ry)
             if omega is not None:
                 np.subtract(anchor.vx, ry * omega, out=v[:, 0])
                 np.add(anchor.vy, rx * omega, out=v[:, 1])
@@ -207,19 +264,22 @@ class _Run:
                 np.subtract(anchor.ay + rx * alpha, w2 * ry, out=a[:, 1])
             self.known(name, point, p, v, a)
 
+    def returned(self, rate: Array | None, order: int) -> Array | None:
+        """A link's rate of the given order as returned: the kept samples, where asked for."""
+        return None if rate is None or self.order < order else rate[self.kept]
+
     def drive(self, step: _Drive) -> None:
         given = self.inputs[step.driver]
-        omega = given.omega if self.order >= 1 else None
-        alpha = given.alpha if self.order >= 2 else None
-        kept = self.kept
+        omega = given.omega if self.computed >= 1 else None
+        alpha = given.alpha if self.computed >= 2 else None
         self.links[step.link] = LinkMotion(
             step.carried.anchor0,
             self.points[step.pivot],
-            given.theta[kept],
-            None if omega is None else omega[kept],
-            None if alpha is None else alpha[kept],
+            given.theta[self.kept],
+            self.returned(omega, 1),
+            self.returned(alpha, 2),
         )
-        self.carry(step.carried, self.cols[step.pivot], given.theta, omega, alpha)
+        self.carry(step.carried, self.cols[step.pivot], given.theta, omega, alpha, step.driver)
 
     def dyad(self, step: _Dyad) -> bool:
         """RRR (``dyads._circle_circle`` and ``dyads.point_motion``); False where the general
@@ -234,8 +294,26 @@ class _Run:
             ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
         a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
         h2 = r1**2 - a**2
-        margin = np.minimum((r1 + r2) - d, d - abs(r1 - r2))
-        if not self.close(step.point, margin):
+        extended, folded = (r1 + r2) - d, d - abs(r1 - r2)
+        margin = np.minimum(extended, folded)
+
+        def sensitivities(driver: int) -> list[Array]:
+            """dm/dtheta of the pieces r1 + r2 - d and d - |r1 - r2|
+            (``assembly._Assembler.sensitivities``): their rates -+ u.(v2 - v1)
+            (``dyads._circle_circle``) over the driver's rate where the velocities are its
+            alone, else with the centres at its unit rate."""
+            if self.alone:
+                v1, v2 = (c1.vx, c1.vy), (c2.vx, c2.vy)
+            else:
+                v1 = self.unit_velocity(step.first.center, driver)
+                v2 = self.unit_velocity(step.second.center, driver)
+            d_rate = ux * _sub(v2[0], v1[0]) + uy * _sub(v2[1], v1[1])
+            if not self.alone:
+                return [-d_rate, d_rate]
+            omega = self.inputs[driver].omega
+            return [-d_rate / omega, d_rate / omega]
+
+        if not self.close(step, margin, (extended, folded), sensitivities):
             return False
         h = dyads._root(h2, r1**2)
         if step.sign < 0.0:
@@ -249,16 +327,39 @@ class _Run:
         self.known(step.point, point, p, v, acc)
         return True
 
-    def close(self, point: str, margin: Array) -> bool:
+    def close(
+        self,
+        step: _Dyad,
+        margin: Array,
+        pieces: tuple[Array, Array],
+        sensitivities: Callable[[int], list[Array]],
+    ) -> bool:
         """Record a group's margin m (``assembly._Assembler.close``); False where it fails to
-        close somewhere or the branch search would look at it."""
+        close somewhere or the branch search would look at it (``_Assembler.candidates``, from
+        the same numbers: the pieces' dm/dtheta for a moving driver from ``sensitivities``)."""
         size = self.plan.size
         relative = margin / size
-        if relative.min() < -dyads.COINCIDENCE_TOLERANCE or candidate_minima(margin, size).size:
+        if relative.min() < -dyads.COINCIDENCE_TOLERANCE:
             return False
+        path = self.path
+        if self.screening and path:
+            reach = step.reach
+            if reach is None or not lipschitz_clear(margin, reach, path, size):
+                rates = [sensitivities(driver) for driver, _, _ in path]
+                if screen(margin, pieces, rates, path, size):
+                    return False
         self.margin = np.minimum(self.margin, relative)
-        self.group_margins[point] = margin
+        self.group_margins[step.point] = margin
         return True
+
+    def unit_velocity(self, name: str, driver: int) -> tuple[Column, Column]:
+        """A point's velocity at unit rate of ``driver`` (every other at rest), where it is fixed
+        or turned by a driver: 0 + k x (P - pivot), as ``rigid.LinkMotion.point`` gives it."""
+        turned = self.turned.get(name)
+        if turned is None or turned[0] != driver:
+            return 0.0, 0.0
+        _, rx, ry = turned
+        return 0.0 - ry, 0.0 + rx
 
     def rates(self, X: _Point, c1: _Point, c2: _Point, v: Array, a: Array) -> None:
         """G v_X = b and G a_X = b' by Cramer's rule, G = [X - C1; X - C2], and the sine of the
@@ -269,7 +370,7 @@ class _Run:
         norms = np.sqrt((g1x * g1x + g1y * g1y) * (g2x * g2x + g2y * g2y))
         sine = np.abs(det) / _positive(norms)
         self.gradient_sine = np.minimum(self.gradient_sine, sine)
-        if self.order < 1:
+        if self.computed < 1:
             return
         if not np.all(det):
             det = np.where(det != 0.0, det, np.inf)
@@ -277,7 +378,7 @@ class _Run:
         rhs2 = g2x * c2.vx + g2y * c2.vy
         np.divide(rhs1 * g2y - rhs2 * g1y, det, out=v[:, 0])
         np.divide(g1x * rhs2 - g2x * rhs1, det, out=v[:, 1])
-        if self.order < 2:
+        if self.computed < 2:
             return
         w1x, w1y = _sub(X.vx, c1.vx), _sub(X.vy, c1.vy)
         w2x, w2y = _sub(X.vx, c2.vx), _sub(X.vy, c2.vy)
@@ -294,18 +395,16 @@ class _Run:
         theta = np.arctan2(ry, rx) - step.angle0
         r2 = rx * rx + ry * ry
         omega = alpha = None
-        if self.order >= 1:
+        if self.computed >= 1:
             omega = cast(Array, (rx * _sub(Q.vy, P.vy) - ry * _sub(Q.vx, P.vx)) / r2)
-        if self.order >= 2:
+        if self.computed >= 2:
             alpha = cast(Array, (rx * _sub(Q.ay, P.ay) - ry * _sub(Q.ax, P.ax)) / r2)
-        anchor = self.points[step.first]
-        first0, kept = step.carried.anchor0, self.kept
         self.links[step.link] = LinkMotion(
-            first0,
-            anchor,
-            theta[kept],
-            None if omega is None else omega[kept],
-            None if alpha is None else alpha[kept],
+            step.carried.anchor0,
+            self.points[step.first],
+            theta[self.kept],
+            self.returned(omega, 1),
+            self.returned(alpha, 2),
         )
         self.carry(step.carried, P, theta, omega, alpha)
 
@@ -324,6 +423,7 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
     lever, a prismatic guide, a Newton group) or a dyad between two fixed points."""
     fixed = set(scene.links[scene.ground].points)
     known = set(fixed)
+    reaches = driven_reach(scene, plan.steps)
     steps: list[_Step] = []
     for step in plan.steps:
         if isinstance(step, DriverStep):
@@ -338,7 +438,8 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
             if first.center in fixed and second.center in fixed:
                 return None
             drawn = scene.drawn(step.point)
-            steps.append(_Dyad(step.point, first, second, step.sign, (drawn[0], drawn[1])))
+            reach = group_reach(step, scene.ground, reaches)
+            steps.append(_Dyad(step.point, first, second, step.sign, (drawn[0], drawn[1]), reach))
             known.add(step.point)
         elif isinstance(step, TwoPointStep):
             r0 = scene.drawn(step.second) - scene.drawn(step.first)

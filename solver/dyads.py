@@ -31,6 +31,10 @@ TANGENCY_TOLERANCE = 16.0 * EPS
 # longest link) off a change point.
 COINCIDENCE_TOLERANCE = 1e-13
 
+# A smooth piece of a group's length margin and its rate along the driver's path (None without
+# velocities): the margin is the smallest of its pieces.
+Piece = tuple[Array, Array | None]
+
 
 @dataclass(frozen=True)
 class Circle:
@@ -61,16 +65,18 @@ class Intersection:
     """X = base + sign h offset for the two branches.
 
     ``margin`` m (metres) is how far the group is from having its two branches meet: the smallest
-    of r1 + r2 - d and d - |r1 - r2| (two circles whose centres are d apart), r - |s| (a circle and
-    a line at distance s from its centre); negative where the loci do not meet, +inf where the
-    group has one solution. ``margin_rate`` is dm/du along the driver's path (with velocities).
+    of r1 + r2 - d and d - |r1 - r2| (two circles whose centres are d apart), of r - s and r + s
+    (a circle and a line at signed distance s from its centre); negative where the loci do not
+    meet, +inf where the group has one solution. ``pieces`` are those smooth functions with their
+    rates (none for one solution): where two are equal m has a corner, a local maximum, so the
+    branch search screens each piece on its own.
     """
 
     base: Array
     offset: Array
     h: Array
     margin: Array
-    margin_rate: Array | None
+    pieces: tuple[Piece, ...]
     describe: Callable[[], str]  # why the loci fail to meet (built only when they do)
 
     @property
@@ -104,7 +110,8 @@ def intersect(first: Locus, second: Locus, name: str) -> Intersection:
 def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     """RRR: d = |C1C2|, a = (r1^2 - r2^2 + d^2) / 2d along C1C2, h^2 = r1^2 - a^2 across.
 
-    Margin m = min(r1 + r2 - d, d - |r1 - r2|), rate dm/du = -+ (C2 - C1).(v2 - v1) / d.
+    Margin m = min(r1 + r2 - d, d - |r1 - r2|), the pieces' rates -+ dd/du = -+ u.(v2 - v1),
+    u = (C2 - C1) / d.
     """
     d_vec = c2.center.p - c1.center.p
     d = np.sqrt(dot(d_vec, d_vec))
@@ -116,10 +123,10 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     total, diff = c1.radius + c2.radius, abs(c1.radius - c2.radius)
     extended, folded = total - d, d - diff
     margin = np.minimum(extended, folded)
-    rate = None
+    rates: tuple[Array | None, Array | None] = (None, None)
     if c1.center.v is not None and c2.center.v is not None:
         d_rate = dot(u, c2.center.v - c1.center.v)
-        rate = np.where(extended < folded, -d_rate, d_rate)
+        rates = (-d_rate, d_rate)
 
     def message() -> str:
         dk = float(d[int(np.argmin(margin))])
@@ -132,8 +139,9 @@ def _circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
             )
         return f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
 
+    pieces = ((extended, rates[0]), (folded, rates[1]))
     return Intersection(
-        c1.center.p + scale(a, u), perp(u), _root(h2, c1.radius**2), margin, rate, message
+        c1.center.p + scale(a, u), perp(u), _root(h2, c1.radius**2), margin, pieces, message
     )
 
 
@@ -145,20 +153,20 @@ def _digits(a: float, b: float) -> int:
 def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
     """RRP: X = Q + t w with |X - C| = r: t = -b +/- sqrt(b^2 - c), b = w.(Q - C).
 
-    The line is s = w x (Q - C) from C: margin m = r - |s|, rate dm/du = -sign(s) ds/du with
-    ds/du = omega (k x w) x (Q - C) + w x (v_Q - v_C).
+    The line is s = w x (Q - C) from C: margin m = r - |s| = min(r - s, r + s), the pieces'
+    rates -+ ds/du with ds/du = omega (k x w) x (Q - C) + w x (v_Q - v_C).
     """
     q_c = line.through.p - c.center.p
     b = dot(line.direction, q_c)
     h2 = b**2 - (dot(q_c, q_c) - c.radius**2)
     s = cross(line.direction, q_c)
     margin = c.radius - np.abs(s)
-    rate = None
+    rates: tuple[Array | None, Array | None] = (None, None)
     if line.through.v is not None and c.center.v is not None and line.omega is not None:
         s_rate = line.omega * cross(perp(line.direction), q_c) + cross(
             line.direction, line.through.v - c.center.v
         )
-        rate = -np.sign(s) * s_rate
+        rates = (-s_rate, s_rate)
 
     def message() -> str:
         distance = abs(float(s[int(np.argmin(margin))]))
@@ -169,7 +177,8 @@ def _circle_line(c: Circle, line: Line, name: str) -> Intersection:
         )
 
     base = line.through.p - scale(b, line.direction)
-    return Intersection(base, line.direction, _root(h2, c.radius**2), margin, rate, message)
+    pieces = ((c.radius - s, rates[0]), (c.radius + s, rates[1]))
+    return Intersection(base, line.direction, _root(h2, c.radius**2), margin, pieces, message)
 
 
 def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
@@ -183,7 +192,7 @@ def _line_line(l1: Line, l2: Line, name: str) -> Intersection:
     def message() -> str:
         return f"the two slots that carry {name} (in '{l1.guide}' and '{l2.guide}') are parallel"
 
-    return Intersection(base, l1.direction, np.zeros_like(t), margin, None, message)
+    return Intersection(base, l1.direction, np.zeros_like(t), margin, (), message)
 
 
 def _constraint_row(locus: Locus, X: Array) -> Array:
@@ -252,9 +261,9 @@ class LeverSolution:
     gradient_sine: Array
 
 
-def lever_margin(pivot: PointMotion, pin: PointMotion, offset: float) -> tuple[Array, Array | None]:
+def lever_margin(pivot: PointMotion, pin: PointMotion, offset: float) -> Piece:
     """The slot meets the pin where |AP| >= |e|: margin m = |r| - |e| (r = P - A; negative: no
-    slot through P) and, with velocities, its rate dm/du = r.(v_P - v_A) / |r|."""
+    slot through P; one smooth piece) and, with velocities, its rate dm/du = r.(v_P - v_A) / |r|."""
     r = pin.p - pivot.p
     length = np.sqrt(dot(r, r))
     rate = None

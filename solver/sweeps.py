@@ -84,8 +84,10 @@ class CloseApproach:
     @property
     def warning(self) -> str:
         degrees = math.degrees(math.remainder(self.driver_angle, 2.0 * math.pi))
+        # In (-180, 180] as printed: an angle within rounding of 180 deg reads 180.0 either side.
+        shown = f"{degrees:.1f}".replace("-180.0", "180.0")
         return (
-            f"the linkage passes within {self.margin:.2g} m of a change point at {degrees:.1f} "
+            f"the linkage passes within {self.margin:.2g} m of a change point at {shown} "
             f"deg ('{self.driver}' angle; the two assemblies of {self.point} nearly meet there); "
             "a real mechanism with clearance could switch assembly here"
         )

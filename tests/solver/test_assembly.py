@@ -25,7 +25,7 @@ import pytest
 
 import solver
 from solver import dyads
-from solver.assembly import WARNING_MARGIN, candidate_minima
+from solver.assembly import WARNING_MARGIN, candidate_intervals, candidate_minima, screen
 from solver.instant import analyze
 from solver.presets import build_preset
 from solver.scene import LinkageScene, parse_linkage
@@ -394,6 +394,68 @@ def test_warning_threshold_is_1e_3_of_the_size(fraction: float) -> None:
     scene = parse_linkage(_near_crank_rocker(fraction * 1e-3 * size))
     warned = sweep(scene, 360, ["position"]).warnings
     assert (len(warned) == 1) == (fraction < 1.0)
+
+
+def _screened(margin: np.ndarray, rate: np.ndarray, size: float) -> list[int]:
+    """The intervals ``screen`` gives a margin of one piece, its rates per sample step (one
+    driver, unit steps), quick screen included."""
+    path = [(0, np.ones(margin.size - 1), 1.0)]
+    return [k for k, _ in screen(margin, [margin], [[rate]], path, size)]
+
+
+@pytest.mark.parametrize("slope", [0.5, 1.0, 2.0, 4.0, 1e3])
+@pytest.mark.parametrize("depth", [0.5, 1.5])
+def test_interval_bound_finds_a_v_shaped_minimum(slope: float, depth: float) -> None:
+    """A V-shaped margin (|d| at coincident centres) with its vertex between samples 20 and 21 at
+    0.5 or 1.5 times the warning margin, every sample above it, its rates +-slope: the bound is
+    the vertex itself (lines of the steepest rate from both ends meet there), so that interval
+    is a candidate exactly when the vertex is below the threshold, however steep the V; the
+    screen's quick test (min(m) - max |p| / 2 clears it) must not skip it."""
+    size, w = 2.0, WARNING_MARGIN * 2.0
+    k = np.arange(40)
+    margin = depth * w + slope * w * np.abs(k - 20.5)
+    rate = slope * w * np.sign(k - 20.5)  # dm/du at each sample, the same on both sides
+    found = candidate_intervals(margin, rate[:-1], rate[1:], size)
+    assert np.array_equal(found, [20] if depth < 1.0 else [])
+    assert set(found) <= set(_screened(margin, rate, size))
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_interval_bound_finds_every_dip_of_its_class(seed: int) -> None:
+    """Random margins m(u) = c + sum_i a_i cos(i u + phi_i) (i = 1..4; c puts the deepest dip at
+    0.2 to 1.5 times the warning margin), 5 to 60 samples over a turn, with their rates (the
+    derivative times the step): on each interval the closed form on a grid of 401 points gives
+    the minimum and the steepest rate inside. Every interval whose minimum lies below the
+    warning margin, no steeper inside than at an end, and which turns from falling to rising or
+    has both samples clear of the threshold, is a candidate, and the screen's quick test skips
+    none of them."""
+    rng = np.random.default_rng(seed)
+    size = float(rng.uniform(0.1, 10.0))
+    floor = WARNING_MARGIN * size
+    amplitude = size * rng.uniform(0.0, 0.05, 4) / np.arange(1, 5)
+    phase = rng.uniform(0.0, 2.0 * np.pi, 4)
+    order = np.arange(1, 5)[:, None]
+
+    def waves(u: np.ndarray) -> np.ndarray:
+        return (amplitude[:, None] * np.cos(order * u + phase[:, None])).sum(0)
+
+    def dm(u: np.ndarray) -> np.ndarray:
+        return -(amplitude[:, None] * order * np.sin(order * u + phase[:, None])).sum(0)
+
+    depth = floor * float(rng.choice([0.2, 0.5, 0.9, 1.5]))
+    lift = depth - waves(np.linspace(0.0, 2.0 * np.pi, 100001)).min()
+    u = np.linspace(0.0, 2.0 * np.pi, int(rng.integers(5, 60)))
+    step = u[1] - u[0]
+    margin, rate = lift + waves(u), dm(u) * step
+    found = candidate_intervals(margin, rate[:-1], rate[1:], size)
+    assert set(found) <= set(_screened(margin, rate, size))
+    for k in range(u.size - 1):
+        inside = u[k] + step * np.linspace(0.0, 1.0, 401)
+        p, q = rate[k], rate[k + 1]
+        in_class = np.abs(dm(inside) * step).max() <= max(abs(p), abs(q))
+        searched = p < 0.0 <= q or min(margin[k], margin[k + 1]) >= floor
+        if (lift + waves(inside)).min() < floor and in_class and searched:
+            assert k in found, (k, p, q)
 
 
 def _unscreened_minima(margin: np.ndarray, size: float) -> np.ndarray:

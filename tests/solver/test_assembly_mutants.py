@@ -414,26 +414,55 @@ def test_deeper_of_two_dips_is_reported() -> None:
     _deepest_dip_reported(36, 104.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="limitation (issue 8, docs/ARCHITECTURE.md): both dips of the margin lie between "
-    "samples k - 1 and k + 1, the sampled minimum k near the maximum that parts them, so the "
-    "screen's bound (candidate_minima) flags no sample and the 1e-4 m near miss goes unreported",
-)
-def test_deeper_of_two_dips_between_two_coarse_samples_is_reported() -> None:
-    """15 samples (24 deg apart; 344, 8 and 32 deg among them): both dips lie between the
-    samples at 344 and 32 deg, around the one sampled minimum at 8 deg. The deeper, 1e-4 m at
-    353.3 deg, must be the approach reported, as with 36 samples."""
-    _deepest_dip_reported(15, 104.0)
+@pytest.mark.parametrize(
+    ("samples", "start_deg"),
+    [(15, 104.0), (15, 345.0), (8, 45.0), (9, 165.0), (11, 180.0), (12, 345.0), (13, 60.0),
+     (18, 105.0)],
+)  # fmt: skip
+def test_deeper_of_two_dips_between_two_coarse_samples_is_reported(
+    samples: int, start_deg: float
+) -> None:
+    """Both dips (37 deg apart) between two or three coarse samples, e.g. 15 samples 24 deg
+    apart from 104 deg (344, 8 and 32 deg among them): the one sampled minimum, at 8 deg, lies
+    near the maximum that parts the dips, so its neighbours' values alone do not say that the
+    margin may dip below the threshold; the rates do (at 344 deg the margin falls at 0.18 m a
+    step, into the interval that holds the deeper dip). The deeper, 1e-4 m at 353.3 deg, must
+    be the approach reported, as with 36 samples (each of these sweeps reported none, or the
+    shallower dip, before the screen took the rates)."""
+    _deepest_dip_reported(samples, start_deg)
 
 
 def test_dip_where_the_margin_falls_at_both_neighbours_is_found() -> None:
     """12 samples (30 deg apart) from 90 deg: the sampled minimum is at 0 deg, its neighbours at
-    330 and 30 deg; the margin still falls at 30 deg (towards its second dip at 30.3 deg), so
-    dm/du does not change sign between them and Brent's method runs on the margin itself. The
-    approach is the deeper dip (to 1e-14 m and 5e-8 rad: Brent's own tolerance, 1e-5 by
-    default, would miss both)."""
+    330 and 30 deg; the margin still falls at 30 deg (towards its second dip at 30.3 deg). The
+    approach is the deeper dip (to 1e-14 m and 5e-8 rad)."""
     _deepest_dip_reported(12, 90.0)
+
+
+@pytest.mark.parametrize(("samples", "start_deg"), [(15, 104.0), (11, 180.0), (12, 345.0)])
+def test_change_point_next_to_a_second_dip_between_coarse_samples(
+    samples: int, start_deg: float
+) -> None:
+    """The two-dip six-bar with r1 + r2 = max |PF| exactly (to rounding): the deeper dip is a
+    change point, where E's two circles touch at 353.3 deg, and it lies between two coarse
+    samples next to the shallow dip (30.3 deg, 0.033 m). The sweep must switch E's branch
+    there, as a parallelogram does at its change points: E on the drawn side of P -> F (left)
+    up to 353.3 deg and on the right after it, E = (P + F) / 2 + s sqrt(r^2 - |PF|^2 / 4) n
+    with n the left normal of P -> F (closed form of P: Heron and the rigid coupler), to 1e-9 m
+    at every sample; no close approach to warn about (the branches meet)."""
+    at, _ = _farthest()
+    doc = _two_dips(0.0, start_deg)
+    result = sweep(parse_linkage(doc), samples, ["position"])
+    theta = np.asarray(result.driver_angle)
+    P = _coupler_point(theta)[2]
+    to_F = np.array(_DIPS["F"]) - P
+    d = np.hypot(*to_F.T)
+    r = math.dist(doc["points"]["E"], doc["points"]["F"])
+    passed = np.remainder(theta - theta[0], 2 * math.pi) > np.remainder(at - theta[0], 2 * math.pi)
+    side = np.where(passed, -1.0, 1.0) * np.sqrt(r * r - d * d / 4.0) / d
+    E = P + to_F / 2.0 + side[:, None] * np.stack((-to_F[:, 1], to_F[:, 0]), axis=-1)
+    assert np.abs(result.motion.points["E"].p - E).max() <= 1e-9
+    assert result.close_approaches == ()
 
 
 def test_slider_crank_that_cannot_close_names_its_guide() -> None:
@@ -668,3 +697,51 @@ def test_close_approach_just_after_an_upstream_switch() -> None:
     (approach,) = [a for a in result.close_approaches if a.point == "E"]
     assert abs(approach.margin - gap) <= 1e-12
     assert abs(math.remainder(approach.driver_angle - math.radians(182.0), 2 * math.pi)) <= 1e-6
+
+
+def _quick_return_with_a_block() -> dict[str, Any]:
+    """The quick_return preset with its slider at C (a pin in a ground slot) replaced by a block
+    that carries C only, in a prismatic joint with the ground (a link guided by the ground)."""
+    doc = build_preset("quick_return", {})
+    slider = next(j for j in doc["joints"] if j["type"] == "slider" and j["point"] == "C")
+    guide, follower = slider["links"]
+    doc["links"]["block"] = {"points": ["C"]}
+    doc["joints"].remove(slider)
+    doc["joints"] += [
+        {"type": "revolute", "point": "C", "links": [follower, "block"]},
+        {**slider, "type": "prismatic", "links": [guide, "block"]},
+    ]
+    return doc
+
+
+@pytest.mark.parametrize("case", ["six-bar", "quick return", "quick return with a block"])
+def test_position_sweep_whose_screen_took_velocities_returns_positions_only(case: str) -> None:
+    """A position-only sweep of a linkage with a group on moving centres (a six-bar's second
+    dyad, the quick return's slider on its lever) computes velocities at unit crank rate for
+    the screen (``_Assembler.positions_only``): it must return what a run at order 0 gives,
+    array for array (the ground's, its points' and a driver's pivot's zero rates kept, a link
+    guided by the ground keeping the ground's; every other rate None), here the same assembly
+    without continuation (the branches stay as drawn)."""
+    from solver.assembly import DriverInput, assemble
+    from solver.topology import build_plan
+    from tests.solver.test_compiled_plan import arrays
+
+    doc = {
+        "six-bar": _two_dips(0.2, 30.0),
+        "quick return": build_preset("quick_return", {}),
+        "quick return with a block": _quick_return_with_a_block(),
+    }[case]
+    scene = parse_linkage(doc)
+    plan = build_plan(scene)
+    theta = np.linspace(0.0, 2.0 * math.pi, 37)
+    inputs = [DriverInput(theta, np.full(37, 2.0), np.zeros(37))]
+    screened = assemble(scene, plan, inputs, 0, continuation=True)
+    plain = assemble(scene, plan, inputs, 0)
+    assert not screened.approaches or all(a.margin > 0.0 for a in screened.approaches)
+    ours, theirs = arrays(screened), arrays(plain)
+    assert list(ours) == list(theirs)
+    for key, value in theirs.items():
+        if value is None:
+            assert ours[key] is None, key
+        else:
+            assert np.array_equal(ours[key], value), key

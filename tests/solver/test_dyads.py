@@ -21,19 +21,22 @@ def _moving(point: np.ndarray, t: np.ndarray, spin: float) -> Any:
 
 
 @pytest.mark.parametrize("kind", ["circle-circle", "circle-line", "lever"])
-def test_margin_rate_is_the_derivative_of_the_margin(kind: str) -> None:
-    """dm/du of each group type against central differences of m (step 1e-6, to 1e-8), with
-    every locus moving: centres on circles, the slot turning with its guide."""
+def test_margin_pieces_rates_are_their_derivatives(kind: str) -> None:
+    """Each smooth piece of a group's margin (r1 + r2 - d and d - |r1 - r2|; r - s and r + s;
+    |AP| - |e|), its rate dm/du against central differences (step 1e-6, to 1e-8), with every
+    locus moving: centres on circles, the slot turning with its guide; the margin is the
+    smallest piece."""
     from solver import dyads
 
     t0 = np.linspace(0.1, 6.0, 7)
     step = 1e-6
 
-    def margin_and_rate(t: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    def margin_and_pieces(t: np.ndarray) -> tuple[np.ndarray, tuple[dyads.Piece, ...]]:
         first = _moving(np.array([0.4, 0.1]), t, 1.0)
         second = _moving(np.array([1.0, -0.2]), t, -0.7)
         if kind == "lever":
-            return dyads.lever_margin(first, second, 0.3)
+            piece = dyads.lever_margin(first, second, 0.3)
+            return piece[0], (piece,)
         circle = dyads.Circle(first, 0.9, "B", "coupler")
         if kind == "circle-circle":
             other: dyads.Locus = dyads.Circle(second, 0.5, "D", "rocker")
@@ -42,13 +45,15 @@ def test_margin_rate_is_the_derivative_of_the_margin(kind: str) -> None:
             omega = np.full(t.size, -0.7)
             other = dyads.Line(second, direction, omega, np.zeros(t.size), "guide")
         cut = dyads.intersect(circle, other, "C")
-        return cut.margin, cut.margin_rate
+        return cut.margin, cut.pieces
 
-    _, rate = margin_and_rate(t0)
-    ahead, _ = margin_and_rate(t0 + step)
-    behind, _ = margin_and_rate(t0 - step)
-    assert rate is not None
-    np.testing.assert_allclose(rate, (ahead - behind) / (2.0 * step), atol=1e-8)
+    margin, pieces = margin_and_pieces(t0)
+    ahead, behind = margin_and_pieces(t0 + step)[1], margin_and_pieces(t0 - step)[1]
+    assert len(pieces) == (1 if kind == "lever" else 2)
+    np.testing.assert_array_equal(margin, np.min([values for values, _ in pieces], axis=0))
+    for (_, rate), (forward, _), (backward, _) in zip(pieces, ahead, behind, strict=True):
+        assert rate is not None
+        np.testing.assert_allclose(rate, (forward - backward) / (2.0 * step), atol=1e-8)
 
 
 def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
