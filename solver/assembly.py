@@ -41,6 +41,7 @@ from solver.topology import (
     LocusSpec,
     NewtonStep,
     Plan,
+    Reach,
     Step,
     TwoPointStep,
 )
@@ -143,51 +144,16 @@ class Motion:
         return [a for a in self.approaches if a.margin > dyads.COINCIDENCE_TOLERANCE * self.size]
 
 
-# A point fixed, or turned by a driver about its ground pivot: (driver, |P - pivot|), a fixed
-# point's radius 0. Along the path such a point moves at |P - pivot| |d theta / du|.
-Reach = tuple[int, float]
 # A driver that moves along the path: (driver, its steps delta_k = theta_k+1 - theta_k, their
 # largest magnitude).
 PathStep = tuple[int, Array, float]
-
-
-def driven_reach(scene: LinkageScene, steps: Sequence[Step]) -> dict[str, Reach]:
-    """The reach of every point fixed or carried by a driven link (drivers turn about ground
-    pivots)."""
-    reach = {p: (0, 0.0) for p in scene.links[scene.ground].points}
-    for step in steps:
-        if isinstance(step, DriverStep):
-            pivot = scene.drawn(step.pivot)
-            for p in scene.links[step.link].points:
-                reach.setdefault(p, (step.driver, float(np.hypot(*(scene.drawn(p) - pivot)))))
-    return reach
-
-
-def group_reach(
-    step: DyadStep | LeverStep, ground: str, reach: Mapping[str, Reach]
-) -> tuple[Reach, ...] | None:
-    """The reach of the points a group's margin is measured between (two circles' centres, a
-    circle's centre and a slot in the ground, a lever's pivot and pin), or None where one of them
-    moves otherwise (located by a dyad or a Newton group, a slot in a moving link)."""
-    if isinstance(step, LeverStep):
-        names = [step.pivot, step.pin]
-    else:
-        names = []
-        for spec in step.loci:
-            if isinstance(spec, CircleSpec):
-                names.append(spec.center)
-            elif spec.guide != ground:
-                return None
-    if any(p not in reach for p in names):
-        return None
-    return tuple(reach[p] for p in names)
 
 
 def path_steps(inputs: Sequence[DriverInput]) -> list[PathStep]:
     """The drivers that move along the path (thetas linear between samples), with their steps."""
     path = []
     for driver, given in enumerate(inputs):
-        delta = np.diff(given.theta)
+        delta = given.theta[1:] - given.theta[:-1]
         largest = float(np.abs(delta).max()) if delta.size else 0.0
         if largest > 0.0:
             path.append((driver, delta, largest))
@@ -223,8 +189,9 @@ def lipschitz_clear(
     WARNING_MARGIN size between every two samples, whatever its shape: m is 1-Lipschitz in those
     points, so |dm/du| <= G = sum |P - pivot| max |delta| and m >= (m_k + m_k+1 - G) / 2 between
     samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN size clears every interval."""
-    largest = {driver: step for driver, _, step in path}
-    bound = sum(radius * largest.get(driver, 0.0) for driver, radius in reaches)
+    bound = 0.0
+    for moving, _, step in path:
+        bound += step * sum(radius for driver, radius in reaches if driver == moving)
     return bool(margin.min() - 0.5 * bound >= WARNING_MARGIN * size)
 
 
@@ -437,10 +404,6 @@ class _Assembler:
     def path(self) -> list[PathStep]:
         return path_steps(self.inputs)
 
-    @cached_property
-    def reach(self) -> dict[str, Reach]:
-        return driven_reach(self.scene, self.steps)
-
     def branch(
         self,
         index: int,
@@ -478,9 +441,8 @@ class _Assembler:
         threshold (``screen``); none where it is measured between points that turn with drivers
         and its Lipschitz bound clears the threshold (``lipschitz_clear``)."""
         size = self.scene.size
-        reaches = group_reach(step, self.scene.ground, self.reach)
         if not (self.path and pieces) or (
-            reaches is not None and lipschitz_clear(margin, reaches, self.path, size)
+            step.reach is not None and lipschitz_clear(margin, step.reach, self.path, size)
         ):
             return []
         sensitivities = [self.sensitivities(index, driver, pieces) for driver, _, _ in self.path]
@@ -648,10 +610,9 @@ class _Assembler:
     @property
     def rated(self) -> bool:
         """Whether a two-branch group of the plan is measured from points that do not turn with
-        drivers (``group_reach``): its screen needs a velocity analysis."""
-        ground = self.scene.ground
+        drivers alone (its ``reach`` is None): its screen needs a velocity analysis."""
         return any(
-            group_reach(step, ground, self.reach) is None
+            step.reach is None
             for step in self.steps
             if isinstance(step, LeverStep)
             or (isinstance(step, DyadStep) and any(isinstance(s, CircleSpec) for s in step.loci))

@@ -35,9 +35,6 @@ from solver.assembly import (
     DriverInput,
     Motion,
     PathStep,
-    Reach,
-    driven_reach,
-    group_reach,
     lipschitz_clear,
     path_steps,
     rates_alone,
@@ -46,7 +43,7 @@ from solver.assembly import (
 )
 from solver.rigid import Array, LinkMotion, PointMotion, repeat
 from solver.scene import LinkageScene
-from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, TwoPointStep
+from solver.topology import CircleSpec, DriverStep, DyadStep, Plan, Reach, TwoPointStep
 
 Column = Array | float
 
@@ -88,7 +85,7 @@ class _Dyad:
     second: CircleSpec
     sign: float
     drawn: tuple[float, float]
-    reach: tuple[Reach, ...] | None  # its centres' (``assembly.group_reach``)
+    reach: tuple[Reach, ...] | None  # its centres' (``topology.DyadStep``)
 
 
 @dataclass(frozen=True)
@@ -264,20 +261,17 @@ class _Run:
                 np.subtract(anchor.ay + rx * alpha, w2 * ry, out=a[:, 1])
             self.known(name, point, p, v, a)
 
-    def returned(self, rate: Array | None, order: int) -> Array | None:
-        """A link's rate of the given order as returned: the kept samples, where asked for."""
-        return None if rate is None or self.order < order else rate[self.kept]
-
     def drive(self, step: _Drive) -> None:
         given = self.inputs[step.driver]
         omega = given.omega if self.computed >= 1 else None
         alpha = given.alpha if self.computed >= 2 else None
+        kept, order = self.kept, self.order
         self.links[step.link] = LinkMotion(
             step.carried.anchor0,
             self.points[step.pivot],
-            given.theta[self.kept],
-            self.returned(omega, 1),
-            self.returned(alpha, 2),
+            given.theta[kept],
+            given.omega[kept] if order >= 1 else None,
+            given.alpha[kept] if order >= 2 else None,
         )
         self.carry(step.carried, self.cols[step.pivot], given.theta, omega, alpha, step.driver)
 
@@ -308,10 +302,9 @@ class _Run:
                 v1 = self.unit_velocity(step.first.center, driver)
                 v2 = self.unit_velocity(step.second.center, driver)
             d_rate = ux * _sub(v2[0], v1[0]) + uy * _sub(v2[1], v1[1])
-            if not self.alone:
-                return [-d_rate, d_rate]
-            omega = self.inputs[driver].omega
-            return [-d_rate / omega, d_rate / omega]
+            if self.alone:  # ((-x) / y is -(x / y) in IEEE arithmetic)
+                d_rate = d_rate / self.inputs[driver].omega
+            return [-d_rate, d_rate]
 
         if not self.close(step, margin, (extended, folded), sensitivities):
             return False
@@ -399,12 +392,13 @@ class _Run:
             omega = cast(Array, (rx * _sub(Q.vy, P.vy) - ry * _sub(Q.vx, P.vx)) / r2)
         if self.computed >= 2:
             alpha = cast(Array, (rx * _sub(Q.ay, P.ay) - ry * _sub(Q.ax, P.ax)) / r2)
+        kept, order = self.kept, self.order
         self.links[step.link] = LinkMotion(
             step.carried.anchor0,
             self.points[step.first],
-            theta[self.kept],
-            self.returned(omega, 1),
-            self.returned(alpha, 2),
+            theta[kept],
+            None if omega is None or order < 1 else omega[kept],
+            None if alpha is None or order < 2 else alpha[kept],
         )
         self.carry(step.carried, P, theta, omega, alpha)
 
@@ -423,7 +417,6 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
     lever, a prismatic guide, a Newton group) or a dyad between two fixed points."""
     fixed = set(scene.links[scene.ground].points)
     known = set(fixed)
-    reaches = driven_reach(scene, plan.steps)
     steps: list[_Step] = []
     for step in plan.steps:
         if isinstance(step, DriverStep):
@@ -438,8 +431,9 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
             if first.center in fixed and second.center in fixed:
                 return None
             drawn = scene.drawn(step.point)
-            reach = group_reach(step, scene.ground, reaches)
-            steps.append(_Dyad(step.point, first, second, step.sign, (drawn[0], drawn[1]), reach))
+            steps.append(
+                _Dyad(step.point, first, second, step.sign, (drawn[0], drawn[1]), step.reach)
+            )
             known.add(step.point)
         elif isinstance(step, TwoPointStep):
             r0 = scene.drawn(step.second) - scene.drawn(step.first)

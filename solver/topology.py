@@ -4,7 +4,8 @@ Starting from the ground and the driven links, a link becomes known when two of 
 known (or one point and its angle, through a prismatic joint), and a point becomes known when it
 lies on two loci built from known links (a dyad). A lever whose slot must pass through a known
 pin is solved for its angle. Whatever cannot be reached this way is one Newton-Raphson group.
-The branch of every two-branch group is read off the drawn pose.
+The branch of every two-branch group is read off the drawn pose, and so is the reach of the points
+its length margin is measured between, where drivers alone turn them (``Reach``).
 """
 
 from __future__ import annotations
@@ -40,6 +41,10 @@ class LineSpec:
 
 LocusSpec = CircleSpec | LineSpec
 
+# A point fixed, or turned by a driver about its ground pivot: (driver, |P - pivot|), a fixed
+# point's radius 0. Along a sweep's path such a point moves at |P - pivot| |d theta / du|.
+Reach = tuple[int, float]
+
 
 @dataclass(frozen=True)
 class DriverStep:
@@ -52,11 +57,14 @@ class DriverStep:
 
 @dataclass(frozen=True)
 class DyadStep:
-    """A joint point located on two loci (RRR, RRP, pin in two slots); ``sign`` = drawn branch."""
+    """A joint point located on two loci (RRR, RRP, pin in two slots); ``sign`` = drawn branch;
+    ``reach``: that of its circles' centres (a slot in the ground adds none), None where one of
+    them moves otherwise (located by a dyad or a Newton group; a slot in a moving link)."""
 
     point: str
     loci: tuple[LocusSpec, LocusSpec]
     sign: float
+    reach: tuple[Reach, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -79,7 +87,8 @@ class GuidedStep:
 
 @dataclass(frozen=True)
 class LeverStep:
-    """A link turning about a known ``pivot`` whose slot passes through the known ``pin``."""
+    """A link turning about a known ``pivot`` whose slot passes through the known ``pin``;
+    ``reach``: that of the pivot and the pin, None where one of them moves otherwise."""
 
     link: str
     pivot: str
@@ -87,6 +96,7 @@ class LeverStep:
     offset: float
     sign: float
     direction0: tuple[float, float]
+    reach: tuple[Reach, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -134,6 +144,7 @@ class _Decomposition:
         self.known_links: set[str] = set()
         self.known_points: set[str] = set()
         self.steps: list[Step] = []
+        self.reach: dict[str, Reach] = {}  # the points fixed or turned by a driver alone
 
     def know_link(self, link: str, step: Step) -> None:
         self.steps.append(step)
@@ -166,10 +177,10 @@ class _Decomposition:
                 u0 = np.array(joint.axis)
                 r0 = scene.drawn(joint.point) - scene.drawn(known[0])
                 sign = 1.0 if float(dot(u0, r0)) >= 0.0 else -1.0
-                self.know_link(
-                    link,
-                    LeverStep(link, known[0], joint.point, float(cross(u0, r0)), sign, joint.axis),
-                )
+                reach = self.reach_of([known[0], joint.point])
+                offset = float(cross(u0, r0))
+                step = LeverStep(link, known[0], joint.point, offset, sign, joint.axis, reach)
+                self.know_link(link, step)
                 return True
         return False
 
@@ -203,15 +214,31 @@ class _Decomposition:
         # Prefer circles (RRR) over slots, which keeps the best-conditioned classical dyads.
         loci.sort(key=lambda spec: isinstance(spec, LineSpec))
         pair = (loci[0], loci[1])
-        self.steps.append(DyadStep(point, pair, drawn_branch(self.scene, point, pair)))
+        ground = self.scene.ground
+        if any(isinstance(spec, LineSpec) and spec.guide != ground for spec in pair):
+            reach = None
+        else:
+            reach = self.reach_of([spec.center for spec in pair if isinstance(spec, CircleSpec)])
+        step = DyadStep(point, pair, drawn_branch(self.scene, point, pair), reach)
+        self.steps.append(step)
         self.known_points.add(point)
         return True
+
+    def reach_of(self, points: list[str]) -> tuple[Reach, ...] | None:
+        """The reach of each of ``points``, or None where one of them moves otherwise."""
+        if any(p not in self.reach for p in points):
+            return None
+        return tuple(self.reach[p] for p in points)
 
     def run(self) -> Plan:
         scene = self.scene
         self.known_links.add(scene.ground)
         self.known_points.update(scene.links[scene.ground].points)
+        self.reach = {p: (0, 0.0) for p in scene.links[scene.ground].points}
         for index, driver in enumerate(scene.drivers):
+            pivot = scene.drawn(driver.pivot)
+            for p in scene.links[driver.link].points:
+                self.reach.setdefault(p, (index, float(np.hypot(*(scene.drawn(p) - pivot)))))
             self.know_link(driver.link, DriverStep(driver.link, driver.pivot, index))
         progress = True
         while progress:
