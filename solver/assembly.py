@@ -15,6 +15,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TypeGuard
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -144,8 +145,8 @@ class Motion:
         return [a for a in self.approaches if a.margin > dyads.COINCIDENCE_TOLERANCE * self.size]
 
 
-# A driver that moves along the path: (driver, its steps delta_k = theta_k+1 - theta_k, their
-# largest magnitude).
+# A driver that moves along the path: (driver, its angles theta_k, the largest magnitude of its
+# steps delta_k = theta_k+1 - theta_k).
 PathStep = tuple[int, Array, float]
 
 
@@ -153,10 +154,11 @@ def path_steps(inputs: Sequence[DriverInput]) -> list[PathStep]:
     """The drivers that move along the path (thetas linear between samples), with their steps."""
     path = []
     for driver, given in enumerate(inputs):
-        delta = given.theta[1:] - given.theta[:-1]
-        largest = float(np.abs(delta).max()) if delta.size else 0.0
+        theta = given.theta
+        # (The steps are not kept: at many samples a live array costs its page faults.)
+        largest = float(np.abs(theta[1:] - theta[:-1]).max()) if theta.size > 1 else 0.0
         if largest > 0.0:
-            path.append((driver, delta, largest))
+            path.append((driver, theta, largest))
     return path
 
 
@@ -198,9 +200,11 @@ def lipschitz_clear(
 def path_rates(sensitivities: Sequence[Array], path: Sequence[PathStep]) -> tuple[Array, Array]:
     """(p, q): dm/du at the start and at the end of each interval along its own direction,
     p_k = sum_i g_i,k delta_i,k and q_k = sum_i g_i,k+1 delta_i,k (g_i = dm/dtheta_i)."""
-    falls = sum(g[:-1] * delta for g, (_, delta, _) in zip(sensitivities, path, strict=True))
-    rises = sum(g[1:] * delta for g, (_, delta, _) in zip(sensitivities, path, strict=True))
-    return np.asarray(falls), np.asarray(rises)
+    falls = rises = np.zeros(path[0][1].size - 1)
+    for g, (_, theta, _) in zip(sensitivities, path, strict=True):
+        delta = theta[1:] - theta[:-1]
+        falls, rises = falls + g[:-1] * delta, rises + g[1:] * delta
+    return falls, rises
 
 
 def screen(
@@ -311,6 +315,13 @@ def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list
     return out
 
 
+def _two_branch(step: Step) -> TypeGuard[DyadStep | LeverStep]:
+    """A lever, or a dyad with a circle among its loci (a pin in two slots has one solution)."""
+    if isinstance(step, DyadStep):
+        return any(isinstance(spec, CircleSpec) for spec in step.loci)
+    return isinstance(step, LeverStep)
+
+
 class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``).
 
@@ -333,7 +344,9 @@ class _Assembler:
         self.newton_groups = newton_groups
         self.inputs = inputs
         self.order = order
-        self.rates = order  # the orders computed: 1 where a screen needs rates at order 0
+        # Where a screen at order 0 needs rates: velocities at unit rate of the moving driver,
+        # computed up to the last group that needs them (``run``).
+        self.rates, self.rated_until = order, 0
         self.continuation = continuation
         self.signs = signs or {}
         self.samples = len(inputs[0].theta) if inputs else 1
@@ -383,7 +396,12 @@ class _Assembler:
         direction = rotate(np.array(spec.direction0), guide.theta)
         return dyads.Line(through, direction, guide.omega, guide.alpha, spec.guide)
 
-    def drive(self, step: DriverStep) -> None:
+    def computed(self, index: int) -> int:
+        """The order step ``index`` computes: velocities too, before the last group whose
+        screen needs them."""
+        return max(self.order, 1) if index < self.rated_until else self.order
+
+    def drive(self, index: int, step: DriverStep) -> None:
         given = self.inputs[step.driver]
         pivot0 = self.scene.drawn(step.pivot)
         zeros = np.zeros((self.samples, 2))
@@ -395,8 +413,8 @@ class _Assembler:
                 pivot0,
                 anchor,
                 given.theta,
-                given.omega if self.rates >= 1 else None,
-                given.alpha if self.rates >= 2 else None,
+                given.omega if self.computed(index) >= 1 else None,
+                given.alpha if self.computed(index) >= 2 else None,
             ),
         )
 
@@ -512,7 +530,8 @@ class _Assembler:
             self.group_margins[step.point] = cut.margin
         X = cut.point(self.branch(index, step, step.point, step.sign, cut.margin, cut.pieces))
         X[self.at_drawn] = self.scene.drawn(step.point)
-        self.points[step.point], sine = dyads.point_motion(first, second, X, self.rates)
+        order = self.computed(index)
+        self.points[step.point], sine = dyads.point_motion(first, second, X, order)
         self.gradient_sine = np.minimum(self.gradient_sine, sine)
 
     def lever(self, index: int, step: LeverStep) -> None:
@@ -532,7 +551,7 @@ class _Assembler:
         sign = self.branch(index, step, label, step.sign, margin, self.last)
         drawn = math.atan2(step.direction0[1], step.direction0[0])
         solution = dyads.slotted_lever(
-            pivot, pin, step.offset, sign, self.rates, (self.at_drawn, drawn)
+            pivot, pin, step.offset, sign, self.computed(index), (self.at_drawn, drawn)
         )
         self.gradient_sine = np.minimum(self.gradient_sine, solution.gradient_sine)
         theta = solution.beta - drawn
@@ -553,7 +572,7 @@ class _Assembler:
             self.resting.add(id(self.points[p]))
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
-                self.drive(step)
+                self.drive(index, step)
             elif isinstance(step, DyadStep):
                 self.dyad(index, step)
             elif isinstance(step, LeverStep):
@@ -581,14 +600,17 @@ class _Assembler:
                     ),
                 )
             else:
-                self.newton_group(step)
+                self.newton_group(index, step)
 
     def run(self, plan: Plan) -> Motion:
         self.steps = plan.steps
-        if self.continuation and self.order == 0 and len(self.path) == 1 and self.rated:
-            # The screen of a group measured from moving points needs the pieces' rates: this
-            # run computes velocities at unit rate of the moving driver (``sensitivities``).
+        rated = self.rated
+        if self.continuation and self.order == 0 and len(self.path) == 1 and rated:
+            # The screens of groups measured from moving points need the pieces' rates: this run
+            # computes velocities at unit rate of the moving driver (``sensitivities``), up to the
+            # last such group.
             self.inputs, self.rates = unit_rate(self.inputs, self.path[0][0]), 1
+            self.rated_until = rated[-1]
         self.run_steps(plan.steps)
         links, points = self.links, self.points
         if self.rates > self.order:
@@ -608,15 +630,10 @@ class _Assembler:
         )
 
     @property
-    def rated(self) -> bool:
-        """Whether a two-branch group of the plan is measured from points that do not turn with
-        drivers alone (its ``reach`` is None): its screen needs a velocity analysis."""
-        return any(
-            step.reach is None
-            for step in self.steps
-            if isinstance(step, LeverStep)
-            or (isinstance(step, DyadStep) and any(isinstance(s, CircleSpec) for s in step.loci))
-        )
+    def rated(self) -> list[int]:
+        """The two-branch groups of the plan measured from points that do not turn with drivers
+        alone (their ``reach`` is None): their screens need a velocity analysis."""
+        return [i for i, step in enumerate(self.steps) if _two_branch(step) and step.reach is None]
 
     def positions_only(self) -> tuple[dict[str, LinkMotion], dict[str, PointMotion]]:
         """The links and points as a run at order 0 gives them, from one that computed
@@ -640,13 +657,13 @@ class _Assembler:
         }
         return links, {name: still(motion) for name, motion in self.points.items()}
 
-    def newton_group(self, step: NewtonStep) -> None:
+    def newton_group(self, index: int, step: NewtonStep) -> None:
         solved, report = solve_group(
             self.scene,
             step.links,
             self.links,
             [given.theta for given in self.inputs],
-            self.rates,
+            self.computed(index),
             self.newton_groups or Continuation(self.scene),
         )
         self.reports.append(report)

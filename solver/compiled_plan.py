@@ -288,8 +288,12 @@ class _Run:
             ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
         a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
         h2 = r1**2 - a**2
-        extended, folded = (r1 + r2) - d, d - abs(r1 - r2)
-        margin = np.minimum(extended, folded)
+        margin = np.minimum((r1 + r2) - d, d - abs(r1 - r2))
+
+        def pieces() -> tuple[Array, Array]:
+            """r1 + r2 - d and d - |r1 - r2| (made again where the screen needs them: at many
+            samples two more live arrays would cost their allocations' page faults)."""
+            return (r1 + r2) - d, d - abs(r1 - r2)
 
         def sensitivities(driver: int) -> list[Array]:
             """dm/dtheta of the pieces r1 + r2 - d and d - |r1 - r2|
@@ -306,7 +310,7 @@ class _Run:
                 d_rate = d_rate / self.inputs[driver].omega
             return [-d_rate, d_rate]
 
-        if not self.close(step, margin, (extended, folded), sensitivities):
+        if not self.close(step, margin, pieces, sensitivities):
             return False
         h = dyads._root(h2, r1**2)
         if step.sign < 0.0:
@@ -324,7 +328,7 @@ class _Run:
         self,
         step: _Dyad,
         margin: Array,
-        pieces: tuple[Array, Array],
+        pieces: Callable[[], tuple[Array, Array]],
         sensitivities: Callable[[int], list[Array]],
     ) -> bool:
         """Record a group's margin m (``assembly._Assembler.close``); False where it fails to
@@ -339,7 +343,7 @@ class _Run:
             reach = step.reach
             if reach is None or not lipschitz_clear(margin, reach, path, size):
                 rates = [sensitivities(driver) for driver, _, _ in path]
-                if screen(margin, pieces, rates, path, size):
+                if screen(margin, pieces(), rates, path, size):
                     return False
         self.margin = np.minimum(self.margin, relative)
         self.group_margins[step.point] = margin

@@ -399,7 +399,7 @@ def test_warning_threshold_is_1e_3_of_the_size(fraction: float) -> None:
 def _screened(margin: np.ndarray, rate: np.ndarray, size: float) -> list[int]:
     """The intervals ``screen`` gives a margin of one piece, its rates per sample step (one
     driver, unit steps), quick screen included."""
-    path = [(0, np.ones(margin.size - 1), 1.0)]
+    path = [(0, np.arange(float(margin.size)), 1.0)]
     return [k for k, _ in screen(margin, [margin], [[rate]], path, size)]
 
 
