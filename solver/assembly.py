@@ -253,13 +253,11 @@ def screen(
 
 
 def candidate_minima(margin: Array, size: float) -> Array:
-    """Samples k at a local minimum of the margin whose neighbourhood may dip below the warning
-    threshold by its values alone: m_k - max(m_k-1 - m_k, m_k+1 - m_k) < WARNING_MARGIN size (a
-    bound that holds for a margin convex between samples k - 1 and k + 1, and generous where it
-    is not: a V as deep as its steeper side). The first and the last sample count with their one
-    neighbour."""
-    if margin.size < 2:
-        return np.array([], dtype=int)
+    """Samples k at a local minimum of the margin (two samples or more) whose neighbourhood may
+    dip below the warning threshold by its values alone: m_k - max(m_k-1 - m_k, m_k+1 - m_k) <
+    WARNING_MARGIN size (a bound that holds for a margin convex between samples k - 1 and k + 1,
+    and generous where it is not: a V as deep as its steeper side). The first and the last
+    sample count with their one neighbour."""
     # Every such bound is at least min(m) - max |m_k+1 - m_k|: where that clears the threshold,
     # no sample is a candidate (the common case, a linkage far from its change points).
     if margin.min() - np.abs(np.diff(margin)).max() >= WARNING_MARGIN * size:
@@ -271,7 +269,6 @@ def candidate_minima(margin: Array, size: float) -> Array:
         np.where(np.isinf(after), -np.inf, after - margin),
     )
     found = (margin < before) & (margin <= after) & (margin - rise < WARNING_MARGIN * size)
-    found &= margin >= -dyads.COINCIDENCE_TOLERANCE * size  # an infeasible sample is reported so
     return np.flatnonzero(found)
 
 

@@ -24,7 +24,6 @@ import numpy as np
 import pytest
 
 import solver
-from solver import dyads
 from solver.assembly import WARNING_MARGIN, candidate_intervals, candidate_minima, screen
 from solver.instant import analyze
 from solver.presets import build_preset
@@ -464,7 +463,6 @@ def _unscreened_minima(margin: np.ndarray, size: float) -> np.ndarray:
     m, before, after = margin[1:-1], margin[:-2], margin[2:]
     low = m - np.maximum(before - m, after - m)
     found = (m < before) & (m <= after) & (low < WARNING_MARGIN * size)
-    found &= m >= -dyads.COINCIDENCE_TOLERANCE * size
     return np.flatnonzero(found) + 1
 
 

@@ -417,7 +417,7 @@ def test_deeper_of_two_dips_is_reported() -> None:
 @pytest.mark.parametrize(
     ("samples", "start_deg"),
     [(15, 104.0), (15, 345.0), (8, 45.0), (9, 165.0), (11, 180.0), (12, 345.0), (13, 60.0),
-     (18, 105.0)],
+     (18, 105.0), (9, 30.0), (16, 15.0)],
 )  # fmt: skip
 def test_deeper_of_two_dips_between_two_coarse_samples_is_reported(
     samples: int, start_deg: float
@@ -427,8 +427,12 @@ def test_deeper_of_two_dips_between_two_coarse_samples_is_reported(
     near the maximum that parts the dips, so its neighbours' values alone do not say that the
     margin may dip below the threshold; the rates do (at 344 deg the margin falls at 0.18 m a
     step, into the interval that holds the deeper dip). The deeper, 1e-4 m at 353.3 deg, must
-    be the approach reported, as with 36 samples (each of these sweeps reported none, or the
-    shallower dip, before the screen took the rates)."""
+    be the approach reported, as with 36 samples (each of the first eight sweeps reported none,
+    or the shallower dip, before the screen took the rates). With 9 samples from 30 deg the
+    sample at 350 deg is 0.004 m, below the threshold, and the margin falls at both ends of the
+    interval after it (into the shallow dip at 30.3 deg): no turn there, so the sampled minimum's
+    intervals are searched by minimisation; with 16 from 15 deg the sample at 352.5 deg is
+    0.0003 m and the margin rises steeply between it and the next, steeper than at either."""
     _deepest_dip_reported(samples, start_deg)
 
 
