@@ -489,33 +489,36 @@ class _Assembler:
     def closest_approach(self, index: int, point: str, k: int, piece: int) -> Approach | None:
         """The minimum of a piece of group ``index``'s margin between samples k and k + 1
         (``screen``): Brent's method on the root of its rate where the rates at both ends
-        bracket one, else bounded Brent minimisation of the piece, None where that finds it no
+        bracket one, else bounded Brent minimisation of the piece. None where that finds it no
         lower inside than at both ends (a minimum beyond a first or last sample is not there:
         a revolution's interval before its first sample is searched from its closing sample,
-        the same pose); the margin there, the smallest of the pieces."""
+        the same pose), or where another piece is lower there (the margin, the smaller of them,
+        has no minimum there)."""
 
         def evaluate(x: float) -> tuple[float, float, float]:
+            """(the piece, its rate, the margin: the smallest piece) at u = k + x."""
             inputs = interpolated_inputs(self.inputs, k, x)
             probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
             values, rate = probe.last[piece]
             assert rate is not None
             margin = min(float(other[0]) for other, _ in probe.last)
-            return margin, float(values[0]), float(rate[0])
+            return float(values[0]), float(rate[0]), margin
 
-        _, start, rate_low = evaluate(0.0)
-        _, end, rate_high = evaluate(1.0)
+        start, rate_low, _ = evaluate(0.0)
+        end, rate_high, _ = evaluate(1.0)
         if rate_low < 0.0 <= rate_high:
-            x = brentq(lambda x: evaluate(x)[2], 0.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
+            x = brentq(lambda x: evaluate(x)[1], 0.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
         else:
             found = minimize_scalar(
-                lambda x: evaluate(x)[1], bounds=(0.0, 1.0), method="bounded",
+                lambda x: evaluate(x)[0], bounds=(0.0, 1.0), method="bounded",
                 options={"xatol": 1e-12},
             )  # fmt: skip
             if not found.fun < min(start, end):
                 return None
             x = float(found.x)
-        return Approach(point, k + x, evaluate(x)[0])
+        value, _, margin = evaluate(x)
+        return None if value > margin else Approach(point, k + x, margin)
 
     def dyad(self, index: int, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)
