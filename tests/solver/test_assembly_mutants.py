@@ -749,3 +749,66 @@ def test_position_sweep_whose_screen_took_velocities_returns_positions_only(case
             assert ours[key] is None, key
         else:
             assert np.array_equal(ours[key], value), key
+
+
+def _at_rest(doc: dict[str, Any]) -> dict[str, Any]:
+    """The same linkage with its driver at rest (omega 0): a sweep's velocities are all 0, so
+    the screen's rates come from a run at unit crank rate (``_Assembler.sensitivities``)."""
+    return {**doc, "drivers": [{**doc["drivers"][0], "omega": 0.0}]}
+
+
+def test_two_dips_with_the_crank_at_rest_are_screened_at_unit_rate() -> None:
+    """The two-dip six-bar swept with 15 samples from 104 deg, velocities asked for with the
+    crank at rest: the dip between the coarse samples is found from rates at unit crank rate
+    (the velocities of the sweep, all 0, say nothing), the same approach as with the crank
+    turning: 1e-4 m (to 1e-14 m) at 353.3 deg (to 5e-8 rad)."""
+    at, _ = _farthest()
+    doc = _at_rest(_two_dips(1e-4, 104.0))
+    (approach,) = sweep(parse_linkage(doc), 15, ALL).close_approaches
+    assert approach.point == "E" and abs(approach.margin - 1e-4) <= 1e-14
+    assert abs(math.remainder(approach.driver_angle - at, 2 * math.pi)) <= 5e-8
+
+
+def test_close_approach_past_a_switch_with_the_crank_at_rest() -> None:
+    """The parallelogram driving a dyad (test_close_approach_downstream_of_a_switching_
+    parallelogram), crank at rest, swept with 100 samples from 60 deg with velocities: the
+    dyad's rates at unit crank rate are taken on the branches the sweep follows (the
+    parallelogram switched at 180 deg): the approach is gap = 2e-4 m (to 1e-12 m) at -90 deg
+    (to 1e-6 rad), and C = B + (1, 0) throughout (to 1e-9 m)."""
+    result = sweep(parse_linkage(_at_rest(_parallelogram_with_dyad(60.0, 2e-4))), 100, ALL)
+    B, C = (result.motion.points[p].p for p in "BC")
+    assert np.abs(C - B - np.array([1.0, 0.0])).max() <= 1e-9
+    (approach,) = result.close_approaches
+    assert approach.point == "E" and abs(approach.margin - 2e-4) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle + math.pi / 2, 2 * math.pi)) <= 1e-6
+
+
+@pytest.mark.parametrize("omega", [10.0, 0.0])
+def test_lever_close_approach_ahead_of_a_dyad(omega: float) -> None:
+    """Quick return (ground O2O4 0.3 m, slot 0.05 m off the lever's pivot O4, crank 0.25 - 1e-4
+    m; rod 0.8 m to a ram at 0.4 m so that it turns fully), its crank turning or at rest: the
+    lever's margin |O4A| - 0.05 is least with A straight below O2, 0.3 - crank - 0.05 = 1e-4 m
+    (to 1e-12 m) at crank -90 deg (to 1e-6 rad, closed form), and it is that group's own margin
+    and rate that are screened and searched there, not those of the ram's dyad solved after the
+    lever (with the crank at rest its rates come from a run at unit crank rate)."""
+    values = {"crank": 0.25 - 1e-4, "ground": 0.3, "slot_offset": 0.05, "rod": 0.8}
+    doc = build_preset("quick_return", {**values, "ram_height": 0.4, "lever": 0.6})
+    doc["drivers"][0]["omega"] = omega
+    (approach,) = sweep(parse_linkage(doc), 36, ALL).close_approaches
+    assert approach.point == "the slot of 'lever'"
+    assert abs(approach.margin - (0.3 - (0.25 - 1e-4) - 0.05)) <= 1e-12
+    assert abs(math.remainder(approach.driver_angle + math.pi / 2, 2 * math.pi)) <= 1e-6
+
+
+def test_instant_centres_of_a_triad_at_rest() -> None:
+    """The triad of tests/solver/test_newton.py with its crank at rest, analysed with poles: the
+    instant centres are those of the pose differentiated at unit crank rate (a Newton group
+    assembled without the caller's Continuation, which makes its own); each link turning about
+    a ground pivot has its centre with the ground there: O, G2, G3 (to 1e-12 m)."""
+    from tests.solver.test_newton import TRIAD
+
+    body = solver.analyze(_at_rest(TRIAD), ["position", "poles"]).as_dict()
+    centres = {frozenset(c["links"]): c["position"] for c in body["instant_centres"]}
+    for link, pivot in (("crank", "O"), ("L2", "G2"), ("L3", "G3")):
+        position = centres[frozenset((link, "ground"))]
+        assert math.dist(position, TRIAD["points"][pivot]) <= 1e-12, link
