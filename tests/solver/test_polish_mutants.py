@@ -613,3 +613,36 @@ def test_rates_equal_central_differences_of_the_50_digit_roots(
     assert solved is not None and (order == 2 or rates(motions, group, 2) is None)
     expected = np.array([reference_rates(name, turn)[order - 1] for turn in turns])
     np.testing.assert_allclose(solved, expected, rtol=0.0, atol=1e-6 * np.abs(expected).max())
+
+
+@pytest.mark.parametrize("name", ["triad", "slider triad"])
+@pytest.mark.parametrize(("shift", "tolerance"), [(1e4, None), (1e5, None), (30.0, 1e-15)])
+def test_a_linkage_drawn_far_from_the_origin_closes_to_the_rounding_of_its_coordinates(
+    name: str, shift: float, tolerance: float | None
+) -> None:
+    """The triads (3 m across) drawn 1e4 and 1e5 m from the origin (coordinates up to 1e6 m
+    are allowed), or 30 m from it at the tightest tolerance, 1e-15: their positions are rounded
+    to eps x 1e4 m = 2e-12 m, so no pose closes the loop to 1e-13 x 3 m (or 1e-15 x 3 m at
+    30 m). Swept (36 samples), they are assembled all the same, every 5th sample equal to the
+    50-digit roots to the rounding of the coordinates (16 eps x the largest), and the report
+    states the tolerance worked to: tolerance x size, but no less than sqrt(rows) eps x the
+    largest coordinate (the rounding of |Phi|), with the residual within it."""
+    doc, group = triad(name)
+    moved = {point: [x + shift, y - shift] for point, (x, y) in doc["points"].items()}
+    doc = {**doc, "points": moved}
+    scene = parse_linkage(doc)
+    result = sweep(scene, 36, ["position"], tolerance)
+    (report,) = result.motion.newton
+    largest = max(abs(x) for point in moved.values() for x in point)
+    rows = constraints.constraint_system(scene, group).rows
+    relative = newton.NEWTON_TOLERANCE if tolerance is None else tolerance
+    floor = math.sqrt(rows) * newton.ROUNDING * largest
+    assert report.tolerance == pytest.approx(max(relative * scene.size, floor), rel=1e-12)
+    assert report.converged.all() and report.residual_norm <= report.tolerance
+    turns = result.driver_angle - math.atan2(0.2, 0.3)
+    for k in range(0, 36, 5):
+        swept = np.array([result.motion.points[p].p[k] for p in UNKNOWN])
+        reference = reference_points(doc, float(turns[k]), swept)
+        np.testing.assert_allclose(
+            swept, reference, rtol=0.0, atol=16.0 * newton.ROUNDING * largest
+        )
