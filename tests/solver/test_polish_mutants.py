@@ -646,3 +646,29 @@ def test_a_linkage_drawn_far_from_the_origin_closes_to_the_rounding_of_its_coord
         np.testing.assert_allclose(
             swept, reference, rtol=0.0, atol=16.0 * newton.ROUNDING * largest
         )
+
+
+def test_the_polishing_step_is_kept_only_where_it_lowers_the_residual() -> None:
+    """The triad drawn 1e4 m from the origin, started at its 50-digit roots at 12 turns (in
+    doubles: residuals ~1e-12 m, the rounding of coordinates that large, within the tolerance
+    but above eps x size, so each sample is given a polishing step): from there a step lowers
+    the residual at some samples and raises it at others. With the step no residual is above
+    the one without it, and a sample whose residual it did not lower is returned exactly as it
+    started."""
+    shift = 1e4
+    doc = {**TRIAD, "points": {p: [x + shift, y - shift] for p, (x, y) in TRIAD["points"].items()}}
+    scene = parse_linkage(doc)
+    turns = np.linspace(-0.3, 0.6, 12)
+    roots = np.array([reference_coordinates(doc, GROUP, turn) for turn in turns])
+    system = constraints.constraint_system(scene, GROUP)
+    known = constraints.states(crank_and_ground(scene, turns), scene)
+    tolerance = newton.residual_tolerance(newton.NEWTON_TOLERANCE, system)
+    plain, polished = (
+        newton.newton_raphson(system, known, roots, tolerance, polish=polish)
+        for polish in (False, True)
+    )
+    assert plain[2] == polished[2] == 0
+    assert np.all(polished[1] <= plain[1])
+    kept = polished[1] == plain[1]
+    np.testing.assert_array_equal(polished[0][kept], roots[kept])
+    assert 0 < np.count_nonzero(kept) < turns.size
