@@ -57,10 +57,10 @@ OMEGA, ALPHA = 2.0, 0.5  # the crank's rates in TRIAD
 def joint_gaps(
     scene: LinkageScene, links: Mapping[str, LinkMotion], group: Sequence[str]
 ) -> np.ndarray:
-    """Phi, (M, rows), from the links' motions: for every joint of a link of ``group``, its
-    point as carried by each of its two links; a revolute joint's gap is their difference, a
-    slider's its component across the slot (the drawn axis turned with the guide, ``links[0]``).
-    Motions of one sample broadcast against those of M."""
+    """Phi (M, rows) from the links' motions: at every joint of a link of ``group``, X_f - X_g,
+    its point as carried by its two links (guide g = ``links[0]``, follower f); for a slider
+    only the gap's component across the slot, the drawn axis turned with the guide. Motions of
+    one sample broadcast against those of M."""
     rows = []
     for joint in scene.joints:
         if not set(joint.links) & set(group):
@@ -311,14 +311,14 @@ def outcomes_of_newton(
     ``first`` at the first attempt and from ``after`` at the others, q left at its start; the
     number of samples solved at each attempt is appended to ``attempts``."""
 
-    def newton_raphson(
+    def outcome(
         polish: continuation._Polish, todo: np.ndarray, q0: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, int, np.ndarray, np.ndarray]:
         rows = (after if attempts else first)[todo]
         attempts.append(todo.size)
         return q0, rows[:, 0], 1, rows[:, 1], rows[:, 2]
 
-    return newton_raphson
+    return outcome
 
 
 def test_a_sample_settles_only_near_its_start_with_a_short_first_step(
@@ -328,8 +328,8 @@ def test_a_sample_settles_only_near_its_start_with_a_short_first_step(
     replaced): a sample settles where its residual is within tolerance x size, its whole move
     within two first steps (+ 1e-9 of the size, for a start already closed: first step 0), and
     its first step within ``BRANCH_GAP`` of the size; the others have their path refined around
-    them and are solved again. Samples (residual, first step, move) in tolerances, gaps and
-    gaps: a (0.5, 0.5, 0.95), b (0.5, 0.5, 1.05) past two first steps, d (2, 0.5, 0.5) above
+    them and are solved again. Samples (residual in tolerances, first step and move in gaps):
+    a (0.5, 0.5, 0.95), b (0.5, 0.5, 1.05) past two first steps, d (2, 0.5, 0.5) above
     tolerance, e (0.5, 2, 2) a long first step; and in sizes c (0.5, 0, 0.5e-9) and
     f (0.5, 0, 2e-9): one refinement around b, d, e and f, then (all closed) every sample
     settled. A sample that never settles is refined ``MAX_REFINEMENTS`` times."""
