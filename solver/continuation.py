@@ -405,7 +405,11 @@ class Branch:
         angles = list(self.held[0])
         angles.insert(self.free_driver, turn)
         q, _, _, _ = newton.newton_raphson(
-            system, self.known, x, tolerance * self.scene.size, turns=np.array([angles])
+            system,
+            self.known,
+            x,
+            newton.residual_tolerance(tolerance, system),
+            turns=np.array([angles]),
         )
         return q[0]
 
@@ -591,7 +595,7 @@ def solve_group(
     motions = system.motions(polish.q, qd, qdd)
     converged = polish.reached & polish.settled
     worst = float(np.max(polish.residual, initial=0.0))
-    tolerance = continuation.tolerance * scene.size
+    tolerance = polish.tolerance
     message = f"Newton-Raphson closed the loop of {', '.join(group)}"
     if not np.all(converged):
         at = turns[0] if turns else np.zeros(samples)
@@ -618,7 +622,7 @@ class _Polish:
         self.system, self.states = system, states
         scene = system.scene
         self.size = scene.size
-        self.tolerance = continuation.tolerance * scene.size
+        self.tolerance = newton.residual_tolerance(continuation.tolerance, system)
         self.polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
         self.q = np.tile(system.drawn(), (samples, 1))
         self.residual = np.zeros(samples)
