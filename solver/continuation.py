@@ -288,9 +288,10 @@ class Branch:
                 turn = math.acos(min(1.0, float(tau_new @ tau)))
                 moved = _norm(new - predicted) / h
                 # The turn grows like h, the predictor's error like h^2 (second order): aim at
-                # 0.6 of their bounds with the next step.
+                # 0.6 of their bounds with the next step (either may be 0: a straight path).
                 grow = 0.6 * min(
-                    MAX_TANGENT_TURN / max(turn, 1e-12), math.sqrt(MAX_CORRECTION / moved)
+                    MAX_TANGENT_TURN / max(turn, 1e-12),
+                    math.sqrt(MAX_CORRECTION / max(moved, 1e-12)),
                 )
                 ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
             if ok:  # the quintic between the two nodes must stay on the path (the samples' start)

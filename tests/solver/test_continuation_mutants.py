@@ -11,6 +11,8 @@ Sources:
   tests/solver/test_newton_continuation.py), independent of the solver's pseudo-arclength
   continuation.
 - Central finite differences of positions for the rates.
+- A closed form: a triad drawn with two parallelograms on its crank translates its ternary link
+  with the crank pin.
 
 The slider triad (the rocking triad of tests/solver/test_newton.py with its link L3 replaced by
 a slot in the ground for P3) is the Newton group whose equations are not linear in the links'
@@ -290,3 +292,35 @@ def test_a_new_nodes_arclength_is_that_of_the_arc_through_it() -> None:
     for k in (1, 2):
         leg.insert(k + 1, x[k], tau[k], kappa[k])
         assert leg.s[k + 1] - leg.s[k] == pytest.approx(0.2, abs=2e-6)
+
+
+def translating_triad() -> Doc:
+    """The rocking triad redrawn so that L2 and L3 are parallel to the crank and as long (the
+    parallelograms O A P2 G2 and O A P3 G3): T and L1 translate with A, whatever the crank's
+    turn, and the path is a straight line in the links' rotations (crank, L2 and L3 turn
+    together, T and L1 not at all)."""
+    doc: Doc = copy.deepcopy(TRIAD)
+    points = doc["points"]
+    A = np.array(points["A"], dtype=float)
+    for tip, pivot in (("P2", "G2"), ("P3", "G3")):
+        points[tip] = (np.array(points[pivot], dtype=float) + A).tolist()
+    return doc
+
+
+def test_a_translating_triad_turns_fully_with_its_coupler_translated() -> None:
+    """The translating triad's points at every sample of a 36-sample sweep are their drawn
+    positions moved by A's displacement (the closed form of a translation) to 1e-12 m, and
+    their velocities A's (1e-9 relative): the crank turns fully. Its path is straight, so the
+    predictor lands on it and the corrector takes no step (``Branch.extend`` divided by that
+    zero move)."""
+    doc = translating_triad()
+    result = sweep(parse_linkage(doc), 36, ["position", "velocity"])
+    assert result.feasible
+    A = result.motion.points["A"]
+    assert A.v is not None
+    shift = A.p - np.array(doc["points"]["A"])
+    for name in UNKNOWN:
+        point = result.motion.points[name]
+        assert point.v is not None
+        np.testing.assert_allclose(point.p, doc["points"][name] + shift, rtol=0.0, atol=1e-12)
+        np.testing.assert_allclose(point.v, A.v, rtol=0.0, atol=1e-9 * np.abs(A.v).max())
