@@ -63,14 +63,18 @@ def slider_triad() -> Doc:
     return doc
 
 
+def _links(doc: Doc) -> list[tuple[str, str]]:
+    """The pairs of points a triad's links hold at their drawn distance (L3's without a slot)."""
+    pairs = [("A", "P1"), ("P1", "P2"), ("P1", "P3"), ("P2", "P3"), ("G2", "P2")]
+    return [*pairs, ("G3", "P3")] if "G3" in doc["points"] else pairs
+
+
 def _equations(doc: Doc) -> Any:
     """F(z, turn) = 0 of a triad with unknown points z = (P1, P2, P3) in 50 digits: squared
     lengths of L1, L2 (and L3) and of T's three sides less their drawn values, and for a slot
     P3's offset across it; the crank point A turned by ``turn`` about O."""
     drawn = {k: mp.matrix([mp.mpf(v[0]), mp.mpf(v[1])]) for k, v in doc["points"].items()}
-    pairs = [("A", "P1"), ("P1", "P2"), ("P1", "P3"), ("P2", "P3"), ("G2", "P2")]
-    if "G3" in drawn:
-        pairs.append(("G3", "P3"))
+    pairs = _links(doc)
     squared = [mp.fsum((drawn[a][i] - drawn[b][i]) ** 2 for i in (0, 1)) for a, b in pairs]
 
     def F(z: Any, turn: Any) -> list[Any]:
@@ -324,3 +328,101 @@ def test_a_translating_triad_turns_fully_with_its_coupler_translated() -> None:
         assert point.v is not None
         np.testing.assert_allclose(point.p, doc["points"][name] + shift, rtol=0.0, atol=1e-12)
         np.testing.assert_allclose(point.v, A.v, rtol=0.0, atol=1e-9 * np.abs(A.v).max())
+
+
+def first_fold(doc: Doc, sense: int) -> float:
+    """The crank's turn at the first limit position met turning it in ``sense`` from the drawn
+    pose: natural continuation on the triad's squared link lengths in P1, P2, P3 (steps of at
+    most 1e-2 rad, each predicted linearly from the last two poses and closed by
+    Newton-Raphson to 1e-13 m^2 within 1e-2 m of the prediction; halved where it does not
+    close, down to 1e-7 rad), then the fold in 50 digits from the last pose
+    (``reference_limit``). Independent of the solver's pseudo-arclength continuation."""
+    drawn = {k: np.array(v, dtype=float) for k, v in doc["points"].items()}
+    pairs = _links(doc)
+    squared = np.array([(drawn[a] - drawn[b]) @ (drawn[a] - drawn[b]) for a, b in pairs])
+    column = {name: 2 * k for k, name in enumerate(UNKNOWN)}
+
+    def close(z: np.ndarray, turn: float) -> np.ndarray | None:
+        c, s = math.cos(turn), math.sin(turn)
+        at = {**drawn, "A": drawn["O"] + np.array([[c, -s], [s, c]]) @ (drawn["A"] - drawn["O"])}
+        guess = z
+        for _ in range(12):
+            at |= {name: z[column[name] : column[name] + 2] for name in UNKNOWN}
+            F = np.array([(at[a] - at[b]) @ (at[a] - at[b]) for a, b in pairs]) - squared
+            if np.max(np.abs(F)) <= 1e-13:
+                return z if np.max(np.abs(z - guess)) <= 1e-2 else None
+            J = np.zeros((len(pairs), z.size))
+            for row, (a, b) in enumerate(pairs):
+                for name, side in ((a, 1.0), (b, -1.0)):
+                    if name in column:
+                        J[row, column[name] : column[name] + 2] = 2.0 * side * (at[a] - at[b])
+            z = z - np.linalg.solve(J, F)
+        return None
+
+    z = np.concatenate([drawn[name] for name in UNKNOWN])
+    previous, turn, step, last = z, 0.0, 1e-2, 0.0
+    while step >= 1e-7:
+        closed = close(z + (z - previous) * (step / last if last else 0.0), turn + sense * step)
+        if closed is None:
+            step /= 2.0
+            continue
+        previous, z, turn, last = z, closed, turn + sense * step, step
+    return reference_limit(doc, turn, z.reshape(3, 2))
+
+
+# Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914
+# and 50, points rounded to 1e-6) whose path the solver once followed past a limit position:
+# onto a neighbouring strand of the equations' solutions, and across two limit positions in one
+# step (an S, its middle between them; a narrow S near the step's end).
+FOLDED_TRIADS = {
+    "a neighbouring strand": {
+        "A": [-0.430253, 0.036583], "P1": [0.287808, 0.086376], "P2": [0.940573, 0.572657],
+        "P3": [0.680595, 0.583156], "G2": [2.303849, 1.839343], "G3": [2.197473, -0.558392],
+    },
+    "an S": {
+        "A": [0.262436, -0.210568], "P1": [1.090508, 0.987393], "P2": [1.321993, 0.750742],
+        "P3": [1.690463, 1.089357], "G2": [1.867958, 1.515987], "G3": [2.068845, -0.15752],
+    },
+    "a narrow S": {
+        "A": [0.373449, -0.050876], "P1": [0.744221, 0.880635], "P2": [0.34471, 0.620295],
+        "P3": [0.570638, 1.037479], "G2": [2.14702, 1.221792], "G3": [1.088902, -1.144264],
+    },
+    "a range wider than a turn": {
+        "A": [-0.346333, -0.017599], "P1": [1.253653, 0.589456], "P2": [1.157239, 0.597191],
+        "P3": [0.762273, 1.246077], "G2": [2.077144, 1.235374], "G3": [2.353222, -1.021928],
+    },
+}  # fmt: skip
+
+
+def folded_triad(name: str) -> Doc:
+    return {**TRIAD, "points": {"O": [0.0, 0.0], **FOLDED_TRIADS[name]}}
+
+
+@pytest.mark.parametrize("name", ["a neighbouring strand", "an S", "a narrow S"])
+def test_limits_are_the_first_folds_met_from_the_drawn_pose(name: str) -> None:
+    """The sweep's limit positions are the first folds met turning the crank either way from
+    the drawn pose (``first_fold``: natural continuation, then the 50-digit fold), to 1e-12
+    rad. Pseudo-arclength steps over a limit position are refused: one that lands on another
+    strand (the orientation sign(det [dF/dx; tau]) changes) and one whose quintic's turn is not
+    monotone (the path went back and forth). They had given -0.3253 for the S's -0.3032, 0.4986
+    for the narrow S's 0.0178, and a full turn for the first (limits -5.570 and 0.468)."""
+    doc = folded_triad(name)
+    result = sweep(parse_linkage(doc), 36, ["position"])
+    assert not result.feasible
+    low, high = (limit - drawn_crank(doc) for limit in result.limits)
+    assert low == pytest.approx(first_fold(doc, -1), abs=1e-12)
+    assert high == pytest.approx(first_fold(doc, 1), abs=1e-12)
+
+
+def test_a_range_wider_than_a_turn_is_a_full_turn_from_its_end() -> None:
+    """A triad whose limit positions lie 6.40 rad apart (-0.0553 and +6.3485 from the drawn
+    pose, the first folds either way: ``first_fold``): from turn 0 the crank turns through a
+    whole turn before meeting a limit, so ``Branch.limits(0, 2 pi)`` is None (as documented,
+    whatever the last step's overshoot past 2 pi meets); asked from -1 rad, the limits are the
+    two folds to 1e-12 rad."""
+    scene = parse_linkage(folded_triad("a range wider than a turn"))
+    assert continuation.Branch(scene).limits(0.0, 2.0 * math.pi) is None
+    limits = continuation.Branch(scene).limits(-1.0, 2.0 * math.pi)
+    assert limits is not None
+    folds = [first_fold(folded_triad("a range wider than a turn"), sense) for sense in (-1, 1)]
+    np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
