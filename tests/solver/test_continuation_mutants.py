@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from typing import Any
 
 import mpmath as mp
@@ -32,11 +33,13 @@ import numpy as np
 import pytest
 
 from solver import continuation
+from solver.assembly import DriverInput, assemble
 from solver.constraints import ConstraintSystem
 from solver.errors import NotAssemblable
 from solver.instant import analyze
 from solver.scene import parse_linkage
-from solver.sweeps import sweep
+from solver.sweeps import sweep, sweep_time
+from solver.topology import build_plan
 from tests.solver.test_newton import TRIAD, with_angle
 from tests.solver.test_newton_continuation import (
     TRIADS,
@@ -268,7 +271,9 @@ def test_a_segments_middle_and_the_predictor_are_exact_for_polynomials() -> None
     segment: exact for a quintic p(s) (and, with the curvatures estimated from the tangents, the
     cubic's: exact for a cubic); ``_predict`` is the second-order Taylor step, exact for a
     quadratic, with its curvature estimated from the last two tangents where not known; and
-    ``_Leg.arrays`` estimates unknown curvatures exactly for a quadratic (linear tangents)."""
+    ``_Leg.arrays`` estimates unknown curvatures exactly for a quadratic (linear tangents); with
+    the curvatures of the last two nodes known, ``_predict`` is the third-order step, kappa'
+    their difference over the step: exact for a cubic."""
     rng = np.random.default_rng(8)
     quintic, cubic, quadratic = (rng.uniform(-2.0, 2.0, (n, 3)) for n in (6, 4, 3))
     s0, h = 0.3, 0.45
@@ -278,6 +283,8 @@ def test_a_segments_middle_and_the_predictor_are_exact_for_polynomials() -> None
     for nodes, curvature in (([s0], True), ([0.1, s0], False), ([-0.4, 0.1, s0], False)):
         predicted = continuation._predict(_leg(quadratic, nodes, curvature), h)
         np.testing.assert_allclose(predicted, _polynomial(quadratic, s0 + h), atol=1e-14)
+    predicted = continuation._predict(_leg(cubic, [0.1, s0], True), h)
+    np.testing.assert_allclose(predicted, _polynomial(cubic, s0 + h), atol=1e-14)
     kappa = _leg(quadratic, [-0.4, 0.1, s0, s0 + h], False).arrays(1)[3]
     np.testing.assert_allclose(kappa, np.tile(2.0 * quadratic[2], (3, 1)), atol=1e-13)
 
@@ -426,3 +433,62 @@ def test_a_range_wider_than_a_turn_is_a_full_turn_from_its_end() -> None:
     assert limits is not None
     folds = [first_fold(folded_triad("a range wider than a turn"), sense) for sense in (-1, 1)]
     np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
+
+
+def test_a_singular_bordered_system_is_solved_by_least_squares() -> None:
+    """``_bordered_solve`` falls back to least squares where [J; row] is singular: x + y = 2
+    bordered by the same row has the minimum-norm solution (1, 1) (1e-15)."""
+    J, row = np.array([[1.0, 1.0]]), np.array([1.0, 1.0])
+    z = continuation._bordered_solve(J, row, np.array([2.0]), 2.0)
+    np.testing.assert_allclose(z, [1.0, 1.0], rtol=0.0, atol=1e-15)
+
+
+def slot_crank_triad() -> Doc:
+    """The rocking triad with its crank a single point O (no drawn angle: its angle is read as
+    0 at the drawn pose) carrying a slot at 45 deg through O, in which T's P1 slides instead of
+    riding on L1; T, L2, L3 are a Newton group (limit positions -0.591 and +0.003 rad)."""
+    doc: Doc = copy.deepcopy(TRIAD)
+    del doc["links"]["L1"], doc["points"]["A"]
+    doc["links"]["crank"] = {"points": ["O"]}
+    doc["joints"] = [j for j in doc["joints"] if j["point"] not in ("A", "P1")]
+    doc["joints"].append(
+        {"type": "slider", "point": "P1", "links": ["crank", "T"], "axis": [1.0, 1.0]}
+    )
+    return doc
+
+
+def test_a_law_past_a_limit_names_the_first_sample_past_it() -> None:
+    """The slot-crank triad driven by the law -t from t = 0 to 1 s (11 samples, turns 0, -0.1,
+    ..., -1 rad): the first sample past its limit position is -0.6 rad (natural continuation
+    from the drawn pose reaches -0.58 and is lost before -0.6), and the message gives that
+    sample's crank angle, -34.3775 deg (a crank of one point has angle 0 as drawn)."""
+    doc = slot_crank_triad()
+    scene = parse_linkage(doc)
+    reference_poses(scene, np.array([-0.58]), ())
+    with pytest.raises(AssertionError, match="lost the loop"):
+        reference_poses(scene, np.array([-0.6]), ())
+    driven = {**doc, "drivers": [{"link": "crank", "angle_law": "-t"}]}
+    with pytest.raises(NotAssemblable) as caught:
+        sweep_time(parse_linkage(driven), 0.0, 1.0, 11)
+    (angle,) = re.findall(r"crank angle (\S+) deg", str(caught.value))
+    assert float(angle) == pytest.approx(math.degrees(-0.6), abs=1e-3)
+    assert "turning crank from its drawn pose either way meets a limit position first" in str(
+        caught.value
+    )
+
+
+def test_a_tolerance_out_of_reach_is_reported_with_the_residual() -> None:
+    """The rocking triad at 6 turns inside its limits (not the drawn pose, which closes exactly)
+    asked to a Newton tolerance of 1e-20 of the size (below rounding, ~1e-16): every sample is
+    reached but none closes to it, and the message gives the residual against that tolerance
+    (1e-20 times the size, 3.1e-20 m), not a limit position."""
+    scene = parse_linkage(TRIAD)
+    turns = np.linspace(-0.3, 0.6, 6)
+    inputs = [DriverInput(turns, np.zeros(6), np.zeros(6))]
+    groups = continuation.Continuation(scene, 1e-20)
+    motion = assemble(scene, build_plan(scene), inputs, 0, continuation=True, newton_groups=groups)
+    assert not np.any(motion.feasible)
+    (message,) = motion.failures
+    assert message.startswith("Newton-Raphson did not close the loop of T, L1, L2, L3: residual")
+    tolerance = float(re.findall(r"> tolerance (\S+) m", message)[0])
+    assert tolerance == pytest.approx(1e-20 * scene.size, rel=1e-2)
