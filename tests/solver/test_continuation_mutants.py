@@ -492,3 +492,16 @@ def test_a_tolerance_out_of_reach_is_reported_with_the_residual() -> None:
     assert message.startswith("Newton-Raphson did not close the loop of T, L1, L2, L3: residual")
     tolerance = float(re.findall(r"> tolerance (\S+) m", message)[0])
     assert tolerance == pytest.approx(1e-20 * scene.size, rel=1e-2)
+
+
+def test_a_leg_of_one_segment_is_refined_like_any_other(monkeypatch: pytest.MonkeyPatch) -> None:
+    """/analyze of the rocking triad 0.05 rad from its drawn pose follows its path one step
+    (0.1 of arclength: the leg is a single segment) and, with the branch gap lowered to 1e-11 so
+    that the sample (which starts some 1e-10 of the size from its root) has its segment split
+    (``Branch.refine``; see test_continuation_branch.py), still poses P1, P2, P3 at the 50-digit
+    roots to 1e-12 m."""
+    monkeypatch.setattr(continuation, "BRANCH_GAP", 1e-11)
+    turn = 0.05
+    result = analyze(parse_linkage(with_angle(TRIAD, math.degrees(drawn_crank(TRIAD) + turn))))
+    points = np.array([result.points[name].position for name in UNKNOWN])
+    np.testing.assert_allclose(points, reference_points(TRIAD, turn, points), rtol=0.0, atol=1e-12)
