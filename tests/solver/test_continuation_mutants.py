@@ -505,3 +505,19 @@ def test_a_leg_of_one_segment_is_refined_like_any_other(monkeypatch: pytest.Monk
     result = analyze(parse_linkage(with_angle(TRIAD, math.degrees(drawn_crank(TRIAD) + turn))))
     points = np.array([result.points[name].position for name in UNKNOWN])
     np.testing.assert_allclose(points, reference_points(TRIAD, turn, points), rtol=0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("index", [26, 37, 39])
+def test_limit_positions_are_located_on_their_strand_to_rounding(index: int) -> None:
+    """``Branch.limits`` of random triads 26, 37 and 39 (tests/solver/test_newton_continuation,
+    seed 14) equal the first folds met either way from the drawn pose (``first_fold``) to 1e-12
+    rad. The fold search corrects its trials from the node's second-order prediction (on the
+    node's normal plane, where the first-order one lands triad 39's trial on another strand,
+    0.47 rad off) and takes Newton's steps on the tangent's driver component with its slope per
+    unit of the step (a wrong slope or arclength factor stalls 1e-5 rad off on triad 26, 2e-12
+    on triad 37)."""
+    doc = triads(40)[index]
+    limits = continuation.Branch(parse_linkage(doc)).limits(0.0, 2.0 * math.pi)
+    assert limits is not None
+    folds = [first_fold(doc, sense) for sense in (-1, 1)]
+    np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
