@@ -377,10 +377,11 @@ def first_fold(doc: Doc, sense: int) -> float:
     return reference_limit(doc, turn, z.reshape(3, 2))
 
 
-# Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914
-# and 50, points rounded to 1e-6) whose path the solver once followed past a limit position:
-# onto a neighbouring strand of the equations' solutions, and across two limit positions in one
-# step (an S, its middle between them; a narrow S near the step's end).
+# Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914,
+# 658 and 50, points rounded to 1e-6) whose path the solver once followed past a limit
+# position: onto a neighbouring strand of the equations' solutions, across two limit positions
+# in one step (an S, its middle between them; a narrow S near the step's end), or would with a
+# corrector that went on where its steps did not contract.
 FOLDED_TRIADS = {
     "a neighbouring strand": {
         "A": [-0.430253, 0.036583], "P1": [0.287808, 0.086376], "P2": [0.940573, 0.572657],
@@ -394,6 +395,10 @@ FOLDED_TRIADS = {
         "A": [0.373449, -0.050876], "P1": [0.744221, 0.880635], "P2": [0.34471, 0.620295],
         "P3": [0.570638, 1.037479], "G2": [2.14702, 1.221792], "G3": [1.088902, -1.144264],
     },
+    "a corrector that must contract": {
+        "A": [0.082644, -0.183428], "P1": [1.109792, 0.757776], "P2": [0.67889, 0.429424],
+        "P3": [1.132662, 0.372174], "G2": [1.171368, 1.474349], "G3": [2.391489, -0.498889],
+    },
     "a range wider than a turn": {
         "A": [-0.346333, -0.017599], "P1": [1.253653, 0.589456], "P2": [1.157239, 0.597191],
         "P3": [0.762273, 1.246077], "G2": [2.077144, 1.235374], "G3": [2.353222, -1.021928],
@@ -405,14 +410,18 @@ def folded_triad(name: str) -> Doc:
     return {**TRIAD, "points": {"O": [0.0, 0.0], **FOLDED_TRIADS[name]}}
 
 
-@pytest.mark.parametrize("name", ["a neighbouring strand", "an S", "a narrow S"])
+@pytest.mark.parametrize(
+    "name", ["a neighbouring strand", "an S", "a narrow S", "a corrector that must contract"]
+)
 def test_limits_are_the_first_folds_met_from_the_drawn_pose(name: str) -> None:
     """The sweep's limit positions are the first folds met turning the crank either way from
     the drawn pose (``first_fold``: natural continuation, then the 50-digit fold), to 1e-12
     rad. Pseudo-arclength steps over a limit position are refused: one that lands on another
     strand (the orientation sign(det [dF/dx; tau]) changes) and one whose quintic's turn is not
     monotone (the path went back and forth). They had given -0.3253 for the S's -0.3032, 0.4986
-    for the narrow S's 0.0178, and a full turn for the first (limits -5.570 and 0.468)."""
+    for the narrow S's 0.0178, and a full turn for the first (limits -5.570 and 0.468); a
+    corrector that does not stop where its steps stop contracting gives 3.4654 for the last
+    one's 3.4696."""
     doc = folded_triad(name)
     result = sweep(parse_linkage(doc), 36, ["position"])
     assert not result.feasible
