@@ -378,11 +378,11 @@ def first_fold(doc: Doc, sense: int) -> float:
 
 
 # Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914,
-# 489, 658 and 50, points rounded to 1e-6) whose path the solver once followed past a limit
+# 489, 658, 50 and 307, points rounded to 1e-6) whose path the solver once followed past a limit
 # position: onto a neighbouring strand of the equations' solutions, across two limit positions
 # in one step (an S, its middle between them; a narrow S near the step's end; an S that only the
 # step's first tangent shows), or would with a corrector that went on where its steps did not
-# contract.
+# contract; and two whose limits lie more than a turn apart.
 FOLDED_TRIADS = {
     "a neighbouring strand": {
         "A": [-0.430253, 0.036583], "P1": [0.287808, 0.086376], "P2": [0.940573, 0.572657],
@@ -407,6 +407,10 @@ FOLDED_TRIADS = {
     "a range wider than a turn": {
         "A": [-0.346333, -0.017599], "P1": [1.253653, 0.589456], "P2": [1.157239, 0.597191],
         "P3": [0.762273, 1.246077], "G2": [2.077144, 1.235374], "G3": [2.353222, -1.021928],
+    },
+    "a range wider than a turn, its upper limit near": {
+        "A": [0.006964, 0.313029], "P1": [1.388362, 0.610616], "P2": [0.894664, -0.001645],
+        "P3": [1.372408, 0.172899], "G2": [1.535886, 2.366826], "G3": [2.140691, -0.830231],
     },
 }  # fmt: skip
 
@@ -531,6 +535,21 @@ def test_limit_positions_are_located_on_their_strand_to_rounding(index: int) -> 
     on triad 37)."""
     doc = triads(40)[index]
     limits = continuation.Branch(parse_linkage(doc)).limits(0.0, 2.0 * math.pi)
+    assert limits is not None
+    folds = [first_fold(doc, sense) for sense in (-1, 1)]
+    np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
+
+
+def test_a_range_wider_than_a_turn_is_a_full_turn_away_from_its_near_limit() -> None:
+    """A triad whose limit positions lie 7.23 rad apart, -7.181 and +0.0447 from the drawn pose:
+    asked from -2 pi to 0 (a sweep turning the crank backwards) it meets no limit within that
+    whole turn, so ``Branch.limits`` is None, though +0.0447 lies just past 0; asked from 0 to
+    2 pi it meets +0.0447 and gives both limits, the first folds either way (``first_fold``) to
+    1e-12 rad."""
+    doc = folded_triad("a range wider than a turn, its upper limit near")
+    scene = parse_linkage(doc)
+    assert continuation.Branch(scene).limits(-2.0 * math.pi, 0.0) is None
+    limits = continuation.Branch(scene).limits(0.0, 2.0 * math.pi)
     assert limits is not None
     folds = [first_fold(doc, sense) for sense in (-1, 1)]
     np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
