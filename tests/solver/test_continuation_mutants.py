@@ -524,16 +524,31 @@ def test_a_leg_of_one_segment_is_refined_like_any_other(monkeypatch: pytest.Monk
     np.testing.assert_allclose(points, reference_points(TRIAD, turn, points), rtol=0.0, atol=1e-12)
 
 
-@pytest.mark.parametrize("index", [26, 37, 39])
-def test_limit_positions_are_located_on_their_strand_to_rounding(index: int) -> None:
-    """``Branch.limits`` of random triads 26, 37 and 39 (tests/solver/test_newton_continuation,
-    seed 14) equal the first folds met either way from the drawn pose (``first_fold``) to 1e-12
-    rad. The fold search corrects its trials from the node's second-order prediction (on the
-    node's normal plane, where the first-order one lands triad 39's trial on another strand,
-    0.47 rad off) and takes Newton's steps on the tangent's driver component with its slope per
-    unit of the step (a wrong slope or arclength factor stalls 1e-5 rad off on triad 26, 2e-12
-    on triad 37)."""
-    doc = triads(40)[index]
+# Random triads (seed 14 as above: numbers 122 and 450, points rounded to 1e-6) whose limit
+# positions the fold search finds only from good trials.
+LOCATED_TRIADS = {
+    "triad 122": {
+        "A": [0.169368, 0.249326], "P1": [1.315089, 0.941657], "P2": [0.866878, 0.844602],
+        "P3": [1.212406, 1.190112], "G2": [1.433027, 1.413623], "G3": [1.255425, -1.046427],
+    },
+    "triad 450": {
+        "A": [0.113967, 0.361143], "P1": [1.048473, 0.084138], "P2": [0.733714, 0.29598],
+        "P3": [0.419476, -0.29773], "G2": [1.361347, 2.184668], "G3": [2.121344, -1.438174],
+    },
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", list(LOCATED_TRIADS))
+def test_limit_positions_are_located_on_their_strand_to_rounding(name: str) -> None:
+    """``Branch.limits`` of random triads 122 and 450 equal the first folds met either way from
+    the drawn pose (``first_fold``) to 1e-12 rad. The fold search corrects each trial from the
+    node's second-order prediction x + s tau + s^2/2 kappa on the normal plane at s (from x + s
+    tau, or with 3 s^2/2 kappa, or -s^2/2 kappa, triad 122's trials land on other points of that
+    plane's section of the path: 0.07 to 0.93 rad off), starts from the node's Newton trial
+    -g / g' (from another, triad 450's upper limit comes out 0.07 rad off) and takes Newton's
+    steps with the slope per unit of the step (a wrong slope or arclength factor: 9e-3 and 0.07
+    rad off)."""
+    doc = {**TRIAD, "points": {"O": [0.0, 0.0], **LOCATED_TRIADS[name]}}
     limits = continuation.Branch(parse_linkage(doc)).limits(0.0, 2.0 * math.pi)
     assert limits is not None
     folds = [first_fold(doc, sense) for sense in (-1, 1)]
