@@ -68,6 +68,10 @@ INTERPOLATION_RESIDUAL = 1e-3
 # Where a leg's middles lie further than this from the path, its samples would start where
 # Newton-Raphson needs a second iteration: every segment is halved first (``Branch._halved``).
 HALVING_RESIDUAL = 1e-5
+# A path closes after a whole turn where the two poses agree this closely (relative to the size;
+# radians): far above their polish (1e-13 times their condition number), far below the distance
+# between two assembly modes at one driver angle away from a bifurcation.
+CLOSURE = 1e-6
 FOLD_TANGENT = 1e-8  # the tangent's driver component at a located limit (turn error ~ 1e-16)
 FOLD_XTOL = 1e-12  # or the bracket on the arclength this short
 FOLD_ITERATIONS = 60
@@ -394,17 +398,35 @@ class Branch:
 
     def limits(self, low: float, high: float) -> tuple[float, float] | None:
         """None if the driver turns from ``low`` to ``high`` (and through a whole turn) with no
-        limit position; else the turns of the two limit positions around the drawn pose."""
+        limit position and the path closes after that turn (``closes``); else the turns of the
+        two limit positions around the drawn pose (a rocker whose limits lie more than a turn
+        apart: its range is wider than a turn, whichever way the driver turns)."""
         high = max(high, low + 2.0 * math.pi, 0.0)
         # Reached: a limit that the last step's overshoot met past them does not count.
-        if self.reaches(high) and self.reaches(min(low, 0.0)):
+        start = min(low, 0.0)
+        if self.reaches(high) and self.reaches(start) and self.closes(start):
             return None
-        # One leg stopped at a limit: the path is not a whole turn, so the other leg stops too.
+        # Not a whole turn (or one that does not close): both legs stop at a limit.
         ahead = self.extend(1, 4.0 * math.pi)
         behind = self.extend(-1, -4.0 * math.pi)
         if ahead.limit is None or behind.limit is None:
             return None
         return behind.limit, ahead.limit
+
+    def closes(self, turn: float) -> bool:
+        """Whether the pose after a whole turn of the driver from ``turn`` is the pose at
+        ``turn`` (both polished; positions within CLOSURE of the size, rotations modulo 2 pi
+        within CLOSURE rad): the path is a circuit of one turn, as a full revolution's sweep
+        needs. A rocker whose limits lie more than a turn apart passes ``turn`` + 2 pi on
+        another part of its path."""
+        a, b = (self.pose(t, newton.NEWTON_TOLERANCE) for t in (turn, turn + 2.0 * math.pi))
+        if a is None or b is None:
+            return False
+        d = b - a
+        d[2::3] = np.remainder(d[2::3] + math.pi, 2.0 * math.pi) - math.pi
+        d[0::3] /= self.scene.size
+        d[1::3] /= self.scene.size
+        return bool(np.max(np.abs(d)) <= CLOSURE)
 
     def guesses(self, turns: Array) -> tuple[Array, Array, Array]:
         """Interpolated coordinates (unscaled, (K, n)) at ``turns`` by the branch rule, which
