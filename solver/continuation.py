@@ -68,9 +68,10 @@ INTERPOLATION_RESIDUAL = 1e-3
 # Where a leg's middles lie further than this from the path, its samples would start where
 # Newton-Raphson needs a second iteration: every segment is halved first (``Branch._halved``).
 HALVING_RESIDUAL = 1e-5
-# A path closes after a whole turn where the two poses agree this closely (relative to the size;
-# radians): far above their polish (1e-13 times their condition number), far below the distance
-# between two assembly modes at one driver angle away from a bifurcation.
+# A path closes after a whole turn where the two poses agree this closely (path coordinates:
+# radians, lengths over the size): far above their correction (NODE_TOLERANCE times their
+# condition number), far below the distance between two assembly modes at one driver angle
+# away from a bifurcation.
 CLOSURE = 1e-6
 FOLD_TANGENT = 1e-8  # the tangent's driver component at a located limit (turn error ~ 1e-16)
 FOLD_XTOL = 1e-12  # or the bracket on the arclength this short
@@ -257,6 +258,7 @@ class Branch:
             self.bending = None if scaled is None else scaled.bending
             self.lift: Callable[[Array], Array] = lambda y: y
             self.y0, self.free = x0, column + 2
+            self.angles = np.arange(x0.size) % 3 == 2
             return
         known = scaled.known_terms(self.known, 1, 0, self.held)[0][0]
         fixed = rotations.fixed(known)
@@ -264,6 +266,7 @@ class Branch:
         self.bending = rotations.bending
         self.lift = lambda y: rotations.assemble(y, rotations.translations(y, known))
         self.y0, self.free = x0[2::3], column // 3
+        self.angles = np.ones(self.y0.size, dtype=bool)
 
     def _f(self, x: Array) -> tuple[Array, Array]:
         """Scaled residual F(y) and Jacobian dF/dy at path coordinates y."""
@@ -415,17 +418,28 @@ class Branch:
 
     def closes(self, turn: float) -> bool:
         """Whether the pose after a whole turn of the driver from ``turn`` is the pose at
-        ``turn`` (both polished; positions within CLOSURE of the size, rotations modulo 2 pi
-        within CLOSURE rad): the path is a circuit of one turn, as a full revolution's sweep
-        needs. A rocker whose limits lie more than a turn apart passes ``turn`` + 2 pi on
-        another part of its path."""
-        a, b = (self.pose(t, newton.NEWTON_TOLERANCE) for t in (turn, turn + 2.0 * math.pi))
-        if a is None or b is None:
-            return False
-        d = b - a
-        d[2::3] = np.remainder(d[2::3] + math.pi, 2.0 * math.pi) - math.pi
-        d[0::3] /= self.scene.size
-        d[1::3] /= self.scene.size
+        ``turn``: both taken from the path and corrected with the driver's turn held (``_correct``
+        bordered by the driver's axis), their coordinates within CLOSURE (rotations modulo
+        2 pi). Then the path is a circuit of one turn, as a full revolution's sweep needs; a
+        rocker whose limits lie more than a turn apart passes ``turn`` + 2 pi on another part of
+        its path; a turn the path does not reach does not close."""
+        axis = np.zeros(self.y0.size)
+        axis[self.free] = 1.0
+        ends = []
+        for t in (turn, turn + 2.0 * math.pi):
+            if t == 0.0:  # the drawn pose
+                ends.append(self.y0)
+                continue
+            sense = 1 if t > 0.0 else -1
+            if not self.reaches(t):
+                return False
+            start = self._segments(self.legs[sense], sense, np.array([t]))[0]
+            y, _, converged, _ = self._correct(start, axis)
+            if not converged:
+                return False
+            ends.append(y)
+        d = ends[1] - ends[0]
+        d[self.angles] = np.remainder(d[self.angles] + math.pi, 2.0 * math.pi) - math.pi
         return bool(np.max(np.abs(d)) <= CLOSURE)
 
     def guesses(self, turns: Array) -> tuple[Array, Array, Array]:
