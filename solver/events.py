@@ -4,8 +4,12 @@ When the target is a point of M's own carrier, coincidence means M's path coordi
 the target's (plus whole turns of an arc). Time is marched in windows from t = 0, stopping at the
 requested occurrence; in each window s(t) is split at the zeros of s'(t) into monotonic pieces,
 so every level between a piece's end values is crossed exactly once there and is found by
-Brent's method. A window is narrowed until s'(t) turns at most a few times in it, so a fast
-oscillation is resolved however long the search. For any other target the distance
+Brent's method. A window is narrowed until, on every interval between two of its samples, the
+range of s' or that of s'' keeps one sign (ranges of the exact derivatives by interval
+arithmetic, ``TimeLaw.rate_ranges``): s is then monotonic there, or s' is and s turns at most
+once, at a sign change of s' between the samples. So no turning point hides between samples,
+however the samples alias a fast oscillation; only a window 1e-12 t_max wide (the resolution of
+the times) is searched as it is. For any other target the distance
 |M(t) - P(t)| is sampled with the linkage (assembled with continuation from t = 0), and at each
 local minimum (the first and last samples' on their one side) the root of
 d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken, the instants between samples assembled on the
@@ -33,7 +37,6 @@ from solver.scene import MAX_TIME, LinkageScene, MovingPoint
 from solver.topology import build_plan
 
 WINDOW = 64  # samples per window of the path-coordinate search
-MAX_TURNS_PER_WINDOW = 4  # more sign changes of s'' than this: the window is too wide
 MAX_SEARCH_SAMPLES = 4_000_000  # evaluations of s(t) before the search gives up
 DISTANCE_GRID = 4096  # samples of |M - P| over [0, t_max]
 MAX_OCCURRENCE = 10_000
@@ -132,15 +135,18 @@ def _crossings_of_levels(
     times: list[float] = []
     while t < t_max and len(times) < wanted:
         grid = np.linspace(t, min(t + width, t_max), WINDOW + 1)
-        _, rates, rates_dot = law.evaluate(grid)
+        rates = law.evaluate(grid)[1]
         evaluated += grid.size
         if evaluated > MAX_SEARCH_SAMPLES:
             raise LimitExceeded(
                 f"{mp.name} moves too fast to search up to t_max = {t_max:g} s "
                 f"(more than {MAX_SEARCH_SAMPLES} samples): lower t_max"
             )
-        turning = int(np.count_nonzero(rates_dot[:-1] * rates_dot[1:] < 0.0))
-        if turning > MAX_TURNS_PER_WINDOW and width > 1e-12 * t_max:
+        # Between two samples s is monotonic where s' keeps one sign; where s'' does, s' is
+        # monotonic and s turns at most once, where s' changes sign between the samples.
+        (v_low, v_high), (a_low, a_high) = law.rate_ranges(grid[:-1], grid[1:])
+        resolved = (v_low >= 0.0) | (v_high <= 0.0) | (a_low >= 0.0) | (a_high <= 0.0)
+        if not resolved.all() and width > 1e-12 * t_max:
             width /= 4.0
             continue
         breaks = [grid[0], *_zeros(s_dot, grid, rates), grid[-1]]
@@ -152,8 +158,7 @@ def _crossings_of_levels(
                     if c > 1e-12 * t_max and (not times or c - times[-1] > 1e-12 * t_max)
                 ]
         t = grid[-1]
-        if turning == 0:
-            width = min(2.0 * width, widest)
+        width = min(2.0 * width, widest)
     return times
 
 

@@ -212,16 +212,21 @@ def test_search_stops_at_the_occurrence_asked_for() -> None:
         _time(doc, "T", 3, 1.0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="events.py bug: with these t_max the search windows' sampled turns of s'' (aliased: "
-    "sin(1000 t) sampled every t_max / 4096 s) do not narrow the first windows enough, and both "
-    "crossings are missed (no_event); t_max = 5e4 and 1e6 s find them",
-)
-@pytest.mark.parametrize("t_max", [1234.5, 2.1e5])
+# t_max at which the sampled turns of s'' (the old narrowing rule) missed both crossings of
+# 0.01 sin(1000 t) - t = 5 mm, then a fixed random list (log-uniform in [1, 1e6] s, seed 2026;
+# of it 6535, 8255, 32840 and 269700 s gave no_event before the fix and 633500 s limit_exceeded),
+# and two at which the old rule found them.
+FAILED_BEFORE = [99.0, 1234.5, 2.1e5]
+RANDOM_T_MAX = [1.194, 11.85, 636.2, 6535.0, 8255.0, 32840.0, 269700.0, 633500.0]
+
+
+@pytest.mark.parametrize("t_max", [*FAILED_BEFORE, *RANDOM_T_MAX, 10.0, 1e6])
 def test_crossings_of_a_fast_law_are_found_whatever_t_max(t_max: float) -> None:
-    """The law of ``test_search_stops_at_the_occurrence_asked_for``: its first crossing (the
-    mpmath root near 0.59 ms, 1e-9) must not depend on t_max."""
+    """The law of ``test_search_stops_at_the_occurrence_asked_for``: its two crossings (the
+    mpmath roots either side of its peak at 1.47 ms, near 0.59 and 2.32 ms, 1e-9) must not
+    depend on t_max. Before the fix the windows' sampled turns of s''
+    (sin(1000 t) sampled every t_max / 4096 s, aliased) left the first window wide at these
+    t_max and both crossings were missed."""
     mpmath.mp.dps = 40
 
     def s(t: Any) -> Any:
@@ -229,15 +234,44 @@ def test_crossings_of_a_fast_law_are_found_whatever_t_max(t_max: float) -> None:
 
     doc = _slot("0.01*sin(1000*t) - t", [0.25, 0.25], {"T": 0.005})
     _assert_time(_time(doc, "T", 1, t_max), _mp_root(s, 0.0, 1.47e-3), "first")
+    _assert_time(_time(doc, "T", 2, t_max), _mp_root(s, 1.47e-3, 3.14e-3), "second")
+
+
+def _kth_swing(k: int) -> float:
+    """The k-th t > 0 with 0.01 cos(3000 t) = -0.006: 3000 t = a + 2 pi m (k odd) or
+    2 pi (m + 1) - a (k even), a = acos(-0.6), m = (k - 1) // 2 (closed form)."""
+    a, m = math.acos(-0.6), (k - 1) // 2
+    return (a + 2.0 * math.pi * m if k % 2 else 2.0 * math.pi * (m + 1) - a) / 3000.0
+
+
+@pytest.mark.parametrize(
+    "t_max",
+    [8.192 * math.pi, 33.82, 2094.0, 5631.0, 45090.0, 1.075, 642.1, 241700.0],
+    ids=lambda t_max: f"{t_max:g}",
+)
+def test_every_swing_of_a_fast_cosine_law_is_counted_whatever_t_max(t_max: float) -> None:
+    """s = 0.01 cos(3000 t) on a slot (period 2.1 ms) passes T at s = -6 mm twice a period, at
+    the closed-form times of ``_kth_swing``: the 1st, 2nd, 3rd and 2001st (2.0951 s) must be
+    found whatever t_max. Before the fix the first was reported at 0.034 s (t_max = 8.192 pi
+    s: every sample of the first window a whole number of periods after the one before),
+    0.141 s (33.82 s), 2.62 s (2094 s), 1.62 s (5631 s) or 35.4 s (45090 s): a silent wrong
+    answer. The other three t_max (random, like the four before them: log-uniform in
+    [1, 1e6] s, seed 7) were right before."""
+    doc = _slot("0.01*cos(3000*t)", [0.25, 0.25], {"T": -0.006})
+    for k in (1, 2, 3):
+        _assert_time(_time(doc, "T", k, t_max), _kth_swing(k), f"swing {k}")
+    if t_max > _kth_swing(2001):
+        _assert_time(_time(doc, "T", 2001, t_max), _kth_swing(2001), "swing 2001")
 
 
 def test_too_fast_a_law_is_refused_when_the_samples_run_out(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """s = 0.2 sin(1000 t) never reaches T (0.3 m along the slot); the search windows shrink
-    to a few of its 6.3 ms periods, so up to t_max = 60 s it needs about 5000 windows of 65
-    samples. With the sample limit lowered to 100 windows (6500 samples) the search is
-    refused (limit_exceeded), with the limit and t_max in the message."""
+    until s' or s'' keeps one sign between two samples (59 ms, 52 deg of its phase between
+    samples; twice as wide is tried after each), so up to t_max = 60 s it needs about 2000
+    windows of 65 samples. With the sample limit lowered to 100 windows (6500 samples) the
+    search is refused (limit_exceeded), with the limit and t_max in the message."""
     monkeypatch.setattr(events, "MAX_SEARCH_SAMPLES", 6500)
     doc = _slot("0.2*sin(1000*t)", [0.25, 0.25], {"T": 0.3})
     message = r"M moves too fast to search up to t_max = 60 s \(more than 6500 samples\)"
