@@ -269,14 +269,54 @@ def test_too_fast_a_law_is_refused_when_the_samples_run_out(
 ) -> None:
     """s = 0.2 sin(1000 t) never reaches T (0.3 m along the slot); the search windows shrink
     until s' or s'' keeps one sign between two samples (59 ms, 52 deg of its phase between
-    samples; twice as wide is tried after each), so up to t_max = 60 s it needs about 2000
-    windows of 65 samples. With the sample limit lowered to 100 windows (6500 samples) the
-    search is refused (limit_exceeded), with the limit and t_max in the message."""
+    samples; twice as wide is tried after each), so up to t_max = 60 s it evaluates the law
+    about 300 000 times (2000 windows of 65 samples, and Brent's method at its 19 000 turning
+    points). With the limit lowered to 6500 evaluations the search is refused (limit_exceeded),
+    with the limit and t_max in the message."""
     monkeypatch.setattr(events, "MAX_SEARCH_SAMPLES", 6500)
     doc = _slot("0.2*sin(1000*t)", [0.25, 0.25], {"T": 0.3})
     message = r"M moves too fast to search up to t_max = 60 s \(more than 6500 samples\)"
     with pytest.raises(LimitExceeded, match=message):
         _time(doc, "T", 1, 60.0)
+
+
+def test_the_sample_limit_counts_brents_evaluations(monkeypatch: pytest.MonkeyPatch) -> None:
+    """s = 1000 t on a circle of radius 1 mm passes T (0.5 rad along it) every 6.28 us: 7958
+    times by t_max = 0.05 s (closed form: (0.05 s x 1000 m/s - 0.5 mm) / 2 pi mm, rounded
+    up), so occurrence 10 000 is no_event. The law is monotonic, so the 64 windows of 65
+    samples are never narrowed (4160 samples); the crossings cost Brent's method about 10
+    evaluations each. With the limit lowered to 20 000 evaluations the search is refused:
+    the limit bounds all the work, not only the windows' samples."""
+    R = 1e-3
+    points = {
+        "C": [0.3, -0.2],
+        "S": [0.3 + R, -0.2],
+        "T": [0.3 + R * math.cos(0.5), -0.2 + R * math.sin(0.5)],
+    }
+    doc = _disc("1000*t", {"type": "arc", "center": "C", "start": "S", "direction": "ccw"}, points)
+    with pytest.raises(NoEvent, match=r"M reaches T 7958 time\(s\) in 0 < t <= 0.05 s"):
+        _time(doc, "T", 10_000, 0.05)
+    monkeypatch.setattr(events, "MAX_SEARCH_SAMPLES", 20_000)
+    with pytest.raises(LimitExceeded, match=r"more than 20000 samples"):
+        _time(doc, "T", 10_000, 0.05)
+
+
+def test_two_crossings_closer_than_the_resolution_are_one_meeting() -> None:
+    """s = ((t - 1)^2 - 1e-10)(2e4 - t) on a slot crosses its start S at 1 -+ 1e-5 s and at
+    2e4 s (closed form: the roots of the factors). Searched up to t_max = 1e6 s the answer is
+    resolved to 1e-10 t_max = 1e-4 s, so the two crossings 2e-5 s apart are one meeting (at
+    the first of them) and the second meeting is the one at 2e4 s (before the fix: no_event,
+    the search stopping once it had two crossings, which then counted as one). Up to
+    t_max = 10 s (resolution 1e-9 s) they are two meetings, and the only ones."""
+    doc = _slot("((t - 1)^2 - 1e-10)*(2e4 - t)", [0.25, 0.25], {})
+    _assert_time(_time(doc, "S", 1, 1e6), 1.0 - 1e-5, "the pair, as one meeting")
+    _assert_time(_time(doc, "S", 2, 1e6), 2e4, "the root at 2e4 s")
+    with pytest.raises(NoEvent, match=r"M reaches S 2 time\(s\)"):
+        _time(doc, "S", 3, 1e6)
+    _assert_time(_time(doc, "S", 1, 10.0), 1.0 - 1e-5, "first up to 10 s")
+    _assert_time(_time(doc, "S", 2, 10.0), 1.0 + 1e-5, "second up to 10 s")
+    with pytest.raises(NoEvent, match=r"M reaches S 2 time\(s\)"):
+        _time(doc, "S", 3, 10.0)
 
 
 def test_a_crossing_at_the_resolution_of_t_zero_is_the_start() -> None:
