@@ -12,11 +12,11 @@ sign change of s' between the samples. So no turning point hides between samples
 samples alias a fast oscillation; only a window 1e-12 t_max wide (the resolution of the times)
 is searched as it is. For any other target the distance |M(t) - P(t)| is sampled with the
 linkage (assembled with continuation from t = 0), and at each local minimum (the first and last
-samples' on their one side) the root of d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken, the
-instants between samples assembled on the branches the samples followed; a minimum below
-``COINCIDENCE_TOLERANCE`` of the scene size counts as a meeting. Either way, times less than
-1e-10 t_max apart are one meeting (the resolution of the answer). The event's position is that
-of the linkage followed from t = 0.
+samples' on their one side), in time order up to the occurrence, the root of
+d(d^2)/dt = 2 (M - P).(v_M - v_P) is taken, the instants between samples assembled on the
+branches the samples followed; a minimum below ``COINCIDENCE_TOLERANCE`` of the scene size
+counts as a meeting. Either way, times less than 1e-10 t_max apart are one meeting (the
+resolution of the answer). The event's position is that of the linkage followed from t = 0.
 """
 
 from __future__ import annotations
@@ -183,11 +183,12 @@ def _crossings_of_levels(
 
 def _meetings_off_carrier(
     scene: LinkageScene, mp: MovingPoint, target: str, t_max: float
-) -> list[float]:
-    """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance): sampled on
-    the distance grid, assembled with continuation from t = 0, each minimum (a first or last
-    sample's included, on its one side) refined by Brent's method on the rate of approach, the
-    instants between samples assembled on the branches followed there (``branches_at``)."""
+) -> Iterator[float]:
+    """Local minima of |M(t) - P(t)| that reach zero (to the coincidence tolerance), in time
+    order, each refined when asked for: sampled on the distance grid, assembled with
+    continuation from t = 0, each minimum (a first or last sample's included, on its one side)
+    refined by Brent's method on the rate of approach, the instants between samples assembled
+    on the branches followed there (``branches_at``)."""
     plan = build_plan(scene)
     grid = np.linspace(0.0, t_max, DISTANCE_GRID + 1)
     swept = assemble(scene, plan, driver_inputs_over_time(scene, grid), 0, continuation=True)
@@ -216,15 +217,13 @@ def _meetings_off_carrier(
     tolerance = COINCIDENCE_TOLERANCE * scene.size
     before = np.concatenate([[np.inf], d[:-1]])
     after = np.concatenate([d[1:], [np.inf]])
-    times = []
     for k in np.flatnonzero((d <= before) & (d <= after)).tolist():
         a, b = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, DISTANCE_GRID)])
         fa, fb = approach(a), approach(b)
         t = float(grid[k]) if fa * fb > 0.0 else brentq(approach, a, b, xtol=1e-15 * t_max)
         m_t, _, p_t, _ = at(t)
         if float(np.hypot(*(m_t - p_t)[0])) <= tolerance:
-            times.append(t)
-    return times
+            yield t
 
 
 def find_event(
@@ -246,8 +245,7 @@ def find_event(
         meetings = _crossings_of_levels(mp, level, period, t_max, occurrence)
     else:
         meetings = []
-        found = sorted(_meetings_off_carrier(scene, mp, reaches, t_max))
-        _add_meetings(meetings, found, t_max, occurrence)
+        _add_meetings(meetings, _meetings_off_carrier(scene, mp, reaches, t_max), t_max, occurrence)
     if len(meetings) < occurrence:
         raise NoEvent(
             f"{moving_point} reaches {reaches} {len(meetings)} time(s) in "

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -26,14 +27,12 @@ Range = tuple[Any, Any]  # (low, high): float64 arrays or numbers, elementwise
 RangeFn = Callable[[Range], Range]
 
 
-def _monotonic(f: Callable[[Any], Any], domain: tuple[float, float], rising: bool) -> RangeFn:
+def _monotonic(
+    x: Range, f: Callable[[Any], Any], domain: tuple[float, float], rising: bool
+) -> Range:
     """A monotonic function: its values at the ends, clipped to its domain."""
-
-    def fn(x: Range) -> Range:
-        low, high = f(np.clip(x[0], *domain)), f(np.clip(x[1], *domain))
-        return (low, high) if rising else (high, low)
-
-    return fn
+    low, high = f(np.clip(x[0], *domain)), f(np.clip(x[1], *domain))
+    return (low, high) if rising else (high, low)
 
 
 def _contains(phase: float, period: float, x: Range) -> Any:
@@ -42,16 +41,12 @@ def _contains(phase: float, period: float, x: Range) -> Any:
     return phase + period * np.ceil((low - phase) / period) <= high
 
 
-def _wave(f: Callable[[Any], Any], crest: float) -> RangeFn:
+def _wave(x: Range, f: Callable[[Any], Any], crest: float) -> Range:
     """sin (crest pi/2) or cos (crest 0): the ends' values, or +-1 where a crest (crest + 2 pi k)
     or a trough (crest + pi + 2 pi k) lies inside."""
-
-    def fn(x: Range) -> Range:
-        a, b = f(x[0]), f(x[1])
-        low = np.where(_contains(crest + math.pi, 2.0 * math.pi, x), -1.0, np.minimum(a, b))
-        return low, np.where(_contains(crest, 2.0 * math.pi, x), 1.0, np.maximum(a, b))
-
-    return fn
+    a, b = f(x[0]), f(x[1])
+    low = np.where(_contains(crest + math.pi, 2.0 * math.pi, x), -1.0, np.minimum(a, b))
+    return low, np.where(_contains(crest, 2.0 * math.pi, x), 1.0, np.maximum(a, b))
 
 
 def _tan(x: Range) -> Range:
@@ -69,15 +64,18 @@ def _cosh(x: Range) -> Range:
 
 _WHOLE = (-math.inf, math.inf)
 _FUNCTIONS: dict[Any, RangeFn] = {
-    sympy.sin: _wave(np.sin, math.pi / 2.0), sympy.cos: _wave(np.cos, 0.0), sympy.tan: _tan,
-    sympy.asin: _monotonic(np.arcsin, (-1.0, 1.0), rising=True),
-    sympy.acos: _monotonic(np.arccos, (-1.0, 1.0), rising=False),
-    sympy.atan: _monotonic(np.arctan, _WHOLE, rising=True),
-    sympy.sinh: _monotonic(np.sinh, _WHOLE, rising=True), sympy.cosh: _cosh,
-    sympy.tanh: _monotonic(np.tanh, _WHOLE, rising=True),
-    sympy.exp: _monotonic(np.exp, _WHOLE, rising=True),
-    sympy.log: _monotonic(np.log, (0.0, math.inf), rising=True),
-}  # fmt: skip
+    sympy.sin: partial(_wave, f=np.sin, crest=math.pi / 2.0),
+    sympy.cos: partial(_wave, f=np.cos, crest=0.0),
+    sympy.tan: _tan,
+    sympy.asin: partial(_monotonic, f=np.arcsin, domain=(-1.0, 1.0), rising=True),
+    sympy.acos: partial(_monotonic, f=np.arccos, domain=(-1.0, 1.0), rising=False),
+    sympy.atan: partial(_monotonic, f=np.arctan, domain=_WHOLE, rising=True),
+    sympy.sinh: partial(_monotonic, f=np.sinh, domain=_WHOLE, rising=True),
+    sympy.cosh: _cosh,
+    sympy.tanh: partial(_monotonic, f=np.tanh, domain=_WHOLE, rising=True),
+    sympy.exp: partial(_monotonic, f=np.exp, domain=_WHOLE, rising=True),
+    sympy.log: partial(_monotonic, f=np.log, domain=(0.0, math.inf), rising=True),
+}
 
 
 def _sum(x: Range, y: Range) -> Range:
@@ -114,8 +112,7 @@ def _power(base: RangeFn, exponent: sympy.Expr) -> RangeFn:
     p = float(exponent)
     if p == round(p):
         return lambda x: _integer_power(base(x), round(p))
-    power = _monotonic(lambda y: np.power(y, p), (0.0, math.inf), p > 0.0)
-    return lambda x: power(base(x))
+    return lambda x: _monotonic(base(x), lambda y: np.power(y, p), (0.0, math.inf), p > 0.0)
 
 
 def enclosure(expr: sympy.Expr) -> RangeFn:
