@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 import sympy
 
+from solver.errors import InvalidExpression
 from solver.intervals import enclosure, ranges
 from solver.laws import T, parse_time_law
 
@@ -40,9 +41,11 @@ CREST = 2e5 * math.pi  # a crest of cos 6e5 rad from 0 (its end values carry rou
         ("tan(t)", (-1.0, 1.0), (math.tan(-1.0), math.tan(1.0))),
         ("t^2", (-1.0, 2.0), (0.0, 4.0)),  # an even power is 0 where t is
         ("t^2", (-3.0, -2.0), (4.0, 9.0)),
+        ("t^2", (0.5, 2.0), (0.25, 4.0)),  # 0 outside: the smaller end's square
         ("t^3", (-1.0, 2.0), (-1.0, 8.0)),
         ("t^(-1)", (1.0, 2.0), (0.5, 1.0)),
         ("t^(-1)", (-2.0, -1.0), (-1.0, -0.5)),
+        ("t^(-1)", (-1.0, 0.0), (-INF, INF)),  # the pole at the upper end
         ("t^(-2)", (-2.0, -1.0), (0.25, 1.0)),
         ("t^(-2)", (-1.0, 2.0), (-INF, INF)),  # a pole inside
         ("t^(-3)", (0.0, 2.0), (-INF, INF)),  # a pole at an end
@@ -50,6 +53,7 @@ CREST = 2e5 * math.pi  # a crest of cos 6e5 rad from 0 (its end values carry rou
         ("t^(-0.5)", (1.0, 4.0), (0.5, 1.0)),
         ("2^t", (1.0, 3.0), (2.0, 8.0)),  # exp(t log 2)
         ("cosh(t)", (-1.0, 2.0), (1.0, math.cosh(2.0))),  # its minimum 1 at 0 inside
+        ("cosh(t)", (-0.5, 0.25), (1.0, math.cosh(0.5))),
         ("cosh(t)", (-2.0, -1.0), (math.cosh(1.0), math.cosh(2.0))),
         ("cosh(t)", (1.0, 2.0), (math.cosh(1.0), math.cosh(2.0))),
         ("acos(t)", (-0.5, 0.5), (math.acos(0.5), math.acos(-0.5))),  # falling
@@ -62,6 +66,7 @@ CREST = 2e5 * math.pi  # a crest of cos 6e5 rad from 0 (its end values carry rou
         ("3 - 2*t", (0.0, 1.0), (1.0, 3.0)),
         ("(t - 1)*(t + 2)", (0.0, 2.0), (-4.0, 4.0)),  # [-1, 1] x [2, 4], wider than [-2, 4]
         ("t*tan(t)", (0.0, 2.0), (-INF, INF)),  # 0 x the whole line: undefined (nan)
+        ("tan(t) + log(t)", (-2.0, -1.0), (-INF, INF)),  # (-inf, inf) + (-inf, -inf): high nan
     ],
 )
 def test_range_over_a_span_worked_by_hand(
@@ -122,3 +127,12 @@ def test_ranges_hold_every_value_of_the_rate_and_its_derivative(law: str) -> Non
             assert not outside.any(), f"{law}: t = {t[outside][:3]} outside its span's range"
             checked += int(defined.sum())
     assert checked >= 0.6 * 2 * 33 * a.size
+
+
+def test_a_node_outside_the_laws_grammar_is_refused() -> None:
+    """|t| is not in the laws' grammar (the parser never builds it); were sympy to rewrite a law
+    into it, bounding it must fail loudly (invalid_expression at character 0) rather than
+    return a range that may miss values."""
+    with pytest.raises(InvalidExpression, match=r"^cannot bound Abs\(t\) numerically$") as error:
+        enclosure(sympy.Abs(T))
+    assert error.value.position == 0
