@@ -16,8 +16,12 @@ link's (x, y, theta) with lengths scaled by the scene size: from a node y_k with
 tau_k (the null vector of dF/dy), the predictor y_k + h tau_k + h^2/2 kappa_k + h^3/6 kappa'_k
 (``_predict``) is corrected by Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is
 accepted when the corrector contracts and converges, the tangent turns by less than
-MAX_TANGENT_TURN and the quintic between the two nodes stays on the path; otherwise h is halved
-(down to MIN_STEP); an easy step doubles h (up to MAX_STEP). A limit position (a fold: the
+MAX_TANGENT_TURN, the path's orientation sign det [dF/dy; tau] is kept (``_orientation``: it
+changes only across a bifurcation, so a step that lands on a neighbouring strand of F = 0 has
+crossed one) and the quintic between the two nodes stays on the path with its driver turn
+monotone (``_monotone``: a step across two limit positions, an S, is not); otherwise h is halved
+(down to MIN_STEP; a step under BIFURCATION_STEP may change the orientation: it crosses a
+bifurcation); an easy step doubles h (up to MAX_STEP). A limit position (a fold: the
 driver's turn reaches an extremum along the path) shows as a change of sign of the tangent's
 driver component; it is located by safeguarded Newton on that component, to rounding, so the
 limits do not depend on the number of samples.
@@ -53,6 +57,8 @@ LIMIT_TOLERANCE = 1e-15  # a limit position's residual: rounding, ~4 eps (the li
 MAX_STEP = 1.0  # arclength of one step, in scene sizes and radians
 MIN_STEP = 1e-9
 MAX_TANGENT_TURN = math.radians(60.0)
+BIFURCATION_STEP = 1e-6  # a step this short crosses a bifurcation (or strands as close as that)
+MONOTONE_AT = np.linspace(0.0, 1.0, 9)  # where a step's quintic is checked to turn monotonely
 MAX_CORRECTION = 0.3  # the corrector may move the predictor by this fraction of the step
 CONTRACTION = 0.3  # each corrector step at most this fraction of the one before
 CORRECTOR_ITERATIONS = 8
@@ -62,6 +68,11 @@ INTERPOLATION_RESIDUAL = 1e-3
 # Where a leg's middles lie further than this from the path, its samples would start where
 # Newton-Raphson needs a second iteration: every segment is halved first (``Branch._halved``).
 HALVING_RESIDUAL = 1e-5
+# A path closes after a whole turn where the two poses agree this closely (path coordinates:
+# radians, lengths over the size): far above their correction (NODE_TOLERANCE times their
+# condition number), far below the distance between two assembly modes at one driver angle
+# away from a bifurcation.
+CLOSURE = 1e-6
 FOLD_TANGENT = 1e-8  # the tangent's driver component at a located limit (turn error ~ 1e-16)
 FOLD_XTOL = 1e-12  # or the bracket on the arclength this short
 FOLD_ITERATIONS = 60
@@ -164,6 +175,26 @@ class _Leg:
         return s, X, T, np.gradient(T, s, axis=0) if len(s) > 1 else np.zeros_like(T)
 
 
+def _orientation(J: Array, tau: Array) -> float:
+    """sign det [J; tau]: the orientation of the path at a node with Jacobian J = dF/dx and unit
+    tangent tau (Allgower and Georg). It keeps its sign along a strand of F(x) = 0, through limit
+    positions too, and changes it only across a bifurcation, so a step to a node of the other
+    sign has crossed to a neighbouring strand (or through a bifurcation)."""
+    return float(np.linalg.slogdet(np.vstack([J, tau]))[0])
+
+
+def _monotone(leg: _Leg, free: int, sense: int) -> bool:
+    """Whether the driver's turn x[free] moves in ``sense`` all along the quintic of the leg's
+    last segment (its derivative checked at MONOTONE_AT): ``Branch._segments`` solves t(u) = turn
+    on the quintic by Newton's method, and a path that went back and forth across two limit
+    positions within one step (an S) does not turn monotonely."""
+    s, X, T, K = leg.arrays(len(leg.s) - 2)
+    h = s[1] - s[0]
+    # ``_quintic``'s data for the turn alone (``_quintic`` itself costs 5 times more).
+    data = np.array([X[0], h * T[0], h * h * K[0], h * h * K[1], h * T[1], X[1]])[:, free]
+    return bool(np.all(sense * (_MONOTONE_RATES @ data) > 0.0))
+
+
 def _predict(leg: _Leg, h: float) -> Array:
     """x + h tau + h^2/2 kappa + h^3/6 kappa': the Taylor step from the leg's last node, with
     its curvature kappa = dtau/ds (``Branch._curvature``) and kappa' from the last two nodes'
@@ -227,6 +258,7 @@ class Branch:
             self.bending = None if scaled is None else scaled.bending
             self.lift: Callable[[Array], Array] = lambda y: y
             self.y0, self.free = x0, column + 2
+            self.angles = np.arange(x0.size) % 3 == 2
             return
         known = scaled.known_terms(self.known, 1, 0, self.held)[0][0]
         fixed = rotations.fixed(known)
@@ -234,6 +266,7 @@ class Branch:
         self.bending = rotations.bending
         self.lift = lambda y: rotations.assemble(y, rotations.translations(y, known))
         self.y0, self.free = x0[2::3], column // 3
+        self.angles = np.ones(self.y0.size, dtype=bool)
 
     def _f(self, x: Array) -> tuple[Array, Array]:
         """Scaled residual F(y) and Jacobian dF/dy at path coordinates y."""
@@ -278,6 +311,7 @@ class Branch:
     def extend(self, sense: int, target: float) -> _Leg:
         """Follow the path in ``sense`` until the driver's turn passes ``target`` or a limit."""
         leg = self.legs[sense]
+        orientation = _orientation(self._f(leg.x[-1])[1], leg.tau[-1])
         while leg.limit is None and sense * (self._turn(leg.x[-1]) - target) < 0.0:
             x, tau, h = leg.x[-1], leg.tau[-1], leg.h
             predicted = _predict(leg, h)
@@ -288,18 +322,25 @@ class Branch:
                 turn = math.acos(min(1.0, float(tau_new @ tau)))
                 moved = _norm(new - predicted) / h
                 # The turn grows like h, the predictor's error like h^2 (second order): aim at
-                # 0.6 of their bounds with the next step.
+                # 0.6 of their bounds with the next step (either may be 0: a straight path).
                 grow = 0.6 * min(
-                    MAX_TANGENT_TURN / max(turn, 1e-12), math.sqrt(MAX_CORRECTION / moved)
+                    MAX_TANGENT_TURN / max(turn, 1e-12),
+                    math.sqrt(MAX_CORRECTION / max(moved, 1e-12)),
                 )
-                ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION
+                # On the strand of the last node (unless too short a step to avoid a bifurcation).
+                oriented = _orientation(J, tau_new)
+                crossed = oriented != orientation and h > BIFURCATION_STEP
+                ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION and not crossed
             if ok:  # the quintic between the two nodes must stay on the path (the samples' start)
                 kappa = self._curvature(new, tau_new, J)
                 leg.insert(len(leg.s), new, tau_new, kappa)
                 gap = _norm(self._f(leg.middle())[0])
-                ok = gap <= INTERPOLATION_RESIDUAL
+                ahead = sense * tau_new[self.free] > 0.0  # no limit position at the new node
+                ok = gap <= INTERPOLATION_RESIDUAL and (
+                    not ahead or _monotone(leg, self.free, sense)
+                )
                 grow = grow if ok else 0.5
-                if not ok or sense * tau_new[self.free] <= 0.0:
+                if not ok or not ahead:
                     leg.remove()
                 else:
                     leg.gap = max(leg.gap, gap)
@@ -308,7 +349,8 @@ class Branch:
                 if leg.h < MIN_STEP:  # the path cannot be continued (a bifurcation): stop here
                     leg.limit = self._turn(x)
                 continue
-            if sense * tau_new[self.free] <= 0.0:
+            orientation = oriented
+            if not ahead:
                 self._limit(leg, sense, h, sense * float(tau_new[self.free]))
                 break
             leg.h = min(h * min(grow, 2.0), MAX_STEP)
@@ -359,17 +401,46 @@ class Branch:
 
     def limits(self, low: float, high: float) -> tuple[float, float] | None:
         """None if the driver turns from ``low`` to ``high`` (and through a whole turn) with no
-        limit position; else the turns of the two limit positions around the drawn pose."""
+        limit position and the path closes after that turn (``closes``); else the turns of the
+        two limit positions around the drawn pose (a rocker whose limits lie more than a turn
+        apart: its range is wider than a turn, whichever way the driver turns)."""
         high = max(high, low + 2.0 * math.pi, 0.0)
-        ahead, behind = self.extend(1, high), self.extend(-1, min(low, 0.0))
-        if ahead.limit is None and behind.limit is None:
+        # Reached: a limit that the last step's overshoot met past them does not count.
+        start = min(low, 0.0)
+        if self.reaches(high) and self.reaches(start) and self.closes(start):
             return None
-        # One leg stopped at a limit: the path is not a whole turn, so the other leg stops too.
+        # Not a whole turn (or one that does not close): both legs stop at a limit.
         ahead = self.extend(1, 4.0 * math.pi)
         behind = self.extend(-1, -4.0 * math.pi)
         if ahead.limit is None or behind.limit is None:
             return None
         return behind.limit, ahead.limit
+
+    def closes(self, turn: float) -> bool:
+        """Whether the pose after a whole turn of the driver from ``turn`` is the pose at
+        ``turn``: both taken from the path and corrected with the driver's turn held (``_correct``
+        bordered by the driver's axis), their coordinates within CLOSURE (rotations modulo
+        2 pi). Then the path is a circuit of one turn, as a full revolution's sweep needs; a
+        rocker whose limits lie more than a turn apart passes ``turn`` + 2 pi on another part of
+        its path; a turn the path does not reach does not close."""
+        axis = np.zeros(self.y0.size)
+        axis[self.free] = 1.0
+        ends = []
+        for t in (turn, turn + 2.0 * math.pi):
+            if t == 0.0:  # the drawn pose
+                ends.append(self.y0)
+                continue
+            sense = 1 if t > 0.0 else -1
+            if not self.reaches(t):
+                return False
+            start = self._segments(self.legs[sense], sense, np.array([t]))[0]
+            y, _, converged, _ = self._correct(start, axis)
+            if not converged:
+                return False
+            ends.append(y)
+        d = ends[1] - ends[0]
+        d[self.angles] = np.remainder(d[self.angles] + math.pi, 2.0 * math.pi) - math.pi
+        return bool(np.max(np.abs(d)) <= CLOSURE)
 
     def guesses(self, turns: Array) -> tuple[Array, Array, Array]:
         """Interpolated coordinates (unscaled, (K, n)) at ``turns`` by the branch rule, which
@@ -405,7 +476,11 @@ class Branch:
         angles = list(self.held[0])
         angles.insert(self.free_driver, turn)
         q, _, _, _ = newton.newton_raphson(
-            system, self.known, x, tolerance * self.scene.size, turns=np.array([angles])
+            system,
+            self.known,
+            x,
+            newton.residual_tolerance(tolerance, system),
+            turns=np.array([angles]),
         )
         return q[0]
 
@@ -515,6 +590,10 @@ _QUINTIC = np.array([
     [15.0, 8.0, 1.5, -1.0, 7.0, -15.0],
     [-6.0, -3.0, -0.5, 0.5, -3.0, 6.0],
 ])  # fmt: skip
+# The rate dx/du of the quintic at MONOTONE_AT as a matrix on its data (``_monotone``).
+_MONOTONE_RATES = np.vander(MONOTONE_AT, 5, increasing=True) @ (
+    _QUINTIC[1:] * np.arange(1.0, 6.0)[:, None]
+)
 
 
 def _quintic(nodes: tuple[Array, Array, Array, Array], k: Array) -> Array:
@@ -591,7 +670,7 @@ def solve_group(
     motions = system.motions(polish.q, qd, qdd)
     converged = polish.reached & polish.settled
     worst = float(np.max(polish.residual, initial=0.0))
-    tolerance = continuation.tolerance * scene.size
+    tolerance = polish.tolerance
     message = f"Newton-Raphson closed the loop of {', '.join(group)}"
     if not np.all(converged):
         at = turns[0] if turns else np.zeros(samples)
@@ -618,7 +697,7 @@ class _Polish:
         self.system, self.states = system, states
         scene = system.scene
         self.size = scene.size
-        self.tolerance = continuation.tolerance * scene.size
+        self.tolerance = newton.residual_tolerance(continuation.tolerance, system)
         self.polish = continuation.tolerance <= newton.NEWTON_TOLERANCE
         self.q = np.tile(system.drawn(), (samples, 1))
         self.residual = np.zeros(samples)

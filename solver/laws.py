@@ -23,6 +23,7 @@ import numpy.typing as npt
 import sympy
 
 from solver.errors import InvalidExpression, LimitExceeded
+from solver.intervals import Range, RangeFn, enclosure, ranges
 
 MAX_LENGTH = 500  # characters of the law text
 MAX_DEPTH = 50  # nesting of parentheses and of the syntax tree
@@ -409,6 +410,18 @@ class TimeLaw:
             if all(np.isfinite(a).all() for a in arrays):
                 return arrays
         self._raise_undefined(x, results)
+
+    @functools.cached_property
+    def _rate_enclosures(self) -> tuple[RangeFn, RangeFn]:
+        return enclosure(self.first_derivative), enclosure(self.second_derivative)
+
+    def rate_ranges(
+        self, a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]
+    ) -> tuple[Range, Range]:
+        """Ranges holding rate and rate_dot over each span [a_i, b_i]: the natural interval
+        extension of the exact derivatives (``solver.intervals``), as (low, high) arrays."""
+        rate, rate_dot = self._rate_enclosures
+        return ranges(rate, a, b), ranges(rate_dot, a, b)
 
     def _raise_undefined(self, x: Any, results: list[Any]) -> NoReturn:
         """Find the first bad time and the innermost subexpression to blame, and raise."""

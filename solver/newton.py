@@ -56,6 +56,17 @@ def newton_tolerance(value: float | None) -> float:
     return float(value)
 
 
+def residual_tolerance(relative: float, system: ConstraintSystem) -> float:
+    """The residual |Phi| (m) Newton-Raphson closes ``system`` to: ``relative`` x the scene size,
+    but no less than sqrt(rows) eps X, X the drawing's largest coordinate. Each row of Phi is a
+    difference of positions that far from the origin, each rounded to eps of it, so no pose
+    closes the loop more closely (a 3 m triad drawn 1e4 m from the origin closes to 2e-12 m,
+    not to 1e-13 of its size)."""
+    scene = system.scene
+    largest = max(abs(x) for point in scene.points.values() for x in point)
+    return max(relative * scene.size, math.sqrt(system.rows) * ROUNDING * largest)
+
+
 def newton_raphson(
     system: ConstraintSystem,
     known: Mapping[str, States],

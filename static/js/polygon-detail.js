@@ -122,5 +122,6 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
   if (!current()) return;
   const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
   await P.relayout(main, { shapes: [box] });
-  main.dataset.detail = 'shown';
+  // Checked again: a newer drawing may have begun (and set "pending") while this one waited.
+  if (current()) main.dataset.detail = 'shown';
 }

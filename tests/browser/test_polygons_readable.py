@@ -125,7 +125,10 @@ CSS_CM = 96 / 2.54  # CSS px
 SET_SLIDER = """(f) => { const e = document.getElementById('crank-angle');
     e.value = String(+e.min + f * (e.max - e.min));
     e.dispatchEvent(new Event('input', {bubbles: true}));
-    e.dispatchEvent(new Event('change', {bubbles: true})); }"""
+    e.dispatchEvent(new Event('change', {bubbles: true}));
+    // The drawing takes the new instant at its next frame (main.js drawFrame): until then the
+    // linkage's data-instant is still the old one, and equal to data-analysed.
+    return new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))); }"""
 
 
 def set_instant(page: Any, fraction: float) -> None:

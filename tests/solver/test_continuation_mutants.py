@@ -11,6 +11,8 @@ Sources:
   tests/solver/test_newton_continuation.py), independent of the solver's pseudo-arclength
   continuation.
 - Central finite differences of positions for the rates.
+- A closed form: a triad drawn with two parallelograms on its crank translates its ternary link
+  with the crank pin.
 
 The slider triad (the rocking triad of tests/solver/test_newton.py with its link L3 replaced by
 a slot in the ground for P3) is the Newton group whose equations are not linear in the links'
@@ -23,6 +25,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from typing import Any
 
 import mpmath as mp
@@ -30,11 +33,13 @@ import numpy as np
 import pytest
 
 from solver import continuation
+from solver.assembly import DriverInput, assemble
 from solver.constraints import ConstraintSystem
 from solver.errors import NotAssemblable
 from solver.instant import analyze
 from solver.scene import parse_linkage
-from solver.sweeps import sweep
+from solver.sweeps import sweep, sweep_time
+from solver.topology import build_plan
 from tests.solver.test_newton import TRIAD, with_angle
 from tests.solver.test_newton_continuation import (
     TRIADS,
@@ -61,14 +66,18 @@ def slider_triad() -> Doc:
     return doc
 
 
+def _links(doc: Doc) -> list[tuple[str, str]]:
+    """The pairs of points a triad's links hold at their drawn distance (L3's without a slot)."""
+    pairs = [("A", "P1"), ("P1", "P2"), ("P1", "P3"), ("P2", "P3"), ("G2", "P2")]
+    return [*pairs, ("G3", "P3")] if "G3" in doc["points"] else pairs
+
+
 def _equations(doc: Doc) -> Any:
     """F(z, turn) = 0 of a triad with unknown points z = (P1, P2, P3) in 50 digits: squared
     lengths of L1, L2 (and L3) and of T's three sides less their drawn values, and for a slot
     P3's offset across it; the crank point A turned by ``turn`` about O."""
     drawn = {k: mp.matrix([mp.mpf(v[0]), mp.mpf(v[1])]) for k, v in doc["points"].items()}
-    pairs = [("A", "P1"), ("P1", "P2"), ("P1", "P3"), ("P2", "P3"), ("G2", "P2")]
-    if "G3" in drawn:
-        pairs.append(("G3", "P3"))
+    pairs = _links(doc)
     squared = [mp.fsum((drawn[a][i] - drawn[b][i]) ** 2 for i in (0, 1)) for a, b in pairs]
 
     def F(z: Any, turn: Any) -> list[Any]:
@@ -262,7 +271,9 @@ def test_a_segments_middle_and_the_predictor_are_exact_for_polynomials() -> None
     segment: exact for a quintic p(s) (and, with the curvatures estimated from the tangents, the
     cubic's: exact for a cubic); ``_predict`` is the second-order Taylor step, exact for a
     quadratic, with its curvature estimated from the last two tangents where not known; and
-    ``_Leg.arrays`` estimates unknown curvatures exactly for a quadratic (linear tangents)."""
+    ``_Leg.arrays`` estimates unknown curvatures exactly for a quadratic (linear tangents); with
+    the curvatures of the last two nodes known, ``_predict`` is the third-order step, kappa'
+    their difference over the step: exact for a cubic."""
     rng = np.random.default_rng(8)
     quintic, cubic, quadratic = (rng.uniform(-2.0, 2.0, (n, 3)) for n in (6, 4, 3))
     s0, h = 0.3, 0.45
@@ -272,6 +283,8 @@ def test_a_segments_middle_and_the_predictor_are_exact_for_polynomials() -> None
     for nodes, curvature in (([s0], True), ([0.1, s0], False), ([-0.4, 0.1, s0], False)):
         predicted = continuation._predict(_leg(quadratic, nodes, curvature), h)
         np.testing.assert_allclose(predicted, _polynomial(quadratic, s0 + h), atol=1e-14)
+    predicted = continuation._predict(_leg(cubic, [0.1, s0], True), h)
+    np.testing.assert_allclose(predicted, _polynomial(cubic, s0 + h), atol=1e-14)
     kappa = _leg(quadratic, [-0.4, 0.1, s0, s0 + h], False).arrays(1)[3]
     np.testing.assert_allclose(kappa, np.tile(2.0 * quadratic[2], (3, 1)), atol=1e-13)
 
@@ -290,3 +303,285 @@ def test_a_new_nodes_arclength_is_that_of_the_arc_through_it() -> None:
     for k in (1, 2):
         leg.insert(k + 1, x[k], tau[k], kappa[k])
         assert leg.s[k + 1] - leg.s[k] == pytest.approx(0.2, abs=2e-6)
+
+
+def translating_triad() -> Doc:
+    """The rocking triad redrawn so that L2 and L3 are parallel to the crank and as long (the
+    parallelograms O A P2 G2 and O A P3 G3): T and L1 translate with A, whatever the crank's
+    turn, and the path is a straight line in the links' rotations (crank, L2 and L3 turn
+    together, T and L1 not at all)."""
+    doc: Doc = copy.deepcopy(TRIAD)
+    points = doc["points"]
+    A = np.array(points["A"], dtype=float)
+    for tip, pivot in (("P2", "G2"), ("P3", "G3")):
+        points[tip] = (np.array(points[pivot], dtype=float) + A).tolist()
+    return doc
+
+
+def test_a_translating_triad_turns_fully_with_its_coupler_translated() -> None:
+    """The translating triad's points at every sample of a 36-sample sweep are their drawn
+    positions moved by A's displacement (the closed form of a translation) to 1e-12 m, and
+    their velocities A's (1e-9 relative): the crank turns fully. Its path is straight, so the
+    predictor lands on it and the corrector takes no step (``Branch.extend`` divided by that
+    zero move)."""
+    doc = translating_triad()
+    result = sweep(parse_linkage(doc), 36, ["position", "velocity"])
+    assert result.feasible
+    A = result.motion.points["A"]
+    assert A.v is not None
+    shift = A.p - np.array(doc["points"]["A"])
+    for name in UNKNOWN:
+        point = result.motion.points[name]
+        assert point.v is not None
+        np.testing.assert_allclose(point.p, doc["points"][name] + shift, rtol=0.0, atol=1e-12)
+        np.testing.assert_allclose(point.v, A.v, rtol=0.0, atol=1e-9 * np.abs(A.v).max())
+
+
+def first_fold(doc: Doc, sense: int) -> float:
+    """The crank's turn at the first limit position met turning it in ``sense`` from the drawn
+    pose: natural continuation on the triad's squared link lengths in P1, P2, P3 (steps of at
+    most 1e-2 rad, each predicted linearly from the last two poses and closed by
+    Newton-Raphson to 1e-13 m^2 within 1e-2 m of the prediction; halved where it does not
+    close, down to 1e-7 rad), then the fold in 50 digits from the last pose
+    (``reference_limit``). Independent of the solver's pseudo-arclength continuation."""
+    drawn = {k: np.array(v, dtype=float) for k, v in doc["points"].items()}
+    pairs = _links(doc)
+    squared = np.array([(drawn[a] - drawn[b]) @ (drawn[a] - drawn[b]) for a, b in pairs])
+    column = {name: 2 * k for k, name in enumerate(UNKNOWN)}
+
+    def close(z: np.ndarray, turn: float) -> np.ndarray | None:
+        c, s = math.cos(turn), math.sin(turn)
+        at = {**drawn, "A": drawn["O"] + np.array([[c, -s], [s, c]]) @ (drawn["A"] - drawn["O"])}
+        guess = z
+        for _ in range(12):
+            at |= {name: z[column[name] : column[name] + 2] for name in UNKNOWN}
+            F = np.array([(at[a] - at[b]) @ (at[a] - at[b]) for a, b in pairs]) - squared
+            if np.max(np.abs(F)) <= 1e-13:
+                return z if np.max(np.abs(z - guess)) <= 1e-2 else None
+            J = np.zeros((len(pairs), z.size))
+            for row, (a, b) in enumerate(pairs):
+                for name, side in ((a, 1.0), (b, -1.0)):
+                    if name in column:
+                        J[row, column[name] : column[name] + 2] = 2.0 * side * (at[a] - at[b])
+            z = z - np.linalg.solve(J, F)
+        return None
+
+    z = np.concatenate([drawn[name] for name in UNKNOWN])
+    previous, turn, step, last = z, 0.0, 1e-2, 0.0
+    while step >= 1e-7:
+        closed = close(z + (z - previous) * (step / last if last else 0.0), turn + sense * step)
+        if closed is None:
+            step /= 2.0
+            continue
+        previous, z, turn, last = z, closed, turn + sense * step, step
+    return reference_limit(doc, turn, z.reshape(3, 2))
+
+
+# Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914,
+# 489, 658, 50 and 307, points rounded to 1e-6) whose path the solver once followed past a limit
+# position: onto a neighbouring strand of the equations' solutions, across two limit positions
+# in one step (an S, its middle between them; a narrow S near the step's end; an S that only the
+# step's first tangent shows), or would with a corrector that went on where its steps did not
+# contract; and two whose limits lie more than a turn apart.
+FOLDED_TRIADS = {
+    "a neighbouring strand": {
+        "A": [-0.430253, 0.036583], "P1": [0.287808, 0.086376], "P2": [0.940573, 0.572657],
+        "P3": [0.680595, 0.583156], "G2": [2.303849, 1.839343], "G3": [2.197473, -0.558392],
+    },
+    "an S": {
+        "A": [0.262436, -0.210568], "P1": [1.090508, 0.987393], "P2": [1.321993, 0.750742],
+        "P3": [1.690463, 1.089357], "G2": [1.867958, 1.515987], "G3": [2.068845, -0.15752],
+    },
+    "a narrow S": {
+        "A": [0.373449, -0.050876], "P1": [0.744221, 0.880635], "P2": [0.34471, 0.620295],
+        "P3": [0.570638, 1.037479], "G2": [2.14702, 1.221792], "G3": [1.088902, -1.144264],
+    },
+    "an S its first tangent shows": {
+        "A": [0.034142, 0.288644], "P1": [1.636835, 0.26994], "P2": [1.275954, 0.799604],
+        "P3": [1.135851, 0.038605], "G2": [1.776625, 1.439879], "G3": [1.970517, -0.07153],
+    },
+    "a corrector that must contract": {
+        "A": [0.082644, -0.183428], "P1": [1.109792, 0.757776], "P2": [0.67889, 0.429424],
+        "P3": [1.132662, 0.372174], "G2": [1.171368, 1.474349], "G3": [2.391489, -0.498889],
+    },
+    "a range wider than a turn": {
+        "A": [-0.346333, -0.017599], "P1": [1.253653, 0.589456], "P2": [1.157239, 0.597191],
+        "P3": [0.762273, 1.246077], "G2": [2.077144, 1.235374], "G3": [2.353222, -1.021928],
+    },
+    "a range wider than a turn, its upper limit near": {
+        "A": [0.006964, 0.313029], "P1": [1.388362, 0.610616], "P2": [0.894664, -0.001645],
+        "P3": [1.372408, 0.172899], "G2": [1.535886, 2.366826], "G3": [2.140691, -0.830231],
+    },
+}  # fmt: skip
+
+
+def folded_triad(name: str) -> Doc:
+    return {**TRIAD, "points": {"O": [0.0, 0.0], **FOLDED_TRIADS[name]}}
+
+
+@pytest.mark.parametrize("name", [name for name in FOLDED_TRIADS if "wider" not in name])
+def test_limits_are_the_first_folds_met_from_the_drawn_pose(name: str) -> None:
+    """The sweep's limit positions are the first folds met turning the crank either way from
+    the drawn pose (``first_fold``: natural continuation, then the 50-digit fold), to 1e-12
+    rad. Pseudo-arclength steps over a limit position are refused: one that lands on another
+    strand (the orientation sign(det [dF/dx; tau]) changes) and one whose quintic's turn is not
+    monotone (the path went back and forth; its quintic built from both ends' tangents, else
+    the S of triad 489 passes: -2.6536 for -0.2658). They had given -0.3253 for the S's -0.3032,
+    0.4986 for the narrow S's 0.0178, and a full turn for the first (limits -5.570 and 0.468); a
+    corrector that does not stop where its steps stop contracting gives 3.4654 for
+    triad 658's 3.4696."""
+    doc = folded_triad(name)
+    result = sweep(parse_linkage(doc), 36, ["position"])
+    assert not result.feasible
+    low, high = (limit - drawn_crank(doc) for limit in result.limits)
+    assert low == pytest.approx(first_fold(doc, -1), abs=1e-12)
+    assert high == pytest.approx(first_fold(doc, 1), abs=1e-12)
+
+
+def test_a_range_wider_than_a_turn_is_a_rocker_from_its_end() -> None:
+    """A triad whose limit positions lie 6.40 rad apart (-0.0553 and +6.3485 from the drawn
+    pose, the first folds either way: ``first_fold``): from turn 0 the crank turns through a
+    whole turn before meeting a limit, but the pose there is not the drawn one (the path does
+    not close), so it rocks: ``Branch.limits(0, 2 pi)``, and asked from -1 rad too, are the two
+    folds to 1e-12 rad (before, from turn 0, a full turn that did not close)."""
+    doc = folded_triad("a range wider than a turn")
+    folds = [first_fold(doc, sense) for sense in (-1, 1)]
+    for low in (0.0, -1.0):
+        limits = continuation.Branch(parse_linkage(doc)).limits(low, 2.0 * math.pi)
+        assert limits is not None
+        np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
+
+
+def test_a_whole_turn_closes_where_the_crank_turns_fully() -> None:
+    """The full-turning triad of benchmarks/bench_newton.py: the pose after a whole turn is the
+    drawn one (``Branch.closes``), and its sweep is a full revolution; the rocker of
+    ``test_a_range_wider_than_a_turn_is_a_rocker_from_its_end`` does not close after a turn
+    from its drawn pose."""
+    from benchmarks.bench_newton import FULL_TURN
+
+    assert continuation.Branch(parse_linkage(FULL_TURN)).closes(0.0)
+    assert sweep(parse_linkage(FULL_TURN), 36, ["position"]).feasible
+    rocker = parse_linkage(folded_triad("a range wider than a turn"))
+    assert not continuation.Branch(rocker).closes(0.0)
+
+
+def test_a_singular_bordered_system_is_solved_by_least_squares() -> None:
+    """``_bordered_solve`` falls back to least squares where [J; row] is singular: x + y = 2
+    bordered by the same row has the minimum-norm solution (1, 1) (1e-15)."""
+    J, row = np.array([[1.0, 1.0]]), np.array([1.0, 1.0])
+    z = continuation._bordered_solve(J, row, np.array([2.0]), 2.0)
+    np.testing.assert_allclose(z, [1.0, 1.0], rtol=0.0, atol=1e-15)
+
+
+def slot_crank_triad() -> Doc:
+    """The rocking triad with its crank a single point O (no drawn angle: its angle is read as
+    0 at the drawn pose) carrying a slot at 45 deg through O, in which T's P1 slides instead of
+    riding on L1; T, L2, L3 are a Newton group (limit positions -0.591 and +0.003 rad)."""
+    doc: Doc = copy.deepcopy(TRIAD)
+    del doc["links"]["L1"], doc["points"]["A"]
+    doc["links"]["crank"] = {"points": ["O"]}
+    doc["joints"] = [j for j in doc["joints"] if j["point"] not in ("A", "P1")]
+    doc["joints"].append(
+        {"type": "slider", "point": "P1", "links": ["crank", "T"], "axis": [1.0, 1.0]}
+    )
+    return doc
+
+
+def test_a_law_past_a_limit_names_the_first_sample_past_it() -> None:
+    """The slot-crank triad driven by the law -t from t = 0 to 1 s (11 samples, turns 0, -0.1,
+    ..., -1 rad): the first sample past its limit position is -0.6 rad (natural continuation
+    from the drawn pose reaches -0.58 and is lost before -0.6), and the message gives that
+    sample's crank angle, -34.3775 deg (a crank of one point has angle 0 as drawn)."""
+    doc = slot_crank_triad()
+    scene = parse_linkage(doc)
+    reference_poses(scene, np.array([-0.58]), ())
+    with pytest.raises(AssertionError, match="lost the loop"):
+        reference_poses(scene, np.array([-0.6]), ())
+    driven = {**doc, "drivers": [{"link": "crank", "angle_law": "-t"}]}
+    with pytest.raises(NotAssemblable) as caught:
+        sweep_time(parse_linkage(driven), 0.0, 1.0, 11)
+    (angle,) = re.findall(r"crank angle (\S+) deg", str(caught.value))
+    assert float(angle) == pytest.approx(math.degrees(-0.6), abs=1e-3)
+    assert "turning crank from its drawn pose either way meets a limit position first" in str(
+        caught.value
+    )
+
+
+def test_a_tolerance_out_of_reach_is_reported_with_the_residual(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The rocking triad at 6 turns inside its limits (not the drawn pose, which closes exactly)
+    with no Newton-Raphson iteration allowed (POLISH_ITERATIONS lowered to 0: a tolerance out of
+    reach, as a user's 1e-20 was before the rounding floor of ``newton.residual_tolerance``):
+    every sample is reached, those that do not start on a node of the path (refined around them)
+    do not close to the default 1e-13 of the size, and the message gives the residual against
+    that tolerance (3.1e-13 m), not a limit position."""
+    monkeypatch.setattr(continuation, "POLISH_ITERATIONS", 0)
+    scene = parse_linkage(TRIAD)
+    turns = np.linspace(-0.3, 0.6, 6)
+    inputs = [DriverInput(turns, np.zeros(6), np.zeros(6))]
+    groups = continuation.Continuation(scene)
+    motion = assemble(scene, build_plan(scene), inputs, 0, continuation=True, newton_groups=groups)
+    assert not np.all(motion.feasible)
+    (message,) = motion.failures
+    assert message.startswith("Newton-Raphson did not close the loop of T, L1, L2, L3: residual")
+    tolerance = float(re.findall(r"> tolerance (\S+) m", message)[0])
+    assert tolerance == pytest.approx(1e-13 * scene.size, rel=1e-2)
+
+
+def test_a_leg_of_one_segment_is_refined_like_any_other(monkeypatch: pytest.MonkeyPatch) -> None:
+    """/analyze of the rocking triad 0.05 rad from its drawn pose follows its path one step
+    (0.1 of arclength: the leg is a single segment) and, with the branch gap lowered to 1e-11 so
+    that the sample (which starts some 1e-10 of the size from its root) has its segment split
+    (``Branch.refine``; see test_continuation_branch.py), still poses P1, P2, P3 at the 50-digit
+    roots to 1e-12 m."""
+    monkeypatch.setattr(continuation, "BRANCH_GAP", 1e-11)
+    turn = 0.05
+    result = analyze(parse_linkage(with_angle(TRIAD, math.degrees(drawn_crank(TRIAD) + turn))))
+    points = np.array([result.points[name].position for name in UNKNOWN])
+    np.testing.assert_allclose(points, reference_points(TRIAD, turn, points), rtol=0.0, atol=1e-12)
+
+
+# Random triads (seed 14 as above: numbers 122 and 450, points rounded to 1e-6) whose limit
+# positions the fold search finds only from good trials.
+LOCATED_TRIADS = {
+    "triad 122": {
+        "A": [0.169368, 0.249326], "P1": [1.315089, 0.941657], "P2": [0.866878, 0.844602],
+        "P3": [1.212406, 1.190112], "G2": [1.433027, 1.413623], "G3": [1.255425, -1.046427],
+    },
+    "triad 450": {
+        "A": [0.113967, 0.361143], "P1": [1.048473, 0.084138], "P2": [0.733714, 0.29598],
+        "P3": [0.419476, -0.29773], "G2": [1.361347, 2.184668], "G3": [2.121344, -1.438174],
+    },
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", list(LOCATED_TRIADS))
+def test_limit_positions_are_located_on_their_strand_to_rounding(name: str) -> None:
+    """``Branch.limits`` of random triads 122 and 450 equal the first folds met either way from
+    the drawn pose (``first_fold``) to 1e-12 rad. The fold search corrects each trial from the
+    node's second-order prediction x + s tau + s^2/2 kappa on the normal plane at s (from x + s
+    tau, or with 3 s^2/2 kappa, or -s^2/2 kappa, triad 122's trials land on other points of that
+    plane's section of the path: 0.07 to 0.93 rad off), starts from the node's Newton trial
+    -g / g' (from another, triad 450's upper limit comes out 0.07 rad off) and takes Newton's
+    steps with the slope per unit of the step (a wrong slope or arclength factor: 9e-3 and 0.07
+    rad off)."""
+    doc = {**TRIAD, "points": {"O": [0.0, 0.0], **LOCATED_TRIADS[name]}}
+    limits = continuation.Branch(parse_linkage(doc)).limits(0.0, 2.0 * math.pi)
+    assert limits is not None
+    folds = [first_fold(doc, sense) for sense in (-1, 1)]
+    np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
+
+
+def test_a_range_wider_than_a_turn_is_a_rocker_whichever_way_it_turns() -> None:
+    """A triad whose limit positions lie 7.23 rad apart, -7.181 and +0.0447 from the drawn pose:
+    asked from -2 pi to 0 (a sweep turning the crank backwards) it meets no limit within that
+    whole turn, but the path does not close there, and asked from 0 to 2 pi it meets +0.0447:
+    both ways ``Branch.limits`` gives the first folds either way (``first_fold``) to 1e-12 rad
+    (before, turning backwards, a full turn that did not close)."""
+    doc = folded_triad("a range wider than a turn, its upper limit near")
+    folds = [first_fold(doc, sense) for sense in (-1, 1)]
+    for low, high in ((-2.0 * math.pi, 0.0), (0.0, 2.0 * math.pi)):
+        limits = continuation.Branch(parse_linkage(doc)).limits(low, high)
+        assert limits is not None
+        np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)

@@ -405,34 +405,58 @@ def test_target_off_the_carrier_every_meeting_found_up_to_t_max(t_max: float) ->
 # --- cost of a search ---
 
 
-def _first_event_in_child(doc: dict[str, Any], reaches: str, t_max: float, conn: Any) -> None:
+def _event_in_child(
+    doc: dict[str, Any], reaches: str, occurrence: int, t_max: float, conn: Any
+) -> None:
     try:
-        conn.send(("ok", _event_time(doc, reaches, 1, t_max)))
+        conn.send(("ok", _event_time(doc, reaches, occurrence, t_max)))
     except Exception as exc:  # reported to the parent
         conn.send(("error", f"{type(exc).__name__}: {exc}"))
+
+
+def _event_time_within(
+    doc: dict[str, Any], reaches: str, occurrence: int, t_max: float, bound: float
+) -> float:
+    """The event's time, computed in a forked child that is terminated after ``bound`` seconds
+    (the test fails then), so that a slow search cannot hold up the suite."""
+    ctx = multiprocessing.get_context("fork")
+    parent, child = ctx.Pipe(duplex=False)
+    process = ctx.Process(target=_event_in_child, args=(doc, reaches, occurrence, t_max, child))
+    process.start()
+    try:
+        answered = parent.poll(bound)
+        result = parent.recv() if answered else None
+    finally:
+        if process.is_alive():
+            process.terminate()
+        process.join(5.0)
+    assert result is not None, f"find_event(t_max = {t_max:g} s, {occurrence}) took > {bound} s"
+    assert result[0] == "ok", result[1]
+    return float(result[1])
 
 
 def test_first_occurrence_cost_does_not_grow_with_t_max() -> None:
     """S003 Task 2 asked for its first return with t_max = 1000 s (allowed: the limit is 1e6 s).
     The answer is t = 1.474810 s, as with t_max = 60 s; the search must not enumerate every
     later crossing first (0.2356 t + 0.7069 t^2 passes S about 375 000 times by t = 1000 s).
-    Bound: 8 s (the t_max = 60 s search takes ~0.2 s). Run in a forked child that is
-    terminated at the bound, so that a slow search cannot hold up the suite."""
+    Bound: 8 s (the t_max = 60 s search takes ~0.2 s)."""
     doc = _case("S003-T2-rotating-carrier")["requests"][2]["body"]["scene"]
-    ctx = multiprocessing.get_context("fork")
-    parent, child = ctx.Pipe(duplex=False)
-    process = ctx.Process(target=_first_event_in_child, args=(doc, "S", 1000.0, child))
-    process.start()
-    try:
-        answered = parent.poll(8.0)
-        result = parent.recv() if answered else None
-    finally:
-        if process.is_alive():
-            process.terminate()
-        process.join(5.0)
-    assert result is not None, "find_event(t_max = 1000 s, occurrence 1) took more than 8 s"
-    assert result[0] == "ok", result[1]
-    _assert_time(result[1], 1.4748096336326841, "first return")
+    _assert_time(_event_time_within(doc, "S", 1, 1000.0, 8.0), 1.4748096336326841, "first return")
+
+
+def test_a_search_stops_at_the_occurrence_inside_a_window() -> None:
+    """s = 1000 t on a circle of radius 1 mm passes T (0.5 rad along it) every 2 pi mm / 1000
+    m/s = 6.28 us, at t_k = (0.5 mm + 2 pi mm (k - 1)) / 1000 m/s (closed form); the first
+    search window, t_max / 64 = 15.6 s long for t_max = 1000 s, holds 2.5 million of these
+    crossings. The 1st and the 10 000th (the largest occurrence allowed) must be found without
+    finding the others of that window first (before the fix they all were: more than a
+    minute). Bound: 8 s each (about 0.1 s and 1 s here); tolerance 1e-9 relative to
+    max(1, t)."""
+    R = 1e-3
+    doc = arc_disc("1000*t", R, (0.3, -0.2), 0.4, "ccw", 0.5 * R)
+    for k in (1, 10_000):
+        want = (0.5 * R + 2.0 * math.pi * R * (k - 1)) / 1000.0
+        _assert_time(_event_time_within(doc, "T", k, 1000.0, 8.0), want, f"crossing {k}", 1e-9)
 
 
 # --- where the event happens, meetings at t_max, bad requests (mutation testing, issue 8) ---
