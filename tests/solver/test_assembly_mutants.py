@@ -166,6 +166,20 @@ def test_slotted_lever_that_cannot_close_says_why() -> None:
     )
 
 
+def test_slotted_lever_touching_within_rounding_at_1000_m_closes() -> None:
+    """The inverted slider-crank at 1000 m (ground 1000, slot 200 m off C) with crank
+    800 m + 1e-12 m, swept from 0 deg: |CA| - 200 = -1.0e-12 m there, 7e-16 of the linkage's
+    size (1500 m), inside the coincidence tolerance (1e-13 of the size): the slot touches A, the
+    linkage closes and the sweep is feasible. The margin compared with the tolerance is relative:
+    in metres (-1e-12 < -1e-13) it would be refused."""
+    s = 1e3
+    values = {"crank": 0.8 * s + 1e-15 * s, "ground": s, "lever": 1.5 * s, "slot_offset": 0.2 * s}
+    doc = build_preset("inverted_slider_crank", {**values, "crank_angle_deg": 90.0})
+    doc["drivers"][0]["angle_deg"] = 0.0
+    assert -2e-12 < (s - values["crank"]) - values["slot_offset"] < -1e-13
+    assert solver.sweep(doc, 36)["feasible"]
+
+
 def test_slotted_lever_close_approach_is_named_after_its_slot() -> None:
     """The same linkage with crank 0.8 - 1e-4: |CA| = 1 - crank is least at crank 0 deg, 1e-4 m
     more than the offset: the one close approach is the slot's, margin 1e-4 m (to 1e-12 m) at
