@@ -826,3 +826,23 @@ def test_instant_centres_of_a_triad_at_rest() -> None:
     for link, pivot in (("crank", "O"), ("L2", "G2"), ("L3", "G3")):
         position = centres[frozenset((link, "ground"))]
         assert math.dist(position, TRIAD["points"][pivot]) <= 1e-12, link
+
+
+@pytest.mark.parametrize("samples", [36, 360])
+def test_a_piece_that_turns_above_the_other_is_no_approach(samples: int) -> None:
+    """Four-bar ground 1000, crank 0.1, coupler 1000.2, rocker 0.5 m: |BD| = d runs over
+    [999.9, 1000.1], so the dyad's two pieces are r1 + r2 - d in [0.6, 0.8] and
+    d - |r1 - r2| = d - 999.7 in [0.2, 0.4], both under 1e-3 of the size (1000.3 m). The first
+    turns (its minimum, 0.6 m, at crank 180 deg) where the second, 0.4 m, is the margin: no
+    minimum of the margin there. The one approach is the second piece's, d_min - 999.7 = 0.2 m
+    at crank 0 deg (closed form in the drawn lengths, which the preset's rounding puts 1e-10 m
+    off the nominal ones: 1e-11 m; 1e-6 rad)."""
+    doc = build_preset("four_bar", {"ground": 1e3, "crank": 0.1, "coupler": 1000.2, "rocker": 0.5})
+    A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
+    length = lambda P, Q: float(np.linalg.norm(P - Q))  # noqa: E731
+    gap = (length(A, D) - length(A, B)) - (length(B, C) - length(C, D))
+    assert abs(gap - 0.2) <= 1e-9
+    (approach,) = sweep(parse_linkage(doc), samples, ["position"]).close_approaches
+    assert approach.point == "C"
+    assert abs(approach.margin - gap) <= 1e-11
+    assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
