@@ -56,13 +56,13 @@ EPS = float(np.finfo(float).eps)
 WARNING_MARGIN = 1e-3
 
 # The largest step of any driver between two samples that the continuation follows as it is;
-# longer steps are split into equal parts no longer than this (``dense_grid``). A group's margin is
-# a smooth function of each driver angle, periodic in 2 pi: a piece with one minimum a turn (the
-# four-bar's d - |r1 - r2|) is convex within pi/2 of it, and a step under pi/2 keeps the interval
-# around it inside that convex neighbourhood, as the screen needs, and two of a parallelogram's
-# change points (pi apart) out of one interval, as the search needs (it finds one minimum an
-# interval). pi/8 leaves a factor 4 for pieces with more than one minimum a turn: the two-dip
-# six-bar's dips, 37 deg apart, are missed at steps of 45 deg and found from 40 deg down.
+# longer steps are split into equal parts no longer than this (``dense_grid``). A group's margin
+# is a smooth function of each driver angle, periodic in 2 pi: a piece with one minimum a turn
+# (the four-bar's d - |r1 - r2|) is convex within about pi/2 of it, and a step under pi/2 keeps
+# the interval around it inside that convex neighbourhood, as the screen needs, and two of a
+# parallelogram's change points (pi apart) out of one interval, as the search needs (it finds
+# one minimum an interval). pi/8 leaves a factor 4 for pieces with more than one minimum a turn:
+# the two-dip six-bar's dips, 37 deg apart, are missed at steps of 45 deg, found from 40 deg down.
 MAX_DRIVER_STEP = math.pi / 8
 # The most samples a densified grid may have: 1e6 samples, 400 000 rad of a driver (a
 # parallelogram's 125 000 change points, one every pi of the crank, each searched in some 10 ms).
