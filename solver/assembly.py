@@ -800,9 +800,12 @@ def assemble(
     continuation the drawn branch holds at sample ``anchor``; ``newton_groups`` carries a Newton
     group's tolerance and the branches already followed; ``signs`` forces the branch of the
     two-branch steps it names (``branches_at``: an instant on a motion followed before). With
-    continuation, where a driver steps more than MAX_DRIVER_STEP between two samples, the
-    linkage is followed on a grid that does not (``dense_grid``) and returned at the samples."""
-    grid = dense_grid(inputs) if continuation else None
+    continuation, where a driver steps more than MAX_DRIVER_STEP between two samples and the
+    plan has a two-branch or a Newton group, the linkage is followed on a grid that does not
+    (``dense_grid``) and returned at the samples."""
+    # (Only a group with two branches, or a Newton group, depends on the path followed.)
+    followed = any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
+    grid = dense_grid(inputs) if continuation and followed else None
     if grid is None:
         return _Assembler(
             scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
