@@ -6,14 +6,16 @@ With ``continuation=True`` (a sweep) it switches only where the group's two bran
 two samples within rounding: the closest approach of the branches over the continuous driver
 path is found by Brent's method wherever the samples' margins and their rates say it could come
 near (``candidate_intervals``), so a parallelogram stays a parallelogram through its change
-points and a linkage 1e-12 off a change point keeps its assembly, at any sample count.
+points and a linkage 1e-12 off a change point keeps its assembly, at any sample count. Where
+two samples are further apart than MAX_DRIVER_STEP in some driver, the continuation follows a
+grid with driver values inserted between them (``DenseGrid``) and answers at the given samples.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import TypeGuard
 
@@ -22,7 +24,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from solver import dyads, newton
 from solver.continuation import Continuation, solve_group
-from solver.errors import NotAssemblable
+from solver.errors import LimitExceeded, NotAssemblable
 from solver.rigid import (
     Array,
     LinkMotion,
@@ -53,6 +55,19 @@ EPS = float(np.finfo(float).eps)
 # sweep reports the closest approach (a real mechanism with clearance could switch there).
 WARNING_MARGIN = 1e-3
 
+# The largest step of any driver between two samples that the continuation follows as it is;
+# longer steps are split into equal parts no longer than this (``dense_grid``). A group's margin
+# is a smooth function of each driver angle, periodic in 2 pi: a piece with one minimum a turn
+# (the four-bar's d - |r1 - r2|) is convex within about pi/2 of it, and a step under pi/2 keeps
+# the interval around it inside that convex neighbourhood, as the screen needs, and two of a
+# parallelogram's change points (pi apart) out of one interval, as the search needs (it finds
+# one minimum an interval). pi/8 leaves a factor 4 for pieces with more than one minimum a turn:
+# the two-dip six-bar's dips, 37 deg apart, are missed at steps of 45 deg, found from 40 deg down.
+MAX_DRIVER_STEP = math.pi / 8
+# The most samples a densified grid may have: 1e6 samples, 400 000 rad of a driver (a
+# parallelogram's 125 000 change points, one every pi of the crank, each searched in some 10 ms).
+MAX_DENSE_SAMPLES = 1_000_000
+
 
 @dataclass(frozen=True)
 class DriverInput:
@@ -66,8 +81,9 @@ class DriverInput:
 @dataclass(frozen=True)
 class Approach:
     """The closest approach of a group's two branches between samples: at fractional sample
-    ``at`` (k + x: x of the way from sample k to k + 1), the length margin ``margin`` (metres;
-    within the coincidence tolerance the branches meet, below it the group cannot close)."""
+    ``at`` of the samples asked for (k + x: x of the way from sample k to k + 1, the drivers
+    linear in x), the length margin ``margin`` (metres; within the coincidence tolerance the
+    branches meet, below it the group cannot close)."""
 
     point: str
     at: float
@@ -107,8 +123,9 @@ class Motion:
         converged."""
         return (self.margin >= -dyads.COINCIDENCE_TOLERANCE) & self.converged
 
-    def cut(self, part: slice) -> Motion:
-        """The same motion at the samples ``part`` only (approaches kept as found)."""
+    def cut(self, part: slice | Array) -> Motion:
+        """The same motion at the samples ``part`` only (a slice or sample indices; approaches,
+        Newton reports and branch switches kept as found)."""
 
         def take(a: Array | None) -> Array | None:
             return None if a is None else a[part]
@@ -160,6 +177,12 @@ def path_steps(inputs: Sequence[DriverInput]) -> list[PathStep]:
         if largest > 0.0:
             path.append((driver, theta, largest))
     return path
+
+
+def coarse(path: Sequence[PathStep]) -> bool:
+    """Whether some driver steps more than MAX_DRIVER_STEP between two samples (then the
+    continuation follows a denser grid: ``dense_grid``)."""
+    return any(largest > MAX_DRIVER_STEP for _, _, largest in path)
 
 
 def rates_alone(inputs: Sequence[DriverInput], order: int, path: Sequence[PathStep]) -> bool:
@@ -301,6 +324,12 @@ def branches_at(flips: Mapping[int, tuple[float, list[float]]], u: float) -> dic
     }
 
 
+def between(values: Array, k: Array | int, x: Array | float) -> Array:
+    """values at fractional samples u = k + x, 0 <= x <= 1, linear between samples k and k + 1
+    (exactly values[k] at x = 0)."""
+    return np.asarray(values[k] + x * (values[k + 1] - values[k]))
+
+
 def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list[DriverInput]:
     """The drivers at fractional sample u = k + x, 0 <= x <= 1 (thetas linear between samples k
     and k + 1), with rates d theta / du: the path the continuation follows between two samples."""
@@ -308,8 +337,91 @@ def interpolated_inputs(inputs: Sequence[DriverInput], k: int, x: float) -> list
     for given in inputs:
         theta = given.theta
         step = float(theta[k + 1] - theta[k])
-        out.append(DriverInput(np.array([theta[k] + x * step]), np.array([step]), np.zeros(1)))
+        out.append(DriverInput(np.array([between(theta, k, x)]), np.array([step]), np.zeros(1)))
     return out
+
+
+@dataclass(frozen=True)
+class DenseGrid:
+    """The samples a continuation follows where the given ones step too far (``dense_grid``):
+    ``inputs`` the drivers on it, ``index`` the dense sample of each given sample."""
+
+    inputs: list[DriverInput]
+    index: Array
+
+    def given(self, u: float) -> float:
+        """The fractional given sample of fractional dense sample u (the drivers are linear in
+        both between two given samples, so the map is linear there)."""
+        k = min(int(np.searchsorted(self.index, u, side="right")) - 1, self.index.size - 2)
+        return k + float((u - self.index[k]) / (self.index[k + 1] - self.index[k]))
+
+    def restrict(self, motion: Motion) -> Motion:
+        """A motion followed on the dense grid at the given samples: its close approaches and
+        branch switches at given fractional samples; a dense sample between two given ones that
+        does not close, a window between them (the deepest of each interval, as the search
+        reports one); a Newton group that did not converge between them, not converged at the
+        first of the two."""
+        index = self.index
+        converged = np.logical_and.reduceat(motion.converged, index)
+        return replace(
+            motion.cut(index),
+            converged=converged,
+            newton=[
+                replace(report, converged=np.logical_and.reduceat(report.converged, index))
+                for report in motion.newton
+            ],
+            approaches=[Approach(a.point, self.given(a.at), a.margin) for a in motion.approaches]
+            + self.windows(motion),
+            flips={
+                step: (first, [self.given(u) for u in switches])
+                for step, (first, switches) in motion.flips.items()
+            },
+        )
+
+    def windows(self, motion: Motion) -> list[Approach]:
+        """The deepest dense sample of each given interval that a group fails to close at (not
+        a given sample), as a window: the group with the smallest margin there."""
+        fails = motion.margin < -dyads.COINCIDENCE_TOLERANCE
+        fails[self.index] = False
+        found = []
+        for k in np.unique(np.searchsorted(self.index, np.flatnonzero(fails)) - 1).tolist():
+            inside = np.arange(self.index[k] + 1, self.index[k + 1])
+            deepest = int(inside[np.argmin(motion.margin[inside])])
+            point = min(motion.group_margins, key=lambda p: motion.group_margins[p][deepest])
+            margin = float(motion.group_margins[point][deepest])
+            found.append(Approach(point, self.given(deepest), margin))
+        return found
+
+
+def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
+    """None where no driver steps more than MAX_DRIVER_STEP between two samples; else every
+    interval split into the fewest equal parts that bring each driver's step within it, the
+    drivers' angles and rates linear between the given samples (``between``). Raises
+    ``LimitExceeded`` beyond MAX_DENSE_SAMPLES."""
+    path = path_steps(inputs)
+    if not coarse(path):
+        return None
+    widest = np.max([np.abs(np.diff(theta)) for _, theta, _ in path], axis=0)
+    parts = np.ceil(widest / MAX_DRIVER_STEP).astype(int)
+    parts[parts == 0] = 1  # (every driver at rest between the two samples)
+    total = int(parts.sum()) + 1
+    if total > MAX_DENSE_SAMPLES:
+        raise LimitExceeded(
+            f"samples: following the linkage in driver steps of at most {MAX_DRIVER_STEP:.4g} "
+            f"rad (pi/8) between the {widest.size + 1} samples (steps of up to "
+            f"{float(widest.max()):.6g} rad) takes {total} samples, more than "
+            f"{MAX_DENSE_SAMPLES}: shorten the range or slow the drivers"
+        )
+    index = np.concatenate([[0], np.cumsum(parts)])
+    k = np.repeat(np.arange(parts.size), parts)
+    x = (np.arange(total - 1) - index[k]) / parts[k]
+    dense = [
+        DriverInput(
+            *(np.append(between(a, k, x), a[-1]) for a in (given.theta, given.omega, given.alpha))
+        )
+        for given in inputs
+    ]
+    return DenseGrid(dense, index)
 
 
 def _two_branch(step: Step) -> TypeGuard[DyadStep | LeverStep]:
@@ -687,10 +799,21 @@ def assemble(
     """Positions (order 0), velocities (1) and accelerations (2) of every link and point; with
     continuation the drawn branch holds at sample ``anchor``; ``newton_groups`` carries a Newton
     group's tolerance and the branches already followed; ``signs`` forces the branch of the
-    two-branch steps it names (``branches_at``: an instant on a motion followed before)."""
-    return _Assembler(
-        scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
-    ).run(plan)
+    two-branch steps it names (``branches_at``: an instant on a motion followed before). With
+    continuation, where a driver steps more than MAX_DRIVER_STEP between two samples and the
+    plan has a two-branch or a Newton group, the linkage is followed on a grid that does not
+    (``dense_grid``) and returned at the samples."""
+    # (Only a group with two branches, or a Newton group, depends on the path followed.)
+    followed = any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
+    grid = dense_grid(inputs) if continuation and followed else None
+    if grid is None:
+        return _Assembler(
+            scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
+        ).run(plan)
+    dense = _Assembler(
+        scene, grid.inputs, order, continuation, signs, int(grid.index[anchor]), newton_groups
+    )
+    return grid.restrict(dense.run(plan))
 
 
 def require_feasible(motion: Motion, where: str) -> None:

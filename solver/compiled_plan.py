@@ -10,8 +10,9 @@ operations (x - y computed as x + (-y), a product by a negated factor as the neg
 v - 0 as v: all exact in IEEE arithmetic), so the answers are the general assembler's bit for
 bit (tests/solver/test_compiled_plan.py). The branch search itself is left out: its screen runs
 here as in ``assembly._Assembler.candidates``, on the same numbers, and wherever it has something
-to examine (``assembly.screen``) or a group does not close, ``run`` returns None and the general
-assembler runs instead, so the branch guarantees, the close-approach warnings and the failure
+to examine (``assembly.screen``), a group does not close or a driver steps too far between two
+samples (``assembly.MAX_DRIVER_STEP``), ``run`` returns None and the general assembler runs
+instead, so the branch guarantees, the close-approach warnings and the failure
 messages are unchanged. A dyad's margin rates are computed only where the screen needs them:
 where its centres turn with drivers and its Lipschitz bound does not clear (from their
 velocities, or at unit driver rate, 0 + k x (P - pivot)), and for a dyad on a moving centre (a
@@ -35,6 +36,7 @@ from solver.assembly import (
     DriverInput,
     Motion,
     PathStep,
+    coarse,
     lipschitz_clear,
     path_steps,
     rates_alone,
@@ -133,11 +135,15 @@ class CompiledPlan:
     ) -> Motion | None:
         """The motion at ``inputs`` on the drawn branches (up to accelerations for ``order``
         2), or None where the general assembler must decide (a group fails to close somewhere,
-        or its margin dips where the branch search looks). ``keep``: only the first ``keep``
-        samples are returned (all are checked), as ``Motion.cut`` would give them."""
+        or its margin dips where the branch search looks, or a driver steps more than
+        ``assembly.MAX_DRIVER_STEP`` between two samples: the general assembler follows a denser
+        grid there). ``keep``: only the first ``keep`` samples are returned (all are checked), as
+        ``Motion.cut`` would give them."""
         n = inputs[0].theta.size
         kept = slice(0, n if keep is None else keep)
         path = path_steps(inputs)
+        if coarse(path):
+            return None
         if not (self.rated and path) or rates_alone(inputs, order, path):
             return _Run(self, inputs, order, kept, path).motion()
         if len(path) > 1:  # (the general assembler takes a run per moving driver)

@@ -638,15 +638,11 @@ def test_event_position_past_the_change_point_is_on_the_parallelogram(
     _event_position_on_the_parallelogram(drawn_deg, speed, t_max)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="assembly/events bug: the linkage is followed to the event's time on the search's "
-    "grid (4096 samples over t_max); at 2.4 rad of the crank per sample the parallelogram's "
-    "change points (every pi rad) are not all told apart and it is taken crossed (0.44 m off)",
-)
 @pytest.mark.parametrize("t_max", [1e4, 1e5])
 def test_event_position_after_thousands_of_change_points(t_max: float) -> None:
     """``_event_position_on_the_parallelogram`` with s = 2e-4 t: C is reached at t = 5000 s,
-    the crank past 1592 change points. With t_max = 1e6 s the position is right; with
-    t_max = 1e4 or 1e5 s it is that of the crossed assembly."""
+    the crank past 1592 change points, followed on the search's grid (4096 samples over t_max:
+    2.4 and 24 rad of the crank per sample), split into steps of at most
+    ``assembly.MAX_DRIVER_STEP``. Followed at 24 rad a sample as it was, the position was that
+    of the crossed assembly, 0.44 m off."""
     _event_position_on_the_parallelogram(60.0, 2e-4, t_max)
