@@ -48,7 +48,7 @@ def _crank(t: np.ndarray) -> np.ndarray:
 
 
 @pytest.mark.parametrize(
-    ("t1", "samples"), [(100.0, 4), (100.0, 11), (100.0, 37), (100.0, 42), (1e3, 50)]
+    ("t1", "samples"), [(10.0, 2), (100.0, 4), (100.0, 11), (100.0, 37), (100.0, 42), (1e3, 50)]
 )
 def test_parallelogram_swept_in_long_steps_stays_a_parallelogram(t1: float, samples: int) -> None:
     """The parallelogram (crank = rocker = 0.4, coupler = ground = 1) at 1 rad/s over t1 s:
