@@ -229,8 +229,14 @@ def main() -> None:
         "",
         speed_table,
         "",
-        "Where a triad's time goes (cProfile with process time, 360 samples): about 40 % in "
-        "the path following, which is sequential: 20 nodes per turn of the full-turning triad "
+        "Where a triad's time goes (cProfile with process time, 360 samples, 2026-11-27): about "
+        "half in the path following (`Branch.limits`: the turn followed from the drawn pose both "
+        "ways until it closes or meets a limit), and 10 % more in the check that a full turn "
+        "closes (`Branch.closes`); about 9 % of the whole is the orientation test of every node "
+        "(`_orientation`: the path neither leaves its strand nor steps across two limits, "
+        "docs/ARCHITECTURE.md), the price of the three continuation bugs fixed on 2026-11-27, "
+        "which moved the ratio from 20-23x to 22-29x. The path following is sequential: 20 "
+        "nodes per turn of the full-turning triad "
         "(steps up to a 60 deg turn of the tangent, a third-order predictor), each about five "
         "evaluations of the loop equations in the links' rotations (`constraints.Rotations`: 4 "
         "equations in 5 angles) and five 5x5 LAPACK solves, then every segment of that leg "
