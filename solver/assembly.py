@@ -67,6 +67,10 @@ MAX_DRIVER_STEP = math.pi / 8
 # The most samples a densified grid may have: 1e6 samples, 400 000 rad of a driver (a
 # parallelogram's 125 000 change points, one every pi of the crank, each searched in some 10 ms).
 MAX_DENSE_SAMPLES = 1_000_000
+# A piece's rate at a sample counts as zero (the piece stationary there) below this fraction of
+# its larger rate at the two ends of the interval: a rate of rounding (sin 2 pi = -2.4e-16) is
+# far below it, and a minimum this close to a sample is there to 1e-18 of the interval squared.
+STATIONARY = 1e-9
 
 
 @dataclass(frozen=True)
@@ -626,11 +630,33 @@ class _Assembler:
                 lambda x: evaluate(x)[0], bounds=(0.0, 1.0), method="bounded",
                 options={"xatol": 1e-12},
             )  # fmt: skip
-            if not found.fun < min(start, end):
-                return None
-            x = float(found.x)
+            if found.fun < min(start, end):
+                x = float(found.x)
+            else:
+                at_end = self.stationary_end(k, (start, end), (rate_low, rate_high))
+                if at_end is None:
+                    return None
+                x = at_end
         value, _, margin = evaluate(x)
         return None if value > margin else Approach(point, k + x, margin)
+
+    def stationary_end(
+        self, k: int, values: tuple[float, float], rates: tuple[float, float]
+    ) -> float | None:
+        """x = 0 or 1 where a piece is least between samples k and k + 1 at the run's first or
+        last sample and stationary there (its rate zero within ``STATIONARY`` of the larger of
+        its two rates): its minimum is on that sample, inside the run (a four-bar drawn, or a
+        time sweep started, at its closest approach: the rates at the two copies of that pose in
+        a revolution are 0 and -2e-16, so neither interval beside it turns). None otherwise: a
+        minimum beyond the first or last sample is not in the run; and a meeting there needs no
+        switch (the drawn branch holds at the drawn pose)."""
+        (start, end), scale = values, STATIONARY * max(map(abs, rates))
+        meets = dyads.COINCIDENCE_TOLERANCE * self.scene.size
+        if k == 0 and start <= end and abs(rates[0]) <= scale and start > meets:
+            return 0.0
+        if k + 2 == self.samples and end < start and abs(rates[1]) <= scale and end > meets:
+            return 1.0
+        return None
 
     def dyad(self, index: int, step: DyadStep) -> None:
         first, second = (self.locus(spec) for spec in step.loci)

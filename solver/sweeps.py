@@ -108,6 +108,20 @@ def close_approaches(motion: Motion, driver: str, angles: Array) -> tuple[CloseA
     return tuple(sorted(found, key=lambda a: a.margin))
 
 
+def once_a_turn(approaches: tuple[CloseApproach, ...]) -> tuple[CloseApproach, ...]:
+    """A revolution's close approaches with each pose once: one at the closing sample is the
+    one at the first (the same point within 1e-9 rad of the same angle, modulo a turn)."""
+    kept: list[CloseApproach] = []
+    for a in approaches:
+        if not any(
+            b.point == a.point
+            and abs(math.remainder(b.driver_angle - a.driver_angle, 2.0 * math.pi)) <= 1e-9
+            for b in kept
+        ):
+            kept.append(a)
+    return tuple(kept)
+
+
 def _joints_and_poles(
     scene: LinkageScene, motion: Motion, wanted: frozenset[str], order: int
 ) -> tuple[list[SlidingJoint], dict[str, tuple[Poles, Poles]]]:
@@ -317,6 +331,7 @@ def sweep(
         turns, motion, span = _cycle(driven, samples, order, start, direction)
         approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
         if span is None:  # the closing sample off
+            approaches = once_a_turn(approaches)
             motion, turns = motion.cut(slice(0, samples)), turns[:samples]
         require_feasible(motion, "during the sweep")
     limits: tuple[float, ...] = span or ()

@@ -846,3 +846,55 @@ def test_a_piece_that_turns_above_the_other_is_no_approach(samples: int) -> None
     assert approach.point == "C"
     assert abs(approach.margin - gap) <= 1e-11
     assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
+
+
+def _drawn_at_its_closest_approach() -> tuple[dict[str, Any], float]:
+    """Four-bar ground 25, crank 10, coupler 30, rocker 15.01 m drawn with the crank at 0 deg,
+    where |BD| is least, 15 m: the dyad's margin d - |r1 - r2| is least there, 0.01 m (under
+    1e-3 of the size, 0.033 m). Returns the scene and that gap in its drawn lengths."""
+    values = {"ground": 25.0, "crank": 10.0, "coupler": 30.0, "rocker": 15.01}
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": 0.0})
+    A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
+    length = lambda P, Q: float(np.linalg.norm(P - Q))  # noqa: E731
+    gap = (length(A, D) - length(A, B)) - (length(C, B) - length(C, D))
+    assert abs(gap - 0.01) <= 1e-12
+    return doc, gap
+
+
+@pytest.mark.parametrize(("samples", "omega"), [(36, 1.0), (90, 1.0), (360, 1.0), (360, -1.0)])
+def test_a_linkage_drawn_at_its_closest_approach_is_warned_of_it(
+    samples: int, omega: float
+) -> None:
+    """The four-bar drawn at its closest approach, swept a revolution either way: the approach
+    is on the first sample (and on the closing one, the same pose), where the margin's rate is 0
+    at one copy and -2e-16 at the other, so neither interval beside it turns. It is warned of
+    once, at 0 deg, with the gap in the drawn lengths (1e-12 m)."""
+    doc, gap = _drawn_at_its_closest_approach()
+    doc["drivers"][0]["omega"] = omega
+    result = solver.sweep(doc, samples)
+    (approach,) = result["diagnostics"]["close_approaches"]
+    assert approach["point"] == "C"
+    assert abs(approach["margin"] - gap) <= 1e-12
+    assert abs(math.remainder(approach["driver_angle"], 2 * math.pi)) <= 1e-9
+    assert len(result["warnings"]) == 1
+
+
+@pytest.mark.parametrize(
+    ("span", "samples", "at"),
+    [
+        ((0.0, math.pi), 19, [0.0]),
+        ((-math.pi, 0.0), 17, [0.0]),
+        ((0.0, 2 * math.pi), 361, [0, 360]),
+    ],
+)
+def test_a_time_sweep_from_or_to_the_closest_approach_is_warned_of_it(
+    span: tuple[float, float], samples: int, at: list[float]
+) -> None:
+    """The same four-bar, crank angle = t rad: a time sweep starting or ending at the closest
+    approach warns of it there (at its first or last sample); one over [0, 2 pi] passes it
+    twice, at t = 0 and 2 pi (0 and 360 deg), and warns of both."""
+    doc, gap = _drawn_at_its_closest_approach()
+    doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
+    found = solver.sweep_time(doc, list(span), samples)["diagnostics"]["close_approaches"]
+    assert [a["driver_angle_deg"] for a in found] == pytest.approx(at, abs=1e-9)
+    assert all(abs(a["margin"] - gap) <= 1e-12 for a in found)
