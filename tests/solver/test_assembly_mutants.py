@@ -848,12 +848,13 @@ def test_a_piece_that_turns_above_the_other_is_no_approach(samples: int) -> None
     assert abs(math.remainder(approach.driver_angle, 2 * math.pi)) <= 1e-6
 
 
-def _drawn_at_its_closest_approach() -> tuple[dict[str, Any], float]:
-    """Four-bar ground 25, crank 10, coupler 30, rocker 15.01 m drawn with the crank at 0 deg,
-    where |BD| is least, 15 m: the dyad's margin d - |r1 - r2| is least there, 0.01 m (under
-    1e-3 of the size, 0.033 m). Returns the scene and that gap in its drawn lengths."""
+def _near_a_change_point(drawn_deg: float = 0.0) -> tuple[dict[str, Any], float]:
+    """Four-bar ground 25, crank 10, coupler 30, rocker 15.01 m, drawn with the crank at
+    ``drawn_deg``: |BD| is least, 15 m, with the crank at 0 deg, where the dyad's margin
+    d - |r1 - r2| is least, 0.01 m (under 1e-3 of the size, 0.033 m). Returns the scene and that
+    gap in its drawn lengths."""
     values = {"ground": 25.0, "crank": 10.0, "coupler": 30.0, "rocker": 15.01}
-    doc = build_preset("four_bar", {**values, "crank_angle_deg": 0.0})
+    doc = build_preset("four_bar", {**values, "crank_angle_deg": drawn_deg})
     A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
     length = lambda P, Q: float(np.linalg.norm(P - Q))  # noqa: E731
     gap = (length(A, D) - length(A, B)) - (length(C, B) - length(C, D))
@@ -865,11 +866,11 @@ def _drawn_at_its_closest_approach() -> tuple[dict[str, Any], float]:
 def test_a_linkage_drawn_at_its_closest_approach_is_warned_of_it(
     samples: int, omega: float
 ) -> None:
-    """The four-bar drawn at its closest approach, swept a revolution either way: the approach
-    is on the first sample (and on the closing one, the same pose), where the margin's rate is 0
-    at one copy and -2e-16 at the other, so neither interval beside it turns. It is warned of
-    once, at 0 deg, with the gap in the drawn lengths (1e-12 m)."""
-    doc, gap = _drawn_at_its_closest_approach()
+    """The four-bar ``_near_a_change_point`` drawn at its closest approach, swept a revolution
+    either way: the approach is on the first sample (and on the closing one, the same pose),
+    where the margin's rate is 0 at one copy and -2e-16 at the other, so neither interval beside
+    it turns. It is warned of once, at 0 deg, with the gap in the drawn lengths (1e-12 m)."""
+    doc, gap = _near_a_change_point()
     doc["drivers"][0]["omega"] = omega
     result = solver.sweep(doc, samples)
     (approach,) = result["diagnostics"]["close_approaches"]
@@ -893,8 +894,23 @@ def test_a_time_sweep_from_or_to_the_closest_approach_is_warned_of_it(
     """The same four-bar, crank angle = t rad: a time sweep starting or ending at the closest
     approach warns of it there (at its first or last sample); one over [0, 2 pi] passes it
     twice, at t = 0 and 2 pi (0 and 360 deg), and warns of both."""
-    doc, gap = _drawn_at_its_closest_approach()
+    doc, gap = _near_a_change_point()
     doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
     found = solver.sweep_time(doc, list(span), samples)["diagnostics"]["close_approaches"]
     assert [a["driver_angle_deg"] for a in found] == pytest.approx(at, abs=1e-9)
     assert all(abs(a["margin"] - gap) <= 1e-12 for a in found)
+
+
+def test_a_near_miss_between_samples_20_deg_apart_is_not_cleared_by_the_lipschitz_bound() -> None:
+    """The four-bar ``_near_a_change_point`` drawn at 10 deg, crank angle = t rad over a turn
+    in 18 steps of 20 deg: the samples beside the approach (crank at 0 deg) are at +-10 deg,
+    where the margin is |BD| - 14.99 = sqrt(725 - 500 cos 10 deg) - 14.99 = 0.261 m. The
+    group's Lipschitz bound G = |AB| x 20 deg = 3.49 m does not clear the threshold
+    (0.261 - G / 2 < 0.033 m), so the interval is searched and the approach found: 0.01 m (the
+    gap in the drawn lengths, 1e-12 m) at 0 deg (1e-9 rad)."""
+    doc, gap = _near_a_change_point(10.0)
+    doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
+    result = solver.sweep_time(doc, [0.0, 2 * math.pi], 19)
+    (approach,) = result["diagnostics"]["close_approaches"]
+    assert abs(approach["margin"] - gap) <= 1e-12
+    assert abs(math.remainder(approach["driver_angle"], 2 * math.pi)) <= 1e-9
