@@ -18,11 +18,11 @@ from benchmarks.bench_newton import FULL_TURN
 from solver.assembly import MAX_DENSE_SAMPLES, MAX_DRIVER_STEP
 from solver.compiled_plan import compiled_plan
 from solver.drivers import driver_inputs_over_time
-from solver.errors import LimitExceeded
+from solver.errors import LimitExceeded, NotAssemblable
 from solver.presets import build_preset
 from solver.scene import parse_linkage
 from solver.topology import build_plan
-from tests.solver.test_events_mutants import _four_bar, _parallelogram
+from tests.solver.test_events_mutants import _assert_time, _four_bar, _parallelogram, _time
 
 DRAWN = math.radians(60.0)  # the crank's drawn angle in ``_parallelogram(60.0, ...)``
 
@@ -145,3 +145,31 @@ def test_compiled_plan_runs_short_steps_and_hands_long_ones_back() -> None:
     revolution = np.linspace(0.0, 2.0 * math.pi, 361)
     assert compiled.run(driver_inputs_over_time(scene, revolution), 2) is not None
     assert compiled.run(driver_inputs_over_time(scene, np.linspace(0.0, 100.0, 101)), 2) is None
+
+
+def test_a_window_between_two_samples_a_turn_apart_is_refused_with_its_depth() -> None:
+    """Crank AB = 0.6, coupler BC = 0.5, rocker DC = 0.3, ground AD = 1 m, drawn with the crank
+    at 0 deg and turned at 1 rad/s: the loop closes only while |BD| <= 0.8 m (within 53.1 deg of
+    the ground line). A time sweep over one turn in two samples (0 and 2 pi: both close) is
+    refused for the window between them, at its deepest dense sample, the crank at pi (pi/8 a
+    step): |BD| = 1.6 m, the loci of C 1.6 - 0.8 = 0.8 m apart."""
+    doc = _four_bar([0.6, 0.0], [1.0, 0.3], [0.5, -2.0], "0.25")
+    doc.pop("moving_points")
+    with pytest.raises(NotAssemblable) as refused:
+        solver.sweep_time(doc, [0.0, 2.0 * math.pi], 2)
+    assert str(refused.value.message) == (
+        "the linkage cannot be closed during t = 0 .. 6.28319 s: the loci of C fail to meet by "
+        "0.8 m between samples 0 and 1"
+    )
+
+
+def test_a_meeting_off_the_carrier_searched_on_long_steps_is_on_the_parallelogram() -> None:
+    """The parallelogram drawn at 60 deg, at 1 rad/s: M (s = 0.5 on the coupler) runs round
+    (0.5, 0) + 0.4 (cos, sin)(60 deg + t) and meets G, that circle's point at 200 deg, when the
+    crank has turned 140 deg (closed form, 1e-6). Searched to t_max = 1700 s, the distance grid
+    (4096 samples) steps 0.415 rad, more than pi/8: the grid is followed densely, and the
+    instants between its samples are assembled on the branches it followed (its switches mapped
+    back to the grid's samples)."""
+    G = [0.5 + 0.4 * math.cos(math.radians(200.0)), 0.4 * math.sin(math.radians(200.0))]
+    assert MAX_DRIVER_STEP < 1700.0 / 4096
+    _assert_time(_time(_parallelogram(60.0, G), "G", 1, 1700.0), math.radians(140.0), "", 1e-6)
