@@ -885,6 +885,7 @@ def test_a_linkage_drawn_at_its_closest_approach_is_warned_of_it(
     [
         ((0.0, math.pi), 19, [0.0]),
         ((-math.pi, 0.0), 17, [0.0]),
+        ((-math.pi, 0.0), 3, [0.0]),  # steps of pi / 2: followed on a dense grid
         ((0.0, 2 * math.pi), 361, [0, 360]),
     ],
 )
@@ -892,8 +893,9 @@ def test_a_time_sweep_from_or_to_the_closest_approach_is_warned_of_it(
     span: tuple[float, float], samples: int, at: list[float]
 ) -> None:
     """The same four-bar, crank angle = t rad: a time sweep starting or ending at the closest
-    approach warns of it there (at its first or last sample); one over [0, 2 pi] passes it
-    twice, at t = 0 and 2 pi (0 and 360 deg), and warns of both."""
+    approach warns of it there (at its first or last sample, also where the steps are long
+    enough to be followed on a dense grid); one over [0, 2 pi] passes it twice, at t = 0 and
+    2 pi (0 and 360 deg), and warns of both."""
     doc, gap = _near_a_change_point()
     doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
     found = solver.sweep_time(doc, list(span), samples)["diagnostics"]["close_approaches"]

@@ -65,21 +65,26 @@ def test_parallelogram_swept_in_long_steps_stays_a_parallelogram(t1: float, samp
     )
 
 
-@pytest.mark.parametrize("samples", [35, 41])
-def test_four_bar_near_its_change_points_keeps_its_branch_and_warns_at_each(samples: int) -> None:
+@pytest.mark.parametrize(("samples", "law"), [(35, "t"), (41, "t"), (35, "0.01*t**2")])
+def test_four_bar_near_its_change_points_keeps_its_branch_and_warns_at_each(
+    samples: int, law: str
+) -> None:
     """The parallelogram with its rocker 1e-4 m longer (a crank-rocker, no change point: its two
-    assemblies come within 1e-4 m at every crank angle k pi) at 1 rad/s over 100 s, with crank
-    steps of 2.9 and 2.5 rad: C is on the drawn branch (the circles' intersection to the left of
-    B -> D, closed form) at every sample, and each of the 32 close approaches is warned of at
-    its crank angle k pi with its margin 1e-4 m (the sweep followed at those steps missed 5 and
-    2 of them)."""
+    assemblies come within 1e-4 m at every crank angle k pi) turned by 100 rad over 100 s, at
+    1 rad/s (crank steps of 2.9 and 2.5 rad) or by 0.01 t^2 rad (steps from 0.02 to 5.7 rad,
+    so the intervals are split into different numbers of parts): C is on the drawn branch (the
+    circles' intersection to the left of B -> D, closed form) at every sample, and each of the
+    32 close approaches is warned of at its crank angle k pi with its margin 1e-4 m (the sweep
+    followed at those steps missed 5 and 2 of them at 1 rad/s)."""
     rocker = 0.4 + 1e-4
     D = np.array([[1.0, 0.0]])
     B0 = _crank(np.zeros(1))
     C0 = _circles(B0, 1.0, D, rocker)
     doc = _without_moving_points(_four_bar(B0[0].tolist(), C0[0].tolist(), [0.5, -2.0], "0.5"))
+    doc["drivers"][0]["angle_law"] = law
     result = solver.sweep_time(doc, [0.0, 100.0], samples)
-    B = _crank(np.linspace(0.0, 100.0, samples))
+    t = np.linspace(0.0, 100.0, samples)
+    B = _crank(t if law == "t" else 0.01 * t**2)
     want = _circles(B, 1.0, np.repeat(D, samples, axis=0), rocker)
     np.testing.assert_allclose(result["points"]["C"]["position"], want, rtol=0, atol=1e-9)
     found = sorted(result["diagnostics"]["close_approaches"], key=lambda a: a["driver_angle"])
