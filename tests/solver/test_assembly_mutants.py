@@ -828,6 +828,16 @@ def test_instant_centres_of_a_triad_at_rest() -> None:
         assert math.dist(position, TRIAD["points"][pivot]) <= 1e-12, link
 
 
+def _folded_gap(doc: dict[str, Any]) -> float:
+    """A four-bar's dyad margin d - |r1 - r2| at its least, with B on AD:
+    (|AD| - |AB|) - (|BC| - |CD|), in the drawn lengths (the solver's)."""
+    A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
+    return float(
+        (np.linalg.norm(D - A) - np.linalg.norm(B - A))
+        - (np.linalg.norm(C - B) - np.linalg.norm(D - C))
+    )
+
+
 @pytest.mark.parametrize("samples", [36, 360])
 def test_a_piece_that_turns_above_the_other_is_no_approach(samples: int) -> None:
     """Four-bar ground 1000, crank 0.1, coupler 1000.2, rocker 0.5 m: |BD| = d runs over
@@ -838,9 +848,7 @@ def test_a_piece_that_turns_above_the_other_is_no_approach(samples: int) -> None
     at crank 0 deg (closed form in the drawn lengths, which the preset's rounding puts 1e-10 m
     off the nominal ones: 1e-11 m; 1e-6 rad)."""
     doc = build_preset("four_bar", {"ground": 1e3, "crank": 0.1, "coupler": 1000.2, "rocker": 0.5})
-    A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
-    length = lambda P, Q: float(np.linalg.norm(P - Q))  # noqa: E731
-    gap = (length(A, D) - length(A, B)) - (length(B, C) - length(C, D))
+    gap = _folded_gap(doc)
     assert abs(gap - 0.2) <= 1e-9
     (approach,) = sweep(parse_linkage(doc), samples, ["position"]).close_approaches
     assert approach.point == "C"
@@ -855,9 +863,7 @@ def _near_a_change_point(drawn_deg: float = 0.0) -> tuple[dict[str, Any], float]
     gap in its drawn lengths."""
     values = {"ground": 25.0, "crank": 10.0, "coupler": 30.0, "rocker": 15.01}
     doc = build_preset("four_bar", {**values, "crank_angle_deg": drawn_deg})
-    A, B, C, D = (np.array(doc["points"][p]) for p in "ABCD")
-    length = lambda P, Q: float(np.linalg.norm(P - Q))  # noqa: E731
-    gap = (length(A, D) - length(A, B)) - (length(C, B) - length(C, D))
+    gap = _folded_gap(doc)
     assert abs(gap - 0.01) <= 1e-12
     return doc, gap
 

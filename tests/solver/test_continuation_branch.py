@@ -32,7 +32,7 @@ from solver.instant import analyze
 from solver.scene import LinkageScene, parse_linkage
 from solver.sweeps import Sweep, sweep
 from tests.solver.test_newton import TRIAD
-from tests.solver.test_newton_continuation import two_driver_triad
+from tests.solver.test_newton_continuation import three_crank_triad, two_driver_triad
 
 
 def _sweep(doc: dict[str, Any], samples: int) -> Sweep:
@@ -132,18 +132,8 @@ def test_three_drivers_are_turned_in_order_then_the_first_swept() -> None:
     """The triad with both of its ground pivots on driven cranks (H-G2 turned 60 deg, J-G3 20
     deg): the second crank is turned first (the third held at its drawn pose), then the third,
     then the first swept; every sample of 12 equals that reference path to 1e-9 m."""
-    doc = two_driver_triad()
-    doc["points"]["J"] = [1.8, -0.9]
-    doc["links"] |= {
-        "ground": {"points": ["O", "H", "J"], "ground": True},
-        "crank3": {"points": ["J", "G3"]},
-    }
-    doc["joints"] = [j for j in doc["joints"] if j["point"] != "G3"] + [
-        {"type": "revolute", "point": "G3", "links": ["L3", "crank3"]},
-        {"type": "revolute", "point": "J", "links": ["ground", "crank3"]},
-    ]
+    doc = three_crank_triad(110.0)
     doc["drivers"][1]["angle_deg"] = -150.0
-    doc["drivers"].append({"link": "crank3", "omega": 0.3, "alpha": 0.0, "angle_deg": 110.0})
     scene = parse_linkage(doc)
     result = sweep(scene, 12, ["position"])
     assert not result.feasible

@@ -233,6 +233,23 @@ def two_driver_triad() -> Doc:
     return doc
 
 
+def three_crank_triad(third_deg: float) -> Doc:
+    """``two_driver_triad`` with its pivot G3 carried by a third driven crank J-G3 (J at
+    (1.8, -0.9)), turning at 0.3 rad/s and posed at ``third_deg``."""
+    doc = two_driver_triad()
+    doc["points"]["J"] = [1.8, -0.9]
+    doc["links"] |= {
+        "ground": {"points": ["O", "H", "J"], "ground": True},
+        "crank3": {"points": ["J", "G3"]},
+    }
+    doc["joints"] = [j for j in doc["joints"] if j["point"] != "G3"] + [
+        {"type": "revolute", "point": "G3", "links": ["L3", "crank3"]},
+        {"type": "revolute", "point": "J", "links": ["ground", "crank3"]},
+    ]
+    doc["drivers"].append({"link": "crank3", "omega": 0.3, "alpha": 0.0, "angle_deg": third_deg})
+    return doc
+
+
 def test_second_driver_is_turned_first_then_the_first_swept() -> None:
     """Two drivers: the second is turned to its angle (first held), then the first swept. The
     sweep's limits agree at 36 and 360 samples, its poses close every loop, and /analyze at

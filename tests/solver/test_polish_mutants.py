@@ -47,7 +47,7 @@ from solver.sweeps import sweep, sweep_time
 from tests.solver.test_continuation_branch import _drawn_angle, _path_to, assert_follows
 from tests.solver.test_continuation_mutants import UNKNOWN, reference_points, slider_triad
 from tests.solver.test_newton import TRIAD
-from tests.solver.test_newton_continuation import two_driver_triad
+from tests.solver.test_newton_continuation import three_crank_triad
 
 Doc = dict[str, Any]
 GROUP = ("T", "L1", "L2", "L3")  # the triad's Newton group (the slider triad's lacks L3)
@@ -156,21 +156,11 @@ def test_a_structure_with_no_driver_rests_at_its_drawing() -> None:
 
 
 def three_driver_triad() -> Doc:
-    """The triad with both ground pivots on driven cranks (test_continuation_branch's), the
+    """The triad with both ground pivots on driven cranks (``three_crank_triad``), the
     second crank drawn 5 deg from its drawn angle and turning back at -0.5 rad/s, the third
     drawn -10 deg from it and turning at 0.3 rad/s: at t = 0 the second's turn is the larger."""
-    doc = two_driver_triad()
-    doc["points"]["J"] = [1.8, -0.9]
-    doc["links"] |= {
-        "ground": {"points": ["O", "H", "J"], "ground": True},
-        "crank3": {"points": ["J", "G3"]},
-    }
-    doc["joints"] = [j for j in doc["joints"] if j["point"] != "G3"] + [
-        {"type": "revolute", "point": "G3", "links": ["L3", "crank3"]},
-        {"type": "revolute", "point": "J", "links": ["ground", "crank3"]},
-    ]
+    doc = three_crank_triad(80.0)
     doc["drivers"][1] |= {"angle_deg": -85.0, "omega": -0.5}
-    doc["drivers"].append({"link": "crank3", "omega": 0.3, "alpha": 0.0, "angle_deg": 80.0})
     return doc
 
 
