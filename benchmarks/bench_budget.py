@@ -43,7 +43,7 @@ import numpy as np  # noqa: E402
 import solver  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN  # noqa: E402
 from server import budget  # noqa: E402
-from solver.scene import LinkageScene  # noqa: E402
+from solver.model.scene import LinkageScene  # noqa: E402
 from tests.server.test_budget import triads  # noqa: E402
 
 QUANTITIES = ["position", "velocity", "acceleration"]

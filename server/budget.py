@@ -1,7 +1,7 @@
 """The cost of a request, checked after parsing and before any work: ``limit_exceeded`` (413).
 
 Scene sizes are bounded by the parsers (200 points, 100 links, ...) and a time law by
-``solver.laws`` (500 characters, ``MAX_COMPOSITION`` levels), but their products are not:
+``solver.model.laws`` (500 characters, ``MAX_COMPOSITION`` levels), but their products are not:
 
 - response size: samples x (points + links + joints + moving points) x quantities (a spatial
   chain: points + bodies + joints), at most
@@ -30,17 +30,17 @@ import numpy as np
 
 import solver
 from server.settings import TIME_LIMITS
-from solver.drivers import driver_inputs_over_time
 from solver.errors import LimitExceeded
-from solver.laws import parse_time_law
-from solver.quantities import normalise_quantities
-from solver.scene import MAX_TIME, LinkageScene
-from solver.spatial import SpatialChain
-from solver.topology import NewtonStep, build_plan
+from solver.kinematics.spatial import SpatialChain
+from solver.model.laws import parse_time_law
+from solver.model.quantities import normalise_quantities
+from solver.model.scene import MAX_TIME, LinkageScene
+from solver.position.drivers import driver_inputs_over_time
+from solver.position.topology import NewtonStep, build_plan
 
 MAX_SWEEP_VALUES = 500_000
 MAX_OSCILLATIONS = 5_000
-EVENT_GRID = 4097  # samples of |M - P| in an event search off M's carrier (solver.events)
+EVENT_GRID = 4097  # samples of |M - P| in an event search off M's carrier (solver.analysis.events)
 FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
 # The Newton-Raphson cost model, fitted by benchmarks/bench_budget.py (best of 3, shared 2-core
 # machine): the largest rate measured per link-sample (groups of up to 32 links, positions,

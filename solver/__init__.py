@@ -16,6 +16,14 @@ Errors are the exceptions of ``solver.errors``; an unknown key in a scene is a w
 result's ``warnings`` (an ``InvalidScene`` with ``strict=True``).
 """
 
+from solver.analysis.results import (
+    AnalysisResult,
+    EventResult,
+    Result,
+    SolutionResult,
+    SweepResult,
+    TimeSweepResult,
+)
 from solver.api import (
     ReadScene,
     SceneWarning,
@@ -35,14 +43,6 @@ from solver.errors import (
     NoEvent,
     NotAssemblable,
     SingularConfiguration,
-)
-from solver.results import (
-    AnalysisResult,
-    EventResult,
-    Result,
-    SolutionResult,
-    SweepResult,
-    TimeSweepResult,
 )
 
 __all__ = [

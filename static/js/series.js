@@ -104,7 +104,7 @@ export function transmissionLoops(scene, loops) {
   return out;
 }
 
-/** μ = ∠BCD in 0..π (solver/four_bar.py transmission_angle). */
+/** μ = ∠BCD in 0..π (solver/kinematics/four_bar.py transmission_angle). */
 export function angleBCD(B, C, D) {
   const u = [B[0] - C[0], B[1] - C[1]];
   const w = [D[0] - C[0], D[1] - C[1]];

@@ -1,0 +1,47 @@
+"""Four-bar loops: Grashof's classification and the transmission angle.
+
+Grashof: with s the shortest and l the longest of the four lengths, s + l <= p + q lets the
+shortest link turn fully; the transmission angle is the angle between coupler and rocker.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.kinematics.rigid import Array, cross
+
+
+@dataclass(frozen=True)
+class FourBarLoop:
+    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad)."""
+
+    links: tuple[str, str, str, str]
+    lengths: tuple[float, float, float, float]
+    grashof: str
+    transmission_angle: float
+
+
+def grashof_class(ground: float, crank: float, coupler: float, rocker: float) -> str:
+    """Grashof's criterion s + l <= p + q, and which link is the shortest."""
+    lengths = [ground, crank, coupler, rocker]
+    s, l_ = min(lengths), max(lengths)
+    spread = s + l_ - (sum(lengths) - s - l_)
+    if abs(spread) <= 1e-12 * l_:
+        return "change-point"
+    if spread > 0:
+        return "non-Grashof triple-rocker"
+    shortest = int(np.argmin(lengths))
+    return (
+        "Grashof double-crank",
+        "Grashof crank-rocker",
+        "Grashof double-rocker",
+        "Grashof rocker-crank",
+    )[shortest]
+
+
+def transmission_angle(B: Array, C: Array, D: Array) -> float:
+    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi)."""
+    u, w = B - C, D - C
+    return float(np.arctan2(abs(cross(u, w)), u @ w))
