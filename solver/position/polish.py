@@ -17,7 +17,7 @@ eps_ld = 1e-19 the rates are off by cond^2 x 1e-19 (1e-5 at cond 1e6); and the a
 solved at a position rounded to double are off by cond^2 x eps (the rounded pose is that of a
 linkage whose lengths differ by eps). Evaluating J and b at the 40-digit pose and rounding them
 (not the pose) leaves the rates good to cond x eps, the rounding of one solve (see
-docs/ARCHITECTURE.md, "Polish at a posed angle").
+docs/CONTINUATION.md, "A single instant at a posed angle").
 """
 
 from __future__ import annotations
