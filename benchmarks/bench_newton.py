@@ -224,7 +224,7 @@ def main() -> None:
         "### Newton groups: speed against a four-bar (same run)",
         "",
         "Sweeps with positions, velocities and accelerations; the triads are solved by "
-        "continuation and batched Newton-Raphson (docs/ARCHITECTURE.md), the four-bar by "
+        "continuation and batched Newton-Raphson (docs/CONTINUATION.md), the four-bar by "
         "closed-form dyads. Target (issue 8): at most 10x the four-bar at 360 samples.",
         "",
         speed_table,
@@ -234,9 +234,8 @@ def main() -> None:
         "ways until it closes or meets a limit), and 10 % more in the check that a full turn "
         "closes (`Branch.closes`); about 9 % of the whole is the orientation test of every node "
         "(`_orientation`: the path neither leaves its strand nor steps across two limits, "
-        "docs/ARCHITECTURE.md), the price of the three continuation bugs fixed on 2026-11-27, "
-        "which moved the ratio from 20-23x to 22-29x. The path following is sequential: 20 "
-        "nodes per turn of the full-turning triad "
+        "docs/CONTINUATION.md). The path following is sequential: 20 nodes per turn of the "
+        "full-turning triad "
         "(steps up to a 60 deg turn of the tangent, a third-order predictor), each about five "
         "evaluations of the loop equations in the links' rotations (`constraints.Rotations`: 4 "
         "equations in 5 angles) and five 5x5 LAPACK solves, then every segment of that leg "
