@@ -18,12 +18,15 @@ from solver.topology import CircleSpec, DriverStep, DyadStep, Plan
 
 @dataclass(frozen=True)
 class FourBarLoop:
-    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad)."""
+    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad), a
+    float at one instant or an array over a sweep's samples. ``points`` are B, C, D of the
+    angle BCD: the crank pin, the coupler-rocker joint, the rocker's ground pivot."""
 
     links: tuple[str, str, str, str]
     lengths: tuple[float, float, float, float]
     grashof: str
-    transmission_angle: float
+    transmission_angle: float | Array
+    points: tuple[str, str, str]
 
 
 def grashof_class(ground: float, crank: float, coupler: float, rocker: float) -> str:
@@ -44,14 +47,19 @@ def grashof_class(ground: float, crank: float, coupler: float, rocker: float) ->
     )[shortest]
 
 
-def transmission_angle(B: Array, C: Array, D: Array) -> float:
-    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi)."""
+def transmission_angle(B: Array, C: Array, D: Array) -> Array:
+    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi), at every sample:
+    points (2,) give a 0-d array, points (N, 2) an array (N,)."""
     u, w = B - C, D - C
-    return float(np.arctan2(abs(cross(u, w)), u @ w))
+    return np.arctan2(np.abs(cross(u, w)), np.vecdot(u, w))
 
 
-def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[FourBarLoop]:
-    """RRR dyads closing a loop ground - driven crank - coupler - rocker - ground."""
+def four_bar_loops(
+    scene: LinkageScene, plan: Plan, motion: Motion, every_sample: bool = False
+) -> list[FourBarLoop]:
+    """RRR dyads closing a loop ground - driven crank - coupler - rocker - ground; the
+    transmission angle at the first sample of ``motion`` (a float), or at every sample (an
+    array) if ``every_sample``."""
     cranks = {s.link: s.pivot for s in plan.steps if isinstance(s, DriverStep)}
     ground_points = set(scene.links[scene.ground].points)
     loops = []
@@ -80,11 +88,13 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
             first.radius,
             second.radius,
         )
-        p = motion.points
-        mu = transmission_angle(p[first.center].p[0], p[step.point].p[0], p[second.center].p[0])
-        loops.append(
-            FourBarLoop(
-                (scene.ground, crank, first.link, second.link), lengths, grashof_class(*lengths), mu
-            )
+        points = (first.center, step.point, second.center)
+        B, C, D = (motion.points[name].p for name in points)
+        mu = (
+            transmission_angle(B, C, D)
+            if every_sample
+            else float(transmission_angle(B[0], C[0], D[0]))
         )
+        links = (scene.ground, crank, first.link, second.link)
+        loops.append(FourBarLoop(links, lengths, grashof_class(*lengths), mu, points))
     return loops

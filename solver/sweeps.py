@@ -17,22 +17,24 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 from solver.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.compiled_plan import compiled_plan
 from solver.continuation import Continuation
 from solver.drivers import drawn_angle, driver_input, driver_inputs_over_time
 from solver.errors import InvalidScene, LimitExceeded
+from solver.four_bar import FourBarLoop, four_bar_loops
 from solver.newton import newton_tolerance
 from solver.poles import Poles, link_poles
 from solver.quantities import normalise_quantities, required_order
 from solver.relative_motion import MovingPointMotion, moving_point_motion
 from solver.rigid import Array
 from solver.scene import LinkageScene
-from solver.sliding_joints import SlidingJoint, sliding_joints
+from solver.sliding_joints import SliderTravel, SlidingJoint, slider_travel, sliding_joints
 from solver.topology import Plan, build_plan
 
 MAX_SAMPLES = 100_000
@@ -69,6 +71,28 @@ class Sweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
+    strokes: dict[str, Strokes | None] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Strokes:
+    """A slider on a fixed guide (a ram) over a full revolution of the driver: its two extreme
+    positions (where ds/dt = 0), at the driver's absolute angles ``driver_angles`` (rad, in the
+    order the driver reaches them) with ``displacements`` s there (m); the driver's turn over
+    the slower stroke and over the faster one (rad, summing to 2 pi), and their ratio, the
+    quick-return time ratio at constant driver speed. None where the ram does not reverse
+    exactly twice a revolution."""
+
+    driver_angles: tuple[float, float]
+    displacements: tuple[float, float]
+    slow_stroke: float
+    fast_stroke: float
+
+    @property
+    def time_ratio(self) -> float:
+        return self.slow_stroke / self.fast_stroke
 
 
 @dataclass(frozen=True)
@@ -340,6 +364,12 @@ def sweep(
         singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
+    loops, sliders = _loops_and_sliders(scene, plan, motion, wanted, order)
+    strokes: dict[str, Strokes | None] = {}
+    if span is None and "position" in wanted:
+        for travel in sliders:
+            if travel.links[0] == scene.ground:
+                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion.size)
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -351,6 +381,74 @@ def sweep(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         approaches,
+        loops,
+        sliders,
+        strokes,
+    )
+
+
+def _loops_and_sliders(
+    scene: LinkageScene, plan: Plan, motion: Motion, wanted: frozenset[str], order: int
+) -> tuple[list[FourBarLoop], list[SliderTravel]]:
+    """The four-bar loops' transmission angles (with positions) and the sliders' travel along
+    their guides (with positions, velocities or accelerations), at every sample."""
+    loops = four_bar_loops(scene, plan, motion, every_sample=True) if "position" in wanted else []
+    sliders = []
+    if wanted & {"position", "velocity", "acceleration"}:
+        sliders = slider_travel(scene, motion, order)
+    return loops, sliders
+
+
+def _travel_at(driven: _Driven, point: str, turn: float) -> SliderTravel:
+    """The travel of ``point``'s slider with the first driver turned by ``turn`` (one instant,
+    with ds/dt)."""
+    motion = driven.run(np.array([turn]), 1)
+    return next(t for t in slider_travel(driven.scene, motion, 1) if t.point == point)
+
+
+def _sliding_velocity(turn: float, driven: _Driven, point: str) -> float:
+    velocity = _travel_at(driven, point, turn).sliding_velocity
+    assert velocity is not None
+    return float(velocity[0])
+
+
+def _strokes(
+    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, size: float
+) -> Strokes | None:
+    """The ram's extreme positions over a revolution sampled at ``turns`` (one turn, without
+    the closing sample): each sampled extreme of s bracketed by its two neighbours, where ds/dt
+    changes sign, and refined to rounding by Brent's method on ds/dt at one instant (as the
+    limit positions are refined at one instant, whatever the number of samples)."""
+    s = travel.displacement
+    step = np.diff(np.append(s, s[0]))  # s[k + 1] - s[k], cyclic
+    moving = np.flatnonzero(np.abs(step) > 1e-12 * size)
+    signs = np.sign(step[moving])
+    turning = np.flatnonzero(signs != np.roll(signs, 1))  # s turns back between moving steps
+    if turning.size != 2:
+        return None
+    delta = turns[1] - turns[0]
+    period = delta * turns.size  # +-2 pi, as the driver turns
+    found = []
+    for j in turning:
+        before, after = int(moving[j - 1]), int(moving[j])  # steps k -> k + 1 (cyclic)
+        ends = (turns[before], turns[after] + delta + (period if after < before else 0.0))
+        low, high = min(ends), max(ends)
+        point = travel.point
+        if not _sliding_velocity(low, driven, point) * _sliding_velocity(high, driven, point) < 0:
+            return None
+        root = brentq(_sliding_velocity, low, high, args=(driven, point), xtol=1e-15)
+        found.append(turns[0] + (((root - turns[0]) / period) % 1.0) * period)
+    found.sort(key=lambda t: (t - turns[0]) / period)  # in the order the driver reaches them
+    first = abs(found[1] - found[0])
+    second = 2.0 * math.pi - first
+    return Strokes(
+        (float(drawn + found[0]), float(drawn + found[1])),
+        (
+            float(_travel_at(driven, travel.point, found[0]).displacement[0]),
+            float(_travel_at(driven, travel.point, found[1]).displacement[0]),
+        ),
+        float(max(first, second)),
+        float(min(first, second)),
     )
 
 
@@ -367,6 +465,8 @@ class TimeSweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
 
 
 def sweep_time(
@@ -414,4 +514,5 @@ def sweep_time(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         close_approaches(motion, first or "", angle),
+        *_loops_and_sliders(scene, plan, motion, wanted, order),
     )
