@@ -492,7 +492,7 @@ def _loop_and_slider_arrays(
                 "lengths": dict(zip(FOUR_BAR, loop.lengths, strict=True)),
                 "grashof": loop.grashof,
                 "angle_points": list(loop.points),
-                "transmission_angle": array(loop.transmission_angle),
+                "transmission_angle": array(np.asarray(loop.transmission_angle)),
                 "transmission_angle_deg": array(np.degrees(loop.transmission_angle)),
             }
             for loop in result.four_bar_loops
