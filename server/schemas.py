@@ -14,6 +14,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+import solver
+
 EXAMPLES = Path(__file__).parent / "examples"
 
 
@@ -22,9 +24,7 @@ def _example(name: str) -> dict[str, Any]:
     return data
 
 
-Quantity = Literal[
-    "position", "velocity", "acceleration", "poles", "components", "forces", "energy"
-]
+Quantity = solver.Quantity  # declared once, in solver.quantities
 
 
 class Strict(BaseModel):

@@ -36,6 +36,7 @@ from solver.errors import (
     NotAssemblable,
     SingularConfiguration,
 )
+from solver.quantities import Quantity
 from solver.results import (
     AnalysisResult,
     EventResult,
@@ -44,6 +45,8 @@ from solver.results import (
     SweepResult,
     TimeSweepResult,
 )
+from solver.steps import Method
+from solver.work_estimate import WorkEstimate, estimate_work
 
 __all__ = [
     "AnalysisResult",
@@ -52,8 +55,10 @@ __all__ = [
     "InvalidScene",
     "KinematicsError",
     "LimitExceeded",
+    "Method",
     "NoEvent",
     "NotAssemblable",
+    "Quantity",
     "ReadScene",
     "Result",
     "SceneWarning",
@@ -61,7 +66,9 @@ __all__ = [
     "SolutionResult",
     "SweepResult",
     "TimeSweepResult",
+    "WorkEstimate",
     "analyze",
+    "estimate_work",
     "find_event",
     "parse_scene",
     "read_scene",
