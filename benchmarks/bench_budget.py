@@ -1,4 +1,4 @@
-"""The cost budget's Newton-Raphson model (solver/work_estimate.py, compared by server/budget.py) against measured times.
+"""The cost budget's Newton-Raphson model (solver/work_estimate.py) against measured times.
 
 Run from the repository root (about 3 minutes on a loaded 2-core machine):
 
