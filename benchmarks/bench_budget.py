@@ -1,4 +1,4 @@
-"""The cost budget's Newton-Raphson model (solver/work_estimate.py) against measured times.
+"""The cost budget's Newton-Raphson model (solver/analysis/work_estimate.py) against measured times.
 
 Run from the repository root (about 3 minutes on a loaded 2-core machine):
 
@@ -42,7 +42,7 @@ if str(ROOT) not in sys.path:
 import solver  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN  # noqa: E402
 from server import budget  # noqa: E402
-from solver.work_estimate import SAMPLE_COST, SAMPLES_PER_RADIAN, SETUP_SAMPLES  # noqa: E402
+from solver.analysis.work_estimate import SAMPLE_COST, SAMPLES_PER_RADIAN, SETUP_SAMPLES  # noqa: E402
 from tests.server.test_budget import triads  # noqa: E402
 
 QUANTITIES = ["position", "velocity", "acceleration"]

@@ -33,8 +33,8 @@ from fastapi.testclient import TestClient  # noqa: E402
 
 import solver  # noqa: E402
 from server.app import app  # noqa: E402
-from solver.presets import build_preset  # noqa: E402
-from solver.scene import parse_linkage  # noqa: E402
+from solver.model.scene import parse_linkage  # noqa: E402
+from solver.teaching.presets import build_preset  # noqa: E402
 
 KINEMATIC = ["position", "velocity", "acceleration"]
 DYNAMIC = [*KINEMATIC, "forces", "energy"]

@@ -40,7 +40,7 @@ from solver.exercises.answers import parse, solve_scene  # noqa: E402
 from solver.exercises.checking import check_answers  # noqa: E402
 from solver.exercises.export import answer_csv, html_sheets, moodle_xml  # noqa: E402
 from solver.exercises.solutions import DIGITS, worked_solution  # noqa: E402
-from solver.steps import solve  # noqa: E402
+from solver.solutions import solve  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 START, END = "<!-- exercises:start -->", "<!-- exercises:end -->"

@@ -42,11 +42,11 @@ import numpy as np  # noqa: E402
 from benchmarks.sections import markers, write_section  # noqa: E402
 from server import budget as budget_check  # noqa: E402
 from server.local import serve_locally  # noqa: E402
+from solver.analysis.instant import LinkageAnalysis, analyze  # noqa: E402
+from solver.analysis.sweeps import Sweep, sweep  # noqa: E402
 from solver.errors import LimitExceeded  # noqa: E402
-from solver.instant import LinkageAnalysis, analyze  # noqa: E402
-from solver.presets import PRESETS, build_preset  # noqa: E402
-from solver.scene import LinkageScene, parse_linkage  # noqa: E402
-from solver.sweeps import Sweep, sweep  # noqa: E402
+from solver.model.scene import LinkageScene, parse_linkage  # noqa: E402
+from solver.teaching.presets import PRESETS, build_preset  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 START, END = markers("kinematics")

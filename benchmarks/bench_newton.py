@@ -41,9 +41,9 @@ import numpy as np  # noqa: E402
 
 from benchmarks.sections import write_section  # noqa: E402
 from server.local import serve_locally  # noqa: E402
-from solver.presets import build_preset  # noqa: E402
-from solver.scene import parse_linkage  # noqa: E402
-from solver.sweeps import sweep  # noqa: E402
+from solver.analysis.sweeps import sweep  # noqa: E402
+from solver.model.scene import parse_linkage  # noqa: E402
+from solver.teaching.presets import build_preset  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 ALL = ["position", "velocity", "acceleration"]

@@ -1,4 +1,5 @@
-"""What the 40-digit polish of a posed instant (``solver.polish``, issue 14) costs per /analyze.
+"""What the 40-digit polish of a posed instant (``solver.position.polish``, issue 14) costs per
+/analyze.
 
 Run from the repository root:
 
@@ -7,7 +8,8 @@ Run from the repository root:
 
 ``analyze(scene)`` (every kinematic quantity) of the four-bar, slider-crank and inverted
 slider-crank presets and of a triad (a Newton group), each posed with ``angle_deg`` (so the
-polish runs), timed with the polish and without it (``solver.instant.polish`` replaced by the
+polish runs), timed with the polish and without it (``solver.analysis.instant.polish`` replaced by
+the
 identity, the closed-form position as before issue 14), the two alternating repeat by repeat in
 the same run; p50 of the wall time (and of the process's CPU time, less sensitive to other
 processes) and the ratio. It prints a markdown table and the 1-minute load average before
@@ -29,9 +31,9 @@ ROOT = Path(__file__).resolve().parent.parent
 if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_polish.py`
     sys.path.insert(0, str(ROOT))
 
-import solver.instant as analysis  # noqa: E402
-from solver.presets import build_preset  # noqa: E402
-from solver.scene import LinkageScene, parse_linkage  # noqa: E402
+import solver.analysis.instant as analysis  # noqa: E402
+from solver.model.scene import LinkageScene, parse_linkage  # noqa: E402
+from solver.teaching.presets import build_preset  # noqa: E402
 from tests.solver.test_newton import TRIAD  # noqa: E402
 
 

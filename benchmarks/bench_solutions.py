@@ -35,7 +35,7 @@ MEASURE = """
 import json, statistics, sys, time
 sys.path.insert(0, {tree!r})
 import solver
-from solver.presets import PRESETS, build_preset
+from solver.teaching.presets import PRESETS, build_preset
 out = {{}}
 for name in PRESETS:
     doc = build_preset(name, {{}})

@@ -1,4 +1,5 @@
-"""Speed of the spatial sweep over time (solver.spatial_sweep), against a per-sample baseline.
+"""Speed of the spatial sweep over time (solver.analysis.spatial_sweep), against a per-sample
+baseline.
 
 Run from the repository root:
 
@@ -30,14 +31,14 @@ if str(ROOT) not in sys.path:
 
 import numpy as np  # noqa: E402
 
-from solver.spatial import (  # noqa: E402
+from solver.analysis.spatial_sweep import move_chain, sweep_spatial_time  # noqa: E402
+from solver.kinematics.spatial import (  # noqa: E402
     SpatialChain,
     SpatialJoint,
     SpatialPoint,
     analyze_spatial_chain,
     parse_spatial_chain,
 )
-from solver.spatial_sweep import move_chain, sweep_spatial_time  # noqa: E402
 
 ARM = ROOT / "server" / "examples" / "S002-spatial-arm.json"
 ALL = ["position", "velocity", "acceleration"]

@@ -44,10 +44,10 @@ import numpy as np  # noqa: E402
 from benchmarks.bench_kinematics import SEED_004, Budget, closed_form, repeated, table  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN, reference_error  # noqa: E402
 from benchmarks.sections import write_section  # noqa: E402
-from solver.presets import build_preset  # noqa: E402
-from solver.scene import LinkageScene, parse_linkage  # noqa: E402
-from solver.sweeps import sweep  # noqa: E402
-from solver.topology import DriverStep, NewtonStep, Plan, build_plan  # noqa: E402
+from solver.analysis.sweeps import sweep  # noqa: E402
+from solver.model.scene import LinkageScene, parse_linkage  # noqa: E402
+from solver.position.topology import DriverStep, NewtonStep, Plan, build_plan  # noqa: E402
+from solver.teaching.presets import build_preset  # noqa: E402
 
 DOCS = ROOT / "docs"
 ALL = ["position", "velocity", "acceleration"]
@@ -169,7 +169,9 @@ def newton_plan(scene: LinkageScene) -> Plan:
 @contextmanager
 def forced_newton() -> Iterator[None]:
     """Sweeps in this block solve the closed-form groups by Newton-Raphson instead."""
-    with mock.patch.object(importlib.import_module("solver.sweeps"), "build_plan", newton_plan):
+    with mock.patch.object(
+        importlib.import_module("solver.analysis.sweeps"), "build_plan", newton_plan
+    ):
         yield
 
 

@@ -1,9 +1,9 @@
 """The cost of a request, checked after parsing and before any work: ``limit_exceeded`` (413).
 
 Scene sizes are bounded by the parsers (200 points, 100 links, ...) and a time law by
-``solver.laws`` (500 characters, ``MAX_COMPOSITION`` levels), but their products are not. The
+``solver.model.laws`` (500 characters, ``MAX_COMPOSITION`` levels), but their products are not. The
 solver estimates them (``solver.estimate_work``: the response's size, the Newton-Raphson work,
-an event search's oscillations; its cost model in ``solver.work_estimate``) and the server
+an event search's oscillations; its cost model in ``solver.analysis.work_estimate``) and the server
 compares the estimate with its limits:
 
 - response size: at most ``MAX_SWEEP_VALUES`` values (about 20 MB of JSON; 200 points x 100,000
@@ -24,10 +24,10 @@ from typing import Any
 
 import solver
 from server.settings import TIME_LIMITS
+from solver.analysis.work_estimate import WorkEstimate
 from solver.errors import LimitExceeded
-from solver.scene import LinkageScene
-from solver.spatial import SpatialChain
-from solver.work_estimate import WorkEstimate
+from solver.kinematics.spatial import SpatialChain
+from solver.model.scene import LinkageScene
 
 MAX_SWEEP_VALUES = 500_000
 MAX_OSCILLATIONS = 5_000

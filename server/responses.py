@@ -1,6 +1,7 @@
 """Solver results to HTTP responses: mechanical conversion, nothing computed here.
 
-A result's ``as_dict()`` is the body (``solver.results``); it goes out through orjson, large
+A result's ``as_dict()`` is the body (``solver.analysis.results``); it goes out through orjson,
+large
 sweep arrays included, after the check that every number is finite (``server.edge``). The body
 is not validated against the route's response model: the model is published in the OpenAPI
 document, and a contract test checks real responses against it.
@@ -11,7 +12,7 @@ from __future__ import annotations
 from fastapi.responses import JSONResponse
 
 from server.edge import FiniteJSONResponse
-from solver.results import Result
+from solver.analysis.results import Result
 
 
 class ResultResponse(FiniteJSONResponse, JSONResponse):

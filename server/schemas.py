@@ -1,6 +1,7 @@
 """Request models at the edge (one per endpoint and direction).
 
-The scene itself is validated by the solver's own parsers (``solver.scene``, ``solver.spatial``),
+The scene itself is validated by the solver's own parsers (``solver.model.scene``,
+``solver.kinematics.spatial``),
 which know the contract in full and say where a document is wrong; here it is an object with the
 spec's examples attached for the OpenAPI page.
 """
@@ -24,7 +25,7 @@ def _example(name: str) -> dict[str, Any]:
     return data
 
 
-Quantity = solver.Quantity  # declared once, in solver.quantities
+Quantity = solver.Quantity  # declared once, in solver.model.quantities
 
 
 class Strict(BaseModel):

@@ -16,6 +16,15 @@ Errors are the exceptions of ``solver.errors``; an unknown key in a scene is a w
 result's ``warnings`` (an ``InvalidScene`` with ``strict=True``).
 """
 
+from solver.analysis.results import (
+    AnalysisResult,
+    EventResult,
+    Result,
+    SolutionResult,
+    SweepResult,
+    TimeSweepResult,
+)
+from solver.analysis.work_estimate import WorkEstimate, estimate_work
 from solver.api import (
     ReadScene,
     SceneWarning,
@@ -36,17 +45,8 @@ from solver.errors import (
     NotAssemblable,
     SingularConfiguration,
 )
-from solver.quantities import Quantity
-from solver.results import (
-    AnalysisResult,
-    EventResult,
-    Result,
-    SolutionResult,
-    SweepResult,
-    TimeSweepResult,
-)
-from solver.steps import Method
-from solver.work_estimate import WorkEstimate, estimate_work
+from solver.model.quantities import Quantity
+from solver.solutions import Method
 
 __all__ = [
     "AnalysisResult",

@@ -20,25 +20,25 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from solver import events, instant, results
-from solver import steps as worked
-from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
-from solver.errors import InvalidScene
-from solver.polygons import polygons
-from solver.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_quantities
-from solver.results import (
+from solver import solutions as worked
+from solver.analysis import events, instant, results
+from solver.analysis.results import (
     AnalysisResult,
     EventResult,
     SolutionResult,
     SweepResult,
     TimeSweepResult,
 )
-from solver.scene import LinkageScene, parse_linkage, unknown_keys
-from solver.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
-from solver.spatial_sweep import sweep_spatial_time
-from solver.steps.solve import vector_method_steps
-from solver.sweeps import sweep as sweep_linkage
-from solver.sweeps import sweep_time as sweep_linkage_time
+from solver.analysis.spatial_sweep import sweep_spatial_time
+from solver.analysis.sweeps import sweep as sweep_linkage
+from solver.analysis.sweeps import sweep_time as sweep_linkage_time
+from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
+from solver.errors import InvalidScene
+from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
+from solver.model.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_quantities
+from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
+from solver.solutions.polygons import polygons
+from solver.solutions.solve import vector_method_steps
 
 Scene = LinkageScene | SpatialChain
 
@@ -214,7 +214,7 @@ def solve(
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
-        return SolutionResult(results.solution_body(solution, body, None, found))
+        return SolutionResult(worked.solution_body(solution, body, None, found))
     # The polygons follow the vector method's steps, whichever method the solution uses.
     vector_steps = (
         solution.steps
@@ -225,4 +225,4 @@ def solve(
     body = results.analysis_body(solution.analysis, found)
     if solution.method == "newton_euler":  # its steps' numbers point into forces and energy
         add_dynamics_results(body, parsed, solution.analysis)
-    return SolutionResult(results.solution_body(solution, body, shapes, found))
+    return SolutionResult(worked.solution_body(solution, body, shapes, found))

@@ -29,10 +29,10 @@ from typing import Any
 from hypothesis import assume
 from hypothesis import strategies as st
 
+from solver.analysis.instant import analyze
 from solver.errors import KinematicsError
-from solver.instant import analyze
-from solver.presets import PRESETS, build_preset
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import PRESETS, build_preset
 from tests.strategies import assemblable_presets
 
 # Bound on the reported condition number of an accepted draw (a well-posed instant).

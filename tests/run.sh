@@ -27,6 +27,7 @@ fi
 .venv/bin/ruff check solver server tests benchmarks
 .venv/bin/ruff format --check solver server tests benchmarks
 .venv/bin/mypy
+.venv/bin/lint-imports
 .venv/bin/hadolint Dockerfile
 
 # Dependency audit, offline: the locks against a copy of the PyPA advisory database

@@ -1,7 +1,8 @@
 """Hypothesis strategies shared by the property tests.
 
 ``assemblable_presets()`` draws ``(preset name, parameter values)`` pairs that
-``solver.presets.build_preset`` assembles, away from the singular poses where a property test would
+``solver.teaching.presets.build_preset`` assembles, away from the singular poses where a property
+test would
 be ill-conditioned: the four-bar's triangle BCD is never flat, a rod never stands perpendicular to
 its guide, and a slotted lever's pin never passes close to the lever pivot. Values are drawn from a
 valid pose rather than rejected, so hardly any draw is wasted.
@@ -16,7 +17,7 @@ from collections.abc import Callable, Sequence
 from hypothesis import assume
 from hypothesis import strategies as st
 
-from solver.presets import PRESETS, build_preset
+from solver.teaching.presets import PRESETS, build_preset
 
 PresetValues = tuple[str, dict[str, float]]
 

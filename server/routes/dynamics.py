@@ -18,7 +18,7 @@ from server.workers import WorkerRoute
 from solver.dynamics.balance import balance_four_bar
 from solver.dynamics.body import balance_body
 from solver.errors import InvalidScene
-from solver.scene import LinkageScene
+from solver.model.scene import LinkageScene
 
 
 class CounterweightSpec(Strict):

@@ -23,7 +23,7 @@ from server.schemas import (
     TimeSweepResponse,
 )
 from server.workers import WorkerRoute
-from solver.scene import LinkageScene
+from solver.model.scene import LinkageScene
 
 router = APIRouter(
     tags=["kinematics"],

@@ -13,7 +13,7 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
-from solver.presets import PRESETS, Preset
+from solver.teaching.presets import PRESETS, Preset
 
 router = APIRouter(
     prefix="/presets",

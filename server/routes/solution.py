@@ -21,7 +21,7 @@ from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
 from server.workers import WorkerRoute
 from solver.errors import InvalidScene
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 router = APIRouter(
     tags=["solutions"],
@@ -30,7 +30,7 @@ router = APIRouter(
     responses=PROBLEMS,
 )
 
-Method = solver.Method  # declared once, in solver.steps.solve
+Method = solver.Method  # declared once, in solver.solutions.solve
 
 
 def _example(name: str) -> dict[str, Any]:

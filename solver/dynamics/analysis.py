@@ -8,13 +8,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.assembly import Motion
 from solver.dynamics.energy import Energy, energy, power_balance_torque
 from solver.dynamics.loads import dynamics_of
 from solver.dynamics.newton_euler import ForceAnalysis, inverse_dynamics, neighbour_mean
 from solver.dynamics.virtual_power import partial_motion, virtual_power_torque
-from solver.rigid import Array
-from solver.scene import LinkageScene
+from solver.kinematics.rigid import Array
+from solver.model.scene import LinkageScene
+from solver.position.assembly import Motion
 
 
 @dataclass(frozen=True)

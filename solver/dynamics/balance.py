@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from solver.errors import InvalidScene
-from solver.scene import LinkageScene
+from solver.model.scene import LinkageScene
 
 
 @dataclass(frozen=True)

@@ -15,15 +15,15 @@ from typing import Any
 
 import numpy as np
 
-from solver.drivers import driver_input
+from solver.analysis.instant import LinkageAnalysis
+from solver.analysis.sweeps import Sweep, TimeSweep
 from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics, sweep_times
 from solver.dynamics.balance import Balance
 from solver.dynamics.cycle import cycle_figures
-from solver.instant import LinkageAnalysis
-from solver.quantities import DYNAMIC_QUANTITIES
-from solver.rigid import Array
-from solver.scene import LinkageScene
-from solver.sweeps import Sweep, TimeSweep
+from solver.kinematics.rigid import Array
+from solver.model.quantities import DYNAMIC_QUANTITIES
+from solver.model.scene import LinkageScene
+from solver.position.drivers import driver_input
 
 JSON = dict[str, Any]
 Convert = Callable[[Array], Any]

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.dynamics.loads import AppliedForce, AppliedMoment, MassElement
-from solver.rigid import Array, dot
+from solver.kinematics.rigid import Array, dot
 
 
 @dataclass(frozen=True)

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.assembly import Motion
-from solver.dynamics.model import Dynamics
 from solver.errors import InvalidExpression
-from solver.laws import State, StateExpression
-from solver.rigid import Array, rotate, scale
-from solver.scene import LinkageScene
+from solver.kinematics.rigid import Array, rotate, scale
+from solver.model.dynamics import Dynamics
+from solver.model.laws import State, StateExpression
+from solver.model.scene import LinkageScene
+from solver.position.assembly import Motion
 
 EMPTY = Dynamics()
 

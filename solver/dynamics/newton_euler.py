@@ -23,7 +23,6 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
-from solver.assembly import Motion
 from solver.dynamics.loads import (
     AppliedForce,
     AppliedMoment,
@@ -33,8 +32,9 @@ from solver.dynamics.loads import (
     mass_elements,
 )
 from solver.errors import SingularConfiguration
-from solver.rigid import Array, cross, perp, rotate
-from solver.scene import Joint, LinkageScene
+from solver.kinematics.rigid import Array, cross, perp, rotate
+from solver.model.scene import Joint, LinkageScene
+from solver.position.assembly import Motion
 
 # Up to this many matrix entries over all samples (16 MB) the blocks are solved as one dense
 # batch (LAPACK), beyond as one sparse block-diagonal matrix (SuperLU).

@@ -16,12 +16,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from solver.assembly import DriverInput, Motion, assemble
+from solver.analysis.sweeps import MIN_GRADIENT_SINE
 from solver.dynamics.loads import AppliedForce, AppliedMoment, MassElement
-from solver.rigid import Array, dot, rigid_body_velocity
-from solver.scene import LinkageScene
-from solver.sweeps import MIN_GRADIENT_SINE
-from solver.topology import build_plan
+from solver.kinematics.rigid import Array, dot, rigid_body_velocity
+from solver.model.scene import LinkageScene
+from solver.position.assembly import DriverInput, Motion, assemble
+from solver.position.topology import build_plan
 
 # The partial motion must be the analysed one: a point more than this (relative to the size) from
 # where the motion has it is on another assembly, and the torque is left undefined there.

@@ -18,14 +18,19 @@ from typing import Any
 
 import numpy as np
 
+from solver.analysis.events import find_event
+from solver.analysis.instant import LinkageAnalysis, analyze
 from solver.api import analyze as analyze_body
 from solver.api import sweep as sweep_body
 from solver.errors import InvalidScene
-from solver.events import find_event
 from solver.exercises.model import Exercise
-from solver.instant import LinkageAnalysis, analyze
-from solver.scene import LinkageScene, parse_linkage
-from solver.spatial import SpatialAnalysis, SpatialChain, analyze_spatial_chain, parse_spatial_chain
+from solver.kinematics.spatial import (
+    SpatialAnalysis,
+    SpatialChain,
+    analyze_spatial_chain,
+    parse_spatial_chain,
+)
+from solver.model.scene import LinkageScene, parse_linkage
 
 EVENT_OCCURRENCE = 1  # /events' defaults
 EVENT_T_MAX = 60.0

@@ -26,7 +26,7 @@ from solver.exercises.families import (
     scales,
 )
 from solver.exercises.model import Asked, Draft
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 CYCLE_SAMPLES = 720  # half a degree: the cycle figures to well within the 1 % tolerance
 GRAVITY = 9.81

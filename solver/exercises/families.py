@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from solver.exercises.model import Asked, Draft
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 TRANSMISSION_MIN_DEG = 35.0  # the transmission angle stays within [35, 145] deg
 

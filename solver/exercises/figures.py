@@ -16,7 +16,7 @@ from html import escape
 from itertools import pairwise
 from typing import Any
 
-from solver.scene import Joint, ground_pivot, parse_linkage
+from solver.model.scene import Joint, ground_pivot, parse_linkage
 
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
 INK = "#1f2937"

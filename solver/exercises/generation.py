@@ -18,6 +18,7 @@ from __future__ import annotations
 import random
 from dataclasses import replace
 
+from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
 from solver.exercises.answers import Solved, solve_scene, value_at
 from solver.exercises.families import TYPES, ExerciseType
@@ -30,7 +31,6 @@ from solver.exercises.model import (
     Statement,
     check_seed_index,
 )
-from solver.instant import LinkageAnalysis
 
 MAX_ATTEMPTS = 2000
 MAX_CONDITION = 60.0

@@ -18,12 +18,12 @@ from typing import Any
 
 import numpy as np
 
+from solver.analysis.instant import LinkageAnalysis
 from solver.errors import KinematicsError
 from solver.exercises.answers import Solved, flywheel_request, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
-from solver.instant import LinkageAnalysis
-from solver.rigid import Array, perp, rigid_body_acceleration
+from solver.kinematics.rigid import Array, perp, rigid_body_acceleration
 
 DEGREES = 180.0 / math.pi
 

@@ -1,4 +1,4 @@
-"""The worked solution of an exercise: the solver's own steps (``solver.steps.solve``) for its
+"""The worked solution of an exercise: the solver's own steps (``solver.solutions.solve``) for its
 scene, then, for an asked event time, a step saying how the instant was found and what s is then.
 """
 
@@ -9,9 +9,9 @@ from typing import Any
 from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
-from solver.laws import parse_time_law
-from solver.steps import Step, Value, solve
-from solver.steps import latex as tex
+from solver.model.laws import parse_time_law
+from solver.solutions import Step, Value, solve
+from solver.solutions import latex as tex
 
 DIGITS = 4
 

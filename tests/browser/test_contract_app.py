@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import pause_and_wait, wait_analysed, wait_until
 

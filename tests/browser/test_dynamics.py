@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
 

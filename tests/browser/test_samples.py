@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 from tests.browser.conftest import AppPage
 
 pytestmark = pytest.mark.browser

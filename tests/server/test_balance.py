@@ -13,7 +13,7 @@ from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 from tests.dynamics_cases import seed004_scene, with_masses_and_loads
 from tests.linkage_strategies import linkages
 

@@ -23,8 +23,8 @@ import solver
 from server import budget
 from server.app import app
 from solver.errors import LimitExceeded
-from solver.laws import MAX_COMPOSITION, composition_depth, parse_time_law
-from solver.scene import LinkageScene
+from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
+from solver.model.scene import LinkageScene
 from tests.server.test_errors import FOUR_BAR, assert_problem
 from tests.solver.test_newton import TRIAD
 

@@ -26,7 +26,7 @@ def test_forces_with_components_keep_the_slider_parts() -> None:
     """Every joint in the scene's order; the slider keeps its kinematic parts and gets its
     force, which is normal to the slot (frictionless)."""
     from server.app import app
-    from solver.presets import build_preset
+    from solver.teaching.presets import build_preset
 
     doc = build_preset("slider_crank", {})
     doc["masses"] = {name: {"mass": 2.0, "bar": link["points"][:2]}

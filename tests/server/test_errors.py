@@ -22,7 +22,7 @@ from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 Doc = dict[str, Any]
 REFERENCE = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"

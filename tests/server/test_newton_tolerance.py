@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
 from tests.solver.test_newton import TRIAD, with_angle
 
 SIZE = parse_linkage(TRIAD).size

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from fastapi.testclient import TestClient
 
-from solver.presets import build_preset
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 from tests.solver.test_newton import TRIAD, with_angle
 
 

@@ -3,7 +3,7 @@ every parameter, and the round trip preset -> scene -> /analyze (issue 2, "Prese
 
 from fastapi.testclient import TestClient
 
-from solver.presets import PRESETS
+from solver.teaching.presets import PRESETS
 
 
 def test_listing_names_every_parameter_with_unit_default_and_bounds(client: TestClient) -> None:

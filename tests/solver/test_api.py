@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 
 import solver
-from solver.presets import build_preset
-from solver.results import Result, holds
-from solver.scene import LinkageScene, parse_linkage, unknown_keys
-from solver.spatial import SpatialChain
+from solver.analysis.results import Result, holds
+from solver.kinematics.spatial import SpatialChain
+from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
+from solver.teaching.presets import build_preset
 from tests.solver.test_assembly import _near_crank_rocker
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -61,19 +61,20 @@ def test_the_numbers_are_the_solvers() -> None:
 
 
 def test_solver_sweeps_and_solver_sweep_do_not_clash() -> None:
-    """In a fresh interpreter: after ``import solver.sweeps`` and every other module of the
-    package, ``solver.sweeps`` is the module and ``solver.sweep`` (every public name) is still the
+    """In a fresh interpreter: after ``import solver.analysis.sweeps`` and every other module of the
+    package, ``solver.analysis.sweeps`` is the module and ``solver.sweep`` (every public name) is
+    still the
     function it was, and it still sweeps."""
     code = "; ".join(
         [
             "import importlib, inspect, json, pkgutil",
-            "import solver.sweeps",
+            "import solver.analysis.sweeps",
             "from solver import sweep",
             "public = {name: getattr(solver, name) for name in solver.__all__}",
             "modules = pkgutil.walk_packages(solver.__path__, 'solver.')",
             "[importlib.import_module(module.name) for module in modules]",
             "assert all(getattr(solver, name) is public[name] for name in public)",
-            "assert inspect.ismodule(solver.sweeps) and solver.sweep is sweep",
+            "assert inspect.ismodule(solver.analysis.sweeps) and solver.sweep is sweep",
             f"doc = json.loads(open({str(EXAMPLES / 'S000-T1.json')!r}).read())",
             "assert solver.sweep(doc, 4)['samples'] == 4",
         ]

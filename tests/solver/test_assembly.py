@@ -24,11 +24,11 @@ import numpy as np
 import pytest
 
 import solver
-from solver.assembly import WARNING_MARGIN, candidate_intervals, candidate_minima, screen
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import Sweep, sweep
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import Sweep, sweep
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.position.assembly import WARNING_MARGIN, candidate_intervals, candidate_minima, screen
+from solver.teaching.presets import build_preset
 
 SAMPLE_COUNTS = (36, 360, 3600, 36000)
 EPSILONS = (1e-3, 1e-6, 1e-9, 1e-12)
@@ -375,7 +375,7 @@ def test_sweep_warning_in_the_body() -> None:
 def test_time_sweep_warns_too() -> None:
     """A sweep over time (crank at 1 rad/s for one turn) finds the same close approach: 1e-4 m
     at crank 180 deg."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     scene = parse_linkage(_near_crank_rocker(1e-4))
     result = sweep_time(scene, 0.0, 2.0 * math.pi, 100, ["position"])

@@ -1,4 +1,5 @@
-"""What mutation testing of solver.assembly found untested (issue 8), tested through solver.sweep:
+"""What mutation testing of solver.position.assembly found untested (issue 8), tested through
+solver.sweep:
 
 - a full-turn sweep's velocities, accelerations and link rates (the sweep trims its extra
   samples with ``Motion.cut``): against the Heron closed form of the four-bar
@@ -19,10 +20,10 @@ import numpy as np
 import pytest
 
 import solver
+from solver.analysis.sweeps import sweep
 from solver.errors import NotAssemblable
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.sweeps import sweep
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 from tests.solver.test_assembly import four_bar_C
 
 ALL = ["position", "velocity", "acceleration"]
@@ -201,7 +202,7 @@ def test_close_approach_of_an_accelerating_crank_found_at_its_angle(end: float) 
     end = 4.5 s, just after it for 4.4 s): between samples the drivers follow each interval's
     own step, and the closest approach, 1e-4 m (to 1e-10 m), is at crank 180 deg (the closed
     form: |BD| is largest there; to 1e-6 rad)."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 + 1e-4}
     doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 0.5})
@@ -258,7 +259,7 @@ def test_window_between_samples_where_the_linkage_cannot_close_is_refused() -> N
     time, crank at 30 deg + t rad, samples every 0.1 s: every sample closes, but at crank
     180 deg (t = pi - pi/6 = 2.618 s, between samples 26 and 27) |BD| = g + a exceeds b + c by
     1e-6 m (closed form); the sweep is refused with those numbers."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     values = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 - 1e-6}
     doc = build_preset("four_bar", {**values, "crank_angle_deg": 30.0, "omega": 1.0})
@@ -326,7 +327,7 @@ def test_time_sweep_of_a_parallelogram_started_just_before_its_change_point() ->
     11 samples 5.7 deg apart; the change point at 180 deg is nearer the first sample than the
     second): a parallelogram at every sample, C = B + (1, 0) to 1e-9 m (0.51 m off before the
     first sample was screened)."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     result = sweep_time(parse_linkage(_parallelogram(179.0)), 0.0, 1.0, 11, ["position"])
     B, C = (result.motion.points[p].p for p in "BC")
@@ -499,7 +500,7 @@ def test_time_sweep_of_a_parallelogram_past_its_change_point_after_the_first_sam
     t = 0 .. 2 pi s, 10 deg apart): its change points at 180 and 360 deg lie 7 and 3 deg before
     samples 1 and 19. The drawn branch holds at the first sample, and the parallelogram stays
     one at every sample: C = B + (1, 0) to 1e-9 m."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     result = sweep_time(parse_linkage(_parallelogram(173.0)), 0.0, 2 * math.pi, 37, ["position"])
     B, C = (result.motion.points[p].p for p in "BC")
@@ -512,7 +513,7 @@ def test_newton_tolerance_asked_for_is_the_one_applied(tolerance: float) -> None
     (t = 0 .. 0.1 s: crank 33.7 to 45.5 deg), with a Newton tolerance of 1e-6 and of 1e-15
     (the bounds): every Newton report states that relative tolerance, the absolute one
     tolerance * size, and a residual within it."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
     from tests.solver.test_newton import TRIAD
 
     scene = parse_linkage(TRIAD)
@@ -641,7 +642,7 @@ def test_two_groups_failing_at_different_samples_are_both_named() -> None:
     """The crank with two dyads swept over time, crank 60 deg + t rad, t = 0 .. 1.5 s in 16
     samples: B-C-D fails from 131.5 deg on, B-E-G from 94.6 deg on, where B-C-D still closes:
     both are named, each at its worst sample (|BD| and |BG| from the closed form of B)."""
-    from solver.sweeps import sweep_time
+    from solver.analysis.sweeps import sweep_time
 
     with pytest.raises(NotAssemblable) as error:
         sweep_time(parse_linkage(_crank_with_two_dyads()), 0.0, 1.5, 16, ["position"])
@@ -740,8 +741,8 @@ def test_position_sweep_whose_screen_took_velocities_returns_positions_only(case
     array for array (the ground's, its points' and a driver's pivot's zero rates kept, a link
     guided by the ground keeping the ground's; every other rate None), here the same assembly
     without continuation (the branches stay as drawn)."""
-    from solver.assembly import DriverInput, assemble
-    from solver.topology import build_plan
+    from solver.position.assembly import DriverInput, assemble
+    from solver.position.topology import build_plan
     from tests.solver.test_compiled_plan import arrays
 
     doc = {

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver.steps.builder import StepBuilder, Unknown, present_solution
-from solver.steps.format import Formatter
+from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.format import Formatter
 
 
 def system(matrix: list[list[float]], rhs: list[float], cramer: bool = False) -> StepBuilder:

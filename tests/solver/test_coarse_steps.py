@@ -15,13 +15,13 @@ import pytest
 
 import solver
 from benchmarks.bench_newton import FULL_TURN
-from solver.assembly import MAX_DENSE_SAMPLES, MAX_DRIVER_STEP
-from solver.compiled_plan import compiled_plan
-from solver.drivers import driver_inputs_over_time
 from solver.errors import LimitExceeded, NotAssemblable
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.topology import build_plan
+from solver.model.scene import parse_linkage
+from solver.position.assembly import MAX_DENSE_SAMPLES, MAX_DRIVER_STEP
+from solver.position.compiled_plan import compiled_plan
+from solver.position.drivers import driver_inputs_over_time
+from solver.position.topology import build_plan
+from solver.teaching.presets import build_preset
 from tests.solver.test_events_mutants import _assert_time, _four_bar, _parallelogram, _time
 
 DRAWN = math.radians(60.0)  # the crank's drawn angle in ``_parallelogram(60.0, ...)``

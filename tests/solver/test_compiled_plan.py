@@ -1,4 +1,5 @@
-"""The compiled column-form plan (solver.compiled_plan) gives the general assembler's motion bit
+"""The compiled column-form plan (solver.position.compiled_plan) gives the general assembler's
+motion bit
 for bit, and hands back to it wherever the branch search or a failure message is needed.
 
 Bit for bit: every array of the motion (points, links, margins, gradient sine) compared as bytes,
@@ -17,12 +18,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from solver.assembly import DriverInput, Motion, assemble, coarse, path_steps
-from solver.compiled_plan import _COMPILED, compiled_plan
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.sweeps import sweep
-from solver.topology import build_plan
+from solver.analysis.sweeps import sweep
+from solver.model.scene import parse_linkage
+from solver.position.assembly import DriverInput, Motion, assemble, coarse, path_steps
+from solver.position.compiled_plan import _COMPILED, compiled_plan
+from solver.position.topology import build_plan
+from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bars
 from tests.linkage_strategies import linkages
 

@@ -22,10 +22,10 @@ import mpmath as mp
 import numpy as np
 import pytest
 
+from solver.analysis.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
 from solver.errors import SingularConfiguration
-from solver.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 
 mp.mp.dps = 50
 DISTANCES = ("1e-3", "1e-4", "1e-6", "1e-8", "1e-10")
@@ -210,10 +210,10 @@ def errors(result: LinkageAnalysis, rates: dict[str, Any]) -> float:
 def exact_condition(doc: Doc) -> float:
     """The solver's condition number (velocity system, rotation columns scaled by the size) of
     the same pose, its Jacobian's singular values computed in 50 digits."""
-    from solver.assembly import assemble
-    from solver.constraints import ConstraintSystem, KnownPoses
-    from solver.sweeps import _Driven
-    from solver.topology import build_plan
+    from solver.analysis.sweeps import _Driven
+    from solver.position.assembly import assemble
+    from solver.position.constraints import ConstraintSystem, KnownPoses
+    from solver.position.topology import build_plan
 
     scene = parse_linkage(doc)
     plan = build_plan(scene)

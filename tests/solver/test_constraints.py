@@ -1,4 +1,5 @@
-"""The constraint equations (solver.constraints): the condition number of the velocity equations
+"""The constraint equations (solver.position.constraints): the condition number of the velocity
+equations
 is dimensionless (scale invariant), and the rates the solver reports satisfy the differentiated
 loop equations J qdot = b_v, J qddot = b_a.
 """
@@ -10,18 +11,18 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.constraints import (
+from solver.analysis.instant import analyze
+from solver.errors import KinematicsError
+from solver.model.scene import parse_linkage
+from solver.position.constraints import (
     ConstraintSystem,
     KnownPoses,
     States,
     velocity_condition_number,
     velocity_jacobian,
 )
-from solver.errors import KinematicsError
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.steps import solve
+from solver.solutions import solve
+from solver.teaching.presets import build_preset
 from tests.linkage_strategies import linkages
 from tests.solver.test_newton import TRIAD, with_angle
 

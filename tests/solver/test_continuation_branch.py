@@ -25,12 +25,12 @@ import numpy as np
 import pytest
 
 from benchmarks.bench_newton import FULL_TURN
-from solver import continuation
-from solver.constraints import ConstraintSystem, States
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import Sweep, sweep
 from solver.errors import NotAssemblable
-from solver.instant import analyze
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import Sweep, sweep
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.position import continuation
+from solver.position.constraints import ConstraintSystem, States
 from tests.solver.test_newton import TRIAD
 from tests.solver.test_newton_continuation import three_crank_triad, two_driver_triad
 

@@ -1,5 +1,5 @@
 """A Newton group's branch between its limit positions, and the message where it cannot close
-(issue 8: mutation testing of solver/continuation.py left these unchecked).
+(issue 8: mutation testing of solver/position/continuation.py left these unchecked).
 
 The triad of tests/solver/test_newton.py rocks between two limit positions, low < 0 < high
 (turns of the crank from its drawn pose, found by the sweep). The branch reaches a turn t exactly
@@ -16,11 +16,11 @@ import re
 import pytest
 
 from benchmarks.bench_newton import FULL_TURN
-from solver.continuation import Continuation
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep
 from solver.errors import NotAssemblable
-from solver.instant import analyze
-from solver.scene import parse_linkage
-from solver.sweeps import sweep
+from solver.model.scene import parse_linkage
+from solver.position.continuation import Continuation
 from tests.solver.test_newton import TRIAD, with_angle
 
 DRAWN = math.atan2(0.2, 0.3)  # the crank O-A of TRIAD as drawn

@@ -1,4 +1,5 @@
-"""Newton groups' branch following (solver/continuation.py) against independent values: tests
+"""Newton groups' branch following (solver/position/continuation.py) against independent values:
+tests
 added for the mutants that survived the fourth session's mutation run (issue 8).
 
 Sources:
@@ -32,14 +33,14 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver import continuation
-from solver.assembly import DriverInput, assemble
-from solver.constraints import ConstraintSystem
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep, sweep_time
 from solver.errors import NotAssemblable
-from solver.instant import analyze
-from solver.scene import parse_linkage
-from solver.sweeps import sweep, sweep_time
-from solver.topology import build_plan
+from solver.model.scene import parse_linkage
+from solver.position import continuation
+from solver.position.assembly import DriverInput, assemble
+from solver.position.constraints import ConstraintSystem
+from solver.position.topology import build_plan
 from tests.solver.test_newton import TRIAD, with_angle
 from tests.solver.test_newton_continuation import (
     TRIADS,

@@ -1,4 +1,5 @@
-"""The closed-form groups (solver.dyads): the length margin's rate is its derivative (central
+"""The closed-form groups (solver.position.dyads): the length margin's rate is its derivative
+(central
 differences), and a pin in two nearly parallel slots still meets while parallel slots do not.
 """
 
@@ -13,7 +14,7 @@ import pytest
 
 def _moving(point: np.ndarray, t: np.ndarray, spin: float) -> Any:
     """A point turning about the origin at ``spin`` rad per unit t, from ``point`` at t = 0."""
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
 
     c, s = np.cos(spin * t), np.sin(spin * t)
     p = np.stack((c * point[0] - s * point[1], s * point[0] + c * point[1]), axis=-1)
@@ -26,7 +27,7 @@ def test_margin_pieces_rates_are_their_derivatives(kind: str) -> None:
     |AP| - |e|), its rate dm/du against central differences (step 1e-6, to 1e-8), with every
     locus moving: centres on circles, the slot turning with its guide; the margin is the
     smallest piece."""
-    from solver import dyads
+    from solver.position import dyads
 
     t0 = np.linspace(0.1, 6.0, 7)
     step = 1e-6
@@ -59,8 +60,8 @@ def test_margin_pieces_rates_are_their_derivatives(kind: str) -> None:
 def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
     """Two slots 1e-6 rad apart meet, far away: slot 1 the x axis, slot 2 through (0, 1) at
     angle 1e-6, so X = (-1 / tan(1e-6), 0) (one solution: margin +inf); parallel slots do not."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     def slot(through: list[float], angle: float) -> dyads.Line:
         direction = np.array([[math.cos(angle), math.sin(angle)]])
@@ -79,7 +80,7 @@ def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
 def _trajectory(p0: list[float], amp: list[float], w: float, phase: float, t: np.ndarray) -> Any:
     """p(t) = p0 + amp (cos(w t + phase), sin(w t + phase)) with its exact v and a: a point with
     a general motion (translating and circling), so no term of the rates vanishes."""
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
 
     c, s = np.cos(w * t + phase), np.sin(w * t + phase)
     p = np.stack((p0[0] + amp[0] * c, p0[1] + amp[1] * s), axis=-1)
@@ -90,7 +91,7 @@ def _trajectory(p0: list[float], amp: list[float], w: float, phase: float, t: np
 
 def _slot(t: np.ndarray, through: Any, phi0: float, omega0: float, alpha: float) -> Any:
     """A slot through a moving point, turning by phi = phi0 + omega0 t + alpha t^2 / 2."""
-    from solver import dyads
+    from solver.position import dyads
 
     phi = phi0 + omega0 * t + 0.5 * alpha * t * t
     direction = np.stack((np.cos(phi), np.sin(phi)), axis=-1)
@@ -98,7 +99,7 @@ def _slot(t: np.ndarray, through: Any, phi0: float, omega0: float, alpha: float)
 
 
 def _loci(kind: str, t: np.ndarray) -> tuple[Any, Any]:
-    from solver import dyads
+    from solver.position import dyads
 
     B = _trajectory([0.3, 0.2], [0.25, 0.15], 1.3, 0.4, t)
     D = _trajectory([1.1, -0.1], [0.1, 0.2], -0.9, 1.0, t)
@@ -112,8 +113,8 @@ def _loci(kind: str, t: np.ndarray) -> tuple[Any, Any]:
 
 def _on_locus(locus: Any, X: np.ndarray) -> np.ndarray:
     """The constraint's residual: |X - C| - r on a circle, n.(X - Q) on a slot (n = k x w)."""
-    from solver import dyads
-    from solver.rigid import cross, dot
+    from solver.kinematics.rigid import cross, dot
+    from solver.position import dyads
 
     if isinstance(locus, dyads.Circle):
         d = X - locus.center.p
@@ -130,7 +131,7 @@ def test_group_point_lies_on_both_loci_and_its_rates_are_derivatives(
     turning with angular acceleration): X lies on both loci (to 1e-12 m), and the velocity and
     acceleration of ``point_motion`` are the central differences (step 1e-5) of X and of that
     velocity, to 1e-7 (the truncation error is ~1e-10 times the third derivative)."""
-    from solver import dyads
+    from solver.position import dyads
 
     t0, step = np.linspace(0.2, 5.8, 9), 1e-5
 
@@ -152,8 +153,8 @@ def test_group_point_lies_on_both_loci_and_its_rates_are_derivatives(
 def test_coincident_centres_with_equal_radii_give_a_point_of_both_circles() -> None:
     """B = D and |BC| = |DC| (a kite at the pose where B falls on D): every point of the circle
     fits; the one given must lie on it (|X - B| = r) for both branches, and the margin is 0."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     B = PointMotion(np.array([[0.7, -0.3]]))
     cut = dyads.intersect(dyads.Circle(B, 0.5, "B", "c"), dyads.Circle(B, 0.5, "D", "r"), "C")
@@ -185,8 +186,8 @@ def test_message_shows_the_worst_sample_with_enough_digits(
     meet where d > 0.8 (extended) or d < 0.2 (folded). The message gives the d of the worst
     sample (least margin), with 6 significant digits or as many as show it different from the
     bound, and the numbers it prints satisfy the inequality it states."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     d = np.array(distances)
     C1 = PointMotion(np.zeros((d.size, 2)))
@@ -209,8 +210,8 @@ def test_slotted_lever_rates_are_derivatives_of_its_angle(pivot_moves: bool) -> 
     its offset (u x (P - A) = e, to 1e-12), omega and alpha are central differences (step 1e-5)
     of beta and omega to 1e-7, and the sine between slot and r = P - A is the closed form
     sqrt(|r|^2 - e^2) / |r| (|r| from 0.45 to 1.4, on both sides of 1)."""
-    from solver import dyads
-    from solver.rigid import PointMotion, cross
+    from solver.kinematics.rigid import PointMotion, cross
+    from solver.position import dyads
 
     t0, step, e = np.linspace(0.2, 5.8, 9), 1e-5, 0.15
 
@@ -239,8 +240,8 @@ def test_slotted_lever_at_unit_distance_and_on_its_pivot() -> None:
     """A slot through its pivot (e = 0): with the pin 1 m along the slot (u.r = 1 exactly) moving
     across it at 2 m/s, omega = v / |r| = 2 rad/s; with the pin on the pivot the slot's angle is
     undetermined, a dead centre: gradient sine 0 and a finite margin rate, never NaN."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     zero = np.zeros((1, 2))
     pivot = PointMotion(zero, zero, zero)
@@ -256,8 +257,8 @@ def test_slotted_lever_at_unit_distance_and_on_its_pivot() -> None:
 def _circle_and_line_at(distance: float, angle: float) -> tuple[Any, Any, np.ndarray, np.ndarray]:
     """A circle of radius 1000 m about C and a slot at ``distance`` from C with direction angle
     ``angle``: the loci, the foot F of the perpendicular from C, and the slot's direction w."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     w = np.array([math.cos(angle), math.sin(angle)])
     C = np.array([0.3, -0.7])
@@ -271,8 +272,8 @@ def _two_circles_at(distance: float, angle: float) -> tuple[Any, Any, np.ndarray
     """Circles of radii 1000 m and 600 m whose centres are ``distance`` apart in direction
     ``angle``: the loci, the foot F on the line of centres (a = (r1^2 - r2^2 + d^2) / 2d from
     C1) and the unit normal to it (the common chord's direction)."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     u = np.array([math.cos(angle), math.sin(angle)])
     C1 = np.array([0.3, -0.7])
@@ -289,7 +290,7 @@ def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> Non
     not sqrt(noise) ~ 1e-5 m off. A half-chord of about 1e-3 m (h^2 ~ 1e-6 m^2, 1e-12 r^2:
     far above the noise) is kept: X = F +- h n, h from the closed form (Pythagoras, or Heron's
     area for two circles), to 1e-6 m. Twenty directions each."""
-    from solver import dyads
+    from solver.position import dyads
 
     for k in range(1, 21):
         angle = 0.3 * k
@@ -317,8 +318,8 @@ def test_slot_message_shows_the_worst_sample() -> None:
     """A circle of radius 0.3 about the origin and the slot y = s at s = 0.35, 0.5, 0.4: the
     loci fail to meet at every sample, worst (least margin 0.3 - |s|) at s = 0.5; the message
     gives that distance."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     s = np.array([0.35, 0.5, 0.4])
     centre = PointMotion(np.zeros((3, 2)))
@@ -337,8 +338,8 @@ def test_slot_message_shows_the_worst_sample() -> None:
 def test_a_line_and_a_circle_meet_in_either_order() -> None:
     """intersect(line, circle) = intersect(circle, line): the x axis and the unit circle about
     (0.5, 0.6) meet at x = 0.5 -+ 0.8 (Pythagoras: 0.6^2 + 0.8^2 = 1)."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     line = dyads.Line(PointMotion(np.array([[0.0, 0.0]])), np.array([[1.0, 0.0]]), None, None, "g")
     circle = dyads.Circle(PointMotion(np.array([[0.5, 0.6]])), 1.0, "A", "crank")
@@ -350,8 +351,8 @@ def test_a_line_and_a_circle_meet_in_either_order() -> None:
 
 def test_parallel_slots_are_named_in_the_message() -> None:
     """Two parallel slots: the message names the pin and both guides."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     def slot(y: float, guide: str) -> dyads.Line:
         p = PointMotion(np.array([[0.0, y]]))
@@ -366,8 +367,8 @@ def test_rates_where_the_determinant_is_exactly_one() -> None:
     X - C2 = (-1, 1), det = 1 exactly (a determinant of 1 is not a dead centre). By hand from
     (X - C_i).(v_X - v_i) = 0 with v1 = (0.3, 0.7), v2 = (0.4, 0.1): v_y = 0.7 and
     -v_x + v_y = -0.4 + 0.1, so v_X = (1.0, 0.7)."""
-    from solver import dyads
-    from solver.rigid import PointMotion
+    from solver.kinematics.rigid import PointMotion
+    from solver.position import dyads
 
     def centre(p: list[float], v: list[float]) -> PointMotion:
         return PointMotion(np.array([p]), np.array([v]))

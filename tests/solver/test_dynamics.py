@@ -11,12 +11,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from solver.analysis.instant import analyze
 from solver.dynamics.analysis import linkage_dynamics
 from solver.errors import InvalidExpression
-from solver.instant import analyze
-from solver.laws import parse_state_expression, parse_time_law
-from solver.rigid import cross
-from solver.scene import parse_linkage
+from solver.kinematics.rigid import cross
+from solver.model.laws import parse_state_expression, parse_time_law
+from solver.model.scene import parse_linkage
 from tests.dynamics_cases import with_masses_and_loads
 from tests.linkage_strategies import linkages
 
@@ -166,8 +166,8 @@ def test_dense_and_sparse_solutions_agree_and_singular_samples_take_the_neighbou
 ) -> None:
     """Both ways of solving the samples' blocks give the same forces (1e-12 relative); a sample
     marked singular (a change point inside a sweep) gets the mean of its neighbours."""
+    from solver.analysis.sweeps import sweep
     from solver.dynamics import newton_euler
-    from solver.sweeps import sweep
     from tests.dynamics_cases import seed004_scene
 
     scene = parse_linkage(seed004_scene())

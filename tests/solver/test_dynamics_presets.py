@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
+from solver.analysis.instant import analyze
 from solver.dynamics.analysis import linkage_dynamics
-from solver.instant import analyze
-from solver.presets import PRESETS, build_preset
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import PRESETS, build_preset
 from tests.dynamics_cases import EXPECTED, seed004_scene
 
 TEXTBOOK = [name for name in PRESETS if name != "seed004"]

@@ -1,4 +1,5 @@
-"""Tests of solver.events.find_event: the occurrence-th instant after t = 0 at which a moving point
+"""Tests of solver.analysis.events.find_event: the occurrence-th instant after t = 0 at which a
+moving point
 M reaches a named point (scene-v1 ``POST /api/v1/events``; issue 3: "never misses a crossing
 between samples ... reports no_event when none occurs before t_max").
 
@@ -28,9 +29,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from solver.analysis.events import find_event
 from solver.errors import NoEvent
-from solver.events import find_event
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
 
 CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
 T_RTOL = 1e-6  # event times: relative to max(1, t)

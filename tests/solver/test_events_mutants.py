@@ -1,4 +1,5 @@
-"""Tests written against the surviving mutants of solver/events.py (issue 8, mutation testing),
+"""Tests written against the surviving mutants of solver/analysis/events.py (issue 8, mutation
+testing),
 through the public entry point ``solver.find_event`` (``POST /api/v1/events``, scene-v1).
 
 Every expected value is independent of the solver: closed forms of the scenes below (a slot or
@@ -18,9 +19,9 @@ import numpy as np
 import pytest
 
 import solver
-from solver import events
+from solver.analysis import events
 from solver.errors import LimitExceeded, NoEvent, NotAssemblable
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 T_RTOL = 1e-9
 

@@ -29,10 +29,10 @@ import mpmath as mp
 import numpy as np
 import pytest
 
+from solver.analysis.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
+from solver.analysis.sweeps import sweep
 from solver.errors import SingularConfiguration
-from solver.instant import MAX_CONDITION_NUMBER, LinkageAnalysis, analyze
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import sweep
+from solver.model.scene import LinkageScene, parse_linkage
 from tests.linkage_strategies import stephenson_six_bar
 
 Doc = dict[str, Any]

@@ -18,10 +18,10 @@ from typing import Any
 
 import pytest
 
-from solver.four_bar import FourBarLoop
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
+from solver.analysis.instant import analyze
+from solver.kinematics.four_bar import FourBarLoop
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
 
 # (ground, crank, coupler, rocker, drawn crank angle in degrees) -> textbook class

@@ -1,4 +1,5 @@
-"""Instant centres (solver.instant_centres) on random linkages: Kennedy's theorem, the centre of a
+"""Instant centres (solver.kinematics.instant_centres) on random linkages: Kennedy's theorem, the
+centre of a
 revolute pair at its joint, of a slider's pair on the normal to the slot (the random families,
 tolerances and helpers are those of test_properties.py).
 """
@@ -13,7 +14,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
 from tests.linkage_strategies import FAMILIES
 from tests.solver.test_properties import (

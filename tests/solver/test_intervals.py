@@ -1,10 +1,10 @@
-"""Tests of solver.intervals: ranges of a time law and its derivatives over spans of time (the
+"""Tests of solver.model.intervals: ranges of a time law and its derivatives over spans of time (the
 natural interval extension that lets the event search resolve a fast law between samples).
 
 Sources: ranges worked by hand from the functions' crests, troughs, poles and monotonicity
 (exact to the rounding of the end values, 1e-15); and a property checked against the law
 itself: every value of s' and s'' at 33 points of a span lies in the span's range (the law read
-by sympy.sympify, differentiated by sympy and evaluated by lambdify: not through solver.laws).
+by sympy.sympify, differentiated by sympy and evaluated by lambdify: not through solver.model.laws).
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import pytest
 import sympy
 
 from solver.errors import InvalidExpression
-from solver.intervals import enclosure, ranges
-from solver.laws import T, parse_time_law
+from solver.model.intervals import enclosure, ranges
+from solver.model.laws import T, parse_time_law
 
 E = math.e
 INF = math.inf

@@ -1,4 +1,5 @@
-"""Tests for solver.laws: parsing, exact derivatives, evaluation and rejection of hostile input."""
+"""Tests for solver.model.laws: parsing, exact derivatives, evaluation and rejection of hostile
+input."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from solver.errors import InvalidExpression
-from solver.laws import MAX_LENGTH, T, TimeLaw, parse_time_law
+from solver.model.laws import MAX_LENGTH, T, TimeLaw, parse_time_law
 
 PI, E = math.pi, math.e
 Closed = Callable[[float], float]
@@ -260,7 +261,7 @@ def test_parse_is_cached_and_arrays_broadcast() -> None:
 
 
 def test_no_eval_in_source() -> None:
-    source = (Path(__file__).parents[2] / "solver" / "laws.py").read_text()
+    source = (Path(__file__).parents[2] / "solver" / "model" / "laws.py").read_text()
     assert not re.search(r"\b(eval|exec)\(|sympify|parse_expr|lambdify", source)
 
 

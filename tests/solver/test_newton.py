@@ -8,17 +8,17 @@ import math
 
 import numpy as np
 
-from solver import continuation
-from solver.assembly import DriverInput, assemble
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.rigid import cross
-from solver.scene import parse_linkage
-from solver.sweeps import sweep
-from solver.topology import (
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep
+from solver.kinematics.rigid import cross
+from solver.model.scene import parse_linkage
+from solver.position import continuation
+from solver.position.assembly import DriverInput, assemble
+from solver.position.topology import (
     NewtonStep,
     build_plan,
 )
+from solver.teaching.presets import build_preset
 
 TRIAD = {
     "kind": "linkage",
@@ -106,7 +106,7 @@ def test_newton_without_the_jacobian_takes_the_same_steps() -> None:
     rotations, J never formed) and newton_raphson on the whole group, from the same starts
     (a swept triad's poses, perturbed by up to 2e-2 rad and 2e-2 m): the same iterations, first
     steps (1e-12), residuals and poses (1e-13 m); a polished sample's residual at rounding."""
-    from solver import constraints, newton
+    from solver.position import constraints, newton
 
     scene = parse_linkage(TRIAD)
     swept = sweep(scene, 24, ["position"])

@@ -20,12 +20,12 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from solver.constraints import ConstraintSystem, States
-from solver.continuation import Branch
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import Sweep, sweep
 from solver.errors import NotAssemblable
-from solver.instant import analyze
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import Sweep, sweep
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.position.constraints import ConstraintSystem, States
+from solver.position.continuation import Branch
 from tests.linkage_strategies import condition_number, six_bars
 from tests.solver.test_extremes import S000_T1, T1_LIMIT
 from tests.solver.test_newton import TRIAD, with_angle

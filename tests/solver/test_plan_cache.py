@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import gc
 
-from solver import topology
-from solver.presets import build_preset
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
+from solver.position import topology
+from solver.teaching.presets import build_preset
 
 
 def test_one_plan_per_scene_object_forgotten_with_it() -> None:

@@ -1,5 +1,5 @@
 """Poles and instant centres checked against the fields they come from (issue 8: mutation
-testing of solver/poles.py left these numbers unchecked).
+testing of solver/kinematics/poles.py left these numbers unchecked).
 
 A rigid link's velocity field is v(P) = v_X + omega k x (P - X) and its acceleration field
 a(P) = a_X + alpha k x (P - X) - omega^2 (P - X). The velocity pole is the point where the first
@@ -15,10 +15,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver.four_bar import grashof_class
-from solver.instant_centres import InstantCentre, centres_of_pairs
-from solver.poles import POLE_TOLERANCE, acceleration_poles, velocity_poles
-from solver.rigid import perp
+from solver.kinematics.four_bar import grashof_class
+from solver.kinematics.instant_centres import InstantCentre, centres_of_pairs
+from solver.kinematics.poles import POLE_TOLERANCE, acceleration_poles, velocity_poles
+from solver.kinematics.rigid import perp
 
 RNG = np.random.default_rng(8)
 # omega = 1 exactly and negative rates are among the cases (a pole must not depend on the sign).

@@ -1,4 +1,4 @@
-"""Velocity and acceleration poles (solver.poles).
+"""Velocity and acceleration poles (solver.kinematics.poles).
 
 The threshold that tells a slowly turning link from a translating one (poles.POLE_TOLERANCE):
 a pole a million sizes away is still a pole; rounding noise (1e-13 of the speed) is not. On
@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from solver.poles import acceleration_poles, velocity_poles
+from solver.kinematics.poles import acceleration_poles, velocity_poles
 from tests.linkage_strategies import FAMILIES
 from tests.solver.test_properties import (
     IDENTITY_TOL,

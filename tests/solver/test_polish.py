@@ -12,7 +12,8 @@ The contract (as at a drawn pose): every pose whose true condition number is bel
 answered; the rates are right to 1e-9 (relative to the largest rate of their kind; alpha's scale
 adds omega^2) where cond < 1e6 and to cond x 1e-15 above; the reported condition number is within
 a factor 10 of the exact pose's; the reported position residual is below 1e-30 of the size (Phi
-is evaluated in 40 digits, solver.polish). A change point 1e-10 rad away (h ~ 1e-10 L) is below
+is evaluated in 40 digits, solver.position.polish). A change point 1e-10 rad away (h ~ 1e-10 L) is
+below
 the rounding of the closed form's h^2, which snaps to 0: the polish restarts on either side.
 """
 
@@ -25,9 +26,9 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
+from solver.analysis.instant import analyze
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
 from tests.solver.test_conditioning import (
     ALPHA,

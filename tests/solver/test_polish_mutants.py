@@ -1,12 +1,14 @@
 """Newton groups' batched polish (``continuation.solve_group``, ``_Polish``) and Newton-Raphson
-(``solver/newton.py``) against independent values: tests added for the mutants that survived
+(``solver/position/newton.py``) against independent values: tests added for the mutants that
+survived
 their first mutation run (issue 8).
 
 Sources:
 
 - 50-digit roots (mpmath) of the triad's length equations at the crank's turn
   (``test_continuation_mutants.reference_points``), as each link's (x, y, theta).
-- The loop's residual recomputed from the links' motions, not by ``solver.constraints``: every
+- The loop's residual recomputed from the links' motions, not by ``solver.position.constraints``:
+every
   joint's point as each of its two links carries it, X = anchor + R(theta) (X0 - anchor0), and
   their gap (for a slider, the gap across the slot, turned with its guide).
 - One Newton-Raphson step recomputed from that residual with a central-difference Jacobian.
@@ -37,13 +39,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from solver import constraints, continuation, newton
-from solver.continuation import Continuation, solve_group
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep, sweep_time
 from solver.errors import InvalidScene
-from solver.instant import analyze
-from solver.rigid import LinkMotion, PointMotion, fixed_link
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import sweep, sweep_time
+from solver.kinematics.rigid import LinkMotion, PointMotion, fixed_link
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.position import constraints, continuation, newton
+from solver.position.continuation import Continuation, solve_group
 from tests.solver.test_continuation_branch import _drawn_angle, _path_to, assert_follows
 from tests.solver.test_continuation_mutants import UNKNOWN, reference_points, slider_triad
 from tests.solver.test_newton import TRIAD

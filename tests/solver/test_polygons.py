@@ -1,4 +1,4 @@
-"""The polygons as data (solver.polygons): image segments in the worked solution's order.
+"""The polygons as data (solver.solutions.polygons): image segments in the worked solution's order.
 
 Every segment must close its triangle with the solver's own absolute vectors (v_P - v_B and
 a_P - a_B, to 1e-12 of the largest vector of the instant), its normal part must point from P
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import solver
-from solver.presets import PRESETS, build_preset
+from solver.teaching.presets import PRESETS, build_preset
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 SCENES = {f"preset {name}": build_preset(name, {}) for name in PRESETS} | {

@@ -3,7 +3,7 @@
 Every preset and seed example, both methods: each group has its `position.*` step (a crank, a
 triangle, a slider on a fixed guide, a pin in a moving slot, a slotted lever, a Newton group),
 and in the loop method each loop has its closed form (`position.loop`). The closed forms are
-recomputed here from the numbers they show, independently of `solver.steps`, and must give the
+recomputed here from the numbers they show, independently of `solver.solutions`, and must give the
 solver's angles to 1e-12: the four-bar's theta14 = delta +- acos(C / sqrt(A^2 + B^2)) with
 A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2 (d = D - B); the slotted lever's
 s = +-sqrt(|w|^2 - c^2) and beta = arg w - atan2(c, s) (w = P - Q). A scene with a pin in the
@@ -22,10 +22,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from solver.presets import PRESETS, build_preset
-from solver.scene import parse_linkage
-from solver.steps import Solution, Step, solve
-from solver.topology import DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
+from solver.model.scene import parse_linkage
+from solver.position.topology import DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
+from solver.solutions import Solution, Step, solve
+from solver.teaching.presets import PRESETS, build_preset
 from tests.linkage_strategies import stephenson_six_bar
 from tests.solver.test_steps import NODE, _check_solution, run_katex
 

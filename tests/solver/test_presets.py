@@ -1,4 +1,5 @@
-"""Tests of solver.presets: every preset's document against its defining geometry (defaults and
+"""Tests of solver.teaching.presets: every preset's document against its defining geometry
+(defaults and
 hypothesis draws), the two assembly branches, the reference example scenes S000-T1..T4 and S001
 rebuilt from their dimensions, the error messages, and (once the analysis exists) a round trip
 through the scene parser and the position solver."""
@@ -17,7 +18,7 @@ import pytest
 from hypothesis import given, settings
 
 from solver.errors import InvalidScene, NotAssemblable
-from solver.presets import COINCIDENT, PRESETS, build_preset
+from solver.teaching.presets import COINCIDENT, PRESETS, build_preset
 from tests.strategies import assemblable_presets
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
@@ -464,8 +465,8 @@ def test_assemblable_draws_realise_their_parameters(case: tuple[str, dict[str, f
 
 @pytest.mark.parametrize("name", EXPECTED_NAMES)
 def test_default_documents_parse_and_analyze_to_their_drawn_pose(name: str) -> None:
-    analysis = pytest.importorskip("solver.instant")
-    scene_module = pytest.importorskip("solver.scene")
+    analysis = pytest.importorskip("solver.analysis.instant")
+    scene_module = pytest.importorskip("solver.model.scene")
     parse = getattr(scene_module, "parse_scene", None) or scene_module.parse_linkage
     doc = build_preset(name, {})
     result = analysis.analyze(parse(doc))

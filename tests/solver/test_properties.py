@@ -28,9 +28,9 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver.instant import LinkageAnalysis, analyze
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import sweep
+from solver.analysis.instant import LinkageAnalysis, analyze
+from solver.analysis.sweeps import sweep
+from solver.model.scene import LinkageScene, parse_linkage
 from tests.linkage_strategies import FAMILIES, linkages
 
 Doc = dict[str, Any]

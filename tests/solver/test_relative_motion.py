@@ -1,4 +1,5 @@
-"""Tests of solver.relative_motion through solver.instant: a point M moving along a path fixed in
+"""Tests of solver.kinematics.relative_motion through solver.analysis.instant: a point M moving
+along a path fixed in
 a moving link (composite motion, scene-v1 ``moving_points``; issue 3, "Prove it").
 
 Sources of the expected values:
@@ -31,12 +32,12 @@ import pytest
 from hypothesis import HealthCheck, assume, given, reject, settings
 from hypothesis import strategies as st
 
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep_time
 from solver.errors import InvalidScene, NotAssemblable, SingularConfiguration
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.relative_motion import MovingPointMotion
-from solver.scene import LinkageScene, parse_linkage
-from solver.sweeps import sweep_time
+from solver.kinematics.relative_motion import MovingPointMotion
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.teaching.presets import build_preset
 from tests.strategies import assemblable_presets
 
 CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"

@@ -1,11 +1,11 @@
-"""Reading a scene (solver.scene): a key the contract does not know is named with its path and
+"""Reading a scene (solver.model.scene): a key the contract does not know is named with its path and
 the nearest valid name; the one ground-pivot finder.
 """
 
 from __future__ import annotations
 
-from solver.presets import build_preset
-from solver.scene import ground_pivot, parse_linkage, unknown_keys
+from solver.model.scene import ground_pivot, parse_linkage, unknown_keys
+from solver.teaching.presets import build_preset
 from tests.solver.test_api import example
 
 

@@ -1,4 +1,5 @@
-"""Property test of the slider split (solver.sliding_joints) on random linkages with sliders:
+"""Property test of the slider split (solver.analysis.sliding_joints) on random linkages with
+sliders:
 v = v_tr + v_rel, a = a_tr + a_rel + a_cor with a_cor = 2 omega_guide x v_rel (the random
 families, tolerances and helpers are those of test_properties.py).
 """
@@ -12,8 +13,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from solver.instant import LinkageAnalysis
-from solver.scene import LinkageScene
+from solver.analysis.instant import LinkageAnalysis
+from solver.model.scene import LinkageScene
 from tests.solver.test_properties import (
     IDENTITY_TOL,
     PROPERTY,

@@ -20,10 +20,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from solver.presets import PRESETS, build_preset
-from solver.results import analysis_body
-from solver.scene import parse_linkage
-from solver.steps import Solution, solve
+from solver.analysis.results import analysis_body
+from solver.model.scene import parse_linkage
+from solver.solutions import Solution, solve
+from solver.teaching.presets import PRESETS, build_preset
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "server" / "examples"

@@ -18,10 +18,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from solver.presets import PRESETS, build_preset
-from solver.scene import parse_linkage
-from solver.spatial import parse_spatial_chain
-from solver.steps import Solution, solve
+from solver.kinematics.spatial import parse_spatial_chain
+from solver.model.scene import parse_linkage
+from solver.solutions import Solution, solve
+from solver.teaching.presets import PRESETS, build_preset
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "server" / "examples"
@@ -186,10 +186,10 @@ def test_every_mistake_names_an_existing_step(name: str, solution: Solution) -> 
 
 def test_vector_mistakes_are_all_placed() -> None:
     """No mistake of the vector method is lost by placing it (each finds its step)."""
-    from solver.instant import analyze
-    from solver.steps.format import Formatter
-    from solver.steps.linkage import LinkageContext, unit_scales
-    from solver.steps.mistakes import linkage_mistakes
+    from solver.analysis.instant import analyze
+    from solver.solutions.format import Formatter
+    from solver.solutions.linkage import LinkageContext, unit_scales
+    from solver.solutions.mistakes import linkage_mistakes
 
     for name in SEEDS:
         doc = example(name)
@@ -391,7 +391,7 @@ def test_shown_arithmetic_recomputes_to_the_shown_digits(name: str, solution: So
 
 def test_the_recompute_check_can_fail() -> None:
     """The issue's example: 0.0127 shown with four digits makes -0.03125/0.0127 = -2.461."""
-    from solver.steps.model import Check, Step, Value
+    from solver.solutions.model import Check, Step, Value
 
     step = Step(
         "x",

@@ -1,4 +1,5 @@
-"""Tests of solver.spatial: the seed-002 reference case, a planar special case, a prismatic
+"""Tests of solver.kinematics.spatial: the seed-002 reference case, a planar special case, a
+prismatic
 hand example, an independent finite-difference check on random chains, and parse errors."""
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from solver.errors import InvalidScene, LimitExceeded
-from solver.spatial import (
+from solver.kinematics.spatial import (
     SpatialChain,
     SpatialJoint,
     SpatialPoint,

@@ -23,9 +23,9 @@ import pytest
 from hypothesis import given, settings
 
 import solver
-from solver.spatial import parse_spatial_chain
-from solver.steps import solve
-from solver.steps.format import NOISE
+from solver.kinematics.spatial import parse_spatial_chain
+from solver.solutions import solve
+from solver.solutions.format import NOISE
 from tests.solver.test_spatial_sweep import chains, seed_002, turntable_slider
 from tests.solver.test_steps import NODE, _check_solution, run_katex
 

@@ -9,7 +9,7 @@ scenes of every preset from ``tests.strategies.assemblable_presets`` (property: 
 of every step holds, every ``source`` is the /analyze number).
 
 ``verify`` below re-evaluates a step's checks from its listed values, independently of
-solver.steps: relations as documented in docs/SOLUTIONS.md, each compared with a relative
+solver.solutions: relations as documented in docs/SOLUTIONS.md, each compared with a relative
 tolerance of 1e-9 of the size of the terms it is made of (stricter than the display precision).
 """
 
@@ -29,15 +29,15 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from solver.analysis.instant import LinkageAnalysis
+from solver.analysis.results import analysis_body, spatial_body
 from solver.errors import InvalidScene
-from solver.instant import LinkageAnalysis
-from solver.presets import PRESETS, build_preset
-from solver.quantities import QUANTITIES
-from solver.results import analysis_body, spatial_body
-from solver.scene import parse_linkage
-from solver.spatial import parse_spatial_chain
-from solver.steps import Solution, Step, solve
-from solver.steps.format import Formatter
+from solver.kinematics.spatial import parse_spatial_chain
+from solver.model.quantities import QUANTITIES
+from solver.model.scene import parse_linkage
+from solver.solutions import Solution, Step, solve
+from solver.solutions.format import Formatter
+from solver.teaching.presets import PRESETS, build_preset
 from tests.linkage_strategies import linkages
 from tests.strategies import assemblable_presets
 
@@ -701,7 +701,7 @@ def test_loop_method_falls_back_for_a_newton_group_and_says_why() -> None:
 
 
 def test_solver_steps_import_no_web_framework() -> None:
-    for path in (ROOT / "solver" / "steps").glob("*.py"):
+    for path in (ROOT / "solver" / "solutions").glob("*.py"):
         source = path.read_text()
         for banned in ("fastapi", "pydantic", "starlette", "server"):
             assert not re.search(rf"^\s*(from|import) {banned}\b", source, re.M), (path, banned)

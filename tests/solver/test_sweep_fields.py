@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import solver
-from solver.presets import build_preset
+from solver.teaching.presets import build_preset
 
 
 def _quick_return_closed_form(crank: float, ground: float) -> float:

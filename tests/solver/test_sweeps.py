@@ -8,11 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from solver.analysis.instant import analyze
+from solver.analysis.sweeps import sweep, sweep_time
 from solver.errors import NotAssemblable
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.sweeps import sweep, sweep_time
+from solver.model.scene import parse_linkage
+from solver.teaching.presets import build_preset
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 ALL = ["position", "velocity", "acceleration", "poles", "components"]

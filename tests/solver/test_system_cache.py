@@ -9,9 +9,9 @@ import gc
 import numpy as np
 
 from benchmarks.bench_newton import FULL_TURN, PARTIAL
-from solver import constraints
-from solver.scene import parse_linkage
-from solver.sweeps import Sweep, sweep
+from solver.analysis.sweeps import Sweep, sweep
+from solver.model.scene import parse_linkage
+from solver.position import constraints
 
 ALL = ["position", "velocity", "acceleration"]
 

@@ -1,13 +1,13 @@
-"""The solving plan (solver.topology): each textbook preset decomposes into closed-form groups
+"""The solving plan (solver.position.topology): each textbook preset decomposes into closed-form
+groups
 (drivers, dyads, levers, two-point and guided links); what remains is a Newton group.
 """
 
 import pytest
 
-from solver.instant import analyze
-from solver.presets import build_preset
-from solver.scene import parse_linkage
-from solver.topology import (
+from solver.analysis.instant import analyze
+from solver.model.scene import parse_linkage
+from solver.position.topology import (
     DriverStep,
     DyadStep,
     GuidedStep,
@@ -15,6 +15,7 @@ from solver.topology import (
     TwoPointStep,
     build_plan,
 )
+from solver.teaching.presets import build_preset
 
 
 @pytest.mark.parametrize(("preset", "kinds"), [

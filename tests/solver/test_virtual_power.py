@@ -12,12 +12,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import solver
+from solver.analysis.instant import analyze
 from solver.dynamics.analysis import linkage_dynamics
 from solver.dynamics.energy import power_balance_torque
 from solver.dynamics.virtual_power import partial_motion, virtual_power_torque
 from solver.errors import KinematicsError
-from solver.instant import analyze
-from solver.scene import parse_linkage
+from solver.model.scene import parse_linkage
 from tests.dynamics_cases import five_bars, square_five_bar, with_masses_and_loads
 from tests.linkage_strategies import linkages
 

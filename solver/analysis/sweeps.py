@@ -1,0 +1,524 @@
+"""A sweep of the first driver through one revolution, or through its feasible range.
+
+The whole sweep is one vectorised run of the plan with branch continuation (one sample more than
+asked, back at the start, so that the closing interval is searched for close approaches too).
+Where the linkage cannot turn fully (a sample that does not close, or a window between two
+samples found by the closest-approach search), the feasible interval around the starting angle
+is found on a probe grid, its ends (the limit positions) are refined by bisection, and the
+samples are spread strictly inside it (at a limit position itself the velocity equations are
+singular). Close approaches of a group's two branches (within 1e-3 of the size) are reported.
+Samples that land exactly on a change point (a parallelogram's crossing: the velocity equations
+singular, the motion smooth) take their rates from their two neighbours and are listed in
+``singular_samples``. A plan of drivers, RRR dyads and two-point links runs compiled
+(``compiled_plan``: the same numbers, column by column) wherever that needs no branch search.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from solver.analysis.link_kinematics import four_bar_loops, link_poles
+from solver.analysis.sliding_joints import (
+    SliderTravel,
+    SlidingJoint,
+    slider_travel,
+    sliding_joints,
+)
+from solver.errors import InvalidScene, LimitExceeded
+from solver.kinematics.four_bar import FourBarLoop
+from solver.kinematics.poles import Poles
+from solver.kinematics.relative_motion import MovingPointMotion, moving_point_motion
+from solver.kinematics.rigid import Array
+from solver.model.quantities import normalise_quantities, required_order
+from solver.model.scene import LinkageScene
+from solver.position.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.position.compiled_plan import compiled_plan
+from solver.position.continuation import Continuation
+from solver.position.drivers import drawn_angle, driver_input, driver_inputs_over_time
+from solver.position.newton import newton_tolerance
+from solver.position.topology import Plan, build_plan
+
+MAX_SAMPLES = 100_000
+PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
+# From 90 samples (4 degrees) on, the sweep is its own feasibility probe: a window where the
+# linkage cannot close between two samples is found by the closest-approach search of assembly.
+SELF_PROBING_SAMPLES = 90
+BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
+MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
+
+
+class _Warned:
+    """A sweep's warnings in words: one per close approach of two branches."""
+
+    close_approaches: tuple[CloseApproach, ...]
+
+    @property
+    def warnings(self) -> list[str]:
+        return [a.warning for a in self.close_approaches]
+
+
+@dataclass(frozen=True)
+class Sweep(_Warned):
+    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle."""
+
+    scene: LinkageScene
+    driver: str
+    driver_angle: Array
+    motion: Motion
+    feasible: bool
+    limits: tuple[float, ...]
+    singular_samples: Array
+    quantities: frozenset[str]
+    joints: list[SlidingJoint]
+    poles: dict[str, tuple[Poles, Poles]]
+    close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
+    strokes: dict[str, Strokes | None] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Strokes:
+    """A slider on a fixed guide (a ram) over a full revolution of the driver: its two extreme
+    positions (where ds/dt = 0), at the driver's absolute angles ``driver_angles`` (rad, in the
+    order the driver reaches them) with ``displacements`` s there (m); the driver's turn over
+    the slower stroke and over the faster one (rad, summing to 2 pi), and their ratio, the
+    quick-return time ratio at constant driver speed. None where the ram does not reverse
+    exactly twice a revolution."""
+
+    driver_angles: tuple[float, float]
+    displacements: tuple[float, float]
+    slow_stroke: float
+    fast_stroke: float
+
+    @property
+    def time_ratio(self) -> float:
+        return self.slow_stroke / self.fast_stroke
+
+
+@dataclass(frozen=True)
+class CloseApproach:
+    """Where a group's two branches come within ``margin`` (m, its length margin) of meeting,
+    without meeting: at the first driver's absolute angle ``driver_angle`` (rad)."""
+
+    point: str
+    driver: str
+    margin: float
+    driver_angle: float
+
+    @property
+    def warning(self) -> str:
+        degrees = math.degrees(math.remainder(self.driver_angle, 2.0 * math.pi))
+        # In (-180, 180] as printed: an angle within rounding of 180 deg reads 180.0 either side.
+        shown = f"{degrees:.1f}".replace("-180.0", "180.0")
+        return (
+            f"the linkage passes within {self.margin:.2g} m of a change point at {shown} "
+            f"deg ('{self.driver}' angle; the two assemblies of {self.point} nearly meet there); "
+            "a real mechanism with clearance could switch assembly here"
+        )
+
+
+def close_approaches(motion: Motion, driver: str, angles: Array) -> tuple[CloseApproach, ...]:
+    """The near misses of ``motion`` closer than the warning margin, at the driver angles
+    interpolated between the samples' ``angles`` (closest first)."""
+    if not motion.approaches:
+        return ()
+    found = [
+        CloseApproach(
+            a.point, driver, a.margin, float(np.interp(a.at, np.arange(angles.size), angles))
+        )
+        for a in motion.near_misses
+        if a.margin < WARNING_MARGIN * motion.size
+    ]
+    return tuple(sorted(found, key=lambda a: a.margin))
+
+
+def once_a_turn(approaches: tuple[CloseApproach, ...]) -> tuple[CloseApproach, ...]:
+    """A revolution's close approaches with each pose once: one at the closing sample is the
+    one at the first (the same point within 1e-9 rad of the same angle, modulo a turn)."""
+    kept: list[CloseApproach] = []
+    for a in approaches:
+        if not any(
+            b.point == a.point
+            and abs(math.remainder(b.driver_angle - a.driver_angle, 2.0 * math.pi)) <= 1e-9
+            for b in kept
+        ):
+            kept.append(a)
+    return tuple(kept)
+
+
+def _joints_and_poles(
+    scene: LinkageScene, motion: Motion, wanted: frozenset[str], order: int
+) -> tuple[list[SlidingJoint], dict[str, tuple[Poles, Poles]]]:
+    """The slider parts (``components``) and the links' poles (``poles``), where requested."""
+    joints = sliding_joints(scene, motion, order) if "components" in wanted else []
+    poles = {}
+    if "poles" in wanted:
+        poles = {link: link_poles(scene, motion, link) for link in scene.moving_links}
+    return joints, poles
+
+
+class _Driven:
+    """Assembles the linkage with the first driver turned by given angles, the others held."""
+
+    def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
+        self.scene, self.plan = scene, plan
+        self.compiled = compiled_plan(scene, plan)
+        self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
+        self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
+
+    def inputs(self, turns: Array) -> list[DriverInput]:
+        n = turns.size
+        first = self.given[0]
+        inputs = [DriverInput(turns, np.full(n, first[1]), np.full(n, first[2]))]
+        for turn, omega, alpha in self.given[1:]:
+            inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
+        return inputs
+
+    def compiled_run(self, turns: Array, order: int, keep: int | None = None) -> Motion | None:
+        """The linkage at ``turns`` by the compiled plan, where it can decide alone (then only
+        the first ``keep`` samples, if given, are returned): every sample closes and no window
+        between two samples fails to (the compiled plan hands back wherever the branch search
+        would look); else None."""
+        return None if self.compiled is None else self.compiled.run(self.inputs(turns), order, keep)
+
+    def run(
+        self,
+        turns: Array,
+        order: int,
+        start: float | None = 0.0,
+        keep: int | None = None,
+        compiled: bool = True,
+    ) -> Motion:
+        """The linkage at ``turns``, on the drawn branch at the turn nearest ``start`` (None:
+        at the first turn); by the compiled plan where it can decide alone (``compiled_run``;
+        not tried again if ``compiled`` is false: it was, and handed back)."""
+        motion = self.compiled_run(turns, order, keep) if compiled else None
+        if motion is not None:
+            return motion
+        anchor = 0 if start is None else int(np.argmin(np.abs(turns - start)))
+        return assemble(
+            self.scene,
+            self.plan,
+            self.inputs(turns),
+            order,
+            continuation=True,
+            anchor=anchor,
+            newton_groups=self.newton_groups,
+        )
+
+    def closes(self, turn: float, strictly: bool = False) -> bool:
+        """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
+        (a limit found so lies inside the tolerance band and can be posed again)."""
+        inputs = self.inputs(np.array([turn]))
+        motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
+        if strictly:
+            return bool(motion.margin[0] >= 0.0 and motion.converged[0])
+        return bool(motion.feasible[0])
+
+
+def _limit(driven: _Driven, inside: float, outside: float) -> float:
+    """Bisection for the limit position between a closing and a non-closing driver turn."""
+    for _ in range(BISECTION_STEPS):
+        middle = 0.5 * (inside + outside)
+        if driven.closes(middle, strictly=True):
+            inside = middle
+        else:
+            outside = middle
+    return inside
+
+
+def _turns_fully(motion: Motion) -> bool:
+    """Every sample closes, and no window between two samples fails to."""
+    return bool(np.all(motion.feasible)) and not motion.windows
+
+
+def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:
+    """(the last closing turn, the first non-closing one) along ``turns``: the first sample that
+    does not close, or the deepest point of the first window between samples that does not."""
+    bad = int(np.argmin(motion.feasible)) if not np.all(motion.feasible) else turns.size
+    for window in motion.windows:
+        k = math.floor(window.at)
+        if k + 1 <= bad:
+            x = window.at - k
+            return float(turns[k]), float(turns[k] + x * (turns[k + 1] - turns[k]))
+    return float(turns[bad - 1]), float(turns[bad])
+
+
+def _feasible_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
+    """None if the driver turns fully, else the (low, high) turns bounding the start's interval."""
+    step = 2.0 * math.pi / PROBE_SAMPLES
+    turns = start + direction * step * np.arange(PROBE_SAMPLES + 1)
+    motion = driven.run(turns, 0, None)
+    if _turns_fully(motion):
+        return None
+    behind_turns = start - direction * step * np.arange(PROBE_SAMPLES + 1)
+    behind = driven.run(behind_turns, 0, None)
+    end = _limit(driven, *_first_failure(motion, turns))
+    begin = _limit(driven, *_first_failure(behind, behind_turns))
+    return (min(begin, end), max(begin, end))
+
+
+def _newton_range(driven: _Driven, start: float, direction: float) -> tuple[float, float] | None:
+    """The feasible range of a linkage with a Newton group: None if the driver turns fully, else
+    the turns of the two limit positions its branch meets either way from the drawn pose (found
+    by continuation to rounding, whatever the number of samples)."""
+    branch = driven.newton_groups.branch(tuple(given[0] for given in driven.given[1:]))
+    far = start + direction * 2.0 * math.pi
+    return branch.limits(min(start, far), max(start, far))
+
+
+def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
+    """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
+    n = motion.feasible.size
+    rates: list[Array | None] = []
+    for point in motion.points.values():
+        rates += [point.v, point.a]
+    for link in motion.links.values():
+        rates += [link.omega, link.alpha, link.anchor.v, link.anchor.a]
+    for k in singular:
+        before, after = (k - 1) % n, (k + 1) % n
+        if not cyclic:
+            before, after = max(k - 1, 0), min(k + 1, n - 1)
+        for values in rates:
+            if values is not None:
+                values[k] = 0.5 * (values[before] + values[after])
+
+
+def _revolution(samples: int, start: float, direction: float) -> Array:
+    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start)."""
+    return start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
+
+
+def _cycle(
+    driven: _Driven, samples: int, order: int, start: float, direction: float
+) -> tuple[Array, Motion, tuple[float, float] | None]:
+    """The driver's turns from ``start`` and the motion over them: a full revolution with one
+    sample more than asked, back at the start (so the last interval is searched too), or, where
+    the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
+    (that range, the limits, is returned too; None for a full revolution). Called where
+    the compiled plan handed the revolution back (in ``sweep``): it is not tried again."""
+    turns = _revolution(samples, start, direction)
+    if not driven.plan.closed_form:
+        span = _newton_range(driven, start, direction)
+    elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
+        motion = driven.run(turns, order, start, keep=samples, compiled=False)
+        if _turns_fully(motion):
+            return turns, motion, None
+        span = _feasible_range(driven, start, direction)
+    else:
+        span = _feasible_range(driven, start, direction)
+    if span is None:
+        return turns, driven.run(turns, order, start), None
+    low, high = span
+    turns = low + (high - low) * (np.arange(samples) + 0.5) / samples
+    if direction < 0:
+        turns = turns[::-1]
+    return turns, driven.run(turns, order, start), span
+
+
+def sweep(
+    scene: LinkageScene,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
+) -> Sweep:
+    """Turn the first driver through a revolution (or its feasible range) from its start angle;
+    ``tolerance`` is a Newton group's (relative to the size; default NEWTON_TOLERANCE)."""
+    if not scene.drivers:
+        raise InvalidScene("drivers: a sweep needs a driver")
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    wanted = normalise_quantities(["position"] if quantities is None else quantities)
+    plan = build_plan(scene)
+    driven = _Driven(scene, plan, tolerance)
+    start, omega, _ = driven.given[0]
+    direction = -1.0 if omega < 0 else 1.0
+    order = required_order(wanted)
+    drawn = (
+        drawn_angle(scene, scene.drivers[0].link)
+        if len(scene.links[scene.drivers[0].link].points) >= 2
+        else 0.0
+    )
+    span: tuple[float, float] | None = None
+    approaches: tuple[CloseApproach, ...] = ()
+    # A revolution the compiled plan alone turns (``_Driven.compiled_run``) closes at every
+    # sample (the first is the start) and between: nothing to check again, no approach to warn.
+    turns = _revolution(samples, start, direction)
+    probing = samples >= SELF_PROBING_SAMPLES  # (the sweep is its own feasibility probe)
+    motion = driven.compiled_run(turns, order, keep=samples) if probing else None
+    if motion is not None:
+        turns = turns[:samples]
+    else:
+        # The drawn pose closes by construction; a start at angle_deg must be checked.
+        if start != 0.0 and not driven.closes(start):
+            require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
+        turns, motion, span = _cycle(driven, samples, order, start, direction)
+        approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
+        if span is None:  # the closing sample off
+            approaches = once_a_turn(approaches)
+            motion, turns = motion.cut(slice(0, samples)), turns[:samples]
+        require_feasible(motion, "during the sweep")
+    limits: tuple[float, ...] = span or ()
+    singular = np.array([], dtype=int)
+    if order and motion.gradient_sine.min() < MIN_GRADIENT_SINE:  # (one pass where none is)
+        singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
+    if singular.size:
+        _smooth_singular_samples(motion, singular, cyclic=span is None)
+    loops, sliders = _loops_and_sliders(scene, plan, motion, wanted, order)
+    strokes: dict[str, Strokes | None] = {}
+    if span is None and "position" in wanted:
+        for travel in sliders:
+            if travel.links[0] == scene.ground:
+                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion.size)
+    return Sweep(
+        scene,
+        scene.drivers[0].link,
+        drawn + turns,
+        motion,
+        span is None,
+        tuple(drawn + limit for limit in limits),
+        singular,
+        wanted,
+        *_joints_and_poles(scene, motion, wanted, order),
+        approaches,
+        loops,
+        sliders,
+        strokes,
+    )
+
+
+def _loops_and_sliders(
+    scene: LinkageScene, plan: Plan, motion: Motion, wanted: frozenset[str], order: int
+) -> tuple[list[FourBarLoop], list[SliderTravel]]:
+    """The four-bar loops' transmission angles (with positions) and the sliders' travel along
+    their guides (with positions, velocities or accelerations), at every sample."""
+    loops = four_bar_loops(scene, plan, motion, every_sample=True) if "position" in wanted else []
+    sliders = []
+    if wanted & {"position", "velocity", "acceleration"}:
+        sliders = slider_travel(scene, motion, order)
+    return loops, sliders
+
+
+def _travel_at(driven: _Driven, point: str, turn: float) -> SliderTravel:
+    """The travel of ``point``'s slider with the first driver turned by ``turn`` (one instant,
+    with ds/dt)."""
+    motion = driven.run(np.array([turn]), 1)
+    return next(t for t in slider_travel(driven.scene, motion, 1) if t.point == point)
+
+
+def _sliding_velocity(turn: float, driven: _Driven, point: str) -> float:
+    velocity = _travel_at(driven, point, turn).sliding_velocity
+    assert velocity is not None
+    return float(velocity[0])
+
+
+def _strokes(
+    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, size: float
+) -> Strokes | None:
+    """The ram's extreme positions over a revolution sampled at ``turns`` (one turn, without
+    the closing sample): each sampled extreme of s bracketed by its two neighbours, where ds/dt
+    changes sign, and refined to rounding by Brent's method on ds/dt at one instant (as the
+    limit positions are refined at one instant, whatever the number of samples)."""
+    s = travel.displacement
+    step = np.diff(np.append(s, s[0]))  # s[k + 1] - s[k], cyclic
+    moving = np.flatnonzero(np.abs(step) > 1e-12 * size)
+    signs = np.sign(step[moving])
+    turning = np.flatnonzero(signs != np.roll(signs, 1))  # s turns back between moving steps
+    if turning.size != 2:
+        return None
+    delta = turns[1] - turns[0]
+    period = delta * turns.size  # +-2 pi, as the driver turns
+    found = []
+    for j in turning:
+        before, after = int(moving[j - 1]), int(moving[j])  # steps k -> k + 1 (cyclic)
+        ends = (turns[before], turns[after] + delta + (period if after < before else 0.0))
+        low, high = min(ends), max(ends)
+        point = travel.point
+        if not _sliding_velocity(low, driven, point) * _sliding_velocity(high, driven, point) < 0:
+            return None
+        root = brentq(_sliding_velocity, low, high, args=(driven, point), xtol=1e-15)
+        found.append(turns[0] + (((root - turns[0]) / period) % 1.0) * period)
+    found.sort(key=lambda t: (t - turns[0]) / period)  # in the order the driver reaches them
+    first = abs(found[1] - found[0])
+    second = 2.0 * math.pi - first
+    return Strokes(
+        (float(drawn + found[0]), float(drawn + found[1])),
+        (
+            float(_travel_at(driven, travel.point, found[0]).displacement[0]),
+            float(_travel_at(driven, travel.point, found[1]).displacement[0]),
+        ),
+        float(max(first, second)),
+        float(min(first, second)),
+    )
+
+
+@dataclass(frozen=True)
+class TimeSweep(_Warned):
+    """The linkage and its moving points over ``time`` (for animating time laws)."""
+
+    scene: LinkageScene
+    time: Array
+    driver_angle: Array
+    motion: Motion
+    moving_points: dict[str, MovingPointMotion]
+    quantities: frozenset[str]
+    joints: list[SlidingJoint]
+    poles: dict[str, tuple[Poles, Poles]]
+    close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
+
+
+def sweep_time(
+    scene: LinkageScene,
+    t0: float,
+    t1: float,
+    samples: int,
+    quantities: Iterable[str] | None = None,
+    tolerance: float | None = None,
+) -> TimeSweep:
+    """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws);
+    ``tolerance`` as for ``sweep``."""
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
+        raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
+    wanted = normalise_quantities(["position"] if quantities is None else quantities)
+    times = np.linspace(t0, t1, samples)
+    plan = build_plan(scene)
+    inputs = driver_inputs_over_time(scene, times)
+    order = required_order(wanted, bool(scene.moving_points))
+    groups = Continuation(scene, newton_tolerance(tolerance))
+    motion = assemble(scene, plan, inputs, order, continuation=True, newton_groups=groups)
+    require_feasible(motion, f"during t = {t0:g} .. {t1:g} s")
+    if scene.moving_points and order < 2:
+        motion_for_points = assemble(
+            scene, plan, inputs, 2, continuation=True, newton_groups=groups
+        )
+    else:
+        motion_for_points = motion
+    moving = {
+        mp.name: moving_point_motion(scene, mp, motion_for_points.links[mp.link], times)
+        for mp in scene.moving_points
+    }
+    first = scene.drivers[0].link if scene.drivers else None
+    angle = np.zeros(samples)
+    if first is not None and len(scene.links[first].points) >= 2:
+        angle = drawn_angle(scene, first) + inputs[0].theta
+    return TimeSweep(
+        scene,
+        times,
+        angle,
+        motion,
+        moving,
+        wanted,
+        *_joints_and_poles(scene, motion, wanted, order),
+        close_approaches(motion, first or "", angle),
+        *_loops_and_sliders(scene, plan, motion, wanted, order),
+    )

@@ -1,0 +1,953 @@
+"""What every worked solution of a planar linkage shares: its context and the common steps.
+
+``LinkageContext`` reads the solver's analysis (positions, rates, slider components, poles) and
+names things the way the steps write them. The common steps are the data, the position vectors,
+the rigid-body velocity v_Y = v_X + omega x r_XY and acceleration
+a_Y = a_X + alpha x r_XY - omega^2 r_XY of one point from another, the velocity and acceleration
+poles of each moving link, and the summary of results. Every number is the solver's own; the
+cross products and sums written out are derived from those numbers and agree with them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TypeVar
+
+import numpy as np
+
+from solver.analysis.instant import LinkageAnalysis
+from solver.kinematics.relative_motion import MovingPointMotion
+from solver.kinematics.rigid import perp
+from solver.model.laws import parse_time_law
+from solver.model.scene import Joint, LinkageScene, ground_pivot
+from solver.solutions import latex as tex
+from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.digits import DigitPlan
+from solver.solutions.format import Formatter, latex_unit
+from solver.solutions.model import Step
+
+T = TypeVar("T")
+
+V0 = r"\vec{0}"
+VELOCITY, ACCELERATION = 1, 2  # the order of a time derivative
+MOTION = {VELOCITY: ("velocity", "m/s"), ACCELERATION: ("acceleration", "m/s^2")}
+
+
+def unit_scales(analysis: LinkageAnalysis, size: float) -> dict[str, float]:
+    """The largest magnitude of each unit in the analysis (what 'rounding noise' is relative to)."""
+
+    def largest(values: Sequence[np.ndarray | float | None]) -> float:
+        found = [float(np.max(np.abs(v))) for v in values if v is not None]
+        return max(found, default=0.0)
+
+    points = analysis.points.values()
+    links = analysis.links.values()
+    return {
+        "rad": math.pi,
+        "deg": 180.0,
+        "m": size,
+        "m/s": largest([p.velocity for p in points]),
+        "m/s^2": largest([p.acceleration for p in points]),
+        "rad/s": largest([link.omega for link in links]),
+        "rad/s^2": largest([link.alpha for link in links]),
+        "1/s": largest([link.omega for link in links]),
+        "1/s^2": max(
+            largest([link.omega for link in links]) ** 2, largest([link.alpha for link in links])
+        ),
+    }
+
+
+def split_part(name: str, point: str) -> tuple[str, str]:
+    """Key and unit of one part of v = v_tr + v_rel or a = a_tr + a_rel + a_cor at ``point``:
+    'relative_velocity' -> ('v_rel(X)', 'm/s'), 'acceleration' -> ('a(X)', 'm/s^2')."""
+    prefix, _, what = name.rpartition("_")
+    short = {"transport": "_tr", "relative": "_rel", "coriolis": "_cor", "": ""}[prefix]
+    unit = MOTION[VELOCITY if what == "velocity" else ACCELERATION][1]
+    return f"{what[0]}{short}({point})", unit
+
+
+@dataclass(frozen=True)
+class SlotMotion:
+    """A point in a slot: the textbook split of its velocity and acceleration.
+
+    ``index`` is the joint's index in the analysis' ``joints`` (None for a derived split).
+    """
+
+    index: int | None
+    joint: Joint
+    omega_guide: float
+    direction: np.ndarray
+    transport_velocity: np.ndarray
+    relative_velocity: np.ndarray
+    velocity: np.ndarray
+    transport_acceleration: np.ndarray | None
+    relative_acceleration: np.ndarray | None
+    coriolis_acceleration: np.ndarray | None
+    acceleration: np.ndarray | None
+
+    def source(self, name: str) -> tuple[str | int, ...] | None:
+        return None if self.index is None else ("joints", self.index, name)
+
+    def put(self, b: StepBuilder, name: str, point: str) -> str:
+        """Register one part of the split (``name`` a field, e.g. 'relative_velocity') as
+        'v_rel(X)', 'a_tr(X)', 'a_cor(X)', 'v(X)'..., with its path in the response."""
+        value = getattr(self, name)
+        assert value is not None, name
+        key, unit = split_part(name, point)
+        return b.put(key, value, unit, self.source(name))
+
+    @property
+    def guide(self) -> str:
+        return self.joint.guide
+
+
+@dataclass
+class LinkageContext:
+    """The scene, its analysis, the formatter, and what the steps have shown so far."""
+
+    scene: LinkageScene
+    analysis: LinkageAnalysis
+    fmt: Formatter
+    used_vectors: list[tuple[str, str]] = field(default_factory=list)
+    shown_velocity: set[str] = field(default_factory=set)
+    shown_acceleration: set[str] = field(default_factory=set)
+    plan: DigitPlan | None = None  # digits per value, where the shown arithmetic needs more
+    slots: dict[tuple[str, str], SlotMotion] = field(default_factory=dict)  # made once each
+
+    # --- the solver's numbers -------------------------------------------------------------------
+
+    def pos(self, point: str) -> np.ndarray:
+        p = self.analysis.points[point].position
+        assert p is not None
+        return p
+
+    def vel(self, point: str) -> np.ndarray:
+        v = self.analysis.points[point].velocity
+        assert v is not None
+        return v
+
+    def acc(self, point: str) -> np.ndarray:
+        a = self.analysis.points[point].acceleration
+        assert a is not None
+        return a
+
+    def omega(self, link: str) -> float:
+        if link == self.scene.ground:
+            return 0.0
+        value = self.analysis.links[link].omega
+        assert value is not None
+        return value
+
+    def alpha(self, link: str) -> float:
+        if link == self.scene.ground:
+            return 0.0
+        value = self.analysis.links[link].alpha
+        assert value is not None
+        return value
+
+    def link_source(self, link: str, key: str) -> tuple[str, ...] | None:
+        return None if link == self.scene.ground else ("links", link, key)
+
+    def is_fixed(self, point: str) -> bool:
+        return point in self.scene.links[self.scene.ground].points
+
+    def reference_point(self, link: str) -> str:
+        """A point of ``link`` to carry its motion from: its fixed pivot, else its first point."""
+        pivot = self.ground_pivot(link)
+        return pivot if pivot is not None else self.scene.links[link].points[0]
+
+    def ground_pivot(self, link: str) -> str | None:
+        """The point of a revolute joint between ``link`` and the ground, if any."""
+        return ground_pivot(link, self.scene.joints, self.scene.ground)
+
+    def slot(self, guide: str, point: str) -> SlotMotion:
+        """The motion of ``point`` in the slot of ``guide``: transport, relative, Coriolis.
+
+        For the joint's own point these are the solver's ``SlidingJoint`` numbers (with their
+        paths in the response); for another point of a prismatic follower they are derived from
+        the guide's rigid motion in the same way.
+        """
+        if (guide, point) not in self.slots:
+            self.slots[(guide, point)] = self._slot(guide, point)
+        return self.slots[(guide, point)]
+
+    def _slot(self, guide: str, point: str) -> SlotMotion:
+        index = 0
+        for joint in self.scene.joints:
+            if joint.type == "revolute":
+                continue
+            carried = joint.point == point or (
+                joint.type == "prismatic" and point in self.scene.links[joint.follower].points
+            )
+            if joint.guide == guide and carried:
+                direction = self.slot_direction(joint)
+                if joint.point == point:
+                    s = self.analysis.joints[index]
+                    return SlotMotion(
+                        index,
+                        joint,
+                        float(s.omega_guide),
+                        direction,
+                        s.transport_velocity,
+                        s.relative_velocity,
+                        s.velocity,
+                        s.transport_acceleration,
+                        s.relative_acceleration,
+                        s.coriolis_acceleration,
+                        s.acceleration,
+                    )
+                return self._derived_slot(joint, point, direction)
+            index += 1
+        raise AssertionError(f"no slot of {guide} carries {point}")
+
+    def _derived_slot(self, joint: Joint, point: str, direction: np.ndarray) -> SlotMotion:
+        guide = joint.guide
+        anchor = self.scene.links[guide].points[0]
+        r = self.pos(point) - self.pos(anchor)
+        omega, alpha = self.omega(guide), self.alpha(guide)
+        v_tr = self.vel(anchor) + k_cross(omega, r)
+        v_rel = self.vel(point) - v_tr
+        a_tr = self.acc(anchor) + k_cross(alpha, r) - omega**2 * r
+        a_cor = 2.0 * k_cross(omega, v_rel)
+        a_rel = self.acc(point) - a_tr - a_cor
+        return SlotMotion(
+            None,
+            joint,
+            omega,
+            direction,
+            v_tr,
+            v_rel,
+            self.vel(point),
+            a_tr,
+            a_rel,
+            a_cor,
+            self.acc(point),
+        )
+
+    def slot_direction(self, joint: Joint) -> np.ndarray:
+        """The unit direction of the slot now: the drawn axis turned with the guide."""
+        assert joint.axis is not None
+        theta = float(self.analysis.motion.links[joint.guide].theta[0])
+        c, s = math.cos(theta), math.sin(theta)
+        x, y = joint.axis
+        return np.array([c * x - s * y, s * x + c * y])
+
+    # --- names ----------------------------------------------------------------------------------
+
+    def builder(self, kind: str, title: str) -> StepBuilder:
+        assert self.plan is not None, "steps are built inside LinkageContext.replayed"
+        return StepBuilder(self.fmt, kind, title, self.plan)
+
+    def replayed(self, make: Callable[[], T], *state: set[str]) -> T:
+        """``make()``, whose steps show the digits their arithmetic needs to recompute: built
+        once with the solution's digits, and where a step needs more (``DigitPlan``), built
+        again with them from the same starting point (the shown points and vectors, and the
+        caller's ``state`` sets, restored). A part of a solution that needs no more digits is
+        built once."""
+        outer = self.plan
+        saved = (list(self.used_vectors), set(self.shown_velocity), set(self.shown_acceleration))
+        kept = [set(s) for s in state]
+        self.plan = DigitPlan()
+        try:
+            result = make()
+            if self.plan.replay():
+                self.used_vectors[:] = saved[0]
+                for now, before in zip(
+                    (self.shown_velocity, self.shown_acceleration, *state),
+                    (saved[1], saved[2], *kept),
+                    strict=True,
+                ):
+                    now.clear()
+                    now.update(before)
+                result = make()
+        finally:
+            self.plan = outer
+        return result
+
+    def use(self, first: str, second: str) -> None:
+        if (first, second) not in self.used_vectors:
+            self.used_vectors.append((first, second))
+
+
+# --- symbols ----------------------------------------------------------------------------------
+
+
+def w_sym(link: str) -> str:
+    return tex.scalar(r"\omega", tex.name(link))
+
+
+def a_sym(link: str) -> str:
+    return tex.scalar(r"\alpha", tex.name(link))
+
+
+def v_vec(point: str, extra: str = "") -> str:
+    return tex.vec("v", tex.name(point) + extra)
+
+
+def a_vec(point: str, extra: str = "") -> str:
+    return tex.vec("a", tex.name(point) + extra)
+
+
+def r_vec(first: str, second: str) -> str:
+    return tex.vec("r", tex.pair(first, second))
+
+
+def w_vec(link: str) -> str:
+    return tex.vec(r"\omega", tex.name(link))
+
+
+def al_vec(link: str) -> str:
+    return tex.vec(r"\alpha", tex.name(link))
+
+
+def put_motion(b: StepBuilder, ctx: LinkageContext, point: str, order: int) -> str:
+    """v_X (order 1) or a_X (order 2): the solver's number for ``point``, as 'v(X)' / 'a(X)'."""
+    field_name, unit = MOTION[order]
+    return b.put(
+        f"{field_name[0]}({point})",
+        getattr(ctx.analysis.points[point], field_name),
+        unit,
+        ("points", point, field_name),
+    )
+
+
+def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
+    """(0, 0, z) x (r_x, r_y, 0) in the plane."""
+    return scalar_z * perp(np.asarray(r, dtype=float))
+
+
+def det_row_z(b: StepBuilder, key: str) -> list[str]:
+    return ["0", "0", b.num(key)]
+
+
+def det_row_z_symbol(symbol: str) -> list[str]:
+    return ["0", "0", symbol]
+
+
+# --- the common steps -------------------------------------------------------------------------
+
+
+def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
+    """The given data: drivers (with their time laws), joints, the analysed instant."""
+    scene, b = ctx.scene, ctx.builder("data", "Data")
+    b.say(method_sentence)
+    b.say(
+        "Sign convention: x to the right, y up, z out of the page; angular velocities and "
+        "accelerations are z-components, counter-clockwise positive."
+    )
+    for driver in scene.drivers:
+        link = driver.link
+        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+        if driver.angle_law is not None:
+            _write_time_law(ctx, b, link, driver.angle_law, (w, al))
+            continue
+        b.line(
+            rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
+            rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
+            rf"{latex_unit('rad/s^2')}"
+        )
+        b.say(
+            f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
+            f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}."
+        )
+    for link, degrees in ctx.analysis.diagnostics.driver_angles.items():
+        key = b.put(f"angle({link})", math.radians(degrees), "rad")
+        b.line(
+            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}{{}}^{{\circ}} "
+            rf"= {b.numu(key)} \quad \text{{(the analysed instant)}}"
+        )
+        b.say(
+            f"The analysed instant has link {link} at {ctx.fmt.text(degrees, 'deg')} deg from "
+            "the x axis."
+        )
+    for joint in scene.joints:
+        if joint.type != "revolute":
+            b.say(_slot_sentence(joint, joint.links[0] == scene.ground))
+    return b.build()
+
+
+def _write_time_law(
+    ctx: LinkageContext, b: StepBuilder, link: str, angle_law: str, keys: tuple[str, str]
+) -> None:
+    """omega = phi_dot(t), alpha = phi_ddot(t) of a driver turned by the time law phi(t)."""
+    w, al = keys
+    law = parse_time_law(angle_law)
+    t = b.put("t", ctx.scene.time, "s")
+    sub = "_{" + tex.name(link) + "}"
+    phi, dphi, ddphi = (
+        rf"{head}{sub}" for head in (r"\varphi", r"\dot{\varphi}", r"\ddot{\varphi}")
+    )
+    b.line(
+        rf"&{phi}(t) = {tex.law(law.expression, ctx.fmt.digits)}, \quad "
+        rf"{dphi}(t) = {tex.law(law.first_derivative, ctx.fmt.digits)}, \quad "
+        rf"{ddphi}(t) = {tex.law(law.second_derivative, ctx.fmt.digits)}"
+    )
+    b.line(
+        rf"&t = {b.numu(t)}: \quad {w_sym(link)} = {dphi}(t) = {b.numu(w)}, "
+        rf"\quad {a_sym(link)} = {ddphi}(t) = {b.numu(al)}"
+    )
+    b.say(
+        f"Link {link} turns by phi(t) = {angle_law} (rad) from its drawn pose; "
+        f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
+        f"alpha({link}) = {b.txt(al)}."
+    )
+
+
+def _slot_sentence(joint: Joint, fixed: bool) -> str:
+    """The words for a sliding joint: which point slides in which link's slot."""
+    guide, follower = joint.links
+    return (
+        f"{joint.point} of link {follower} slides in a straight slot of link {guide}"
+        + (" (a fixed guide)." if fixed else " (a moving guide).")
+        + (" The block cannot turn relative to the guide." if joint.type == "prismatic" else "")
+    )
+
+
+def positions_step(ctx: LinkageContext) -> Step:
+    """The points at the analysed instant and the position vectors the steps use."""
+    b = ctx.builder("positions", "Positions" if not ctx.used_vectors else "Position vectors")
+    names = sorted(
+        {p for pair in ctx.used_vectors for p in pair} or set(ctx.scene.points),
+        key=list(ctx.scene.points).index,
+    )
+    for p in names:
+        b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
+    b.line(
+        "&"
+        + r", \quad ".join(rf"{tex.name(p)} = {b.point(f'pos({p})')}" for p in names)
+        + latex_unit("m")
+    )
+    b.say(
+        "Points at the analysed instant: "
+        + "; ".join(f"{p} = {b.txt(f'pos({p})')}" for p in names)
+        + "."
+    )
+    rows = []
+    texts = []
+    for first, second in ctx.used_vectors:
+        key = b.put(f"r({first},{second})", ctx.pos(second) - ctx.pos(first), "m")
+        b.check("sum", key, f"pos({second})", f"-pos({first})")
+        rows.append(rf"{r_vec(first, second)} = {b.col(key)}")
+        texts.append(f"r({first},{second}) = {b.txt(key)}")
+    for i in range(0, len(rows), 3):
+        b.line("&" + r" \quad ".join(rows[i : i + 3]) + latex_unit("m"))
+    if texts:
+        b.say("Position vectors: " + "; ".join(texts) + ".")
+    return b.build()
+
+
+def fixed_points_step(ctx: LinkageContext, order: int) -> Step | None:
+    """v_X = 0 (a_X = 0) for the points of the ground; None when the ground has no point."""
+    fixed = list(ctx.scene.links[ctx.scene.ground].points)
+    if not fixed:
+        return None
+    which, unit = MOTION[order]
+    symbol = v_vec if order == VELOCITY else a_vec
+    b = ctx.builder(f"{which}.fixed", "Fixed points")
+    for p in fixed:
+        put_motion(b, ctx, p, order)
+    b.line(
+        "&" + r" = ".join(symbol(p) for p in fixed) + rf" = {V0}{latex_unit(unit)}"
+        r" \quad \text{(fixed joints)}"
+    )
+    b.say(f"The points of the ground ({', '.join(fixed)}) are fixed: their {which} is zero.")
+    (ctx.shown_velocity if order == VELOCITY else ctx.shown_acceleration).update(fixed)
+    return b.build()
+
+
+def rigid_velocity_step(
+    ctx: LinkageContext, link: str, base: str, target: str, reason: str = ""
+) -> Step:
+    """v_Y = v_X + omega x r_XY with the cross product as a determinant."""
+    b = ctx.builder("velocity.rigid", f"Velocity of {target} (link {link})")
+    ctx.use(base, target)
+    vx = b.put(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    r = b.put(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
+    wxr = b.put(
+        f"omega x r({base},{target})",
+        k_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
+        "m/s",
+    )
+    vy = b.put(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
+    b.check("cross", wxr, w, r)
+    b.check("sum", vy, vx, wxr)
+    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(vx) else b.col(vx)
+    b.line(
+        rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
+        rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}"
+    )
+    b.line(
+        rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
+        rf"{tex.boxed_result(b.colu(vy))}"
+    )
+    if reason:
+        b.say(reason)
+    b.say(
+        f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
+        f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}."
+    )
+    ctx.shown_velocity.add(target)
+    return b.build()
+
+
+def rigid_acceleration_step(
+    ctx: LinkageContext, link: str, base: str, target: str, reason: str = ""
+) -> Step:
+    """a_Y = a_X + alpha x r_XY - omega^2 r_XY: tangential term as a determinant, normal term."""
+    b = ctx.builder("acceleration.rigid", f"Acceleration of {target} (link {link})")
+    ctx.use(base, target)
+    r_np = ctx.pos(target) - ctx.pos(base)
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    ax = b.put(f"a({base})", ctx.acc(base), "m/s^2", ("points", base, "acceleration"))
+    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
+    r = b.put(f"r({base},{target})", r_np, "m")
+    t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
+    n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
+    ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
+    w2 = b.put(f"omega^2({link})", omega**2, "1/s^2")
+    b.check("cross", t, al, r)
+    b.check("product", w2, w, w)
+    b.check("product", n, w2, r, factor=-1.0)
+    b.check("sum", ay, ax, t, n)
+    if reason:
+        b.say(reason)
+    _write_rigid_acceleration(
+        ctx, b, (link, base, target), V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
+    )
+    ctx.shown_acceleration.add(target)
+    return b.build()
+
+
+def _write_rigid_acceleration(
+    ctx: LinkageContext, b: StepBuilder, names: tuple[str, str, str], base_tex: str
+) -> None:
+    """The equation a_Y = a_X + alpha x r - omega^2 r, its determinant and its sum, in LaTeX and
+    in words (the values registered by ``rigid_acceleration_step``)."""
+    link, base, target = names
+    ax, w, r = f"a({base})", f"omega({link})", f"r({base},{target})"
+    t, n, ay = f"alpha x r({base},{target})", f"normal({base},{target})", f"a({target})"
+    w2 = f"omega^2({link})"
+    b.line(
+        rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
+        rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
+    )
+    b.line(
+        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
+        rf"{tex.determinant3(det_row_z(b, f'alpha({link})'), b.entries(r))} - "
+        rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+    )
+    b.line(
+        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {b.num(w2)} \cdot "
+        rf"{b.col(r)} = {base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}"
+    )
+    b.say(
+        f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
+        f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
+        f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
+        f"-{b.txtn(w2)} times r, pointing from {target} towards {base}."
+    )
+
+
+def _pole_at_pivot(
+    ctx: LinkageContext, b: StepBuilder, link: str, pole: str, sub: str, order: int, why: str
+) -> Step | None:
+    """P = Q (G = Q): the pole of a link turning about the fixed joint Q, else None."""
+    pivot = ctx.ground_pivot(link)
+    if pivot is None:
+        return None
+    o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
+    b.check("sum", pole, o)
+    symbol = v_vec if order == VELOCITY else a_vec
+    b.line(
+        rf"&{sub} = {tex.name(pivot)} = {b.point(pole)}{latex_unit('m')}"
+        rf" \quad \text{{(fixed pivot: }} {symbol(pivot)} = {V0}\text{{)}}"
+    )
+    b.say(
+        f"Link {link} turns about the fixed joint {pivot}{why}: its {MOTION[order][0]} pole is "
+        f"{pivot} = {b.txt(pole)}."
+    )
+    return b.build()
+
+
+def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
+    """The velocity pole P of a moving link: from v_X = omega x r_PX at two points."""
+    result = ctx.analysis.links[link]
+    b = ctx.builder("poles.velocity", f"Velocity pole of link {link}")
+    sub = "P_{" + tex.name(link) + "}"
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    if result.velocity_pole is None:
+        b.line(
+            rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
+            r"(it is at infinity)}"
+        )
+        b.say(
+            f"Link {link} translates at this instant (omega({link}) = {b.txt(w)}): all its "
+            "points have the same velocity, so its velocity pole is at infinity."
+        )
+        return b.build()
+    pole = b.put(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
+    at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, VELOCITY, "")
+    if at_pivot is not None:
+        return at_pivot
+    points = ctx.scene.links[link].points[:2]
+    b.say(
+        f"The velocity pole P of link {link} is the point of the link with zero velocity: "
+        f"v(X) = omega({link}) cross r(P,X) for every point X."
+    )
+    b.say("It lies on the perpendiculars to the velocities of two points, drawn through them.")
+    for x in points:
+        _velocity_pole_from(ctx, b, link, x, result.velocity_pole)
+    if len(points) == 2:
+        b.say(f"Check: {points[0]} and {points[1]} give the same pole.")
+    return b.build()
+
+
+def _velocity_pole_from(
+    ctx: LinkageContext, b: StepBuilder, link: str, x: str, pole_np: np.ndarray
+) -> None:
+    """v_X = omega x r_PX solved for r_PX = (v_y / omega, -v_x / omega), then P = X - r_PX;
+    r_PX . v_X = 0 shows the pole on the perpendicular to v_X."""
+    sub = "P_{" + tex.name(link) + "}"
+    w, pole = f"omega({link})", f"P({link})"
+    v = ctx.vel(x)
+    r_np = ctx.pos(x) - pole_np
+    vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
+    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    r = b.put(f"r(P,{x})", r_np, "m")
+    d = b.put(
+        f"r(P,{x}).v({x})",
+        float(np.dot(r_np, v)),
+        "m^2/s",
+        reference=float(np.hypot(*r_np) * np.hypot(*v)),
+    )
+    b.check("cross", vx, w, r)
+    b.check("sum", pole, px, f"-{r}")
+    b.check("dot", d, r, vx)
+    rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+    vxv = b.entries(vx)
+    expanded = tex.column(["-" + tex.paren(b.num(w)) + r"\, " + ry, b.num(w) + r"\, " + rx, "0"])
+    b.line(
+        rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
+        rf"{expanded}"
+    )
+    b.line(
+        rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
+        rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
+    )
+    b.say(
+        f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
+        f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
+        f"r(P,{x}) = {b.txt(pole)}."
+    )
+
+
+def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
+    """The acceleration pole G: a_X = alpha x r_GX - omega^2 r_GX solved for r_GX (Cramer)."""
+    result = ctx.analysis.links[link]
+    b = ctx.builder("poles.acceleration", f"Acceleration pole of link {link}")
+    sub = "G_{" + tex.name(link) + "}"
+    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+    if result.acceleration_pole is None:
+        b.line(
+            rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
+            r"\;\Rightarrow\; \text{no acceleration pole}"
+        )
+        b.say(
+            f"omega({link}) and alpha({link}) are both zero: the link translates without "
+            "turning and all its points have the same acceleration; there is no acceleration "
+            "pole."
+        )
+        return b.build()
+    pole = b.put(f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole"))
+    at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, ACCELERATION, ", whose acceleration is zero")
+    if at_pivot is not None:
+        return at_pivot
+    points = ctx.scene.links[link].points[:2]
+    _acceleration_pole_from(ctx, b, link, points[-1], result.acceleration_pole)
+    if len(points) == 2 and points[0] != points[-1]:
+        _acceleration_pole_check(ctx, b, link, points[0], result.acceleration_pole)
+    return b.build()
+
+
+def _acceleration_pole_from(
+    ctx: LinkageContext, b: StepBuilder, link: str, x: str, pole_np: np.ndarray
+) -> None:
+    """a_X = alpha x r_GX - omega^2 r_GX: the 2x2 system
+    [-omega^2, -alpha; alpha, -omega^2] r_GX = a_X solved by Cramer's rule, then G = X - r_GX."""
+    sub = "G_{" + tex.name(link) + "}"
+    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    a = ctx.acc(x)
+    r_np = ctx.pos(x) - pole_np
+    ax = b.put(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
+    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+    b.line(
+        rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
+        rf"{tex.name(x)}}} - \omega_{{{tex.name(link)}}}^2\,\vec{{r}}_{{{sub}{tex.name(x)}}}, "
+        rf"\quad \vec{{a}}_{{{sub}}} = {V0}"
+    )
+    b.line(
+        rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
+        rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}"
+    )
+    coefficients = _pole_coefficients(b, omega, alpha, w, al)
+    b1 = b.put("b1", float(a[0]), "m/s^2")
+    b2 = b.put("b2", float(a[1]), "m/s^2")
+    b.check("sum", b1, f"{ax}[0]")
+    b.check("sum", b2, f"{ax}[1]")
+    b.say(
+        f"The acceleration pole G of link {link} is the point of the link with zero "
+        f"acceleration: a({x}) = alpha cross r(G,{x}) - omega squared r(G,{x}), two equations "
+        f"for the components of r(G,{x})."
+    )
+    r = b.put(f"r(G,{x})", r_np, "m")
+    unknowns = [
+        Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
+        Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1])),
+    ]
+    present_vector_unknowns(b, unknowns, coefficients, [b1, b2], "G:")
+    b.check("sum", pole, px, f"-{r}")
+    b.line(
+        rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
+        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
+    )
+    b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
+
+
+def _pole_coefficients(
+    b: StepBuilder, omega: float, alpha: float, w: str, al: str
+) -> list[list[str]]:
+    """The matrix of a_X = alpha x r - omega^2 r in r: [[-omega^2, -alpha], [alpha, -omega^2]]."""
+    w2 = omega**2
+    c11 = b.put("c11", -w2, "")
+    c12 = b.put("c12", -alpha, "")
+    c21 = b.put("c21", alpha, "")
+    c22 = b.put("c22", -w2, "")
+    b.check("product", c11, w, w, factor=-1.0)
+    b.check("product", c12, al, factor=-1.0)
+    b.check("product", c21, al)
+    b.check("product", c22, w, w, factor=-1.0)
+    return [[c11, c12], [c21, c22]]
+
+
+def _acceleration_pole_check(
+    ctx: LinkageContext, b: StepBuilder, link: str, y: str, pole_np: np.ndarray
+) -> None:
+    """The check at a second point Y: a_Y = alpha x r_GY - omega^2 r_GY."""
+    sub = "G_{" + tex.name(link) + "}"
+    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    ry_np = ctx.pos(y) - pole_np
+    ay = b.put(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
+    ry = b.put(f"r(G,{y})", ry_np, "m")
+    py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
+    t = b.put(f"alpha x r(G,{y})", k_cross(ctx.alpha(link), ry_np), "m/s^2")
+    n = b.put(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
+    b.check("sum", ry, py, f"-{pole}")
+    b.check("cross", t, al, ry)
+    b.check("product", n, w, w, ry, factor=-1.0)
+    b.check("sum", ay, t, n)
+    b.line(
+        rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
+        rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
+        rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}"
+    )
+    b.say(
+        f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
+        f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}."
+    )
+
+
+def present_vector_unknowns(
+    b: StepBuilder,
+    unknowns: list[Unknown],
+    coefficients: list[list[str]],
+    rhs: list[str],
+    prefix: str,
+) -> None:
+    """``present_solution`` for unknowns that are components of an already registered vector."""
+    # The unknowns' values live in the vector value; register scalar copies for the checks.
+    renamed = []
+    for u in unknowns:
+        key = b.put(u.key.replace("[0]", ".x").replace("[1]", ".y"), u.value, u.unit)
+        b.check("sum", key, u.key)
+        renamed.append(Unknown(key, u.latex, u.text, u.unit, u.value, u.source, u.meaning))
+    present_solution(b, renamed, coefficients, rhs, prefix)
+
+
+SENSE = {1: "counter-clockwise", -1: "clockwise"}
+
+
+def direction_words(angle: float) -> str:
+    """A direction of motion in words: 'to the right', 'up', 'to the left and down (at 210 deg)'."""
+    degrees = math.degrees(angle) % 360.0
+    for centre, words in ((0, "to the right"), (90, "up"), (180, "to the left"), (270, "down")):
+        if min(abs(degrees - centre), 360.0 - abs(degrees - centre)) < 1.0:
+            return words
+    horizontal = "to the right" if math.cos(angle) > 0 else "to the left"
+    vertical = "up" if math.sin(angle) > 0 else "down"
+    return f"{horizontal} and {vertical} (at {degrees:.0f} deg from the x axis)"
+
+
+def _trend(fmt: Formatter, rate: float, rate_unit: str, change: float, change_unit: str) -> str:
+    """'speeding up', 'slowing down', 'at a steady rate' or 'momentarily at rest'."""
+    if fmt.is_zero(rate, rate_unit):
+        return "momentarily at rest"
+    if fmt.is_zero(change, change_unit):
+        return "at a steady rate"
+    return "speeding up" if rate * change > 0 else "slowing down"
+
+
+def reading_step(ctx: LinkageContext) -> Step:
+    """Reading the answer: each rotation's sense in words and whether the link speeds up or slows
+    down (omega and alpha of the same sign: speeding up), each slider's direction of motion."""
+    b = ctx.builder("reading", "Reading the answer")
+    for link in ctx.scene.moving_links:
+        _read_link(ctx, b, link)
+    for joint in ctx.scene.joints:
+        if joint.type != "revolute":
+            _read_slider(ctx, b, joint)
+    for name, m in ctx.analysis.moving_points.items():
+        _read_moving_point(b, name, m)
+    return b.build()
+
+
+def _rotation_words(link: str, w_sense: str, a_sense: str, trend: str) -> str:
+    """A link's rotation in words from the senses of omega and alpha ('' where zero)."""
+    if not w_sense:
+        return f"link {link} does not turn at this instant" + (
+            f"; alpha {a_sense} starts it turning {a_sense}" if a_sense else ""
+        )
+    if not a_sense:
+        return f"omega {w_sense}, alpha zero: link {link} turns {w_sense} at a steady rate"
+    return f"omega {w_sense}, alpha {a_sense}: link {link} is {trend}"
+
+
+def _read_link(ctx: LinkageContext, b: StepBuilder, link: str) -> None:
+    """omega and alpha of one link: the senses of rotation, speeding up where omega alpha > 0."""
+    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
+    al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
+    w_sense = "" if b.is_zero(w) else SENSE[1 if omega > 0 else -1]
+    a_sense = "" if b.is_zero(al) else SENSE[1 if alpha > 0 else -1]
+    trend = _trend(ctx.fmt, omega, "rad/s", alpha, "rad/s^2")
+    words = _rotation_words(link, w_sense, a_sense, trend)
+    b.line(
+        rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} \quad "
+        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+    )
+    b.say(f"omega({link}) = {b.txt(w)}, alpha({link}) = {b.txt(al)}: {words}.")
+
+
+def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
+    """v_rel and a_rel of a sliding joint: its direction, speeding up where v_rel . a_rel > 0."""
+    slot = ctx.slot(joint.guide, joint.point)
+    assert slot.relative_acceleration is not None
+    point = joint.point
+    rel = slot.put(b, "relative_velocity", point)
+    arel = slot.put(b, "relative_acceleration", point)
+    v, a = slot.relative_velocity, slot.relative_acceleration
+    power = b.put(
+        f"v_rel.a_rel({point})",
+        float(np.dot(v, a)),
+        "m^2/s^3",
+        reference=float(np.hypot(*v) * np.hypot(*a)),
+    )
+    b.check("dot", power, rel, arel)
+    frame = "" if joint.guide == ctx.scene.ground else f" relative to link {joint.guide}"
+    if b.is_zero(rel):
+        words = f"{point} does not slide{frame} at this instant"
+    else:
+        heading = b.put(f"heading({point})", math.atan2(v[1], v[0]), "rad")
+        b.check("angle", heading, rel)
+        trend = speed_trend(b, power, "at a steady rate")
+        words = f"{point} slides {direction_words(math.atan2(v[1], v[0]))}{frame}, {trend}"
+    b.line(
+        rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = {b.point(rel)}"
+        rf"{latex_unit('m/s')}, \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = "
+        rf"{b.point(arel)}{latex_unit('m/s^2')} \quad "
+        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+    )
+    b.say(
+        f"v_rel({point}) = {b.txt(rel)}, a_rel({point}) = {b.txt(arel)} (their dot product "
+        f"{b.txt(power)}: the same sense means speeding up): {words}."
+    )
+
+
+def _read_moving_point(b: StepBuilder, name: str, m: MovingPointMotion) -> None:
+    """|v| and v . a of a moving point: its direction, speeding up where v . a > 0."""
+    source = ("moving_points", name)
+    vk = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+    ak = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+    speed = b.put(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
+    power = b.put(
+        f"v.a({name})",
+        float(np.dot(m.velocity, m.acceleration)),
+        "m^2/s^3",
+        reference=float(np.hypot(*m.velocity) * np.hypot(*m.acceleration)),
+    )
+    b.check("norm", speed, vk)
+    b.check("dot", power, vk, ak)
+    vv = np.asarray(m.velocity, dtype=float)
+    if b.is_zero(vk):
+        words = f"{name} is momentarily at rest"
+    else:
+        words = (
+            f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed "
+            f"{b.txt(speed)}, {speed_trend(b, power, 'at a steady speed')}"
+        )
+    b.line(
+        rf"&|\vec{{v}}_{{{tex.name(name)}}}| = {b.numu(speed)} \quad \Rightarrow "
+        rf"\text{{{tex.escape_text(words)}}}"
+    )
+    b.say(f"v({name}) = {b.txt(vk)}, a({name}) = {b.txt(ak)}: {words}.")
+
+
+def speed_trend(b: StepBuilder, power: str, steady: str) -> str:
+    """The sign of v . a in words: steady (shown as 0), speeding up or slowing down."""
+    if b.is_zero(power):
+        return steady
+    return "speeding up" if b.scalar(power) > 0 else "slowing down"
+
+
+def summary_step(ctx: LinkageContext) -> Step:
+    """The results: every moving link's omega and alpha, every point's velocity and acceleration."""
+    b = ctx.builder("summary", "Results")
+    rows = []
+    for link in ctx.scene.moving_links:
+        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ("links", link, "omega"))
+        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ("links", link, "alpha"))
+        rows.append(rf"{w_sym(link)} = {b.numu(w)}, & {a_sym(link)} = {b.numu(al)}")
+        b.say(f"Link {link}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
+    for p in ctx.scene.points:
+        v = b.put(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
+        a = b.put(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
+        rows.append(
+            rf"{v_vec(p)} = {b.point(v)}{latex_unit('m/s')}, & "
+            rf"{a_vec(p)} = {b.point(a)}{latex_unit('m/s^2')}"
+        )
+        b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
+    for name, m in ctx.analysis.moving_points.items():
+        source = ("moving_points", name)
+        x = b.put(f"pos({name})", m.position, "m", (*source, "position"))
+        v = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+        a = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+        rows.append(
+            rf"{v_vec(name)} = {b.point(v)}{latex_unit('m/s')}, & "
+            rf"{a_vec(name)} = {b.point(a)}{latex_unit('m/s^2')} \\ "
+            rf"\text{{moving point }} {tex.name(name)} = {b.point(x)}{latex_unit('m')} &"
+        )
+        b.say(
+            f"Moving point {name} (at {b.txt(x)}): v = {b.txt(v)}, a = {b.txt(a)} "
+            "(absolute, transport plus relative plus Coriolis)."
+        )
+    b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
+    return b.build()

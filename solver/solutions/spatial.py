@@ -1,0 +1,781 @@
+"""Worked solution of a spatial chain (seed 002): compose rates, turn the axes, five terms.
+
+Body by body from the ground: omega_k = omega_{k-1} + rate_k e_k; the axis e_k is fixed in body
+k-1 and turns with it, de_k/dt = omega_{k-1} x e_k; alpha_k = alpha_{k-1} + rate_dot_k e_k +
+rate_k de_k/dt. The joint origins carry the velocity and acceleration along, and every point gets
+v_P = v_O + omega x r and the five-term acceleration
+a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel, each term written out.
+
+The data step carries an axonometric figure of the chain (``chain_figure``); a ``reading`` step
+says each body's rotation and each point's motion in words. Kennedy's theorem, instant centres
+and the graphical polygons are planar methods and are not offered here (docs/SOLUTIONS.md).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import NamedTuple
+
+import numpy as np
+
+from solver.kinematics.spatial import (
+    GROUND,
+    BodyMotion,
+    PointMotion,
+    SpatialAnalysis,
+    SpatialChain,
+    SpatialJoint,
+    SpatialPoint,
+)
+from solver.solutions import figures
+from solver.solutions import latex as tex
+from solver.solutions.builder import StepBuilder
+from solver.solutions.digits import DigitPlan
+from solver.solutions.format import Formatter, latex_unit
+from solver.solutions.linkage import speed_trend
+from solver.solutions.model import Step
+
+V0 = r"\vec{0}"
+# The isometric drawing: x towards the viewer on the lower left, y to the lower right, z up,
+# full length along each axis: (X, Y) = (cos 30 (y - x), z - sin 30 (x + y)).
+ISOMETRIC = np.array([[-math.cos(math.pi / 6), math.cos(math.pi / 6), 0.0], [-0.5, -0.5, 1.0]])
+OMEGA_PAPER_CM = 3.0  # the largest omega is drawn at most this long
+UNITS = r"\mathbf{E}_1 & \mathbf{E}_2 & \mathbf{E}_3"
+
+
+def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
+    def largest(vectors: list[np.ndarray]) -> float:
+        return max((float(np.max(np.abs(v))) for v in vectors), default=0.0)
+
+    positions = [j.origin for j in chain.joints] + [p.position for p in chain.points]
+    return {
+        "m": max(largest(positions), 1e-300),
+        "m/s": largest(
+            [p.velocity for p in analysis.points.values()]
+            + [b.velocity_origin for b in analysis.bodies.values()]
+        ),
+        "m/s^2": largest(
+            [p.acceleration for p in analysis.points.values()]
+            + [b.acceleration_origin for b in analysis.bodies.values()]
+        ),
+        "rad/s": largest(
+            [b.omega for b in analysis.bodies.values()]
+            + [b.axis_rate for b in analysis.bodies.values()]
+        ),
+        "rad/s^2": largest([b.alpha for b in analysis.bodies.values()]),
+    }
+
+
+class ParentMotion(NamedTuple):
+    """Body k-1 at the instant (zeros for the ground): omega, alpha, origin O_{k-1} and its
+    velocity and acceleration."""
+
+    omega: np.ndarray
+    alpha: np.ndarray
+    origin: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+class OriginTerms(NamedTuple):
+    """The terms carrying joint k's origin with body k-1, r = O_k - O_{k-1}:
+    v_{O_k} = v_{O_{k-1}} + omega x r + v_rel and
+    a_{O_k} = a_{O_{k-1}} + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+
+    r: np.ndarray
+    omega_x_r: np.ndarray
+    alpha_x_r: np.ndarray
+    centripetal: np.ndarray
+    v_rel: np.ndarray
+    coriolis: np.ndarray
+    a_rel: np.ndarray
+
+
+def origin_terms(joint: SpatialJoint, parent: ParentMotion) -> OriginTerms:
+    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates;
+    v_rel = v_k e_k, 2 omega x v_rel and a_rel = v_dot_k e_k of joint k's sliding."""
+    r = joint.origin - parent.origin
+    v_rel = joint.rate * joint.axis
+    return OriginTerms(
+        r,
+        np.cross(parent.omega, r),
+        np.cross(parent.alpha, r),
+        np.cross(parent.omega, np.cross(parent.omega, r)),
+        v_rel,
+        2.0 * np.cross(parent.omega, v_rel),
+        joint.rate_dot * joint.axis,
+    )
+
+
+class FiveTerms(NamedTuple):
+    """The keys of a point's five-term acceleration in its step:
+    a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+
+    a_origin: str
+    alpha: str
+    omega: str
+    r: str
+    tangential: str
+    omega_x_r: str
+    centripetal: str
+    coriolis: str
+    relative: str
+    a: str
+
+
+class SpatialSteps:
+    def __init__(
+        self,
+        chain: SpatialChain,
+        analysis: SpatialAnalysis,
+        fmt: Formatter,
+        plan: DigitPlan | None = None,
+    ) -> None:
+        self.plan = plan
+        self.chain = chain
+        self.analysis = analysis
+        self.fmt = Formatter(fmt.digits, _scales(chain, analysis))
+        self.shown: set[str] = set()  # points already shown (at a joint origin)
+
+    def builder(self, kind: str, title: str) -> StepBuilder:
+        return StepBuilder(self.fmt, kind, title, self.plan)
+
+    def col(self, b: StepBuilder, key: str) -> str:
+        return V0 if b.is_zero(key) else b.col(key)
+
+    def data(self) -> Step:
+        b = self.builder("data", "Data")
+        b.say(
+            "Method: composition of angular velocities in a chain of rotating frames. Joint k "
+            "connects body k-1 (the ground for the first joint) to body k; its axis e_k is "
+            "fixed in body k-1 and turns with it. Vectors are components in the fixed frame "
+            "E1, E2, E3 at the instant."
+        )
+        rows = []
+        for j in self.chain.joints:
+            e = b.put(f"e({j.name})", j.axis, "")
+            o = b.put(f"O({j.name})", j.origin, "m")
+            rate_unit = ("rad/s", "rad/s^2") if j.type == "revolute" else ("m/s", "m/s^2")
+            q = b.put(f"rate({j.name})", j.rate, rate_unit[0])
+            qd = b.put(f"rate_dot({j.name})", j.rate_dot, rate_unit[1])
+            n = tex.name(j.name)
+            symbol = r"\omega" if j.type == "revolute" else "v"
+            rows.append(
+                rf"&\text{{joint }} {n} \text{{ ({j.type})}}: \; O_{{{n}}} = "
+                rf"({', '.join(b.entries(o))}){latex_unit('m')}, \; \vec{{e}}_{{{n}}} = "
+                rf"({', '.join(b.entries(e))}), \; {symbol}_{{{n}}} = {b.numu(q)}, \; "
+                rf"\dot{{{symbol}}}_{{{n}}} = {b.numu(qd)}"
+            )
+            b.say(
+                f"Joint {j.name} ({j.type}) at O = {b.txt(o)}, axis e = {b.txtn(e)}, rate "
+                f"{b.txt(q)}, rate of change {b.txt(qd)}."
+            )
+        for line in rows:
+            b.line(line)
+        return b.build()
+
+    def parent_name(self, index: int) -> str:
+        return GROUND if index == 0 else self.chain.joints[index - 1].name
+
+    def parent_motion(self, index: int) -> ParentMotion:
+        """omega, alpha, origin, v_origin, a_origin of body k-1 (zeros for the ground)."""
+        if index == 0:
+            z = np.zeros(3)
+            return ParentMotion(z, z, z, z, z)
+        body = self.analysis.bodies[self.chain.joints[index - 1].name]
+        return ParentMotion(
+            body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin
+        )
+
+    def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> str:
+        """omega_{k-1} (or alpha_{k-1}) of body k-1; the ground's is zero and has no source."""
+        parent = self.parent_name(index)
+        unit = "rad/s" if name == "omega" else "rad/s^2"
+        return b.put(
+            f"{name}({parent})", value, unit, None if index == 0 else ("bodies", parent, name)
+        )
+
+    def point_at_origin(self, index: int, joint: SpatialJoint) -> str | None:
+        """A named point of body k-1 at the origin of joint k: its own steps carry the origin's
+        motion, so the origin is not computed twice."""
+        parent = self.parent_name(index)
+        tolerance = 1e-12 * max(1.0, float(np.max(np.abs(joint.origin))))
+        for point in self.chain.points:
+            if point.body == parent and np.max(np.abs(point.position - joint.origin)) <= tolerance:
+                return point.name
+        return None
+
+    def body_steps(self, index: int, joint: SpatialJoint) -> list[Step]:
+        """omega_k, de_k/dt and alpha_k of body k, then the motion of its joint origin O_k."""
+        parent = self.parent_motion(index)
+        out = [
+            self.omega_step(index, joint, parent),
+            self.axis_rate_step(index, joint, parent),
+            self.alpha_step(index, joint, parent),
+        ]
+        at_origin = self.point_at_origin(index, joint)
+        if at_origin is not None:
+            self.shown.add(at_origin)
+            out += self.point_steps(at_origin, f" (the origin O{joint.name} of joint {joint.name})")
+        else:
+            terms = origin_terms(joint, parent)
+            out.append(self.origin_velocity_step(index, joint, parent, terms))
+            out.append(self.origin_acceleration_step(index, joint, parent, terms))
+        return out
+
+    def omega_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """omega_k = omega_{k-1} + omega_k e_k (a revolute joint), omega_k = omega_{k-1} (a
+        prismatic one)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        b = self.builder("spatial.omega", f"Angular velocity of body {joint.name}")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        w = b.put(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        if joint.type != "revolute":
+            b.check("sum", w, wp)
+            b.line(
+                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = {tex.boxed_result(b.colu(w))}"
+            )
+            b.say(
+                f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent_name}) = "
+                f"{b.txt(w)}."
+            )
+            return b.build()
+        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
+        term = b.put(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
+        b.check("product", term, q, e)
+        b.check("sum", w, wp, term)
+        b.line(
+            rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
+            rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
+            rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}"
+        )
+        b.say(
+            f"Angular velocities add: omega({joint.name}) = omega({parent_name}) + "
+            f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
+            f"{b.txt(w)}."
+        )
+        return b.build()
+
+    def axis_rate_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """de_k/dt = omega_{k-1} x e_k: the axis is fixed in body k-1 and turns with it."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        b = self.builder("spatial.axis_rate", f"Rate of change of the axis of joint {joint.name}")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
+        b.check("cross", ed, wp, e)
+        b.line(
+            rf"&\dot{{\vec{{e}}}}_{{{n}}} = \vec{{\omega}}_{{{p}}} \times \vec{{e}}_{{{n}}} = "
+            rf"{tex.determinant3(b.entries(wp), b.entries(e), UNITS)} = "
+            rf"{tex.boxed_result(b.colu(ed))}"
+        )
+        b.say(
+            f"The axis e({joint.name}) is fixed in body {parent_name}, so it turns with "
+            f"omega({parent_name}): its rate of change is omega({parent_name}) cross "
+            f"e({joint.name}) = {b.txt(ed)}."
+        )
+        return b.build()
+
+    def alpha_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+        """alpha_k = alpha_{k-1} + omega_dot_k e_k + omega_k de_k/dt (a revolute joint),
+        alpha_k = alpha_{k-1} (a prismatic one)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        b = self.builder("spatial.alpha", f"Angular acceleration of body {joint.name}")
+        alp = self.parent_rate(b, index, "alpha", parent.alpha)
+        al = b.put(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
+        if joint.type != "revolute":
+            b.check("sum", al, alp)
+            b.line(
+                rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} = "
+                rf"{tex.boxed_result(b.colu(al))}"
+            )
+            b.say(f"alpha({joint.name}) = alpha({parent_name}) = {b.txt(al)} (prismatic joint).")
+            return b.build()
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
+        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
+        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
+        t1 = b.put(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
+        t2 = b.put(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
+        b.check("product", t1, qd, e)
+        b.check("product", t2, q, ed)
+        b.check("sum", al, alp, t1, t2)
+        b.line(
+            rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
+            rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
+            rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
+            rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}"
+        )
+        b.say(
+            f"Differentiating omega({joint.name}) = omega({parent_name}) + rate e: "
+            f"alpha({joint.name}) = alpha({parent_name}) + rate-dot e + rate times de/dt = "
+            f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
+            "from the turning axis; leaving it out is a common mistake."
+        )
+        return b.build()
+
+    def origin_velocity_step(
+        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+    ) -> Step:
+        """v_{O_k} = v_{O_{k-1}} + omega_{k-1} x r (+ v_k e_k where joint k slides)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        origin_p = "O_{" + p + "}" if index else "O"
+        b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
+        vp = b.put(f"v(O{parent_name})", parent.velocity, "m/s")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        r = b.put("r", terms.r, "m")
+        wxr = b.put("omega x r", terms.omega_x_r, "m/s")
+        v = b.put(f"v(O{joint.name})", body.velocity_origin, "m/s")
+        b.check("cross", wxr, wp, r)
+        parts = [vp, wxr]
+        if joint.type == "prismatic":
+            e = b.put(f"e({joint.name})", joint.axis, "")
+            q = b.put(f"rate({joint.name})", joint.rate, "m/s")
+            parts.append(b.put("v_rel", terms.v_rel, "m/s"))
+            b.check("product", parts[2], q, e)
+        b.check("sum", v, *parts)
+        sliding = len(parts) > 2
+        b.line(
+            rf"&\vec{{v}}_{{O_{{{n}}}}} = \vec{{v}}_{{{origin_p}}} + \vec{{\omega}}_{{{p}}} "
+            rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}"
+            + (rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}" if sliding else "")
+            + rf" = {self.col(b, vp)} + {tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
+            + (rf" + {b.col(parts[2])}" if sliding else "")
+            + rf" = {tex.boxed_result(b.colu(v))}"
+        )
+        b.say(
+            f"The origin O{joint.name} of joint {joint.name} moves with body {parent_name}: "
+            f"v = v(O{parent_name}) + omega({parent_name}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
+            + (f" + {b.txt(parts[2])} (sliding)" if sliding else "")
+            + f" = {b.txt(v)}."
+        )
+        return b.build()
+
+    def origin_acceleration_step(
+        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+    ) -> Step:
+        """a_{O_k} = a_{O_{k-1}} + alpha_{k-1} x r + omega_{k-1} x (omega_{k-1} x r)
+        (+ 2 omega_{k-1} x v_rel + a_rel where joint k slides)."""
+        body = self.analysis.bodies[joint.name]
+        parent_name = self.parent_name(index)
+        b = self.builder(
+            "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
+        )
+        ap = b.put(f"a(O{parent_name})", parent.acceleration, "m/s^2")
+        wp = self.parent_rate(b, index, "omega", parent.omega)
+        alp = self.parent_rate(b, index, "alpha", parent.alpha)
+        r = b.put("r", terms.r, "m")
+        t = b.put("alpha x r", terms.alpha_x_r, "m/s^2")
+        inner = b.put("omega x r", terms.omega_x_r, "m/s")
+        c = b.put("omega x (omega x r)", terms.centripetal, "m/s^2")
+        a = b.put(f"a(O{joint.name})", body.acceleration_origin, "m/s^2")
+        b.check("cross", t, alp, r)
+        b.check("cross", inner, wp, r)
+        b.check("cross", c, wp, inner)
+        parts = [ap, t, c]
+        if joint.type == "prismatic":
+            parts += self.sliding_terms(b, joint, terms, wp)
+        b.check("sum", a, *parts)
+        self.write_origin_acceleration(b, index, joint, parts, a)
+        return b.build()
+
+    def sliding_terms(
+        self, b: StepBuilder, joint: SpatialJoint, terms: OriginTerms, wp: str
+    ) -> list[str]:
+        """2 omega_{k-1} x v_rel and a_rel = v_dot_k e_k of a sliding joint k, v_rel = v_k e_k."""
+        e = b.put(f"e({joint.name})", joint.axis, "")
+        q = b.put(f"rate({joint.name})", joint.rate, "m/s")
+        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
+        rel_v = b.put("v_rel", terms.v_rel, "m/s")
+        cor = b.put("2 omega x v_rel", terms.coriolis, "m/s^2")
+        rel_a = b.put("a_rel", terms.a_rel, "m/s^2")
+        b.check("product", rel_v, q, e)
+        b.check("cross", cor, wp, rel_v, factor=2.0)
+        b.check("product", rel_a, qd, e)
+        return [cor, rel_a]
+
+    def write_origin_acceleration(
+        self, b: StepBuilder, index: int, joint: SpatialJoint, parts: list[str], a: str
+    ) -> None:
+        """The equation a_{O_k} = a_{O_{k-1}} + ... and its sum, in LaTeX and in words."""
+        parent_name = self.parent_name(index)
+        n, p = tex.name(joint.name), tex.name(parent_name)
+        origin_p = "O_{" + p + "}" if index else "O"
+        sliding = joint.type == "prismatic"
+        b.line(
+            rf"&\vec{{a}}_{{O_{{{n}}}}} = \vec{{a}}_{{{origin_p}}} + \vec{{\alpha}}_{{{p}}} "
+            rf"\times \vec{{r}} + \vec{{\omega}}_{{{p}}} \times (\vec{{\omega}}_{{{p}}} \times "
+            rf"\vec{{r}})"
+            + (
+                r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + \vec{a}_{\mathrm{rel}}"
+                if sliding
+                else ""
+            )
+        )
+        b.line(
+            r"&\phantom{\vec{a}} = "
+            + " + ".join(self.col(b, k) for k in parts)
+            + rf" = {tex.boxed_result(b.colu(a))}"
+        )
+        b.say(
+            f"Acceleration of O{joint.name}: a(O{parent_name}) + alpha({parent_name}) cross r + "
+            f"omega({parent_name}) cross (omega({parent_name}) cross r)"
+            + (" + 2 omega cross v_rel + a_rel" if sliding else "")
+            + " = "
+            + " + ".join(b.txt(k) for k in parts)
+            + f" = {b.txt(a)}."
+        )
+
+    def point_steps(self, name: str, role: str = "") -> list[Step]:
+        """The velocity and the five-term acceleration of a point of a moving body (one step
+        for a point of the ground)."""
+        point = next(p for p in self.chain.points if p.name == name)
+        if point.body == GROUND:
+            return [self.fixed_point_step(point)]
+        return [self.point_velocity_step(point, role), self.point_acceleration_step(point, role)]
+
+    def fixed_point_step(self, point: SpatialPoint) -> Step:
+        """v_P = a_P = 0 for a point of the ground."""
+        name = point.name
+        motion = self.analysis.points[name]
+        b = self.builder("spatial.point.fixed", f"Point {name} (fixed)")
+        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        b.line(rf"&\vec{{v}}_{{{tex.name(name)}}} = \vec{{a}}_{{{tex.name(name)}}} = {V0}")
+        b.say(f"{name} is a point of the ground: v = {b.txt(v)}, a = {b.txt(a)}.")
+        return b.build()
+
+    def point_velocity_step(self, point: SpatialPoint, role: str) -> Step:
+        """v_P = v_O + omega x r, r from the body's joint origin O to P."""
+        name = point.name
+        body = self.analysis.bodies[point.body]
+        r_np = point.position - body.origin
+        n, k = tex.name(name), tex.name(point.body)
+        b = self.builder("spatial.point.velocity", f"Velocity of {name}{role}")
+        vo = b.put(f"v(O{point.body})", body.velocity_origin, "m/s")
+        w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
+        r = b.put(f"r(O{point.body},{name})", r_np, "m")
+        wxr = b.put("omega x r", np.cross(body.omega, r_np), "m/s")
+        v = b.put(
+            f"v({name})", self.analysis.points[name].velocity, "m/s", ("points", name, "velocity")
+        )
+        b.check("cross", wxr, w, r)
+        b.check("sum", v, vo, wxr)
+        b.line(
+            rf"&\vec{{v}}_{{{n}}} = \vec{{v}}_{{O_{{{k}}}}} + \vec{{\omega}}_{{{k}}} \times "
+            rf"\vec{{r}}_{{O_{{{k}}}{n}}} = {self.col(b, vo)} + "
+            rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)}"
+        )
+        b.line(
+            rf"&\phantom{{\vec{{v}}_{{{n}}}}} = {self.col(b, vo)} + {b.col(wxr)} = "
+            rf"{tex.boxed_result(b.colu(v))}"
+        )
+        b.say(
+            f"{name} is fixed in body {point.body}: v({name}) = v(O{point.body}) + "
+            f"omega({point.body}) cross r = {b.txt(vo)} + {b.txt(wxr)} = {b.txt(v)}."
+        )
+        return b.build()
+
+    def point_acceleration_step(self, point: SpatialPoint, role: str) -> Step:
+        """a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
+        name = point.name
+        motion = self.analysis.points[name]
+        body = self.analysis.bodies[point.body]
+        r_np = point.position - body.origin
+        b = self.builder(
+            "spatial.point.acceleration", f"Acceleration of {name}{role}: the five-term formula"
+        )
+        src = ("points", name, "acceleration_terms")
+        ao = b.put("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
+        al = b.put(f"alpha({point.body})", body.alpha, "rad/s^2", ("bodies", point.body, "alpha"))
+        w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
+        r = b.put(f"r(O{point.body},{name})", r_np, "m")
+        t = b.put("alpha x r", motion.tangential, "m/s^2", (*src, "tangential"))
+        inner = b.put("omega x r", np.cross(body.omega, r_np), "m/s")
+        c = b.put("omega x (omega x r)", motion.centripetal, "m/s^2", (*src, "centripetal"))
+        cor = b.put("2 omega x v_rel", motion.coriolis, "m/s^2", (*src, "coriolis"))
+        rel = b.put("a_rel", motion.relative, "m/s^2", (*src, "relative"))
+        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        b.check("cross", t, al, r)
+        b.check("cross", inner, w, r)
+        b.check("cross", c, w, inner)
+        b.check("sum", a, ao, t, c, cor, rel)
+        self.write_five_terms(b, point, FiveTerms(ao, al, w, r, t, inner, c, cor, rel, a))
+        return b.build()
+
+    def write_five_terms(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> None:
+        """The five-term formula, its cross products and its sum, in LaTeX and in words."""
+        n, k = tex.name(point.name), tex.name(point.body)
+        b.line(
+            rf"&\vec{{a}}_{{{n}}} = \vec{{a}}_{{O_{{{k}}}}} + \vec{{\alpha}}_{{{k}}} \times "
+            rf"\vec{{r}} + \vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times "
+            rf"\vec{{r}}) + 2\,\vec{{\omega}} \times \vec{{v}}_{{\mathrm{{rel}}}} + "
+            rf"\vec{{a}}_{{\mathrm{{rel}}}}"
+        )
+        b.line(
+            rf"&\vec{{\alpha}}_{{{k}}} \times \vec{{r}} = "
+            rf"{tex.determinant3(b.entries(keys.alpha), b.entries(keys.r), UNITS)} = "
+            rf"{b.col(keys.tangential)}, \quad \vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
+            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.r), UNITS)} = "
+            rf"{b.col(keys.omega_x_r)}"
+        )
+        b.line(
+            rf"&\vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times \vec{{r}}) = "
+            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.omega_x_r), UNITS)} = "
+            rf"{b.col(keys.centripetal)}"
+        )
+        terms = (keys.a_origin, keys.tangential, keys.centripetal, keys.coriolis, keys.relative)
+        b.line(
+            rf"&\vec{{a}}_{{{n}}} = {' + '.join(self.col(b, key) for key in terms)} = "
+            rf"{tex.boxed_result(b.colu(keys.a))}"
+        )
+        b.say(
+            f"Five-term formula for {point.name} with r = r(O{point.body},{point.name}) = "
+            f"{b.txt(keys.r)}: a_O = {b.txt(keys.a_origin)}; alpha cross r = "
+            f"{b.txt(keys.tangential)}; omega cross (omega cross r) = "
+            f"{b.txt(keys.centripetal)}; {self.relative_terms_why(b, point, keys)}. Sum: "
+            f"a({point.name}) = {b.txt(keys.a)}."
+        )
+
+    def relative_terms_why(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> str:
+        """Why 2 omega x v_rel and a_rel are what they are: a sliding joint, or a fixed point."""
+        joint = next(j for j in self.chain.joints if j.name == point.body)
+        if joint.type == "prismatic":
+            parent = self.parent_of(joint)
+            return (
+                f"joint {joint.name} slides, so the Coriolis term 2 omega({parent}) cross "
+                f"v_rel = {b.txt(keys.coriolis)} and the relative term {b.txt(keys.relative)} "
+                "appear"
+            )
+        return (
+            f"{point.name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
+            "and relative terms are zero"
+        )
+
+    def parent_of(self, joint: SpatialJoint) -> str:
+        index = self.chain.joints.index(joint)
+        return self.parent_name(index)
+
+    def summary(self) -> Step:
+        b = self.builder("summary", "Results")
+        rows = []
+        for name, body in self.analysis.bodies.items():
+            w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
+            al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
+            rows.append(
+                rf"\vec{{\omega}}_{{{tex.name(name)}}} = ({', '.join(b.entries(w))})"
+                rf"{latex_unit('rad/s')}, & \vec{{\alpha}}_{{{tex.name(name)}}} = "
+                rf"({', '.join(b.entries(al))}){latex_unit('rad/s^2')}"
+            )
+            b.say(f"Body {name}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
+        for name, p in self.analysis.points.items():
+            v = b.put(f"v({name})", p.velocity, "m/s", ("points", name, "velocity"))
+            a = b.put(f"a({name})", p.acceleration, "m/s^2", ("points", name, "acceleration"))
+            rows.append(
+                rf"\vec{{v}}_{{{tex.name(name)}}} = ({', '.join(b.entries(v))})"
+                rf"{latex_unit('m/s')}, & \vec{{a}}_{{{tex.name(name)}}} = "
+                rf"({', '.join(b.entries(a))}){latex_unit('m/s^2')}"
+            )
+            b.say(f"Point {name}: v = {b.txt(v)}, a = {b.txt(a)}.")
+        b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
+        return b.build()
+
+    def reading(self) -> Step:
+        """Reading the answer: each body turns with |omega| about the unit axis u = omega/|omega|,
+        counter-clockwise seen from the tip of u (the right-hand rule); omega . alpha > 0 means
+        |omega| grows. Each point moves with speed |v| along v/|v|; v . a > 0 means it speeds up."""
+        b = self.builder("reading", "Reading the answer")
+        for name, body in self.analysis.bodies.items():
+            self.read_body(b, name, body)
+        for point in self.chain.points:
+            self.read_point(b, point.name, self.analysis.points[point.name])
+        return b.build()
+
+    def read_body(self, b: StepBuilder, name: str, body: BodyMotion) -> None:
+        """|omega|, u = omega/|omega| and omega . alpha of one body, said in words."""
+        n = tex.name(name)
+        w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
+        al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
+        size = float(np.linalg.norm(body.omega))
+        speed = b.put(f"|omega({name})|", size, "rad/s")
+        b.check("norm", speed, w)
+        if b.is_zero(speed):
+            words = f"body {name} does not turn at this instant"
+            _write_at_rest(b, rf"|\vec{{\omega}}_{{{n}}}|", speed, words)
+            b.say(f"omega({name}) = {b.txt(w)}: {words}.")
+            return
+        axis = b.put(f"u({name})", body.omega / size, "")
+        power = _put_power(b, f"omega.alpha({name})", body.omega, body.alpha, "rad^2/s^3")
+        b.check("dot", power, w, al)
+        trend = speed_trend(b, power, "at a steady rate")
+        turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
+        if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
+            trend += ", and the axis itself turns (alpha is not along omega)"
+        words = (
+            f"body {name} turns at {b.txt(speed)} about the axis u = {b.txtn(axis)} (nearest "
+            f"{_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, {trend}"
+        )
+        b.line(
+            rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{u}}_{{{n}}} = "
+            rf"\vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = "
+            rf"({', '.join(b.entries(axis))}), \quad \vec{{\omega}}_{{{n}}} \cdot "
+            rf"\vec{{\alpha}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+            + tex.escape_text(f"counter-clockwise about u, {trend}")
+            + "}"
+        )
+        b.say(
+            f"omega({name}) = {b.txt(w)}, alpha({name}) = {b.txt(al)}: {words} (omega . "
+            f"alpha = {b.txt(power)}: the same sense means the rotation speeds up)."
+        )
+
+    def read_point(self, b: StepBuilder, name: str, motion: PointMotion) -> None:
+        """|v| and v . a of one point, said in words."""
+        n = tex.name(name)
+        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        speed = b.put(f"|v({name})|", float(np.linalg.norm(motion.velocity)), "m/s")
+        b.check("norm", speed, v)
+        if b.is_zero(speed):
+            words = f"{name} is at rest at this instant"
+            _write_at_rest(b, rf"|\vec{{v}}_{{{n}}}|", speed, words)
+            b.say(f"v({name}) = {b.txt(v)}: {words}.")
+            return
+        power = _put_power(b, f"v.a({name})", motion.velocity, motion.acceleration, "m^2/s^3")
+        b.check("dot", power, v, a)
+        words = (
+            f"{name} moves at a speed of {b.txt(speed)}, mostly "
+            f"{_nearest_axis(motion.velocity)}, {speed_trend(b, power, 'at a steady speed')}"
+        )
+        b.line(
+            rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
+            rf"\vec{{a}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+            + tex.escape_text(words)
+            + "}"
+        )
+        b.say(
+            f"v({name}) = {b.txt(v)}, a({name}) = {b.txt(a)}: {words} (v . a = "
+            f"{b.txt(power)}: the same sense means speeding up)."
+        )
+
+    def figure(self) -> str:
+        """The chain at the instant in an isometric drawing: the joint axes (dashed, through their
+        origins), the bodies from joint to joint and to their points, the fixed frame E1, E2, E3,
+        and each body's omega from its joint origin at its own stated scale."""
+        project = ISOMETRIC
+        places = [j.origin for j in self.chain.joints] + [p.position for p in self.chain.points]
+        drawn = [project @ x for x in places]
+        per_mm = figures.model_scale([*drawn, np.zeros(2)])
+        extent = figures.PAPER * per_mm  # m: the drawing's size
+        omegas = [float(np.linalg.norm(b.omega)) for b in self.analysis.bodies.values()]
+        k = figures.nice_scale(max(omegas, default=0.0), OMEGA_PAPER_CM)
+        segments, arrows, dots = self.chain_drawing(extent, 10.0 * per_mm / k)
+        corner = np.min(drawn, axis=0) - 0.2 * extent  # the frame E1, E2, E3 below on the left
+        for i, label in enumerate(("E1", "E2", "E3")):
+            unit = np.zeros(3)
+            unit[i] = 0.25 * extent
+            arrows.append(figures.Arrow(corner, corner + project @ unit, label, label, "position"))
+        length_scale = 10.0 * per_mm
+        caption = (
+            f"Isometric view: lengths 1 cm = {length_scale:g} m; "
+            f"{figures.scale_text(k, 'rad/s')} for omega"
+        )
+        title = f"The chain at the instant{': ' + self.chain.title if self.chain.title else ''}"
+        return figures.svg(
+            title,
+            arrows,
+            dots,
+            segments,
+            per_mm,
+            caption,
+            {
+                "data-scale": f"{k:g}",
+                "data-unit": "rad/s",
+                "data-length-scale": f"{length_scale:g}",
+                "data-projection": ";".join(",".join(f"{x:.17g}" for x in row) for row in project),
+            },
+        )
+
+    def chain_drawing(
+        self, extent: float, to_model: float
+    ) -> tuple[list[tuple[np.ndarray, np.ndarray, str]], list[figures.Arrow], list[figures.Dot]]:
+        """The joint axes, each body's omega (to_model: rad/s -> m of the drawing), the bodies
+        from their joint origin to what they carry, and a dot per place, projected."""
+        project = ISOMETRIC
+        segments: list[tuple[np.ndarray, np.ndarray, str]] = []
+        arrows: list[figures.Arrow] = []
+        marks: dict[tuple[float, ...], tuple[np.ndarray, list[str], bool]] = {}
+
+        def mark(at: np.ndarray, label: str, fixed: bool) -> None:
+            """One dot per place, its labels joined: 'O3 = A' where a point sits on an origin."""
+            key = tuple(np.round(at / max(extent, 1e-300), 9))
+            marks.setdefault(key, (at, [], fixed))[1].append(label)
+
+        half = 0.12 * extent
+        attached: dict[str, list[np.ndarray]] = {GROUND: []}
+        attached.update({joint.name: [joint.origin] for joint in self.chain.joints})
+        for index, joint in enumerate(self.chain.joints):
+            attached[self.parent_name(index)].append(joint.origin)
+            ends = (joint.origin - half * joint.axis, joint.origin + half * joint.axis)
+            segments.append((project @ ends[0], project @ ends[1], "position"))
+            mark(joint.origin, f"O{joint.name}", index == 0)
+            start = project @ joint.origin
+            tip = start + to_model * (project @ self.analysis.bodies[joint.name].omega)
+            arrows.append(
+                figures.Arrow(start, tip, f"omega({joint.name})", f"ω{joint.name}", "absolute")
+            )
+        for point in self.chain.points:
+            attached[point.body].append(point.position)
+            mark(point.position, point.name, point.body == GROUND)
+        for body, where in attached.items():  # body k from its joint origin to what it carries
+            if body != GROUND:
+                segments += [(project @ where[0], project @ x, "link") for x in where[1:]]
+        dots = [
+            figures.Dot(project @ at, " = ".join(dict.fromkeys(labels)), fixed)
+            for at, labels, fixed in marks.values()
+        ]
+        return segments, arrows, dots
+
+    def steps(self) -> list[Step]:
+        out = [replace(self.data(), figure=self.figure())]
+        for index, joint in enumerate(self.chain.joints):
+            out += self.body_steps(index, joint)
+        for point in self.chain.points:
+            if point.name not in self.shown:
+                out += self.point_steps(point.name)
+        out.append(self.reading())
+        out.append(self.summary())
+        return out
+
+
+def _put_power(b: StepBuilder, key: str, rate: np.ndarray, change: np.ndarray, unit: str) -> str:
+    """x . x_dot, which has the sign of d|x|/dt; shown as 0 below the rounding of |x| |x_dot|."""
+    reference = float(np.linalg.norm(rate)) * float(np.linalg.norm(change))
+    return b.put(key, float(np.dot(rate, change)), unit, reference=reference)
+
+
+def _write_at_rest(b: StepBuilder, size: str, speed: str, words: str) -> None:
+    """|x| = 0 => the words saying the body or point does not move."""
+    b.line(rf"&{size} = {b.numu(speed)} \quad \Rightarrow \text{{" + tex.escape_text(words) + "}")
+
+
+def _nearest_axis(vector: np.ndarray) -> str:
+    """The fixed axis closest to a vector's direction, with its sign: '+E3', '-E1'."""
+    i = int(np.argmax(np.abs(vector)))
+    return f"{'+' if vector[i] > 0 else '-'}E{i + 1}"
+
+
+def spatial_steps(
+    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter, plan: DigitPlan | None = None
+) -> list[Step]:
+    """The steps of a spatial chain's solution (numbers from ``analysis``)."""
+    return SpatialSteps(chain, analysis, fmt, plan).steps()
