@@ -20,7 +20,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
+from numpy.polynomial import chebyshev
 
 from solver.analysis.link_kinematics import four_bar_loops, link_poles
 from solver.analysis.sliding_joints import (
@@ -36,7 +36,14 @@ from solver.kinematics.relative_motion import MovingPointMotion, moving_point_mo
 from solver.kinematics.rigid import Array
 from solver.model.quantities import normalise_quantities, required_order
 from solver.model.scene import LinkageScene
-from solver.position.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.position.assembly import (
+    WARNING_MARGIN,
+    DriverInput,
+    Motion,
+    assemble,
+    branches_at,
+    require_feasible,
+)
 from solver.position.compiled_plan import compiled_plan
 from solver.position.continuation import Continuation
 from solver.position.drivers import drawn_angle, driver_input, driver_inputs_over_time
@@ -50,6 +57,13 @@ PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
 MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
+# A ram's extreme positions: STROKE_NODES Chebyshev-Lobatto nodes in each bracket, both extremes
+# in one run, until the root's estimated error is below STROKE_TOLERANCE rad (at most
+# STROKE_RUNS runs; one from about 40 samples a revolution on).
+STROKE_NODES = 8
+STROKE_TOLERANCE = 1e-13
+STROKE_RUNS = 6
+NEWTON_STEPS = 20  # on the interpolant: quadratic from the secant, a few in practice
 
 
 class _Warned:
@@ -172,12 +186,16 @@ class _Driven:
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
         self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
-    def inputs(self, turns: Array) -> list[DriverInput]:
+    def inputs(self, turns: Array, unit: bool = False) -> list[DriverInput]:
+        """The drivers at ``turns`` of the first, at their given rates; ``unit``: the first at
+        omega = 1, alpha = 0 and the others at rest (velocities are then d/d theta and
+        accelerations d2/d theta2 of the first driver's angle)."""
         n = turns.size
-        first = self.given[0]
+        first = (0.0, 1.0, 0.0) if unit else self.given[0]
         inputs = [DriverInput(turns, np.full(n, first[1]), np.full(n, first[2]))]
         for turn, omega, alpha in self.given[1:]:
-            inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
+            rates = (0.0, 0.0) if unit else (omega, alpha)
+            inputs.append(DriverInput(np.full(n, turn), *(np.full(n, r) for r in rates)))
         return inputs
 
     def compiled_run(self, turns: Array, order: int, keep: int | None = None) -> Motion | None:
@@ -210,6 +228,15 @@ class _Driven:
             continuation=True,
             anchor=anchor,
             newton_groups=self.newton_groups,
+        )
+
+    def rates(self, turns: Array, signs: dict[int, float]) -> Motion:
+        """The linkage at ``turns`` on the branches ``signs`` of its two-branch steps (as
+        followed by a sweep: ``branches_at``), with the first driver at unit rate and the others
+        at rest: velocities d/d theta and accelerations d2/d theta2 of the first driver's angle."""
+        inputs = self.inputs(turns, unit=True)
+        return assemble(
+            self.scene, self.plan, inputs, 2, signs=signs, newton_groups=self.newton_groups
         )
 
     def closes(self, turn: float, strictly: bool = False) -> bool:
@@ -375,7 +402,7 @@ def sweep(
     if span is None and "position" in wanted:
         for travel in sliders:
             if travel.links[0] == scene.ground:
-                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion.size)
+                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion)
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -405,26 +432,96 @@ def _loops_and_sliders(
     return loops, sliders
 
 
-def _travel_at(driven: _Driven, point: str, turn: float) -> SliderTravel:
-    """The travel of ``point``'s slider with the first driver turned by ``turn`` (one instant,
-    with ds/dt)."""
-    motion = driven.run(np.array([turn]), 1)
-    return next(t for t in slider_travel(driven.scene, motion, 1) if t.point == point)
+def _hermite_interpolation() -> Array:
+    """The matrix taking the values f(x_i) and the slopes f'(x_i) at the ``STROKE_NODES``
+    Chebyshev-Lobatto nodes x_i = -cos(pi i / (n - 1)) of [-1, 1] to the Chebyshev coefficients
+    of their Hermite interpolant (degree 2 n - 1)."""
+    degree = 2 * STROKE_NODES - 1
+    basis = np.eye(degree + 1)
+    values = chebyshev.chebvander(_NODES, degree)
+    slopes = np.stack([chebyshev.chebval(_NODES, chebyshev.chebder(b)) for b in basis], axis=1)
+    inverse: Array = np.linalg.inv(np.vstack([values, slopes]))
+    return inverse
 
 
-def _sliding_velocity(turn: float, driven: _Driven, point: str) -> float:
-    velocity = _travel_at(driven, point, turn).sliding_velocity
-    assert velocity is not None
-    return float(velocity[0])
+_NODES = -np.cos(np.pi * np.arange(STROKE_NODES) / (STROKE_NODES - 1))
+_HERMITE = _hermite_interpolation()
+
+
+def _stationary_points(
+    s: Array, rate: Array, curvature: Array, half_widths: Array
+) -> tuple[Array, Array, Array] | None:
+    """Where s(theta) is stationary in each bracket j, from s, ds/dtheta and d2s/dtheta2 (rows
+    j) at the ``_NODES`` of the bracket of half-width ``half_widths[j]`` (x = (theta -
+    centre) / half-width): the root x* of the Hermite interpolant p of ds/dtheta between the
+    two nodes where it changes sign (Newton's method on p from the secant there), s at x* (the
+    Hermite interpolant of s), and the root's estimated error in theta, |a_(m-1)| + |a_m| (the
+    last two Chebyshev coefficients of p) over |p'(x*)|, times the half-width. None unless
+    ds/dtheta changes sign exactly once along each bracket's nodes and Newton's method stays
+    between those two nodes."""
+    sign = np.signbit(rate)
+    changes = sign[:, 1:] != sign[:, :-1]
+    if np.any(np.count_nonzero(changes, axis=1) != 1):
+        return None
+    k = np.argmax(changes, axis=1)
+    rows = np.arange(k.size)
+    low, high = _NODES[k], _NODES[k + 1]
+    width = half_widths[:, None]
+    slope = _HERMITE @ np.concatenate([rate, width * curvature], axis=1).T  # a column each
+    bend = chebyshev.chebder(slope)
+    before, after = rate[rows, k], rate[rows, k + 1]
+    x = low - before * (high - low) / (after - before)
+    for _ in range(NEWTON_STEPS):
+        step = chebyshev.chebval(x, slope, tensor=False) / chebyshev.chebval(x, bend, tensor=False)
+        x = x - step
+        if np.any((x < low) | (x > high)):
+            return None
+        if np.all(np.abs(step) <= 4e-16):
+            break
+    tail = np.abs(slope[-1]) + np.abs(slope[-2])
+    error = tail / np.abs(chebyshev.chebval(x, bend, tensor=False)) * half_widths
+    values = _HERMITE @ np.concatenate([s, width * rate], axis=1).T
+    return x, chebyshev.chebval(x, values, tensor=False), error
+
+
+def _extremes(
+    driven: _Driven, point: str, brackets: list[tuple[float, float]], signs: dict[int, float]
+) -> list[tuple[float, float]] | None:
+    """The driver turns where ``point``'s slider is stationary on its guide, one in each
+    bracket (low, high) of turns, with s there: ``_stationary_points`` on ds/dtheta from one
+    run (``_Driven.rates``, on the branches ``signs``) over every bracket's nodes, repeated on
+    brackets shrunk around the roots until each root's estimated error is below
+    ``STROKE_TOLERANCE`` (None if it is not after ``STROKE_RUNS`` runs, or where ds/dtheta does
+    not change sign once in a bracket)."""
+    centres = np.array([0.5 * (low + high) for low, high in brackets])
+    widths = np.array([0.5 * (high - low) for low, high in brackets])
+    for _ in range(STROKE_RUNS):
+        motion = driven.rates((centres[:, None] + widths[:, None] * _NODES).ravel(), signs)
+        travel = next(t for t in slider_travel(driven.scene, motion, 2) if t.point == point)
+        assert travel.sliding_velocity is not None and travel.sliding_acceleration is not None
+        columns = (travel.displacement, travel.sliding_velocity, travel.sliding_acceleration)
+        s, rate, curvature = (c.reshape(centres.size, -1) for c in columns)
+        found = _stationary_points(s, rate, curvature, widths)
+        if found is None:
+            return None
+        x, values, errors = found
+        roots = centres + widths * x
+        if np.all(errors <= STROKE_TOLERANCE):
+            return [(float(r), float(v)) for r, v in zip(roots, values, strict=True)]
+        # The next bracket: well around the root, never wider than half this one.
+        centres, widths = roots, np.minimum(0.5 * widths, np.maximum(16.0 * errors, 1e-15))
+    return None
 
 
 def _strokes(
-    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, size: float
+    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, motion: Motion
 ) -> Strokes | None:
     """The ram's extreme positions over a revolution sampled at ``turns`` (one turn, without
-    the closing sample): each sampled extreme of s bracketed by its two neighbours, where ds/dt
-    changes sign, and refined to rounding by Brent's method on ds/dt at one instant (as the
-    limit positions are refined at one instant, whatever the number of samples)."""
+    the closing sample; ``motion`` the sweep's): each sampled extreme of s bracketed by its two
+    neighbours, and refined to rounding where ds/dtheta = 0 (``_extremes``, on the branches the
+    sweep followed there; as the limit positions are refined, whatever the number of
+    samples)."""
+    size = motion.size
     s = travel.displacement
     step = np.diff(np.append(s, s[0]))  # s[k + 1] - s[k], cyclic
     moving = np.flatnonzero(np.abs(step) > 1e-12 * size)
@@ -434,25 +531,26 @@ def _strokes(
         return None
     delta = turns[1] - turns[0]
     period = delta * turns.size  # +-2 pi, as the driver turns
-    found = []
+    brackets, branches = [], []
     for j in turning:
         before, after = int(moving[j - 1]), int(moving[j])  # steps k -> k + 1 (cyclic)
         ends = (turns[before], turns[after] + delta + (period if after < before else 0.0))
-        low, high = min(ends), max(ends)
-        point = travel.point
-        if not _sliding_velocity(low, driven, point) * _sliding_velocity(high, driven, point) < 0:
-            return None
-        root = brentq(_sliding_velocity, low, high, args=(driven, point), xtol=1e-15)
-        found.append(turns[0] + (((root - turns[0]) / period) % 1.0) * period)
-    found.sort(key=lambda t: (t - turns[0]) / period)  # in the order the driver reaches them
-    first = abs(found[1] - found[0])
+        brackets.append((min(ends), max(ends)))
+        branches.append(branches_at(motion.flips, float((before + 1) % turns.size)))
+    if branches[0] == branches[1]:
+        extremes = _extremes(driven, travel.point, brackets, branches[0])
+    else:  # (the extremes on two branches: a run each)
+        each = [_extremes(driven, travel.point, [b], branches[k]) for k, b in enumerate(brackets)]
+        extremes = None if None in each else [e for found in each if found for e in found]
+    if extremes is None:
+        return None
+    turned = [(turns[0] + (((root - turns[0]) / period) % 1.0) * period, s) for root, s in extremes]
+    found = sorted(turned, key=lambda f: (f[0] - turns[0]) / period)  # as the driver reaches them
+    first = abs(found[1][0] - found[0][0])
     second = 2.0 * math.pi - first
     return Strokes(
-        (float(drawn + found[0]), float(drawn + found[1])),
-        (
-            float(_travel_at(driven, travel.point, found[0]).displacement[0]),
-            float(_travel_at(driven, travel.point, found[1]).displacement[0]),
-        ),
+        (float(drawn + found[0][0]), float(drawn + found[1][0])),
+        (found[0][1], found[1][1]),
         float(max(first, second)),
         float(min(first, second)),
     )
