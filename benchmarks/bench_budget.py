@@ -11,7 +11,7 @@ and refuses a request whose estimate passes its endpoint's time limit / ``budget
 script times, on one core, what such requests really cost:
 
 - sweeps (positions, velocities and accelerations) of Stephenson III six-bars
-  (``tests.server.test_budget.triads``: 1 to 8 triads on one crank, between limit positions:
+  (``tests.scenes.triads``: 1 to 8 triads on one crank, between limit positions:
   one Newton-Raphson group of 4 to 32 links) and of a fully turning triad
   (``benchmarks.bench_newton.FULL_TURN``) over 20 to 1,440 samples;
 - instants (/analyze's solver call) of the fully turning triad 1 to 100 rad from the drawn pose,
@@ -43,7 +43,7 @@ import solver  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN  # noqa: E402
 from server import budget  # noqa: E402
 from solver.analysis.work_estimate import SAMPLE_COST, SAMPLES_PER_RADIAN, SETUP_SAMPLES  # noqa: E402
-from tests.server.test_budget import triads  # noqa: E402
+from tests.scenes import triads  # noqa: E402
 
 QUANTITIES = ["position", "velocity", "acceleration"]
 

@@ -15,6 +15,7 @@ import pytest
 
 import solver
 from solver.teaching.presets import build_preset
+from tests.scenes import triads
 
 
 def _quick_return_closed_form(crank: float, ground: float) -> float:
@@ -134,8 +135,6 @@ def test_estimate_work_counts_the_response_and_the_newton_work() -> None:
     entries = len(doc["points"]) + len(doc["links"]) + len(doc["joints"])
     assert estimate.values == 1000 * entries * 2
     assert estimate.newton is None  # closed-form dyads only
-    from tests.server.test_budget import triads
-
     triad = solver.parse_scene(triads(2))
     work = solver.estimate_work(triad, 360).newton
     assert work is not None and work.groups == (8,) and work.turn == 0.0
