@@ -1,17 +1,17 @@
-"""The cost budget's Newton-Raphson model (server/budget.py) against measured times.
+"""The cost budget's Newton-Raphson model (solver/analysis/work_estimate.py) against measured times.
 
 Run from the repository root (about 3 minutes on a loaded 2-core machine):
 
     python -m benchmarks.bench_budget
 
 Before any work the budget estimates the seconds of one core that the links solved by
-Newton-Raphson take, ``budget.newton_work(...) x budget.SAMPLE_COST``: links x (samples +
+Newton-Raphson take, ``solver.estimate_work(...).newton.seconds``: links x (samples +
 ``SETUP_SAMPLES`` + ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose),
 and refuses a request whose estimate passes its endpoint's time limit / ``budget.SAFETY``. This
 script times, on one core, what such requests really cost:
 
 - sweeps (positions, velocities and accelerations) of Stephenson III six-bars
-  (``tests.server.test_budget.triads``: 1 to 8 triads on one crank, between limit positions:
+  (``tests.scenes.triads``: 1 to 8 triads on one crank, between limit positions:
   one Newton-Raphson group of 4 to 32 links) and of a fully turning triad
   (``benchmarks.bench_newton.FULL_TURN``) over 20 to 1,440 samples;
 - instants (/analyze's solver call) of the fully turning triad 1 to 100 rad from the drawn pose,
@@ -38,13 +38,12 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-import numpy as np  # noqa: E402
 
 import solver  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN  # noqa: E402
 from server import budget  # noqa: E402
-from solver.model.scene import LinkageScene  # noqa: E402
-from tests.server.test_budget import triads  # noqa: E402
+from solver.analysis.work_estimate import SAMPLE_COST, SAMPLES_PER_RADIAN, SETUP_SAMPLES  # noqa: E402
+from tests.scenes import triads  # noqa: E402
 
 QUANTITIES = ["position", "velocity", "acceleration"]
 
@@ -59,42 +58,43 @@ def best(run: Callable[[], object], repeats: int) -> float:
     return min(times)
 
 
-def far(turn: float, samples: int | None = None) -> tuple[solver.ReadScene, float]:
+def far(turn: float) -> solver.ReadScene:
     """The fully turning triad driven by an angle law, ``turn`` rad from the drawn pose at t = 1."""
     doc = copy.deepcopy(FULL_TURN)
     doc["drivers"] = [{"link": "crank", "angle_law": f"{turn:g}*t"}]
     doc["time"] = 1.0
-    read = solver.read_scene(doc)
-    assert isinstance(read.scene, LinkageScene)
-    return read, budget.driver_turn(read.scene, np.array([0.0, 1.0]))
+    return solver.read_scene(doc)
 
 
-def cases() -> Iterator[tuple[str, solver.ReadScene, int, float, Callable[[], object]]]:
-    """(request, scene, samples, radians from the drawn pose, the solver call)."""
+def cases() -> Iterator[tuple[str, solver.WorkEstimate, Callable[[], object]]]:
+    """(request, the solver's estimate of its work, the solver call)."""
     for count in (1, 2, 4, 8):
         read = solver.read_scene(triads(count))
         for samples in (20, 90, 360, 1440):
             yield (
                 f"sweep, {count} triad(s) between limit positions, {samples} samples",
-                read, samples, 0.0, partial(solver.sweep, read, samples, QUANTITIES),
+                solver.estimate_work(read.scene, samples, QUANTITIES),
+                partial(solver.sweep, read, samples, QUANTITIES),
             )  # fmt: skip
     full = solver.read_scene(FULL_TURN)
     for samples in (20, 360, 1440):
         yield (
             f"sweep, a fully turning triad, {samples} samples",
-            full, samples, 0.0, partial(solver.sweep, full, samples, QUANTITIES),
+            solver.estimate_work(full.scene, samples, QUANTITIES),
+            partial(solver.sweep, full, samples, QUANTITIES),
         )  # fmt: skip
     for radians in (1.0, 10.0, 100.0):
-        read, turned = far(radians)
+        read = far(radians)
         yield (
             f"instant, a fully turning triad {radians:g} rad from the drawn pose",
-            read, 1, turned, partial(solver.analyze, read, QUANTITIES),
+            solver.estimate_work(read.scene), partial(solver.analyze, read, QUANTITIES),
         )  # fmt: skip
     for radians in (10.0, 100.0):
-        read, turned = far(radians)
+        read = far(radians)
         yield (
             f"time sweep over [0, 1] s, a fully turning triad turning {radians:g} rad, 20 samples",
-            read, 20, turned, partial(solver.sweep_time, read, [0.0, 1.0], 20, QUANTITIES),
+            solver.estimate_work(read.scene, 20, QUANTITIES, time_range=[0.0, 1.0]),
+            partial(solver.sweep_time, read, [0.0, 1.0], 20, QUANTITIES),
         )  # fmt: skip
 
 
@@ -107,22 +107,21 @@ def main() -> None:
         "|---|---|---|---|---|---|",
     ]
     ratios = []
-    for name, read, samples, turned, call in cases():
-        assert isinstance(read.scene, LinkageScene)
-        links = sum(budget.newton_groups(read.scene))
-        work = budget.newton_work(read.scene, samples, turned)
+    for name, estimate, call in cases():
+        work = estimate.newton
+        assert work is not None
         seconds = best(call, args.repeats)
-        ratios.append(seconds / (work * budget.SAMPLE_COST))
+        ratios.append(seconds / work.seconds)
         rows.append(
-            f"| {name} | {links} | {work:,.0f} | {work * budget.SAMPLE_COST * 1e3:.0f} ms | "
+            f"| {name} | {work.links} | {work.link_samples:,.0f} | {work.seconds * 1e3:.0f} ms | "
             f"{seconds * 1e3:.0f} ms | {ratios[-1]:.2f} |"
         )
         print(rows[-1], flush=True)
     print("\n".join(["", *rows, ""]))
     print(
-        f"Largest measured / estimated: {max(ratios):.2f} (the model: {budget.SAMPLE_COST * 1e6:g} "
-        f"us per link-sample, {budget.SETUP_SAMPLES} samples of path tracing, "
-        f"{budget.SAMPLES_PER_RADIAN} samples per radian from the drawn pose). A request is "
+        f"Largest measured / estimated: {max(ratios):.2f} (the model: {SAMPLE_COST * 1e6:g} "
+        f"us per link-sample, {SETUP_SAMPLES} samples of path tracing, "
+        f"{SAMPLES_PER_RADIAN} samples per radian from the drawn pose). A request is "
         f"refused past its endpoint's time limit / {budget.SAFETY:g}: an estimate within the "
         f"limit runs past the time limit only if it is off by more than {budget.SAFETY:g}x "
         f"({'OK' if max(ratios) <= budget.SAFETY else 'NOT SO HERE: re-fit'})."

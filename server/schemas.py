@@ -15,6 +15,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+import solver
+
 EXAMPLES = Path(__file__).parent / "examples"
 
 
@@ -23,9 +25,7 @@ def _example(name: str) -> dict[str, Any]:
     return data
 
 
-Quantity = Literal[
-    "position", "velocity", "acceleration", "poles", "components", "forces", "energy"
-]
+Quantity = solver.Quantity  # declared once, in solver.model.quantities
 
 
 class Strict(BaseModel):
@@ -252,6 +252,68 @@ class SweepJointValues(Open):
     acceleration: Vectors | None = None
 
 
+class SweepFourBarLoopValues(Open):
+    """A four-bar loop over the sweep (with positions): as in /analyze, with the transmission
+    angle at every sample."""
+
+    links: dict[str, str] = Field(description="ground, crank, coupler, rocker: the link names")
+    lengths: dict[str, float] = Field(description="m, by role")
+    grashof: str
+    angle_points: list[str] = Field(
+        description="B, C, D of the transmission angle BCD: the crank pin, the coupler-rocker "
+        "joint, the rocker's ground pivot"
+    )
+    transmission_angle: list[float] = Field(description="rad, 0..pi, per sample")
+    transmission_angle_deg: list[float] = Field(description="deg, per sample")
+
+
+class ExtremePosition(Open):
+    driver_angle: float = Field(description="rad, the driver link's absolute angle")
+    driver_angle_deg: float
+    displacement: float = Field(description="m, s at the extreme position")
+
+
+class QuickReturnValues(Open):
+    """A ram's two extreme positions over a revolution (ds/dt = 0, found to rounding) and the
+    driver's turn over each stroke; the time ratio at constant driver speed."""
+
+    time_ratio: float = Field(description="slow_stroke / fast_stroke, (180 + a) / (180 - a)")
+    extreme_positions: list[ExtremePosition] = Field(
+        description="in the order the driver reaches them"
+    )
+    slow_stroke: float = Field(description="rad of driver turn over the slower stroke")
+    slow_stroke_deg: float
+    fast_stroke: float = Field(description="rad of driver turn over the faster (return) stroke")
+    fast_stroke_deg: float
+
+
+class SweepSliderValues(Open):
+    """A slider or prismatic joint's point along its guide, per sample."""
+
+    point: str
+    type: Literal["slider", "prismatic"]
+    links: list[str] = Field(description="guide, follower")
+    axis: Vectors | None = Field(
+        None, description="the guide's unit direction (the drawn axis turned with the guide)"
+    )
+    displacement: list[float] | None = Field(
+        None,
+        description="m, s = (r_P - r_Q) . axis from the guide's point Q drawn at P (a fixed "
+        "guide: from the drawn position)",
+    )
+    sliding_velocity: list[float] | None = Field(
+        None, description="m/s, ds/dt (a fixed guide: v . axis)"
+    )
+    sliding_acceleration: list[float] | None = Field(
+        None, description="m/s^2, d2s/dt2 (a fixed guide: a . axis)"
+    )
+    quick_return: QuickReturnValues | None = Field(
+        None,
+        description="a revolution's slider on a fixed guide (with positions): null unless it "
+        "reverses exactly twice a full revolution",
+    )
+
+
 class SweepMovingPointValues(Open):
     position: Vectors | None = None
     velocity: Vectors | None = None
@@ -271,6 +333,12 @@ class SweepResponse(Open):
     limits: list[float] = Field(description="rad: the limit positions, empty if feasible")
     singular_samples: list[int]
     warnings: list[str] = WARNINGS
+    four_bar_loops: list[SweepFourBarLoopValues] | None = Field(
+        None, description="with positions: each four-bar loop's transmission angle per sample"
+    )
+    sliders: list[SweepSliderValues] | None = Field(
+        None, description="each slider's travel along its guide; a ram's quick-return ratio"
+    )
 
 
 class TimeSweepResponse(Open):
@@ -286,6 +354,8 @@ class TimeSweepResponse(Open):
     feasible: bool
     limits: list[float]
     warnings: list[str] = WARNINGS
+    four_bar_loops: list[SweepFourBarLoopValues] | None = None
+    sliders: list[SweepSliderValues] | None = None
 
 
 class SpatialSweepBodyValues(Open):

@@ -24,6 +24,7 @@ from solver.analysis.results import (
     SweepResult,
     TimeSweepResult,
 )
+from solver.analysis.work_estimate import WorkEstimate, estimate_work
 from solver.api import (
     ReadScene,
     SceneWarning,
@@ -44,6 +45,8 @@ from solver.errors import (
     NotAssemblable,
     SingularConfiguration,
 )
+from solver.model.quantities import Quantity
+from solver.solutions import Method
 
 __all__ = [
     "AnalysisResult",
@@ -52,8 +55,10 @@ __all__ = [
     "InvalidScene",
     "KinematicsError",
     "LimitExceeded",
+    "Method",
     "NoEvent",
     "NotAssemblable",
+    "Quantity",
     "ReadScene",
     "Result",
     "SceneWarning",
@@ -61,7 +66,9 @@ __all__ = [
     "SolutionResult",
     "SweepResult",
     "TimeSweepResult",
+    "WorkEstimate",
     "analyze",
+    "estimate_work",
     "find_event",
     "parse_scene",
     "read_scene",

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import json
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, Query, Request
 from fastapi.responses import HTMLResponse
@@ -30,7 +30,7 @@ router = APIRouter(
     responses=PROBLEMS,
 )
 
-Method = Literal["vector", "loop", "newton_euler"]
+Method = solver.Method  # declared once, in solver.solutions.solve
 
 
 def _example(name: str) -> dict[str, Any]:

@@ -67,8 +67,12 @@ def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Ins
     return centres_of_pairs(pairs, V[i], omega[i], V[j], omega[j], scene.size)
 
 
-def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[FourBarLoop]:
-    """RRR dyads closing a loop ground - driven crank - coupler - rocker - ground."""
+def four_bar_loops(
+    scene: LinkageScene, plan: Plan, motion: Motion, every_sample: bool = False
+) -> list[FourBarLoop]:
+    """RRR dyads closing a loop ground - driven crank - coupler - rocker - ground; the
+    transmission angle at the first sample of ``motion`` (a float), or at every sample (an
+    array) if ``every_sample``."""
     cranks = {s.link: s.pivot for s in plan.steps if isinstance(s, DriverStep)}
     ground_points = set(scene.links[scene.ground].points)
     loops = []
@@ -97,11 +101,13 @@ def four_bar_loops(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Four
             first.radius,
             second.radius,
         )
-        p = motion.points
-        mu = transmission_angle(p[first.center].p[0], p[step.point].p[0], p[second.center].p[0])
-        loops.append(
-            FourBarLoop(
-                (scene.ground, crank, first.link, second.link), lengths, grashof_class(*lengths), mu
-            )
+        points = (first.center, step.point, second.center)
+        B, C, D = (motion.points[name].p for name in points)
+        mu = (
+            transmission_angle(B, C, D)
+            if every_sample
+            else float(transmission_angle(B[0], C[0], D[0]))
         )
+        links = (scene.ground, crank, first.link, second.link)
+        loops.append(FourBarLoop(links, lengths, grashof_class(*lengths), mu, points))
     return loops

@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 
 from solver.analysis.instant import Diagnostics, LinkageAnalysis, LinkResult
-from solver.analysis.sliding_joints import SlidingJoint
+from solver.analysis.sliding_joints import SliderTravel, SlidingJoint
 from solver.analysis.spatial_sweep import SpatialSweep
-from solver.analysis.sweeps import CloseApproach, Sweep, TimeSweep
+from solver.analysis.sweeps import CloseApproach, Strokes, Sweep, TimeSweep
 from solver.kinematics.four_bar import FourBarLoop
 from solver.kinematics.instant_centres import InstantCentre
 from solver.kinematics.poles import Poles
@@ -471,7 +471,70 @@ def sweep_body(result: Sweep, warnings: list[str]) -> JSON:
             }
             for r in result.motion.newton
         ]
+    body.update(_loop_and_slider_arrays(result, result.strokes))
     return body
+
+
+def _loop_and_slider_arrays(
+    result: Sweep | TimeSweep, strokes: dict[str, Strokes | None] | None = None
+) -> JSON:
+    """The sweep's four-bar loops with their transmission angle at every sample (with
+    positions), and its sliders' travel along their guides (axis and displacement with
+    positions, ds/dt with velocities, d2s/dt2 with accelerations); over a revolution
+    (``strokes`` given), each slider on a fixed guide with its quick-return strokes."""
+    wanted = holds(result.quantities)
+    out: JSON = {}
+    if wanted.position:
+        out["four_bar_loops"] = [
+            {
+                "links": dict(zip(FOUR_BAR, loop.links, strict=True)),
+                "lengths": dict(zip(FOUR_BAR, loop.lengths, strict=True)),
+                "grashof": loop.grashof,
+                "angle_points": list(loop.points),
+                "transmission_angle": array(np.asarray(loop.transmission_angle)),
+                "transmission_angle_deg": array(np.degrees(loop.transmission_angle)),
+            }
+            for loop in result.four_bar_loops
+        ]
+    if result.sliders:
+        ground = result.scene.ground
+        out["sliders"] = [
+            _slider_fields(travel, wanted, strokes, travel.links[0] == ground)
+            for travel in result.sliders
+        ]
+    return out
+
+
+def _slider_fields(
+    travel: SliderTravel, wanted: Contents, strokes: dict[str, Strokes | None] | None, fixed: bool
+) -> JSON:
+    out: JSON = {"point": travel.point, "type": travel.type, "links": list(travel.links)}
+    if wanted.position:
+        out["axis"] = array(travel.axis)
+        out["displacement"] = array(travel.displacement)
+    if wanted.velocity:
+        out["sliding_velocity"] = array(travel.sliding_velocity)
+    if wanted.acceleration:
+        out["sliding_acceleration"] = array(travel.sliding_acceleration)
+    if strokes is not None and fixed and wanted.position:
+        found = strokes.get(travel.point)
+        out["quick_return"] = None if found is None else _strokes_fields(found)
+    return out
+
+
+def _strokes_fields(strokes: Strokes) -> JSON:
+    """A ram's extreme positions over the revolution and its quick-return time ratio."""
+    return {
+        "time_ratio": strokes.time_ratio,
+        "extreme_positions": [
+            {"driver_angle": angle, "driver_angle_deg": math.degrees(angle), "displacement": s}
+            for angle, s in zip(strokes.driver_angles, strokes.displacements, strict=True)
+        ],
+        "slow_stroke": strokes.slow_stroke,
+        "slow_stroke_deg": math.degrees(strokes.slow_stroke),
+        "fast_stroke": strokes.fast_stroke,
+        "fast_stroke_deg": math.degrees(strokes.fast_stroke),
+    }
 
 
 def _approach_fields(found: tuple[CloseApproach, ...], warnings: list[str]) -> JSON:
@@ -510,4 +573,5 @@ def time_sweep_body(result: TimeSweep, warnings: list[str]) -> JSON:
         "feasible": True,
         "limits": [],
         **_approach_fields(result.close_approaches, warnings),
+        **_loop_and_slider_arrays(result),
     }

@@ -8,8 +8,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from solver.kinematics.relative_motion import coriolis_acceleration
-from solver.kinematics.rigid import Array, rigid_body_acceleration, rigid_body_velocity
+from solver.kinematics.rigid import (
+    Array,
+    dot,
+    perp,
+    rigid_body_acceleration,
+    rigid_body_velocity,
+    rotate,
+)
 from solver.model.scene import LinkageScene
 from solver.position.assembly import Motion
 
@@ -82,3 +91,48 @@ def sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[Slid
             )
         )
     return joints
+
+
+@dataclass(frozen=True)
+class SliderTravel:
+    """A slider or prismatic joint's point P along its guide, at every sample: the guide's unit
+    direction ``axis`` (N, 2) (the drawn axis turned with the guide), the displacement
+    s = (r_P - r_Q) . e from the guide's point Q that coincided with P in the drawn pose (for a
+    fixed guide s = (r - r_0) . e), and its rates ``sliding_velocity`` ds/dt and
+    ``sliding_acceleration`` d2s/dt2 (the relative velocity and acceleration along the guide;
+    on a fixed guide v . e and a . e). Orders not computed are None."""
+
+    point: str
+    type: str
+    links: tuple[str, str]
+    axis: Array
+    displacement: Array
+    sliding_velocity: Array | None
+    sliding_acceleration: Array | None
+
+
+def slider_travel(scene: LinkageScene, motion: Motion, order: int) -> list[SliderTravel]:
+    """Every slider and prismatic joint's travel along its guide, at every sample of ``motion``
+    (rates up to ``order``: ds/dt from 1, d2s/dt2 from 2).
+
+    With e = R(theta_guide) e_0 and Q the guide's point drawn at P, s = (r_P - r_Q) . e; since
+    r_P - r_Q lies along e, ds/dt = (v_P - v_Q) . e and d2s/dt2 = (a_P - a_Q) . e +
+    omega_guide (v_P - v_Q) . (k x e)."""
+    travels = []
+    for joint in scene.joints:
+        if joint.type == "revolute":
+            continue
+        assert joint.axis is not None
+        guide = motion.links[joint.guide]
+        P = motion.points[joint.point]
+        Q = guide.point(scene.drawn(joint.point))
+        e = rotate(np.asarray(joint.axis, dtype=float), guide.theta)
+        s = dot(P.p - Q.p, e)
+        s_dot = s_ddot = None
+        if order >= 1 and P.v is not None and Q.v is not None:
+            dv = P.v - Q.v
+            s_dot = dot(dv, e)
+            if order >= 2 and P.a is not None and Q.a is not None and guide.omega is not None:
+                s_ddot = dot(P.a - Q.a, e) + guide.omega * dot(dv, perp(e))
+        travels.append(SliderTravel(joint.point, joint.type, joint.links, e, s, s_dot, s_ddot))
+    return travels

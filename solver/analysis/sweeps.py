@@ -17,19 +17,33 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.polynomial import chebyshev
 
-from solver.analysis.link_kinematics import link_poles
-from solver.analysis.sliding_joints import SlidingJoint, sliding_joints
+from solver.analysis.link_kinematics import four_bar_loops, link_poles
+from solver.analysis.sliding_joints import (
+    SliderTravel,
+    SlidingJoint,
+    slider_travel,
+    sliding_joints,
+)
 from solver.errors import InvalidScene, LimitExceeded
+from solver.kinematics.four_bar import FourBarLoop
 from solver.kinematics.poles import Poles
 from solver.kinematics.relative_motion import MovingPointMotion, moving_point_motion
 from solver.kinematics.rigid import Array
 from solver.model.quantities import normalise_quantities, required_order
 from solver.model.scene import LinkageScene
-from solver.position.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
+from solver.position.assembly import (
+    WARNING_MARGIN,
+    DriverInput,
+    Motion,
+    assemble,
+    branches_at,
+    require_feasible,
+)
 from solver.position.compiled_plan import compiled_plan
 from solver.position.continuation import Continuation
 from solver.position.drivers import drawn_angle, driver_input, driver_inputs_over_time
@@ -43,6 +57,13 @@ PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
 MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
+# A ram's extreme positions: STROKE_NODES Chebyshev-Lobatto nodes in each bracket, both extremes
+# in one run, until the root's estimated error is below STROKE_TOLERANCE rad (at most
+# STROKE_RUNS runs; one from about 40 samples a revolution on).
+STROKE_NODES = 8
+STROKE_TOLERANCE = 1e-13
+STROKE_RUNS = 6
+NEWTON_STEPS = 20  # on the interpolant: quadratic from the secant, a few in practice
 
 
 class _Warned:
@@ -70,6 +91,28 @@ class Sweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
+    strokes: dict[str, Strokes | None] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Strokes:
+    """A slider on a fixed guide (a ram) over a full revolution of the driver: its two extreme
+    positions (where ds/dt = 0), at the driver's absolute angles ``driver_angles`` (rad, in the
+    order the driver reaches them) with ``displacements`` s there (m); the driver's turn over
+    the slower stroke and over the faster one (rad, summing to 2 pi), and their ratio, the
+    quick-return time ratio at constant driver speed. None where the ram does not reverse
+    exactly twice a revolution."""
+
+    driver_angles: tuple[float, float]
+    displacements: tuple[float, float]
+    slow_stroke: float
+    fast_stroke: float
+
+    @property
+    def time_ratio(self) -> float:
+        return self.slow_stroke / self.fast_stroke
 
 
 @dataclass(frozen=True)
@@ -143,12 +186,16 @@ class _Driven:
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
         self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
-    def inputs(self, turns: Array) -> list[DriverInput]:
+    def inputs(self, turns: Array, unit: bool = False) -> list[DriverInput]:
+        """The drivers at ``turns`` of the first, at their given rates; ``unit``: the first at
+        omega = 1, alpha = 0 and the others at rest (velocities are then d/d theta and
+        accelerations d2/d theta2 of the first driver's angle)."""
         n = turns.size
-        first = self.given[0]
+        first = (0.0, 1.0, 0.0) if unit else self.given[0]
         inputs = [DriverInput(turns, np.full(n, first[1]), np.full(n, first[2]))]
         for turn, omega, alpha in self.given[1:]:
-            inputs.append(DriverInput(np.full(n, turn), np.full(n, omega), np.full(n, alpha)))
+            rates = (0.0, 0.0) if unit else (omega, alpha)
+            inputs.append(DriverInput(np.full(n, turn), *(np.full(n, r) for r in rates)))
         return inputs
 
     def compiled_run(self, turns: Array, order: int, keep: int | None = None) -> Motion | None:
@@ -181,6 +228,15 @@ class _Driven:
             continuation=True,
             anchor=anchor,
             newton_groups=self.newton_groups,
+        )
+
+    def rates(self, turns: Array, signs: dict[int, float]) -> Motion:
+        """The linkage at ``turns`` on the branches ``signs`` of its two-branch steps (as
+        followed by a sweep: ``branches_at``), with the first driver at unit rate and the others
+        at rest: velocities d/d theta and accelerations d2/d theta2 of the first driver's angle."""
+        inputs = self.inputs(turns, unit=True)
+        return assemble(
+            self.scene, self.plan, inputs, 2, signs=signs, newton_groups=self.newton_groups
         )
 
     def closes(self, turn: float, strictly: bool = False) -> bool:
@@ -341,6 +397,12 @@ def sweep(
         singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
+    loops, sliders = _loops_and_sliders(scene, plan, motion, wanted, order)
+    strokes: dict[str, Strokes | None] = {}
+    if span is None and "position" in wanted:
+        for travel in sliders:
+            if travel.links[0] == scene.ground:
+                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion)
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -352,6 +414,145 @@ def sweep(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         approaches,
+        loops,
+        sliders,
+        strokes,
+    )
+
+
+def _loops_and_sliders(
+    scene: LinkageScene, plan: Plan, motion: Motion, wanted: frozenset[str], order: int
+) -> tuple[list[FourBarLoop], list[SliderTravel]]:
+    """The four-bar loops' transmission angles (with positions) and the sliders' travel along
+    their guides (with positions, velocities or accelerations), at every sample."""
+    loops = four_bar_loops(scene, plan, motion, every_sample=True) if "position" in wanted else []
+    sliders = []
+    if wanted & {"position", "velocity", "acceleration"}:
+        sliders = slider_travel(scene, motion, order)
+    return loops, sliders
+
+
+def _hermite_interpolation() -> Array:
+    """The matrix taking the values f(x_i) and the slopes f'(x_i) at the ``STROKE_NODES``
+    Chebyshev-Lobatto nodes x_i = -cos(pi i / (n - 1)) of [-1, 1] to the Chebyshev coefficients
+    of their Hermite interpolant (degree 2 n - 1)."""
+    degree = 2 * STROKE_NODES - 1
+    basis = np.eye(degree + 1)
+    values = chebyshev.chebvander(_NODES, degree)
+    slopes = np.stack([chebyshev.chebval(_NODES, chebyshev.chebder(b)) for b in basis], axis=1)
+    inverse: Array = np.linalg.inv(np.vstack([values, slopes]))
+    return inverse
+
+
+_NODES = -np.cos(np.pi * np.arange(STROKE_NODES) / (STROKE_NODES - 1))
+_HERMITE = _hermite_interpolation()
+
+
+def _stationary_points(
+    s: Array, rate: Array, curvature: Array, half_widths: Array
+) -> tuple[Array, Array, Array] | None:
+    """Where s(theta) is stationary in each bracket j, from s, ds/dtheta and d2s/dtheta2 (rows
+    j) at the ``_NODES`` of the bracket of half-width ``half_widths[j]`` (x = (theta -
+    centre) / half-width): the root x* of the Hermite interpolant p of ds/dtheta between the
+    two nodes where it changes sign (Newton's method on p from the secant there), s at x* (the
+    Hermite interpolant of s), and the root's estimated error in theta, |a_(m-1)| + |a_m| (the
+    last two Chebyshev coefficients of p) over |p'(x*)|, times the half-width. None unless
+    ds/dtheta changes sign exactly once along each bracket's nodes and Newton's method stays
+    between those two nodes."""
+    sign = np.signbit(rate)
+    changes = sign[:, 1:] != sign[:, :-1]
+    if np.any(np.count_nonzero(changes, axis=1) != 1):
+        return None
+    k = np.argmax(changes, axis=1)
+    rows = np.arange(k.size)
+    low, high = _NODES[k], _NODES[k + 1]
+    width = half_widths[:, None]
+    slope = _HERMITE @ np.concatenate([rate, width * curvature], axis=1).T  # a column each
+    bend = chebyshev.chebder(slope)
+    before, after = rate[rows, k], rate[rows, k + 1]
+    x = low - before * (high - low) / (after - before)
+    for _ in range(NEWTON_STEPS):
+        step = chebyshev.chebval(x, slope, tensor=False) / chebyshev.chebval(x, bend, tensor=False)
+        x = x - step
+        if np.any((x < low) | (x > high)):
+            return None
+        if np.all(np.abs(step) <= 4e-16):
+            break
+    tail = np.abs(slope[-1]) + np.abs(slope[-2])
+    error = tail / np.abs(chebyshev.chebval(x, bend, tensor=False)) * half_widths
+    values = _HERMITE @ np.concatenate([s, width * rate], axis=1).T
+    return x, chebyshev.chebval(x, values, tensor=False), error
+
+
+def _extremes(
+    driven: _Driven, point: str, brackets: list[tuple[float, float]], signs: dict[int, float]
+) -> list[tuple[float, float]] | None:
+    """The driver turns where ``point``'s slider is stationary on its guide, one in each
+    bracket (low, high) of turns, with s there: ``_stationary_points`` on ds/dtheta from one
+    run (``_Driven.rates``, on the branches ``signs``) over every bracket's nodes, repeated on
+    brackets shrunk around the roots until each root's estimated error is below
+    ``STROKE_TOLERANCE`` (None if it is not after ``STROKE_RUNS`` runs, or where ds/dtheta does
+    not change sign once in a bracket)."""
+    centres = np.array([0.5 * (low + high) for low, high in brackets])
+    widths = np.array([0.5 * (high - low) for low, high in brackets])
+    for _ in range(STROKE_RUNS):
+        motion = driven.rates((centres[:, None] + widths[:, None] * _NODES).ravel(), signs)
+        travel = next(t for t in slider_travel(driven.scene, motion, 2) if t.point == point)
+        assert travel.sliding_velocity is not None and travel.sliding_acceleration is not None
+        columns = (travel.displacement, travel.sliding_velocity, travel.sliding_acceleration)
+        s, rate, curvature = (c.reshape(centres.size, -1) for c in columns)
+        found = _stationary_points(s, rate, curvature, widths)
+        if found is None:
+            return None
+        x, values, errors = found
+        roots = centres + widths * x
+        if np.all(errors <= STROKE_TOLERANCE):
+            return [(float(r), float(v)) for r, v in zip(roots, values, strict=True)]
+        # The next bracket: well around the root, never wider than half this one.
+        centres, widths = roots, np.minimum(0.5 * widths, np.maximum(16.0 * errors, 1e-15))
+    return None
+
+
+def _strokes(
+    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, motion: Motion
+) -> Strokes | None:
+    """The ram's extreme positions over a revolution sampled at ``turns`` (one turn, without
+    the closing sample; ``motion`` the sweep's): each sampled extreme of s bracketed by its two
+    neighbours, and refined to rounding where ds/dtheta = 0 (``_extremes``, on the branches the
+    sweep followed there; as the limit positions are refined, whatever the number of
+    samples)."""
+    size = motion.size
+    s = travel.displacement
+    step = np.diff(np.append(s, s[0]))  # s[k + 1] - s[k], cyclic
+    moving = np.flatnonzero(np.abs(step) > 1e-12 * size)
+    signs = np.sign(step[moving])
+    turning = np.flatnonzero(signs != np.roll(signs, 1))  # s turns back between moving steps
+    if turning.size != 2:
+        return None
+    delta = turns[1] - turns[0]
+    period = delta * turns.size  # +-2 pi, as the driver turns
+    brackets, branches = [], []
+    for j in turning:
+        before, after = int(moving[j - 1]), int(moving[j])  # steps k -> k + 1 (cyclic)
+        ends = (turns[before], turns[after] + delta + (period if after < before else 0.0))
+        brackets.append((min(ends), max(ends)))
+        branches.append(branches_at(motion.flips, float((before + 1) % turns.size)))
+    if branches[0] == branches[1]:
+        extremes = _extremes(driven, travel.point, brackets, branches[0])
+    else:  # (the extremes on two branches: a run each)
+        each = [_extremes(driven, travel.point, [b], branches[k]) for k, b in enumerate(brackets)]
+        extremes = None if None in each else [e for found in each if found for e in found]
+    if extremes is None:
+        return None
+    turned = [(turns[0] + (((root - turns[0]) / period) % 1.0) * period, s) for root, s in extremes]
+    found = sorted(turned, key=lambda f: (f[0] - turns[0]) / period)  # as the driver reaches them
+    first = abs(found[1][0] - found[0][0])
+    second = 2.0 * math.pi - first
+    return Strokes(
+        (float(drawn + found[0][0]), float(drawn + found[1][0])),
+        (found[0][1], found[1][1]),
+        float(max(first, second)),
+        float(min(first, second)),
     )
 
 
@@ -368,6 +569,8 @@ class TimeSweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
+    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
+    sliders: list[SliderTravel] = field(default_factory=list)
 
 
 def sweep_time(
@@ -415,4 +618,5 @@ def sweep_time(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         close_approaches(motion, first or "", angle),
+        *_loops_and_sliders(scene, plan, motion, wanted, order),
     )

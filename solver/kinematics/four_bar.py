@@ -15,12 +15,15 @@ from solver.kinematics.rigid import Array, cross
 
 @dataclass(frozen=True)
 class FourBarLoop:
-    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad)."""
+    """A ground-crank-coupler-rocker loop: its Grashof class and transmission angle (rad), a
+    float at one instant or an array over a sweep's samples. ``points`` are B, C, D of the
+    angle BCD: the crank pin, the coupler-rocker joint, the rocker's ground pivot."""
 
     links: tuple[str, str, str, str]
     lengths: tuple[float, float, float, float]
     grashof: str
-    transmission_angle: float
+    transmission_angle: float | Array
+    points: tuple[str, str, str]
 
 
 def grashof_class(ground: float, crank: float, coupler: float, rocker: float) -> str:
@@ -41,7 +44,8 @@ def grashof_class(ground: float, crank: float, coupler: float, rocker: float) ->
     )[shortest]
 
 
-def transmission_angle(B: Array, C: Array, D: Array) -> float:
-    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi)."""
+def transmission_angle(B: Array, C: Array, D: Array) -> Array:
+    """The angle BCD between coupler CB and rocker CD at their joint C (0..pi), at every sample:
+    points (2,) give a 0-d array, points (N, 2) an array (N,)."""
     u, w = B - C, D - C
-    return float(np.arctan2(abs(cross(u, w)), u @ w))
+    return np.arctan2(np.abs(cross(u, w)), np.vecdot(u, w))

@@ -7,11 +7,16 @@ when asked for. ``required_order`` is 0 for positions, 1 for velocities, 2 for a
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import Literal, get_args
 
 from solver.errors import InvalidScene
 
-QUANTITIES = ("position", "velocity", "acceleration", "poles", "components")
-DYNAMIC_QUANTITIES = ("forces", "energy")  # dynamics-v1: computed by solver.dynamics
+# The names are declared here once; the server's schemas import the Literal types.
+KinematicQuantity = Literal["position", "velocity", "acceleration", "poles", "components"]
+DynamicQuantity = Literal["forces", "energy"]  # dynamics-v1: computed by solver.dynamics
+Quantity = Literal[KinematicQuantity, DynamicQuantity]
+QUANTITIES: tuple[KinematicQuantity, ...] = get_args(KinematicQuantity)
+DYNAMIC_QUANTITIES: tuple[DynamicQuantity, ...] = get_args(DynamicQuantity)
 
 
 def normalise_quantities(quantities: Iterable[str] | None) -> frozenset[str]:

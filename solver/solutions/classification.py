@@ -170,7 +170,7 @@ def _transmission_values(
     diagonal = float(np.hypot(*(ctx.pos(joint_d) - ctx.pos(joint_b))))
     bd = b.put(f"|{joint_b}{joint_d}|", diagonal, "m")
     cos_now = _cos_mu(b, "mu", bd, keys["coupler"], keys["rocker"])
-    mu = _angle(b, "mu", cos_now, (*src, "transmission_angle"), loop.transmission_angle)
+    mu = _angle(b, "mu", cos_now, (*src, "transmission_angle"), float(loop.transmission_angle))
     return Transmission(joint_b, joint_d, bd, cos_now, mu)
 
 

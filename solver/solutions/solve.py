@@ -10,6 +10,7 @@ method; the solution then says so in its first step and in ``method``/``requeste
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Literal, get_args
 
 from solver.analysis.instant import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
@@ -43,7 +44,8 @@ from solver.solutions.relative import moving_point_steps
 from solver.solutions.spatial import spatial_steps
 from solver.solutions.vector import vector_steps
 
-METHODS = ("vector", "loop", "newton_euler")
+Method = Literal["vector", "loop", "newton_euler"]  # declared once; the server imports it
+METHODS: tuple[Method, ...] = get_args(Method)
 MIN_DIGITS, MAX_DIGITS = 1, 15
 
 _SENTENCES = {

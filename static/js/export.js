@@ -33,10 +33,10 @@ export function download(filename, blob) {
 }
 
 /** The sweep: x columns (driver angle, time when it is uniform) then every series. */
-export function sweepCsv(scene, track, units, loops) {
+export function sweepCsv(scene, track, units) {
   const order = cycleOrder(track);
   const axes = xAxes(scene, track).map((axis) => xValues(scene, track, order, axis, units));
-  const series = allSeries(scene, track, order, units, loops);
+  const series = allSeries(scene, track, order, units);
   const header = [...axes.map((a) => a.title), ...series.map((s) => `${s.label} [${s.unit}]`)];
   const rows = order.index.map((_, i) => [...axes.map((a) => a.x[i]), ...series.map((s) => s.y[i])]);
   return toCsv([header, ...rows]);
@@ -206,7 +206,7 @@ function dataUrlBlob(url) {
   return new Blob([decodeURIComponent(body)], { type });
 }
 
-/** Wire the export menu to the app (main.js's App: scene, track, analysis, units, loops). */
+/** Wire the export menu to the app (main.js's App: scene, track, analysis, units). */
 export function installExport(app) {
   const name = () => slug(app.scene?.title);
   const guard = (fn) => async (...args) => {
@@ -219,7 +219,7 @@ export function installExport(app) {
   };
   $('export-csv').addEventListener('click', guard(() => {
     if (!app.track || app.track.n < 2) throw new Error('there is no cycle (sweep) to export for this scene');
-    download(`${name()}-cycle.csv`, new Blob([sweepCsv(app.scene, app.track, app.units, app.loops)], { type: 'text/csv' }));
+    download(`${name()}-cycle.csv`, new Blob([sweepCsv(app.scene, app.track, app.units)], { type: 'text/csv' }));
   }));
   $('export-instant-csv').addEventListener('click', guard(() => {
     if (!app.analysis || isSpatial(app.scene)) throw new Error('no analysed instant of a planar linkage yet');

@@ -7,7 +7,7 @@
 
 import { svgEl, setAttrs, clear, arrowMarker, hatchPattern } from './svg.js';
 import { COLOURS } from './theme.js';
-import { groundLink, movingLinks, movingPoints, linkColours, driverHandle, drawnAngle } from './scene.js';
+import { groundLink, movingLinks, movingPoints, linkColours, driverHandle } from './scene.js';
 import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
 import { velocityPoleName, accelerationPoleName, linkNumbers } from './notation.js';
@@ -177,19 +177,14 @@ export class LinkageView {
     svgEl('line', { x1: x - 20, y1: y + 20, x2: x + 20, y2: y + 20, stroke: COLOURS.ground, 'stroke-width': 1.5 }, g);
   }
 
-  /** A straight guide fixed in the ground, drawn along the slot axis over the swept range. */
+  /** A straight guide fixed in the ground, drawn along the slot axis over the swept range (the
+   * slider's displacement from its drawn position, as the server sent it). */
   drawFixedGuide(g, joint) {
     const axis = unit(joint.axis || [1, 0]);
     const base = this.scene.points[joint.point];
-    const positions = this.track.points[joint.point]?.position || [base];
-    let lo = Infinity;
-    let hi = -Infinity;
-    for (const p of positions) {
-      if (!p) continue;
-      const s = (p[0] - base[0]) * axis[0] + (p[1] - base[1]) * axis[1];
-      lo = Math.min(lo, s);
-      hi = Math.max(hi, s);
-    }
+    const travel = (this.track.sliders || []).find((s) => s.point === joint.point)?.displacement || [0];
+    const lo = travel.reduce((m, s) => Math.min(m, s), Infinity);
+    const hi = travel.reduce((m, s) => Math.max(m, s), -Infinity);
     const pad = (BLOCK[0] / this.map.k) * 1.2;
     const a = this.px([base[0] + (lo - pad) * axis[0], base[1] + (lo - pad) * axis[1]]);
     const b = this.px([base[0] + (hi + pad) * axis[0], base[1] + (hi + pad) * axis[1]]);
@@ -508,7 +503,7 @@ export class LinkageView {
     for (const { joint, guide, nodes } of this.slotNodes) {
       const p = P(joint.point);
       if (!p) continue;
-      const axis = this.axisAt(joint, guide, frame);
+      const axis = this.axisAt(joint, frame);
       const gp = (this.scene.links[guide]?.points || []).map(P).filter(Boolean);
       let lo = 0;
       let hi = 0;
@@ -522,10 +517,10 @@ export class LinkageView {
       for (const n of nodes) setAttrs(n, { x1: a[0], y1: a[1], x2: b[0], y2: b[1] });
       bars.push([a, b]);
     }
-    for (const { joint, guide, node } of this.blockNodes) {
+    for (const { joint, node } of this.blockNodes) {
       const p = P(joint.point);
       if (!p) continue;
-      const axis = this.axisAt(joint, guide, frame);
+      const axis = this.axisAt(joint, frame);
       const [x, y] = this.px(p);
       const deg = (-Math.atan2(axis[1], axis[0]) * 180) / Math.PI;
       setAttrs(node, { transform: `translate(${x.toFixed(2)},${y.toFixed(2)}) rotate(${deg.toFixed(2)})` });
@@ -653,18 +648,11 @@ export class LinkageView {
     return [Math.round(p[0] / g) * g, Math.round(p[1] / g) * g].map((v) => Number(v.toFixed(10)));
   }
 
-  /** Slot axis at this frame: the drawn axis turned with the guide link. */
-  axisAt(joint, guide, frame) {
-    const axis0 = unit(joint.axis || [1, 0]);
-    const pts = this.scene.links[guide]?.points || [];
-    if (guide === groundLink(this.scene) || pts.length < 2) return axis0;
-    const a = frame.position[pts[0]];
-    const b = frame.position[pts[1]];
-    if (!a || !b) return axis0;
-    const turn = Math.atan2(b[1] - a[1], b[0] - a[0]) - drawnAngle(this.scene, guide);
-    const c = Math.cos(turn);
-    const s = Math.sin(turn);
-    return [axis0[0] * c - axis0[1] * s, axis0[0] * s + axis0[1] * c];
+  /** Slot axis at this frame, as the server sent it (the scene's drawn axis where the track
+   * has none: a static track, the drawn pose). */
+  axisAt(joint, frame) {
+    const axis = frame.axis?.[joint.point];
+    return unit(axis || joint.axis || [1, 0]);
   }
 
   // ---- dragging the crank ------------------------------------------------------------------

@@ -12,7 +12,7 @@ import { SpatialView } from './spatial-view.js';
 import { SpatialFields, spatialTrack, sweepRequest, chainAt, extentOf, renderSpatialPlots } from './spatial-motion.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
 import { renderPlots, moveCursor, available, quantityChoices } from './plots.js';
-import { cycleOrder, allSeries, xAxes, transmissionLoops } from './series.js';
+import { cycleOrder, allSeries, xAxes, transmissionName } from './series.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { readHash, writeHash } from './share.js';
 import { trackFromSweep, staticTrack, frameAt, valueAt, indexOfValue, componentSources, samplesFor } from './track.js';
@@ -48,7 +48,6 @@ class App {
     this.units = 'si';
     this.method = 'vector';
     this.plot = { links: [], quantity: null, axis: 'angle' };
-    this.loops = []; // four-bar loops of the scene, from the first analysis (transmission angle)
     this.camera = { yaw: -35, pitch: 22 };
     this.driverEdits = {};
     this.analysis = null;
@@ -504,7 +503,6 @@ class App {
       axis: keepChoices ? this.plot.axis : 'angle',
       trace: trace || names[names.length - 1],
     };
-    this.loops = [];
     this.mechanismFacts(null);
     this.controls.setLinkChoices(links, S.linkColours(scene), this.plot.links);
 
@@ -660,13 +658,7 @@ class App {
       this.linkage.setAnalysis(this.analysis);
       const polygons = this.drawPolygons();
       this.mechanismFacts(this.analysis);
-      const loops = this.analysis.four_bar_loops || [];
-      if (JSON.stringify(loops.map((l) => l.links)) !== JSON.stringify(this.loops.map((l) => l.links))) {
-        this.loops = loops;
-        this.drawPlots();
-      } else {
-        moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
-      }
+      moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
       // Marked analysed once the polygons of this instant are being drawn (their details
       // "pending"), so that a detail marked done is never the previous instant's.
       await polygons;
@@ -766,13 +758,13 @@ class App {
       this.plotsMessage(t ? 'No sweep from the server, so there is no cycle to plot.' : '');
       return;
     }
-    const choices = quantityChoices(allSeries(this.scene, t, cycleOrder(t), this.units, this.loops));
+    const choices = quantityChoices(allSeries(this.scene, t, cycleOrder(t), this.units));
     const preferred = this.plot.quantity
       ?? (choices.find((c) => c.value.startsWith('slider:')) || choices.find((c) => c.value === `point:${this.plot.trace}:velocity`) || choices[0])?.value;
     const quantity = this.controls.setQuantityChoices(choices, preferred);
     const axis = this.controls.setAxisChoices(xAxes(this.scene, t), this.plot.axis);
     this.plot = { ...this.plot, quantity, axis };
-    const { ok, facts } = renderPlots(div, this.scene, t, { links: this.plot.links, quantity, axis, units: this.units, loops: this.loops, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
+    const { ok, facts } = renderPlots(div, this.scene, t, { links: this.plot.links, quantity, axis, units: this.units, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
     $('plot-facts').replaceChildren(...facts.map((f) => Object.assign(document.createElement('li'), { textContent: f })));
     const have = available(t);
     this.plotsMessage(!ok ? 'The sweep has nothing to plot.' : !have.omega ? 'The server swept positions only: angular velocities and accelerations are not plotted.' : '');
@@ -782,8 +774,7 @@ class App {
   mechanismFacts(analysis) {
     const el = $('mechanism-facts');
     const loops = analysis?.four_bar_loops || [];
-    const named = transmissionLoops(this.scene, loops);
-    el.textContent = loops.map((l, i) => `${l.grashof}; transmission angle ${named[i]?.name || 'μ'} = ${show('angle', l.transmission_angle, this.units)}`).join(' · ');
+    el.textContent = loops.map((l) => `${l.grashof}; transmission angle ${transmissionName(this.track, l.links)} = ${show('angle', l.transmission_angle, this.units)}`).join(' · ');
     el.hidden = !loops.length;
   }
 

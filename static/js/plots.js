@@ -58,16 +58,16 @@ function cursorX(scene, track, axis, value, units) {
 }
 
 /**
- * Draw the panels. `sel` = {links, quantity, axis, units, cursor, loops}. Returns
+ * Draw the panels. `sel` = {links, quantity, axis, units, cursor}. Returns
  * {ok, facts: [sentences]} (facts: transmission extremes, quick-return ratio).
  */
-export function renderPlots(div, scene, track, { links = [], quantity = null, axis = 'angle', units = 'si', cursor = null, loops = [] } = {}) {
+export function renderPlots(div, scene, track, { links = [], quantity = null, axis = 'angle', units = 'si', cursor = null } = {}) {
   const P = globalThis.Plotly;
   if (!P || !track || track.n < 2) return { ok: false, facts: [] };
   const colours = linkColours(scene);
   const order = cycleOrder(track);
   const xs = xValues(scene, track, order, axis, units);
-  const series = allSeries(scene, track, order, units, loops);
+  const series = allSeries(scene, track, order, units);
   const byKey = new Map(series.map((s) => [s.key, s]));
   // On a time axis the samples are reordered by time (one period from t = 0).
   let perm = xs.x.map((_, i) => i);
@@ -130,9 +130,9 @@ export function renderPlots(div, scene, track, { links = [], quantity = null, ax
       }
     });
   });
-  for (const slider of groundSliders(scene)) {
+  for (const slider of groundSliders(scene, track)) {
     if (quantity !== `slider:${slider.point}`) continue;
-    const r = timeRatio(track, slider);
+    const r = timeRatio(slider);
     if (r) facts.push(`Quick-return time ratio of ${slider.point}: ${fmt(r.ratio, 4)} (slower stroke over ${fmt(toDisplay('angle', r.slow, units), 4)} ${unitLabel('angle', units)} of crank turn, faster over ${fmt(toDisplay('angle', r.fast, units), 4)} ${unitLabel('angle', units)}).`);
   }
   const last = axisFor(panels.length - 1);

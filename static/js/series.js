@@ -3,22 +3,17 @@
 // One list serves the plots (a student picks what to plot) and the CSV export (every series),
 // so a number in the CSV is the number on the plot. Everything is read from the server's sweep:
 // positions, velocities and accelerations of the points, angle, ω and α of the links. What is
-// done here is reading, not solving:
-//   - the x axis: the driver angle brought into 0..360 deg (the sweep starts at the drawn pose),
-//     or the time t = (θ − θ₀)/ω of a driver turning at constant ω;
-//   - a slider on a fixed guide: its position s = (r − r₀)·e, velocity v·e and acceleration a·e
-//     along the guide's unit vector e (the point's own vectors, which lie along e);
-//   - the transmission angle μ = ∠BCD of a four-bar loop the server reported (the same formula
-//     as the solver's four_bar.transmission_angle), from the swept positions;
-//   - the quick-return time ratio: the crank angles between the zero crossings of the ram's
-//     velocity (its limit positions), interpolated linearly between samples.
+// done here is reading, not solving: the x axis (the driver angle brought into 0..360 deg, the
+// sweep starting at the drawn pose, or the time t = (θ − θ₀)/ω of a driver turning at constant ω).
+// The server sends the rest: a slider's displacement s along its guide and its rates
+// (`sliders`), the transmission angle μ = ∠BCD of each four-bar loop (`four_bar_loops`) and a
+// ram's quick-return time ratio from its extreme positions (`sliders[].quick_return`).
 
 import { groundLink, movingLinks } from './scene.js';
 import { toDisplay, unitLabel } from './units.js';
 
 const TWO_PI = 2 * Math.PI;
 const mod = (a, m) => ((a % m) + m) % m;
-const dot = (a, b) => a[0] * b[0] + a[1] * b[1];
 
 /**
  * The order in which to read the samples and the x value of each: for a full revolution the
@@ -78,44 +73,23 @@ function unwrap(values) {
   return out;
 }
 
-/** Sliders on a fixed guide: {point, axis (unit), origin (drawn position)}. */
-export function groundSliders(scene) {
+/** The sweep's sliders on a fixed guide (the server's `sliders` whose guide is the ground). */
+export function groundSliders(scene, track) {
   const ground = groundLink(scene);
-  return (scene.joints || [])
-    .filter((j) => (j.type === 'slider' || j.type === 'prismatic') && j.links[0] === ground && scene.points[j.point])
-    .map((j) => {
-      const a = j.axis || [1, 0];
-      const n = Math.hypot(a[0], a[1]) || 1;
-      return { point: j.point, axis: [a[0] / n, a[1] / n], origin: scene.points[j.point] };
-    });
+  return (track.sliders || []).filter((s) => s.links?.[0] === ground);
 }
 
-/** Four-bar loops as B (crank–coupler), C (coupler–rocker), D (rocker–ground) from the server's loops. */
-export function transmissionLoops(scene, loops) {
-  const jointAt = (a, b) => (scene.joints || []).find((j) => j.type === 'revolute' && j.links.includes(a) && j.links.includes(b))?.point;
-  const out = [];
-  for (const loop of loops || []) {
-    const { ground, crank, coupler, rocker } = loop.links || {};
-    const B = jointAt(crank, coupler);
-    const C = jointAt(coupler, rocker);
-    const D = jointAt(rocker, ground);
-    if (B && C && D) out.push({ B, C, D, name: `μ = ∠${B}${C}${D}`, grashof: loop.grashof });
-  }
-  return out;
-}
-
-/** μ = ∠BCD in 0..π (solver/kinematics/four_bar.py transmission_angle). */
-export function angleBCD(B, C, D) {
-  const u = [B[0] - C[0], B[1] - C[1]];
-  const w = [D[0] - C[0], D[1] - C[1]];
-  return Math.atan2(Math.abs(u[0] * w[1] - u[1] * w[0]), dot(u, w));
+/** "μ = ∠BCD" for the sweep's four-bar loop of these links (the server names B, C, D). */
+export function transmissionName(track, links) {
+  const loop = (track?.fourBarLoops || []).find((l) => JSON.stringify(l.links) === JSON.stringify(links));
+  return loop ? `μ = ∠${loop.angle_points.join('')}` : 'μ';
 }
 
 /**
  * Every series of the sweep in display units, in cycle order:
  * [{key, group, label, unit, y}], key like "link:crank:omega", "point:P:vx", "slider:C:s".
  */
-export function allSeries(scene, track, order, units, loops = []) {
+export function allSeries(scene, track, order, units) {
   const out = [];
   const pick = (arr) => order.index.map((i) => (arr ? arr[i] ?? null : null));
   const push = (key, group, label, kind, values) => out.push({ key, group, label, unit: unitLabel(kind, units), y: values.map((v) => (v === null ? null : toDisplay(kind, v, units))) });
@@ -140,18 +114,15 @@ export function allSeries(scene, track, order, units, loops = []) {
       push(`point:${name}:${sym}`, g, `|${sym}| of ${name}`, kind, comp(q[quantity], (v) => Math.hypot(v[0], v[1])));
     }
   }
-  for (const s of groundSliders(scene)) {
-    const q = track.points[s.point];
-    if (!q?.position) continue;
+  for (const s of groundSliders(scene, track)) {
     const g = `slider ${s.point}`;
-    push(`slider:${s.point}:s`, g, `position s of slider ${s.point} along its guide`, 'length', comp(q.position, (p) => dot([p[0] - s.origin[0], p[1] - s.origin[1]], s.axis)));
-    if (q.velocity) push(`slider:${s.point}:v`, g, `velocity of slider ${s.point} along its guide`, 'velocity', comp(q.velocity, (v) => dot(v, s.axis)));
-    if (q.acceleration) push(`slider:${s.point}:a`, g, `acceleration of slider ${s.point} along its guide`, 'acceleration', comp(q.acceleration, (v) => dot(v, s.axis)));
+    if (s.displacement) push(`slider:${s.point}:s`, g, `position s of slider ${s.point} along its guide`, 'length', pick(s.displacement));
+    if (s.sliding_velocity) push(`slider:${s.point}:v`, g, `velocity of slider ${s.point} along its guide`, 'velocity', pick(s.sliding_velocity));
+    if (s.sliding_acceleration) push(`slider:${s.point}:a`, g, `acceleration of slider ${s.point} along its guide`, 'acceleration', pick(s.sliding_acceleration));
   }
-  for (const loop of transmissionLoops(scene, loops)) {
-    const [B, C, D] = [loop.B, loop.C, loop.D].map((p) => track.points[p]?.position);
-    if (!B || !C || !D) continue;
-    push(`transmission:${loop.C}`, 'transmission angle', `transmission angle ${loop.name}`, 'angle', order.index.map((i) => (B[i] && C[i] && D[i] ? angleBCD(B[i], C[i], D[i]) : null)));
+  for (const loop of track.fourBarLoops || []) {
+    const [, C] = loop.angle_points;
+    push(`transmission:${C}`, 'transmission angle', `transmission angle ${transmissionName(track, loop.links)}`, 'angle', pick(loop.transmission_angle));
   }
   return out;
 }
@@ -169,30 +140,12 @@ export function extremes(x, y) {
 }
 
 /**
- * Quick-return time ratio of a ram (slider on a fixed guide) driven by a crank at constant ω:
- * the limit positions are where the ram's velocity changes sign; time is proportional to crank
- * angle, so ratio = (slower stroke angle) / (faster stroke angle). Null unless exactly two sign
- * changes occur over a full revolution.
+ * Quick-return time ratio of a ram (slider on a fixed guide) over a full revolution, as the
+ * server found it from the ram's two extreme positions: {ratio, slow, fast (rad of crank turn),
+ * limits (driver angles)}, or null.
  */
-export function timeRatio(track, slider) {
-  const q = track.points[slider.point];
-  if (track.param !== 'angle' || !track.closed || !q?.velocity) return null;
-  // The turn closes: the first sample again, one revolution on.
-  const turn = Math.sign(track.values[track.n - 1] - track.values[0]) * TWO_PI;
-  const angles = [...track.values, track.values[0] + turn];
-  const v = [...q.velocity, q.velocity[0]].map((w) => (w ? dot(w, slider.axis) : null));
-  const crossings = [];
-  for (let i = 0; i + 1 < v.length; i++) {
-    const [a, b] = [v[i], v[i + 1]];
-    if (a === null || b === null || a === b) continue;
-    // A sign change; a zero sample counts once (as the end of the interval that reaches it).
-    if ((a < 0 && b >= 0) || (a > 0 && b <= 0)) {
-      crossings.push(angles[i] + (a / (a - b)) * (angles[i + 1] - angles[i]));
-    }
-  }
-  if (crossings.length !== 2) return null;
-  const first = Math.abs(crossings[1] - crossings[0]);
-  const second = TWO_PI - first;
-  const [slow, fast] = first >= second ? [first, second] : [second, first];
-  return { ratio: slow / fast, slow, fast, limits: crossings };
+export function timeRatio(slider) {
+  const q = slider.quick_return;
+  if (!q) return null;
+  return { ratio: q.time_ratio, slow: q.slow_stroke, fast: q.fast_stroke, limits: q.extreme_positions.map((e) => e.driver_angle) };
 }

@@ -25,6 +25,10 @@ export function trackFromSweep(response) {
     n: values.length,
     points,
     links: response.links || {},
+    // Computed by the server: sliders along their guides (axis, displacement, rates, a ram's
+    // quick return) and four-bar loops with their transmission angle, sample by sample.
+    sliders: response.sliders || [],
+    fourBarLoops: response.four_bar_loops || [],
     feasible: response.feasible !== false,
     limits: response.limits || [],
     // The server's warnings in words (e.g. a close approach to a change point), shown as they are.
@@ -41,7 +45,7 @@ export function staticTrack(scene, param = 'angle', value = 0, positions = null)
   const points = {};
   for (const [name, xy] of Object.entries(scene.points || {})) points[name] = { position: [positions?.[name] || xy] };
   for (const [name, xy] of Object.entries(positions || {})) if (!points[name]) points[name] = { position: [xy] };
-  return { param, values: [value], n: 1, points, links: {}, feasible: true, limits: [], warnings: [], closed: false, static: true };
+  return { param, values: [value], n: 1, points, links: {}, sliders: [], fourBarLoops: [], feasible: true, limits: [], warnings: [], closed: false, static: true };
 }
 
 function lerp2(a, b, f) {
@@ -85,6 +89,9 @@ export function frameAt(track, u) {
       frame.parts[name][part] = lerp2(q[part][i], q[part][j], f);
     }
   }
+  // The slots' axes as the server sent them (a guide's drawn axis turned with it), by point.
+  frame.axis = {};
+  for (const s of track.sliders || []) if (s.axis) frame.axis[s.point] = lerp2(s.axis[i], s.axis[j], f);
   return frame;
 }
 

@@ -32,7 +32,7 @@ from server.local import serve_locally
 from server.settings import TIME_LIMITS, Settings, from_environment
 from solver import read_scene
 from tests import run_apart
-from tests.server.test_budget import triads
+from tests.scenes import triads
 from tests.server.test_errors import FOUR_BAR
 
 LOGS = Path(__file__).resolve().parents[2] / "test-artifacts"

@@ -1,0 +1,195 @@
+"""The cost of a request, estimated from the scene before any work (``estimate_work``).
+
+Three products that grow past what a scene's own bounds (200 points, 100 links, a law of 500
+characters) keep in check:
+
+- the response's size: samples x entries (points + links + joints + moving points; a spatial
+  chain's points + bodies + joints) x quantities;
+- the Newton-Raphson work: the links solved by Newton-Raphson x (samples + ``SETUP_SAMPLES`` +
+  ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose), in link-samples,
+  at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
+  feasible-range search, and the walk of the continuation from the drawn pose). The constants
+  are fitted to ``benchmarks/bench_budget.py`` (docs/SERVING.md quotes a run);
+- an event search: t_max x the frequency of the moving point's law (the search resolves every
+  turning point of s(t)), the frequency from the sign changes of s' on ``FREQUENCY_GRID``
+  samples.
+
+The estimate only counts; the caller compares it with its limits (the server: ``server.budget``).
+Its parts are computed when first read, so a caller that refuses on the response's size does not
+pay for the Newton groups' plan.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from solver.analysis.events import DISTANCE_GRID
+from solver.kinematics.spatial import SpatialChain
+from solver.model.laws import parse_time_law
+from solver.model.quantities import normalise_quantities
+from solver.model.scene import MAX_TIME, LinkageScene
+from solver.position.drivers import driver_inputs_over_time
+from solver.position.topology import NewtonStep, build_plan
+
+FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
+EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solver.analysis.events)
+# The Newton-Raphson cost model, fitted by benchmarks/bench_budget.py (best of 3, shared 2-core
+# machine): the largest rate measured per link-sample (groups of up to 32 links, positions,
+# velocities and accelerations), a sweep's fixed work in samples, and the continuation's cost per
+# radian of driver turn in samples.
+SAMPLE_COST = 70e-6  # s of one core per link-sample
+SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
+SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
+
+
+@dataclass(frozen=True)
+class NewtonWork:
+    """The Newton-Raphson groups' work: ``groups`` (links per group) x (``samples`` +
+    ``setup_samples`` + ``turn`` rad from the drawn pose x ``samples_per_radian``)."""
+
+    groups: tuple[int, ...]
+    samples: int
+    turn: float
+    setup_samples: int = SETUP_SAMPLES
+    samples_per_radian: int = SAMPLES_PER_RADIAN
+    sample_cost: float = SAMPLE_COST
+
+    @property
+    def links(self) -> int:
+        """Links solved by Newton-Raphson."""
+        return sum(self.groups)
+
+    @property
+    def link_samples(self) -> float:
+        per_link = self.samples + self.setup_samples + self.samples_per_radian * self.turn
+        return self.links * per_link
+
+    @property
+    def seconds(self) -> float:
+        """Estimated seconds of one core."""
+        return self.link_samples * self.sample_cost
+
+
+@dataclass(frozen=True)
+class Oscillations:
+    """An event search's span: ``t_max`` x the ``frequency`` (Hz) of ``moving_point``'s law;
+    ``resolved`` false where the grid no longer resolves the law (the frequency is then a lower
+    bound)."""
+
+    moving_point: str
+    t_max: float
+    frequency: float
+    resolved: bool
+
+    @property
+    def count(self) -> float:
+        return self.t_max * self.frequency
+
+
+class WorkEstimate:
+    """What a request costs (see the module): the response's ``values`` (``samples`` x
+    ``entries`` x ``quantities``), the ``newton`` work (None where nothing is solved by
+    Newton-Raphson) and an event search's ``oscillations`` (None but for an event)."""
+
+    def __init__(
+        self,
+        scene: LinkageScene | SpatialChain,
+        samples: int,
+        quantities: int,
+        turn: float | None,
+        event: tuple[str, float] | None = None,
+        time_grid: np.ndarray | None = None,
+    ) -> None:
+        self.scene = scene
+        self.samples = samples
+        self.quantities = quantities
+        self._turn = turn
+        self._time_grid = time_grid
+        self._event = event
+        if isinstance(scene, SpatialChain):
+            self.entries = len(scene.points) + 2 * len(scene.joints)  # a body per joint
+            self.entries_what = "bodies, joints and points"
+        else:
+            self.entries = (
+                len(scene.points) + len(scene.links) + len(scene.joints) + len(scene.moving_points)
+            )
+            self.entries_what = "points, links, joints and moving points"
+
+    @property
+    def values(self) -> int:
+        """Values in the response: samples x entries x quantities."""
+        return self.samples * self.entries * self.quantities
+
+    @cached_property
+    def newton(self) -> NewtonWork | None:
+        scene = self.scene
+        if not isinstance(scene, LinkageScene) or (self._turn is None and self._time_grid is None):
+            return None
+        # The turn first: a time law that cannot be evaluated is reported as such either way.
+        turn = self._turn if self._time_grid is None else driver_turn(scene, self._time_grid)
+        assert turn is not None
+        groups = tuple(len(s.links) for s in build_plan(scene).steps if isinstance(s, NewtonStep))
+        return NewtonWork(groups, self.samples, turn) if groups else None
+
+    @cached_property
+    def oscillations(self) -> Oscillations | None:
+        if self._event is None or not isinstance(self.scene, LinkageScene):
+            return None
+        name, t_max = self._event
+        mp = next(m for m in self.scene.moving_points if m.name == name)
+        grid = np.linspace(0.0, t_max, FREQUENCY_GRID + 1)
+        rate = parse_time_law(mp.s_law).evaluate(grid)[1]
+        turns = int(np.count_nonzero(np.diff(np.sign(rate)) != 0))
+        # s' changes sign twice a period; past a quarter of the grid the grid no longer resolves it.
+        return Oscillations(name, t_max, turns / (2.0 * t_max), turns < FREQUENCY_GRID // 4)
+
+
+def driver_turn(scene: LinkageScene, times: np.ndarray) -> float:
+    """Radians the drivers turn from the drawn pose to reach every one of ``times`` (both ways)."""
+    turns = np.concatenate([d.theta for d in driver_inputs_over_time(scene, times)] + [[0.0]])
+    return float(np.max(turns) - np.min(turns))
+
+
+def estimate_work(
+    scene: LinkageScene | SpatialChain,
+    samples: int | None = None,
+    quantities: Iterable[str] | None = None,
+    *,
+    time_range: Sequence[float] | None = None,
+    event: tuple[str, float] | None = None,
+) -> WorkEstimate:
+    """The cost of a request on ``scene``, before any work: one instant (``samples`` None,
+    reached from the drawn pose: /analyze, /solution), a revolution of ``samples`` (/sweep), the
+    same over ``time_range`` (the drivers' turn over it counted), or an event search
+    ``event`` = (moving point, t_max) (/events: its time laws are parsed first, and a moving
+    point the scene does not have or a t_max outside 0 < t_max <= MAX_TIME is left to the
+    search's own message: no work estimated). ``quantities`` as for a sweep (default
+    position)."""
+    wanted = len(normalise_quantities(["position"] if quantities is None else quantities))
+    if isinstance(scene, SpatialChain):
+        return WorkEstimate(scene, samples or 1, wanted, None)
+    if event is not None:
+        for law in [d.angle_law for d in scene.drivers] + [m.s_law for m in scene.moving_points]:
+            if law is not None:
+                parse_time_law(law)  # a bad law is reported as such, before any estimate
+        name, t_max = event
+        if not any(m.name == name for m in scene.moving_points) or not 0.0 < t_max <= MAX_TIME:
+            return WorkEstimate(scene, EVENT_SAMPLES, wanted, None)
+        grid = np.linspace(0.0, t_max, FREQUENCY_GRID + 1)
+        return WorkEstimate(scene, EVENT_SAMPLES, wanted, None, event, grid)
+    if samples is None:
+        return WorkEstimate(scene, 1, wanted, None, time_grid=np.array([scene.time]))
+    if time_range is None:
+        return WorkEstimate(scene, samples, wanted, 0.0)
+    valid = len(time_range) == 2 and all(math.isfinite(t) for t in time_range)
+    grid = (
+        np.linspace(time_range[0], time_range[-1], min(samples, FREQUENCY_GRID))
+        if valid
+        else np.zeros(1)
+    )
+    return WorkEstimate(scene, samples, wanted, None, time_grid=grid)
