@@ -43,7 +43,7 @@ from solver.position.assembly import (
     screen,
     unit_rate,
 )
-from solver.position.groups import loci
+from solver.position.groups import loci, rrr
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, Plan, Reach, TwoPointStep
 
 
@@ -283,14 +283,8 @@ class _Run:
         assembler must run instead."""
         c1, c2 = self.cols[step.first.center], self.cols[step.second.center]
         r1, r2 = step.first.radius, step.second.radius
-        dx, dy = _sub(c2.x, c1.x), _sub(c2.y, c1.y)
-        d = np.sqrt(dx * dx + dy * dy)
-        safe_d = _positive(d)
-        ux, uy = dx / safe_d, dy / safe_d
-        if safe_d is not d:  # coincident centres somewhere
-            ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
-        a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
-        h2 = r1**2 - a**2
+        cut = rrr.chord(cast(Array, _sub(c2.x, c1.x)), cast(Array, _sub(c2.y, c1.y)), r1, r2)
+        d, ux, uy, a, h2 = cut.d, cut.ux, cut.uy, cut.a, cut.h2
         margin = np.minimum((r1 + r2) - d, d - abs(r1 - r2))
 
         def pieces() -> tuple[Array, Array]:

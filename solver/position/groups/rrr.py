@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from solver.kinematics.rigid import Array, dot, perp, scale
@@ -9,19 +11,41 @@ from solver.position.groups.base import DyadGroup
 from solver.position.groups.loci import Circle, Intersection, digits, root
 
 
+@dataclass(frozen=True)
+class Chord:
+    """The common chord of two circles, column by column over samples (``chord``)."""
+
+    d: Array
+    ux: Array
+    uy: Array
+    a: Array
+    h2: Array
+
+
+def chord(dx: Array, dy: Array, r1: float, r2: float) -> Chord:
+    """RRR: d = |C1C2|, u = (C2 - C1) / d, a = (r1^2 - r2^2 + d^2) / 2d along C1C2 from C1,
+    h^2 = r1^2 - a^2 across it, from (dx, dy) = C2 - C1; coincident centres (d = 0) take
+    u = (1, 0): any direction (every point of the circle fits). The RRR formula, once: the
+    assembler's ``circle_circle`` and the compiled plan's columns both use it."""
+    d = np.sqrt(dx * dx + dy * dy)
+    safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
+    ux, uy = dx / safe_d, dy / safe_d
+    if safe_d is not d:
+        ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
+    a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
+    return Chord(d, ux, uy, a, r1**2 - a**2)
+
+
 def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
-    """RRR: d = |C1C2|, a = (r1^2 - r2^2 + d^2) / 2d along C1C2, h^2 = r1^2 - a^2 across.
+    """RRR: the point at a along C1C2 and h across it (``chord``).
 
     Margin m = min(r1 + r2 - d, d - |r1 - r2|), the pieces' rates -+ dd/du = -+ u.(v2 - v1),
     u = (C2 - C1) / d.
     """
     d_vec = c2.center.p - c1.center.p
-    d = np.sqrt(dot(d_vec, d_vec))
-    safe_d = np.where(d > 0.0, d, 1.0)
-    u = d_vec / safe_d[:, None]
-    u[d == 0.0] = (1.0, 0.0)  # coincident centres: any direction (every point of the circle fits)
-    a = (c1.radius**2 - c2.radius**2 + d**2) / (2.0 * safe_d)
-    h2 = c1.radius**2 - a**2
+    cut = chord(d_vec[:, 0], d_vec[:, 1], c1.radius, c2.radius)
+    d, a, h2 = cut.d, cut.a, cut.h2
+    u = np.stack((cut.ux, cut.uy), axis=-1)
     total, diff = c1.radius + c2.radius, abs(c1.radius - c2.radius)
     extended, folded = total - d, d - diff
     margin = np.minimum(extended, folded)
