@@ -27,7 +27,7 @@ from solver.position import constraints, newton
 from solver.position.assembly import WARNING_MARGIN, DriverInput, Motion, assemble, require_feasible
 from solver.position.continuation import Continuation
 from solver.position.drivers import drawn_angle, driver_input
-from solver.position.dyads import COINCIDENCE_TOLERANCE
+from solver.position.groups.loci import COINCIDENCE_TOLERANCE
 from solver.position.polish import exact_turn, polish
 from solver.position.topology import Plan, build_plan
 

@@ -23,7 +23,7 @@ from solver.errors import KinematicsError
 from solver.exercises.answers import Solved, flywheel_request, solve_scene, value_at
 from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
-from solver.kinematics.rigid import Array, perp, rigid_body_acceleration
+from solver.kinematics.rigid import Array, perp, rigid_body_acceleration, solve_2x2
 
 DEGREES = 180.0 / math.pi
 
@@ -41,10 +41,8 @@ class WrongAnswers:
 
 
 def _solve2(first: Array, second: Array, rhs: Array) -> tuple[float, float]:
-    """x, y with x first + y second = rhs (Cramer's rule)."""
-    det = first[0] * second[1] - first[1] * second[0]
-    x = (rhs[0] * second[1] - rhs[1] * second[0]) / det
-    y = (first[0] * rhs[1] - first[1] * rhs[0]) / det
+    """x, y with x first + y second = rhs (``rigid.solve_2x2``)."""
+    x, y = solve_2x2((first[0], second[0]), (first[1], second[1]), (rhs[0], rhs[1]))
     return float(x), float(y)
 
 

@@ -35,6 +35,32 @@ def perp(a: Array) -> Array:
     return out
 
 
+# One sample's number, or a column of numbers over samples (N,).
+Column = Array | float
+
+
+def solve_2x2(
+    row1: tuple[Column, Column],
+    row2: tuple[Column, Column],
+    rhs: tuple[Column, Column],
+    det: Column | None = None,
+    out: tuple[Array, Array] | None = None,
+) -> tuple[Column, Column]:
+    """Cramer's rule for [row1; row2] x = rhs: x = (|b r2|, |r1 b|) / D, D = |r1 r2| =
+    r1x r2y - r1y r2x (``det`` given where the caller has it, inf where it is 0), column by
+    column over samples (written into ``out`` where given). The one 2-by-2 solve of the solver."""
+    (a11, a12), (a21, a22) = row1, row2
+    if det is None:
+        det = a11 * a22 - a12 * a21
+    first = rhs[0] * a22 - rhs[1] * a12
+    second = a11 * rhs[1] - a21 * rhs[0]
+    if out is None:
+        return first / det, second / det
+    np.divide(first, det, out=out[0])
+    np.divide(second, det, out=out[1])
+    return out
+
+
 def rotate(vector: Array, angle: Array) -> Array:
     """R(angle) vector for each sample: ``vector`` is (2,) or (N, 2), ``angle`` (N,)."""
     return rotate_by(vector, np.cos(angle), np.sin(angle))

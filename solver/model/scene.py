@@ -128,6 +128,13 @@ class LinkageScene:
         return arrays
 
     @cached_property
+    def memo(self) -> dict[str, Any]:
+        """What the layers above derive from this scene once (its plan, its constraint systems),
+        by name: kept on the scene object and forgotten with it (a scene is immutable, so is all
+        that is derived from it)."""
+        return {}
+
+    @cached_property
     def size(self) -> float:
         """A characteristic length: the diagonal of the drawn points' bounding box."""
         xy = np.array(list(self.points.values()), dtype=float)

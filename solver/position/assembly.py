@@ -33,8 +33,9 @@ from solver.kinematics.rigid import (
     rotate,
 )
 from solver.model.scene import LinkageScene
-from solver.position import dyads, newton
+from solver.position import groups, newton
 from solver.position.continuation import Continuation, solve_group
+from solver.position.groups import loci
 from solver.position.topology import (
     CircleSpec,
     DriverStep,
@@ -44,8 +45,8 @@ from solver.position.topology import (
     LocusSpec,
     NewtonStep,
     Plan,
+    PlanStep,
     Reach,
-    Step,
     TwoPointStep,
 )
 
@@ -125,7 +126,7 @@ class Motion:
     def feasible(self) -> Array:
         """Samples where every group closed (to the coincidence tolerance) and every Newton group
         converged."""
-        return (self.margin >= -dyads.COINCIDENCE_TOLERANCE) & self.converged
+        return (self.margin >= -loci.COINCIDENCE_TOLERANCE) & self.converged
 
     def cut(self, part: slice | Array) -> Motion:
         """The same motion at the samples ``part`` only (a slice or sample indices; approaches,
@@ -158,12 +159,12 @@ class Motion:
     @property
     def windows(self) -> list[Approach]:
         """Closest approaches between samples where the linkage cannot close."""
-        return [a for a in self.approaches if a.margin < -dyads.COINCIDENCE_TOLERANCE * self.size]
+        return [a for a in self.approaches if a.margin < -loci.COINCIDENCE_TOLERANCE * self.size]
 
     @property
     def near_misses(self) -> list[Approach]:
         """Closest approaches between samples where the branches come close without meeting."""
-        return [a for a in self.approaches if a.margin > dyads.COINCIDENCE_TOLERANCE * self.size]
+        return [a for a in self.approaches if a.margin > loci.COINCIDENCE_TOLERANCE * self.size]
 
 
 # A driver that moves along the path: (driver, its angles theta_k, the largest magnitude of its
@@ -243,7 +244,7 @@ def screen(
     closed: Array | None = None,
 ) -> list[tuple[int, int]]:
     """The intervals the branch search examines, in the order of the path: (k, j), piece j of a
-    group's margin (``dyads.Piece``: the margin is the smallest of its smooth pieces) between
+    group's margin (``loci.Piece``: the margin is the smallest of its smooth pieces) between
     samples k and k + 1 that both close (``closed``: where every group so far closes; None:
     all), from each piece's rates along the path (``path_rates``; ``sensitivities[i][j]`` is
     dm_j/dtheta for the i-th moving driver) and from the margin's values:
@@ -385,7 +386,7 @@ class DenseGrid:
     def windows(self, motion: Motion) -> list[Approach]:
         """The deepest dense sample of each given interval that a group fails to close at (not
         a given sample), as a window: the group with the smallest margin there."""
-        fails = motion.margin < -dyads.COINCIDENCE_TOLERANCE
+        fails = motion.margin < -loci.COINCIDENCE_TOLERANCE
         fails[self.index] = False
         found = []
         for k in np.unique(np.searchsorted(self.index, np.flatnonzero(fails)) - 1).tolist():
@@ -428,7 +429,7 @@ def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
     return DenseGrid(dense, index)
 
 
-def _two_branch(step: Step) -> TypeGuard[DyadStep | LeverStep]:
+def _two_branch(step: PlanStep) -> TypeGuard[DyadStep | LeverStep]:
     """A lever, or a dyad with a circle among its loci (a pin in two slots has one solution)."""
     if isinstance(step, DyadStep):
         return any(isinstance(spec, CircleSpec) for spec in step.loci)
@@ -476,12 +477,12 @@ class _Assembler:
         self.gradient_sine = np.ones(self.samples)
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
-        self.steps: tuple[Step, ...] = ()
+        self.steps: tuple[PlanStep, ...] = ()
         self.anchor = anchor
         self.flips: dict[int, tuple[float, list[float]]] = {}  # sign at sample 0, switches
         self.sign_of: dict[int, Array] = {}  # each two-branch step's sign per sample
         self.approaches: list[Approach] = []
-        self.last: tuple[dyads.Piece, ...] = ()  # the last group's pieces of its margin
+        self.last: tuple[loci.Piece, ...] = ()  # the last group's pieces of its margin
         self.group_margins: dict[str, Array] = {}
 
     def know(self, link: str, motion: LinkMotion) -> None:
@@ -492,22 +493,22 @@ class _Assembler:
 
     def closed(self) -> Array:
         """Samples where every group so far closed (and every Newton group converged)."""
-        return (self.margin >= -dyads.COINCIDENCE_TOLERANCE) & self.converged
+        return (self.margin >= -loci.COINCIDENCE_TOLERANCE) & self.converged
 
     def close(self, margin: Array, message: Callable[[], str]) -> None:
         """Record a group's relative margin, and its message where it newly fails to close."""
-        fails = margin < -dyads.COINCIDENCE_TOLERANCE
+        fails = margin < -loci.COINCIDENCE_TOLERANCE
         if fails.any() and np.any(fails & self.closed()):
             self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
-    def locus(self, spec: LocusSpec) -> dyads.Locus:
+    def locus(self, spec: LocusSpec) -> loci.Locus:
         if isinstance(spec, CircleSpec):
-            return dyads.Circle(self.points[spec.center], spec.radius, spec.center, spec.link)
+            return loci.Circle(self.points[spec.center], spec.radius, spec.center, spec.link)
         guide = self.links[spec.guide]
         through = guide.point(np.array(spec.through0))
         direction = rotate(np.array(spec.direction0), guide.theta)
-        return dyads.Line(through, direction, guide.omega, guide.alpha, spec.guide)
+        return loci.Line(through, direction, guide.omega, guide.alpha, spec.guide)
 
     def computed(self, index: int) -> int:
         """The order step ``index`` computes: velocities too, before the last group whose
@@ -542,7 +543,7 @@ class _Assembler:
         point: str,
         drawn: float,
         margin: Array,
-        pieces: tuple[dyads.Piece, ...],
+        pieces: tuple[loci.Piece, ...],
     ) -> Array:
         """The branch sign per sample: the drawn one, switched after every closest approach
         between samples where the two branches meet within rounding (a change point)."""
@@ -556,7 +557,7 @@ class _Assembler:
             if approach is None:
                 continue
             self.approaches.append(approach)
-            if abs(approach.margin) <= dyads.COINCIDENCE_TOLERANCE * size:
+            if abs(approach.margin) <= loci.COINCIDENCE_TOLERANCE * size:
                 switches.append(approach.at)
                 sign[math.floor(approach.at) + 1 :] *= -1.0
         if sign[self.anchor] != drawn:  # the drawn branch holds at the anchor sample
@@ -566,7 +567,7 @@ class _Assembler:
         return sign
 
     def candidates(
-        self, index: int, step: DyadStep | LeverStep, margin: Array, pieces: tuple[dyads.Piece, ...]
+        self, index: int, step: DyadStep | LeverStep, margin: Array, pieces: tuple[loci.Piece, ...]
     ) -> list[tuple[int, int]]:
         """The intervals and pieces where group ``index``'s margin may dip below the warning
         threshold (``screen``); none where it is measured between points that turn with drivers
@@ -580,9 +581,7 @@ class _Assembler:
         values = [values for values, _ in pieces]
         return screen(margin, values, sensitivities, self.path, size, self.closed())
 
-    def sensitivities(
-        self, index: int, driver: int, pieces: tuple[dyads.Piece, ...]
-    ) -> list[Array]:
+    def sensitivities(self, index: int, driver: int, pieces: tuple[loci.Piece, ...]) -> list[Array]:
         """dm_j/dtheta of each piece of group ``index`` for one driver, per sample: the pieces'
         rates over the driver's rate where this run's velocities are that driver's alone
         (``rates_alone``), else from a run of the plan up to the group at unit rate of that
@@ -651,54 +650,32 @@ class _Assembler:
         minimum beyond the first or last sample is not in the run; and a meeting there needs no
         switch (the drawn branch holds at the drawn pose)."""
         (start, end), scale = values, STATIONARY * max(map(abs, rates))
-        meets = dyads.COINCIDENCE_TOLERANCE * self.scene.size
+        meets = loci.COINCIDENCE_TOLERANCE * self.scene.size
         if k == 0 and start <= end and abs(rates[0]) <= scale and start > meets:
             return 0.0
         if k + 2 == self.samples and end < start and abs(rates[1]) <= scale and end > meets:
             return 1.0
         return None
 
-    def dyad(self, index: int, step: DyadStep) -> None:
-        first, second = (self.locus(spec) for spec in step.loci)
-        cut = dyads.intersect(first, second, step.point)
-        self.close(cut.margin / self.scene.size, cut.describe)
-        self.last = cut.pieces
-        # Two branches wherever a circle is involved (a pin in two slots has one).
-        if isinstance(first, dyads.Circle) or isinstance(second, dyads.Circle):
-            self.group_margins[step.point] = cut.margin
-        X = cut.point(self.branch(index, step, step.point, step.sign, cut.margin, cut.pieces))
-        X[self.at_drawn] = self.scene.drawn(step.point)
-        order = self.computed(index)
-        self.points[step.point], sine = dyads.point_motion(first, second, X, order)
-        self.gradient_sine = np.minimum(self.gradient_sine, sine)
+    def group(self, index: int, step: DyadStep | LeverStep) -> None:
+        """A closed-form group, asked through its type (``groups.group_of``): its margin, then
+        its solution on the branch chosen for it."""
+        closure = groups.group_of(step).close(step, self)
+        self.close(closure.margin / self.scene.size, closure.describe)
+        self.last = closure.pieces
+        if closure.two_branch:
+            self.group_margins[closure.label] = closure.margin
+        sign = self.branch(index, step, closure.label, step.sign, closure.margin, closure.pieces)
+        placed = closure.place(sign, self.computed(index))
+        self.gradient_sine = np.minimum(self.gradient_sine, placed.gradient_sine)
+        self.points.update(placed.points)
+        for link, motion in placed.links.items():
+            self.know(link, motion)
 
-    def lever(self, index: int, step: LeverStep) -> None:
-        pivot, pin = self.points[step.pivot], self.points[step.pin]
-        piece = dyads.lever_margin(pivot, pin, step.offset)
-        margin = piece[0]
-        self.close(
-            margin / self.scene.size,
-            lambda: (
-                f"|{step.pivot}{step.pin}| is shorter than the offset "
-                f"{abs(step.offset):.6g} m of the slot of '{step.link}' from its pivot {step.pivot}"
-            ),
-        )
-        self.last = (piece,)
-        label = f"the slot of '{step.link}'"
-        self.group_margins[label] = margin
-        sign = self.branch(index, step, label, step.sign, margin, self.last)
-        drawn = math.atan2(step.direction0[1], step.direction0[0])
-        solution = dyads.slotted_lever(
-            pivot, pin, step.offset, sign, self.computed(index), (self.at_drawn, drawn)
-        )
-        self.gradient_sine = np.minimum(self.gradient_sine, solution.gradient_sine)
-        theta = solution.beta - drawn
-        self.know(
-            step.link,
-            LinkMotion(self.scene.drawn(step.pivot), pivot, theta, solution.omega, solution.alpha),
-        )
+    def drawn(self, point: str) -> Array:
+        return self.scene.drawn(point)
 
-    def run_steps(self, steps: tuple[Step, ...]) -> None:
+    def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
         ground = self.scene.links[self.scene.ground]
         self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
@@ -711,10 +688,8 @@ class _Assembler:
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(index, step)
-            elif isinstance(step, DyadStep):
-                self.dyad(index, step)
-            elif isinstance(step, LeverStep):
-                self.lever(index, step)
+            elif isinstance(step, DyadStep | LeverStep):
+                self.group(index, step)
             elif isinstance(step, TwoPointStep):
                 self.know(
                     step.link,

@@ -23,7 +23,6 @@ driver where they are not at its rate alone (``assembly.rates_alone``).
 from __future__ import annotations
 
 import math
-import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -31,9 +30,8 @@ from typing import cast
 
 import numpy as np
 
-from solver.kinematics.rigid import Array, LinkMotion, PointMotion, repeat
+from solver.kinematics.rigid import Array, Column, LinkMotion, PointMotion, repeat, solve_2x2
 from solver.model.scene import LinkageScene
-from solver.position import dyads
 from solver.position.assembly import (
     DriverInput,
     Motion,
@@ -45,9 +43,8 @@ from solver.position.assembly import (
     screen,
     unit_rate,
 )
+from solver.position.groups import loci, rrr
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, Plan, Reach, TwoPointStep
-
-Column = Array | float
 
 
 @dataclass
@@ -282,18 +279,12 @@ class _Run:
         self.carry(step.carried, self.cols[step.pivot], given.theta, omega, alpha, step.driver)
 
     def dyad(self, step: _Dyad) -> bool:
-        """RRR (``dyads._circle_circle`` and ``dyads.point_motion``); False where the general
+        """RRR (``rrr.circle_circle`` and ``loci.point_motion``); False where the general
         assembler must run instead."""
         c1, c2 = self.cols[step.first.center], self.cols[step.second.center]
         r1, r2 = step.first.radius, step.second.radius
-        dx, dy = _sub(c2.x, c1.x), _sub(c2.y, c1.y)
-        d = np.sqrt(dx * dx + dy * dy)
-        safe_d = _positive(d)
-        ux, uy = dx / safe_d, dy / safe_d
-        if safe_d is not d:  # coincident centres somewhere
-            ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
-        a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
-        h2 = r1**2 - a**2
+        cut = rrr.chord(cast(Array, _sub(c2.x, c1.x)), cast(Array, _sub(c2.y, c1.y)), r1, r2)
+        d, ux, uy, a, h2 = cut.d, cut.ux, cut.uy, cut.a, cut.h2
         margin = np.minimum((r1 + r2) - d, d - abs(r1 - r2))
 
         def pieces() -> tuple[Array, Array]:
@@ -304,7 +295,7 @@ class _Run:
         def sensitivities(driver: int) -> list[Array]:
             """dm/dtheta of the pieces r1 + r2 - d and d - |r1 - r2|
             (``assembly._Assembler.sensitivities``): their rates -+ u.(v2 - v1)
-            (``dyads._circle_circle``) over the driver's rate where the velocities are its
+            (``rrr.circle_circle``) over the driver's rate where the velocities are its
             alone, else with the centres at its unit rate."""
             if self.alone:
                 v1, v2 = (c1.vx, c1.vy), (c2.vx, c2.vy)
@@ -318,7 +309,7 @@ class _Run:
 
         if not self.close(step, margin, pieces, sensitivities):
             return False
-        h = dyads._root(h2, r1**2)
+        h = loci.root(h2, r1**2)
         if step.sign < 0.0:
             h = -h
         point, p, v, acc = self.new_point()
@@ -342,7 +333,7 @@ class _Run:
         the same numbers: the pieces' dm/dtheta for a moving driver from ``sensitivities``)."""
         size = self.plan.size
         relative = margin / size
-        if relative.min() < -dyads.COINCIDENCE_TOLERANCE:
+        if relative.min() < -loci.COINCIDENCE_TOLERANCE:
             return False
         path = self.path
         if self.screening and path:
@@ -366,7 +357,7 @@ class _Run:
 
     def rates(self, X: _Point, c1: _Point, c2: _Point, v: Array, a: Array) -> None:
         """G v_X = b and G a_X = b' by Cramer's rule, G = [X - C1; X - C2], and the sine of the
-        angle between the rows, |det G| / (|g1| |g2|) (``dyads.point_motion``)."""
+        angle between the rows, |det G| / (|g1| |g2|) (``loci.point_motion``)."""
         g1x, g1y = _sub(X.x, c1.x), _sub(X.y, c1.y)
         g2x, g2y = _sub(X.x, c2.x), _sub(X.y, c2.y)
         det = g1x * g2y - g1y * g2x
@@ -377,18 +368,18 @@ class _Run:
             return
         if not np.all(det):
             det = np.where(det != 0.0, det, np.inf)
-        rhs1 = g1x * c1.vx + g1y * c1.vy
-        rhs2 = g2x * c2.vx + g2y * c2.vy
-        np.divide(rhs1 * g2y - rhs2 * g1y, det, out=v[:, 0])
-        np.divide(g1x * rhs2 - g2x * rhs1, det, out=v[:, 1])
+        rows = (g1x, g1y), (g2x, g2y)
+        rhs = (g1x * c1.vx + g1y * c1.vy, g2x * c2.vx + g2y * c2.vy)
+        solve_2x2(*rows, rhs, det, (v[:, 0], v[:, 1]))
         if self.computed < 2:
             return
         w1x, w1y = _sub(X.vx, c1.vx), _sub(X.vy, c1.vy)
         w2x, w2y = _sub(X.vx, c2.vx), _sub(X.vy, c2.vy)
-        rhs1 = (g1x * c1.ax + g1y * c1.ay) - (w1x * w1x + w1y * w1y)
-        rhs2 = (g2x * c2.ax + g2y * c2.ay) - (w2x * w2x + w2y * w2y)
-        np.divide(rhs1 * g2y - rhs2 * g1y, det, out=a[:, 0])
-        np.divide(g1x * rhs2 - g2x * rhs1, det, out=a[:, 1])
+        rhs = (
+            (g1x * c1.ax + g1y * c1.ay) - (w1x * w1x + w1y * w1y),
+            (g2x * c2.ax + g2y * c2.ay) - (w2x * w2x + w2y * w2y),
+        )
+        solve_2x2(*rows, rhs, det, (a[:, 0], a[:, 1]))
 
     def two_point(self, step: _TwoPoint) -> None:
         """theta = angle(PQ) - angle(P0Q0), omega = (r x v_rel) / |r|^2, alpha = (r x a_rel) /
@@ -455,14 +446,10 @@ def _compile(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
     return CompiledPlan(scene, tuple(steps))
 
 
-_COMPILED: dict[int, CompiledPlan | None] = {}  # by id of a live scene, as topology._PLANS
-
-
 def compiled_plan(scene: LinkageScene, plan: Plan) -> CompiledPlan | None:
     """The scene's plan in column form (None if it cannot be), compiled once per scene object
-    and forgotten with it."""
-    key = id(scene)
-    if key not in _COMPILED:
-        _COMPILED[key] = _compile(scene, plan)
-        weakref.finalize(scene, _COMPILED.pop, key, None)
-    return _COMPILED[key]
+    and kept on it (``LinkageScene.memo``)."""
+    memo = scene.memo
+    if "compiled_plan" not in memo:
+        memo["compiled_plan"] = _compile(scene, plan)
+    return cast(CompiledPlan | None, memo["compiled_plan"])

@@ -445,23 +445,16 @@ class ConstraintSystem:
         return out
 
 
-_SYSTEMS: dict[int, dict[tuple[tuple[str, ...], tuple[str, ...]], ConstraintSystem]] = {}
-# by id of a live scene, as topology._PLANS: a scene is immutable, so are its systems
-
-
 def constraint_system(
     scene: LinkageScene, unknown: Sequence[str], angles: Sequence[str] = ()
 ) -> ConstraintSystem:
-    """``ConstraintSystem(scene, unknown, angles=angles)`` built once per scene object and
-    forgotten with it (the pattern of ``topology.build_plan``): every sweep of one parsed scene,
+    """``ConstraintSystem(scene, unknown, angles=angles)`` built once per scene object and kept
+    on it (``LinkageScene.memo``, as ``topology.build_plan``): every sweep of one parsed scene,
     its branches and their poses share it (building the triad's two systems was an eighth of a
     360-sample sweep). Nothing changes a system once built (its ``cached_property`` values are
     functions of it alone), so every reuse gives the same results."""
-    key = id(scene)
-    systems = _SYSTEMS.get(key)
-    if systems is None:
-        systems = _SYSTEMS[key] = {}
-        weakref.finalize(scene, _SYSTEMS.pop, key, None)
+    systems: dict[tuple[tuple[str, ...], tuple[str, ...]], ConstraintSystem]
+    systems = scene.memo.setdefault("constraint_systems", {})
     which = (tuple(unknown), tuple(angles))
     system = systems.get(which)
     if system is None:

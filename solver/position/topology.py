@@ -10,15 +10,16 @@ its length margin is measured between, where drivers alone turn them (``Reach``)
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from itertools import combinations
+from typing import cast
 
 import numpy as np
 
 from solver.kinematics.rigid import PointMotion, cross, dot
 from solver.model.scene import Joint, LinkageScene
-from solver.position import dyads
+from solver.position import groups
+from solver.position.groups import loci
 
 
 @dataclass(frozen=True)
@@ -66,6 +67,12 @@ class DyadStep:
     sign: float
     reach: tuple[Reach, ...] | None = None
 
+    @property
+    def kind(self) -> str:
+        """Its Assur group (``solver.position.groups``): RRR on two circles, RRP on a circle and
+        a slot, PRP on two slots."""
+        return ("PRP", "RRP", "RRR")[sum(isinstance(spec, CircleSpec) for spec in self.loci)]
+
 
 @dataclass(frozen=True)
 class TwoPointStep:
@@ -98,6 +105,11 @@ class LeverStep:
     direction0: tuple[float, float]
     reach: tuple[Reach, ...] | None = None
 
+    @property
+    def kind(self) -> str:
+        """Its Assur group (``solver.position.groups``): RPR, the slotted lever."""
+        return "RPR"
+
 
 @dataclass(frozen=True)
 class NewtonStep:
@@ -106,32 +118,32 @@ class NewtonStep:
     links: tuple[str, ...]
 
 
-Step = DriverStep | DyadStep | TwoPointStep | GuidedStep | LeverStep | NewtonStep
+PlanStep = DriverStep | DyadStep | TwoPointStep | GuidedStep | LeverStep | NewtonStep
 
 
 @dataclass(frozen=True)
 class Plan:
     """The solving order of a linkage."""
 
-    steps: tuple[Step, ...]
+    steps: tuple[PlanStep, ...]
 
     @property
     def closed_form(self) -> bool:
         return not any(isinstance(step, NewtonStep) for step in self.steps)
 
 
-def _locus(spec: LocusSpec, scene: LinkageScene) -> dyads.Locus:
+def _locus(spec: LocusSpec, scene: LinkageScene) -> loci.Locus:
     """The locus at the drawn pose (one sample), to read the drawn branch."""
     if isinstance(spec, CircleSpec):
         center = PointMotion(scene.drawn(spec.center)[None])
-        return dyads.Circle(center, spec.radius, spec.center, spec.link)
+        return loci.Circle(center, spec.radius, spec.center, spec.link)
     through = PointMotion(np.array(spec.through0)[None])
-    return dyads.Line(through, np.array(spec.direction0)[None], None, None, spec.guide)
+    return loci.Line(through, np.array(spec.direction0)[None], None, None, spec.guide)
 
 
 def drawn_branch(scene: LinkageScene, point: str, loci: tuple[LocusSpec, LocusSpec]) -> float:
     """+1 or -1: the side of the intersection's base on which the drawn point lies."""
-    cut = dyads.intersect(_locus(loci[0], scene), _locus(loci[1], scene), point)
+    cut = groups.intersect(_locus(loci[0], scene), _locus(loci[1], scene), point)
     side = float(dot(scene.drawn(point) - cut.base[0], cut.offset[0]))
     return 1.0 if side >= 0.0 else -1.0
 
@@ -143,10 +155,10 @@ class _Decomposition:
         self.scene = scene
         self.known_links: set[str] = set()
         self.known_points: set[str] = set()
-        self.steps: list[Step] = []
+        self.steps: list[PlanStep] = []
         self.reach: dict[str, Reach] = {}  # the points fixed or turned by a driver alone
 
-    def know_link(self, link: str, step: Step) -> None:
+    def know_link(self, link: str, step: PlanStep) -> None:
         self.steps.append(step)
         self.known_links.add(link)
         self.known_points.update(self.scene.links[link].points)
@@ -258,16 +270,11 @@ class _Decomposition:
         return Plan(tuple(self.steps))
 
 
-_PLANS: dict[int, Plan] = {}  # by id of a live scene: a scene is immutable, so is its plan
-
-
 def build_plan(scene: LinkageScene) -> Plan:
     """The solving order: drivers, closed-form groups, then a Newton group if needed. Built once
-    per scene object and forgotten with it (a sweep, its probe and /analyze of one parsed scene
-    share it: a fifth of a 360-sample sweep's time went into building it again)."""
-    key = id(scene)
-    plan = _PLANS.get(key)
+    per scene object and kept on it (``LinkageScene.memo``: a sweep, its probe and /analyze of
+    one parsed scene share it; a fifth of a 360-sample sweep's time went into building it again)."""
+    plan = scene.memo.get("plan")
     if plan is None:
-        plan = _PLANS[key] = _Decomposition(scene).run()
-        weakref.finalize(scene, _PLANS.pop, key, None)
-    return plan
+        plan = scene.memo["plan"] = _Decomposition(scene).run()
+    return cast(Plan, plan)

@@ -18,7 +18,7 @@ from itertools import pairwise
 import numpy as np
 
 from solver.kinematics.relative_motion import MovingPointMotion
-from solver.kinematics.rigid import perp
+from solver.kinematics.rigid import perp, solve_2x2
 from solver.kinematics.spatial import SpatialAnalysis, SpatialChain
 from solver.model.scene import MovingPoint
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
@@ -82,8 +82,10 @@ def _round2(x: float) -> float:
 
 
 def _solve2(columns: tuple[np.ndarray, np.ndarray], rhs: np.ndarray) -> np.ndarray:
-    matrix = np.column_stack(columns)
-    return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
+    """x with x0 columns[0] + x1 columns[1] = rhs (``rigid.solve_2x2``)."""
+    first, second = columns
+    solved = solve_2x2((first[0], second[0]), (first[1], second[1]), (rhs[0], rhs[1]))
+    return np.array(solved, dtype=float)
 
 
 def _lever_anchors(step: LeverStep) -> tuple[tuple[str, str], ...]:

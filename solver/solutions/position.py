@@ -28,8 +28,8 @@ from solver.position.topology import (
     LeverStep,
     LineSpec,
     NewtonStep,
+    PlanStep,
 )
-from solver.position.topology import Step as PlanStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.format import latex_unit

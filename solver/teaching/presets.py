@@ -5,7 +5,7 @@ drawn at the given crank angle: the four-bar, the slider-crank, the inverted sli
 crank-and-slotted-lever quick-return and the slider with a coupler extension. The pose is found in
 closed form: every point is the crank pin, the intersection of two circles or of a circle with a
 line, a point fixed in a link's frame, and a slotted lever's direction is that of its slot through
-the pin (the solver's own dyads: ``dyads.intersect``, ``dyads.slotted_lever``); ``assembly``
+the pin (the solver's own dyads: ``groups.intersect``, ``rpr.slotted_lever``); ``assembly``
 picks one of two mirror branches. Planar vectors are complex numbers here (x + iy),
 so a turn by 90 degrees is a product with ``1j``.
 """
@@ -24,7 +24,9 @@ import numpy as np
 
 from solver.errors import InvalidScene, NotAssemblable
 from solver.kinematics.rigid import PointMotion
-from solver.position.dyads import Circle, Line, Locus, intersect, slotted_lever
+from solver.position.groups import intersect
+from solver.position.groups.loci import Circle, Line, Locus
+from solver.position.groups.rpr import slotted_lever
 
 MIN_LENGTH = 1e-4  # m
 MAX_LENGTH = 1e4  # m
@@ -123,7 +125,7 @@ def _circle_circle(
     where: str,
 ) -> complex:
     """The point X with |X - p| = r_p and |X - q| = r_q, to the left of p -> q if ``left``
-    (the solver's RRR dyad, ``dyads.intersect``).
+    (the solver's RRR dyad, ``groups.intersect``).
 
     With d = |q - p| the circles meet where |r_p - r_q| <= d <= r_p + r_q (within
     ``CLOSURE_TOLERANCE``). ``names`` = (PQ, r_p, r_q) name the distance and the two radii in the
@@ -149,7 +151,7 @@ def _circle_line(
     where: str,
 ) -> complex:
     """The point X on the line q + s u (|u| = 1) with |X - c| = r, further along u if ``forward``
-    (the solver's RRP dyad, ``dyads.intersect``).
+    (the solver's RRP dyad, ``groups.intersect``).
 
     They meet where the distance Im((c - q) conj(u)) from the line to c is at most r (within
     ``CLOSURE_TOLERANCE``). ``names`` = (C, line, r) name the centre, the line and the radius in
@@ -197,7 +199,7 @@ def _slot_direction(
     pivot: complex, pin: complex, offset: float, *, names: str, where: str
 ) -> complex:
     """Unit direction u of a lever pivoted at ``pivot`` whose slot passes through ``pin`` (the
-    solver's slotted lever, ``dyads.slotted_lever``).
+    solver's slotted lever, ``rpr.slotted_lever``).
 
     The slot is the line pivot + offset iu + s u (offset to the left of u), so with d = pin - pivot,
     u = exp(i beta), beta = arg d - atan2(offset, s), and the pin sits at s = sqrt(|d|^2 -

@@ -11,6 +11,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+from solver.position import groups
+from solver.position.groups import loci, rpr
+
 
 def _moving(point: np.ndarray, t: np.ndarray, spin: float) -> Any:
     """A point turning about the origin at ``spin`` rad per unit t, from ``point`` at t = 0."""
@@ -27,25 +30,24 @@ def test_margin_pieces_rates_are_their_derivatives(kind: str) -> None:
     |AP| - |e|), its rate dm/du against central differences (step 1e-6, to 1e-8), with every
     locus moving: centres on circles, the slot turning with its guide; the margin is the
     smallest piece."""
-    from solver.position import dyads
 
     t0 = np.linspace(0.1, 6.0, 7)
     step = 1e-6
 
-    def margin_and_pieces(t: np.ndarray) -> tuple[np.ndarray, tuple[dyads.Piece, ...]]:
+    def margin_and_pieces(t: np.ndarray) -> tuple[np.ndarray, tuple[loci.Piece, ...]]:
         first = _moving(np.array([0.4, 0.1]), t, 1.0)
         second = _moving(np.array([1.0, -0.2]), t, -0.7)
         if kind == "lever":
-            piece = dyads.lever_margin(first, second, 0.3)
+            piece = rpr.lever_margin(first, second, 0.3)
             return piece[0], (piece,)
-        circle = dyads.Circle(first, 0.9, "B", "coupler")
+        circle = loci.Circle(first, 0.9, "B", "coupler")
         if kind == "circle-circle":
-            other: dyads.Locus = dyads.Circle(second, 0.5, "D", "rocker")
+            other: loci.Locus = loci.Circle(second, 0.5, "D", "rocker")
         else:
             direction = np.stack((np.cos(-0.7 * t), np.sin(-0.7 * t)), axis=-1)
             omega = np.full(t.size, -0.7)
-            other = dyads.Line(second, direction, omega, np.zeros(t.size), "guide")
-        cut = dyads.intersect(circle, other, "C")
+            other = loci.Line(second, direction, omega, np.zeros(t.size), "guide")
+        cut = groups.intersect(circle, other, "C")
         return cut.margin, cut.pieces
 
     margin, pieces = margin_and_pieces(t0)
@@ -61,16 +63,15 @@ def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
     """Two slots 1e-6 rad apart meet, far away: slot 1 the x axis, slot 2 through (0, 1) at
     angle 1e-6, so X = (-1 / tan(1e-6), 0) (one solution: margin +inf); parallel slots do not."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
-    def slot(through: list[float], angle: float) -> dyads.Line:
+    def slot(through: list[float], angle: float) -> loci.Line:
         direction = np.array([[math.cos(angle), math.sin(angle)]])
-        return dyads.Line(PointMotion(np.array([through])), direction, None, None, "guide")
+        return loci.Line(PointMotion(np.array([through])), direction, None, None, "guide")
 
-    cut = dyads.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 1e-6), "X")
+    cut = groups.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 1e-6), "X")
     assert cut.margin[0] == math.inf
     np.testing.assert_allclose(cut.point(np.ones(1))[0], [-1.0 / math.tan(1e-6), 0.0], rtol=1e-9)
-    parallel = dyads.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 0.0), "X")
+    parallel = groups.intersect(slot([0.0, 0.0], 0.0), slot([0.0, 1.0], 0.0), "X")
     assert parallel.margin[0] == -math.inf and "parallel" in parallel.message
 
 
@@ -91,21 +92,19 @@ def _trajectory(p0: list[float], amp: list[float], w: float, phase: float, t: np
 
 def _slot(t: np.ndarray, through: Any, phi0: float, omega0: float, alpha: float) -> Any:
     """A slot through a moving point, turning by phi = phi0 + omega0 t + alpha t^2 / 2."""
-    from solver.position import dyads
 
     phi = phi0 + omega0 * t + 0.5 * alpha * t * t
     direction = np.stack((np.cos(phi), np.sin(phi)), axis=-1)
-    return dyads.Line(through, direction, omega0 + alpha * t, np.full(t.size, alpha), "guide")
+    return loci.Line(through, direction, omega0 + alpha * t, np.full(t.size, alpha), "guide")
 
 
 def _loci(kind: str, t: np.ndarray) -> tuple[Any, Any]:
-    from solver.position import dyads
 
     B = _trajectory([0.3, 0.2], [0.25, 0.15], 1.3, 0.4, t)
     D = _trajectory([1.1, -0.1], [0.1, 0.2], -0.9, 1.0, t)
-    circle = dyads.Circle(B, 0.8, "B", "coupler")
+    circle = loci.Circle(B, 0.8, "B", "coupler")
     if kind == "circle-circle":
-        return circle, dyads.Circle(D, 0.6, "D", "rocker")
+        return circle, loci.Circle(D, 0.6, "D", "rocker")
     if kind == "circle-line":
         return circle, _slot(t, D, 1.9, 0.7, -0.4)
     return _slot(t, B, 0.3, -0.5, 0.6), _slot(t, D, 1.9, 0.7, -0.4)  # a pin in two slots
@@ -114,9 +113,8 @@ def _loci(kind: str, t: np.ndarray) -> tuple[Any, Any]:
 def _on_locus(locus: Any, X: np.ndarray) -> np.ndarray:
     """The constraint's residual: |X - C| - r on a circle, n.(X - Q) on a slot (n = k x w)."""
     from solver.kinematics.rigid import cross, dot
-    from solver.position import dyads
 
-    if isinstance(locus, dyads.Circle):
+    if isinstance(locus, loci.Circle):
         d = X - locus.center.p
         return np.sqrt(dot(d, d)) - locus.radius
     return cross(locus.direction, X - locus.through.p)
@@ -131,16 +129,15 @@ def test_group_point_lies_on_both_loci_and_its_rates_are_derivatives(
     turning with angular acceleration): X lies on both loci (to 1e-12 m), and the velocity and
     acceleration of ``point_motion`` are the central differences (step 1e-5) of X and of that
     velocity, to 1e-7 (the truncation error is ~1e-10 times the third derivative)."""
-    from solver.position import dyads
 
     t0, step = np.linspace(0.2, 5.8, 9), 1e-5
 
     def solve(t: np.ndarray) -> Any:
         first, second = _loci(kind, t)
-        cut = dyads.intersect(first, second, "C")
+        cut = groups.intersect(first, second, "C")
         assert np.all(cut.margin > 0.0)
         X = cut.point(np.full(t.size, sign))
-        return first, second, dyads.point_motion(first, second, X, 2)[0]
+        return first, second, loci.point_motion(first, second, X, 2)[0]
 
     first, second, motion = solve(t0)
     for locus in (first, second):
@@ -154,10 +151,9 @@ def test_coincident_centres_with_equal_radii_give_a_point_of_both_circles() -> N
     """B = D and |BC| = |DC| (a kite at the pose where B falls on D): every point of the circle
     fits; the one given must lie on it (|X - B| = r) for both branches, and the margin is 0."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     B = PointMotion(np.array([[0.7, -0.3]]))
-    cut = dyads.intersect(dyads.Circle(B, 0.5, "B", "c"), dyads.Circle(B, 0.5, "D", "r"), "C")
+    cut = groups.intersect(loci.Circle(B, 0.5, "B", "c"), loci.Circle(B, 0.5, "D", "r"), "C")
     assert cut.margin[0] == 0.0
     for sign in (1.0, -1.0):
         X = cut.point(np.array([sign]))[0]
@@ -187,12 +183,11 @@ def test_message_shows_the_worst_sample_with_enough_digits(
     sample (least margin), with 6 significant digits or as many as show it different from the
     bound, and the numbers it prints satisfy the inequality it states."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     d = np.array(distances)
     C1 = PointMotion(np.zeros((d.size, 2)))
     C2 = PointMotion(np.stack((d, np.zeros(d.size)), axis=-1))
-    cut = dyads.intersect(dyads.Circle(C1, 0.5, "B", "c"), dyads.Circle(C2, 0.3, "D", "r"), "C")
+    cut = groups.intersect(loci.Circle(C1, 0.5, "B", "c"), loci.Circle(C2, 0.3, "D", "r"), "C")
     message = cut.message
     assert message.startswith(f"|BD| = {worst} m")
     numbers = _numbers(message)
@@ -211,7 +206,6 @@ def test_slotted_lever_rates_are_derivatives_of_its_angle(pivot_moves: bool) -> 
     of beta and omega to 1e-7, and the sine between slot and r = P - A is the closed form
     sqrt(|r|^2 - e^2) / |r| (|r| from 0.45 to 1.4, on both sides of 1)."""
     from solver.kinematics.rigid import PointMotion, cross
-    from solver.position import dyads
 
     t0, step, e = np.linspace(0.2, 5.8, 9), 1e-5, 0.15
 
@@ -221,7 +215,7 @@ def test_slotted_lever_rates_are_derivatives_of_its_angle(pivot_moves: bool) -> 
         if not pivot_moves:
             zero = np.zeros((t.size, 2))
             pivot = PointMotion(zero.copy(), zero, zero)
-        return pin, pivot, dyads.slotted_lever(pivot, pin, e, np.ones(t.size), 2)
+        return pin, pivot, rpr.slotted_lever(pivot, pin, e, np.ones(t.size), 2)
 
     pin, pivot, lever = solve(t0)
     u = np.stack((np.cos(lever.beta), np.sin(lever.beta)), axis=-1)
@@ -241,16 +235,15 @@ def test_slotted_lever_at_unit_distance_and_on_its_pivot() -> None:
     across it at 2 m/s, omega = v / |r| = 2 rad/s; with the pin on the pivot the slot's angle is
     undetermined, a dead centre: gradient sine 0 and a finite margin rate, never NaN."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     zero = np.zeros((1, 2))
     pivot = PointMotion(zero, zero, zero)
     pin = PointMotion(np.array([[1.0, 0.0]]), np.array([[0.0, 2.0]]), zero)
-    assert dyads.slotted_lever(pivot, pin, 0.0, np.ones(1), 1).omega == pytest.approx([2.0])
+    assert rpr.slotted_lever(pivot, pin, 0.0, np.ones(1), 1).omega == pytest.approx([2.0])
     on_pivot = PointMotion(zero, np.array([[0.3, -0.4]]), zero)
-    lever = dyads.slotted_lever(pivot, on_pivot, 0.0, np.ones(1), 0)
+    lever = rpr.slotted_lever(pivot, on_pivot, 0.0, np.ones(1), 0)
     assert lever.gradient_sine[0] == 0.0
-    margin, rate = dyads.lever_margin(pivot, on_pivot, 0.0)
+    margin, rate = rpr.lever_margin(pivot, on_pivot, 0.0)
     assert margin[0] == 0.0 and rate is not None and np.isfinite(rate[0])
 
 
@@ -258,13 +251,12 @@ def _circle_and_line_at(distance: float, angle: float) -> tuple[Any, Any, np.nda
     """A circle of radius 1000 m about C and a slot at ``distance`` from C with direction angle
     ``angle``: the loci, the foot F of the perpendicular from C, and the slot's direction w."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     w = np.array([math.cos(angle), math.sin(angle)])
     C = np.array([0.3, -0.7])
     F = C + distance * np.array([-w[1], w[0]])
-    circle = dyads.Circle(PointMotion(C[None, :]), 1000.0, "C", "c")
-    line = dyads.Line(PointMotion((F + 2.7 * w)[None, :]), w[None, :], None, None, "guide")
+    circle = loci.Circle(PointMotion(C[None, :]), 1000.0, "C", "c")
+    line = loci.Line(PointMotion((F + 2.7 * w)[None, :]), w[None, :], None, None, "guide")
     return circle, line, F, w
 
 
@@ -273,14 +265,14 @@ def _two_circles_at(distance: float, angle: float) -> tuple[Any, Any, np.ndarray
     ``angle``: the loci, the foot F on the line of centres (a = (r1^2 - r2^2 + d^2) / 2d from
     C1) and the unit normal to it (the common chord's direction)."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     u = np.array([math.cos(angle), math.sin(angle)])
     C1 = np.array([0.3, -0.7])
     C2 = C1 + distance * u
     a = (1000.0**2 - 600.0**2 + distance**2) / (2.0 * distance)
-    loci = (dyads.Circle(PointMotion(C[None, :]), r, "C", "c") for C, r in ((C1, 1e3), (C2, 600.0)))
-    return *loci, C1 + a * u, np.array([-u[1], u[0]])
+    ends = ((C1, 1e3), (C2, 600.0))
+    circles = (loci.Circle(PointMotion(C[None, :]), r, "C", "c") for C, r in ends)
+    return *circles, C1 + a * u, np.array([-u[1], u[0]])
 
 
 @pytest.mark.parametrize("kind", ["circle-line", "circle-circle"])
@@ -290,7 +282,6 @@ def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> Non
     not sqrt(noise) ~ 1e-5 m off. A half-chord of about 1e-3 m (h^2 ~ 1e-6 m^2, 1e-12 r^2:
     far above the noise) is kept: X = F +- h n, h from the closed form (Pythagoras, or Heron's
     area for two circles), to 1e-6 m. Twenty directions each."""
-    from solver.position import dyads
 
     for k in range(1, 21):
         angle = 0.3 * k
@@ -298,7 +289,7 @@ def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> Non
             first, second, F, w = _circle_and_line_at(1000.0, angle)
         else:
             first, second, F, w = _two_circles_at(1600.0, angle)
-        cut = dyads.intersect(first, second, "X")
+        cut = groups.intersect(first, second, "X")
         for sign in (1.0, -1.0):
             assert math.hypot(*(cut.point(np.array([sign]))[0] - F)) <= 1e-8, (k, sign)
         h = 1e-3
@@ -309,7 +300,7 @@ def test_tangency_is_snapped_only_within_rounding_at_any_scale(kind: str) -> Non
             s = 0.5 * (1e3 + 600.0 + d)
             h = 2.0 * math.sqrt(s * (s - 1e3) * (s - 600.0) * 0.5 * (1600.0 - d)) / d
             first, second, F, w = _two_circles_at(d, angle)
-        cut = dyads.intersect(first, second, "X")
+        cut = groups.intersect(first, second, "X")
         X = cut.point(np.ones(1))[0]
         assert min(math.hypot(*(X - F - h * w)), math.hypot(*(X - F + h * w))) <= 1e-6, k
 
@@ -319,14 +310,13 @@ def test_slot_message_shows_the_worst_sample() -> None:
     loci fail to meet at every sample, worst (least margin 0.3 - |s|) at s = 0.5; the message
     gives that distance."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     s = np.array([0.35, 0.5, 0.4])
     centre = PointMotion(np.zeros((3, 2)))
     through = PointMotion(np.stack((np.full(3, 0.2), s), axis=-1))
     direction = np.tile([1.0, 0.0], (3, 1))
-    slot = dyads.Line(through, direction, None, None, "guide")
-    cut = dyads.intersect(dyads.Circle(centre, 0.3, "A", "crank"), slot, "B")
+    slot = loci.Line(through, direction, None, None, "guide")
+    cut = groups.intersect(loci.Circle(centre, 0.3, "A", "crank"), slot, "B")
     assert cut.message == (
         "the distance from A to the slot of B in 'guide' is 0.5 m > |AB| = 0.3 m"
     )
@@ -339,12 +329,11 @@ def test_a_line_and_a_circle_meet_in_either_order() -> None:
     """intersect(line, circle) = intersect(circle, line): the x axis and the unit circle about
     (0.5, 0.6) meet at x = 0.5 -+ 0.8 (Pythagoras: 0.6^2 + 0.8^2 = 1)."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
-    line = dyads.Line(PointMotion(np.array([[0.0, 0.0]])), np.array([[1.0, 0.0]]), None, None, "g")
-    circle = dyads.Circle(PointMotion(np.array([[0.5, 0.6]])), 1.0, "A", "crank")
+    line = loci.Line(PointMotion(np.array([[0.0, 0.0]])), np.array([[1.0, 0.0]]), None, None, "g")
+    circle = loci.Circle(PointMotion(np.array([[0.5, 0.6]])), 1.0, "A", "crank")
     for first, second in ((line, circle), (circle, line)):
-        cut = dyads.intersect(first, second, "B")
+        cut = groups.intersect(first, second, "B")
         ends = sorted(cut.point(np.array([s]))[0][0] for s in (1.0, -1.0))
         np.testing.assert_allclose(ends, [0.5 - 0.8, 0.5 + 0.8], rtol=0, atol=1e-15)
 
@@ -352,13 +341,12 @@ def test_a_line_and_a_circle_meet_in_either_order() -> None:
 def test_parallel_slots_are_named_in_the_message() -> None:
     """Two parallel slots: the message names the pin and both guides."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
-    def slot(y: float, guide: str) -> dyads.Line:
+    def slot(y: float, guide: str) -> loci.Line:
         p = PointMotion(np.array([[0.0, y]]))
-        return dyads.Line(p, np.array([[1.0, 0.0]]), None, None, guide)
+        return loci.Line(p, np.array([[1.0, 0.0]]), None, None, guide)
 
-    cut = dyads.intersect(slot(0.0, "frame"), slot(1.0, "slider"), "P")
+    cut = groups.intersect(slot(0.0, "frame"), slot(1.0, "slider"), "P")
     assert cut.message == "the two slots that carry P (in 'frame' and 'slider') are parallel"
 
 
@@ -368,14 +356,13 @@ def test_rates_where_the_determinant_is_exactly_one() -> None:
     (X - C_i).(v_X - v_i) = 0 with v1 = (0.3, 0.7), v2 = (0.4, 0.1): v_y = 0.7 and
     -v_x + v_y = -0.4 + 0.1, so v_X = (1.0, 0.7)."""
     from solver.kinematics.rigid import PointMotion
-    from solver.position import dyads
 
     def centre(p: list[float], v: list[float]) -> PointMotion:
         return PointMotion(np.array([p]), np.array([v]))
 
-    first = dyads.Circle(centre([0.0, 0.0], [0.3, 0.7]), 1.0, "C1", "a")
-    second = dyads.Circle(centre([1.0, 0.0], [0.4, 0.1]), math.sqrt(2.0), "C2", "b")
-    motion, sine = dyads.point_motion(first, second, np.array([[0.0, 1.0]]), 1)
+    first = loci.Circle(centre([0.0, 0.0], [0.3, 0.7]), 1.0, "C1", "a")
+    second = loci.Circle(centre([1.0, 0.0], [0.4, 0.1]), math.sqrt(2.0), "C2", "b")
+    motion, sine = loci.point_motion(first, second, np.array([[0.0, 1.0]]), 1)
     assert motion.v is not None
     np.testing.assert_allclose(motion.v[0], [1.0, 0.7], rtol=0, atol=1e-15)
     assert sine[0] == pytest.approx(1.0 / math.sqrt(2.0), rel=1e-15)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import gc
+import weakref
 
 from solver.model.scene import parse_linkage
 from solver.position import topology
@@ -16,7 +17,7 @@ def test_one_plan_per_scene_object_forgotten_with_it() -> None:
     assert topology.build_plan(four_bar) is plan
     assert topology.build_plan(slider) is not plan
     assert topology.build_plan(slider) == topology._Decomposition(slider).run()
-    key = id(four_bar)
-    del four_bar
+    kept = weakref.ref(plan)
+    del four_bar, plan
     gc.collect()
-    assert key not in topology._PLANS
+    assert kept() is None

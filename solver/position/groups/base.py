@@ -1,0 +1,101 @@
+"""The protocol of a closed-form group, and the shared form of the groups that locate one point.
+
+A closed-form group (an Assur group of the plan: ``topology.DyadStep``, ``topology.LeverStep``)
+is asked two things by the assembler, in this order: ``close`` gives its length margin m over
+the samples (the smallest of its smooth pieces, with their rates: the branch search screens
+them) and why it fails to close where m < 0; the ``Closure``'s ``place`` then solves it on a
+branch sign per sample, with velocities and accelerations up to ``order``, and gives what it
+made known (points or links) and the sine between its constraint gradients (0 at a dead centre).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol
+
+from solver.kinematics.rigid import Array, LinkMotion, PointMotion
+from solver.position.groups.loci import Circle, Intersection, Locus, Piece, point_motion
+
+if TYPE_CHECKING:
+    from solver.position.topology import DyadStep, LocusSpec
+
+
+@dataclass(frozen=True)
+class Placed:
+    """A group solved on its branches: the sine between its constraint gradients per sample,
+    and the points and links it made known."""
+
+    gradient_sine: Array
+    points: Mapping[str, PointMotion] = field(default_factory=dict)
+    links: Mapping[str, LinkMotion] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Closure:
+    """A group at the samples before its branch is chosen: its margin m (metres) and smooth
+    ``pieces``, named by ``label`` (the point, or the slot, it locates); ``two_branch`` false
+    where it has one solution; ``place(sign, order)`` solves it on the branch ``sign``."""
+
+    label: str
+    margin: Array
+    pieces: tuple[Piece, ...]
+    describe: Callable[[], str]
+    two_branch: bool
+    place: Callable[[Array, int], Placed]
+
+
+class Known(Protocol):
+    """What the assembler knows when it reaches a group: the motions solved so far."""
+
+    @property
+    def points(self) -> Mapping[str, PointMotion]: ...
+
+    @property
+    def at_drawn(self) -> Array:
+        """The samples at the drawn pose (every driver unturned)."""
+        ...
+
+    def locus(self, spec: LocusSpec) -> Locus: ...
+
+    def drawn(self, point: str) -> Array: ...
+
+
+class Group(Protocol):
+    """A closed-form group type: one module of ``solver.position.groups`` each."""
+
+    @property
+    def kind(self) -> str:
+        """Its name as an Assur group: RRR, RRP, PRP, RPR."""
+        ...
+
+    def close(self, step: Any, known: Known) -> Closure: ...
+
+
+# The intersection of a group's two loci (its circles first), as its module types them.
+Intersect = Callable[[Any, Any, str], Intersection]
+
+
+@dataclass(frozen=True)
+class DyadGroup:
+    """A group that locates one joint point on two loci (``topology.DyadStep``) by its
+    ``intersect`` (circles first), its rates from the differentiated constraints
+    (``loci.point_motion``)."""
+
+    kind: str
+    intersect: Intersect
+
+    def close(self, step: DyadStep, known: Known) -> Closure:
+        first, second = (known.locus(spec) for spec in step.loci)
+        circle_first = isinstance(first, Circle) or not isinstance(second, Circle)
+        cut = self.intersect(*((first, second) if circle_first else (second, first)), step.point)
+
+        def place(sign: Array, order: int) -> Placed:
+            X = cut.point(sign)
+            X[known.at_drawn] = known.drawn(step.point)
+            motion, sine = point_motion(first, second, X, order)
+            return Placed(sine, points={step.point: motion})
+
+        # Two branches wherever a circle is involved (a pin in two slots has one).
+        two = isinstance(first, Circle) or isinstance(second, Circle)
+        return Closure(step.point, cut.margin, cut.pieces, cut.describe, two, place)

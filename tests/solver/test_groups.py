@@ -1,0 +1,74 @@
+"""The closed-form groups are plug-ins: every group step of a plan is answered by the module of
+its Assur group (solver.position.groups), and the RRR formula lives once (``rrr.chord``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from solver.kinematics.rigid import PointMotion, solve_2x2
+from solver.model.scene import parse_linkage
+from solver.position import groups
+from solver.position.groups import loci, prp, rpr, rrp, rrr
+from solver.position.topology import DyadStep, LeverStep, build_plan
+from solver.teaching.presets import PRESETS, build_preset
+
+
+def test_registry_holds_one_group_per_assur_kind() -> None:
+    assert set(groups.GROUPS) == {"RRR", "RRP", "PRP", "RPR"}
+    modules = {"RRR": rrr, "RRP": rrp, "PRP": prp, "RPR": rpr}
+    for kind, group in groups.GROUPS.items():
+        assert group.kind == kind
+        assert group is modules[kind].GROUP
+
+
+@pytest.mark.parametrize("preset", sorted(PRESETS))
+def test_every_group_step_of_a_preset_has_its_group(preset: str) -> None:
+    scene = parse_linkage(build_preset(preset, {}))
+    for step in build_plan(scene).steps:
+        if isinstance(step, DyadStep | LeverStep):
+            assert groups.group_of(step).kind == step.kind
+
+
+def test_step_kind_follows_its_loci() -> None:
+    """The four-bar's dyad is on two circles (RRR); the slider-crank's on a circle and a slot
+    (RRP); the quick-return's lever is RPR."""
+    kinds = {}
+    for preset in ("four_bar", "slider_crank", "quick_return"):
+        if preset not in PRESETS:
+            continue
+        scene = parse_linkage(build_preset(preset, {}))
+        kinds[preset] = {
+            s.kind for s in build_plan(scene).steps if isinstance(s, DyadStep | LeverStep)
+        }
+    assert kinds["four_bar"] == {"RRR"}
+    assert kinds["slider_crank"] == {"RRP"}
+    if "quick_return" in kinds:
+        assert "RPR" in kinds["quick_return"]
+
+
+def test_rrr_chord_is_the_intersection_of_the_circles() -> None:
+    """A 3-4-5 triangle: centres 5 apart, radii 4 and 3: a = 3.2, h = 2.4 (|C1X| = 4)."""
+    cut = rrr.chord(np.array([5.0]), np.array([0.0]), 4.0, 3.0)
+    assert cut.d[0] == 5.0 and cut.a[0] == pytest.approx(3.2) and cut.h2[0] == pytest.approx(5.76)
+    circles = [
+        loci.Circle(PointMotion(np.array([c])), r, n, "link")
+        for c, r, n in (([0.0, 0.0], 4.0, "A"), ([5.0, 0.0], 3.0, "B"))
+    ]
+    X = groups.intersect(circles[0], circles[1], "X").point(np.array([1.0]))
+    assert X[0] == pytest.approx([3.2, 2.4])
+
+
+def test_coincident_centres_take_any_direction() -> None:
+    cut = rrr.chord(np.array([0.0, 1.0]), np.array([0.0, 0.0]), 1.0, 1.0)
+    assert (cut.ux[0], cut.uy[0]) == (1.0, 0.0) and cut.ux[1] == 1.0
+
+
+def test_one_2x2_solve_by_cramers_rule() -> None:
+    """[2 1; 1 3] x = [3; 5]: x = (4/5, 7/5), column by column and into given arrays."""
+    x, y = solve_2x2((2.0, 1.0), (1.0, 3.0), (3.0, 5.0))
+    assert (x, y) == pytest.approx((0.8, 1.4))
+    out = (np.empty(2), np.empty(2))
+    ones = np.ones(2)
+    solve_2x2((2.0 * ones, ones), (ones, 3.0 * ones), (3.0 * ones, 5.0 * ones), out=out)
+    assert out[0] == pytest.approx([0.8, 0.8]) and out[1] == pytest.approx([1.4, 1.4])
