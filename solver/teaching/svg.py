@@ -16,7 +16,10 @@ import html
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 Point = tuple[float, float]
+Coordinates = Sequence[float] | np.ndarray  # a model point: (x, y), a (2,) array
 Attribute = tuple[str, str | float]
 
 
@@ -35,7 +38,7 @@ class View:
     dy: float = 0.0
     per: float = 1.0
 
-    def px(self, p: Sequence[float]) -> Point:
+    def px(self, p: Coordinates) -> Point:
         """The drawing's coordinates of the model point ``p``."""
         x = self.dx + (float(p[0]) - self.x0) * self.scale / self.per
         y = self.dy - (float(p[1]) - self.y1) * self.scale / self.per
@@ -87,6 +90,11 @@ def element(tag: str, pairs: Iterable[Attribute], text: str | None = None) -> st
     return f"<{tag}{attributes(pairs)}>{escape_text(text)}</{tag}>"
 
 
+def marker(pairs: Iterable[Attribute], path: Iterable[Attribute]) -> str:
+    """<marker ...> holding one <path>: an arrowhead for ``marker-end``."""
+    return f"<marker{attributes(pairs)}>{element('path', path)}</marker>"
+
+
 def number(x: float, digits: int) -> str:
     """x with ``digits`` decimals, as every coordinate of a drawing is written."""
     return f"{x:.{digits}f}"
@@ -103,7 +111,7 @@ class Canvas:
         self.digits = digits
         self.parts: list[str] = []
 
-    def px(self, p: Sequence[float]) -> Point:
+    def px(self, p: Coordinates) -> Point:
         return self.view.px(p)
 
     def add(self, *elements: str) -> None:
