@@ -1,4 +1,5 @@
-"""The exercise types: one textbook family each, drawn with nice rounded inputs.
+"""The kinematic exercise families, one textbook mechanism each, drawn with nice rounded inputs
+(the types that use them are registered in ``solver.exercises.registry``).
 
 A family draws a candidate (``Draft``) from a seeded ``random.Random``: the scene (a preset's,
 or built as a preset would build it), what it asks, the statement, and the scales an answer is

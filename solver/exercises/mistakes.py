@@ -6,7 +6,8 @@ answer given in degrees instead of radians is the solver's answer converted. A m
 the acceleration equations (the Coriolis term left out, halved, or put on a fixed guide; a normal
 term written with alpha) is made by writing the textbook's acceleration equation of the loop with
 that one term wrong, every other number in it being the solver's, and solving it for the
-unknowns (the equations solved right reproduce the solver's answers: tested).
+unknowns (the equations solved right reproduce the solver's answers: tested). Every mistake is
+named by its id in the catalogue (``solver.teaching.mistakes``), as the worked solutions name it.
 """
 
 from __future__ import annotations

@@ -5,7 +5,8 @@ Coriolis term on a fixed guide where a slider's link turns, omega^2 with the wro
 cross product in the wrong order, the unknowns of a dyad mixed up, omega written for alpha, and,
 for moving points and spatial chains, the mistakes of seeds 002 and 003 (ERRATA.md). The wrong
 value is computed by making exactly that mistake with the solver's numbers, and shown next to
-the right one.
+the right one. Each mistake's id and title are its entry in the catalogue
+(``solver.teaching.mistakes``), which the exercise checker names its diagnoses by too.
 """
 
 from __future__ import annotations
