@@ -24,6 +24,7 @@ from solver.errors import KinematicsError
 from solver.exercises.answers import Solved, flywheel_request, solve_scene, value_at
 from solver.exercises.model import Exercise
 from solver.exercises.registry import TYPES
+from solver.kinematics.relative_motion import coriolis_acceleration
 from solver.kinematics.rigid import Array, perp, rigid_body_acceleration
 from solver.teaching.mistakes import (
     alpha_in_normal_term,
@@ -85,7 +86,7 @@ def lever_alpha(
     a_pin = alpha k x r - omega^2 r + s'' u + factor 2 omega k x v_rel, r = pin - pivot
     (``factor`` 1 is right; 0 leaves the Coriolis term out, 1/2 forgets its 2)."""
     r = pin - pivot
-    rhs = a_pin + omega**2 * r - factor * 2.0 * omega * perp(v_rel)
+    rhs = a_pin + omega**2 * r - factor * coriolis_acceleration(np.asarray(omega), v_rel)
     alpha, _ = _solve2(perp(r), u, rhs)
     return alpha
 
