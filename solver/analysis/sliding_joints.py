@@ -10,13 +10,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.kinematics.relative_motion import coriolis_acceleration
+from solver.kinematics.relative_motion import (
+    sliding_acceleration_parts,
+    sliding_velocity_parts,
+)
 from solver.kinematics.rigid import (
     Array,
     dot,
     perp,
-    rigid_body_acceleration,
-    rigid_body_velocity,
     rotate,
 )
 from solver.model.scene import LinkageScene
@@ -67,14 +68,13 @@ def sliding_joints(scene: LinkageScene, motion: Motion, order: int) -> list[Slid
         P = motion.points[joint.point]
         assert P.v is not None and guide.omega is not None and guide.anchor.v is not None
         r = P.p - guide.anchor.p
-        v_tr = rigid_body_velocity(guide.anchor.v, guide.omega, r)
-        v_rel = P.v - v_tr
+        v_tr, v_rel = sliding_velocity_parts(guide.anchor.v, guide.omega, r, P.v)
         a_tr = a_rel = a_cor = None
         if order >= 2:
             assert P.a is not None and guide.alpha is not None and guide.anchor.a is not None
-            a_tr = rigid_body_acceleration(guide.anchor.a, guide.omega, guide.alpha, r)
-            a_cor = coriolis_acceleration(guide.omega, v_rel)
-            a_rel = P.a - a_tr - a_cor
+            a_tr, a_rel, a_cor = sliding_acceleration_parts(
+                guide.anchor.a, guide.omega, guide.alpha, r, v_rel, P.a
+            )
         joints.append(
             SlidingJoint(
                 joint.point,

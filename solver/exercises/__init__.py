@@ -5,9 +5,9 @@ difficulty, seed, count)`` several; ``check`` grades answers and names typical m
 ``solver.exercises.export`` writes Moodle XML, printable HTML, CSV and JSON.
 """
 
-from solver.exercises.families import TYPES, ExerciseType
 from solver.exercises.generation import MAX_COUNT, build, generate
 from solver.exercises.model import DIFFICULTIES, Asked, Exercise, ExerciseId, parse_id
+from solver.exercises.registry import TYPES, ExerciseType
 
 __all__ = [
     "DIFFICULTIES",

@@ -1,7 +1,7 @@
 """The dynamics exercise types (dynamics-v1): a four-bar's driving torque at an instant, and the
 flywheel for a coefficient of speed fluctuation over a cycle.
 
-Both draw a Grashof crank-rocker (``families._four_bar_scene``) with uniform bars of a given mass
+Both draw a Grashof crank-rocker (``families.four_bar_scene``) with uniform bars of a given mass
 per length and, from standard on, gravity; the torque's rocker carries a constant load moment
 from standard on, the flywheel's a resisting moment during its counter-clockwise swing (a
 working stroke, so that the mean torque is not zero). Their paths
@@ -17,10 +17,10 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.exercises.families import (
-    _four_bar_check,
-    _four_bar_scene,
-    _four_bar_text,
     asked_latex,
+    four_bar_check,
+    four_bar_scene,
+    four_bar_text,
     num,
     pick,
     scales,
@@ -95,7 +95,7 @@ FORCE_B = tuple(
 def four_bar_torque(rng: random.Random, difficulty: str) -> Draft:
     """The torque that drives the crank at the drawn instant (inverse dynamics); from standard on
     with weights and a load, and the pin force at B; challenging: an accelerating crank."""
-    _, v = _four_bar_scene(rng, difficulty, difficulty == "challenging", False)
+    _, v = four_bar_scene(rng, difficulty, difficulty == "challenging", False)
     masses = _bars(rng, v, difficulty != "basic")
     if difficulty == "basic":
         masses += " It carries no load."
@@ -109,7 +109,7 @@ def four_bar_torque(rng: random.Random, difficulty: str) -> Draft:
     asked: tuple[Asked, ...] = (TORQUE,)
     if difficulty != "basic":
         asked += FORCE_B
-    text, latex = _four_bar_text(
+    text, latex = four_bar_text(
         v,
         masses.strip()
         + " Find the torque the motor must apply to the crank at this instant"
@@ -120,7 +120,7 @@ def four_bar_torque(rng: random.Random, difficulty: str) -> Draft:
     )
     return Draft(
         "Four-bar: driving torque", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        _dynamic_scales(v), _four_bar_check,
+        _dynamic_scales(v), four_bar_check,
     )  # fmt: skip
 
 
@@ -128,7 +128,7 @@ def flywheel(rng: random.Random, difficulty: str) -> Draft:
     """The flywheel that keeps the crank's speed within a coefficient of fluctuation k over a
     revolution at constant mean speed: the energy fluctuation and I = fluctuation / (k omega^2);
     challenging: also the mean driving torque."""
-    _, v = _four_bar_scene(rng, difficulty, False, False)
+    _, v = four_bar_scene(rng, difficulty, False, False)
     masses = _bars(rng, v, difficulty != "basic")
     percent = rng.choice([2, 3, 4, 5, 8, 10])
     scene = build_preset("four_bar", v)
@@ -157,9 +157,9 @@ def flywheel(rng: random.Random, difficulty: str) -> Draft:
         "largest fluctuation of the energy over a revolution and the flywheel's moment of inertia"
         + (" and the mean driving torque." if difficulty == "challenging" else ".")
     )
-    text, latex = _four_bar_text(v, goal, False)
+    text, latex = four_bar_text(v, goal, False)
     latex += rf",\; k = {percent / 100:g}"
     return Draft(
         "Four-bar: flywheel", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        _dynamic_scales(v), _four_bar_check,
+        _dynamic_scales(v), four_bar_check,
     )  # fmt: skip

@@ -1,4 +1,5 @@
-"""The exercise types: one textbook family each, drawn with nice rounded inputs.
+"""The kinematic exercise families, one textbook mechanism each, drawn with nice rounded inputs
+(the types that use them are registered in ``solver.exercises.registry``).
 
 A family draws a candidate (``Draft``) from a seeded ``random.Random``: the scene (a preset's,
 or built as a preset would build it), what it asks, the statement, and the scales an answer is
@@ -13,7 +14,7 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -144,9 +145,11 @@ def rates_for(rng: random.Random, difficulty: str, accelerating: bool) -> tuple[
 # --- four-bar ------------------------------------------------------------------------------------
 
 
-def _four_bar_scene(
+def four_bar_scene(
     rng: random.Random, difficulty: str, accelerating: bool, coupler_point: bool
 ) -> tuple[dict[str, Any], dict[str, float]]:
+    """A Grashof crank-rocker drawn with rounded lengths (s + l at least 5 % of l below p + q),
+    its crank's rates and (``coupler_point``) a coupler point: the scene and its values."""
     while True:
         v = {
             "ground": pick(rng, 0.3, 0.8, 0.05),
@@ -172,7 +175,9 @@ def _four_bar_scene(
     return build_preset("four_bar", v), v
 
 
-def _four_bar_check(analysis: Any) -> str | None:
+def four_bar_check(analysis: Any) -> str | None:
+    """Why a four-bar draft is refused (not a Grashof crank-rocker, or a transmission angle
+    outside 35..145 degrees), or None."""
     loops = analysis.four_bar_loops
     if not loops or loops[0].grashof != "Grashof crank-rocker":
         return "not a Grashof crank-rocker"
@@ -182,7 +187,8 @@ def _four_bar_check(analysis: Any) -> str | None:
     return None
 
 
-def _four_bar_text(v: Mapping[str, float], goal: str, point: bool) -> tuple[str, str]:
+def four_bar_text(v: Mapping[str, float], goal: str, point: bool) -> tuple[str, str]:
+    """The statement of a four-bar exercise (text and LaTeX givens) ending with ``goal``."""
     text = (
         f"In the four-bar linkage ABCD the fixed pivots A and D are {num(v['ground'])} m apart "
         f"(D to the right of A). The crank AB = {num(v['crank'])} m, the coupler BC = "
@@ -214,7 +220,7 @@ def _four_bar_rates(rng: random.Random, difficulty: str, kind: str) -> Draft:
     point = difficulty == "challenging"
     accelerations = kind == "acceleration"
     with_alpha = accelerations and difficulty != "basic"
-    scene, v = _four_bar_scene(rng, difficulty, with_alpha, point)
+    scene, v = four_bar_scene(rng, difficulty, with_alpha, point)
     angular, of_point = (alpha_of, acceleration_of) if accelerations else (omega_of, velocity_of)
     asked: tuple[Asked, ...] = (
         angular("coupler", "coupler", "BC"),
@@ -226,13 +232,13 @@ def _four_bar_rates(rng: random.Random, difficulty: str, kind: str) -> Draft:
         asked += of_point("P")
     rates = "angular accelerations" if accelerations else "angular velocities"
     vectors = "accelerations" if accelerations else "velocities"
-    text, latex = _four_bar_text(
+    text, latex = four_bar_text(
         v, f"Find the {rates} of the coupler and the rocker"
         + (f" and the {vectors} asked." if difficulty != "basic" else "."), point,
     )  # fmt: skip
     return Draft(
         f"Four-bar: {vectors}", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
+        scales(v["omega"], v["alpha"], v["ground"]), four_bar_check,
     )  # fmt: skip
 
 
@@ -254,7 +260,7 @@ def _pole(link: str, kind: str, sub: str) -> tuple[Asked, ...]:
 
 
 def four_bar_poles(rng: random.Random, difficulty: str) -> Draft:
-    scene, v = _four_bar_scene(rng, difficulty, difficulty == "challenging", False)
+    scene, v = four_bar_scene(rng, difficulty, difficulty == "challenging", False)
     asked: tuple[Asked, ...] = _pole("coupler", "velocity", "BC")
     if difficulty != "basic":
         asked += _pole("coupler", "acceleration", "BC")
@@ -263,10 +269,10 @@ def four_bar_poles(rng: random.Random, difficulty: str) -> Draft:
         if difficulty != "basic"
         else ""
     )
-    text, latex = _four_bar_text(v, goal + ", with A as the origin and x along AD.", False)
+    text, latex = four_bar_text(v, goal + ", with A as the origin and x along AD.", False)
     return Draft(
         "Four-bar: poles of the coupler", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        scales(v["omega"], v["alpha"], v["ground"]), _four_bar_check,
+        scales(v["omega"], v["alpha"], v["ground"]), four_bar_check,
     )  # fmt: skip
 
 
@@ -724,132 +730,3 @@ def spatial_arm(rng: random.Random, difficulty: str) -> Draft:
         "Spatial arm", _arm_text(arm, difficulty), latex + r"\\" + asked_latex(asked),
         _arm_scene(arm), asked, scales(largest, 0.0, arm.l1 + arm.l2 + arm.l3),
     )  # fmt: skip
-
-
-# --- the registry --------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class ExerciseType:
-    """A type of exercise: its name, what it is about, the keys it can ask, how to draw one,
-    and the family of typical mistakes that apply to it (see ``solver.exercises.mistakes``)."""
-
-    name: str
-    title: str
-    description: str
-    asks: tuple[str, ...]
-    draw: Callable[[random.Random, str], Draft]
-    mistakes: str
-
-
-def _type(
-    name: str,
-    title: str,
-    description: str,
-    asks: tuple[str, ...],
-    draw: Callable[[random.Random, str], Draft],
-    mistakes: str,
-) -> ExerciseType:
-    return ExerciseType(name, title, description, asks, draw, mistakes)
-
-
-def _xy(key: str) -> tuple[str, str]:
-    return (f"{key}_x", f"{key}_y")
-
-
-_KINEMATIC_TYPES: tuple[ExerciseType, ...] = (
-    _type(
-        "four_bar_velocity", "Four-bar linkage: velocities",
-        "A Grashof crank-rocker driven at a constant speed: the angular velocities of the "
-        "coupler and the rocker, the velocity of C and (challenging) of a coupler point.",
-        ("omega_coupler", "omega_rocker", *_xy("v_C"), *_xy("v_P")),
-        four_bar_velocity, "four_bar",
-    ),
-    _type(
-        "four_bar_acceleration", "Four-bar linkage: accelerations",
-        "A Grashof crank-rocker, from standard on with an accelerating crank: the angular "
-        "accelerations of the coupler and the rocker, the acceleration of C and "
-        "(challenging) of a coupler point.",
-        ("alpha_coupler", "alpha_rocker", *_xy("a_C"), *_xy("a_P")),
-        four_bar_acceleration, "four_bar",
-    ),
-    _type(
-        "four_bar_poles", "Four-bar linkage: poles of the coupler",
-        "The coupler's velocity pole (instant centre) and, from standard on, its "
-        "acceleration pole.",
-        (*_xy("velocity_pole_coupler"), *_xy("acceleration_pole_coupler")),
-        four_bar_poles, "four_bar",
-    ),
-    _type(
-        "slider_crank", "Offset slider-crank",
-        "The engine mechanism with an offset guide (centred at basic): the slider's velocity "
-        "and acceleration, the rod's angular velocity and acceleration.",
-        ("v_C_x", "omega_coupler", "a_C_x", "alpha_coupler"),
-        slider_crank, "slider",
-    ),
-    _type(
-        "inverted_slider_crank", "Inverted slider-crank: Coriolis",
-        "A block on the crank pin slides in a turning slotted lever: the lever's angular "
-        "velocity, the sliding velocity (basic), the lever's angular acceleration and the "
-        "Coriolis acceleration 2 omega x v_rel.",
-        ("omega_lever", *_xy("v_rel_A"), "alpha_lever", *_xy("a_cor_A")),
-        inverted_slider_crank, "lever",
-    ),
-    _type(
-        "quick_return", "Quick-return mechanism: Coriolis",
-        "Crank and slotted lever driving a ram: the lever's angular velocity and the ram's "
-        "velocity, the lever's angular acceleration, the Coriolis acceleration, and "
-        "(challenging) the ram's acceleration.",
-        ("omega_lever", "v_C_x", "alpha_lever", *_xy("a_cor_A"), "a_C_x"),
-        quick_return, "quick_return",
-    ),
-    _type(
-        "slider_extension", "Slider on a fixed guide with an extension",
-        "A coupler whose point C slides on a fixed guide and whose extension D is asked: "
-        "its angular velocity and acceleration, the velocity and acceleration of D.",
-        ("omega_coupler", *_xy("v_D"), "alpha_coupler", *_xy("a_D")),
-        slider_extension, "slider",
-    ),
-    _type(
-        "moving_point", "Point moving on a moving body",
-        "A point M moving by a time law in a groove of a turning disc or a slot of a turning "
-        "rod: its velocity, Coriolis and absolute acceleration at an instant, and the time at "
-        "which it reaches a point of its path.",
-        (*_xy("v_M"), *_xy("a_cor_M"), *_xy("a_M"), "t_M_T"),
-        moving_point, "moving_point",
-    ),
-    _type(
-        "spatial_arm", "Spatial arm",
-        "Three revolute joints in space: the angular velocity of the last body by "
-        "composition, and the velocity and five-term acceleration of its tool point.",
-        ("omega_3_x", "omega_3_y", "omega_3_z", "v_B_x", "v_B_y", "v_B_z", "a_B_x", "a_B_y",
-         "a_B_z"),
-        spatial_arm, "spatial",
-    ),
-)  # fmt: skip
-
-# The dynamics types draw on the four-bar above (imported here, at the end: the package's
-# __init__ imports this module first, so the names they take from it exist).
-from solver.exercises import dynamics  # noqa: E402
-
-TYPES: Mapping[str, ExerciseType] = {
-    t.name: t
-    for t in (
-        *_KINEMATIC_TYPES,
-        _type(
-            "four_bar_torque", "Four-bar linkage: driving torque",
-            "A Grashof crank-rocker of uniform bars: the torque that drives the crank at an "
-            "instant (inverse dynamics, Newton-Euler), with weights, a load on the rocker and the "
-            "pin force at B from standard on, an accelerating crank at challenging.",
-            ("M_crank", "F_B_x", "F_B_y"), dynamics.four_bar_torque, "dynamics_torque",
-        ),
-        _type(
-            "flywheel", "Four-bar linkage: flywheel",
-            "The same four-bar at constant mean speed over a revolution: the largest fluctuation "
-            "of the energy and the flywheel inertia for a coefficient of speed fluctuation k "
-            "(weights and a load from standard on; the mean torque at challenging).",
-            ("energy_fluctuation", "flywheel_inertia", "mean_torque"), dynamics.flywheel,
-            "flywheel",
-        ),
-    )
-}  # fmt: skip

@@ -12,11 +12,11 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from html import escape
 from itertools import pairwise
 from typing import Any
 
 from solver.model.scene import Joint, ground_pivot, parse_linkage
+from solver.teaching.svg import Attribute, Canvas, View, element
 
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
 INK = "#1f2937"
@@ -26,49 +26,45 @@ ROTATION = "#dc2626"
 Point = tuple[float, float]
 
 
-class Canvas:
-    """World coordinates (m) to SVG pixels: one scale for x and y, y pointing up."""
+def _canvas(points: Sequence[Point]) -> Canvas:
+    """World coordinates (m) to SVG pixels: one scale for x and y, y pointing up, the points
+    fitted within the margin and centred."""
+    return Canvas(View.fit(points, WIDTH, HEIGHT, MARGIN))
 
-    def __init__(self, points: Sequence[Point]) -> None:
-        xs, ys = [p[0] for p in points], [p[1] for p in points]
-        self.x0, self.y1 = min(xs), max(ys)
-        span_x, span_y = max(xs) - self.x0, self.y1 - min(ys)
-        self.scale = min(
-            (WIDTH - 2 * MARGIN) / max(span_x, 1e-9), (HEIGHT - 2 * MARGIN) / max(span_y, 1e-9)
-        )
-        self.dx = (WIDTH - self.scale * span_x) / 2
-        self.dy = (HEIGHT - self.scale * span_y) / 2
-        self.parts: list[str] = []
 
-    def px(self, p: Point) -> Point:
-        return (self.dx + (p[0] - self.x0) * self.scale, self.dy + (self.y1 - p[1]) * self.scale)
+def _line(canvas: Canvas, a: Point, b: Point, color: str, width: float, dash: str = "") -> None:
+    """A line between two world points."""
+    style: list[Attribute] = [
+        ("stroke", color),
+        ("stroke-width", width),
+        ("stroke-linecap", "round"),
+    ]
+    if dash:
+        style.append(("stroke-dasharray", dash))
+    canvas.line(canvas.px(a), canvas.px(b), style)
 
-    def add(self, element: str) -> None:
-        self.parts.append(element)
 
-    def line(self, a: Point, b: Point, color: str, width: float, dash: str = "") -> None:
-        (x1, y1), (x2, y2) = self.px(a), self.px(b)
-        extra = f' stroke-dasharray="{dash}"' if dash else ""
-        self.add(
-            f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" stroke="{color}" '
-            f'stroke-width="{width}" stroke-linecap="round"{extra}/>'
-        )
+def _text(
+    canvas: Canvas, p: Point, label: str, dx: float = 7, dy: float = -7, color: str = INK
+) -> None:
+    """A label beside a world point, (dx, dy) pixels off it."""
+    x, y = canvas.px(p)
+    style = [("font-size", "13"), ("fill", color), ("font-family", "sans-serif")]
+    canvas.text((x + dx, y + dy), label, style)
 
-    def text(self, p: Point, label: str, dx: float = 7, dy: float = -7, color: str = INK) -> None:
-        x, y = self.px(p)
-        self.add(
-            f'<text x="{x + dx:.1f}" y="{y + dy:.1f}" font-size="13" fill="{color}" '
-            f'font-family="sans-serif">{escape(label)}</text>'
-        )
 
-    def svg(self, title: str) -> str:
-        head = (
-            f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH:.0f} {HEIGHT:.0f}" '
-            f'width="{WIDTH:.0f}" height="{HEIGHT:.0f}" role="img" aria-label="{escape(title)}">'
-            f"<title>{escape(title)}</title>"
-            f'<rect width="{WIDTH:.0f}" height="{HEIGHT:.0f}" fill="white"/>'
-        )
-        return head + "".join(self.parts) + "</svg>"
+def _document(canvas: Canvas, title: str) -> str:
+    """The figure on a white background, titled."""
+    size = [("width", f"{WIDTH:.0f}"), ("height", f"{HEIGHT:.0f}")]
+    return canvas.document(
+        [
+            ("viewBox", f"0 0 {WIDTH:.0f} {HEIGHT:.0f}"),
+            *size,
+            ("role", "img"),
+            ("aria-label", title),
+        ],
+        [element("title", [], title), element("rect", [*size, ("fill", "white")])],
+    )
 
 
 def _nice_length(target: float) -> float:
@@ -80,25 +76,24 @@ def _nice_length(target: float) -> float:
 
 
 def _scale_bar(canvas: Canvas) -> None:
-    length = _nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.scale)
+    length = _nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.view.scale)
     x, y = 12.0, HEIGHT - 14.0
-    w = length * canvas.scale
-    canvas.add(
-        f'<path d="M{x:.1f} {y - 4:.1f}V{y:.1f}H{x + w:.1f}V{y - 4:.1f}" fill="none" '
-        f'stroke="{INK}" stroke-width="1.2"/><text x="{x + w + 6:.1f}" y="{y:.1f}" '
-        f'font-size="11" font-family="sans-serif" fill="{INK}">{length:g} m</text>'
+    w = length * canvas.view.scale
+    canvas.path(
+        f"M{x:.1f} {y - 4:.1f}V{y:.1f}H{x + w:.1f}V{y - 4:.1f}",
+        [("fill", "none"), ("stroke", INK), ("stroke-width", "1.2")],
     )
+    style = [("font-size", "11"), ("font-family", "sans-serif"), ("fill", INK)]
+    canvas.text((x + w + 6, y), f"{length:g} m", style)
 
 
 def _ground_pivot(canvas: Canvas, p: Point) -> None:
     x, y = canvas.px(p)
-    canvas.add(
-        f'<path d="M{x:.1f} {y:.1f}l-9 15h18z" fill="#e5e7eb" stroke="{INK}" stroke-width="1.2"/>'
-        f'<path d="M{x - 12:.1f} {y + 15:.1f}h24" stroke="{INK}" stroke-width="1.2"/>'
-        + "".join(
-            f'<path d="M{x - 12 + 5 * k:.1f} {y + 15:.1f}l-4 5" stroke="{INK}"/>' for k in range(6)
-        )
-    )
+    ink = [("stroke", INK), ("stroke-width", "1.2")]
+    canvas.path(f"M{x:.1f} {y:.1f}l-9 15h18z", [("fill", "#e5e7eb"), *ink])
+    canvas.path(f"M{x - 12:.1f} {y + 15:.1f}h24", ink)
+    for k in range(6):
+        canvas.path(f"M{x - 12 + 5 * k:.1f} {y + 15:.1f}l-4 5", [("stroke", INK)])
 
 
 def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
@@ -115,25 +110,32 @@ def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
     hx, hy = math.cos(heading), -math.sin(heading)
     nx, ny = -hy, hx
     tip = (ex + 7 * hx, ey + 7 * hy)
-    canvas.add(
-        f'<path d="M{sx:.1f} {sy:.1f}A{r} {r} 0 0 {sweep} {ex:.1f} {ey:.1f}" fill="none" '
-        f'stroke="{ROTATION}" stroke-width="1.6"/>'
-        f'<path d="M{tip[0]:.1f} {tip[1]:.1f}L{ex + 4 * nx:.1f} {ey + 4 * ny:.1f}'
-        f'L{ex - 4 * nx:.1f} {ey - 4 * ny:.1f}z" fill="{ROTATION}"/>'
+    canvas.path(
+        f"M{sx:.1f} {sy:.1f}A{r} {r} 0 0 {sweep} {ex:.1f} {ey:.1f}",
+        [("fill", "none"), ("stroke", ROTATION), ("stroke-width", "1.6")],
     )
-    canvas.add(
-        f'<text x="{x - 30:.1f}" y="{y + 38:.1f}" font-size="12" fill="{ROTATION}" '
-        f'font-family="sans-serif">{escape(label)}</text>'
+    canvas.path(
+        f"M{tip[0]:.1f} {tip[1]:.1f}L{ex + 4 * nx:.1f} {ey + 4 * ny:.1f}"
+        f"L{ex - 4 * nx:.1f} {ey - 4 * ny:.1f}z",
+        [("fill", ROTATION)],
     )
+    style = [("font-size", "12"), ("fill", ROTATION), ("font-family", "sans-serif")]
+    canvas.text((x - 30, y + 38), label, style)
 
 
 def _block(canvas: Canvas, p: Point, axis: Point) -> None:
     x, y = canvas.px(p)
     angle = -math.degrees(math.atan2(axis[1], axis[0]))
     canvas.add(
-        f'<rect x="{x - 12:.1f}" y="{y - 7:.1f}" width="24" height="14" fill="#fde68a" '
-        f'stroke="{INK}" stroke-width="1.2" transform="rotate({angle:.2f} {x:.1f} {y:.1f})"/>'
-    )
+        element(
+            "rect",
+            [
+                ("x", f"{x - 12:.1f}"), ("y", f"{y - 7:.1f}"), ("width", "24"), ("height", "14"),
+                ("fill", "#fde68a"), ("stroke", INK), ("stroke-width", "1.2"),
+                ("transform", f"rotate({angle:.2f} {x:.1f} {y:.1f})"),
+            ],
+        )
+    )  # fmt: skip
 
 
 def _driver_label(driver: Mapping[str, Any]) -> tuple[float, str]:
@@ -186,13 +188,13 @@ def _linkage(scene: Mapping[str, Any]) -> str:
         parse_linkage(scene).joints,
     )
     arcs = _arc_paths(drawing)
-    canvas = Canvas(_extent(drawing, arcs))
+    canvas = _canvas(_extent(drawing, arcs))
     _draw_paths(canvas, drawing, arcs)
     for name, link in links.items():
         _draw_link(canvas, drawing, name, [drawing.pts[p] for p in link["points"]])
     _draw_marks(canvas, drawing)
     _scale_bar(canvas)
-    return canvas.svg(str(scene.get("title", "linkage")))
+    return _document(canvas, str(scene.get("title", "linkage")))
 
 
 def _arc_paths(drawing: _Linkage) -> list[tuple[Point, float]]:
@@ -230,22 +232,19 @@ def _draw_paths(canvas: Canvas, drawing: _Linkage, arcs: Sequence[tuple[Point, f
         p, u = pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1]))
         n = math.hypot(*u)
         u = (u[0] / n, u[1] / n)
-        reach = 0.35 * (WIDTH - 2 * MARGIN) / canvas.scale
+        reach = 0.35 * (WIDTH - 2 * MARGIN) / canvas.view.scale
         a, b = (
             (p[0] - reach * u[0], p[1] - reach * u[1]),
             (p[0] + reach * u[0], p[1] + reach * u[1]),
         )
         fixed = j["links"][0] == ground
-        canvas.line(a, b, GUIDE, 1.4 if fixed else 1.0, "" if fixed else "5 3")
+        _line(canvas, a, b, GUIDE, 1.4 if fixed else 1.0, "" if fixed else "5 3")
     for c, r in arcs:
-        x, y = canvas.px(c)
-        canvas.add(
-            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{r * canvas.scale:.1f}" fill="none" '
-            f'stroke="{GUIDE}" stroke-width="1.4" stroke-dasharray="5 3"/>'
-        )
+        style = [("fill", "none"), ("stroke", GUIDE), ("stroke-width", "1.4")]
+        canvas.circle(canvas.px(c), r * canvas.view.scale, [*style, ("stroke-dasharray", "5 3")])
     for mp in drawing.moving_points:
         if mp["path"]["type"] == "line":
-            canvas.line(pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
+            _line(canvas, pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
 
 
 def _draw_link(canvas: Canvas, drawing: _Linkage, name: str, members: list[Point]) -> None:
@@ -257,19 +256,22 @@ def _draw_link(canvas: Canvas, drawing: _Linkage, name: str, members: list[Point
     if any(path["type"] == "arc" for path in paths):  # a turning disc carrying a groove
         pivot, path = drawing.pivot(name), paths[0]
         radius = _disc_radius(pivot, drawing.pts[path["center"]], drawing.pts[path["start"]])
-        x, y = canvas.px(pivot)
-        canvas.add(
-            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius * canvas.scale:.1f}" '
-            f'fill="#dbeafe" fill-opacity="0.5" stroke="{LINK}" stroke-width="2.5"/>'
+        canvas.circle(
+            canvas.px(pivot),
+            radius * canvas.view.scale,
+            [
+                ("fill", "#dbeafe"),
+                ("fill-opacity", "0.5"),
+                ("stroke", LINK),
+                ("stroke-width", "2.5"),
+            ],
         )
     elif len(members) >= 3:
-        poly = " ".join("{:.1f},{:.1f}".format(*canvas.px(m)) for m in members)
-        canvas.add(
-            f'<polygon points="{poly}" fill="#dbeafe" fill-opacity="0.6" stroke="{LINK}" '
-            'stroke-width="2.5" stroke-linejoin="round"/>'
-        )
+        plate = [("fill", "#dbeafe"), ("fill-opacity", "0.6"), ("stroke", LINK)]
+        plate += [("stroke-width", "2.5"), ("stroke-linejoin", "round")]
+        canvas.points("polygon", map(canvas.px, members), plate)
     else:
-        canvas.line(members[0], members[1], LINK, 3.5)
+        _line(canvas, members[0], members[1], LINK, 3.5)
 
 
 def _draw_marks(canvas: Canvas, drawing: _Linkage) -> None:
@@ -283,15 +285,13 @@ def _draw_marks(canvas: Canvas, drawing: _Linkage) -> None:
         if j["type"] != "revolute":
             _block(canvas, pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1])))
     for name, p in pts.items():
-        x, y = canvas.px(p)
-        canvas.add(
-            f'<circle cx="{x:.1f}" cy="{y:.1f}" r="3.5" fill="white" stroke="{INK}" '
-            'stroke-width="1.4"/>'
+        canvas.circle(
+            canvas.px(p), "3.5", [("fill", "white"), ("stroke", INK), ("stroke-width", "1.4")]
         )
-        canvas.text(p, name)
+        _text(canvas, p, name)
     for mp in drawing.moving_points:
         start = pts[mp["path"]["start"]]
-        canvas.text(start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
+        _text(canvas, start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
     for driver in scene["drivers"]:
         omega, label = _driver_label(driver)
         _rotation(canvas, drawing.pivot(driver["link"]), omega, label)
@@ -307,29 +307,28 @@ def _spatial(scene: Mapping[str, Any]) -> str:
     points = {k: v["position"] for k, v in scene["points"].items()}
     chain = [j["origin"] for j in joints] + [points[k] for k in points]
     flat = [_oblique(p) for p in chain] + [_oblique([0, 0, -0.15])]
-    canvas = Canvas(flat)
+    canvas = _canvas(flat)
     o = (0.0, 0.0)
     for axis, label in (((0.3, 0, 0), "x"), ((0, 0.3, 0), "y"), ((0, 0, 0.3), "z")):
         end = _oblique(axis)
-        canvas.line(o, end, GUIDE, 1.0, "3 3")
-        canvas.text(end, label, color=GUIDE)
+        _line(canvas, o, end, GUIDE, 1.0, "3 3")
+        _text(canvas, end, label, color=GUIDE)
     _ground_pivot(canvas, _oblique([0, 0, 0]))
     route = [_oblique(j["origin"]) for j in joints] + [_oblique(p) for p in points.values()]
     for a, b in pairwise(route):
-        canvas.line(a, b, LINK, 3.5)
+        _line(canvas, a, b, LINK, 3.5)
     for k, j in enumerate(joints):
         start = j["origin"]
         tip = [start[i] + 0.2 * j["axis"][i] for i in range(3)]
-        canvas.line(_oblique(start), _oblique(tip), ROTATION, 1.8)
-        canvas.text(_oblique(tip), f"ω{k + 1} = {j['rate']:g}", color=ROTATION)
+        _line(canvas, _oblique(start), _oblique(tip), ROTATION, 1.8)
+        _text(canvas, _oblique(tip), f"ω{k + 1} = {j['rate']:g}", color=ROTATION)
     for name, position in points.items():
-        x, y = canvas.px(_oblique(position))
-        canvas.add(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="3.5" fill="white" stroke="{INK}"/>')
-        canvas.text(_oblique(position), name, dy=16)
-    canvas.text(_oblique(joints[1]["origin"]), "O2", dx=-24)
-    canvas.text((0.0, 0.0), "O", dx=-16)
+        canvas.circle(canvas.px(_oblique(position)), "3.5", [("fill", "white"), ("stroke", INK)])
+        _text(canvas, _oblique(position), name, dy=16)
+    _text(canvas, _oblique(joints[1]["origin"]), "O2", dx=-24)
+    _text(canvas, (0.0, 0.0), "O", dx=-16)
     _scale_bar(canvas)
-    return canvas.svg(str(scene.get("title", "spatial chain")))
+    return _document(canvas, str(scene.get("title", "spatial chain")))
 
 
 def figure_svg(scene: Mapping[str, Any]) -> str:

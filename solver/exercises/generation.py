@@ -21,7 +21,6 @@ from dataclasses import replace
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
 from solver.exercises.answers import Solved, solve_scene, value_at
-from solver.exercises.families import TYPES, ExerciseType
 from solver.exercises.figures import figure_svg
 from solver.exercises.model import (
     DIFFICULTIES,
@@ -31,6 +30,7 @@ from solver.exercises.model import (
     Statement,
     check_seed_index,
 )
+from solver.exercises.registry import TYPES, ExerciseType
 
 MAX_ATTEMPTS = 2000
 MAX_CONDITION = 60.0

@@ -6,7 +6,8 @@ answer given in degrees instead of radians is the solver's answer converted. A m
 the acceleration equations (the Coriolis term left out, halved, or put on a fixed guide; a normal
 term written with alpha) is made by writing the textbook's acceleration equation of the loop with
 that one term wrong, every other number in it being the solver's, and solving it for the
-unknowns (the equations solved right reproduce the solver's answers: tested).
+unknowns (the equations solved right reproduce the solver's answers: tested). Every mistake is
+named by its id in the catalogue (``solver.teaching.mistakes``), as the worked solutions name it.
 """
 
 from __future__ import annotations
@@ -21,20 +22,32 @@ import numpy as np
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import KinematicsError
 from solver.exercises.answers import Solved, flywheel_request, solve_scene, value_at
-from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
+from solver.exercises.registry import TYPES
+from solver.kinematics.relative_motion import coriolis_acceleration
 from solver.kinematics.rigid import Array, perp, rigid_body_acceleration, solve_2x2
+from solver.teaching.mistakes import (
+    alpha_in_normal_term,
+    coriolis_left_out,
+    coriolis_with_omega_of,
+    coriolis_without_factor_2,
+    typical_mistake,
+)
 
 DEGREES = 180.0 / math.pi
 
 
 @dataclass(frozen=True)
 class WrongAnswers:
-    """One typical mistake: its name, the sentence that explains it, the wrong answers it gives."""
+    """One typical mistake: its id in the catalogue (``solver.teaching.mistakes``), the sentence
+    that explains it, the wrong answers it gives."""
 
     kind: str
     sentence: str
     values: Mapping[str, float]
+
+    def __post_init__(self) -> None:
+        typical_mistake(self.kind)  # every diagnosis is an entry of the catalogue
 
 
 # --- the acceleration equations of the loops, with one term open to a mistake -------------------
@@ -71,7 +84,7 @@ def lever_alpha(
     a_pin = alpha k x r - omega^2 r + s'' u + factor 2 omega k x v_rel, r = pin - pivot
     (``factor`` 1 is right; 0 leaves the Coriolis term out, 1/2 forgets its 2)."""
     r = pin - pivot
-    rhs = a_pin + omega**2 * r - factor * 2.0 * omega * perp(v_rel)
+    rhs = a_pin + omega**2 * r - factor * coriolis_acceleration(np.asarray(omega), v_rel)
     alpha, _ = _solve2(perp(r), u, rhs)
     return alpha
 
@@ -115,10 +128,8 @@ class Numbers:
 
     def crank_pin_written_with_alpha(self, pivot: str, pin: str) -> Array:
         """a_pin with the normal term written alpha r instead of omega^2 r."""
-        omega, alpha = self.omega_driver, self.alpha_driver
-        return _rigid(self.acc(pivot), omega, alpha, self.p(pin) - self.p(pivot)) + (
-            omega**2 - alpha
-        ) * (self.p(pin) - self.p(pivot))
+        r = self.p(pin) - self.p(pivot)
+        return alpha_in_normal_term(self.acc(pivot), self.omega_driver, self.alpha_driver, r)
 
     @property
     def omega_driver(self) -> float:
@@ -175,7 +186,7 @@ def _coupler_after(n: Numbers, a_B: Array, extra: Array) -> dict[str, float]:
 def _slider(n: Numbers) -> list[WrongAnswers]:
     joint = n.a.joints[0]
     v_rel = joint.relative_velocity
-    extra = 2.0 * n.omega("coupler") * perp(v_rel)
+    extra = coriolis_with_omega_of(n.omega("coupler"), v_rel)
     out = [
         WrongAnswers(
             "coriolis_on_fixed_guide",
@@ -217,14 +228,17 @@ def _lever_mistakes(
             "coriolis_left_out",
             "This is what you get with the Coriolis acceleration left out: the slot turns with "
             "the lever, so the sliding block has a Coriolis term 2 omega_lever x v_rel.",
-            {**wrong(n.acc("A"), 0.0), **_components("a_cor_A", 0.0 * a_cor)},
+            {**wrong(n.acc("A"), 0.0), **_components("a_cor_A", coriolis_left_out(a_cor))},
         ),
         WrongAnswers(
             "coriolis_without_factor_2",
             "This is what you get with omega x v_rel for the Coriolis term: it is "
             "2 omega_lever x v_rel (half from the relative velocity turning with the slot, half "
             "from the slot carrying the block to faster places).",
-            {**wrong(n.acc("A"), 0.5), **_components("a_cor_A", 0.5 * a_cor)},
+            {
+                **wrong(n.acc("A"), 0.5),
+                **_components("a_cor_A", coriolis_without_factor_2(a_cor)),
+            },
         ),
     ]
     if n.alpha_driver not in (0.0, n.omega_driver**2):
@@ -258,12 +272,15 @@ def _moving_point(solved: Solved) -> list[WrongAnswers]:
             "coriolis_left_out",
             "This is what you get with the Coriolis acceleration left out: M moves relative to a "
             "turning body, so a = a_transport + a_relative + 2 omega x v_rel.",
-            {**_components("a_M", a - cor), **_components("a_cor_M", 0.0 * cor)},
+            {**_components("a_M", a - cor), **_components("a_cor_M", coriolis_left_out(cor))},
         ),
         WrongAnswers(
             "coriolis_without_factor_2",
             "This is what you get with omega x v_rel for the Coriolis term: it is 2 omega x v_rel.",
-            {**_components("a_M", a - 0.5 * cor), **_components("a_cor_M", 0.5 * cor)},
+            {
+                **_components("a_M", a - coriolis_without_factor_2(cor)),
+                **_components("a_cor_M", coriolis_without_factor_2(cor)),
+            },
         ),
     ]
 

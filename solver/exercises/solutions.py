@@ -7,8 +7,8 @@ from __future__ import annotations
 from typing import Any
 
 from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
-from solver.exercises.families import TYPES
 from solver.exercises.model import Exercise
+from solver.exercises.registry import TYPES
 from solver.model.laws import parse_time_law
 from solver.solutions import Step, Value, solve
 from solver.solutions import latex as tex

@@ -21,7 +21,16 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from solver.kinematics.rigid import Array, LinkMotion, dot, perp, rotate, scale
+from solver.kinematics.rigid import (
+    Array,
+    LinkMotion,
+    dot,
+    perp,
+    rigid_body_acceleration,
+    rigid_body_velocity,
+    rotate,
+    scale,
+)
 from solver.model.laws import parse_time_law
 from solver.model.scene import LinkageScene, MovingPoint
 
@@ -94,6 +103,28 @@ def intrinsic_parts(acceleration: Array, velocity: Array) -> tuple[Array, Array]
 def coriolis_acceleration(omega_carrier: Array, v_rel: Array) -> Array:
     """a_coriolis = 2 omega x v_rel (zero when the carrier does not turn or M rests on it)."""
     return scale(2.0 * omega_carrier, perp(v_rel))
+
+
+def sliding_velocity_parts(
+    v_A: Array, omega_guide: Array, r_AP: Array, v_P: Array
+) -> tuple[Array, Array]:
+    """v_P = v_transport + v_relative at a point P sliding on a guide, A a point of the guide:
+    v_transport = v_A + omega_guide x r_AP (the guide's point coinciding with P) and
+    v_relative = v_P - v_transport."""
+    v_transport = rigid_body_velocity(v_A, omega_guide, r_AP)
+    return v_transport, v_P - v_transport
+
+
+def sliding_acceleration_parts(
+    a_A: Array, omega_guide: Array, alpha_guide: Array, r_AP: Array, v_rel: Array, a_P: Array
+) -> tuple[Array, Array, Array]:
+    """a_P = a_transport + a_relative + a_coriolis at a point P sliding on a guide:
+    a_transport = a_A + alpha_guide x r_AP - omega_guide^2 r_AP,
+    a_coriolis = 2 omega_guide x v_rel and a_relative = a_P - a_transport - a_coriolis;
+    returned as (a_transport, a_relative, a_coriolis)."""
+    a_transport = rigid_body_acceleration(a_A, omega_guide, alpha_guide, r_AP)
+    a_coriolis = coriolis_acceleration(omega_guide, v_rel)
+    return a_transport, a_P - a_transport - a_coriolis, a_coriolis
 
 
 def moving_point_motion(

@@ -246,34 +246,64 @@ def five_term_acceleration(
 
 
 @dataclass(frozen=True)
-class _Guide:
-    """O_k as a point of body k-1 (velocity, acceleration) and the sliding terms of joint k."""
+class OriginTerms:
+    """The terms carrying joint k's origin O_k with body k-1, r = O_k - O_{k-1}:
 
-    velocity: np.ndarray
-    acceleration: np.ndarray
-    a_rel: np.ndarray
+    v_{O_k} = v_{O_{k-1}} + omega x r + v_rel,
+    a_{O_k} = a_{O_{k-1}} + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel,
+
+    with body k-1's omega and alpha, and the sliding terms of joint k (zero for a revolute one).
+    """
+
+    r: np.ndarray
+    omega_x_r: np.ndarray
+    alpha_x_r: np.ndarray
+    centripetal: np.ndarray
+    v_rel: np.ndarray
     coriolis: np.ndarray
+    a_rel: np.ndarray
+
+
+def origin_terms(parent: BodyMotion, joint: SpatialJoint) -> OriginTerms:
+    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates, and
+    v_rel = rate e_k, 2 omega x v_rel, a_rel = rate_dot e_k of joint k's sliding
+    (``sliding_terms``)."""
+    r = joint.origin - parent.origin
+    omega_x_r = np.cross(parent.omega, r)
+    v_rel, a_rel, coriolis = sliding_terms(parent.omega, joint)
+    return OriginTerms(
+        r,
+        omega_x_r,
+        np.cross(parent.alpha, r),
+        np.cross(parent.omega, omega_x_r),
+        v_rel,
+        coriolis,
+        a_rel,
+    )
+
+
+def ground_motion(like: np.ndarray) -> BodyMotion:
+    """The ground as body 0: at rest at the origin (zeros shaped like ``like``: (3,) or (N, 3))."""
+    zero = np.zeros_like(like)
+    return BodyMotion(zero, zero, zero, zero, zero, zero)
 
 
 def analyze_spatial_chain(chain: SpatialChain) -> SpatialAnalysis:
     """Walk the chain from the ground: omega, alpha and the joint-origin motion of every body,
     then the velocity and the five-term acceleration of every point."""
-    zero = np.zeros_like(chain.joints[0].origin)  # (3,) or (N, 3)
-    parent = BodyMotion(zero, zero, zero, zero, zero, zero)  # the ground
+    parent = ground_motion(chain.joints[0].origin)
     bodies: dict[str, BodyMotion] = {}
-    guides: dict[str, _Guide] = {}
+    guides: dict[str, tuple[np.ndarray, OriginTerms]] = {}  # O_k as a point of body k-1
     for joint in chain.joints:
-        r = joint.origin - parent.origin
-        v_guide = rigid_body_velocity(parent.velocity_origin, parent.omega, r)
-        a_guide = rigid_body_acceleration(parent.acceleration_origin, parent.omega, parent.alpha, r)
-        v_rel, a_rel, coriolis = sliding_terms(parent.omega, joint)
-        guides[joint.name] = _Guide(v_guide, a_guide, a_rel, coriolis)
+        terms = origin_terms(parent, joint)
+        a_guide = parent.acceleration_origin + terms.alpha_x_r + terms.centripetal
+        guides[joint.name] = (a_guide, terms)
         parent = BodyMotion(
             omega=angular_velocity_composition(parent.omega, joint),
             alpha=angular_acceleration_composition(parent.alpha, parent.omega, joint),
             origin=joint.origin,
-            velocity_origin=v_guide + v_rel,
-            acceleration_origin=a_guide + a_rel + coriolis,
+            velocity_origin=parent.velocity_origin + terms.omega_x_r + terms.v_rel,
+            acceleration_origin=a_guide + terms.a_rel + terms.coriolis,
             axis_rate=axis_rate(parent.omega, joint.axis),
         )
         bodies[joint.name] = parent
@@ -283,15 +313,15 @@ def analyze_spatial_chain(chain: SpatialChain) -> SpatialAnalysis:
             rest = np.zeros_like(point.position)
             points[point.name] = PointMotion(point.position, *(rest for _ in range(7)))
             continue
-        body, guide = bodies[point.body], guides[point.body]
+        body, (a_guide, guide) = bodies[point.body], guides[point.body]
         r = point.position - body.origin
-        terms = five_term_acceleration(
-            guide.acceleration, body.omega, body.alpha, r, guide.coriolis, guide.a_rel
+        five = five_term_acceleration(
+            a_guide, body.omega, body.alpha, r, guide.coriolis, guide.a_rel
         )
         points[point.name] = PointMotion(
             point.position,
             rigid_body_velocity(body.velocity_origin, body.omega, r),
             rigid_body_acceleration(body.acceleration_origin, body.omega, body.alpha, r),
-            *terms,
+            *five,
         )
     return SpatialAnalysis(bodies=bodies, points=points)

@@ -14,9 +14,10 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
+
+from solver.teaching.svg import Canvas, View, element, marker
 
 PAPER = 110.0  # mm: the larger side of a drawing
 MARGIN = 12.0  # mm around it
@@ -68,11 +69,20 @@ class Dot:
     fixed: bool = False
 
 
+_MARKER = (
+    ("viewBox", "0 0 6 6"),
+    ("refX", "5.5"),
+    ("refY", "3"),
+    ("markerWidth", "5"),
+    ("markerHeight", "5"),
+    ("orient", "auto-start-reverse"),
+)
+
+
 def _defs() -> str:
+    """An arrowhead in each style's colour, ``head-<style>``."""
     markers = "".join(
-        f'<marker id="head-{name}" viewBox="0 0 6 6" refX="5.5" refY="3" markerWidth="5" '
-        f'markerHeight="5" orient="auto-start-reverse"><path d="M0,0 L6,3 L0,6 z" '
-        f'fill="{colour}"/></marker>'
+        marker([("id", f"head-{name}"), *_MARKER], [("d", "M0,0 L6,3 L0,6 z"), ("fill", colour)])
         for name, (colour, _) in STYLE.items()
     )
     return f"<defs>{markers}</defs>"
@@ -85,100 +95,97 @@ def svg(
     segments: Sequence[tuple[np.ndarray, np.ndarray, str]],
     per_mm: float,
     caption: str,
-    attributes: dict[str, str],
+    extra: dict[str, str],
 ) -> str:
-    """An SVG drawing: model coordinates (y up) times ``1 / per_mm`` give millimetres."""
+    """An SVG drawing: model coordinates (y up) times ``1 / per_mm`` give millimetres; ``extra``
+    attributes of the drawing's root."""
+    canvas = Canvas(View.paper(per_mm))
     points = [a.start for a in arrows] + [a.end for a in arrows] + [d.at for d in dots]
     points += [p for s in segments for p in s[:2]]
-    x0, y0, width, height = _frame(points or [np.zeros(2)], per_mm)
-    body = [_defs(), f"<title>{escape(title)}</title>"]
-    body += [_segment(_paper(a, per_mm), _paper(b, per_mm), style) for a, b, style in segments]
+    x0, y0, width, height = _frame(points or [np.zeros(2)], canvas.view)
+    for a, b, style in segments:
+        _segment(canvas, canvas.px(a), canvas.px(b), style)
     for arrow in arrows:
-        body += _arrow(arrow, per_mm)
+        _arrow(canvas, arrow)
     for dot in dots:
-        body += _dot(dot, per_mm)
-    body.append(
-        f'<text x="{x0 + 2:.2f}" y="{y0 + height - 2.5:.2f}" font-size="3.4" fill="#000000">'
-        f"{escape(caption)}</text>"
+        _dot(canvas, dot)
+    canvas.text((x0 + 2, y0 + height - 2.5), caption, [*_LABEL, ("fill", "#000000")], digits=2)
+    return canvas.document(
+        [
+            ("role", "img"),
+            ("width", f"{width:.1f}mm"),
+            ("height", f"{height:.1f}mm"),
+            ("viewBox", f"{x0:.3f} {y0:.3f} {width:.3f} {height:.3f}"),
+            ("font-family", "sans-serif"),
+            *extra.items(),
+        ],
+        [_defs(), element("title", [], title)],
     )
-    extra = "".join(f" {k}={quoteattr(v)}" for k, v in attributes.items())
-    return (
-        f'<svg xmlns="http://www.w3.org/2000/svg" role="img" width="{width:.1f}mm" '
-        f'height="{height:.1f}mm" viewBox="{x0:.3f} {y0:.3f} {width:.3f} {height:.3f}"'
-        f' font-family="sans-serif"{extra}>' + "".join(body) + "</svg>"
-    )
 
 
-def _paper(p: np.ndarray, per_mm: float) -> tuple[float, float]:
-    """(x, -y) / per_mm: a model point in millimetres of paper, y down as SVG draws."""
-    return float(p[0]) / per_mm, -float(p[1]) / per_mm
+_LABEL = (("font-size", "3.4"),)
 
 
-def _frame(points: Sequence[np.ndarray], per_mm: float) -> tuple[float, float, float, float]:
+def _frame(points: Sequence[np.ndarray], view: View) -> tuple[float, float, float, float]:
     """The view box (x0, y0, width, height) in mm: the points with a margin, and room for the
     caption below."""
-    xs = [float(p[0]) / per_mm for p in points]
-    ys = [-float(p[1]) / per_mm for p in points]
+    paper = [view.px(p) for p in points]
+    xs, ys = [p[0] for p in paper], [p[1] for p in paper]
     x0, y0 = min(xs) - MARGIN, min(ys) - MARGIN
     return x0, y0, max(xs) - min(xs) + 2 * MARGIN, max(ys) - min(ys) + 2 * MARGIN + 8.0
 
 
-def _segment(start: tuple[float, float], end: tuple[float, float], style: str) -> str:
+def _segment(
+    canvas: Canvas, start: tuple[float, float], end: tuple[float, float], style: str
+) -> None:
     """A line of the drawing: a link as a thick bar, anything else in its style's colour."""
-    (x1, y1), (x2, y2) = start, end
     colour, dash = STYLE.get(style, ("#000000", ""))
-    width_mm = "1.4" if style == "link" else "0.35"
-    stroke = "#222222" if style == "link" else colour
-    return (
-        f'<line class="{style}" x1="{x1:.4f}" y1="{y1:.4f}" x2="{x2:.4f}" y2="{y2:.4f}" '
-        f'stroke="{stroke}" stroke-width="{width_mm}" stroke-linecap="round"'
-        + (f' stroke-dasharray="{dash}"' if dash and style != "link" else "")
-        + "/>"
-    )
+    link = style == "link"
+    stroke = [
+        ("stroke", "#222222" if link else colour),
+        ("stroke-width", "1.4" if link else "0.35"),
+        ("stroke-linecap", "round"),
+    ]
+    if dash and not link:
+        stroke.append(("stroke-dasharray", dash))
+    canvas.line(start, end, stroke, lead=[("class", style)], digits=4)
 
 
-def _arrow(arrow: Arrow, per_mm: float) -> list[str]:
+def _arrow(canvas: Canvas, arrow: Arrow) -> None:
     """A vector as a line with an arrowhead and ``data-vector``, its label beside its middle
     (2.5 mm along the normal); nothing for a vector shorter than ``SHORTEST``."""
-    (x1, y1), (x2, y2) = _paper(arrow.start, per_mm), _paper(arrow.end, per_mm)
+    (x1, y1), (x2, y2) = canvas.px(arrow.start), canvas.px(arrow.end)
     if math.hypot(x2 - x1, y2 - y1) < SHORTEST:
-        return []  # a vector at the rounding level, or shorter than a pen can draw
+        return  # a vector at the rounding level, or shorter than a pen can draw
     colour, dash = STYLE[arrow.style]
-    out = [
-        f'<line class="{arrow.style}" data-vector={quoteattr(arrow.name)} '
-        f'x1="{x1:.6f}" y1="{y1:.6f}" x2="{x2:.6f}" y2="{y2:.6f}" stroke="{colour}" '
-        f'stroke-width="0.45" marker-end="url(#head-{arrow.style})"'
-        + (f' stroke-dasharray="{dash}"' if dash else "")
-        + "/>"
+    stroke = [
+        ("stroke", colour),
+        ("stroke-width", "0.45"),
+        ("marker-end", f"url(#head-{arrow.style})"),
     ]
+    if dash:
+        stroke.append(("stroke-dasharray", dash))
+    lead = [("class", arrow.style), ("data-vector", arrow.name)]
+    canvas.line((x1, y1), (x2, y2), stroke, lead=lead, digits=6)
     if arrow.label:
         mx, my = (x1 + x2) / 2, (y1 + y2) / 2
         length = math.hypot(x2 - x1, y2 - y1) or 1.0
         nx, ny = -(y2 - y1) / length * 2.5, (x2 - x1) / length * 2.5
-        out.append(
-            f'<text x="{mx + nx:.2f}" y="{my + ny:.2f}" font-size="3" fill="{colour}" '
-            f'text-anchor="middle">{escape(arrow.label)}</text>'
-        )
-    return out
+        style = [("font-size", "3"), ("fill", colour), ("text-anchor", "middle")]
+        canvas.text((mx + nx, my + ny), arrow.label, style, digits=2)
 
 
-def _dot(dot: Dot, per_mm: float) -> list[str]:
+def _dot(canvas: Canvas, dot: Dot) -> None:
     """A point as a small circle with its label (and a ground hatch under a fixed one)."""
-    x, y = _paper(dot.at, per_mm)
-    out = [
-        f'<circle cx="{x:.4f}" cy="{y:.4f}" r="0.9" fill="#ffffff" stroke="#000000" '
-        'stroke-width="0.35"/>'
-    ]
+    x, y = canvas.px(dot.at)
+    ink = ("stroke", "#000000")
+    canvas.circle((x, y), "0.9", [("fill", "#ffffff"), ink, ("stroke-width", "0.35")], digits=4)
     if dot.fixed:
-        out.append(
-            f'<path d="M{x - 2.5:.2f},{y + 3:.2f} L{x:.2f},{y + 0.9:.2f} L{x + 2.5:.2f},'
-            f'{y + 3:.2f} z" fill="none" stroke="#000000" stroke-width="0.3"/>'
+        canvas.path(
+            f"M{x - 2.5:.2f},{y + 3:.2f} L{x:.2f},{y + 0.9:.2f} L{x + 2.5:.2f},{y + 3:.2f} z",
+            [("fill", "none"), ink, ("stroke-width", "0.3")],
         )
-    out.append(
-        f'<text x="{x + 1.6:.2f}" y="{y - 1.6:.2f}" font-size="3.4" fill="#000000">'
-        f"{escape(dot.label)}</text>"
-    )
-    return out
+    canvas.text((x + 1.6, y - 1.6), dot.label, [*_LABEL, ("fill", "#000000")], digits=2)
 
 
 def model_scale(points: Sequence[np.ndarray]) -> float:

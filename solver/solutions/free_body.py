@@ -3,11 +3,12 @@ and as a small standalone SVG drawing (no script, no external reference)."""
 
 from __future__ import annotations
 
-import html
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
+
+from solver.teaching.svg import Canvas, View, marker
 
 SIZE = 320  # px, the drawing is square
 MARGIN = 70  # px around the link, room for the arrows
@@ -66,91 +67,97 @@ def svg(
 ) -> str:
     """The drawing: the link as a bar through its points, each force an arrow at its point whose
     length is proportional to its magnitude, each moment a named arc (counter-clockwise arrowhead
-    for a positive value). y is up as in the scene."""
-    px = _pixels(list(points.values()) + ([center] if center else []))
+    for a positive value). y is up as in the scene; the points' box is centred, its larger side
+    SIZE - 2 MARGIN."""
+    canvas = Canvas(
+        View.centred(list(points.values()) + ([center] if center else []), SIZE, MARGIN)
+    )
     largest = max((math.hypot(*a.vector) for a in arrows), default=0.0)
-    parts = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {SIZE} {SIZE}" width="{SIZE}" '
-        f'height="{SIZE}" role="img" aria-label="free-body diagram of {html.escape(link)}">',
-        '<defs><marker id="head" markerWidth="9" markerHeight="8" refX="8" refY="4" '
-        'orient="auto" markerUnits="userSpaceOnUse"><path d="M0,0 L9,4 L0,8 z" '
-        'fill="context-stroke"/></marker></defs>',
-        *_link(points, center, px),
-    ]
+    _link(canvas, points, center)
     for a in arrows:
-        parts += _force(a, px, largest)
+        _force(canvas, a, largest)
     for k, c in enumerate(couples):
-        parts += _couple(k, c)
-    parts.append("</svg>")
-    return "".join(parts)
+        _couple(canvas, k, c)
+    head = marker(_MARKER, [("d", "M0,0 L9,4 L0,8 z"), ("fill", "context-stroke")])
+    return canvas.document(
+        [
+            ("viewBox", f"0 0 {SIZE} {SIZE}"),
+            ("width", SIZE),
+            ("height", SIZE),
+            ("role", "img"),
+            ("aria-label", f"free-body diagram of {link}"),
+        ],
+        [f"<defs>{head}</defs>"],
+    )
 
 
-Pixels = Callable[[tuple[float, float]], tuple[float, float]]
-
-
-def _pixels(xy: list[tuple[float, float]]) -> Pixels:
-    """The map from the scene (y up) to the drawing (y down): the points' bounding box centred,
-    its larger side scaled to SIZE - 2 MARGIN."""
-    xs, ys = [p[0] for p in xy], [p[1] for p in xy]
-    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-300)
-    scale = (SIZE - 2 * MARGIN) / span
-    cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
-
-    def px(p: tuple[float, float]) -> tuple[float, float]:
-        return SIZE / 2 + (p[0] - cx) * scale, SIZE / 2 - (p[1] - cy) * scale
-
-    return px
+_MARKER = (
+    ("id", "head"),
+    ("markerWidth", "9"),
+    ("markerHeight", "8"),
+    ("refX", "8"),
+    ("refY", "4"),
+    ("orient", "auto"),
+    ("markerUnits", "userSpaceOnUse"),
+)
 
 
 def _link(
-    points: Mapping[str, tuple[float, float]], center: tuple[float, float] | None, px: Pixels
-) -> list[str]:
+    canvas: Canvas, points: Mapping[str, tuple[float, float]], center: tuple[float, float] | None
+) -> None:
     """The link as a bar through its named points, and its centre of mass G."""
-    e = html.escape
-    chain = " ".join(f"{x:.1f},{y:.1f}" for x, y in map(px, points.values()))
-    parts = [
-        f'<polyline points="{chain}" fill="none" stroke="#555" stroke-width="8" '
-        'stroke-linecap="round" stroke-linejoin="round" opacity="0.6"/>'
-    ]
+    canvas.points("polyline", map(canvas.px, points.values()), _BAR)
     for name, p in points.items():
-        x, y = px(p)
-        parts.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="4" fill="#222"/>')
-        parts.append(f'<text x="{x + 6:.1f}" y="{y + 14:.1f}" font-size="11">{e(name)}</text>')
+        x, y = canvas.px(p)
+        canvas.circle((x, y), "4", [("fill", "#222")])
+        canvas.text((x + 6, y + 14), name, _LABEL)
     if center is not None:
-        x, y = px(center)
-        parts.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="5" fill="none" stroke="#222"/>')
-        parts.append(f'<text x="{x + 6:.1f}" y="{y - 6:.1f}" font-size="11">G</text>')
-    return parts
+        x, y = canvas.px(center)
+        canvas.circle((x, y), "5", [("fill", "none"), ("stroke", "#222")])
+        canvas.text((x + 6, y - 6), "G", _LABEL)
 
 
-def _force(a: Arrow, px: Pixels, largest: float) -> list[str]:
+_LABEL = (("font-size", "11"),)
+_BAR = (
+    ("fill", "none"),
+    ("stroke", "#555"),
+    ("stroke-width", "8"),
+    ("stroke-linecap", "round"),
+    ("stroke-linejoin", "round"),
+    ("opacity", "0.6"),
+)
+
+
+def _force(canvas: Canvas, a: Arrow, largest: float) -> None:
     """A force as an arrow from its point, ARROW * max(|F| / |F|max, 0.4) long, with its name;
     nothing for a force below 1e-9 of the largest."""
     magnitude = math.hypot(*a.vector)
     if largest == 0.0 or magnitude < 1e-9 * largest:
-        return []
+        return
     length = ARROW * max(magnitude / largest, 0.4)
-    x0, y0 = px(a.at)
+    x0, y0 = canvas.px(a.at)
     x1 = x0 + a.vector[0] / magnitude * length
     y1 = y0 - a.vector[1] / magnitude * length
     color = {"joint": "#c0392b", "weight": "#2c3e50", "load": "#27ae60"}.get(a.kind, "#c0392b")
-    return [
-        f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="{color}" '
-        'stroke-width="2" marker-end="url(#head)"/>',
-        f'<text x="{x1 + 3:.1f}" y="{y1 - 3:.1f}" font-size="11" fill="{color}">'
-        f"{html.escape(a.name)}</text>",
-    ]
+    canvas.line(
+        (x0, y0), (x1, y1), [("stroke", color), ("stroke-width", "2"), ("marker-end", "url(#head)")]
+    )
+    canvas.text((x1 + 3, y1 - 3), a.name, [*_LABEL, ("fill", color)])
 
 
-def _couple(k: int, c: Couple) -> list[str]:
+def _couple(canvas: Canvas, k: int, c: Couple) -> None:
     """The k-th moment as a named arc in the top right corner; nothing for a zero moment."""
     if c.value == 0.0:
-        return []
+        return
     x, y = SIZE - 60, 24 + 22 * k
     sweep = 0 if c.value > 0 else 1  # counter-clockwise on the screen for a positive moment
-    return [
-        f'<path d="M{x + 8:.1f},{y:.1f} A8,8 0 1 {sweep} {x:.1f},{y - 8:.1f}" fill="none" '
-        'stroke="#8e44ad" stroke-width="2" marker-end="url(#head)"/>',
-        f'<text x="{x + 14:.1f}" y="{y + 4:.1f}" font-size="11" fill="#8e44ad">'
-        f"{html.escape(c.name)}</text>",
-    ]
+    canvas.path(
+        f"M{x + 8:.1f},{y:.1f} A8,8 0 1 {sweep} {x:.1f},{y - 8:.1f}",
+        [
+            ("fill", "none"),
+            ("stroke", "#8e44ad"),
+            ("stroke-width", "2"),
+            ("marker-end", "url(#head)"),
+        ],
+    )
+    canvas.text((x + 14, y + 4), c.name, [*_LABEL, ("fill", "#8e44ad")])

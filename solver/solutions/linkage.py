@@ -18,7 +18,11 @@ from typing import TypeVar
 import numpy as np
 
 from solver.analysis.instant import LinkageAnalysis
-from solver.kinematics.relative_motion import MovingPointMotion
+from solver.kinematics.relative_motion import (
+    MovingPointMotion,
+    sliding_acceleration_parts,
+    sliding_velocity_parts,
+)
 from solver.kinematics.rigid import perp
 from solver.model.laws import parse_time_law
 from solver.model.scene import Joint, LinkageScene, ground_pivot
@@ -207,11 +211,11 @@ class LinkageContext:
         anchor = self.scene.links[guide].points[0]
         r = self.pos(point) - self.pos(anchor)
         omega, alpha = self.omega(guide), self.alpha(guide)
-        v_tr = self.vel(anchor) + k_cross(omega, r)
-        v_rel = self.vel(point) - v_tr
-        a_tr = self.acc(anchor) + k_cross(alpha, r) - omega**2 * r
-        a_cor = 2.0 * k_cross(omega, v_rel)
-        a_rel = self.acc(point) - a_tr - a_cor
+        w, al = np.asarray(omega), np.asarray(alpha)
+        v_tr, v_rel = sliding_velocity_parts(self.vel(anchor), w, r, self.vel(point))
+        a_tr, a_rel, a_cor = sliding_acceleration_parts(
+            self.acc(anchor), w, al, r, v_rel, self.acc(point)
+        )
         return SlotMotion(
             None,
             joint,

@@ -5,7 +5,8 @@ Coriolis term on a fixed guide where a slider's link turns, omega^2 with the wro
 cross product in the wrong order, the unknowns of a dyad mixed up, omega written for alpha, and,
 for moving points and spatial chains, the mistakes of seeds 002 and 003 (ERRATA.md). The wrong
 value is computed by making exactly that mistake with the solver's numbers, and shown next to
-the right one.
+the right one. Each mistake's id and title are its entry in the catalogue
+(``solver.teaching.mistakes``), which the exercise checker names its diagnoses by too.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from solver.kinematics.relative_motion import MovingPointMotion
+from solver.kinematics.relative_motion import MovingPointMotion, coriolis_acceleration
 from solver.kinematics.rigid import perp, solve_2x2
 from solver.kinematics.spatial import SpatialAnalysis, SpatialChain
 from solver.model.scene import MovingPoint
@@ -25,6 +26,15 @@ from solver.position.topology import CircleSpec, DriverStep, DyadStep, LeverStep
 from solver.solutions.format import Formatter
 from solver.solutions.linkage import LinkageContext, SlotMotion, k_cross
 from solver.solutions.model import Mistake, Step, Value
+from solver.teaching.mistakes import (
+    alpha_squared,
+    coriolis_with_omega_of,
+    coriolis_without_factor_2,
+    cross_order,
+    normal_term_sign,
+    omega_for_alpha,
+    typical_mistake,
+)
 
 
 def _value(fmt: Formatter, value: float | np.ndarray, unit: str) -> Value:
@@ -36,17 +46,18 @@ def _value(fmt: Formatter, value: float | np.ndarray, unit: str) -> Value:
 def _mistake(
     fmt: Formatter,
     kind: str,
-    title: str,
     text: str,
     wrong: float | np.ndarray,
     right: float | np.ndarray,
     unit: str,
     *anchors: tuple[str, str],
 ) -> Mistake:
+    """The catalogue's mistake ``kind`` (its title) with this scene's text and its wrong and
+    right values."""
     w, r = _value(fmt, wrong, unit), _value(fmt, right, unit)
     return Mistake(
         kind,
-        title,
+        typical_mistake(kind).title,
         f"{text} Wrong: {w.display}; right: {r.display}.",
         {"wrong": w, "right": r},
         anchors,
@@ -141,7 +152,8 @@ class LinkageMistakes:
         ctx = self.ctx
         r = ctx.pos(step.pin) - ctx.pos(step.pivot)
         base = ctx.acc(step.pin) - ctx.acc(step.pivot) + ctx.omega(step.link) ** 2 * r
-        half = k_cross(slot.omega_guide, slot.relative_velocity)
+        assert slot.coriolis_acceleration is not None
+        half = coriolis_without_factor_2(slot.coriolis_acceleration)
         alpha: float = _solve2((perp(r), slot.direction), base - half)[0]
         return alpha
 
@@ -153,8 +165,7 @@ class LinkageMistakes:
         self.out.append(
             _mistake(
                 fmt,
-                "coriolis.factor_2",
-                "The factor 2 in the Coriolis term",
+                "coriolis_without_factor_2",
                 f"The Coriolis acceleration of {step.pin} in the turning slot of {step.link} is "
                 f"2 omega({step.link}) x v_rel, twice omega x v_rel: half comes from the relative "
                 "velocity turning with the slot, half from the slot carrying the point to places "
@@ -162,7 +173,7 @@ class LinkageMistakes:
                 f"acceleration: alpha({step.link}) would come out as "
                 f"{fmt.text_value(alpha_wrong, 'rad/s^2')} instead of "
                 f"{fmt.text_value(self.ctx.alpha(step.link), 'rad/s^2')}.",
-                k_cross(slot.omega_guide, slot.relative_velocity),
+                coriolis_without_factor_2(slot.coriolis_acceleration),
                 slot.coriolis_acceleration,
                 "m/s^2",
                 *_lever_anchors(step),
@@ -177,11 +188,10 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "coriolis.absolute_velocity",
-                "Relative, not absolute, velocity in Coriolis",
                 f"a_Cor = 2 omega({step.link}) x v_rel uses the velocity of {step.pin} "
                 f"relative to the slot ({fmt.text_vector(tuple(slot.relative_velocity), 'm/s')}), "
                 f"not its absolute velocity ({fmt.text_vector(tuple(v_abs), 'm/s')}).",
-                2.0 * k_cross(slot.omega_guide, v_abs),
+                coriolis_acceleration(np.asarray(slot.omega_guide), v_abs),
                 slot.coriolis_acceleration,
                 "m/s^2",
                 *_lever_anchors(step),
@@ -201,11 +211,10 @@ class LinkageMistakes:
             self.out.append(
                 _mistake(
                     self.fmt,
-                    "coriolis.factor_2",
-                    "The factor 2 in the Coriolis term",
+                    "coriolis_without_factor_2",
                     f"The Coriolis acceleration of {step.point} in the turning slot of "
                     f"{spec.guide} is 2 omega({spec.guide}) x v_rel, not omega x v_rel.",
-                    k_cross(slot.omega_guide, slot.relative_velocity),
+                    coriolis_without_factor_2(slot.coriolis_acceleration),
                     slot.coriolis_acceleration,
                     "m/s^2",
                     ("acceleration.coriolis", step.point),
@@ -222,7 +231,7 @@ class LinkageMistakes:
         if not (self.nonzero(omega_f, "rad/s") and self.nonzero(slot.relative_velocity, "m/s")):
             return
         assert slot.coriolis_acceleration is not None
-        wrong = 2.0 * k_cross(omega_f, slot.relative_velocity)
+        wrong = coriolis_with_omega_of(omega_f, slot.relative_velocity)
         consequence = ""
         circle = next((s for s in step.loci if isinstance(s, CircleSpec)), None)
         if circle is not None:
@@ -237,8 +246,7 @@ class LinkageMistakes:
         self.out.append(
             _mistake(
                 fmt,
-                "coriolis.fixed_guide",
-                "No Coriolis term on a fixed guide",
+                "coriolis_on_fixed_guide",
                 f"{point} slides in a slot fixed in the ground. The Coriolis term is "
                 "2 omega_guide x v_rel with the angular velocity of the guide, which is zero; "
                 f"the angular velocity of link {follower} ({fmt.text_value(omega_f, 'rad/s')}) "
@@ -283,13 +291,12 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "normal.sign",
-                "The sign of the normal term -omega^2 r",
                 f"The normal (centripetal) acceleration of {point} about {pivot} is -omega^2 "
                 f"r({pivot},{point}): it points from {point} back towards {pivot}, whatever the "
                 f"sign of omega (omega^2 = ({fmt.text(omega, 'rad/s')})^2 = "
                 f"{fmt.text(omega**2, '1/s^2')} is "
                 "positive). Writing +omega^2 r turns it outwards.",
-                ctx.acc(pivot) + k_cross(alpha, r) + omega**2 * r,
+                normal_term_sign(ctx.acc(pivot), omega, alpha, r),
                 ctx.acc(point),
                 "m/s^2",
                 ("acceleration.rigid", f"of {point} ("),
@@ -304,11 +311,10 @@ class LinkageMistakes:
             _mistake(
                 self.fmt,
                 "cross.order",
-                "The order of the cross product",
                 f"v({point}) = v({pivot}) + omega x r({pivot},{point}); r x omega = -(omega x r) "
                 "reverses the relative velocity. In the determinant, the row of omega comes before "
                 "the row of r.",
-                ctx.vel(pivot) - k_cross(ctx.omega(link), r),
+                cross_order(ctx.vel(pivot), ctx.omega(link), r),
                 ctx.vel(point),
                 "m/s",
                 ("velocity.rigid", f"of {point} ("),
@@ -324,11 +330,10 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "labels.omega_alpha",
-                "alpha, not omega, in the tangential term",
                 f"The tangential acceleration is alpha x r, with the angular acceleration "
                 f"alpha({link}) = {fmt.text_value(alpha, 'rad/s^2')}; writing omega x r there "
                 f"(omega({link}) = {fmt.text_value(omega, 'rad/s')}) mixes up the two labels.",
-                ctx.acc(pivot) + k_cross(omega, r) - omega**2 * r,
+                omega_for_alpha(ctx.acc(pivot), omega, r),
                 ctx.acc(point),
                 "m/s^2",
                 ("acceleration.rigid", f"of {point} ("),
@@ -378,7 +383,6 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "unknowns.which_link",
-                "Whose omega is unknown",
                 text,
                 ctx.vel(first.center) + k_cross(ctx.omega(known), r),
                 ctx.vel(step.point),
@@ -426,7 +430,6 @@ class LinkageMistakes:
             _mistake(
                 self.fmt,
                 "relative.carrier_rate",
-                "No carrier rate in the relative velocity",
                 f"The relative velocity of {mp.name} is what an observer on {mp.link} "
                 "sees: s-dot along the path's tangent. Adding the carrier's rotation "
                 "(R (theta-dot + phi-dot)) counts the transport motion twice.",
@@ -442,10 +445,9 @@ class LinkageMistakes:
         self.out.append(
             _mistake(
                 self.fmt,
-                "coriolis.factor_2",
-                "The factor 2 in the Coriolis term",
+                "coriolis_without_factor_2",
                 f"a_Cor({mp.name}) = 2 omega({mp.link}) x v_rel, not omega x v_rel.",
-                k_cross(float(m.omega_carrier), np.asarray(m.relative_velocity)),
+                coriolis_without_factor_2(np.asarray(m.coriolis_acceleration)),
                 np.asarray(m.coriolis_acceleration),
                 "m/s^2",
                 ("relative.coriolis", mp.name),
@@ -476,12 +478,11 @@ class LinkageMistakes:
             _mistake(
                 self.fmt,
                 "coriolis.translating_carrier",
-                "No Coriolis term on a translating carrier",
                 f"The carrier {mp.link} translates (omega = 0), so a_Cor = 0 even though link "
                 f"{other} that drives it turns (omega({other}) = "
                 f"{self.fmt.text_value(self.ctx.omega(other), 'rad/s')}); the Coriolis term "
                 "uses the carrier's angular velocity only.",
-                2.0 * k_cross(self.ctx.omega(other), v_rel),
+                coriolis_with_omega_of(self.ctx.omega(other), v_rel),
                 np.asarray(m.coriolis_acceleration),
                 "m/s^2",
                 ("relative.coriolis", mp.name),
@@ -498,7 +499,6 @@ class LinkageMistakes:
             _mistake(
                 self.fmt,
                 "relative.tangential_sense",
-                "The sense of the tangential relative acceleration",
                 f"a_rel^tau = s-double-dot tau points along the direction of increasing s "
                 f"({mp.path.direction} on the arc). Writing it as eps_rel x r with "
                 "eps_rel counter-clockwise when M runs clockwise (seed 003, task 1) "
@@ -516,7 +516,6 @@ class LinkageMistakes:
             _mistake(
                 self.fmt,
                 "relative.transport_point",
-                "Transport velocity at M itself",
                 "The transport velocity is the velocity of the carrier's point that "
                 f"coincides with {mp.name} (omega x r to {mp.name}), not that of the "
                 f"path's centre {centre} or of another reference point.",
@@ -544,12 +543,11 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "normal.alpha_squared",
-                "omega squared, not alpha squared, in the normal term",
                 f"The normal term of {point} is -omega({link})^2 r = -("
                 f"{fmt.text(omega, 'rad/s')})^2 r; seed 000 type 2 wrote -(-3)^2 with the angular "
                 f"acceleration. With alpha({link})^2 = {fmt.text(alpha**2)} the acceleration "
                 "comes out wrong.",
-                ctx.acc(pivot) + k_cross(alpha, r) - alpha**2 * r,
+                alpha_squared(ctx.acc(pivot), omega, alpha, r),
                 ctx.acc(point),
                 "m/s^2",
                 ("acceleration.rigid", f"of {point} ("),
@@ -575,7 +573,6 @@ class LinkageMistakes:
                 _mistake(
                     fmt,
                     "position.trigonometry",
-                    "Trigonometry of the position: the right sides for the ratio",
                     f"The angle of link {link} ({points[0]} to {points[1]}) has cos = dx/L = "
                     f"{fmt.text(d[0])}/{fmt.text(length)} and sin = dy/L = {fmt.text(d[1])}/"
                     f"{fmt.text(length)}, both; its quadrant follows from the signs (atan2). "
@@ -610,7 +607,6 @@ class LinkageMistakes:
                 _mistake(
                     fmt,
                     "poles.wrong_velocity",
-                    "The pole from the velocity of the same point",
                     f"v({x}) = omega({link}) x r(P,{x}) must use the velocity of {x} itself "
                     f"({fmt.text_vector(tuple(ctx.vel(x)), 'm/s')}); with the velocity of {y} "
                     f"({fmt.text_vector(tuple(ctx.vel(y)), 'm/s')}) the pole lands elsewhere "
@@ -643,7 +639,6 @@ class LinkageMistakes:
             _mistake(
                 fmt,
                 "inputs.rounding",
-                "Rounding the inputs consistently",
                 f"Rounded to two significant digits, the coordinates of {a} and {b} no longer "
                 f"give the length of link {link}: |{a}{b}| becomes {fmt.text(approx)} m. Seed 000 "
                 "type 2 rounded x = 0.346 m to 0.35 m and so solved another mechanism (crank "
@@ -685,14 +680,14 @@ def linkage_mistakes(ctx: LinkageContext) -> list[Mistake]:
 SPATIAL_NOTES = (
     Mistake(
         "spatial.unit_vectors",
-        "Cross products of unit vectors",
+        typical_mistake("spatial.unit_vectors").title,
         "Unit vectors cross in cyclic order: E1 x E2 = E3, E2 x E3 = E1, E3 x E1 = "
         "E2 (and reversed order gives the minus sign). E3 x E1 is E2, not E1.",
         anchors=(("spatial.axis_rate", ""),),
     ),
     Mistake(
         "spatial.rigid_points",
-        "Coriolis and relative terms of fixed points",
+        typical_mistake("spatial.rigid_points").title,
         "A point fixed in its body has v_rel = 0 and a_rel = 0: of the five terms "
         "only a_O, alpha x r and omega x (omega x r) remain. They reappear for a "
         "point carried by a prismatic joint.",
@@ -728,7 +723,6 @@ def _axis_rate_mistake(
             return _mistake(
                 fmt,
                 "spatial.axis_rate",
-                "The turning axis in alpha",
                 f"Axis e({joint.name}) is fixed in the body before it, which turns: "
                 "d/dt (rate e) = rate-dot e + rate (omega x e). Leaving out omega x e "
                 f"gives a wrong alpha({joint.name}).",
@@ -750,7 +744,6 @@ def _centripetal_order_mistake(
             return _mistake(
                 fmt,
                 "spatial.centripetal_order",
-                "The order in omega x (omega x r)",
                 f"The centripetal term of {point.name} is omega x (omega x r), pointing "
                 "towards the axis; (omega x r) x omega has the opposite sign.",
                 motion.acceleration - 2.0 * motion.centripetal,
@@ -770,11 +763,10 @@ def _spatial_coriolis_mistake(
         if float(np.linalg.norm(motion.coriolis)) > 0:
             return _mistake(
                 fmt,
-                "coriolis.factor_2",
-                "The factor 2 in the Coriolis term",
+                "coriolis_without_factor_2",
                 f"{point.name} is carried by a sliding joint in a turning body: its Coriolis "
                 "term is 2 omega x v_rel, not omega x v_rel.",
-                motion.acceleration - 0.5 * motion.coriolis,
+                motion.acceleration - coriolis_without_factor_2(motion.coriolis),
                 motion.acceleration,
                 "m/s^2",
                 ("spatial.point.acceleration", f"of {point.name}"),
@@ -795,7 +787,6 @@ def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
                     _mistake(
                         fmt,
                         "loop.derivative_i",
-                        "d/dt e^(i theta) = i omega e^(i theta)",
                         f"Differentiating a e^(i theta) gives i a omega e^(i theta): the factor i "
                         f"turns the term 90 degrees, perpendicular to the link. Without it the "
                         f"velocity of {others[0]} would point along the crank.",
@@ -813,7 +804,7 @@ def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
         out.append(
             Mistake(
                 "loop.real_slider",
-                "The slider's rates are real",
+                typical_mistake("loop.real_slider").title,
                 "s and its derivatives are real numbers: s-double-dot is the real part of the "
                 "acceleration loop equation along the guide. An extra i in front of a term of "
                 "s-double-dot (as in seed 001, eq. 10) would give it an imaginary part.",

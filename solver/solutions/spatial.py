@@ -22,11 +22,14 @@ import numpy as np
 from solver.kinematics.spatial import (
     GROUND,
     BodyMotion,
+    OriginTerms,
     PointMotion,
     SpatialAnalysis,
     SpatialChain,
     SpatialJoint,
     SpatialPoint,
+    ground_motion,
+    origin_terms,
 )
 from solver.solutions import figures
 from solver.solutions import latex as tex
@@ -65,47 +68,6 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
         ),
         "rad/s^2": largest([b.alpha for b in analysis.bodies.values()]),
     }
-
-
-class ParentMotion(NamedTuple):
-    """Body k-1 at the instant (zeros for the ground): omega, alpha, origin O_{k-1} and its
-    velocity and acceleration."""
-
-    omega: np.ndarray
-    alpha: np.ndarray
-    origin: np.ndarray
-    velocity: np.ndarray
-    acceleration: np.ndarray
-
-
-class OriginTerms(NamedTuple):
-    """The terms carrying joint k's origin with body k-1, r = O_k - O_{k-1}:
-    v_{O_k} = v_{O_{k-1}} + omega x r + v_rel and
-    a_{O_k} = a_{O_{k-1}} + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
-
-    r: np.ndarray
-    omega_x_r: np.ndarray
-    alpha_x_r: np.ndarray
-    centripetal: np.ndarray
-    v_rel: np.ndarray
-    coriolis: np.ndarray
-    a_rel: np.ndarray
-
-
-def origin_terms(joint: SpatialJoint, parent: ParentMotion) -> OriginTerms:
-    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates;
-    v_rel = v_k e_k, 2 omega x v_rel and a_rel = v_dot_k e_k of joint k's sliding."""
-    r = joint.origin - parent.origin
-    v_rel = joint.rate * joint.axis
-    return OriginTerms(
-        r,
-        np.cross(parent.omega, r),
-        np.cross(parent.alpha, r),
-        np.cross(parent.omega, np.cross(parent.omega, r)),
-        v_rel,
-        2.0 * np.cross(parent.omega, v_rel),
-        joint.rate_dot * joint.axis,
-    )
 
 
 class FiveTerms(NamedTuple):
@@ -178,15 +140,11 @@ class SpatialSteps:
     def parent_name(self, index: int) -> str:
         return GROUND if index == 0 else self.chain.joints[index - 1].name
 
-    def parent_motion(self, index: int) -> ParentMotion:
-        """omega, alpha, origin, v_origin, a_origin of body k-1 (zeros for the ground)."""
+    def parent_motion(self, index: int) -> BodyMotion:
+        """Body k-1's motion: omega, alpha, its origin's (zeros for the ground)."""
         if index == 0:
-            z = np.zeros(3)
-            return ParentMotion(z, z, z, z, z)
-        body = self.analysis.bodies[self.chain.joints[index - 1].name]
-        return ParentMotion(
-            body.omega, body.alpha, body.origin, body.velocity_origin, body.acceleration_origin
-        )
+            return ground_motion(np.zeros(3))
+        return self.analysis.bodies[self.chain.joints[index - 1].name]
 
     def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> str:
         """omega_{k-1} (or alpha_{k-1}) of body k-1; the ground's is zero and has no source."""
@@ -219,12 +177,12 @@ class SpatialSteps:
             self.shown.add(at_origin)
             out += self.point_steps(at_origin, f" (the origin O{joint.name} of joint {joint.name})")
         else:
-            terms = origin_terms(joint, parent)
+            terms = origin_terms(parent, joint)
             out.append(self.origin_velocity_step(index, joint, parent, terms))
             out.append(self.origin_acceleration_step(index, joint, parent, terms))
         return out
 
-    def omega_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+    def omega_step(self, index: int, joint: SpatialJoint, parent: BodyMotion) -> Step:
         """omega_k = omega_{k-1} + omega_k e_k (a revolute joint), omega_k = omega_{k-1} (a
         prismatic one)."""
         body = self.analysis.bodies[joint.name]
@@ -260,7 +218,7 @@ class SpatialSteps:
         )
         return b.build()
 
-    def axis_rate_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+    def axis_rate_step(self, index: int, joint: SpatialJoint, parent: BodyMotion) -> Step:
         """de_k/dt = omega_{k-1} x e_k: the axis is fixed in body k-1 and turns with it."""
         body = self.analysis.bodies[joint.name]
         parent_name = self.parent_name(index)
@@ -282,7 +240,7 @@ class SpatialSteps:
         )
         return b.build()
 
-    def alpha_step(self, index: int, joint: SpatialJoint, parent: ParentMotion) -> Step:
+    def alpha_step(self, index: int, joint: SpatialJoint, parent: BodyMotion) -> Step:
         """alpha_k = alpha_{k-1} + omega_dot_k e_k + omega_k de_k/dt (a revolute joint),
         alpha_k = alpha_{k-1} (a prismatic one)."""
         body = self.analysis.bodies[joint.name]
@@ -323,7 +281,7 @@ class SpatialSteps:
         return b.build()
 
     def origin_velocity_step(
-        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+        self, index: int, joint: SpatialJoint, parent: BodyMotion, terms: OriginTerms
     ) -> Step:
         """v_{O_k} = v_{O_{k-1}} + omega_{k-1} x r (+ v_k e_k where joint k slides)."""
         body = self.analysis.bodies[joint.name]
@@ -331,7 +289,7 @@ class SpatialSteps:
         n, p = tex.name(joint.name), tex.name(parent_name)
         origin_p = "O_{" + p + "}" if index else "O"
         b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
-        vp = b.put(f"v(O{parent_name})", parent.velocity, "m/s")
+        vp = b.put(f"v(O{parent_name})", parent.velocity_origin, "m/s")
         wp = self.parent_rate(b, index, "omega", parent.omega)
         r = b.put("r", terms.r, "m")
         wxr = b.put("omega x r", terms.omega_x_r, "m/s")
@@ -362,7 +320,7 @@ class SpatialSteps:
         return b.build()
 
     def origin_acceleration_step(
-        self, index: int, joint: SpatialJoint, parent: ParentMotion, terms: OriginTerms
+        self, index: int, joint: SpatialJoint, parent: BodyMotion, terms: OriginTerms
     ) -> Step:
         """a_{O_k} = a_{O_{k-1}} + alpha_{k-1} x r + omega_{k-1} x (omega_{k-1} x r)
         (+ 2 omega_{k-1} x v_rel + a_rel where joint k slides)."""
@@ -371,7 +329,7 @@ class SpatialSteps:
         b = self.builder(
             "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
         )
-        ap = b.put(f"a(O{parent_name})", parent.acceleration, "m/s^2")
+        ap = b.put(f"a(O{parent_name})", parent.acceleration_origin, "m/s^2")
         wp = self.parent_rate(b, index, "omega", parent.omega)
         alp = self.parent_rate(b, index, "alpha", parent.alpha)
         r = b.put("r", terms.r, "m")

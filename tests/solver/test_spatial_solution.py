@@ -203,7 +203,7 @@ def test_sliding_joint_origin_steps_hold() -> None:
     """A sliding joint whose origin is no named point gets its own steps: v_O = v_O' + omega x r
     + v_rel and the five terms of a_O with 2 omega x v_rel and a_rel; every check of every step
     holds and every sourced value is the analysis's. Mutation: a factor 2.5 for the 2 of the
-    Coriolis term (spatial.origin_terms) fails it."""
+    Coriolis term (solver.kinematics.spatial.sliding_terms) fails it."""
     doc = turntable_slider(1.3, 0.4, -0.7)
     doc["joints"][1]["origin"] = [1.0, 0.2, 0.0]
     solution = solve(parse_spatial_chain(doc))

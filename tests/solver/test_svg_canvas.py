@@ -1,0 +1,121 @@
+"""One SVG canvas: the map from the model (y up) to the drawing (y down), escaped elements, and
+standalone documents that parse as XML, for the solution figures, the free-body diagrams and the
+exercise figures alike. Source: the SVG 1.1 document structure; properties of an affine map.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from solver.exercises import ExerciseId, build
+from solver.exercises.figures import figure_svg
+from solver.solutions.figures import Arrow, Dot, svg
+from solver.solutions.free_body import Arrow as Force
+from solver.solutions.free_body import Couple
+from solver.solutions.free_body import svg as free_body_svg
+from solver.teaching.svg import Canvas, View, element
+
+SVG = "{http://www.w3.org/2000/svg}"
+coordinate = st.floats(-1e3, 1e3, allow_nan=False)
+points = st.lists(st.tuples(coordinate, coordinate), min_size=2, max_size=8)
+
+
+def test_paper_view_divides_by_the_scale_and_turns_y_down() -> None:
+    """(x, y) -> (x / per, -y / per) exactly, a zero keeping the sign the division gives."""
+    view = View.paper(0.002)
+    for x, y in [(0.3, 0.7), (-1.1, 0.0), (0.0, -2.5), (1e-9, 3.0)]:
+        assert view.px((x, y)) == (x / 0.002, -y / 0.002)
+    assert math.copysign(1.0, view.px((0.0, 0.0))[1]) == -1.0
+
+
+@given(points)
+def test_a_fitted_view_keeps_the_points_inside_the_margin_and_centred(xy: list) -> None:  # type: ignore[type-arg]
+    """Every point lands within the margin of a 420 x 300 drawing, the box centred on the axis
+    it does not fill."""
+    view = View.fit(xy, 420.0, 300.0, 48.0)
+    drawn = [view.px(p) for p in xy]
+    xs, ys = [p[0] for p in drawn], [p[1] for p in drawn]
+    tol = 1e-6
+    assert min(xs) >= 48.0 - tol and max(xs) <= 372.0 + tol
+    assert min(ys) >= 48.0 - tol and max(ys) <= 252.0 + tol
+    assert (min(xs) + max(xs)) / 2 == pytest.approx(210.0, abs=1e-6)
+    assert (min(ys) + max(ys)) / 2 == pytest.approx(150.0, abs=1e-6)
+
+
+@given(points)
+def test_a_centred_view_puts_the_box_centre_in_the_middle(xy: list) -> None:  # type: ignore[type-arg]
+    view = View.centred(xy, 320.0, 70.0)
+    drawn = [view.px(p) for p in xy]
+    xs, ys = [p[0] for p in drawn], [p[1] for p in drawn]
+    assert (min(xs) + max(xs)) / 2 == pytest.approx(160.0, abs=1e-6)
+    assert (min(ys) + max(ys)) / 2 == pytest.approx(160.0, abs=1e-6)
+    assert max(max(xs) - min(xs), max(ys) - min(ys)) <= 180.0 + 1e-6
+
+
+def test_y_points_down_on_paper() -> None:
+    view = View.fit([(0.0, 0.0), (1.0, 1.0)], 420.0, 300.0, 48.0)
+    assert view.px((0.0, 1.0))[1] < view.px((0.0, 0.0))[1]
+
+
+def test_labels_and_attributes_are_escaped() -> None:
+    assert element("text", [("x", "1.0")], "a<b & c'") == '<text x="1.0">a&lt;b &amp; c\'</text>'
+    assert element("line", [("data-vector", 'v"<')]) == '<line data-vector="v&quot;&lt;"/>'
+    canvas = Canvas(View.paper(1.0))
+    canvas.text((1.0, 2.0), "</svg>", [("fill", "#000")], digits=2)
+    doc = canvas.document([("role", "img"), ("aria-label", 'say "hi" & go')], ["<title>t</title>"])
+    root = ET.fromstring(doc)
+    assert root.get("aria-label") == 'say "hi" & go'
+    assert root.find(f"{SVG}text") is not None and root.find(f"{SVG}text").text == "</svg>"  # type: ignore[union-attr]
+
+
+NASTY = "A&<\"'>"
+
+
+def _parses(document: str) -> ET.Element:
+    root = ET.fromstring(document)
+    assert root.tag == f"{SVG}svg"
+    return root
+
+
+def test_a_solution_figure_is_standalone_xml_with_its_labels() -> None:
+    arrow = Arrow(np.zeros(2), np.array([0.05, 0.02]), f"v({NASTY})", NASTY, "absolute")
+    root = _parses(
+        svg(NASTY, [arrow], [Dot(np.zeros(2), NASTY, True)], [], 0.002, NASTY, {"data-x": NASTY})
+    )
+    assert root.get("data-x") == NASTY
+    assert root.find(f"{SVG}title").text == NASTY  # type: ignore[union-attr]
+    (line,) = root.iter(f"{SVG}line")
+    assert line.get("data-vector") == f"v({NASTY})"
+    assert float(line.get("x2")) == pytest.approx(25.0)  # type: ignore[arg-type]
+    assert {t.text for t in root.iter(f"{SVG}text")} == {NASTY}
+
+
+def test_a_free_body_diagram_is_standalone_xml_with_its_labels() -> None:
+    root = _parses(
+        free_body_svg(
+            NASTY,
+            {NASTY: (0.0, 0.0), "B": (1.0, 0.0)},
+            (0.5, 0.0),
+            [Force(NASTY, "joint", (0.0, 0.0), (3.0, 4.0))],
+            [Couple(NASTY, "load", -2.0)],
+        )
+    )
+    assert root.get("aria-label") == f"free-body diagram of {NASTY}"
+    texts = [t.text for t in root.iter(f"{SVG}text")]
+    assert texts.count(NASTY) == 3 and "G" in texts
+
+
+def test_an_exercise_figure_is_standalone_xml_with_its_title() -> None:
+    e = build(ExerciseId("quick_return", "standard", 4, 0))
+    scene = {**e.scene, "title": NASTY}
+    root = _parses(figure_svg(scene))
+    assert root.get("aria-label") == NASTY
+    assert root.find(f"{SVG}title").text == NASTY  # type: ignore[union-attr]
+    spatial = build(ExerciseId("spatial_arm", "basic", 4, 0))
+    assert _parses(figure_svg(spatial.scene)).get("width") == "420"
