@@ -1,4 +1,5 @@
-# The kinematics teaching app: the same install as the README's first command (pinned deps).
+# The kinematics teaching app: the same install as the README's first command (pinned deps,
+# the project with its [server] extra).
 FROM python:3.11-slim
 
 ENV PYTHONDONTWRITEBYTECODE=1 \
@@ -12,9 +13,12 @@ COPY pyproject.toml README.md requirements.lock ./
 COPY solver ./solver
 COPY server ./server
 COPY static ./static
-# The lock with its hashes, then the project alone (it adds no dependency of its own).
+# The lock with its hashes (the library's dependencies and the [server] extra's), then the
+# project with that extra and --no-deps (the lock already pinned them), then a check that the
+# web app imports with what the lock installed.
 RUN python -m pip install --no-cache-dir --require-hashes -r requirements.lock \
-    && python -m pip install --no-cache-dir --no-deps .
+    && python -m pip install --no-cache-dir --no-deps "./[server]" \
+    && python -c "import server.app"
 
 USER 10001
 EXPOSE 8000

@@ -1,9 +1,9 @@
 """The lock files hold everything the project needs (issue 15): the hashed install
 (``pip install --require-hashes -r <lock>``, then the project with ``--no-deps``) installs
 nothing else, so a requirement missing from a lock is missing from a fresh machine. The runtime
-requirements and, in the test lock, the ``[test]`` extra, each with everything they require in
-turn (read from the installed distributions' metadata), must be pinned at a version their
-specifiers accept."""
+requirements (the library's and the ``[server]`` extra's) and, in the test lock, the ``[test]``
+extra, each with everything they require in turn (read from the installed distributions'
+metadata), must be pinned at a version their specifiers accept."""
 
 from __future__ import annotations
 
@@ -19,7 +19,10 @@ from tests import advisories
 
 ROOT = Path(__file__).resolve().parents[1]
 PROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
-RUNTIME = [Requirement(r) for r in PROJECT["dependencies"]]
+# The app's runtime: the library's requirements and the ``[server]`` extra (both locks serve it).
+RUNTIME = [
+    Requirement(r) for r in (*PROJECT["dependencies"], *PROJECT["optional-dependencies"]["server"])
+]
 TEST = [Requirement(r) for r in PROJECT["optional-dependencies"]["test"]]
 
 

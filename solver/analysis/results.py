@@ -1,7 +1,9 @@
 """Results as data: the solver's answers in the shapes of the scene-v1 contract, frozen.
 
-Every result is a read-only mapping whose ``as_dict()`` is exactly the body the HTTP endpoint sends
-(sweep arrays as read-only numpy arrays, which the server writes as JSON lists). ``holds`` is the
+Every result is a read-only mapping whose ``as_dict()`` is exactly the body the HTTP endpoint sends,
+as plain JSON data (``json.dumps`` writes it): the result itself holds a sweep's arrays as read-only
+numpy arrays, ``as_dict()`` gives them as nested lists of floats (``as_dict(arrays=True)`` keeps
+them as arrays: the same body, which orjson writes byte for byte the same, faster). ``holds`` is the
 one place that decides which quantities a result carries. Results copy what they keep: no result
 shares memory with the solver's internal state or with the caller's input, and none can be changed
 (mappings are ``MappingProxyType``, lists are tuples, arrays have ``writeable = False``).
@@ -100,7 +102,7 @@ def freeze(value: Any) -> Any:
 
 
 def thaw(value: Any) -> Any:
-    """The plain JSON-shaped body of a frozen value: dicts and lists (read-only arrays kept)."""
+    """The JSON-shaped body of a frozen value: dicts and lists (read-only arrays kept)."""
     kind = type(value)
     if kind in ATOMS:
         return value
@@ -109,6 +111,22 @@ def thaw(value: Any) -> Any:
     if isinstance(value, tuple):
         return [thaw(item) for item in value]
     return value
+
+
+def plain(value: Any) -> Any:
+    """The plain JSON data of a frozen value: dicts, lists, str, int, float, bool and None (an
+    array as nested lists of Python numbers, a numpy scalar as a Python one, a tuple as a list);
+    ``TypeError`` for anything else."""
+    kind = type(value)
+    if kind in ATOMS:
+        return value
+    if kind is MappingProxyType or isinstance(value, Mapping):
+        return {key: plain(item) for key, item in value.items()}
+    if isinstance(value, tuple | list):
+        return [plain(item) for item in value]
+    if isinstance(value, np.ndarray | np.generic) and value.dtype.kind in "biuf":
+        return value.tolist()
+    raise TypeError(f"{kind.__name__} is no JSON value")
 
 
 class Result(Mapping[str, Any]):
@@ -141,9 +159,12 @@ class Result(Mapping[str, Any]):
         warnings: tuple[str, ...] = self._body.get("warnings", ())
         return warnings
 
-    def as_dict(self) -> JSON:
-        """The body the HTTP endpoint sends, as new dicts and lists (arrays stay read-only)."""
-        body: JSON = thaw(self._body)
+    def as_dict(self, *, arrays: bool = False) -> JSON:
+        """The body the HTTP endpoint sends, as new plain dicts and lists (``json.dumps`` writes
+        it; arrays as nested lists of floats). ``arrays=True``: the same body with the arrays kept
+        as the result's read-only numpy arrays (the server's path: orjson writes them natively,
+        the same bytes)."""
+        body: JSON = thaw(self._body) if arrays else plain(self._body)
         return body
 
 
