@@ -67,7 +67,9 @@ class StepBuilder:
 
     def fmt_of(self, key: str | Ref) -> Formatter:
         """The formatter of one value: more digits where the step's arithmetic needs them."""
-        key = self._shown(key)
+        return self._digits_of(self._shown(key))
+
+    def _digits_of(self, key: str) -> Formatter:
         digits = self.digits.get(key, self.fmt.digits)
         if digits <= self.fmt.digits:
             return self.fmt
@@ -90,7 +92,7 @@ class StepBuilder:
         if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
             raise ValueError(f"non-finite value {key} = {number}")
         self.references[key] = reference
-        display = self.fmt_of(key).display(number, unit, reference)
+        display = self._digits_of(key).display(number, unit, reference)
         self.values[key] = Value(number, unit, display, source)
         return key
 
@@ -204,13 +206,13 @@ class StepBuilder:
             )
         )
 
-    def line(self, *latex: Piece | Equation) -> None:
-        """One LaTeX line (starting '&' where aligned): an equation, or pieces in a row."""
+    def line(self, *latex: Piece) -> None:
+        """One LaTeX line (starting '&' where aligned): an equation (its lines, broken where it
+        says), or pieces in a row (an equation among them inline)."""
         if len(latex) == 1 and isinstance(latex[0], str | Equation):
             self.lines.append(latex[0])
         else:
-            assert not any(isinstance(p, Equation) for p in latex)
-            self.lines.append(tuple(p for p in latex if not isinstance(p, Equation)))
+            self.lines.append(latex)
 
     def say(self, *text: Piece) -> None:
         """One sentence: words, values and equations (in their text form)."""
@@ -227,7 +229,7 @@ class StepBuilder:
             self.digits = found
             for key in found:
                 v = self.values[key]
-                display = self.fmt_of(key).display(v.value, v.unit, self.references[key])
+                display = self._digits_of(key).display(v.value, v.unit, self.references[key])
                 self.values[key] = Value(v.value, v.unit, display, v.source)
         self.settled = True
 

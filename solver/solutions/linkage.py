@@ -237,7 +237,8 @@ class LinkageContext:
     # --- names ----------------------------------------------------------------------------------
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        assert self.plan is not None, "steps are built inside LinkageContext.replayed"
+        """A step's builder: a step written with references settles its own digits; one that
+        formats while written is built inside ``replayed`` (its ``plan``)."""
         return StepBuilder(self.fmt, kind, title, self.plan)
 
     def replayed(self, make: Callable[[], T], *state: set[str]) -> T:

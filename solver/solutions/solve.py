@@ -96,7 +96,7 @@ def _linkage_steps(
         ctx.replayed(lambda: data_step(ctx, _SENTENCES[used])),
         positions,
         *ctx.replayed(lambda: position_steps(ctx)),
-        *ctx.replayed(lambda: classification_steps(ctx)),
+        *classification_steps(ctx),
         *body,
         ctx.replayed(lambda: reading_step(ctx)),
         ctx.replayed(lambda: summary_step(ctx)),
