@@ -141,6 +141,19 @@ class Num:
 
 
 @dataclass(frozen=True)
+class Signed:
+    """A scalar value as a term of a sum: '+ 0.5', '- 0.5'."""
+
+    ref: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return tex.signed(shows.num(self.ref))
+
+    def text(self, shows: Shows) -> str:
+        return tex.signed(shows.txtn(self.ref))
+
+
+@dataclass(frozen=True)
 class Col:
     """A vector value as a column in LaTeX (the unit after it with ``unit``), '(x, y) m/s' in
     text."""
@@ -233,3 +246,13 @@ class Equation:
     def latex(self, shows: Shows) -> str:
         """The chain on one line, without the alignment mark (inside other LaTeX)."""
         return " = ".join(latex_of(side, shows) for side in self.sides)
+
+
+def joined(separator: Piece, groups: Sequence[Sequence[Piece]]) -> tuple[Piece, ...]:
+    """The groups of pieces one after the other with ``separator`` between them ('; ')."""
+    out: list[Piece] = []
+    for i, group in enumerate(groups):
+        if i:
+            out.append(separator)
+        out.extend(group)
+    return tuple(out)

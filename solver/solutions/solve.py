@@ -86,7 +86,7 @@ def _linkage_steps(
     else:
         body = _vector_method(ctx)
     body += ctx.replayed(lambda: graphical_steps(ctx))
-    body.append(ctx.replayed(lambda: instant_centres_step(ctx)))
+    body.append(instant_centres_step(ctx))
     if method == "newton_euler":
         body += ctx.replayed(lambda: newton_euler_steps(ctx))
     positions = ctx.replayed(lambda: positions_step(ctx))
