@@ -141,6 +141,20 @@ class Num:
 
 
 @dataclass(frozen=True)
+class Frac:
+    """The quotient of two scalar values: '\\frac{a}{b}' in LaTeX, 'a/b' in text."""
+
+    numerator: Ref
+    denominator: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return rf"\frac{{{shows.num(self.numerator)}}}{{{shows.num(self.denominator)}}}"
+
+    def text(self, shows: Shows) -> str:
+        return f"{shows.txtn(self.numerator)}/{shows.txtn(self.denominator)}"
+
+
+@dataclass(frozen=True)
 class Signed:
     """A scalar value as a term of a sum: '+ 0.5', '- 0.5'."""
 

@@ -18,7 +18,7 @@ import numpy as np
 from solver.kinematics.rigid import cross, perp
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
-from solver.solutions.equation import Boxed, Num, Piece, Pt, Ref, Signed, joined
+from solver.solutions.equation import Boxed, Equation, Frac, Num, Piece, Pt, Ref, Signed, joined
 from solver.solutions.figures import Arrow, Dot, model_scale, scale_text, svg
 from solver.solutions.format import latex_unit
 from solver.solutions.linkage import LinkageContext
@@ -180,13 +180,10 @@ class Kennedy:
                 self.kennedy_lines.append((frozenset((i, other)), pair))
         first_tex, first_text = self.through(i, k, j)
         second_tex, second_text = self.through(i, m, j)
+        parameter = Equation.of("t", Frac(num, det), Num(t))
         b.line(
-            rf"&{self.sym(pair)}: \; {first_tex} \cap {second_tex}: \; t = \frac{{",
-            Num(num),
-            "}{",
-            Num(det),
-            "} = ",
-            Num(t),
+            rf"&{self.sym(pair)}: \; {first_tex} \cap {second_tex}: \; ",
+            parameter,
             rf", \; {self.sym(pair)} = ",
             Pt(ak),
             " ",
@@ -198,12 +195,8 @@ class Kennedy:
         )
         b.say(
             f"{name} (links {i} and {j}) lies on {first_text} and on {second_text}; their "
-            "intersection, t = ",
-            Num(num),
-            "/",
-            Num(det),
-            " = ",
-            Num(t),
+            "intersection, ",
+            parameter,
             f", is {name} = ",
             Pt(pk),
             ".",

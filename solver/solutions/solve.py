@@ -85,7 +85,7 @@ def _linkage_steps(
             body = _vector_method(ctx)
     else:
         body = _vector_method(ctx)
-    body += ctx.replayed(lambda: graphical_steps(ctx))
+    body += graphical_steps(ctx)
     body.append(instant_centres_step(ctx))
     if method == "newton_euler":
         body += ctx.replayed(lambda: newton_euler_steps(ctx))
