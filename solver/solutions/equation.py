@@ -198,6 +198,33 @@ class Pt:
 
 
 @dataclass(frozen=True)
+class ZCol:
+    """The z-component of a planar rotation as the column (0, 0, z) in LaTeX, '(0, 0, z)' in
+    text."""
+
+    z: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return tex.column(["0", "0", shows.num(self.z)])
+
+    def text(self, shows: Shows) -> str:
+        return f"(0, 0, {shows.txtn(self.z)})"
+
+
+@dataclass(frozen=True)
+class Words:
+    """Words (with values among them) set as \\text{...} in LaTeX, as they are in text."""
+
+    pieces: tuple[Piece, ...]
+
+    def latex(self, shows: Shows) -> str:
+        return r"\text{" + tex.escape_text(text_of(self.pieces, shows)) + "}"
+
+    def text(self, shows: Shows) -> str:
+        return text_of(self.pieces, shows)
+
+
+@dataclass(frozen=True)
 class Boxed:
     """A final result, doubly underlined in LaTeX, as it is in text."""
 

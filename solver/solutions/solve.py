@@ -89,17 +89,17 @@ def _linkage_steps(
     body.append(instant_centres_step(ctx))
     if method == "newton_euler":
         body += ctx.replayed(lambda: newton_euler_steps(ctx))
-    positions = ctx.replayed(lambda: positions_step(ctx))
+    positions = positions_step(ctx)
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
         *lead,
-        ctx.replayed(lambda: data_step(ctx, _SENTENCES[used])),
+        data_step(ctx, _SENTENCES[used]),
         positions,
         *ctx.replayed(lambda: position_steps(ctx)),
         *classification_steps(ctx),
         *body,
-        ctx.replayed(lambda: reading_step(ctx)),
-        ctx.replayed(lambda: summary_step(ctx)),
+        reading_step(ctx),
+        summary_step(ctx),
     ]
     return steps, ctx, used
 
