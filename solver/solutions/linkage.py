@@ -25,7 +25,22 @@ from solver.model.scene import Joint, LinkageScene, ground_pivot
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
 from solver.solutions.digits import DigitPlan
-from solver.solutions.equation import Col, Num, Piece, Pt, Ref, Words, ZCol, joined
+from solver.solutions.equation import (
+    TIMES,
+    Alt,
+    Boxed,
+    Col,
+    Equation,
+    Num,
+    Piece,
+    Pt,
+    Ref,
+    Sym,
+    Words,
+    ZCol,
+    ZCross,
+    joined,
+)
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.model import Step
 
@@ -480,32 +495,36 @@ def rigid_velocity_step(
     """v_Y = v_X + omega x r_XY with the cross product as a determinant."""
     b = ctx.builder("velocity.rigid", f"Velocity of {target} (link {link})")
     ctx.use(base, target)
-    vx = b.put(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
-    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-    r = b.put(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
-    wxr = b.put(
+    vx = b.value(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
+    w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    r = b.value(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
+    wxr = b.value(
         f"omega x r({base},{target})",
         k_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
         "m/s",
     )
-    vy = b.put(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
+    vy = b.value(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
     b.check("cross", wxr, w, r)
     b.check("sum", vy, vx, wxr)
-    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(vx) else b.col(vx)
-    b.line(
-        rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
-        rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}"
+    base_v: Piece = Alt((V0,), (Col(vx),)) if ctx.is_fixed(base) and b.is_zero(vx) else Col(vx)
+    relative_velocity = Equation.of(
+        Sym(v_vec(target), f"v({target})"),
+        (
+            Sym(v_vec(base), f"v({base})"),
+            " + ",
+            Sym(w_vec(link), f"omega({link})"),
+            TIMES,
+            Sym(r_vec(base, target), f"r({base},{target})"),
+        ),
+        (base_v, " + ", ZCross(w, r)),
+        (base_v, " + ", Col(wxr)),
+        Boxed((Col(vy, unit=True),)),
+        breaks=(3,),
     )
-    b.line(
-        rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
-        rf"{tex.boxed_result(b.colu(vy))}"
-    )
+    b.line(relative_velocity)
     if reason:
         b.say(reason)
-    b.say(
-        f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
-        f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}."
-    )
+    b.say(relative_velocity, ".")
     ctx.shown_velocity.add(target)
     return b.build()
 
