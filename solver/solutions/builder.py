@@ -1,8 +1,12 @@
 """Assembling one step: its values (with checks), its LaTeX lines and its plain text.
 
 ``StepBuilder`` keeps the numbers and their display together: a number enters a step once, by
-``put`` (full precision, unit, source), and every place the step shows it is formatted from that
-entry, so the LaTeX, the text and ``values`` always show the same digits. ``present_solution``
+``value`` (full precision, unit, source; a typed ``Ref`` back), and every place the step shows it
+is formatted from that entry, so the LaTeX, the text and ``values`` always show the same digits.
+Equations and sentences (``solver.solutions.equation``) are rendered when the step is built,
+after its checks have settled the digits in one pass. A step that formats numbers while it is
+written (``put`` and string keys, ``num``, ``txt``... called before ``build``) gets its digits
+from a ``DigitPlan`` instead: its part of the solution is built a second time. ``present_solution``
 writes a 2x2 linear system and its solution the way the seeds do: directly where one equation has
 a single unknown, by Cramer's rule with the determinants written out otherwise.
 """
@@ -17,6 +21,7 @@ import numpy as np
 
 from solver.solutions import latex as tex
 from solver.solutions.digits import DigitPlan, needed_digits
+from solver.solutions.equation import Equation, Operand, Piece, Ref, latex_of, text_of
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.model import Check, Number, Relation, Step, Value
 
@@ -45,14 +50,26 @@ class StepBuilder:
         self.digits = plan.digits(self.plan_key) if plan and self.plan_key else {}
         self.values: dict[str, Value] = {}
         self.checks: list[Check] = []
-        self.lines: list[str] = []
-        self.sentences: list[str] = []
+        self.lines: list[str | Equation | tuple[Piece, ...]] = []
+        self.sentences: list[str | tuple[Piece, ...]] = []
         self.references: dict[str, float] = {}
+        # True once a number was formatted before ``build``: the digits then come from ``plan``
+        self.eager = False
+        self.settled = False
 
     # --- values ---------------------------------------------------------------------------------
 
-    def fmt_of(self, key: str) -> Formatter:
+    def _shown(self, key: str | Ref) -> str:
+        """The key of a value about to be formatted (noting a format before ``build``)."""
+        if not self.settled:
+            self.eager = True
+        return key.key if isinstance(key, Ref) else key
+
+    def fmt_of(self, key: str | Ref) -> Formatter:
         """The formatter of one value: more digits where the step's arithmetic needs them."""
+        return self._digits_of(self._shown(key))
+
+    def _digits_of(self, key: str) -> Formatter:
         digits = self.digits.get(key, self.fmt.digits)
         if digits <= self.fmt.digits:
             return self.fmt
@@ -75,91 +92,164 @@ class StepBuilder:
         if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
             raise ValueError(f"non-finite value {key} = {number}")
         self.references[key] = reference
-        display = self.fmt_of(key).display(number, unit, reference)
+        display = self._digits_of(key).display(number, unit, reference)
         self.values[key] = Value(number, unit, display, source)
         return key
 
-    def scalar(self, key: str) -> float:
-        value = self.values[key].value
+    def value(
+        self,
+        key: str,
+        value: float | Sequence[float] | np.ndarray,
+        unit: str,
+        source: Source | None = None,
+        reference: float = 0.0,
+    ) -> Ref:
+        """Register a value (as ``put``) and return a typed reference to it."""
+        return Ref(self.put(key, value, unit, source, reference))
+
+    def scalar(self, key: str | Ref) -> float:
+        value = self.values[key.key if isinstance(key, Ref) else key].value
         assert not isinstance(value, tuple), key
         return value
 
-    def vector(self, key: str) -> tuple[float, ...]:
-        value = self.values[key].value
+    def vector(self, key: str | Ref) -> tuple[float, ...]:
+        value = self.values[key.key if isinstance(key, Ref) else key].value
         assert isinstance(value, tuple), key
         return value
 
-    def num(self, key: str) -> str:
+    def num(self, key: str | Ref) -> str:
         """The scalar value as a LaTeX number."""
         fmt = self.fmt_of(key)
+        key = self._shown(key)
         return fmt.latex(self.scalar(key), self.values[key].unit, self.references[key])
 
-    def numu(self, key: str) -> str:
+    def numu(self, key: str | Ref) -> str:
         """The scalar value as a LaTeX number with its unit."""
+        key = self._shown(key)
         return self.num(key) + latex_unit(self.values[key].unit)
 
-    def entries(self, key: str, dims: int = 3) -> list[str]:
+    def entries(self, key: str | Ref, dims: int = 3) -> list[str]:
         """The vector's components as LaTeX numbers (planar vectors get z = 0 when dims = 3)."""
+        key = self._shown(key)
         vector = self.vector(key)
         clean = self.fmt.clean_vector(vector, self.values[key].unit)
         out = [self.fmt_of(key).latex(x) for x in clean]
         return out + ["0"] * (dims - len(out))
 
-    def point(self, key: str) -> str:
+    def point(self, key: str | Ref) -> str:
         """A planar vector as coordinates '(x, y)' in LaTeX."""
         return "(" + ", ".join(self.entries(key, 2)) + ")"
 
-    def col(self, key: str, dims: int = 3) -> str:
+    def col(self, key: str | Ref, dims: int = 3) -> str:
         return tex.column(self.entries(key, dims))
 
-    def colu(self, key: str, dims: int = 3) -> str:
+    def colu(self, key: str | Ref, dims: int = 3) -> str:
+        key = self._shown(key)
         return self.col(key, dims) + latex_unit(self.values[key].unit)
 
-    def txt(self, key: str) -> str:
+    def txt(self, key: str | Ref) -> str:
         """The value as plain text with its unit."""
-        return self.values[key].display
+        return self.values[self._shown(key)].display
 
-    def txtn(self, key: str) -> str:
+    def txtn(self, key: str | Ref) -> str:
         """The value as plain text without its unit."""
+        key = self._shown(key)
         value = self.values[key]
         fmt = self.fmt_of(key)
         if isinstance(value.value, tuple):
             return fmt.text_vector(value.value)
         return fmt.text(value.value, value.unit, self.references[key])
 
-    def is_zero(self, key: str) -> bool:
+    def is_zero(self, key: str | Ref) -> bool:
         """True when the value displays as zero (every component, for a vector)."""
-        value = self.values[key]
+        value = self.values[key.key if isinstance(key, Ref) else key]
         if isinstance(value.value, tuple):
             return all(x == 0.0 for x in self.fmt.clean_vector(value.value, value.unit)) or all(
                 self.fmt.is_zero(x, value.unit) for x in value.value
             )
-        return self.fmt.is_zero(value.value, value.unit, self.references[key])
+        return self.fmt.is_zero(
+            value.value, value.unit, self.references[key.key if isinstance(key, Ref) else key]
+        )
 
     # --- checks, lines, text --------------------------------------------------------------------
 
-    def check(self, relation: Relation, result: str, *operands: str, factor: float = 1.0) -> None:
-        for name in (result, *operands):
-            base = name.lstrip("-").split("[")[0] if name.endswith("]") else name.lstrip("-")
-            assert base in self.values, f"check of {self.kind}: unknown value {name}"
-        self.checks.append(Check(relation, result, tuple(operands), factor))
+    def operand(self, name: str | Ref | Operand) -> Operand:
+        """A check's operand: typed, or written 'key', '-key' or 'key[i]' (a value of the step)."""
+        if isinstance(name, Ref):
+            operand = name.operand
+        elif isinstance(name, Operand):
+            operand = name
+        else:
+            sign = -1.0 if name.startswith("-") else 1.0
+            key = name.lstrip("-")
+            index = None
+            if key.endswith("]") and key.rsplit("[", 1)[0] in self.values:
+                key, rest = key.rsplit("[", 1)
+                index = int(rest[:-1])
+            operand = Operand(Ref(key), sign, index)
+        assert operand.ref.key in self.values, f"check of {self.kind}: unknown value {name}"
+        return operand
 
-    def line(self, latex: str) -> None:
-        self.lines.append(latex)
+    def check(
+        self,
+        relation: Relation,
+        result: str | Ref | Operand,
+        *operands: str | Ref | Operand,
+        factor: float = 1.0,
+    ) -> None:
+        self.checks.append(
+            Check(
+                relation,
+                self.operand(result),
+                tuple(self.operand(o) for o in operands),
+                factor,
+            )
+        )
 
-    def say(self, text: str) -> None:
-        self.sentences.append(text)
+    def line(self, *latex: Piece) -> None:
+        """One LaTeX line (starting '&' where aligned): an equation (its lines, broken where it
+        says), or pieces in a row (an equation among them inline)."""
+        if len(latex) == 1 and isinstance(latex[0], str | Equation):
+            self.lines.append(latex[0])
+        else:
+            self.lines.append(latex)
+
+    def say(self, *text: Piece) -> None:
+        """One sentence: words, values and equations (in their text form)."""
+        self.sentences.append(text[0] if len(text) == 1 and isinstance(text[0], str) else text)
+
+    def settle(self) -> None:
+        """Settle the digits of a step written with references (one pass over its checks), or
+        record what a step formatted while written needs in ``plan``."""
+        found = needed_digits(self.values, self.references, self.checks, self.fmt)
+        if self.eager:
+            if self.plan is not None and self.plan_key is not None and self.plan.recording:
+                self.plan.record(self.plan_key, found)
+        else:
+            self.digits = found
+            for key in found:
+                v = self.values[key]
+                display = self._digits_of(key).display(v.value, v.unit, self.references[key])
+                self.values[key] = Value(v.value, v.unit, display, v.source)
+        self.settled = True
 
     def build(self) -> Step:
-        if self.plan is not None and self.plan_key is not None and self.plan.recording:
-            self.plan.record(
-                self.plan_key, needed_digits(self.values, self.references, self.checks, self.fmt)
-            )
+        if self.eager and (self.plan is None or not self.plan.recording):
+            self.settled = True  # the digits are the plan's (or the solution's, without one)
+        else:
+            self.settle()
+        lines: list[str] = []
+        for line in self.lines:
+            if isinstance(line, Equation):
+                lines += line.lines(self)
+            else:
+                lines.append(line if isinstance(line, str) else latex_of(line, self))
+        sentences = [s if isinstance(s, str) else text_of(s, self) for s in self.sentences]
         return Step(
             self.kind,
             self.title,
-            tex.aligned(self.lines) if self.lines else "",
-            " ".join(self.sentences),
+            tex.aligned(lines) if lines else "",
+            " ".join(sentences),
             dict(self.values),
             tuple(self.checks),
         )

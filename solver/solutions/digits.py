@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
+from solver.solutions.equation import Operand
 from solver.solutions.format import Formatter
 from solver.solutions.model import Check, Value
 
@@ -121,7 +122,6 @@ class ShownValues:
         self.values, self.references, self.fmt, self.digits = values, references, fmt, digits
         self.cleaned: dict[str, tuple[float, ...] | float] = {}
         self.cache: dict[tuple[str, int], Shown] = {}
-        self.names: dict[str, tuple[float, str, int | None]] = {}
 
     def shown(self, key: str) -> Shown:
         d = self.digits[key]
@@ -140,31 +140,19 @@ class ShownValues:
         self.cache[(key, d)] = found
         return found
 
-    def operand(self, name: str) -> tuple[str, Shown]:
-        """(value key, shown number) of an operand written 'name', '-name' or 'name[i]'."""
-        sign, key, index = self.names.get(name) or self.parse(name)
-        value = self.shown(key)
-        if index is not None:
-            value = (value[index],)
-        return key, value if sign > 0 else tuple(-x for x in value)
-
-    def parse(self, name: str) -> tuple[float, str, int | None]:
-        """(sign, value key, component or None) of an operand name, remembered."""
-        sign = -1.0 if name.startswith("-") else 1.0
-        key = name.lstrip("-")
-        index = None
-        if key.endswith("]") and key.rsplit("[", 1)[0] in self.values:
-            key, rest = key.rsplit("[", 1)
-            index = int(rest[:-1])
-        self.names[name] = (sign, key, index)
-        return sign, key, index
+    def operand(self, operand: Operand) -> Shown:
+        """The shown number of an operand: the value, negated or one of its components."""
+        value = self.shown(operand.ref.key)
+        if operand.component is not None:
+            value = (value[operand.component],)
+        return value if operand.sign > 0 else tuple(-x for x in value)
 
     def recomputes(self, check: Check) -> bool:
         """True when the check, evaluated with the shown operands, gives the shown result."""
-        ops = [self.operand(o)[1] for o in check.operands]
+        ops = [self.operand(o) for o in check.operands]
         value, scale = evaluate(check.relation, ops, check.factor)
-        result_key, result = self.operand(check.result)
-        d = self.digits[result_key]
+        result = self.operand(check.result)
+        d = self.digits[check.result.ref.key]
         diff = [x - r for x, r in _zip(value, result)]
         if check.relation == "angle":
             diff = [(x + math.pi) % (2 * math.pi) - math.pi for x in diff]
@@ -187,7 +175,7 @@ def needed_digits(
     digits = dict.fromkeys(values, fmt.digits)
     shown = ShownValues(values, references, fmt, digits)
     shown_checks = [c for c in checks if c.relation not in UNSHOWN]
-    keys = [[shown.operand(n)[0] for n in (c.result, *c.operands)] for c in shown_checks]
+    keys = [[o.ref.key for o in (c.result, *c.operands)] for c in shown_checks]
     passed: dict[int, list[int]] = {}  # a check that recomputed, with its values' digits then
     for _ in range(MAX_DIGITS * max(1, len(values))):
         changed = False

@@ -18,6 +18,7 @@ import numpy as np
 
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
+from solver.solutions.equation import Equation, Frac, Num, Piece, Ref, joined
 from solver.solutions.figures import Arrow, Dot, model_scale, polygon_scale, scale_text, svg
 from solver.solutions.linkage import LinkageContext, k_cross
 from solver.solutions.model import Step
@@ -83,7 +84,7 @@ class Polygons:
         extra = {name: np.asarray(m.velocity) for name, m in ctx.analysis.moving_points.items()}
         k = polygon_scale([*moving.values(), *extra.values()])
         b = ctx.builder("graphical.velocity", "Velocity polygon (graphical method)")
-        kv = b.put("k_v", k, "m/s")
+        kv = b.value("k_v", k, "m/s")
         b.say(
             f"Scale k_v: {scale_text(k, 'm/s')}. From the pole p (all fixed points have their "
             "image at p) the construction runs link by link:"
@@ -141,7 +142,7 @@ class Polygons:
             accelerations[name] = np.asarray(m.acceleration)
         k = polygon_scale(list(accelerations.values()))
         b = ctx.builder("graphical.acceleration", "Acceleration polygon (graphical method)")
-        ka = b.put("k_a", k, "m/s^2")
+        ka = b.value("k_a", k, "m/s^2")
         b.say(
             f"Scale k_a: {scale_text(k, 'm/s^2')}. From the pole p' link by link: from the "
             "image of the first point, the normal part -omega^2 r (parallel to the link, towards "
@@ -197,10 +198,12 @@ class Polygons:
         return arrows
 
     def lengths(
-        self, b: StepBuilder, scale: str, vectors: dict[str, np.ndarray], letter: str, unit: str
+        self, b: StepBuilder, scale: Ref, vectors: dict[str, np.ndarray], letter: str, unit: str
     ) -> None:
         """|v| / k_v = length on paper, for every image (and the reading error of the shortest)."""
-        rows, texts, shortest = [], [], None
+        rows: list[tuple[Piece, ...]] = []
+        texts: list[tuple[Piece, ...]] = []
+        shortest: Ref | None = None
         for p, v in vectors.items():
             size = float(np.hypot(*v))
             if size == 0.0 or b.fmt.is_zero(size, unit):
@@ -208,35 +211,48 @@ class Polygons:
             src = ("moving_points", p, "velocity" if letter == "v" else "acceleration")
             if p in self.ctx.scene.points:
                 src = ("points", p, "velocity" if letter == "v" else "acceleration")
-            key = b.put(f"{letter}({p})", v, unit, src)
-            norm = b.put(f"|{letter}({p})|", size, unit)
-            length = b.put(f"length {letter}({p})", size / b.scalar(scale), "cm")
+            key = b.value(f"{letter}({p})", v, unit, src)
+            norm = b.value(f"|{letter}({p})|", size, unit)
+            length = b.value(f"length {letter}({p})", size / b.scalar(scale), "cm")
             b.check("norm", norm, key)
             b.check("quotient", length, norm, scale)
             sym = tex.vec(letter, tex.name(p))
             rows.append(
-                rf"|{sym}| = {b.numu(norm)} \to \frac{{{b.num(norm)}}}{{{b.num(scale)}}} = "
-                rf"{b.numu(length)}"
+                (
+                    f"|{sym}| = ",
+                    Num(norm, unit=True),
+                    r" \to ",
+                    Equation.of(Frac(norm, scale), Num(length, unit=True)),
+                )
             )
-            texts.append(f"|{letter}({p})| = {b.txt(norm)}, drawn {b.txt(length)}")
+            texts.append(
+                (f"|{letter}({p})| = ", Num(norm, unit=True), ", drawn ", Num(length, unit=True))
+            )
             if shortest is None or b.scalar(length) < b.scalar(shortest):
                 shortest = length
         for i in range(0, len(rows), 2):
-            b.line("&" + r", \quad ".join(rows[i : i + 2]))
+            b.line("&", *joined(r", \quad ", rows[i : i + 2]))
         if texts:
-            b.say("Lengths at the scale: " + "; ".join(texts) + ".")
+            b.say("Lengths at the scale: ", *joined("; ", texts), ".")
         if shortest is not None:
-            reading = b.put("reading", READING, "cm")
-            error = b.put("relative error", READING / b.scalar(shortest), "")
+            reading = b.value("reading", READING, "cm")
+            error = b.value("relative error", READING / b.scalar(shortest), "")
             b.check("quotient", error, reading, shortest)
             b.line(
-                rf"&\text{{read to }} {b.numu(reading)}: \; \frac{{{b.num(reading)}}}"
-                rf"{{{b.num(shortest)}}} = {b.num(error)} \text{{ relative error on the shortest "
-                r"image}"
+                r"&\text{read to } ",
+                Num(reading, unit=True),
+                r": \; ",
+                Equation.of(Frac(reading, shortest), Num(error)),
+                r" \text{ relative error on the shortest image}",
             )
             b.say(
-                f"A careful drawing is read to {b.txt(reading)}: on the shortest image "
-                f"({b.txt(shortest)}) that is a relative error of {b.txt(error)}."
+                "A careful drawing is read to ",
+                Num(reading, unit=True),
+                ": on the shortest image (",
+                Num(shortest, unit=True),
+                ") that is a relative error of ",
+                Num(error, unit=True),
+                ".",
             )
 
     def mehmke(self, b: StepBuilder, letter: str) -> None:
@@ -252,32 +268,34 @@ class Polygons:
             unit = "m/s" if letter == "v" else "m/s^2"
             for first, second in ((x, y), (x, z)):
                 r = ctx.pos(second) - ctx.pos(first)
-                diff = b.put(
+                diff = b.value(
                     f"{letter}({second})-{letter}({first})", motion(second) - motion(first), unit
                 )
-                rk = b.put(f"r({first},{second}) in {link}", r, "m")
+                rk = b.value(f"r({first},{second}) in {link}", r, "m")
                 if letter == "v":
-                    w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
+                    w = b.value(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
                     b.check("cross", diff, w, rk)
                 else:
-                    al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
-                    t = b.put(f"alpha x r({first},{second})", k_cross(alpha, r), unit)
-                    n = b.put(f"normal({first},{second})", -(omega**2) * r, unit)
+                    al = b.value(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
+                    t = b.value(f"alpha x r({first},{second})", k_cross(alpha, r), unit)
+                    n = b.value(f"normal({first},{second})", -(omega**2) * r, unit)
                     b.check("cross", t, al, rk)
                     b.check("sum", diff, t, n)
             image = r"\,".join(tex.name(p.lower()) for p in (x, y, z))
             ratio = abs(omega) if letter == "v" else math.sqrt(omega**4 + alpha**2)
-            factor = b.put(f"ratio({link})", ratio, "1/s" if letter == "v" else "1/s^2")
+            factor = b.value(f"ratio({link})", ratio, "1/s" if letter == "v" else "1/s^2")
             what = "|omega|" if letter == "v" else "sqrt(omega^4 + alpha^2)"
             b.line(
                 rf"&\text{{Mehmke: the image }} {image} \text{{ of link "
                 rf"{tex.escape_text(link)} is similar to }} {tex.name(x)}{tex.name(y)}{tex.name(z)}"
-                rf"\text{{, ratio }} {b.numu(factor)}"
+                r"\text{, ratio } ",
+                Num(factor, unit=True),
             )
             b.say(
                 f"Mehmke's check: the image {x.lower()}{y.lower()}{z.lower()} of link {link} is "
-                f"similar to the triangle {x}{y}{z}, every side times {what} = {b.txt(factor)}; "
-                f"so the image of the third point {z} follows from those of {x} and {y}."
+                f"similar to the triangle {x}{y}{z}, every side times {what} = ",
+                Num(factor, unit=True),
+                f"; so the image of the third point {z} follows from those of {x} and {y}.",
             )
 
 
@@ -303,4 +321,4 @@ def _with_figure(step: Step, figure: str) -> Step:
 def graphical_steps(ctx: LinkageContext) -> list[Step]:
     """The velocity and acceleration polygons, drawn and read at their scales."""
     polygons = Polygons(ctx)
-    return [ctx.replayed(polygons.velocity), ctx.replayed(polygons.acceleration)]
+    return [polygons.velocity(), polygons.acceleration()]

@@ -18,6 +18,7 @@ import numpy as np
 from solver.kinematics.rigid import cross, perp
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
+from solver.solutions.equation import Boxed, Equation, Frac, Num, Piece, Pt, Ref, Signed, joined
 from solver.solutions.figures import Arrow, Dot, model_scale, scale_text, svg
 from solver.solutions.format import latex_unit
 from solver.solutions.linkage import LinkageContext
@@ -46,35 +47,38 @@ class Kennedy:
 
     def primary(self, b: StepBuilder) -> None:
         ctx = self.ctx
-        rows, texts = [], []
+        rows: list[tuple[Piece, ...]] = []
+        texts: list[tuple[Piece, ...]] = []
         legend = ", ".join(f"{n} = {name}" for name, n in self.names.items())
         b.say(f"Links numbered {legend}.")
         for joint in ctx.scene.joints:
             pair: Pair = frozenset(joint.links)
             if joint.type == "revolute":
-                key = b.put(f"{self.text(pair)}", ctx.pos(joint.point), "m", None)
+                key = b.value(f"{self.text(pair)}", ctx.pos(joint.point), "m", None)
                 self.points[pair] = ctx.pos(joint.point)
-                rows.append(rf"{self.sym(pair)} = {tex.name(joint.point)} = {b.point(key)}")
-                texts.append(f"{self.text(pair)} = {joint.point} = {b.txt(key)} (pin)")
+                rows.append((f"{self.sym(pair)} = {tex.name(joint.point)} = ", Pt(key)))
+                texts.append((f"{self.text(pair)} = {joint.point} = ", Pt(key), " (pin)"))
                 self.tie(b, pair, key, ctx.scene.size)
             elif joint.type == "slider":  # a pin in a slot: the centre is on the slot's normal
                 normal = perp(ctx.slot_direction(joint))
                 self.loci[pair] = (ctx.pos(joint.point), normal)
                 texts.append(
-                    f"{self.text(pair)} lies on the normal to the slot through {joint.point} "
-                    "(the pin turns and slides)"
+                    (
+                        f"{self.text(pair)} lies on the normal to the slot through "
+                        f"{joint.point} (the pin turns and slides)",
+                    )
                 )
             else:
                 direction = perp(ctx.slot_direction(joint))
                 self.directions[pair] = direction
-                key = b.put(f"{self.text(pair)} direction", direction, "")
-                rows.append(rf"{self.sym(pair)} \text{{ at infinity along }} {b.point(key)}")
+                key = b.value(f"{self.text(pair)} direction", direction, "")
+                rows.append((rf"{self.sym(pair)} \text{{ at infinity along }} ", Pt(key)))
                 texts.append(
-                    f"{self.text(pair)} at infinity, perpendicular to the slot at {joint.point}"
+                    (f"{self.text(pair)} at infinity, perpendicular to the slot at {joint.point}",)
                 )
         for i in range(0, len(rows), 3):
-            b.line("&" + r", \quad ".join(rows[i : i + 3]) + latex_unit("m"))
-        b.say("Primary centres, from the joints: " + "; ".join(texts) + ".")
+            b.line("&", *joined(r", \quad ", rows[i : i + 3]), latex_unit("m"))
+        b.say("Primary centres, from the joints: ", *joined("; ", texts), ".")
 
     def line(self, first: Pair, second: Pair) -> tuple[np.ndarray, np.ndarray] | None:
         """A point and a direction of the line through two known centres (one may be at
@@ -117,8 +121,8 @@ class Kennedy:
                 elif len(lines) >= 2:  # all the lines are parallel: the centre is at infinity
                     direction = lines[0][1][1] / float(np.hypot(*lines[0][1][1]))
                     self.directions[pair] = direction
-                    key = b.put(f"{self.text(pair)} direction", direction, "")
-                    b.line(rf"&{self.sym(pair)} \text{{ at infinity along }} {b.point(key)}")
+                    key = b.value(f"{self.text(pair)} direction", direction, "")
+                    b.line(rf"&{self.sym(pair)} \text{{ at infinity along }} ", Pt(key))
                     b.say(
                         f"{self.text(pair)} (links {i} and {j}): the lines Kennedy's theorem "
                         "puts it on are parallel, so it lies at infinity: the two links "
@@ -148,23 +152,23 @@ class Kennedy:
         i, j = sorted(pair, key=self.links.index)
         name = self.text(pair)
         (a, d1), (c, d2) = first, second
-        ak = b.put(f"{name}: A", a, "m")
-        d1k = b.put(f"{name}: d1", d1, "m")
-        ck = b.put(f"{name}: B", c, "m")
-        d2k = b.put(f"{name}: d2", d2, "m")
-        w = b.put(f"{name}: B-A", c - a, "m")
-        det = b.put(f"{name}: d1 x d2", float(cross(d1, d2)), "m^2")
-        num = b.put(
+        ak = b.value(f"{name}: A", a, "m")
+        d1k = b.value(f"{name}: d1", d1, "m")
+        ck = b.value(f"{name}: B", c, "m")
+        d2k = b.value(f"{name}: d2", d2, "m")
+        w = b.value(f"{name}: B-A", c - a, "m")
+        det = b.value(f"{name}: d1 x d2", float(cross(d1, d2)), "m^2")
+        num = b.value(
             f"{name}: (B-A) x d2",
             float(cross(c - a, d2)),
             "m^2",
             reference=float(np.hypot(*(c - a)) * np.hypot(*d2)),
         )
-        t = b.put(f"{name}: t", float(cross(c - a, d2)) / float(cross(d1, d2)), "")
-        step = b.put(f"{name}: t d1", b.scalar(t) * d1, "m")
+        t = b.value(f"{name}: t", float(cross(c - a, d2)) / float(cross(d1, d2)), "")
+        step = b.value(f"{name}: t d1", b.scalar(t) * d1, "m")
         point = a + b.scalar(t) * d1
-        pk = b.put(name, point, "m")
-        b.check("sum", w, ck, f"-{ak}")
+        pk = b.value(name, point, "m")
+        b.check("sum", w, ck, -ak)
         b.check("cross", det, d1k, d2k)
         b.check("cross", num, w, d2k)
         b.check("quotient", t, num, det)
@@ -176,16 +180,26 @@ class Kennedy:
                 self.kennedy_lines.append((frozenset((i, other)), pair))
         first_tex, first_text = self.through(i, k, j)
         second_tex, second_text = self.through(i, m, j)
+        parameter = Equation.of("t", Frac(num, det), Num(t))
         b.line(
-            rf"&{self.sym(pair)}: \; {first_tex} \cap {second_tex}: \; t = \frac{{{b.num(num)}}}"
-            rf"{{{b.num(det)}}} = {b.num(t)}, \; {self.sym(pair)} = {b.point(ak)} "
-            rf"{tex.signed(b.num(t))}"
-            rf"\,{b.point(d1k)} = {tex.boxed_result(b.point(pk) + latex_unit('m'))}"
+            rf"&{self.sym(pair)}: \; {first_tex} \cap {second_tex}: \; ",
+            parameter,
+            rf", \; {self.sym(pair)} = ",
+            Pt(ak),
+            " ",
+            Signed(t),
+            r"\,",
+            Pt(d1k),
+            " = ",
+            Boxed((Pt(pk, "m"),)),
         )
         b.say(
             f"{name} (links {i} and {j}) lies on {first_text} and on {second_text}; their "
-            f"intersection, t = {b.txtn(num)}/{b.txtn(det)} = "
-            f"{b.txtn(t)}, is {name} = {b.txt(pk)}."
+            "intersection, ",
+            parameter,
+            f", is {name} = ",
+            Pt(pk),
+            ".",
         )
         self.tie(b, pair, pk, size)
 
@@ -201,13 +215,13 @@ class Kennedy:
             f"the line {self.text(ik)}{self.text(kj)} (Kennedy, links {i}, {k}, {j})",
         )
 
-    def tie(self, b: StepBuilder, pair: Pair, key: str, size: float) -> None:
+    def tie(self, b: StepBuilder, pair: Pair, key: Ref, size: float) -> None:
         """The centre equals the solver's (velocity fields) and, with the ground, the pole."""
         ctx = self.ctx
         for index, centre in enumerate(ctx.analysis.instant_centres):
             if frozenset(centre.links) != pair or centre.position is None:
                 continue
-            solver = b.put(
+            solver = b.value(
                 f"{self.text(pair)} (solver)",
                 centre.position,
                 "m",
@@ -219,11 +233,13 @@ class Kennedy:
             link = next(x for x in pair if x != ground)
             pole = ctx.analysis.links[link].velocity_pole
             if pole is not None:
-                pk = b.put(f"P({link})", pole, "m", ("links", link, "velocity_pole"))
+                pk = b.value(f"P({link})", pole, "m", ("links", link, "velocity_pole"))
                 b.check("sum", key, pk)
                 b.say(
                     f"It is the velocity pole of link {link} found analytically from "
-                    f"v = omega x r: P({link}) = {b.txt(pk)}."
+                    f"v = omega x r: P({link}) = ",
+                    Pt(pk),
+                    ".",
                 )
 
 

@@ -29,6 +29,22 @@ from solver.model.scene import Joint, LinkageScene, ground_pivot
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
 from solver.solutions.digits import DigitPlan
+from solver.solutions.equation import (
+    TIMES,
+    Alt,
+    Boxed,
+    Col,
+    Equation,
+    Num,
+    Piece,
+    Pt,
+    Ref,
+    Sym,
+    Words,
+    ZCol,
+    ZCross,
+    joined,
+)
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.model import Step
 
@@ -241,7 +257,8 @@ class LinkageContext:
     # --- names ----------------------------------------------------------------------------------
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        assert self.plan is not None, "steps are built inside LinkageContext.replayed"
+        """A step's builder: a step written with references settles its own digits; one that
+        formats while written is built inside ``replayed`` (its ``plan``)."""
         return StepBuilder(self.fmt, kind, title, self.plan)
 
     def replayed(self, make: Callable[[], T], *state: set[str]) -> T:
@@ -343,25 +360,31 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
     )
     for driver in scene.drivers:
         link = driver.link
-        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+        w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        al = b.value(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
         if driver.angle_law is not None:
             _write_time_law(ctx, b, link, driver.angle_law, (w, al))
             continue
         b.line(
-            rf"&{w_vec(link)} = {tex.column(['0', '0', b.num(w)])}{latex_unit('rad/s')}, "
-            rf"\quad {al_vec(link)} = {tex.column(['0', '0', b.num(al)])}"
-            rf"{latex_unit('rad/s^2')}"
+            f"&{w_vec(link)} = ",
+            ZCol(w),
+            latex_unit("rad/s") + rf", \quad {al_vec(link)} = ",
+            ZCol(al),
+            latex_unit("rad/s^2"),
         )
         b.say(
-            f"The driven link {link} turns about {driver.pivot} with omega({link}) = "
-            f"{b.txt(w)} and angular acceleration alpha({link}) = {b.txt(al)}."
+            f"The driven link {link} turns about {driver.pivot} with omega({link}) = ",
+            Num(w, unit=True),
+            f" and angular acceleration alpha({link}) = ",
+            Num(al, unit=True),
+            ".",
         )
     for link, degrees in ctx.analysis.diagnostics.driver_angles.items():
-        key = b.put(f"angle({link})", math.radians(degrees), "rad")
+        key = b.value(f"angle({link})", math.radians(degrees), "rad")
         b.line(
-            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}{{}}^{{\circ}} "
-            rf"= {b.numu(key)} \quad \text{{(the analysed instant)}}"
+            rf"&\theta_{{{tex.name(link)}}} = {ctx.fmt.latex(degrees, 'deg')}{{}}^{{\circ}} = ",
+            Num(key, unit=True),
+            r" \quad \text{(the analysed instant)}",
         )
         b.say(
             f"The analysed instant has link {link} at {ctx.fmt.text(degrees, 'deg')} deg from "
@@ -374,12 +397,12 @@ def data_step(ctx: LinkageContext, method_sentence: str) -> Step:
 
 
 def _write_time_law(
-    ctx: LinkageContext, b: StepBuilder, link: str, angle_law: str, keys: tuple[str, str]
+    ctx: LinkageContext, b: StepBuilder, link: str, angle_law: str, keys: tuple[Ref, Ref]
 ) -> None:
     """omega = phi_dot(t), alpha = phi_ddot(t) of a driver turned by the time law phi(t)."""
     w, al = keys
     law = parse_time_law(angle_law)
-    t = b.put("t", ctx.scene.time, "s")
+    t = b.value("t", ctx.scene.time, "s")
     sub = "_{" + tex.name(link) + "}"
     phi, dphi, ddphi = (
         rf"{head}{sub}" for head in (r"\varphi", r"\dot{\varphi}", r"\ddot{\varphi}")
@@ -390,13 +413,22 @@ def _write_time_law(
         rf"{ddphi}(t) = {tex.law(law.second_derivative, ctx.fmt.digits)}"
     )
     b.line(
-        rf"&t = {b.numu(t)}: \quad {w_sym(link)} = {dphi}(t) = {b.numu(w)}, "
-        rf"\quad {a_sym(link)} = {ddphi}(t) = {b.numu(al)}"
+        "&t = ",
+        Num(t, unit=True),
+        rf": \quad {w_sym(link)} = {dphi}(t) = ",
+        Num(w, unit=True),
+        rf", \quad {a_sym(link)} = {ddphi}(t) = ",
+        Num(al, unit=True),
     )
     b.say(
         f"Link {link} turns by phi(t) = {angle_law} (rad) from its drawn pose; "
-        f"its derivatives give, at t = {b.txt(t)}, omega({link}) = {b.txt(w)} and "
-        f"alpha({link}) = {b.txt(al)}."
+        "its derivatives give, at t = ",
+        Num(t, unit=True),
+        f", omega({link}) = ",
+        Num(w, unit=True),
+        f" and alpha({link}) = ",
+        Num(al, unit=True),
+        ".",
     )
 
 
@@ -417,29 +449,28 @@ def positions_step(ctx: LinkageContext) -> Step:
         {p for pair in ctx.used_vectors for p in pair} or set(ctx.scene.points),
         key=list(ctx.scene.points).index,
     )
-    for p in names:
-        b.put(f"pos({p})", ctx.pos(p), "m", ("points", p, "position"))
+    at = {p: b.value(f"pos({p})", ctx.pos(p), "m", ("points", p, "position")) for p in names}
     b.line(
-        "&"
-        + r", \quad ".join(rf"{tex.name(p)} = {b.point(f'pos({p})')}" for p in names)
-        + latex_unit("m")
+        "&",
+        *joined(r", \quad ", [(f"{tex.name(p)} = ", Pt(at[p])) for p in names]),
+        latex_unit("m"),
     )
     b.say(
-        "Points at the analysed instant: "
-        + "; ".join(f"{p} = {b.txt(f'pos({p})')}" for p in names)
-        + "."
+        "Points at the analysed instant: ",
+        *joined("; ", [(f"{p} = ", Pt(at[p])) for p in names]),
+        ".",
     )
-    rows = []
-    texts = []
+    rows: list[tuple[Piece, ...]] = []
+    texts: list[tuple[Piece, ...]] = []
     for first, second in ctx.used_vectors:
-        key = b.put(f"r({first},{second})", ctx.pos(second) - ctx.pos(first), "m")
-        b.check("sum", key, f"pos({second})", f"-pos({first})")
-        rows.append(rf"{r_vec(first, second)} = {b.col(key)}")
-        texts.append(f"r({first},{second}) = {b.txt(key)}")
+        key = b.value(f"r({first},{second})", ctx.pos(second) - ctx.pos(first), "m")
+        b.check("sum", key, at[second], -at[first])
+        rows.append((f"{r_vec(first, second)} = ", Col(key)))
+        texts.append((f"r({first},{second}) = ", Col(key)))
     for i in range(0, len(rows), 3):
-        b.line("&" + r" \quad ".join(rows[i : i + 3]) + latex_unit("m"))
+        b.line("&", *joined(r" \quad ", rows[i : i + 3]), latex_unit("m"))
     if texts:
-        b.say("Position vectors: " + "; ".join(texts) + ".")
+        b.say("Position vectors: ", *joined("; ", texts), ".")
     return b.build()
 
 
@@ -468,32 +499,36 @@ def rigid_velocity_step(
     """v_Y = v_X + omega x r_XY with the cross product as a determinant."""
     b = ctx.builder("velocity.rigid", f"Velocity of {target} (link {link})")
     ctx.use(base, target)
-    vx = b.put(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
-    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-    r = b.put(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
-    wxr = b.put(
+    vx = b.value(f"v({base})", ctx.vel(base), "m/s", ("points", base, "velocity"))
+    w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    r = b.value(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
+    wxr = b.value(
         f"omega x r({base},{target})",
         k_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
         "m/s",
     )
-    vy = b.put(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
+    vy = b.value(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
     b.check("cross", wxr, w, r)
     b.check("sum", vy, vx, wxr)
-    base_tex = V0 if ctx.is_fixed(base) and b.is_zero(vx) else b.col(vx)
-    b.line(
-        rf"&{v_vec(target)} = {v_vec(base)} + {w_vec(link)} \times {r_vec(base, target)} = "
-        rf"{base_tex} + {tex.determinant3(det_row_z(b, w), b.entries(r))}"
+    base_v: Piece = Alt((V0,), (Col(vx),)) if ctx.is_fixed(base) and b.is_zero(vx) else Col(vx)
+    relative_velocity = Equation.of(
+        Sym(v_vec(target), f"v({target})"),
+        (
+            Sym(v_vec(base), f"v({base})"),
+            " + ",
+            Sym(w_vec(link), f"omega({link})"),
+            TIMES,
+            Sym(r_vec(base, target), f"r({base},{target})"),
+        ),
+        (base_v, " + ", ZCross(w, r)),
+        (base_v, " + ", Col(wxr)),
+        Boxed((Col(vy, unit=True),)),
+        breaks=(3,),
     )
-    b.line(
-        rf"&\phantom{{{v_vec(target)}}} = {base_tex} + {b.col(wxr)} = "
-        rf"{tex.boxed_result(b.colu(vy))}"
-    )
+    b.line(relative_velocity)
     if reason:
         b.say(reason)
-    b.say(
-        f"v({target}) = v({base}) + omega({link}) cross r({base},{target}) = {b.txt(vx)} + "
-        f"(0, 0, {b.txtn(w)}) cross {b.txtn(r)} = {b.txt(vx)} + {b.txt(wxr)} = {b.txt(vy)}."
-    )
+    b.say(relative_velocity, ".")
     ctx.shown_velocity.add(target)
     return b.build()
 
@@ -838,17 +873,27 @@ def _rotation_words(link: str, w_sense: str, a_sense: str, trend: str) -> str:
 def _read_link(ctx: LinkageContext, b: StepBuilder, link: str) -> None:
     """omega and alpha of one link: the senses of rotation, speeding up where omega alpha > 0."""
     omega, alpha = ctx.omega(link), ctx.alpha(link)
-    w = b.put(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
-    al = b.put(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
+    w = b.value(f"omega({link})", omega, "rad/s", ("links", link, "omega"))
+    al = b.value(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
     w_sense = "" if b.is_zero(w) else SENSE[1 if omega > 0 else -1]
     a_sense = "" if b.is_zero(al) else SENSE[1 if alpha > 0 else -1]
     trend = _trend(ctx.fmt, omega, "rad/s", alpha, "rad/s^2")
     words = _rotation_words(link, w_sense, a_sense, trend)
     b.line(
-        rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} \quad "
-        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+        f"&{w_sym(link)} = ",
+        Num(w, unit=True),
+        rf", \quad {a_sym(link)} = ",
+        Num(al, unit=True),
+        r" \quad \Rightarrow ",
+        Words((words,)),
     )
-    b.say(f"omega({link}) = {b.txt(w)}, alpha({link}) = {b.txt(al)}: {words}.")
+    b.say(
+        f"omega({link}) = ",
+        Num(w, unit=True),
+        f", alpha({link}) = ",
+        Num(al, unit=True),
+        f": {words}.",
+    )
 
 
 def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
@@ -856,10 +901,10 @@ def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
     slot = ctx.slot(joint.guide, joint.point)
     assert slot.relative_acceleration is not None
     point = joint.point
-    rel = slot.put(b, "relative_velocity", point)
-    arel = slot.put(b, "relative_acceleration", point)
+    rel = Ref(slot.put(b, "relative_velocity", point))
+    arel = Ref(slot.put(b, "relative_acceleration", point))
     v, a = slot.relative_velocity, slot.relative_acceleration
-    power = b.put(
+    power = b.value(
         f"v_rel.a_rel({point})",
         float(np.dot(v, a)),
         "m^2/s^3",
@@ -870,29 +915,36 @@ def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
     if b.is_zero(rel):
         words = f"{point} does not slide{frame} at this instant"
     else:
-        heading = b.put(f"heading({point})", math.atan2(v[1], v[0]), "rad")
+        heading = b.value(f"heading({point})", math.atan2(v[1], v[0]), "rad")
         b.check("angle", heading, rel)
         trend = speed_trend(b, power, "at a steady rate")
         words = f"{point} slides {direction_words(math.atan2(v[1], v[0]))}{frame}, {trend}"
     b.line(
-        rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = {b.point(rel)}"
-        rf"{latex_unit('m/s')}, \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = "
-        rf"{b.point(arel)}{latex_unit('m/s^2')} \quad "
-        rf"\Rightarrow \text{{{tex.escape_text(words)}}}"
+        rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{rel}}}} = ",
+        Pt(rel, "m/s"),
+        rf", \quad \vec{{a}}_{{{tex.name(point)},\mathrm{{rel}}}} = ",
+        Pt(arel, "m/s^2"),
+        r" \quad \Rightarrow ",
+        Words((words,)),
     )
     b.say(
-        f"v_rel({point}) = {b.txt(rel)}, a_rel({point}) = {b.txt(arel)} (their dot product "
-        f"{b.txt(power)}: the same sense means speeding up): {words}."
+        f"v_rel({point}) = ",
+        Pt(rel),
+        f", a_rel({point}) = ",
+        Pt(arel),
+        " (their dot product ",
+        Num(power, unit=True),
+        f": the same sense means speeding up): {words}.",
     )
 
 
 def _read_moving_point(b: StepBuilder, name: str, m: MovingPointMotion) -> None:
     """|v| and v . a of a moving point: its direction, speeding up where v . a > 0."""
     source = ("moving_points", name)
-    vk = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
-    ak = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
-    speed = b.put(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
-    power = b.put(
+    vk = b.value(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+    ak = b.value(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+    speed = b.value(f"|v({name})|", float(np.hypot(*m.velocity)), "m/s")
+    power = b.value(
         f"v.a({name})",
         float(np.dot(m.velocity, m.acceleration)),
         "m^2/s^3",
@@ -901,21 +953,23 @@ def _read_moving_point(b: StepBuilder, name: str, m: MovingPointMotion) -> None:
     b.check("norm", speed, vk)
     b.check("dot", power, vk, ak)
     vv = np.asarray(m.velocity, dtype=float)
-    if b.is_zero(vk):
-        words = f"{name} is momentarily at rest"
-    else:
+    words: tuple[Piece, ...] = (f"{name} is momentarily at rest",)
+    if not b.is_zero(vk):
         words = (
-            f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed "
-            f"{b.txt(speed)}, {speed_trend(b, power, 'at a steady speed')}"
+            f"{name} moves {direction_words(math.atan2(vv[1], vv[0]))} with speed ",
+            Num(speed, unit=True),
+            f", {speed_trend(b, power, 'at a steady speed')}",
         )
     b.line(
-        rf"&|\vec{{v}}_{{{tex.name(name)}}}| = {b.numu(speed)} \quad \Rightarrow "
-        rf"\text{{{tex.escape_text(words)}}}"
+        rf"&|\vec{{v}}_{{{tex.name(name)}}}| = ",
+        Num(speed, unit=True),
+        r" \quad \Rightarrow ",
+        Words(words),
     )
-    b.say(f"v({name}) = {b.txt(vk)}, a({name}) = {b.txt(ak)}: {words}.")
+    b.say(f"v({name}) = ", Pt(vk), f", a({name}) = ", Pt(ak), ": ", *words, ".")
 
 
-def speed_trend(b: StepBuilder, power: str, steady: str) -> str:
+def speed_trend(b: StepBuilder, power: str | Ref, steady: str) -> str:
     """The sign of v . a in words: steady (shown as 0), speeding up or slowing down."""
     if b.is_zero(power):
         return steady
@@ -925,33 +979,43 @@ def speed_trend(b: StepBuilder, power: str, steady: str) -> str:
 def summary_step(ctx: LinkageContext) -> Step:
     """The results: every moving link's omega and alpha, every point's velocity and acceleration."""
     b = ctx.builder("summary", "Results")
-    rows = []
+    rows: list[tuple[Piece, ...]] = []
     for link in ctx.scene.moving_links:
-        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ("links", link, "omega"))
-        al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ("links", link, "alpha"))
-        rows.append(rf"{w_sym(link)} = {b.numu(w)}, & {a_sym(link)} = {b.numu(al)}")
-        b.say(f"Link {link}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
-    for p in ctx.scene.points:
-        v = b.put(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
-        a = b.put(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
+        w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ("links", link, "omega"))
+        al = b.value(f"alpha({link})", ctx.alpha(link), "rad/s^2", ("links", link, "alpha"))
         rows.append(
-            rf"{v_vec(p)} = {b.point(v)}{latex_unit('m/s')}, & "
-            rf"{a_vec(p)} = {b.point(a)}{latex_unit('m/s^2')}"
+            (f"{w_sym(link)} = ", Num(w, unit=True), f", & {a_sym(link)} = ", Num(al, unit=True))
         )
-        b.say(f"Point {p}: v = {b.txt(v)}, a = {b.txt(a)}.")
+        b.say(f"Link {link}: omega = ", Num(w, unit=True), ", alpha = ", Num(al, unit=True), ".")
+    for p in ctx.scene.points:
+        v = b.value(f"v({p})", ctx.vel(p), "m/s", ("points", p, "velocity"))
+        a = b.value(f"a({p})", ctx.acc(p), "m/s^2", ("points", p, "acceleration"))
+        rows.append((f"{v_vec(p)} = ", Pt(v, "m/s"), f", & {a_vec(p)} = ", Pt(a, "m/s^2")))
+        b.say(f"Point {p}: v = ", Pt(v), ", a = ", Pt(a), ".")
     for name, m in ctx.analysis.moving_points.items():
         source = ("moving_points", name)
-        x = b.put(f"pos({name})", m.position, "m", (*source, "position"))
-        v = b.put(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
-        a = b.put(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
+        x = b.value(f"pos({name})", m.position, "m", (*source, "position"))
+        v = b.value(f"v({name})", m.velocity, "m/s", (*source, "velocity"))
+        a = b.value(f"a({name})", m.acceleration, "m/s^2", (*source, "acceleration"))
         rows.append(
-            rf"{v_vec(name)} = {b.point(v)}{latex_unit('m/s')}, & "
-            rf"{a_vec(name)} = {b.point(a)}{latex_unit('m/s^2')} \\ "
-            rf"\text{{moving point }} {tex.name(name)} = {b.point(x)}{latex_unit('m')} &"
+            (
+                f"{v_vec(name)} = ",
+                Pt(v, "m/s"),
+                f", & {a_vec(name)} = ",
+                Pt(a, "m/s^2"),
+                rf" \\ \text{{moving point }} {tex.name(name)} = ",
+                Pt(x, "m"),
+                " &",
+            )
         )
         b.say(
-            f"Moving point {name} (at {b.txt(x)}): v = {b.txt(v)}, a = {b.txt(a)} "
-            "(absolute, transport plus relative plus Coriolis)."
+            f"Moving point {name} (at ",
+            Pt(x),
+            "): v = ",
+            Pt(v),
+            ", a = ",
+            Pt(a),
+            " (absolute, transport plus relative plus Coriolis).",
         )
-    b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
+    b.line(r"&\begin{array}{ll} ", *joined(r" \\ ", rows), r" \end{array}")
     return b.build()

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from solver.kinematics.spatial import SpatialAnalysis
+from solver.solutions.equation import Operand
 
 Number = float | tuple[float, ...]
 
@@ -61,19 +62,20 @@ class Value:
 class Check:
     """A relation the step's values satisfy: ``result = relation(operands)`` (see ``Relation``).
 
-    Operand names refer to the step's ``values``; ``name[i]`` is component i of a vector value.
+    Operands are typed references to the step's ``values`` (``Operand``); the /solution body
+    names them by key, '-key' for a value subtracted and 'key[i]' for component i of a vector.
     """
 
     relation: Relation
-    result: str
-    operands: tuple[str, ...]
+    result: Operand
+    operands: tuple[Operand, ...]
     factor: float = 1.0
 
     def as_json(self) -> dict[str, Any]:
         return {
             "relation": self.relation,
-            "result": self.result,
-            "operands": list(self.operands),
+            "result": self.result.name,
+            "operands": [o.name for o in self.operands],
             "factor": self.factor,
         }
 

@@ -70,8 +70,11 @@ def _linkage_steps(
     scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
-    were built in, and the method used. Each part is built where needed twice, by
-    ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
+    were built in, and the method used. A part written with typed references (data, positions,
+    classification, polygons, instant centres, reading, summary) settles its digits as each step
+    is built; a part whose steps still format while written (the position, vector, loop,
+    moving-point and Newton-Euler steps) is built a second time where a step needs more digits,
+    by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
@@ -87,21 +90,21 @@ def _linkage_steps(
             body = _vector_method(ctx)
     else:
         body = _vector_method(ctx)
-    body += ctx.replayed(lambda: graphical_steps(ctx))
-    body.append(ctx.replayed(lambda: instant_centres_step(ctx)))
+    body += graphical_steps(ctx)
+    body.append(instant_centres_step(ctx))
     if method == "newton_euler":
         body += ctx.replayed(lambda: newton_euler_steps(ctx))
-    positions = ctx.replayed(lambda: positions_step(ctx))
+    positions = positions_step(ctx)
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
         *lead,
-        ctx.replayed(lambda: data_step(ctx, _SENTENCES[used])),
+        data_step(ctx, _SENTENCES[used]),
         positions,
         *ctx.replayed(lambda: position_steps(ctx)),
-        *ctx.replayed(lambda: classification_steps(ctx)),
+        *classification_steps(ctx),
         *body,
-        ctx.replayed(lambda: reading_step(ctx)),
-        ctx.replayed(lambda: summary_step(ctx)),
+        reading_step(ctx),
+        summary_step(ctx),
     ]
     return steps, ctx, used
 

@@ -352,9 +352,9 @@ def unrecomputable(step: Any) -> list[str]:
     for check in step.checks:
         if check.relation == "linear":  # an equation in the unknowns, not shown arithmetic
             continue
-        ops = [get(o)[0] for o in check.operands]
+        ops = [get(o.name)[0] for o in check.operands]
         value, scale = _relation(check.relation, ops, check.factor)
-        result, ulps = get(check.result)
+        result, ulps = get(check.result.name)
         diff = value - result
         if check.relation == "angle":
             diff = (diff + math.pi) % (2 * math.pi) - math.pi
@@ -391,6 +391,7 @@ def test_shown_arithmetic_recomputes_to_the_shown_digits(name: str, solution: So
 
 def test_the_recompute_check_can_fail() -> None:
     """The issue's example: 0.0127 shown with four digits makes -0.03125/0.0127 = -2.461."""
+    from solver.solutions.equation import Ref
     from solver.solutions.model import Check, Step, Value
 
     step = Step(
@@ -403,7 +404,7 @@ def test_the_recompute_check_can_fail() -> None:
             "d": Value(0.012695, "", "0.0127"),
             "q": Value(-0.03125 / 0.012695, "", "-2.462"),
         },
-        (Check("quotient", "q", ("n", "d")),),
+        (Check("quotient", Ref("q").operand, (Ref("n").operand, Ref("d").operand)),),
     )
     assert unrecomputable(step)
 
