@@ -26,7 +26,7 @@ from solver.errors import LimitExceeded
 from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
 from solver.model.scene import LinkageScene
 from tests.server.test_errors import FOUR_BAR, assert_problem
-from tests.solver.test_newton import TRIAD
+from tests.solver.position.test_newton import TRIAD
 
 client = TestClient(app, raise_server_exceptions=False)
 EXAMPLES = Path(__file__).parents[2] / "server" / "examples"
@@ -49,8 +49,8 @@ def four_bar_with_coupler_points(count: int) -> dict[str, Any]:
 
 
 def triads(count: int) -> dict[str, Any]:
-    """``count`` copies of the triad of tests/solver/test_newton.py hung from one crank pin A:
-    one Newton-Raphson group of 4 x count links."""
+    """``count`` copies of the triad of tests/solver/position/test_newton.py hung from one crank
+    pin A: one Newton-Raphson group of 4 x count links."""
     points: dict[str, list[float]] = {"O": [0, 0], "A": [0.3, 0.2]}
     links: dict[str, Any] = {"crank": {"points": ["O", "A"]}}
     ground = ["O"]

@@ -24,7 +24,7 @@ from tests.dynamics_cases import (
     with_masses_and_loads,
 )
 from tests.linkage_strategies import linkages
-from tests.solver.test_steps import unit_floors, verify
+from tests.solver.solutions.test_solve import unit_floors, verify
 
 
 def at_path(body: Any, path: list[Any]) -> Any:

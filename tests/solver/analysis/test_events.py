@@ -33,7 +33,7 @@ from solver.analysis.events import find_event
 from solver.errors import NoEvent
 from solver.model.scene import parse_linkage
 
-CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
+CASES = Path(__file__).resolve().parents[2] / "reference" / "seed-cases.json"
 T_RTOL = 1e-6  # event times: relative to max(1, t)
 
 

@@ -37,7 +37,7 @@ from tests.linkage_strategies import stephenson_six_bar
 
 Doc = dict[str, Any]
 EPS = float(np.finfo(float).eps)
-REFERENCE = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
+REFERENCE = Path(__file__).resolve().parents[2] / "reference" / "seed-cases.json"
 mp.mp.dps = 50
 
 

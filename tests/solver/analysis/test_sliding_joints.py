@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from solver.analysis.instant import LinkageAnalysis
 from solver.model.scene import LinkageScene
-from tests.solver.test_properties import (
+from tests.solver.analysis.test_properties import (
     IDENTITY_TOL,
     PROPERTY,
     SLIDER_FAMILIES,

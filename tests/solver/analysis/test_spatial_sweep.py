@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 import solver
 from solver.errors import InvalidScene, LimitExceeded
 
-CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
+CASES = Path(__file__).resolve().parents[2] / "reference" / "seed-cases.json"
 ALL = ["position", "velocity", "acceleration", "components"]
 
 

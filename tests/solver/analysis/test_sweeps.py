@@ -14,7 +14,7 @@ from solver.errors import NotAssemblable
 from solver.model.scene import parse_linkage
 from solver.teaching.presets import build_preset
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
 ALL = ["position", "velocity", "acceleration", "poles", "components"]
 
 

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
 from tests.linkage_strategies import FAMILIES
-from tests.solver.test_properties import (
+from tests.solver.analysis.test_properties import (
     PROPERTY,
     Doc,
     cross,
@@ -25,7 +25,7 @@ from tests.solver.test_properties import (
     norm,
     solve,
 )
-from tests.solver.test_sliding_joints import _guide_frame
+from tests.solver.analysis.test_sliding_joints import _guide_frame
 
 
 @pytest.mark.parametrize("family", FAMILIES)

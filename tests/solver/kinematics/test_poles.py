@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from solver.kinematics.poles import acceleration_poles, velocity_poles
 from tests.linkage_strategies import FAMILIES
-from tests.solver.test_properties import (
+from tests.solver.analysis.test_properties import (
     IDENTITY_TOL,
     PROPERTY,
     draw_linkage,

@@ -40,7 +40,7 @@ from solver.model.scene import LinkageScene, parse_linkage
 from solver.teaching.presets import build_preset
 from tests.strategies import assemblable_presets
 
-CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
+CASES = Path(__file__).resolve().parents[2] / "reference" / "seed-cases.json"
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 # Central-difference step in time (s). With the bounded laws drawn below the truncation error
 # h^2/6 |x'''| and the rounding error eps |x| / h both stay below 1e-8 of the quantity's scale.

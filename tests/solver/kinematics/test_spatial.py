@@ -24,7 +24,7 @@ from solver.kinematics.spatial import (
     parse_spatial_chain,
 )
 
-CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
+CASES = Path(__file__).resolve().parents[2] / "reference" / "seed-cases.json"
 
 
 def _case(case_id: str) -> dict[str, Any]:

@@ -3,7 +3,7 @@ solver.sweep:
 
 - a full-turn sweep's velocities, accelerations and link rates (the sweep trims its extra
   samples with ``Motion.cut``): against the Heron closed form of the four-bar
-  (tests.solver.test_assembly.four_bar_C) differentiated by central differences in the crank
+  (test_assembly.four_bar_C) differentiated by central differences in the crank
   angle, and a coupler point against the rigid-body rotation of the drawn one;
 - the closest approach of a group downstream of a group that switches branch at a true change
   point (a parallelogram passing its change points, driving a dyad that comes within 2e-4 m of
@@ -24,7 +24,7 @@ from solver.analysis.sweeps import sweep
 from solver.errors import NotAssemblable
 from solver.model.scene import parse_linkage
 from solver.teaching.presets import build_preset
-from tests.solver.test_assembly import four_bar_C
+from tests.solver.position.test_assembly import four_bar_C
 
 ALL = ["position", "velocity", "acceleration"]
 
@@ -218,7 +218,7 @@ def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
     """The crank-rocker 1e-4 inside the Grashof equality swept with 2, 3 and 4 samples: the
     close approach (1e-4 m, to 1e-12 m, at crank 180 deg, to 1e-6 rad: the closed form) is
     found between them however few they are."""
-    from tests.solver.test_assembly import _near_crank_rocker
+    from tests.solver.position.test_assembly import _near_crank_rocker
 
     result = sweep(parse_linkage(_near_crank_rocker(1e-4)), samples, ["position"])
     (approach,) = result.close_approaches
@@ -227,10 +227,10 @@ def test_close_approach_found_with_the_fewest_samples(samples: int) -> None:
 
 
 def test_newton_group_that_cannot_close_is_refused_with_its_loop() -> None:
-    """The triad of tests/solver/test_newton.py (drawn at crank 33.7 deg) rocks between its limit
+    """The triad of test_newton.py (drawn at crank 33.7 deg) rocks between its limit
     positions, 11.3 and 74.8 deg (its sweep's limits): analysed at 120 deg, where Newton-Raphson
     cannot close it, it is refused (never an unconverged answer), naming the loop that failed."""
-    from tests.solver.test_newton import TRIAD, with_angle
+    from tests.solver.position.test_newton import TRIAD, with_angle
 
     lower, upper = solver.sweep(TRIAD, 36).as_dict()["limits"]
     assert math.degrees(lower) < 33.7 < math.degrees(upper) < 120.0
@@ -350,7 +350,7 @@ def test_close_approach_next_to_the_first_sample_is_reported(start_deg: float) -
     before or after its closest approach at 180 deg: the approach, 1e-4 m at 180 deg (closed
     form), must be reported as it is from 30 deg (test_close_approach_found_with_the_fewest_
     samples). Before the first and last samples were screened the sweep reported none."""
-    from tests.solver.test_assembly import _near_crank_rocker
+    from tests.solver.position.test_assembly import _near_crank_rocker
 
     result = sweep(parse_linkage(_near_crank_rocker(1e-4, start_deg)), 36, ["position"])
     (approach,) = result.close_approaches
@@ -509,12 +509,12 @@ def test_time_sweep_of_a_parallelogram_past_its_change_point_after_the_first_sam
 
 @pytest.mark.parametrize("tolerance", [1e-6, 1e-15])
 def test_newton_tolerance_asked_for_is_the_one_applied(tolerance: float) -> None:
-    """The triad of tests/solver/test_newton.py swept (36 samples), and swept over time
+    """The triad of test_newton.py swept (36 samples), and swept over time
     (t = 0 .. 0.1 s: crank 33.7 to 45.5 deg), with a Newton tolerance of 1e-6 and of 1e-15
     (the bounds): every Newton report states that relative tolerance, the absolute one
     tolerance * size, and a residual within it."""
     from solver.analysis.sweeps import sweep_time
-    from tests.solver.test_newton import TRIAD
+    from tests.solver.position.test_newton import TRIAD
 
     scene = parse_linkage(TRIAD)
     swept = sweep(scene, 36, ["position"], tolerance).motion.newton
@@ -556,11 +556,11 @@ def test_structure_without_drivers_is_analysed_at_its_drawn_pose() -> None:
 
 
 def test_full_turn_sweep_of_a_newton_group_keeps_its_report() -> None:
-    """The triad of tests/solver/test_newton.py with its crank cut to |OA| = 0.018 m (A at
+    """The triad of test_newton.py with its crank cut to |OA| = 0.018 m (A at
     (0.015, 0.01)) turns fully: swept with 36 samples, every sample closes the loop (each link's
     length and the ternary link's sides as drawn, to 1e-12 m: the constraints themselves), and
     the diagnostics keep the triad's Newton report, its residual within its tolerance."""
-    from tests.solver.test_newton import TRIAD
+    from tests.solver.position.test_newton import TRIAD
 
     doc = {**TRIAD, "points": {**TRIAD["points"], "A": [0.015, 0.01]}}
     body = solver.sweep(doc, 36).as_dict()
@@ -656,11 +656,11 @@ def test_two_groups_failing_at_different_samples_are_both_named() -> None:
 
 
 def test_newton_group_after_a_failing_dyad_is_not_blamed() -> None:
-    """The triad of tests/solver/test_newton.py with a dyad A-E-G on its crank (|AE| 0.9,
+    """The triad of test_newton.py with a dyad A-E-G on its crank (|AE| 0.9,
     |GE| 0.87, G = (-1, -1)), which cannot close at crank 45 deg: |AG| = 1.77477 > 1.77 m (A at
     |OA| = sqrt 0.13 m, 45 deg). The dyad is solved first; the triad, which cannot follow its
     branch past the dyad's limit either, is not named."""
-    from tests.solver.test_newton import TRIAD, with_angle
+    from tests.solver.position.test_newton import TRIAD, with_angle
 
     doc = {
         **TRIAD,
@@ -743,7 +743,7 @@ def test_position_sweep_whose_screen_took_velocities_returns_positions_only(case
     without continuation (the branches stay as drawn)."""
     from solver.position.assembly import DriverInput, assemble
     from solver.position.topology import build_plan
-    from tests.solver.test_compiled_plan import arrays
+    from tests.solver.position.test_compiled_plan import arrays
 
     doc = {
         "six-bar": _two_dips(0.2, 30.0),
@@ -816,11 +816,11 @@ def test_lever_close_approach_ahead_of_a_dyad(omega: float) -> None:
 
 
 def test_instant_centres_of_a_triad_at_rest() -> None:
-    """The triad of tests/solver/test_newton.py with its crank at rest, analysed with poles: the
+    """The triad of test_newton.py with its crank at rest, analysed with poles: the
     instant centres are those of the pose differentiated at unit crank rate (a Newton group
     assembled without the caller's Continuation, which makes its own); each link turning about
     a ground pivot has its centre with the ground there: O, G2, G3 (to 1e-12 m)."""
-    from tests.solver.test_newton import TRIAD
+    from tests.solver.position.test_newton import TRIAD
 
     body = solver.analyze(_at_rest(TRIAD), ["position", "poles"]).as_dict()
     centres = {frozenset(c["links"]): c["position"] for c in body["instant_centres"]}

@@ -22,7 +22,7 @@ from solver.position.compiled_plan import compiled_plan
 from solver.position.drivers import driver_inputs_over_time
 from solver.position.topology import build_plan
 from solver.teaching.presets import build_preset
-from tests.solver.test_events_mutants import _assert_time, _four_bar, _parallelogram, _time
+from tests.solver.analysis.test_events_mutants import _assert_time, _four_bar, _parallelogram, _time
 
 DRAWN = math.radians(60.0)  # the crank's drawn angle in ``_parallelogram(60.0, ...)``
 

@@ -4,7 +4,7 @@ for bit, and hands back to it wherever the branch search or a failure message is
 
 Bit for bit: every array of the motion (points, links, margins, gradient sine) compared as bytes,
 so a last-bit difference or a -0.0 for a 0.0 fails. Independent values of the same quantities
-are the general assembler's own tests (tests/solver/test_dyads.py, test_assembly.py, the
+are the general assembler's own tests (tests/solver/position/test_dyads.py, test_assembly.py, the
 reference cases); here the claim is only that the compiled plan is the same computation.
 """
 
@@ -147,7 +147,7 @@ def test_signed_zeros_at_rest_and_on_the_axes() -> None:
 
 def test_hands_back_near_a_change_point_and_where_it_cannot_close() -> None:
     """1e-9 from a change point the branch search must look: None, and the sweep is the general
-    assembler's (it keeps the branch; tests/solver/test_assembly.py); a non-Grashof linkage that
+    assembler's (it keeps the branch; test_assembly.py); a non-Grashof linkage that
     cannot turn fully: None too."""
     near = {"ground": 1.0, "crank": 0.4, "coupler": 0.9, "rocker": 0.5 + 1e-9}
     for values in (near, {"ground": 1.0, "crank": 0.8, "coupler": 0.5, "rocker": 0.6}):

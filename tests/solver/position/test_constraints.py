@@ -24,7 +24,7 @@ from solver.position.constraints import (
 from solver.solutions import solve
 from solver.teaching.presets import build_preset
 from tests.linkage_strategies import linkages
-from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.position.test_newton import TRIAD, with_angle
 
 FAMILIES = (
     "four_bar", "slider_crank", "inverted_slider_crank", "quick_return",

@@ -31,8 +31,8 @@ from solver.errors import NotAssemblable
 from solver.model.scene import LinkageScene, parse_linkage
 from solver.position import continuation
 from solver.position.constraints import ConstraintSystem, States
-from tests.solver.test_newton import TRIAD
-from tests.solver.test_newton_continuation import three_crank_triad, two_driver_triad
+from tests.solver.position.test_newton import TRIAD
+from tests.solver.position.test_newton_continuation import three_crank_triad, two_driver_triad
 
 
 def _sweep(doc: dict[str, Any], samples: int) -> Sweep:

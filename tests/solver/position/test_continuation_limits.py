@@ -1,7 +1,7 @@
 """A Newton group's branch between its limit positions, and the message where it cannot close
 (issue 8: mutation testing of solver/position/continuation.py left these unchecked).
 
-The triad of tests/solver/test_newton.py rocks between two limit positions, low < 0 < high
+The triad of tests/solver/position/test_newton.py rocks between two limit positions, low < 0 < high
 (turns of the crank from its drawn pose, found by the sweep). The branch reaches a turn t exactly
 when low <= t <= high, either sign; the full-turning triad of benchmarks/bench_newton.py reaches
 any turn. Asked to pose the rocking triad 0.5 rad beyond a limit, the solver says which loop and
@@ -21,7 +21,7 @@ from solver.analysis.sweeps import sweep
 from solver.errors import NotAssemblable
 from solver.model.scene import parse_linkage
 from solver.position.continuation import Continuation
-from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.position.test_newton import TRIAD, with_angle
 
 DRAWN = math.atan2(0.2, 0.3)  # the crank O-A of TRIAD as drawn
 

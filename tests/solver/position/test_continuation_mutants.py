@@ -9,13 +9,13 @@ Sources:
   benchmarks/bench_newton.py does; its limit positions as folds of those equations (the
   Jacobian in the unknown points singular, the crank angle an unknown too), likewise.
 - The branch: a natural-continuation reference path (small crank steps from the drawn pose,
-  tests/solver/test_newton_continuation.py), independent of the solver's pseudo-arclength
+  tests/solver/position/test_newton_continuation.py), independent of the solver's pseudo-arclength
   continuation.
 - Central finite differences of positions for the rates.
 - A closed form: a triad drawn with two parallelograms on its crank translates its ternary link
   with the crank pin.
 
-The slider triad (the rocking triad of tests/solver/test_newton.py with its link L3 replaced by
+The slider triad (the rocking triad of test_newton.py with its link L3 replaced by
 a slot in the ground for P3) is the Newton group whose equations are not linear in the links'
 rotations alone: it is followed in every link's (x, y, theta), its path's curvature estimated
 from the tangents (``Branch._path``'s second case, ``_predict`` and ``_Leg.middle`` without a
@@ -41,8 +41,8 @@ from solver.position import continuation
 from solver.position.assembly import DriverInput, assemble
 from solver.position.constraints import ConstraintSystem
 from solver.position.topology import build_plan
-from tests.solver.test_newton import TRIAD, with_angle
-from tests.solver.test_newton_continuation import (
+from tests.solver.position.test_newton import TRIAD, with_angle
+from tests.solver.position.test_newton_continuation import (
     TRIADS,
     check_against_analyze,
     reference_poses,
@@ -190,7 +190,7 @@ def test_slider_triad_limits_are_the_folds_of_its_equations() -> None:
 
 @pytest.mark.parametrize("index", [0, 4])
 def test_limits_far_from_the_drawn_pose_whichever_way_the_crank_turns(index: int) -> None:
-    """Two random triads of tests/solver/test_newton_continuation.py whose limit positions lie
+    """Two random triads of test_newton_continuation.py whose limit positions lie
     far from the drawn pose (triad 0: +2.04 rad, triad 4: -3.90 rad, more than half a turn): a
     sweep with the crank turning either way (omega +-2 rad/s) has the same limits, equal to the
     50-digit folds to 1e-12 rad (the path followed past the first reach, whichever leg met its
@@ -378,7 +378,7 @@ def first_fold(doc: Doc, sense: int) -> float:
     return reference_limit(doc, turn, z.reshape(3, 2))
 
 
-# Random triads (tests/solver/test_newton_continuation.triads, seed 14: numbers 14, 30, 914,
+# Random triads (test_newton_continuation.triads, seed 14: numbers 14, 30, 914,
 # 489, 658, 50 and 307, points rounded to 1e-6) whose path the solver once followed past a limit
 # position: onto a neighbouring strand of the equations' solutions, across two limit positions
 # in one step (an S, its middle between them; a narrow S near the step's end; an S that only the

@@ -27,8 +27,8 @@ from solver.model.scene import LinkageScene, parse_linkage
 from solver.position.constraints import ConstraintSystem, States
 from solver.position.continuation import Branch
 from tests.linkage_strategies import condition_number, six_bars
-from tests.solver.test_extremes import S000_T1, T1_LIMIT
-from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.analysis.test_extremes import S000_T1, T1_LIMIT
+from tests.solver.position.test_newton import TRIAD, with_angle
 
 Doc = dict[str, Any]
 TRIADS = 10  # random triads in CI (a longer run: RANDOM_TRIADS=200, see docs/BENCHMARKS.md)

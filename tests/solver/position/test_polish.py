@@ -4,7 +4,8 @@ Each linkage is drawn far (0.3 ... 0.5 rad) from a dead centre or a change point
 ``angle_deg`` 1e-3 ... 1e-10 rad from it. The reference treats the double inputs as exact: the
 link lengths are the exact distances between the drawn (float) coordinates, the crank stands at
 exactly radians(angle_deg), and the pose (on the drawn branch) and its rates are solved in 50
-digits, each family by its own closed form (the rate equations of tests/solver/test_conditioning).
+digits, each family by its own closed form (the rate equations of
+tests/solver/analysis/test_conditioning).
 A change-point linkage is drawn from dyadic Pythagorean coordinates, so that its lengths satisfy
 the change-point equality exactly and the pose really is that close to it.
 
@@ -30,7 +31,7 @@ from solver.analysis.instant import analyze
 from solver.model.scene import parse_linkage
 from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
-from tests.solver.test_conditioning import (
+from tests.solver.analysis.test_conditioning import (
     ALPHA,
     OMEGA,
     _cross,
@@ -44,7 +45,7 @@ from tests.solver.test_conditioning import (
     slider_near_dead_centre,
     slider_rates,
 )
-from tests.solver.test_newton import TRIAD
+from tests.solver.position.test_newton import TRIAD
 
 mp.mp.dps = 50
 Doc = dict[str, Any]
@@ -277,7 +278,7 @@ TRIAD_LIMITS = (mp.mpf("0.19680819239643638"), mp.mpf("1.3052330254995415"))  # 
 @pytest.mark.parametrize("distance", DISTANCES)
 @pytest.mark.parametrize("limit", [0, 1], ids=["lower", "upper"])
 def test_triad_posed_next_to_a_limit_position(limit: int, distance: str) -> None:
-    """The triad of tests/solver/test_newton posed 1e-3 ... 1e-10 rad inside its limit positions
+    """The triad of test_newton posed 1e-3 ... 1e-10 rad inside its limit positions
     (from /sweep; a fold, so the limits are exact to rounding): answered to the same contract."""
     doc = {**TRIAD, "drivers": [{"link": "crank", "omega": OMEGA, "alpha": ALPHA}]}
     phi = TRIAD_LIMITS[limit] + (1 - 2 * limit) * mp.mpf(distance)

@@ -46,10 +46,10 @@ from solver.kinematics.rigid import LinkMotion, PointMotion, fixed_link
 from solver.model.scene import LinkageScene, parse_linkage
 from solver.position import constraints, continuation, newton
 from solver.position.continuation import Continuation, solve_group
-from tests.solver.test_continuation_branch import _drawn_angle, _path_to, assert_follows
-from tests.solver.test_continuation_mutants import UNKNOWN, reference_points, slider_triad
-from tests.solver.test_newton import TRIAD
-from tests.solver.test_newton_continuation import three_crank_triad
+from tests.solver.position.test_continuation_branch import _drawn_angle, _path_to, assert_follows
+from tests.solver.position.test_continuation_mutants import UNKNOWN, reference_points, slider_triad
+from tests.solver.position.test_newton import TRIAD
+from tests.solver.position.test_newton_continuation import three_crank_triad
 
 Doc = dict[str, Any]
 GROUP = ("T", "L1", "L2", "L3")  # the triad's Newton group (the slider triad's lacks L3)

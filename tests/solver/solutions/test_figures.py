@@ -25,7 +25,7 @@ from solver.model.scene import parse_linkage
 from solver.solutions import Solution, solve
 from solver.teaching.presets import PRESETS, build_preset
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 EXAMPLES = ROOT / "server" / "examples"
 LINKAGES = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] == "linkage"

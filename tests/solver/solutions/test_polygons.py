@@ -18,7 +18,7 @@ import pytest
 import solver
 from solver.teaching.presets import PRESETS, build_preset
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
 SCENES = {f"preset {name}": build_preset(name, {}) for name in PRESETS} | {
     path.stem: json.loads(path.read_text())
     for path in sorted(EXAMPLES.glob("*.json"))

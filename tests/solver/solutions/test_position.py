@@ -8,7 +8,7 @@ solver's angles to 1e-12: the four-bar's theta14 = delta +- acos(C / sqrt(A^2 + 
 A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2 (d = D - B); the slotted lever's
 s = +-sqrt(|w|^2 - c^2) and beta = arg w - atan2(c, s) (w = P - Q). A scene with a pin in the
 slot of a turning link and a six-bar with a Newton group (drawn here) cover the other two kinds;
-every step's checks re-evaluate and its LaTeX typesets (tests.solver.test_steps' machinery).
+every step's checks re-evaluate and its LaTeX typesets (test_solve's machinery).
 """
 
 from __future__ import annotations
@@ -27,9 +27,9 @@ from solver.position.topology import DriverStep, DyadStep, LeverStep, LineSpec, 
 from solver.solutions import Solution, Step, solve
 from solver.teaching.presets import PRESETS, build_preset
 from tests.linkage_strategies import stephenson_six_bar
-from tests.solver.test_steps import NODE, _check_solution, run_katex
+from tests.solver.solutions.test_solve import NODE, _check_solution, run_katex
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
 LINKAGE_SEEDS = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] == "linkage"
 )

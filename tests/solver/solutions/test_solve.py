@@ -41,7 +41,7 @@ from solver.teaching.presets import PRESETS, build_preset
 from tests.linkage_strategies import linkages
 from tests.strategies import assemblable_presets
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 REFERENCE = ROOT / "tests" / "reference"
 EXAMPLES = ROOT / "server" / "examples"
 KATEX_CHECK = ROOT / "tests" / "katex_check.mjs"
@@ -690,7 +690,7 @@ def test_bad_options_are_invalid_scene(method: str, digits: Any) -> None:
 
 
 def test_loop_method_falls_back_for_a_newton_group_and_says_why() -> None:
-    from tests.solver.test_newton import TRIAD
+    from tests.solver.position.test_newton import TRIAD
 
     solution = solve(parse_linkage(TRIAD), "loop")
     assert solution.method == "vector" and solution.requested_method == "loop"

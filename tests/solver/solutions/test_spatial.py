@@ -26,14 +26,14 @@ import solver
 from solver.kinematics.spatial import parse_spatial_chain
 from solver.solutions import solve
 from solver.solutions.format import NOISE
-from tests.solver.test_spatial_sweep import chains, seed_002, turntable_slider
-from tests.solver.test_steps import NODE, _check_solution, run_katex
+from tests.solver.analysis.test_spatial_sweep import chains, seed_002, turntable_slider
+from tests.solver.solutions.test_solve import NODE, _check_solution, run_katex
 
 SVG = "{http://www.w3.org/2000/svg}"
 RTOL = 1e-3
 C30 = math.cos(math.radians(30))
 PROJECTION = np.array([[-C30, C30, 0.0], [-0.5, -0.5, 1.0]])
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
 
 
 def figure_of(solution: Any) -> ET.Element:
@@ -215,5 +215,5 @@ def test_sliding_joint_origin_steps_hold() -> None:
 @settings(max_examples=15, deadline=None)
 @given(chains())
 def test_random_chain_steps_hold(doc: dict[str, Any]) -> None:
-    """Every check of every step of a random chain's solution holds (tests.solver.test_steps)."""
+    """Every check of every step of a random chain's solution holds (test_solve)."""
     _check_solution(solve(parse_spatial_chain(doc)))

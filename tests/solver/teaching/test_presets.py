@@ -21,7 +21,7 @@ from solver.errors import InvalidScene, NotAssemblable
 from solver.teaching.presets import COINCIDENT, PRESETS, build_preset
 from tests.strategies import assemblable_presets
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
 EXPECTED_NAMES = [
     "four_bar",
     "slider_crank",
