@@ -71,7 +71,7 @@ class Canvas:
         return head + "".join(self.parts) + "</svg>"
 
 
-def _nice_length(target: float) -> float:
+def nice_length(target: float) -> float:
     """1, 2 or 5 times a power of ten, at most ``target``."""
     power = 10.0 ** math.floor(math.log10(target))
     if power > target:  # log10 rounded up to a whole number just above the target
@@ -80,7 +80,7 @@ def _nice_length(target: float) -> float:
 
 
 def _scale_bar(canvas: Canvas) -> None:
-    length = _nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.scale)
+    length = nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.scale)
     x, y = 12.0, HEIGHT - 14.0
     w = length * canvas.scale
     canvas.add(

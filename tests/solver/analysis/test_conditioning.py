@@ -210,14 +210,14 @@ def errors(result: LinkageAnalysis, rates: dict[str, Any]) -> float:
 def exact_condition(doc: Doc) -> float:
     """The solver's condition number (velocity system, rotation columns scaled by the size) of
     the same pose, its Jacobian's singular values computed in 50 digits."""
-    from solver.analysis.sweeps import _Driven
-    from solver.position.assembly import assemble
+    from solver.position.assembly import DriverInput, assemble
     from solver.position.constraints import ConstraintSystem, KnownPoses
     from solver.position.topology import build_plan
 
     scene = parse_linkage(doc)
     plan = build_plan(scene)
-    motion = assemble(scene, plan, _Driven(scene, plan).inputs(np.zeros(1)), 0)
+    at_rest = [DriverInput(np.zeros(1), np.zeros(1), np.zeros(1)) for _ in scene.drivers]
+    motion = assemble(scene, plan, at_rest, 0)  # the drawn pose: every driver turned by 0
     system = ConstraintSystem(scene, scene.moving_links, drivers=True)
     _, J, _ = system.equations(KnownPoses(motion.links, scene).at(0), 0)
     J = J.copy()

@@ -9,7 +9,7 @@ import pytest
 
 from solver.errors import InvalidScene
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build, generate, parse_id
-from solver.exercises.figures import _nice_length
+from solver.exercises.figures import nice_length
 
 
 def test_an_id_round_trips() -> None:
@@ -83,7 +83,7 @@ def test_statements_name_every_asked_symbol_in_latex() -> None:
 
 @pytest.mark.parametrize("target", [0.1 * (1 - 1e-16), 0.1, 1.0 - 1e-16, 3e-3, 0.7, 12.0, 1e3])
 def test_the_scale_bar_is_a_round_length_within_its_room(target: float) -> None:
-    length = _nice_length(target)
+    length = nice_length(target)
     assert 0.2 * target < length <= target
     mantissa = length / 10.0 ** math.floor(math.log10(length) + 1e-9)
     assert round(mantissa, 9) in (1.0, 2.0, 5.0)

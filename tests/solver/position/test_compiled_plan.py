@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from solver.analysis.sweeps import sweep
 from solver.model.scene import parse_linkage
 from solver.position.assembly import DriverInput, Motion, assemble, coarse, path_steps
-from solver.position.compiled_plan import _COMPILED, compiled_plan
+from solver.position.compiled_plan import compiled_plan
 from solver.position.topology import build_plan
 from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bars
@@ -168,11 +168,13 @@ def test_slots_and_levers_are_not_compiled(preset: str) -> None:
 
 def test_compiled_once_per_scene_object_forgotten_with_it() -> None:
     import gc
+    import weakref
 
     scene = parse_linkage(build_preset("four_bar", {}))
     plan = build_plan(scene)
-    assert compiled_plan(scene, plan) is compiled_plan(scene, plan)
-    key = id(scene)
-    del scene, plan
+    compiled = compiled_plan(scene, plan)
+    assert compiled is not None and compiled_plan(scene, plan) is compiled
+    freed = weakref.ref(compiled)
+    del scene, plan, compiled
     gc.collect()
-    assert key not in _COMPILED
+    assert freed() is None

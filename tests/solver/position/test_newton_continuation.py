@@ -281,12 +281,12 @@ def test_triad_limits_solve_the_fold_equations(doc: Doc) -> None:
     for leg in branch.legs.values():
         x0 = leg.x[-1]
         keep = [i for i in range(x0.size) if i != branch.free]
-        v0 = np.linalg.svd(branch._f(x0)[1][:, keep])[2][-1]
+        v0 = np.linalg.svd(branch.equations(x0)[1][:, keep])[2][-1]
 
         def extended(
             z: np.ndarray, v0: np.ndarray = v0, n: int = x0.size, keep: list[int] = keep
         ) -> np.ndarray:
-            F, J = branch._f(z[:n])
+            F, J = branch.equations(z[:n])
             return np.concatenate([F, J[:, keep] @ z[n:], [v0 @ z[n:] - 1.0]])
 
         z = fsolve(extended, np.concatenate([x0, v0]), xtol=1e-14)
@@ -304,10 +304,10 @@ def test_path_curvature_equals_the_turning_of_its_tangents(sense: int) -> None:
     leg = branch.extend(sense, sense * 0.3)
     x, tau = leg.x[3], leg.tau[3]
     assert np.all(np.abs(np.sin(x[2::3])) > 1e-3)
-    kappa = branch._curvature(x, tau, branch._f(x)[1])
+    kappa = branch.curvature(x, tau, branch.equations(x)[1])
     assert kappa is not None and np.linalg.norm(kappa) > 0.1
     ds = 1e-5
-    node, J, converged, _ = branch._correct(x + ds * tau, tau, 1e-15)
+    node, J, converged, _ = branch.correct(x + ds * tau, tau, 1e-15)
     assert converged
-    turning = (branch._tangent(J, tau) - tau) / np.linalg.norm(node - x)
+    turning = (branch.tangent(J, tau) - tau) / np.linalg.norm(node - x)
     np.testing.assert_allclose(turning, kappa, atol=1e-3 * np.linalg.norm(kappa))
