@@ -22,7 +22,7 @@ from solver.position.compiled_plan import compiled_plan
 from solver.position.drivers import driver_inputs_over_time
 from solver.position.topology import build_plan
 from solver.teaching.presets import build_preset
-from tests.solver.analysis.test_events_mutants import _assert_time, _four_bar, _parallelogram, _time
+from tests.solver.analysis.test_events import _assert_exact_time, _four_bar, _parallelogram, _time
 
 DRAWN = math.radians(60.0)  # the crank's drawn angle in ``_parallelogram(60.0, ...)``
 
@@ -177,4 +177,6 @@ def test_a_meeting_off_the_carrier_searched_on_long_steps_is_on_the_parallelogra
     back to the grid's samples)."""
     G = [0.5 + 0.4 * math.cos(math.radians(200.0)), 0.4 * math.sin(math.radians(200.0))]
     assert MAX_DRIVER_STEP < 1700.0 / 4096
-    _assert_time(_time(_parallelogram(60.0, G), "G", 1, 1700.0), math.radians(140.0), "", 1e-6)
+    _assert_exact_time(
+        _time(_parallelogram(60.0, G), "G", 1, 1700.0), math.radians(140.0), "", 1e-6
+    )
