@@ -215,6 +215,7 @@ HOSTILE: list[tuple[str, int | None]] = [
 ]
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 @pytest.mark.parametrize(("text", "position"), HOSTILE, ids=[repr(h[0][:24]) for h in HOSTILE])
 def test_hostile_input_is_rejected_quickly(text: str, position: int | None) -> None:
     start = time.process_time()  # CPU time: other processes on the machine do not count
