@@ -1,4 +1,4 @@
-"""The solver as a library (issue 9): ``import solver``, frozen results, unknown-key warnings.
+"""The solver as a library: ``import solver``, frozen results, unknown-key warnings.
 
 The HTTP side of the same contract (``as_dict()`` equals the body the endpoint sends) is in
 tests/server/test_contract.py; these tests need numpy, scipy and sympy only.

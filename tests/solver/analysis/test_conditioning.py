@@ -1,4 +1,4 @@
-"""Accuracy next to singular poses (issue 14), against a 50-digit reference (mpmath).
+"""Accuracy next to singular poses, against a 50-digit reference (mpmath).
 
 Four-bars, slider-cranks and inverted slider-cranks drawn at random poses 1e-3 ... 1e-10 rad from
 a dead centre (a limit position: the dyad is flat, its two branches about to meet) or from the

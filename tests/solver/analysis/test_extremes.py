@@ -348,7 +348,7 @@ def _change_point_four_bar(crossed: bool) -> Doc:
 
 @pytest.mark.parametrize("samples", [360, 1001])
 def test_parallelogram_stays_a_parallelogram_all_the_way_round(samples: int) -> None:
-    """Issue 2: continuation keeps the branch through the change points (crank at 0 and 180 deg,
+    """Continuation keeps the branch through the change points (crank at 0 and 180 deg,
     where all four links are collinear and both branches meet). With 360 samples the sweep lands
     on them (within rounding): they are reported in singular_samples. At every sample C - B =
     D - A (to 1e-9 m; near a change point the dyad is near tangency), the coupler does not turn
@@ -462,8 +462,8 @@ def _link_length_residual(scene: LinkageScene, positions: dict[str, np.ndarray])
 
 
 def test_newton_six_bar_sweeps_its_feasible_range() -> None:
-    """The drawn pose assembles, so the sweep over the driver's feasible range must too (issue 2:
-    sweep over the feasible range, keeping the drawn branch): it reports the range, every sample
+    """The drawn pose assembles, so the sweep over the driver's feasible range must too (the
+    sweep covers the feasible range, keeping the drawn branch): it reports the range, every sample
     closes the loop to 1e-12 of the size, and the samples bracket the drawn angle. 360 samples,
     the API's default."""
     scene = parse_linkage(NEWTON_SIX_BAR)

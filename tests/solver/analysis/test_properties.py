@@ -325,7 +325,7 @@ def test_relative_velocity_of_two_points_is_perpendicular(family: str, data: st.
 
 # --- loop closure over a sweep -------------------------------------------------------------------
 
-LOOP_CLOSURE_TOL = 1e-12  # of the linkage size, at every sample (issue 2)
+LOOP_CLOSURE_TOL = 1e-12  # of the linkage size, at every sample
 
 
 def loop_closure_residual(scene: LinkageScene, positions: dict[str, np.ndarray]) -> np.ndarray:

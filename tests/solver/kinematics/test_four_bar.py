@@ -1,5 +1,5 @@
-"""Grashof classes and the transmission angle against textbook values (issue 8: swapping two class
-labels, or a constant transmission angle, must turn a test red).
+"""Grashof classes and the transmission angle against textbook values: swapping two
+class labels, or a constant transmission angle, turns a test red.
 
 Grashof's criterion (e.g. Norton, Design of Machinery, sec. 2.12; Uicker, Pennock and Shigley,
 Theory of Machines and Mechanisms, sec. 1.10): with s the shortest link, l the longest and p, q

@@ -1,5 +1,5 @@
-"""Poles and instant centres checked against the fields they come from (issue 8: mutation
-testing of solver/kinematics/poles.py left these numbers unchecked).
+"""Poles and instant centres checked against the fields they come from
+(solver/kinematics/poles.py, instant_centres.py): each number against its definition.
 
 A rigid link's velocity field is v(P) = v_X + omega k x (P - X) and its acceleration field
 a(P) = a_X + alpha k x (P - X) - omega^2 (P - X). The velocity pole is the point where the first

@@ -1,6 +1,6 @@
 """Tests of solver.kinematics.relative_motion through solver.analysis.instant: a point M moving
-along a path fixed in
-a moving link (composite motion, scene-v1 ``moving_points``; issue 3, "Prove it").
+along a path fixed in a
+moving link (composite motion, scene-v1 ``moving_points``).
 
 Sources of the expected values:
 

@@ -1,5 +1,5 @@
 """A Newton group's branch between its limit positions, and the message where it cannot close
-(issue 8: mutation testing of solver/position/continuation.py left these unchecked).
+(solver/position/continuation.py).
 
 The triad of tests/solver/position/test_newton.py rocks between two limit positions, low < 0 < high
 (turns of the crank from its drawn pose, found by the sweep). The branch reaches a turn t exactly

@@ -74,7 +74,7 @@ def test_pin_in_two_nearly_parallel_slots_still_meets() -> None:
     assert parallel.margin[0] == -math.inf and "parallel" in parallel.message
 
 
-# --- rates of every group type against finite differences (mutation testing, issue 8) ----------
+# --- rates of every group type against finite differences -------------------------------------
 
 
 def _trajectory(p0: list[float], amp: list[float], w: float, phase: float, t: np.ndarray) -> Any:
@@ -332,7 +332,7 @@ def test_slot_message_shows_the_worst_sample() -> None:
     )
 
 
-# --- the 200 mutants of intersect, _root, point_motion ... run after the merge (issue 8) ----------
+# --- intersections in either order, parallel slots, a determinant of exactly one ----------------
 
 
 def test_a_line_and_a_circle_meet_in_either_order() -> None:

@@ -1,4 +1,4 @@
-"""Figures beside the steps (issue 12): the mechanism to scale, the velocity and acceleration
+"""Figures beside the steps: the mechanism to scale, the velocity and acceleration
 polygons at their stated scales.
 
 For every seed linkage and every preset, both methods: every figure is valid SVG (parsed by

@@ -1,4 +1,4 @@
-"""The position analysis derived for every group of the solver's plan (issue 12).
+"""The position analysis derived for every group of the solver's plan.
 
 Every preset and seed example, both methods: each group has its `position.*` step (a crank, a
 triangle, a slider on a fixed guide, a pin in a moving slot, a slotted lever, a Newton group),

@@ -1,4 +1,4 @@
-"""The worked solution of a spatial chain (issue 12): the isometric figure of the chain and the
+"""The worked solution of a spatial chain: the isometric figure of the chain and the
 ``reading`` step.
 
 The figure parses as SVG; its projection is the isometric drawing written out here,
