@@ -162,6 +162,7 @@ def test_occurrence_beyond_t_max_is_no_event() -> None:
 # --- occurrences against closed forms ---
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     radius=st.floats(0.05, 2.0),
@@ -249,6 +250,7 @@ def _dense_crossings(s: Any, level: float, period: float, t_max: float, samples:
     return np.sort(np.concatenate(found))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("omega", "t_max"),
     [
@@ -423,6 +425,7 @@ def test_first_occurrence_is_found_without_enumerating_the_later_ones() -> None:
     _assert_time(_event_time(doc, "S", 1, 1000.0), 1.4748096336326841, "first return")
 
 
+@pytest.mark.slow
 def test_a_search_stops_at_the_occurrence_inside_a_window() -> None:
     """s = 1000 t on a circle of radius 1 mm passes T (0.5 rad along it) every 2 pi mm / 1000
     m/s = 6.28 us, at t_k = (0.5 mm + 2 pi mm (k - 1)) / 1000 m/s (closed form); the first
@@ -739,6 +742,7 @@ def _kth_swing(k: int) -> float:
     return (a + 2.0 * math.pi * m if k % 2 else 2.0 * math.pi * (m + 1) - a) / 3000.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "t_max",
     [8.192 * math.pi, 33.82, 2094.0, 5631.0, 45090.0, 1.075, 642.1, 241700.0],
@@ -804,6 +808,7 @@ def test_too_fast_a_law_is_refused_when_the_samples_run_out(
         _time(doc, "T", 1, 60.0)
 
 
+@pytest.mark.slow
 def test_the_sample_limit_counts_brents_evaluations(monkeypatch: pytest.MonkeyPatch) -> None:
     """s = 1000 t on a circle of radius 1 mm passes T (0.5 rad along it) every 6.28 us: 7958
     times by t_max = 0.05 s (closed form: (0.05 s x 1000 m/s - 0.5 mm) / 2 pi mm, rounded
@@ -995,6 +1000,7 @@ def test_cranks_a_billion_times_faster_meet_a_billion_times_sooner() -> None:
         assert abs(got - want) <= 1e-9 * want, f"meeting {k}: got {got!r}, want {want!r}"
 
 
+@pytest.mark.slow
 def test_fast_oscillation_far_from_a_ground_point_is_no_event() -> None:
     """M shakes along a slot in a burst, s = 0.01 sin(1000 t) exp(-50 (t - 5)^2) (period 6.3 ms,
     2.4 ms between the distance samples at t_max = 10 s), 0.3 m from a ground point G: the
@@ -1104,6 +1110,7 @@ def _event_position_on_the_parallelogram(drawn_deg: float, speed: float, t_max: 
     np.testing.assert_allclose(event["position"], want, rtol=0, atol=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("drawn_deg", "speed", "t_max"),
     [(60.0, 0.25, 10.0), (150.0, 0.25, 10.0), (60.0, 0.01, 1000.0), (60.0, 0.002, 1000.0)],
@@ -1119,6 +1126,7 @@ def test_event_position_past_the_change_point_is_on_the_parallelogram(
     _event_position_on_the_parallelogram(drawn_deg, speed, t_max)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("t_max", [1e4, 1e5])
 def test_event_position_after_thousands_of_change_points(t_max: float) -> None:
     """``_event_position_on_the_parallelogram`` with s = 2e-4 t: C is reached at t = 5000 s,

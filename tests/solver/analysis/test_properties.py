@@ -114,6 +114,7 @@ FD_VELOCITY_TOL = 1e-6
 FD_ACCELERATION_TOL = 1e-5
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())
@@ -136,6 +137,7 @@ def test_velocity_is_the_derivative_of_position(family: str, data: st.DataObject
         assert abs(fd - link.omega) <= FD_VELOCITY_TOL * max(w_scale, abs(omega)), name
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())
@@ -171,6 +173,7 @@ def test_acceleration_is_the_derivative_of_velocity(family: str, data: st.DataOb
         assert abs(fd - link.alpha) <= FD_ACCELERATION_TOL * rate_scale, name
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", ["four_bar", "quick_return", "six_bar"])
 @settings(max_examples=6, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())
@@ -229,6 +232,7 @@ def test_sweep_rates_are_derivatives_of_sweep_positions(family: str, data: st.Da
 # --- scaling -----------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data(), exponent=st.floats(-3.0, 3.0))
@@ -275,6 +279,7 @@ def _pairs(scene: LinkageScene, link: str) -> list[tuple[str, str]]:
     return list(combinations(scene.links[link].points, 2))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "family", ["four_bar", "slider_crank", "slider_guide_extension", "six_bar"]
 )
@@ -306,6 +311,7 @@ def test_velocity_image_is_similar_to_the_link(family: str, data: st.DataObject)
             )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())
@@ -367,6 +373,7 @@ def loop_closure_residual(scene: LinkageScene, positions: dict[str, np.ndarray])
     return worst
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())

@@ -41,6 +41,7 @@ def _guide_frame(
     return result.points[g0].position, turn, link.omega, link.alpha
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", SLIDER_FAMILIES)
 @PROPERTY
 @given(data=st.data())

@@ -178,6 +178,7 @@ def test_prismatic_samples_are_the_moved_scene() -> None:
     assert_sample_is_instant(turntable_slider(1.3, 0.4, -0.7), [0.0, 0.5, 1.0])
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(chains(), st.floats(-1.5, 0.0), st.floats(0.1, 1.5))
 def test_random_chain_samples_are_the_moved_scene(

@@ -81,6 +81,7 @@ def test_the_loop_equations_solved_right_give_the_solver_s_answers(difficulty: s
             assert np.isclose(alpha, n.alpha("lever"), rtol=1e-10)
 
 
+@pytest.mark.slow
 def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
     """For each exercise and each mistake, its wrong value for each key it changes is submitted;
     where no earlier mistake in the list gives the same wrong value (then the diagnosis is

@@ -28,6 +28,7 @@ from tests.solver.analysis.test_properties import (
 from tests.solver.analysis.test_sliding_joints import _guide_frame
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())

@@ -48,6 +48,7 @@ def test_slowly_turning_link_has_a_far_acceleration_pole() -> None:
     assert acceleration_poles(X, a, np.zeros(1), np.array([1e-13]), 1.0).at(0) is None
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", FAMILIES)
 @PROPERTY
 @given(data=st.data())

@@ -290,6 +290,7 @@ def test_seed_003_analyze_requests_match_reference(case_id: str) -> None:
 # --- properties on random scenes ---
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(any_scene)
 def test_velocity_and_acceleration_are_time_derivatives_of_position(
@@ -332,6 +333,7 @@ def test_velocity_and_acceleration_are_time_derivatives_of_position(
     _close(now.omega_carrier, turn / (2 * H), FD_RTOL, _scale(now.omega_carrier), "omega")
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(any_scene)
 def test_parts_add_up_and_match_the_textbook_formulas(drawn: tuple[LinkageScene, float]) -> None:
@@ -390,6 +392,7 @@ def test_parts_add_up_and_match_the_textbook_formulas(drawn: tuple[LinkageScene,
     _close(m.transport_acceleration, a_tr, 1e-9, sa, "a_tr")
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(any_scene)
 def test_relative_motion_follows_the_path_geometry(drawn: tuple[LinkageScene, float]) -> None:
@@ -450,6 +453,7 @@ def test_relative_motion_follows_the_path_geometry(drawn: tuple[LinkageScene, fl
         _close(m.relative_normal, [0.0, 0.0], 1e-12, sa, "no normal part on a line")
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(parallelogram_scenes())
 def test_no_coriolis_on_a_translating_carrier(drawn: tuple[LinkageScene, float]) -> None:
@@ -468,6 +472,7 @@ def test_no_coriolis_on_a_translating_carrier(drawn: tuple[LinkageScene, float])
     _close(m.transport_acceleration, b.acceleration, 1e-9, sa, "a_tr = a_B")
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(any_scene, st.floats(-1.0, 1.0))
 def test_point_at_rest_on_its_path_moves_with_the_carrier(
@@ -486,6 +491,7 @@ def test_point_at_rest_on_its_path_moves_with_the_carrier(
     _close(m.acceleration, m.transport_acceleration, 1e-12, _scale(m.acceleration), "a = a_tr")
 
 
+@pytest.mark.slow
 @settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(any_scene, st.floats(0.05, 1.0), st.integers(2, 9))
 def test_time_sweep_equals_single_analyses(

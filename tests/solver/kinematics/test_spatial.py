@@ -160,6 +160,7 @@ def _planar_reference(chain: SpatialChain) -> dict[str, tuple[np.ndarray, np.nda
     return out
 
 
+@pytest.mark.slow
 @given(planar_chains())
 def test_planar_chain_gives_planar_answer(chain: SpatialChain) -> None:
     result = analyze_spatial_chain(chain)
@@ -258,6 +259,7 @@ def _close(got: np.ndarray, want: np.ndarray, scale: float) -> None:
     np.testing.assert_allclose(got, want, rtol=0, atol=RTOL * max(1.0, scale))
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(spatial_chains())
 def test_random_chain_against_finite_differences(chain: SpatialChain) -> None:

@@ -299,6 +299,7 @@ def test_log_never_returns_nan(t: float) -> None:
 COEFFICIENT = st.floats(-1e3, 1e3).map(lambda v: round(v, 6))
 
 
+@pytest.mark.slow
 @given(a=COEFFICIENT, b=COEFFICIENT, c=COEFFICIENT, d=COEFFICIENT, t=st.floats(-10, 10))
 def test_polynomials_match_closed_form(a: float, b: float, c: float, d: float, t: float) -> None:
     law = parse_time_law(f"{a!r} + {b!r}*t + {c!r}*t^2 + {d!r}*t**3")
@@ -309,6 +310,7 @@ def test_polynomials_match_closed_form(a: float, b: float, c: float, d: float, t
     assert rate_dot == pytest.approx(2 * c + 6 * d * t, rel=1e-12, abs=scale)
 
 
+@pytest.mark.slow
 @settings(max_examples=50)
 @given(
     amplitude=st.floats(0.1, 10),
@@ -330,6 +332,7 @@ def test_finite_differences_agree_with_derivatives(
         assert (rates[1] - rates[0]) / (2 * h) == pytest.approx(rate_dot, rel=1e-6, abs=scale)
 
 
+@pytest.mark.slow
 @settings(max_examples=300)
 @given(st.text(alphabet="t0123456789.+-*/^() eipsncoqrlgxa_,=*", max_size=40))
 def test_random_text_parses_or_raises_invalid_expression(text: str) -> None:

@@ -47,6 +47,7 @@ def _crank(t: np.ndarray) -> np.ndarray:
     return 0.4 * np.stack([np.cos(DRAWN + t), np.sin(DRAWN + t)], axis=1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("t1", "samples"), [(10.0, 2), (100.0, 4), (100.0, 11), (100.0, 37), (100.0, 42), (1e3, 50)]
 )
@@ -168,6 +169,7 @@ def test_a_window_between_two_samples_a_turn_apart_is_refused_with_its_depth() -
     )
 
 
+@pytest.mark.slow
 def test_a_meeting_off_the_carrier_searched_on_long_steps_is_on_the_parallelogram() -> None:
     """The parallelogram drawn at 60 deg, at 1 rad/s: M (s = 0.5 on the coupler) runs round
     (0.5, 0) + 0.4 (cos, sin)(60 deg + t) and meets G, that circle's point at 200 deg, when the

@@ -102,6 +102,7 @@ def turns_with_the_drawn_pose(samples: int, start: float) -> np.ndarray:
     return turns
 
 
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None)
 @given(linkages("four_bar"), st.floats(-math.pi, math.pi), st.sampled_from([7, 36, 361]))
 def test_four_bars_bit_for_bit(doc: dict[str, Any], start: float, samples: int) -> None:
@@ -166,6 +167,7 @@ def test_slots_and_levers_are_not_compiled(preset: str) -> None:
     assert compiled_plan(scene, build_plan(scene)) is None
 
 
+@pytest.mark.slow
 def test_compiled_once_per_scene_object_forgotten_with_it() -> None:
     import gc
     import weakref

@@ -41,6 +41,7 @@ def test_velocity_condition_number_is_scale_invariant() -> None:
     assert c2 == pytest.approx(c1, rel=1e-9)
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
 @given(st.sampled_from(FAMILIES).flatmap(linkages), st.floats(-180.0, 180.0))
 def test_velocity_jacobian_is_the_constraint_systems(doc: dict[str, object], turn: float) -> None:

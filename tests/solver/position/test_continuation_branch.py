@@ -160,6 +160,7 @@ def assert_follows(result: Sweep, scene: LinkageScene, reference: list[np.ndarra
             np.testing.assert_allclose(anchor.p[k], q[3 * index : 3 * index + 2], atol=1e-9)
 
 
+@pytest.mark.slow
 def test_three_drivers_are_turned_in_order_then_the_first_swept() -> None:
     """The triad with both of its ground pivots on driven cranks (H-G2 turned 60 deg, J-G3 20
     deg): the second crank is turned first (the third held at its drawn pose), then the third,
@@ -397,6 +398,7 @@ def swept_points(result: Any, k: int) -> np.ndarray:
     return np.array([result.motion.points[p].p[k] for p in UNKNOWN])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("samples", [12, 360])
 def test_slider_triad_sweep_equals_the_50_digit_reference(samples: int) -> None:
     """Every sample (every 30th of 360) equals the 50-digit roots to 1e-12 m and the natural
@@ -426,6 +428,7 @@ def test_slider_triad_sweep_equals_the_50_digit_reference(samples: int) -> None:
         np.testing.assert_allclose(drawn.points[name].position, point, rtol=0.0, atol=1e-14)
 
 
+@pytest.mark.slow
 def test_slider_triad_limits_are_the_folds_of_its_equations() -> None:
     """The sweep's limit positions (36 and 360 samples) equal the 50-digit folds to 1e-12 rad,
     each solved from the swept sample next to it."""
@@ -440,6 +443,7 @@ def test_slider_triad_limits_are_the_folds_of_its_equations() -> None:
         assert limit - drawn == pytest.approx(exact, abs=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("index", [0, 4])
 def test_limits_far_from_the_drawn_pose_whichever_way_the_crank_turns(index: int) -> None:
     """Two random triads of test_newton_continuation.py whose limit positions lie
@@ -672,6 +676,7 @@ def folded_triad(name: str) -> Doc:
     return {**TRIAD, "points": {"O": [0.0, 0.0], **FOLDED_TRIADS[name]}}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [name for name in FOLDED_TRIADS if "wider" not in name])
 def test_limits_are_the_first_folds_met_from_the_drawn_pose(name: str) -> None:
     """The sweep's limit positions are the first folds met turning the crank either way from
@@ -691,6 +696,7 @@ def test_limits_are_the_first_folds_met_from_the_drawn_pose(name: str) -> None:
     assert high == pytest.approx(first_fold(doc, 1), abs=1e-12)
 
 
+@pytest.mark.slow
 def test_a_range_wider_than_a_turn_is_a_rocker_from_its_end() -> None:
     """A triad whose limit positions lie 6.40 rad apart (-0.0553 and +6.3485 from the drawn
     pose, the first folds either way: ``first_fold``): from turn 0 the crank turns through a
@@ -809,6 +815,7 @@ LOCATED_TRIADS = {
 }  # fmt: skip
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(LOCATED_TRIADS))
 def test_limit_positions_are_located_on_their_strand_to_rounding(name: str) -> None:
     """``Branch.limits`` of random triads 122 and 450 equal the first folds met either way from
@@ -826,6 +833,7 @@ def test_limit_positions_are_located_on_their_strand_to_rounding(name: str) -> N
     np.testing.assert_allclose(limits, folds, rtol=0.0, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_a_range_wider_than_a_turn_is_a_rocker_whichever_way_it_turns() -> None:
     """A triad whose limit positions lie 7.23 rad apart, -7.181 and +0.0447 from the drawn pose:
     asked from -2 pi to 0 (a sweep turning the crank backwards) it meets no limit within that

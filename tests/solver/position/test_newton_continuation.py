@@ -120,6 +120,7 @@ def test_limit_finder_on_a_non_grashof_four_bar_equals_the_closed_form() -> None
     assert drawn + limits[1] == pytest.approx(float(T1_LIMIT), abs=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("doc", triads(TRIADS), ids=[f"triad{k}" for k in range(TRIADS)])
 def test_random_triad_sweeps_agree_at_every_sample_count(doc: Doc) -> None:
     """36, 360 and 3600 samples: every sweep answers (no not_assemblable), with the same range
@@ -150,6 +151,7 @@ def _drawn_crank(doc: Doc) -> float:
     return math.atan2(A[1] - pivot[1], A[0] - pivot[0])
 
 
+@pytest.mark.slow
 def test_triad_sweep_at_36000_samples_has_the_same_limits() -> None:
     doc = next(d for d in triads(TRIADS) if not sweep(parse_linkage(d), 36).feasible)
     scene = parse_linkage(doc)
@@ -158,6 +160,7 @@ def test_triad_sweep_at_36000_samples_has_the_same_limits() -> None:
     check_against_analyze(doc, fine, every=4999)
 
 
+@pytest.mark.slow
 def test_triad_keeps_its_branch_next_to_its_limit_positions() -> None:
     """Next to each limit the pose moves as the square root of the distance (a fold): samples
     1e-7 rad inside answer, with the group's Jacobian nearly singular, and 1e-7 rad outside do
@@ -202,6 +205,7 @@ def test_sweep_rates_equal_finite_differences_of_the_sweep() -> None:
         assert np.max(np.abs(fd_a[inner] - a)) <= 1e-4 * np.max(np.abs(a))
 
 
+@pytest.mark.slow
 @settings(max_examples=6, deadline=None, suppress_health_check=list(HealthCheck))
 @given(six_bars(newton=True))
 def test_newton_six_bars_agree_at_every_sample_count(six_bar: Any) -> None:

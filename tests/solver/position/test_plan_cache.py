@@ -5,11 +5,14 @@ from __future__ import annotations
 import gc
 import weakref
 
+import pytest
+
 from solver.model.scene import parse_linkage
 from solver.position import topology
 from solver.teaching.presets import build_preset
 
 
+@pytest.mark.slow
 def test_one_plan_per_scene_object_forgotten_with_it() -> None:
     """build_plan returns the same plan for the same scene object, another for another scene;
     the plan is that of a scene parsed afresh from the same document; it is freed with its scene

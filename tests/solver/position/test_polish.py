@@ -981,6 +981,7 @@ def test_a_linkage_drawn_far_from_the_origin_closes_to_the_rounding_of_its_coord
         )
 
 
+@pytest.mark.slow
 def test_the_polishing_step_is_kept_only_where_it_lowers_the_residual() -> None:
     """The triad drawn 1e4 m from the origin, started at its 50-digit roots at 12 turns (in
     doubles: residuals ~1e-12 m, the rounding of coordinates that large, within the tolerance

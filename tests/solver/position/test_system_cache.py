@@ -8,6 +8,7 @@ import gc
 import weakref
 
 import numpy as np
+import pytest
 
 from benchmarks.bench_newton import FULL_TURN, PARTIAL
 from solver.analysis.sweeps import Sweep, sweep
@@ -40,6 +41,7 @@ def _systems_of(scene: LinkageScene) -> list[int]:
     )
 
 
+@pytest.mark.slow
 def test_sweeps_of_one_scene_share_its_systems_and_are_identical() -> None:
     scene = parse_linkage(FULL_TURN)
     first = _bytes(sweep(scene, 360, ALL))
@@ -51,6 +53,7 @@ def test_sweeps_of_one_scene_share_its_systems_and_are_identical() -> None:
     assert _bytes(sweep(parse_linkage(FULL_TURN), 360, ALL)) == first  # as built afresh
 
 
+@pytest.mark.slow
 def test_one_system_per_scene_and_unknowns_forgotten_with_the_scene() -> None:
     scene = parse_linkage(FULL_TURN)
     moving = scene.moving_links

@@ -217,6 +217,7 @@ def test_slotted_lever_closed_form_gives_the_solver_angle(name: str, method: str
     assert (abs(c) > 0.01) == (name == "offset_lever")
 
 
+@pytest.mark.slow
 def test_pin_in_a_turning_slot() -> None:
     """X = Q + s u on the slot as it is now (turned with the guide), |X - D| = |DX|."""
     solution = solve(parse_linkage(PIN_IN_TURNING_SLOT), "vector")
@@ -236,6 +237,7 @@ def test_pin_in_a_turning_slot() -> None:
         assert run_katex([step.latex]) == []
 
 
+@pytest.mark.slow
 def test_newton_group_shows_the_iterations_and_the_solver_residual() -> None:
     solution = solve(parse_linkage(STEPHENSON), "vector")
     _check_solution(solution)
@@ -254,6 +256,7 @@ def test_newton_group_shows_the_iterations_and_the_solver_residual() -> None:
         assert run_katex([step.latex]) == []
 
 
+@pytest.mark.slow
 def test_every_new_position_step_renders_in_katex() -> None:
     if NODE is None:
         pytest.skip("node is not installed")

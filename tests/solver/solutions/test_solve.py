@@ -619,6 +619,7 @@ def test_seed_steps_re_evaluate_and_carry_the_solver_numbers(name: str, method: 
     _check_solution(solve(scene_of(example(name)), method))
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(assemblable_presets(), st.sampled_from(["vector", "loop"]))
 def test_random_presets_every_step_re_evaluates(
@@ -629,6 +630,7 @@ def test_random_presets_every_step_re_evaluates(
     _check_solution(solve(parse_linkage(build_preset(*case)), method))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", ["six_bar", "block_in_lever"])
 def test_six_bars_and_blocks_every_step_re_evaluates(family: str) -> None:
     """Random Watt/Stephenson six-bars (some need a Newton group) and a block in a prismatic
@@ -711,6 +713,7 @@ def test_solver_steps_import_no_web_framework() -> None:
             assert not re.search(rf"^\s*(from|import) {banned}\b", source, re.M), (path, banned)
 
 
+@pytest.mark.slow
 def test_user_names_are_escaped_in_latex() -> None:
     doc = build_preset("four_bar", {})
     rename = {"A": "A_1", "B": "B{x}", "C": "C\\", "D": "D&%$#", "P": "É ~^"}
@@ -740,6 +743,7 @@ def test_katex_check_reports_a_broken_string() -> None:
     assert len(failures) == 1 and "\\frac{1}{" in failures[0]["latex"]
 
 
+@pytest.mark.slow
 @needs_node
 def test_every_seed_step_renders_in_katex() -> None:
     latex = []
@@ -750,6 +754,7 @@ def test_every_seed_step_renders_in_katex() -> None:
     assert run_katex(latex) == []
 
 
+@pytest.mark.slow
 @needs_node
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case=assemblable_presets())

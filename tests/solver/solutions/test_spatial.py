@@ -99,6 +99,7 @@ def test_a_wrongly_scaled_omega_is_caught() -> None:
     assert np.linalg.norm(got - want) > RTOL * np.linalg.norm(want)
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(chains())
 def test_random_chain_figures_are_drawn_to_scale(doc: dict[str, Any]) -> None:
@@ -177,6 +178,7 @@ def test_prismatic_reading() -> None:
     assert_reading_follows_the_signs(turntable_slider(1.3, 0.4, -0.7))
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(chains())
 def test_random_chain_readings_follow_the_signs(doc: dict[str, Any]) -> None:
@@ -189,6 +191,7 @@ def test_no_planar_method_is_faked() -> None:
     assert not kinds & {"instant_centres", "graphical.velocity", "graphical.acceleration"}
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(NODE is None, reason="node is not installed: KaTeX cannot run")
 def test_spatial_solution_renders_in_katex() -> None:
     docs = [seed_002(), turntable_slider(1.3, 0.4, -0.7)]
@@ -212,6 +215,7 @@ def test_sliding_joint_origin_steps_hold() -> None:
     assert {"spatial.origin.velocity", "spatial.origin.acceleration"} <= kinds
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None)
 @given(chains())
 def test_random_chain_steps_hold(doc: dict[str, Any]) -> None:

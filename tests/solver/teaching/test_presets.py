@@ -451,6 +451,7 @@ def test_build_does_not_mutate_its_input() -> None:
 # --- properties ----------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(assemblable_presets())
 def test_assemblable_draws_realise_their_parameters(case: tuple[str, dict[str, float]]) -> None:
