@@ -131,6 +131,7 @@ def test_a_spatial_chain_falls_back(client: TestClient) -> None:
     assert body["steps"][0]["kind"] == "fallback" and body["method"] == "vector"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", ["slider_crank", "block_in_lever", "six_bar"])
 @settings(max_examples=4, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())
