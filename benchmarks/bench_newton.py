@@ -239,7 +239,7 @@ def main() -> None:
         "(steps up to a 60 deg turn of the tangent, a third-order predictor), each about five "
         "evaluations of the loop equations in the links' rotations (`constraints.Rotations`: 4 "
         "equations in 5 angles) and five 5x5 LAPACK solves, then every segment of that leg "
-        "halved at once (`Branch._halved`, stacked solves; the rocking triad's legs, followed "
+        "halved at once (`Branch.halved`, stacked solves; the rocking triad's legs, followed "
         "closely between its limit positions, are not); the rest is the batched work on all "
         "samples: quintic starting values, Newton-Raphson (one iteration on every sample, a "
         "second on those still above tolerance, about half), the rates (two stacked (N, 4, 4) "

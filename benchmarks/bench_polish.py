@@ -34,7 +34,7 @@ if str(ROOT) not in sys.path:  # run as `python benchmarks/bench_polish.py`
 import solver.analysis.instant as analysis  # noqa: E402
 from solver.model.scene import LinkageScene, parse_linkage  # noqa: E402
 from solver.teaching.presets import build_preset  # noqa: E402
-from tests.solver.test_newton import TRIAD  # noqa: E402
+from tests.solver.position.test_newton import TRIAD  # noqa: E402
 
 
 def posed(doc: dict[str, Any], degrees: float) -> LinkageScene:

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Set up everything the test suite needs on a fresh machine (Python 3.11, pip, apt), then run
 # the whole suite: lint (ruff, mypy, hadolint) and pytest (solver, API over loopback, browser).
+# Arguments go to pytest. CI runs every test, the ones marked `slow` included (the slowest, and
+# those whose outcome depends on the machine's load); locally `bash tests/run.sh -m "not slow"`
+# skips them (README, "Run the tests").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -67,7 +67,7 @@ def _document(canvas: Canvas, title: str) -> str:
     )
 
 
-def _nice_length(target: float) -> float:
+def nice_length(target: float) -> float:
     """1, 2 or 5 times a power of ten, at most ``target``."""
     power = 10.0 ** math.floor(math.log10(target))
     if power > target:  # log10 rounded up to a whole number just above the target
@@ -76,7 +76,7 @@ def _nice_length(target: float) -> float:
 
 
 def _scale_bar(canvas: Canvas) -> None:
-    length = _nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.view.scale)
+    length = nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.view.scale)
     x, y = 12.0, HEIGHT - 14.0
     w = length * canvas.view.scale
     canvas.path(

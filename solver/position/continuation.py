@@ -14,7 +14,7 @@ the equations are linear in them (``constraints.Rotations``: the translations ar
 follow from the rotations; 4 equations in 5 angles for a Stephenson III triad), else in every
 link's (x, y, theta) with lengths scaled by the scene size: from a node y_k with unit tangent
 tau_k (the null vector of dF/dy), the predictor y_k + h tau_k + h^2/2 kappa_k + h^3/6 kappa'_k
-(``_predict``) is corrected by Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is
+(``predict``) is corrected by Newton-Raphson on [F(y); tau_k . (y - y_pred)] = 0. A step is
 accepted when the corrector contracts and converges, the tangent turns by less than
 MAX_TANGENT_TURN, the path's orientation sign det [dF/dy; tau] is kept (``_orientation``: it
 changes only across a bifurcation, so a step that lands on a neighbouring strand of F = 0 has
@@ -26,7 +26,7 @@ driver's turn reaches an extremum along the path) shows as a change of sign of t
 driver component; it is located by safeguarded Newton on that component, to rounding, so the
 limits do not depend on the number of samples.
 Where the path was followed with long steps (a middle further than HALVING_RESIDUAL from it),
-every segment of the leg is then halved at once (``Branch._halved``).
+every segment of the leg is then halved at once (``Branch.halved``).
 
 **Every sample at once** (``solve_group``): each sample's starting value is the quintic Hermite
 interpolant of the path between its two nodes (positions, tangents and curvatures, in
@@ -66,7 +66,7 @@ CORRECTOR_ITERATIONS = 8
 # values are that close to the path, well inside Newton-Raphson's quadratic convergence.
 INTERPOLATION_RESIDUAL = 1e-3
 # Where a leg's middles lie further than this from the path, its samples would start where
-# Newton-Raphson needs a second iteration: every segment is halved first (``Branch._halved``).
+# Newton-Raphson needs a second iteration: every segment is halved first (``Branch.halved``).
 HALVING_RESIDUAL = 1e-5
 # A path closes after a whole turn where the two poses agree this closely (path coordinates:
 # radians, lengths over the size): far above their correction (NODE_TOLERANCE times their
@@ -84,7 +84,7 @@ MAX_REFINEMENTS = 12
 POLISH_ITERATIONS = 12
 
 
-def _bordered_solve(J: Array, row: Array, top: Array | None, last: float) -> Array:
+def bordered_solve(J: Array, row: Array, top: Array | None, last: float) -> Array:
     """[J; row] z = [top; last] (top None: zeros): LU (LAPACK's dgesv, called directly:
     numpy.linalg.solve's checks cost three times the solve of a small system) where square and
     regular, least squares otherwise."""
@@ -122,7 +122,7 @@ def _norm(v: Array) -> float:
 
 
 @dataclass
-class _Leg:
+class Leg:
     """Nodes of the path from the drawn pose in one sense of the driver: arclength s, scaled
     coordinates x, unit tangents tau; ``limit`` is the turn of the limit position that ends it."""
 
@@ -132,7 +132,7 @@ class _Leg:
     kappa: list[Array | None]  # the path's curvature dtau/ds at each node, where known
     h: float = 0.1
     limit: float | None = None
-    halved: tuple[Array, Array, Array, Array] | None = None  # ``Branch._halved``, while valid
+    halved: tuple[Array, Array, Array, Array] | None = None  # ``Branch.halved``, while valid
     gap: float = 0.0  # the largest residual at a segment's middle found by ``Branch.extend``
 
     def insert(self, k: int, x: Array, tau: Array, kappa: Array | None) -> None:
@@ -154,7 +154,7 @@ class _Leg:
         self.halved = None
 
     def middle(self) -> Array:
-        """The quintic interpolant of the last segment (``_quintic``) at its middle:
+        """The quintic interpolant of the last segment (``quintic_hermite``) at its middle:
         (x0 + x1)/2 + 5h/32 (tau0 - tau1) + h^2/64 (kappa0 + kappa1), h the segment's arclength
         (a curvature not known: (tau1 - tau0)/h, which gives the cubic's middle)."""
         h = self.s[-1] - self.s[-2]
@@ -183,21 +183,21 @@ def _orientation(J: Array, tau: Array) -> float:
     return float(np.linalg.slogdet(np.vstack([J, tau]))[0])
 
 
-def _monotone(leg: _Leg, free: int, sense: int) -> bool:
+def _monotone(leg: Leg, free: int, sense: int) -> bool:
     """Whether the driver's turn x[free] moves in ``sense`` all along the quintic of the leg's
     last segment (its derivative checked at MONOTONE_AT): ``Branch._segments`` solves t(u) = turn
     on the quintic by Newton's method, and a path that went back and forth across two limit
     positions within one step (an S) does not turn monotonely."""
     s, X, T, K = leg.arrays(len(leg.s) - 2)
     h = s[1] - s[0]
-    # ``_quintic``'s data for the turn alone (``_quintic`` itself costs 5 times more).
+    # ``quintic_hermite``'s data for the turn alone (``quintic_hermite`` itself costs 5 times more).
     data = np.array([X[0], h * T[0], h * h * K[0], h * h * K[1], h * T[1], X[1]])[:, free]
     return bool(np.all(sense * (_MONOTONE_RATES @ data) > 0.0))
 
 
-def _predict(leg: _Leg, h: float) -> Array:
+def predict(leg: Leg, h: float) -> Array:
     """x + h tau + h^2/2 kappa + h^3/6 kappa': the Taylor step from the leg's last node, with
-    its curvature kappa = dtau/ds (``Branch._curvature``) and kappa' from the last two nodes'
+    its curvature kappa = dtau/ds (``Branch.curvature``) and kappa' from the last two nodes'
     curvatures; where the curvatures are not known (no linear form), kappa from the last two
     nodes' tangents (first order from the drawn pose)."""
     x, tau, kappa = leg.x[-1], leg.tau[-1], leg.kappa[-1]
@@ -238,13 +238,13 @@ class Branch:
         self.known = {ground: States(anchor, zero, zero2, zero, zero2, zero)}
         x0 = (self.system.drawn() if start is None else start) / self.scale
         self._path(x0, self.system.column[drivers[free]])
-        self.legs: dict[int, _Leg] = {}
+        self.legs: dict[int, Leg] = {}
         for sense in (1, -1):
             tau = np.zeros(self.y0.size)
             tau[self.free] = sense
             J = self._f(self.y0)[1]
-            tau = self._tangent(J, tau)
-            self.legs[sense] = _Leg([0.0], [self.y0], [tau], [self._curvature(self.y0, tau, J)])
+            tau = self.tangent(J, tau)
+            self.legs[sense] = Leg([0.0], [self.y0], [tau], [self.curvature(self.y0, tau, J)])
 
     def _path(self, x0: Array, column: int) -> None:
         """The coordinates y the path is followed in, from the scaled drawn coordinates x0: the
@@ -272,20 +272,20 @@ class Branch:
         """Scaled residual F(y) and Jacobian dF/dy at path coordinates y."""
         return self.equations(x)
 
-    def _tangent(self, J: Array, previous: Array) -> Array:
+    def tangent(self, J: Array, previous: Array) -> Array:
         """The unit null vector of the Jacobian J = dF/dx, on the side of ``previous``."""
-        z = _bordered_solve(J, previous, None, 1.0)
+        z = bordered_solve(J, previous, None, 1.0)
         return z / _norm(z)
 
-    def _curvature(self, x: Array, tau: Array, J: Array) -> Array | None:
+    def curvature(self, x: Array, tau: Array, J: Array) -> Array | None:
         """kappa = x'' at a node x with tangent tau: [J; tau] kappa = [bending; 0] (the second
         derivative of F(x(s)) = 0, and tau . kappa = 0 for a unit tangent); None without the
         linear form (a slider: the predictor estimates it from two tangents)."""
         if self.bending is None:
             return None
-        return _bordered_solve(J, tau, self.bending(x, tau), 0.0)
+        return bordered_solve(J, tau, self.bending(x, tau), 0.0)
 
-    def _correct(
+    def correct(
         self, predicted: Array, tau: Array, tolerance: float = NODE_TOLERANCE
     ) -> tuple[Array, Array, bool, int]:
         """Newton-Raphson on [F(x); tau . (x - predicted)] = 0 from the predictor: the point,
@@ -298,7 +298,7 @@ class Branch:
                 return x, J, True, iteration
             if iteration == CORRECTOR_ITERATIONS:
                 break
-            dx = _bordered_solve(J, tau, F, float(tau @ (x - predicted)))
+            dx = bordered_solve(J, tau, F, float(tau @ (x - predicted)))
             step = float(dx @ dx)
             if not math.isfinite(step) or step > CONTRACTION * CONTRACTION * last:
                 break  # not contracting: too long a step
@@ -308,17 +308,17 @@ class Branch:
     def _turn(self, x: Array) -> float:
         return float(x[self.free])
 
-    def extend(self, sense: int, target: float) -> _Leg:
+    def extend(self, sense: int, target: float) -> Leg:
         """Follow the path in ``sense`` until the driver's turn passes ``target`` or a limit."""
         leg = self.legs[sense]
         orientation = _orientation(self._f(leg.x[-1])[1], leg.tau[-1])
         while leg.limit is None and sense * (self._turn(leg.x[-1]) - target) < 0.0:
             x, tau, h = leg.x[-1], leg.tau[-1], leg.h
-            predicted = _predict(leg, h)
-            new, J, ok, _ = self._correct(predicted, tau)
+            predicted = predict(leg, h)
+            new, J, ok, _ = self.correct(predicted, tau)
             tau_new, grow = tau, 0.5
             if ok:  # near the predictor (not on a neighbouring strand of the path), gently turning
-                tau_new = self._tangent(J, tau)
+                tau_new = self.tangent(J, tau)
                 turn = math.acos(min(1.0, float(tau_new @ tau)))
                 moved = _norm(new - predicted) / h
                 # The turn grows like h, the predictor's error like h^2 (second order): aim at
@@ -332,7 +332,7 @@ class Branch:
                 crossed = oriented != orientation and h > BIFURCATION_STEP
                 ok = turn <= MAX_TANGENT_TURN and moved <= MAX_CORRECTION and not crossed
             if ok:  # the quintic between the two nodes must stay on the path (the samples' start)
-                kappa = self._curvature(new, tau_new, J)
+                kappa = self.curvature(new, tau_new, J)
                 leg.insert(len(leg.s), new, tau_new, kappa)
                 gap = _norm(self._f(leg.middle())[0])
                 ahead = sense * tau_new[self.free] > 0.0  # no limit position at the new node
@@ -356,7 +356,7 @@ class Branch:
             leg.h = min(h * min(grow, 2.0), MAX_STEP)
         return leg
 
-    def _limit(self, leg: _Leg, sense: int, h: float, beyond: float) -> None:
+    def _limit(self, leg: Leg, sense: int, h: float, beyond: float) -> None:
         """The limit position between the last node and the step h past it (where the tangent's
         driver component g, ``beyond`` there, changed sign): the zero of g along the step,
         appended as a node. Trial points s are corrected from the node's second-order
@@ -374,9 +374,9 @@ class Branch:
             if not a < s < b:
                 s = (a * g_b - b * g_a) / (g_b - g_a)
             predicted = x + s * tau if kappa0 is None else x + s * tau + (0.5 * s * s) * kappa0
-            point, J, _, _ = self._correct(predicted, tau, LIMIT_TOLERANCE)
-            tangent = self._tangent(J, tau)
-            kappa = self._curvature(point, tangent, J)
+            point, J, _, _ = self.correct(predicted, tau, LIMIT_TOLERANCE)
+            tangent = self.tangent(J, tau)
+            kappa = self.curvature(point, tangent, J)
             g = sense * float(tangent[self.free])
             if abs(g) <= FOLD_TANGENT or b - a <= FOLD_XTOL:
                 break
@@ -418,7 +418,7 @@ class Branch:
 
     def closes(self, turn: float) -> bool:
         """Whether the pose after a whole turn of the driver from ``turn`` is the pose at
-        ``turn``: both taken from the path and corrected with the driver's turn held (``_correct``
+        ``turn``: both taken from the path and corrected with the driver's turn held (``correct``
         bordered by the driver's axis), their coordinates within CLOSURE (rotations modulo
         2 pi). Then the path is a circuit of one turn, as a full revolution's sweep needs; a
         rocker whose limits lie more than a turn apart passes ``turn`` + 2 pi on another part of
@@ -434,7 +434,7 @@ class Branch:
             if not self.reaches(t):
                 return False
             start = self._segments(self.legs[sense], sense, np.array([t]))[0]
-            y, _, converged, _ = self._correct(start, axis)
+            y, _, converged, _ = self.correct(start, axis)
             if not converged:
                 return False
             ends.append(y)
@@ -498,16 +498,16 @@ class Branch:
                 x, tau = leg.x[k], leg.tau[k]
                 chord = _norm(leg.x[k + 1] - x)
                 for fraction in (0.5, 0.25, 0.125, 0.0625):  # the middle, or nearer node k
-                    new, J, ok, _ = self._correct(x + fraction * chord * tau, tau)
+                    new, J, ok, _ = self.correct(x + fraction * chord * tau, tau)
                     if ok:
                         break
                 if not ok:
                     continue
-                tangent = self._tangent(J, tau)
-                leg.insert(k + 1, new, tangent, self._curvature(new, tangent, J))
+                tangent = self.tangent(J, tau)
+                leg.insert(k + 1, new, tangent, self.curvature(new, tangent, J))
 
-    def _halved(self, leg: _Leg) -> tuple[Array, Array, Array, Array]:
-        """The leg's nodes (``_Leg.arrays``) with a node added at the middle of every segment,
+    def halved(self, leg: Leg) -> tuple[Array, Array, Array, Array]:
+        """The leg's nodes (``Leg.arrays``) with a node added at the middle of every segment,
         all segments at once, where a middle checked by ``extend`` lay further than
         HALVING_RESIDUAL from the path (the samples' quintic starting values then come 2^6 times
         closer, its error going as h^6, and most settle in one Newton-Raphson iteration; a leg
@@ -525,9 +525,9 @@ class Branch:
             return nodes
         s, X, T, K = nodes
         segments = np.arange(s.size - 1)
-        quintic = _quintic(nodes, segments)
-        middle = _horner(quintic, 0.5)
-        tau = _horner(quintic[1:] * np.arange(1.0, 6.0)[:, None, None], 0.5)  # dx/du
+        quintic = quintic_hermite(nodes, segments)
+        middle = horner(quintic, 0.5)
+        tau = horner(quintic[1:] * np.arange(1.0, 6.0)[:, None, None], 0.5)  # dx/du
         tau /= np.sqrt(np.einsum("ki,ki->k", tau, tau))[:, None]
         x, zero = middle, np.zeros(segments.size)
         try:
@@ -558,26 +558,26 @@ class Branch:
         leg.halved = (s2, X2, T2, K2)
         return leg.halved
 
-    def _segments(self, leg: _Leg, sense: int, turns: Array) -> Array:
+    def _segments(self, leg: Leg, sense: int, turns: Array) -> Array:
         """The coordinates at ``turns`` on the leg: in the segment between the nodes bracketing
         each, the u in [0, 1] where the quintic's driver turn is the turn (Newton-Raphson on the
         monotone t(u)), then the quintic there."""
-        nodes = self._halved(leg)
+        nodes = self.halved(leg)
         f = self.free
         t_nodes = sense * nodes[1][:, f]
         k = np.clip(np.searchsorted(t_nodes, sense * turns) - 1, 0, t_nodes.size - 2)
-        quintic = _quintic(nodes, k)
+        quintic = quintic_hermite(nodes, k)
         turn = quintic[..., f]
         t0, t1 = nodes[1][k, f], nodes[1][k + 1, f]
         u = np.clip((turns - t0) / np.where(t1 != t0, t1 - t0, 1.0), 0.0, 1.0)
         slope = turn[1:] * np.arange(1.0, 6.0)[:, None]
         for _ in range(8):
-            rate = _horner(slope, u)
-            step = (_horner(turn, u) - turns) / np.where(rate != 0.0, rate, 1.0)
+            rate = horner(slope, u)
+            step = (horner(turn, u) - turns) / np.where(rate != 0.0, rate, 1.0)
             u = np.clip(u - step, 0.0, 1.0)
             if np.max(np.abs(step)) <= 1e-12:  # the samples are polished from here
                 break
-        return _horner(quintic, u[:, None])
+        return horner(quintic, u[:, None])
 
 
 # The quintic Hermite basis (value, first and second derivative at u = 0 and 1) as monomials:
@@ -596,17 +596,17 @@ _MONOTONE_RATES = np.vander(MONOTONE_AT, 5, increasing=True) @ (
 )
 
 
-def _quintic(nodes: tuple[Array, Array, Array, Array], k: Array) -> Array:
+def quintic_hermite(nodes: tuple[Array, Array, Array, Array], k: Array) -> Array:
     """The monomial coefficients (6, K, n) of the quintic Hermite interpolant in u in [0, 1] of
     segments k (node k to k + 1: positions, and tangents and curvatures in arclength, times the
-    segment's arclength h and h^2); ``nodes`` from ``_Leg.arrays``."""
+    segment's arclength h and h^2); ``nodes`` from ``Leg.arrays``."""
     s, X, T, K = nodes
     h = (s[k + 1] - s[k])[:, None]
     data = np.stack([X[k], T[k] * h, K[k] * h * h, K[k + 1] * h * h, T[k + 1] * h, X[k + 1]])
     return np.tensordot(_QUINTIC, data, axes=1)
 
 
-def _horner(coefficients: Array, u: Array | float) -> Array:
+def horner(coefficients: Array, u: Array | float) -> Array:
     """sum_j coefficients[j] u^j by Horner's rule."""
     value = coefficients[-1]
     for c in coefficients[-2::-1]:
@@ -658,7 +658,7 @@ def solve_group(
     system = constraints.constraint_system(scene, group)
     samples = turns[0].size if turns else 1
     states = constraints.states({name: known[name] for name in system.known}, scene)
-    polish = _Polish(system, states, samples, continuation)
+    polish = Polish(system, states, samples, continuation)
     if not turns:
         polish.run(np.arange(samples), None, None)
     else:  # one branch per set of the other drivers' turns
@@ -682,7 +682,7 @@ def solve_group(
     return motions, report
 
 
-class _Polish:
+class Polish:
     """Every sample of a Newton group polished by batched Newton-Raphson from the branch's
     interpolated path (``q``, ``residual``; ``reached`` by the branch rule; ``settled`` on the
     root its start points at), the path refined around samples that did not settle."""
@@ -716,7 +716,7 @@ class _Polish:
             if branch is not None and turns is not None:
                 x, self.reached[todo], way = branch.guesses(turns[todo])
                 q0 = x[:, self.columns]
-            self.q[todo], self.residual[todo], its, first, moved = self._newton(todo, q0)
+            self.q[todo], self.residual[todo], its, first, moved = self.newton_raphson(todo, q0)
             self.iterations = max(self.iterations, its)
             # Converged to the root its start points at: about one first step away, and close.
             good = (self.residual[todo] <= self.tolerance) & (
@@ -729,7 +729,7 @@ class _Polish:
             branch.refine(way[bad])
             todo = todo[bad]
 
-    def _newton(self, todo: Array, q0: Array) -> tuple[Array, Array, int, Array, Array]:
+    def newton_raphson(self, todo: Array, q0: Array) -> tuple[Array, Array, int, Array, Array]:
         """Newton-Raphson on the samples ``todo`` from ``q0`` (``newton.newton_rotations`` where
         the group's equations are linear in (q, cos, sin)): q, residuals, iterations, and the
         lengths of each sample's first step and of its whole move (rotations times the size)."""

@@ -15,8 +15,7 @@ from typing import Any
 import pytest
 
 from tests.browser.conftest import AppPage
-from tests.browser.test_app import pause_and_wait, wait_until
-from tests.browser.test_edition2 import download, exported_scene, sheet_click
+from tests.browser.test_app import download, exported_scene, pause_and_wait, sheet_click, wait_until
 
 pytestmark = pytest.mark.browser
 

@@ -12,8 +12,14 @@ from xml.etree import ElementTree
 import pytest
 
 from tests.browser.conftest import AppPage
-from tests.browser.test_app import choose, pause_and_wait
-from tests.browser.test_edition2 import DETAIL_DONE, LABELS_PLACED, download, exported_scene
+from tests.browser.test_app import (
+    DETAIL_DONE,
+    LABELS_PLACED,
+    choose,
+    download,
+    exported_scene,
+    pause_and_wait,
+)
 
 pytestmark = pytest.mark.browser
 

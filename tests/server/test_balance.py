@@ -24,6 +24,7 @@ def balance(client: TestClient, scene: dict[str, Any], weights: Any = WEIGHTS) -
     return client.post("/api/v1/balance", json={"scene": scene, "counterweights": weights})
 
 
+@pytest.mark.slow
 @settings(max_examples=10, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())
 def test_the_balanced_centre_of_mass_stays_still(client: TestClient, data: st.DataObject) -> None:

@@ -58,6 +58,7 @@ def test_the_issues_2_5_gb_sweep_is_refused_with_the_product() -> None:
     assert f"limit of {budget.MAX_SWEEP_VALUES:,}" in detail
 
 
+@pytest.mark.slow
 def test_a_sweep_just_inside_the_response_budget_answers() -> None:
     entries = 4 + 4 + 4
     samples = budget.MAX_SWEEP_VALUES // (entries * 5)

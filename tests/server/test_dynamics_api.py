@@ -166,7 +166,7 @@ def test_forces_of_a_spatial_chain_are_refused(client: TestClient) -> None:
 
 
 def test_two_drivers_each_get_their_virtual_power_torque(client: TestClient) -> None:
-    """The five-bar worked by hand in tests/solver/test_virtual_power.py, over HTTP: T_1 =
+    """The five-bar worked by hand in tests/solver/dynamics/test_virtual_power.py, over HTTP: T_1 =
     -m (g - w^2) / 2 and T_2 = +m (g - w^2) / 2, from Newton-Euler and from virtual power."""
     w, m, g = 1.5, 4.0, 9.81
     body = post(

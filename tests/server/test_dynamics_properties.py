@@ -95,6 +95,7 @@ def test_frame_force_is_weights_plus_loads_minus_momentum_rate(
     assert body["frame_force"] == pytest.approx(through_joints, abs=scale)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", ("four_bar", "slider_crank", "quick_return", "six_bar"))
 @settings(max_examples=6, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())

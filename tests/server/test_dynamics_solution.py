@@ -24,7 +24,7 @@ from tests.dynamics_cases import (
     with_masses_and_loads,
 )
 from tests.linkage_strategies import linkages
-from tests.solver.test_steps import unit_floors, verify
+from tests.solver.solutions.test_solve import unit_floors, verify
 
 
 def at_path(body: Any, path: list[Any]) -> Any:
@@ -131,6 +131,7 @@ def test_a_spatial_chain_falls_back(client: TestClient) -> None:
     assert body["steps"][0]["kind"] == "fallback" and body["method"] == "vector"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("family", ["slider_crank", "block_in_lever", "six_bar"])
 @settings(max_examples=4, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(data=st.data())

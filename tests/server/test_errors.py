@@ -519,6 +519,7 @@ def _reject_constant(name: str) -> Any:
     raise ValueError(f"{name} in a response body")
 
 
+@pytest.mark.slow
 @settings(
     max_examples=250,
     deadline=None,

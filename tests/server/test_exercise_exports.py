@@ -170,6 +170,7 @@ def test_export_rejects_an_unknown_format(client: TestClient) -> None:
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(NODE is None, reason="node is not installed: KaTeX cannot run")
 def test_statements_and_event_steps_typeset_with_katex() -> None:
     latex = []

@@ -79,6 +79,7 @@ def assert_well_posed(exercise: dict[str, Any], analyzed: dict[str, Any] | None)
         assert 35.0 <= loop["transmission_angle_deg"] <= 145.0, exercise["id"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("difficulty", DIFFICULTIES)
 @pytest.mark.parametrize("kind", list(TYPES))
 def test_answers_equal_analyze_at_their_paths(

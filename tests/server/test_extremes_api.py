@@ -1,4 +1,4 @@
-"""The extremes of tests/solver/test_extremes.py over HTTP: a dead centre is a 422
+"""The extremes of tests/solver/analysis/test_extremes.py over HTTP: a dead centre is a 422
 singular_configuration problem, a non-Grashof sweep states its feasible range."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 from fastapi.testclient import TestClient
 
-from tests.solver.test_extremes import (
+from tests.solver.analysis.test_extremes import (
     EXTENDED_DEAD_CENTRE,
     FOLDED_DEAD_CENTRE,
     S000_T1,

@@ -13,7 +13,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from solver.model.scene import parse_linkage
-from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.position.test_newton import TRIAD, with_angle
 
 SIZE = parse_linkage(TRIAD).size
 

@@ -9,7 +9,7 @@ from fastapi.testclient import TestClient
 
 from solver.model.scene import parse_linkage
 from solver.teaching.presets import build_preset
-from tests.solver.test_newton import TRIAD, with_angle
+from tests.solver.position.test_newton import TRIAD, with_angle
 
 
 def test_drawn_pose_has_no_residual(client: TestClient) -> None:

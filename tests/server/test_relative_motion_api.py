@@ -303,6 +303,7 @@ def _with_law(case: dict[str, Any], index: int, field: str, law: str) -> dict[st
     return body
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 @pytest.mark.parametrize("endpoint", ["analyze", "events"])
 @pytest.mark.parametrize("field", ["angle_law", "s_law"])
 @pytest.mark.parametrize(("law", "positions"), HOSTILE)
@@ -326,6 +327,7 @@ def test_hostile_law_is_an_invalid_expression(
     assert health.status_code == 200 and health.json() == {"status": "ok"}
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 def test_law_over_the_body_limit_is_limit_exceeded(hostile_api: Any) -> None:
     """A 1.2 MB law makes the body exceed the server's 1 MB limit: 413, code limit_exceeded
     (spec: limit_exceeded, 413 or 422); the server stays healthy."""

@@ -108,6 +108,7 @@ def test_the_newton_runaway_is_inside_the_budget() -> None:
     budget.sweep(scene, NEWTON_RUNAWAY["samples"], None)  # type: ignore[arg-type]
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 def test_a_runaway_request_is_stopped_at_its_limit_while_the_server_answers(
     one_worker: str,
 ) -> None:
@@ -132,6 +133,7 @@ def test_a_runaway_request_is_stopped_at_its_limit_while_the_server_answers(
     assert request(one_worker, "/api/v1/sweep", {"scene": FOUR_BAR, "samples": 36})[0] == 200
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 def test_a_full_queue_is_answered_503_with_retry_after(one_worker: str) -> None:
     runaway = Background(one_worker, RUNAWAY_PATH, RUNAWAY)  # takes the only worker
     time.sleep(0.5)
@@ -146,6 +148,7 @@ def test_a_full_queue_is_answered_503_with_retry_after(one_worker: str) -> None:
     assert waiting.join()[0] == 200  # it waited, then was answered
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 def test_a_client_that_disconnects_stops_its_work() -> None:
     """With one worker and no time limit to speak of, the next request is answered as soon as
     the runaway's client leaves (it would otherwise wait about 5 s for the worker)."""
@@ -222,6 +225,7 @@ def test_workers_run_below_the_servers_cpu_priority() -> None:
         worker.stop()
 
 
+@pytest.mark.slow  # timed: its outcome depends on the machine's load
 def test_a_burst_of_slow_requests_leaves_a_worker_to_analyze() -> None:
     """Two workers, two runaway requests on a slow endpoint: the second waits for the slow lane
     (all workers but one), so /analyze is answered while both are still pending; then the

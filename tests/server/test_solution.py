@@ -3,7 +3,7 @@
 Sources: the spec ../shared/spec/scene-v1.md (/solution: steps with title, latex, text; results =
 the /analyze response; errors as problem+json with a stable code), and the reference scenes of
 server/examples. The arithmetic of the steps is re-evaluated with ``verify`` of
-tests/solver/test_steps.py (independent of solver.solutions).
+tests/solver/solutions/test_solve.py (independent of solver.solutions).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from fastapi.testclient import TestClient
 
 from server.app import app
 from solver.teaching.presets import PRESETS
-from tests.solver.test_steps import unit_floors, verify
+from tests.solver.solutions.test_solve import unit_floors, verify
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 SCENES = sorted(p.stem for p in EXAMPLES.glob("*.json"))

@@ -1,4 +1,4 @@
-"""The solver as a library (issue 9): ``import solver``, frozen results, unknown-key warnings.
+"""The solver as a library: ``import solver``, frozen results, unknown-key warnings.
 
 The HTTP side of the same contract (``as_dict()`` equals the body the endpoint sends) is in
 tests/server/test_contract.py; these tests need numpy, scipy and sympy only.
@@ -24,7 +24,7 @@ from solver.analysis.results import Result, holds
 from solver.kinematics.spatial import SpatialChain
 from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.teaching.presets import build_preset
-from tests.solver.test_assembly import _near_crank_rocker
+from tests.solver.position.test_assembly import _near_crank_rocker
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "server" / "examples"
@@ -252,7 +252,7 @@ def test_a_read_scene_keeps_its_warnings_for_the_result() -> None:
 
 def test_the_solvers_own_warnings_follow_the_requests() -> None:
     """A result's body lists the request's warnings first, then the solver's own (a pose within
-    1e-3 of the size of a change point, tests/solver/test_assembly.py)."""
+    1e-3 of the size of a change point, tests/solver/position/test_assembly.py)."""
     doc = _near_crank_rocker(1e-4, 179.0)
     doc["drivers"][0]["angle"] = 120
     found = solver.analyze(doc).warnings

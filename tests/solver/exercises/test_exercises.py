@@ -1,0 +1,89 @@
+"""Exercise generation in the solver: ids, determinism by seed, nice inputs, figures."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from solver.errors import InvalidScene
+from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build, generate, parse_id
+from solver.exercises.figures import nice_length
+
+
+def test_an_id_round_trips() -> None:
+    ident = parse_id("four_bar_velocity:standard:7:0")
+    assert ident == ExerciseId("four_bar_velocity", "standard", 7, 0)
+    assert str(ident) == "four_bar_velocity:standard:7:0"
+
+
+@pytest.mark.parametrize("bad", ["", "a:b:c:d", "four_bar_velocity:standard:-1:0", 7, "x" * 500])
+def test_a_malformed_id_is_invalid_scene(bad: object) -> None:
+    with pytest.raises(InvalidScene):
+        parse_id(bad)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("kind", list(TYPES))
+def test_generation_is_deterministic_by_seed(kind: str) -> None:
+    first = [e.as_json() for e in generate(kind, "standard", 2024, 3)]
+    again = [e.as_json() for e in generate(kind, "standard", 2024, 3)]
+    assert first == again
+    other = [e.as_json() for e in generate(kind, "standard", 2025, 3)]
+    assert [e["scene"] for e in other] != [e["scene"] for e in first]
+    # exercise k of a batch is the exercise of its own id
+    assert build(parse_id(first[2]["id"])).as_json() == first[2]
+
+
+def test_the_difficulty_changes_what_is_asked() -> None:
+    asked = {
+        d: [a.key for a in build(ExerciseId("quick_return", d, 5, 0)).asked] for d in DIFFICULTIES
+    }
+    assert set(asked["basic"]) < set(asked["standard"]) < set(asked["challenging"])
+
+
+def _length(scene: dict, a: str, b: str) -> float:  # type: ignore[type-arg]
+    return math.dist(scene["points"][a], scene["points"][b])
+
+
+@pytest.mark.parametrize("difficulty", DIFFICULTIES)
+def test_inputs_are_rounded_as_a_book_prints_them(difficulty: str) -> None:
+    for e in generate("four_bar_acceleration", difficulty, 99, 20):
+        scene = e.scene
+        for a, b in (("A", "B"), ("B", "C"), ("D", "C"), ("A", "D")):
+            length = _length(scene, a, b)  # type: ignore[arg-type]
+            assert abs(length * 100 - round(length * 100)) < 1e-9, (e.id, a, b, length)
+        driver = scene["drivers"][0]
+        assert float(driver["omega"]).is_integer() and float(driver["alpha"]).is_integer()
+        angle = math.degrees(math.atan2(*reversed(scene["points"]["B"])))
+        assert abs(angle - round(angle / 5) * 5) < 1e-9
+        if difficulty == "basic":
+            assert driver["alpha"] == 0.0
+
+
+@pytest.mark.parametrize("kind", list(TYPES))
+def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
+    e = build(ExerciseId(kind, "challenging", 1, 0))
+    root = ET.fromstring(e.statement.figure_svg)
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    labels = {t.text for t in root.iter("{http://www.w3.org/2000/svg}text")}
+    assert set(e.scene["points"]) <= labels
+    assert any(text and " m" in text for text in labels)  # the scale bar
+    if e.scene["kind"] == "linkage":
+        assert any(text and ("ω" in text or "φ" in text) for text in labels)
+
+
+def test_statements_name_every_asked_symbol_in_latex() -> None:
+    for kind in TYPES:
+        e = build(ExerciseId(kind, "standard", 4, 0))
+        for a in e.asked:
+            assert a.symbol in e.statement.latex
+        assert e.statement.text.endswith(".")
+
+
+@pytest.mark.parametrize("target", [0.1 * (1 - 1e-16), 0.1, 1.0 - 1e-16, 3e-3, 0.7, 12.0, 1e3])
+def test_the_scale_bar_is_a_round_length_within_its_room(target: float) -> None:
+    length = nice_length(target)
+    assert 0.2 * target < length <= target
+    mantissa = length / 10.0 ** math.floor(math.log10(length) + 1e-9)
+    assert round(mantissa, 9) in (1.0, 2.0, 5.0)
