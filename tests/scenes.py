@@ -8,8 +8,8 @@ from tests.solver.position.test_newton import TRIAD
 
 
 def triads(count: int) -> dict[str, Any]:
-    """``count`` copies of the triad of tests/solver/position/test_newton.py hung from one crank pin A:
-    one Newton-Raphson group of 4 x count links."""
+    """``count`` copies of the triad of tests/solver/position/test_newton.py hung from one crank
+    pin A: one Newton-Raphson group of 4 x count links."""
     points: dict[str, list[float]] = {"O": [0, 0], "A": [0.3, 0.2]}
     links: dict[str, Any] = {"crank": {"points": ["O", "A"]}}
     ground = ["O"]

@@ -8,7 +8,8 @@ preallocated (N, 2) arrays. A fixed point's coordinates stay plain floats (its r
 The formulas are those of ``rigid`` and ``dyads``, evaluated in the same order of floating-point
 operations (x - y computed as x + (-y), a product by a negated factor as the negated product,
 v - 0 as v: all exact in IEEE arithmetic), so the answers are the general assembler's bit for
-bit (tests/solver/position/test_compiled_plan.py). The branch search itself is left out: its screen runs
+bit (tests/solver/position/test_compiled_plan.py). The branch search itself is left out: its
+screen runs
 here as in ``assembly._Assembler.candidates``, on the same numbers, and wherever it has something
 to examine (``assembly.screen``), a group does not close or a driver steps too far between two
 samples (``assembly.MAX_DRIVER_STEP``), ``run`` returns None and the general assembler runs

@@ -2,8 +2,8 @@
 typed reference, and a step's digits are settled in one pass when it is built.
 
 Sources: the rigid-body velocity v_B = v_A + omega x r_AB as the worked solutions write it
-(tests/solver/solutions/test_solve.py pins it on the seeds), and the issue's example of shown arithmetic
-that does not recompute (-0.03125 / 0.01265 = -2.470 while the step says -2.469).
+(tests/solver/solutions/test_solve.py pins it on the seeds), and the issue's example of shown
+arithmetic that does not recompute (-0.03125 / 0.01265 = -2.470 while the step says -2.469).
 """
 
 from __future__ import annotations
