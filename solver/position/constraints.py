@@ -383,10 +383,8 @@ class ConstraintSystem:
         d = X_f - X_g
         wd = dot(w, d)
         phi[:, rows] = dot(n, d)
-        # n turns with the guide: dn/dtheta_g = -w, so the guide's column gains -(w.d) and
-        # the right-hand sides -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
-        theta_f = dot(n, perp(r_f))
-        theta_g = -dot(n, perp(r_g)) - wd
+        # The right-hand sides gain -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
+        theta_f, theta_g = slider_rotation_entries(n, r_f, r_g, wd)
         omega, order = links.omega, links.order
         if order == 1 and rate_f is not None and rate_g is not None:
             b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
@@ -443,6 +441,14 @@ class ConstraintSystem:
                 None if qdd is None else qdd[:, 3 * index + 2],
             )
         return out
+
+
+def slider_rotation_entries(n: Array, r_f: Array, r_g: Array, wd: Array) -> tuple[Array, Array]:
+    """dPhi/dtheta_f = n.(k x r_f) and dPhi/dtheta_g = -n.(k x r_g) - w.d of a slider's row
+    Phi = n.(X_f - X_g), d = X_f - X_g (``wd`` = w.d), r the arms from the follower's and the
+    guide's anchors: the normal n = k x w turns with the guide, dn/dtheta_g = -w. The one
+    definition of these entries (``ConstraintSystem`` and ``velocity_jacobian``)."""
+    return dot(n, perp(r_f)), -dot(n, perp(r_g)) - wd
 
 
 def constraint_system(
@@ -857,8 +863,8 @@ def velocity_jacobian(
         w = rotate_by(np.array(joint.axis), cos[index[i]], sin[index[i]])
         n = perp(w)
         c_i, c_j = (_anchor(scene, links[x], x)[k] for x in (i, j))
-        wd = float(dot(w, (c_j + r_j) - (c_i + r_i)))
-        f, g = float(dot(n, perp(r_j))), float(-dot(n, perp(r_i)) - wd)
+        wd = dot(w, (c_j + r_j) - (c_i + r_i))
+        f, g = (float(entry) for entry in slider_rotation_entries(n, r_j, r_i, wd))
         row(True, (j, 0, n[0]), (j, 1, n[1]), (j, 2, f), (i, 0, -n[0]), (i, 1, -n[1]), (i, 2, g))
         if joint.type == "prismatic":
             row(False, (j, 2, 1.0), (i, 2, -1.0))

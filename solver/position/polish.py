@@ -33,7 +33,9 @@ from solver.kinematics.rigid import Array, LinkMotion
 from solver.model.scene import Driver, LinkageScene
 from solver.position.assembly import DriverInput, Motion
 from solver.position.constraints import ConstraintSystem, States, solve_linear, states
-from solver.position.topology import CircleSpec, DyadStep, Plan
+from solver.position.groups import group_of
+from solver.position.groups.base import Where
+from solver.position.topology import DyadStep, LeverStep, Plan
 
 DIGITS = 40  # the arithmetic of Phi: a residual of 1e-40 L leaves cond 1e-40 L of position error
 CONVERGED = 1e-36  # residual / size: a few roundings at 40 digits, nothing left to gain
@@ -170,9 +172,6 @@ def _newton(
     return q, J, residual
 
 
-Where = Callable[[str, str], Any]
-
-
 def _placing(
     system: ConstraintSystem, known: dict[str, States], q: Array
 ) -> tuple[Where, Callable[[str], Any]]:
@@ -194,26 +193,21 @@ def _placing(
 
 
 def _sides(plan: Plan, where: Where, turn: Callable[[str], Any]) -> list[tuple[bool, float]]:
-    """Each two-branch dyad's branch, the sign of g1 x g2 (g = X - C for a circle about C, the
-    normal of a line; it changes sign between the two intersections), and |g1 x g2| / |g1| |g2|
-    (the sine between the two gradients, 0 at a tangency)."""
+    """Each two-branch dyad's branch, the sign of g1 x g2 (its two constraint gradients, asked
+    of its group: ``Group.gradients``; it changes sign between the two intersections), and
+    |g1 x g2| / |g1| |g2| (the sine between the two gradients, 0 at a tangency)."""
+
+    def turning(link: str) -> tuple[Any, Any]:
+        theta = turn(link)
+        return mp.cos(theta), mp.sin(theta)
+
     sides = []
     for step in plan.steps:
-        if not isinstance(step, DyadStep):
+        if not isinstance(step, DyadStep | LeverStep):
             continue
-        circle = next((spec for spec in step.loci if isinstance(spec, CircleSpec)), None)
-        if circle is None:  # a pin in two slots: one intersection
+        g = group_of(step).gradients(step, where, turning)
+        if g is None:
             continue
-        X = where(circle.link, step.point)
-        g = []
-        for spec in step.loci:
-            if isinstance(spec, CircleSpec):
-                g.append(X - where(spec.link, spec.center))
-            else:
-                cos, sin = mp.cos(turn(spec.guide)), mp.sin(turn(spec.guide))
-                w = (cos * spec.direction0[0] - sin * spec.direction0[1],
-                     sin * spec.direction0[0] + cos * spec.direction0[1])  # fmt: skip
-                g.append((-w[1], w[0]))
         cross = g[0][0] * g[1][1] - g[0][1] * g[1][0]
         norms = mp.sqrt((g[0][0] ** 2 + g[0][1] ** 2) * (g[1][0] ** 2 + g[1][1] ** 2))
         sides.append((bool(cross > 0), float(abs(cross) / norms)))

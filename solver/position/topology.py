@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
@@ -20,6 +20,7 @@ from solver.kinematics.rigid import PointMotion, cross, dot
 from solver.model.scene import Joint, LinkageScene
 from solver.position import groups
 from solver.position.groups import loci
+from solver.position.groups.base import Turning, Where
 
 
 @dataclass(frozen=True)
@@ -30,6 +31,15 @@ class CircleSpec:
     center: str
     radius: float
 
+    @property
+    def carrier(self) -> str | None:
+        """The link that carries the located point (``link``)."""
+        return self.link
+
+    def gradient(self, X: Any, where: Where, turning: Turning) -> Any:
+        """g = X - C, the gradient of |X - C|^2 / 2 = r^2 / 2, in the arithmetic of ``where``."""
+        return X - where(self.link, self.center)
+
 
 @dataclass(frozen=True)
 class LineSpec:
@@ -38,6 +48,19 @@ class LineSpec:
     guide: str
     through0: tuple[float, float]
     direction0: tuple[float, float]
+
+    @property
+    def carrier(self) -> str | None:
+        """None: the guide does not carry the located point."""
+        return None
+
+    def gradient(self, X: Any, where: Where, turning: Turning) -> Any:
+        """g = n = k x w, the slot's normal, w = R(theta_guide) w0 with (cos, sin) of the
+        guide's turn from ``turning``, in its arithmetic."""
+        cos, sin = turning(self.guide)
+        (x0, y0) = self.direction0
+        w = (cos * x0 - sin * y0, sin * x0 + cos * y0)
+        return (-w[1], w[0])
 
 
 LocusSpec = CircleSpec | LineSpec

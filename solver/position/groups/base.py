@@ -6,6 +6,8 @@ the samples (the smallest of its smooth pieces, with their rates: the branch sea
 them) and why it fails to close where m < 0; the ``Closure``'s ``place`` then solves it on a
 branch sign per sample, with velocities and accelerations up to ``order``, and gives what it
 made known (points or links) and the sine between its constraint gradients (0 at a dead centre).
+``gradients`` gives those gradients at a pose in any arithmetic (``polish`` reads the branch and
+the sine from them in 40 digits).
 """
 
 from __future__ import annotations
@@ -61,6 +63,12 @@ class Known(Protocol):
     def drawn(self, point: str) -> Array: ...
 
 
+# In any arithmetic (``polish``: 40 digits): where a link's point is, and (cos, sin) of a link's
+# turn from its drawn pose.
+Where = Callable[[str, str], Any]
+Turning = Callable[[str], tuple[Any, Any]]
+
+
 class Group(Protocol):
     """A closed-form group type: one module of ``solver.position.groups`` each."""
 
@@ -70,6 +78,11 @@ class Group(Protocol):
         ...
 
     def close(self, step: Any, known: Known) -> Closure: ...
+
+    def gradients(self, step: Any, where: Where, turning: Turning) -> tuple[Any, Any] | None:
+        """Its two constraint gradients at its solution, in any arithmetic (their cross
+        product's sign is its branch); None where ``polish`` does not check its branch."""
+        ...
 
 
 # The intersection of a group's two loci (its circles first), as its module types them.
@@ -84,6 +97,18 @@ class DyadGroup:
 
     kind: str
     intersect: Intersect
+    two_branch: bool  # whether it has two solutions (a pin in two slots has one)
+
+    def gradients(self, step: DyadStep, where: Where, turning: Turning) -> tuple[Any, Any] | None:
+        """Its two constraint gradients at the located point X, in the arithmetic of ``where``
+        and ``turning`` (``polish``: the branch and the sine between them in 40 digits): X - C
+        for a circle about C, the slot's normal for a line; None with one solution."""
+        if not self.two_branch:
+            return None
+        carrier = next(link for spec in step.loci if (link := spec.carrier) is not None)
+        X = where(carrier, step.point)
+        first, second = (spec.gradient(X, where, turning) for spec in step.loci)
+        return first, second
 
     def close(self, step: DyadStep, known: Known) -> Closure:
         first, second = (known.locus(spec) for spec in step.loci)
@@ -96,6 +121,4 @@ class DyadGroup:
             motion, sine = point_motion(first, second, X, order)
             return Placed(sine, points={step.point: motion})
 
-        # Two branches wherever a circle is involved (a pin in two slots has one).
-        two = isinstance(first, Circle) or isinstance(second, Circle)
-        return Closure(step.point, cut.margin, cut.pieces, cut.describe, two, place)
+        return Closure(step.point, cut.margin, cut.pieces, cut.describe, self.two_branch, place)

@@ -23,4 +23,4 @@ def line_line(l1: Line, l2: Line, name: str) -> Intersection:
     return Intersection(base, l1.direction, np.zeros_like(t), margin, (), message)
 
 
-GROUP = DyadGroup("PRP", line_line)
+GROUP = DyadGroup("PRP", line_line, two_branch=False)

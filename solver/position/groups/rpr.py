@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from solver.kinematics.rigid import Array, LinkMotion, PointMotion, cross, dot
-from solver.position.groups.base import Closure, Known, Placed
+from solver.position.groups.base import Closure, Known, Placed, Turning, Where
 from solver.position.groups.loci import Piece, root
 
 if TYPE_CHECKING:
@@ -100,6 +100,10 @@ class LeverGroup:
 
         label = f"the slot of '{step.link}'"
         return Closure(label, piece[0], (piece,), describe, True, place)
+
+    def gradients(self, step: LeverStep, where: Where, turning: Turning) -> None:
+        """None: ``polish`` does not check a lever's branch (its restarts keep the dyads')."""
+        return None
 
 
 GROUP = LeverGroup()

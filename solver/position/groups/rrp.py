@@ -41,4 +41,4 @@ def circle_line(c: Circle, line: Line, name: str) -> Intersection:
     return Intersection(base, line.direction, root(h2, c.radius**2), margin, pieces, message)
 
 
-GROUP = DyadGroup("RRP", circle_line)
+GROUP = DyadGroup("RRP", circle_line, two_branch=True)

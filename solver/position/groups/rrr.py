@@ -71,4 +71,4 @@ def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     )
 
 
-GROUP = DyadGroup("RRR", circle_circle)
+GROUP = DyadGroup("RRR", circle_circle, two_branch=True)

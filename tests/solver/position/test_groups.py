@@ -72,3 +72,24 @@ def test_one_2x2_solve_by_cramers_rule() -> None:
     ones = np.ones(2)
     solve_2x2((2.0 * ones, ones), (ones, 3.0 * ones), (3.0 * ones, 5.0 * ones), out=out)
     assert out[0] == pytest.approx([0.8, 0.8]) and out[1] == pytest.approx([1.4, 1.4])
+
+
+@pytest.mark.parametrize("preset", ["four_bar", "slider_crank", "quick_return"])
+def test_group_gradients_give_the_drawn_branch(preset: str) -> None:
+    """At the drawn pose a two-branch dyad's constraint gradients (``Group.gradients``: X - C
+    for a circle, the slot's normal for a line) cross with the sign of its drawn branch; a lever
+    gives None (``polish`` does not check its branch), and so does a pin in two slots."""
+    scene = parse_linkage(build_preset(preset, {}))
+    for step in build_plan(scene).steps:
+        if not isinstance(step, DyadStep | LeverStep):
+            continue
+        g = groups.group_of(step).gradients(
+            step, lambda link, point: scene.drawn(point), lambda link: (1.0, 0.0)
+        )
+        if isinstance(step, LeverStep) or step.kind == "PRP":
+            assert g is None
+            continue
+        assert g is not None
+        g1, g2 = (np.asarray(v, dtype=float) for v in g)
+        cross = g1[0] * g2[1] - g1[1] * g2[0]
+        assert np.sign(cross) == step.sign
