@@ -5,20 +5,19 @@ and its six-bar relatives) runs here on x and y columns of (N,) arrays instead o
 vectors, with every point's position, velocity and acceleration written straight into
 preallocated (N, 2) arrays. A fixed point's coordinates stay plain floats (its rates are 0).
 
-The formulas are those of ``rigid`` and ``groups`` (``rrr``, ``loci``), evaluated in the same
-order of floating-point operations (x - y computed as x + (-y), a product by a negated factor as
-the negated product, v - 0 as v: all exact in IEEE arithmetic), so the answers are the general
-assembler's bit for bit (tests/solver/position/test_compiled_plan.py). The branch search
-itself is left out: its screen runs here as in ``assembly._Assembler.candidates``, on the
-same numbers, and wherever it has something to examine (``assembly.screen``), a group does not close or a driver
-steps too far between two samples (``assembly.MAX_DRIVER_STEP``), ``run`` returns None and the
-general assembler runs instead, so the branch guarantees, the close-approach warnings and the
-failure messages are unchanged. A dyad's margin rates are computed only where the screen needs
-them: where its centres turn with drivers and its Lipschitz bound does not clear (from their
-velocities, or at unit driver rate, 0 + k x (P - pivot)), and for a dyad on a moving centre (a
-six-bar's second dyad), whose run therefore computes velocities, at unit rate of the moving
-driver where they are not at its rate alone (``assembly.rates_alone``).
-"""
+The formulas are those of ``rigid`` and ``groups`` (``rrr``, ``loci``), evaluated in the same order
+of floating-point operations (x - y computed as x + (-y), a product by a negated factor as the
+negated product, v - 0 as v: all exact in IEEE arithmetic), so the answers are the general
+assembler's bit for bit (tests/solver/position/test_compiled_plan.py). The branch search itself is
+left out: its screen runs here as in ``assembly._Assembler.candidates``, on the same numbers, and
+wherever it has something to examine (``assembly.screen``), a group does not close or a driver steps
+too far between two samples (``assembly.MAX_DRIVER_STEP``), ``run`` returns None and the general
+assembler runs instead, so the branch guarantees, the close-approach warnings and the failure
+messages are unchanged. A dyad's margin rates are computed only where the screen needs them: where
+its centres turn with drivers and its Lipschitz bound does not clear (from their velocities, or at
+unit driver rate, 0 + k x (P - pivot)), and for a dyad on a moving centre (a six-bar's second dyad),
+whose run therefore computes velocities, at unit rate of the moving driver where they are not at its
+rate alone (``assembly.rates_alone``). """
 
 from __future__ import annotations
 
