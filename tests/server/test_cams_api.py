@@ -140,3 +140,51 @@ def test_the_example_is_listed_and_served(client: TestClient) -> None:
     assert [entry["file"] for entry in listed] == ["cams/cam-roller-translating.json"]
     response = client.get("/examples/cams/cam-roller-translating.json")
     assert response.status_code == 200 and response.content == EXAMPLE.read_bytes()
+
+
+# --- the Cams family -----------------------------------------------------------------------------
+
+CAM_PRESETS = [
+    "cam_roller_translating",
+    "cam_offset_knife",
+    "cam_flat_faced",
+    "cam_oscillating_roller",
+]
+
+
+def test_cam_presets_are_listed_apart(client: TestClient, openapi: dict[str, Any]) -> None:
+    """GET /cam-presets lists the four followers; GET /presets (the linkage menu) does not."""
+    response = client.get("/api/v1/cam-presets")
+    check(openapi, "/cam-presets", "get", response)
+    listed = response.json()["presets"]
+    assert [p["name"] for p in listed] == CAM_PRESETS
+    laws = next(q for q in listed[0]["parameters"] if q["name"] == "rise_law")
+    assert laws["labels"][int(laws["default"])] == "cycloidal"
+    linkages = [p["name"] for p in client.get("/api/v1/presets").json()["presets"]]
+    assert not set(linkages) & set(CAM_PRESETS)
+
+
+@pytest.mark.parametrize("name", CAM_PRESETS)
+def test_every_cam_preset_sweeps_without_warnings(client: TestClient, name: str) -> None:
+    """Each preset at its defaults is a textbook-sound cam: no warning over a revolution."""
+    scene = client.post(f"/api/v1/cam-presets/{name}", json={})
+    assert scene.status_code == 200, scene.text
+    doc = scene.json()
+    assert doc["kind"] == "cam"
+    body = client.post("/api/v1/sweep", json={"scene": doc, "samples": 36}).json()
+    assert body["warnings"] == [], body["warnings"]
+
+
+def test_cam_preset_parameters(client: TestClient) -> None:
+    """The laws by index, the oscillating lift in degrees turned to rad, bad values refused."""
+    harmonic = float(solver.cams.LAW_NAMES.index("harmonic"))
+    doc = client.post("/api/v1/cam-presets/cam_oscillating_roller",
+                      json={"rise_law": harmonic, "lift": 20.0}).json()  # fmt: skip
+    assert doc["segments"][0]["law"] == "harmonic"
+    assert doc["segments"][0]["lift"] == pytest.approx(math.radians(20.0))
+    warned = client.post("/api/v1/sweep", json={"scene": doc, "samples": 36}).json()["warnings"]
+    assert any(w.startswith("discontinuous acceleration") for w in warned)
+    long = {"rise_deg": 200.0, "return_deg": 150.0}
+    detail = _problem(client, "/cam-presets/cam_flat_faced", long)
+    assert detail.startswith("rise_deg + dwell_deg + return_deg = 200 + 60 + 150 = 410 deg")
+    assert "available: cam_roller_translating" in _problem(client, "/cam-presets/cam_nope", {})
