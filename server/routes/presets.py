@@ -15,7 +15,7 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
-from solver.teaching.cam_presets import CAM_PRESETS, CamPreset
+from solver.teaching.cam_presets import CAM_PRESETS
 from solver.teaching.presets import PRESETS, Preset
 
 router = APIRouter(
@@ -36,7 +36,7 @@ cam_router = APIRouter(
 )
 
 
-def _listing(presets: list[Preset] | list[CamPreset]) -> FiniteJSONResponse:
+def _listing(presets: list[Preset]) -> FiniteJSONResponse:
     return FiniteJSONResponse(
         {
             "presets": [
@@ -74,7 +74,7 @@ def list_cam_presets() -> FiniteJSONResponse:
     return _listing(list(CAM_PRESETS.values()))
 
 
-def _parameters_model(preset: Preset | CamPreset) -> type[BaseModel]:
+def _parameters_model(preset: Preset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
             float | None,
@@ -91,7 +91,7 @@ def _parameters_model(preset: Preset | CamPreset) -> type[BaseModel]:
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 
-def _route(preset: Preset | CamPreset, on: APIRouter = router) -> None:
+def _route(preset: Preset, on: APIRouter = router) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]

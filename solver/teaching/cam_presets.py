@@ -9,43 +9,26 @@ laws chosen by index among ``LAW_NAMES``. Every default makes a cam without warn
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
 from solver.cams.laws import LAW_NAMES
 from solver.errors import InvalidScene
-from solver.teaching.presets import PresetParameter
+from solver.teaching.presets import Preset, PresetParameter
 
 MAX_CAM_LENGTH = 10.0  # m
 MAX_CAM_OMEGA = 1e4  # rad/s
 
-Follower = Callable[[Mapping[str, float]], dict[str, Any]]
-
 
 @dataclass(frozen=True)
-class CamPreset:
-    """A cam mechanism type: its parameters (the common ones and its follower's) and the
-    follower's part of the scene."""
+class CamPreset(Preset):
+    """A cam mechanism type: its parameters (the common ones and its follower's); its
+    ``geometry`` gives the follower's part of the scene; ``lift_unit`` "deg" for an oscillating
+    follower's lift (written to the scene in rad)."""
 
-    name: str
-    title: str
-    description: str
-    parameters: tuple[PresetParameter, ...]
-    follower: Follower = field(repr=False, compare=False)
     lift_unit: str = "m"
-
-    def resolve(self, values: Mapping[str, float]) -> dict[str, float]:
-        """Every parameter's value: the given one checked, or its default."""
-        allowed = [p.name for p in self.parameters]
-        unknown = sorted(set(values) - set(allowed))
-        if unknown:
-            raise InvalidScene(
-                f"unknown parameter(s) {', '.join(unknown)} for preset '{self.name}'; "
-                f"allowed: {', '.join(allowed)}"
-            )
-        return {p.name: p.check(values.get(p.name, p.default)) for p in self.parameters}
 
     def build(self, values: Mapping[str, float]) -> dict[str, Any]:
         """The cam scene: rise, dwell, return over ``return_deg`` and a dwell to 360 deg."""
@@ -69,7 +52,7 @@ class CamPreset:
             "kind": "cam",
             "title": self.title,
             "cam": {"base_radius": v["base_radius"], "omega": v["omega"]},
-            "follower": self.follower(v),
+            "follower": self.geometry(v),
             "segments": [s for s in segments if s["duration_deg"] > 0.0],
         }
 
@@ -176,11 +159,3 @@ CAM_PRESETS: Mapping[str, CamPreset] = MappingProxyType(
         )
     }
 )  # fmt: skip
-
-
-def build_cam_preset(name: str, values: Mapping[str, float]) -> dict[str, Any]:
-    """The cam scene of preset ``name`` with the given parameter values."""
-    preset = CAM_PRESETS.get(name)
-    if preset is None:
-        raise InvalidScene(f"unknown cam preset '{name}'; available: {', '.join(CAM_PRESETS)}")
-    return preset.build(values)
