@@ -174,9 +174,10 @@ def _arm_angle(scene: CamScene, lift: Lift) -> Array:
     return psi
 
 
-def _flat_face(scene: CamScene, lift: Lift) -> tuple[Array, Array, Array, Array]:
-    """The face n . x = h seen by the envelope: (contact, rho, n) from h(theta) and the normal's
-    angle in the cam's frame alpha(theta); returns contact (ground), rho, and the face normal."""
+def _flat_face(scene: CamScene, lift: Lift) -> tuple[Array, Array]:
+    """The contact point (ground) and the cam surface's rho under the face n . x = h: h(theta)
+    and the normal's angle in the cam's frame alpha(theta) = angle(n) - theta, by the envelope.
+    Translating: n = (0, 1), h = R_b + s; through the pivot: n = J e(psi), h = d sin beta."""
     n_samples = lift.s.size
     if scene.follower.motion == "translating":
         n = np.tile([0, 1.0], (n_samples, 1))
@@ -185,15 +186,13 @@ def _flat_face(scene: CamScene, lift: Lift) -> tuple[Array, Array, Array, Array]
     else:
         distance = math.hypot(*scene.follower.pivot)
         beta = scene.rest_angle + lift.s
-        n = quarter_turn(
-            np.stack([np.cos(_arm_angle(scene, lift)), np.sin(_arm_angle(scene, lift))], 1)
-        )
+        psi = _arm_angle(scene, lift)
+        n = quarter_turn(np.stack([np.cos(psi), np.sin(psi)], 1))
         h = distance * np.sin(beta)
         dh = distance * np.cos(beta) * lift.ds
         d2h = distance * (np.cos(beta) * lift.d2s - np.sin(beta) * lift.ds**2)
         dalpha, d2alpha = lift.ds - 1.0, lift.d2s
-    contact, rho = envelope_of_lines(n, h, dh, d2h, dalpha, d2alpha)
-    return contact, rho, n, h
+    return envelope_of_lines(n, h, dh, d2h, dalpha, d2alpha)
 
 
 def envelope_of_lines(
@@ -216,7 +215,7 @@ def cam_geometry(scene: CamScene, theta: Array) -> CamGeometry:
     lift = follower_lift(scene, theta)
     pitch_radius: Array | None = None
     if scene.follower.contact == "flat":
-        contact, radius, _, _ = _flat_face(scene, lift)
+        contact, radius = _flat_face(scene, lift)
         angle = np.zeros_like(theta)  # the face's normal is the contact point's path's direction
     else:
         p, dp, d2p, direction = _pitch_point(scene, lift)
