@@ -25,6 +25,7 @@ from typing import Any
 import solver
 from server.settings import TIME_LIMITS
 from solver.analysis.work_estimate import WorkEstimate
+from solver.cams import CamScene
 from solver.errors import LimitExceeded
 from solver.kinematics.spatial import SpatialChain
 from solver.model.scene import LinkageScene
@@ -90,6 +91,11 @@ def sweep(
 def spatial_sweep(chain: SpatialChain, samples: int, quantities: Iterable[str] | None) -> None:
     """/sweep of a spatial chain over time: the response's size (bodies, points and joints)."""
     _response_size(solver.estimate_work(chain, samples, quantities))
+
+
+def cam_sweep(scene: CamScene, samples: int) -> None:
+    """/sweep of a cam: the response's size (its values per sample)."""
+    _response_size(solver.estimate_work(scene, samples))
 
 
 def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:

@@ -52,20 +52,30 @@ NewtonTolerance = Annotated[
 
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
-        examples=[_example("S000-T1"), _example("S002-spatial-arm")],
+        description="A scene-v1 document: kind 'linkage', 'spatial_chain' or 'cam'.",
+        examples=[
+            _example("S000-T1"),
+            _example("S002-spatial-arm"),
+            _example("cams/cam-roller-translating"),
+        ],
     )
     quantities: list[Quantity] | None = Field(
         None, description="What to compute (default: all). The server computes only these."
     )
     strict: bool = STRICT
     tolerance: NewtonTolerance = None
+    angle_deg: float | None = Field(
+        None,
+        description="A cam scene only: the cam angle (deg, turned in the cam's direction of "
+        "rotation from its angle 0; default 0). docs/CAMS.md",
+    )
 
 
 class SweepRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: a 'linkage', or a 'spatial_chain' with time_range.",
-        examples=[_example("S000-T1")],
+        description="A scene-v1 document: a 'linkage' or a 'cam', or a 'spatial_chain' with "
+        "time_range.",
+        examples=[_example("S000-T1"), _example("cams/cam-roller-translating")],
     )
     samples: int = Field(
         360, description="Samples over the revolution (or feasible range, or time range)."
@@ -398,6 +408,71 @@ class EventResponse(Open):
     moving_point: str
     reaches: str
     occurrence: int
+    warnings: list[str] = WARNINGS
+
+
+class CamFollowerValues(Open):
+    """The follower's motion per time at the cam's omega: m, m/s, m/s^2, m/s^3 (rad, rad/s,
+    ... for an oscillating follower); one number at an angle, a list over a sweep."""
+
+    displacement: float | list[float]
+    velocity: float | list[float]
+    acceleration: float | list[float]
+    jerk: float | list[float]
+
+
+class CamExtreme(Open):
+    min: float
+    min_at_deg: float = Field(description="cam angle of the minimum")
+    max: float
+    max_at_deg: float = Field(description="cam angle of the maximum")
+
+
+class CamDiagnostics(Open):
+    extremes: dict[str, CamExtreme] = Field(
+        description="displacement, velocity, acceleration, jerk, pressure_angle, "
+        "radius_of_curvature (and pitch_radius_of_curvature) over the revolution, on a grid "
+        "of grid_samples cam angles"
+    )
+    base_radius: float
+    prime_radius: float = Field(description="m, base radius + roller radius")
+    lift_unit: Literal["m", "rad"]
+    grid_samples: int
+
+
+CAM_RADIUS = "m, the cam surface's radius of curvature (positive convex; null at an inflection)"
+CAM_PITCH_RADIUS = "m, a roller only: the pitch curve's radius of curvature"
+CAM_PRESSURE_ANGLE = "rad, between the common normal and the follower's direction of motion"
+
+
+class CamSweepResponse(Open):
+    """A cam over one revolution (arrays over cam_angle; docs/CAMS.md)."""
+
+    samples: int
+    cam_angle: list[float] = Field(description="rad turned in the cam's direction, from 0")
+    follower: CamFollowerValues
+    pressure_angle: list[float] = Field(description=CAM_PRESSURE_ANGLE)
+    radius_of_curvature: list[float | None] = Field(description=CAM_RADIUS)
+    pitch_radius_of_curvature: list[float | None] | None = Field(None, description=CAM_PITCH_RADIUS)
+    profile: Vectors = Field(description="the cam surface [x, y] (m) in the cam's frame at angle 0")
+    contact_point: Vectors = Field(description="m, the contact point in the ground per sample")
+    diagnostics: CamDiagnostics
+    warnings: list[str] = WARNINGS
+
+
+class CamAnalyzeResponse(Open):
+    """A cam at one cam angle (docs/CAMS.md)."""
+
+    cam_angle: float = Field(description="rad, angle_deg modulo 360 deg")
+    cam_angle_deg: float
+    segment: int = Field(description="the index of the segment the angle lies in")
+    follower: CamFollowerValues
+    pressure_angle: float = Field(description=CAM_PRESSURE_ANGLE)
+    radius_of_curvature: float | None = Field(description=CAM_RADIUS)
+    pitch_radius_of_curvature: float | None = Field(None, description=CAM_PITCH_RADIUS)
+    contact_point: Vector
+    profile: Vectors = Field(description="the cam surface at 360 points, cam's frame at angle 0")
+    diagnostics: CamDiagnostics
     warnings: list[str] = WARNINGS
 
 

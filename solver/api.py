@@ -32,6 +32,7 @@ from solver.analysis.results import (
 from solver.analysis.spatial_sweep import sweep_spatial_time
 from solver.analysis.sweeps import sweep as sweep_linkage
 from solver.analysis.sweeps import sweep_time as sweep_linkage_time
+from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
 from solver.errors import InvalidScene
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
@@ -40,7 +41,7 @@ from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.solutions.polygons import polygons
 from solver.solutions.solve import vector_method_steps
 
-Scene = LinkageScene | SpatialChain
+Scene = LinkageScene | SpatialChain | CamScene
 
 
 class SceneWarning(UserWarning):
@@ -56,7 +57,7 @@ class ReadScene:
     warnings: tuple[str, ...]
 
 
-SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain | ReadScene
+SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain | CamScene | ReadScene
 
 
 def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
@@ -67,8 +68,10 @@ def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
         scene = parse_linkage(doc)
     elif kind == "spatial_chain":
         scene = parse_spatial_chain(doc)
+    elif kind == "cam":
+        scene = parse_cam(doc)
     else:
-        raise InvalidScene(f"kind: expected 'linkage' or 'spatial_chain', got {kind!r}")
+        raise InvalidScene(f"kind: expected 'linkage', 'spatial_chain' or 'cam', got {kind!r}")
     found = unknown_keys(doc)
     if strict and found:
         raise InvalidScene("strict: " + "; ".join(found))
@@ -78,7 +81,7 @@ def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
 def _scene(scene: SceneInput, strict: bool) -> tuple[Scene, list[str]]:
     if isinstance(scene, ReadScene):
         return scene.scene, list(scene.warnings)
-    if isinstance(scene, LinkageScene | SpatialChain):
+    if isinstance(scene, LinkageScene | SpatialChain | CamScene):
         return scene, []
     return _parse(scene, strict)
 
@@ -91,7 +94,7 @@ def _linkage(scene: SceneInput, strict: bool, what: str) -> tuple[LinkageScene, 
 
 
 def parse_scene(doc: Mapping[str, Any], *, strict: bool = False) -> Scene:
-    """Validate a scene-v1 document of kind ``linkage`` or ``spatial_chain`` and build the
+    """Validate a scene-v1 document of kind ``linkage``, ``spatial_chain`` or ``cam`` and build the
     immutable scene. Unknown keys are reported with ``SceneWarning`` (``InvalidScene`` when
     ``strict``)."""
     scene, found = _parse(doc, strict)
@@ -113,13 +116,24 @@ def analyze(
     *,
     strict: bool = False,
     tolerance: float | None = None,
+    angle_deg: float | None = None,
 ) -> AnalysisResult:
     """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
-    ``angle_law`` at ``time``), or the spatial chain. ``quantities``: any of position, velocity,
-    acceleration, poles, components (default: all); only those are computed. ``tolerance``: a
-    Newton group's residual relative to the scene size (1e-15 to 1e-6, default 1e-13)."""
+    ``angle_law`` at ``time``), the spatial chain, or the cam at cam angle ``angle_deg``
+    (default 0; docs/CAMS.md). ``quantities``: any of position, velocity, acceleration, poles,
+    components (default: all); only those are computed (a cam answers all its fields).
+    ``tolerance``: a Newton group's residual relative to the scene size (1e-15 to 1e-6, default
+    1e-13)."""
     parsed, found = _scene(scene, strict)
     wanted = normalise_quantities(quantities)
+    if isinstance(parsed, CamScene):
+        _cam_quantities(wanted)
+        return AnalysisResult(analyze_cam(parsed, 0.0 if angle_deg is None else angle_deg, found))
+    if angle_deg is not None:
+        raise InvalidScene(
+            "angle_deg: the cam angle of a 'cam' scene; a linkage's driver takes "
+            "drivers[].angle_deg"
+        )
     if isinstance(parsed, LinkageScene):
         result = instant.analyze(parsed, wanted, tolerance)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
@@ -141,13 +155,26 @@ def sweep(
     """The linkage over one revolution of its first driver from its start angle, or over its
     feasible range with the limit positions (POST /sweep). Default quantity: position. With
     ``forces``, a revolution at constant speed also gets its ``cycle`` (and the flywheel inertia
-    for the coefficient of ``speed_fluctuation``)."""
-    parsed, found = _linkage(
-        scene, strict, "a sweep over a revolution (a spatial_chain is swept with a time range)"
+    for the coefficient of ``speed_fluctuation``). A cam: one revolution of its cam angle with
+    every field of docs/CAMS.md."""
+    read, found = _scene(scene, strict)
+    if isinstance(read, CamScene):
+        _cam_quantities(normalise_quantities(quantities))
+        if speed_fluctuation is not None:
+            raise InvalidScene("speed_fluctuation: a cam's sweep has no dynamics")
+        return SweepResult(sweep_cam(read, samples, found))
+    parsed, _ = _linkage(
+        read, strict, "a sweep over a revolution (a spatial_chain is swept with a time range)"
     )
     result = sweep_linkage(parsed, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
     return SweepResult(body)
+
+
+def _cam_quantities(wanted: frozenset[str]) -> None:
+    """A cam answers its fields whatever the kinematic quantities; it has no dynamics."""
+    if wanted & set(DYNAMIC_QUANTITIES):
+        raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
 
 
 def sweep_time(
@@ -164,6 +191,8 @@ def sweep_time(
     whose joints move from the scene's pose at t = 0 as q(t) = rate t + rate_dot t^2 / 2.
     Default quantity: position."""
     parsed, found = _scene(scene, strict)
+    if isinstance(parsed, CamScene):
+        raise InvalidScene("time_range: a cam is swept over a revolution of its cam angle")
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
@@ -211,6 +240,11 @@ def solve(
     same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's
     order."""
     parsed, found = _scene(scene, strict)
+    if isinstance(parsed, CamScene):
+        raise InvalidScene(
+            "kind: worked solutions take a 'linkage' or 'spatial_chain' scene "
+            "(a cam's is not written yet)"
+        )
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)

@@ -15,6 +15,8 @@ from server.schemas import (
     PROBLEMS,
     AnalyzeRequest,
     AnalyzeResponse,
+    CamAnalyzeResponse,
+    CamSweepResponse,
     EventResponse,
     EventsRequest,
     SpatialTimeSweepResponse,
@@ -23,6 +25,7 @@ from server.schemas import (
     TimeSweepResponse,
 )
 from server.workers import WorkerRoute
+from solver.cams import CamScene
 from solver.model.scene import LinkageScene
 
 router = APIRouter(
@@ -36,23 +39,29 @@ router = APIRouter(
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
-    response_model=AnalyzeResponse,
+    response_model=AnalyzeResponse | CamAnalyzeResponse,
 )
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     read = budget.read_instant(request.scene, request.strict)
-    return respond(solver.analyze(read, request.quantities, tolerance=request.tolerance))
+    return respond(
+        solver.analyze(
+            read, request.quantities, tolerance=request.tolerance, angle_deg=request.angle_deg
+        )
+    )
 
 
 @router.post(
     "/sweep",
     summary="The linkage over one revolution of its first driver (or its feasible range), or "
     "the scene over a time range",
-    response_model=SweepResponse | TimeSweepResponse | SpatialTimeSweepResponse,
+    response_model=SweepResponse | TimeSweepResponse | SpatialTimeSweepResponse | CamSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
     if isinstance(read.scene, LinkageScene):
         budget.sweep(read.scene, request.samples, request.quantities, request.time_range)
+    elif isinstance(read.scene, CamScene):
+        budget.cam_sweep(read.scene, request.samples)
     elif request.time_range is not None:  # a spatial chain moves in time only
         budget.spatial_sweep(read.scene, request.samples, request.quantities)
     if request.time_range is None:

@@ -1,4 +1,6 @@
-"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes.
+"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes; the Cams
+family beside them at GET /api/v1/cam-presets and POST /api/v1/cam-presets/{name} (cam scenes,
+docs/CAMS.md).
 
 Each preset gets its own POST route with a request model built from its parameters, so the
 OpenAPI page documents every parameter with its unit, default and bounds.
@@ -13,6 +15,7 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
+from solver.teaching.cam_presets import CAM_PRESETS
 from solver.teaching.presets import PRESETS, Preset
 
 router = APIRouter(
@@ -24,8 +27,16 @@ router = APIRouter(
 )
 
 
-@router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
-def list_presets() -> FiniteJSONResponse:
+cam_router = APIRouter(
+    prefix="/cam-presets",
+    tags=["presets"],
+    route_class=StrictJSONRoute,
+    default_response_class=ResultResponse,
+    responses=PROBLEMS,
+)
+
+
+def _listing(presets: list[Preset]) -> FiniteJSONResponse:
     return FiniteJSONResponse(
         {
             "presets": [
@@ -47,10 +58,20 @@ def list_presets() -> FiniteJSONResponse:
                         for q in p.parameters
                     ],
                 }
-                for p in PRESETS.values()
+                for p in presets
             ]
         }
     )
+
+
+@router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
+def list_presets() -> FiniteJSONResponse:
+    return _listing(list(PRESETS.values()))
+
+
+@cam_router.get("", summary="The Cams family and its parameters", response_model=PresetList)
+def list_cam_presets() -> FiniteJSONResponse:
+    return _listing(list(CAM_PRESETS.values()))
 
 
 def _parameters_model(preset: Preset) -> type[BaseModel]:
@@ -70,7 +91,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 
-def _route(preset: Preset) -> None:
+def _route(preset: Preset, on: APIRouter = router) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]
@@ -79,7 +100,7 @@ def _route(preset: Preset) -> None:
         )
         return FiniteJSONResponse(preset.build(given))
 
-    router.add_api_route(
+    on.add_api_route(
         f"/{preset.name}",
         build,
         methods=["POST"],
@@ -93,8 +114,15 @@ def _route(preset: Preset) -> None:
 
 for _preset in PRESETS.values():
     _route(_preset)
+for _cam in CAM_PRESETS.values():
+    _route(_cam, cam_router)
 
 
 @router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
 def unknown_preset(name: str) -> FiniteJSONResponse:
     raise InvalidScene(f"unknown preset '{name[:64]}'; available: {', '.join(PRESETS)}")
+
+
+@cam_router.post("/{name}", summary="Unknown cam preset names", include_in_schema=False)
+def unknown_cam_preset(name: str) -> FiniteJSONResponse:
+    raise InvalidScene(f"unknown cam preset '{name[:64]}'; available: {', '.join(CAM_PRESETS)}")

@@ -25,6 +25,7 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Protocol
 
 import numpy as np
 
@@ -45,6 +46,14 @@ EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solv
 SAMPLE_COST = 70e-6  # s of one core per link-sample
 SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
 SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
+
+
+class ChapterScene(Protocol):
+    """A scene of another chapter (a cam, say), solved in closed form: it states its response's
+    values per sample, ``(count, what they are)``."""
+
+    @property
+    def response_entries(self) -> tuple[int, str]: ...
 
 
 @dataclass(frozen=True)
@@ -98,7 +107,7 @@ class WorkEstimate:
 
     def __init__(
         self,
-        scene: LinkageScene | SpatialChain,
+        scene: LinkageScene | SpatialChain | ChapterScene,
         samples: int,
         quantities: int,
         turn: float | None,
@@ -114,6 +123,8 @@ class WorkEstimate:
         if isinstance(scene, SpatialChain):
             self.entries = len(scene.points) + 2 * len(scene.joints)  # a body per joint
             self.entries_what = "bodies, joints and points"
+        elif not isinstance(scene, LinkageScene):
+            self.entries, self.entries_what = scene.response_entries
         else:
             self.entries = (
                 len(scene.points) + len(scene.links) + len(scene.joints) + len(scene.moving_points)
@@ -156,7 +167,7 @@ def driver_turn(scene: LinkageScene, times: np.ndarray) -> float:
 
 
 def estimate_work(
-    scene: LinkageScene | SpatialChain,
+    scene: LinkageScene | SpatialChain | ChapterScene,
     samples: int | None = None,
     quantities: Iterable[str] | None = None,
     *,
@@ -169,10 +180,13 @@ def estimate_work(
     ``event`` = (moving point, t_max) (/events: its time laws are parsed first, and a moving
     point the scene does not have or a t_max outside 0 < t_max <= MAX_TIME is left to the
     search's own message: no work estimated). ``quantities`` as for a sweep (default
-    position)."""
+    position). A scene of another chapter (a cam) counts its values per sample, whatever the
+    quantities."""
     wanted = len(normalise_quantities(["position"] if quantities is None else quantities))
     if isinstance(scene, SpatialChain):
         return WorkEstimate(scene, samples or 1, wanted, None)
+    if not isinstance(scene, LinkageScene):
+        return WorkEstimate(scene, samples or 1, 1, None)
     if event is not None:
         for law in [d.angle_law for d in scene.drivers] + [m.s_law for m in scene.moving_points]:
             if law is not None:

@@ -486,6 +486,14 @@ SCENE_FIELDS: dict[str, dict[str, frozenset[str]]] = {
         "joints[]": frozenset(("name", "type", "origin", "axis", "rate", "rate_dot")),
         "points.*": frozenset(("body", "position")),
     },
+    "cam": {
+        "": frozenset(("kind", "title", "cam", "follower", "segments")),
+        "cam": frozenset(("base_radius", "omega")),
+        "follower": frozenset(
+            ("motion", "contact", "roller_radius", "offset", "pivot", "arm_length")
+        ),
+        "segments[]": frozenset(("type", "law", "lift", "duration_deg")),
+    },
 }  # fmt: skip
 
 
@@ -493,7 +501,8 @@ SCENE_FIELDS: dict[str, dict[str, frozenset[str]]] = {
 # wins ("angle": 120 is nearer angle_deg than angle_law).
 TEXT_FIELDS = frozenset(
     ("kind", "title", "type", "point", "link", "name", "center", "start", "through", "direction",
-     "angle_law", "s_law", "magnitude", "moment", "relative_to", "body")
+     "angle_law", "s_law", "magnitude", "moment", "relative_to", "body", "motion", "contact",
+     "law")
 )  # fmt: skip
 
 
