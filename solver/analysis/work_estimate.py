@@ -4,7 +4,7 @@ Three products that grow past what a scene's own bounds (200 points, 100 links, 
 characters) keep in check:
 
 - the response's size: samples x entries (points + links + joints + moving points; a spatial
-  chain's points + bodies + joints) x quantities;
+  chain's points + bodies + joints; a gear train's ``sweep_entries``) x quantities;
 - the Newton-Raphson work: the links solved by Newton-Raphson x (samples + ``SETUP_SAMPLES`` +
   ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose), in link-samples,
   at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
@@ -25,6 +25,7 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -45,6 +46,15 @@ EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solv
 SAMPLE_COST = 70e-6  # s of one core per link-sample
 SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
 SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
+
+
+@runtime_checkable
+class CountedScene(Protocol):
+    """A scene whose sweep answers ``sweep_entries`` values per sample, whatever the quantities
+    (a gear train, ``solver.gears``: each member's angle, each planet's centre)."""
+
+    @property
+    def sweep_entries(self) -> int: ...
 
 
 @dataclass(frozen=True)
@@ -98,7 +108,7 @@ class WorkEstimate:
 
     def __init__(
         self,
-        scene: LinkageScene | SpatialChain,
+        scene: LinkageScene | SpatialChain | CountedScene,
         samples: int,
         quantities: int,
         turn: float | None,
@@ -114,6 +124,9 @@ class WorkEstimate:
         if isinstance(scene, SpatialChain):
             self.entries = len(scene.points) + 2 * len(scene.joints)  # a body per joint
             self.entries_what = "bodies, joints and points"
+        elif not isinstance(scene, LinkageScene):
+            self.entries = scene.sweep_entries
+            self.entries_what = "member angles and planet centre coordinates"
         else:
             self.entries = (
                 len(scene.points) + len(scene.links) + len(scene.joints) + len(scene.moving_points)
@@ -156,7 +169,7 @@ def driver_turn(scene: LinkageScene, times: np.ndarray) -> float:
 
 
 def estimate_work(
-    scene: LinkageScene | SpatialChain,
+    scene: LinkageScene | SpatialChain | CountedScene,
     samples: int | None = None,
     quantities: Iterable[str] | None = None,
     *,
@@ -169,7 +182,9 @@ def estimate_work(
     ``event`` = (moving point, t_max) (/events: its time laws are parsed first, and a moving
     point the scene does not have or a t_max outside 0 < t_max <= MAX_TIME is left to the
     search's own message: no work estimated). ``quantities`` as for a sweep (default
-    position)."""
+    position; a ``CountedScene`` answers one set of values whatever is asked)."""
+    if not isinstance(scene, LinkageScene | SpatialChain):
+        return WorkEstimate(scene, samples or 1, 1, None)
     wanted = len(normalise_quantities(["position"] if quantities is None else quantities))
     if isinstance(scene, SpatialChain):
         return WorkEstimate(scene, samples or 1, wanted, None)
