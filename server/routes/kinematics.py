@@ -17,6 +17,8 @@ from server.schemas import (
     AnalyzeResponse,
     EventResponse,
     EventsRequest,
+    GearTrainAnalyzeResponse,
+    GearTrainSweepResponse,
     SpatialTimeSweepResponse,
     SweepRequest,
     SweepResponse,
@@ -36,18 +38,28 @@ router = APIRouter(
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
-    response_model=AnalyzeResponse,
+    response_model=AnalyzeResponse | GearTrainAnalyzeResponse,
 )
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     read = budget.read_instant(request.scene, request.strict)
-    return respond(solver.analyze(read, request.quantities, tolerance=request.tolerance))
+    return respond(
+        solver.analyze(
+            read,
+            request.quantities,
+            tolerance=request.tolerance,
+            input_torque=request.input_torque,
+        )
+    )
 
 
 @router.post(
     "/sweep",
     summary="The linkage over one revolution of its first driver (or its feasible range), or "
     "the scene over a time range",
-    response_model=SweepResponse | TimeSweepResponse | SpatialTimeSweepResponse,
+    response_model=SweepResponse
+    | TimeSweepResponse
+    | SpatialTimeSweepResponse
+    | GearTrainSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)

@@ -26,7 +26,10 @@ from solver.teaching.presets import PRESETS, build_preset
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "server" / "examples"
 CASES = json.loads((ROOT / "tests" / "reference" / "seed-cases.json").read_text())["cases"]
-SEEDS = sorted(p.stem for p in EXAMPLES.glob("*.json"))
+# A gear train's worked solution is a later session's (issue 25): every other example.
+SEEDS = sorted(
+    p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] != "gear_train"
+)
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:(?: \\cdot | x )10\^\{?(-?\d+)\}?)?")
 NOISE_RATIO = 1e-9  # a printed number this much smaller than the largest one is rounding noise
 
