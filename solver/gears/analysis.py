@@ -22,10 +22,11 @@ from solver.analysis.results import AnalysisResult, TimeSweepResult
 from solver.analysis.sweeps import MAX_SAMPLES
 from solver.errors import InvalidScene, LimitExceeded
 from solver.gears.geometry import Layout, check_pitch_circles
-from solver.gears.scene import GearTrainScene, build_gear_train
+from solver.gears.scene import GearTrainScene, build_gear_train, real
 from solver.gears.train import member_torques, speed_transfer, willis_relation
 
 MAX_TORQUE = 1e12  # N m
+MAX_RESULT = 1e300  # a speed, torque or power past this is refused (its square would overflow)
 
 
 def parse_gear_train(doc: Mapping[str, Any]) -> GearTrainScene:
@@ -38,22 +39,38 @@ def parse_gear_train(doc: Mapping[str, Any]) -> GearTrainScene:
     return scene
 
 
+def number(value: Fraction, what: str) -> float:
+    """An exact result as a float, or ``InvalidScene`` where it does not fit one (a train of many
+    large ratios, a first input too slow for its train values): never an infinity."""
+    try:
+        out = float(value)
+    except OverflowError:
+        out = math.inf
+    if not math.isfinite(out) or abs(out) > MAX_RESULT:
+        raise InvalidScene(
+            f"{what}: about 10^{_magnitude(value)}, more than {MAX_RESULT:g}; the tooth ratios "
+            "multiply the inputs past what a float holds"
+        )
+    return out
+
+
+def _magnitude(value: Fraction) -> int:
+    """log10 |value|, roughly (from the digits of numerator and denominator)."""
+    return len(str(abs(value.numerator))) - len(str(value.denominator))
+
+
 def _torques(value: Mapping[str, Any]) -> dict[str, float]:
     if not isinstance(value, Mapping) or not value:
         raise InvalidScene(f"input_torque: expected an object input -> torque (N m), got {value!r}")
     out = {}
     for name, torque in value.items():
-        if (
-            isinstance(torque, bool)
-            or not isinstance(torque, int | float)
-            or not math.isfinite(torque)
-            or abs(torque) > MAX_TORQUE
-        ):
+        number = real(torque)
+        if number is None or abs(number) > MAX_TORQUE:
             raise InvalidScene(
                 f"input_torque.{name}: expected a finite number of N m (|T| <= {MAX_TORQUE:g}), "
-                f"got {torque!r}"
+                f"got {torque!r:.40}"
             )
-        out[str(name)] = float(torque)
+        out[str(name)] = number
     return out
 
 
@@ -70,7 +87,7 @@ def analyze_gear_train(
     torque = member_torques(scene, _torques(input_torque)) if input_torque is not None else None
     members: dict[str, Any] = {}
     for name in scene.members:
-        entry: dict[str, Any] = {"omega": float(omega[name])}
+        entry: dict[str, Any] = {"omega": number(omega[name], f"members.{name}.omega")}
         gear = next((g for g in scene.gears if g.name == name), None)
         if gear is not None:
             arm = omega[gear.carrier] if gear.carrier else Fraction(0)
@@ -79,17 +96,19 @@ def analyze_gear_train(
                 "teeth": gear.teeth,
                 "internal": gear.internal,
                 "carrier": gear.carrier,
-                "omega_relative": float(omega[name] - arm),
+                "omega_relative": number(omega[name] - arm, f"members.{name}.omega_relative"),
                 "pitch_radius": layout.pitch_radius[name] if layout else None,
             }
         else:
             entry["type"] = "carrier"
         base = omega[first] if first is not None else Fraction(0)
-        entry["train_value"] = float(omega[name] / base) if base != 0 else None
+        entry["train_value"] = (
+            number(omega[name] / base, f"members.{name}.train_value") if base != 0 else None
+        )
         entry["centre"] = list(layout.centre[name]) if layout else None
         if torque is not None:
-            entry["torque"] = float(torque[name])
-            entry["power"] = float(torque[name] * omega[name])
+            entry["torque"] = number(torque[name], f"members.{name}.torque")
+            entry["power"] = number(torque[name] * omega[name], f"members.{name}.power")
         members[name] = entry
     meshes = []
     for mesh in scene.meshes:
@@ -98,7 +117,7 @@ def analyze_gear_train(
         # v = r_a |omega_a - omega_arm| = r_b |omega_b - omega_arm|, r = m N / 2 (exactly equal)
         module = scene.module
         speed = (
-            abs(float((omega[a.name] - arm) * a.teeth * Fraction(module) / 2))
+            abs(number((omega[a.name] - arm) * a.teeth * Fraction(module) / 2, "pitch-line speed"))
             if module is not None
             else None
         )
@@ -134,13 +153,14 @@ def sweep_gear_train(
         raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
-    t0, t1 = time_range
-    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
-        raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
+    t0, t1 = (real(t) for t in time_range)
+    if t0 is None or t1 is None or not t1 > t0:
+        raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got {list(time_range)}")
     time = np.linspace(t0, t1, samples)
     omega = speed_transfer(scene).speeds([value for _, value in scene.inputs])
     layout = check_pitch_circles(scene)
-    angle = {name: float(omega[name]) * time for name in scene.members}
+    rates = {name: number(omega[name], f"members.{name}.omega") for name in scene.members}
+    angle = {name: rates[name] * time + 0.0 for name in scene.members}  # + 0.0: no -0.0
     members: dict[str, Any] = {}
     for name in scene.members:
         entry: dict[str, Any] = {"angle": angle[name]}

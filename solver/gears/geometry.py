@@ -117,6 +117,13 @@ def _direction(points: Mapping[str, Point], around: Point, radius: float) -> Poi
     return best
 
 
+def _neighbours(
+    edges: list[tuple[int, str, str, float]], name: str
+) -> list[tuple[int, str, float]]:
+    """(mesh index, the other axis, distance) of every edge at ``name``."""
+    return [(i, q if p == name else p, d) for i, p, q, d in edges if name in (p, q)]
+
+
 def _place_body(
     scene: GearTrainScene,
     module: float,
@@ -130,31 +137,19 @@ def _place_body(
     by: dict[str, list[int]] = {p: [] for p in points}  # the meshes that placed each axis
     done: set[int] = set()
     while len(placed) < len(points):
-        linked = [
-            (
-                sum(
-                    1
-                    for _, p, q, _ in edges
-                    if (p == name) != (q == name) and (p in placed or q in placed)
-                ),
-                name,
-            )
-            for name in points
-            if name not in placed
-        ]
-        count, name = max(linked, key=lambda item: item[0])
-        known = [
-            (i, q if p == name else p, d)
-            for i, p, q, d in edges
-            if name in (p, q) and (q if p == name else p) in placed
-        ]
-        if count == 0:
+        waiting = [n for n in points if n not in placed]
+        name = max(
+            waiting, key=lambda n: sum(1 for _, o, _ in _neighbours(edges, n) if o in placed)
+        )
+        known = [k for k in _neighbours(edges, name) if k[1] in placed]
+        if not known:
             # A part of the train no mesh ties to the rest: beside it, for the drawing.
             right = max((x for x, _ in placed.values()), default=None)
             gap = 4.0 * module * max(g.teeth for g in scene.gears)
             placed[name] = (0.0, 0.0) if right is None else (right + gap, 0.0)
             continue
         i, other, d = known[0]
+        by[name] = [i]
         others = [k for k in known if k[1] != other]
         if others:
             j, second, e = others[0]
@@ -178,10 +173,10 @@ def _place_body(
             base = (p1[0] + along * ux, p1[1] + along * uy)
             placed[name] = (base[0] - height * uy, base[1] + height * ux)
             done.add(j)
+            by[name].append(j)
         else:
             placed[name] = _direction(placed, placed[other], d)
         done.add(i)
-        by[name] = [i]
         for k, p, q, need in edges:
             if k in done or p not in placed or q not in placed:
                 continue

@@ -14,7 +14,7 @@ more teeth than its pinion, pitch circles that cannot touch on the module and mo
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -88,6 +88,18 @@ class GearTrainScene:
         return next((g.carrier for g in self.gears if g.name == member), None)
 
 
+def real(value: Any) -> float | None:
+    """``value`` as a finite float, or None where it is not a finite number (a bool, a string,
+    NaN, infinity, an integer too large for a float)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None
+
+
 def _names(value: Any, where: str) -> list[str]:
     if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
         raise InvalidScene(f"{where}: expected a list of names, got {value!r}")
@@ -102,11 +114,12 @@ def _known(name: str, known: tuple[str, ...], where: str, what: str) -> str:
 
 
 def _speed(value: Any, where: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise InvalidScene(f"{where}: expected a finite number (rad/s), got {value!r}")
-    if abs(value) > MAX_SPEED:
-        raise InvalidScene(f"{where}: |{value}| rad/s is more than {MAX_SPEED:g} rad/s")
-    return float(value)
+    number = real(value)
+    if number is None:
+        raise InvalidScene(f"{where}: expected a finite number (rad/s), got {value!r:.40}")
+    if abs(number) > MAX_SPEED:
+        raise InvalidScene(f"{where}: |{number:g}| rad/s is more than {MAX_SPEED:g} rad/s")
+    return number
 
 
 def _gear(name: Any, body: Any, mounts: Mapping[str, str]) -> Gear:
@@ -116,21 +129,20 @@ def _gear(name: Any, body: Any, mounts: Mapping[str, str]) -> Gear:
     if not isinstance(body, Mapping):
         raise InvalidScene(f"{where}: expected an object with teeth, got {body!r}")
     teeth = body.get("teeth")
-    if (
-        isinstance(teeth, bool)
-        or not isinstance(teeth, int | float)
-        or not math.isfinite(teeth)
-        or teeth != int(teeth)
-        or not 1 <= teeth <= MAX_TEETH
-    ):
-        raise InvalidScene(f"{where}.teeth: expected a whole number 1..{MAX_TEETH}, got {teeth!r}")
+    number = real(teeth)
+    if number is None or number != int(number) or not 1 <= number <= MAX_TEETH:
+        raise InvalidScene(
+            f"{where}.teeth: expected a whole number 1..{MAX_TEETH}, got {teeth!r:.40}"
+        )
     internal = body.get("internal", False)
     if not isinstance(internal, bool):
         raise InvalidScene(f"{where}.internal: expected true or false, got {internal!r}")
-    return Gear(name, int(teeth), internal, mounts.get(name))
+    return Gear(name, int(number), internal, mounts.get(name))
 
 
-def _shafts(value: Any, members: tuple[str, ...], scene_mount: Any) -> tuple[tuple[str, ...], ...]:
+def _shafts(
+    value: Any, members: tuple[str, ...], scene_mount: Callable[[str], str | None]
+) -> tuple[tuple[str, ...], ...]:
     if not isinstance(value, list):
         raise InvalidScene(f"shafts: expected a list of lists of member names, got {value!r}")
     seen: dict[str, int] = {}
@@ -249,14 +261,10 @@ def build_gear_train(doc: Mapping[str, Any]) -> GearTrainScene:
         for name, value in raw_inputs.items()
     )
     module = doc.get("module")
-    if module is not None and (
-        isinstance(module, bool)
-        or not isinstance(module, int | float)
-        or not math.isfinite(module)
-        or not 0.0 < module <= MAX_MODULE
-    ):
+    metres = real(module)
+    if module is not None and (metres is None or not 0.0 < metres <= MAX_MODULE):
         raise InvalidScene(
-            f"module: expected a number of metres in (0, {MAX_MODULE:g}], got {module!r}"
+            f"module: expected a number of metres in (0, {MAX_MODULE:g}], got {module!r:.40}"
         )
     title = doc.get("title")
     return GearTrainScene(
@@ -265,6 +273,6 @@ def build_gear_train(doc: Mapping[str, Any]) -> GearTrainScene:
         shafts,
         meshes,
         inputs,
-        None if module is None else float(module),
+        metres,
         title if isinstance(title, str) else None,
     )
