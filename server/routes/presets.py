@@ -1,10 +1,12 @@
-"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes.
+"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes (the
+linkages; with ``?family=gear_trains`` the gear trains, docs/GEARS.md).
 
 Each preset gets its own POST route with a request model built from its parameters, so the
 OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
-from typing import Any
+from collections.abc import Mapping
+from typing import Any, Literal
 
 from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field, create_model
@@ -13,7 +15,13 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
+from solver.teaching.gear_presets import GEAR_PRESETS, GearPreset
 from solver.teaching.presets import PRESETS, Preset
+
+FAMILIES: dict[str, Mapping[str, Preset] | Mapping[str, GearPreset]] = {
+    "linkages": PRESETS,
+    "gear_trains": GEAR_PRESETS,
+}
 
 router = APIRouter(
     prefix="/presets",
@@ -25,7 +33,8 @@ router = APIRouter(
 
 
 @router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
-def list_presets() -> FiniteJSONResponse:
+def list_presets(family: Literal["linkages", "gear_trains"] = "linkages") -> FiniteJSONResponse:
+    """``family``: the linkages (default) or the gear trains (docs/GEARS.md)."""
     return FiniteJSONResponse(
         {
             "presets": [
@@ -47,13 +56,13 @@ def list_presets() -> FiniteJSONResponse:
                         for q in p.parameters
                     ],
                 }
-                for p in PRESETS.values()
+                for p in FAMILIES[family].values()
             ]
         }
     )
 
 
-def _parameters_model(preset: Preset) -> type[BaseModel]:
+def _parameters_model(preset: Preset | GearPreset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
             float | None,
@@ -70,7 +79,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 
-def _route(preset: Preset) -> None:
+def _route(preset: Preset | GearPreset) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]
@@ -93,6 +102,8 @@ def _route(preset: Preset) -> None:
 
 for _preset in PRESETS.values():
     _route(_preset)
+for _gears in GEAR_PRESETS.values():
+    _route(_gears)
 
 
 @router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
