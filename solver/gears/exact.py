@@ -17,29 +17,35 @@ Matrix = list[list[Fraction]]
 def row_echelon(matrix: Sequence[Sequence[Fraction]], columns: int) -> tuple[Matrix, list[int]]:
     """The reduced row echelon form of ``matrix`` and its pivot columns, by Gauss-Jordan
     elimination in exact arithmetic; pivots are sought in the first ``columns`` columns only (the
-    others, a right-hand side, are carried along)."""
-    rows = [list(row) for row in matrix]
+    others, a right-hand side, are carried along). Rows are kept sparse (column -> entry): a
+    train's relations have two or three entries each."""
+    width = len(matrix[0]) if matrix else columns
+    rows = [{j: Fraction(v) for j, v in enumerate(row) if v != 0} for row in matrix]
     pivots: list[int] = []
-    top = 0
+    done: list[dict[int, Fraction]] = []
     for column in range(columns):
-        pick = next((i for i in range(top, len(rows)) if rows[i][column] != 0), None)
+        pick = next((i for i, row in enumerate(rows) if column in row), None)
         if pick is None:
             continue
-        rows[top], rows[pick] = rows[pick], rows[top]
-        lead = rows[top][column]
-        rows[top] = [value / lead for value in rows[top]]
-        pivot_row = rows[top]
-        nonzero = [j for j, value in enumerate(pivot_row) if value != 0]
-        for i, row in enumerate(rows):
-            factor = row[column]
-            if i != top and factor != 0:
-                for j in nonzero:
-                    row[j] -= factor * pivot_row[j]
+        pivot_row = rows.pop(pick)
+        lead = pivot_row[column]
+        pivot_row = {j: v / lead for j, v in pivot_row.items()}
+        for row in (*rows, *done):
+            factor = row.get(column)
+            if factor is None:
+                continue
+            for j, v in pivot_row.items():
+                value = row.get(j, Fraction(0)) - factor * v
+                if value:
+                    row[j] = value
+                else:
+                    row.pop(j, None)
         pivots.append(column)
-        top += 1
-        if top == len(rows):
+        done.append(pivot_row)
+        if not rows:
             break
-    return rows[:top], pivots
+    dense = [[row.get(j, Fraction(0)) for j in range(width)] for row in done]
+    return dense, pivots
 
 
 def rank(matrix: Sequence[Sequence[Fraction]], columns: int) -> int:

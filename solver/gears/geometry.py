@@ -17,6 +17,7 @@ tooth ratios count.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -195,6 +196,7 @@ def _place_body(
     return placed
 
 
+@functools.lru_cache(maxsize=64)  # parsing checks it, analysing uses it: one scene, once
 def check_pitch_circles(scene: GearTrainScene) -> Layout | None:
     """Check that every mesh's pitch circles can touch (see the module) and return the layout
     (None without a module)."""

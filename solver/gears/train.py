@@ -18,6 +18,7 @@ body by body with the mesh forces as unknowns (``member_torques``).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -91,6 +92,7 @@ class Transfer:
         }
 
 
+@functools.lru_cache(maxsize=64)  # parsing checks it, analysing uses it: one scene, once
 def speed_transfer(scene: GearTrainScene) -> Transfer:
     """T = N (E N)^-1 (see the module); ``InvalidScene`` where the inputs are too few or too many
     for the degrees of freedom, or do not determine every member."""
@@ -203,18 +205,21 @@ def member_torques(scene: GearTrainScene, input_torque: Mapping[str, float]) -> 
     if width in pivots:
         raise InvalidScene(
             "input_torque: the torques given cannot be in balance: with ideal gears the "
-            "balances of torque and power tie them to each other (for these tooth numbers); "
-            "give the torque on one input"
+            "balances of torque and power tie them to each other for these tooth numbers, or "
+            "nothing in the train takes them up (no output, no fixed member); give the torque "
+            "on one input"
         )
     free = [j for j in range(width) if j not in pivots]
-    for row, pivot in zip(reduced, pivots, strict=True):
-        if any(j >= p for j in free) or (pivot >= p and any(row[j] != 0 for j in free)):
-            names = ", ".join("+".join(g) for g in loaded)
-            raise InvalidScene(
-                f"input_torque: the balances of torque and power do not fix the torques on "
-                f"{names}: the train delivers its power to more bodies than the balances can "
-                "share it among; give fewer outputs (fix or drive one)"
-            )
+    if any(j >= p for j in free) or any(
+        pivot >= p and any(row[j] != 0 for j in free)
+        for row, pivot in zip(reduced, pivots, strict=True)
+    ):
+        names = ", ".join("+".join(g) for g in loaded)
+        raise InvalidScene(
+            f"input_torque: the balances of torque and power do not fix the torques on "
+            f"{names}: the train delivers its power to more bodies than the balances can "
+            "share it among; give fewer outputs (fix or drive one)"
+        )
     solution = [Fraction(0)] * width
     for row, pivot in zip(reduced, pivots, strict=True):
         solution[pivot] = row[width]
