@@ -76,7 +76,6 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_exception_handler(workers.Busy, workers.busy_problem)
     app.include_router(kinematics.router, prefix=API_PREFIX)
     app.include_router(presets.router, prefix=API_PREFIX)
-    app.include_router(presets.cam_router, prefix=API_PREFIX)
     app.include_router(solution.router, prefix=API_PREFIX)
     app.include_router(exercises.router, prefix=API_PREFIX)
     app.include_router(dynamics.router, prefix=API_PREFIX)

@@ -27,6 +27,7 @@ from server.settings import TIME_LIMITS
 from solver.analysis.work_estimate import WorkEstimate
 from solver.cams import CamScene
 from solver.errors import LimitExceeded
+from solver.gears import GearTrainScene
 from solver.kinematics.spatial import SpatialChain
 from solver.model.scene import LinkageScene
 
@@ -88,8 +89,11 @@ def sweep(
     _newton(estimate, what, "/api/v1/sweep")
 
 
-def spatial_sweep(chain: SpatialChain, samples: int, quantities: Iterable[str] | None) -> None:
-    """/sweep of a spatial chain over time: the response's size (bodies, points and joints)."""
+def spatial_sweep(
+    chain: SpatialChain | GearTrainScene, samples: int, quantities: Iterable[str] | None
+) -> None:
+    """/sweep of a spatial chain (bodies, points and joints) or a gear train (members' angles,
+    planets' centres) over time: the response's size."""
     _response_size(solver.estimate_work(chain, samples, quantities))
 
 

@@ -52,15 +52,19 @@ NewtonTolerance = Annotated[
 
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: kind 'linkage', 'spatial_chain' or 'cam'.",
+        description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (docs/CAMS.md) "
+        "or 'gear_train' (docs/GEARS.md).",
         examples=[
             _example("S000-T1"),
             _example("S002-spatial-arm"),
             _example("cams/cam-roller-translating"),
+            _example("G001-planetary"),
         ],
     )
     quantities: list[Quantity] | None = Field(
-        None, description="What to compute (default: all). The server computes only these."
+        None,
+        description="What to compute (default: all). The server computes only these. A "
+        "gear_train answers its speeds whatever is asked.",
     )
     strict: bool = STRICT
     tolerance: NewtonTolerance = None
@@ -69,12 +73,18 @@ class AnalyzeRequest(Strict):
         description="A cam scene only: the cam angle (deg, turned in the cam's direction of "
         "rotation from its angle 0; default 0). docs/CAMS.md",
     )
+    input_torque: dict[str, float] | None = Field(
+        None,
+        description="A gear_train: the torque (N m) the world applies to an input, e.g. "
+        '{"sun": 12.0}; the response then carries every member\'s torque and power (ideal '
+        "gears, from the balances of torque and power).",
+    )
 
 
 class SweepRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: a 'linkage' or a 'cam', or a 'spatial_chain' with "
-        "time_range.",
+        description="A scene-v1 document: a 'linkage' or a 'cam', or a 'spatial_chain' or "
+        "'gear_train' with time_range.",
         examples=[_example("S000-T1"), _example("cams/cam-roller-translating")],
     )
     samples: int = Field(
@@ -399,6 +409,74 @@ class SpatialTimeSweepResponse(Open):
     joints: list[SpatialSweepJointValues]
     feasible: bool
     limits: list[float]
+    warnings: list[str] = WARNINGS
+
+
+class GearMemberValues(Open):
+    """A gear or carrier of a gear train (docs/GEARS.md)."""
+
+    type: Literal["gear", "carrier"]
+    omega: float = Field(description="rad/s, absolute, counter-clockwise positive from the front")
+    train_value: float | None = Field(
+        description="omega / omega of the first input; null where the first input stands still"
+    )
+    centre: Vector | None = Field(
+        description="m, the axis at t = 0 (a planet's with its carrier at angle 0); null "
+        "without a module"
+    )
+    teeth: int | None = None
+    internal: bool | None = None
+    carrier: str | None = Field(None, description="a gear: the carrier of its axis (null: frame)")
+    omega_relative: float | None = Field(
+        None, description="a gear: rad/s relative to its carrier (to the frame: its omega)"
+    )
+    pitch_radius: float | None = Field(None, description="a gear: m, r = m N / 2")
+    torque: float | None = Field(
+        None,
+        description="with input_torque: N m, the torque applied to the member at its hub (by "
+        "the world, or by its shaft's other members)",
+    )
+    power: float | None = Field(None, description="with input_torque: W, torque x omega")
+
+
+class GearMeshValues(Open):
+    gears: list[str] = Field(description="[a, b]")
+    carrier: str | None = Field(description="the body holding both axes (null: the frame)")
+    internal: bool
+    willis_ratio: float = Field(
+        description="(omega_b - omega_arm) / (omega_a - omega_arm): -N_a/N_b external, "
+        "+N_a/N_b internal"
+    )
+    pitch_line_speed: float | None = Field(
+        description="m/s, r_a |omega_a - omega_arm|; null without a module"
+    )
+
+
+class GearTrainAnalyzeResponse(Open):
+    """A gear train at its inputs' speeds (docs/GEARS.md)."""
+
+    kind: Literal["gear_train"]
+    degrees_of_freedom: int
+    first_input: str | None
+    members: dict[str, GearMemberValues]
+    meshes: list[GearMeshValues]
+    warnings: list[str] = WARNINGS
+
+
+class GearSweepMemberValues(Open):
+    angle: list[float] = Field(description="rad from t = 0, omega t, per sample")
+    centre: Vectors | None = Field(
+        None, description="a gear on a carrier, with a module: m, its axis per sample"
+    )
+
+
+class GearTrainSweepResponse(Open):
+    """A gear train over a time range (arrays over time)."""
+
+    kind: Literal["gear_train"]
+    time: list[float]
+    samples: int
+    members: dict[str, GearSweepMemberValues]
     warnings: list[str] = WARNINGS
 
 

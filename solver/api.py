@@ -35,13 +35,20 @@ from solver.analysis.sweeps import sweep_time as sweep_linkage_time
 from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
 from solver.errors import InvalidScene
+from solver.gears import (
+    GEAR_TRAIN_FIELDS,
+    GearTrainScene,
+    analyze_gear_train,
+    parse_gear_train,
+    sweep_gear_train,
+)
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
 from solver.model.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_quantities
 from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.solutions.polygons import polygons
 from solver.solutions.solve import vector_method_steps
 
-Scene = LinkageScene | SpatialChain | CamScene
+Scene = LinkageScene | SpatialChain | CamScene | GearTrainScene
 
 
 class SceneWarning(UserWarning):
@@ -57,7 +64,7 @@ class ReadScene:
     warnings: tuple[str, ...]
 
 
-SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain | CamScene | ReadScene
+SceneInput = Mapping[str, Any] | LinkageScene | SpatialChain | CamScene | GearTrainScene | ReadScene
 
 
 def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
@@ -70,9 +77,13 @@ def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
         scene = parse_spatial_chain(doc)
     elif kind == "cam":
         scene = parse_cam(doc)
+    elif kind == "gear_train":
+        scene = parse_gear_train(doc)
     else:
-        raise InvalidScene(f"kind: expected 'linkage', 'spatial_chain' or 'cam', got {kind!r}")
-    found = unknown_keys(doc)
+        raise InvalidScene(
+            f"kind: expected 'linkage', 'spatial_chain', 'cam' or 'gear_train', got {kind!r}"
+        )
+    found = unknown_keys(doc, GEAR_TRAIN_FIELDS if kind == "gear_train" else None)
     if strict and found:
         raise InvalidScene("strict: " + "; ".join(found))
     return scene, found
@@ -81,7 +92,7 @@ def _parse(doc: Mapping[str, Any], strict: bool) -> tuple[Scene, list[str]]:
 def _scene(scene: SceneInput, strict: bool) -> tuple[Scene, list[str]]:
     if isinstance(scene, ReadScene):
         return scene.scene, list(scene.warnings)
-    if isinstance(scene, LinkageScene | SpatialChain | CamScene):
+    if isinstance(scene, LinkageScene | SpatialChain | CamScene | GearTrainScene):
         return scene, []
     return _parse(scene, strict)
 
@@ -94,7 +105,8 @@ def _linkage(scene: SceneInput, strict: bool, what: str) -> tuple[LinkageScene, 
 
 
 def parse_scene(doc: Mapping[str, Any], *, strict: bool = False) -> Scene:
-    """Validate a scene-v1 document of kind ``linkage``, ``spatial_chain`` or ``cam`` and build the
+    """Validate a scene-v1 document of kind ``linkage``, ``spatial_chain``, ``cam``
+    (docs/CAMS.md) or ``gear_train`` (docs/GEARS.md) and build the
     immutable scene. Unknown keys are reported with ``SceneWarning`` (``InvalidScene`` when
     ``strict``)."""
     scene, found = _parse(doc, strict)
@@ -117,14 +129,20 @@ def analyze(
     strict: bool = False,
     tolerance: float | None = None,
     angle_deg: float | None = None,
+    input_torque: Mapping[str, float] | None = None,
 ) -> AnalysisResult:
     """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
     ``angle_law`` at ``time``), the spatial chain, or the cam at cam angle ``angle_deg``
     (default 0; docs/CAMS.md). ``quantities``: any of position, velocity, acceleration, poles,
     components (default: all); only those are computed (a cam answers all its fields).
     ``tolerance``: a Newton group's residual relative to the scene size (1e-15 to 1e-6, default
-    1e-13)."""
+    1e-13). A gear train answers its speeds whatever the quantities, and with ``input_torque``
+    (N m on inputs) every member's torque (docs/GEARS.md)."""
     parsed, found = _scene(scene, strict)
+    if isinstance(parsed, GearTrainScene):
+        return analyze_gear_train(parsed, input_torque, found)
+    if input_torque is not None:
+        raise InvalidScene("input_torque: a torque on an input is given for a gear_train")
     wanted = normalise_quantities(quantities)
     if isinstance(parsed, CamScene):
         _cam_quantities(wanted)
@@ -163,8 +181,12 @@ def sweep(
         if speed_fluctuation is not None:
             raise InvalidScene("speed_fluctuation: a cam's sweep has no dynamics")
         return SweepResult(sweep_cam(read, samples, found))
-    parsed, _ = _linkage(
-        read, strict, "a sweep over a revolution (a spatial_chain is swept with a time range)"
+    if isinstance(read, GearTrainScene):
+        raise InvalidScene("time_range: a gear_train is swept over a time range [t0, t1]")
+    parsed, found = _linkage(
+        ReadScene(read, tuple(found)),
+        strict,
+        "a sweep over a revolution (a spatial_chain is swept with a time range)",
     )
     result = sweep_linkage(parsed, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
@@ -193,6 +215,8 @@ def sweep_time(
     parsed, found = _scene(scene, strict)
     if isinstance(parsed, CamScene):
         raise InvalidScene("time_range: a cam is swept over a revolution of its cam angle")
+    if isinstance(parsed, GearTrainScene):
+        return sweep_gear_train(parsed, time_range, samples, found)
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
@@ -245,6 +269,8 @@ def solve(
             "kind: worked solutions take a 'linkage' or 'spatial_chain' scene "
             "(a cam's is not written yet)"
         )
+    if isinstance(parsed, GearTrainScene):
+        raise InvalidScene("kind: the worked solution of a gear_train is not written yet")
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)

@@ -19,6 +19,8 @@ from server.schemas import (
     CamSweepResponse,
     EventResponse,
     EventsRequest,
+    GearTrainAnalyzeResponse,
+    GearTrainSweepResponse,
     SpatialTimeSweepResponse,
     SweepRequest,
     SweepResponse,
@@ -39,13 +41,17 @@ router = APIRouter(
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
-    response_model=AnalyzeResponse | CamAnalyzeResponse,
+    response_model=AnalyzeResponse | CamAnalyzeResponse | GearTrainAnalyzeResponse,
 )
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     read = budget.read_instant(request.scene, request.strict)
     return respond(
         solver.analyze(
-            read, request.quantities, tolerance=request.tolerance, angle_deg=request.angle_deg
+            read,
+            request.quantities,
+            tolerance=request.tolerance,
+            angle_deg=request.angle_deg,
+            input_torque=request.input_torque,
         )
     )
 
@@ -54,7 +60,11 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     "/sweep",
     summary="The linkage over one revolution of its first driver (or its feasible range), or "
     "the scene over a time range",
-    response_model=SweepResponse | TimeSweepResponse | SpatialTimeSweepResponse | CamSweepResponse,
+    response_model=SweepResponse
+    | TimeSweepResponse
+    | SpatialTimeSweepResponse
+    | CamSweepResponse
+    | GearTrainSweepResponse,
 )
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)

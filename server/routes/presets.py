@@ -1,12 +1,13 @@
-"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes; the Cams
-family beside them at GET /api/v1/cam-presets and POST /api/v1/cam-presets/{name} (cam scenes,
-docs/CAMS.md).
+"""GET /api/v1/presets and POST /api/v1/presets/{name}: textbook mechanisms as scenes, by family:
+the linkages (the default), ``?family=cams`` (docs/CAMS.md) and ``?family=gear_trains``
+(docs/GEARS.md). Preset names are unique across the families, so one POST route serves each.
 
 Each preset gets its own POST route with a request model built from its parameters, so the
 OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
-from typing import Any
+from collections.abc import Mapping
+from typing import Any, Literal
 
 from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field, create_model
@@ -15,8 +16,21 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
-from solver.teaching.cam_presets import CAM_PRESETS
+from solver.teaching.cam_presets import CAM_PRESETS, CamPreset
+from solver.teaching.gear_presets import GEAR_PRESETS, GearPreset
 from solver.teaching.presets import PRESETS, Preset
+
+AnyPreset = Preset | CamPreset | GearPreset
+Family = Literal["linkages", "cams", "gear_trains"]
+FAMILIES: dict[str, Mapping[str, AnyPreset]] = {
+    "linkages": PRESETS,
+    "cams": CAM_PRESETS,
+    "gear_trains": GEAR_PRESETS,
+}
+ALL_PRESETS: dict[str, AnyPreset] = {
+    name: preset for family in FAMILIES.values() for name, preset in family.items()
+}
+assert len(ALL_PRESETS) == sum(len(family) for family in FAMILIES.values()), "a name twice"
 
 router = APIRouter(
     prefix="/presets",
@@ -27,16 +41,10 @@ router = APIRouter(
 )
 
 
-cam_router = APIRouter(
-    prefix="/cam-presets",
-    tags=["presets"],
-    route_class=StrictJSONRoute,
-    default_response_class=ResultResponse,
-    responses=PROBLEMS,
-)
-
-
-def _listing(presets: list[Preset]) -> FiniteJSONResponse:
+@router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
+def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
+    """``family``: the linkages (default), the cams (docs/CAMS.md) or the gear trains
+    (docs/GEARS.md)."""
     return FiniteJSONResponse(
         {
             "presets": [
@@ -58,23 +66,13 @@ def _listing(presets: list[Preset]) -> FiniteJSONResponse:
                         for q in p.parameters
                     ],
                 }
-                for p in presets
+                for p in FAMILIES[family].values()
             ]
         }
     )
 
 
-@router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
-def list_presets() -> FiniteJSONResponse:
-    return _listing(list(PRESETS.values()))
-
-
-@cam_router.get("", summary="The Cams family and its parameters", response_model=PresetList)
-def list_cam_presets() -> FiniteJSONResponse:
-    return _listing(list(CAM_PRESETS.values()))
-
-
-def _parameters_model(preset: Preset) -> type[BaseModel]:
+def _parameters_model(preset: AnyPreset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
             float | None,
@@ -91,7 +89,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 
-def _route(preset: Preset, on: APIRouter = router) -> None:
+def _route(preset: AnyPreset) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]
@@ -100,7 +98,7 @@ def _route(preset: Preset, on: APIRouter = router) -> None:
         )
         return FiniteJSONResponse(preset.build(given))
 
-    on.add_api_route(
+    router.add_api_route(
         f"/{preset.name}",
         build,
         methods=["POST"],
@@ -112,17 +110,13 @@ def _route(preset: Preset, on: APIRouter = router) -> None:
     )
 
 
-for _preset in PRESETS.values():
+for _preset in ALL_PRESETS.values():
     _route(_preset)
-for _cam in CAM_PRESETS.values():
-    _route(_cam, cam_router)
 
 
 @router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
 def unknown_preset(name: str) -> FiniteJSONResponse:
-    raise InvalidScene(f"unknown preset '{name[:64]}'; available: {', '.join(PRESETS)}")
-
-
-@cam_router.post("/{name}", summary="Unknown cam preset names", include_in_schema=False)
-def unknown_cam_preset(name: str) -> FiniteJSONResponse:
-    raise InvalidScene(f"unknown cam preset '{name[:64]}'; available: {', '.join(CAM_PRESETS)}")
+    raise InvalidScene(
+        f"unknown preset '{name[:64]}'; available: "
+        + "; ".join(f"{family}: {', '.join(presets)}" for family, presets in FAMILIES.items())
+    )

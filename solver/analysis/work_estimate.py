@@ -4,7 +4,7 @@ Three products that grow past what a scene's own bounds (200 points, 100 links, 
 characters) keep in check:
 
 - the response's size: samples x entries (points + links + joints + moving points; a spatial
-  chain's points + bodies + joints) x quantities;
+  chain's points + bodies + joints; a gear train's ``sweep_entries``) x quantities;
 - the Newton-Raphson work: the links solved by Newton-Raphson x (samples + ``SETUP_SAMPLES`` +
   ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose), in link-samples,
   at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
@@ -49,8 +49,8 @@ SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time 
 
 
 class ChapterScene(Protocol):
-    """A scene of another chapter (a cam, say), solved in closed form: it states its response's
-    values per sample, ``(count, what they are)``."""
+    """A scene of another chapter (a cam, a gear train), solved in closed form: it states its
+    response's values per sample, ``(count, what they are)``."""
 
     @property
     def response_entries(self) -> tuple[int, str]: ...
@@ -180,8 +180,8 @@ def estimate_work(
     ``event`` = (moving point, t_max) (/events: its time laws are parsed first, and a moving
     point the scene does not have or a t_max outside 0 < t_max <= MAX_TIME is left to the
     search's own message: no work estimated). ``quantities`` as for a sweep (default
-    position). A scene of another chapter (a cam) counts its values per sample, whatever the
-    quantities."""
+    position). A scene of another chapter (a cam, a gear train) counts its values per sample,
+    whatever the quantities."""
     wanted = len(normalise_quantities(["position"] if quantities is None else quantities))
     if isinstance(scene, SpatialChain):
         return WorkEstimate(scene, samples or 1, wanted, None)

@@ -531,12 +531,17 @@ def _unknown_here(known: frozenset[str], body: Mapping[str, Any], where: str) ->
     return found
 
 
-def unknown_keys(doc: Mapping[str, Any]) -> list[str]:
+def unknown_keys(
+    doc: Mapping[str, Any], fields: Mapping[str, frozenset[str]] | None = None
+) -> list[str]:
     """Every key of a scene document that the contract does not know, as sentences naming the key,
     its path and the nearest valid name: ``drivers[0].angle is not a scene field; did you mean
     angle_deg?``. The spec allows extra fields, so these are warnings (an error only on request);
-    parts of the document that are not shaped as the contract says are left to the parser."""
-    fields = SCENE_FIELDS.get(str(doc.get("kind")), {}) if isinstance(doc, Mapping) else {}
+    parts of the document that are not shaped as the contract says are left to the parser.
+    ``fields``: the known keys by path pattern (default: the kind's in ``SCENE_FIELDS``; a
+    chapter's own kind brings its own, e.g. ``solver.gears.scene.GEAR_TRAIN_FIELDS``)."""
+    if fields is None:
+        fields = SCENE_FIELDS.get(str(doc.get("kind")), {}) if isinstance(doc, Mapping) else {}
     found: list[str] = []
     for pattern, known in fields.items():
         for where, body in _bodies(doc, pattern):

@@ -127,7 +127,10 @@ class App {
     } else {
       this.status(`Textbook mechanisms are not available: ${presets.reason.detail || presets.reason.message}`, 'error');
     }
-    this.examples = examples.status === 'fulfilled' ? examples.value.examples || [] : [];
+    // The views draw linkages and spatial chains; a cam or gear-train example is for the API until
+    // their views exist.
+    const drawn = (x) => !x.kind || x.kind === 'linkage' || x.kind === 'spatial_chain';
+    this.examples = examples.status === 'fulfilled' ? (examples.value.examples || []).filter(drawn) : [];
     this.controls.setPresetChoices([...this.presets.values()], this.examples);
 
     const state = shared.status === 'fulfilled' ? shared.value : null;

@@ -59,11 +59,13 @@ def clashes(view: dict[str, Any]) -> list[str]:
 
 
 def sources(app: AppPage) -> list[str]:
-    """Every preset and seed example, as the selector's values."""
+    """Every preset and seed example the page draws, as the selector's values."""
     with urllib.request.urlopen(f"{app.url}/api/v1/presets", timeout=30) as response:
         presets = [f"preset:{p['name']}" for p in json.load(response)["presets"]]
     with urllib.request.urlopen(f"{app.url}/examples/index.json", timeout=30) as response:
-        examples = [f"example:{e['file']}" for e in json.load(response)["examples"]]
+        listed = json.load(response)["examples"]
+    drawn = ("linkage", "spatial_chain")  # a gear train example is for the API (issue 25)
+    examples = [f"example:{e['file']}" for e in listed if e.get("kind", "linkage") in drawn]
     return presets + examples
 
 

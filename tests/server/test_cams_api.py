@@ -134,9 +134,10 @@ def test_bad_cams_are_invalid_scenes(client: TestClient, broken: dict[str, Any])
 
 
 def test_the_example_is_listed_and_served(client: TestClient) -> None:
-    """server/example_index.json lists the cam examples under "cams" (the app's linkage menu
-    reads "examples"); /examples/cams/<file> serves each byte for byte."""
-    listed = client.get("/examples/index.json").json()["cams"]
+    """server/example_index.json lists the cam example with its kind (the app's menu leaves out
+    kinds it cannot draw yet); /examples/cams/<file> serves it byte for byte."""
+    examples = client.get("/examples/index.json").json()["examples"]
+    listed = [entry for entry in examples if entry.get("kind") == "cam"]
     assert [entry["file"] for entry in listed] == ["cams/cam-roller-translating.json"]
     response = client.get("/examples/cams/cam-roller-translating.json")
     assert response.status_code == 200 and response.content == EXAMPLE.read_bytes()
@@ -153,9 +154,10 @@ CAM_PRESETS = [
 
 
 def test_cam_presets_are_listed_apart(client: TestClient, openapi: dict[str, Any]) -> None:
-    """GET /cam-presets lists the four followers; GET /presets (the linkage menu) does not."""
-    response = client.get("/api/v1/cam-presets")
-    check(openapi, "/cam-presets", "get", response)
+    """GET /presets?family=cams lists the four followers; GET /presets (the linkage menu) does
+    not."""
+    response = client.get("/api/v1/presets", params={"family": "cams"})
+    check(openapi, "/presets", "get", response)
     listed = response.json()["presets"]
     assert [p["name"] for p in listed] == CAM_PRESETS
     laws = next(q for q in listed[0]["parameters"] if q["name"] == "rise_law")
@@ -167,7 +169,7 @@ def test_cam_presets_are_listed_apart(client: TestClient, openapi: dict[str, Any
 @pytest.mark.parametrize("name", CAM_PRESETS)
 def test_every_cam_preset_sweeps_without_warnings(client: TestClient, name: str) -> None:
     """Each preset at its defaults is a textbook-sound cam: no warning over a revolution."""
-    scene = client.post(f"/api/v1/cam-presets/{name}", json={})
+    scene = client.post(f"/api/v1/presets/{name}", json={})
     assert scene.status_code == 200, scene.text
     doc = scene.json()
     assert doc["kind"] == "cam"
@@ -178,13 +180,13 @@ def test_every_cam_preset_sweeps_without_warnings(client: TestClient, name: str)
 def test_cam_preset_parameters(client: TestClient) -> None:
     """The laws by index, the oscillating lift in degrees turned to rad, bad values refused."""
     harmonic = float(solver.cams.LAW_NAMES.index("harmonic"))
-    doc = client.post("/api/v1/cam-presets/cam_oscillating_roller",
+    doc = client.post("/api/v1/presets/cam_oscillating_roller",
                       json={"rise_law": harmonic, "lift": 20.0}).json()  # fmt: skip
     assert doc["segments"][0]["law"] == "harmonic"
     assert doc["segments"][0]["lift"] == pytest.approx(math.radians(20.0))
     warned = client.post("/api/v1/sweep", json={"scene": doc, "samples": 36}).json()["warnings"]
     assert any(w.startswith("discontinuous acceleration") for w in warned)
     long = {"rise_deg": 200.0, "return_deg": 150.0}
-    detail = _problem(client, "/cam-presets/cam_flat_faced", long)
+    detail = _problem(client, "/presets/cam_flat_faced", long)
     assert detail.startswith("rise_deg + dwell_deg + return_deg = 200 + 60 + 150 = 410 deg")
-    assert "available: cam_roller_translating" in _problem(client, "/cam-presets/cam_nope", {})
+    assert "cams: cam_roller_translating" in _problem(client, "/presets/cam_nope", {})

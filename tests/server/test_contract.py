@@ -39,6 +39,18 @@ def plain(value: Any) -> Any:
 def calls(name: str) -> list[tuple[str, dict[str, Any], solver.Result]]:
     """(endpoint, request, the library's result) for every endpoint that takes this scene."""
     doc = example(name)
+    if doc["kind"] == "gear_train":  # speeds, torques and a time sweep (docs/GEARS.md)
+        torque = {next(iter(doc["inputs"])): 12.0}
+        swept = {"scene": doc, "samples": SAMPLES, "time_range": [0, 1]}
+        return [
+            ("/analyze", {"scene": doc}, solver.analyze(doc)),
+            (
+                "/analyze",
+                {"scene": doc, "input_torque": torque},
+                solver.analyze(doc, input_torque=torque),
+            ),
+            ("/sweep", swept, solver.sweep_time(doc, (0, 1), SAMPLES)),
+        ]
     out: list[tuple[str, dict[str, Any], solver.Result]] = [
         ("/analyze", {"scene": doc}, solver.analyze(doc)),
         ("/analyze", {"scene": doc, "quantities": ["position"]}, solver.analyze(doc, ["position"])),

@@ -15,7 +15,9 @@ def test_the_apps_example_list_is_server_examples(client: TestClient) -> None:
     and /examples/<file> is that file byte for byte; static/ keeps no copy."""
     listed = client.get("/examples/index.json").json()["examples"]
     files = [entry["file"] for entry in listed]
-    assert sorted(files) == sorted(path.name for path in EXAMPLES.glob("*.json"))
+    assert sorted(files) == sorted(
+        p.relative_to(EXAMPLES).as_posix() for p in EXAMPLES.rglob("*.json")
+    )
     assert len(set(files)) == len(files) and "S000-T2-rounded.json" in files
     for entry in listed:
         assert entry["title"] and entry["description"], entry
