@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 import solver
-from tests.solver.test_gears import differential, planetary, reverted
+from tests.solver.gears.test_gears import differential, planetary, reverted
 
 EXAMPLE = planetary(20, 30, 80, {"sun": 100.0, "ring": 0.0}, module=0.002)
 
