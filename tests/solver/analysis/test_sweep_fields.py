@@ -37,7 +37,7 @@ def _offset_slider_crank_closed_form(crank: float, rod: float, offset: float) ->
 def test_quick_return_ratio_of_the_slotted_lever_is_the_closed_form(samples: int) -> None:
     for crank, ground in ((0.1, 0.3), (0.12, 0.3), (0.2, 0.35)):
         doc = build_preset("quick_return", {"crank": crank, "ground": ground})
-        body = solver.sweep(doc, samples, ["position"]).as_dict()
+        body = solver.sweep(doc, samples, ["position"]).as_dict(arrays=True)
         ram = next(s for s in body["sliders"] if s["point"] == "C")
         found = ram["quick_return"]
         expected = _quick_return_closed_form(crank, ground)
@@ -53,7 +53,7 @@ def test_quick_return_ratio_of_the_slotted_lever_is_the_closed_form(samples: int
 def test_quick_return_ratio_of_the_offset_slider_crank_is_the_closed_form(samples: int) -> None:
     for crank, rod, offset in ((0.1, 0.35, 0.05), (0.1, 0.3, 0.12), (0.05, 0.2, -0.08)):
         doc = build_preset("slider_crank", {"crank": crank, "rod": rod, "offset": offset})
-        body = solver.sweep(doc, samples, ["position", "velocity"]).as_dict()
+        body = solver.sweep(doc, samples, ["position", "velocity"]).as_dict(arrays=True)
         (ram,) = body["sliders"]
         expected = _offset_slider_crank_closed_form(crank, rod, abs(offset))
         assert ram["quick_return"]["time_ratio"] == pytest.approx(expected, rel=1e-12)
@@ -66,17 +66,17 @@ def test_quick_return_ratio_of_the_offset_slider_crank_is_the_closed_form(sample
 
 
 def test_a_centred_slider_crank_has_no_quick_return_and_a_rocking_one_none() -> None:
-    centred = solver.sweep(build_preset("slider_crank", {"offset": 0.0}), 90).as_dict()
+    centred = solver.sweep(build_preset("slider_crank", {"offset": 0.0}), 90).as_dict(arrays=True)
     assert centred["sliders"][0]["quick_return"]["time_ratio"] == pytest.approx(1.0, abs=1e-12)
     rocking = solver.sweep(build_preset("slider_crank", {"rod": 0.1, "crank": 0.08}), 90)
-    body = rocking.as_dict()
+    body = rocking.as_dict(arrays=True)
     if not body["feasible"]:
         assert body["sliders"][0]["quick_return"] is None
 
 
 def test_slider_travel_is_the_displacement_along_the_guide_and_its_rates() -> None:
     doc = build_preset("quick_return", {})
-    body = solver.sweep(doc, 360, ["position", "velocity", "acceleration"]).as_dict()
+    body = solver.sweep(doc, 360, ["position", "velocity", "acceleration"]).as_dict(arrays=True)
     ram = next(s for s in body["sliders"] if s["point"] == "C")
     p = np.asarray(body["points"]["C"]["position"])
     assert ram["displacement"] == pytest.approx(p[:, 0] - doc["points"]["C"][0], abs=1e-15)
@@ -87,7 +87,7 @@ def test_slider_travel_is_the_displacement_along_the_guide_and_its_rates() -> No
     lever = np.asarray(body["links"]["lever"]["angle"])
     turned = np.unwrap(np.arctan2(pin["axis"][:, 1], pin["axis"][:, 0]))
     assert np.ptp(turned - np.unwrap(lever)) < 1e-12
-    parts = solver.sweep(doc, 360, ["components"]).as_dict()
+    parts = solver.sweep(doc, 360, ["components"]).as_dict(arrays=True)
     joint = next(j for j in parts["joints"] if j["point"] == "A")
     along = np.sum(joint["relative_velocity"] * pin["axis"], axis=1)
     assert pin["sliding_velocity"] == pytest.approx(along, abs=1e-12)
@@ -100,16 +100,16 @@ def test_slider_travel_is_the_displacement_along_the_guide_and_its_rates() -> No
 
 def test_sweep_fields_follow_the_requested_quantities() -> None:
     doc = build_preset("slider_crank", {})
-    velocity_only = solver.sweep(doc, 20, ["velocity"]).as_dict()
+    velocity_only = solver.sweep(doc, 20, ["velocity"]).as_dict(arrays=True)
     assert "four_bar_loops" not in velocity_only
     assert set(velocity_only["sliders"][0]) == {"point", "type", "links", "sliding_velocity"}
-    poles_only = solver.sweep(doc, 20, ["poles"]).as_dict()
+    poles_only = solver.sweep(doc, 20, ["poles"]).as_dict(arrays=True)
     assert "sliders" not in poles_only and "four_bar_loops" not in poles_only
 
 
 def test_transmission_angle_per_sample_is_the_analysed_one() -> None:
     doc = build_preset("four_bar", {})
-    body = solver.sweep(doc, 36).as_dict()
+    body = solver.sweep(doc, 36).as_dict(arrays=True)
     (loop,) = body["four_bar_loops"]
     assert loop["angle_points"] == ["B", "C", "D"]
     for k in (0, 7, 20):

@@ -31,7 +31,13 @@ from solver.teaching.mistakes import (
     typical_mistake,
 )
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
+# The examples with worked solutions (a gear train's is not written yet).
+SOLVED = [
+    path
+    for path in sorted(EXAMPLES.glob("*.json"))
+    if json.loads(path.read_text())["kind"] in ("linkage", "spatial_chain")
+]
 DYNAMIC = ("four_bar_torque", "flywheel")
 # The mistakes both outputs name: the worked solution shows them, the checker diagnoses them.
 SHARED = {"coriolis_without_factor_2", "coriolis_on_fixed_guide"}
@@ -57,7 +63,7 @@ def test_every_id_either_output_carries_is_in_the_catalogue_and_every_entry_is_u
     every entry."""
     shown: set[str] = set()
     diagnosed: set[str] = set()
-    for path in sorted(EXAMPLES.glob("*.json")):
+    for path in SOLVED:
         doc = json.loads(path.read_text())
         methods = ("vector",) if doc.get("kind") == "spatial_chain" else ("vector", "loop")
         for method in methods:
@@ -75,7 +81,7 @@ def test_every_id_either_output_carries_is_in_the_catalogue_and_every_entry_is_u
 
 
 def test_a_solution_mistake_carries_its_catalogue_title() -> None:
-    for path in sorted(EXAMPLES.glob("*.json")):
+    for path in SOLVED:
         for m in _shown(json.loads(path.read_text())):
             if m["kind"] != "dynamics.moment_about_accelerating_point":  # titled with its pin
                 assert m["title"] == typical_mistake(m["kind"]).title
