@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from solver.solutions import latex as tex
-from solver.solutions.format import latex_unit
+from solver.solutions.format import Formatter, latex_unit
 
 
 @dataclass(frozen=True)
@@ -69,6 +69,8 @@ class Shows(Protocol):
     def entries(self, key: str | Ref, dims: int = 3) -> list[str]: ...
     def txt(self, key: str | Ref) -> str: ...
     def txtn(self, key: str | Ref) -> str: ...
+    def scalar(self, key: str | Ref) -> float: ...
+    def fmt_of(self, key: str | Ref) -> Formatter: ...
 
 
 class Token(Protocol):
@@ -250,6 +252,34 @@ class ZCross:
 
     def text(self, shows: Shows) -> str:
         return f"(0, 0, {shows.txtn(self.z)}) cross {shows.txtn(self.r)}"
+
+
+@dataclass(frozen=True)
+class Paren:
+    """A scalar value as a factor: in parentheses where negative or with a power of ten in LaTeX
+    ('2 \\cdot (-1.5)'), as it is in text."""
+
+    ref: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return tex.paren(shows.num(self.ref))
+
+    def text(self, shows: Shows) -> str:
+        return shows.txtn(self.ref)
+
+
+@dataclass(frozen=True)
+class Det2:
+    """A 2x2 determinant of scalar values written out: '\\begin{vmatrix} a & b \\\\ c & d
+    \\end{vmatrix}' in LaTeX, '|a b; c d|' in text."""
+
+    rows: tuple[tuple[Ref, Ref], tuple[Ref, Ref]]
+
+    def latex(self, shows: Shows) -> str:
+        return tex.determinant2([[shows.num(x) for x in row] for row in self.rows])
+
+    def text(self, shows: Shows) -> str:
+        return "|" + "; ".join(" ".join(shows.txtn(x) for x in row) for row in self.rows) + "|"
 
 
 TIMES = Sym(r" \times ", " cross ")
