@@ -241,17 +241,48 @@ class Boxed:
 
 @dataclass(frozen=True)
 class ZCross:
-    """(0, 0, z) x r of a planar z-component and a vector: the determinant with the unit vectors
-    in its first row in LaTeX, '(0, 0, z) cross r' in text."""
+    """(0, 0, z) x r of a planar z-component and a vector (a value, or the symbols of its two
+    components): the determinant with the unit vectors in its first row in LaTeX,
+    '(0, 0, z) cross r' in text."""
 
     z: Ref
-    r: Ref
+    r: Ref | tuple[str, str]
 
     def latex(self, shows: Shows) -> str:
-        return tex.determinant3(["0", "0", shows.num(self.z)], shows.entries(self.r))
+        r = shows.entries(self.r) if isinstance(self.r, Ref) else [*self.r, "0"]
+        return tex.determinant3(["0", "0", shows.num(self.z)], r)
 
     def text(self, shows: Shows) -> str:
-        return f"(0, 0, {shows.txtn(self.z)}) cross {shows.txtn(self.r)}"
+        r = shows.txtn(self.r) if isinstance(self.r, Ref) else f"({self.r[0]}, {self.r[1]})"
+        return f"(0, 0, {shows.txtn(self.z)}) cross {r}"
+
+
+@dataclass(frozen=True)
+class Component:
+    """Component i of a vector value, as its column shows it."""
+
+    ref: Ref
+    index: int
+
+    def latex(self, shows: Shows) -> str:
+        return shows.entries(self.ref)[self.index]
+
+    def text(self, shows: Shows) -> str:
+        return shows.entries(self.ref)[self.index]
+
+
+@dataclass(frozen=True)
+class ColumnOf:
+    """A column of entries, each a row of pieces ('-2\\, r_y'): a column vector in LaTeX,
+    '(a, b, c)' in text."""
+
+    entries: tuple[tuple[Piece, ...], ...]
+
+    def latex(self, shows: Shows) -> str:
+        return tex.column([latex_of(e, shows) for e in self.entries])
+
+    def text(self, shows: Shows) -> str:
+        return "(" + ", ".join(text_of(e, shows) for e in self.entries) + ")"
 
 
 @dataclass(frozen=True)
