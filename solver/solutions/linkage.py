@@ -342,6 +342,14 @@ def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
     return scalar_z * perp(np.asarray(r, dtype=float))
 
 
+def origin(b: StepBuilder, ctx: LinkageContext, point: str, motion: Ref) -> Piece:
+    """The motion of ``point`` as a column: the zero vector in LaTeX for a fixed point at rest
+    (its value in text)."""
+    if ctx.is_fixed(point) and b.is_zero(motion):
+        return Alt((V0,), (Col(motion),))
+    return Col(motion)
+
+
 def det_row_z(b: StepBuilder, key: str) -> list[str]:
     return ["0", "0", b.num(key)]
 
@@ -513,7 +521,7 @@ def rigid_velocity_step(
     vy = b.value(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
     b.check("cross", wxr, w, r)
     b.check("sum", vy, vx, wxr)
-    base_v: Piece = Alt((V0,), (Col(vx),)) if ctx.is_fixed(base) and b.is_zero(vx) else Col(vx)
+    base_v = origin(b, ctx, base, vx)
     relative_velocity = Equation.of(
         Sym(v_vec(target), f"v({target})"),
         (
@@ -558,7 +566,7 @@ def rigid_acceleration_step(
     b.check("sum", ay, ax, t, n)
     if reason:
         b.say(reason)
-    base_a: Piece = Alt((V0,), (Col(ax),)) if ctx.is_fixed(base) and b.is_zero(ax) else Col(ax)
+    base_a = origin(b, ctx, base, ax)
     _write_rigid_acceleration(b, (link, base, target), base_a, (w, al, r, t, n, ay, w2))
     ctx.shown_acceleration.add(target)
     return b.build()

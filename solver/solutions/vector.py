@@ -43,6 +43,7 @@ from solver.solutions.builder import (
     linear_text,
     present_solution,
 )
+from solver.solutions.equation import Boxed, Col, Num, Paren, Ref, ZCol, ZCross
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.linkage import (
     ACCELERATION,
@@ -59,6 +60,7 @@ from solver.solutions.linkage import (
     det_row_z_symbol,
     fixed_points_step,
     k_cross,
+    origin,
     put_motion,
     r_vec,
     rigid_acceleration_step,
@@ -447,9 +449,9 @@ class VectorMethod:
         b = ctx.builder(
             f"{what}.transport", f"Transport {what} of {point} (the point of {guide} under {point})"
         )
-        tr = sliding.put(b, f"transport_{what}", point)
-        r = b.put(f"r({g},{point})", ctx.pos(point) - ctx.pos(g), "m")
-        w = b.put(f"omega({guide})", ctx.omega(guide), "rad/s", ctx.link_source(guide, "omega"))
+        tr = Ref(sliding.put(b, f"transport_{what}", point))
+        r = b.value(f"r({g},{point})", ctx.pos(point) - ctx.pos(g), "m")
+        w = b.value(f"omega({guide})", ctx.omega(guide), "rad/s", ctx.link_source(guide, "omega"))
         if order == VELOCITY:
             self.transport_velocity(b, (g, point), guide, tr, (r, w))
         else:
@@ -457,56 +459,83 @@ class VectorMethod:
         return b.build()
 
     def transport_velocity(
-        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: Ref, rw: tuple[Ref, Ref]
     ) -> None:
         """v_tr = v_G + omega x r_GX, with r and omega (``rw``) already put."""
         ctx, (g, point), (r, w) = self.ctx, pair, rw
-        vg = put_motion(b, ctx, g, VELOCITY)
-        wxr = b.put(
+        vg = Ref(put_motion(b, ctx, g, VELOCITY))
+        wxr = b.value(
             f"omega x r({g},{point})", k_cross(ctx.omega(guide), np.asarray(b.vector(r))), "m/s"
         )
         b.check("cross", wxr, w, r)
         b.check("sum", tr, vg, wxr)
         b.line(
             rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{tr}}}} = {v_vec(g)} + {w_vec(guide)} "
-            rf"\times {r_vec(g, point)} = {origin_column(b, ctx, g, vg)} + "
-            rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
+            rf"\times {r_vec(g, point)} = ",
+            origin(b, ctx, g, vg),
+            " + ",
+            ZCross(w, r),
+            " = ",
+            Col(tr, unit=True),
         )
         b.say(
             f"The transport velocity of {point} is the velocity of the point of {guide} "
-            f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
-            f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}."
+            f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = ",
+            Col(vg),
+            " + ",
+            Col(wxr),
+            " = ",
+            Col(tr),
+            ".",
         )
 
     def transport_acceleration(
-        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: Ref, rw: tuple[Ref, Ref]
     ) -> None:
         """a_tr = a_G + alpha x r_GX - omega^2 r_GX, with r and omega (``rw``) already put."""
         ctx, (g, point), (r, w) = self.ctx, pair, rw
         r_np, omega, alpha = np.asarray(b.vector(r)), ctx.omega(guide), ctx.alpha(guide)
-        ag = put_motion(b, ctx, g, ACCELERATION)
-        al = b.put(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
-        t = b.put(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
-        n = b.put(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
+        ag = Ref(put_motion(b, ctx, g, ACCELERATION))
+        al = b.value(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
+        t = b.value(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
+        n = b.value(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
         b.check("sum", tr, ag, t, n)
-        sub, base = tex.name(point) + r",\mathrm{tr}", origin_column(b, ctx, g, ag)
+        sub, base = tex.name(point) + r",\mathrm{tr}", origin(b, ctx, g, ag)
         b.line(
             rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
-            rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
-            rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+            rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = ",
+            base,
+            " + ",
+            ZCross(al, r),
+            " - ",
+            Paren(w),
+            r"^2 \cdot ",
+            Col(r),
         )
         b.line(
-            rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
-            rf"{b.colu(tr)}"
+            rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = ",
+            base,
+            " + ",
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr, unit=True),
         )
         b.say(
             f"The transport acceleration of {point} is the acceleration of the point of "
             f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
-            f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
-            f"{b.txt(n)} = {b.txt(tr)}."
+            f"omega({guide}) squared r({g},{point}) = ",
+            Col(ag),
+            " + ",
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr),
+            ".",
         )
 
     def coriolis_step(self, point: str, guide: str) -> Step:
@@ -514,9 +543,11 @@ class VectorMethod:
         ctx = self.ctx
         sliding = ctx.slot(guide, point)
         b = ctx.builder("acceleration.coriolis", f"Coriolis acceleration of {point}")
-        cor = sliding.put(b, "coriolis_acceleration", point)
-        w = b.put(f"omega({guide})", sliding.omega_guide, "rad/s", ctx.link_source(guide, "omega"))
-        vrel = sliding.put(b, "relative_velocity", point)
+        cor = Ref(sliding.put(b, "coriolis_acceleration", point))
+        w = b.value(
+            f"omega({guide})", sliding.omega_guide, "rad/s", ctx.link_source(guide, "omega")
+        )
+        vrel = Ref(sliding.put(b, "relative_velocity", point))
         b.check("cross", cor, w, vrel, factor=2.0)
         formula = (
             rf"\vec{{a}}_{{{tex.name(point)},\mathrm{{Cor}}}} = 2\,{w_vec(guide)} \times "
@@ -553,19 +584,18 @@ class VectorMethod:
             )
 
     def coriolis_zero_now(
-        self, b: StepBuilder, pair: tuple[str, str], formula: str, w: str, vrel: str
+        self, b: StepBuilder, pair: tuple[str, str], formula: str, w: Ref, vrel: Ref
     ) -> None:
         """a_Cor = 0 at this instant: the guide does not turn now, or the point does not slide."""
         point, guide = pair
         zero = tex.boxed_result(V0 + latex_unit("m/s^2"))
         if b.is_zero(w):
-            b.line(
-                rf"&{formula} = 2 \cdot {tex.column(['0', '0', b.num(w)])} \times "
-                rf"{b.col(vrel)} = {zero}"
-            )
+            b.line(rf"&{formula} = 2 \cdot ", ZCol(w), r" \times ", Col(vrel), f" = {zero}")
             b.say(
                 f"The Coriolis acceleration of {point} is zero at this instant: the guide "
-                f"{guide} does not rotate now (omega({guide}) = {b.txt(w)})."
+                f"{guide} does not rotate now (omega({guide}) = ",
+                Num(w, unit=True),
+                ").",
             )
             return
         b.line(rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = {zero}")
@@ -580,25 +610,36 @@ class VectorMethod:
         sliding: SlotMotion,
         pair: tuple[str, str],
         formula: str,
-        keys: tuple[str, str, str],
+        keys: tuple[Ref, Ref, Ref],
     ) -> None:
         """a_Cor = 2 omega x v_rel, omega x v_rel written out (``keys``: a_Cor, omega, v_rel)."""
         (point, guide), (cor, w, vrel) = pair, keys
-        half = b.put(
+        half = b.value(
             f"omega x v_rel({point})",
             k_cross(sliding.omega_guide, sliding.relative_velocity),
             "m/s^2",
         )
         b.check("cross", half, w, vrel)
         b.line(
-            rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))} = "
-            rf"2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+            rf"&{formula} = 2 \cdot ",
+            ZCross(w, vrel),
+            r" = 2 \cdot ",
+            Col(half),
+            " = ",
+            Boxed((Col(cor, unit=True),)),
         )
         b.say(
             f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
-            f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
-            f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
-            f"of {point} along the slot (not its absolute velocity)."
+            " = 2 (0, 0, ",
+            Num(w),
+            ") cross ",
+            Col(vrel),
+            " = 2 times ",
+            Col(half),
+            " = ",
+            Col(cor),
+            f". It uses the guide's angular velocity and the relative velocity of {point} "
+            "along the slot (not its absolute velocity).",
         )
 
     def line_side(
@@ -654,23 +695,31 @@ class VectorMethod:
         b.line(
             rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
             rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
-            rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}"
+            rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = ",
+            Col(Ref(ukey)),
         )
         b.line(
-            rf"&\phantom{{{v_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
-            rf"{b.col(ukey)} = {side_column(b, side)}{latex_unit('m/s')}"
+            rf"&\phantom{{{v_vec(point)}}} = ",
+            V0 if fixed else Col(Ref(tr)),
+            f" + {unknown.latex} ",
+            Col(Ref(ukey)),
+            f" = {side_column(b, side)}{latex_unit('m/s')}",
         )
         if fixed:
             b.say(
                 f"{point} slides in a slot fixed in the ground: its transport velocity is "
-                f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
-                f"u = {b.txtn(ukey)}."
+                f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot u = ",
+                Num(Ref(ukey)),
+                ".",
             )
         else:
             b.say(
                 f"{point} slides in the slot of the moving link {guide}: v({point}) = "
-                f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
-                f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
+                f"v_tr({point}) + v_rel({point}) = ",
+                Col(Ref(tr)),
+                f" + {unknown.text} times ",
+                Num(Ref(ukey)),
+                f" = {side_text(b, side)} m/s.",
             )
 
     def slot_acceleration_lines(
@@ -686,9 +735,13 @@ class VectorMethod:
             rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}}"
         )
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
-            rf"{b.col(ukey)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
-            rf"{side_column(b, side)}{latex_unit('m/s^2')}"
+            rf"&\phantom{{{a_vec(point)}}} = ",
+            V0 if fixed else Col(Ref(tr)),
+            f" + {unknown.latex} ",
+            Col(Ref(ukey)),
+            " + ",
+            V0 if b.is_zero(cor) else Col(Ref(cor)),
+            f" = {side_column(b, side)}{latex_unit('m/s^2')}",
         )
         if fixed:
             b.say(
@@ -698,8 +751,13 @@ class VectorMethod:
         else:
             b.say(
                 f"In the slot of {guide}: a({point}) = a_tr({point}) + a_rel({point}) + "
-                f"a_Cor({point}) = {b.txt(tr)} + {unknown.text} times {b.txtn(ukey)} + "
-                f"{b.txt(cor)} = {side_text(b, side)} m/s^2."
+                f"a_Cor({point}) = ",
+                Col(Ref(tr)),
+                f" + {unknown.text} times ",
+                Num(Ref(ukey)),
+                " + ",
+                Col(Ref(cor)),
+                f" = {side_text(b, side)} m/s^2.",
             )
 
     def equate(
