@@ -241,20 +241,22 @@ class Boxed:
 
 @dataclass(frozen=True)
 class ZCross:
-    """(0, 0, z) x r of a planar z-component and a vector (a value, or the symbols of its two
-    components): the determinant with the unit vectors in its first row in LaTeX,
+    """(0, 0, z) x r of a planar z-component (a value or a symbol) and a vector (a value, or the
+    symbols of its two components): the determinant with the unit vectors in its first row in LaTeX,
     '(0, 0, z) cross r' in text."""
 
-    z: Ref
+    z: Ref | Sym
     r: Ref | tuple[str, str]
 
     def latex(self, shows: Shows) -> str:
         r = shows.entries(self.r) if isinstance(self.r, Ref) else [*self.r, "0"]
-        return tex.determinant3(["0", "0", shows.num(self.z)], r)
+        z = shows.num(self.z) if isinstance(self.z, Ref) else self.z.tex
+        return tex.determinant3(["0", "0", z], r)
 
     def text(self, shows: Shows) -> str:
         r = shows.txtn(self.r) if isinstance(self.r, Ref) else f"({self.r[0]}, {self.r[1]})"
-        return f"(0, 0, {shows.txtn(self.z)}) cross {r}"
+        z = shows.txtn(self.z) if isinstance(self.z, Ref) else self.z.plain
+        return f"(0, 0, {z}) cross {r}"
 
 
 @dataclass(frozen=True)

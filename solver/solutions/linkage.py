@@ -354,10 +354,6 @@ def det_row_z(b: StepBuilder, key: str) -> list[str]:
     return ["0", "0", b.num(key)]
 
 
-def det_row_z_symbol(symbol: str) -> list[str]:
-    return ["0", "0", symbol]
-
-
 # --- the common steps -------------------------------------------------------------------------
 
 
