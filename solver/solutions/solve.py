@@ -71,10 +71,10 @@ def _linkage_steps(
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
     were built in, and the method used. A part written with typed references (data, positions,
-    classification, polygons, instant centres, reading, summary) settles its digits as each step
-    is built; a part whose steps still format while written (the position, vector, loop,
-    moving-point and Newton-Euler steps) is built a second time where a step needs more digits,
-    by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
+    classification, polygons, instant centres, the vector method, reading, summary) settles its
+    digits as each step is built; a part whose steps still format while written (the position,
+    loop, moving-point and Newton-Euler steps) is built a second time where a step needs more
+    digits, by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
