@@ -171,14 +171,17 @@ class Signed:
 
 @dataclass(frozen=True)
 class Col:
-    """A vector value as a column in LaTeX (the unit after it with ``unit``), '(x, y) m/s' in
-    text."""
+    """A vector value as a column of ``dims`` entries in LaTeX (the unit after it with ``unit``),
+    '(x, y) m/s' in text."""
 
     ref: Ref
     unit: bool = False
+    dims: int = 3
 
     def latex(self, shows: Shows) -> str:
-        return shows.colu(self.ref) if self.unit else shows.col(self.ref)
+        if self.unit:
+            return shows.colu(self.ref, self.dims)
+        return shows.col(self.ref, self.dims)
 
     def text(self, shows: Shows) -> str:
         return shows.txt(self.ref)
@@ -289,8 +292,8 @@ class ColumnOf:
 
 @dataclass(frozen=True)
 class Paren:
-    """A scalar value as a factor: in parentheses where negative or with a power of ten in LaTeX
-    ('2 \\cdot (-1.5)'), as it is in text."""
+    """A scalar value as a factor: in parentheses where negative or with a power of ten
+    ('2 \\cdot (-1.5)', '2 x (-1.5)')."""
 
     ref: Ref
 
@@ -298,7 +301,7 @@ class Paren:
         return tex.paren(shows.num(self.ref))
 
     def text(self, shows: Shows) -> str:
-        return shows.txtn(self.ref)
+        return tex.paren(shows.txtn(self.ref))
 
 
 @dataclass(frozen=True)
