@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.digits import needed_digits
 from solver.solutions.format import Formatter
 
 
@@ -65,3 +66,17 @@ def test_each_equation_its_own_unknown() -> None:
     assert b.scalar("u1") == pytest.approx(0.5)
     assert b.scalar("u2") == pytest.approx(2.0)
     assert "D" not in b.values
+
+
+def test_the_written_solution_settles_its_digits_in_one_pass() -> None:
+    """Cramer's rule written with references: built once (no digit plan), the determinants and
+    the unknowns show in the LaTeX and the text as their values do, every check recomputing
+    from the digits shown."""
+    b = system([[0.0126544, -1.0], [0.5, 3.0]], [-0.03125, 4.0], cramer=True)
+    step = b.build()
+    assert not b.eager and b.plan is None
+    assert b.digits  # the premise: four digits do not recompute, some values show more
+    assert needed_digits(step.values, b.references, step.checks, b.fmt) == b.digits
+    for key in ("D", "D1", "D2", "u1", "u2"):
+        assert step.values[key].display in step.text
+        assert step.values[key].display in step.latex
