@@ -39,6 +39,20 @@ def perp(a: Array) -> Array:
 Column = Array | float
 
 
+def determinant_2x2(row1: tuple[Column, Column], row2: tuple[Column, Column]) -> Column:
+    """D = |r1 r2| = a11 a22 - a12 a21, the determinant of [row1; row2]."""
+    return row1[0] * row2[1] - row1[1] * row2[0]
+
+
+def cramer_numerators(
+    row1: tuple[Column, Column], row2: tuple[Column, Column], rhs: tuple[Column, Column]
+) -> tuple[Column, Column]:
+    """D1 = |b r2| = b1 a22 - b2 a12 and D2 = |r1 b| = a11 b2 - a21 b1, Cramer's numerators of
+    [row1; row2] x = rhs (x = (D1, D2) / D, ``solve_2x2``)."""
+    (a11, a12), (a21, a22) = row1, row2
+    return rhs[0] * a22 - rhs[1] * a12, a11 * rhs[1] - a21 * rhs[0]
+
+
 def solve_2x2(
     row1: tuple[Column, Column],
     row2: tuple[Column, Column],
@@ -49,11 +63,9 @@ def solve_2x2(
     """Cramer's rule for [row1; row2] x = rhs: x = (|b r2|, |r1 b|) / D, D = |r1 r2| =
     r1x r2y - r1y r2x (``det`` given where the caller has it, inf where it is 0), column by
     column over samples (written into ``out`` where given). The one 2-by-2 solve of the solver."""
-    (a11, a12), (a21, a22) = row1, row2
     if det is None:
-        det = a11 * a22 - a12 * a21
-    first = rhs[0] * a22 - rhs[1] * a12
-    second = a11 * rhs[1] - a21 * rhs[0]
+        det = determinant_2x2(row1, row2)
+    first, second = cramer_numerators(row1, row2, rhs)
     if out is None:
         return first / det, second / det
     np.divide(first, det, out=out[0])

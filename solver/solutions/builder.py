@@ -7,8 +7,9 @@ Equations and sentences (``solver.solutions.equation``) are rendered when the st
 after its checks have settled the digits in one pass. A step that formats numbers while it is
 written (``put`` and string keys, ``num``, ``txt``... called before ``build``) gets its digits
 from a ``DigitPlan`` instead: its part of the solution is built a second time. ``present_solution``
-writes a 2x2 linear system and its solution the way the seeds do: directly where one equation has
-a single unknown, by Cramer's rule with the determinants written out otherwise.
+writes a 2x2 linear system and its solution the way the seeds do (with references, its own pieces
+``Linear``, ``Term`` and ``QuotientOf``): directly where one equation has a single unknown, by
+Cramer's rule with the determinants written out otherwise.
 """
 
 from __future__ import annotations
@@ -19,9 +20,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from solver.kinematics.rigid import Column, cramer_numerators, determinant_2x2
 from solver.solutions import latex as tex
 from solver.solutions.digits import DigitPlan, needed_digits
-from solver.solutions.equation import Equation, Operand, Piece, Ref, latex_of, text_of
+from solver.solutions.equation import (
+    Boxed,
+    Det2,
+    Equation,
+    Frac,
+    Num,
+    Operand,
+    Paren,
+    Piece,
+    Ref,
+    Shows,
+    Sym,
+    latex_of,
+    text_of,
+)
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.model import Check, Number, Relation, Step, Value
 
@@ -319,6 +335,64 @@ def linear_text(
 
 
 @dataclass(frozen=True)
+class Linear:
+    """c1 u1 + c2 u2 of coefficient values and unknowns' symbols, written with the most digits any
+    coefficient is shown with, dropping the terms whose coefficient displays as 0 against
+    ``reference`` (at least '0')."""
+
+    coefficients: tuple[Ref, ...]
+    symbols: tuple[Sym, ...]
+    reference: float
+
+    def _terms(self, shows: Shows, latex: bool) -> str:
+        fmt = max((shows.fmt_of(c) for c in self.coefficients), key=lambda f: f.digits)
+        terms = [
+            (shows.scalar(c), s.tex if latex else s.plain)
+            for c, s in zip(self.coefficients, self.symbols, strict=True)
+        ]
+        return _linear(fmt, None, terms, self.reference, latex)
+
+    def latex(self, shows: Shows) -> str:
+        return self._terms(shows, latex=True)
+
+    def text(self, shows: Shows) -> str:
+        return self._terms(shows, latex=False)
+
+
+@dataclass(frozen=True)
+class Term:
+    """c u as the first term of a sum: 'u', '-u', '0.5\\,u' ('0.5 u' in text)."""
+
+    coefficient: Ref
+    symbol: Sym
+
+    def latex(self, shows: Shows) -> str:
+        c = self.coefficient
+        return term(shows.fmt_of(c), shows.scalar(c), self.symbol.tex, True, 0.0)
+
+    def text(self, shows: Shows) -> str:
+        c = self.coefficient
+        return term_text(shows.fmt_of(c), shows.scalar(c), self.symbol.plain, True, 0.0)
+
+
+@dataclass(frozen=True)
+class QuotientOf:
+    """' n/d =' between an unknown and its value: the fraction, or nothing where d is shown as
+    1 (the value is then n itself). LaTeX only."""
+
+    numerator: Ref
+    denominator: Ref
+
+    def latex(self, shows: Shows) -> str:
+        if shows.num(self.denominator) == "1":
+            return ""
+        return " " + Frac(self.numerator, self.denominator).latex(shows) + " ="
+
+    def text(self, shows: Shows) -> str:
+        return ""
+
+
+@dataclass(frozen=True)
 class Unknown:
     """An unknown of a linear system: its value key, symbols, unit and the solver's value."""
 
@@ -330,6 +404,10 @@ class Unknown:
     source: Source | None = None
     meaning: str = ""
 
+    @property
+    def symbol(self) -> Sym:
+        return Sym(self.latex, self.text)
+
 
 def _sense(fmt: Formatter, unknown: Unknown) -> str:
     if unknown.unit in ("rad/s", "rad/s^2") and not fmt.is_zero(unknown.value, unknown.unit):
@@ -337,11 +415,18 @@ def _sense(fmt: Formatter, unknown: Unknown) -> str:
     return ""
 
 
+Key = str | Ref
+
+
+def _ref(key: Key) -> Ref:
+    return key if isinstance(key, Ref) else Ref(key)
+
+
 def present_solution(
     b: StepBuilder,
     unknowns: Sequence[Unknown],
-    coefficients: Sequence[Sequence[str]],
-    rhs: Sequence[str],
+    coefficients: Sequence[Sequence[Key]],
+    rhs: Sequence[Key],
     prefix: str,
     cramer: bool = False,
 ) -> None:
@@ -349,17 +434,21 @@ def present_solution(
 
     Registers the unknowns with the solver's values, the equations as ``linear`` checks, and the
     solution: directly where a row has one unknown, else (or always with ``cramer``) by Cramer's
-    rule with the determinants written out (``det2``/``quotient`` checks).
+    rule with the determinants written out (``det2``/``quotient`` checks; their values from
+    ``kinematics.rigid``, the solver's one 2x2 solve). Written with references: the digits
+    settle when the step is built.
     """
     for u in unknowns:
         b.put(u.key, u.value, u.unit, u.source)
-    scales = [_equation(b, unknowns, coefficients[i], rhs[i], i) for i in range(len(unknowns))]
+    c = [[_ref(k) for k in row] for row in coefficients]
+    rs = [_ref(k) for k in rhs]
+    scales = [_equation(b, unknowns, c[i], rs[i], i) for i in range(len(unknowns))]
     if len(unknowns) == 1:
-        b.check("quotient", unknowns[0].key, rhs[0], coefficients[0][0])
-        _result(b, unknowns[0], _fraction(b, rhs[0], coefficients[0][0]))
+        b.check("quotient", unknowns[0].key, rs[0], c[0][0])
+        _result(b, unknowns[0], QuotientOf(rs[0], c[0][0]))
         return
     single = [
-        [j for j in range(2) if not b.fmt.is_zero(b.scalar(coefficients[i][j]), "", scales[i])]
+        [j for j in range(2) if not b.fmt.is_zero(b.scalar(c[i][j]), "", scales[i])]
         for i in range(2)
     ]
     if cramer:
@@ -367,32 +456,28 @@ def present_solution(
     if all(len(single[i]) == 1 for i in range(2)) and single[0][0] != single[1][0]:
         for i in range(2):  # each equation has its own single unknown
             j = single[i][0]
-            b.check("quotient", unknowns[j].key, rhs[i], coefficients[i][j])
-            _result(b, unknowns[j], _fraction(b, rhs[i], coefficients[i][j]))
+            b.check("quotient", unknowns[j].key, rs[i], c[i][j])
+            _result(b, unknowns[j], QuotientOf(rs[i], c[i][j]))
         return
     direct = next((i for i in range(2) if len(single[i]) == 1), None)
     if direct is not None:
-        _substitution(b, unknowns, coefficients, rhs, prefix, (direct, single[direct][0]), scales)
+        _substitution(b, unknowns, c, rs, prefix, (direct, single[direct][0]), scales)
         return
-    determinants = _cramer_values(b, unknowns, coefficients, rhs, prefix)
-    _write_cramer(b, unknowns, determinants)
+    _cramer(b, unknowns, c, rs, prefix)
 
 
 def _equation(
-    b: StepBuilder, unknowns: Sequence[Unknown], row: Sequence[str], rhs: str, i: int
+    b: StepBuilder, unknowns: Sequence[Unknown], row: Sequence[Ref], rhs: Ref, i: int
 ) -> float:
     """Equation i + 1, c_i1 u1 + c_i2 u2 = b_i, written with its ``linear`` check; returns the
     size of its largest coefficient (what a coefficient displaying as 0 is measured against)."""
-    n = len(unknowns)
     scale = max(abs(b.scalar(c)) for c in row)
-    terms = [(b.scalar(row[j]), unknowns[j].latex) for j in range(n)]
-    terms_text = [(b.scalar(row[j]), unknowns[j].text) for j in range(n)]
-    fmt = max((b.fmt_of(c) for c in row), key=lambda f: f.digits)
-    b.line("&" + linear_latex(fmt, None, terms, scale) + " = " + b.num(rhs))
-    b.say(f"Equation {i + 1}: {linear_text(fmt, None, terms_text, scale)} = {b.txtn(rhs)}.")
-    operands: list[str] = []
-    for j in range(n):
-        operands += [row[j], unknowns[j].key]
+    left = Linear(tuple(row), tuple(u.symbol for u in unknowns), scale)
+    b.line("&", left, " = ", Num(rhs))
+    b.say(f"Equation {i + 1}: ", left, " = ", Num(rhs), ".")
+    operands: list[Ref | str] = []
+    for coefficient, u in zip(row, unknowns, strict=True):
+        operands += [coefficient, u.key]
     b.check("linear", rhs, *operands)
     return scale
 
@@ -400,8 +485,8 @@ def _equation(
 def _substitution(
     b: StepBuilder,
     unknowns: Sequence[Unknown],
-    c: Sequence[Sequence[str]],
-    rhs: Sequence[str],
+    c: Sequence[Sequence[Ref]],
+    rhs: Sequence[Ref],
     prefix: str,
     pivot: tuple[int, int],
     scales: Sequence[float],
@@ -413,99 +498,89 @@ def _substitution(
     u, w = unknowns[j], unknowns[other]
     b.check("quotient", u.key, rhs[direct], c[direct][j])
     b.say(f"Equation {direct + 1} has the single unknown {u.text}.")
-    _result(b, u, _fraction(b, rhs[direct], c[direct][j]))
-    c_key = c[other_row][other]
-    c_other = b.scalar(c_key)
-    if b.fmt.is_zero(c_other, "", scales[other_row]):
+    _result(b, u, QuotientOf(rhs[direct], c[direct][j]))
+    c_w = c[other_row][other]
+    if b.fmt.is_zero(b.scalar(c_w), "", scales[other_row]):
         b.say(f"{w.text} does not appear in the equations: it is not determined by them.")
         return
     known = b.scalar(c[other_row][j]) * u.value
-    rest = b.put(
+    rest = b.value(
         f"{prefix}rest",
         b.scalar(rhs[other_row]) - known,
         "",
         reference=abs(b.scalar(rhs[other_row])) + abs(known),
     )
-    b.check("quotient", w.key, rest, c_key)
+    b.check("quotient", w.key, rest, c_w)
+    left = Term(c_w, w.symbol)
     b.line(
-        rf"&{term(b.fmt_of(c_key), c_other, w.latex, True, 0.0)} = {b.num(rhs[other_row])} - "
-        rf"{tex.paren(b.num(c[other_row][j]))} \cdot {tex.paren(b.num(u.key))} = {b.num(rest)}"
+        "&",
+        left,
+        " = ",
+        Num(rhs[other_row]),
+        " - ",
+        Paren(c[other_row][j]),
+        r" \cdot ",
+        Paren(Ref(u.key)),
+        " = ",
+        Num(rest),
     )
-    b.say(
-        f"Substituting into equation {other_row + 1}: "
-        f"{term_text(b.fmt_of(c_key), c_other, w.text, True, 0.0)} = {b.txtn(rest)}."
-    )
-    _result(b, w, _fraction(b, rest, c_key))
+    b.say(f"Substituting into equation {other_row + 1}: ", left, " = ", Num(rest), ".")
+    _result(b, w, QuotientOf(rest, c_w))
 
 
-Matrix2 = tuple[tuple[str, str], tuple[str, str]]
-
-
-def _det2(b: StepBuilder, key: str, m: Matrix2) -> str:
-    """D = m11 m22 - m12 m21 with its ``det2`` check; its reference is the size of the two
-    products (a value or the size it was computed from, whichever is larger)."""
-
-    def size(k: str) -> float:
-        return max(abs(b.scalar(k)), b.references[k])
-
-    (m11, m12), (m21, m22) = m
-    value = b.scalar(m11) * b.scalar(m22) - b.scalar(m12) * b.scalar(m21)
-    reference = size(m11) * size(m22) + size(m12) * size(m21)
-    b.put(key, value, "", reference=reference)
-    b.check("det2", key, m11, m12, m21, m22)
-    return key
-
-
-def _cramer_values(
+def _cramer(
     b: StepBuilder,
     unknowns: Sequence[Unknown],
-    c: Sequence[Sequence[str]],
-    rhs: Sequence[str],
+    c: Sequence[Sequence[Ref]],
+    rhs: Sequence[Ref],
     prefix: str,
-) -> list[tuple[str, Matrix2]]:
-    """Cramer's rule u_j = D_j / D, D = det c and D_j = det c with column j replaced by b:
-    [(D, c), (D1, its matrix), (D2, its matrix)], each with its checks."""
-    matrix: Matrix2 = ((c[0][0], c[0][1]), (c[1][0], c[1][1]))
-    out = [(_det2(b, f"{prefix}D", matrix), matrix)]
-    for j in range(2):
+) -> None:
+    """Cramer's rule u_j = D_j / D, D = det c and D_j = det c with column j replaced by b (the
+    solver's ``determinant_2x2`` and ``cramer_numerators``), each with its checks, written
+    out: D, then D_j and u_j = D_j / D for each unknown."""
+    rows = ((c[0][0], c[0][1]), (c[1][0], c[1][1]))
+    values = [[b.scalar(x) for x in row] for row in rows]
+    row1, row2 = (values[0][0], values[0][1]), (values[1][0], values[1][1])
+    sides = (b.scalar(rhs[0]), b.scalar(rhs[1]))
+    det = _det2(b, f"{prefix}D", rows, determinant_2x2(row1, row2))
+    b.line("&D = ", Det2(rows), " = ", Num(det))
+    b.say("By Cramer's rule, the determinant of the coefficients is D = ", Num(det), ".")
+    for j, numerator in enumerate(cramer_numerators(row1, row2, sides)):
         column: Matrix2 = (
             ((rhs[0], c[0][1]), (rhs[1], c[1][1]))
             if j == 0
             else ((c[0][0], rhs[0]), (c[1][0], rhs[1]))
         )
-        out.append((_det2(b, f"{prefix}D{j + 1}", column), column))
-        b.check("quotient", unknowns[j].key, out[-1][0], out[0][0])
-    return out
+        dj = _det2(b, f"{prefix}D{j + 1}", column, numerator)
+        b.check("quotient", unknowns[j].key, dj, det)
+        b.line(f"&D_{j + 1} = ", Det2(column), " = ", Num(dj))
+        b.say(f"D{j + 1}, with column {j + 1} replaced by the right-hand sides, is ", Num(dj), ".")
+        _result(b, unknowns[j], rf" \frac{{D_{j + 1}}}{{D}} = ", Frac(dj, det), " =")
 
 
-def _write_cramer(
-    b: StepBuilder, unknowns: Sequence[Unknown], determinants: list[tuple[str, Matrix2]]
-) -> None:
-    """Write D, then D_j and u_j = D_j / D for each unknown (``_cramer_values``)."""
-
-    def written(m: Matrix2) -> str:
-        return tex.determinant2([[b.num(m[i][k]) for k in range(2)] for i in range(2)])
-
-    (det, matrix), *columns = determinants
-    b.line(rf"&D = {written(matrix)} = {b.num(det)}")
-    b.say(f"By Cramer's rule, the determinant of the coefficients is D = {b.txtn(det)}.")
-    for j, (dj, column) in enumerate(columns):
-        b.line(rf"&D_{j + 1} = {written(column)} = {b.num(dj)}")
-        b.say(f"D{j + 1}, with column {j + 1} replaced by the right-hand sides, is {b.txtn(dj)}.")
-        _result(b, unknowns[j], rf"\frac{{D_{j + 1}}}{{D}} = \frac{{{b.num(dj)}}}{{{b.num(det)}}}")
+Matrix2 = tuple[tuple[Ref, Ref], tuple[Ref, Ref]]
 
 
-def _fraction(b: StepBuilder, numerator: str, denominator: str) -> str:
-    """The fraction n/d in LaTeX, or '' when d displays as 1 (the result is then n itself)."""
-    if b.num(denominator) == "1":
-        return ""
-    return rf"\frac{{{b.num(numerator)}}}{{{b.num(denominator)}}}"
+def _det2(b: StepBuilder, key: str, m: Matrix2, value: Column) -> Ref:
+    """D = m11 m22 - m12 m21 (``value``) with its ``det2`` check; its reference is the size of
+    the two products (a value or the size it was computed from, whichever is larger)."""
+
+    def size(k: Ref) -> float:
+        return max(abs(b.scalar(k)), b.references[k.key])
+
+    (m11, m12), (m21, m22) = m
+    reference = size(m11) * size(m22) + size(m12) * size(m21)
+    det = b.value(key, float(value), "", reference=reference)
+    b.check("det2", det, m11, m12, m21, m22)
+    return det
 
 
-def _result(b: StepBuilder, u: Unknown, fraction: str) -> None:
-    middle = f" {fraction} =" if fraction else ""
-    b.line(rf"&{u.latex} ={middle} {tex.boxed_result(b.numu(u.key))}")
+def _result(b: StepBuilder, u: Unknown, *middle: Piece) -> None:
+    """u = [middle] boxed value, and 'So u = value (sense): meaning.'"""
+    value = Num(Ref(u.key), unit=True)
+    b.line(f"&{u.latex} =", *middle, " ", Boxed((value,)))
     b.say(
-        f"So {u.text} = {b.txt(u.key)}{_sense(b.fmt, u)}"
-        + (f": {u.meaning}." if u.meaning else ".")
+        f"So {u.text} = ",
+        value,
+        _sense(b.fmt, u) + (f": {u.meaning}." if u.meaning else "."),
     )

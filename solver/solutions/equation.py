@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from solver.solutions import latex as tex
-from solver.solutions.format import latex_unit
+from solver.solutions.format import Formatter, latex_unit
 
 
 @dataclass(frozen=True)
@@ -69,6 +69,8 @@ class Shows(Protocol):
     def entries(self, key: str | Ref, dims: int = 3) -> list[str]: ...
     def txt(self, key: str | Ref) -> str: ...
     def txtn(self, key: str | Ref) -> str: ...
+    def scalar(self, key: str | Ref) -> float: ...
+    def fmt_of(self, key: str | Ref) -> Formatter: ...
 
 
 class Token(Protocol):
@@ -169,14 +171,17 @@ class Signed:
 
 @dataclass(frozen=True)
 class Col:
-    """A vector value as a column in LaTeX (the unit after it with ``unit``), '(x, y) m/s' in
-    text."""
+    """A vector value as a column of ``dims`` entries in LaTeX (the unit after it with ``unit``),
+    '(x, y) m/s' in text."""
 
     ref: Ref
     unit: bool = False
+    dims: int = 3
 
     def latex(self, shows: Shows) -> str:
-        return shows.colu(self.ref) if self.unit else shows.col(self.ref)
+        if self.unit:
+            return shows.colu(self.ref, self.dims)
+        return shows.col(self.ref, self.dims)
 
     def text(self, shows: Shows) -> str:
         return shows.txt(self.ref)
@@ -239,17 +244,78 @@ class Boxed:
 
 @dataclass(frozen=True)
 class ZCross:
-    """(0, 0, z) x r of a planar z-component and a vector: the determinant with the unit vectors
-    in its first row in LaTeX, '(0, 0, z) cross r' in text."""
+    """(0, 0, z) x r of a planar z-component (a value or a symbol) and a vector (a value, or the
+    symbols of its two components): the determinant with the unit vectors in its first row in LaTeX,
+    '(0, 0, z) cross r' in text."""
 
-    z: Ref
-    r: Ref
+    z: Ref | Sym
+    r: Ref | tuple[str, str]
 
     def latex(self, shows: Shows) -> str:
-        return tex.determinant3(["0", "0", shows.num(self.z)], shows.entries(self.r))
+        r = shows.entries(self.r) if isinstance(self.r, Ref) else [*self.r, "0"]
+        z = shows.num(self.z) if isinstance(self.z, Ref) else self.z.tex
+        return tex.determinant3(["0", "0", z], r)
 
     def text(self, shows: Shows) -> str:
-        return f"(0, 0, {shows.txtn(self.z)}) cross {shows.txtn(self.r)}"
+        r = shows.txtn(self.r) if isinstance(self.r, Ref) else f"({self.r[0]}, {self.r[1]})"
+        z = shows.txtn(self.z) if isinstance(self.z, Ref) else self.z.plain
+        return f"(0, 0, {z}) cross {r}"
+
+
+@dataclass(frozen=True)
+class Component:
+    """Component i of a vector value, as its column shows it."""
+
+    ref: Ref
+    index: int
+
+    def latex(self, shows: Shows) -> str:
+        return shows.entries(self.ref)[self.index]
+
+    def text(self, shows: Shows) -> str:
+        return shows.entries(self.ref)[self.index]
+
+
+@dataclass(frozen=True)
+class ColumnOf:
+    """A column of entries, each a row of pieces ('-2\\, r_y'): a column vector in LaTeX,
+    '(a, b, c)' in text."""
+
+    entries: tuple[tuple[Piece, ...], ...]
+
+    def latex(self, shows: Shows) -> str:
+        return tex.column([latex_of(e, shows) for e in self.entries])
+
+    def text(self, shows: Shows) -> str:
+        return "(" + ", ".join(text_of(e, shows) for e in self.entries) + ")"
+
+
+@dataclass(frozen=True)
+class Paren:
+    """A scalar value as a factor: in parentheses where negative or with a power of ten
+    ('2 \\cdot (-1.5)', '2 x (-1.5)')."""
+
+    ref: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return tex.paren(shows.num(self.ref))
+
+    def text(self, shows: Shows) -> str:
+        return tex.paren(shows.txtn(self.ref))
+
+
+@dataclass(frozen=True)
+class Det2:
+    """A 2x2 determinant of scalar values written out: '\\begin{vmatrix} a & b \\\\ c & d
+    \\end{vmatrix}' in LaTeX, '|a b; c d|' in text."""
+
+    rows: tuple[tuple[Ref, Ref], tuple[Ref, Ref]]
+
+    def latex(self, shows: Shows) -> str:
+        return tex.determinant2([[shows.num(x) for x in row] for row in self.rows])
+
+    def text(self, shows: Shows) -> str:
+        return "|" + "; ".join(" ".join(shows.txtn(x) for x in row) for row in self.rows) + "|"
 
 
 TIMES = Sym(r" \times ", " cross ")

@@ -34,8 +34,11 @@ from solver.solutions.equation import (
     Alt,
     Boxed,
     Col,
+    ColumnOf,
+    Component,
     Equation,
     Num,
+    Paren,
     Piece,
     Pt,
     Ref,
@@ -339,12 +342,16 @@ def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
     return scalar_z * perp(np.asarray(r, dtype=float))
 
 
+def origin(b: StepBuilder, ctx: LinkageContext, point: str, motion: Ref) -> Piece:
+    """The motion of ``point`` as a column: the zero vector in LaTeX for a fixed point at rest
+    (its value in text)."""
+    if ctx.is_fixed(point) and b.is_zero(motion):
+        return Alt((V0,), (Col(motion),))
+    return Col(motion)
+
+
 def det_row_z(b: StepBuilder, key: str) -> list[str]:
     return ["0", "0", b.num(key)]
-
-
-def det_row_z_symbol(symbol: str) -> list[str]:
-    return ["0", "0", symbol]
 
 
 # --- the common steps -------------------------------------------------------------------------
@@ -510,7 +517,7 @@ def rigid_velocity_step(
     vy = b.value(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
     b.check("cross", wxr, w, r)
     b.check("sum", vy, vx, wxr)
-    base_v: Piece = Alt((V0,), (Col(vx),)) if ctx.is_fixed(base) and b.is_zero(vx) else Col(vx)
+    base_v = origin(b, ctx, base, vx)
     relative_velocity = Equation.of(
         Sym(v_vec(target), f"v({target})"),
         (
@@ -541,74 +548,98 @@ def rigid_acceleration_step(
     ctx.use(base, target)
     r_np = ctx.pos(target) - ctx.pos(base)
     omega, alpha = ctx.omega(link), ctx.alpha(link)
-    ax = b.put(f"a({base})", ctx.acc(base), "m/s^2", ("points", base, "acceleration"))
-    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
-    al = b.put(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
-    r = b.put(f"r({base},{target})", r_np, "m")
-    t = b.put(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
-    n = b.put(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
-    ay = b.put(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
-    w2 = b.put(f"omega^2({link})", omega**2, "1/s^2")
+    ax = b.value(f"a({base})", ctx.acc(base), "m/s^2", ("points", base, "acceleration"))
+    w = b.value(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    al = b.value(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
+    r = b.value(f"r({base},{target})", r_np, "m")
+    t = b.value(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
+    n = b.value(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
+    ay = b.value(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
+    w2 = b.value(f"omega^2({link})", omega**2, "1/s^2")
     b.check("cross", t, al, r)
     b.check("product", w2, w, w)
     b.check("product", n, w2, r, factor=-1.0)
     b.check("sum", ay, ax, t, n)
     if reason:
         b.say(reason)
-    _write_rigid_acceleration(
-        ctx, b, (link, base, target), V0 if ctx.is_fixed(base) and b.is_zero(ax) else b.col(ax)
-    )
+    base_a = origin(b, ctx, base, ax)
+    _write_rigid_acceleration(b, (link, base, target), base_a, (w, al, r, t, n, ay, w2))
     ctx.shown_acceleration.add(target)
     return b.build()
 
 
 def _write_rigid_acceleration(
-    ctx: LinkageContext, b: StepBuilder, names: tuple[str, str, str], base_tex: str
+    b: StepBuilder,
+    names: tuple[str, str, str],
+    base_a: Piece,
+    refs: tuple[Ref, Ref, Ref, Ref, Ref, Ref, Ref],
 ) -> None:
     """The equation a_Y = a_X + alpha x r - omega^2 r, its determinant and its sum, in LaTeX and
-    in words (the values registered by ``rigid_acceleration_step``)."""
+    in words (``base_a`` is a_X: the zero vector in LaTeX where X is fixed)."""
     link, base, target = names
-    ax, w, r = f"a({base})", f"omega({link})", f"r({base},{target})"
-    t, n, ay = f"alpha x r({base},{target})", f"normal({base},{target})", f"a({target})"
-    w2 = f"omega^2({link})"
+    w, al, r, t, n, ay, w2 = refs
+    again = rf"&\phantom{{{a_vec(target)}}} = "
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
     )
+    b.line(again, base_a, " + ", ZCross(al, r), " - ", Paren(w), r"^2 \cdot ", Col(r))
     b.line(
-        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + "
-        rf"{tex.determinant3(det_row_z(b, f'alpha({link})'), b.entries(r))} - "
-        rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
-    )
-    b.line(
-        rf"&\phantom{{{a_vec(target)}}} = {base_tex} + {b.col(t)} - {b.num(w2)} \cdot "
-        rf"{b.col(r)} = {base_tex} + {b.col(t)} + {b.col(n)} = {tex.boxed_result(b.colu(ay))}"
+        again,
+        base_a,
+        " + ",
+        Col(t),
+        " - ",
+        Num(w2),
+        r" \cdot ",
+        Col(r),
+        " = ",
+        base_a,
+        " + ",
+        Col(t),
+        " + ",
+        Col(n),
+        " = ",
+        Boxed((Col(ay, unit=True),)),
     )
     b.say(
         f"a({target}) = a({base}) + alpha({link}) cross r({base},{target}) - omega({link}) "
-        f"squared times r({base},{target}) = {b.txt(ax)} + {b.txt(t)} + {b.txt(n)} = "
-        f"{b.txt(ay)}; the normal term is -({b.txtn(w)}) squared = "
-        f"-{b.txtn(w2)} times r, pointing from {target} towards {base}."
+        f"squared times r({base},{target}) = ",
+        base_a,
+        " + ",
+        Col(t),
+        " + ",
+        Col(n),
+        " = ",
+        Col(ay),
+        "; the normal term is -(",
+        Num(w),
+        ") squared = -",
+        Num(w2),
+        f" times r, pointing from {target} towards {base}.",
     )
 
 
 def _pole_at_pivot(
-    ctx: LinkageContext, b: StepBuilder, link: str, pole: str, sub: str, order: int, why: str
+    ctx: LinkageContext, b: StepBuilder, link: str, pole: Ref, sub: str, order: int, why: str
 ) -> Step | None:
     """P = Q (G = Q): the pole of a link turning about the fixed joint Q, else None."""
     pivot = ctx.ground_pivot(link)
     if pivot is None:
         return None
-    o = b.put(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
+    o = b.value(f"pos({pivot})", ctx.pos(pivot), "m", ("points", pivot, "position"))
     b.check("sum", pole, o)
     symbol = v_vec if order == VELOCITY else a_vec
     b.line(
-        rf"&{sub} = {tex.name(pivot)} = {b.point(pole)}{latex_unit('m')}"
-        rf" \quad \text{{(fixed pivot: }} {symbol(pivot)} = {V0}\text{{)}}"
+        rf"&{sub} = {tex.name(pivot)} = ",
+        Pt(pole, "m"),
+        rf" \quad \text{{(fixed pivot: }} {symbol(pivot)} = {V0}\text{{)}}",
     )
     b.say(
         f"Link {link} turns about the fixed joint {pivot}{why}: its {MOTION[order][0]} pole is "
-        f"{pivot} = {b.txt(pole)}."
+        f"{pivot} = ",
+        Pt(pole),
+        ".",
     )
     return b.build()
 
@@ -618,18 +649,20 @@ def velocity_pole_step(ctx: LinkageContext, link: str) -> Step:
     result = ctx.analysis.links[link]
     b = ctx.builder("poles.velocity", f"Velocity pole of link {link}")
     sub = "P_{" + tex.name(link) + "}"
-    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
     if result.velocity_pole is None:
         b.line(
-            rf"&{w_sym(link)} = {b.numu(w)} \;\Rightarrow\; \text{{no velocity pole "
-            r"(it is at infinity)}"
+            rf"&{w_sym(link)} = ",
+            Num(w, unit=True),
+            r" \;\Rightarrow\; \text{no velocity pole (it is at infinity)}",
         )
         b.say(
-            f"Link {link} translates at this instant (omega({link}) = {b.txt(w)}): all its "
-            "points have the same velocity, so its velocity pole is at infinity."
+            f"Link {link} translates at this instant (omega({link}) = ",
+            Num(w, unit=True),
+            "): all its points have the same velocity, so its velocity pole is at infinity.",
         )
         return b.build()
-    pole = b.put(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
+    pole = b.value(f"P({link})", result.velocity_pole, "m", ("links", link, "velocity_pole"))
     at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, VELOCITY, "")
     if at_pivot is not None:
         return at_pivot
@@ -652,38 +685,49 @@ def _velocity_pole_from(
     """v_X = omega x r_PX solved for r_PX = (v_y / omega, -v_x / omega), then P = X - r_PX;
     r_PX . v_X = 0 shows the pole on the perpendicular to v_X."""
     sub = "P_{" + tex.name(link) + "}"
-    w, pole = f"omega({link})", f"P({link})"
+    w, pole = Ref(f"omega({link})"), Ref(f"P({link})")
     v = ctx.vel(x)
     r_np = ctx.pos(x) - pole_np
-    vx = b.put(f"v({x})", v, "m/s", ("points", x, "velocity"))
-    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
-    r = b.put(f"r(P,{x})", r_np, "m")
-    d = b.put(
+    vx = b.value(f"v({x})", v, "m/s", ("points", x, "velocity"))
+    px = b.value(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    r = b.value(f"r(P,{x})", r_np, "m")
+    d = b.value(
         f"r(P,{x}).v({x})",
         float(np.dot(r_np, v)),
         "m^2/s",
         reference=float(np.hypot(*r_np) * np.hypot(*v)),
     )
     b.check("cross", vx, w, r)
-    b.check("sum", pole, px, f"-{r}")
+    b.check("sum", pole, px, -r)
     b.check("dot", d, r, vx)
     rx, ry = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
-    vxv = b.entries(vx)
-    expanded = tex.column(["-" + tex.paren(b.num(w)) + r"\, " + ry, b.num(w) + r"\, " + rx, "0"])
+    r_px = rf"\vec{{r}}_{{{sub}{tex.name(x)}}}"
+    expanded = ColumnOf((("-", Paren(w), rf"\, {ry}"), (Num(w), rf"\, {rx}"), ("0",)))
+    b.line("&", Col(vx), f" = {V0} + ", ZCross(w, (rx, ry)), " = ", expanded)
     b.line(
-        rf"&{b.col(vx)} = {V0} + {tex.determinant3(det_row_z(b, w), [rx, ry, '0'])} = "
-        rf"{expanded}"
-    )
-    b.line(
-        rf"&\Rightarrow {ry} = -\frac{{{vxv[0]}}}{{{b.num(w)}}}, \quad {rx} = "
-        rf"\frac{{{vxv[1]}}}{{{b.num(w)}}}, \quad \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-        rf"{b.colu(r)}, \quad {sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
+        rf"&\Rightarrow {ry} = -\frac{{",
+        Component(vx, 0),
+        "}{",
+        Num(w),
+        rf"}}, \quad {rx} = \frac{{",
+        Component(vx, 1),
+        "}{",
+        Num(w),
+        rf"}}, \quad {r_px} = ",
+        Col(r, unit=True),
+        rf", \quad {sub} = {tex.name(x)} - {r_px} = ",
+        Boxed((Pt(pole, "m"),)),
     )
     b.say(
-        f"From {x}: v({x}) = {b.txt(vx)} = omega({link}) cross r(P,{x}) gives r(P,{x}) = "
-        f"{b.txt(r)}, perpendicular to v({x}) (dot product {b.txtn(d)}), so P = {x} - "
-        f"r(P,{x}) = {b.txt(pole)}."
+        f"From {x}: v({x}) = ",
+        Col(vx),
+        f" = omega({link}) cross r(P,{x}) gives r(P,{x}) = ",
+        Col(r),
+        f", perpendicular to v({x}) (dot product ",
+        Num(d),
+        f"), so P = {x} - r(P,{x}) = ",
+        Pt(pole),
+        ".",
     )
 
 
@@ -692,12 +736,15 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
     result = ctx.analysis.links[link]
     b = ctx.builder("poles.acceleration", f"Acceleration pole of link {link}")
     sub = "G_{" + tex.name(link) + "}"
-    w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-    al = b.put(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
+    w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+    al = b.value(f"alpha({link})", ctx.alpha(link), "rad/s^2", ctx.link_source(link, "alpha"))
     if result.acceleration_pole is None:
         b.line(
-            rf"&{w_sym(link)} = {b.numu(w)}, \quad {a_sym(link)} = {b.numu(al)} "
-            r"\;\Rightarrow\; \text{no acceleration pole}"
+            rf"&{w_sym(link)} = ",
+            Num(w, unit=True),
+            rf", \quad {a_sym(link)} = ",
+            Num(al, unit=True),
+            r" \;\Rightarrow\; \text{no acceleration pole}",
         )
         b.say(
             f"omega({link}) and alpha({link}) are both zero: the link translates without "
@@ -705,7 +752,9 @@ def acceleration_pole_step(ctx: LinkageContext, link: str) -> Step:
             "pole."
         )
         return b.build()
-    pole = b.put(f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole"))
+    pole = b.value(
+        f"G({link})", result.acceleration_pole, "m", ("links", link, "acceleration_pole")
+    )
     at_pivot = _pole_at_pivot(ctx, b, link, pole, sub, ACCELERATION, ", whose acceleration is zero")
     if at_pivot is not None:
         return at_pivot
@@ -722,12 +771,12 @@ def _acceleration_pole_from(
     """a_X = alpha x r_GX - omega^2 r_GX: the 2x2 system
     [-omega^2, -alpha; alpha, -omega^2] r_GX = a_X solved by Cramer's rule, then G = X - r_GX."""
     sub = "G_{" + tex.name(link) + "}"
-    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    w, al, pole = Ref(f"omega({link})"), Ref(f"alpha({link})"), Ref(f"G({link})")
     omega, alpha = ctx.omega(link), ctx.alpha(link)
     a = ctx.acc(x)
     r_np = ctx.pos(x) - pole_np
-    ax = b.put(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
-    px = b.put(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
+    ax = b.value(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
+    px = b.value(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
     rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
     b.line(
         rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
@@ -735,42 +784,47 @@ def _acceleration_pole_from(
         rf"\quad \vec{{a}}_{{{sub}}} = {V0}"
     )
     b.line(
-        rf"&{b.col(ax)} = {tex.determinant3(det_row_z(b, al), [rx_sym, ry_sym, '0'])} - "
-        rf"{tex.paren(b.num(w))}^2 {tex.column([rx_sym, ry_sym, '0'])}"
+        "&",
+        Col(ax),
+        " = ",
+        ZCross(al, (rx_sym, ry_sym)),
+        " - ",
+        Paren(w),
+        "^2 " + tex.column([rx_sym, ry_sym, "0"]),
     )
     coefficients = _pole_coefficients(b, omega, alpha, w, al)
-    b1 = b.put("b1", float(a[0]), "m/s^2")
-    b2 = b.put("b2", float(a[1]), "m/s^2")
-    b.check("sum", b1, f"{ax}[0]")
-    b.check("sum", b2, f"{ax}[1]")
+    b1 = b.value("b1", float(a[0]), "m/s^2")
+    b2 = b.value("b2", float(a[1]), "m/s^2")
+    b.check("sum", b1, ax[0])
+    b.check("sum", b2, ax[1])
     b.say(
         f"The acceleration pole G of link {link} is the point of the link with zero "
         f"acceleration: a({x}) = alpha cross r(G,{x}) - omega squared r(G,{x}), two equations "
         f"for the components of r(G,{x})."
     )
-    r = b.put(f"r(G,{x})", r_np, "m")
+    r = b.value(f"r(G,{x})", r_np, "m")
     unknowns = [
-        Unknown(f"{r}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
-        Unknown(f"{r}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1])),
+        Unknown(f"{r.key}[0]", rx_sym, f"r(G,{x}) x-component", "m", float(r_np[0])),
+        Unknown(f"{r.key}[1]", ry_sym, f"r(G,{x}) y-component", "m", float(r_np[1])),
     ]
     present_vector_unknowns(b, unknowns, coefficients, [b1, b2], "G:")
-    b.check("sum", pole, px, f"-{r}")
+    b.check("sum", pole, px, -r)
     b.line(
-        rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = "
-        rf"{tex.boxed_result(b.point(pole) + latex_unit('m'))}"
+        rf"&{sub} = {tex.name(x)} - \vec{{r}}_{{{sub}{tex.name(x)}}} = ",
+        Boxed((Pt(pole, "m"),)),
     )
-    b.say(f"G = {x} - r(G,{x}) = {b.txt(pole)}.")
+    b.say(f"G = {x} - r(G,{x}) = ", Pt(pole), ".")
 
 
 def _pole_coefficients(
-    b: StepBuilder, omega: float, alpha: float, w: str, al: str
-) -> list[list[str]]:
+    b: StepBuilder, omega: float, alpha: float, w: Ref, al: Ref
+) -> list[list[Ref]]:
     """The matrix of a_X = alpha x r - omega^2 r in r: [[-omega^2, -alpha], [alpha, -omega^2]]."""
     w2 = omega**2
-    c11 = b.put("c11", -w2, "")
-    c12 = b.put("c12", -alpha, "")
-    c21 = b.put("c21", alpha, "")
-    c22 = b.put("c22", -w2, "")
+    c11 = b.value("c11", -w2, "")
+    c12 = b.value("c12", -alpha, "")
+    c21 = b.value("c21", alpha, "")
+    c22 = b.value("c22", -w2, "")
     b.check("product", c11, w, w, factor=-1.0)
     b.check("product", c12, al, factor=-1.0)
     b.check("product", c21, al)
@@ -783,42 +837,52 @@ def _acceleration_pole_check(
 ) -> None:
     """The check at a second point Y: a_Y = alpha x r_GY - omega^2 r_GY."""
     sub = "G_{" + tex.name(link) + "}"
-    w, al, pole = f"omega({link})", f"alpha({link})", f"G({link})"
+    w, al, pole = Ref(f"omega({link})"), Ref(f"alpha({link})"), Ref(f"G({link})")
     ry_np = ctx.pos(y) - pole_np
-    ay = b.put(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
-    ry = b.put(f"r(G,{y})", ry_np, "m")
-    py = b.put(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
-    t = b.put(f"alpha x r(G,{y})", k_cross(ctx.alpha(link), ry_np), "m/s^2")
-    n = b.put(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
-    b.check("sum", ry, py, f"-{pole}")
+    ay = b.value(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
+    ry = b.value(f"r(G,{y})", ry_np, "m")
+    py = b.value(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
+    t = b.value(f"alpha x r(G,{y})", k_cross(ctx.alpha(link), ry_np), "m/s^2")
+    n = b.value(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
+    b.check("sum", ry, py, -pole)
     b.check("cross", t, al, ry)
     b.check("product", n, w, w, ry, factor=-1.0)
     b.check("sum", ay, t, n)
     b.line(
         rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "
-        rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = "
-        rf"{b.col(t)} + {b.col(n)} = {b.colu(ay)} = {a_vec(y)}"
+        rf"\vec{{r}}_{{{sub}{tex.name(y)}}} - \omega^2 \vec{{r}}_{{{sub}{tex.name(y)}}} = ",
+        Col(t),
+        " + ",
+        Col(n),
+        " = ",
+        Col(ay, unit=True),
+        f" = {a_vec(y)}",
     )
     b.say(
-        f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = {b.txt(t)} + "
-        f"{b.txt(n)} = {b.txt(ay)}, the acceleration of {y}."
+        f"Check at {y}: alpha cross r(G,{y}) - omega squared r(G,{y}) = ",
+        Col(t),
+        " + ",
+        Col(n),
+        " = ",
+        Col(ay),
+        f", the acceleration of {y}.",
     )
 
 
 def present_vector_unknowns(
     b: StepBuilder,
     unknowns: list[Unknown],
-    coefficients: list[list[str]],
-    rhs: list[str],
+    coefficients: Sequence[Sequence[str | Ref]],
+    rhs: Sequence[str | Ref],
     prefix: str,
 ) -> None:
     """``present_solution`` for unknowns that are components of an already registered vector."""
     # The unknowns' values live in the vector value; register scalar copies for the checks.
     renamed = []
     for u in unknowns:
-        key = b.put(u.key.replace("[0]", ".x").replace("[1]", ".y"), u.value, u.unit)
+        key = b.value(u.key.replace("[0]", ".x").replace("[1]", ".y"), u.value, u.unit)
         b.check("sum", key, u.key)
-        renamed.append(Unknown(key, u.latex, u.text, u.unit, u.value, u.source, u.meaning))
+        renamed.append(Unknown(key.key, u.latex, u.text, u.unit, u.value, u.source, u.meaning))
     present_solution(b, renamed, coefficients, rhs, prefix)
 
 

@@ -23,6 +23,7 @@ from solver.dynamics.loads import dynamics_of
 from solver.kinematics.rigid import cross, dot
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
+from solver.solutions.equation import Boxed, Col, Frac, Num, Paren, Piece, Pt, Ref, Signed, joined
 from solver.solutions.free_body import Arrow, Couple, figure
 from solver.solutions.linkage import LinkageContext, k_cross
 from solver.solutions.model import Mistake, Step, Value
@@ -73,33 +74,42 @@ class _Dynamics:
 def _data_step(d: _Dynamics) -> Step:
     ctx = d.ctx
     b = ctx.builder("dynamics.data", "Masses and loads at this instant")
-    lines = []
+    lines: list[tuple[Piece, ...]] = []
     for e in d.forces.elements:
-        m = b.put(f"m({e.name})", e.mass, "kg")
-        G = b.put(f"r_G({e.name})", e.p[0], "m")
+        m = b.value(f"m({e.name})", e.mass, "kg")
+        G = b.value(f"r_G({e.name})", e.p[0], "m")
+        name = rf"&\text{{{tex.escape_text(e.name)}}}: m = "
         if e.inertia:
-            inertia = b.put(f"I_G({e.name})", e.inertia, "kg m^2")
+            inertia = b.value(f"I_G({e.name})", e.inertia, "kg m^2")
             lines.append(
-                rf"&\text{{{tex.escape_text(e.name)}}}: m = {b.numu(m)},\; "
-                rf"I_G = {b.numu(inertia)},\; \vec r_G = {b.point(G)}"
+                (
+                    name,
+                    Num(m, unit=True),
+                    r",\; I_G = ",
+                    Num(inertia, unit=True),
+                    r",\; \vec r_G = ",
+                    Pt(G),
+                )
             )
         else:
-            lines.append(
-                rf"&\text{{{tex.escape_text(e.name)}}}: m = {b.numu(m)},\; \vec r = {b.point(G)}"
-            )
-    g = b.put("g", d.gravity, "m/s^2")
-    lines.append(rf"&\vec g = {b.point(g)}\,\mathrm{{m/s^2}}")
+            lines.append((name, Num(m, unit=True), r",\; \vec r = ", Pt(G)))
+    g = b.value("g", d.gravity, "m/s^2")
+    lines.append((r"&\vec g = ", Pt(g), r"\,\mathrm{m/s^2}"))
     for f in d.forces.forces:
-        key = b.put(f"F({f.name})", f.force[0], FORCE, None)
+        key = b.value(f"F({f.name})", f.force[0], FORCE, None)
         lines.append(
-            rf"&\vec F_{{{tex.name(f.name)}}} = {b.point(key)}\,\mathrm{{N}}"
-            rf"\text{{ at {tex.escape_text(f.point)} on {tex.escape_text(f.link)}}}"
+            (
+                rf"&\vec F_{{{tex.name(f.name)}}} = ",
+                Pt(key),
+                r"\,\mathrm{N}"
+                rf"\text{{ at {tex.escape_text(f.point)} on {tex.escape_text(f.link)}}}",
+            )
         )
     for m_ in d.forces.moments:
-        key = b.put(f"M({m_.name})", m_.moment[0], MOMENT)
-        lines.append(rf"&M_{{{tex.name(m_.name)}}} = {b.numu(key)}")
+        key = b.value(f"M({m_.name})", m_.moment[0], MOMENT)
+        lines.append((rf"&M_{{{tex.name(m_.name)}}} = ", Num(key, unit=True)))
     for line in lines:
-        b.line(line)
+        b.line(*line)
     b.say(
         "The masses of the moving links (bodies and point masses) with their centres at this "
         "pose, gravity, and the external loads evaluated at this instant."
@@ -116,25 +126,30 @@ def _center_step(d: _Dynamics, index: int) -> Step:
     b = ctx.builder("dynamics.center_acceleration", f"Acceleration of {what}")
     r = e.p[0] - ctx.pos(R)
     w, al = ctx.omega(e.link), ctx.alpha(e.link)
-    aR = b.put(f"a({R})", ctx.acc(R), "m/s^2", ("points", R, "acceleration"))
-    kw = b.put(f"omega({e.link})", w, "rad/s", ctx.link_source(e.link, "omega"))
-    ka = b.put(f"alpha({e.link})", al, "rad/s^2", ctx.link_source(e.link, "alpha"))
-    kr = b.put(f"r({R},G)", r, "m")
-    t = b.put("a_t = alpha x r", k_cross(al, r), "m/s^2")
-    n = b.put("a_n = -omega^2 r", -(w**2) * r, "m/s^2")
-    aG = b.put(f"a_G({e.name})", e.a[0], "m/s^2")
+    aR = b.value(f"a({R})", ctx.acc(R), "m/s^2", ("points", R, "acceleration"))
+    kw = b.value(f"omega({e.link})", w, "rad/s", ctx.link_source(e.link, "omega"))
+    ka = b.value(f"alpha({e.link})", al, "rad/s^2", ctx.link_source(e.link, "alpha"))
+    kr = b.value(f"r({R},G)", r, "m")
+    t = b.value("a_t = alpha x r", k_cross(al, r), "m/s^2")
+    n = b.value("a_n = -omega^2 r", -(w**2) * r, "m/s^2")
+    aG = b.value(f"a_G({e.name})", e.a[0], "m/s^2")
     b.check("cross", t, ka, kr)
     b.check("product", n, kw, kw, kr, factor=-1.0)
     b.check("sum", aG, aR, t, n)
     sub = tex.name(R)
     b.line(
         rf"&\vec a_G = \vec a_{{{sub}}} + \vec\alpha \times \vec r_{{{sub}G}} - \omega^2 "
-        rf"\vec r_{{{sub}G}} = {b.col(aR, 2)} + {b.col(t, 2)} + {b.col(n, 2)} = "
-        rf"{tex.boxed_result(b.colu(aG, 2))}"
+        rf"\vec r_{{{sub}G}} = ",
+        *joined(" + ", [(Col(k, dims=2),) for k in (aR, t, n)]),
+        " = ",
+        Boxed((Col(aG, unit=True, dims=2),)),
     )
     b.say(
-        f"a_G = a({R}) + alpha x r({R},G) - omega^2 r({R},G) = {b.txt(aR)} + {b.txt(t)} + "
-        f"{b.txt(n)} = {b.txt(aG)}."
+        f"a_G = a({R}) + alpha x r({R},G) - omega^2 r({R},G) = ",
+        *joined(" + ", [(Col(k),) for k in (aR, t, n)]),
+        " = ",
+        Col(aG),
+        ".",
     )
     return b.build()
 
@@ -217,27 +232,27 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
     ]
     for k, label in enumerate(("Fx", "Fy", f"Mz({R})")):
         size = float(np.abs(A[row + k] * d.u).max())
-        rhs = b.put(
+        rhs = b.value(
             f"b_{label}", d.system.rhs[0, row + k], MOMENT if k == 2 else FORCE, reference=size
         )
         arm = float(np.abs(A[row + k]).max())
-        operands: list[str] = []
-        terms: list[str] = []
-        text_terms: list[str] = []
+        operands: list[Ref] = []
+        terms: list[tuple[Piece, ...]] = []
+        text_terms: list[tuple[Piece, ...]] = []
         for column in map(int, np.flatnonzero(A[row + k])):
             unit = "m" if k == 2 and d.unit(column) == FORCE else ""
-            c = b.put(
+            c = b.value(
                 f"A({label},{d.system.unknowns[column]})", A[row + k, column], unit, reference=arm
             )
-            u = b.put(d.system.unknowns[column], d.u[column], d.unit(column), d.source(column))
+            u = b.value(d.system.unknowns[column], d.u[column], d.unit(column), d.source(column))
             operands += [c, u]
             symbol, text = d.symbols[column]
-            terms.append(tex.signed(b.num(c), not terms) + r"\," + symbol)
-            text_terms.append(f"{b.txtn(c)} {text}")
+            terms.append((Signed(c) if terms else Num(c), r"\," + symbol))
+            text_terms.append((Num(c), f" {text}"))
         b.check("linear", rhs, *operands)
         b.line(symbolic[k])
-        b.line("&" + (" ".join(terms) or "0") + f" = {b.numu(rhs)}")
-        b.say(f"{label}: {' + '.join(text_terms) or '0'} = {b.txt(rhs)}.")
+        b.line("&", *(joined(" ", terms) or ("0",)), " = ", Num(rhs, unit=True))
+        b.say(f"{label}: ", *(joined(" + ", text_terms) or ("0",)), " = ", Num(rhs, unit=True), ".")
     b.say(
         "The right-hand sides hold the inertia terms m a_G and I_G alpha with the weights and "
         f"the loads moved across; moments are about {R}, with the term (r_G - r_{R}) x m a_G "
@@ -277,20 +292,17 @@ def _system_step(d: _Dynamics) -> Step:
 def _solution_step(d: _Dynamics) -> Step:
     b = d.ctx.builder("dynamics.solution", "The joint forces and the driving torque")
     for column, (symbol, _) in enumerate(d.symbols):
-        key = b.put(d.system.unknowns[column], d.u[column], d.unit(column), d.source(column))
-        b.line(rf"&{symbol} = {tex.boxed_result(b.numu(key))}")
-    b.say(
-        "The solution of the system: "
-        + ", ".join(
-            f"{text} = {b.txt(name)}"
-            for name, (_, text) in zip(d.system.unknowns, d.symbols, strict=True)
-        )
-        + "."
-    )
+        key = b.value(d.system.unknowns[column], d.u[column], d.unit(column), d.source(column))
+        b.line(f"&{symbol} = ", Boxed((Num(key, unit=True),)))
+    solved = [
+        (f"{text} = ", Num(Ref(name), unit=True))
+        for name, (_, text) in zip(d.system.unknowns, d.symbols, strict=True)
+    ]
+    b.say("The solution of the system: ", *joined(", ", solved), ".")
     return b.build()
 
 
-def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[str, str, str, str]:
+def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[Ref, Ref, Ref, Ref]:
     """dT/dt + dV/dt - P_loads, with dT/dt = sum (m a_G . v_G + I omega alpha), dV/dt =
     -sum m g . v_G and P_loads the power of the loads: the keys of the three terms and of the
     net (``net_key``)."""
@@ -303,15 +315,16 @@ def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[str, str, 
     P = sum(float(f.power[0]) for f in d.forces.forces) + sum(
         float(m.power[0]) for m in d.forces.moments
     )
-    kT, kV = b.put("dT/dt", dT, "W"), b.put("dV/dt", dV, "W")
-    kP = b.put("P_loads", P, "W")
-    net = b.put(net_key, dT + dV - P, "W")
-    b.check("sum", net, kT, kV, "-" + kP)
+    kT, kV = b.value("dT/dt", dT, "W"), b.value("dV/dt", dV, "W")
+    kP = b.value("P_loads", P, "W")
+    net = b.value(net_key, dT + dV - P, "W")
+    b.check("sum", net, kT, kV, -kP)
     return kT, kV, kP, net
 
 
-def _energy_latex(b: StepBuilder, kT: str, kV: str, kP: str) -> str:
-    return rf"{b.num(kT)} {tex.signed(b.num(kV))} - {tex.paren(b.num(kP))}"
+def _energy_latex(kT: Ref, kV: Ref, kP: Ref) -> tuple[Piece, ...]:
+    """dT/dt + dV/dt - P_loads with the numbers, as LaTeX pieces."""
+    return (Num(kT), " ", Signed(kV), " - ", Paren(kP))
 
 
 def _power_step(d: _Dynamics) -> Step:
@@ -322,30 +335,44 @@ def _power_step(d: _Dynamics) -> Step:
     omega = ctx.omega(link)
     b = ctx.builder("dynamics.power_balance", "Check: the driving torque from the power balance")
     kT, kV, kP, net = _energy_rate(d, b, "M omega")
-    kw = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    kw = b.value(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
     b.line(
-        r"&M\,\omega = \frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = "
-        rf"{_energy_latex(b, kT, kV, kP)} = {b.numu(net)}"
+        r"&M\,\omega = \frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = ",
+        *_energy_latex(kT, kV, kP),
+        " = ",
+        Num(net, unit=True),
     )
     if omega == 0.0:
         b.say("The driver is at rest (omega = 0): the power balance does not give its torque.")
         return b.build()
-    torque = b.put(
+    torque = b.value(
         "M_power_balance",
         float(d.result.drivers[0].torque_from_power_balance[0]),
         MOMENT,
         ("drivers", 0, "torque_from_power_balance"),
     )
-    ne = b.put("M_newton_euler", float(d.forces.torques[link][0]), MOMENT, ("drivers", 0, "torque"))
+    ne = b.value(
+        "M_newton_euler", float(d.forces.torques[link][0]), MOMENT, ("drivers", 0, "torque")
+    )
     b.check("quotient", torque, net, kw)
     b.line(
-        rf"&M = \frac{{{b.num(net)}}}{{{b.num(kw)}}} = {tex.boxed_result(b.numu(torque))}"
-        rf"\quad (\text{{Newton-Euler: }} {b.numu(ne)})"
+        "&M = ",
+        Frac(net, kw),
+        " = ",
+        Boxed((Num(torque, unit=True),)),
+        r"\quad (\text{Newton-Euler: } ",
+        Num(ne, unit=True),
+        ")",
     )
     b.say(
         "Frictionless joints do no work, so the driver's power goes into the kinetic and "
-        f"potential energy and against the loads: M omega = dT/dt + dV/dt - P_loads = "
-        f"{b.txt(net)}, M = {b.txt(torque)}, the same as from Newton-Euler ({b.txt(ne)})."
+        "potential energy and against the loads: M omega = dT/dt + dV/dt - P_loads = ",
+        Num(net, unit=True),
+        ", M = ",
+        Num(torque, unit=True),
+        ", the same as from Newton-Euler (",
+        Num(ne, unit=True),
+        ").",
     )
     return b.build()
 
@@ -355,20 +382,23 @@ def _drivers_power_step(d: _Dynamics) -> Step:
     from the Newton-Euler torques) against the energy rate and the loads' power."""
     ctx = d.ctx
     b = ctx.builder("dynamics.power_balance", "Check: the drivers' power from the power balance")
-    terms, products, texts = [], [], []
+    terms: list[Ref] = []
+    products: list[tuple[Piece, ...]] = []
+    texts: list[tuple[Piece, ...]] = []
     for i, driver in enumerate(ctx.scene.drivers):
         link = driver.link
-        M = b.put(f"M_{link}", float(d.forces.torques[link][0]), MOMENT, ("drivers", i, "torque"))
-        w = b.put(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
-        power = b.put(
+        M = b.value(f"M_{link}", float(d.forces.torques[link][0]), MOMENT, ("drivers", i, "torque"))
+        w = b.value(f"omega({link})", ctx.omega(link), "rad/s", ctx.link_source(link, "omega"))
+        power = b.value(
             f"P({link})", float(d.result.drivers[i].power[0]), "W", ("drivers", i, "power")
         )
         b.check("product", power, M, w)
         terms.append(power)
-        products.append(rf"{tex.paren(b.num(M))} \cdot {tex.paren(b.num(w))}")
-        product = f"{tex.paren(b.txtn(M))} x {tex.paren(b.txtn(w))}"
-        texts.append(f"M_{link} omega({link}) = {product} = {b.txt(power)}")
-    total = b.put("P_drivers", sum(float(dr.power[0]) for dr in d.result.drivers), "W")
+        products.append((Paren(M), r" \cdot ", Paren(w)))
+        texts.append(
+            (f"M_{link} omega({link}) = ", Paren(M), " x ", Paren(w), " = ", Num(power, unit=True))
+        )
+    total = b.value("P_drivers", sum(float(dr.power[0]) for dr in d.result.drivers), "W")
     b.check("sum", total, *terms)
     kT, kV, kP, net = _energy_rate(d, b, "dT/dt + dV/dt - P_loads")
     b.check("sum", net, total)
@@ -376,19 +406,35 @@ def _drivers_power_step(d: _Dynamics) -> Step:
         rf"M_{{{tex.name(dr.link)}}}\,\omega_{{{tex.name(dr.link)}}}" for dr in ctx.scene.drivers
     )
     b.line(
-        rf"&\textstyle\sum_i M_i\,\omega_i = {symbols} = {' + '.join(products)} = {b.numu(total)}"
+        rf"&\textstyle\sum_i M_i\,\omega_i = {symbols} = ",
+        *joined(" + ", products),
+        " = ",
+        Num(total, unit=True),
     )
     b.line(
-        r"&\frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = "
-        rf"{_energy_latex(b, kT, kV, kP)} = {tex.boxed_result(b.numu(net))}"
+        r"&\frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = ",
+        *_energy_latex(kT, kV, kP),
+        " = ",
+        Boxed((Num(net, unit=True),)),
     )
     b.say(
         "Frictionless joints do no work, so the drivers' total power goes into the kinetic and "
         "potential energy and against the loads: sum of M_i omega_i = dT/dt + dV/dt - P_loads. "
-        f"Drivers: {'; '.join(texts)}; in total {b.txt(total)}. Energy and loads: "
-        f"{b.txt(kT)} + ({b.txt(kV)}) - ({b.txt(kP)}) = {b.txt(net)}, the same. With several "
-        "drivers the balance checks only their total; each torque alone is checked by the "
-        "virtual power of its driver's own motion (torque_from_power_balance)."
+        "Drivers: ",
+        *joined("; ", texts),
+        "; in total ",
+        Num(total, unit=True),
+        ". Energy and loads: ",
+        Num(kT, unit=True),
+        " + (",
+        Num(kV, unit=True),
+        ") - (",
+        Num(kP, unit=True),
+        ") = ",
+        Num(net, unit=True),
+        ", the same. With several drivers the balance checks only their total; each torque "
+        "alone is checked by the virtual power of its driver's own motion "
+        "(torque_from_power_balance).",
     )
     return b.build()
 

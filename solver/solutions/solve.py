@@ -71,10 +71,10 @@ def _linkage_steps(
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
     were built in, and the method used. A part written with typed references (data, positions,
-    classification, polygons, instant centres, reading, summary) settles its digits as each step
-    is built; a part whose steps still format while written (the position, vector, loop,
-    moving-point and Newton-Euler steps) is built a second time where a step needs more digits,
-    by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
+    classification, polygons, instant centres, the vector method, Newton-Euler, reading,
+    summary) settles its digits as each step is built; a part whose steps still format while
+    written (the position, loop and moving-point steps) is built a second time where a step needs
+    more digits, by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
@@ -93,7 +93,7 @@ def _linkage_steps(
     body += graphical_steps(ctx)
     body.append(instant_centres_step(ctx))
     if method == "newton_euler":
-        body += ctx.replayed(lambda: newton_euler_steps(ctx))
+        body += newton_euler_steps(ctx)
     positions = positions_step(ctx)
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [

@@ -43,6 +43,18 @@ from solver.solutions.builder import (
     linear_text,
     present_solution,
 )
+from solver.solutions.equation import (
+    Boxed,
+    Col,
+    Frac,
+    Num,
+    Paren,
+    Piece,
+    Ref,
+    ZCol,
+    ZCross,
+    joined,
+)
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.linkage import (
     ACCELERATION,
@@ -55,10 +67,9 @@ from solver.solutions.linkage import (
     a_vec,
     acceleration_pole_step,
     al_vec,
-    det_row_z,
-    det_row_z_symbol,
     fixed_points_step,
     k_cross,
+    origin,
     put_motion,
     r_vec,
     rigid_acceleration_step,
@@ -73,7 +84,6 @@ from solver.solutions.relative import (
     Carrier,
     TransportTerms,
     check_transport,
-    origin_column,
     transport_terms,
 )
 
@@ -139,13 +149,17 @@ def rotation_column(b: StepBuilder, r: np.ndarray, rate: str) -> str:
 
 
 def relative_line(
-    b: StepBuilder, letter: str, sub: str, slide: str, s: str, u: str, rel: str
+    b: StepBuilder, letter: str, sub: str, slide: str, s: Ref, u: Ref, rel: Ref
 ) -> None:
     """v_rel = s_dot u (a_rel = s_ddot u, ``letter`` 'a') along the slot, with the numbers."""
     b.check("product", rel, s, u)
     b.line(
-        rf"&\vec{{{letter}}}_{{{sub},\mathrm{{rel}}}} = {slide}\,\vec{{u}} = "
-        rf"{b.num(s)} \cdot {b.col(u)} = {b.colu(rel)}"
+        rf"&\vec{{{letter}}}_{{{sub},\mathrm{{rel}}}} = {slide}\,\vec{{u}} = ",
+        Num(s),
+        r" \cdot ",
+        Col(u),
+        " = ",
+        Col(rel, unit=True),
     )
 
 
@@ -300,17 +314,14 @@ class VectorMethod:
     def steps(self) -> list[Step]:
         ctx = self.ctx
         out: list[Step] = []
-        state = (self.solved_omega, self.solved_alpha)
         for order in (VELOCITY, ACCELERATION):
-            fixed = ctx.replayed(partial(fixed_points_step, ctx, order))
+            fixed = fixed_points_step(ctx, order)
             if fixed is not None:
                 out.append(fixed)
             for step in ctx.analysis.plan.steps:
-                out += ctx.replayed(partial(self.plan_step, step, order), *state)
-        for link in ctx.scene.moving_links:
-            out.append(ctx.replayed(partial(velocity_pole_step, ctx, link)))
-        for link in ctx.scene.moving_links:
-            out.append(ctx.replayed(partial(acceleration_pole_step, ctx, link)))
+                out += self.plan_step(step, order)
+        out += [velocity_pole_step(ctx, link) for link in ctx.scene.moving_links]
+        out += [acceleration_pole_step(ctx, link) for link in ctx.scene.moving_links]
         return out
 
     def plan_step(self, step: object, order: int) -> list[Step]:
@@ -371,22 +382,27 @@ class VectorMethod:
         vc = put_motion(b, ctx, center, VELOCITY)
         b.put(rkey, r_np, "m")
         side = Side(vc, ctx.vel(center), "m/s", [Term(unknown, "perp", rkey, r_np, "m")])
-        base = origin_column(b, ctx, center, vc)
+        base = origin(b, ctx, center, Ref(vc))
         b.line(
             rf"&{v_vec(point)} = {v_vec(center)} + {w_vec(link)} \times "
-            rf"{r_vec(center, point)} = {base} + "
-            rf"{tex.determinant3(det_row_z_symbol(unknown.latex), b.entries(rkey))}"
+            rf"{r_vec(center, point)} = ",
+            base,
+            " + ",
+            ZCross(unknown.symbol, Ref(rkey)),
         )
         b.line(
-            rf"&\phantom{{{v_vec(point)}}} = {base} + "
-            rf"{rotation_column(b, r_np, unknown.latex)} = {side_column(b, side)}"
-            rf"{latex_unit('m/s')}"
+            rf"&\phantom{{{v_vec(point)}}} = ",
+            base,
+            f" + {rotation_column(b, r_np, unknown.latex)} = {side_column(b, side)}"
+            f"{latex_unit('m/s')}",
         )
         b.say(
             f"{point} is a point of link {link}, which also carries {center}: v({point}) = "
-            f"v({center}) + omega({link}) cross r({center},{point}) = {b.txt(vc)} + "
-            f"(0, 0, {unknown.text}) cross {b.txtn(rkey)} = {side_text(b, side)} m/s, "
-            f"with {unknown.text} unknown."
+            f"v({center}) + omega({link}) cross r({center},{point}) = ",
+            Col(Ref(vc)),
+            " + ",
+            ZCross(unknown.symbol, Ref(rkey)),
+            f" = {side_text(b, side)} m/s, with {unknown.text} unknown.",
         )
         return b.build(), side
 
@@ -412,26 +428,40 @@ class VectorMethod:
         """Write a_X = a_C + alpha_L x r_CX - omega_L^2 r_CX, expanded to a column linear in
         alpha_L."""
         link, center, k = spec.link, spec.center, side.terms[0]
-        base = origin_column(b, self.ctx, center, known.base)
+        base = origin(b, self.ctx, center, Ref(known.base))
+        r, w, normal = Ref(known.r), Ref(known.omega), Ref(known.normal)
+        again = rf"&\phantom{{{a_vec(point)}}} = "
         b.line(
             rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
             rf" - \omega_{{{tex.name(link)}}}^2\,{r_vec(center, point)}"
         )
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {base} + "
-            rf"{tex.determinant3(det_row_z_symbol(k.unknown.latex), b.entries(known.r))} - "
-            rf"{tex.paren(b.num(known.omega))}^2 \cdot {b.col(known.r)}"
+            again,
+            base,
+            " + ",
+            ZCross(k.unknown.symbol, r),
+            " - ",
+            Paren(w),
+            r"^2 \cdot ",
+            Col(r),
         )
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {base} + "
-            rf"{rotation_column(b, k.of_value, k.unknown.latex)} + {b.col(known.normal)} = "
-            rf"{side_column(b, side)}{latex_unit('m/s^2')}"
+            again,
+            base,
+            f" + {rotation_column(b, k.of_value, k.unknown.latex)} + ",
+            Col(normal),
+            f" = {side_column(b, side)}{latex_unit('m/s^2')}",
         )
         b.say(
             f"Through link {link}: a({point}) = a({center}) + alpha({link}) cross "
             f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term "
-            f"-({b.txtn(known.omega)}) squared times {b.txtn(known.r)} = {b.txt(known.normal)} "
-            f"is known; {k.unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2."
+            "-(",
+            Num(w),
+            ") squared times ",
+            Num(r),
+            " = ",
+            Col(normal),
+            f" is known; {k.unknown.text} is unknown: a({point}) = {side_text(b, side)} m/s^2.",
         )
 
     def transport_step(self, point: str, guide: str, order: int) -> Step | None:
@@ -447,9 +477,9 @@ class VectorMethod:
         b = ctx.builder(
             f"{what}.transport", f"Transport {what} of {point} (the point of {guide} under {point})"
         )
-        tr = sliding.put(b, f"transport_{what}", point)
-        r = b.put(f"r({g},{point})", ctx.pos(point) - ctx.pos(g), "m")
-        w = b.put(f"omega({guide})", ctx.omega(guide), "rad/s", ctx.link_source(guide, "omega"))
+        tr = Ref(sliding.put(b, f"transport_{what}", point))
+        r = b.value(f"r({g},{point})", ctx.pos(point) - ctx.pos(g), "m")
+        w = b.value(f"omega({guide})", ctx.omega(guide), "rad/s", ctx.link_source(guide, "omega"))
         if order == VELOCITY:
             self.transport_velocity(b, (g, point), guide, tr, (r, w))
         else:
@@ -457,56 +487,83 @@ class VectorMethod:
         return b.build()
 
     def transport_velocity(
-        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: Ref, rw: tuple[Ref, Ref]
     ) -> None:
         """v_tr = v_G + omega x r_GX, with r and omega (``rw``) already put."""
         ctx, (g, point), (r, w) = self.ctx, pair, rw
-        vg = put_motion(b, ctx, g, VELOCITY)
-        wxr = b.put(
+        vg = Ref(put_motion(b, ctx, g, VELOCITY))
+        wxr = b.value(
             f"omega x r({g},{point})", k_cross(ctx.omega(guide), np.asarray(b.vector(r))), "m/s"
         )
         b.check("cross", wxr, w, r)
         b.check("sum", tr, vg, wxr)
         b.line(
             rf"&\vec{{v}}_{{{tex.name(point)},\mathrm{{tr}}}} = {v_vec(g)} + {w_vec(guide)} "
-            rf"\times {r_vec(g, point)} = {origin_column(b, ctx, g, vg)} + "
-            rf"{tex.determinant3(det_row_z(b, w), b.entries(r))} = {b.colu(tr)}"
+            rf"\times {r_vec(g, point)} = ",
+            origin(b, ctx, g, vg),
+            " + ",
+            ZCross(w, r),
+            " = ",
+            Col(tr, unit=True),
         )
         b.say(
             f"The transport velocity of {point} is the velocity of the point of {guide} "
-            f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = "
-            f"{b.txt(vg)} + {b.txt(wxr)} = {b.txt(tr)}."
+            f"that coincides with {point}: v({g}) + omega({guide}) cross r({g},{point}) = ",
+            Col(vg),
+            " + ",
+            Col(wxr),
+            " = ",
+            Col(tr),
+            ".",
         )
 
     def transport_acceleration(
-        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: str, rw: tuple[str, str]
+        self, b: StepBuilder, pair: tuple[str, str], guide: str, tr: Ref, rw: tuple[Ref, Ref]
     ) -> None:
         """a_tr = a_G + alpha x r_GX - omega^2 r_GX, with r and omega (``rw``) already put."""
         ctx, (g, point), (r, w) = self.ctx, pair, rw
         r_np, omega, alpha = np.asarray(b.vector(r)), ctx.omega(guide), ctx.alpha(guide)
-        ag = put_motion(b, ctx, g, ACCELERATION)
-        al = b.put(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
-        t = b.put(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
-        n = b.put(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
+        ag = Ref(put_motion(b, ctx, g, ACCELERATION))
+        al = b.value(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
+        t = b.value(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
+        n = b.value(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
         b.check("sum", tr, ag, t, n)
-        sub, base = tex.name(point) + r",\mathrm{tr}", origin_column(b, ctx, g, ag)
+        sub, base = tex.name(point) + r",\mathrm{tr}", origin(b, ctx, g, ag)
         b.line(
             rf"&\vec{{a}}_{{{sub}}} = {a_vec(g)} + {al_vec(guide)} \times "
-            rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = "
-            rf"{base} + {tex.determinant3(det_row_z(b, al), b.entries(r))} - "
-            rf"{tex.paren(b.num(w))}^2 \cdot {b.col(r)}"
+            rf"{r_vec(g, point)} - \omega_{{{tex.name(guide)}}}^2\,{r_vec(g, point)} = ",
+            base,
+            " + ",
+            ZCross(al, r),
+            " - ",
+            Paren(w),
+            r"^2 \cdot ",
+            Col(r),
         )
         b.line(
-            rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = {base} + {b.col(t)} + {b.col(n)} = "
-            rf"{b.colu(tr)}"
+            rf"&\phantom{{\vec{{a}}_{{{sub}}}}} = ",
+            base,
+            " + ",
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr, unit=True),
         )
         b.say(
             f"The transport acceleration of {point} is the acceleration of the point of "
             f"{guide} under {point}: a({g}) + alpha({guide}) cross r({g},{point}) - "
-            f"omega({guide}) squared r({g},{point}) = {b.txt(ag)} + {b.txt(t)} + "
-            f"{b.txt(n)} = {b.txt(tr)}."
+            f"omega({guide}) squared r({g},{point}) = ",
+            Col(ag),
+            " + ",
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr),
+            ".",
         )
 
     def coriolis_step(self, point: str, guide: str) -> Step:
@@ -514,9 +571,11 @@ class VectorMethod:
         ctx = self.ctx
         sliding = ctx.slot(guide, point)
         b = ctx.builder("acceleration.coriolis", f"Coriolis acceleration of {point}")
-        cor = sliding.put(b, "coriolis_acceleration", point)
-        w = b.put(f"omega({guide})", sliding.omega_guide, "rad/s", ctx.link_source(guide, "omega"))
-        vrel = sliding.put(b, "relative_velocity", point)
+        cor = Ref(sliding.put(b, "coriolis_acceleration", point))
+        w = b.value(
+            f"omega({guide})", sliding.omega_guide, "rad/s", ctx.link_source(guide, "omega")
+        )
+        vrel = Ref(sliding.put(b, "relative_velocity", point))
         b.check("cross", cor, w, vrel, factor=2.0)
         formula = (
             rf"\vec{{a}}_{{{tex.name(point)},\mathrm{{Cor}}}} = 2\,{w_vec(guide)} \times "
@@ -553,19 +612,18 @@ class VectorMethod:
             )
 
     def coriolis_zero_now(
-        self, b: StepBuilder, pair: tuple[str, str], formula: str, w: str, vrel: str
+        self, b: StepBuilder, pair: tuple[str, str], formula: str, w: Ref, vrel: Ref
     ) -> None:
         """a_Cor = 0 at this instant: the guide does not turn now, or the point does not slide."""
         point, guide = pair
         zero = tex.boxed_result(V0 + latex_unit("m/s^2"))
         if b.is_zero(w):
-            b.line(
-                rf"&{formula} = 2 \cdot {tex.column(['0', '0', b.num(w)])} \times "
-                rf"{b.col(vrel)} = {zero}"
-            )
+            b.line(rf"&{formula} = 2 \cdot ", ZCol(w), r" \times ", Col(vrel), f" = {zero}")
             b.say(
                 f"The Coriolis acceleration of {point} is zero at this instant: the guide "
-                f"{guide} does not rotate now (omega({guide}) = {b.txt(w)})."
+                f"{guide} does not rotate now (omega({guide}) = ",
+                Num(w, unit=True),
+                ").",
             )
             return
         b.line(rf"&{formula} = 2\,{w_vec(guide)} \times {V0} = {zero}")
@@ -580,25 +638,36 @@ class VectorMethod:
         sliding: SlotMotion,
         pair: tuple[str, str],
         formula: str,
-        keys: tuple[str, str, str],
+        keys: tuple[Ref, Ref, Ref],
     ) -> None:
         """a_Cor = 2 omega x v_rel, omega x v_rel written out (``keys``: a_Cor, omega, v_rel)."""
         (point, guide), (cor, w, vrel) = pair, keys
-        half = b.put(
+        half = b.value(
             f"omega x v_rel({point})",
             k_cross(sliding.omega_guide, sliding.relative_velocity),
             "m/s^2",
         )
         b.check("cross", half, w, vrel)
         b.line(
-            rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))} = "
-            rf"2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+            rf"&{formula} = 2 \cdot ",
+            ZCross(w, vrel),
+            r" = 2 \cdot ",
+            Col(half),
+            " = ",
+            Boxed((Col(cor, unit=True),)),
         )
         b.say(
             f"Coriolis acceleration: a_Cor({point}) = 2 omega({guide}) cross v_rel({point})"
-            f" = 2 (0, 0, {b.txtn(w)}) cross {b.txt(vrel)} = 2 times {b.txt(half)} = "
-            f"{b.txt(cor)}. It uses the guide's angular velocity and the relative velocity "
-            f"of {point} along the slot (not its absolute velocity)."
+            " = 2 (0, 0, ",
+            Num(w),
+            ") cross ",
+            Col(vrel),
+            " = 2 times ",
+            Col(half),
+            " = ",
+            Col(cor),
+            f". It uses the guide's angular velocity and the relative velocity of {point} "
+            "along the slot (not its absolute velocity).",
         )
 
     def line_side(
@@ -654,23 +723,31 @@ class VectorMethod:
         b.line(
             rf"&{v_vec(point)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
             rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}, \quad \vec{{v}}_{{{sub},\mathrm{{rel}}}}"
-            rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = {b.col(ukey)}"
+            rf" = {unknown.latex}\,\vec{{u}}, \quad \vec{{u}} = ",
+            Col(Ref(ukey)),
         )
         b.line(
-            rf"&\phantom{{{v_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
-            rf"{b.col(ukey)} = {side_column(b, side)}{latex_unit('m/s')}"
+            rf"&\phantom{{{v_vec(point)}}} = ",
+            V0 if fixed else Col(Ref(tr)),
+            f" + {unknown.latex} ",
+            Col(Ref(ukey)),
+            f" = {side_column(b, side)}{latex_unit('m/s')}",
         )
         if fixed:
             b.say(
                 f"{point} slides in a slot fixed in the ground: its transport velocity is "
-                f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot "
-                f"u = {b.txtn(ukey)}."
+                f"zero, so v({point}) = v_rel({point}) = {unknown.text} u, along the slot u = ",
+                Num(Ref(ukey)),
+                ".",
             )
         else:
             b.say(
                 f"{point} slides in the slot of the moving link {guide}: v({point}) = "
-                f"v_tr({point}) + v_rel({point}) = {b.txt(tr)} + {unknown.text} times "
-                f"{b.txtn(ukey)} = {side_text(b, side)} m/s."
+                f"v_tr({point}) + v_rel({point}) = ",
+                Col(Ref(tr)),
+                f" + {unknown.text} times ",
+                Num(Ref(ukey)),
+                f" = {side_text(b, side)} m/s.",
             )
 
     def slot_acceleration_lines(
@@ -686,9 +763,13 @@ class VectorMethod:
             rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {unknown.latex}\,\vec{{u}}"
         )
         b.line(
-            rf"&\phantom{{{a_vec(point)}}} = {V0 if fixed else b.col(tr)} + {unknown.latex} "
-            rf"{b.col(ukey)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
-            rf"{side_column(b, side)}{latex_unit('m/s^2')}"
+            rf"&\phantom{{{a_vec(point)}}} = ",
+            V0 if fixed else Col(Ref(tr)),
+            f" + {unknown.latex} ",
+            Col(Ref(ukey)),
+            " + ",
+            V0 if b.is_zero(cor) else Col(Ref(cor)),
+            f" = {side_column(b, side)}{latex_unit('m/s^2')}",
         )
         if fixed:
             b.say(
@@ -698,8 +779,13 @@ class VectorMethod:
         else:
             b.say(
                 f"In the slot of {guide}: a({point}) = a_tr({point}) + a_rel({point}) + "
-                f"a_Cor({point}) = {b.txt(tr)} + {unknown.text} times {b.txtn(ukey)} + "
-                f"{b.txt(cor)} = {side_text(b, side)} m/s^2."
+                f"a_Cor({point}) = ",
+                Col(Ref(tr)),
+                f" + {unknown.text} times ",
+                Num(Ref(ukey)),
+                " + ",
+                Col(Ref(cor)),
+                f" = {side_text(b, side)} m/s^2.",
             )
 
     def equate(
@@ -781,35 +867,45 @@ class VectorMethod:
         what, unit = MOTION[order]
         letter, sub = what[0], tex.name(point)
         b = ctx.builder(f"{what}.relative", f"Relative {what} of {point} in the slot of {guide}")
-        s = b.put(unknown.key, unknown.value, unit)
-        u = b.put(f"u({point}/{guide})", sliding.direction, "")
-        rel = sliding.put(b, f"relative_{what}", point)
-        parts = [sliding.put(b, f"transport_{what}", point), rel]
+        s = b.value(unknown.key, unknown.value, unit)
+        u = b.value(f"u({point}/{guide})", sliding.direction, "")
+        rel = Ref(sliding.put(b, f"relative_{what}", point))
+        parts = [Ref(sliding.put(b, f"transport_{what}", point)), rel]
         names = ["tr", "rel"]
         if order == ACCELERATION:
-            parts.append(sliding.put(b, "coriolis_acceleration", point))
+            parts.append(Ref(sliding.put(b, "coriolis_acceleration", point)))
             names.append("Cor")
-        total = sliding.put(b, what, point)
+        total = Ref(sliding.put(b, what, point))
         relative_line(b, letter, sub, unknown.latex, s, u, rel)
         b.check("sum", total, *parts)
         b.line(
             rf"&\vec{{{letter}}}_{{{sub}}} = "
             + " + ".join(rf"\vec{{{letter}}}_{{{sub},\mathrm{{{n}}}}}" for n in names)
-            + " = "
-            + " + ".join(b.col(k) for k in parts)
-            + rf" = {tex.boxed_result(b.colu(total))}"
+            + " = ",
+            *joined(" + ", [(Col(k),) for k in parts]),
+            " = ",
+            Boxed((Col(total, unit=True),)),
         )
+        relative = (Num(s, unit=True), " times ", Num(u), " = ", Col(rel))
         if order == VELOCITY:
             b.say(
-                f"Relative velocity of {point} along the slot of {guide}: v_rel = "
-                f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; with the transport velocity "
-                f"{b.txt(parts[0])}, v({point}) = {b.txt(total)}."
+                f"Relative velocity of {point} along the slot of {guide}: v_rel = ",
+                *relative,
+                "; with the transport velocity ",
+                Col(parts[0]),
+                f", v({point}) = ",
+                Col(total),
+                ".",
             )
         else:
             b.say(
-                f"Relative acceleration of {point} along the slot of {guide}: a_rel = "
-                f"{b.txt(s)} times {b.txtn(u)} = {b.txt(rel)}; a({point}) = a_tr + a_rel + a_Cor "
-                f"= {' + '.join(b.txt(k) for k in parts)} = {b.txt(total)}."
+                f"Relative acceleration of {point} along the slot of {guide}: a_rel = ",
+                *relative,
+                f"; a({point}) = a_tr + a_rel + a_Cor = ",
+                *joined(" + ", [(Col(k),) for k in parts]),
+                " = ",
+                Col(total),
+                ".",
             )
         return b.build()
 
@@ -882,24 +978,29 @@ class VectorMethod:
         """Write v_P = v_Q + omega x r_QP + s' u, expanded to a column linear in omega and s'."""
         lever, pivot, pin = step.link, step.pivot, step.pin
         (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
-        sub, base = tex.name(pin), origin_column(b, self.ctx, pivot, side.known_key)
+        sub, base = tex.name(pin), origin(b, self.ctx, pivot, Ref(side.known_key))
         b.line(
             rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
             rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = "
-            rf"{b.col(ukey)}"
+            rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = ",
+            Col(Ref(ukey)),
         )
         b.line(
-            rf"&\phantom{{{v_vec(pin)}}} = {base} + "
-            rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} + "
-            rf"{slide.latex} {b.col(ukey)} = {side_column(b, side)}{latex_unit('m/s')}"
+            rf"&\phantom{{{v_vec(pin)}}} = ",
+            base,
+            " + ",
+            ZCross(rate.symbol, Ref(rkey)),
+            f" + {slide.latex} ",
+            Col(Ref(ukey)),
+            f" = {side_column(b, side)}{latex_unit('m/s')}",
         )
         b.say(
-            f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = "
-            f"{b.txt(vp)} is known. Relative connection: {pin} slides in the slot of "
+            f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = ",
+            Col(Ref(vp)),
+            f" is known. Relative connection: {pin} slides in the slot of "
             f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
             f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
-            f"{side_text(b, side)} m/s, with {rate.text} and {slide.text} unknown."
+            f"{side_text(b, side)} m/s, with {rate.text} and {slide.text} unknown.",
         )
 
     def lever_acceleration_side(self, step: LeverStep) -> tuple[Step, Side, Side]:
@@ -959,18 +1060,30 @@ class VectorMethod:
             rf"{r_vec(pivot, pin)}"
         )
         b.line(
-            rf"&\phantom{{{a_vec(pin)}}} = {origin_column(b, self.ctx, pivot, known.base)} + "
-            rf"{tex.determinant3(det_row_z_symbol(rate.latex), b.entries(rkey))} - "
-            rf"{tex.paren(b.num(known.omega))}^2 \cdot {b.col(rkey)} + {slide.latex} "
-            rf"{b.col(ukey)} + {b.col(cor)}"
+            rf"&\phantom{{{a_vec(pin)}}} = ",
+            origin(b, self.ctx, pivot, Ref(known.base)),
+            " + ",
+            ZCross(rate.symbol, Ref(rkey)),
+            " - ",
+            Paren(Ref(known.omega)),
+            r"^2 \cdot ",
+            Col(Ref(rkey)),
+            f" + {slide.latex} ",
+            Col(Ref(ukey)),
+            " + ",
+            Col(Ref(cor)),
         )
         b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, side)}{latex_unit('m/s^2')}")
         b.say(
-            f"Geometric connection: a({pin}) = {b.txt(ap)} is known from its crank. "
+            f"Geometric connection: a({pin}) = ",
+            Col(Ref(ap)),
+            f" is known from its crank. "
             f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
             f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
             f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
-            f"term {b.txt(cor)}: a({pin}) = {side_text(b, side)} m/s^2."
+            "term ",
+            Col(Ref(cor)),
+            f": a({pin}) = {side_text(b, side)} m/s^2.",
         )
 
     def lever_parts(self, step: LeverStep, order: int) -> Step:
@@ -985,58 +1098,87 @@ class VectorMethod:
         )
         r_np = ctx.pos(pin) - ctx.pos(pivot)
         terms = transport_terms(b, ctx, carrier, (pivot, pin), r_np, order, f"({pivot},{pin})")
-        tr = sliding.put(b, f"transport_{what}", pin)
+        tr = Ref(sliding.put(b, f"transport_{what}", pin))
         slide = self.unknown_slide(pin, lever, order, False)
-        s = b.put(slide.key, slide.value, unit)
-        u = b.put(f"u({pin}/{lever})", sliding.direction, "")
-        rel = sliding.put(b, f"relative_{what}", pin)
-        check_transport(b, terms, tr)
+        s = b.value(slide.key, slide.value, unit)
+        u = b.value(f"u({pin}/{lever})", sliding.direction, "")
+        rel = Ref(sliding.put(b, f"relative_{what}", pin))
+        check_transport(b, terms, tr.key)
         if order == VELOCITY:
             transport = self.lever_transport_velocity(b, step, terms, tr)
         else:
             transport = self.lever_transport_acceleration(b, step, terms, tr)
         relative_line(b, what[0], tex.name(pin), slide.latex, s, u, rel)
         b.say(
-            f"{transport}; the relative {what} along the slot is {b.txt(s)} times "
-            f"{b.txtn(u)} = {b.txt(rel)}."
+            *transport,
+            f"; the relative {what} along the slot is ",
+            Num(s, unit=True),
+            " times ",
+            Num(u),
+            " = ",
+            Col(rel),
+            ".",
         )
         return b.build()
 
     def lever_transport_velocity(
-        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: str
-    ) -> str:
+        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
+    ) -> tuple[Piece, ...]:
         """Write v_tr = v_Q + omega x r_QP; returns the sentence that says it."""
         lever, pivot, pin = step.link, step.pivot, step.pin
         moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-        base, start = (b.col(terms.base) + " + ", f"{v_vec(pivot)} + ") if moving else ("", "")
+        base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
+        start = f"{v_vec(pivot)} + " if moving else ""
         b.line(
             rf"&\vec{{v}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{w_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} = {base}"
-            rf"{tex.determinant3(det_row_z(b, terms.omega), b.entries(terms.r))} = {b.colu(tr)}"
+            rf"{r_vec(pivot, pin)} = ",
+            *base,
+            ZCross(Ref(terms.omega), Ref(terms.r)),
+            " = ",
+            Col(tr, unit=True),
         )
         return (
-            f"With omega({lever}) = {b.txt(terms.omega)}: the transport velocity of {pin} (the "
-            f"point of {lever} under the pin) is {b.txt(tr)}"
+            f"With omega({lever}) = ",
+            Num(Ref(terms.omega), unit=True),
+            f": the transport velocity of {pin} (the point of {lever} under the pin) is ",
+            Col(tr),
         )
 
     def lever_transport_acceleration(
-        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: str
-    ) -> str:
+        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
+    ) -> tuple[Piece, ...]:
         """Write a_tr = a_Q + alpha x r_QP - omega^2 r_QP; returns the sentence that says it."""
         lever, pivot, pin = step.link, step.pivot, step.pin
         moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-        base, start = (b.col(terms.base) + " + ", f"{a_vec(pivot)} + ") if moving else ("", "")
-        r, t, n = terms.r, terms.rotation, terms.normal
+        base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
+        start = f"{a_vec(pivot)} + " if moving else ""
+        r, t, n = Ref(terms.r), Ref(terms.rotation), Ref(terms.normal)
         b.line(
             rf"&\vec{{a}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{al_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = "
-            rf"{base}{tex.determinant3(det_row_z(b, terms.alpha), b.entries(r))} - "
-            rf"{tex.paren(b.num(terms.omega))}^2 \cdot {b.col(r)} = {base}{b.col(t)} + "
-            rf"{b.col(n)} = {b.colu(tr)}"
+            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = ",
+            *base,
+            ZCross(Ref(terms.alpha), r),
+            " - ",
+            Paren(Ref(terms.omega)),
+            r"^2 \cdot ",
+            Col(r),
+            " = ",
+            *base,
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr, unit=True),
         )
         return (
-            f"With alpha({lever}) = {b.txt(terms.alpha)}: the transport acceleration of {pin} "
-            f"is {b.txt(t)} + {b.txt(n)} = {b.txt(tr)}"
+            f"With alpha({lever}) = ",
+            Num(Ref(terms.alpha), unit=True),
+            f": the transport acceleration of {pin} is ",
+            Col(t),
+            " + ",
+            Col(n),
+            " = ",
+            Col(tr),
         )
 
     # --- links known from two points, guided links, Newton groups -------------------------------
@@ -1106,17 +1248,22 @@ class VectorMethod:
                 rf" \;\Rightarrow\; {rate.latex} = \frac{{({r} \times ({a_vec(second)} - "
                 rf"{a_vec(first)}))_z}}{{|{r}|^2}}"
             )
-        b.line(
-            rf"&{rate.latex} = \frac{{{b.num(v.cross)}}}{{{b.num(v.r2)}}} = "
-            rf"{tex.boxed_result(b.numu(v.value))}"
-        )
+        cross, r2, value = Ref(v.cross), Ref(v.r2), Ref(v.value)
+        b.line(f"&{rate.latex} = ", Frac(cross, r2), " = ", Boxed((Num(value, unit=True),)))
         sym = MOTION[order][0][0]
         b.say(
             f"Both {first} and {second} are known points of link {link}. Crossing "
-            f"r({first},{second}) with {sym}({second}) - {sym}({first}) = {b.txt(v.diff)} "
+            f"r({first},{second}) with {sym}({second}) - {sym}({first}) = ",
+            Col(Ref(v.diff)),
+            " "
             + ("" if order == VELOCITY else "(the normal term is along r and drops out) ")
-            + f"gives {b.txtn(v.cross)}; divided by |r|^2 = {b.txt(v.r2)}: {rate.text} = "
-            f"{b.txt(v.value)}."
+            + "gives ",
+            Num(cross),
+            "; divided by |r|^2 = ",
+            Num(r2, unit=True),
+            f": {rate.text} = ",
+            Num(value, unit=True),
+            ".",
         )
 
     def guided(self, step: GuidedStep, order: int) -> list[Step]:
@@ -1127,13 +1274,15 @@ class VectorMethod:
             "velocity.guided" if order == VELOCITY else "acceleration.guided",
             f"{rate.text}: link {step.link} cannot turn relative to {step.guide}",
         )
-        value = b.put(rate.key, rate.value, rate.unit, rate.source)
-        g = b.put(guide_rate.key, guide_rate.value, guide_rate.unit, guide_rate.source)
+        value = b.value(rate.key, rate.value, rate.unit, rate.source)
+        g = b.value(guide_rate.key, guide_rate.value, guide_rate.unit, guide_rate.source)
         b.check("sum", value, g)
-        b.line(rf"&{rate.latex} = {guide_rate.latex} = {tex.boxed_result(b.numu(value))}")
+        b.line(f"&{rate.latex} = {guide_rate.latex} = ", Boxed((Num(value, unit=True),)))
         b.say(
             f"Link {step.link} slides in a prismatic joint of {step.guide} and cannot turn "
-            f"relative to it: {rate.text} = {guide_rate.text} = {b.txt(value)}."
+            f"relative to it: {rate.text} = {guide_rate.text} = ",
+            Num(value, unit=True),
+            ".",
         )
         (self.solved_omega if order == VELOCITY else self.solved_alpha).add(step.link)
         return [b.build(), *self.remaining(step.link, step.point, order)]
@@ -1174,8 +1323,8 @@ class VectorMethod:
         self.newton_system(step, order, b)
         for link in step.links:
             rate = self.unknown_rate(link, order)
-            value = b.put(rate.key, rate.value, rate.unit, rate.source)
-            b.line(rf"&{rate.latex} = {b.numu(value)}")
+            value = b.value(rate.key, rate.value, rate.unit, rate.source)
+            b.line(f"&{rate.latex} = ", Num(value, unit=True))
         b.say(
             f"Links {', '.join(step.links)} form no two-joint group with a closed-form solution:"
             f" their {what} equations, linear in the unknown {plural} of their first points and"

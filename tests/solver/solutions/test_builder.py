@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.digits import needed_digits
 from solver.solutions.format import Formatter
 
 
@@ -38,7 +39,7 @@ def test_cramer_determinants() -> None:
         assert b.scalar(f"u{j + 1}") == pytest.approx(d_j / det, rel=1e-12)
     relations = [check.relation for check in b.checks]
     assert relations == ["linear", "linear", "det2", "det2", "quotient", "det2", "quotient"]
-    assert "By Cramer's rule" in " ".join(b.sentences)
+    assert "By Cramer's rule" in b.build().text
 
 
 def test_substitution() -> None:
@@ -46,7 +47,7 @@ def test_substitution() -> None:
     matrix, rhs = [[2.0, 0.0], [0.5, 4.0]], [1.0, 3.0]
     b = system(matrix, rhs)
     assert b.scalar("rest") == pytest.approx(rhs[1] - matrix[1][0] * rhs[0] / matrix[0][0])
-    text = " ".join(b.sentences)
+    text = b.build().text
     assert "Equation 1 has the single unknown u1" in text
     assert "Substituting into equation 2" in text
     assert [check.relation for check in b.checks][-2:] == ["quotient", "quotient"]
@@ -55,7 +56,7 @@ def test_substitution() -> None:
 def test_unknown_not_in_the_equations() -> None:
     """A column of zeros: u2 is not determined, and the step says so."""
     b = system([[2.0, 0.0], [1.0, 0.0]], [1.0, 0.5])
-    assert "u2 does not appear in the equations" in " ".join(b.sentences)
+    assert "u2 does not appear in the equations" in b.build().text
     assert "rest" not in b.values
 
 
@@ -65,3 +66,17 @@ def test_each_equation_its_own_unknown() -> None:
     assert b.scalar("u1") == pytest.approx(0.5)
     assert b.scalar("u2") == pytest.approx(2.0)
     assert "D" not in b.values
+
+
+def test_the_written_solution_settles_its_digits_in_one_pass() -> None:
+    """Cramer's rule written with references: built once (no digit plan), the determinants and
+    the unknowns show in the LaTeX and the text as their values do, every check recomputing
+    from the digits shown."""
+    b = system([[0.0126544, -1.0], [0.5, 3.0]], [-0.03125, 4.0], cramer=True)
+    step = b.build()
+    assert not b.eager and b.plan is None
+    assert b.digits  # the premise: four digits do not recompute, some values show more
+    assert needed_digits(step.values, b.references, step.checks, b.fmt) == b.digits
+    for key in ("D", "D1", "D2", "u1", "u2"):
+        assert step.values[key].display in step.text
+        assert step.values[key].display in step.latex
