@@ -783,7 +783,9 @@ def test_textbook_presets_solve_with_both_methods(name: str) -> None:
 
 # ---- reading a solution: no noise, one symbol per angle, mistakes in place, shown arithmetic ---
 
-SEEDS = sorted(p.stem for p in EXAMPLES.glob("*.json"))
+SEEDS = sorted(
+    p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] != "gear_train"
+)
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:(?: \\cdot | x )10\^\{?(-?\d+)\}?)?")
 NOISE_RATIO = 1e-9  # a printed number this much smaller than the largest one is rounding noise
 
