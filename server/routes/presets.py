@@ -16,18 +16,17 @@ from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, PresetList
 from solver.errors import InvalidScene
-from solver.teaching.cam_presets import CAM_PRESETS, CamPreset
-from solver.teaching.gear_presets import GEAR_PRESETS, GearPreset
+from solver.teaching.cam_presets import CAM_PRESETS
+from solver.teaching.gear_presets import GEAR_PRESETS
 from solver.teaching.presets import PRESETS, Preset
 
-AnyPreset = Preset | CamPreset | GearPreset
 Family = Literal["linkages", "cams", "gear_trains"]
-FAMILIES: dict[str, Mapping[str, AnyPreset]] = {
+FAMILIES: dict[str, Mapping[str, Preset]] = {
     "linkages": PRESETS,
     "cams": CAM_PRESETS,
     "gear_trains": GEAR_PRESETS,
 }
-ALL_PRESETS: dict[str, AnyPreset] = {
+ALL_PRESETS: dict[str, Preset] = {
     name: preset for family in FAMILIES.values() for name, preset in family.items()
 }
 assert len(ALL_PRESETS) == sum(len(family) for family in FAMILIES.values()), "a name twice"
@@ -72,7 +71,7 @@ def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
     )
 
 
-def _parameters_model(preset: AnyPreset) -> type[BaseModel]:
+def _parameters_model(preset: Preset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
             float | None,
@@ -89,7 +88,7 @@ def _parameters_model(preset: AnyPreset) -> type[BaseModel]:
     return create_model(f"{preset.name}_parameters", __config__=config, **fields)
 
 
-def _route(preset: AnyPreset) -> None:
+def _route(preset: Preset) -> None:
     model = _parameters_model(preset)
 
     def build(parameters: model | None = None) -> FiniteJSONResponse:  # type: ignore[valid-type]

@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
 from solver.errors import InvalidScene
 from solver.gears import parse_gear_train
-from solver.teaching.presets import PresetParameter
+from solver.teaching.presets import Preset, PresetParameter
 
 MIN_TEETH = 8
 MAX_TEETH = 400
@@ -30,31 +30,19 @@ Generator = Callable[[Mapping[str, float]], dict[str, Any]]
 
 
 @dataclass(frozen=True)
-class GearPreset:
-    """A textbook gear train: its parameters and the generator of its scene document."""
-
-    name: str
-    title: str
-    description: str
-    parameters: tuple[PresetParameter, ...]
-    generator: Generator = field(repr=False, compare=False)
+class GearPreset(Preset):
+    """A textbook gear train: its parameters and (``geometry``) the generator of the train's
+    part of the scene."""
 
     def build(self, values: Mapping[str, float]) -> dict[str, Any]:
         """The scene-v1 ``gear_train`` document; missing values take their defaults. Raises
         ``InvalidScene`` for an unknown parameter, a value out of range or teeth the train
         cannot have."""
-        allowed = [p.name for p in self.parameters]
-        unknown = sorted(set(values) - set(allowed))
-        if unknown:
-            raise InvalidScene(
-                f"unknown parameter(s) {', '.join(unknown)} for preset '{self.name}'; "
-                f"allowed: {', '.join(allowed)}"
-            )
-        v = {p.name: p.check(values.get(p.name, p.default)) for p in self.parameters}
+        v = self.resolve(values)
         for p in self.parameters:
             if p.unit == "teeth" and v[p.name] != int(v[p.name]):
                 raise InvalidScene(f"{p.name} = {v[p.name]:g} is not a whole number of teeth")
-        doc = {"kind": "gear_train", "title": self.title, **self.generator(v)}
+        doc = {"kind": "gear_train", "title": self.title, **self.geometry(v)}
         parse_gear_train(doc)  # the document is the contract's: checked as a client's would be
         return doc
 
