@@ -17,7 +17,7 @@ messages are unchanged. A dyad's margin rates are computed only where the screen
 its centres turn with drivers and its Lipschitz bound does not clear (from their velocities, or at
 unit driver rate, 0 + k x (P - pivot)), and for a dyad on a moving centre (a six-bar's second dyad),
 whose run therefore computes velocities, at unit rate of the moving driver where they are not at its
-rate alone (``assembly.rates_alone``). """
+rate alone (``assembly.rates_alone``)."""
 
 from __future__ import annotations
 

@@ -19,7 +19,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import sympy
 from scipy.optimize import brentq
 
 from solver.kinematics.relative_motion import MovingPointMotion
@@ -619,7 +618,7 @@ class MovingPointSteps:
         if route.type != "arc":
             return None
         law = parse_time_law(self.mp.s_law)
-        s_of_t = sympy.lambdify(sympy.Symbol("t"), law.expression, "math")
+        s_of_t = law.value
         radius = self.path_radius()
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"
