@@ -417,20 +417,12 @@ class TimeLaw:
                 return arrays
         self._raise_undefined(x, results)
 
-    @functools.cached_property
-    def _scalar(self) -> Callable[[float], float]:
-        return sympy.lambdify(T, self.expression, "math")
-
     def value(self, t: float) -> float:
-        """The law's value at one ``t`` (the expression in Python's math) without the checks of
-        ``evaluate``: where math raises (exp(100 t) past t = 7.1 s overflows, sqrt(t - 1) before
-        t = 1 is undefined) the numpy value, inf or nan; for a search that needs it only where
-        finite (a root by Brent's method)."""
-        try:
-            return float(self._scalar(t))
-        except (OverflowError, ValueError, ZeroDivisionError):
-            with np.errstate(all="ignore"):
-                return float(self._functions[0](np.float64(t)))
+        """The law's value at one ``t`` without the checks of ``evaluate``: inf where it
+        overflows (exp(100 t) past t = 7.1 s), nan where it is undefined (sqrt(t - 1) before
+        t = 1); for a search that needs it only where finite (a root by Brent's method)."""
+        with np.errstate(all="ignore"):
+            return float(self._functions[0](np.float64(t)))
 
     @functools.cached_property
     def _rate_enclosures(self) -> tuple[RangeFn, RangeFn]:

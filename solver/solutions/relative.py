@@ -19,6 +19,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import sympy
 from scipy.optimize import brentq
 
 from solver.kinematics.relative_motion import MovingPointMotion
@@ -618,7 +619,14 @@ class MovingPointSteps:
         if route.type != "arc":
             return None
         law = parse_time_law(self.mp.s_law)
-        s_of_t = law.value
+        in_math = sympy.lambdify(sympy.Symbol("t"), law.expression, "math")
+
+        def s_of_t(t: float) -> float:  # where math raises (overflow), the law's inf or nan
+            try:
+                return float(in_math(t))
+            except (OverflowError, ValueError, ZeroDivisionError):
+                return law.value(t)
+
         radius = self.path_radius()
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"
