@@ -82,11 +82,13 @@ def sweep(
     quantities: Iterable[str] | None,
     time_range: Sequence[float] | None = None,
 ) -> None:
-    """/sweep: the response's size, and the Newton work with the feasible-range search."""
+    """/sweep: the response's size, the Newton work with the feasible-range search, and a time
+    sweep's dense grid (the drivers' turn in steps of at most pi/8)."""
     estimate = solver.estimate_work(scene, samples, quantities, time_range=time_range)
     _response_size(estimate)
     what = "over the revolution" if time_range is None else "over the time range"
     _newton(estimate, what, "/api/v1/sweep")
+    estimate.dense_samples()  # refuses a dense grid past the solver's MAX_DENSE_SAMPLES
 
 
 def spatial_sweep(

@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.analysis.sweeps import MAX_SAMPLES
-from solver.errors import InvalidScene, LimitExceeded
+from solver.analysis.sweeps import check_samples
+from solver.errors import InvalidScene
 from solver.kinematics.spatial import (
     GROUND,
     SpatialAnalysis,
@@ -111,8 +111,7 @@ def sweep_spatial_time(
     quantities: Iterable[str] | None = None,
 ) -> SpatialSweep:
     """The chain at ``samples`` instants from t0 to t1 (POST /sweep with ``time_range``)."""
-    if not 2 <= samples <= MAX_SAMPLES:
-        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    check_samples(samples)
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
         raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
     if max(abs(t0), abs(t1)) > MAX_TIME:

@@ -66,6 +66,13 @@ STROKE_RUNS = 6
 NEWTON_STEPS = 20  # on the interpolant: quadratic from the secant, a few in practice
 
 
+def check_samples(samples: int) -> None:
+    """2 <= samples <= MAX_SAMPLES (a sweep's documented bounds), else ``LimitExceeded`` stating
+    them."""
+    if not 2 <= samples <= MAX_SAMPLES:
+        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+
+
 class _Warned:
     """A sweep's warnings in words: one per close approach of two branches."""
 
@@ -359,8 +366,7 @@ def sweep(
     ``tolerance`` is a Newton group's (relative to the size; default NEWTON_TOLERANCE)."""
     if not scene.drivers:
         raise InvalidScene("drivers: a sweep needs a driver")
-    if not 2 <= samples <= MAX_SAMPLES:
-        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    check_samples(samples)
     wanted = normalise_quantities(["position"] if quantities is None else quantities)
     plan = build_plan(scene)
     driven = _Driven(scene, plan, tolerance)
@@ -583,8 +589,7 @@ def sweep_time(
 ) -> TimeSweep:
     """The scene at ``samples`` instants from t0 to t1 (drivers and moving points by their laws);
     ``tolerance`` as for ``sweep``."""
-    if not 2 <= samples <= MAX_SAMPLES:
-        raise LimitExceeded(f"samples: {samples} is outside 2..{MAX_SAMPLES}")
+    check_samples(samples)
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
         raise InvalidScene(f"time_range: expected [t0, t1] with t1 > t0, got [{t0}, {t1}]")
     wanted = normalise_quantities(["position"] if quantities is None else quantities)

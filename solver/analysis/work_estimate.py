@@ -30,10 +30,12 @@ from typing import Protocol
 import numpy as np
 
 from solver.analysis.events import DISTANCE_GRID
+from solver.analysis.sweeps import check_samples
 from solver.kinematics.spatial import SpatialChain
 from solver.model.laws import parse_time_law
 from solver.model.quantities import normalise_quantities
 from solver.model.scene import MAX_TIME, LinkageScene
+from solver.position.assembly import dense_parts, follows_path
 from solver.position.drivers import driver_inputs_over_time
 from solver.position.topology import NewtonStep, build_plan
 
@@ -113,8 +115,10 @@ class WorkEstimate:
         turn: float | None,
         event: tuple[str, float] | None = None,
         time_grid: np.ndarray | None = None,
+        time_sweep: bool = False,
     ) -> None:
         self.scene = scene
+        self._time_sweep = time_sweep
         self.samples = samples
         self.quantities = quantities
         self._turn = turn
@@ -146,6 +150,19 @@ class WorkEstimate:
         assert turn is not None
         groups = tuple(len(s.links) for s in build_plan(scene).steps if isinstance(s, NewtonStep))
         return NewtonWork(groups, self.samples, turn) if groups else None
+
+    def dense_samples(self) -> int | None:
+        """A time sweep's samples on the dense grid its continuation follows (``dense_parts``:
+        the drivers' steps cut to MAX_DRIVER_STEP); None where it follows the given samples.
+        Raises ``LimitExceeded`` past MAX_DENSE_SAMPLES, before any work."""
+        scene = self.scene
+        if not self._time_sweep or not isinstance(scene, LinkageScene):
+            return None
+        assert self._time_grid is not None
+        if not follows_path(build_plan(scene)):
+            return None
+        parts = dense_parts(driver_inputs_over_time(scene, self._time_grid))
+        return None if parts is None else int(parts.sum()) + 1
 
     @cached_property
     def oscillations(self) -> Oscillations | None:
@@ -198,6 +215,7 @@ def estimate_work(
         return WorkEstimate(scene, EVENT_SAMPLES, wanted, None, event, grid)
     if samples is None:
         return WorkEstimate(scene, 1, wanted, None, time_grid=np.array([scene.time]))
+    check_samples(samples)  # a sweep's bounds first: the estimate below needs them
     if time_range is None:
         return WorkEstimate(scene, samples, wanted, 0.0)
     valid = len(time_range) == 2 and all(math.isfinite(t) for t in time_range)
@@ -206,4 +224,4 @@ def estimate_work(
         if valid
         else np.zeros(1)
     )
-    return WorkEstimate(scene, samples, wanted, None, time_grid=grid)
+    return WorkEstimate(scene, samples, wanted, None, time_grid=grid, time_sweep=valid)

@@ -93,6 +93,12 @@ def _error(text: str, pos: int, what: str, detail: str = "") -> InvalidExpressio
     return InvalidExpression(f"{what} at character {pos}{detail}", pos, text)
 
 
+def _too_large(literal: int | float) -> bool:
+    """|literal| > MAX_LITERAL, compared exactly: an integer of 309 digits or more has no float
+    (``math.isfinite`` would raise OverflowError), and a float literal past 1.8e308 is inf."""
+    return abs(literal) > MAX_LITERAL
+
+
 def _needs_parentheses(name: str) -> str:
     """Message detail for a function name that is not followed by '('."""
     return f": {name} needs its argument in parentheses, e.g. {name}(t)"
@@ -200,7 +206,7 @@ class _Builder:
             and isinstance(node.value, int | float)
             and not isinstance(node.value, bool)
         ):
-            if not math.isfinite(node.value) or abs(node.value) > MAX_LITERAL:
+            if _too_large(node.value):
                 raise self.fail(f"the number {self.source(node)} is larger than 1e12", node)
             is_int = isinstance(node.value, int)
             result = sympy.Integer(node.value) if is_int else sympy.Float(node.value)
@@ -411,6 +417,13 @@ class TimeLaw:
                 return arrays
         self._raise_undefined(x, results)
 
+    def value(self, t: float) -> float:
+        """The law's value at one ``t`` without the checks of ``evaluate``: inf where it
+        overflows (exp(100 t) past t = 7.1 s), nan where it is undefined (sqrt(t - 1) before
+        t = 1); for a search that needs it only where finite (a root by Brent's method)."""
+        with np.errstate(all="ignore"):
+            return float(self._functions[0](np.float64(t)))
+
     @functools.cached_property
     def _rate_enclosures(self) -> tuple[RangeFn, RangeFn]:
         return enclosure(self.first_derivative), enclosure(self.second_derivative)
@@ -505,7 +518,7 @@ class _StateBuilder:
             and isinstance(node.value, int | float)
             and not isinstance(node.value, bool)
         ):
-            if not math.isfinite(node.value) or abs(node.value) > MAX_LITERAL:
+            if _too_large(node.value):
                 raise self.fail("the number is larger than 1e12", node)
             constant = np.float64(node.value)
             return lambda t, s: constant

@@ -20,6 +20,7 @@ from functools import cached_property
 from typing import TypeGuard
 
 import numpy as np
+import numpy.typing as npt
 from scipy.optimize import brentq, minimize_scalar
 
 from solver.errors import LimitExceeded, NotAssemblable
@@ -398,25 +399,37 @@ class DenseGrid:
         return found
 
 
-def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
-    """None where no driver steps more than MAX_DRIVER_STEP between two samples; else every
-    interval split into the fewest equal parts that bring each driver's step within it, the
-    drivers' angles and rates linear between the given samples (``between``). Raises
-    ``LimitExceeded`` beyond MAX_DENSE_SAMPLES."""
+def dense_parts(inputs: Sequence[DriverInput]) -> npt.NDArray[np.int_] | None:
+    """None where no driver steps more than MAX_DRIVER_STEP between two samples; else the fewest
+    equal parts of every interval that bring each driver's step within it, ceil(widest step /
+    MAX_DRIVER_STEP) (at least 1). Raises ``LimitExceeded``, stating the drivers' turn, where
+    1 + their sum passes MAX_DENSE_SAMPLES (counted in floats: a driver turning 1e30 rad
+    would overflow an integer count)."""
     path = path_steps(inputs)
     if not coarse(path):
         return None
     widest = np.max([np.abs(np.diff(theta)) for _, theta, _ in path], axis=0)
-    parts = np.ceil(widest / MAX_DRIVER_STEP).astype(int)
-    parts[parts == 0] = 1  # (every driver at rest between the two samples)
-    total = int(parts.sum()) + 1
-    if total > MAX_DENSE_SAMPLES:
+    parts = np.maximum(np.ceil(widest / MAX_DRIVER_STEP), 1.0)  # 1: every driver at rest
+    total = float(parts.sum()) + 1.0
+    if not total <= MAX_DENSE_SAMPLES:
         raise LimitExceeded(
             f"samples: following the linkage in driver steps of at most {MAX_DRIVER_STEP:.4g} "
-            f"rad (pi/8) between the {widest.size + 1} samples (steps of up to "
-            f"{float(widest.max()):.6g} rad) takes {total} samples, more than "
-            f"{MAX_DENSE_SAMPLES}: shorten the range or slow the drivers"
+            f"rad (pi/8) between the {widest.size + 1} samples (the drivers turn "
+            f"{float(widest.sum()):.6g} rad, steps of up to {float(widest.max()):.6g} rad) "
+            f"takes {total:.0f} samples, more than {MAX_DENSE_SAMPLES}: shorten the range or "
+            "slow the drivers"
         )
+    return parts.astype(int)
+
+
+def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
+    """None where no driver steps more than MAX_DRIVER_STEP between two samples; else every
+    interval split into its ``dense_parts``, the drivers' angles and rates linear between the
+    given samples (``between``). Raises ``LimitExceeded`` beyond MAX_DENSE_SAMPLES."""
+    parts = dense_parts(inputs)
+    if parts is None:
+        return None
+    total = int(parts.sum()) + 1
     index = np.concatenate([[0], np.cumsum(parts)])
     k = np.repeat(np.arange(parts.size), parts)
     x = (np.arange(total - 1) - index[k]) / parts[k]
@@ -787,6 +800,12 @@ class _Assembler:
             self.know(link, motion)
 
 
+def follows_path(plan: Plan) -> bool:
+    """Whether the continuation follows the path (then on a ``dense_grid`` where the drivers
+    step too far): only a group with two branches, or a Newton group, depends on it."""
+    return any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
+
+
 def assemble(
     scene: LinkageScene,
     plan: Plan,
@@ -804,9 +823,7 @@ def assemble(
     continuation, where a driver steps more than MAX_DRIVER_STEP between two samples and the
     plan has a two-branch or a Newton group, the linkage is followed on a grid that does not
     (``dense_grid``) and returned at the samples."""
-    # (Only a group with two branches, or a Newton group, depends on the path followed.)
-    followed = any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
-    grid = dense_grid(inputs) if continuation and followed else None
+    grid = dense_grid(inputs) if continuation and follows_path(plan) else None
     if grid is None:
         return _Assembler(
             scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups

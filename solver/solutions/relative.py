@@ -619,7 +619,14 @@ class MovingPointSteps:
         if route.type != "arc":
             return None
         law = parse_time_law(self.mp.s_law)
-        s_of_t = sympy.lambdify(sympy.Symbol("t"), law.expression, "math")
+        in_math = sympy.lambdify(sympy.Symbol("t"), law.expression, "math")
+
+        def s_of_t(t: float) -> float:  # where math raises (overflow), the law's inf or nan
+            try:
+                return float(in_math(t))
+            except (OverflowError, ValueError, ZeroDivisionError):
+                return law.value(t)
+
         radius = self.path_radius()
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"

@@ -25,6 +25,7 @@ from server.app import app
 from solver.errors import LimitExceeded
 from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
 from solver.model.scene import LinkageScene
+from solver.position.assembly import MAX_DENSE_SAMPLES
 from tests.scenes import triads
 from tests.server.test_errors import FOUR_BAR, assert_problem
 
@@ -184,3 +185,19 @@ def test_deeply_composed_laws_are_refused_before_differentiation(law: str) -> No
 def test_the_composition_limit_itself_is_accepted() -> None:
     law = "sin(" * MAX_COMPOSITION + "t" + ")" * MAX_COMPOSITION
     assert composition_depth(parse_time_law(law).expression) == MAX_COMPOSITION
+
+
+def test_a_time_sweeps_dense_grid_past_its_limit_is_refused_before_any_work() -> None:
+    """Issue 28: the driver law 1e12 t^3 over [0, 1e6] s turns 1e30 rad; its dense grid's count
+    (ceil(step / (pi/8)) per interval) overflowed an integer into a negative repeat count (500).
+    The estimate sees it: refused with the drivers' turn and MAX_DENSE_SAMPLES."""
+    scene = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
+    scene["drivers"][0]["angle_law"] = "1e12*t^3"
+    parsed = solver.read_scene(scene).scene
+    assert isinstance(parsed, LinkageScene)
+    with pytest.raises(LimitExceeded, match=r"the drivers turn 1e\+30 rad"):
+        budget.sweep(parsed, 10, None, [0.0, 1e6])  # the budget only counts
+    body = {"scene": scene, "samples": 10, "time_range": [0.0, 1e6]}
+    detail = refused("/api/v1/sweep", body)
+    assert "the drivers turn 1e+30 rad" in detail
+    assert f"more than {MAX_DENSE_SAMPLES}" in detail

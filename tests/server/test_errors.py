@@ -27,6 +27,7 @@ from solver.teaching.presets import build_preset
 Doc = dict[str, Any]
 REFERENCE = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
 PROBLEM = "application/problem+json"
+EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 CODES = {
     "invalid_scene",
     "invalid_expression",
@@ -546,3 +547,32 @@ def test_mutated_scenes_never_give_500_or_nan(client: TestClient, request: tuple
         assert response.status_code in (413, 422), response.text
         assert response.headers["content-type"].startswith(PROBLEM)
         assert parsed["code"] in CODES, parsed
+
+
+@pytest.mark.parametrize("samples", [-5, 0, 1, 100_001])
+def test_a_time_sweeps_samples_are_bounded_as_a_revolutions(
+    client: TestClient, samples: int
+) -> None:
+    """Issue 28: a negative count reached numpy's linspace in the cost estimate (500)."""
+    carrier = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
+    for extra in ({"time_range": [0.0, 1.0]}, {}):
+        body = {"scene": carrier, "samples": samples, **extra}
+        detail = assert_problem(client.post("/api/v1/sweep", json=body), 413, "limit_exceeded")
+        assert detail["detail"] == f"samples: {samples} is outside 2..100000"
+
+
+@pytest.mark.parametrize("literal", ["2" + "0" * 308, "1" + "0" * 309, "1e400"])
+@pytest.mark.parametrize("path", ["analyze", "solution", "sweep", "events"])
+def test_a_literal_past_the_float_range_is_an_invalid_expression(
+    client: TestClient, literal: str, path: str
+) -> None:
+    """Issue 28: an integer of 309 digits has no float (OverflowError, 500 on every route)."""
+    carrier = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
+    carrier["drivers"][0]["angle_law"] = f"{literal}*t"
+    body: Doc = {"scene": carrier}
+    if path == "sweep":
+        body["time_range"] = [0.0, 1.0]
+    if path == "events":
+        body["event"] = {"moving_point": "M", "reaches": "O1"}
+    problem = assert_problem(client.post(f"/api/v1/{path}", json=body), 422, "invalid_expression")
+    assert problem["detail"] == f"the number {literal} is larger than 1e12 at character 0"

@@ -206,3 +206,16 @@ def test_printable_page_honours_every_preset_parameter() -> None:
         response = client.get(f"/api/v1/solution.html?preset=four_bar&{bad}")
         assert response.status_code == 422, bad
         assert response.json()["code"] == "invalid_scene", bad
+
+
+def test_a_law_that_overflows_later_is_solved_as_analyze_answers() -> None:
+    """Issue 28: s = exp(100 t) overflows a float past t = 7.1 s; the event step's search for
+    s = pi R over 60 s raised OverflowError (500) while /analyze at t = 1 s answers. Both
+    answer now, s(0) = 1 m already past pi R (no event step)."""
+    scene = example("S003-T1-translating-carrier")
+    scene["moving_points"][0]["s_law"] = "exp(100*t)"
+    analyzed = client.post("/api/v1/analyze", json={"scene": scene})
+    assert analyzed.status_code == 200, analyzed.text[:300]
+    solved = post({"scene": scene})
+    assert solved.status_code == 200, solved.text[:300]
+    assert solved.json()["steps"]

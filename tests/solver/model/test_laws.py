@@ -346,3 +346,18 @@ def test_random_text_parses_or_raises_invalid_expression(text: str) -> None:
     except InvalidExpression:
         return
     assert all(math.isfinite(v) for v in (value, rate, rate_dot))
+
+
+@pytest.mark.parametrize("literal", ["2" + "0" * 308, "1" + "0" * 309, "1e400"])
+def test_a_literal_past_the_float_range_is_too_large(literal: str) -> None:
+    """Issue 28: an integer of 309 digits or more has no float (it raised OverflowError)."""
+    with pytest.raises(InvalidExpression, match="is larger than 1e12"):
+        parse_time_law(f"{literal}*t")
+
+
+def test_value_is_inf_where_the_law_overflows() -> None:
+    """``value`` answers where math raises: exp(100 t) overflows past t = 7.1 s."""
+    law = parse_time_law("exp(100*t)")
+    assert law.value(1.0) == math.exp(100.0)
+    assert law.value(8.0) == math.inf
+    assert math.isnan(parse_time_law("sqrt(t - 1)").value(0.0))
