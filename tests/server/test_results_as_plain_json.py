@@ -32,7 +32,7 @@ SAMPLES = 24
 
 
 def scenes() -> dict[str, dict[str, Any]]:
-    found = {p.stem: json.loads(p.read_text()) for p in sorted(EXAMPLES.glob("*.json"))}
+    found = {p.stem: json.loads(p.read_text()) for p in sorted(EXAMPLES.rglob("*.json"))}
     for name, preset in PRESETS.items():
         found[f"preset-{name}"] = preset.build({})
     return found
@@ -52,6 +52,21 @@ def is_plain(value: Any) -> bool:
 
 def calls(doc: dict[str, Any]) -> list[tuple[str, dict[str, Any], solver.Result]]:
     """(endpoint, request, the library's result) of every entry point that takes this scene."""
+    if doc["kind"] == "cam":  # one cam angle and a revolution
+        at = {"scene": doc, "angle_deg": 60.0}
+        return [
+            ("/analyze", at, solver.analyze(doc, angle_deg=60.0)),
+            ("/sweep", {"scene": doc, "samples": SAMPLES}, solver.sweep(doc, SAMPLES)),
+        ]
+    if doc["kind"] == "gear_train":  # speeds and torques, and its members over time
+        first = next(iter(doc["inputs"]))
+        torque = {"scene": doc, "input_torque": {first: 12.0}}
+        swept = {"scene": doc, "samples": SAMPLES, "time_range": [0, 1]}
+        return [
+            ("/analyze", {"scene": doc}, solver.analyze(doc)),
+            ("/analyze", torque, solver.analyze(doc, input_torque={first: 12.0})),
+            ("/sweep", swept, solver.sweep_time(doc, (0, 1), SAMPLES)),
+        ]
     dynamic = ["forces", "energy"] if "masses" in doc else []
     wanted = KINEMATIC + dynamic
     out: list[tuple[str, dict[str, Any], solver.Result]] = [
