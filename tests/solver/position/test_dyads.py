@@ -1,4 +1,4 @@
-"""The closed-form groups (solver.position.dyads): the length margin's rate is its derivative
+"""The closed-form groups (solver.position.groups): the length margin's rate is its derivative
 (central
 differences), and a pin in two nearly parallel slots still meets while parallel slots do not.
 """
