@@ -1,6 +1,6 @@
 """The closed-form groups (solver.position.groups): the length margin's rate is its derivative
-(central
-differences), and a pin in two nearly parallel slots still meets while parallel slots do not.
+(central differences), and a pin in two nearly parallel slots still meets while parallel slots do
+not.
 """
 
 from __future__ import annotations
