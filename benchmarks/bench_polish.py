@@ -9,12 +9,10 @@ Run from the repository root:
 ``analyze(scene)`` (every kinematic quantity) of the four-bar, slider-crank and inverted
 slider-crank presets and of a triad (a Newton group), each posed with ``angle_deg`` (so the
 polish runs), timed with the polish and without it (``solver.analysis.instant.polish`` replaced by
-the
-identity, the closed-form position as before issue 14), the two alternating repeat by repeat in
+the identity, the closed-form position as before issue 14), the two alternating repeat by repeat in
 the same run; p50 of the wall time (and of the process's CPU time, less sensitive to other
-processes) and the ratio. It prints a markdown table and the 1-minute load average before
-and after (a load above 0 means other processes competed for the cores). It measures, never
-fails.
+processes) and the ratio. It prints a markdown table and the 1-minute load average before and after
+(a load above 0 means other processes competed for the cores). It measures, never fails.
 """
 
 from __future__ import annotations

@@ -1,9 +1,8 @@
 """Request models at the edge (one per endpoint and direction).
 
 The scene itself is validated by the solver's own parsers (``solver.model.scene``,
-``solver.kinematics.spatial``),
-which know the contract in full and say where a document is wrong; here it is an object with the
-spec's examples attached for the OpenAPI page.
+``solver.kinematics.spatial``), which know the contract in full and say where a document is wrong;
+here it is an object with the spec's examples attached for the OpenAPI page.
 """
 
 from __future__ import annotations

@@ -2,10 +2,9 @@
 
 ``assemblable_presets()`` draws ``(preset name, parameter values)`` pairs that
 ``solver.teaching.presets.build_preset`` assembles, away from the singular poses where a property
-test would
-be ill-conditioned: the four-bar's triangle BCD is never flat, a rod never stands perpendicular to
-its guide, and a slotted lever's pin never passes close to the lever pivot. Values are drawn from a
-valid pose rather than rejected, so hardly any draw is wasted.
+test would be ill-conditioned: the four-bar's triangle BCD is never flat, a rod never stands
+perpendicular to its guide, and a slotted lever's pin never passes close to the lever pivot. Values
+are drawn from a valid pose rather than rejected, so hardly any draw is wasted.
 """
 
 from __future__ import annotations

@@ -104,8 +104,7 @@ class ConstraintSystem:
     in ``angles`` holding its rotation (a driver's given turn); ``drivers=True`` adds every
     driver's row (the linkage's velocity system). ``exact`` converts the drawn coordinates and
     axes; given (``solver.position.polish``: to 40-digit mpmath numbers, an object array), Phi, J
-    and b
-    are evaluated in that arithmetic."""
+    and b are evaluated in that arithmetic."""
 
     def __init__(
         self,

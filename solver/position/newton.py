@@ -1,10 +1,9 @@
 """Newton-Raphson q <- q - J^-1 Phi(q) for groups with no closed form, every sample at once.
 
 The equations Phi(q) = 0 and their Jacobian J are ``solver.position.constraints``; Newton-Raphson
-polishes
-every sample of a sweep together with ``numpy.linalg.solve`` on the stacked Jacobians. Which root
-each sample converges to is decided by the starting values, which come from following the branch
-by continuation (``solver.position.continuation``).
+polishes every sample of a sweep together with ``numpy.linalg.solve`` on the stacked Jacobians.
+Which root each sample converges to is decided by the starting values, which come from following the
+branch by continuation (``solver.position.continuation``).
 """
 
 from __future__ import annotations

@@ -1,6 +1,5 @@
 """Property test of the slider split (solver.analysis.sliding_joints) on random linkages with
-sliders:
-v = v_tr + v_rel, a = a_tr + a_rel + a_cor with a_cor = 2 omega_guide x v_rel (the random
+sliders: v = v_tr + v_rel, a = a_tr + a_rel + a_cor with a_cor = 2 omega_guide x v_rel (the random
 families, tolerances and helpers are those of test_properties.py).
 """
 

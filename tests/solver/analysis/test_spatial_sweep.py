@@ -1,9 +1,8 @@
 """Tests of solver.analysis.spatial_sweep (a spatial chain over time): every sample is the instant
-analysis
-of the scene moved to t, built here independently (each joint in turn turns everything after it
-by Rodrigues' formula, in world coordinates); finite differences of the sweep's own positions and
-omegas; t = 0 is the instant analysis exactly; closed forms for seed 002 and a slider on a
-turntable; bad input."""
+analysis of the scene moved to t, built here independently (each joint in turn turns everything
+after it by Rodrigues' formula, in world coordinates); finite differences of the sweep's own
+positions and omegas; t = 0 is the instant analysis exactly; closed forms for seed 002 and a slider
+on a turntable; bad input."""
 
 from __future__ import annotations
 

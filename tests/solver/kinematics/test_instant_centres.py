@@ -1,7 +1,6 @@
 """Instant centres (solver.kinematics.instant_centres) on random linkages: Kennedy's theorem, the
-centre of a
-revolute pair at its joint, of a slider's pair on the normal to the slot (the random families,
-tolerances and helpers are those of test_properties.py).
+centre of a revolute pair at its joint, of a slider's pair on the normal to the slot (the random
+families, tolerances and helpers are those of test_properties.py).
 """
 
 from __future__ import annotations

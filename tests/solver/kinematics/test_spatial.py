@@ -1,6 +1,6 @@
 """Tests of solver.kinematics.spatial: the seed-002 reference case, a planar special case, a
-prismatic
-hand example, an independent finite-difference check on random chains, and parse errors."""
+prismatic hand example, an independent finite-difference check on random chains, and parse
+errors."""
 
 from __future__ import annotations
 

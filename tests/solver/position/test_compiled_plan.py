@@ -1,6 +1,5 @@
 """The compiled column-form plan (solver.position.compiled_plan) gives the general assembler's
-motion bit
-for bit, and hands back to it wherever the branch search or a failure message is needed.
+motion bit for bit, and hands back to it wherever the branch search or a failure message is needed.
 
 Bit for bit: every array of the motion (points, links, margins, gradient sine) compared as bytes,
 so a last-bit difference or a -0.0 for a 0.0 fails. Independent values of the same quantities

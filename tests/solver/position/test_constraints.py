@@ -1,7 +1,6 @@
 """The constraint equations (solver.position.constraints): the condition number of the velocity
-equations
-is dimensionless (scale invariant), and the rates the solver reports satisfy the differentiated
-loop equations J qdot = b_v, J qddot = b_a.
+equations is dimensionless (scale invariant), and the rates the solver reports satisfy the
+differentiated loop equations J qdot = b_v, J qddot = b_a.
 """
 
 import copy

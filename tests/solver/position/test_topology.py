@@ -1,6 +1,5 @@
 """The solving plan (solver.position.topology): each textbook preset decomposes into closed-form
-groups
-(drivers, dyads, levers, two-point and guided links); what remains is a Newton group.
+groups (drivers, dyads, levers, two-point and guided links); what remains is a Newton group.
 """
 
 import pytest

@@ -1,8 +1,7 @@
 """Tests of solver.teaching.presets: every preset's document against its defining geometry
-(defaults and
-hypothesis draws), the two assembly branches, the reference example scenes S000-T1..T4 and S001
-rebuilt from their dimensions, the error messages, and (once the analysis exists) a round trip
-through the scene parser and the position solver."""
+(defaults and hypothesis draws), the two assembly branches, the reference example scenes S000-T1..T4
+and S001 rebuilt from their dimensions, the error messages, and (once the analysis exists) a round
+trip through the scene parser and the position solver."""
 
 from __future__ import annotations
 
