@@ -145,7 +145,7 @@ def analyze(
         raise InvalidScene("input_torque: a torque on an input is given for a gear_train")
     wanted = normalise_quantities(quantities)
     if isinstance(parsed, CamScene):
-        _cam_quantities(wanted)
+        _no_dynamics(wanted)
         return AnalysisResult(analyze_cam(parsed, 0.0 if angle_deg is None else angle_deg, found))
     if angle_deg is not None:
         raise InvalidScene(
@@ -156,8 +156,7 @@ def analyze(
         result = instant.analyze(parsed, wanted, tolerance)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
         return AnalysisResult(body)
-    if wanted & set(DYNAMIC_QUANTITIES):
-        raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
+    _no_dynamics(wanted)
     return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
 
 
@@ -177,7 +176,7 @@ def sweep(
     every field of docs/CAMS.md."""
     read, found = _scene(scene, strict)
     if isinstance(read, CamScene):
-        _cam_quantities(normalise_quantities(quantities))
+        _no_dynamics(normalise_quantities(quantities))
         if speed_fluctuation is not None:
             raise InvalidScene("speed_fluctuation: a cam's sweep has no dynamics")
         return SweepResult(sweep_cam(read, samples, found))
@@ -193,8 +192,9 @@ def sweep(
     return SweepResult(body)
 
 
-def _cam_quantities(wanted: frozenset[str]) -> None:
-    """A cam answers its fields whatever the kinematic quantities; it has no dynamics."""
+def _no_dynamics(wanted: frozenset[str]) -> None:
+    """Forces and energy (dynamics-v1) are a planar linkage's only: a spatial chain or a cam
+    answers its kinematic fields alone."""
     if wanted & set(DYNAMIC_QUANTITIES):
         raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
 
@@ -221,9 +221,7 @@ def sweep_time(
         raise InvalidScene("time_range: expected [t0, t1]")
     t0, t1 = time_range
     if isinstance(parsed, SpatialChain):
-        wanted = normalise_quantities(quantities)
-        if wanted & set(DYNAMIC_QUANTITIES):
-            raise InvalidScene("quantities: forces and energy are defined for planar linkages only")
+        _no_dynamics(normalise_quantities(quantities))
         chain = sweep_spatial_time(parsed, t0, t1, samples, quantities)
         return TimeSweepResult(results.spatial_time_sweep_body(chain, found))
     result = sweep_linkage_time(parsed, t0, t1, samples, quantities, tolerance)

@@ -62,12 +62,13 @@ def record(out: Path) -> int:
 
         # The first request of a worker pays for its start (imports, compilation): under load
         # that can pass the 2 s limit of /analyze, so one unrecorded request comes first.
-        client.post(f"{API}/analyze", json={"scene": _scenes(client)["S000-T1"]})
+        scenes = _scenes(client)
+        client.post(f"{API}/analyze", json={"scene": scenes["S000-T1"]})
         presets = client.get(f"{API}/presets")
         _write(out, "presets.txt", presets)
         for preset in presets.json()["presets"]:
             post(f"preset-{preset['name']}.txt", f"/presets/{preset['name']}", {})
-        for name, scene in _scenes(client).items():
+        for name, scene in scenes.items():
             dynamic = ["forces", "energy"] if "masses" in json.dumps(scene) else []
             post(f"{name}.analyze.txt", "/analyze", {"scene": scene})
             post(
