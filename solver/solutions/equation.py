@@ -328,27 +328,31 @@ def _side(side: Side) -> tuple[Piece, ...]:
 @dataclass(frozen=True)
 class Equation:
     """side_0 = side_1 = ...: one LaTeX line (aligned at its start), broken before the sides in
-    ``breaks`` (the new line starts '\\phantom{side_0} = '), and the same chain in text."""
+    ``breaks`` (the new line starts '\\phantom{side_0} = ', or '\\phantom{phantom} = '), and the
+    same chain in text, without the sides that have no text form (``latex_only``)."""
 
     sides: tuple[tuple[Piece, ...], ...]
     breaks: tuple[int, ...] = ()
+    phantom: str | None = None
 
     @staticmethod
-    def of(*sides: Side, breaks: tuple[int, ...] = ()) -> Equation:
-        return Equation(tuple(_side(s) for s in sides), breaks)
+    def of(*sides: Side, breaks: tuple[int, ...] = (), phantom: str | None = None) -> Equation:
+        return Equation(tuple(_side(s) for s in sides), breaks, phantom)
 
     def lines(self, shows: Shows) -> list[str]:
         """The LaTeX lines, each starting with the alignment mark '&'."""
         first = latex_of(self.sides[0], shows)
+        indent = first if self.phantom is None else self.phantom
         lines = ["&" + first]
         for i, side in enumerate(self.sides[1:], start=1):
             if i in self.breaks:
-                lines.append(rf"&\phantom{{{first}}}")
+                lines.append(rf"&\phantom{{{indent}}}")
             lines[-1] += " = " + latex_of(side, shows)
         return lines
 
     def text(self, shows: Shows) -> str:
-        return " = ".join(text_of(side, shows) for side in self.sides)
+        sides = (text_of(side, shows) for side in self.sides)
+        return " = ".join(side for side in sides if side)
 
     def latex(self, shows: Shows) -> str:
         """The chain on one line, without the alignment mark (inside other LaTeX)."""

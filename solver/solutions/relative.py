@@ -28,16 +28,36 @@ from solver.model.laws import parse_time_law
 from solver.model.scene import MovingPoint
 from solver.solutions import latex as tex
 from solver.solutions.builder import Source, StepBuilder
+from solver.solutions.equation import (
+    TIMES,
+    Alt,
+    Boxed,
+    Col,
+    Equation,
+    Num,
+    Paren,
+    Piece,
+    Pt,
+    Ref,
+    Sym,
+    ZCross,
+    latex_only,
+)
 from solver.solutions.format import latex_unit
 from solver.solutions.linkage import (
     ACCELERATION,
     V0,
     VELOCITY,
     LinkageContext,
-    det_row_z,
+    a_vec,
+    al_vec,
     k_cross,
+    origin,
     put_motion,
+    r_vec,
     split_part,
+    v_vec,
+    w_vec,
 )
 from solver.solutions.model import Step
 
@@ -95,7 +115,7 @@ def transport_terms(
     return TransportTerms(a, base, w, r, t, al, n)
 
 
-def check_transport(b: StepBuilder, terms: TransportTerms, total: str) -> None:
+def check_transport(b: StepBuilder, terms: TransportTerms, total: str | Ref) -> None:
     """total = v_A + omega x r (a_A + alpha x r - omega^2 r), each term checked."""
     if not terms.alpha:
         b.check("cross", terms.rotation, terms.omega, terms.r)
@@ -106,62 +126,60 @@ def check_transport(b: StepBuilder, terms: TransportTerms, total: str) -> None:
     b.check("sum", total, terms.base, terms.rotation, terms.normal)
 
 
-def origin_column(b: StepBuilder, ctx: LinkageContext, point: str, key: str) -> str:
-    """The motion ``key`` of ``point`` as a column, 0 for a fixed point at rest."""
-    return V0 if ctx.is_fixed(point) and b.is_zero(key) else b.col(key)
-
-
 @dataclass(frozen=True)
 class LawValues:
-    """The keys of t, s(t), s'(t) and s''(t)."""
+    """t, s(t), s'(t) and s''(t)."""
 
-    t: str
-    s: str
-    s_dot: str
-    s_ddot: str
+    t: Ref
+    s: Ref
+    s_dot: Ref
+    s_ddot: Ref
 
 
 @dataclass(frozen=True)
 class ArcValues:
-    """The keys of M = C + R (cos psi, sin psi): the centre C, R, psi and r_CM."""
+    """M = C + R (cos psi, sin psi): the centre C, R, psi and r_CM."""
 
-    center: str
-    radius: str
-    psi: str
-    r: str
+    center: Ref
+    radius: Ref
+    psi: Ref
+    r: Ref
 
 
 @dataclass(frozen=True)
 class LineValues:
-    """The keys of M = P_0 + s u: the start P_0, u and r_P0M."""
+    """M = P_0 + s u: the start P_0, u and r_P0M."""
 
-    start: str
-    u: str
-    r: str
+    start: Ref
+    u: Ref
+    r: Ref
 
 
 @dataclass(frozen=True)
 class TransportParts:
-    """The keys of a_tr's tangential and normal parts (along and across v_tr), of v_tr and of
-    the check a_tr^n . v_tr = 0."""
+    """a_tr's tangential and normal parts (along and across v_tr), v_tr and the check
+    a_tr^n . v_tr = 0."""
 
-    tangential: str
-    normal: str
-    velocity: str
-    dot: str
+    tangential: Ref
+    normal: Ref
+    velocity: Ref
+    dot: Ref
 
 
 @dataclass(frozen=True)
 class RelativeAcceleration:
-    """The keys of a_rel = s'' tau + (s'^2 / R) n: s', s'', tau, n, 1/R and the two parts."""
+    """a_rel = s'' tau + (s'^2 / R) n: s', s'', tau, n, 1/R and the two parts."""
 
-    s_dot: str
-    s_ddot: str
-    tau: str
-    n: str
-    curvature: str
-    tangential: str
-    normal: str
+    s_dot: Ref
+    s_ddot: Ref
+    tau: Ref
+    n: Ref
+    curvature: Ref
+    tangential: Ref
+    normal: Ref
+
+
+BETWEEN = Sym(r", \quad ", ", ")  # between the equations of a row
 
 
 class MovingPointSteps:
@@ -176,11 +194,16 @@ class MovingPointSteps:
     def src(self, field: str) -> tuple[str, ...]:
         return ("moving_points", self.name, field)
 
-    def put(self, b: StepBuilder, name: str) -> str:
+    def put(self, b: StepBuilder, name: str) -> Ref:
         """One part of v = v_tr + v_rel or a = a_tr + a_rel + a_cor of M (``name`` a field of
         the motion, e.g. 'transport_velocity'), with its path in the response."""
         key, unit = split_part(name, self.name)
-        return b.put(key, getattr(self.m, name), unit, self.src(name))
+        return b.value(key, getattr(self.m, name), unit, self.src(name))
+
+    def part(self, kind: str, order: str) -> str:
+        """The symbol of a part of M's motion: '\\vec{v}_{M,\\mathrm{tr}}' (``kind`` 'v', ``order``
+        'tr')."""
+        return rf"\vec{{{kind}}}_{{{self.n},\mathrm{{{order}}}}}"
 
     @property
     def turn(self) -> float:
@@ -215,104 +238,126 @@ class MovingPointSteps:
         """s = s(t), s' = ds/dt and s'' = d^2 s/dt^2 at the instant, then M on its path."""
         b = self.ctx.builder("relative.law", f"Moving point {self.name}: time law and position")
         law = self.law_values(b)
-        self.law_lines(b, law)
-        m = b.put(f"pos({self.name})", self.m.position, "m", self.src("position"))
+        self.write_law(b, law)
+        m = b.value(f"pos({self.name})", self.m.position, "m", self.src("position"))
         if self.mp.path.type == "arc":
-            self.arc_lines(b, m, self.arc_values(b, m))
+            self.write_arc(b, m, self.arc_values(b, m))
         else:
-            self.line_lines(b, m, self.line_values(b, law, m))
+            self.write_line(b, law, m, self.line_values(b, law, m))
         return b.build()
 
     def law_values(self, b: StepBuilder) -> LawValues:
         """t, s(t), s'(t) and s''(t), the solver's numbers with their paths."""
         return LawValues(
-            b.put("t", self.ctx.scene.time, "s"),
-            b.put("s", float(self.m.s), "m", self.src("s")),
-            b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
-            b.put("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot")),
+            b.value("t", self.ctx.scene.time, "s"),
+            b.value("s", float(self.m.s), "m", self.src("s")),
+            b.value("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
+            b.value("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot")),
         )
 
-    def law_lines(self, b: StepBuilder, v: LawValues) -> None:
-        """Write s(t), s'(t), s''(t) as formulas, then their values at t."""
+    def write_law(self, b: StepBuilder, v: LawValues) -> None:
+        """s(t), s'(t), s''(t) as formulas, then their values at t."""
         law, digits = parse_time_law(self.mp.s_law), self.ctx.fmt.digits
         b.line(
             rf"&s(t) = {tex.law(law.expression, digits)}, \quad \dot{{s}}(t) = "
             rf"{tex.law(law.first_derivative, digits)}, \quad \ddot{{s}}(t) = "
             rf"{tex.law(law.second_derivative, digits)}"
         )
-        b.line(
-            rf"&t = {b.numu(v.t)}: \quad s = {b.numu(v.s)}, \quad \dot{{s}} = "
-            rf"{b.numu(v.s_dot)}, \quad \ddot{{s}} = {b.numu(v.s_ddot)}"
+        now = (
+            Equation.of("t", Num(v.t, unit=True)),
+            Sym(r": \quad ", ": "),
+            Equation.of("s", Num(v.s, unit=True)),
+            BETWEEN,
+            Equation.of(Sym(r"\dot{s}", "s-dot"), Num(v.s_dot, unit=True)),
+            BETWEEN,
+            Equation.of(Sym(r"\ddot{s}", "s-double-dot"), Num(v.s_ddot, unit=True)),
         )
+        b.line("&", *now)
         b.say(
             f"{self.name} moves along a path fixed in link {self.carrier}; its arc length from "
-            f"{self.mp.path.start} is s(t) = {self.mp.s_law} (m). At t = {b.txt(v.t)}: s = "
-            f"{b.txt(v.s)}, s-dot = {b.txt(v.s_dot)}, s-double-dot = {b.txt(v.s_ddot)}."
+            f"{self.mp.path.start} is s(t) = {self.mp.s_law} (m). At ",
+            *now,
+            ".",
         )
 
-    def arc_values(self, b: StepBuilder, m: str) -> ArcValues:
+    def arc_values(self, b: StepBuilder, m: Ref) -> ArcValues:
         """M = C + R (cos psi, sin psi), psi = psi_0 + theta_carrier +- s / R (psi_0 the drawn
         start's angle about C, + counter-clockwise)."""
         ctx, route = self.ctx, self.mp.path
         assert route.center is not None
         center = ctx.pos(route.center)
-        c = b.put(f"pos({route.center})", center, "m", ("points", route.center, "position"))
+        c = b.value(f"pos({route.center})", center, "m", ("points", route.center, "position"))
         radius = self.path_radius()
-        r = b.put("R", radius, "m")
+        r = b.value("R", radius, "m")
         start = ctx.scene.drawn(route.start) - ctx.scene.drawn(route.center)
         theta = float(ctx.analysis.motion.links[self.carrier].theta[0])
         psi = math.atan2(start[1], start[0]) + theta + self.turn * float(self.m.s) / radius
-        angle = b.put("angle", psi, "rad")
-        d_key = f"r({route.center},{self.name})"
-        d = b.put(d_key, np.asarray(self.m.position) - center, "m")
+        angle = b.value("angle", psi, "rad")
+        d = b.value(f"r({route.center},{self.name})", np.asarray(self.m.position) - center, "m")
         b.check("phasor", d, r, angle)
         b.check("sum", m, c, d)
         return ArcValues(c, r, angle, d)
 
-    def arc_lines(self, b: StepBuilder, m: str, v: ArcValues) -> None:
-        """Write M = C + R (cos psi, sin psi) with the numbers."""
+    def write_arc(self, b: StepBuilder, m: Ref, v: ArcValues) -> None:
+        """M = C + R (cos psi, sin psi) with the numbers."""
         route = self.mp.path
         assert route.center is not None
         sense = "counter-clockwise" if self.turn > 0 else "clockwise"
-        b.line(
-            rf"&\text{{arc about }} {tex.name(route.center)}, \; R = {b.numu(v.radius)}, \; "
-            rf"\text{{{sense} from }} {tex.name(route.start)}: \; {self.n} = "
-            rf"{tex.name(route.center)} + R\,(\cos\psi, \sin\psi), \; \psi = {b.numu(v.psi)}"
+        radius = Equation.of("R", Num(v.radius, unit=True))
+        angle = Equation.of(Sym(r"\psi", "psi"), Num(v.psi, unit=True))
+        place = Equation.of(
+            Sym(self.n, self.name),
+            latex_only(Pt(v.center), " + ", Pt(v.r)),
+            Boxed((Pt(m, "m"),)),
         )
+        centre = tex.name(route.center)
         b.line(
-            rf"&{self.n} = {b.point(v.center)} + {b.point(v.r)} = "
-            rf"{tex.boxed_result(b.point(m) + latex_unit('m'))}"
+            rf"&\text{{arc about }} {centre}, \; ",
+            radius,
+            rf", \; \text{{{sense} from }} {tex.name(route.start)}: \; {self.n} = "
+            rf"{centre} + R\,(\cos\psi, \sin\psi), \; ",
+            angle,
         )
+        b.line(place)
         b.say(
-            f"The path is an arc of radius R = {b.txt(v.radius)} about {route.center}, run "
-            f"{sense} from {route.start}; {self.name} is at the angle psi = {b.txt(v.psi)} on "
-            f"it: {self.name} = {b.txt(m)}."
+            "The path is an arc of radius ",
+            radius,
+            f" about {route.center}, run {sense} from {route.start}; {self.name} is at the angle ",
+            angle,
+            " on it: ",
+            place,
+            ".",
         )
 
-    def line_values(self, b: StepBuilder, law: LawValues, m: str) -> LineValues:
+    def line_values(self, b: StepBuilder, law: LawValues, m: Ref) -> LineValues:
         """M = P_0 + s u, u the unit vector from the line's start P_0 towards its second point."""
         ctx, route = self.ctx, self.mp.path
         assert route.through is not None
         start = ctx.pos(route.start)
-        s0 = b.put(f"pos({route.start})", start, "m", ("points", route.start, "position"))
+        s0 = b.value(f"pos({route.start})", start, "m", ("points", route.start, "position"))
         u_np = ctx.pos(route.through) - start
-        u = b.put("u", u_np / float(np.hypot(*u_np)), "")
-        d = b.put(f"r({route.start},{self.name})", np.asarray(self.m.position) - start, "m")
+        u = b.value("u", u_np / float(np.hypot(*u_np)), "")
+        d = b.value(f"r({route.start},{self.name})", np.asarray(self.m.position) - start, "m")
         b.check("product", d, law.s, u)
         b.check("sum", m, s0, d)
         return LineValues(s0, u, d)
 
-    def line_lines(self, b: StepBuilder, m: str, v: LineValues) -> None:
-        """Write M = P_0 + s u with the numbers."""
+    def write_line(self, b: StepBuilder, law: LawValues, m: Ref, v: LineValues) -> None:
+        """M = P_0 + s u with the numbers."""
         route = self.mp.path
-        b.line(
-            rf"&{self.n} = {tex.name(route.start)} + s\,\vec{{u}} = {b.point(v.start)} + "
-            rf"{b.num('s')} \cdot {b.point(v.u)} = "
-            rf"{tex.boxed_result(b.point(m) + latex_unit('m'))}"
+        place = Equation.of(
+            Sym(self.n, self.name),
+            latex_only(rf"{tex.name(route.start)} + s\,\vec{{u}}"),
+            latex_only(Pt(v.start), " + ", Num(law.s), r" \cdot ", Pt(v.u)),
+            Boxed((Pt(m, "m"),)),
         )
+        b.line(place)
         b.say(
-            f"The path is the line from {route.start} towards {route.through} (direction "
-            f"{b.txtn(v.u)}): {self.name} = {b.txt(m)}."
+            f"The path is the line from {route.start} towards {route.through} (direction ",
+            Pt(v.u),
+            "): ",
+            place,
+            ".",
         )
 
     # --- velocity -------------------------------------------------------------------------------
@@ -345,42 +390,60 @@ class MovingPointSteps:
         v = self.transport(b, VELOCITY)
         tr = self.put(b, "transport_velocity")
         check_transport(b, v, tr)
-        a = v.origin
-        b.line(
-            rf"&\vec{{v}}_{{{self.n},\mathrm{{tr}}}} = \vec{{v}}_{{{tex.name(a)}}} + "
-            rf"\vec{{\omega}}_{{{tex.name(carrier)}}} \times "
-            rf"\vec{{r}}_{{{tex.pair(a, self.name)}}} = {origin_column(b, ctx, a, v.base)} + "
-            rf"{tex.determinant3(det_row_z(b, v.omega), b.entries(v.r))} = "
-            rf"{tex.boxed_result(b.colu(tr))}"
+        a, w, r = v.origin, Ref(v.omega), Ref(v.r)
+        transport = Equation.of(
+            latex_only(self.part("v", "tr")),
+            (
+                Sym(v_vec(a), f"v({a})"),
+                " + ",
+                Sym(w_vec(carrier), f"omega({carrier})"),
+                TIMES,
+                Sym(r_vec(a, self.name), f"r({a},{self.name})"),
+            ),
+            (
+                origin(b, ctx, a, Ref(v.base)),
+                " + ",
+                Alt((ZCross(w, r),), (Col(Ref(v.rotation)),)),
+            ),
+            Boxed((Col(tr, unit=True),)),
         )
-        if b.is_zero(v.omega):
+        b.line(transport)
+        if b.is_zero(w):
             b.say(
                 f"The carrier {carrier} translates at this instant (omega = 0): every point of "
-                f"it, including the one under {self.name}, moves like {a}: v_tr = {b.txt(tr)}."
+                f"it, including the one under {self.name}, moves like {a}: v_tr = ",
+                Col(tr),
+                ".",
             )
         else:
             b.say(
-                f"Transport velocity: the velocity of the point of {carrier} under "
-                f"{self.name}, v({a}) + omega({carrier}) cross r({a},{self.name}) = "
-                f"{b.txt(v.base)} + {b.txt(v.rotation)} = {b.txt(tr)}."
+                f"Transport velocity: the velocity of the point of {carrier} under {self.name}, ",
+                transport,
+                ".",
             )
         return b.build()
 
     def relative_velocity_step(self) -> Step:
         """v_rel = s' tau, tau the path's unit tangent (the carrier's rate does not enter)."""
         b = self.ctx.builder("relative.relative_velocity", f"Relative velocity of {self.name}")
-        sd = b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
-        t = b.put("tau", self.tangent_normal()[0], "")
+        sd = b.value("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
+        t = b.value("tau", self.tangent_normal()[0], "")
         rel = self.put(b, "relative_velocity")
         b.check("product", rel, sd, t)
-        b.line(
-            rf"&\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = \dot{{s}}\,\vec{{\tau}} = "
-            rf"{b.num(sd)} \cdot {b.col(t)} = {tex.boxed_result(b.colu(rel))}"
+        relative = Equation.of(
+            Sym(self.part("v", "rel"), "v_rel"),
+            Sym(r"\dot{s}\,\vec{\tau}", "s-dot tau"),
+            latex_only(Num(sd), r" \cdot ", Col(t)),
+            Boxed((Col(rel, unit=True),)),
         )
+        b.line(relative)
         b.say(
-            f"Relative velocity: along the path's tangent tau = {b.txtn(t)} (the direction of "
-            f"increasing s), v_rel = s-dot tau = {b.txt(rel)}. It is the velocity an observer "
-            f"on {self.carrier} sees: the carrier's rate does not enter it."
+            "Relative velocity: along the path's tangent tau = ",
+            Col(t),
+            " (the direction of increasing s), ",
+            relative,
+            f". It is the velocity an observer on {self.carrier} sees: the carrier's rate does "
+            "not enter it.",
         )
         return b.build()
 
@@ -391,12 +454,14 @@ class MovingPointSteps:
         rel = self.put(b, "relative_velocity")
         v = self.put(b, "velocity")
         b.check("sum", v, tr, rel)
-        b.line(
-            rf"&\vec{{v}}_{{{self.n}}} = \vec{{v}}_{{{self.n},\mathrm{{tr}}}} + "
-            rf"\vec{{v}}_{{{self.n},\mathrm{{rel}}}} = {b.col(tr)} + {b.col(rel)} = "
-            rf"{tex.boxed_result(b.colu(v))}"
+        total = Equation.of(
+            Sym(v_vec(self.name), f"v({self.name})"),
+            (Sym(self.part("v", "tr"), "v_tr"), " + ", Sym(self.part("v", "rel"), "v_rel")),
+            (Col(tr), " + ", Col(rel)),
+            Boxed((Col(v, unit=True),)),
         )
-        b.say(f"v({self.name}) = v_tr + v_rel = {b.txt(tr)} + {b.txt(rel)} = {b.txt(v)}.")
+        b.line(total)
+        b.say(total, ".")
         return b.build()
 
     # --- acceleration ---------------------------------------------------------------------------
@@ -418,21 +483,21 @@ class MovingPointSteps:
         terms = self.transport(b, ACCELERATION)
         tr = self.put(b, "transport_acceleration")
         check_transport(b, terms, tr)
-        self.transport_acceleration_lines(b, terms, tr, self.transport_parts(b, tr))
+        self.write_transport_acceleration(b, terms, tr, self.transport_parts(b, tr))
         return b.build()
 
-    def transport_parts(self, b: StepBuilder, tr: str) -> TransportParts:
+    def transport_parts(self, b: StepBuilder, tr: Ref) -> TransportParts:
         """a_tr = a_tr^tau + a_tr^n, a_tr^n . v_tr = 0 (the normal part is across v_tr)."""
-        tt = b.put(
+        tt = b.value(
             "a_tr tangential",
             self.m.transport_tangential,
             "m/s^2",
             self.src("transport_tangential"),
         )
-        tn = b.put("a_tr normal", self.m.transport_normal, "m/s^2", self.src("transport_normal"))
+        tn = b.value("a_tr normal", self.m.transport_normal, "m/s^2", self.src("transport_normal"))
         vtr = self.put(b, "transport_velocity")
         normal, velocity = self.m.transport_normal, self.m.transport_velocity
-        d = b.put(
+        d = b.value(
             "a_tr normal . v_tr",
             float(np.dot(normal, velocity)),
             "m^2/s^3",
@@ -442,48 +507,61 @@ class MovingPointSteps:
         b.check("dot", d, tn, vtr)
         return TransportParts(tt, tn, vtr, d)
 
-    def transport_acceleration_lines(
-        self, b: StepBuilder, v: TransportTerms, tr: str, parts: TransportParts
+    def write_transport_acceleration(
+        self, b: StepBuilder, v: TransportTerms, tr: Ref, parts: TransportParts
     ) -> None:
-        """Write a_tr = a_A + alpha x r - omega^2 r, then its parts a_tr^tau and a_tr^n."""
-        sub, k, a = self.n, tex.name(self.carrier), v.origin
-        base = origin_column(b, self.ctx, a, v.base)
-        b.line(
-            rf"&\vec{{a}}_{{{sub},\mathrm{{tr}}}} = \vec{{a}}_{{{tex.name(a)}}} + "
-            rf"\vec{{\alpha}}_{{{k}}} \times \vec{{r}} - \omega_{{{k}}}^2\,\vec{{r}} = {base} + "
-            rf"{tex.determinant3(det_row_z(b, v.alpha), b.entries(v.r))} - "
-            rf"{tex.paren(b.num(v.omega))}^2 \cdot {b.col(v.r)}"
-        )
-        b.line(
-            rf"&\phantom{{\vec{{a}}}} = {base} + {b.col(v.rotation)} + {b.col(v.normal)} = "
-            rf"{tex.boxed_result(b.colu(tr))}"
-        )
-        b.line(
-            rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{tr}}}} = {b.col(parts.tangential)}, \quad "
-            rf"\vec{{a}}^{{n}}_{{{sub},\mathrm{{tr}}}} = {b.col(parts.normal)} \quad "
-            r"\text{(along and across } \vec{v}_{\mathrm{tr}}\text{)}"
-        )
-        self.transport_acceleration_text(b, v, tr, parts)
-
-    def transport_acceleration_text(
-        self, b: StepBuilder, v: TransportTerms, tr: str, parts: TransportParts
-    ) -> None:
-        """Say a_tr (or that the carrier translates) and its two parts."""
+        """a_tr = a_A + alpha x r - omega^2 r (or that the carrier translates), then its parts
+        a_tr^tau and a_tr^n."""
         carrier, a = self.carrier, v.origin
+        k, r = tex.name(carrier), Ref(v.r)
+        base = origin(b, self.ctx, a, Ref(v.base))
+        transport = Equation.of(
+            latex_only(self.part("a", "tr")),
+            (
+                Sym(a_vec(a), f"a({a})"),
+                " + ",
+                Sym(al_vec(carrier), f"alpha({carrier})"),
+                TIMES,
+                Sym(r"\vec{r}", "r"),
+                Sym(rf" - \omega_{{{k}}}^2\,\vec{{r}}", f" - omega({carrier}) squared r"),
+            ),
+            latex_only(
+                base,
+                " + ",
+                ZCross(Ref(v.alpha), r),
+                " - ",
+                Paren(Ref(v.omega)),
+                r"^2 \cdot ",
+                Col(r),
+            ),
+            (base, " + ", Col(Ref(v.rotation)), " + ", Col(Ref(v.normal))),
+            Boxed((Col(tr, unit=True),)),
+            breaks=(3,),
+            phantom=r"\vec{a}",
+        )
+        b.line(transport)
+        b.line(
+            rf"&\vec{{a}}^{{\tau}}_{{{self.n},\mathrm{{tr}}}} = ",
+            Col(parts.tangential),
+            rf", \quad \vec{{a}}^{{n}}_{{{self.n},\mathrm{{tr}}}} = ",
+            Col(parts.normal),
+            r" \quad \text{(along and across } \vec{v}_{\mathrm{tr}}\text{)}",
+        )
         if b.is_zero(v.omega) and b.is_zero(v.alpha):
             b.say(
                 f"The carrier {carrier} translates (omega = alpha = 0): all its points have "
-                f"the acceleration of {a}, so a_tr = a({a}) = {b.txt(tr)}."
+                f"the acceleration of {a}, so a_tr = a({a}) = ",
+                Col(tr),
+                ".",
             )
         else:
-            b.say(
-                f"Transport acceleration: a({a}) + alpha({carrier}) cross r - "
-                f"omega({carrier}) squared r = {b.txt(v.base)} + {b.txt(v.rotation)} + "
-                f"{b.txt(v.normal)} = {b.txt(tr)}."
-            )
+            b.say("Transport acceleration: ", transport, ".")
         b.say(
-            f"Its tangential part (along v_tr) is {b.txt(parts.tangential)} and its normal part "
-            f"(across it) {b.txt(parts.normal)}."
+            "Its tangential part (along v_tr) is ",
+            Col(parts.tangential),
+            " and its normal part (across it) ",
+            Col(parts.normal),
+            ".",
         )
 
     def relative_acceleration_step(self) -> Step:
@@ -497,117 +575,138 @@ class MovingPointSteps:
         b.check("product", v.tangential, v.s_ddot, v.tau)
         b.check("product", v.normal, v.s_dot, v.s_dot, v.curvature, v.n)
         b.check("sum", rel, v.tangential, v.normal)
-        self.relative_acceleration_lines(b, v, rel)
+        self.write_relative_acceleration(b, v, rel)
         return b.build()
 
     def relative_acceleration_values(self, b: StepBuilder) -> RelativeAcceleration:
         """s', s'', tau, n, 1/R and the parts s'' tau and (s'^2 / R) n of a_rel."""
         tau, normal, curvature = self.tangent_normal()
         return RelativeAcceleration(
-            b.put("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
-            b.put("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot")),
-            b.put("tau", tau, ""),
-            b.put("n", normal, ""),
-            b.put("1/R", curvature, "1/m" if curvature else ""),
-            b.put(
+            b.value("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
+            b.value("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot")),
+            b.value("tau", tau, ""),
+            b.value("n", normal, ""),
+            b.value("1/R", curvature, "1/m" if curvature else ""),
+            b.value(
                 "a_rel tangential",
                 self.m.relative_tangential,
                 "m/s^2",
                 self.src("relative_tangential"),
             ),
-            b.put("a_rel normal", self.m.relative_normal, "m/s^2", self.src("relative_normal")),
+            b.value("a_rel normal", self.m.relative_normal, "m/s^2", self.src("relative_normal")),
         )
 
-    def relative_acceleration_lines(
-        self, b: StepBuilder, v: RelativeAcceleration, rel: str
+    def write_relative_acceleration(
+        self, b: StepBuilder, v: RelativeAcceleration, rel: Ref
     ) -> None:
-        """Write a_rel^tau = s'' tau, a_rel^n = (s'^2 / R) n (0 on a line) and their sum."""
+        """a_rel^tau = s'' tau, a_rel^n = (s'^2 / R) n (0 on a line) and their sum."""
         sub, curved = self.n, b.scalar(v.curvature) != 0.0
-        b.line(
-            rf"&\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{rel}}}} = \ddot{{s}}\,\vec{{\tau}} = "
-            rf"{b.num(v.s_ddot)} \cdot {b.col(v.tau)} = {b.col(v.tangential)}"
+        tangential = Equation.of(
+            latex_only(rf"\vec{{a}}^{{\tau}}_{{{sub},\mathrm{{rel}}}}"),
+            Sym(r"\ddot{s}\,\vec{\tau}", "s-double-dot tau"),
+            latex_only(Num(v.s_ddot), r" \cdot ", Col(v.tau)),
+            Col(v.tangential),
         )
+        normal_part = rf"\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}}"
+        total = Equation.of(
+            Sym(self.part("a", "rel"), "a_rel"),
+            latex_only(Col(v.tangential), " + ", Col(v.normal)),
+            Boxed((Col(rel, unit=True),)),
+        )
+        b.line(tangential)
         if curved:
             radius = self.ctx.fmt.latex(1 / b.scalar(v.curvature))
-            b.line(
-                rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = \frac{{\dot{{s}}^2}}{{R}}\,"
-                rf"\vec{{n}} = \frac{{{tex.paren(b.num(v.s_dot))}^2}}{{{radius}}}"
-                rf" \cdot {b.col(v.n)} = {b.col(v.normal)}"
+            normal: tuple[Piece, ...] = (
+                ", normal ",
+                Equation.of(
+                    latex_only(normal_part),
+                    Sym(r"\frac{\dot{s}^2}{R}\,\vec{n}", "s-dot squared over R towards the centre"),
+                    latex_only(r"\frac{", Paren(v.s_dot), f"^2}}{{{radius}}} \\cdot ", Col(v.n)),
+                    Col(v.normal),
+                ),
             )
+            b.line(normal[1])
         else:
-            b.line(
-                rf"&\vec{{a}}^{{n}}_{{{sub},\mathrm{{rel}}}} = {V0} \quad "
-                r"\text{(straight path)}"
-            )
-        b.line(
-            rf"&\vec{{a}}_{{{sub},\mathrm{{rel}}}} = {b.col(v.tangential)} + {b.col(v.normal)} = "
-            rf"{tex.boxed_result(b.colu(rel))}"
-        )
-        normal = (
-            f", normal s-dot squared over R towards the centre = {b.txt(v.normal)}"
-            if curved
-            else ", no normal part on a straight path"
-        )
+            normal = (", no normal part on a straight path",)
+            b.line(rf"&{normal_part} = {V0} \quad \text{{(straight path)}}")
+        b.line(total)
         b.say(
-            f"Relative acceleration: tangential s-double-dot tau = {b.txt(v.tangential)} (along "
-            f"the direction of increasing s){normal}; a_rel = {b.txt(rel)}."
+            "Relative acceleration: tangential ",
+            tangential,
+            " (along the direction of increasing s)",
+            *normal,
+            "; ",
+            total,
+            ".",
         )
 
     def coriolis_step(self) -> Step:
         """a_Cor = 2 omega_carrier x v_rel, or zero where the carrier translates."""
         carrier, omega = self.carrier, float(self.m.omega_carrier)
         b = self.ctx.builder("relative.coriolis", f"Coriolis acceleration of {self.name}")
-        w = b.put(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
+        w = b.value(f"omega({carrier})", omega, "rad/s", self.src("omega_carrier"))
         vrel = self.put(b, "relative_velocity")
         cor = self.put(b, "coriolis_acceleration")
         b.check("cross", cor, w, vrel, factor=2.0)
-        formula = (
-            rf"\vec{{a}}_{{{self.n},\mathrm{{Cor}}}} = 2\,"
-            rf"\vec{{\omega}}_{{{tex.name(carrier)}}} \times "
-            rf"\vec{{v}}_{{{self.n},\mathrm{{rel}}}}"
+        lhs = latex_only(self.part("a", "Cor"))
+        formula = Sym(
+            rf"2\,{w_vec(carrier)} \times {self.part('v', 'rel')}",
+            f"2 omega({carrier}) cross v_rel",
         )
         if b.is_zero(w):
             b.line(
-                rf"&{formula} = {tex.boxed_result(V0 + latex_unit('m/s^2'))} \quad "
-                rf"(\omega_{{{tex.name(carrier)}}} = 0)"
+                Equation.of(
+                    lhs,
+                    formula,
+                    (
+                        Boxed((V0 + latex_unit("m/s^2"),)),
+                        rf" \quad (\omega_{{{tex.name(carrier)}}} = 0)",
+                    ),
+                )
             )
             b.say(
-                f"The carrier {carrier} does not rotate (omega({carrier}) = {b.txt(w)}): it "
-                "translates, so there is no Coriolis acceleration, even if the links that "
-                "drive it turn."
+                f"The carrier {carrier} does not rotate (omega({carrier}) = ",
+                Num(w, unit=True),
+                "): it translates, so there is no Coriolis acceleration, even if the links that "
+                "drive it turn.",
             )
             return b.build()
-        half = b.put("omega x v_rel", k_cross(omega, self.m.relative_velocity), "m/s^2")
+        half = b.value("omega x v_rel", k_cross(omega, self.m.relative_velocity), "m/s^2")
         b.check("cross", half, w, vrel)
-        b.line(
-            rf"&{formula} = 2 \cdot {tex.determinant3(det_row_z(b, w), b.entries(vrel))}"
-            rf" = 2 \cdot {b.col(half)} = {tex.boxed_result(b.colu(cor))}"
+        coriolis = Equation.of(
+            lhs,
+            formula,
+            ("2 ", Alt((r"\cdot ", ZCross(w, vrel)), ("(0, 0, ", Num(w), ") cross ", Col(vrel)))),
+            latex_only(r"2 \cdot ", Col(half)),
+            Boxed((Col(cor, unit=True),)),
         )
-        b.say(
-            f"Coriolis acceleration: 2 omega({carrier}) cross v_rel = 2 (0, 0, "
-            f"{b.txtn(w)}) cross {b.txt(vrel)} = {b.txt(cor)}."
-        )
+        b.line(coriolis)
+        b.say("Coriolis acceleration: ", coriolis, ".")
         return b.build()
 
     def absolute_acceleration_step(self) -> Step:
         """a = a_tr + a_rel + a_Cor."""
-        sub = self.n
         b = self.ctx.builder("relative.acceleration", f"Absolute acceleration of {self.name}")
         tr = self.put(b, "transport_acceleration")
         rel = self.put(b, "relative_acceleration")
         cor = self.put(b, "coriolis_acceleration")
         total = self.put(b, "acceleration")
         b.check("sum", total, tr, rel, cor)
-        b.line(
-            rf"&\vec{{a}}_{{{sub}}} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}} = "
-            rf"{b.col(tr)} + {b.col(rel)} + {V0 if b.is_zero(cor) else b.col(cor)} = "
-            rf"{tex.boxed_result(b.colu(total))}"
+        coriolis = Alt((V0,), (Col(cor),)) if b.is_zero(cor) else Col(cor)
+        acceleration = Equation.of(
+            Sym(a_vec(self.name), f"a({self.name})"),
+            (
+                Sym(self.part("a", "tr"), "a_tr"),
+                " + ",
+                Sym(self.part("a", "rel"), "a_rel"),
+                " + ",
+                Sym(self.part("a", "Cor"), "a_Cor"),
+            ),
+            (Col(tr), " + ", Col(rel), " + ", coriolis),
+            Boxed((Col(total, unit=True),)),
         )
-        b.say(
-            f"a({self.name}) = a_tr + a_rel + a_Cor = {b.txt(tr)} + {b.txt(rel)} + "
-            f"{b.txt(cor)} = {b.txt(total)}."
-        )
+        b.line(acceleration)
+        b.say(acceleration, ".")
         return b.build()
 
     # --- events ---------------------------------------------------------------------------------
@@ -631,8 +730,8 @@ class MovingPointSteps:
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"
         )
-        r = b.put("R", radius, "m")
-        pi = b.put("pi", math.pi, "")
+        r = b.value("R", radius, "m")
+        pi = b.value("pi", math.pi, "")
         found = False
         for turns, where in (
             (1, "opposite its start (half a turn, s = pi R)"),
@@ -642,25 +741,32 @@ class MovingPointSteps:
             t_e = first_time_at(s_of_t, level)
             if t_e is None:
                 continue
-            lv = b.put(f"s_{turns}", level, "m", reference=level)
-            te = b.put(f"t_{turns}", t_e, "s")
+            lv = b.value(f"s_{turns}", level, "m", reference=level)
+            te = b.value(f"t_{turns}", t_e, "s")
             b.check("product", lv, pi, r, factor=float(turns))
-            self.event_lines(b, turns, where, lv, te)
+            self.write_event(b, turns, where, lv, te)
             found = True
         return b.build() if found else None
 
-    def event_lines(self, b: StepBuilder, turns: int, where: str, lv: str, te: str) -> None:
-        """Write s(t) = k pi R solved for its first root t_k."""
+    def write_event(self, b: StepBuilder, turns: int, where: str, lv: Ref, te: Ref) -> None:
+        """s(t) = k pi R solved for its first root t_k."""
         law = parse_time_law(self.mp.s_law)
         factor = "" if turns == 1 else "2"
-        b.line(
-            rf"&s(t) = {factor}\pi R = {b.numu(lv)} \;\Rightarrow\; "
-            rf"{tex.law(law.expression, self.ctx.fmt.digits)} = {b.num(lv)} \;\Rightarrow\; "
-            rf"t = {tex.boxed_result(b.numu(te))}"
+        level = Equation.of("s(t)", latex_only(rf"{factor}\pi R"), Num(lv, unit=True))
+        root = Equation.of(
+            Sym(tex.law(law.expression, self.ctx.fmt.digits), self.mp.s_law), Num(lv)
         )
+        time = Equation.of("t", Boxed((Num(te, unit=True),)))
+        then = r" \;\Rightarrow\; "
+        b.line("&", level, then, root, then, time)
         b.say(
-            f"{self.name} is {where} when s(t) = {b.txt(lv)}: the first positive root of "
-            f"{self.mp.s_law} = {b.txtn(lv)} is t = {b.txt(te)}."
+            f"{self.name} is {where} when ",
+            level,
+            ": the first positive root of ",
+            root,
+            " is ",
+            time,
+            ".",
         )
 
     def steps(self) -> list[Step]:

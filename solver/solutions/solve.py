@@ -81,7 +81,7 @@ def _linkage_steps(
     if method == "loop":
         try:
             body = ctx.replayed(lambda: loop_steps(ctx))
-            body += ctx.replayed(lambda: moving_point_steps(ctx))
+            body += moving_point_steps(ctx)
         except LoopUnavailable as why:
             reason = str(why)
             lead.append(_fallback_step("loop-closure", reason[:1].upper() + reason[1:] + "."))
@@ -116,7 +116,7 @@ def _formatter(scene: LinkageScene, analysis: LinkageAnalysis, digits: int) -> F
 
 def _vector_method(ctx: LinkageContext) -> list[Step]:
     """The vector method's steps: the plan's groups, then the moving points."""
-    return vector_steps(ctx) + ctx.replayed(lambda: moving_point_steps(ctx))
+    return vector_steps(ctx) + moving_point_steps(ctx)
 
 
 def vector_method_steps(scene: LinkageScene, analysis: LinkageAnalysis, digits: int) -> list[Step]:
