@@ -18,7 +18,6 @@ from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain
 from solver.model.scene import LinkageScene
 from solver.solutions import latex as tex
 from solver.solutions.classification import classification_steps
-from solver.solutions.digits import DigitPlan
 from solver.solutions.format import Formatter
 from solver.solutions.graphical import graphical_steps, mechanism_figure
 from solver.solutions.instant_centres import instant_centres_step
@@ -173,10 +172,6 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
                 "Newton-Euler", "Masses and forces are defined for planar linkages only."
             )
         )
-    plan = DigitPlan()
-    body = spatial_steps(scene, analysis, fmt, plan)
-    if plan.replay():
-        body = spatial_steps(scene, analysis, fmt, plan)
-    steps = lead + body
+    steps = lead + spatial_steps(scene, analysis, fmt)
     mistakes = place_mistakes(steps, spatial_mistakes(scene, analysis, fmt), False)
     return Solution(tuple(steps), tuple(mistakes), analysis, "vector", method, digits)

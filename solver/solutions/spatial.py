@@ -14,7 +14,7 @@ and the graphical polygons are planar methods and are not offered here (docs/SOL
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
@@ -34,8 +34,25 @@ from solver.kinematics.spatial import (
 from solver.solutions import figures
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
-from solver.solutions.digits import DigitPlan
-from solver.solutions.format import Formatter, latex_unit
+from solver.solutions.equation import (
+    TIMES,
+    Alt,
+    Boxed,
+    Col,
+    Equation,
+    Num,
+    Paren,
+    Piece,
+    Pt,
+    Ref,
+    Shows,
+    Sym,
+    Words,
+    joined,
+    latex_only,
+    text_only,
+)
+from solver.solutions.format import Formatter
 from solver.solutions.linkage import speed_trend
 from solver.solutions.model import Step
 
@@ -45,6 +62,10 @@ V0 = r"\vec{0}"
 ISOMETRIC = np.array([[-math.cos(math.pi / 6), math.cos(math.pi / 6), 0.0], [-0.5, -0.5, 1.0]])
 OMEGA_PAPER_CM = 3.0  # the largest omega is drawn at most this long
 UNITS = r"\mathbf{E}_1 & \mathbf{E}_2 & \mathbf{E}_3"
+# the results of a body and of a point: their units, names in the keys and LaTeX letters
+RESULT_UNITS = {"omega": "rad/s", "alpha": "rad/s^2", "velocity": "m/s", "acceleration": "m/s^2"}
+SHORT = {"omega": "omega", "alpha": "alpha", "velocity": "v", "acceleration": "a"}
+SYMBOL = {"omega": r"\omega", "alpha": r"\alpha", "velocity": "v", "acceleration": "a"}
 
 
 def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
@@ -70,41 +91,59 @@ def _scales(chain: SpatialChain, analysis: SpatialAnalysis) -> dict[str, float]:
     }
 
 
+@dataclass(frozen=True)
+class Cross:
+    """a x b of two vector values as a determinant with the fixed unit vectors E1, E2, E3 in its
+    first row in LaTeX, '(a) cross (b)' in text."""
+
+    a: Ref
+    b: Ref
+
+    def latex(self, shows: Shows) -> str:
+        return tex.determinant3(shows.entries(self.a), shows.entries(self.b), UNITS)
+
+    def text(self, shows: Shows) -> str:
+        return f"{shows.txt(self.a)} cross {shows.txt(self.b)}"
+
+
+def column(b: StepBuilder, key: Ref) -> Piece:
+    """A vector value as a column, the zero vector in LaTeX where it displays as zero."""
+    return Alt((V0,), (Col(key),)) if b.is_zero(key) else Col(key)
+
+
+def vector(symbol: str, sub: str, plain: str) -> Sym:
+    """'\\vec{symbol}_{sub}' in LaTeX, ``plain`` in text."""
+    return Sym(tex.vec(symbol, sub), plain)
+
+
+R = Sym(r"\vec{r}", "r")
+
+
 class FiveTerms(NamedTuple):
-    """The keys of a point's five-term acceleration in its step:
+    """A point's five-term acceleration in its step:
     a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
 
-    a_origin: str
-    alpha: str
-    omega: str
-    r: str
-    tangential: str
-    omega_x_r: str
-    centripetal: str
-    coriolis: str
-    relative: str
-    a: str
+    a_origin: Ref
+    alpha: Ref
+    omega: Ref
+    r: Ref
+    tangential: Ref
+    omega_x_r: Ref
+    centripetal: Ref
+    coriolis: Ref
+    relative: Ref
+    a: Ref
 
 
 class SpatialSteps:
-    def __init__(
-        self,
-        chain: SpatialChain,
-        analysis: SpatialAnalysis,
-        fmt: Formatter,
-        plan: DigitPlan | None = None,
-    ) -> None:
-        self.plan = plan
+    def __init__(self, chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> None:
         self.chain = chain
         self.analysis = analysis
         self.fmt = Formatter(fmt.digits, _scales(chain, analysis))
         self.shown: set[str] = set()  # points already shown (at a joint origin)
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        return StepBuilder(self.fmt, kind, title, self.plan)
-
-    def col(self, b: StepBuilder, key: str) -> str:
-        return V0 if b.is_zero(key) else b.col(key)
+        return StepBuilder(self.fmt, kind, title)
 
     def data(self) -> Step:
         b = self.builder("data", "Data")
@@ -114,27 +153,42 @@ class SpatialSteps:
             "fixed in body k-1 and turns with it. Vectors are components in the fixed frame "
             "E1, E2, E3 at the instant."
         )
-        rows = []
+        rows: list[tuple[Piece, ...]] = []
         for j in self.chain.joints:
-            e = b.put(f"e({j.name})", j.axis, "")
-            o = b.put(f"O({j.name})", j.origin, "m")
+            e = b.value(f"e({j.name})", j.axis, "")
+            o = b.value(f"O({j.name})", j.origin, "m")
             rate_unit = ("rad/s", "rad/s^2") if j.type == "revolute" else ("m/s", "m/s^2")
-            q = b.put(f"rate({j.name})", j.rate, rate_unit[0])
-            qd = b.put(f"rate_dot({j.name})", j.rate_dot, rate_unit[1])
+            q = b.value(f"rate({j.name})", j.rate, rate_unit[0])
+            qd = b.value(f"rate_dot({j.name})", j.rate_dot, rate_unit[1])
             n = tex.name(j.name)
             symbol = r"\omega" if j.type == "revolute" else "v"
+            place = Equation.of(Sym(f"O_{{{n}}}", "O"), Pt(o, "m"))
+            axis = Equation.of(vector("e", n, "axis e"), Pt(e))
             rows.append(
-                rf"&\text{{joint }} {n} \text{{ ({j.type})}}: \; O_{{{n}}} = "
-                rf"({', '.join(b.entries(o))}){latex_unit('m')}, \; \vec{{e}}_{{{n}}} = "
-                rf"({', '.join(b.entries(e))}), \; {symbol}_{{{n}}} = {b.numu(q)}, \; "
-                rf"\dot{{{symbol}}}_{{{n}}} = {b.numu(qd)}"
+                (
+                    rf"&\text{{joint }} {n} \text{{ ({j.type})}}: \; ",
+                    place,
+                    r", \; ",
+                    axis,
+                    rf", \; {symbol}_{{{n}}} = ",
+                    Num(q, unit=True),
+                    rf", \; \dot{{{symbol}}}_{{{n}}} = ",
+                    Num(qd, unit=True),
+                )
             )
             b.say(
-                f"Joint {j.name} ({j.type}) at O = {b.txt(o)}, axis e = {b.txtn(e)}, rate "
-                f"{b.txt(q)}, rate of change {b.txt(qd)}."
+                f"Joint {j.name} ({j.type}) at ",
+                place,
+                ", ",
+                axis,
+                ", rate ",
+                Num(q, unit=True),
+                ", rate of change ",
+                Num(qd, unit=True),
+                ".",
             )
-        for line in rows:
-            b.line(line)
+        for row in rows:
+            b.line(*row)
         return b.build()
 
     def parent_name(self, index: int) -> str:
@@ -146,11 +200,11 @@ class SpatialSteps:
             return ground_motion(np.zeros(3))
         return self.analysis.bodies[self.chain.joints[index - 1].name]
 
-    def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> str:
+    def parent_rate(self, b: StepBuilder, index: int, name: str, value: np.ndarray) -> Ref:
         """omega_{k-1} (or alpha_{k-1}) of body k-1; the ground's is zero and has no source."""
         parent = self.parent_name(index)
         unit = "rad/s" if name == "omega" else "rad/s^2"
-        return b.put(
+        return b.value(
             f"{name}({parent})", value, unit, None if index == 0 else ("bodies", parent, name)
         )
 
@@ -187,35 +241,35 @@ class SpatialSteps:
         prismatic one)."""
         body = self.analysis.bodies[joint.name]
         parent_name = self.parent_name(index)
-        n, p = tex.name(joint.name), tex.name(parent_name)
+        n = tex.name(joint.name)
         b = self.builder("spatial.omega", f"Angular velocity of body {joint.name}")
         wp = self.parent_rate(b, index, "omega", parent.omega)
-        w = b.put(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
-        e = b.put(f"e({joint.name})", joint.axis, "")
+        w = b.value(f"omega({joint.name})", body.omega, "rad/s", ("bodies", joint.name, "omega"))
+        e = b.value(f"e({joint.name})", joint.axis, "")
+        omega = vector(r"\omega", n, f"omega({joint.name})")
+        omega_parent = vector(r"\omega", tex.name(parent_name), f"omega({parent_name})")
         if joint.type != "revolute":
             b.check("sum", w, wp)
-            b.line(
-                rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} = {tex.boxed_result(b.colu(w))}"
-            )
-            b.say(
-                f"A prismatic joint adds no rotation: omega({joint.name}) = omega({parent_name}) = "
-                f"{b.txt(w)}."
-            )
+            same = Equation.of(omega, omega_parent, Boxed((Col(w, unit=True),)))
+            b.line(same)
+            b.say("A prismatic joint adds no rotation: ", same, ".")
             return b.build()
-        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
-        term = b.put(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
+        q = b.value(f"rate({joint.name})", joint.rate, "rad/s")
+        term = b.value(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
         b.check("product", term, q, e)
         b.check("sum", w, wp, term)
-        b.line(
-            rf"&\vec{{\omega}}_{{{n}}} = \vec{{\omega}}_{{{p}}} + \omega_{{{n}}}\,"
-            rf"\vec{{e}}_{{{n}}} = {self.col(b, wp)} + {tex.paren(b.num(q))} \cdot "
-            rf"{b.col(e)} = {tex.boxed_result(b.colu(w))}"
+        composition = Equation.of(
+            omega,
+            (
+                omega_parent,
+                " + ",
+                Alt((rf"\omega_{{{n}}}\,\vec{{e}}_{{{n}}}",), (Num(q), f" times e({joint.name})")),
+            ),
+            (column(b, wp), " + ", Alt((Paren(q), r" \cdot ", Col(e)), (Col(term),))),
+            Boxed((Col(w, unit=True),)),
         )
-        b.say(
-            f"Angular velocities add: omega({joint.name}) = omega({parent_name}) + "
-            f"{b.txtn(q)} times e({joint.name}) = {b.txt(wp)} + {b.txt(term)} = "
-            f"{b.txt(w)}."
-        )
+        b.line(composition)
+        b.say("Angular velocities add: ", composition, ".")
         return b.build()
 
     def axis_rate_step(self, index: int, joint: SpatialJoint, parent: BodyMotion) -> Step:
@@ -225,18 +279,25 @@ class SpatialSteps:
         n, p = tex.name(joint.name), tex.name(parent_name)
         b = self.builder("spatial.axis_rate", f"Rate of change of the axis of joint {joint.name}")
         wp = self.parent_rate(b, index, "omega", parent.omega)
-        e = b.put(f"e({joint.name})", joint.axis, "")
-        ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
+        e = b.value(f"e({joint.name})", joint.axis, "")
+        ed = b.value(f"e_dot({joint.name})", body.axis_rate, "1/s")
         b.check("cross", ed, wp, e)
-        b.line(
-            rf"&\dot{{\vec{{e}}}}_{{{n}}} = \vec{{\omega}}_{{{p}}} \times \vec{{e}}_{{{n}}} = "
-            rf"{tex.determinant3(b.entries(wp), b.entries(e), UNITS)} = "
-            rf"{tex.boxed_result(b.colu(ed))}"
+        turning = Equation.of(
+            latex_only(rf"\dot{{\vec{{e}}}}_{{{n}}}"),
+            (
+                vector(r"\omega", p, f"omega({parent_name})"),
+                TIMES,
+                vector("e", n, f"e({joint.name})"),
+            ),
+            latex_only(Cross(wp, e)),
+            Boxed((Col(ed, unit=True),)),
         )
+        b.line(turning)
         b.say(
             f"The axis e({joint.name}) is fixed in body {parent_name}, so it turns with "
-            f"omega({parent_name}): its rate of change is omega({parent_name}) cross "
-            f"e({joint.name}) = {b.txt(ed)}."
+            f"omega({parent_name}): its rate of change is ",
+            turning,
+            ".",
         )
         return b.build()
 
@@ -245,38 +306,50 @@ class SpatialSteps:
         alpha_k = alpha_{k-1} (a prismatic one)."""
         body = self.analysis.bodies[joint.name]
         parent_name = self.parent_name(index)
-        n, p = tex.name(joint.name), tex.name(parent_name)
+        n = tex.name(joint.name)
         b = self.builder("spatial.alpha", f"Angular acceleration of body {joint.name}")
         alp = self.parent_rate(b, index, "alpha", parent.alpha)
-        al = b.put(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
+        al = b.value(f"alpha({joint.name})", body.alpha, "rad/s^2", ("bodies", joint.name, "alpha"))
+        alpha = vector(r"\alpha", n, f"alpha({joint.name})")
+        alpha_parent = vector(r"\alpha", tex.name(parent_name), f"alpha({parent_name})")
         if joint.type != "revolute":
             b.check("sum", al, alp)
-            b.line(
-                rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} = "
-                rf"{tex.boxed_result(b.colu(al))}"
-            )
-            b.say(f"alpha({joint.name}) = alpha({parent_name}) = {b.txt(al)} (prismatic joint).")
+            same = Equation.of(alpha, alpha_parent, Boxed((Col(al, unit=True),)))
+            b.line(same)
+            b.say(same, " (prismatic joint).")
             return b.build()
-        e = b.put(f"e({joint.name})", joint.axis, "")
-        ed = b.put(f"e_dot({joint.name})", body.axis_rate, "1/s")
-        q = b.put(f"rate({joint.name})", joint.rate, "rad/s")
-        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
-        t1 = b.put(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
-        t2 = b.put(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
+        e = b.value(f"e({joint.name})", joint.axis, "")
+        ed = b.value(f"e_dot({joint.name})", body.axis_rate, "1/s")
+        q = b.value(f"rate({joint.name})", joint.rate, "rad/s")
+        qd = b.value(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
+        t1 = b.value(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
+        t2 = b.value(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
         b.check("product", t1, qd, e)
         b.check("product", t2, q, ed)
         b.check("sum", al, alp, t1, t2)
-        b.line(
-            rf"&\vec{{\alpha}}_{{{n}}} = \vec{{\alpha}}_{{{p}}} + \dot{{\omega}}_{{{n}}}\,"
-            rf"\vec{{e}}_{{{n}}} + \omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}} = "
-            rf"{self.col(b, alp)} + {tex.paren(b.num(qd))} \cdot {b.col(e)} + "
-            rf"{tex.paren(b.num(q))} \cdot {b.col(ed)} = {tex.boxed_result(b.colu(al))}"
+        composition = Equation.of(
+            alpha,
+            (
+                alpha_parent,
+                " + ",
+                Sym(rf"\dot{{\omega}}_{{{n}}}\,\vec{{e}}_{{{n}}}", "rate-dot e"),
+                " + ",
+                Sym(rf"\omega_{{{n}}}\,\dot{{\vec{{e}}}}_{{{n}}}", "rate times de/dt"),
+            ),
+            (
+                column(b, alp),
+                " + ",
+                Alt((Paren(qd), r" \cdot ", Col(e)), (Col(t1),)),
+                " + ",
+                Alt((Paren(q), r" \cdot ", Col(ed)), (Col(t2),)),
+            ),
+            Boxed((Col(al, unit=True),)),
         )
+        b.line(composition)
         b.say(
-            f"Differentiating omega({joint.name}) = omega({parent_name}) + rate e: "
-            f"alpha({joint.name}) = alpha({parent_name}) + rate-dot e + rate times de/dt = "
-            f"{b.txt(alp)} + {b.txt(t1)} + {b.txt(t2)} = {b.txt(al)}. The last term comes "
-            "from the turning axis; leaving it out is a common mistake."
+            f"Differentiating omega({joint.name}) = omega({parent_name}) + rate e: ",
+            composition,
+            ". The last term comes from the turning axis; leaving it out is a common mistake.",
         )
         return b.build()
 
@@ -289,33 +362,41 @@ class SpatialSteps:
         n, p = tex.name(joint.name), tex.name(parent_name)
         origin_p = "O_{" + p + "}" if index else "O"
         b = self.builder("spatial.origin.velocity", f"Velocity of the joint origin O{joint.name}")
-        vp = b.put(f"v(O{parent_name})", parent.velocity_origin, "m/s")
+        vp = b.value(f"v(O{parent_name})", parent.velocity_origin, "m/s")
         wp = self.parent_rate(b, index, "omega", parent.omega)
-        r = b.put("r", terms.r, "m")
-        wxr = b.put("omega x r", terms.omega_x_r, "m/s")
-        v = b.put(f"v(O{joint.name})", body.velocity_origin, "m/s")
+        r = b.value("r", terms.r, "m")
+        wxr = b.value("omega x r", terms.omega_x_r, "m/s")
+        v = b.value(f"v(O{joint.name})", body.velocity_origin, "m/s")
         b.check("cross", wxr, wp, r)
         parts = [vp, wxr]
+        sliding: tuple[Piece, ...] = ()
+        slide_term: tuple[Piece, ...] = ()
         if joint.type == "prismatic":
-            e = b.put(f"e({joint.name})", joint.axis, "")
-            q = b.put(f"rate({joint.name})", joint.rate, "m/s")
-            parts.append(b.put("v_rel", terms.v_rel, "m/s"))
+            e = b.value(f"e({joint.name})", joint.axis, "")
+            q = b.value(f"rate({joint.name})", joint.rate, "m/s")
+            parts.append(b.value("v_rel", terms.v_rel, "m/s"))
             b.check("product", parts[2], q, e)
+            sliding = (latex_only(rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}"),)
+            slide_term = (" + ", Col(parts[2]), text_only(" (sliding)"))
         b.check("sum", v, *parts)
-        sliding = len(parts) > 2
-        b.line(
-            rf"&\vec{{v}}_{{O_{{{n}}}}} = \vec{{v}}_{{{origin_p}}} + \vec{{\omega}}_{{{p}}} "
-            rf"\times \vec{{r}}_{{{origin_p} O_{{{n}}}}}"
-            + (rf" + v_{{{n}}}\,\vec{{e}}_{{{n}}}" if sliding else "")
-            + rf" = {self.col(b, vp)} + {tex.determinant3(b.entries(wp), b.entries(r), UNITS)}"
-            + (rf" + {b.col(parts[2])}" if sliding else "")
-            + rf" = {tex.boxed_result(b.colu(v))}"
+        carried = Equation.of(
+            Sym(rf"\vec{{v}}_{{O_{{{n}}}}}", "v"),
+            (
+                vector("v", origin_p, f"v(O{parent_name})"),
+                " + ",
+                vector(r"\omega", p, f"omega({parent_name})"),
+                TIMES,
+                vector("r", f"{origin_p} O_{{{n}}}", "r"),
+                *sliding,
+            ),
+            (column(b, vp), " + ", Alt((Cross(wp, r),), (Col(wxr),)), *slide_term),
+            Boxed((Col(v, unit=True),)),
         )
+        b.line(carried)
         b.say(
-            f"The origin O{joint.name} of joint {joint.name} moves with body {parent_name}: "
-            f"v = v(O{parent_name}) + omega({parent_name}) cross r = {b.txt(vp)} + {b.txt(wxr)}"
-            + (f" + {b.txt(parts[2])} (sliding)" if sliding else "")
-            + f" = {b.txt(v)}."
+            f"The origin O{joint.name} of joint {joint.name} moves with body {parent_name}: ",
+            carried,
+            ".",
         )
         return b.build()
 
@@ -329,14 +410,14 @@ class SpatialSteps:
         b = self.builder(
             "spatial.origin.acceleration", f"Acceleration of the joint origin O{joint.name}"
         )
-        ap = b.put(f"a(O{parent_name})", parent.acceleration_origin, "m/s^2")
+        ap = b.value(f"a(O{parent_name})", parent.acceleration_origin, "m/s^2")
         wp = self.parent_rate(b, index, "omega", parent.omega)
         alp = self.parent_rate(b, index, "alpha", parent.alpha)
-        r = b.put("r", terms.r, "m")
-        t = b.put("alpha x r", terms.alpha_x_r, "m/s^2")
-        inner = b.put("omega x r", terms.omega_x_r, "m/s")
-        c = b.put("omega x (omega x r)", terms.centripetal, "m/s^2")
-        a = b.put(f"a(O{joint.name})", body.acceleration_origin, "m/s^2")
+        r = b.value("r", terms.r, "m")
+        t = b.value("alpha x r", terms.alpha_x_r, "m/s^2")
+        inner = b.value("omega x r", terms.omega_x_r, "m/s")
+        c = b.value("omega x (omega x r)", terms.centripetal, "m/s^2")
+        a = b.value(f"a(O{joint.name})", body.acceleration_origin, "m/s^2")
         b.check("cross", t, alp, r)
         b.check("cross", inner, wp, r)
         b.check("cross", c, wp, inner)
@@ -348,51 +429,63 @@ class SpatialSteps:
         return b.build()
 
     def sliding_terms(
-        self, b: StepBuilder, joint: SpatialJoint, terms: OriginTerms, wp: str
-    ) -> list[str]:
+        self, b: StepBuilder, joint: SpatialJoint, terms: OriginTerms, wp: Ref
+    ) -> list[Ref]:
         """2 omega_{k-1} x v_rel and a_rel = v_dot_k e_k of a sliding joint k, v_rel = v_k e_k."""
-        e = b.put(f"e({joint.name})", joint.axis, "")
-        q = b.put(f"rate({joint.name})", joint.rate, "m/s")
-        qd = b.put(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
-        rel_v = b.put("v_rel", terms.v_rel, "m/s")
-        cor = b.put("2 omega x v_rel", terms.coriolis, "m/s^2")
-        rel_a = b.put("a_rel", terms.a_rel, "m/s^2")
+        e = b.value(f"e({joint.name})", joint.axis, "")
+        q = b.value(f"rate({joint.name})", joint.rate, "m/s")
+        qd = b.value(f"rate_dot({joint.name})", joint.rate_dot, "m/s^2")
+        rel_v = b.value("v_rel", terms.v_rel, "m/s")
+        cor = b.value("2 omega x v_rel", terms.coriolis, "m/s^2")
+        rel_a = b.value("a_rel", terms.a_rel, "m/s^2")
         b.check("product", rel_v, q, e)
         b.check("cross", cor, wp, rel_v, factor=2.0)
         b.check("product", rel_a, qd, e)
         return [cor, rel_a]
 
     def write_origin_acceleration(
-        self, b: StepBuilder, index: int, joint: SpatialJoint, parts: list[str], a: str
+        self, b: StepBuilder, index: int, joint: SpatialJoint, parts: list[Ref], a: Ref
     ) -> None:
         """The equation a_{O_k} = a_{O_{k-1}} + ... and its sum, in LaTeX and in words."""
         parent_name = self.parent_name(index)
         n, p = tex.name(joint.name), tex.name(parent_name)
         origin_p = "O_{" + p + "}" if index else "O"
-        sliding = joint.type == "prismatic"
-        b.line(
-            rf"&\vec{{a}}_{{O_{{{n}}}}} = \vec{{a}}_{{{origin_p}}} + \vec{{\alpha}}_{{{p}}} "
-            rf"\times \vec{{r}} + \vec{{\omega}}_{{{p}}} \times (\vec{{\omega}}_{{{p}}} \times "
-            rf"\vec{{r}})"
-            + (
-                r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + \vec{a}_{\mathrm{rel}}"
-                if sliding
-                else ""
+        omega = vector(r"\omega", p, f"omega({parent_name})")
+        sliding = (
+            (
+                Sym(
+                    r" + 2\,\vec{\omega} \times \vec{v}_{\mathrm{rel}} + \vec{a}_{\mathrm{rel}}",
+                    " + 2 omega cross v_rel + a_rel",
+                ),
             )
+            if joint.type == "prismatic"
+            else ()
         )
-        b.line(
-            r"&\phantom{\vec{a}} = "
-            + " + ".join(self.col(b, k) for k in parts)
-            + rf" = {tex.boxed_result(b.colu(a))}"
+        carried = Equation.of(
+            latex_only(rf"\vec{{a}}_{{O_{{{n}}}}}"),
+            (
+                vector("a", origin_p, f"a(O{parent_name})"),
+                " + ",
+                vector(r"\alpha", p, f"alpha({parent_name})"),
+                TIMES,
+                R,
+                " + ",
+                omega,
+                TIMES,
+                "(",
+                omega,
+                TIMES,
+                R,
+                ")",
+                *sliding,
+            ),
+            joined(" + ", [(column(b, k),) for k in parts]),
+            Boxed((Col(a, unit=True),)),
+            breaks=(2,),
+            phantom=r"\vec{a}",
         )
-        b.say(
-            f"Acceleration of O{joint.name}: a(O{parent_name}) + alpha({parent_name}) cross r + "
-            f"omega({parent_name}) cross (omega({parent_name}) cross r)"
-            + (" + 2 omega cross v_rel + a_rel" if sliding else "")
-            + " = "
-            + " + ".join(b.txt(k) for k in parts)
-            + f" = {b.txt(a)}."
-        )
+        b.line(carried)
+        b.say(f"Acceleration of O{joint.name}: ", carried, ".")
 
     def point_steps(self, name: str, role: str = "") -> list[Step]:
         """The velocity and the five-term acceleration of a point of a moving body (one step
@@ -407,10 +500,10 @@ class SpatialSteps:
         name = point.name
         motion = self.analysis.points[name]
         b = self.builder("spatial.point.fixed", f"Point {name} (fixed)")
-        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
-        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        v = b.value(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.value(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
         b.line(rf"&\vec{{v}}_{{{tex.name(name)}}} = \vec{{a}}_{{{tex.name(name)}}} = {V0}")
-        b.say(f"{name} is a point of the ground: v = {b.txt(v)}, a = {b.txt(a)}.")
+        b.say(f"{name} is a point of the ground: v = ", Col(v), ", a = ", Col(a), ".")
         return b.build()
 
     def point_velocity_step(self, point: SpatialPoint, role: str) -> Step:
@@ -420,28 +513,32 @@ class SpatialSteps:
         r_np = point.position - body.origin
         n, k = tex.name(name), tex.name(point.body)
         b = self.builder("spatial.point.velocity", f"Velocity of {name}{role}")
-        vo = b.put(f"v(O{point.body})", body.velocity_origin, "m/s")
-        w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
-        r = b.put(f"r(O{point.body},{name})", r_np, "m")
-        wxr = b.put("omega x r", np.cross(body.omega, r_np), "m/s")
-        v = b.put(
+        vo = b.value(f"v(O{point.body})", body.velocity_origin, "m/s")
+        w = b.value(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
+        r = b.value(f"r(O{point.body},{name})", r_np, "m")
+        wxr = b.value("omega x r", np.cross(body.omega, r_np), "m/s")
+        v = b.value(
             f"v({name})", self.analysis.points[name].velocity, "m/s", ("points", name, "velocity")
         )
         b.check("cross", wxr, w, r)
         b.check("sum", v, vo, wxr)
-        b.line(
-            rf"&\vec{{v}}_{{{n}}} = \vec{{v}}_{{O_{{{k}}}}} + \vec{{\omega}}_{{{k}}} \times "
-            rf"\vec{{r}}_{{O_{{{k}}}{n}}} = {self.col(b, vo)} + "
-            rf"{tex.determinant3(b.entries(w), b.entries(r), UNITS)}"
+        origin = column(b, vo)
+        rigid = Equation.of(
+            vector("v", n, f"v({name})"),
+            (
+                vector("v", f"O_{{{k}}}", f"v(O{point.body})"),
+                " + ",
+                vector(r"\omega", k, f"omega({point.body})"),
+                TIMES,
+                vector("r", f"O_{{{k}}}{n}", "r"),
+            ),
+            latex_only(origin, " + ", Cross(w, r)),
+            (origin, " + ", Col(wxr)),
+            Boxed((Col(v, unit=True),)),
+            breaks=(3,),
         )
-        b.line(
-            rf"&\phantom{{\vec{{v}}_{{{n}}}}} = {self.col(b, vo)} + {b.col(wxr)} = "
-            rf"{tex.boxed_result(b.colu(v))}"
-        )
-        b.say(
-            f"{name} is fixed in body {point.body}: v({name}) = v(O{point.body}) + "
-            f"omega({point.body}) cross r = {b.txt(vo)} + {b.txt(wxr)} = {b.txt(v)}."
-        )
+        b.line(rigid)
+        b.say(f"{name} is fixed in body {point.body}: ", rigid, ".")
         return b.build()
 
     def point_acceleration_step(self, point: SpatialPoint, role: str) -> Step:
@@ -454,16 +551,16 @@ class SpatialSteps:
             "spatial.point.acceleration", f"Acceleration of {name}{role}: the five-term formula"
         )
         src = ("points", name, "acceleration_terms")
-        ao = b.put("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
-        al = b.put(f"alpha({point.body})", body.alpha, "rad/s^2", ("bodies", point.body, "alpha"))
-        w = b.put(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
-        r = b.put(f"r(O{point.body},{name})", r_np, "m")
-        t = b.put("alpha x r", motion.tangential, "m/s^2", (*src, "tangential"))
-        inner = b.put("omega x r", np.cross(body.omega, r_np), "m/s")
-        c = b.put("omega x (omega x r)", motion.centripetal, "m/s^2", (*src, "centripetal"))
-        cor = b.put("2 omega x v_rel", motion.coriolis, "m/s^2", (*src, "coriolis"))
-        rel = b.put("a_rel", motion.relative, "m/s^2", (*src, "relative"))
-        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        ao = b.value("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
+        al = b.value(f"alpha({point.body})", body.alpha, "rad/s^2", ("bodies", point.body, "alpha"))
+        w = b.value(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
+        r = b.value(f"r(O{point.body},{name})", r_np, "m")
+        t = b.value("alpha x r", motion.tangential, "m/s^2", (*src, "tangential"))
+        inner = b.value("omega x r", np.cross(body.omega, r_np), "m/s")
+        c = b.value("omega x (omega x r)", motion.centripetal, "m/s^2", (*src, "centripetal"))
+        cor = b.value("2 omega x v_rel", motion.coriolis, "m/s^2", (*src, "coriolis"))
+        rel = b.value("a_rel", motion.relative, "m/s^2", (*src, "relative"))
+        a = b.value(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
         b.check("cross", t, al, r)
         b.check("cross", inner, w, r)
         b.check("cross", c, w, inner)
@@ -474,50 +571,64 @@ class SpatialSteps:
     def write_five_terms(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> None:
         """The five-term formula, its cross products and its sum, in LaTeX and in words."""
         n, k = tex.name(point.name), tex.name(point.body)
+        alpha, omega = vector(r"\alpha", k, "alpha"), vector(r"\omega", k, "omega")
+        tangential = Equation.of(
+            (alpha, TIMES, R), latex_only(Cross(keys.alpha, keys.r)), Col(keys.tangential)
+        )
+        omega_x_r = Equation.of(
+            (omega, TIMES, R), latex_only(Cross(keys.omega, keys.r)), Col(keys.omega_x_r)
+        )
+        centripetal = Equation.of(
+            (omega, TIMES, "(", omega, TIMES, R, ")"),
+            latex_only(Cross(keys.omega, keys.omega_x_r)),
+            Col(keys.centripetal),
+        )
+        terms = (keys.a_origin, keys.tangential, keys.centripetal, keys.coriolis, keys.relative)
+        total = Equation.of(
+            vector("a", n, f"a({point.name})"),
+            latex_only(*joined(" + ", [(column(b, key),) for key in terms])),
+            Boxed((Col(keys.a, unit=True),)),
+        )
         b.line(
             rf"&\vec{{a}}_{{{n}}} = \vec{{a}}_{{O_{{{k}}}}} + \vec{{\alpha}}_{{{k}}} \times "
             rf"\vec{{r}} + \vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times "
             rf"\vec{{r}}) + 2\,\vec{{\omega}} \times \vec{{v}}_{{\mathrm{{rel}}}} + "
             rf"\vec{{a}}_{{\mathrm{{rel}}}}"
         )
-        b.line(
-            rf"&\vec{{\alpha}}_{{{k}}} \times \vec{{r}} = "
-            rf"{tex.determinant3(b.entries(keys.alpha), b.entries(keys.r), UNITS)} = "
-            rf"{b.col(keys.tangential)}, \quad \vec{{\omega}}_{{{k}}} \times \vec{{r}} = "
-            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.r), UNITS)} = "
-            rf"{b.col(keys.omega_x_r)}"
-        )
-        b.line(
-            rf"&\vec{{\omega}}_{{{k}}} \times (\vec{{\omega}}_{{{k}}} \times \vec{{r}}) = "
-            rf"{tex.determinant3(b.entries(keys.omega), b.entries(keys.omega_x_r), UNITS)} = "
-            rf"{b.col(keys.centripetal)}"
-        )
-        terms = (keys.a_origin, keys.tangential, keys.centripetal, keys.coriolis, keys.relative)
-        b.line(
-            rf"&\vec{{a}}_{{{n}}} = {' + '.join(self.col(b, key) for key in terms)} = "
-            rf"{tex.boxed_result(b.colu(keys.a))}"
-        )
+        b.line("&", tangential, r", \quad ", omega_x_r)
+        b.line("&", centripetal)
+        b.line(total)
         b.say(
-            f"Five-term formula for {point.name} with r = r(O{point.body},{point.name}) = "
-            f"{b.txt(keys.r)}: a_O = {b.txt(keys.a_origin)}; alpha cross r = "
-            f"{b.txt(keys.tangential)}; omega cross (omega cross r) = "
-            f"{b.txt(keys.centripetal)}; {self.relative_terms_why(b, point, keys)}. Sum: "
-            f"a({point.name}) = {b.txt(keys.a)}."
+            f"Five-term formula for {point.name} with r = r(O{point.body},{point.name}) = ",
+            Col(keys.r),
+            ": a_O = ",
+            Col(keys.a_origin),
+            "; ",
+            tangential,
+            "; ",
+            centripetal,
+            "; ",
+            *self.relative_terms_why(point, keys),
+            ". Sum: ",
+            total,
+            ".",
         )
 
-    def relative_terms_why(self, b: StepBuilder, point: SpatialPoint, keys: FiveTerms) -> str:
+    def relative_terms_why(self, point: SpatialPoint, keys: FiveTerms) -> tuple[Piece, ...]:
         """Why 2 omega x v_rel and a_rel are what they are: a sliding joint, or a fixed point."""
         joint = next(j for j in self.chain.joints if j.name == point.body)
         if joint.type == "prismatic":
             parent = self.parent_of(joint)
             return (
-                f"joint {joint.name} slides, so the Coriolis term 2 omega({parent}) cross "
-                f"v_rel = {b.txt(keys.coriolis)} and the relative term {b.txt(keys.relative)} "
-                "appear"
+                f"joint {joint.name} slides, so the Coriolis term 2 omega({parent}) cross v_rel = ",
+                Col(keys.coriolis),
+                " and the relative term ",
+                Col(keys.relative),
+                " appear",
             )
         return (
             f"{point.name} is fixed in body {point.body} (v_rel = 0, a_rel = 0), so the Coriolis "
-            "and relative terms are zero"
+            "and relative terms are zero",
         )
 
     def parent_of(self, joint: SpatialJoint) -> str:
@@ -526,26 +637,31 @@ class SpatialSteps:
 
     def summary(self) -> Step:
         b = self.builder("summary", "Results")
-        rows = []
-        for name, body in self.analysis.bodies.items():
-            w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
-            al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
-            rows.append(
-                rf"\vec{{\omega}}_{{{tex.name(name)}}} = ({', '.join(b.entries(w))})"
-                rf"{latex_unit('rad/s')}, & \vec{{\alpha}}_{{{tex.name(name)}}} = "
-                rf"({', '.join(b.entries(al))}){latex_unit('rad/s^2')}"
+        rows: list[tuple[Piece, ...]] = []
+        results = [
+            (f"Body {name}", "bodies", name, (("omega", body.omega), ("alpha", body.alpha)))
+            for name, body in self.analysis.bodies.items()
+        ] + [
+            (
+                f"Point {name}",
+                "points",
+                name,
+                (("velocity", p.velocity), ("acceleration", p.acceleration)),
             )
-            b.say(f"Body {name}: omega = {b.txt(w)}, alpha = {b.txt(al)}.")
-        for name, p in self.analysis.points.items():
-            v = b.put(f"v({name})", p.velocity, "m/s", ("points", name, "velocity"))
-            a = b.put(f"a({name})", p.acceleration, "m/s^2", ("points", name, "acceleration"))
-            rows.append(
-                rf"\vec{{v}}_{{{tex.name(name)}}} = ({', '.join(b.entries(v))})"
-                rf"{latex_unit('m/s')}, & \vec{{a}}_{{{tex.name(name)}}} = "
-                rf"({', '.join(b.entries(a))}){latex_unit('m/s^2')}"
+            for name, p in self.analysis.points.items()
+        ]
+        for what, kind, name, ((first, x), (second, y)) in results:
+            x_unit, y_unit = RESULT_UNITS[first], RESULT_UNITS[second]
+            xk = b.value(f"{SHORT[first]}({name})", x, x_unit, (kind, name, first))
+            yk = b.value(f"{SHORT[second]}({name})", y, y_unit, (kind, name, second))
+            row = (
+                Equation.of(vector(SYMBOL[first], tex.name(name), SHORT[first]), Pt(xk, x_unit)),
+                Sym(", & ", ", "),
+                Equation.of(vector(SYMBOL[second], tex.name(name), SHORT[second]), Pt(yk, y_unit)),
             )
-            b.say(f"Point {name}: v = {b.txt(v)}, a = {b.txt(a)}.")
-        b.line(r"&\begin{array}{ll} " + r" \\ ".join(rows) + r" \end{array}")
+            rows.append(row)
+            b.say(f"{what}: ", *row, ".")
+        b.line(r"&\begin{array}{ll} ", *joined(r" \\ ", rows), r" \end{array}")
         return b.build()
 
     def reading(self) -> Step:
@@ -562,67 +678,89 @@ class SpatialSteps:
     def read_body(self, b: StepBuilder, name: str, body: BodyMotion) -> None:
         """|omega|, u = omega/|omega| and omega . alpha of one body, said in words."""
         n = tex.name(name)
-        w = b.put(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
-        al = b.put(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
+        w = b.value(f"omega({name})", body.omega, "rad/s", ("bodies", name, "omega"))
+        al = b.value(f"alpha({name})", body.alpha, "rad/s^2", ("bodies", name, "alpha"))
         size = float(np.linalg.norm(body.omega))
-        speed = b.put(f"|omega({name})|", size, "rad/s")
+        speed = b.value(f"|omega({name})|", size, "rad/s")
         b.check("norm", speed, w)
         if b.is_zero(speed):
             words = f"body {name} does not turn at this instant"
             _write_at_rest(b, rf"|\vec{{\omega}}_{{{n}}}|", speed, words)
-            b.say(f"omega({name}) = {b.txt(w)}: {words}.")
+            b.say(f"omega({name}) = ", Col(w), f": {words}.")
             return
-        axis = b.put(f"u({name})", body.omega / size, "")
+        axis = b.value(f"u({name})", body.omega / size, "")
         power = _put_power(b, f"omega.alpha({name})", body.omega, body.alpha, "rad^2/s^3")
         b.check("dot", power, w, al)
         trend = speed_trend(b, power, "at a steady rate")
         turning = np.cross(body.omega, body.alpha) / size  # du/dt |omega|: the axis turns
         if not all(self.fmt.is_zero(float(x), "rad/s^2") for x in turning):
             trend += ", and the axis itself turns (alpha is not along omega)"
-        words = (
-            f"body {name} turns at {b.txt(speed)} about the axis u = {b.txtn(axis)} (nearest "
-            f"{_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, {trend}"
-        )
         b.line(
-            rf"&|\vec{{\omega}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{u}}_{{{n}}} = "
-            rf"\vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = "
-            rf"({', '.join(b.entries(axis))}), \quad \vec{{\omega}}_{{{n}}} \cdot "
-            rf"\vec{{\alpha}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
+            rf"&|\vec{{\omega}}_{{{n}}}| = ",
+            Num(speed, unit=True),
+            rf", \quad \vec{{u}}_{{{n}}} = \vec{{\omega}}_{{{n}}} / |\vec{{\omega}}_{{{n}}}| = ",
+            Pt(axis),
+            rf", \quad \vec{{\omega}}_{{{n}}} \cdot \vec{{\alpha}}_{{{n}}} = ",
+            Num(power, unit=True),
+            r" \quad \Rightarrow \text{"
             + tex.escape_text(f"counter-clockwise about u, {trend}")
-            + "}"
+            + "}",
         )
         b.say(
-            f"omega({name}) = {b.txt(w)}, alpha({name}) = {b.txt(al)}: {words} (omega . "
-            f"alpha = {b.txt(power)}: the same sense means the rotation speeds up)."
+            f"omega({name}) = ",
+            Col(w),
+            f", alpha({name}) = ",
+            Col(al),
+            f": body {name} turns at ",
+            Num(speed, unit=True),
+            " about the axis u = ",
+            Pt(axis),
+            f" (nearest {_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, "
+            f"{trend} (omega . alpha = ",
+            Num(power, unit=True),
+            ": the same sense means the rotation speeds up).",
         )
 
     def read_point(self, b: StepBuilder, name: str, motion: PointMotion) -> None:
         """|v| and v . a of one point, said in words."""
         n = tex.name(name)
-        v = b.put(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
-        a = b.put(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
-        speed = b.put(f"|v({name})|", float(np.linalg.norm(motion.velocity)), "m/s")
+        v = b.value(f"v({name})", motion.velocity, "m/s", ("points", name, "velocity"))
+        a = b.value(f"a({name})", motion.acceleration, "m/s^2", ("points", name, "acceleration"))
+        speed = b.value(f"|v({name})|", float(np.linalg.norm(motion.velocity)), "m/s")
         b.check("norm", speed, v)
         if b.is_zero(speed):
             words = f"{name} is at rest at this instant"
             _write_at_rest(b, rf"|\vec{{v}}_{{{n}}}|", speed, words)
-            b.say(f"v({name}) = {b.txt(v)}: {words}.")
+            b.say(f"v({name}) = ", Col(v), f": {words}.")
             return
         power = _put_power(b, f"v.a({name})", motion.velocity, motion.acceleration, "m^2/s^3")
         b.check("dot", power, v, a)
-        words = (
-            f"{name} moves at a speed of {b.txt(speed)}, mostly "
-            f"{_nearest_axis(motion.velocity)}, {speed_trend(b, power, 'at a steady speed')}"
+        said = Words(
+            (
+                f"{name} moves at a speed of ",
+                Num(speed, unit=True),
+                f", mostly {_nearest_axis(motion.velocity)}, "
+                f"{speed_trend(b, power, 'at a steady speed')}",
+            )
         )
         b.line(
-            rf"&|\vec{{v}}_{{{n}}}| = {b.numu(speed)}, \quad \vec{{v}}_{{{n}}} \cdot "
-            rf"\vec{{a}}_{{{n}}} = {b.numu(power)} \quad \Rightarrow \text{{"
-            + tex.escape_text(words)
-            + "}"
+            rf"&|\vec{{v}}_{{{n}}}| = ",
+            Num(speed, unit=True),
+            rf", \quad \vec{{v}}_{{{n}}} \cdot \vec{{a}}_{{{n}}} = ",
+            Num(power, unit=True),
+            r" \quad \Rightarrow ",
+            said,
         )
         b.say(
-            f"v({name}) = {b.txt(v)}, a({name}) = {b.txt(a)}: {words} (v . a = "
-            f"{b.txt(power)}: the same sense means speeding up)."
+            f"v({name}) = ",
+            Col(v),
+            f", a({name}) = ",
+            Col(a),
+            ": ",
+            said,
+            " (v . a = ",
+            Num(power, unit=True),
+            ": the same sense means speeding up).",
         )
 
     def figure(self) -> str:
@@ -715,15 +853,19 @@ class SpatialSteps:
         return out
 
 
-def _put_power(b: StepBuilder, key: str, rate: np.ndarray, change: np.ndarray, unit: str) -> str:
+def _put_power(b: StepBuilder, key: str, rate: np.ndarray, change: np.ndarray, unit: str) -> Ref:
     """x . x_dot, which has the sign of d|x|/dt; shown as 0 below the rounding of |x| |x_dot|."""
     reference = float(np.linalg.norm(rate)) * float(np.linalg.norm(change))
-    return b.put(key, float(np.dot(rate, change)), unit, reference=reference)
+    return b.value(key, float(np.dot(rate, change)), unit, reference=reference)
 
 
-def _write_at_rest(b: StepBuilder, size: str, speed: str, words: str) -> None:
+def _write_at_rest(b: StepBuilder, size: str, speed: Ref, words: str) -> None:
     """|x| = 0 => the words saying the body or point does not move."""
-    b.line(rf"&{size} = {b.numu(speed)} \quad \Rightarrow \text{{" + tex.escape_text(words) + "}")
+    b.line(
+        f"&{size} = ",
+        Num(speed, unit=True),
+        r" \quad \Rightarrow \text{" + tex.escape_text(words) + "}",
+    )
 
 
 def _nearest_axis(vector: np.ndarray) -> str:
@@ -732,8 +874,6 @@ def _nearest_axis(vector: np.ndarray) -> str:
     return f"{'+' if vector[i] > 0 else '-'}E{i + 1}"
 
 
-def spatial_steps(
-    chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter, plan: DigitPlan | None = None
-) -> list[Step]:
+def spatial_steps(chain: SpatialChain, analysis: SpatialAnalysis, fmt: Formatter) -> list[Step]:
     """The steps of a spatial chain's solution (numbers from ``analysis``)."""
-    return SpatialSteps(chain, analysis, fmt, plan).steps()
+    return SpatialSteps(chain, analysis, fmt).steps()

@@ -25,6 +25,7 @@ from solver.solutions.equation import (
     Ref,
     Sym,
     ZCross,
+    latex_only,
 )
 from solver.solutions.format import Formatter
 
@@ -88,6 +89,37 @@ def test_a_single_line_equation_is_not_aligned() -> None:
     step = b.build()
     assert step.latex == r"q = \frac{3}{4} = 0.75"
     assert step.text == "So q = 3/4 = 0.75."
+
+
+def test_a_side_without_a_text_form_is_left_out_of_the_text() -> None:
+    """v_rel = s-dot tau = 0.5 (1, 0) = (0.5, 0) m/s: the substitution is shown in LaTeX only
+    (``latex_only``); the text goes from the formula to the result. A broken line starts with
+    the ``phantom`` given (here the letter alone) instead of the first side."""
+    b = StepBuilder(Formatter(4), "x", "x")
+    sd = b.value("s_dot", 0.5, "m/s")
+    tau = b.value("tau", (1.0, 0.0), "")
+    rel = b.value("v_rel", (0.5, 0.0), "m/s")
+    b.check("product", rel, sd, tau)
+    eq = Equation.of(
+        latex_only(r"\vec{v}_{\mathrm{rel}}"),
+        Sym(r"\dot{s}\,\vec{\tau}", "s-dot tau"),
+        latex_only(Num(sd), r" \cdot ", Col(tau, dims=2)),
+        Boxed((Col(rel, unit=True, dims=2),)),
+        breaks=(3,),
+        phantom=r"\vec{v}",
+    )
+    b.line(eq)
+    b.say(eq, ".")
+    step = b.build()
+    column = r"\begin{pmatrix} %s \\ %s \end{pmatrix}"
+    assert step.latex == (
+        r"\begin{aligned} &\vec{v}_{\mathrm{rel}} = \dot{s}\,\vec{\tau} = 0.5 \cdot "
+        + column % (1, 0)
+        + r" \\ &\phantom{\vec{v}} = \underline{\underline{"
+        + column % (0.5, 0)
+        + r"\,\mathrm{m/s}}} \end{aligned}"
+    )
+    assert step.text == "s-dot tau = (0.5, 0) m/s."
 
 
 def test_checks_hold_typed_references_named_by_key_in_the_body() -> None:
