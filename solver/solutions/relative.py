@@ -540,11 +540,15 @@ class MovingPointSteps:
             phantom=r"\vec{a}",
         )
         b.line(transport)
+        along, across = (
+            Equation.of(latex_only(rf"\vec{{a}}^{{{part}}}_{{{self.n},\mathrm{{tr}}}}"), Col(key))
+            for part, key in ((r"\tau", parts.tangential), ("n", parts.normal))
+        )
         b.line(
-            rf"&\vec{{a}}^{{\tau}}_{{{self.n},\mathrm{{tr}}}} = ",
-            Col(parts.tangential),
-            rf", \quad \vec{{a}}^{{n}}_{{{self.n},\mathrm{{tr}}}} = ",
-            Col(parts.normal),
+            "&",
+            along,
+            r", \quad ",
+            across,
             r" \quad \text{(along and across } \vec{v}_{\mathrm{tr}}\text{)}",
         )
         if b.is_zero(v.omega) and b.is_zero(v.alpha):
@@ -558,9 +562,9 @@ class MovingPointSteps:
             b.say("Transport acceleration: ", transport, ".")
         b.say(
             "Its tangential part (along v_tr) is ",
-            Col(parts.tangential),
+            along,
             " and its normal part (across it) ",
-            Col(parts.normal),
+            across,
             ".",
         )
 
@@ -616,16 +620,14 @@ class MovingPointSteps:
         b.line(tangential)
         if curved:
             radius = self.ctx.fmt.latex(1 / b.scalar(v.curvature))
-            normal: tuple[Piece, ...] = (
-                ", normal ",
-                Equation.of(
-                    latex_only(normal_part),
-                    Sym(r"\frac{\dot{s}^2}{R}\,\vec{n}", "s-dot squared over R towards the centre"),
-                    latex_only(r"\frac{", Paren(v.s_dot), f"^2}}{{{radius}}} \\cdot ", Col(v.n)),
-                    Col(v.normal),
-                ),
+            centripetal = Equation.of(
+                latex_only(normal_part),
+                Sym(r"\frac{\dot{s}^2}{R}\,\vec{n}", "s-dot squared over R towards the centre"),
+                latex_only(r"\frac{", Paren(v.s_dot), f"^2}}{{{radius}}} \\cdot ", Col(v.n)),
+                Col(v.normal),
             )
-            b.line(normal[1])
+            b.line(centripetal)
+            normal: tuple[Piece, ...] = (", normal ", centripetal)
         else:
             normal = (", no normal part on a straight path",)
             b.line(rf"&{normal_part} = {V0} \quad \text{{(straight path)}}")
