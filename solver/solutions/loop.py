@@ -22,21 +22,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NoReturn
 
 import numpy as np
 
-from solver.position.topology import (
-    CircleSpec,
-    DriverStep,
-    DyadStep,
-    LeverStep,
-    LineSpec,
-    TwoPointStep,
-)
+from solver.position.topology import CircleSpec, DriverStep, LeverStep, LineSpec, TwoPointStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
 from solver.solutions.format import latex_unit
+from solver.solutions.groups import solution_group
+from solver.solutions.groups.rpr import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 from solver.solutions.linkage import (
     ACCELERATION,
     MOTION,
@@ -48,7 +43,6 @@ from solver.solutions.linkage import (
     velocity_pole_step,
 )
 from solver.solutions.model import Step
-from solver.solutions.position import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 
 
 def join_sum(parts: list[str]) -> str:
@@ -191,13 +185,12 @@ class LoopMethod:
         ground = scene.ground
         self.number(ground)
         for step in self.ctx.analysis.plan.steps:
-            if isinstance(step, DriverStep):
+            group = solution_group(step)
+            if group is not None:
+                self.loops.append(group.loop(self, step))
+            elif isinstance(step, DriverStep):
                 self.rotating[step.link] = step.pivot
                 self.number(step.link)
-            elif isinstance(step, DyadStep):
-                self.loops.append(self.dyad_loop(step))
-            elif isinstance(step, LeverStep):
-                self.loops.append(self.lever_loop(step))
             elif isinstance(step, TwoPointStep):
                 if step.link not in self.solved:
                     raise LoopUnavailable(f"link {step.link} is not closed by a loop")
@@ -209,18 +202,9 @@ class LoopMethod:
         if not self.loops:
             raise LoopUnavailable("the linkage has no closed loop (only driven links)")
 
-    def dyad_loop(self, step: DyadStep) -> Loop:
-        """The loop an RRR dyad (two circles) or an RRP dyad on a fixed guide closes."""
-        x = step.point
-        circles = [s for s in step.loci if isinstance(s, CircleSpec)]
-        lines = [s for s in step.loci if isinstance(s, LineSpec)]
-        if len(circles) == 2:
-            return self.four_bar_loop(x, circles[0], circles[1])
-        if len(circles) == 1 and len(lines) == 1:
-            return self.slider_crank_loop(x, circles[0], lines[0])
-        raise LoopUnavailable(
-            f"{x} is carried by two slots: not a four-bar, slider-crank or slotted-lever loop"
-        )
+    def no_loop(self, why: str) -> NoReturn:
+        """A group that closes no single loop through the ground: the method does not apply."""
+        raise LoopUnavailable(why)
 
     def four_bar_loop(self, x: str, first: CircleSpec, second: CircleSpec) -> Loop:
         """a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) + a4 e^(i th14): crank, coupler about

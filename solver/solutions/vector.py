@@ -33,6 +33,7 @@ from solver.position.topology import (
     LeverStep,
     LineSpec,
     NewtonStep,
+    PlanStep,
     TwoPointStep,
 )
 from solver.solutions import latex as tex
@@ -56,6 +57,7 @@ from solver.solutions.equation import (
     joined,
 )
 from solver.solutions.format import Formatter, latex_unit
+from solver.solutions.groups import solution_group
 from solver.solutions.linkage import (
     ACCELERATION,
     MOTION,
@@ -324,7 +326,10 @@ class VectorMethod:
         out += [acceleration_pole_step(ctx, link) for link in ctx.scene.moving_links]
         return out
 
-    def plan_step(self, step: object, order: int) -> list[Step]:
+    def plan_step(self, step: PlanStep, order: int) -> list[Step]:
+        group = solution_group(step)
+        if group is not None:
+            return group.vector_steps(self, step, order)
         if isinstance(step, DriverStep):
             return self.remaining(
                 step.link,
@@ -332,10 +337,6 @@ class VectorMethod:
                 order,
                 f"Link {step.link} is driven about the fixed pivot {step.pivot}.",
             )
-        if isinstance(step, DyadStep):
-            return self.dyad(step, order)
-        if isinstance(step, LeverStep):
-            return self.lever(step, order)
         if isinstance(step, TwoPointStep):
             return self.two_points(step, order)
         if isinstance(step, GuidedStep):
