@@ -29,6 +29,7 @@ import numpy as np
 from solver.position.topology import CircleSpec, DriverStep, LeverStep, LineSpec, TwoPointStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.equation import Ref
 from solver.solutions.format import latex_unit
 from solver.solutions.groups import solution_group
 from solver.solutions.groups.rpr import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
@@ -639,7 +640,7 @@ class LoopMethod:
         notation = LeverNotation(
             f"s1{n3}", f"c{n3}", f"beta{n3}", f"s_{{1{n3}}}", f"c_{{{n3}}}", rf"\beta_{{{n3}}}"
         )
-        lever_closed_form(b, w, lever.slot.direction, notation)
+        lever_closed_form(b, Ref(w), lever.slot.direction, notation)
         return b.build()
 
     def offset(self, b: StepBuilder, n: str) -> str:

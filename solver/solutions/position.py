@@ -13,7 +13,6 @@ Closed forms come first, then the numbers; the result is the solver's own positi
 from __future__ import annotations
 
 import math
-from functools import partial
 
 import numpy as np
 
@@ -21,7 +20,7 @@ from solver.position import constraints, newton
 from solver.position.topology import DriverStep, NewtonStep, PlanStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
-from solver.solutions.format import latex_unit
+from solver.solutions.equation import Boxed, Num, Pt
 from solver.solutions.groups import solution_group
 from solver.solutions.groups.pose import point_value
 from solver.solutions.linkage import LinkageContext
@@ -31,6 +30,7 @@ DEGREE = r"{}^{\circ}"
 
 
 def crank_step(ctx: LinkageContext, step: DriverStep) -> Step | None:
+    """B = A + a e^(i theta): the driven link's point at its length a and angle theta."""
     others = [p for p in ctx.scene.links[step.link].points if p != step.pivot]
     if not others:
         return None
@@ -39,21 +39,28 @@ def crank_step(ctx: LinkageContext, step: DriverStep) -> Step | None:
     a = point_value(b, ctx, step.pivot)
     target = point_value(b, ctx, x)
     r = ctx.pos(x) - ctx.pos(step.pivot)
-    length = b.put(f"|{step.pivot}{x}|", float(np.hypot(*r)), "m")
-    theta = b.put(f"theta({step.link})", math.atan2(r[1], r[0]), "rad")
-    arm = b.put(f"r({step.pivot},{x})", r, "m")
+    length = b.value(f"|{step.pivot}{x}|", float(np.hypot(*r)), "m")
+    theta = b.value(f"theta({step.link})", math.atan2(r[1], r[0]), "rad")
+    arm = b.value(f"r({step.pivot},{x})", r, "m")
     b.check("phasor", arm, length, theta)
     b.check("sum", target, a, arm)
-    deg = tex.paren(ctx.fmt.latex(math.degrees(b.scalar(theta))) + DEGREE)
+    degrees = math.degrees(b.scalar(theta))  # in the solution's digits, as the driver is given
+    deg = tex.paren(ctx.fmt.latex(degrees) + DEGREE)
     b.line(
-        rf"&{tex.name(x)} = {tex.name(step.pivot)} + a\,e^{{i\theta}} = {b.point(a)} + "
-        rf"{b.num(length)}\,e^{{i\,{deg}}} = "
-        rf"{tex.boxed_result(b.point(target) + latex_unit('m'))}"
+        rf"&{tex.name(x)} = {tex.name(step.pivot)} + a\,e^{{i\theta}} = ",
+        Pt(a),
+        " + ",
+        Num(length),
+        rf"\,e^{{i\,{deg}}} = ",
+        Boxed((Pt(target, "m"),)),
     )
     b.say(
-        f"The driven link {step.link} of length a = {b.txt(length)} is at theta = "
-        f"{ctx.fmt.text(math.degrees(b.scalar(theta)))} deg: {x} = {step.pivot} + a "
-        f"(cos theta, sin theta) = {b.txt(target)}."
+        f"The driven link {step.link} of length a = ",
+        Num(length, unit=True),
+        f" is at theta = {ctx.fmt.text(degrees)} deg: {x} = {step.pivot} + a "
+        "(cos theta, sin theta) = ",
+        Pt(target),
+        ".",
     )
     return b.build()
 
@@ -223,5 +230,5 @@ def group_step(ctx: LinkageContext, step: PlanStep) -> Step | None:
 
 def position_steps(ctx: LinkageContext) -> list[Step]:
     """The position analysis of the analysed pose, group by group of the solver's plan."""
-    built = (ctx.replayed(partial(group_step, ctx, step)) for step in ctx.analysis.plan.steps)
+    built = (group_step(ctx, step) for step in ctx.analysis.plan.steps)
     return [step for step in built if step is not None]

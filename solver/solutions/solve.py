@@ -100,7 +100,7 @@ def _linkage_steps(
         *lead,
         data_step(ctx, _SENTENCES[used]),
         positions,
-        *ctx.replayed(lambda: position_steps(ctx)),
+        *position_steps(ctx),
         *classification_steps(ctx),
         *body,
         reading_step(ctx),

@@ -18,7 +18,7 @@ import numpy as np
 from solver.position.topology import CircleSpec, LeverStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
-from solver.solutions.format import latex_unit
+from solver.solutions.equation import Boxed, Num, Paren, Pt, Ref
 from solver.solutions.groups.pose import point_value
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
@@ -58,54 +58,54 @@ def wrap_turn(b: StepBuilder, value: float, target: float) -> tuple[str, float]:
 
 @dataclass(frozen=True)
 class LeverClosedForm:
-    """The keys of a lever's closed form (``lever_values``) and the whole turn of beta."""
+    """The values of a lever's closed form (``lever_values``) and the whole turn of beta."""
 
-    c: str
-    w2: str
-    c2: str
-    s: str
-    epsilon: str
-    theta_w: str
-    beta: str
+    c: Ref
+    w2: Ref
+    c2: Ref
+    s: Ref
+    epsilon: Ref
+    theta_w: Ref
+    beta: Ref
     turn: str
 
 
-def lever_closed_form(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> None:
-    """(s + i c) e^(i beta) = w, w the vector from the lever's pivot to the pin (registered as
-    ``w``): squared and added, s^2 + c^2 = |w|^2, so s = +-sqrt(|w|^2 - c^2); then beta =
-    arg w - arg(s + i c). The offset c of the slot is a constant of the lever (from the pose);
-    the sign of s is the drawn assembly (the pin ahead of the pivot along the slot, or behind)."""
+def lever_closed_form(b: StepBuilder, w: Ref, u_np: np.ndarray, n: LeverNotation) -> None:
+    """(s + i c) e^(i beta) = w, w the vector from the lever's pivot to the pin: squared and
+    added, s^2 + c^2 = |w|^2, so s = +-sqrt(|w|^2 - c^2); then beta = arg w - arg(s + i c).
+    The offset c of the slot is a constant of the lever (from the pose); the sign of s is the
+    drawn assembly (the pin ahead of the pivot along the slot, or behind)."""
     lever_lines(b, w, n, lever_values(b, w, u_np, n))
 
 
-def lever_values(b: StepBuilder, w: str, u_np: np.ndarray, n: LeverNotation) -> LeverClosedForm:
+def lever_values(b: StepBuilder, w: Ref, u_np: np.ndarray, n: LeverNotation) -> LeverClosedForm:
     """Put the closed form's numbers, with a check for each piece of arithmetic."""
     w_np = np.asarray(b.vector(w))
     size = float(np.hypot(*w_np))  # c and arg(s + i c) at rounding level next to it are 0
-    c = b.put(n.c, float(u_np[0] * w_np[1] - u_np[1] * w_np[0]), "m", reference=size)
+    c = b.value(n.c, float(u_np[0] * w_np[1] - u_np[1] * w_np[0]), "m", reference=size)
     s_value = float(np.dot(w_np, u_np))
-    w2 = b.put("|w|^2", float(np.dot(w_np, w_np)), "m^2")
-    c2 = b.put(f"{n.c}^2", b.scalar(c) ** 2, "m^2", reference=size**2)
-    s2 = b.put(f"{n.s}^2", s_value**2, "m^2", reference=b.scalar(w2))
-    s = b.put(n.s, s_value, "m")
-    sc = b.put(f"({n.s}, {n.c})", (s_value, b.scalar(c)), "m")
-    eps = b.put("epsilon", math.atan2(b.scalar(c), s_value), "rad", reference=math.pi)
-    theta_w = b.put("theta_w", math.atan2(w_np[1], w_np[0]), "rad")
+    w2 = b.value("|w|^2", float(np.dot(w_np, w_np)), "m^2")
+    c2 = b.value(f"{n.c}^2", b.scalar(c) ** 2, "m^2", reference=size**2)
+    s2 = b.value(f"{n.s}^2", s_value**2, "m^2", reference=b.scalar(w2))
+    s = b.value(n.s, s_value, "m")
+    sc = b.value(f"({n.s}, {n.c})", (s_value, b.scalar(c)), "m")
+    eps = b.value("epsilon", math.atan2(b.scalar(c), s_value), "rad", reference=math.pi)
+    theta_w = b.value("theta_w", math.atan2(w_np[1], w_np[0]), "rad")
     b.check("dot", w2, w, w)
     b.check("product", c2, c, c)
-    b.check("sum", s2, w2, f"-{c2}")
+    b.check("sum", s2, w2, -c2)
     b.check("product", s2, s, s)
-    b.check("sum", s, f"{sc}[0]")
-    b.check("sum", c, f"{sc}[1]")
+    b.check("sum", s, sc[0])
+    b.check("sum", c, sc[1])
     b.check("angle", eps, sc)
     b.check("angle", theta_w, w)
     turn, beta_value = wrap_turn(b, b.scalar(theta_w) - b.scalar(eps), math.atan2(u_np[1], u_np[0]))
-    beta = b.put(n.beta, beta_value, "rad")
-    b.check("sum", beta, theta_w, f"-{eps}", *([turn] if turn else []))
+    beta = b.value(n.beta, beta_value, "rad")
+    b.check("sum", beta, theta_w, -eps, *([turn] if turn else []))
     return LeverClosedForm(c, w2, c2, s, eps, theta_w, beta, turn)
 
 
-def lever_lines(b: StepBuilder, w: str, n: LeverNotation, f: LeverClosedForm) -> None:
+def lever_lines(b: StepBuilder, w: Ref, n: LeverNotation, f: LeverClosedForm) -> None:
     """Write the closed form: Re and Im, the elimination, the numbers, the assembly taken."""
     ahead = b.scalar(f.s) >= 0
     pm = "+" if ahead else "-"
@@ -119,28 +119,52 @@ def lever_lines(b: StepBuilder, w: str, n: LeverNotation, f: LeverClosedForm) ->
         rf"\arg({n.s_tex} + i\,{n.c_tex})"
     )
     b.line(
-        rf"&w = {b.point(w)}{latex_unit('m')}, \quad |w|^2 = {b.numu(f.w2)}, "
-        rf"\quad {n.c_tex} = {b.numu(f.c)}"
+        "&w = ",
+        Pt(w, "m"),
+        r", \quad |w|^2 = ",
+        Num(f.w2, unit=True),
+        rf", \quad {n.c_tex} = ",
+        Num(f.c, unit=True),
     )
     b.line(
-        rf"&{n.s_tex} = {pm}\sqrt{{{b.num(f.w2)} - {b.num(f.c2)}}} = "
-        rf"{tex.boxed_result(b.numu(f.s))}"
+        rf"&{n.s_tex} = {pm}\sqrt{{",
+        Num(f.w2),
+        " - ",
+        Num(f.c2),
+        "} = ",
+        Boxed((Num(f.s, unit=True),)),
     )
     b.line(
-        rf"&\arg w = {b.numu(f.theta_w)}, \quad \arg({n.s_tex} + i\,{n.c_tex}) = "
-        rf"{b.numu(f.epsilon)}, \quad {n.beta_tex} = {b.num(f.theta_w)} - "
-        rf"{tex.paren(b.num(f.epsilon))}{TURN_LATEX[f.turn]} = {tex.boxed_result(b.numu(f.beta))}"
+        r"&\arg w = ",
+        Num(f.theta_w, unit=True),
+        rf", \quad \arg({n.s_tex} + i\,{n.c_tex}) = ",
+        Num(f.epsilon, unit=True),
+        rf", \quad {n.beta_tex} = ",
+        Num(f.theta_w),
+        " - ",
+        Paren(f.epsilon),
+        f"{TURN_LATEX[f.turn]} = ",
+        Boxed((Num(f.beta, unit=True),)),
     )
     where = "ahead of" if ahead else "behind"
     b.say(
         "Written as (s + i c) e^(i beta) = w, the real and imaginary parts are s cos "
         "beta - c sin beta = w_x and s sin beta + c cos beta = w_y. Squaring and adding "
-        f"eliminates beta: s^2 + c^2 = |w|^2, with the slot's offset c = {b.txt(f.c)} from the "
-        f"pivot (a constant of the lever) and |w|^2 = {b.txt(f.w2)}, so s = +-sqrt(|w|^2 - c^2)"
-        f". Two assemblies: the pin {where} the pivot along the slot (sign {pm}) is the one "
-        f"drawn (the solver keeps the drawn branch): s = {b.txt(f.s)}. Then beta = arg w - "
-        f"arg(s + i c) = {b.txt(f.theta_w)} - {b.txt(f.epsilon)}{TURN_TEXT[f.turn]} = "
-        f"{b.txt(f.beta)}, the angle of the slot."
+        "eliminates beta: s^2 + c^2 = |w|^2, with the slot's offset c = ",
+        Num(f.c, unit=True),
+        " from the pivot (a constant of the lever) and |w|^2 = ",
+        Num(f.w2, unit=True),
+        ", so s = +-sqrt(|w|^2 - c^2). Two assemblies: the pin "
+        f"{where} the pivot along the slot (sign {pm}) is the one drawn (the solver keeps the "
+        "drawn branch): s = ",
+        Num(f.s, unit=True),
+        ". Then beta = arg w - arg(s + i c) = ",
+        Num(f.theta_w, unit=True),
+        " - ",
+        Num(f.epsilon, unit=True),
+        f"{TURN_TEXT[f.turn]} = ",
+        Num(f.beta, unit=True),
+        ", the angle of the slot.",
     )
 
 
@@ -149,8 +173,8 @@ def lever_step(ctx: LinkageContext, step: LeverStep) -> Step:
     q, p = step.pivot, step.pin
     b = ctx.builder("position.lever", f"Position of lever {step.link}: its slot through {p}")
     pq, pp = point_value(b, ctx, q), point_value(b, ctx, p)
-    w = b.put(f"r({q},{p})", ctx.pos(p) - ctx.pos(q), "m")
-    b.check("sum", w, pp, f"-{pq}")
+    w = b.value(f"r({q},{p})", ctx.pos(p) - ctx.pos(q), "m")
+    b.check("sum", w, pp, -pq)
     notation = LeverNotation("s", "c", "beta", "s", "c", r"\beta")
     b.line(
         rf"&w = {tex.name(p)} - {tex.name(q)} = (s + i\,c)\,e^{{i\beta}}, \quad s \text{{ along "
@@ -158,7 +182,9 @@ def lever_step(ctx: LinkageContext, step: LeverStep) -> Step:
     )
     b.say(
         f"Lever {step.link} turns about {q}; its slot passes through the pin {p}. From {q}, {p} "
-        f"is s along the slot and c across it: w = {p} - {q} = {b.txt(w)}."
+        f"is s along the slot and c across it: w = {p} - {q} = ",
+        Pt(w),
+        ".",
     )
     lever_closed_form(b, w, ctx.slot(step.link, p).direction, notation)
     return b.build()

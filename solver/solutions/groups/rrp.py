@@ -17,7 +17,7 @@ import numpy as np
 from solver.position.topology import CircleSpec, DyadStep, LineSpec
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
-from solver.solutions.format import latex_unit
+from solver.solutions.equation import Boxed, Num, Paren, Pt, Ref
 from solver.solutions.groups.base import DyadSolution
 from solver.solutions.groups.pose import point_value, slot_now
 from solver.solutions.linkage import LinkageContext
@@ -29,20 +29,20 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class SliderValues:
-    """The keys of X = Q + ((C - Q) . u +- w) u: Q, u, r, h = u x (C - Q), (C - Q) . u,
+    """The values of X = Q + ((C - Q) . u +- w) u: Q, u, r, h = u x (C - Q), (C - Q) . u,
     w = sqrt(r^2 - h^2), r^2, h^2, s and X; ``sign`` +1 where X is ahead of C's foot along u
     (the drawn assembly), -1 behind it."""
 
-    q: str
-    u: str
-    r: str
-    h: str
-    along: str
-    w: str
-    r2: str
-    h2: str
-    s: str
-    target: str
+    q: Ref
+    u: Ref
+    r: Ref
+    h: Ref
+    along: Ref
+    w: Ref
+    r2: Ref
+    h2: Ref
+    s: Ref
+    target: Ref
     sign: float
 
 
@@ -69,23 +69,23 @@ def slider_values(
     pc, target = point_value(b, ctx, c), point_value(b, ctx, x)
     q, u = slot_now(b, ctx, line)
     q_np, u_np = np.asarray(b.vector(q)), np.asarray(b.vector(u))
-    r = b.put(f"|{c}{x}|", circle.radius, "m")
-    cq = b.put(f"{c} - Q", ctx.pos(c) - q_np, "m")
-    b.check("sum", cq, pc, f"-{q}")
-    h = b.put("h", float(u_np[0] * b.vector(cq)[1] - u_np[1] * b.vector(cq)[0]), "m")
-    along = b.put("(C - Q).u", float(np.dot(b.vector(cq), u_np)), "m")
+    r = b.value(f"|{c}{x}|", circle.radius, "m")
+    cq = b.value(f"{c} - Q", ctx.pos(c) - q_np, "m")
+    b.check("sum", cq, pc, -q)
+    h = b.value("h", float(u_np[0] * b.vector(cq)[1] - u_np[1] * b.vector(cq)[0]), "m")
+    along = b.value("(C - Q).u", float(np.dot(b.vector(cq), u_np)), "m")
     b.check("cross", h, u, cq)
     b.check("dot", along, cq, u)
     s_value = float(np.dot(ctx.pos(x) - q_np, u_np))
-    w = b.put("w", abs(s_value - b.scalar(along)), "m")
-    r2, h2, w2 = (b.put(f"{k}^2", b.scalar(k) ** 2, "m^2") for k in (r, h, w))
+    w = b.value("w", abs(s_value - b.scalar(along)), "m")
+    r2, h2, w2 = (b.value(f"{k.key}^2", b.scalar(k) ** 2, "m^2") for k in (r, h, w))
     for key, base in ((r2, r), (h2, h), (w2, w)):
         b.check("product", key, base, base)
     b.check("sum", r2, w2, h2)
     sign = 1.0 if s_value >= b.scalar(along) else -1.0
-    s = b.put("s", s_value, "m")
-    b.check("sum", s, along, w if sign > 0 else f"-{w}")
-    offset = b.put("s u", s_value * u_np, "m")
+    s = b.value("s", s_value, "m")
+    b.check("sum", s, along, w if sign > 0 else -w)
+    offset = b.value("s u", s_value * u_np, "m")
     b.check("product", offset, s, u)
     b.check("sum", target, q, offset)
     return SliderValues(q, u, r, h, along, w, r2, h2, s, target, sign)
@@ -99,19 +99,48 @@ def slider_lines(b: StepBuilder, x: str, circle: CircleSpec, guide: str, v: Slid
         rf"{tex.name(x)} = Q + ((\,{tex.name(c)} - Q) \cdot \vec{{u}} {pm} w)\,\vec{{u}}"
     )
     b.line(
-        rf"&h = {b.numu(v.h)}, \quad w = \sqrt{{{b.num(v.r2)} - {b.num(v.h2)}}} = "
-        rf"{b.numu(v.w)}, \quad s = {b.num(v.along)} {pm} {b.num(v.w)} = {b.numu(v.s)}"
+        "&h = ",
+        Num(v.h, unit=True),
+        r", \quad w = \sqrt{",
+        Num(v.r2),
+        " - ",
+        Num(v.h2),
+        "} = ",
+        Num(v.w, unit=True),
+        r", \quad s = ",
+        Num(v.along),
+        f" {pm} ",
+        Num(v.w),
+        " = ",
+        Num(v.s, unit=True),
     )
     b.line(
-        rf"&{tex.name(x)} = {b.point(v.q)} + {tex.paren(b.num(v.s))}\,{b.point(v.u)} = "
-        rf"{tex.boxed_result(b.point(v.target) + latex_unit('m'))}"
+        f"&{tex.name(x)} = ",
+        Pt(v.q),
+        " + ",
+        Paren(v.s),
+        r"\,",
+        Pt(v.u),
+        " = ",
+        Boxed((Pt(v.target, "m"),)),
     )
     b.say(
-        f"{x} is at r = {b.txt(v.r)} from {c} (link {circle.link}) and on the {guide} through "
-        f"Q = {b.txt(v.q)} along u = {b.txtn(v.u)}. {c} is at h = {b.txt(v.h)} from the guide; "
-        f"the circle meets it at w = sqrt(r^2 - h^2) = {b.txt(v.w)} on either side of the foot "
-        f"of {c}. The assembly taken is {x} {'ahead of' if v.sign > 0 else 'behind'} the foot "
-        f"along u, as drawn: s = {b.txt(v.s)}, {x} = {b.txt(v.target)}."
+        f"{x} is at r = ",
+        Num(v.r, unit=True),
+        f" from {c} (link {circle.link}) and on the {guide} through Q = ",
+        Pt(v.q),
+        " along u = ",
+        Num(v.u),
+        f". {c} is at h = ",
+        Num(v.h, unit=True),
+        " from the guide; the circle meets it at w = sqrt(r^2 - h^2) = ",
+        Num(v.w, unit=True),
+        f" on either side of the foot of {c}. The assembly taken is {x} "
+        f"{'ahead of' if v.sign > 0 else 'behind'} the foot along u, as drawn: s = ",
+        Num(v.s, unit=True),
+        f", {x} = ",
+        Pt(v.target),
+        ".",
     )
 
 
