@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from solver.position.groups.rrr import chord
 from solver.position.topology import CircleSpec, DyadStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
@@ -66,11 +67,12 @@ def triangle_values(
     r1 = b.value(f"|{c1}{x}|", first.radius, "m")
     r2 = b.value(f"|{c2}{x}|", second.radius, "m")
     dv = ctx.pos(c2) - ctx.pos(c1)
+    cut = chord(dv[:1], dv[1:], first.radius, second.radius)  # the position layer's RRR
     dk = b.value(f"r({c1},{c2})", dv, "m")
-    d = b.value(f"|{c1}{c2}|", float(np.hypot(*dv)), "m")
+    d = b.value(f"|{c1}{c2}|", float(cut.d[0]), "m")
     b.check("sum", dk, p2, -p1)
     b.check("norm", d, dk)
-    squares, den, cos = cosine_law(b, r1, r2, d)
+    squares, den, cos = cosine_law(b, r1, r2, d, float(cut.a[0]) / first.radius)
     rx = ctx.pos(x) - ctx.pos(c1)
     gamma, theta_d, angle, sign = triangle_angle(b, dv, rx, cos, dk)
     arm = b.value(f"r({c1},{x})", rx, "m")
@@ -79,15 +81,17 @@ def triangle_values(
     return TriangleValues(p1, target, r1, r2, d, squares, den, cos, gamma, theta_d, angle, sign)
 
 
-def cosine_law(b: StepBuilder, r1: Ref, r2: Ref, d: Ref) -> tuple[tuple[Ref, Ref, Ref], Ref, Ref]:
-    """cos gamma = (r1^2 + d^2 - r2^2) / (2 r1 d): the values (r1^2, r2^2, d^2), 2 r1 d and
-    cos gamma."""
+def cosine_law(
+    b: StepBuilder, r1: Ref, r2: Ref, d: Ref, cos_gamma: float
+) -> tuple[tuple[Ref, Ref, Ref], Ref, Ref]:
+    """cos gamma = (r1^2 + d^2 - r2^2) / (2 r1 d) = a / r1, a the distance from C1 to the
+    common chord (``rrr.chord``): the values (r1^2, r2^2, d^2), 2 r1 d and cos gamma."""
     sq = {k: b.value(f"{k.key}^2", b.scalar(k) ** 2, "m^2") for k in (r1, r2, d)}
     for k, v in sq.items():
         b.check("product", v, k, k)
     num = b.value("r1^2 + d^2 - r2^2", b.scalar(sq[r1]) + b.scalar(sq[d]) - b.scalar(sq[r2]), "m^2")
     den = b.value("2 r1 d", 2 * b.scalar(r1) * b.scalar(d), "m^2")
-    cos = b.value("cos gamma", b.scalar(num) / b.scalar(den), "")
+    cos = b.value("cos gamma", cos_gamma, "")
     b.check("sum", num, sq[r1], sq[d], -sq[r2])
     b.check("product", den, r1, d, factor=2.0)
     b.check("quotient", cos, num, den)
