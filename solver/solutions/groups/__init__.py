@@ -5,19 +5,31 @@ RRR (``rrr``: the triangle, the four-bar loop), RRP (``rrp``: a circle and a gui
 slider-crank loop), PRP (``prp``: a pin in two slots), RPR (``rpr``: the slotted lever). Each
 follows the protocol ``base.SolutionGroup``; the position, vector and loop methods and the
 typical mistakes ask ``solution_group(step)`` instead of dispatching on the step's type.
-Adding a group: its module here (and its entry in ``GROUPS``), beside its module in
-``solver.position.groups`` and the place in ``topology`` that recognises it.
+``GROUPS`` collects every module of this package that defines a ``GROUP``: adding a group is its
+module here, beside its module in ``solver.position.groups`` and the place in ``topology`` that
+recognises it.
 """
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
+
 from solver.position.topology import DyadStep, LeverStep, PlanStep
-from solver.solutions.groups import prp, rpr, rrp, rrr
 from solver.solutions.groups.base import SolutionGroup
 
-GROUPS: dict[str, SolutionGroup] = {
-    group.kind: group for group in (rrr.GROUP, rrp.GROUP, prp.GROUP, rpr.GROUP)
-}
+
+def _collect() -> dict[str, SolutionGroup]:
+    """Every module of this package with a ``GROUP``, by the group's kind."""
+    found: dict[str, SolutionGroup] = {}
+    for module in pkgutil.iter_modules(__path__):
+        group = getattr(importlib.import_module(f"{__name__}.{module.name}"), "GROUP", None)
+        if group is not None:
+            found[group.kind] = group
+    return found
+
+
+GROUPS = _collect()
 
 
 def solution_group(step: PlanStep) -> SolutionGroup | None:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from solver.position.topology import DyadStep
-from solver.solutions.groups.base import DyadSolution
+from solver.solutions.groups.base import DyadSolution, SolutionGroup
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
 
@@ -29,4 +29,4 @@ class PRP(DyadSolution):
         )
 
 
-GROUP = PRP("PRP", loop_mistakes=("loop.real_slider",))
+GROUP: SolutionGroup = PRP("PRP", loop_mistakes=("loop.real_slider",))

@@ -19,6 +19,7 @@ from solver.position.topology import CircleSpec, LeverStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Boxed, Num, Paren, Pt, Ref
+from solver.solutions.groups.base import SolutionGroup
 from solver.solutions.groups.pose import point_value
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
@@ -213,4 +214,4 @@ class RPR:
         mistakes.lever_coriolis(step)
 
 
-GROUP = RPR()
+GROUP: SolutionGroup = RPR()

@@ -18,7 +18,7 @@ from solver.position.topology import CircleSpec, DyadStep, LineSpec
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Boxed, Num, Paren, Pt, Ref
-from solver.solutions.groups.base import DyadSolution
+from solver.solutions.groups.base import DyadSolution, SolutionGroup
 from solver.solutions.groups.pose import point_value, slot_now
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
@@ -154,4 +154,4 @@ class RRP(DyadSolution):
         return method.slider_crank_loop(step.point, self.circles(step)[0], self.slots(step)[0])
 
 
-GROUP = RRP("RRP", loop_mistakes=("loop.real_slider",))
+GROUP: SolutionGroup = RRP("RRP", loop_mistakes=("loop.real_slider",))

@@ -19,7 +19,7 @@ from solver.position.topology import CircleSpec, DyadStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Boxed, Num, Paren, Pt, Ref
-from solver.solutions.groups.base import DyadSolution
+from solver.solutions.groups.base import DyadSolution, SolutionGroup
 from solver.solutions.groups.pose import point_value
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
@@ -192,4 +192,4 @@ class RRR(DyadSolution):
         return method.four_bar_loop(step.point, first, second)
 
 
-GROUP = RRR("RRR")
+GROUP: SolutionGroup = RRR("RRR")
