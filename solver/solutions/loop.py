@@ -26,6 +26,7 @@ from typing import Literal, NoReturn
 
 import numpy as np
 
+from solver.position.groups.rrr import chord
 from solver.position.topology import CircleSpec, DriverStep, LeverStep, LineSpec, TwoPointStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
@@ -597,9 +598,14 @@ class LoopMethod:
         d_np = np.asarray(b.vector(r_ground)) - np.asarray(b.vector(r_crank))
         d = b.put("d", d_np, "m")
         b.check("sum", d, r_ground, f"-{r_crank}")
-        d_len = b.put("|d|", float(np.hypot(*d_np)), "m")
+        # the position layer's RRR: circles about the rocker's pivot (a4) and the crank pin (a3)
+        cut = chord(-d_np[:1], -d_np[1:], b.scalar(a4), b.scalar(a3))
+        d_len = b.put("|d|", float(cut.d[0]), "m")
         b.check("norm", d_len, d)
-        coef_a, coef_b, coef_c, squares, radius, cos = self.eliminate_coupler(b, a3, a4, d, d_len)
+        cos_gamma = -float(cut.a[0]) / b.scalar(a4)
+        coef_a, coef_b, coef_c, squares, radius, cos = self.eliminate_coupler(
+            b, a3, a4, (d, d_len), cos_gamma
+        )
         gamma, delta, sign, turn = self.rocker_angle(b, th14, d, cos)
         b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
         return FourBarClosedForm(
@@ -608,10 +614,13 @@ class LoopMethod:
         )  # fmt: skip
 
     def eliminate_coupler(
-        self, b: StepBuilder, a3: str, a4: str, d: str, d_len: str
+        self, b: StepBuilder, a3: str, a4: str, ds: tuple[str, str], cos_gamma: float
     ) -> tuple[str, str, str, tuple[str, str, str], str, str]:
         """A cos th14 + B sin th14 = C with A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2,
-        and cos gamma = C / R, R = 2 a4 |d|: the keys of A, B, C, the three squares, R, cos."""
+        and cos gamma = C / R, R = 2 a4 |d| (= -a / a4, a the distance of the rocker's pivot
+        from the common chord of ``rrr.chord``, given as ``cos_gamma``); ``ds`` the keys of d and
+        |d|: the keys of A, B, C, the three squares, R, cos."""
+        d, d_len = ds
         a4v, d_np = b.scalar(a4), b.vector(d)
         coef_a = b.put("A", 2 * a4v * d_np[0], "m^2")
         coef_b = b.put("B", 2 * a4v * d_np[1], "m^2")
@@ -627,7 +636,7 @@ class LoopMethod:
         b.check("sum", coef_c, sq3, f"-{sq4}", f"-{sq_d}")
         radius = b.put("R", 2 * a4v * b.scalar(d_len), "m^2")
         b.check("product", radius, a4, d_len, factor=2.0)
-        cos = b.put("cos gamma", b.scalar(coef_c) / b.scalar(radius), "", reference=1.0)
+        cos = b.put("cos gamma", cos_gamma, "", reference=1.0)
         b.check("quotient", cos, coef_c, radius)
         return coef_a, coef_b, coef_c, (sq3, sq4, sq_d), radius, cos
 
