@@ -9,20 +9,20 @@ from solver.model.scene import parse_linkage
 from solver.position import groups as position_groups
 from solver.position.groups.rrr import chord
 from solver.position.topology import DriverStep, DyadStep, build_plan
-from solver.solutions.groups import GROUPS, solution_group
+from solver.solutions.groups import groups, solution_group
 from tests.solver.solutions.test_solve import _check_solution, example, solution_of
 
 
 def test_every_group_of_the_position_layer_has_its_solution_module() -> None:
-    assert set(GROUPS) == set(position_groups.GROUPS)
-    assert all(kind == group.kind for kind, group in GROUPS.items())
+    assert set(groups()) == set(position_groups.GROUPS)
+    assert all(kind == group.kind for kind, group in groups().items())
 
 
 def test_a_plan_step_is_asked_for_its_group_by_kind() -> None:
     """The four-bar's plan: the driven link is no group; the RRR dyad is its module."""
     plan = build_plan(parse_linkage(example("S000-T1")))
     dyad = next(step for step in plan.steps if isinstance(step, DyadStep))
-    assert solution_group(dyad) is GROUPS["RRR"]
+    assert solution_group(dyad) is groups()["RRR"]
     driver = next(step for step in plan.steps if isinstance(step, DriverStep))
     assert solution_group(driver) is None
 
