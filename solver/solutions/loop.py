@@ -22,21 +22,29 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NoReturn
 
 import numpy as np
 
-from solver.position.topology import (
-    CircleSpec,
-    DriverStep,
-    DyadStep,
-    LeverStep,
-    LineSpec,
-    TwoPointStep,
-)
+from solver.position.groups.rrr import chord
+from solver.position.topology import CircleSpec, DriverStep, LeverStep, LineSpec, TwoPointStep
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.equation import (
+    Boxed,
+    Frac,
+    Num,
+    Paren,
+    Piece,
+    Ref,
+    Shows,
+    Signed,
+    Token,
+    joined,
+)
 from solver.solutions.format import latex_unit
+from solver.solutions.groups import solution_group
+from solver.solutions.groups.rpr import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 from solver.solutions.linkage import (
     ACCELERATION,
     MOTION,
@@ -48,7 +56,6 @@ from solver.solutions.linkage import (
     velocity_pole_step,
 )
 from solver.solutions.model import Step
-from solver.solutions.position import TURN_LATEX, LeverNotation, lever_closed_form, wrap_turn
 
 
 def join_sum(parts: list[str]) -> str:
@@ -59,6 +66,72 @@ def join_sum(parts: list[str]) -> str:
     for p in parts[1:]:
         out += f" - {p[1:]}" if p.startswith("-") else f" + {p}"
     return out
+
+
+@dataclass(frozen=True)
+class Degrees:
+    """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
+
+    ref: Ref
+
+    def latex(self, shows: Shows) -> str:
+        degrees = shows.fmt_of(self.ref).latex(math.degrees(shows.scalar(self.ref)), "deg")
+        return tex.paren(degrees + r"{}^{\circ}")
+
+    def text(self, shows: Shows) -> str:
+        return self.latex(shows)
+
+
+@dataclass(frozen=True)
+class Complex:
+    """A 2-vector value as a complex number: 'a', 'b i', '(a + b i)'; with ``unknown`` (its
+    LaTeX) the coefficient of that unknown: 'u', '-u', '(a + b i)\\,u'."""
+
+    ref: Ref
+    unknown: str = ""
+
+    def latex(self, shows: Shows) -> str:
+        re, im = shows.entries(self.ref, 2)
+        imaginary = {"1": "i", "-1": "-i"}.get(im, im + r"\,i")
+        number = re if im == "0" else imaginary if re == "0" else f"({re} {tex.signed(imaginary)})"
+        if not self.unknown:
+            return number
+        if number in ("1", "-1"):
+            return number[:-1] + self.unknown
+        return number + r"\," + self.unknown
+
+    def text(self, shows: Shows) -> str:
+        return self.latex(shows)
+
+
+@dataclass(frozen=True)
+class Offset:
+    """(s + c i) of a slider or a slot with the numbers; just s when the offset c is zero."""
+
+    s: Ref
+    c: Ref
+
+    def latex(self, shows: Shows) -> str:
+        s, c = shows.num(self.s), shows.num(self.c)
+        if c == "0":
+            return tex.paren(s)
+        return f"({s} {tex.signed(c)}\\,i)"
+
+    def text(self, shows: Shows) -> str:
+        return self.latex(shows)
+
+
+@dataclass(frozen=True)
+class SumOf:
+    """Terms joined with + and -, a negative term written as a subtraction (``join_sum``)."""
+
+    terms: tuple[Token, ...]
+
+    def latex(self, shows: Shows) -> str:
+        return join_sum([t.latex(shows) for t in self.terms])
+
+    def text(self, shows: Shows) -> str:
+        return join_sum([t.text(shows) for t in self.terms])
 
 
 def angle_name(member: Member) -> str:
@@ -191,13 +264,12 @@ class LoopMethod:
         ground = scene.ground
         self.number(ground)
         for step in self.ctx.analysis.plan.steps:
-            if isinstance(step, DriverStep):
+            group = solution_group(step)
+            if group is not None:
+                self.loops.append(group.loop(self, step))
+            elif isinstance(step, DriverStep):
                 self.rotating[step.link] = step.pivot
                 self.number(step.link)
-            elif isinstance(step, DyadStep):
-                self.loops.append(self.dyad_loop(step))
-            elif isinstance(step, LeverStep):
-                self.loops.append(self.lever_loop(step))
             elif isinstance(step, TwoPointStep):
                 if step.link not in self.solved:
                     raise LoopUnavailable(f"link {step.link} is not closed by a loop")
@@ -209,18 +281,9 @@ class LoopMethod:
         if not self.loops:
             raise LoopUnavailable("the linkage has no closed loop (only driven links)")
 
-    def dyad_loop(self, step: DyadStep) -> Loop:
-        """The loop an RRR dyad (two circles) or an RRP dyad on a fixed guide closes."""
-        x = step.point
-        circles = [s for s in step.loci if isinstance(s, CircleSpec)]
-        lines = [s for s in step.loci if isinstance(s, LineSpec)]
-        if len(circles) == 2:
-            return self.four_bar_loop(x, circles[0], circles[1])
-        if len(circles) == 1 and len(lines) == 1:
-            return self.slider_crank_loop(x, circles[0], lines[0])
-        raise LoopUnavailable(
-            f"{x} is carried by two slots: not a four-bar, slider-crank or slotted-lever loop"
-        )
+    def no_loop(self, why: str) -> NoReturn:
+        """A group that closes no single loop through the ground: the method does not apply."""
+        raise LoopUnavailable(why)
 
     def four_bar_loop(self, x: str, first: CircleSpec, second: CircleSpec) -> Loop:
         """a2 e^(i th12) + a3 e^(i th13) = a1 e^(i th11) + a4 e^(i th14): crank, coupler about
@@ -343,11 +406,6 @@ class LoopMethod:
         b.check("angle", th, r)
         return a, th
 
-    def deg(self, b: StepBuilder, key: str) -> str:
-        """An angle value in degrees, in parentheses when negative (for e^{i ...})."""
-        degrees = b.fmt_of(key).latex(math.degrees(b.scalar(key)), "deg")
-        return tex.paren(degrees + r"{}^{\circ}")
-
     # --- the steps ------------------------------------------------------------------------------
 
     def loop_step(self, loop: Loop, index: int) -> Step:
@@ -379,43 +437,50 @@ class LoopMethod:
             b.check("phasor", z, a, th)
         return a, th, z
 
-    def member_latex(self, b: StepBuilder, m: Member, a: str, th: str) -> tuple[str, str]:
+    def member_latex(self, m: Member, a: str, th: str) -> tuple[str, tuple[Piece, ...]]:
         """The member in symbols and with its numbers: a e^(i theta), (s + i c) e^(i phi)."""
         n = m.number
         if m.kind in ("slider", "slot"):
             angle = r"\varphi" if m.kind == "slider" else r"\beta"
-            degrees = self.deg(b, f"{angle_name(m)}{n}")
+            degrees = Degrees(Ref(f"{angle_name(m)}{n}"))
             return (
                 rf"(s_{{1{n}}} + i\,c_{{{n}}})\,e^{{i{angle}_{{{n}}}}}",
-                rf"{self.offset(b, n)}\,e^{{i\,{degrees}}}",
+                (Offset(Ref(f"s1{n}"), Ref(f"c{n}")), r"\,e^{i\,", degrees, "}"),
             )
-        return rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}", rf"{b.num(a)}\,e^{{i\,{self.deg(b, th)}}}"
+        symbol = rf"a_{{{n}}}\,e^{{i\theta_{{1{n}}}}}"
+        return symbol, (Num(Ref(a)), r"\,e^{i\,", Degrees(Ref(th)), "}")
 
     def loop_lines(
         self, b: StepBuilder, loop: Loop, members: list[tuple[str, str, str]], total: str
     ) -> None:
         """Write the loop in symbols, with its numbers and its value; say it with the data."""
         written = [
-            self.member_latex(b, m, a, th)
+            self.member_latex(m, a, th)
             for m, (a, th, _) in zip((*loop.left, *loop.right), members, strict=True)
         ]
         left, right = written[: len(loop.left)], written[len(loop.left) :]
         b.line("&" + " + ".join(s for s, _ in left) + " = " + " + ".join(s for s, _ in right))
-        b.line("&" + " + ".join(n for _, n in left) + " = " + " + ".join(n for _, n in right))
-        b.line(rf"&\text{{both sides}} = {self.cx(b, total)}{latex_unit('m')}")
-        data = []
+        b.line(
+            "&",
+            *joined(" + ", [n for _, n in left]),
+            " = ",
+            *joined(" + ", [n for _, n in right]),
+        )
+        b.line(r"&\text{both sides} = ", Complex(Ref(total)), latex_unit("m"))
+        data: list[tuple[Piece, ...]] = []
         for key in b.values:
             if key[0] in "asc" and "(" not in key and key not in ("a", "s", "c"):
-                data.append(f"{key} = {b.txt(key)}")
+                data.append((f"{key} = ", Num(Ref(key), unit=True)))
             elif key.startswith(("theta1", "phi", "beta")):
                 degrees = self.ctx.fmt.text(math.degrees(b.scalar(key)), "deg")
-                data.append(f"{key} = {b.txt(key)} ({degrees} deg)")
+                data.append((f"{key} = ", Num(Ref(key), unit=True), f" ({degrees} deg)"))
         b.say(
             f"Loop closure: {' + '.join(self.member_text(m) for m in loop.left)} = "
-            f"{' + '.join(self.member_text(m) for m in loop.right)}. With "
-            + "; ".join(data)
-            + f", both sides give the position of {loop.joint} relative to "
-            f"{loop.left[0].first}: {b.txt(total)}."
+            f"{' + '.join(self.member_text(m) for m in loop.right)}. With ",
+            *joined("; ", data),
+            f", both sides give the position of {loop.joint} relative to {loop.left[0].first}: ",
+            Num(Ref(total), unit=True),
+            ".",
         )
 
     def closed_form_step(self, loop: Loop, index: int) -> Step:
@@ -471,18 +536,39 @@ class LoopMethod:
             rf"{sin3} = \frac{{c_{{{n4}}} - a_{{{n2}}} {sin2}}}{{a_{{{n3}}}}}"
         )
         b.line(rf"&\text{{Re: }} s_{{1{n4}}} = a_{{{n2}}} {cos2} + a_{{{n3}}} {cos3}")
-        fraction = rf"\frac{{{b.num(f.c)} - {tex.paren(b.num(f.lift))}}}{{{b.num(f.a3)}}}"
-        b.line(rf"&{sin3} = {fraction} = {b.num(f.sin13)}, \quad {t3} = {b.numu(f.th13)}")
+        c, lift, a3 = Ref(f.c), Ref(f.lift), Ref(f.a3)
         b.line(
-            rf"&s_{{1{n4}}} = {b.num(f.q2)} {tex.signed(b.num(f.q3))} = "
-            rf"{tex.boxed_result(b.numu(f.s14))}"
+            f"&{sin3} = ",
+            r"\frac{",
+            Num(c),
+            " - ",
+            Paren(lift),
+            "}{",
+            Num(a3),
+            "} = ",
+            Num(Ref(f.sin13)),
+            rf", \quad {t3} = ",
+            Num(Ref(f.th13), unit=True),
+        )
+        b.line(
+            f"&s_{{1{n4}}} = ",
+            Num(Ref(f.q2)),
+            " ",
+            Signed(Ref(f.q3)),
+            " = ",
+            Boxed((Num(Ref(f.s14), unit=True),)),
         )
         b.say(
             f"Turned into the guide's frame (times e^(-i phi{n4})), the imaginary part of the loop "
-            f"gives sin(theta1{n3} - phi{n4}) = (c{n4} - a{n2} sin(theta1{n2} - phi{n4}))/a{n3} = "
-            f"{b.txtn(f.sin13)}, and the real part s1{n4} = a{n2} cos(theta1{n2} - phi{n4}) + "
-            f"a{n3} cos(theta1{n3} - phi{n4}) = {b.txt(f.s14)}. Of the two angles with this sine "
-            f"the one taken has {f.branch}, the assembly as drawn: theta1{n3} = {b.txt(f.th13)}."
+            f"gives sin(theta1{n3} - phi{n4}) = (c{n4} - a{n2} sin(theta1{n2} - phi{n4}))/a{n3} = ",
+            Num(Ref(f.sin13)),
+            f", and the real part s1{n4} = a{n2} cos(theta1{n2} - phi{n4}) + "
+            f"a{n3} cos(theta1{n3} - phi{n4}) = ",
+            Num(Ref(f.s14), unit=True),
+            f". Of the two angles with this sine the one taken has {f.branch}, the assembly as "
+            f"drawn: theta1{n3} = ",
+            Num(Ref(f.th13), unit=True),
+            ".",
         )
 
     def four_bar_closed_form_step(self, loop: Loop, index: int) -> Step:
@@ -512,9 +598,14 @@ class LoopMethod:
         d_np = np.asarray(b.vector(r_ground)) - np.asarray(b.vector(r_crank))
         d = b.put("d", d_np, "m")
         b.check("sum", d, r_ground, f"-{r_crank}")
-        d_len = b.put("|d|", float(np.hypot(*d_np)), "m")
+        # the position layer's RRR: circles about the rocker's pivot (a4) and the crank pin (a3)
+        cut = chord(-d_np[:1], -d_np[1:], b.scalar(a4), b.scalar(a3))
+        d_len = b.put("|d|", float(cut.d[0]), "m")
         b.check("norm", d_len, d)
-        coef_a, coef_b, coef_c, squares, radius, cos = self.eliminate_coupler(b, a3, a4, d, d_len)
+        cos_gamma = -float(cut.a[0]) / b.scalar(a4)
+        coef_a, coef_b, coef_c, squares, radius, cos = self.eliminate_coupler(
+            b, a3, a4, (d, d_len), cos_gamma
+        )
         gamma, delta, sign, turn = self.rocker_angle(b, th14, d, cos)
         b.check("sum", r_coupler, d, f"r({rocker.first},{rocker.second})")
         return FourBarClosedForm(
@@ -523,10 +614,13 @@ class LoopMethod:
         )  # fmt: skip
 
     def eliminate_coupler(
-        self, b: StepBuilder, a3: str, a4: str, d: str, d_len: str
+        self, b: StepBuilder, a3: str, a4: str, ds: tuple[str, str], cos_gamma: float
     ) -> tuple[str, str, str, tuple[str, str, str], str, str]:
         """A cos th14 + B sin th14 = C with A = 2 a4 d_x, B = 2 a4 d_y, C = a3^2 - a4^2 - |d|^2,
-        and cos gamma = C / R, R = 2 a4 |d|: the keys of A, B, C, the three squares, R, cos."""
+        and cos gamma = C / R, R = 2 a4 |d| (= -a / a4, a the distance of the rocker's pivot
+        from the common chord of ``rrr.chord``, given as ``cos_gamma``); ``ds`` the keys of d and
+        |d|: the keys of A, B, C, the three squares, R, cos."""
+        d, d_len = ds
         a4v, d_np = b.scalar(a4), b.vector(d)
         coef_a = b.put("A", 2 * a4v * d_np[0], "m^2")
         coef_b = b.put("B", 2 * a4v * d_np[1], "m^2")
@@ -542,7 +636,7 @@ class LoopMethod:
         b.check("sum", coef_c, sq3, f"-{sq4}", f"-{sq_d}")
         radius = b.put("R", 2 * a4v * b.scalar(d_len), "m^2")
         b.check("product", radius, a4, d_len, factor=2.0)
-        cos = b.put("cos gamma", b.scalar(coef_c) / b.scalar(radius), "", reference=1.0)
+        cos = b.put("cos gamma", cos_gamma, "", reference=1.0)
         b.check("quotient", cos, coef_c, radius)
         return coef_a, coef_b, coef_c, (sq3, sq4, sq_d), radius, cos
 
@@ -590,19 +684,43 @@ class LoopMethod:
             rf"\frac{{C}}{{\sqrt{{A^2 + B^2}}}} = \frac{{C}}{{2a_{{{n4}}}|\vec{{d}}|}}"
         )
         b.line(
-            rf"&\vec{{d}} = {self.cx(b, f.d)}{latex_unit('m')}, \quad A = {b.numu(f.a)}, \quad "
-            rf"B = {b.numu(f.b)}, \quad C = {b.num(f.a3_sq)} - {b.num(f.a4_sq)} - "
-            rf"{b.num(f.d_sq)} = {b.numu(f.c)}"
+            r"&\vec{d} = ",
+            Complex(Ref(f.d)),
+            latex_unit("m"),
+            r", \quad A = ",
+            Num(Ref(f.a), unit=True),
+            r", \quad B = ",
+            Num(Ref(f.b), unit=True),
+            r", \quad C = ",
+            Num(Ref(f.a3_sq)),
+            " - ",
+            Num(Ref(f.a4_sq)),
+            " - ",
+            Num(Ref(f.d_sq)),
+            " = ",
+            Num(Ref(f.c), unit=True),
         )
         b.line(
-            rf"&\cos\gamma = \frac{{{b.num(f.c)}}}{{{b.num(f.radius)}}} = {b.num(f.cos)}, \quad "
-            rf"\gamma = {b.numu(f.gamma)}, \quad \delta = {b.numu(f.delta)}"
+            r"&\cos\gamma = ",
+            Frac(Ref(f.c), Ref(f.radius)),
+            " = ",
+            Num(Ref(f.cos)),
+            r", \quad \gamma = ",
+            Num(Ref(f.gamma), unit=True),
+            r", \quad \delta = ",
+            Num(Ref(f.delta), unit=True),
         )
         b.line(
-            rf"&{t[n4]} = {b.num(f.delta)} {pm} {b.num(f.gamma)}{TURN_LATEX[f.turn]} = "
-            rf"{tex.boxed_result(b.numu(f.th14))}, \quad {t[n3]} = \arg(\vec{{d}} + a_{{{n4}}}"
-            rf"e^{{i{t[n4]}}}) = \arg {self.cx(b, f.r_coupler)} = "
-            rf"{tex.boxed_result(b.numu(f.th13))}"
+            f"&{t[n4]} = ",
+            Num(Ref(f.delta)),
+            f" {pm} ",
+            Num(Ref(f.gamma)),
+            f"{TURN_LATEX[f.turn]} = ",
+            Boxed((Num(Ref(f.th14), unit=True),)),
+            rf", \quad {t[n3]} = \arg(\vec{{d}} + a_{{{n4}}}e^{{i{t[n4]}}}) = \arg ",
+            Complex(Ref(f.r_coupler)),
+            " = ",
+            Boxed((Num(Ref(f.th13), unit=True),)),
         )
         self.four_bar_sentence(b, loop, f)
 
@@ -616,17 +734,30 @@ class LoopMethod:
         where = "left" if f.sign > 0 else "right"
         b.say(
             f"Moving the crank to the right side, a{n3} e^(i theta1{n3}) = d + a{n4} e^(i "
-            f"theta1{n4}) with d = a{n1} e^(i theta1{n1}) - a{n2} e^(i theta1{n2}) = {b.txt(f.d)}, "
-            f"the vector from {crank.second} to {ground.second}. Squaring and adding the real and "
-            f"imaginary parts eliminates theta1{n3}: A cos theta1{n4} + B sin theta1{n4} = C with "
-            f"A = 2 a{n4} d_x = {b.txtn(f.a)}, B = 2 a{n4} d_y = {b.txtn(f.b)} and C = "
-            f"a{n3}^2 - a{n4}^2 - |d|^2 = {b.txt(f.c)}. So theta1{n4} = delta +- gamma with "
-            f"delta = arg d = {b.txt(f.delta)} and cos gamma = C / (2 a{n4} |d|) = "
-            f"{b.txtn(f.cos)}, gamma = {b.txt(f.gamma)}. The two signs are the two assemblies, "
-            f"{x} on the left or on the right of {crank.second}{ground.second}; the one taken is "
-            f"{x} on the {where} of {crank.second}{ground.second} (sign {pm}), as drawn (the "
-            f"solver keeps the drawn branch): theta1{n4} = {b.txt(f.th14)}, and theta1{n3} = "
-            f"arg(d + a{n4} e^(i theta1{n4})) = {b.txt(f.th13)}."
+            f"theta1{n4}) with d = a{n1} e^(i theta1{n1}) - a{n2} e^(i theta1{n2}) = ",
+            Num(Ref(f.d), unit=True),
+            f", the vector from {crank.second} to {ground.second}. Squaring and adding the real "
+            f"and imaginary parts eliminates theta1{n3}: A cos theta1{n4} + B sin theta1{n4} = C "
+            f"with A = 2 a{n4} d_x = ",
+            Num(Ref(f.a)),
+            f", B = 2 a{n4} d_y = ",
+            Num(Ref(f.b)),
+            f" and C = a{n3}^2 - a{n4}^2 - |d|^2 = ",
+            Num(Ref(f.c), unit=True),
+            f". So theta1{n4} = delta +- gamma with delta = arg d = ",
+            Num(Ref(f.delta), unit=True),
+            f" and cos gamma = C / (2 a{n4} |d|) = ",
+            Num(Ref(f.cos)),
+            ", gamma = ",
+            Num(Ref(f.gamma), unit=True),
+            f". The two signs are the two assemblies, {x} on the left or on the right of "
+            f"{crank.second}{ground.second}; the one taken is {x} on the {where} of "
+            f"{crank.second}{ground.second} (sign {pm}), as drawn (the solver keeps the drawn "
+            f"branch): theta1{n4} = ",
+            Num(Ref(f.th14), unit=True),
+            f", and theta1{n3} = arg(d + a{n4} e^(i theta1{n4})) = ",
+            Num(Ref(f.th13), unit=True),
+            ".",
         )
 
     def lever_closed_form_step(self, loop: Loop, index: int) -> Step:
@@ -649,37 +780,21 @@ class LoopMethod:
         )
         b.say(
             f"The crank's side minus the ground vector gives the pin {loop.joint} seen from the "
-            f"lever's pivot {lever.first}: w = a{n2} e^(i theta1{n2}) - a{n1} e^(i theta1{n1}) "
-            f"= {b.txt(w)}."
+            f"lever's pivot {lever.first}: w = a{n2} e^(i theta1{n2}) - a{n1} e^(i theta1{n1}) = ",
+            Num(Ref(w), unit=True),
+            ".",
         )
         notation = LeverNotation(
             f"s1{n3}", f"c{n3}", f"beta{n3}", f"s_{{1{n3}}}", f"c_{{{n3}}}", rf"\beta_{{{n3}}}"
         )
-        lever_closed_form(b, w, lever.slot.direction, notation)
+        lever_closed_form(b, Ref(w), lever.slot.direction, notation)
         return b.build()
-
-    def offset(self, b: StepBuilder, n: str) -> str:
-        """(s + c i) with the numbers; just s when the offset c is zero."""
-        s, c = b.num(f"s1{n}"), b.num(f"c{n}")
-        if c == "0":
-            return tex.paren(s)
-        return f"({s} {tex.signed(c)}\\,i)"
 
     def member_text(self, m: Member) -> str:
         n = m.number
         if m.kind in ("slider", "slot"):
             return f"(s1{n} + i c{n}) e^(i {angle_name(m)}{n})"
         return f"a{n} e^(i theta1{n})"
-
-    def cx(self, b: StepBuilder, key: str) -> str:
-        """A 2-vector value as a complex number: 'a', 'b i', '(a + b i)'."""
-        re, im = b.entries(key, 2)
-        imaginary = {"1": "i", "-1": "-i"}.get(im, im + r"\,i")
-        if im == "0":
-            return re
-        if re == "0":
-            return imaginary
-        return f"({re} {tex.signed(imaginary)})"
 
     def derivative_terms(
         self, loop: Loop, order: int, b: StepBuilder
@@ -803,14 +918,6 @@ class LoopMethod:
             f"the sliding acceleration {where}",
         )
 
-    def term_latex_number(self, b: StepBuilder, t: _Term, key: str) -> str:
-        number = self.cx(b, key)
-        if t.unknown is None:
-            return number
-        if number in ("1", "-1"):
-            return number[:-1] + t.unknown.latex
-        return number + r"\," + t.unknown.latex
-
     def derivative_step(self, loop: Loop, index: int, order: int) -> Step:
         """The loop differentiated once (twice): the terms with the unknown rates to the left,
         the known terms to the right, sum(col_j u_j) = -sum(known), solved by Cramer's rule."""
@@ -894,10 +1001,10 @@ class LoopMethod:
         sym_right = " + ".join(t.latex for t in right).replace("+ -", "- ") or "0"
         b.line(rf"&{sym_left} = {sym_right}")
         numbers = [
-            self.term_latex_number(b, t, k) for t, k in zip(left + right, shown, strict=True)
+            Complex(Ref(k), "" if t.unknown is None else t.unknown.latex)
+            for t, k in zip(left + right, shown, strict=True)
         ]
-        num_left, num_right = join_sum(numbers[: len(left)]), join_sum(numbers[len(left) :])
-        b.line(rf"&{num_left} = {num_right}")
+        b.line("&", SumOf(tuple(numbers[: len(left)])), " = ", SumOf(tuple(numbers[len(left) :])))
 
     def derivative_sentences(
         self, b: StepBuilder, loop: Loop, index: int, order: int, sides: tuple[list[_Term], ...]
@@ -945,7 +1052,9 @@ class LoopMethod:
         b.check("dot", slide.key, r, direction)
         b.say(
             f"{slide.text} is the component along the slot of the relative "
-            f"{what} of {loop.joint}: {b.txt(r)}."
+            f"{what} of {loop.joint}: ",
+            Num(Ref(r), unit=True),
+            ".",
         )
 
     def joint_motion_step(self, loop: Loop, index: int, order: int) -> Step | None:
@@ -965,14 +1074,18 @@ class LoopMethod:
             + " + ".join(t.latex for t in left).replace("+ -", "- ")
         )
         b.line(
-            r"&\phantom{\vec{v}} = "
-            + join_sum([self.cx(b, k) for k in keys])
-            + " = "
-            + tex.boxed_result(self.cx(b, total) + latex_unit(unit))
+            r"&\phantom{\vec{v}} = ",
+            SumOf(tuple(Complex(Ref(k)) for k in keys)),
+            " = ",
+            Boxed((Complex(Ref(total)), latex_unit(unit))),
         )
         b.say(
             f"The {what} of {x} is the derivative of the left side of the loop (the position "
-            f"of {x}): " + " + ".join(b.txt(k) for k in keys) + f" = {b.txt(total)} (x + i y)."
+            f"of {x}): ",
+            *joined(" + ", [(Num(Ref(k), unit=True),) for k in keys]),
+            " = ",
+            Num(Ref(total), unit=True),
+            " (x + i y).",
         )
         return b.build()
 
@@ -1035,17 +1148,29 @@ class LoopMethod:
         sub = f"1{self.numbers[link]}"
         b.line(
             rf"&\vec{{v}}_{{{tex.name(point)}}} = \vec{{v}}_{{{tex.name(base)}}} + "
-            rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = {b.numu('b')}, \quad "
-            rf"\theta = {self.deg(b, 'theta')}"
+            rf"i\,b\,\omega_{{{sub}}}\,e^{{i\theta}}, \quad b = ",
+            Num(Ref("b"), unit=True),
+            r", \quad \theta = ",
+            Degrees(Ref("theta")),
         )
         b.line(
-            rf"&\phantom{{\vec{{v}}}} = {self.cx(b, x0)} + {self.cx(b, t)} = "
-            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit('m/s'))}"
+            r"&\phantom{\vec{v}} = ",
+            Complex(Ref(x0)),
+            " + ",
+            Complex(Ref(t)),
+            " = ",
+            Boxed((Complex(Ref(x1)), latex_unit("m/s"))),
         )
         b.say(
-            f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = "
-            f"{b.txt('b')}; differentiating, v({point}) = v({base}) + i b omega e^(i theta) "
-            f"= {b.txt(x0)} + {b.txt(t)} = {b.txt(x1)}."
+            f"{point} is fixed on link {link}: {point} = {base} + b e^(i theta) with b = ",
+            Num(Ref("b"), unit=True),
+            f"; differentiating, v({point}) = v({base}) + i b omega e^(i theta) = ",
+            Num(Ref(x0), unit=True),
+            " + ",
+            Num(Ref(t), unit=True),
+            " = ",
+            Num(Ref(x1), unit=True),
+            ".",
         )
 
     def point_acceleration_lines(
@@ -1064,12 +1189,22 @@ class LoopMethod:
             rf"i\,b\,\alpha_{{{sub}}}\,e^{{i\theta}} - b\,\omega_{{{sub}}}^2\,e^{{i\theta}}"
         )
         b.line(
-            rf"&\phantom{{\vec{{a}}}} = {self.cx(b, x0)} + {self.cx(b, t)} + {self.cx(b, n)} = "
-            rf"{tex.boxed_result(self.cx(b, x1) + latex_unit('m/s^2'))}"
+            r"&\phantom{\vec{a}} = ",
+            Complex(Ref(x0)),
+            " + ",
+            Complex(Ref(t)),
+            " + ",
+            Complex(Ref(n)),
+            " = ",
+            Boxed((Complex(Ref(x1)), latex_unit("m/s^2"))),
         )
         b.say(
             f"Differentiating again: a({point}) = a({base}) + i b alpha e^(i theta) - b omega "
-            f"squared e^(i theta) = {b.txt(x0)} + {b.txt(t)} + {b.txt(n)} = {b.txt(x1)}."
+            "squared e^(i theta) = ",
+            *joined(" + ", [(Num(Ref(k), unit=True),) for k in (x0, t, n)]),
+            " = ",
+            Num(Ref(x1), unit=True),
+            ".",
         )
 
     def steps(self) -> list[Step]:

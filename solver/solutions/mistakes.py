@@ -24,6 +24,7 @@ from solver.kinematics.spatial import SpatialAnalysis, SpatialChain
 from solver.model.scene import MovingPoint
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
 from solver.solutions.format import Formatter
+from solver.solutions.groups import solution_group
 from solver.solutions.linkage import LinkageContext, SlotMotion, k_cross
 from solver.solutions.model import Mistake, Step, Value
 from solver.teaching.mistakes import (
@@ -125,12 +126,9 @@ class LinkageMistakes:
         ctx = self.ctx
         plan = ctx.analysis.plan
         for step in plan.steps:
-            if isinstance(step, LeverStep):
-                self.lever_coriolis(step)
-            elif isinstance(step, DyadStep):
-                for spec in step.loci:
-                    if isinstance(spec, LineSpec):
-                        self.slot_coriolis(step, spec)
+            group = solution_group(step)
+            if group is not None:
+                group.coriolis_mistakes(self, step)
 
     def lever_coriolis(self, step: LeverStep) -> None:
         """a_Cor = 2 omega x v_rel of a pin in a turning lever's slot: the slips of the factor 2
@@ -347,15 +345,15 @@ class LinkageMistakes:
         ctx = self.ctx
         drivers = {s.link for s in ctx.analysis.plan.steps if isinstance(s, DriverStep)}
         for step in ctx.analysis.plan.steps:
-            if not isinstance(step, DyadStep):
-                continue
-            circles = [s for s in step.loci if isinstance(s, CircleSpec)]
+            group = solution_group(step)
+            circles = group.circles(step) if group is not None else []
             if not circles:
                 continue
             known = next(
                 (d for d in drivers if circles[0].center in ctx.scene.links[d].points), None
             )
             if known is not None and known != circles[0].link:
+                assert isinstance(step, DyadStep)  # a point on circles: a dyad's
                 self.which_link(step, circles, known)
                 return
 
@@ -798,8 +796,9 @@ def loop_mistakes(ctx: LinkageContext) -> list[Mistake]:
                 )
                 break
     if any(
-        isinstance(s, DyadStep) and any(isinstance(x, LineSpec) for x in s.loci)
-        for s in ctx.analysis.plan.steps
+        "loop.real_slider" in group.loop_mistakes
+        for group in map(solution_group, ctx.analysis.plan.steps)
+        if group is not None
     ):
         out.append(
             Mistake(

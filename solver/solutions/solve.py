@@ -70,16 +70,16 @@ def _linkage_steps(
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
     were built in, and the method used. A part written with typed references (data, positions,
-    classification, polygons, instant centres, the vector method, Newton-Euler, reading,
-    summary) settles its digits as each step is built; a part whose steps still format while
-    written (the position, loop and moving-point steps) is built a second time where a step needs
+    classification, polygons, instant centres, the position, vector and loop methods,
+    Newton-Euler, reading, summary) settles its digits as each step is built; a part whose steps
+    still format while written (the moving-point steps) is built a second time where a step needs
     more digits, by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
     if method == "loop":
         try:
-            body = ctx.replayed(lambda: loop_steps(ctx))
+            body = loop_steps(ctx)
             body += moving_point_steps(ctx)
         except LoopUnavailable as why:
             reason = str(why)
@@ -99,7 +99,7 @@ def _linkage_steps(
         *lead,
         data_step(ctx, _SENTENCES[used]),
         positions,
-        *ctx.replayed(lambda: position_steps(ctx)),
+        *position_steps(ctx),
         *classification_steps(ctx),
         *body,
         reading_step(ctx),

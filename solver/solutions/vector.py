@@ -19,7 +19,6 @@ equations a textbook writes:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import partial
 
 import numpy as np
 
@@ -30,9 +29,9 @@ from solver.position.topology import (
     DriverStep,
     DyadStep,
     GuidedStep,
-    LeverStep,
     LineSpec,
     NewtonStep,
+    PlanStep,
     TwoPointStep,
 )
 from solver.solutions import latex as tex
@@ -49,13 +48,13 @@ from solver.solutions.equation import (
     Frac,
     Num,
     Paren,
-    Piece,
     Ref,
     ZCol,
     ZCross,
     joined,
 )
 from solver.solutions.format import Formatter, latex_unit
+from solver.solutions.groups import solution_group
 from solver.solutions.linkage import (
     ACCELERATION,
     MOTION,
@@ -80,12 +79,6 @@ from solver.solutions.linkage import (
     w_vec,
 )
 from solver.solutions.model import Step
-from solver.solutions.relative import (
-    Carrier,
-    TransportTerms,
-    check_transport,
-    transport_terms,
-)
 
 
 @dataclass
@@ -324,7 +317,10 @@ class VectorMethod:
         out += [acceleration_pole_step(ctx, link) for link in ctx.scene.moving_links]
         return out
 
-    def plan_step(self, step: object, order: int) -> list[Step]:
+    def plan_step(self, step: PlanStep, order: int) -> list[Step]:
+        group = solution_group(step)
+        if group is not None:
+            return group.vector_steps(self, step, order)
         if isinstance(step, DriverStep):
             return self.remaining(
                 step.link,
@@ -332,10 +328,6 @@ class VectorMethod:
                 order,
                 f"Link {step.link} is driven about the fixed pivot {step.pivot}.",
             )
-        if isinstance(step, DyadStep):
-            return self.dyad(step, order)
-        if isinstance(step, LeverStep):
-            return self.lever(step, order)
         if isinstance(step, TwoPointStep):
             return self.two_points(step, order)
         if isinstance(step, GuidedStep):
@@ -908,278 +900,6 @@ class VectorMethod:
                 ".",
             )
         return b.build()
-
-    # --- slotted lever --------------------------------------------------------------------------
-
-    def lever(self, step: LeverStep, order: int) -> list[Step]:
-        """The pin P (known) in the slot of a lever turning about Q: v_P = v_Q + omega x r_QP +
-        s' u (a_P = a_Q + alpha x r_QP - omega^2 r_QP + s'' u + a_Cor), solved for the lever's
-        rate and the sliding rate."""
-        ctx = self.ctx
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        ctx.use(pivot, pin)
-        if order == VELOCITY:
-            out, what = [], "velocity"
-            side_step, lever_side, known_side = self.lever_velocity_side(step)
-        else:
-            out, what = [self.coriolis_step(pin, lever)], "acceleration"
-            side_step, lever_side, known_side = self.lever_acceleration_side(step)
-        out.append(side_step)
-        out.append(
-            self.equate(
-                f"{what}.lever.solve",
-                f"Components of the {what} of {pin}: geometric connection = relative connection",
-                lever_side,
-                known_side,
-                f"The two expressions of the {what} of {pin} are equal; component by component:",
-                f"{what[0]}:{pin}:",
-            )
-        )
-        (self.solved_omega if order == VELOCITY else self.solved_alpha).add(lever)
-        out.append(self.lever_parts(step, order))
-        (ctx.shown_velocity if order == VELOCITY else ctx.shown_acceleration).add(pin)
-        out += self.remaining(lever, pivot, order)
-        return out
-
-    def lever_terms(self, step: LeverStep, order: int) -> list[Term]:
-        """omega k x r_QP and s' u (alpha k x r_QP and s'' u): the lever's unknown terms."""
-        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
-        r_np = ctx.pos(pin) - ctx.pos(pivot)
-        return [
-            Term(self.unknown_rate(lever, order), "perp", f"r({pivot},{pin})", r_np, "m"),
-            Term(
-                self.unknown_slide(pin, lever, order, False),
-                "dir",
-                f"u({pin}/{lever})",
-                ctx.slot(lever, pin).direction,
-                "",
-            ),
-        ]
-
-    def lever_velocity_side(self, step: LeverStep) -> tuple[Step, Side, Side]:
-        """v_P = v_Q + omega x r_QP + s' u, omega and s' unknown; v_P known from its crank.
-        Returns the step, the lever's side and the pin's."""
-        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
-        terms = self.lever_terms(step, VELOCITY)
-        rate, slide = (t.unknown for t in terms)
-        b = ctx.builder(
-            "velocity.lever.side",
-            f"Velocity of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
-        )
-        vq = put_motion(b, ctx, pivot, VELOCITY)
-        vp = put_motion(b, ctx, pin, VELOCITY)
-        for t in terms:
-            b.put(t.of, t.of_value, t.of_unit)
-        lever_side = Side(vq, ctx.vel(pivot), "m/s", terms)
-        self.lever_velocity_lines(b, step, lever_side, vp)
-        return b.build(), lever_side, Side(vp, ctx.vel(pin), "m/s")
-
-    def lever_velocity_lines(self, b: StepBuilder, step: LeverStep, side: Side, vp: str) -> None:
-        """Write v_P = v_Q + omega x r_QP + s' u, expanded to a column linear in omega and s'."""
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
-        sub, base = tex.name(pin), origin(b, self.ctx, pivot, Ref(side.known_key))
-        b.line(
-            rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-            rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = ",
-            Col(Ref(ukey)),
-        )
-        b.line(
-            rf"&\phantom{{{v_vec(pin)}}} = ",
-            base,
-            " + ",
-            ZCross(rate.symbol, Ref(rkey)),
-            f" + {slide.latex} ",
-            Col(Ref(ukey)),
-            f" = {side_column(b, side)}{latex_unit('m/s')}",
-        )
-        b.say(
-            f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = ",
-            Col(Ref(vp)),
-            f" is known. Relative connection: {pin} slides in the slot of "
-            f"{lever}, which turns about {pivot}: v({pin}) = v_tr + v_rel = v({pivot}) + "
-            f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
-            f"{side_text(b, side)} m/s, with {rate.text} and {slide.text} unknown.",
-        )
-
-    def lever_acceleration_side(self, step: LeverStep) -> tuple[Step, Side, Side]:
-        """a_P = a_Q + alpha x r_QP - omega^2 r_QP + s'' u + a_Cor, alpha and s'' unknown; a_P
-        known from its crank. Returns the step, the lever's side and the pin's."""
-        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
-        terms = self.lever_terms(step, ACCELERATION)
-        rate, slide = (t.unknown for t in terms)
-        b = ctx.builder(
-            "acceleration.lever.side",
-            f"Acceleration of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
-        )
-        aq = put_motion(b, ctx, pivot, ACCELERATION)
-        ap = put_motion(b, ctx, pin, ACCELERATION)
-        known, cor = self.lever_known_acceleration(b, step, aq, terms)
-        lever_side = Side(known.key, known.value, "m/s^2", terms)
-        self.lever_acceleration_lines(b, step, lever_side, known, (ap, cor))
-        return b.build(), lever_side, Side(ap, ctx.acc(pin), "m/s^2")
-
-    def lever_known_acceleration(
-        self, b: StepBuilder, step: LeverStep, aq: str, terms: list[Term]
-    ) -> tuple[KnownAcceleration, str]:
-        """a_Q - omega^2 r_QP + a_Cor, the known part of a_P through the lever, with its terms
-        (and r_QP and u) put and checked; returns it and the key of a_Cor."""
-        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
-        sliding = ctx.slot(lever, pin)
-        assert sliding.coriolis_acceleration is not None
-        omega, r_np = ctx.omega(lever), terms[0].of_value
-        w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
-        for t in terms:
-            b.put(t.of, t.of_value, t.of_unit)
-        n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
-        cor = sliding.put(b, "coriolis_acceleration", pin)
-        value = ctx.acc(pivot) - omega**2 * r_np + sliding.coriolis_acceleration
-        key = b.put(f"known({pin} in {lever})", value, "m/s^2")
-        b.check("product", n, w, w, terms[0].of, factor=-1.0)
-        b.check("sum", key, aq, n, cor)
-        return KnownAcceleration(key, value, aq, w, terms[0].of, n), cor
-
-    def lever_acceleration_lines(
-        self,
-        b: StepBuilder,
-        step: LeverStep,
-        side: Side,
-        known: KnownAcceleration,
-        pin_keys: tuple[str, str],
-    ) -> None:
-        """``pin_keys``: the keys of a_P and a_Cor."""
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
-        (ap, cor), sub = pin_keys, tex.name(pin)
-        b.line(
-            rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-            rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
-            rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
-            rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
-            rf"{r_vec(pivot, pin)}"
-        )
-        b.line(
-            rf"&\phantom{{{a_vec(pin)}}} = ",
-            origin(b, self.ctx, pivot, Ref(known.base)),
-            " + ",
-            ZCross(rate.symbol, Ref(rkey)),
-            " - ",
-            Paren(Ref(known.omega)),
-            r"^2 \cdot ",
-            Col(Ref(rkey)),
-            f" + {slide.latex} ",
-            Col(Ref(ukey)),
-            " + ",
-            Col(Ref(cor)),
-        )
-        b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, side)}{latex_unit('m/s^2')}")
-        b.say(
-            f"Geometric connection: a({pin}) = ",
-            Col(Ref(ap)),
-            f" is known from its crank. "
-            f"Relative connection: a({pin}) = a_tr + a_rel + a_Cor, with the transport "
-            f"term a({pivot}) + alpha({lever}) cross r({pivot},{pin}) - omega({lever}) "
-            f"squared r({pivot},{pin}), the relative term {slide.text} u and the Coriolis "
-            "term ",
-            Col(Ref(cor)),
-            f": a({pin}) = {side_text(b, side)} m/s^2.",
-        )
-
-    def lever_parts(self, step: LeverStep, order: int) -> Step:
-        """v_tr = v_Q + omega x r_QP and v_rel = s' u at the pin (a_tr = a_Q + alpha x r_QP -
-        omega^2 r_QP and a_rel = s'' u), with the solved numbers."""
-        ctx, lever, pivot, pin = self.ctx, step.link, step.pivot, step.pin
-        sliding = ctx.slot(lever, pin)
-        what, unit = MOTION[order]
-        b = ctx.builder(f"{what}.lever.parts", f"Transport and relative {what} of {pin}")
-        carrier = Carrier(
-            lever, ctx.omega(lever), ctx.alpha(lever), partial(ctx.link_source, lever)
-        )
-        r_np = ctx.pos(pin) - ctx.pos(pivot)
-        terms = transport_terms(b, ctx, carrier, (pivot, pin), r_np, order, f"({pivot},{pin})")
-        tr = Ref(sliding.put(b, f"transport_{what}", pin))
-        slide = self.unknown_slide(pin, lever, order, False)
-        s = b.value(slide.key, slide.value, unit)
-        u = b.value(f"u({pin}/{lever})", sliding.direction, "")
-        rel = Ref(sliding.put(b, f"relative_{what}", pin))
-        check_transport(b, terms, tr.key)
-        if order == VELOCITY:
-            transport = self.lever_transport_velocity(b, step, terms, tr)
-        else:
-            transport = self.lever_transport_acceleration(b, step, terms, tr)
-        relative_line(b, what[0], tex.name(pin), slide.latex, s, u, rel)
-        b.say(
-            *transport,
-            f"; the relative {what} along the slot is ",
-            Num(s, unit=True),
-            " times ",
-            Num(u),
-            " = ",
-            Col(rel),
-            ".",
-        )
-        return b.build()
-
-    def lever_transport_velocity(
-        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
-    ) -> tuple[Piece, ...]:
-        """Write v_tr = v_Q + omega x r_QP; returns the sentence that says it."""
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-        base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-        start = f"{v_vec(pivot)} + " if moving else ""
-        b.line(
-            rf"&\vec{{v}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{w_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} = ",
-            *base,
-            ZCross(Ref(terms.omega), Ref(terms.r)),
-            " = ",
-            Col(tr, unit=True),
-        )
-        return (
-            f"With omega({lever}) = ",
-            Num(Ref(terms.omega), unit=True),
-            f": the transport velocity of {pin} (the point of {lever} under the pin) is ",
-            Col(tr),
-        )
-
-    def lever_transport_acceleration(
-        self, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
-    ) -> tuple[Piece, ...]:
-        """Write a_tr = a_Q + alpha x r_QP - omega^2 r_QP; returns the sentence that says it."""
-        lever, pivot, pin = step.link, step.pivot, step.pin
-        moving = not (self.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-        base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-        start = f"{a_vec(pivot)} + " if moving else ""
-        r, t, n = Ref(terms.r), Ref(terms.rotation), Ref(terms.normal)
-        b.line(
-            rf"&\vec{{a}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{al_vec(lever)} \times "
-            rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = ",
-            *base,
-            ZCross(Ref(terms.alpha), r),
-            " - ",
-            Paren(Ref(terms.omega)),
-            r"^2 \cdot ",
-            Col(r),
-            " = ",
-            *base,
-            Col(t),
-            " + ",
-            Col(n),
-            " = ",
-            Col(tr, unit=True),
-        )
-        return (
-            f"With alpha({lever}) = ",
-            Num(Ref(terms.alpha), unit=True),
-            f": the transport acceleration of {pin} is ",
-            Col(t),
-            " + ",
-            Col(n),
-            " = ",
-            Col(tr),
-        )
 
     # --- links known from two points, guided links, Newton groups -------------------------------
 
