@@ -4,9 +4,8 @@
 ``value`` (full precision, unit, source; a typed ``Ref`` back), and every place the step shows it
 is formatted from that entry, so the LaTeX, the text and ``values`` always show the same digits.
 Equations and sentences (``solver.solutions.equation``) are rendered when the step is built,
-after its checks have settled the digits in one pass. A step that formats numbers while it is
-written (``put`` and string keys, ``num``, ``txt``... called before ``build``) gets its digits
-from a ``DigitPlan`` instead: its part of the solution is built a second time. ``present_solution``
+after its checks have settled the digits in one pass; a number formatted before that (while the
+step is still written) is an error, since its digits would not be settled. ``present_solution``
 writes a 2x2 linear system and its solution the way the seeds do (with references, its own pieces
 ``Linear``, ``Term`` and ``QuotientOf``): directly where one equation has a single unknown, by
 Cramer's rule with the determinants written out otherwise.
@@ -22,7 +21,7 @@ import numpy as np
 
 from solver.kinematics.rigid import Column, cramer_numerators, determinant_2x2
 from solver.solutions import latex as tex
-from solver.solutions.digits import DigitPlan, needed_digits
+from solver.solutions.digits import needed_digits
 from solver.solutions.equation import (
     Boxed,
     Det2,
@@ -55,30 +54,27 @@ def _number(value: float | Sequence[float] | np.ndarray) -> Number:
 class StepBuilder:
     """Collects one step's values, checks, LaTeX lines and text sentences."""
 
-    def __init__(
-        self, fmt: Formatter, kind: str, title: str, plan: DigitPlan | None = None
-    ) -> None:
+    def __init__(self, fmt: Formatter, kind: str, title: str) -> None:
         self.fmt = fmt
         self.kind = kind
         self.title = title
-        self.plan = plan
-        self.plan_key = plan.key(kind, title) if plan is not None else None
-        self.digits = plan.digits(self.plan_key) if plan and self.plan_key else {}
+        self.digits: dict[str, int] = {}
         self.values: dict[str, Value] = {}
         self.checks: list[Check] = []
         self.lines: list[str | Equation | tuple[Piece, ...]] = []
         self.sentences: list[str | tuple[Piece, ...]] = []
         self.references: dict[str, float] = {}
-        # True once a number was formatted before ``build``: the digits then come from ``plan``
-        self.eager = False
-        self.settled = False
+        self.settled = False  # the digits are settled (``build``): numbers may be formatted
 
     # --- values ---------------------------------------------------------------------------------
 
     def _shown(self, key: str | Ref) -> str:
-        """The key of a value about to be formatted (noting a format before ``build``)."""
+        """The key of a value about to be formatted (only once ``build`` settled the digits)."""
         if not self.settled:
-            self.eager = True
+            raise RuntimeError(
+                f"step {self.title!r}: a number formatted before its digits are settled; "
+                "write it with a reference (``Ref``) and let ``build`` format it"
+            )
         return key.key if isinstance(key, Ref) else key
 
     def fmt_of(self, key: str | Ref) -> Formatter:
@@ -235,25 +231,16 @@ class StepBuilder:
         self.sentences.append(text[0] if len(text) == 1 and isinstance(text[0], str) else text)
 
     def settle(self) -> None:
-        """Settle the digits of a step written with references (one pass over its checks), or
-        record what a step formatted while written needs in ``plan``."""
-        found = needed_digits(self.values, self.references, self.checks, self.fmt)
-        if self.eager:
-            if self.plan is not None and self.plan_key is not None and self.plan.recording:
-                self.plan.record(self.plan_key, found)
-        else:
-            self.digits = found
-            for key in found:
-                v = self.values[key]
-                display = self._digits_of(key).display(v.value, v.unit, self.references[key])
-                self.values[key] = Value(v.value, v.unit, display, v.source)
+        """Settle the step's digits in one pass over its checks (``needed_digits``)."""
+        self.digits = needed_digits(self.values, self.references, self.checks, self.fmt)
+        for key in self.digits:
+            v = self.values[key]
+            display = self._digits_of(key).display(v.value, v.unit, self.references[key])
+            self.values[key] = Value(v.value, v.unit, display, v.source)
         self.settled = True
 
     def build(self) -> Step:
-        if self.eager and (self.plan is None or not self.plan.recording):
-            self.settled = True  # the digits are the plan's (or the solution's, without one)
-        else:
-            self.settle()
+        self.settle()
         lines: list[str] = []
         for line in self.lines:
             if isinstance(line, Equation):

@@ -4,9 +4,8 @@ units in the last shown digit of the result.
 A step shows its numbers with ``digits`` significant digits. Where a check's result, recomputed
 from its operands as they are shown, would not round to the result as shown (-0.03125 / 0.0127
 gives -2.461, the step says -2.462), the operands are shown with one more digit, and again, up to
-``MAX_DIGITS``, until every check of the step recomputes (a fixed point: digits only grow).
-``DigitPlan`` carries the digits found while a solution is built once to the second, final build
-(steps are matched by kind, title and occurrence).
+``MAX_DIGITS``, until every check of the step recomputes (a fixed point: digits only grow). A
+step settles its digits in one pass over its values when it is built (``StepBuilder.build``).
 """
 
 from __future__ import annotations
@@ -193,30 +192,3 @@ def needed_digits(
         if not changed:
             break
     return {k: d for k, d in digits.items() if d > fmt.digits}
-
-
-class DigitPlan:
-    """Digits per value and step, found in a first build and used in the second."""
-
-    def __init__(self) -> None:
-        self.wanted: dict[tuple[str, str, int], dict[str, int]] = {}
-        self.counts: dict[tuple[str, str], int] = {}
-        self.recording = True
-
-    def key(self, kind: str, title: str) -> tuple[str, str, int]:
-        n = self.counts.get((kind, title), 0)
-        self.counts[(kind, title)] = n + 1
-        return kind, title, n
-
-    def record(self, key: tuple[str, str, int], found: dict[str, int]) -> None:
-        if self.recording and found:
-            self.wanted[key] = found
-
-    def digits(self, key: tuple[str, str, int]) -> dict[str, int]:
-        return {} if self.recording else self.wanted.get(key, {})
-
-    def replay(self) -> bool:
-        """Switch to the final build; False when no step needs more digits (one build does)."""
-        self.recording = False
-        self.counts = {}
-        return bool(self.wanted)

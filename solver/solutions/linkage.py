@@ -11,9 +11,8 @@ cross products and sums written out are derived from those numbers and agree wit
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TypeVar
 
 import numpy as np
 
@@ -28,7 +27,6 @@ from solver.model.laws import parse_time_law
 from solver.model.scene import Joint, LinkageScene, ground_pivot
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
-from solver.solutions.digits import DigitPlan
 from solver.solutions.equation import (
     TIMES,
     Alt,
@@ -50,8 +48,6 @@ from solver.solutions.equation import (
 )
 from solver.solutions.format import Formatter, latex_unit
 from solver.solutions.model import Step
-
-T = TypeVar("T")
 
 V0 = r"\vec{0}"
 VELOCITY, ACCELERATION = 1, 2  # the order of a time derivative
@@ -136,7 +132,6 @@ class LinkageContext:
     used_vectors: list[tuple[str, str]] = field(default_factory=list)
     shown_velocity: set[str] = field(default_factory=set)
     shown_acceleration: set[str] = field(default_factory=set)
-    plan: DigitPlan | None = None  # digits per value, where the shown arithmetic needs more
     slots: dict[tuple[str, str], SlotMotion] = field(default_factory=dict)  # made once each
 
     # --- the solver's numbers -------------------------------------------------------------------
@@ -260,35 +255,8 @@ class LinkageContext:
     # --- names ----------------------------------------------------------------------------------
 
     def builder(self, kind: str, title: str) -> StepBuilder:
-        """A step's builder: a step written with references settles its own digits; one that
-        formats while written is built inside ``replayed`` (its ``plan``)."""
-        return StepBuilder(self.fmt, kind, title, self.plan)
-
-    def replayed(self, make: Callable[[], T], *state: set[str]) -> T:
-        """``make()``, whose steps show the digits their arithmetic needs to recompute: built
-        once with the solution's digits, and where a step needs more (``DigitPlan``), built
-        again with them from the same starting point (the shown points and vectors, and the
-        caller's ``state`` sets, restored). A part of a solution that needs no more digits is
-        built once."""
-        outer = self.plan
-        saved = (list(self.used_vectors), set(self.shown_velocity), set(self.shown_acceleration))
-        kept = [set(s) for s in state]
-        self.plan = DigitPlan()
-        try:
-            result = make()
-            if self.plan.replay():
-                self.used_vectors[:] = saved[0]
-                for now, before in zip(
-                    (self.shown_velocity, self.shown_acceleration, *state),
-                    (saved[1], saved[2], *kept),
-                    strict=True,
-                ):
-                    now.clear()
-                    now.update(before)
-                result = make()
-        finally:
-            self.plan = outer
-        return result
+        """A step's builder (written with references, it settles its own digits when built)."""
+        return StepBuilder(self.fmt, kind, title)
 
     def use(self, first: str, second: str) -> None:
         if (first, second) not in self.used_vectors:

@@ -69,11 +69,9 @@ def _linkage_steps(
     scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
-    were built in, and the method used. A part written with typed references (data, positions,
-    classification, polygons, instant centres, the position, vector and loop methods,
-    Newton-Euler, reading, summary) settles its digits as each step is built; a part whose steps
-    still format while written (the moving-point steps) is built a second time where a step needs
-    more digits, by ``LinkageContext.replayed``, so that its shown arithmetic recomputes."""
+    were built in, and the method used. Every step is written with typed references and settles
+    its digits as it is built, so that its shown arithmetic recomputes: the solution is built
+    once."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []

@@ -169,7 +169,6 @@ def test_digits_are_settled_in_one_pass_so_the_shown_arithmetic_recomputes() -> 
     b.line(eq)
     b.say(eq)
     step = b.build()
-    assert not b.eager and b.plan is None  # one build, no replay
     shown = {k: _shown(v.display) for k, v in step.values.items()}
     assert len(step.values["d"].display) > len("0.01265")  # d needed more digits
     result = shown["n"] / shown["d"]
@@ -183,11 +182,13 @@ def test_digits_are_settled_in_one_pass_so_the_shown_arithmetic_recomputes() -> 
     )
 
 
-def test_a_step_formatted_while_written_is_still_marked_for_the_plan() -> None:
-    """A step that formats a number before it is built (the old way) cannot settle its own
-    digits; it says so (``eager``) and takes them from a ``DigitPlan``."""
-    b = StepBuilder(Formatter(4), "x", "x")
+def test_a_number_formatted_before_the_digits_are_settled_is_refused() -> None:
+    """A step settles its digits once, when it is built: a number formatted while the step is
+    still written would show digits that were never settled, so it is refused (with the step's
+    title), and the same number written as a reference shows once built."""
+    b = StepBuilder(Formatter(4), "x", "a step")
     n = b.value("n", float(np.pi), "")
-    b.line("&", b.num(n))
-    b.build()
-    assert b.eager
+    with pytest.raises(RuntimeError, match=r"'a step'.*before its digits are settled"):
+        b.num(n)
+    b.line("&", Num(n))
+    assert b.build().latex.endswith("3.142")
