@@ -91,8 +91,14 @@ def parse_function(text: str) -> TimeLaw:
     try:
         return parse_time_law(law_text)
     except InvalidExpression as error:
-        message = _SECONDS.sub(r"\1", _T_WORD.sub("x", error.message))
-        raise InvalidExpression(message, error.position, text) from None
+        raise in_x(error, text) from None
+
+
+def in_x(error: InvalidExpression, text: str) -> InvalidExpression:
+    """The time-law parser's error about the function read with t for x, said in x (``sqrt(x -
+    1.5) is not defined at x = 1``) about the text as written."""
+    message = _SECONDS.sub(r"\1", _T_WORD.sub("x", error.message))
+    return InvalidExpression(message, error.position, text)
 
 
 class Scales:
@@ -101,7 +107,7 @@ class Scales:
     def __init__(self, task: FunctionTask, law: TimeLaw) -> None:
         self.task, self.law = task, law
         x0, xf = task.x_range
-        self.y0, self.yf = _value(law, x0), _value(law, xf)
+        self.y0, self.yf = _value(law, x0, task.function), _value(law, xf, task.function)
         if self.y0 == self.yf:
             raise InvalidScene(
                 f"function: f({x0:g}) = f({xf:g}) = {self.y0:.6g}: the output range cannot be "
@@ -130,10 +136,16 @@ class Scales:
 
     def y(self, x: Array) -> Array:
         """f(x) (``InvalidExpression`` where it is undefined)."""
-        value, _, _ = self.law.evaluate(np.asarray(x, dtype=float))
+        try:
+            value, _, _ = self.law.evaluate(np.asarray(x, dtype=float))
+        except InvalidExpression as error:
+            raise in_x(error, self.task.function) from None
         return value
 
 
-def _value(law: TimeLaw, x: float) -> float:
-    value, _, _ = law.evaluate(x)
+def _value(law: TimeLaw, x: float, text: str) -> float:
+    try:
+        value, _, _ = law.evaluate(x)
+    except InvalidExpression as error:
+        raise in_x(error, text) from None
     return value
