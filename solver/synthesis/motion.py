@@ -151,17 +151,17 @@ def _centre(points: list[complex], name: str, moving: str, size: float) -> compl
 
 
 def _check_links(design: dict[str, complex], size: float) -> None:
+    if abs(design["A"] - design["D"]) <= COINCIDENT * size:
+        raise InvalidScene(
+            f"the fixed pivots A and D coincide at {_xy(design['A'])}: the ground has zero "
+            "length; choose other pivots"
+        )
     for first, second, link in (("A", "B", "crank"), ("B", "C", "coupler"), ("D", "C", "rocker")):
         if abs(design[first] - design[second]) <= COINCIDENT * size:
             raise InvalidScene(
                 f"the {link} has zero length: {first} = {second} = {_xy(design[first])}; "
                 "choose other pivots"
             )
-    if abs(design["A"] - design["D"]) <= COINCIDENT * size:
-        raise InvalidScene(
-            f"the fixed pivots A and D coincide at {_xy(design['A'])}: the ground has zero "
-            "length; choose other pivots"
-        )
 
 
 def _direct(task: MotionTask, size: float) -> tuple[dict[str, complex], list[str]]:

@@ -17,6 +17,8 @@ from typing import Any
 from solver.errors import InvalidScene
 
 MAX_COORDINATE = 1e6  # m: a point or length past this is refused (no linkage is that large)
+MIN_LENGTH = 1e-6  # m: a given length below this is refused (no linkage is that small)
+MIN_SWING_DEG = 1e-3  # a swing closer than this to 0 or 180 deg has no constructible chord
 MAX_PRECISION_POINTS = 3  # Freudenstein's equation has three coefficients K1, K2, K3
 
 
@@ -115,6 +117,13 @@ def _positive(value: Any, where: str) -> float:
     return number
 
 
+def _length(value: Any, where: str) -> float:
+    number = _positive(value, where)
+    if number < MIN_LENGTH:
+        raise InvalidScene(f"{where}: {number:g} m is below {MIN_LENGTH:g} m")
+    return number
+
+
 def _span(value: Any, where: str, unit: str) -> tuple[float, float]:
     low, high = _pair(value, where)
     if low == high:
@@ -203,7 +212,7 @@ def _function(doc: Mapping[str, Any]) -> FunctionTask:
             f"precision_points: {given!r}; Freudenstein's equation has three coefficients K1, "
             "K2, K3: give 3 (Chebyshev spacing) or a list of three x values"
         )
-    ground = _positive(doc.get("ground_length", 1.0), "ground_length")
+    ground = _length(doc.get("ground_length", 1.0), "ground_length")
     return FunctionTask(
         text,
         x_range,
@@ -221,10 +230,13 @@ def _quick_return(doc: Mapping[str, Any]) -> QuickReturnTask:
             f"time_ratio: {ratio:g} < 1; the time ratio is the slow stroke's time over the fast "
             f"one's, at least 1 (the same linkage turning the other way gives {1.0 / ratio:.6g})"
         )
-    length = _positive(doc["rocker_length"], "rocker_length")
+    length = _length(doc["rocker_length"], "rocker_length")
     swing = _number(doc["swing_deg"], "swing_deg")
-    if not 0.0 < swing < 180.0:
-        raise InvalidScene(f"swing_deg: {swing:g} deg; a rocker swings through 0 < swing < 180 deg")
+    if not MIN_SWING_DEG <= swing <= 180.0 - MIN_SWING_DEG:
+        raise InvalidScene(
+            f"swing_deg: {swing:g} deg; a rocker swings through 0 < swing < 180 deg (at least "
+            f"{MIN_SWING_DEG:g} deg from either end)"
+        )
     return QuickReturnTask(ratio, length, math.radians(swing))
 
 
