@@ -37,6 +37,7 @@ from solver.api import (
     solve,
     sweep,
     sweep_time,
+    synthesize,
 )
 from solver.errors import (
     InvalidExpression,
@@ -49,7 +50,7 @@ from solver.errors import (
 )
 from solver.model.quantities import Quantity
 from solver.solutions import Method
-from solver.synthesis import SynthesisResult, synthesize
+from solver.synthesis import SynthesisResult
 
 __all__ = [
     "AnalysisResult",

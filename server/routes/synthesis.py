@@ -105,6 +105,10 @@ class SynthesisResponse(Open):
     checks: list[SynthesisCheck]
     defects: SynthesisDefects
     warnings: list[str] = WARNINGS
+    steps: list[dict[str, Any]] = Field(
+        description="The worked solution: the construction step by step (title, latex, text, "
+        "values, checks), the first with an SVG figure."
+    )
 
 
 router = APIRouter(
