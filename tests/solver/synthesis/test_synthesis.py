@@ -272,10 +272,24 @@ def test_quick_return_time_ratio_from_sweep(ratio: float, swing: float) -> None:
 
 
 def test_quick_return_alpha_is_the_textbooks() -> None:
-    """Q = 1.25 gives alpha = 20 deg (Norton, Design of Machinery, section 3.? example:
-    alpha = 180 (Q - 1) / (Q + 1))."""
+    """Norton, Design of Machinery, example 3-7: a time ratio of 1.25 with a 40 deg rocker swing
+    is a crank turn of 200 deg forward and 160 deg back, alpha = 180 (Q - 1) / (Q + 1) = 20 deg.
+    The returned scene's crank turns 200 deg counter-clockwise from its first limit position to
+    the second, and its rocker swings 40 deg between them (both from /analyze)."""
     assert math.degrees(crank_angle_difference(1.25)) == pytest.approx(20.0, abs=1e-12)
     assert crank_angle_difference(1.0) == 0.0
+    task = {"task": "quick_return", "time_ratio": 1.25, "rocker_length": 1.0, "swing_deg": 40}
+    body = solver.synthesize(task)
+    first, second = (c["driver_angle_deg"] for c in body["checks"])
+    assert (second - first) % 360.0 == pytest.approx(200.0, abs=1e-9)
+    scene = body.as_dict()["scene"]
+    rocker = []
+    for check in body["checks"]:
+        posed = copy.deepcopy(scene)
+        posed["drivers"][0]["angle_deg"] = check["driver_angle_deg"]
+        rocker.append(solver.analyze(posed, ["position"])["links"]["rocker"]["angle"])
+    swing = math.degrees(abs(math.remainder(rocker[1] - rocker[0], 2 * math.pi)))
+    assert swing == pytest.approx(40.0, abs=1e-9)
 
 
 def random_task(rng: np.random.Generator, count: int) -> dict[str, Any]:
