@@ -111,6 +111,41 @@ class SynthesisResponse(Open):
     )
 
 
+EXAMPLES: dict[str, Any] = {
+    "motion": {
+        "summary": "Three coupler positions, the moving pivots given",
+        "value": {
+            "task": "motion",
+            "positions": [
+                {"point": [0, 0], "angle_deg": 0},
+                {"point": [1, 0.5], "angle_deg": 30},
+                {"point": [2, 0.3], "angle_deg": 60},
+            ],
+            "moving_pivots": [[-0.5, -0.2], [0.5, -0.3]],
+        },
+    },
+    "function": {
+        "summary": "y = x^2 over 1..2 by Freudenstein's equation at Chebyshev spacing",
+        "value": {
+            "task": "function",
+            "function": "x^2",
+            "x_range": [1, 2],
+            "input_range_deg": [30, 120],
+            "output_range_deg": [60, 150],
+            "precision_points": 3,
+        },
+    },
+    "quick_return": {
+        "summary": "A crank-rocker with time ratio 1.25 and a 60 deg swing",
+        "value": {
+            "task": "quick_return",
+            "time_ratio": 1.25,
+            "rocker_length": 0.1,
+            "swing_deg": 60,
+        },
+    },
+}
+
 router = APIRouter(
     tags=["synthesis"],
     route_class=WorkerRoute,
@@ -125,5 +160,7 @@ router = APIRouter(
     "time ratio; checked by the solver's own analysis",
     response_model=SynthesisResponse,
 )
-def synthesis_route(request: Annotated[SynthesisTask, Body()]) -> ResultResponse:
+def synthesis_route(
+    request: Annotated[SynthesisTask, Body(openapi_examples=EXAMPLES)],
+) -> ResultResponse:
     return respond(solver.synthesize(request.model_dump(exclude_unset=True)))

@@ -11,6 +11,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 import solver
+from tests.server.test_contract import check as check_schema
 
 MOTION = {
     "task": "motion",
@@ -87,6 +88,16 @@ def test_refusals_are_problems_with_the_reason(
     problem = response.json()
     assert problem["code"] == code
     assert words in problem["detail"]
+
+
+@pytest.mark.parametrize(
+    "task",
+    [MOTION, FUNCTION, QUICK_RETURN, {**QUICK_RETURN, "time_ratio": 0.5}],
+    ids=["motion", "function", "quick_return", "refused"],
+)
+def test_responses_satisfy_the_published_schema(client: TestClient, task: dict[str, Any]) -> None:
+    openapi = client.get("/api/v1/openapi.json").json()
+    check_schema(openapi, "/synthesis", "post", client.post("/api/v1/synthesis", json=task))
 
 
 def test_published_in_openapi(client: TestClient) -> None:
