@@ -12,7 +12,7 @@ from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
 
 from server import headers, problems, schemas, workers
-from server.routes import dynamics, exercises, kinematics, presets, solution
+from server.routes import dynamics, exercises, kinematics, presets, solution, synthesis
 from server.settings import Settings, from_environment
 from server.timing import ServerTiming
 
@@ -79,6 +79,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(solution.router, prefix=API_PREFIX)
     app.include_router(exercises.router, prefix=API_PREFIX)
     app.include_router(dynamics.router, prefix=API_PREFIX)
+    app.include_router(synthesis.router, prefix=API_PREFIX)
 
     @app.get(f"{API_PREFIX}/docs", include_in_schema=False)
     def docs() -> HTMLResponse:

@@ -11,6 +11,8 @@ result's ``as_dict()`` is the body of the HTTP endpoint of the same name::
     cycle = solver.sweep(doc, 360, ["position", "velocity"])   # POST /api/v1/sweep
     cycle["links"]["rocker"]["omega"]                # a read-only numpy array over the samples
     steps = solver.solve(doc, "loop")                # POST /api/v1/solution
+    design = solver.synthesize({"task": "quick_return", "time_ratio": 1.25,
+                                "rocker_length": 0.1, "swing_deg": 60})   # POST /api/v1/synthesis
 
 Errors are the exceptions of ``solver.errors``; an unknown key in a scene is a warning in the
 result's ``warnings`` (an ``InvalidScene`` with ``strict=True``).
@@ -35,6 +37,7 @@ from solver.api import (
     solve,
     sweep,
     sweep_time,
+    synthesize,
 )
 from solver.errors import (
     InvalidExpression,
@@ -47,6 +50,7 @@ from solver.errors import (
 )
 from solver.model.quantities import Quantity
 from solver.solutions import Method
+from solver.synthesis import SynthesisResult
 
 __all__ = [
     "AnalysisResult",
@@ -65,6 +69,7 @@ __all__ = [
     "SingularConfiguration",
     "SolutionResult",
     "SweepResult",
+    "SynthesisResult",
     "TimeSweepResult",
     "WorkEstimate",
     "analyze",
@@ -75,4 +80,5 @@ __all__ = [
     "solve",
     "sweep",
     "sweep_time",
+    "synthesize",
 ]

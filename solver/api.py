@@ -47,6 +47,9 @@ from solver.model.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_qu
 from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.solutions.polygons import polygons
 from solver.solutions.solve import vector_method_steps
+from solver.solutions.synthesis import synthesis_steps
+from solver.synthesis import SynthesisResult
+from solver.synthesis import synthesize as synthesize_task
 
 Scene = LinkageScene | SpatialChain | CamScene | GearTrainScene
 
@@ -284,3 +287,15 @@ def solve(
     if solution.method == "newton_euler":  # its steps' numbers point into forces and energy
         add_dynamics_results(body, parsed, solution.analysis)
     return SolutionResult(worked.solution_body(solution, body, shapes, found))
+
+
+def synthesize(task: Mapping[str, Any]) -> SynthesisResult:
+    """The four-bar for a synthesis task (POST /synthesis; docs/SYNTHESIS.md): two or three
+    coupler positions, a function, or a quick-return time ratio. The body has the scene-v1
+    linkage, its dimensions, the checks and defects from the solver's analysis of it, the
+    warnings, and ``steps``: the worked solution (the construction with its numbers and a
+    figure). ``InvalidScene`` (``InvalidExpression`` for the function) says why a task has none.
+    """
+    body = synthesize_task(task).as_dict()
+    body["steps"] = [step.as_json() for step in synthesis_steps(body)]
+    return SynthesisResult(body)
