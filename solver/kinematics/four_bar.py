@@ -6,6 +6,7 @@ shortest link turn fully; the transmission angle is the angle between coupler an
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,6 +43,16 @@ def grashof_class(ground: float, crank: float, coupler: float, rocker: float) ->
         "Grashof double-rocker",
         "Grashof rocker-crank",
     )[shortest]
+
+
+def extreme_transmission_angles(a: float, b: float, c: float, d: float) -> tuple[float, float]:
+    """The transmission angles of a four-bar (crank a, coupler b, rocker c, ground d) with the
+    crank along the ground, pointing away from the rocker and towards it (where a crank that
+    turns fully meets its extremes): cos(mu) = (b^2 + c^2 - (d +- a)^2) / (2 b c), clipped to
+    [-1, 1]."""
+    far = (b * b + c * c - (d + a) ** 2) / (2.0 * b * c)
+    near = (b * b + c * c - (d - a) ** 2) / (2.0 * b * c)
+    return math.acos(max(-1.0, min(1.0, far))), math.acos(max(-1.0, min(1.0, near)))
 
 
 def transmission_angle(B: Array, C: Array, D: Array) -> Array:

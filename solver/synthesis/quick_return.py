@@ -29,7 +29,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from solver.errors import InvalidScene
-from solver.kinematics.four_bar import grashof_class
+from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
 from solver.kinematics.rigid import Array
 from solver.synthesis.motion import cross, rotor
 from solver.synthesis.task import QuickReturnTask
@@ -42,14 +42,6 @@ def crank_angle_difference(time_ratio: float) -> float:
     """alpha = pi (Q - 1) / (Q + 1) (rad): the crank's turn between its two limit positions
     differs from a half turn by alpha."""
     return math.pi * (time_ratio - 1.0) / (time_ratio + 1.0)
-
-
-def extreme_transmission_angles(a: float, b: float, c: float, d: float) -> tuple[float, float]:
-    """The transmission angle mu (rad) with the crank along the ground, pointing away from the
-    rocker and towards it: cos(mu) = (b^2 + c^2 - (d +- a)^2) / (2 b c) (clipped to [-1, 1])."""
-    far = (b * b + c * c - (d + a) ** 2) / (2.0 * b * c)
-    near = (b * b + c * c - (d - a) ** 2) / (2.0 * b * c)
-    return math.acos(max(-1.0, min(1.0, far))), math.acos(max(-1.0, min(1.0, near)))
 
 
 @dataclass(frozen=True)

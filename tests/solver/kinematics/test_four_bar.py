@@ -16,10 +16,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
 import pytest
 
 from solver.analysis.instant import analyze
-from solver.kinematics.four_bar import FourBarLoop
+from solver.kinematics.four_bar import FourBarLoop, extreme_transmission_angles, transmission_angle
 from solver.model.scene import parse_linkage
 from solver.teaching.presets import build_preset
 from tests.dynamics_cases import five_bar_points, five_bar_topology
@@ -186,3 +187,21 @@ def test_a_four_bar_on_a_five_bar_crank_is_found_after_the_five_bar() -> None:
     assert loop.transmission_angle == pytest.approx(
         math.acos((b * b + c * c - fa2) / (2.0 * b * c)), abs=1e-12
     )
+
+
+@pytest.mark.parametrize(("a", "b", "c", "d"), [(0.1, 0.35, 0.3, 0.4), (0.02, 0.05, 0.04, 0.045)])
+def test_the_extreme_transmission_angles_are_those_of_the_crank_along_the_ground(
+    a: float, b: float, c: float, d: float
+) -> None:
+    """With the crank along the ground (A at the origin, D at (d, 0), B at (-a, 0) and (a, 0)),
+    the angle BCD measured on the assembled linkage equals the law-of-cosines extremes, 1e-12."""
+    D = np.array([d, 0.0])
+    for B, expected in zip(
+        (np.array([-a, 0.0]), np.array([a, 0.0])),
+        extreme_transmission_angles(a, b, c, d),
+        strict=True,
+    ):
+        BD = float(np.linalg.norm(D - B))
+        along = (b * b - c * c + BD * BD) / (2.0 * BD)  # C from B along BD, and off it
+        C = B + (D - B) / BD * along + np.array([0.0, math.sqrt(b * b - along * along)])
+        assert float(transmission_angle(B, C, D)) == pytest.approx(expected, abs=1e-12)
