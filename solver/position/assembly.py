@@ -26,9 +26,10 @@ from scipy.optimize import brentq, minimize_scalar
 from solver.errors import LimitExceeded, NotAssemblable
 from solver.kinematics.rigid import (
     Array,
+    Columns,
     LinkMotion,
     PointMotion,
-    fixed_link,
+    columns_of,
     link_from_two_points,
     repeat,
     rotate,
@@ -484,6 +485,7 @@ class _Assembler:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
+        self.cols: dict[str, Columns] = {}  # (``columns``)
         self.resting: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
         self.margin = np.ones(self.samples)
         self.converged = np.ones(self.samples, dtype=bool)
@@ -498,11 +500,57 @@ class _Assembler:
         self.last: tuple[loci.Piece, ...] = ()  # the last group's pieces of its margin
         self.group_margins: dict[str, Array] = {}
 
-    def know(self, link: str, motion: LinkMotion) -> None:
+    def know(self, link: str, motion: LinkMotion, anchor: Columns | None = None) -> None:
+        """Record a link's motion and carry its points not yet known, drawn at X0:
+        p = p_A + R(theta) r0, v = v_A + omega k x r, a = a_A + alpha k x r - omega^2 r with
+        r0 = X0 - A0 (``rigid.LinkMotion.point``, column by column, the cosine and sine of
+        theta once for all its points); ``anchor``: the anchor's columns where known."""
         self.links[link] = motion
-        for p in self.scene.links[link].points:
-            if p not in self.points:
-                self.points[p] = motion.point(self.scene.drawn(p))
+        names = [p for p in self.scene.links[link].points if p not in self.points]
+        if not names:
+            return
+        A = columns_of(motion.anchor) if anchor is None else anchor
+        omega, alpha = motion.omega, motion.alpha
+        rated = None if omega is None or A.vx is None or A.vy is None else (omega, A.vx, A.vy)
+        accelerated = (
+            None
+            if omega is None or alpha is None or A.ax is None or A.ay is None
+            else (alpha, omega**2, A.ax, A.ay)
+        )
+        cos, sin = np.cos(motion.theta), np.sin(motion.theta)
+        for name in names:
+            x0, y0 = (float(c) for c in self.scene.drawn(name) - motion.anchor0)
+            rx, ry = cos * x0 - sin * y0, sin * x0 + cos * y0
+            p = np.empty((self.samples, 2))
+            np.add(A.x, rx, out=p[:, 0])
+            np.add(A.y, ry, out=p[:, 1])
+            v = a = None
+            if rated is not None:
+                w, vx, vy = rated
+                v = np.empty((self.samples, 2))
+                np.subtract(vx, ry * w, out=v[:, 0])
+                np.add(vy, rx * w, out=v[:, 1])
+            if accelerated is not None:
+                turning, w2, ax, ay = accelerated
+                a = np.empty((self.samples, 2))
+                np.subtract(ax - ry * turning, w2 * rx, out=a[:, 0])
+                np.subtract(ay + rx * turning, w2 * ry, out=a[:, 1])
+            self.points[name] = PointMotion(p, v, a)
+
+    def two_point(self, step: TwoPointStep) -> None:
+        """A link known from two of its known points (``rigid.link_from_two_points``)."""
+        P, Q = self.points[step.first], self.points[step.second]
+        columns = self.columns(step.first), self.columns(step.second)
+        P0, Q0 = self.scene.drawn(step.first), self.scene.drawn(step.second)
+        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns), columns[0])
+
+    def columns(self, point: str) -> Columns:
+        """A known point's motion column by column: views of its arrays (made once), plain
+        floats for a fixed point."""
+        found = self.cols.get(point)
+        if found is None:
+            found = self.cols[point] = columns_of(self.points[point])
+        return found
 
     def closed(self) -> Array:
         """Samples where every group so far closed (and every Newton group converged)."""
@@ -531,9 +579,14 @@ class _Assembler:
     def drive(self, index: int, step: DriverStep) -> None:
         given = self.inputs[step.driver]
         pivot0 = self.scene.drawn(step.pivot)
-        zeros = np.zeros((self.samples, 2))
-        anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
-        self.resting.add(id(anchor))
+        columns = None
+        if step.pivot in self.scene.links[self.scene.ground].points:
+            anchor = self.points[step.pivot]  # (at rest, as a driver's pivot is)
+            columns = self.cols[step.pivot]
+        else:
+            zeros = np.zeros((self.samples, 2))
+            anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
+            self.resting.add(id(anchor))
         self.know(
             step.link,
             LinkMotion(
@@ -543,6 +596,7 @@ class _Assembler:
                 given.omega if self.computed(index) >= 1 else None,
                 given.alpha if self.computed(index) >= 2 else None,
             ),
+            columns,
         )
 
     @cached_property
@@ -691,28 +745,24 @@ class _Assembler:
     def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
         ground = self.scene.links[self.scene.ground]
-        self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
         at_rest = np.zeros((self.samples, 2))
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            self.points[p] = PointMotion(
-                repeat(self.scene.drawn(p), self.samples), at_rest, at_rest
-            )
+            drawn = self.scene.drawn(p)
+            self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
+            self.cols[p] = Columns(float(drawn[0]), float(drawn[1]))
             self.resting.add(id(self.points[p]))
+        zeros = np.zeros(self.samples)
+        anchor = ground.points[0]
+        self.links[ground.name] = LinkMotion(
+            self.scene.drawn(anchor), self.points[anchor], zeros, zeros, zeros
+        )
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(index, step)
             elif isinstance(step, DyadStep | LeverStep):
                 self.group(index, step)
             elif isinstance(step, TwoPointStep):
-                self.know(
-                    step.link,
-                    link_from_two_points(
-                        self.scene.drawn(step.first),
-                        self.scene.drawn(step.second),
-                        self.points[step.first],
-                        self.points[step.second],
-                    ),
-                )
+                self.two_point(step)
             elif isinstance(step, GuidedStep):
                 guide = self.links[step.guide]
                 self.know(
