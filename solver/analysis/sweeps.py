@@ -314,16 +314,17 @@ def _cycle(
     order: int,
     start: float,
     direction: float,
-    revolution: Motion | None,
+    revolution: tuple[Array, Motion] | None,
 ) -> tuple[Array, Motion, tuple[float, float] | None]:
     """The driver's turns from ``start`` and the motion over them: a full revolution with one
     sample more than asked, back at the start (so the last interval is searched too), or, where
     the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
     (that range, the limits, is returned too; None for a full revolution). ``revolution``: the
-    motion over the full revolution where the sweep ran it as its own feasibility probe."""
+    turns and the motion over the full revolution where the sweep ran it as its own feasibility
+    probe."""
+    if revolution is not None and _turns_fully(revolution[1]):
+        return *revolution, None
     turns = _revolution(samples, start, direction)
-    if revolution is not None and _turns_fully(revolution):
-        return turns, revolution, None
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
     else:
@@ -364,9 +365,10 @@ def sweep(
     if driven.plan.closed_form and samples >= SELF_PROBING_SAMPLES:
         # The sweep is its own feasibility probe; a revolution that turns fully closes at its
         # first sample, the start.
-        revolution = driven.run(_revolution(samples, start, direction), order, start)
+        turns = _revolution(samples, start, direction)
+        revolution = turns, driven.run(turns, order, start)
     # The drawn pose closes by construction; a start at angle_deg must be checked.
-    unchecked = revolution is None or not _turns_fully(revolution)
+    unchecked = revolution is None or not _turns_fully(revolution[1])
     if unchecked and start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
     turns, motion, span = _cycle(driven, samples, order, start, direction, revolution)

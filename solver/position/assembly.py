@@ -873,11 +873,15 @@ def assemble(
     continuation, where a driver steps more than MAX_DRIVER_STEP between two samples and the
     plan has a two-branch or a Newton group, the linkage is followed on a grid that does not
     (``dense_grid``) and returned at the samples."""
-    grid = dense_grid(inputs) if continuation and follows_path(plan) else None
+    path = path_steps(inputs) if continuation and follows_path(plan) else None
+    grid = dense_grid(inputs) if path is not None and coarse(path) else None
     if grid is None:
-        return _Assembler(
+        assembler = _Assembler(
             scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
-        ).run(plan)
+        )
+        if path is not None:
+            assembler.path = path  # (found once)
+        return assembler.run(plan)
     dense = _Assembler(
         scene, grid.inputs, order, continuation, signs, int(grid.index[anchor]), newton_groups
     )

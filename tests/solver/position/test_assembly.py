@@ -47,9 +47,9 @@ from solver.position.assembly import (
     Motion,
     assemble,
     candidate_intervals,
+    candidate_minima,
     coarse,
     path_steps,
-    candidate_minima,
     screen,
 )
 from solver.position.topology import build_plan
