@@ -500,49 +500,19 @@ class _Assembler:
         self.last: tuple[loci.Piece, ...] = ()  # the last group's pieces of its margin
         self.group_margins: dict[str, Array] = {}
 
-    def know(self, link: str, motion: LinkMotion, anchor: Columns | None = None) -> None:
-        """Record a link's motion and carry its points not yet known, drawn at X0:
-        p = p_A + R(theta) r0, v = v_A + omega k x r, a = a_A + alpha k x r - omega^2 r with
-        r0 = X0 - A0 (``rigid.LinkMotion.point``, column by column, the cosine and sine of
-        theta once for all its points); ``anchor``: the anchor's columns where known."""
+    def know(self, link: str, motion: LinkMotion) -> None:
+        """Record a link's motion and carry its points not yet known (``LinkMotion.point``)."""
         self.links[link] = motion
-        names = [p for p in self.scene.links[link].points if p not in self.points]
-        if not names:
-            return
-        A = columns_of(motion.anchor) if anchor is None else anchor
-        omega, alpha = motion.omega, motion.alpha
-        rated = None if omega is None or A.vx is None or A.vy is None else (omega, A.vx, A.vy)
-        accelerated = (
-            None
-            if omega is None or alpha is None or A.ax is None or A.ay is None
-            else (alpha, omega**2, A.ax, A.ay)
-        )
-        cos, sin = np.cos(motion.theta), np.sin(motion.theta)
-        for name in names:
-            x0, y0 = (float(c) for c in self.scene.drawn(name) - motion.anchor0)
-            rx, ry = cos * x0 - sin * y0, sin * x0 + cos * y0
-            p = np.empty((self.samples, 2))
-            np.add(A.x, rx, out=p[:, 0])
-            np.add(A.y, ry, out=p[:, 1])
-            v = a = None
-            if rated is not None:
-                w, vx, vy = rated
-                v = np.empty((self.samples, 2))
-                np.subtract(vx, ry * w, out=v[:, 0])
-                np.add(vy, rx * w, out=v[:, 1])
-            if accelerated is not None:
-                turning, w2, ax, ay = accelerated
-                a = np.empty((self.samples, 2))
-                np.subtract(ax - ry * turning, w2 * rx, out=a[:, 0])
-                np.subtract(ay + rx * turning, w2 * ry, out=a[:, 1])
-            self.points[name] = PointMotion(p, v, a)
+        for p in self.scene.links[link].points:
+            if p not in self.points:
+                self.points[p] = motion.point(self.scene.drawn(p))
 
     def two_point(self, step: TwoPointStep) -> None:
         """A link known from two of its known points (``rigid.link_from_two_points``)."""
         P, Q = self.points[step.first], self.points[step.second]
         columns = self.columns(step.first), self.columns(step.second)
         P0, Q0 = self.scene.drawn(step.first), self.scene.drawn(step.second)
-        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns), columns[0])
+        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns))
 
     def columns(self, point: str) -> Columns:
         """A known point's motion column by column: views of its arrays (made once), plain
@@ -579,10 +549,8 @@ class _Assembler:
     def drive(self, index: int, step: DriverStep) -> None:
         given = self.inputs[step.driver]
         pivot0 = self.scene.drawn(step.pivot)
-        columns = None
         if step.pivot in self.scene.links[self.scene.ground].points:
             anchor = self.points[step.pivot]  # (at rest, as a driver's pivot is)
-            columns = self.cols[step.pivot]
         else:
             zeros = np.zeros((self.samples, 2))
             anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
@@ -596,7 +564,6 @@ class _Assembler:
                 given.omega if self.computed(index) >= 1 else None,
                 given.alpha if self.computed(index) >= 2 else None,
             ),
-            columns,
         )
 
     @cached_property
