@@ -9,8 +9,7 @@ samples are spread strictly inside it (at a limit position itself the velocity e
 singular). Close approaches of a group's two branches (within 1e-3 of the size) are reported.
 Samples that land exactly on a change point (a parallelogram's crossing: the velocity equations
 singular, the motion smooth) take their rates from their two neighbours and are listed in
-``singular_samples``. A plan of drivers, RRR dyads and two-point links runs compiled
-(``compiled_plan``: the same numbers, column by column) wherever that needs no branch search.
+``singular_samples``.
 """
 
 from __future__ import annotations
@@ -44,7 +43,6 @@ from solver.position.assembly import (
     branches_at,
     require_feasible,
 )
-from solver.position.compiled_plan import compiled_plan
 from solver.position.continuation import Continuation
 from solver.position.drivers import drawn_angle, driver_input, driver_inputs_over_time
 from solver.position.newton import newton_tolerance
@@ -189,7 +187,6 @@ class _Driven:
 
     def __init__(self, scene: LinkageScene, plan: Plan, tolerance: float | None = None) -> None:
         self.scene, self.plan = scene, plan
-        self.compiled = compiled_plan(scene, plan)
         self.given = [driver_input(scene, d, scene.time) for d in scene.drivers]
         self.newton_groups = Continuation(scene, newton_tolerance(tolerance))
 
@@ -205,27 +202,9 @@ class _Driven:
             inputs.append(DriverInput(np.full(n, turn), *(np.full(n, r) for r in rates)))
         return inputs
 
-    def compiled_run(self, turns: Array, order: int, keep: int | None = None) -> Motion | None:
-        """The linkage at ``turns`` by the compiled plan, where it can decide alone (then only
-        the first ``keep`` samples, if given, are returned): every sample closes and no window
-        between two samples fails to (the compiled plan hands back wherever the branch search
-        would look); else None."""
-        return None if self.compiled is None else self.compiled.run(self.inputs(turns), order, keep)
-
-    def run(
-        self,
-        turns: Array,
-        order: int,
-        start: float | None = 0.0,
-        keep: int | None = None,
-        compiled: bool = True,
-    ) -> Motion:
+    def run(self, turns: Array, order: int, start: float | None = 0.0) -> Motion:
         """The linkage at ``turns``, on the drawn branch at the turn nearest ``start`` (None:
-        at the first turn); by the compiled plan where it can decide alone (``compiled_run``;
-        not tried again if ``compiled`` is false: it was, and handed back)."""
-        motion = self.compiled_run(turns, order, keep) if compiled else None
-        if motion is not None:
-            return motion
+        at the first turn)."""
         anchor = 0 if start is None else int(np.argmin(np.abs(turns - start)))
         return assemble(
             self.scene,
@@ -330,21 +309,24 @@ def _revolution(samples: int, start: float, direction: float) -> Array:
 
 
 def _cycle(
-    driven: _Driven, samples: int, order: int, start: float, direction: float
+    driven: _Driven,
+    samples: int,
+    order: int,
+    start: float,
+    direction: float,
+    revolution: tuple[Array, Motion] | None,
 ) -> tuple[Array, Motion, tuple[float, float] | None]:
     """The driver's turns from ``start`` and the motion over them: a full revolution with one
     sample more than asked, back at the start (so the last interval is searched too), or, where
     the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
-    (that range, the limits, is returned too; None for a full revolution). Called where
-    the compiled plan handed the revolution back (in ``sweep``): it is not tried again."""
+    (that range, the limits, is returned too; None for a full revolution). ``revolution``: the
+    turns and the motion over the full revolution where the sweep ran it as its own feasibility
+    probe."""
+    if revolution is not None and _turns_fully(revolution[1]):
+        return *revolution, None
     turns = _revolution(samples, start, direction)
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
-    elif samples >= SELF_PROBING_SAMPLES:  # the sweep itself is a fine enough feasibility probe
-        motion = driven.run(turns, order, start, keep=samples, compiled=False)
-        if _turns_fully(motion):
-            return turns, motion, None
-        span = _feasible_range(driven, start, direction)
     else:
         span = _feasible_range(driven, start, direction)
     if span is None:
@@ -379,24 +361,22 @@ def sweep(
         else 0.0
     )
     span: tuple[float, float] | None = None
-    approaches: tuple[CloseApproach, ...] = ()
-    # A revolution the compiled plan alone turns (``_Driven.compiled_run``) closes at every
-    # sample (the first is the start) and between: nothing to check again, no approach to warn.
-    turns = _revolution(samples, start, direction)
-    probing = samples >= SELF_PROBING_SAMPLES  # (the sweep is its own feasibility probe)
-    motion = driven.compiled_run(turns, order, keep=samples) if probing else None
-    if motion is not None:
-        turns = turns[:samples]
-    else:
-        # The drawn pose closes by construction; a start at angle_deg must be checked.
-        if start != 0.0 and not driven.closes(start):
-            require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
-        turns, motion, span = _cycle(driven, samples, order, start, direction)
-        approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
-        if span is None:  # the closing sample off
-            approaches = once_a_turn(approaches)
-            motion, turns = motion.cut(slice(0, samples)), turns[:samples]
-        require_feasible(motion, "during the sweep")
+    revolution = None
+    if driven.plan.closed_form and samples >= SELF_PROBING_SAMPLES:
+        # The sweep is its own feasibility probe; a revolution that turns fully closes at its
+        # first sample, the start.
+        turns = _revolution(samples, start, direction)
+        revolution = turns, driven.run(turns, order, start)
+    # The drawn pose closes by construction; a start at angle_deg must be checked.
+    unchecked = revolution is None or not _turns_fully(revolution[1])
+    if unchecked and start != 0.0 and not driven.closes(start):
+        require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
+    turns, motion, span = _cycle(driven, samples, order, start, direction, revolution)
+    approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
+    if span is None:  # the closing sample off
+        approaches = once_a_turn(approaches)
+        motion, turns = motion.cut(slice(0, samples)), turns[:samples]
+    require_feasible(motion, "during the sweep")
     limits: tuple[float, ...] = span or ()
     singular = np.array([], dtype=int)
     if order and motion.gradient_sine.min() < MIN_GRADIENT_SINE:  # (one pass where none is)

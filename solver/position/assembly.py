@@ -26,9 +26,10 @@ from scipy.optimize import brentq, minimize_scalar
 from solver.errors import LimitExceeded, NotAssemblable
 from solver.kinematics.rigid import (
     Array,
+    Columns,
     LinkMotion,
     PointMotion,
-    fixed_link,
+    columns_of,
     link_from_two_points,
     repeat,
     rotate,
@@ -484,6 +485,7 @@ class _Assembler:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
+        self.cols: dict[str, Columns] = {}  # (``columns``)
         self.resting: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
         self.margin = np.ones(self.samples)
         self.converged = np.ones(self.samples, dtype=bool)
@@ -499,10 +501,26 @@ class _Assembler:
         self.group_margins: dict[str, Array] = {}
 
     def know(self, link: str, motion: LinkMotion) -> None:
+        """Record a link's motion and carry its points not yet known (``LinkMotion.point``)."""
         self.links[link] = motion
         for p in self.scene.links[link].points:
             if p not in self.points:
                 self.points[p] = motion.point(self.scene.drawn(p))
+
+    def two_point(self, step: TwoPointStep) -> None:
+        """A link known from two of its known points (``rigid.link_from_two_points``)."""
+        P, Q = self.points[step.first], self.points[step.second]
+        columns = self.columns(step.first), self.columns(step.second)
+        P0, Q0 = self.scene.drawn(step.first), self.scene.drawn(step.second)
+        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns))
+
+    def columns(self, point: str) -> Columns:
+        """A known point's motion column by column: views of its arrays (made once), plain
+        floats for a fixed point."""
+        found = self.cols.get(point)
+        if found is None:
+            found = self.cols[point] = columns_of(self.points[point])
+        return found
 
     def closed(self) -> Array:
         """Samples where every group so far closed (and every Newton group converged)."""
@@ -531,9 +549,12 @@ class _Assembler:
     def drive(self, index: int, step: DriverStep) -> None:
         given = self.inputs[step.driver]
         pivot0 = self.scene.drawn(step.pivot)
-        zeros = np.zeros((self.samples, 2))
-        anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
-        self.resting.add(id(anchor))
+        if step.pivot in self.scene.links[self.scene.ground].points:
+            anchor = self.points[step.pivot]  # (at rest, as a driver's pivot is)
+        else:
+            zeros = np.zeros((self.samples, 2))
+            anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
+            self.resting.add(id(anchor))
         self.know(
             step.link,
             LinkMotion(
@@ -691,28 +712,24 @@ class _Assembler:
     def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
         ground = self.scene.links[self.scene.ground]
-        self.links[ground.name] = fixed_link(self.scene.drawn(ground.points[0]), self.samples)
         at_rest = np.zeros((self.samples, 2))
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            self.points[p] = PointMotion(
-                repeat(self.scene.drawn(p), self.samples), at_rest, at_rest
-            )
+            drawn = self.scene.drawn(p)
+            self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
+            self.cols[p] = Columns(float(drawn[0]), float(drawn[1]))
             self.resting.add(id(self.points[p]))
+        zeros = np.zeros(self.samples)
+        anchor = ground.points[0]
+        self.links[ground.name] = LinkMotion(
+            self.scene.drawn(anchor), self.points[anchor], zeros, zeros, zeros
+        )
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(index, step)
             elif isinstance(step, DyadStep | LeverStep):
                 self.group(index, step)
             elif isinstance(step, TwoPointStep):
-                self.know(
-                    step.link,
-                    link_from_two_points(
-                        self.scene.drawn(step.first),
-                        self.scene.drawn(step.second),
-                        self.points[step.first],
-                        self.points[step.second],
-                    ),
-                )
+                self.two_point(step)
             elif isinstance(step, GuidedStep):
                 guide = self.links[step.guide]
                 self.know(
@@ -823,11 +840,15 @@ def assemble(
     continuation, where a driver steps more than MAX_DRIVER_STEP between two samples and the
     plan has a two-branch or a Newton group, the linkage is followed on a grid that does not
     (``dense_grid``) and returned at the samples."""
-    grid = dense_grid(inputs) if continuation and follows_path(plan) else None
+    path = path_steps(inputs) if continuation and follows_path(plan) else None
+    grid = dense_grid(inputs) if path is not None and coarse(path) else None
     if grid is None:
-        return _Assembler(
+        assembler = _Assembler(
             scene, inputs, order, continuation, signs, anchor=anchor, newton_groups=newton_groups
-        ).run(plan)
+        )
+        if path is not None:
+            assembler.path = path  # (found once)
+        return assembler.run(plan)
     dense = _Assembler(
         scene, grid.inputs, order, continuation, signs, int(grid.index[anchor]), newton_groups
     )

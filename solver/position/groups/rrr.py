@@ -2,13 +2,27 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
-from solver.kinematics.rigid import Array, dot, perp, scale
-from solver.position.groups.base import DyadGroup
-from solver.position.groups.loci import Circle, Intersection, digits, root
+from solver.kinematics.rigid import (
+    Array,
+    Columns,
+    PointMotion,
+    dot,
+    minus,
+    perp,
+    scale,
+    solve_2x2,
+)
+from solver.position.groups.base import Closure, DyadGroup, Known, Placed
+from solver.position.groups.loci import Circle, Intersection, Piece, digits, root
+
+if TYPE_CHECKING:
+    from solver.position.topology import CircleSpec, DyadStep
 
 
 @dataclass(frozen=True)
@@ -26,7 +40,7 @@ def chord(dx: Array, dy: Array, r1: float, r2: float) -> Chord:
     """RRR: d = |C1C2|, u = (C2 - C1) / d, a = (r1^2 - r2^2 + d^2) / 2d along C1C2 from C1,
     h^2 = r1^2 - a^2 across it, from (dx, dy) = C2 - C1; coincident centres (d = 0) take
     u = (1, 0): any direction (every point of the circle fits). The RRR formula, once: the
-    assembler's ``circle_circle`` and the compiled plan's columns both use it."""
+    intersection of two circles (``circle_circle``) and the group's columns (``GROUP``) use it."""
     d = np.sqrt(dx * dx + dy * dy)
     safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
     ux, uy = dx / safe_d, dy / safe_d
@@ -34,6 +48,33 @@ def chord(dx: Array, dy: Array, r1: float, r2: float) -> Chord:
         ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
     a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
     return Chord(d, ux, uy, a, r1**2 - a**2)
+
+
+def margin_pieces(d: Array, r1: float, r2: float) -> tuple[Array, Array]:
+    """The smooth pieces of the margin m = min(r1 + r2 - d, d - |r1 - r2|): the dyad stretched
+    (r1 + r2 - d) and folded (d - |r1 - r2|)."""
+    return (r1 + r2) - d, d - abs(r1 - r2)
+
+
+def failure(
+    d: Array, margin: Array, centres: tuple[str, str], radii: tuple[float, float], name: str
+) -> Callable[[], str]:
+    """Why two circles about ``centres`` with ``radii`` fail to meet (built only when they do):
+    their centres too far apart or too close, at the sample of the smallest margin."""
+    (c1, c2), (r1, r2) = centres, radii
+    total, diff = r1 + r2, abs(r1 - r2)
+
+    def message() -> str:
+        dk = float(d[int(np.argmin(margin))])
+        n = digits(dk, total if dk > total else diff)
+        pair = f"|{c1}{c2}| = {dk:.{n}g} m"
+        if dk > total:
+            return (
+                f"{pair} > |{c1}{name}| + |{c2}{name}| = {r1:.{n}g} + {r2:.{n}g} = {total:.{n}g} m"
+            )
+        return f"{pair} < ||{c1}{name}| - |{c2}{name}|| = {diff:.{n}g} m"
+
+    return message
 
 
 def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
@@ -44,31 +85,93 @@ def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     """
     d_vec = c2.center.p - c1.center.p
     cut = chord(d_vec[:, 0], d_vec[:, 1], c1.radius, c2.radius)
-    d, a, h2 = cut.d, cut.a, cut.h2
     u = np.stack((cut.ux, cut.uy), axis=-1)
-    total, diff = c1.radius + c2.radius, abs(c1.radius - c2.radius)
-    extended, folded = total - d, d - diff
+    extended, folded = margin_pieces(cut.d, c1.radius, c2.radius)
     margin = np.minimum(extended, folded)
     rates: tuple[Array | None, Array | None] = (None, None)
     if c1.center.v is not None and c2.center.v is not None:
         d_rate = dot(u, c2.center.v - c1.center.v)
         rates = (-d_rate, d_rate)
-
-    def message() -> str:
-        dk = float(d[int(np.argmin(margin))])
-        n = digits(dk, total if dk > total else diff)
-        pair = f"|{c1.center_name}{c2.center_name}| = {dk:.{n}g} m"
-        if dk > total:
-            return (
-                f"{pair} > |{c1.center_name}{name}| + |{c2.center_name}{name}| = "
-                f"{c1.radius:.{n}g} + {c2.radius:.{n}g} = {total:.{n}g} m"
-            )
-        return f"{pair} < ||{c1.center_name}{name}| - |{c2.center_name}{name}|| = {diff:.{n}g} m"
-
+    message = failure(cut.d, margin, (c1.center_name, c2.center_name), (c1.radius, c2.radius), name)
     pieces = ((extended, rates[0]), (folded, rates[1]))
     return Intersection(
-        c1.center.p + scale(a, u), perp(u), root(h2, c1.radius**2), margin, pieces, message
+        c1.center.p + scale(cut.a, u), perp(u), root(cut.h2, c1.radius**2), margin, pieces, message
     )
 
 
-GROUP = DyadGroup("RRR", circle_circle, two_branch=True)
+@dataclass(frozen=True)
+class CircleCircle(DyadGroup):
+    """RRR on the columns of its centres (``Known.columns``): the same numbers as
+    ``circle_circle`` (x - y as x + (-y), a product by a negated factor as the negated product,
+    v - 0 as v: all exact in IEEE arithmetic) without building the (N, 2) vectors it takes
+    apart; its rates from the differentiated constraints (``point_rates``)."""
+
+    def close(self, step: DyadStep, known: Known) -> Closure:
+        first, second = cast("tuple[CircleSpec, CircleSpec]", step.loci)  # (RRR)
+        c1, c2 = known.columns(first.center), known.columns(second.center)
+        r1, r2 = first.radius, second.radius
+        dx, dy = minus(c2.x, c1.x), minus(c2.y, c1.y)
+        if isinstance(dx, float) or isinstance(dy, float):  # two fixed centres
+            samples = known.at_drawn.size
+            dx, dy = np.full(samples, dx), np.full(samples, dy)
+        cut = chord(dx, dy, r1, r2)
+        extended, folded = margin_pieces(cut.d, r1, r2)
+        margin = np.minimum(extended, folded)
+        rates: tuple[Array | None, Array | None] = (None, None)
+        if not (c1.vx is None or c1.vy is None or c2.vx is None or c2.vy is None):
+            d_rate = cut.ux * minus(c2.vx, c1.vx) + cut.uy * minus(c2.vy, c1.vy)
+            rates = (-d_rate, d_rate)
+        pieces: tuple[Piece, ...] = ((extended, rates[0]), (folded, rates[1]))
+        message = failure(cut.d, margin, (first.center, second.center), (r1, r2), step.point)
+
+        def place(sign: Array, order: int) -> Placed:
+            """X = C1 + a u + sign h (k x u), the drawn position at the drawn pose."""
+            across = sign * root(cut.h2, r1**2)
+            X = np.empty((across.size, 2))
+            np.subtract(c1.x + cut.ux * cut.a, cut.uy * across, out=X[:, 0])
+            np.add(c1.y + cut.uy * cut.a, cut.ux * across, out=X[:, 1])
+            X[known.at_drawn] = known.drawn(step.point)
+            motion, sine = point_rates(X, c1, c2, order)
+            return Placed(sine, points={step.point: motion})
+
+        return Closure(step.point, margin, pieces, message, True, place)
+
+
+def _positive(x: Array) -> Array:
+    """np.where(x > 0, x, 1.0): ``x`` itself where every x is positive (the common case)."""
+    return x if x.min() > 0.0 else np.where(x > 0.0, x, 1.0)
+
+
+def point_rates(X: Array, c1: Columns, c2: Columns, order: int) -> tuple[PointMotion, Array]:
+    """``loci.point_motion`` for two circles on columns: G v_X = b and G a_X = b' by Cramer's
+    rule, G = [X - C1; X - C2], b_i = (X - C_i).v_Ci, b'_i = (X - C_i).a_Ci - |v_X - v_Ci|^2,
+    and the sine of the angle between the rows, |det G| / (|g1| |g2|)."""
+    x, y = X[:, 0], X[:, 1]
+    g1x, g1y, g2x, g2y = minus(x, c1.x), minus(y, c1.y), minus(x, c2.x), minus(y, c2.y)
+    det = g1x * g2y - g1y * g2x
+    norms = np.sqrt((g1x * g1x + g1y * g1y) * (g2x * g2x + g2y * g2y))
+    sine = np.abs(det) / _positive(norms)
+    if order < 1:
+        return PointMotion(X), sine
+    assert c1.vx is not None and c1.vy is not None and c2.vx is not None and c2.vy is not None
+    if not np.all(det):
+        det = np.where(det != 0.0, det, np.inf)
+    rows = (g1x, g1y), (g2x, g2y)
+    v = np.empty(X.shape)
+    rhs = (g1x * c1.vx + g1y * c1.vy, g2x * c2.vx + g2y * c2.vy)
+    solve_2x2(*rows, rhs, det, (v[:, 0], v[:, 1]))
+    if order < 2:
+        return PointMotion(X, v), sine
+    assert c1.ax is not None and c1.ay is not None and c2.ax is not None and c2.ay is not None
+    w1x, w1y = minus(v[:, 0], c1.vx), minus(v[:, 1], c1.vy)
+    w2x, w2y = minus(v[:, 0], c2.vx), minus(v[:, 1], c2.vy)
+    rhs = (
+        (g1x * c1.ax + g1y * c1.ay) - (w1x * w1x + w1y * w1y),
+        (g2x * c2.ax + g2y * c2.ay) - (w2x * w2x + w2y * w2y),
+    )
+    a = np.empty(X.shape)
+    solve_2x2(*rows, rhs, det, (a[:, 0], a[:, 1]))
+    return PointMotion(X, v, a), sine
+
+
+GROUP = CircleCircle("RRR", circle_circle, two_branch=True)

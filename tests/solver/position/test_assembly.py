@@ -33,14 +33,29 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import solver
 from solver.analysis.instant import analyze
 from solver.analysis.sweeps import Sweep, sweep
 from solver.errors import NotAssemblable
 from solver.model.scene import LinkageScene, parse_linkage
-from solver.position.assembly import WARNING_MARGIN, candidate_intervals, candidate_minima, screen
+from solver.position.assembly import (
+    WARNING_MARGIN,
+    DriverInput,
+    Motion,
+    assemble,
+    candidate_intervals,
+    candidate_minima,
+    coarse,
+    path_steps,
+    screen,
+)
+from solver.position.topology import build_plan
 from solver.teaching.presets import build_preset
+from tests.dynamics_cases import five_bars
+from tests.linkage_strategies import linkages
 
 SAMPLE_COUNTS = (36, 360, 3600, 36000)
 EPSILONS = (1e-3, 1e-6, 1e-9, 1e-12)
@@ -1218,10 +1233,6 @@ def test_position_sweep_whose_screen_took_velocities_returns_positions_only(case
     array for array (the ground's, its points' and a driver's pivot's zero rates kept, a link
     guided by the ground keeping the ground's; every other rate None), here the same assembly
     without continuation (the branches stay as drawn)."""
-    from solver.position.assembly import DriverInput, assemble
-    from solver.position.topology import build_plan
-    from tests.solver.position.test_compiled_plan import arrays
-
     doc = {
         "six-bar": _two_dips(0.2, 30.0),
         "quick return": build_preset("quick_return", {}),
@@ -1400,3 +1411,146 @@ def test_a_near_miss_between_samples_20_deg_apart_is_not_cleared_by_the_lipschit
     (approach,) = result["diagnostics"]["close_approaches"]
     assert abs(approach["margin"] - gap) <= 1e-12
     assert abs(math.remainder(approach["driver_angle"], 2 * math.pi)) <= 1e-9
+
+
+# The one executor: the same numbers whatever a run is asked for (issue 22: the compiled clone of
+# the closed-form path is gone; these are the guarantees its bit-for-bit test held).
+
+
+def arrays(motion: Motion) -> dict[str, Any]:
+    """Every array of a motion by a path name (None where not computed)."""
+    out: dict[str, Any] = {
+        "margin": motion.margin,
+        "converged": motion.converged,
+        "gradient_sine": motion.gradient_sine,
+    }
+    for name, p in motion.points.items():
+        out |= {f"{name}.p": p.p, f"{name}.v": p.v, f"{name}.a": p.a}
+    for name, link in motion.links.items():
+        out |= {
+            f"{name}.anchor0": link.anchor0,
+            f"{name}.anchor.p": link.anchor.p,
+            f"{name}.anchor.v": link.anchor.v,
+            f"{name}.anchor.a": link.anchor.a,
+            f"{name}.theta": link.theta,
+            f"{name}.omega": link.omega,
+            f"{name}.alpha": link.alpha,
+        }
+    out |= {f"margin of {k}": m for k, m in motion.group_margins.items()}
+    return out
+
+
+def assert_same_bits(ours: dict[str, Any], theirs: dict[str, Any]) -> None:
+    """The same arrays, compared as bytes (a last-bit difference or a -0.0 for a 0.0 fails);
+    only those of ``theirs`` that are computed."""
+    for key, value in theirs.items():
+        if value is None:
+            continue
+        mine = np.asarray(ours[key])
+        assert mine.shape == np.shape(value) and mine.dtype == np.asarray(value).dtype, key
+        assert mine.tobytes() == np.ascontiguousarray(value).tobytes(), key
+
+
+def inputs_for(doc: dict[str, Any], turns: np.ndarray, second: float = 0.0) -> list[DriverInput]:
+    """The first driver turned by ``turns``, the others held at ``second``, their rates as
+    given."""
+    n = turns.size
+    out = []
+    for k, driver in enumerate(doc["drivers"]):
+        theta = turns if k == 0 else np.full(n, second)
+        rates = (np.full(n, float(driver.get("omega", 0.0))), np.full(n, driver.get("alpha", 0.0)))
+        out.append(DriverInput(theta, *rates))
+    return out
+
+
+def check_one_computation(doc: dict[str, Any], turns: np.ndarray, second: float = 0.0) -> None:
+    """A run at a lower order gives the positions (and velocities) of one at a higher, bit for
+    bit; and where the branch search finds nothing to examine, every group closes and no driver
+    steps so far that the continuation follows a denser grid, a run with continuation gives the
+    numbers of one without: the screen and the orders asked for change what is computed, never
+    how."""
+    scene = parse_linkage(doc)
+    plan = build_plan(scene)
+    inputs = inputs_for(doc, turns, second)
+    plain = {order: assemble(scene, plan, inputs, order) for order in (0, 1, 2)}
+    for order in (0, 1):
+        assert list(arrays(plain[order])) == list(arrays(plain[2]))
+        assert_same_bits(arrays(plain[2]), arrays(plain[order]))
+    if coarse(path_steps(inputs)):
+        return
+    full = assemble(scene, plan, inputs, 2, continuation=True)
+    if full.failures or full.approaches or not np.all(full.feasible):
+        return
+    for order in (0, 1, 2):
+        screened = assemble(scene, plan, inputs, order, continuation=True)
+        assert list(arrays(plain[order])) == list(arrays(screened))
+        assert_same_bits(arrays(screened), arrays(plain[order]))
+
+
+def turns_with_the_drawn_pose(samples: int, start: float) -> np.ndarray:
+    """A revolution from ``start`` with one sample at exactly 0 (the drawn pose)."""
+    turns = start + 2.0 * math.pi * np.arange(samples) / samples
+    turns[samples // 3] = 0.0
+    return turns
+
+
+@pytest.mark.slow
+@settings(max_examples=12, deadline=None)
+@given(linkages("four_bar"), st.floats(-math.pi, math.pi), st.sampled_from([7, 36, 361]))
+def test_four_bars_one_computation(doc: dict[str, Any], start: float, samples: int) -> None:
+    check_one_computation(doc, turns_with_the_drawn_pose(samples, start))
+    check_one_computation(doc, start + 2.0 * math.pi * np.arange(samples) / samples)
+
+
+@settings(max_examples=8, deadline=None)
+@given(linkages("six_bar", newton=False), st.floats(-0.3, 0.3))
+def test_six_bars_by_dyads_one_computation(doc: dict[str, Any], start: float) -> None:
+    """Watt and Stephenson six-bars: dyads on moving centres, ternary links carrying points."""
+    check_one_computation(doc, start + np.linspace(-0.05, 0.05, 41))
+
+
+@settings(max_examples=8, deadline=None)
+@given(five_bars(), st.floats(-0.2, 0.2))
+def test_two_drivers_one_computation(doc: dict[str, Any], second: float) -> None:
+    check_one_computation(doc, np.linspace(-0.05, 0.05, 21), second)
+
+
+@pytest.mark.parametrize(
+    "preset", ["four_bar", "slider_crank", "inverted_slider_crank", "quick_return"]
+)
+def test_every_group_type_one_computation(preset: str) -> None:
+    """Drivers, RRR, RRP, RPR, two-point links and links guided by another, in one executor."""
+    check_one_computation(build_preset(preset, {}), 2.0 * math.pi * np.arange(72) / 72)
+
+
+def test_signed_zeros_at_rest_and_on_the_axes() -> None:
+    """A crank at rest (every rate a signed zero) drawn along the axes, the ground at -0.0:
+    the drawn pose and its rates come back as drawn, zeros with their signs as a plain run
+    gives them."""
+    doc = build_preset("four_bar", {"omega": 0.0, "alpha": 0.0, "crank_angle_deg": 90.0})
+    doc["points"]["A"] = [-0.0, -0.0]
+    turns = math.pi / 16.0 * np.arange(32)  # (on the axes every 8 samples)
+    for omega in (0.0, -0.0):
+        doc["drivers"][0]["omega"] = omega
+        check_one_computation(doc, turns)
+        scene = parse_linkage(doc)
+        motion = assemble(scene, build_plan(scene), inputs_for(doc, turns), 2)
+        assert np.array_equal(motion.points["C"].p[0], scene.drawn("C"))
+        assert not motion.points["C"].v.any() and not motion.points["C"].a.any()
+
+
+@pytest.mark.slow
+def test_scene_memo_is_forgotten_with_the_scene() -> None:
+    """What a run keeps on a scene (``LinkageScene.memo``: its plan) goes with the scene."""
+    import gc
+    import weakref
+
+    scene = parse_linkage(build_preset("four_bar", {}))
+    plan = build_plan(scene)
+    assert build_plan(scene) is plan
+    turns = np.linspace(0.0, 1.0, 5)
+    assemble(scene, plan, inputs_for(build_preset("four_bar", {}), turns), 2, continuation=True)
+    kept = weakref.ref(plan)
+    del scene, plan
+    gc.collect()
+    assert kept() is None

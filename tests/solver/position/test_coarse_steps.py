@@ -17,10 +17,8 @@ import solver
 from benchmarks.bench_newton import FULL_TURN
 from solver.errors import LimitExceeded, NotAssemblable
 from solver.model.scene import parse_linkage
-from solver.position.assembly import MAX_DENSE_SAMPLES, MAX_DRIVER_STEP
-from solver.position.compiled_plan import compiled_plan
+from solver.position.assembly import MAX_DENSE_SAMPLES, MAX_DRIVER_STEP, dense_grid
 from solver.position.drivers import driver_inputs_over_time
-from solver.position.topology import build_plan
 from solver.teaching.presets import build_preset
 from tests.solver.analysis.test_events import _assert_exact_time, _four_bar, _parallelogram, _time
 
@@ -138,19 +136,18 @@ def test_sweep_too_long_to_follow_is_refused_with_its_numbers() -> None:
         solver.sweep_time(_parallelogram(60.0, [0.5, -2.0]), [0.0, 1e6], 2)
 
 
-def test_compiled_plan_runs_short_steps_and_hands_long_ones_back() -> None:
+def test_short_steps_are_followed_as_given_and_long_ones_on_a_denser_grid() -> None:
     """The four-bar preset (a crank-rocker far from its change points): a revolution in 360
-    samples runs compiled; 101 samples over 100 s at 1 rad/s (1 rad a step, which its screen
-    alone would pass) are handed back to the general assembler, which follows them on a denser
-    grid."""
+    samples is followed as given; 101 samples over 100 s at 1 rad/s (1 rad a step, which its
+    screen alone would pass) on a denser grid, at steps of at most pi/8."""
     doc = build_preset("four_bar", {})
     doc["drivers"] = [{"link": "crank", "angle_law": "t"}]
     scene = parse_linkage(doc)
-    compiled = compiled_plan(scene, build_plan(scene))
-    assert compiled is not None
     revolution = np.linspace(0.0, 2.0 * math.pi, 361)
-    assert compiled.run(driver_inputs_over_time(scene, revolution), 2) is not None
-    assert compiled.run(driver_inputs_over_time(scene, np.linspace(0.0, 100.0, 101)), 2) is None
+    assert dense_grid(driver_inputs_over_time(scene, revolution)) is None
+    grid = dense_grid(driver_inputs_over_time(scene, np.linspace(0.0, 100.0, 101)))
+    assert grid is not None
+    assert np.abs(np.diff(grid.inputs[0].theta)).max() <= MAX_DRIVER_STEP
 
 
 def test_a_window_between_two_samples_a_turn_apart_is_refused_with_its_depth() -> None:
