@@ -19,7 +19,8 @@ import sys
 import time
 
 WORKER = r"""
-import json, statistics, sys, time
+import json
+from benchmarks.bench_kinematics import latencies
 from solver.analysis.instant import analyze
 from solver.analysis.sweeps import sweep
 from solver.model.scene import parse_linkage
@@ -31,14 +32,7 @@ scene = parse_linkage(four_bar)
 ALL = ["position", "velocity", "acceleration"]
 
 def timed(fn, calls):
-    for _ in range(5):
-        fn()
-    out = []
-    for _ in range(calls):
-        t = time.perf_counter()
-        fn()
-        out.append(time.perf_counter() - t)
-    return statistics.median(out)
+    return latencies(fn, calls).p50
 
 print(json.dumps({
     "sweep 360": timed(lambda: sweep(scene, 360, ALL), 200),

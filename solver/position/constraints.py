@@ -15,6 +15,15 @@ J qddot = b_a (the known links' motion and the quadratic velocity terms on the r
 system with every moving link unknown and the drivers' rows added is the linkage's velocity
 system, whose (dimensionless) condition number is reported.
 
+Each row's entries and rates are written once, as functions of the row's geometry
+(``unit_entries``, ``held_angle_entries``, ``revolute_rotation_entries``, ``slider_axes``,
+``slider_rotation_entries``, ``slider_velocity_rhs``, ``slider_acceleration_rhs``): the
+joint-by-joint evaluation (``ConstraintSystem``), the velocity system at one pose
+(``velocity_jacobian``) and a point on a line (``loci.Line``, a slider row whose follower is the
+point) place them. The rows linear in (q, cos theta, sin theta) are also held as constant
+matrices (``LinearForm``: its K_q the system's constant entries, J's rotation entries
+``rotation_entries``, the curvature terms ``turning_terms``), and ``Rotations`` is Q^T of them.
+
 Everything is evaluated for M samples at once: Phi is (M, rows), J (M, rows, 3 x unknown links),
 so the equations of every sample of a sweep are solved together with ``numpy.linalg.solve`` on
 the stacked Jacobians (Newton-Raphson on them is ``solver.position.newton``).
@@ -549,11 +558,12 @@ class LinearForm:
     def _derive(self) -> None:
         """What the evaluations read from K: the rotation entries of J that vary (a revolute
         row touches two links: their flat indices into (rows, n), the link and the entries of
-        K_q, K_c, K_s there); the elimination of the translations waits for ``solve``."""
+        K_c, K_s there: K_q has none in those rows, a revolute joint's); the elimination of the
+        translations waits for ``solve``."""
         rows, links = np.nonzero((self.c != 0.0) | (self.s != 0.0))
         self.flat = rows * self.q.shape[1] + 3 * links + 2
         self.links = links
-        self.entries = self.q[rows, 3 * links + 2], self.c[rows, links], self.s[rows, links]
+        self.entries = self.c[rows, links], self.s[rows, links]
         self.__dict__.pop("rotations", None)  # a scaled copy eliminates with its own K_q
 
     @cached_property
@@ -582,8 +592,7 @@ class LinearForm:
         phi = self.residual(q, known, cos, sin)
         J = np.empty((*q.shape[:-1], *self.q.shape))
         J[...] = self.q
-        constant, c, s = self.entries
-        rotation = constant + s * cos[..., self.links] - c * sin[..., self.links]
+        rotation = rotation_entries(*self.entries, cos[..., self.links], sin[..., self.links])
         J.reshape(*q.shape[:-1], -1)[..., self.flat] = rotation
         return phi, J
 
@@ -667,11 +676,19 @@ class LinearForm:
         return self.bending(q, qd)
 
 
+def rotation_entries(c: Array, s: Array, cos: Array, sin: Array) -> Array:
+    """S cos theta - C sin theta: dPhi/dtheta of rows C cos theta + S sin theta + ... (a revolute
+    joint's, X = c + R(theta) d = c + d cos theta + (k x d) sin theta: ``LinearForm``, and Q^T
+    of them in ``Rotations``), entry by entry (broadcast)."""
+    return np.asarray(s * cos - c * sin)
+
+
 def turning_terms(theta: Array, rate: Array, c: Array, s: Array) -> Array:
     """(C cos theta + S sin theta) theta'^2, per row: with rows C cos theta + S sin theta + ...
     (``LinearForm``, and Q^T of them in ``Rotations``) whose Jacobian in theta is
-    J_theta = S diag(cos) - C diag(sin), -(d/dt J_theta) theta' is this (theta and its rate
-    ``rate`` (U,) or (M, U)): the acceleration's and a path's curvature's right-hand side."""
+    J_theta = S diag(cos) - C diag(sin) (``rotation_entries``), -(d/dt J_theta) theta' is this
+    (theta and its rate ``rate`` (U,) or (M, U)): the acceleration's and a path's curvature's
+    right-hand side."""
     turning = rate**2
     return np.asarray((np.cos(theta) * turning) @ c.T + (np.sin(theta) * turning) @ s.T)
 
@@ -732,7 +749,7 @@ class Rotations:
         """dG/dtheta at (M, U) theta (its cosines and sines, if already computed)."""
         cos = np.cos(theta) if cos is None else cos
         sin = np.sin(theta) if sin is None else sin
-        J = self.s * cos[..., None, :] - self.c * sin[..., None, :]
+        J = rotation_entries(self.c, self.s, cos[..., None, :], sin[..., None, :])
         return J + self.t if self.held else J
 
     def bending(self, theta: Array, tangent: Array) -> Array:

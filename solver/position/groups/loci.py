@@ -7,8 +7,9 @@ line-line. Where a link pivots on a known point and its slot must pass through a
 (inverted slider-crank, slotted lever), the unknown is the link's angle: ``slotted_lever``.
 
 Each solution has two branches (the orientation of the dyad's triangle), chosen by ``sign``. The
-velocities and accelerations come from differentiating the same two constraints: a 2-by-2 linear
-system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
+velocities and accelerations come from differentiating the same two constraints, each locus's
+row (``Circle``, ``Line``: a line's is the whole system's slider row, ``constraints``): a 2-by-2
+linear system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
 """
 
 from __future__ import annotations
@@ -153,7 +154,8 @@ def _solve(row1: Array, row2: Array, rhs1: Array, rhs2: Array, det: Array) -> Ar
 
 def point_motion(first: Locus, second: Locus, X: Array, order: int) -> tuple[PointMotion, Array]:
     """Velocity and acceleration of X from the differentiated constraints G v_X = b (2x2,
-    Cramer), and sin(g1, g2) = |det G| / (|g1| |g2|), the sine of the angle between the
+    Cramer; G's rows the loci's gradients, b their ``velocity_rhs`` and ``acceleration_rhs``),
+    and sin(g1, g2) = |det G| / (|g1| |g2|), the sine of the angle between the
     gradients (0: a dead centre)."""
     g1, g2 = first.gradient(X), second.gradient(X)
     det = cross(g1, g2)
