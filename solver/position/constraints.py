@@ -96,12 +96,16 @@ class _Links:
     alpha: Array
     order: int
 
+    def velocity(self, link: Array, r: Array) -> Array:
+        """v + omega k x r: the velocity of the links' points at arms r from their anchors."""
+        return self.v[:, link] + self.omega[:, link, None] * perp(r)
+
     def side(self, link: Array, d: Array) -> tuple[Array, Array, Array | None]:
         """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
         r = rotate_by(d, self.cos[:, link], self.sin[:, link])
         rate = None
         if self.order == 1:
-            rate = self.v[:, link] + self.omega[:, link, None] * perp(r)
+            rate = self.velocity(link, r)
         elif self.order == 2:
             rate = (
                 self.a[:, link]
@@ -399,10 +403,9 @@ class ConstraintSystem:
         if order == 1 and rate_f is not None and rate_g is not None:
             b[:, rows] = slider_velocity_rhs(n, wd, rate_g - rate_f, omega[:, g])
         elif order == 2 and rate_f is not None and rate_g is not None:
-            v_f = links.v[:, f] + omega[:, f, None] * perp(r_f)
-            v_q = links.v[:, g] + omega[:, g, None] * perp(r_g)
+            v_rel = links.velocity(f, r_f) - links.velocity(g, r_g)
             b[:, rows] = slider_acceleration_rhs(
-                n, w, wd, rate_g - rate_f, omega[:, g], links.alpha[:, g], v_f - v_q
+                n, w, wd, rate_g - rate_f, omega[:, g], links.alpha[:, g], v_rel
             )
         mf, mg = self.sld_mask
         return [
