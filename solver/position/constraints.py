@@ -15,6 +15,15 @@ J qddot = b_a (the known links' motion and the quadratic velocity terms on the r
 system with every moving link unknown and the drivers' rows added is the linkage's velocity
 system, whose (dimensionless) condition number is reported.
 
+Each row's entries and rates are written once, as functions of the row's geometry
+(``unit_entries``, ``held_angle_entries``, ``revolute_rotation_entries``, ``slider_axes``,
+``slider_rotation_entries``, ``slider_velocity_rhs``, ``slider_acceleration_rhs``): the
+joint-by-joint evaluation (``ConstraintSystem``), the velocity system at one pose
+(``velocity_jacobian``) and a point on a line (``loci.Line``, a slider row whose follower is the
+point) place them. The rows linear in (q, cos theta, sin theta) are also held as constant
+matrices (``LinearForm``: its K_q the system's constant entries, J's rotation entries
+``rotation_entries``, the curvature terms ``turning_terms``), and ``Rotations`` is Q^T of them.
+
 Everything is evaluated for M samples at once: Phi is (M, rows), J (M, rows, 3 x unknown links),
 so the equations of every sample of a sweep are solved together with ``numpy.linalg.solve`` on
 the stacked Jacobians (Newton-Raphson on them is ``solver.position.newton``).
@@ -27,6 +36,7 @@ import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TypeVar
 
 import mpmath as mp
 import numpy as np
@@ -34,6 +44,8 @@ import numpy as np
 from solver.kinematics.rigid import Array, LinkMotion, PointMotion, dot, perp, rotate_by
 from solver.model.scene import Joint, LinkageScene
 
+JOINT_ROWS = {"revolute": 2, "slider": 1, "prismatic": 2}  # rows of each joint type
+Link = TypeVar("Link", int, str)  # a link by its index (``ConstraintSystem``) or its name
 DENSE_UNKNOWNS = 24  # LinearForm on many samples up to this many unknowns (ConstraintSystem._dense)
 
 
@@ -84,12 +96,16 @@ class _Links:
     alpha: Array
     order: int
 
+    def velocity(self, link: Array, r: Array) -> Array:
+        """v + omega k x r: the velocity of the links' points at arms r from their anchors."""
+        return self.v[:, link] + self.omega[:, link, None] * perp(r)
+
     def side(self, link: Array, d: Array) -> tuple[Array, Array, Array | None]:
         """Point, anchor-to-point vector r and (order 1, 2) the point's rate terms."""
         r = rotate_by(d, self.cos[:, link], self.sin[:, link])
         rate = None
         if self.order == 1:
-            rate = self.v[:, link] + self.omega[:, link, None] * perp(r)
+            rate = self.velocity(link, r)
         elif self.order == 2:
             rate = (
                 self.a[:, link]
@@ -133,8 +149,8 @@ class ConstraintSystem:
         self.n = 3 * len(self.unknown)
         # Column of each scene link's x (or -1 where known), and the constant unit entries of J.
         self.col = np.array([self.column.get(name, -1) for name in self.names], dtype=int)
-        self._jacobian_layout()
         self.unknown_index = np.array([index[link] for link in self.unknown], dtype=int)
+        self._jacobian_layout()
         self.known_index = np.array([index[link] for link in self.known], dtype=int)
         # Rows that are lengths (scaled by the size in the condition number) and angles.
         self.length_rows = np.ones(self.rows, dtype=bool)
@@ -204,37 +220,37 @@ class ConstraintSystem:
         return rows
 
     def _jacobian_layout(self) -> None:
-        """J's constant unit entries (``unit``), and where its pose-dependent entries go (flat
-        indices into a (rows, n) matrix, ``flat``): the rotation columns of both sides of each
-        revolute joint's two rows, then each slider's follower (x, y, theta) and guide
-        (x, y, theta) columns; the masks pick the unknown sides."""
-        unit = np.zeros((self.rows, self.n))
-        for row, i, j in self.rev:
-            for link, sign in ((i, 1.0), (j, -1.0)):
-                if self.col[link] >= 0:
-                    unit[row, self.col[link]] += sign
-                    unit[row + 1, self.col[link] + 1] += sign
-        for _, i, j, angle_row in self.prismatic:
-            for link, sign in ((j, 1.0), (i, -1.0)):
-                if self.col[link] >= 0:
-                    unit[angle_row, self.col[link] + 2] += sign
-        for row, link in zip(self.angle_rows, self.angle_links, strict=True):
-            if self.col[link] >= 0:
-                unit[row, self.col[link] + 2] += 1.0
-        self.unit = unit
-        n, col = self.n, self.col
-        first, left, right = self.rev.T
-        self.rev_mask = (col[left] >= 0, col[right] >= 0)
-        flat = []
-        for link, mask in ((left, self.rev_mask[0]), (right, self.rev_mask[1])):
+        """J's constant entries with a column for every link's (x, y, theta) (``constant``:
+        dX/dc = I on both sides of each revolute joint's two rows, +-1 on a prismatic joint's
+        and a held angle's rotation column) and the unknowns' columns of it (``unit``); where
+        J's pose-dependent entries go (flat indices into a (rows, n) matrix, ``flat``): the
+        rotation columns of both sides of each revolute joint's two rows, then each slider's
+        follower (x, y, theta) and guide (x, y, theta) columns; the masks pick the unknown
+        sides."""
+        rev, sld = self.rev.tolist(), self.sld.tolist()
+        entries = [e for row, i, j in rev for e in unit_entries("revolute", row, i, j)]
+        for row, i, j, _ in self.prismatic.tolist():
+            entries += unit_entries("prismatic", row, i, j)
+        for row, link in zip(self.angle_rows.tolist(), self.angle_links.tolist(), strict=True):
+            entries += held_angle_entries(row, link)
+        self.constant = np.zeros((self.rows, 3 * len(self.names)))
+        if entries:  # no two in one place: a row's two sides are different links
+            rows, links, offsets, values = zip(*entries, strict=True)
+            columns = [3 * link + offset for link, offset in zip(links, offsets, strict=True)]
+            self.constant[list(rows), columns] = values
+        self.unit = self.constant[:, _columns_of(self.unknown_index)]
+        n, col = self.n, self.col.tolist()
+        flat: list[int] = []
+        for side in (1, 2):  # the revolute rows' left links, then their right
             for offset in (0, 1):
-                flat.append((first[mask] + offset) * n + col[link][mask] + 2)
-        slot_rows, g, f = self.sld.T
-        self.sld_mask = (col[f] >= 0, col[g] >= 0)
-        for link, mask in ((f, self.sld_mask[0]), (g, self.sld_mask[1])):
+                flat += [(r[0] + offset) * n + col[r[side]] + 2 for r in rev if col[r[side]] >= 0]
+        for side in (2, 1):  # the sliders' followers, then their guides
             for offset in (0, 1, 2):
-                flat.append(slot_rows[mask] * n + col[link][mask] + offset)
-        self.flat = np.concatenate(flat) if flat else np.zeros(0, dtype=int)
+                flat += [r[0] * n + col[r[side]] + offset for r in sld if col[r[side]] >= 0]
+        self.flat = np.array(flat, dtype=int)
+        known = self.col < 0
+        self.rev_mask = (~known[self.rev[:, 1]], ~known[self.rev[:, 2]])
+        self.sld_mask = (~known[self.sld[:, 2]], ~known[self.sld[:, 1]])
 
     def _stack(
         self, known: Mapping[str, States], q: Array, qd: Array | None, order: int
@@ -368,32 +384,28 @@ class ConstraintSystem:
         if rate_i is not None and rate_j is not None:
             b[:, rows], b[:, rows + 1] = (rate_j - rate_i).transpose(2, 0, 1)
         mi, mj = self.rev_mask
-        return [-r_i[:, mi, 1], r_i[:, mi, 0], r_j[:, mj, 1], -r_j[:, mj, 0]]
+        t_i, t_j = revolute_rotation_entries(r_i, r_j)
+        return [t_i[:, mi, 0], t_i[:, mi, 1], t_j[:, mj, 0], t_j[:, mj, 1]]
 
     def _slider_rows(self, links: _Links, phi: Array, b: Array) -> list[Array]:
         """n_g . (X_f - X_g) into Phi and its rate terms into b (in place); J's entries."""
         if not self.sld.size:
             return []
         rows, g, f = self.sld.T
-        w = rotate_by(self.sld_d[:, 2], links.cos[:, g], links.sin[:, g])
-        n = perp(w)
+        w, n = slider_axes(self.sld_d[:, 2], links.cos[:, g], links.sin[:, g])
         X_f, r_f, rate_f = links.side(f, self.sld_d[:, 1])
         X_g, r_g, rate_g = links.side(g, self.sld_d[:, 0])
         d = X_f - X_g
         wd = dot(w, d)
         phi[:, rows] = dot(n, d)
-        # The right-hand sides gain -omega_g w.d and -alpha_g w.d - 2 omega_g w.(v_f - v_Q).
         theta_f, theta_g = slider_rotation_entries(n, r_f, r_g, wd)
         omega, order = links.omega, links.order
         if order == 1 and rate_f is not None and rate_g is not None:
-            b[:, rows] = dot(n, rate_g - rate_f) + omega[:, g] * wd
+            b[:, rows] = slider_velocity_rhs(n, wd, rate_g - rate_f, omega[:, g])
         elif order == 2 and rate_f is not None and rate_g is not None:
-            v_f = links.v[:, f] + omega[:, f, None] * perp(r_f)
-            v_q = links.v[:, g] + omega[:, g, None] * perp(r_g)
-            b[:, rows] = (
-                dot(n, rate_g - rate_f)
-                + 2.0 * omega[:, g] * dot(w, v_f - v_q)
-                + links.alpha[:, g] * wd
+            v_rel = links.velocity(f, r_f) - links.velocity(g, r_g)
+            b[:, rows] = slider_acceleration_rhs(
+                n, w, wd, rate_g - rate_f, omega[:, g], links.alpha[:, g], v_rel
             )
         mf, mg = self.sld_mask
         return [
@@ -442,12 +454,63 @@ class ConstraintSystem:
         return out
 
 
+def unit_entries(kind: str, row: int, i: Link, j: Link) -> list[tuple[int, Link, int, float]]:
+    """The constant entries of J (row, link, column in its (x, y, theta), value) of a joint
+    between links i and j (a sliding joint's guide i and follower j) whose rows start at
+    ``row``: a revolute joint's X_i - X_j = c_i + r_i - c_j - r_j has dPhi/dc = I and -I; a
+    prismatic joint's angle row theta_j - theta_i (after its slider row) +1 and -1; a slider's
+    row n.(X_j - X_i) none (n turns with the guide: ``slider_rotation_entries``)."""
+    if kind == "revolute":
+        return [(row, i, 0, 1.0), (row + 1, i, 1, 1.0), (row, j, 0, -1.0), (row + 1, j, 1, -1.0)]
+    if kind == "prismatic":
+        return [(row + 1, j, 2, 1.0), (row + 1, i, 2, -1.0)]
+    return []
+
+
+def held_angle_entries(row: int, link: Link) -> list[tuple[int, Link, int, float]]:
+    """The entry of a held angle's row theta - turn (a driver's): dPhi/dtheta = 1."""
+    return [(row, link, 2, 1.0)]
+
+
+def revolute_rotation_entries(r_i: Array, r_j: Array) -> tuple[Array, Array]:
+    """dPhi/dtheta_i = k x r_i and dPhi/dtheta_j = -k x r_j of a revolute joint's two rows
+    Phi = X_i - X_j, X = c + r with r = R(theta) (P0 - A0) the arm from the link's anchor
+    (dr/dtheta = k x r): the (x row, y row) entries of each side."""
+    return perp(r_i), -perp(r_j)
+
+
+def slider_axes(axis: Array, cos: Array, sin: Array) -> tuple[Array, Array]:
+    """(w, n) of a slider: its axis w = R(theta_g) w0 turned with the guide and the normal
+    n = k x w of its row n.(X_f - X_g) = 0."""
+    w = rotate_by(axis, cos, sin)
+    return w, perp(w)
+
+
 def slider_rotation_entries(n: Array, r_f: Array, r_g: Array, wd: Array) -> tuple[Array, Array]:
     """dPhi/dtheta_f = n.(k x r_f) and dPhi/dtheta_g = -n.(k x r_g) - w.d of a slider's row
     Phi = n.(X_f - X_g), d = X_f - X_g (``wd`` = w.d), r the arms from the follower's and the
-    guide's anchors: the normal n = k x w turns with the guide, dn/dtheta_g = -w. The one
-    definition of these entries (``ConstraintSystem`` and ``velocity_jacobian``)."""
+    guide's anchors: the normal n = k x w turns with the guide, dn/dtheta_g = -w."""
     return dot(n, perp(r_f)), -dot(n, perp(r_g)) - wd
+
+
+def slider_velocity_rhs(n: Array, wd: Array, known: Array, omega: Array) -> Array:
+    """n.(v_g - v_f)_known + omega_g w.d: the right-hand side of a slider's row
+    Phi = n.(X_f - X_g) = 0 differentiated once, n.(v_f - v_g) - omega_g w.d = 0 (the normal
+    turns with the guide, dn/dt = -omega_g w), the unknown velocities' terms on the left;
+    ``known`` the rest of v_g - v_f, ``wd`` = w.d, d = X_f - X_g. The one definition of the
+    row's rates: the whole system's (``ConstraintSystem``) and a point's on a line
+    (``loci.point_motion``, where v_f = v_X is the unknown and known = v_Q)."""
+    return dot(n, known) + omega * wd
+
+
+def slider_acceleration_rhs(
+    n: Array, w: Array, wd: Array, known: Array, omega: Array, alpha: Array, v_rel: Array
+) -> Array:
+    """n.(a_g - a_f)_known + 2 omega_g w.(v_f - v_Q) + alpha_g w.d: the slider's row
+    differentiated twice, n.(a_f - a_g) - 2 omega_g w.(v_f - v_g) - alpha_g w.d = 0 (on the
+    row n.d = 0, so the omega_g^2 n.d term vanishes); ``v_rel`` = v_f - v_Q, the rest as
+    ``slider_velocity_rhs``."""
+    return dot(n, known) + 2.0 * omega * dot(w, v_rel) + alpha * wd
 
 
 def constraint_system(
@@ -481,33 +544,29 @@ class LinearForm:
 
     def __init__(self, system: ConstraintSystem) -> None:
         links = len(system.names)
-        Kq = np.zeros((system.rows, 3 * links))
+        Kq = system.constant
         Kc, Ks = np.zeros((system.rows, links)), np.zeros((system.rows, links))
         for (row, i, j), (d_i, d_j) in zip(system.rev, system.rev_d, strict=True):
-            for link, (dx, dy), sign in ((i, d_i, 1.0), (j, d_j, -1.0)):
-                Kq[row, 3 * link] += sign
-                Kq[row + 1, 3 * link + 1] += sign
-                Kc[row : row + 2, link] += sign * np.array([dx, dy])
-                Ks[row : row + 2, link] += sign * np.array([-dy, dx])
-        for row, link in zip(system.angle_rows, system.angle_links, strict=True):
-            Kq[row, 3 * link + 2] += 1.0
+            for link, d, sign in ((i, d_i, 1.0), (j, d_j, -1.0)):
+                Kc[row : row + 2, link] += sign * d
+                Ks[row : row + 2, link] += sign * perp(d)
         self.angle_rows = system.angle_rows
         self.known = system.known
         parts = []
         for index in (system.unknown_index, system.known_index):
-            columns = (3 * index[:, None] + np.arange(3)).ravel()
-            parts.append((Kq[:, columns], Kc[:, index], Ks[:, index]))
+            parts.append((Kq[:, _columns_of(index)], Kc[:, index], Ks[:, index]))
         (self.q, self.c, self.s), (self.known_q, self.known_c, self.known_s) = parts
         self._derive()
 
     def _derive(self) -> None:
         """What the evaluations read from K: the rotation entries of J that vary (a revolute
         row touches two links: their flat indices into (rows, n), the link and the entries of
-        K_q, K_c, K_s there); the elimination of the translations waits for ``solve``."""
+        K_c, K_s there: K_q has none in those rows, a revolute joint's); the elimination of the
+        translations waits for ``solve``."""
         rows, links = np.nonzero((self.c != 0.0) | (self.s != 0.0))
         self.flat = rows * self.q.shape[1] + 3 * links + 2
         self.links = links
-        self.entries = self.q[rows, 3 * links + 2], self.c[rows, links], self.s[rows, links]
+        self.entries = self.c[rows, links], self.s[rows, links]
         self.__dict__.pop("rotations", None)  # a scaled copy eliminates with its own K_q
 
     @cached_property
@@ -536,8 +595,7 @@ class LinearForm:
         phi = self.residual(q, known, cos, sin)
         J = np.empty((*q.shape[:-1], *self.q.shape))
         J[...] = self.q
-        constant, c, s = self.entries
-        rotation = constant + s * cos[..., self.links] - c * sin[..., self.links]
+        rotation = rotation_entries(*self.entries, cos[..., self.links], sin[..., self.links])
         J.reshape(*q.shape[:-1], -1)[..., self.flat] = rotation
         return phi, J
 
@@ -554,10 +612,8 @@ class LinearForm:
     def bending(self, q: Array, tangent: Array) -> Array:
         """(K_c cos + K_s sin) theta'^2 along a path q(s) with q' = ``tangent`` ((n,) or
         (M, n)): the right-hand side of J q'' = -d^2 Phi/ds^2 + J q'' (differentiating J q' = 0
-        once more)."""
-        theta, turning = q[..., 2::3], tangent[..., 2::3] ** 2
-        cos, sin = np.cos(theta) * turning, np.sin(theta) * turning
-        return np.asarray(cos @ self.c.T + sin @ self.s.T)
+        once more; ``turning_terms``)."""
+        return turning_terms(q[..., 2::3], tangent[..., 2::3], self.c, self.s)
 
     def solve(self, J: Array, b: Array) -> Array:
         """x with J x = b for (M, n, n) J from ``pose``, the translations eliminated: with
@@ -616,13 +672,28 @@ class LinearForm:
         return phi, J, b + self.centripetal(q, qd) if order == 2 else b
 
     def centripetal(self, q: Array, qd: Array | None) -> Array:
-        """The unknowns' part of b_a: (K_c cos + K_s sin) omega^2, (M, rows)."""
+        """The unknowns' part of b_a: (K_c cos + K_s sin) omega^2, (M, rows) (``bending`` in
+        time)."""
         if qd is None:
             return np.zeros((q.shape[0], self.q.shape[0]))
-        squared, theta = qd[:, 2::3] ** 2, q[:, 2::3]
-        return np.asarray(
-            (squared * np.cos(theta)) @ self.c.T + (squared * np.sin(theta)) @ self.s.T
-        )
+        return self.bending(q, qd)
+
+
+def rotation_entries(c: Array, s: Array, cos: Array, sin: Array) -> Array:
+    """S cos theta - C sin theta: dPhi/dtheta of rows C cos theta + S sin theta + ... (a revolute
+    joint's, X = c + R(theta) d = c + d cos theta + (k x d) sin theta: ``LinearForm``, and Q^T
+    of them in ``Rotations``), entry by entry (broadcast)."""
+    return np.asarray(s * cos - c * sin)
+
+
+def turning_terms(theta: Array, rate: Array, c: Array, s: Array) -> Array:
+    """(C cos theta + S sin theta) theta'^2, per row: with rows C cos theta + S sin theta + ...
+    (``LinearForm``, and Q^T of them in ``Rotations``) whose Jacobian in theta is
+    J_theta = S diag(cos) - C diag(sin) (``rotation_entries``), -(d/dt J_theta) theta' is this
+    (theta and its rate ``rate`` (U,) or (M, U)): the acceleration's and a path's curvature's
+    right-hand side."""
+    turning = rate**2
+    return np.asarray((np.cos(theta) * turning) @ c.T + (np.sin(theta) * turning) @ s.T)
 
 
 def _translations_eliminated(Kq: Array) -> tuple[Array, Array] | None:
@@ -681,16 +752,14 @@ class Rotations:
         """dG/dtheta at (M, U) theta (its cosines and sines, if already computed)."""
         cos = np.cos(theta) if cos is None else cos
         sin = np.sin(theta) if sin is None else sin
-        J = self.s * cos[..., None, :] - self.c * sin[..., None, :]
+        J = rotation_entries(self.c, self.s, cos[..., None, :], sin[..., None, :])
         return J + self.t if self.held else J
 
     def bending(self, theta: Array, tangent: Array) -> Array:
         """(C cos + S sin) theta'^2 along a path theta(s) with theta' = ``tangent`` ((U,) or
         (M, U)): the right-hand side of dG/dtheta theta'' = ... (differentiating
-        dG/dtheta theta' = 0)."""
-        turning = tangent**2
-        cos, sin = np.cos(theta) * turning, np.sin(theta) * turning
-        return np.asarray(cos @ self.c.T + sin @ self.s.T)
+        dG/dtheta theta' = 0; ``turning_terms``)."""
+        return turning_terms(theta, tangent, self.c, self.s)
 
     def translations(self, theta: Array, known: Array) -> Array:
         """c = -A^+ (r(theta) + k) at (M, U) theta, k (M, rows) or (rows,): (M, 2U)."""
@@ -726,6 +795,11 @@ class Rotations:
         x = np.empty((M, links, 3))
         x[..., 2], x[..., :2] = theta, c.reshape(M, links, 2)
         return x.reshape(M, -1)
+
+
+def _columns_of(links: Array) -> Array:
+    """The (x, y, theta) columns of the links at ``links`` (indices): 3 k, 3 k + 1, 3 k + 2."""
+    return (3 * links[:, None] + np.arange(3)).ravel()
 
 
 def _columns(arrays: Sequence[Array], samples: int) -> Array:
@@ -824,14 +898,12 @@ def velocity_jacobian(
     scene: LinkageScene, links: Mapping[str, LinkMotion], k: int
 ) -> tuple[Array, Array]:
     """J = dPhi/dq of the whole velocity system at sample ``k``, and which of its rows are
-    lengths (not angles). Every moving link is unknown, its (x, y, theta) columns in
-    ``scene.moving_links`` order; the rows are ``ConstraintSystem``'s: each joint in order, then
-    theta_d of each driver. With r = R(theta) (P0 - A0) a joint's arm from its link's anchor: a
-    revolute pair of rows [I | k x r_i] - [I | k x r_j]; a slider [n | n.(k x r_f)] -
-    [n | n.(k x r_g) + w.(X_f - X_g)], w the slot's axis turned with the guide, n = k x w; a
-    prismatic joint adds theta_f - theta_g. The matrix of ``ConstraintSystem(scene,
-    scene.moving_links, drivers=True).evaluate``, built at one pose without the system's layout
-    (a test compares the two entry by entry)."""
+    lengths (not angles): ``ConstraintSystem(scene, scene.moving_links, drivers=True)``'s rows
+    (each joint in order, then theta_d of each driver; every moving link's (x, y, theta)
+    columns in ``scene.moving_links`` order) from the same row functions (``unit_entries``,
+    ``revolute_rotation_entries``, ``slider_axes``, ``slider_rotation_entries``,
+    ``held_angle_entries``), placed at one pose without the system's layout (building that
+    costs more than the whole of this)."""
     column = {name: 3 * m for m, name in enumerate(scene.moving_links)}
     index = {name: m for m, name in enumerate(scene.links)}
     theta = np.array([links[name].theta[k] for name in scene.links], dtype=float)
@@ -841,35 +913,37 @@ def velocity_jacobian(
     anchors = np.array([scene.drawn(scene.links[link].points[0]) for link, _ in ends])
     which = [index[link] for link, _ in ends]
     arms = rotate_by(drawn - anchors, cos[which], sin[which])  # r_i, r_j of each joint in turn
-    rows: list[Array] = []
-    lengths: list[bool] = []
+    rows = sum(JOINT_ROWS[joint.type] for joint in scene.joints) + len(scene.drivers)
+    J, lengths = np.zeros((rows, 3 * len(column))), np.ones(rows, dtype=bool)
 
-    def row(length: bool, *entries: tuple[str, int, float]) -> None:
-        out = np.zeros(3 * len(column))
-        for link, offset, value in entries:
+    def put(entries: Sequence[tuple[int, str, int, Array | float]]) -> None:
+        for row, link, offset, value in entries:
             if link in column:
-                out[column[link] + offset] = value
-        rows.append(out)
-        lengths.append(length)
+                J[row, column[link] + offset] = value
 
-    for joint, r_i, r_j in zip(scene.joints, arms[::2], arms[1::2], strict=True):
+    turned = (t.tolist() for t in revolute_rotation_entries(arms[::2], arms[1::2]))
+    row = 0
+    for joint, r_i, r_j, t_i, t_j in zip(scene.joints, arms[::2], arms[1::2], *turned, strict=True):
         i, j = joint.links
+        put(unit_entries(joint.type, row, i, j))
         if joint.type == "revolute":
-            row(True, (i, 0, 1.0), (i, 2, -r_i[1]), (j, 0, -1.0), (j, 2, r_j[1]))
-            row(True, (i, 1, 1.0), (i, 2, r_i[0]), (j, 1, -1.0), (j, 2, -r_j[0]))
-            continue
-        assert joint.axis is not None
-        w = rotate_by(np.array(joint.axis), cos[index[i]], sin[index[i]])
-        n = perp(w)
-        c_i, c_j = (_anchor(scene, links[x], x)[k] for x in (i, j))
-        wd = dot(w, (c_j + r_j) - (c_i + r_i))
-        f, g = (float(entry) for entry in slider_rotation_entries(n, r_j, r_i, wd))
-        row(True, (j, 0, n[0]), (j, 1, n[1]), (j, 2, f), (i, 0, -n[0]), (i, 1, -n[1]), (i, 2, g))
-        if joint.type == "prismatic":
-            row(False, (j, 2, 1.0), (i, 2, -1.0))
+            put(((row, i, 2, t_i[0]), (row + 1, i, 2, t_i[1])))
+            put(((row, j, 2, t_j[0]), (row + 1, j, 2, t_j[1])))
+        else:
+            assert joint.axis is not None
+            w, n = slider_axes(np.array(joint.axis), cos[index[i]], sin[index[i]])
+            c_i, c_j = (_anchor(scene, links[x], x)[k] for x in (i, j))
+            wd = dot(w, (c_j + r_j) - (c_i + r_i))
+            f, g = slider_rotation_entries(n, r_j, r_i, wd)
+            put([(row, j, 0, n[0]), (row, j, 1, n[1]), (row, j, 2, f)])
+            put([(row, i, 0, -n[0]), (row, i, 1, -n[1]), (row, i, 2, g)])
+            lengths[row + 1 : row + JOINT_ROWS[joint.type]] = False
+        row += JOINT_ROWS[joint.type]
     for driver in scene.drivers:
-        row(False, (driver.link, 2, 1.0))
-    return np.array(rows), np.array(lengths)
+        put(held_angle_entries(row, driver.link))
+        lengths[row] = False
+        row += 1
+    return J, lengths
 
 
 def _anchor(scene: LinkageScene, motion: LinkMotion, link: str) -> Array:

@@ -7,8 +7,9 @@ line-line. Where a link pivots on a known point and its slot must pass through a
 (inverted slider-crank, slotted lever), the unknown is the link's angle: ``slotted_lever``.
 
 Each solution has two branches (the orientation of the dyad's triangle), chosen by ``sign``. The
-velocities and accelerations come from differentiating the same two constraints: a 2-by-2 linear
-system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
+velocities and accelerations come from differentiating the same two constraints, each locus's
+row (``Circle``, ``Line``: a line's is the whole system's slider row, ``constraints``): a 2-by-2
+linear system ``G v_X = b`` solved by Cramer's rule, vectorised over samples.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.kinematics.rigid import Array, PointMotion, cross, dot, perp, scale, solve_2x2
+from solver.position.constraints import slider_acceleration_rhs, slider_velocity_rhs
 
 EPS = float(np.finfo(float).eps)
 # h^2 below this fraction of r^2 is rounding noise (h^2 = r^2 - a^2 is good to a few eps r^2):
@@ -38,23 +40,65 @@ Piece = tuple[Array, Array | None]
 
 @dataclass(frozen=True)
 class Circle:
-    """X is on a link that carries the known point ``center``: |X - C| = radius."""
+    """X is on a link that carries the known point ``center``: |X - C| = radius.
+
+    Its row (|X - C|^2 - r^2) / 2 = 0 has the gradient g = X - C; differentiated,
+    g.v_X = g.v_C and g.a_X = g.a_C - |v_X - v_C|^2."""
 
     center: PointMotion
     radius: float
     center_name: str
     link: str
 
+    def gradient(self, X: Array) -> Array:
+        """g = X - C."""
+        return X - self.center.p
+
+    def velocity_rhs(self, g: Array, X: Array) -> Array:
+        """g.v_C."""
+        assert self.center.v is not None
+        return dot(g, self.center.v)
+
+    def acceleration_rhs(self, g: Array, X: Array, v_X: Array) -> Array:
+        """g.a_C - |v_X - v_C|^2."""
+        assert self.center.v is not None and self.center.a is not None
+        v_rel = v_X - self.center.v
+        return dot(g, self.center.a) - dot(v_rel, v_rel)
+
 
 @dataclass(frozen=True)
 class Line:
-    """X slides on the line through Q with unit direction w, fixed in a known guide link."""
+    """X slides on the line through Q with unit direction w, fixed in a known guide link.
+
+    Its row is a slider's, n.(X - Q) = 0 with n = k x w, the follower's point X the unknown:
+    the gradient is n and the right-hand sides are the whole system's
+    (``constraints.slider_velocity_rhs``, ``constraints.slider_acceleration_rhs``):
+    n.v_X = n.v_Q + omega w.(X - Q) and n.a_X = n.a_Q + 2 omega w.(v_X - v_Q) + alpha w.(X - Q).
+    """
 
     through: PointMotion
     direction: Array
     omega: Array | None
     alpha: Array | None
     guide: str
+
+    def gradient(self, X: Array) -> Array:
+        """g = n = k x w, the slot's normal."""
+        return perp(self.direction)
+
+    def velocity_rhs(self, g: Array, X: Array) -> Array:
+        """n.v_Q + omega w.(X - Q)."""
+        Q = self.through
+        assert Q.v is not None and self.omega is not None
+        return slider_velocity_rhs(g, dot(self.direction, X - Q.p), Q.v, self.omega)
+
+    def acceleration_rhs(self, g: Array, X: Array, v_X: Array) -> Array:
+        """n.a_Q + 2 omega w.(v_X - v_Q) + alpha w.(X - Q)."""
+        Q, w = self.through, self.direction
+        assert Q.v is not None and Q.a is not None
+        assert self.omega is not None and self.alpha is not None
+        wd = dot(w, X - Q.p)
+        return slider_acceleration_rhs(g, w, wd, Q.a, self.omega, self.alpha, v_X - Q.v)
 
 
 Locus = Circle | Line
@@ -100,35 +144,6 @@ def digits(a: float, b: float) -> int:
     return next((n for n in range(6, 16) if f"{a:.{n}g}" != f"{b:.{n}g}"), 15)
 
 
-def _constraint_row(locus: Locus, X: Array) -> Array:
-    """Gradient of the constraint: (X - C) for a circle, the slot normal n = k x w for a line."""
-    return X - locus.center.p if isinstance(locus, Circle) else perp(locus.direction)
-
-
-def _velocity_rhs(locus: Locus, row: Array, X: Array) -> Array:
-    """Circle: (X-C).v_X = (X-C).v_C.   Line: n.v_X = n.v_Q + omega w.(X - Q).
-    (``row`` is the constraint's gradient, X - C or n.)"""
-    if isinstance(locus, Circle):
-        assert locus.center.v is not None
-        return dot(row, locus.center.v)
-    assert locus.through.v is not None and locus.omega is not None
-    return dot(row, locus.through.v) + locus.omega * dot(locus.direction, X - locus.through.p)
-
-
-def _acceleration_rhs(locus: Locus, row: Array, X: Array, v_X: Array) -> Array:
-    """Circle: (X-C).a_X = (X-C).a_C - |v_X - v_C|^2.
-    Line: n.a_X = n.a_Q + 2 omega w.(v_X - v_Q) + alpha w.(X - Q)."""
-    if isinstance(locus, Circle):
-        assert locus.center.v is not None and locus.center.a is not None
-        v_rel = v_X - locus.center.v
-        return dot(row, locus.center.a) - dot(v_rel, v_rel)
-    Q = locus.through
-    assert Q.v is not None and Q.a is not None
-    assert locus.omega is not None and locus.alpha is not None
-    w = locus.direction
-    return dot(row, Q.a) + 2.0 * locus.omega * dot(w, v_X - Q.v) + locus.alpha * dot(w, X - Q.p)
-
-
 def _solve(row1: Array, row2: Array, rhs1: Array, rhs2: Array, det: Array) -> Array:
     """[row1; row2] x = [rhs1; rhs2] per sample (``rigid.solve_2x2``), as (N, 2)."""
     out = np.empty((det.size, 2))
@@ -139,17 +154,18 @@ def _solve(row1: Array, row2: Array, rhs1: Array, rhs2: Array, det: Array) -> Ar
 
 def point_motion(first: Locus, second: Locus, X: Array, order: int) -> tuple[PointMotion, Array]:
     """Velocity and acceleration of X from the differentiated constraints G v_X = b (2x2,
-    Cramer), and sin(g1, g2) = |det G| / (|g1| |g2|), the sine of the angle between the
+    Cramer; G's rows the loci's gradients, b their ``velocity_rhs`` and ``acceleration_rhs``),
+    and sin(g1, g2) = |det G| / (|g1| |g2|), the sine of the angle between the
     gradients (0: a dead centre)."""
-    g1, g2 = _constraint_row(first, X), _constraint_row(second, X)
+    g1, g2 = first.gradient(X), second.gradient(X)
     det = cross(g1, g2)
     norms = np.sqrt(dot(g1, g1) * dot(g2, g2))
     sine = np.abs(det) / np.where(norms > 0.0, norms, 1.0)
     if order < 1:
         return PointMotion(X), sine
     det = np.where(det != 0.0, det, np.inf)
-    v = _solve(g1, g2, _velocity_rhs(first, g1, X), _velocity_rhs(second, g2, X), det)
+    v = _solve(g1, g2, first.velocity_rhs(g1, X), second.velocity_rhs(g2, X), det)
     if order < 2:
         return PointMotion(X, v), sine
-    rhs1, rhs2 = _acceleration_rhs(first, g1, X, v), _acceleration_rhs(second, g2, X, v)
+    rhs1, rhs2 = first.acceleration_rhs(g1, X, v), second.acceleration_rhs(g2, X, v)
     return PointMotion(X, v, _solve(g1, g2, rhs1, rhs2, det)), sine

@@ -46,10 +46,12 @@ def test_velocity_condition_number_is_scale_invariant() -> None:
 def test_velocity_jacobian_is_the_constraint_systems(doc: dict[str, object], turn: float) -> None:
     """The velocity system's J built at one pose (``velocity_jacobian``, the condition number's)
     equals ``ConstraintSystem(scene, moving links, drivers=True)``'s, entry by entry to 1e-15
-    of its largest entry, and so do the rows that are lengths: every preset family, the block
-    in a slotted lever (prismatic) and six-bars, the driver turned away from the drawn pose. The
-    condition number is numpy's cond of that J scaled (rel 1e-12 cond: entries that differ by
-    rounding move the smallest singular value by about 1e-15 cond of itself)."""
+    of its largest entry (its ``LinearForm``'s products round otherwise), and bit for bit
+    joint by joint (the same row functions), and so do the rows that are lengths: every preset
+    family, the block in a slotted lever (prismatic) and six-bars, the driver turned away from
+    the drawn pose. The condition number is numpy's cond of that J scaled (rel 1e-12 cond:
+    entries that differ by rounding move the smallest singular value by about 1e-15 cond of
+    itself)."""
     drivers = doc["drivers"]
     assert isinstance(drivers, list)
     drivers[0]["angle_deg"] = turn
@@ -63,6 +65,9 @@ def test_velocity_jacobian_is_the_constraint_systems(doc: dict[str, object], tur
     _, expected, _ = system.equations(KnownPoses(motion.links, scene).at(0), 0)
     np.testing.assert_allclose(J, expected, rtol=0.0, atol=1e-15 * np.max(np.abs(expected)))
     assert np.array_equal(lengths, system.length_rows)
+    general = copy.copy(system)
+    general.linear = None  # joint by joint
+    assert np.array_equal(J, general.equations(KnownPoses(motion.links, scene).at(0), 0)[1])
     # cond of that J, rotation columns over the size and angle rows times it: numpy's 2-norm cond
     expected[:, 2::3] /= scene.size
     expected[~system.length_rows] *= scene.size
