@@ -32,7 +32,7 @@ from solver.teaching.mistakes import (
 )
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
-# The examples with worked solutions (a gear train's is not written yet).
+# The examples whose worked solutions list typical mistakes of the catalogue (linkages, chains).
 SOLVED = [
     path
     for path in sorted(EXAMPLES.glob("*.json"))
