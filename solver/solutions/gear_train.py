@@ -16,7 +16,7 @@ steps' checks state the arithmetic between them.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
@@ -209,7 +209,7 @@ def data_step(ctx: GearContext) -> Step:
     b.line("&", *joined(r",\quad ", given))
     b.say(CONVENTION)
     step = b.build()
-    return Step(step.kind, step.title, step.latex, step.text, step.values, step.checks, figure(ctx))
+    return replace(step, figure=train_figure(scene))
 
 
 def freedom_step(ctx: GearContext) -> Step:
@@ -635,13 +635,13 @@ def solve_gear_train(scene: GearTrainScene, digits: int) -> Solution:
 # --- the figure ---------------------------------------------------------------------------------
 
 
-def figure(ctx: GearContext) -> str:
+def train_figure(scene: GearTrainScene) -> str:
     """The train to scale at t = 0: pitch circles (an annulus drawn with its rim), each axis,
     the carriers as bars from their axis to their planets'; '' without a module."""
-    members = ctx.body["members"]
-    if ctx.scene.module is None:
+    if scene.module is None:
         return ""
-    gears = ctx.scene.gears
+    members = analyze_gear_train(scene).as_dict()["members"]
+    gears = scene.gears
     extent = [
         (members[g.name]["centre"][0] + sx * members[g.name]["pitch_radius"] * k,
          members[g.name]["centre"][1] + sy * members[g.name]["pitch_radius"] * k)
@@ -667,7 +667,7 @@ def figure(ctx: GearContext) -> str:
         else:
             canvas.circle(centre, r, [("fill", "none"), ink, ("stroke-width", "0.35"),
                                       ("stroke-dasharray", "2 1")], 3)  # fmt: skip
-    for carrier in ctx.scene.carriers:
+    for carrier in scene.carriers:
         axis = canvas.px(members[carrier]["centre"])
         for gear in gears:
             if gear.carrier == carrier:
@@ -686,5 +686,5 @@ def figure(ctx: GearContext) -> str:
             centre[0] + 1.2, centre[1] - 1.2)  # fmt: skip
         canvas.text(at, label, [("font-size", "3"), ("fill", "#000000")], 2)
     caption = f"pitch circles to scale, {scale_text(per_mm * 10, 'm')}"
-    title = f"The gear train {ctx.scene.title or ''}".strip()
+    title = f"The gear train {scene.title or ''}".strip()
     return paper_document(canvas, (x0, y0, width, height), title, caption, {})

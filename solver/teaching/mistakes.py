@@ -99,6 +99,18 @@ _ENTRIES = (
         "Degrees for radians",
         "Rates used or given in degrees where the formulas and the answer are in radians.",
     ),
+    # --- gear trains (exercises) ---
+    TypicalMistake(
+        "internal_mesh_as_external",
+        "The sign of an internal mesh",
+        "An annulus and its pinion taken to turn opposite ways (-N_a/N_b, as an external pair), "
+        "where they turn the same way (+N_a/N_b) seen from the carrier.",
+    ),
+    TypicalMistake(
+        "relative_for_absolute",
+        "A planet's speed relative to its carrier for its absolute speed",
+        "omega_planet - omega_arm (the arm locked) taken for omega_planet, or the other way round.",
+    ),
     # --- a point moving on a moving body ---
     TypicalMistake(
         "relative.carrier_rate",

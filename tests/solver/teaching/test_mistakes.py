@@ -18,7 +18,7 @@ import pytest
 
 import solver
 from solver.exercises import DIFFICULTIES, TYPES, Exercise, ExerciseId, build
-from solver.exercises.checking import check_answers
+from solver.exercises.checking import check_answers, mistakes_of
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.kinematics.relative_motion import coriolis_acceleration
 from solver.kinematics.rigid import perp, rigid_body_acceleration
@@ -71,7 +71,7 @@ def test_every_id_either_output_carries_is_in_the_catalogue_and_every_entry_is_u
     for kind in TYPES:
         for difficulty in DIFFICULTIES:
             e = _exercise(kind, difficulty, 1)
-            diagnosed |= {m.kind for m in typical_mistakes(e)}
+            diagnosed |= {m.kind for m in mistakes_of(e)}
             method = "newton_euler" if kind in DYNAMIC else "vector"
             shown |= {m["kind"] for m in _shown(e.scene, method)}
     assert shown <= set(CATALOGUE), shown - set(CATALOGUE)
