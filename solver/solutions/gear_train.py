@@ -325,8 +325,8 @@ def tabular_step(ctx: GearContext, stage: Stage, known: Sequence[str]) -> Step:
     for gear, (e, written) in ratios.items():
         b.line("&", Equation.of(_e_symbol(stage, gear), written, Num(e)))
     header = " & ".join(rf"\text{{{tex.escape_text(m)}}}" for m in stage.members)
-    locked: list[Piece] = [r"\text{" + tex.escape_text(f"{arm} locked, {f} turned x") + "}"]
-    turned: list[Piece] = [r"\text{" + tex.escape_text(f"all turned with {arm}") + "}"]
+    locked: list[Piece] = [r"\text{" + tex.escape_text(f"{arm} locked, {f} +x") + "}"]
+    turned: list[Piece] = [r"\text{" + tex.escape_text(f"all with {arm} +y") + "}"]
     total: list[Piece] = [r"\text{sum } \omega"]
     for member in stage.members:
         if member == f:

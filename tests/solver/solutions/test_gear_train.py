@@ -93,7 +93,7 @@ def test_planetary_ring_fixed_tabular_and_formula_give_shigley_closed_form() -> 
     assert value(formula, "r(sun,planet)") == pytest.approx(-20 / 30, rel=1e-15)
     assert value(formula, "e(sun,ring)") == pytest.approx(-20 / 80, rel=1e-15)
     # the three rows of the table, and the formula written out
-    for row in ("arm locked, sun turned x", "all turned with arm", r"\text{sum } \omega"):
+    for row in ("arm locked, sun +x", "all with arm +y", r"\text{sum } \omega"):
         assert row in table.latex
     assert r"\frac{\omega_L - \omega_{arm}}{\omega_F - \omega_{arm}}" in formula.latex
     assert "counter-clockwise positive" in solution.steps[0].text
