@@ -11,9 +11,11 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.errors import KinematicsError
-from solver.exercises.answers import solve_scene, value_at
+from solver.exercises.answers import Solved, solve_scene, value_at
 from solver.exercises.mistakes import WrongAnswers
 from solver.exercises.model import Exercise
+from solver.gears import analyze_gear_train, parse_gear_train
+from solver.teaching.mistakes import rings_as_external
 
 
 def _values(exercise: Exercise, scene: Mapping[str, Any]) -> dict[str, float] | None:
@@ -40,10 +42,13 @@ def gear_train_mistakes(exercise: Exercise) -> list[WrongAnswers]:
                 "counter-clockwise is positive, and a differential adds its inputs with signs."
             )
             out.append(WrongAnswers("rotation_sign", sentence, values))
-    gears = {n: {**g, "internal": False} for n, g in scene["gears"].items()}
     if any(g.get("internal") for g in scene["gears"].values()):
-        variant = {k: v for k, v in scene.items() if k != "module"} | {"gears": gears}
-        values = _values(exercise, variant)
+        try:
+            external = rings_as_external(parse_gear_train(scene))
+            wrong = Solved(external, analyze_gear_train(external).as_dict())
+            values = {a.key: value_at(wrong, a.path) for a in exercise.asked}
+        except KinematicsError:
+            values = None
         if values is not None:
             out.append(
                 WrongAnswers(

@@ -22,10 +22,11 @@ from typing import Any
 
 import numpy as np
 
+from solver.errors import KinematicsError
 from solver.gears import GearTrainScene, analyze_gear_train, exact, willis_relation
 from solver.gears.train import relations
 from solver.solutions import latex as tex
-from solver.solutions.builder import StepBuilder, Unknown, present_solution
+from solver.solutions.builder import Source, StepBuilder, Unknown, present_solution
 from solver.solutions.equation import (
     Boxed,
     Equation,
@@ -40,7 +41,8 @@ from solver.solutions.equation import (
 )
 from solver.solutions.figures import model_scale, paper_document, scale_text
 from solver.solutions.format import Formatter
-from solver.solutions.model import Solution, Step
+from solver.solutions.model import Mistake, Solution, Step, Value
+from solver.teaching.mistakes import rings_as_external, typical_mistake
 from solver.teaching.svg import Canvas, View
 
 CONVENTION = (
@@ -624,12 +626,72 @@ def gear_train_steps(ctx: GearContext) -> list[Step]:
     return steps
 
 
+def _speed_value(ctx: GearContext, omega: float, source: Source | None = None) -> Value:
+    return Value(omega, "rad/s", ctx.fmt.display(omega, "rad/s"), source)
+
+
+def gear_train_mistakes(ctx: GearContext, steps: Sequence[Step]) -> list[Mistake]:
+    """The sign and frame mistakes of this train, each with the wrong number it gives beside the
+    right one, under the first stage's tabular step (else the results): an annulus taken as an
+    external gear (``teaching.mistakes.rings_as_external``, the solver's speeds of that train),
+    a planet's speed relative to its carrier taken for its absolute speed."""
+    kinds = [s.kind for s in steps]
+    at = kinds.index("gears.tabular") if "gears.tabular" in kinds else len(steps) - 1
+    scene, members = ctx.scene, ctx.body["members"]
+    given = {name for name, _ in scene.inputs}
+    out = []
+    if any(g.internal for g in scene.gears):
+        try:
+            wrong = analyze_gear_train(rings_as_external(scene)).as_dict()["members"]
+        except KinematicsError:
+            wrong = None
+        order = [*scene.carriers, *(g.name for g in scene.gears)]
+        name = next((n for n in order if n not in given), None)
+        if wrong is not None and name is not None:
+            mistake = typical_mistake("internal_mesh_as_external")
+            w, r = wrong[name]["omega"], members[name]["omega"]
+            out.append(
+                Mistake(
+                    mistake.id,
+                    mistake.title,
+                    f"An annulus turns the same way as its pinion seen from the carrier: "
+                    f"+N_a/N_b. Taken as external (-N_a/N_b) it gives omega_{name} = "
+                    f"{ctx.fmt.display(w, 'rad/s')} instead of {ctx.fmt.display(r, 'rad/s')}.",
+                    {
+                        "wrong": _speed_value(ctx, w),
+                        "right": _speed_value(ctx, r, ("members", name, "omega")),
+                    },
+                    step=at,
+                )
+            )
+    planet = next((g for g in scene.gears if g.carrier is not None), None)
+    if planet is not None:
+        mistake = typical_mistake("relative_for_absolute")
+        rel, absolute = members[planet.name]["omega_relative"], members[planet.name]["omega"]
+        out.append(
+            Mistake(
+                mistake.id,
+                mistake.title,
+                f"Row 1 of the table (the carrier {planet.carrier} locked) gives {planet.name}'s "
+                f"speed relative to the carrier, {ctx.fmt.display(rel, 'rad/s')}; its absolute "
+                f"speed adds the carrier's (row 2): {ctx.fmt.display(absolute, 'rad/s')}.",
+                {
+                    "wrong": _speed_value(ctx, rel, ("members", planet.name, "omega_relative")),
+                    "right": _speed_value(ctx, absolute, ("members", planet.name, "omega")),
+                },
+                step=at,
+            )
+        )
+    return out
+
+
 def solve_gear_train(scene: GearTrainScene, digits: int) -> Solution:
     """The worked solution of a gear train (the method 'tabular': the tabular and the formula
     method side by side), its ``analysis`` the /analyze body."""
     ctx = GearContext(scene, digits)
     steps = gear_train_steps(ctx)
-    return Solution(tuple(steps), (), ctx.body, "tabular", "tabular", digits)
+    mistakes = gear_train_mistakes(ctx, steps)
+    return Solution(tuple(steps), tuple(mistakes), ctx.body, "tabular", "tabular", digits)
 
 
 # --- the figure ---------------------------------------------------------------------------------

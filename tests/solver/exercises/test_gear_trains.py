@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import pytest
 
+import solver
 from solver.exercises import DIFFICULTIES, ExerciseId, build, generate
 from solver.exercises.checking import check_answers, mistakes_of
 from solver.exercises.solutions import worked_solution
@@ -68,4 +69,18 @@ def test_the_ring_taken_as_external_is_diagnosed() -> None:
     expected = -e_wrong * e.scene["inputs"]["sun"] / (1 - e_wrong)
     assert made.values["omega_arm"] == pytest.approx(expected, rel=1e-12)
     row = check_answers(e, {"omega_arm": expected})["results"][0]
+    assert row["mistake"] == "internal_mesh_as_external"
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_ring_as_external_is_graded_and_shown_alike(seed: int) -> None:
+    """The checker's wrong omega_arm and the worked solution's are the same number (one
+    definition: ``teaching.mistakes.rings_as_external``, analysed by the solver)."""
+    e = build(ExerciseId("planetary_output", "basic", seed, 0))
+    (made,) = [m for m in mistakes_of(e) if m.kind == "internal_mesh_as_external"]
+    shown = solver.solve(e.scene).as_dict()["mistakes"]
+    (same,) = [m for m in shown if m["kind"] == "internal_mesh_as_external"]
+    assert same["values"]["wrong"]["value"] == made.values["omega_arm"]
+    assert same["values"]["right"]["value"] == e.answers["omega_arm"]
+    row = check_answers(e, {"omega_arm": same["values"]["wrong"]["value"]})["results"][0]
     assert row["mistake"] == "internal_mesh_as_external"
