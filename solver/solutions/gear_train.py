@@ -15,6 +15,8 @@ steps' checks state the arithmetic between them.
 
 from __future__ import annotations
 
+import itertools
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -697,16 +699,52 @@ def solve_gear_train(scene: GearTrainScene, digits: int) -> Solution:
 # --- the figure ---------------------------------------------------------------------------------
 
 
+def figure_centres(
+    scene: GearTrainScene, members: Mapping[str, Any]
+) -> dict[str, tuple[float, float]]:
+    """Each member's axis in the figure: the solver's centre (/analyze), the parts of the train
+    that no mesh joins (two stages in series, keyed on one shaft) moved side by side along x
+    where they would lie on one another."""
+    part = {name: name for name in scene.members}
+
+    def find(name: str) -> str:
+        while part[name] != name:
+            name = part[name]
+        return name
+
+    for mesh in scene.meshes:
+        part[find(mesh.gears[0])] = find(mesh.gears[1])
+    for gear in scene.gears:
+        if gear.carrier is not None:
+            part[find(gear.name)] = find(gear.carrier)
+    boxes: dict[str, list[float]] = {}
+    for gear in scene.gears:
+        (x, y), r = members[gear.name]["centre"], members[gear.name]["pitch_radius"] * 1.15
+        box = boxes.setdefault(find(gear.name), [x - r, y - r, x + r, y + r])
+        boxes[find(gear.name)] = [min(box[0], x - r), box[1], max(box[2], x + r), box[3]]
+    shift: dict[str, float] = {}
+    right = -math.inf
+    for key, box in boxes.items():
+        shift[key] = right + 0.1 * (box[2] - box[0]) - box[0] if box[0] < right else 0.0
+        right = box[2] + shift[key]
+    out = {}
+    for name in scene.members:
+        x, y = members[name]["centre"]
+        out[name] = (x + shift.get(find(name), 0.0), y)
+    return out
+
+
 def train_figure(scene: GearTrainScene) -> str:
     """The train to scale at t = 0: pitch circles (an annulus drawn with its rim), each axis,
     the carriers as bars from their axis to their planets'; '' without a module."""
     if scene.module is None:
         return ""
     members = analyze_gear_train(scene).as_dict()["members"]
+    axis_of = figure_centres(scene, members)
     gears = scene.gears
     extent = [
-        (members[g.name]["centre"][0] + sx * members[g.name]["pitch_radius"] * k,
-         members[g.name]["centre"][1] + sy * members[g.name]["pitch_radius"] * k)
+        (axis_of[g.name][0] + sx * members[g.name]["pitch_radius"] * k,
+         axis_of[g.name][1] + sy * members[g.name]["pitch_radius"] * k)
         for g in gears for k in ((1.15,) if g.internal else (1.0,))
         for sx, sy in ((1, 1), (-1, -1))
     ]  # fmt: skip
@@ -718,9 +756,9 @@ def train_figure(scene: GearTrainScene) -> str:
     x0, y0 = min(xs) - margin, min(ys) - margin
     width, height = max(xs) - min(xs) + 2 * margin, max(ys) - min(ys) + 2 * margin + 8.0
     ink = ("stroke", "#222222")
-    for gear in gears:
+    for gear in sorted(gears, key=lambda g: not g.internal):  # an annulus under its pinions
         entry = members[gear.name]
-        centre = canvas.px(entry["centre"])
+        centre = canvas.px(axis_of[gear.name])
         r = entry["pitch_radius"] / per_mm
         if gear.internal:
             canvas.circle(centre, r * 1.15, [("fill", "#eeeeee"), ink, ("stroke-width", "0.3")], 3)
@@ -729,24 +767,44 @@ def train_figure(scene: GearTrainScene) -> str:
         else:
             canvas.circle(centre, r, [("fill", "none"), ink, ("stroke-width", "0.35"),
                                       ("stroke-dasharray", "2 1")], 3)  # fmt: skip
+    for shaft in scene.shafts:  # keyed members drawn apart: a dashed line joins them
+        for a, b in itertools.pairwise(shaft):
+            if axis_of[a] != axis_of[b]:
+                style = [
+                    ("stroke", "#777777"),
+                    ("stroke-width", "0.4"),
+                    ("stroke-dasharray", "1 1"),
+                ]
+                canvas.line(
+                    canvas.px(axis_of[a]), canvas.px(axis_of[b]), style, [("class", "shaft")], 3
+                )
     for carrier in scene.carriers:
-        axis = canvas.px(members[carrier]["centre"])
+        axis = canvas.px(axis_of[carrier])
         for gear in gears:
             if gear.carrier == carrier:
-                canvas.line(axis, canvas.px(members[gear.name]["centre"]),
+                canvas.line(axis, canvas.px(axis_of[gear.name]),
                             [("stroke", "#b5471b"), ("stroke-width", "1.2"),
                              ("stroke-linecap", "round")], [("class", "carrier")], 3)  # fmt: skip
-        canvas.text((axis[0] + 1.5, axis[1] + 4.0), carrier,
-                    [("font-size", "3"), ("fill", "#b5471b")], 2)  # fmt: skip
+        held = [g for g in gears if g.carrier == carrier]
+        end = canvas.px(axis_of[held[0].name]) if held else axis
+        middle = ((axis[0] + end[0]) / 2, (axis[1] + end[1]) / 2 + 3.6)
+        style = [("font-size", "3"), ("fill", "#b5471b"), ("text-anchor", "middle")]
+        canvas.text(middle, carrier, style, 2)
     for gear in gears:
         entry = members[gear.name]
-        centre = canvas.px(entry["centre"])
+        centre = canvas.px(axis_of[gear.name])
         r = entry["pitch_radius"] / per_mm
         canvas.circle(centre, "0.8", [("fill", "#ffffff"), ink, ("stroke-width", "0.3")], 3)
         label = f"{gear.name} ({gear.teeth})"
-        at = (centre[0] - r * 0.7, centre[1] - r * 0.72) if gear.internal else (
-            centre[0] + 1.2, centre[1] - 1.2)  # fmt: skip
-        canvas.text(at, label, [("font-size", "3"), ("fill", "#000000")], 2)
+        # an annulus inside its rim, top left; a planet above it; a gear on the frame below it
+        if gear.internal:
+            at, anchor = (centre[0] - r * 0.7, centre[1] - r * 0.72), "start"
+        elif gear.carrier is not None:
+            at, anchor = (centre[0], centre[1] - r - 1.2), "middle"
+        else:
+            at, anchor = (centre[0], centre[1] + r + 3.6), "middle"
+        style = [("font-size", "3"), ("fill", "#000000"), ("text-anchor", anchor)]
+        canvas.text(at, label, style, 2)
     caption = f"pitch circles to scale, {scale_text(per_mm * 10, 'm')}"
     title = f"The gear train {scene.title or ''}".strip()
     return paper_document(canvas, (x0, y0, width, height), title, caption, {})
