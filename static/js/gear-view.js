@@ -77,14 +77,19 @@ export class GearTrains {
     document.body.dataset.family = FAMILY;
     this.root.hidden = false;
     this.source = { type, name };
-    if (type === 'gear') {
+    let ok;
+    try {
       this.params = {};
-      this.doc = null;
-    } else {
-      this.doc = await api.getExample(name);
+      this.doc = type === 'gear' ? null : await api.getExample(name);
+      this.buildFields();
+      ok = await this.update();
+    } catch (err) {
+      ok = err.detail || err.message;
     }
-    this.buildFields();
-    await this.update();
+    if (typeof ok === 'string') {
+      this.message.textContent = `This gear train cannot be shown: ${ok}`;
+      this.message.hidden = false;
+    }
     this.loop();
   }
 
