@@ -19,6 +19,7 @@ METHODS = {
     "vector": "relative velocities (vector method)",
     "loop": "loop closure in complex form",
     "newton_euler": "Newton-Euler (joint forces and the driving torque)",
+    "tabular": "the tabular (Willis) method and the formula method",
 }
 
 
@@ -51,6 +52,8 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
     """The scene's data as tables (from the validated document)."""
     if doc.get("kind") == "spatial_chain":
         return _chain_tables(doc)
+    if doc.get("kind") == "gear_train":
+        return _gear_tables(doc)
     instant = f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>" if "time" in doc else ""
     return _linkage_tables(doc) + _moving_point_table(doc.get("moving_points", [])) + instant
 
@@ -78,6 +81,38 @@ def _chain_tables(doc: Mapping[str, Any]) -> str:
             [_e(n), _e(p.get("body")), _vector(p.get("position"))]
             for n, p in doc.get("points", {}).items()
         ),
+    )
+
+
+def _gear_tables(doc: Mapping[str, Any]) -> str:
+    """A gear train's gears, meshes and inputs."""
+    mounts = doc.get("mounts", {})
+    return (
+        _table(
+            "Gears",
+            ["gear", "teeth", "", "axis"],
+            (
+                [
+                    _e(n),
+                    _e(g.get("teeth")),
+                    "internal" if g.get("internal") else "external",
+                    _e(f"on {mounts[n]}" if n in mounts else "frame"),
+                ]
+                for n, g in doc.get("gears", {}).items()
+            ),
+        )
+        + _table(
+            "Meshes, shafts and carriers",
+            ["", "members"],
+            [["mesh", _e(" - ".join(map(str, m)))] for m in doc.get("meshes", [])]
+            + [["shaft", _e(", ".join(map(str, s)))] for s in doc.get("shafts", [])]
+            + [["carrier", _e(c)] for c in doc.get("carriers", [])],
+        )
+        + _table(
+            "Inputs (rad/s)",
+            ["member", "omega"],
+            ([_e(n), _e(w)] for n, w in doc.get("inputs", {}).items()),
+        )
     )
 
 
@@ -148,9 +183,8 @@ def _inline_svg(figure: str) -> str:
 
 def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
     """The page of ``solution`` (a /solution body) for the scene document ``doc``."""
-    title = doc.get("title") or (
-        "spatial chain" if doc.get("kind") == "spatial_chain" else "linkage"
-    )
+    kinds = {"spatial_chain": "spatial chain", "gear_train": "gear train"}
+    title = doc.get("title") or kinds.get(str(doc.get("kind")), "linkage")
     steps = "".join(
         f'<li class="step"><h3>{_e(s["title"])}</h3>'
         + (

@@ -270,9 +270,10 @@ def solve(
             "kind: worked solutions take a 'linkage' or 'spatial_chain' scene "
             "(a cam's is not written yet)"
         )
-    if isinstance(parsed, GearTrainScene):
-        raise InvalidScene("kind: the worked solution of a gear_train is not written yet")
     solution = worked.solve(parsed, method, digits)
+    if isinstance(parsed, GearTrainScene):  # its steps' numbers point into its /analyze body
+        body = analyze_gear_train(parsed, None, found).as_dict()
+        return SolutionResult(worked.solution_body(solution, body, None, found))
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
         return SolutionResult(worked.solution_body(solution, body, None, found))

@@ -40,7 +40,8 @@ def _example(name: str) -> dict[str, Any]:
 
 class SolutionRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
+        description="A scene-v1 document: kind 'linkage' or 'spatial_chain', or 'gear_train' "
+        "(written out by the tabular and formula methods whatever 'method' asks; docs/GEARS.md).",
         examples=[_example("S000-T2"), _example("S002-spatial-arm")],
     )
     method: Method = Field(

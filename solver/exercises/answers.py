@@ -2,8 +2,9 @@
 
 A path names a number of the /analyze response of the scene (``points.C.velocity.0``,
 ``links.coupler.omega``, ``joints.0.coriolis_acceleration.1``, ``moving_points.M.acceleration.0``,
-``bodies.3.omega.2``); the solver's result objects carry the same names, so the path is walked on
-them directly. ``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
+``bodies.3.omega.2``; a gear train's ``members.arm.omega``, walked on its /analyze body); the
+solver's result objects carry the same names, so the path is walked on them directly.
+``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
 Dynamics paths (``drivers.0.torque``, ``joints.1.force.0``, ``sweep[samples=720,k=4/100].cycle.
 flywheel_inertia``) are walked on the /analyze (or /sweep) body itself.
 Nothing here computes a kinematic quantity: every number is the solver's.
@@ -24,6 +25,7 @@ from solver.api import analyze as analyze_body
 from solver.api import sweep as sweep_body
 from solver.errors import InvalidScene
 from solver.exercises.model import Exercise
+from solver.gears import GearTrainScene, parse_gear_train
 from solver.kinematics.spatial import (
     SpatialAnalysis,
     SpatialChain,
@@ -52,8 +54,8 @@ _FIELDS = frozenset(
 class Solved:
     """A scene parsed and analysed once (all quantities), to read any number of paths from."""
 
-    scene: LinkageScene | SpatialChain
-    analysis: LinkageAnalysis | SpatialAnalysis
+    scene: LinkageScene | SpatialChain | GearTrainScene
+    analysis: LinkageAnalysis | SpatialAnalysis | Mapping[str, Any]  # a gear train's body
     document: Mapping[str, Any] = field(default_factory=dict)  # for the dynamics' bodies
     bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
 
@@ -66,9 +68,11 @@ class Solved:
         return self.bodies[key]
 
 
-def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain:
+def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScene:
     if doc.get("kind") == "spatial_chain":
         return parse_spatial_chain(doc)
+    if doc.get("kind") == "gear_train":
+        return parse_gear_train(doc)
     return parse_linkage(doc)
 
 
@@ -77,6 +81,8 @@ def solve_scene(doc: Mapping[str, Any]) -> Solved:
     scene = parse(doc)
     if isinstance(scene, LinkageScene):
         return Solved(scene, analyze(scene), doc)
+    if isinstance(scene, GearTrainScene):  # its /analyze body (docs/GEARS.md)
+        return Solved(scene, analyze_body(doc).as_dict(), doc)
     return Solved(scene, analyze_spatial_chain(scene), doc)
 
 
@@ -132,6 +138,8 @@ def _step(node: Any, part: str, path: str) -> Any:
 def value_at(solved: Solved, path: str) -> float:
     """The number at ``path`` (see the module docstring); ``InvalidScene`` if there is none."""
     parts = path.split(".")
+    if isinstance(solved.scene, GearTrainScene):  # members.<name>.omega, meshes.<k>...
+        return _number(solved.analysis, parts, path)
     if parts[0] == "events":
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: expected events.<moving point>.<target>.time")
@@ -142,6 +150,7 @@ def value_at(solved: Solved, path: str) -> float:
         body: Any = solved.dynamics(parts[0])
         return _number(body, parts[1:] if parts[0].startswith("sweep[") else parts, path)
     a = solved.analysis
+    assert isinstance(a, LinkageAnalysis | SpatialAnalysis)
     roots: dict[str, Any] = {"points": a.points}
     if isinstance(a, LinkageAnalysis):
         roots |= {"links": a.links, "joints": a.joints, "moving_points": a.moving_points}

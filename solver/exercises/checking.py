@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.errors import InvalidScene
+from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
@@ -29,6 +30,14 @@ def _diagnosis(
         ):
             return mistake
     return None
+
+
+def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
+    """The typical mistakes of any exercise: a gear train's (``solver.exercises.gear_mistakes``),
+    else a linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    if exercise.scene.get("kind") == "gear_train":
+        return gear_train_mistakes(exercise)
+    return typical_mistakes(exercise)
 
 
 def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:
@@ -52,7 +61,7 @@ def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> di
             result |= {"verdict": "correct", "relative_error": error, "diagnosis": None}
         else:
             if mistakes is None:
-                mistakes = typical_mistakes(exercise)
+                mistakes = mistakes_of(exercise)
             found = _diagnosis(asked, given, expected, mistakes)
             result |= {
                 "verdict": "incorrect",

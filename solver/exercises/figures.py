@@ -15,7 +15,9 @@ from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
+from solver.gears import parse_gear_train
 from solver.model.scene import Joint, ground_pivot, parse_linkage
+from solver.solutions.gear_train import train_figure
 from solver.teaching.svg import Attribute, Canvas, View, element
 
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
@@ -333,4 +335,6 @@ def _spatial(scene: Mapping[str, Any]) -> str:
 
 def figure_svg(scene: Mapping[str, Any]) -> str:
     """The exercise's figure (a standalone SVG document)."""
+    if scene.get("kind") == "gear_train":
+        return train_figure(parse_gear_train(scene))
     return _spatial(scene) if scene.get("kind") == "spatial_chain" else _linkage(scene)

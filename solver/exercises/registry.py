@@ -10,7 +10,7 @@ import random
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from solver.exercises import dynamics
+from solver.exercises import dynamics, gear_trains
 from solver.exercises.families import (
     four_bar_acceleration,
     four_bar_poles,
@@ -142,6 +142,21 @@ TYPES: Mapping[str, ExerciseType] = {
             "(weights and a load from standard on; the mean torque at challenging).",
             ("energy_fluctuation", "flywheel_inertia", "mean_torque"), dynamics.flywheel,
             "flywheel",
+        ),
+        # gear trains (docs/GEARS.md): mistakes in solver.exercises.gear_trains
+        _type(
+            "planetary_output", "Planetary train: output speed",
+            "A simple planetary train, the sun driven and the ring fixed: the arm's speed, from "
+            "standard on the planet's, at challenging with the ring turning too.",
+            ("omega_arm", "omega_planet"), gear_trains.planetary_output, "gear_train",
+        ),
+        _type(
+            "differential_carrier", "Differential: carrier speed",
+            "A spur-gear differential with both side gears driven: the carrier's speed, from "
+            "standard on a planet's speed relative to it; at challenging a planetary "
+            "differential (sun and ring driven).",
+            ("omega_carrier", "omega_planet1_rel", "omega_arm", "omega_planet_rel"),
+            gear_trains.differential_carrier, "gear_train",
         ),
     )
 }  # fmt: skip

@@ -109,6 +109,20 @@ def svg(
         _arrow(canvas, arrow)
     for dot in dots:
         _dot(canvas, dot)
+    return paper_document(canvas, (x0, y0, width, height), title, caption, extra, [_defs()])
+
+
+def paper_document(
+    canvas: Canvas,
+    box: tuple[float, float, float, float],
+    title: str,
+    caption: str,
+    extra: dict[str, str],
+    head: Sequence[str] = (),
+) -> str:
+    """The drawing as a standalone SVG in millimetres of paper: the view box (x0, y0, width,
+    height), its ``title``, the ``caption`` along its foot, ``extra`` root attributes."""
+    x0, y0, width, height = box
     canvas.text((x0 + 2, y0 + height - 2.5), caption, [*_LABEL, ("fill", "#000000")], digits=2)
     return canvas.document(
         [
@@ -119,7 +133,7 @@ def svg(
             ("font-family", "sans-serif"),
             *extra.items(),
         ],
-        [_defs(), element("title", [], title)],
+        [*head, element("title", [], title)],
     )
 
 

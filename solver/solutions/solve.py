@@ -14,11 +14,13 @@ from typing import Literal, get_args
 
 from solver.analysis.instant import LinkageAnalysis, analyze
 from solver.errors import InvalidScene
+from solver.gears import GearTrainScene
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain
 from solver.model.scene import LinkageScene
 from solver.solutions import latex as tex
 from solver.solutions.classification import classification_steps
 from solver.solutions.format import Formatter
+from solver.solutions.gear_train import solve_gear_train
 from solver.solutions.graphical import graphical_steps, mechanism_figure
 from solver.solutions.instant_centres import instant_centres_step
 from solver.solutions.linkage import (
@@ -137,10 +139,14 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
 
 
-def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4) -> Solution:
+def solve(
+    scene: LinkageScene | SpatialChain | GearTrainScene, method: str = "vector", digits: int = 4
+) -> Solution:
     """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
     ``digits`` significant digits (1..15). Raises ``InvalidScene`` for an unknown method or a
-    bad digit count, and the analysis' own errors (NotAssemblable, SingularConfiguration...)."""
+    bad digit count, and the analysis' own errors (NotAssemblable, SingularConfiguration...).
+    A gear train has one method whatever is asked: the tabular and the formula method
+    (``solver.solutions.gear_train``, method 'tabular')."""
     if method not in METHODS:
         raise InvalidScene(f"method: unknown method {method!r}; available: {', '.join(METHODS)}")
     if (
@@ -153,6 +159,8 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
         )
     if isinstance(scene, LinkageScene):
         return _linkage(scene, method, digits)
+    if isinstance(scene, GearTrainScene):
+        return solve_gear_train(scene, digits)
     analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
     lead = []

@@ -11,10 +11,11 @@ Coriolis term a_Cor = 2 omega x v_rel written omega x v_rel.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from solver.gears import GearTrainScene
 from solver.kinematics.relative_motion import coriolis_acceleration
 from solver.kinematics.rigid import Array, perp, rigid_body_acceleration
 
@@ -98,6 +99,18 @@ _ENTRIES = (
         "degrees_for_radians",
         "Degrees for radians",
         "Rates used or given in degrees where the formulas and the answer are in radians.",
+    ),
+    # --- gear trains (exercises) ---
+    TypicalMistake(
+        "internal_mesh_as_external",
+        "The sign of an internal mesh",
+        "An annulus and its pinion taken to turn opposite ways (-N_a/N_b, as an external pair), "
+        "where they turn the same way (+N_a/N_b) seen from the carrier.",
+    ),
+    TypicalMistake(
+        "relative_for_absolute",
+        "A planet's speed relative to its carrier for its absolute speed",
+        "omega_planet - omega_arm (the arm locked) taken for omega_planet, or the other way round.",
     ),
     # --- a point moving on a moving body ---
     TypicalMistake(
@@ -244,3 +257,15 @@ def omega_for_alpha(a_A: Array, omega: float, r_AB: Array) -> Array:
 def alpha_squared(a_A: Array, omega: float, alpha: float, r_AB: Array) -> Array:
     """a_B = a_A + alpha x r_AB - alpha^2 r_AB for a_A + alpha x r_AB - omega^2 r_AB."""
     return a_A + alpha * perp(r_AB) - alpha**2 * r_AB
+
+
+def rings_as_external(scene: GearTrainScene) -> GearTrainScene:
+    """The train with every annulus taken as an external gear (``internal_mesh_as_external``):
+    each internal mesh's Willis ratio +N_a/N_b written -N_a/N_b. Without its module, so that no
+    centre distance is checked (an external pair could not sit where the annulus does)."""
+    return replace(
+        scene,
+        gears=tuple(replace(g, internal=False) for g in scene.gears),
+        meshes=tuple(replace(m, internal=False) for m in scene.meshes),
+        module=None,
+    )

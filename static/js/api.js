@@ -67,6 +67,8 @@ async function call(method, path, body) {
 }
 
 export const getPresets = () => call('GET', '/presets');
+/** The presets of one family (`gear_trains`, `cams`; docs/GEARS.md). */
+export const getPresetFamily = (family) => call('GET', `/presets?family=${encodeURIComponent(family)}`);
 export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
 export const analyze = (scene, quantities) =>
   call('POST', '/analyze', quantities ? { scene, quantities } : { scene });

@@ -24,6 +24,7 @@ import { installExport } from './export.js';
 import { renderMagnitudes } from './magnitudes.js';
 import { Editor } from './editor.js';
 import { DynamicsPanel } from './dynamics.js';
+import { GearTrains } from './gear-view.js';
 
 // The least samples per revolution (1.5 deg apart: smooth cycle plots, the dynamics' cycle means);
 // more where the drawing needs them (fetchTrack).
@@ -66,7 +67,8 @@ class App {
     this.controls = new Controls({
       preset: (v) => this.onSource(v),
       instant: (v, final) => this.onInstant(v, final),
-      play: (p) => this.setPlaying(p),
+      // Space and Play drive the gear train while one is shown (js/gear-view.js).
+      play: (p) => (this.gearTrains?.shown ? this.gearTrains.setPlaying(!this.gearTrains.playing) : this.setPlaying(p)),
       speed: (s) => { this.speed = s; this.saveHash(); },
       units: (u) => this.onUnits(u),
       options: (o) => this.onOptions(o),
@@ -132,6 +134,10 @@ class App {
     const drawn = (x) => !x.kind || x.kind === 'linkage' || x.kind === 'spatial_chain';
     this.examples = examples.status === 'fulfilled' ? (examples.value.examples || []).filter(drawn) : [];
     this.controls.setPresetChoices([...this.presets.values()], this.examples);
+    // Gear trains (issue 25): their own group at the end of the menu and their own panel.
+    this.gearTrains = new GearTrains($('gear-train'));
+    this.gearTrains.load(examples.status === 'fulfilled' ? examples.value.examples || [] : [])
+      .then(() => this.gearTrains.addChoices($('preset')));
 
     const state = shared.status === 'fulfilled' ? shared.value : null;
     if (state && !state.error) await this.restore(state);
@@ -158,6 +164,11 @@ class App {
 
   async onSource(value) {
     const [type, name] = [value.slice(0, value.indexOf(':')), value.slice(value.indexOf(':') + 1)];
+    if (type === 'gear' || type === 'gear-example') {
+      this.setPlaying(false, { analyse: false });
+      return this.gearTrains.open(type, name);
+    }
+    this.gearTrains?.close();
     this.driverEdits = {};
     // A newly chosen mechanism starts moving, as the page does on opening.
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;

@@ -22,7 +22,7 @@ from solver.teaching.presets import PRESETS
 from tests.solver.solutions.test_solve import unit_floors, verify
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
-# A gear train's worked solution is a later session's (issue 25): every other example.
+# A gear train's worked solution: tests/server/test_gear_solution.py; every other example.
 SCENES = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] != "gear_train"
 )

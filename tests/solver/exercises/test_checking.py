@@ -15,7 +15,7 @@ import pytest
 from solver.errors import InvalidScene
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
 from solver.exercises.answers import solve_scene
-from solver.exercises.checking import check, check_answers
+from solver.exercises.checking import check, check_answers, mistakes_of
 from solver.exercises.mistakes import (
     Numbers,
     lever_alpha,
@@ -91,7 +91,7 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         for difficulty in DIFFICULTIES:
             for seed in SEEDS[:3]:
                 e = build(ExerciseId(kind, difficulty, seed, 0))
-                mistakes = typical_mistakes(e)
+                mistakes = mistakes_of(e)
                 for i, mistake in enumerate(mistakes):
                     for key, wrong in mistake.values.items():
                         asked = next(a for a in e.asked if a.key == key)
@@ -120,6 +120,8 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "inertia_left_out",
         "mean_torque_for_fluctuation",
         "flywheel_factor_two",
+        "internal_mesh_as_external",
+        "relative_for_absolute",
     }, diagnosed
 
 

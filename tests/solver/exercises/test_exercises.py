@@ -67,7 +67,11 @@ def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
     root = ET.fromstring(e.statement.figure_svg)
     assert root.tag == "{http://www.w3.org/2000/svg}svg"
     labels = {t.text for t in root.iter("{http://www.w3.org/2000/svg}text")}
-    assert set(e.scene["points"]) <= labels
+    if e.scene["kind"] == "gear_train":  # each gear labelled with its name and teeth
+        gears = e.scene["gears"]
+        assert {f"{name} ({g['teeth']})" for name, g in gears.items()} <= labels
+    else:
+        assert set(e.scene["points"]) <= labels
     assert any(text and " m" in text for text in labels)  # the scale bar
     if e.scene["kind"] == "linkage":
         assert any(text and ("ω" in text or "φ" in text) for text in labels)

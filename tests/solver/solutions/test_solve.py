@@ -287,7 +287,7 @@ def analyze_cases() -> list[tuple[str, int, dict[str, Any], list[dict[str, Any]]
 
 
 ANALYZE_CASES = analyze_cases()
-# A gear train's worked solution is a later session's (issue 25): every other example.
+# A gear train's worked solution has its own tests (test_gear_train.py): every other example.
 SEED_SCENES = sorted(
     p.stem for p in EXAMPLES.glob("*.json") if json.loads(p.read_text())["kind"] != "gear_train"
 )
