@@ -185,17 +185,19 @@ def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
     """The page of ``solution`` (a /solution body) for the scene document ``doc``."""
     kinds = {"spatial_chain": "spatial chain", "gear_train": "gear train"}
     title = doc.get("title") or kinds.get(str(doc.get("kind")), "linkage")
+    # a step's equations scroll sideways where they are long: the keyboard reaches them
     steps = "".join(
         f'<li class="step"><h3>{_e(s["title"])}</h3>'
         + (
-            f'<div class="math pending" data-latex="{_e(s["latex"])}">{_e(s["latex"])}</div>'
+            f'<div class="math pending" tabindex="0" role="group" aria-label="Equations of step '
+            f'{i}" data-latex="{_e(s["latex"])}">{_e(s["latex"])}</div>'
             if s["latex"]
             else ""
         )
         + f'<p class="text">{_e(s["text"])}</p>'
         + (f'<figure class="figure">{_inline_svg(s["figure"])}</figure>' if s.get("figure") else "")
         + "</li>"
-        for s in solution["steps"]
+        for i, s in enumerate(solution["steps"], start=1)
     )
     mistakes = "".join(
         f"<li><strong>{_e(m['title'])}</strong><br>{_e(m['text'])}</li>"

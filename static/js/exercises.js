@@ -201,7 +201,8 @@ function nextStep() {
   const step = steps[shown];
   const item = el('li', { class: 'step' });
   item.appendChild(el('h3', { class: 'step-title' }, step.title));
-  const math = el('div', { class: 'step-math' });
+  // a long line scrolls sideways inside its block: the keyboard reaches it
+  const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': `Equations of step ${shown + 1}` });
   typeset(step.latex, math);
   item.append(math, el('p', { class: 'step-text' }, step.text));
   $('st-steps').appendChild(item);

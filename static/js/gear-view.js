@@ -198,13 +198,6 @@ export class GearTrains {
       renderSolution(steps, mistakes, solution);
       // no typical mistakes listed (a gear train's solution has none): the steps take the width
       this.root.querySelector('.gear-solution .solution').classList.toggle('no-mistakes', !(solution.mistakes || []).length);
-      // A table of the tabular method may be wider than its column (it scrolls, once KaTeX's
-      // fonts are in): each step's equations are reachable by the keyboard.
-      steps.querySelectorAll('.step-math').forEach((math, i) => {
-        math.tabIndex = 0;
-        math.setAttribute('role', 'group');
-        math.setAttribute('aria-label', `Equations of step ${i + 1}`);
-      });
     } catch (err) {
       if (seq === this.seq) renderMessage(steps, `No worked solution: ${err.detail || err.message}`);
     }

@@ -33,6 +33,16 @@ function el(tag, attrs = {}, text = null) {
   return node;
 }
 
+/**
+ * A step's equations as a block: typeset with KaTeX (the LaTeX as text, and the KaTeX error,
+ * when it cannot be read) in a group that the keyboard reaches, since a long line scrolls
+ * sideways inside it. Returns [block, error or null].
+ */
+export function mathBlock(latex, label) {
+  const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': label });
+  return [math, typeset(latex, math)];
+}
+
 function typeset(latex, target) {
   const katex = globalThis.katex;
   if (!katex) {
@@ -59,12 +69,11 @@ export function renderSolution(stepsEl, mistakesEl, solution, units = 'si') {
     stepsEl.appendChild(el('p', { class: 'hint units-note' }, `The working is in SI units, as the equations are written; each step's values are also given in ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)} (the units chosen above).`));
   }
   const list = el('ol', { class: 'step-list' });
-  for (const step of solution.steps || []) {
+  for (const [i, step] of (solution.steps || []).entries()) {
     const item = el('li', { class: 'step' });
     if (step.title) item.appendChild(el('h3', { class: 'step-title' }, step.title));
     if (step.latex) {
-      const math = el('div', { class: 'step-math' });
-      const error = typeset(step.latex, math);
+      const [math, error] = mathBlock(step.latex, `Equations of step ${i + 1}`);
       if (error) {
         failures += 1;
         math.classList.add('step-error');

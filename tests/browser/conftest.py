@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from axe_playwright_python.sync_playwright import Axe
 
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = Path("/usr/bin/chromium")
@@ -129,6 +130,18 @@ class AppPage:
                 " || !document.getElementById('polygon-message').hidden"
                 ")"
             )
+
+    def serious_accessibility_violations(self, context: str | None = None) -> list[str]:
+        """axe-core (the version bundled with axe-playwright-python, run in the page) on the
+        page or the element ``context``: each serious or critical violation as "rule: node"
+        (empty when the page is clean)."""
+        results = Axe().run(self.page, context=context)
+        return [
+            f"{violation['id']}: {node['target']}"
+            for violation in results.response["violations"]
+            if violation["impact"] in ("serious", "critical")
+            for node in violation["nodes"]
+        ]
 
     def screenshot(self, name: str, selector: str | None = None) -> Path:
         SCREENSHOTS.mkdir(parents=True, exist_ok=True)

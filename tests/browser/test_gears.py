@@ -121,9 +121,4 @@ def test_screens_and_accessibility(app: AppPage, width: int, height: int) -> Non
         for b in labels[i + 1 :]:
             apart = a[2] <= b[0] or b[2] <= a[0] or a[3] <= b[1] or b[3] <= a[1]
             assert apart, f"labels overlap: {a} {b}"
-    axe = pytest.importorskip("axe_playwright_python.sync_playwright")
-    results = axe.Axe().run(page, context="#gear-train")
-    serious = [
-        v["id"] for v in results.response["violations"] if v["impact"] in ("serious", "critical")
-    ]
-    assert not serious, results.generate_report()
+    assert not app.serious_accessibility_violations("#gear-train")
