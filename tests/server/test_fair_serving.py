@@ -23,6 +23,7 @@ import pytest
 
 import solver
 from server import budget
+from server.settings import Settings, from_environment
 from server.workers import LANE_SECONDS
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import NEWTON_RUNAWAY, server
@@ -224,3 +225,11 @@ def test_a_cheap_sweep_answers_within_a_second_while_two_clients_loop_the_costli
     assert statuses and set(statuses) <= {200, 413, 503}  # done, past its limit, waited too long
     slowest = seconds.index(max(seconds))
     assert max(seconds) < 1.0, f"the cheap sweep took {max(seconds):.2f} s ({timings[slowest]})"
+
+
+def test_a_clients_share_is_half_the_slow_lane_or_the_setting() -> None:
+    """The slow lane is all the workers but one; a client's share half of it, at least 1."""
+    assert [Settings(workers=n).client_share for n in (1, 2, 3, 5, 8, 9)] == [1, 1, 1, 2, 3, 4]
+    assert from_environment({"KINEMATICS_CLIENT_SHARE": "4"}).client_share == 4
+    with pytest.raises(ValueError, match="KINEMATICS_CLIENT_SHARE"):
+        from_environment({"KINEMATICS_CLIENT_SHARE": "two"})
