@@ -15,8 +15,9 @@ compares the estimate with its limits:
 - an event search: at most ``MAX_OSCILLATIONS`` oscillations of the moving point's law;
 - the whole request's estimated seconds (``WorkEstimate.seconds``: the Newton-Raphson and the
   closed-form work with the drivers' turn; ``exercise_work`` for exercises and exports;
-  ``SOLUTION_COST`` and ``BALANCE_COST`` on top of an instant): at most the endpoint's default
-  time limit divided by ``SAFETY``.
+  ``SOLUTION_COST`` and ``BALANCE_COST`` on top of an instant): at most the endpoint's time
+  limit (its default, or the configured one where higher: ``time_limit``) divided by
+  ``SAFETY``.
 
 Every refusal states the product and the limit. Each check returns the request's estimated
 seconds: the pool (``server.workers``) runs a request estimated past ``LANE_SECONDS`` in the
@@ -109,7 +110,7 @@ def seconds(estimated: float, reckoning: str, path: str) -> float:
 
 def instant(scene: LinkageScene, path: str = "/api/v1/analyze", extra: float = 0.0) -> float:
     """/analyze and /solution of a linkage: one sample, reached from the drawn pose (``extra``
-    seconds on top: a solution's writing)."""
+    seconds on top: a worked solution's writing)."""
     estimate = solver.estimate_work(scene)
     _newton(estimate, "(one instant)", "/api/v1/analyze")
     return _total(estimate, path, extra)
@@ -118,7 +119,7 @@ def instant(scene: LinkageScene, path: str = "/api/v1/analyze", extra: float = 0
 def _total(estimate: WorkEstimate, path: str, extra: float = 0.0) -> float:
     reckoning = estimate.reckoning
     if extra:
-        reckoning = f"{reckoning} + {extra:g} s for the rest"
+        reckoning = f"{reckoning} + {extra:g} s for writing the worked solution"
     return seconds(estimate.seconds + extra, reckoning, path)
 
 

@@ -14,12 +14,13 @@ whose ``route_class`` is ``server.edge.WorkerRoute`` runs in one of ``workers`` 
    request frees its core at once.
 
 Before a request waits for a worker, its endpoint's ``front_check`` (``server.budget``) parses it
-and estimates its work in the server's own process: a bad or too costly request is refused at
-once, never queued. A request estimated past ``LANE_SECONDS`` (or, without a check, on an
-endpoint whose time limit is above ``QUICK_LIMIT``) runs in the slow lane, which shares all the
-workers but one, so a cheap request never waits behind an expensive one; and one client (by its
-address) holds at most ``settings.client_share`` places in the slow lane, past which it is
-answered 429 with Retry-After, so two clients cannot shut out a third.
+and estimates its work in the server's own process (one check at a time per client address:
+``FrontChecks``): a bad or too costly request is refused at once, never queued. A request
+estimated past ``LANE_SECONDS`` (or, without a check, on an endpoint whose time limit is above
+``QUICK_LIMIT``) runs in the slow lane, which shares all the workers but one, so a cheap request
+never waits behind an expensive one; and one client (by its address) holds at most
+``settings.client_share`` places in the slow lane, past which it is answered 429 with
+Retry-After, so two clients cannot shut out a third.
 ``/health`` and the static files never wait for a worker, so they answer while every worker is
 busy. Workers are forked from a ``forkserver`` that has imported the app, so a replacement is
 ready in milliseconds. With ``workers = 0``, with no pool started (an app driven without its
@@ -182,8 +183,9 @@ class Pool:
         self.idle: list[Worker] = []
         # Requests waiting for a worker, oldest first: a freed worker goes to the oldest.
         self.waiters: deque[asyncio.Future[Worker]] = deque()
-        # Endpoints allowed more than QUICK_LIMIT s share all workers but one, so a burst of
-        # sweeps never holds back /analyze.
+        # Requests estimated past LANE_SECONDS (without a check: on endpoints allowed more than
+        # QUICK_LIMIT s) share all workers but one, so a burst of them never holds back a cheap
+        # request.
         self.slow_lane = asyncio.Semaphore(max(1, settings.workers - 1))
         # Places in the slow lane (running or waiting) by client address, with their estimates.
         self.slow_clients: dict[str, list[float]] = {}
@@ -386,6 +388,32 @@ class Pool:
                 lane.release()
 
 
+class FrontChecks:
+    """The checks of one client address run one at a time (in the server's threads): a client
+    that sends many requests at once queues its own checks, and cannot hold more of the front
+    process's CPU than any other client with a check to run."""
+
+    def __init__(self) -> None:
+        self.clients: dict[str, tuple[asyncio.Lock, int]] = {}  # lock, requests using it
+
+    async def run(self, client: str, check: Callable[..., float], kwargs: dict[str, Any]) -> float:
+        lock, users = self.clients.get(client, (asyncio.Lock(), 0))
+        self.clients[client] = (lock, users + 1)
+        try:
+            async with lock:
+                estimate: float = await run_in_threadpool(check, **kwargs)
+                return estimate
+        finally:
+            lock, users = self.clients[client]
+            if users == 1:
+                del self.clients[client]
+            else:
+                self.clients[client] = (lock, users - 1)
+
+
+FRONT_CHECKS = FrontChecks()
+
+
 def offloaded(endpoint: Callable[..., Any], key: str) -> Callable[..., Any]:
     """``endpoint`` as an async endpoint that runs in the app's pool (same signature), after its
     ``front_check`` if it has one (in the server's process, whatever runs the endpoint)."""
@@ -396,7 +424,8 @@ def offloaded(endpoint: Callable[..., Any], key: str) -> Callable[..., Any]:
     async def run(**kwargs: Any) -> Response:
         request = CURRENT_REQUEST.get()
         budget.SETTINGS.set(getattr(request.app.state, "settings", None))
-        estimate = None if check is None else await run_in_threadpool(check, **kwargs)
+        client = request.client.host if request.client else ""
+        estimate = None if check is None else await FRONT_CHECKS.run(client, check, kwargs)
         pool: Pool | None = getattr(request.app.state, "pool", None)
         if pool is None or pool.owner != os.getpid():
             result: Response = await run_in_threadpool(endpoint, **kwargs)

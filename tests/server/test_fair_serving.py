@@ -10,21 +10,27 @@ binds its own 127.0.0.x.
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import http.client
 import json
 import multiprocessing
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import httpx
 import pytest
+from fastapi import APIRouter, FastAPI
 
 import solver
 from server import budget
+from server.routes.exercises import ExercisesRequest
 from server.settings import Settings, from_environment
-from server.workers import LANE_SECONDS
+from server.workers import FRONT_CHECKS, LANE_SECONDS, WorkerRoute, front_check
+from tests import run_apart
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import NEWTON_RUNAWAY, server
 
@@ -233,3 +239,42 @@ def test_a_clients_share_is_half_the_slow_lane_or_the_setting() -> None:
     assert from_environment({"KINEMATICS_CLIENT_SHARE": "4"}).client_share == 4
     with pytest.raises(ValueError, match="KINEMATICS_CLIENT_SHARE"):
         from_environment({"KINEMATICS_CLIENT_SHARE": "two"})
+
+
+def test_one_clients_checks_run_one_at_a_time() -> None:
+    """Six requests at once from one address: their front checks run one after another (a
+    client cannot take more of the front process than another with a check to run)."""
+    running, most = 0, {"one": 0}
+    guard = threading.Lock()
+
+    def check(request: ExercisesRequest) -> float:
+        nonlocal running
+        with guard:
+            running += 1
+            most[request.type] = max(most[request.type], running)
+        time.sleep(0.05)  # a check that takes a while (an event search samples its law 2^18 times)
+        with guard:
+            running -= 1
+        return 0.0
+
+    router = APIRouter(route_class=WorkerRoute)
+
+    @router.post("/checked")
+    @front_check(check)
+    def checked(request: ExercisesRequest) -> dict[str, str]:
+        return {"type": request.type}
+
+    app = FastAPI()
+    app.include_router(router)
+
+    async def burst(address: str, kind: str) -> list[int]:
+        transport = httpx.ASGITransport(app=app, client=(address, 1234))
+        async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+            answers = await asyncio.gather(
+                *(client.post("/checked", json={"type": kind}) for _ in range(6))
+            )
+        return [a.status_code for a in answers]
+
+    assert run_apart(burst("10.0.0.1", "one")) == [200] * 6
+    assert most["one"] == 1
+    assert FRONT_CHECKS.clients == {}  # nothing kept once answered
