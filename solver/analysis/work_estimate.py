@@ -74,21 +74,23 @@ BALANCE_COST = 0.1
 # s per exercise of each type at its costliest difficulty, (alone, with its worked solution),
 # generation and serialisation included (benchmarks/bench_budget.py); an export costs the same
 # (the sheets are text around the same numbers). A type not listed costs the costliest.
-# Measured 2026-11-29 at a load average of 8 to 9, the largest of three runs of 6 to 10
-# exercises (the cost varies with the seed: a type draws until its exercise is well posed); the
-# solution's figure is the larger of the JSON with solutions and the printable sheet with them.
+# Measured 2026-11-29 at a load average of 8 to 10 (benchmarks/bench_budget.py --whole times them
+# against measured runs): alone, the median of four runs of 6 to 20 exercises (the cost varies
+# with the seed, as a type draws until its exercise is well posed: flywheel 15 to 154 ms), so
+# that a hundred of any type, the most a request may ask, stay within /exercises' 5 s; with the
+# worked solution the larger of two runs (JSON with solutions, printable sheet with them).
 EXERCISE_COSTS: dict[str, tuple[float, float]] = {
-    "four_bar_velocity": (0.035, 0.09),
-    "four_bar_acceleration": (0.04, 0.09),
-    "four_bar_poles": (0.015, 0.07),
-    "slider_crank": (0.01, 0.07),
-    "inverted_slider_crank": (0.02, 0.09),
-    "quick_return": (0.06, 0.13),
-    "slider_extension": (0.021, 0.075),
-    "moving_point": (0.1, 0.15),
-    "spatial_arm": (0.02, 0.05),
-    "four_bar_torque": (0.066, 0.12),
-    "flywheel": (0.155, 0.24),
+    "four_bar_velocity": (0.031, 0.09),
+    "four_bar_acceleration": (0.035, 0.085),
+    "four_bar_poles": (0.013, 0.11),
+    "slider_crank": (0.009, 0.065),
+    "inverted_slider_crank": (0.019, 0.085),
+    "quick_return": (0.03, 0.13),
+    "slider_extension": (0.021, 0.105),
+    "moving_point": (0.036, 0.14),
+    "spatial_arm": (0.019, 0.075),
+    "four_bar_torque": (0.049, 0.15),
+    "flywheel": (0.049, 0.24),
 }
 
 

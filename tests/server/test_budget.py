@@ -24,6 +24,7 @@ from server import budget
 from server.app import app
 from server.settings import Settings
 from solver.errors import LimitExceeded
+from solver.exercises import TYPES
 from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
 from solver.model.scene import LinkageScene
 from solver.position.assembly import MAX_DENSE_SAMPLES
@@ -250,8 +251,10 @@ def test_an_event_on_the_carrier_is_not_charged_the_walk() -> None:
 
 def test_exercises_cost_count_times_their_types_cost() -> None:
     assert solver.exercise_work("flywheel", 20, True).seconds == pytest.approx(20 * 0.24)
-    assert solver.exercise_work("slider_crank", 100, False).seconds == pytest.approx(1.0)
-    assert solver.exercise_work("not-a-type", 1, False).seconds == pytest.approx(0.155)
+    assert solver.exercise_work("slider_crank", 100, False).seconds == pytest.approx(0.9)
+    assert solver.exercise_work("not-a-type", 1, False).seconds == pytest.approx(0.049)
+    for kind in TYPES:  # a hundred of any type, the most allowed, fit
+        assert budget.exercises(kind, 100, False, "/api/v1/exercises") <= 5.0
     detail = refused(
         "/api/v1/exercises",
         {"type": "flywheel", "difficulty": "challenging", "count": 21, "with_solutions": True},
