@@ -25,11 +25,17 @@ EXPOSE 8000
 HEALTHCHECK --interval=30s --timeout=3s --start-period=10s --retries=3 \
   CMD ["python", "-c", "import urllib.request, sys; sys.exit(0 if urllib.request.urlopen('http://127.0.0.1:8000/health', timeout=2).status == 200 else 1)"]
 # One uvicorn process; the solver runs in KINEMATICS_WORKERS worker processes (default: the
-# container's cores), with the queue and time limits of server/settings.py. Override with -e.
+# container's CPU quota from its cgroup, cpu.max or cpu.cfs_quota_us, rounded up, else its CPU
+# set), with the queue and time limits of server/settings.py. Override with -e.
 # The workers run 10 nice levels below the server: in its own container the event loop
 # (/health) gets a core first (docs/SERVING.md, "What held /health back").
+# The h11 protocol of server/deadlines.py answers 408 to a request whose headers and body do
+# not arrive within KINEMATICS_REQUEST_TIMEOUT s; an idle kept-alive connection is closed after
+# 5 s (uvicorn's --timeout-keep-alive). Behind a reverse proxy add --proxy-headers and
+# --forwarded-allow-ips so that one client's share of slow work is counted by its own address.
 ENV KINEMATICS_QUEUE=128 \
     KINEMATICS_WORKER_NICE=10 \
     KINEMATICS_QUEUE_WAIT=10 \
-    KINEMATICS_TIME_LIMIT=10
-CMD ["uvicorn", "server.app:app", "--host", "0.0.0.0", "--port", "8000", "--timeout-graceful-shutdown", "15"]
+    KINEMATICS_TIME_LIMIT=10 \
+    KINEMATICS_REQUEST_TIMEOUT=15
+CMD ["uvicorn", "server.app:app", "--host", "0.0.0.0", "--port", "8000", "--http", "server.deadlines:DeadlineProtocol", "--timeout-keep-alive", "5", "--timeout-graceful-shutdown", "15"]

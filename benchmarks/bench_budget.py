@@ -17,6 +17,12 @@ script times, on one core, what such requests really cost:
 - instants (/analyze's solver call) of the fully turning triad 1 to 100 rad from the drawn pose,
   and time sweeps of it turning 10 and 100 rad (the continuation walks there).
 
+With ``--whole`` it times instead the whole request's estimate (``WorkEstimate.seconds``, the
+closed-form work and the drivers' turn; ``solver.exercise_work``): revolutions of S000-T1,
+time sweeps and event searches of the parallelogram S003-T1 turning 65 to 268 rad, and five
+exercises of each type with their worked solutions (fitted 2026-11-29 at a load average of 8 to
+9, in wall time: the time limits are wall-clock).
+
 For each it prints the charge, the estimate, the measured time and measured / estimated; the
 largest ratio must stay at most 1 (then a request the budget accepts ends within its time limit
 unless the machine is more than ``SAFETY`` times slower than when it was fitted). Each time is
@@ -27,7 +33,9 @@ Printed only; docs/SERVING.md quotes a run.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import copy
+import json
 import sys
 import time
 from collections.abc import Callable, Iterator
@@ -43,6 +51,8 @@ import solver  # noqa: E402
 from benchmarks.bench_newton import FULL_TURN  # noqa: E402
 from server import budget  # noqa: E402
 from solver.analysis.work_estimate import SAMPLE_COST, SAMPLES_PER_RADIAN, SETUP_SAMPLES  # noqa: E402
+from solver.exercises import TYPES, generate  # noqa: E402
+from solver.exercises.solutions import worked_solution  # noqa: E402
 from tests.scenes import triads  # noqa: E402
 
 QUANTITIES = ["position", "velocity", "acceleration"]
@@ -98,10 +108,66 @@ def cases() -> Iterator[tuple[str, solver.WorkEstimate, Callable[[], object]]]:
         )  # fmt: skip
 
 
+def whole_cases() -> Iterator[tuple[str, float, Callable[[], object]]]:
+    """(request, the estimate of its whole work in seconds, the solver call)."""
+    examples = ROOT / "server" / "examples"
+    s000 = solver.read_scene(json.loads((examples / "S000-T1.json").read_text()))
+    for samples in (360, 3600):
+        yield (
+            f"sweep of S000-T1, {samples} samples",
+            solver.estimate_work(s000.scene, samples, QUANTITIES).seconds,
+            partial(solver.sweep, s000, samples, QUANTITIES),
+        )  # fmt: skip
+    s003 = solver.read_scene(
+        json.loads((examples / "S003-T1-translating-carrier.json").read_text())
+    )
+    for t in (5.0, 8.0):
+        span = [0.0, t]
+        yield (
+            f"time sweep of S003-T1 over [0, {t:g}] s, 100 samples",
+            solver.estimate_work(s003.scene, 100, QUANTITIES, time_range=span).seconds,
+            partial(solver.sweep_time, s003, span, 100, QUANTITIES),
+        )  # fmt: skip
+        yield (
+            f"event search of S003-T1, M reaches O1, t_max {t:g} s",
+            solver.estimate_work(s003.scene, event=("M", t), reaches="O1").seconds,
+            partial(_event, s003, t),
+        )  # fmt: skip
+    for kind in TYPES:
+        yield (
+            f"5 exercises {kind} with their worked solutions",
+            solver.exercise_work(kind, 5, True).seconds,
+            partial(_exercises, kind),
+        )  # fmt: skip
+
+
+def _event(read: solver.ReadScene, t_max: float) -> None:
+    with contextlib.suppress(solver.NoEvent):  # searched to t_max: the work was done
+        solver.find_event(read, "M", "O1", 1, t_max)
+
+
+def _exercises(kind: str) -> None:
+    for exercise in generate(kind, "challenging", 0, 5):
+        exercise.as_json()
+        worked_solution(exercise)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--whole", action="store_true", help="the whole request's estimate")
     args = parser.parse_args()
+    if args.whole:
+        rows = ["| request | estimated | measured | measured / estimated |", "|---|---|---|---|"]
+        for name, estimate, call in whole_cases():
+            seconds = best(call, args.repeats)
+            rows.append(
+                f"| {name} | {estimate * 1e3:.0f} ms | {seconds * 1e3:.0f} ms | "
+                f"{seconds / estimate:.2f} |"
+            )
+            print(rows[-1], flush=True)
+        print("\n".join(["", *rows, ""]))
+        return
     rows = [
         "| request | Newton links | link-samples | estimated | measured | measured / estimated |",
         "|---|---|---|---|---|---|",

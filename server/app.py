@@ -10,8 +10,9 @@ from typing import Any
 from fastapi import FastAPI
 from fastapi.responses import FileResponse, HTMLResponse
 from fastapi.staticfiles import StaticFiles
+from starlette.middleware.gzip import GZipMiddleware
 
-from server import headers, problems, schemas, workers
+from server import caching, headers, problems, schemas, workers
 from server.routes import dynamics, exercises, kinematics, presets, solution, synthesis
 from server.settings import Settings, from_environment
 from server.timing import ServerTiming
@@ -20,6 +21,7 @@ STATIC = Path(__file__).resolve().parent.parent / "static"
 # The app's list of example scenes (file, title, description); the scenes are server/examples.
 EXAMPLE_INDEX = Path(__file__).resolve().parent / "example_index.json"
 API_PREFIX = "/api/v1"
+GZIP_MINIMUM = 4096  # bytes: smaller answers (problems, one instant) are sent as they are
 SWAGGER_PAGE = """<!doctype html>
 <html lang="en">
 <head>
@@ -66,8 +68,20 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         docs_url=None,
         redoc_url=None,
         openapi_url=f"{API_PREFIX}/openapi.json",
+        servers=[
+            {
+                "url": settings.public_url or "/",
+                "description": "this server"
+                if not settings.public_url
+                else "the server's public address",
+            }
+        ],
     )
     app.state.settings = settings
+    app.add_middleware(caching.Caching)  # inside gzip: the tags are of the identity body
+    # Level 1: 13.5 MB of sweep JSON to 4.7 MB in 0.14 s of CPU (level 9: 4.4 MB in 1.3 s);
+    # bodies past 128 KiB are compressed in a thread, off the event loop.
+    app.add_middleware(GZipMiddleware, minimum_size=GZIP_MINIMUM, compresslevel=1)
     headers.install(app, settings)
     if settings.server_timing:  # outermost: the whole of the app's time
         app.add_middleware(ServerTiming)

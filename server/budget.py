@@ -12,18 +12,27 @@ compares the estimate with its limits:
   ``SAFETY``, and no Newton-Raphson group larger than ``MAX_GROUP_LINKS`` links (the largest
   group the cost model was measured on; past it the cost grows far faster than the model: 64
   links took 50 s for 20 samples);
-- an event search: at most ``MAX_OSCILLATIONS`` oscillations of the moving point's law.
+- an event search: at most ``MAX_OSCILLATIONS`` oscillations of the moving point's law;
+- the whole request's estimated seconds (``WorkEstimate.seconds``: the Newton-Raphson and the
+  closed-form work with the drivers' turn; ``exercise_work`` for exercises and exports;
+  ``SOLUTION_COST`` and ``BALANCE_COST`` on top of an instant): at most the endpoint's time
+  limit (its default, or the configured one where higher: ``time_limit``) divided by
+  ``SAFETY``.
 
-Every refusal states the product and the limit.
+Every refusal states the product and the limit. Each check returns the request's estimated
+seconds: the pool (``server.workers``) runs a request estimated past ``LANE_SECONDS`` in the
+slow lane. The checks run in the server's own process before the request waits for a worker
+(``server.workers.front_check``), so a refused request never queues.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from contextvars import ContextVar
 from typing import Any
 
 import solver
-from server.settings import TIME_LIMITS
+from server.settings import TIME_LIMITS, Settings
 from solver.analysis.work_estimate import WorkEstimate
 from solver.cams import CamScene
 from solver.errors import LimitExceeded
@@ -35,6 +44,18 @@ MAX_SWEEP_VALUES = 500_000
 MAX_OSCILLATIONS = 5_000
 MAX_GROUP_LINKS = 32  # the largest group the cost model was measured on
 SAFETY = 2.0  # refused past the time limit / SAFETY: an estimate off by 2x still ends in time
+DEFAULT_LIMIT = 10.0  # s: the default time limit of an endpoint not in TIME_LIMITS
+# The serving settings of the request being checked (set by server.workers): a time limit
+# raised above its default raises the budget with it; one lowered below it does not lower it
+# (the time limit then stops the work).
+SETTINGS: ContextVar[Settings | None] = ContextVar("SETTINGS", default=None)
+
+
+def time_limit(path: str) -> float:
+    """``path``'s time limit for the budget: its default, or the configured one if higher."""
+    default = TIME_LIMITS.get(path, DEFAULT_LIMIT)
+    settings = SETTINGS.get()
+    return default if settings is None else max(default, settings.time_limit_of(path))
 
 
 def _response_size(estimate: WorkEstimate) -> None:
@@ -58,7 +79,7 @@ def _newton(estimate: WorkEstimate, what: str, path: str) -> None:
             f"Newton-Raphson work: a group of {max(work.groups)} links solved together by "
             f"Newton-Raphson, more than the limit of {MAX_GROUP_LINKS} links"
         )
-    seconds, allowed = work.seconds, TIME_LIMITS[path] / SAFETY
+    seconds, allowed = work.seconds, time_limit(path) / SAFETY
     if seconds > allowed:
         raise LimitExceeded(
             f"Newton-Raphson work: {work.links} links solved by Newton-Raphson x ({work.samples} "
@@ -66,14 +87,40 @@ def _newton(estimate: WorkEstimate, what: str, path: str) -> None:
             f"from the drawn pose x {work.samples_per_radian}) = {work.link_samples:,.0f} "
             f"link-samples x {work.sample_cost * 1e6:g} us = {seconds:.4g} s of estimated work, "
             f"more than the limit of {allowed:.4g} s ({path}'s time limit of "
-            f"{TIME_LIMITS[path]:g} s / safety factor {SAFETY:g}); use fewer samples or a pose "
+            f"{time_limit(path):g} s / safety factor {SAFETY:g}); use fewer samples or a pose "
             "nearer the drawn one"
         )
 
 
-def instant(scene: LinkageScene) -> None:
-    """/analyze and /solution of a linkage: one sample, reached from the drawn pose."""
-    _newton(solver.estimate_work(scene), "(one instant)", "/api/v1/analyze")
+def limit(path: str) -> float:
+    """The seconds of estimated work allowed at ``path``: its time limit / SAFETY."""
+    return time_limit(path) / SAFETY
+
+
+def seconds(estimated: float, reckoning: str, path: str) -> float:
+    """``estimated`` seconds, refused past ``limit(path)`` with the ``reckoning``."""
+    if estimated > limit(path):
+        raise LimitExceeded(
+            f"estimated work: {reckoning}, more than the limit of {limit(path):.4g} s ({path}'s "
+            f"time limit of {time_limit(path):g} s / safety factor "
+            f"{SAFETY:g}); ask for less"
+        )
+    return estimated
+
+
+def instant(scene: LinkageScene, path: str = "/api/v1/analyze", extra: float = 0.0) -> float:
+    """/analyze and /solution of a linkage: one sample, reached from the drawn pose (``extra``
+    seconds on top: a worked solution's writing)."""
+    estimate = solver.estimate_work(scene)
+    _newton(estimate, "(one instant)", "/api/v1/analyze")
+    return _total(estimate, path, extra)
+
+
+def _total(estimate: WorkEstimate, path: str, extra: float = 0.0) -> float:
+    reckoning = estimate.reckoning
+    if extra:
+        reckoning = f"{reckoning} + {extra:g} s for writing the worked solution"
+    return seconds(estimate.seconds + extra, reckoning, path)
 
 
 def sweep(
@@ -81,32 +128,40 @@ def sweep(
     samples: int,
     quantities: Iterable[str] | None,
     time_range: Sequence[float] | None = None,
-) -> None:
+) -> float:
     """/sweep: the response's size, the Newton work with the feasible-range search, and a time
-    sweep's dense grid (the drivers' turn in steps of at most pi/8)."""
+    sweep's dense grid (the drivers' turn in steps of at most pi/8), then the whole work."""
     estimate = solver.estimate_work(scene, samples, quantities, time_range=time_range)
     _response_size(estimate)
     what = "over the revolution" if time_range is None else "over the time range"
     _newton(estimate, what, "/api/v1/sweep")
     estimate.dense_samples()  # refuses a dense grid past the solver's MAX_DENSE_SAMPLES
+    return _total(estimate, "/api/v1/sweep")
 
 
 def spatial_sweep(
     chain: SpatialChain | GearTrainScene, samples: int, quantities: Iterable[str] | None
-) -> None:
+) -> float:
     """/sweep of a spatial chain (bodies, points and joints) or a gear train (members' angles,
     planets' centres) over time: the response's size."""
-    _response_size(solver.estimate_work(chain, samples, quantities))
+    estimate = solver.estimate_work(chain, samples, quantities)
+    _response_size(estimate)
+    return _total(estimate, "/api/v1/sweep")
 
 
-def cam_sweep(scene: CamScene, samples: int) -> None:
+def cam_sweep(scene: CamScene, samples: int) -> float:
     """/sweep of a cam: the response's size (its values per sample)."""
-    _response_size(solver.estimate_work(scene, samples))
+    estimate = solver.estimate_work(scene, samples)
+    _response_size(estimate)
+    return _total(estimate, "/api/v1/sweep")
 
 
-def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:
-    """/events: t_max x the law's frequency (and the Newton work of the distance search)."""
-    estimate = solver.estimate_work(scene, event=(moving_point, t_max))
+def event(
+    scene: LinkageScene, moving_point: str, t_max: float, reaches: str | None = None
+) -> float:
+    """/events: t_max x the law's frequency, the Newton work of the distance search, then the
+    whole work (the distance search over the drivers' turn up to t_max)."""
+    estimate = solver.estimate_work(scene, event=(moving_point, t_max), reaches=reaches)
     _newton(estimate, "of the distance search", "/api/v1/events")
     found = estimate.oscillations
     if found is not None and (not found.resolved or found.count > MAX_OSCILLATIONS):
@@ -117,12 +172,19 @@ def event(scene: LinkageScene, moving_point: str, t_max: float) -> None:
             f"{at_least}{found.count:,.0f} oscillations, more than the limit of "
             f"{MAX_OSCILLATIONS:,}; lower t_max"
         )
+    return _total(estimate, "/api/v1/events")
 
 
-def read_instant(doc: dict[str, Any], strict: bool) -> solver.ReadScene:
+def exercises(kind: str, count: int, with_solutions: bool, path: str) -> float:
+    """/exercises and /exercises/export: count x the type's cost."""
+    cost = solver.exercise_work(kind, count, with_solutions)
+    return seconds(cost.seconds, cost.reckoning, path)
+
+
+def read_instant(doc: dict[str, Any], strict: bool, path: str, extra: float = 0.0) -> float:
     """A one-instant request's scene (/analyze, /solution), refused before any work if it
-    costs too much; its warnings kept for the result."""
+    costs too much (``extra`` seconds on top of the instant); its estimated seconds."""
     read = solver.read_scene(doc, strict=strict)
     if isinstance(read.scene, LinkageScene):
-        instant(read.scene)
-    return read
+        return instant(read.scene, path, extra)
+    return extra

@@ -1,7 +1,8 @@
 """The app on a free loopback port, started the way a user starts it (for tests and benchmarks).
 
 ``serve_locally()`` runs ``python -m uvicorn server.app:app --host 127.0.0.1 --port <free>
---log-level warning`` from the repository root in a subprocess, waits until GET /health answers
+--log-level warning --http server.deadlines:DeadlineProtocol`` (the Dockerfile's protocol: slow
+clients are cut off) from the repository root in a subprocess, waits until GET /health answers
 200, yields the base URL (``http://127.0.0.1:<port>``) and stops the process when the block ends,
 whatever happens (terminate, then kill if it does not stop within 10 s)::
 
@@ -58,6 +59,7 @@ def serve_locally(
         base = f"http://{HOST}:{port}"
         command = [sys.executable, "-m", "uvicorn", "server.app:app"]
         command += ["--host", HOST, "--port", str(port), "--log-level", "warning"]
+        command += ["--http", "server.deadlines:DeadlineProtocol"]
         process = subprocess.Popen(
             command,
             cwd=ROOT,

@@ -24,6 +24,8 @@ TITLES = {
     "singular_configuration": "Singular configuration (dead centre)",
     "limit_exceeded": "Request too large or too long",
     "busy": "Server busy",
+    "too_many_requests": "Too many slow requests from one client",
+    "request_timeout": "The request did not arrive in time",
     "no_event": "The event does not occur",
     "not_found": "Not found",
     "method_not_allowed": "Method not allowed",

@@ -735,6 +735,8 @@ class ProblemCode(StrEnum):
     method_not_allowed = "method_not_allowed"
     internal_error = "internal_error"
     busy = "busy"
+    too_many_requests = "too_many_requests"
+    request_timeout = "request_timeout"
 
 
 class Problem(Open):
@@ -754,6 +756,11 @@ PROBLEM_MEDIA_TYPE = "application/problem+json"
 PROBLEMS: dict[int | str, dict[str, Any]] = {
     503: {"model": Problem, "description": "Every worker is busy (busy): see Retry-After"},
     413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
+    429: {
+        "model": Problem,
+        "description": "This client already has its share of slow requests running or waiting "
+        "(too_many_requests): see Retry-After",
+    },
     422: {
         "model": Problem,
         "description": "The request cannot be answered: invalid_scene, invalid_expression, "

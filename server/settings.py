@@ -9,14 +9,19 @@
 | ``KINEMATICS_TIME_LIMIT`` | 10 | seconds of work for an endpoint not listed |
 | ``KINEMATICS_WORKER_NICE`` | 0 | how much lower the workers' CPU priority is than the server's (0 to 19), so the event loop (``/health``) never waits behind the solver for a core; 10 in the Dockerfile (a machine of its own) |
 | ``KINEMATICS_CORS_ORIGINS`` | none | ``https://a.example,https://b.example``: origins allowed to call the API from a browser |
+| ``KINEMATICS_CLIENT_SHARE`` | half the slow lane | slow requests one client address may have running or waiting (the slow lane is all the workers but one); past it 429 with Retry-After; 0: half the slow lane, at least 1 |
+| ``KINEMATICS_REQUEST_TIMEOUT`` | 15 | seconds in which a request's headers and body must arrive (``server.deadlines``); past it 408 and the connection is closed |
+| ``KINEMATICS_PUBLIC_URL`` | none | ``https://kinematics.example.edu``: the server named in the OpenAPI document (``servers``); none names ``/``, wherever the document is served |
 | ``KINEMATICS_SERVER_TIMING`` | 0 | 1: every response says how long the server spent on it (``Server-Timing``: in the app, waiting for a worker, the round trip to it, its own time), for load tests |
 """  # noqa: E501
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 
 TIME_LIMITS = {
     "/api/v1/analyze": 2.0,
@@ -27,12 +32,38 @@ TIME_LIMITS = {
 }
 
 
-def usable_cores() -> int:
-    """The cores this process may run on (a container's CPU set, not the host's count)."""
+CGROUP = Path("/sys/fs/cgroup")
+
+
+def cpu_quota(cgroup: Path = CGROUP) -> float | None:
+    """The CPUs a container's quota allows, quota / period: cgroup v2's ``cpu.max`` ("max
+    100000" is no limit) or v1's ``cpu.cfs_quota_us`` / ``cpu.cfs_period_us`` (-1 is no
+    limit); None where there is no quota or no cgroup file."""
     try:
-        return len(os.sched_getaffinity(0))
+        quota, _, period = (cgroup / "cpu.max").read_text().strip().partition(" ")
+        return None if quota == "max" else int(quota) / int(period or 100_000)
+    except (OSError, ValueError):
+        pass
+    for v1 in (cgroup / "cpu", cgroup / "cpu,cpuacct", cgroup):
+        try:
+            quota_us = int((v1 / "cpu.cfs_quota_us").read_text())
+            period_us = int((v1 / "cpu.cfs_period_us").read_text())
+        except (OSError, ValueError):
+            continue
+        return None if quota_us <= 0 or period_us <= 0 else quota_us / period_us
+    return None
+
+
+def usable_cores(cgroup: Path = CGROUP) -> int:
+    """The cores this process may use: the container's CPU quota rounded up (a limit of 1.5
+    CPUs gives 2 workers), at most the CPU set it may run on (``sched_getaffinity``), which
+    alone is the answer where there is no quota."""
+    try:
+        cores = len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
-        return os.cpu_count() or 1
+        cores = os.cpu_count() or 1
+    quota = cpu_quota(cgroup)
+    return cores if quota is None else max(1, min(cores, math.ceil(quota)))
 
 
 @dataclass(frozen=True)
@@ -45,6 +76,14 @@ class Settings:
     worker_nice: int = 0
     cors_origins: tuple[str, ...] = ()
     server_timing: bool = False
+    client_slow: int = 0  # 0: half the slow lane, at least 1 (``client_share``)
+    request_timeout: float = 15.0
+    public_url: str = ""  # the OpenAPI document's server; "" for "/" (where it is served)
+
+    @property
+    def client_share(self) -> int:
+        """Slow requests one client may have running or waiting."""
+        return self.client_slow or max(1, (self.workers - 1) // 2)
 
     def time_limit_of(self, path: str) -> float:
         """Seconds of work allowed for a request to ``path``."""
@@ -103,4 +142,20 @@ def from_environment(env: Mapping[str, str] = os.environ) -> Settings:
         worker_nice=_niceness(env),
         cors_origins=tuple(o.strip() for o in origins.split(",") if o.strip()),
         server_timing=_switch(env, "KINEMATICS_SERVER_TIMING"),
+        client_slow=int(_number(env, "KINEMATICS_CLIENT_SHARE", 0, integer=True)),
+        request_timeout=_positive(env, "KINEMATICS_REQUEST_TIMEOUT", default.request_timeout),
+        public_url=_url(env.get("KINEMATICS_PUBLIC_URL", "").strip()),
     )
+
+
+def _url(text: str) -> str:
+    if text and not text.startswith(("https://", "http://")):
+        raise ValueError(f"KINEMATICS_PUBLIC_URL={text!r}: expected an http(s):// address")
+    return text.rstrip("/")
+
+
+def _positive(env: Mapping[str, str], name: str, default: float) -> float:
+    value = _number(env, name, default)
+    if value <= 0:
+        raise ValueError(f"{name}={value:g}: expected a number of seconds > 0")
+    return value

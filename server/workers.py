@@ -13,8 +13,14 @@ whose ``route_class`` is ``server.edge.WorkerRoute`` runs in one of ``workers`` 
    limit) or when its client disconnects: the worker is killed and replaced, so a runaway
    request frees its core at once.
 
-Endpoints with a time limit above ``QUICK_LIMIT`` (sweeps, solutions, events) share all the
-workers but one, so a burst of them leaves a worker to /analyze.
+Before a request waits for a worker, its endpoint's ``front_check`` (``server.budget``) parses it
+and estimates its work in the server's own process (one check at a time per client address:
+``FrontChecks``): a bad or too costly request is refused at once, never queued. A request
+estimated past ``LANE_SECONDS`` (or, without a check, on an endpoint whose time limit is above
+``QUICK_LIMIT``) runs in the slow lane, which shares all the workers but one, so a cheap request
+never waits behind an expensive one; and one client (by its address) holds at most
+``settings.client_share`` places in the slow lane, past which it is answered 429 with
+Retry-After, so two clients cannot shut out a third.
 ``/health`` and the static files never wait for a worker, so they answer while every worker is
 busy. Workers are forked from a ``forkserver`` that has imported the app, so a replacement is
 ready in milliseconds. With ``workers = 0``, with no pool started (an app driven without its
@@ -49,7 +55,7 @@ from starlette.requests import Request
 from starlette.responses import Response
 from starlette.types import Receive
 
-from server import problems
+from server import budget, problems
 from server.edge import CURRENT_REQUEST, FiniteJSONResponse, StrictJSONRoute
 from server.settings import Settings
 from solver.errors import KinematicsError, LimitExceeded
@@ -61,24 +67,39 @@ ENDPOINTS: dict[str, Callable[..., Any]] = {}
 # One BLAS thread per worker: the pool is the parallelism.
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
-QUICK_LIMIT = 2.0  # s: endpoints with this time limit or less may use every worker
+QUICK_LIMIT = 2.0  # s: endpoints with no check and this time limit or less use every worker
+LANE_SECONDS = 0.5  # s of estimated work past which a request runs in the slow lane
 Answer = tuple[int, list[tuple[bytes, bytes]], bytes]
 
 
 class Busy(Exception):
-    """No worker became free in time, or the queue is full: answered 503 with Retry-After."""
+    """No worker became free in time, or the queue is full (503), or the client already holds
+    its share of the slow lane (429): answered with Retry-After."""
 
-    def __init__(self, message: str, retry_after: int) -> None:
+    def __init__(self, message: str, retry_after: int, status: int = 503) -> None:
         super().__init__(message)
-        self.message, self.retry_after = message, retry_after
+        self.message, self.retry_after, self.status = message, retry_after, status
 
 
 async def busy_problem(_: FastAPIRequest, error: Exception) -> JSONResponse:
-    """The 503 answer, with Retry-After in seconds."""
+    """The 503 or 429 answer, with Retry-After in seconds."""
     assert isinstance(error, Busy)
-    response = problems.problem(503, "busy", error.message)
+    code = "busy" if error.status == 503 else "too_many_requests"
+    response = problems.problem(error.status, code, error.message)
     response.headers["Retry-After"] = str(error.retry_after)
     return response
+
+
+def front_check(check: Callable[..., float]) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Give an endpoint its check: called with the endpoint's arguments in the server's process
+    (in a thread) before the request waits for a worker, it raises the solver's errors (a bad
+    or too costly request, answered at once) or returns the estimated seconds of work."""
+
+    def attach(endpoint: Callable[..., Any]) -> Callable[..., Any]:
+        endpoint.front_check = check  # type: ignore[attr-defined]
+        return endpoint
+
+    return attach
 
 
 # --- in the worker -------------------------------------------------------------------------------
@@ -162,9 +183,12 @@ class Pool:
         self.idle: list[Worker] = []
         # Requests waiting for a worker, oldest first: a freed worker goes to the oldest.
         self.waiters: deque[asyncio.Future[Worker]] = deque()
-        # Endpoints allowed more than QUICK_LIMIT s share all workers but one, so a burst of
-        # sweeps never holds back /analyze.
+        # Requests estimated past LANE_SECONDS (without a check: on endpoints allowed more than
+        # QUICK_LIMIT s) share all workers but one, so a burst of them never holds back a cheap
+        # request.
         self.slow_lane = asyncio.Semaphore(max(1, settings.workers - 1))
+        # Places in the slow lane (running or waiting) by client address, with their estimates.
+        self.slow_clients: dict[str, list[float]] = {}
         self.waiting = 0
         self.tasks: set[asyncio.Task[None]] = set()
 
@@ -207,12 +231,19 @@ class Pool:
                 self._release(waiter.result())
             raise
 
-    def _replace(self, worker: Worker) -> None:
-        """Kill ``worker`` and put a fresh one in its place (in the background)."""
+    def _replace(self, worker: Worker, lane: asyncio.Semaphore | None) -> None:
+        """Kill ``worker`` and put a fresh one in its place (in the background); the place in
+        ``lane`` it held is freed only then, so that a slow request waiting for the lane does
+        not take the worker kept for cheap requests while the replacement starts."""
 
         async def replace() -> None:
-            await self._in_thread(worker.stop)
-            self._release(await self._in_thread(Worker, self.context, self.settings.worker_nice))
+            try:
+                await self._in_thread(worker.stop)
+                new = await self._in_thread(Worker, self.context, self.settings.worker_nice)
+                self._release(new)
+            finally:
+                if lane is not None:
+                    lane.release()
 
         task = asyncio.get_running_loop().create_task(replace())
         self.tasks.add(task)
@@ -266,10 +297,52 @@ class Pool:
             self._retry_after(),
         )
 
-    async def run(self, key: str, kwargs: dict[str, Any], request: Request) -> Response:
-        """Run endpoint ``key`` in a worker within the time limit of ``request``'s path."""
+    def _enter_slow_lane(self, client: str, estimate: float) -> None:
+        """Count a place in the slow lane for ``client``; Busy (429) past its share."""
+        held = self.slow_clients.setdefault(client, [])
+        if len(held) >= self.settings.client_share:
+            raise Busy(
+                f"this client already has {len(held)} slow requests running or waiting (at most "
+                f"{self.settings.client_share} of the {max(1, self.settings.workers - 1)} "
+                "workers that run slow requests); retry when one is answered",
+                max(1, math.ceil(min(held))),
+                429,
+            )
+        held.append(estimate)
+
+    def _leave_slow_lane(self, client: str, estimate: float) -> None:
+        held = self.slow_clients[client]
+        held.remove(estimate)
+        if not held:
+            del self.slow_clients[client]
+
+    async def run(
+        self, key: str, kwargs: dict[str, Any], request: Request, estimate: float | None = None
+    ) -> Response:
+        """Run endpoint ``key`` in a worker within the time limit of ``request``'s path, in the
+        slow lane if its ``estimate`` (seconds; None: not estimated) says so."""
         limit = self.settings.time_limit_of(request.url.path)
-        lane = self.slow_lane if limit > QUICK_LIMIT else None
+        slow = limit > QUICK_LIMIT if estimate is None else estimate > LANE_SECONDS
+        lane = self.slow_lane if slow else None
+        client = request.client.host if request.client else ""
+        if lane is not None:
+            estimate = limit if estimate is None else estimate
+            self._enter_slow_lane(client, estimate)
+        try:
+            return await self._run(key, kwargs, request, limit, lane)
+        finally:
+            if lane is not None:
+                assert estimate is not None
+                self._leave_slow_lane(client, estimate)
+
+    async def _run(
+        self,
+        key: str,
+        kwargs: dict[str, Any],
+        request: Request,
+        limit: float,
+        lane: asyncio.Semaphore | None,
+    ) -> Response:
         gone = asyncio.ensure_future(_disconnected(request.receive))
         arrived = time.perf_counter()
         try:
@@ -287,7 +360,8 @@ class Pool:
             done, _ = await asyncio.wait(either, timeout=limit, return_when="FIRST_COMPLETED")
             if work not in done or work.exception() is not None:
                 work.add_done_callback(lambda w: w.exception())  # EOFError once killed
-                self._replace(worker)
+                self._replace(worker, lane)
+                lane = None  # freed once the replacement is ready
                 if gone in done:
                     return Response(status_code=499)
                 if work not in done:
@@ -314,18 +388,49 @@ class Pool:
                 lane.release()
 
 
+class FrontChecks:
+    """The checks of one client address run one at a time (in the server's threads): a client
+    that sends many requests at once queues its own checks, and cannot hold more of the front
+    process's CPU than any other client with a check to run."""
+
+    def __init__(self) -> None:
+        self.clients: dict[str, tuple[asyncio.Lock, int]] = {}  # lock, requests using it
+
+    async def run(self, client: str, check: Callable[..., float], kwargs: dict[str, Any]) -> float:
+        lock, users = self.clients.get(client, (asyncio.Lock(), 0))
+        self.clients[client] = (lock, users + 1)
+        try:
+            async with lock:
+                estimate: float = await run_in_threadpool(check, **kwargs)
+                return estimate
+        finally:
+            lock, users = self.clients[client]
+            if users == 1:
+                del self.clients[client]
+            else:
+                self.clients[client] = (lock, users - 1)
+
+
+FRONT_CHECKS = FrontChecks()
+
+
 def offloaded(endpoint: Callable[..., Any], key: str) -> Callable[..., Any]:
-    """``endpoint`` as an async endpoint that runs in the app's pool (same signature)."""
+    """``endpoint`` as an async endpoint that runs in the app's pool (same signature), after its
+    ``front_check`` if it has one (in the server's process, whatever runs the endpoint)."""
     ENDPOINTS[key] = endpoint
+    check: Callable[..., float] | None = getattr(endpoint, "front_check", None)
 
     @functools.wraps(endpoint)
     async def run(**kwargs: Any) -> Response:
         request = CURRENT_REQUEST.get()
+        budget.SETTINGS.set(getattr(request.app.state, "settings", None))
+        client = request.client.host if request.client else ""
+        estimate = None if check is None else await FRONT_CHECKS.run(client, check, kwargs)
         pool: Pool | None = getattr(request.app.state, "pool", None)
         if pool is None or pool.owner != os.getpid():
             result: Response = await run_in_threadpool(endpoint, **kwargs)
             return result
-        return await pool.run(key, kwargs, request)
+        return await pool.run(key, kwargs, request, estimate)
 
     run.__signature__ = inspect.signature(endpoint)  # type: ignore[attr-defined]
     run.offloaded_from = endpoint  # type: ignore[attr-defined]

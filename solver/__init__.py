@@ -26,7 +26,7 @@ from solver.analysis.results import (
     SweepResult,
     TimeSweepResult,
 )
-from solver.analysis.work_estimate import WorkEstimate, estimate_work
+from solver.analysis.work_estimate import WorkEstimate, estimate_work, exercise_work
 from solver.api import (
     ReadScene,
     SceneWarning,
@@ -74,6 +74,7 @@ __all__ = [
     "WorkEstimate",
     "analyze",
     "estimate_work",
+    "exercise_work",
     "find_event",
     "parse_scene",
     "read_scene",

@@ -14,7 +14,8 @@ from pydantic import Field
 import solver
 from server.responses import ResultResponse
 from server.schemas import PROBLEMS, BalanceResponse, Strict
-from server.workers import WorkerRoute
+from server.workers import WorkerRoute, front_check
+from solver.analysis.work_estimate import BALANCE_COST
 from solver.dynamics.balance import balance_four_bar
 from solver.dynamics.body import balance_body
 from solver.errors import InvalidScene
@@ -41,15 +42,27 @@ router = APIRouter(
 )
 
 
+def balance_cost(request: BalanceRequest) -> float:
+    """In the server's process: the scene parsed, a balancing's cost."""
+    _linkage(request.scene)
+    return BALANCE_COST
+
+
+def _linkage(doc: dict[str, Any]) -> LinkageScene:
+    scene = solver.parse_scene(doc)
+    if not isinstance(scene, LinkageScene):
+        raise InvalidScene("kind: /balance takes a 'linkage' scene")
+    return scene
+
+
 @router.post(
     "/balance",
     summary="Full force balancing of a four-bar: counterweights that keep the centre of mass still",
     response_model=BalanceResponse,
 )
+@front_check(balance_cost)
 def balance_route(request: BalanceRequest) -> ResultResponse:
-    scene = solver.parse_scene(request.scene)
-    if not isinstance(scene, LinkageScene):
-        raise InvalidScene("kind: /balance takes a 'linkage' scene")
+    scene = _linkage(request.scene)
     result = balance_four_bar(
         scene, request.scene, [(c.link, c.mass) for c in request.counterweights]
     )

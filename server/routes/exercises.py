@@ -14,6 +14,8 @@ from fastapi import APIRouter
 from fastapi.responses import Response
 from pydantic import Field
 
+import solver
+from server import budget
 from server.responses import ResultResponse
 from server.schemas import (
     PROBLEMS,
@@ -23,10 +25,11 @@ from server.schemas import (
     ExerciseTypeList,
     Strict,
 )
-from server.workers import WorkerRoute
+from server.workers import WorkerRoute, front_check
 from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
 from solver.exercises.checking import check
 from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
+from solver.exercises.generation import check_generation
 from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
 from solver.exercises.solutions import worked_solution
 
@@ -65,6 +68,7 @@ def exercise_body(exercise: Exercise, with_solution: bool) -> dict[str, Any]:
     summary="Every exercise type, its difficulties and what it can ask",
     response_model=ExerciseTypeList,
 )
+@front_check(lambda: 0.0)
 def types_route() -> ResultResponse:
     return ResultResponse(
         {
@@ -82,11 +86,18 @@ def types_route() -> ResultResponse:
     )
 
 
+def exercises_cost(request: ExercisesRequest, path: str = "/api/v1/exercises") -> float:
+    """In the server's process: the request's bounds, then count x the type's cost."""
+    check_generation(request.type, request.difficulty, request.count)
+    return budget.exercises(request.type, request.count, request.with_solutions, path)
+
+
 @router.post(
     "",
     summary="Generate exercises: statement, figure, scene, asked quantities, key",
     response_model=ExerciseList,
 )
+@front_check(exercises_cost)
 def exercises_route(request: ExercisesRequest) -> ResultResponse:
     exercises = generate(request.type, request.difficulty, request.seed, request.count)
     return ResultResponse(
@@ -94,11 +105,17 @@ def exercises_route(request: ExercisesRequest) -> ResultResponse:
     )
 
 
+def one_exercise_cost(exercise_id: str) -> float:
+    """The id's form, then one exercise of its type with its worked solution."""
+    return solver.exercise_work(parse_id(exercise_id).type, 1, True).seconds
+
+
 @router.get(
     "/{exercise_id}",
     summary="One exercise by its id, with its worked solution",
     response_model=ExerciseModel,
 )
+@front_check(one_exercise_cost)
 def exercise_route(exercise_id: str) -> ResultResponse:
     return ResultResponse(exercise_body(build(parse_id(exercise_id)), True))
 
@@ -114,11 +131,17 @@ class CheckRequest(Strict):
     )
 
 
+def check_cost(request: CheckRequest) -> float:
+    """The id's form, then one exercise of its type (its key)."""
+    return solver.exercise_work(parse_id(request.id).type, 1, False).seconds
+
+
 @router.post(
     "/check",
     summary="Grade answers within tolerance and diagnose typical mistakes",
     response_model=CheckResponse,
 )
+@front_check(check_cost)
 def check_route(request: CheckRequest) -> ResultResponse:
     return ResultResponse(check(request.id, request.answers))
 
@@ -155,6 +178,7 @@ class ExportRequest(ExercisesRequest):
         }
     },
 )
+@front_check(lambda request: exercises_cost(request, "/api/v1/exercises/export"))
 def export_route(request: ExportRequest) -> Response:
     exercises = generate(request.type, request.difficulty, request.seed, request.count)
     if request.format == "moodle_xml":

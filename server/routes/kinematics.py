@@ -1,7 +1,7 @@
 """POST /api/v1/analyze, POST /api/v1/sweep and POST /api/v1/events.
 
 Each runs in a worker process (``server.workers.WorkerRoute``); its cost is checked against the
-budget (``server.budget``) before any work.
+budget (``server.budget``) in the server's process before it waits for a worker (``front_check``).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from server.schemas import (
     SweepResponse,
     TimeSweepResponse,
 )
-from server.workers import WorkerRoute
+from server.workers import WorkerRoute, front_check
 from solver.cams import CamScene
 from solver.model.scene import LinkageScene
 
@@ -38,13 +38,18 @@ router = APIRouter(
 )
 
 
+def analyze_cost(request: AnalyzeRequest) -> float:
+    return budget.read_instant(request.scene, request.strict, "/api/v1/analyze")
+
+
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
     response_model=AnalyzeResponse | CamAnalyzeResponse | GearTrainAnalyzeResponse,
 )
+@front_check(analyze_cost)
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
-    read = budget.read_instant(request.scene, request.strict)
+    read = solver.read_scene(request.scene, strict=request.strict)
     return respond(
         solver.analyze(
             read,
@@ -54,6 +59,17 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
             input_torque=request.input_torque,
         )
     )
+
+
+def sweep_cost(request: SweepRequest) -> float:
+    read = solver.read_scene(request.scene, strict=request.strict)
+    if isinstance(read.scene, LinkageScene):
+        return budget.sweep(read.scene, request.samples, request.quantities, request.time_range)
+    if isinstance(read.scene, CamScene):
+        return budget.cam_sweep(read.scene, request.samples)
+    if request.time_range is not None:  # a spatial chain moves in time only
+        return budget.spatial_sweep(read.scene, request.samples, request.quantities)
+    return 0.0  # refused by the solver
 
 
 @router.post(
@@ -66,14 +82,9 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
     | CamSweepResponse
     | GearTrainSweepResponse,
 )
+@front_check(sweep_cost)
 def sweep_route(request: SweepRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
-    if isinstance(read.scene, LinkageScene):
-        budget.sweep(read.scene, request.samples, request.quantities, request.time_range)
-    elif isinstance(read.scene, CamScene):
-        budget.cam_sweep(read.scene, request.samples)
-    elif request.time_range is not None:  # a spatial chain moves in time only
-        budget.spatial_sweep(read.scene, request.samples, request.quantities)
     if request.time_range is None:
         return respond(
             solver.sweep(
@@ -95,14 +106,21 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
     )
 
 
+def events_cost(request: EventsRequest) -> float:
+    read = solver.read_scene(request.scene, strict=request.strict)
+    e = request.event
+    if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
+        return budget.event(read.scene, e.moving_point, e.t_max, e.reaches)
+    return 0.0
+
+
 @router.post(
     "/events",
     summary="The instant at which a moving point reaches a named point",
     response_model=EventResponse,
 )
+@front_check(events_cost)
 def events_route(request: EventsRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
     e = request.event
-    if isinstance(read.scene, LinkageScene):  # a spatial chain is refused by the solver
-        budget.event(read.scene, e.moving_point, e.t_max)
     return respond(solver.find_event(read, e.moving_point, e.reaches, e.occurrence, e.t_max))

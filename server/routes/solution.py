@@ -19,7 +19,8 @@ from server import budget
 from server.responses import ResultResponse, respond
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
-from server.workers import WorkerRoute
+from server.workers import WorkerRoute, front_check
+from solver.analysis.work_estimate import SOLUTION_COST
 from solver.errors import InvalidScene
 from solver.teaching.presets import build_preset
 
@@ -61,18 +62,24 @@ class SolutionRequest(Strict):
     strict: bool = STRICT
 
 
+def solution_cost(request: SolutionRequest, path: str = "/api/v1/solution") -> float:
+    """In the server's process: the scene's instant and the solution's writing."""
+    return budget.read_instant(request.scene, request.strict, path, SOLUTION_COST)
+
+
 @router.post(
     "/solution",
     summary="Worked solution, step by step, in the textbook's form",
     response_model=SolutionResponse,
 )
+@front_check(solution_cost)
 def solution_route(request: SolutionRequest) -> ResultResponse:
-    read = budget.read_instant(request.scene, request.strict)
+    read = solver.read_scene(request.scene, strict=request.strict)
     return respond(solver.solve(read, request.method, request.digits))
 
 
 def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -> HTMLResponse:
-    solution = solver.solve(budget.read_instant(doc, strict), method, digits)
+    solution = solver.solve(solver.read_scene(doc, strict=strict), method, digits)
     return HTMLResponse(solution_page(doc, solution))
 
 
@@ -100,6 +107,11 @@ def preset_values(request: Request) -> dict[str, float]:
     summary="Printable worked solution of a textbook preset",
     response_class=HTMLResponse,
 )
+@front_check(
+    lambda preset, values, **_: budget.read_instant(
+        build_preset(preset, values), False, "/api/v1/solution.html", SOLUTION_COST
+    )
+)
 def solution_page_preset(
     preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
     values: Annotated[dict[str, float], Depends(preset_values)],
@@ -114,5 +126,6 @@ def solution_page_preset(
 @router.post(
     "/solution.html", summary="Printable worked solution of a scene", response_class=HTMLResponse
 )
+@front_check(lambda request: solution_cost(request, "/api/v1/solution.html"))
 def solution_page_scene(request: SolutionRequest) -> HTMLResponse:
     return _page(request.scene, request.method, request.digits, request.strict)

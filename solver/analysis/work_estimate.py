@@ -10,9 +10,19 @@ characters) keep in check:
   at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
   feasible-range search, and the walk of the continuation from the drawn pose). The constants
   are fitted to ``benchmarks/bench_budget.py`` (docs/SERVING.md quotes a run);
+- the closed-form work: the groups solved in closed form x (samples + ``SETUP_SAMPLES``) at
+  ``CLOSED_FORM_COST``, and, where the continuation follows the path, the radians the drivers
+  turn from the drawn pose x the dyads and levers at ``TURN_COST`` (a group passing its change
+  points twice a turn, as a parallelogram does, is the costliest walk measured: every pass is
+  screened for its branch);
 - an event search: t_max x the frequency of the moving point's law (the search resolves every
   turning point of s(t)), the frequency from the sign changes of s' on ``FREQUENCY_GRID``
-  samples.
+  samples; its distance search is a sweep of ``EVENT_SAMPLES`` over the drivers' turn up to
+  t_max (both works above);
+- the seconds of the whole request (``WorkEstimate.seconds``, with ``reckoning`` stating the
+  products), and of the requests that solve no scene given to them: exercises and their exports
+  (``exercise_work``: count x the type's measured cost), a worked solution's writing
+  (``SOLUTION_COST`` on top of its instant) and a balancing (``BALANCE_COST``).
 
 The estimate only counts; the caller compares it with its limits (the server: ``server.budget``).
 Its parts are computed when first read, so a caller that refuses on the response's size does not
@@ -37,7 +47,7 @@ from solver.model.quantities import normalise_quantities
 from solver.model.scene import MAX_TIME, LinkageScene
 from solver.position.assembly import dense_parts, follows_path
 from solver.position.drivers import driver_inputs_over_time
-from solver.position.topology import NewtonStep, build_plan
+from solver.position.topology import DriverStep, DyadStep, LeverStep, NewtonStep, build_plan
 
 FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
 EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solver.analysis.events)
@@ -48,6 +58,40 @@ EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solv
 SAMPLE_COST = 70e-6  # s of one core per link-sample
 SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
 SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
+# The closed-form cost model (benchmarks/bench_budget.py, wall time on the shared 2-core machine
+# at a load average of about 8): a 3,600-sample revolution of S000-T1 (three closed-form groups,
+# positions to accelerations) took 0.29 s; a time sweep of S003-T1 (a parallelogram, which
+# passes a change point every half turn) turning 524 rad took 6.2 s and the event search over the
+# same turn 4.6 s.
+CLOSED_FORM_COST = 25e-6  # s of one core per closed-form group and sample
+TURN_COST = 12e-3  # s per radian of driver turn and two-branch group (dyad or lever)
+# Work that solves no scene of the request's: a worked solution's writing beyond its instant
+# (S000-T1 by the loop method: 0.06 s; Newton-Euler with its diagrams about twice that) and
+# a balancing (two counterweights on a four-bar: a few instants).
+SOLUTION_COST = 0.15
+VALUE_COST = 2e-6  # s per value of the response of a scene solved in closed form alone (cams, ...)
+BALANCE_COST = 0.1
+# s per exercise of each type at its costliest difficulty, (alone, with its worked solution),
+# generation and serialisation included (benchmarks/bench_budget.py); an export costs the same
+# (the sheets are text around the same numbers). A type not listed costs the costliest.
+# Measured 2026-11-29 at a load average of 8 to 10 (benchmarks/bench_budget.py --whole times them
+# against measured runs): alone, the median of four runs of 6 to 20 exercises (the cost varies
+# with the seed, as a type draws until its exercise is well posed: flywheel 15 to 154 ms), so
+# that a hundred of any type, the most a request may ask, stay within /exercises' 5 s; with the
+# worked solution the larger of two runs (JSON with solutions, printable sheet with them).
+EXERCISE_COSTS: dict[str, tuple[float, float]] = {
+    "four_bar_velocity": (0.031, 0.09),
+    "four_bar_acceleration": (0.035, 0.085),
+    "four_bar_poles": (0.013, 0.11),
+    "slider_crank": (0.009, 0.065),
+    "inverted_slider_crank": (0.019, 0.085),
+    "quick_return": (0.03, 0.13),
+    "slider_extension": (0.021, 0.105),
+    "moving_point": (0.036, 0.14),
+    "spatial_arm": (0.019, 0.075),
+    "four_bar_torque": (0.049, 0.15),
+    "flywheel": (0.049, 0.24),
+}
 
 
 class ChapterScene(Protocol):
@@ -87,6 +131,49 @@ class NewtonWork:
 
 
 @dataclass(frozen=True)
+class ClosedFormWork:
+    """The closed-form groups' work: ``groups`` x (``samples`` + ``setup_samples``) x
+    ``sample_cost``, plus ``branch_groups`` (dyads and levers, where the continuation follows
+    the path) x ``turn`` rad from the drawn pose x ``turn_cost``."""
+
+    groups: int
+    branch_groups: int
+    samples: int
+    turn: float
+    setup_samples: int = SETUP_SAMPLES
+    sample_cost: float = CLOSED_FORM_COST
+    turn_cost: float = TURN_COST
+
+    @property
+    def seconds(self) -> float:
+        """Estimated seconds of one core."""
+        sampled = self.groups * (self.samples + self.setup_samples) * self.sample_cost
+        return sampled + self.branch_groups * self.turn * self.turn_cost
+
+    @property
+    def reckoning(self) -> str:
+        """The products, with their numbers."""
+        text = (
+            f"{self.groups} closed-form groups x ({self.samples} samples + "
+            f"{self.setup_samples} for tracing the path) x {self.sample_cost * 1e6:g} us"
+        )
+        if self.branch_groups and self.turn:
+            text += (
+                f" + {self.branch_groups} dyads or levers x {self.turn:,.6g} rad the drivers "
+                f"turn from the drawn pose x {self.turn_cost * 1e3:g} ms"
+            )
+        return text
+
+
+@dataclass(frozen=True)
+class Cost:
+    """Estimated ``seconds`` of one core, and the ``reckoning`` that gives them (its numbers)."""
+
+    seconds: float
+    reckoning: str
+
+
+@dataclass(frozen=True)
 class Oscillations:
     """An event search's span: ``t_max`` x the ``frequency`` (Hz) of ``moving_point``'s law;
     ``resolved`` false where the grid no longer resolves the law (the frequency is then a lower
@@ -116,6 +203,7 @@ class WorkEstimate:
         event: tuple[str, float] | None = None,
         time_grid: np.ndarray | None = None,
         time_sweep: bool = False,
+        walks: bool = True,
     ) -> None:
         self.scene = scene
         self._time_sweep = time_sweep
@@ -124,6 +212,7 @@ class WorkEstimate:
         self._turn = turn
         self._time_grid = time_grid
         self._event = event
+        self._walks = walks
         if isinstance(scene, SpatialChain):
             self.entries = len(scene.points) + 2 * len(scene.joints)  # a body per joint
             self.entries_what = "bodies, joints and points"
@@ -151,6 +240,49 @@ class WorkEstimate:
         groups = tuple(len(s.links) for s in build_plan(scene).steps if isinstance(s, NewtonStep))
         return NewtonWork(groups, self.samples, turn) if groups else None
 
+    @cached_property
+    def closed_form(self) -> ClosedFormWork | None:
+        """The closed-form groups' work (None but for a linkage)."""
+        scene = self.scene
+        if not isinstance(scene, LinkageScene):
+            return None
+        plan = build_plan(scene)
+        steps = [s for s in plan.steps if not isinstance(s, DriverStep | NewtonStep)]
+        branches = sum(isinstance(s, DyadStep | LeverStep) for s in steps)
+        turn = (
+            self._turn
+            if self._time_grid is None
+            else driver_turn(scene, self._time_grid)
+            if follows_path(plan) and self._walks
+            else 0.0
+        )
+        return ClosedFormWork(len(steps), branches, self.samples, turn or 0.0)
+
+    @property
+    def seconds(self) -> float:
+        """Estimated seconds of one core for the whole request (Newton-Raphson and closed
+        form)."""
+        if not isinstance(self.scene, LinkageScene):
+            return self.values * VALUE_COST
+        return sum(w.seconds for w in (self.newton, self.closed_form) if w is not None)
+
+    @property
+    def reckoning(self) -> str:
+        """How ``seconds`` is reckoned, with the numbers."""
+        parts = []
+        if not isinstance(self.scene, LinkageScene):
+            parts.append(f"{self.values:,} values x {VALUE_COST * 1e6:g} us")
+        if self.newton is not None:
+            n = self.newton
+            parts.append(
+                f"{n.links} links solved by Newton-Raphson x ({n.samples} samples + "
+                f"{n.setup_samples} + {n.turn:,.6g} rad x {n.samples_per_radian}) x "
+                f"{n.sample_cost * 1e6:g} us"
+            )
+        if self.closed_form is not None:
+            parts.append(self.closed_form.reckoning)
+        return " + ".join(parts) + f" = {self.seconds:,.4g} s"
+
     def dense_samples(self) -> int | None:
         """A time sweep's samples on the dense grid its continuation follows (``dense_parts``:
         the drivers' steps cut to MAX_DRIVER_STEP); None where it follows the given samples.
@@ -177,6 +309,19 @@ class WorkEstimate:
         return Oscillations(name, t_max, turns / (2.0 * t_max), turns < FREQUENCY_GRID // 4)
 
 
+def exercise_work(kind: str, count: int, with_solutions: bool) -> Cost:
+    """``count`` exercises of type ``kind`` (or an export of them): count x the type's measured
+    cost (``EXERCISE_COSTS``; the costliest for a type not listed)."""
+    costliest = max(EXERCISE_COSTS.values(), key=lambda c: c[1])
+    alone, solved = EXERCISE_COSTS.get(kind, costliest)
+    each = solved if with_solutions else alone
+    what = "with its worked solution" if with_solutions else "each"
+    seconds = count * each
+    return Cost(
+        seconds, f"{count} exercises x {each * 1e3:g} ms {what} ({kind}) = {seconds:,.4g} s"
+    )
+
+
 def driver_turn(scene: LinkageScene, times: np.ndarray) -> float:
     """Radians the drivers turn from the drawn pose to reach every one of ``times`` (both ways)."""
     turns = np.concatenate([d.theta for d in driver_inputs_over_time(scene, times)] + [[0.0]])
@@ -190,13 +335,16 @@ def estimate_work(
     *,
     time_range: Sequence[float] | None = None,
     event: tuple[str, float] | None = None,
+    reaches: str | None = None,
 ) -> WorkEstimate:
     """The cost of a request on ``scene``, before any work: one instant (``samples`` None,
     reached from the drawn pose: /analyze, /solution), a revolution of ``samples`` (/sweep), the
     same over ``time_range`` (the drivers' turn over it counted), or an event search
     ``event`` = (moving point, t_max) (/events: its time laws are parsed first, and a moving
     point the scene does not have or a t_max outside 0 < t_max <= MAX_TIME is left to the
-    search's own message: no work estimated). ``quantities`` as for a sweep (default
+    search's own message: no work estimated; the linkage is walked over the drivers' turn up to
+    t_max unless the target ``reaches`` is a point of the moving point's carrier, which is
+    searched along its path). ``quantities`` as for a sweep (default
     position). A scene of another chapter (a cam, a gear train) counts its values per sample,
     whatever the quantities."""
     wanted = len(normalise_quantities(["position"] if quantities is None else quantities))
@@ -212,7 +360,9 @@ def estimate_work(
         if not any(m.name == name for m in scene.moving_points) or not 0.0 < t_max <= MAX_TIME:
             return WorkEstimate(scene, EVENT_SAMPLES, wanted, None)
         grid = np.linspace(0.0, t_max, FREQUENCY_GRID + 1)
-        return WorkEstimate(scene, EVENT_SAMPLES, wanted, None, event, grid)
+        carrier = next(m.link for m in scene.moving_points if m.name == name)
+        walks = reaches is None or reaches not in scene.links[carrier].points
+        return WorkEstimate(scene, EVENT_SAMPLES, wanted, None, event, grid, walks=walks)
     if samples is None:
         return WorkEstimate(scene, 1, wanted, None, time_grid=np.array([scene.time]))
     check_samples(samples)  # a sweep's bounds first: the estimate below needs them

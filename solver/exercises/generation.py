@@ -104,10 +104,16 @@ def build(ident: ExerciseId) -> Exercise:
     raise GenerationFailed(f"no well-posed exercise for {ident} in {MAX_ATTEMPTS} draws")
 
 
-def generate(kind: str, difficulty: str, seed: int, count: int) -> list[Exercise]:
-    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``."""
+def check_generation(kind: str, difficulty: str, count: int) -> None:
+    """Refuse, before any work, what ``generate`` would: an unknown type or difficulty, or a
+    count outside 1 to MAX_COUNT."""
     exercise_type(kind)
     check_difficulty(difficulty)
     if not 1 <= count <= MAX_COUNT:
         raise LimitExceeded(f"count: expected 1 to {MAX_COUNT} exercises, got {count}")
+
+
+def generate(kind: str, difficulty: str, seed: int, count: int) -> list[Exercise]:
+    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``."""
+    check_generation(kind, difficulty, count)
     return [build(ExerciseId(kind, difficulty, seed, index)) for index in range(count)]

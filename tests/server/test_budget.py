@@ -22,7 +22,9 @@ from fastapi.testclient import TestClient
 import solver
 from server import budget
 from server.app import app
+from server.settings import Settings
 from solver.errors import LimitExceeded
+from solver.exercises import TYPES
 from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
 from solver.model.scene import LinkageScene
 from solver.position.assembly import MAX_DENSE_SAMPLES
@@ -201,3 +203,70 @@ def test_a_time_sweeps_dense_grid_past_its_limit_is_refused_before_any_work() ->
     detail = refused("/api/v1/sweep", body)
     assert "the drivers turn 1e+30 rad" in detail
     assert f"more than {MAX_DENSE_SAMPLES}" in detail
+
+
+# --- the whole request's estimate (issue 28) ----------------------------------------------------
+
+S000_T1 = json.loads((EXAMPLES / "S000-T1.json").read_text())
+S003_T1 = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
+
+
+def test_the_closed_form_work_of_a_revolution() -> None:
+    """S000-T1: three closed-form groups (the dyad and two points placed on known links) x
+    (360 + 720) samples x 25 us = 0.081 s; no turn from the drawn pose."""
+    estimate = solver.estimate_work(solver.parse_scene(S000_T1), 360)
+    assert estimate.newton is None
+    assert estimate.closed_form is not None
+    assert (estimate.closed_form.groups, estimate.closed_form.branch_groups) == (3, 1)
+    assert estimate.seconds == pytest.approx(3 * 1080 * 25e-6)
+
+
+def test_the_drivers_turn_is_charged_per_dyad() -> None:
+    """S003-T1's crank turns 0.5236 t^3 rad: 8 x 0.5236 = 4.18879 rad by t = 2 s; 3 x (100 +
+    720) x 25 us + 1 dyad x 4.18879 rad x 12 ms."""
+    estimate = solver.estimate_work(solver.parse_scene(S003_T1), 100, None, time_range=[0.0, 2.0])
+    turn = 0.5235987755982988 * 8
+    assert estimate.seconds == pytest.approx(3 * 820 * 25e-6 + turn * 12e-3, rel=1e-3)
+    assert "4.18879 rad the drivers turn from the drawn pose x 12 ms" in estimate.reckoning
+
+
+def test_a_time_sweep_past_the_whole_budget_is_refused_with_its_turn() -> None:
+    """The same over [0, 60] s: 113,097 rad x 12 ms = 1,357 s of /sweep's 5 s."""
+    body = {"scene": S003_T1, "samples": 100, "time_range": [0, 60]}
+    detail = refused("/api/v1/sweep", body)
+    assert "113,097 rad the drivers turn" in detail and "= 1,357 s" in detail
+    assert "more than the limit of 5 s (/api/v1/sweep's time limit of 10 s" in detail
+
+
+def test_an_event_on_the_carrier_is_not_charged_the_walk() -> None:
+    """M reaching S, a point of its own carrier, is searched along M's path: the turn is not
+    walked (the contract test's event of S003-T1 is answered)."""
+    scene = solver.parse_scene(S003_T1)
+    on_carrier = solver.estimate_work(scene, event=("M", 60.0), reaches="S")
+    off_carrier = solver.estimate_work(scene, event=("M", 60.0), reaches="O1")
+    assert on_carrier.closed_form is not None and on_carrier.closed_form.turn == 0.0
+    assert off_carrier.closed_form is not None
+    assert off_carrier.closed_form.turn == pytest.approx(0.5235987755982988 * 60**3)
+
+
+def test_exercises_cost_count_times_their_types_cost() -> None:
+    assert solver.exercise_work("flywheel", 20, True).seconds == pytest.approx(20 * 0.24)
+    assert solver.exercise_work("slider_crank", 100, False).seconds == pytest.approx(0.9)
+    assert solver.exercise_work("not-a-type", 1, False).seconds == pytest.approx(0.049)
+    for kind in TYPES:  # a hundred of any type, the most allowed, fit
+        assert budget.exercises(kind, 100, False, "/api/v1/exercises") <= 5.0
+    detail = refused(
+        "/api/v1/exercises",
+        {"type": "flywheel", "difficulty": "challenging", "count": 21, "with_solutions": True},
+    )
+    assert "21 exercises x 240 ms with its worked solution (flywheel) = 5.04 s" in detail
+
+
+def test_the_budget_follows_a_raised_time_limit_but_not_a_lowered_one() -> None:
+    assert budget.limit("/api/v1/sweep") == 5.0
+    for configured, allowed in ((40.0, 20.0), (1.0, 5.0)):
+        token = budget.SETTINGS.set(Settings(time_limits={"/api/v1/sweep": configured}))
+        try:
+            assert budget.limit("/api/v1/sweep") == allowed
+        finally:
+            budget.SETTINGS.reset(token)
