@@ -19,6 +19,7 @@ METHODS = {
     "vector": "relative velocities (vector method)",
     "loop": "loop closure in complex form",
     "newton_euler": "Newton-Euler (joint forces and the driving torque)",
+    "cam": "the follower's motion law and the cam's geometry",
 }
 
 
@@ -51,6 +52,8 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
     """The scene's data as tables (from the validated document)."""
     if doc.get("kind") == "spatial_chain":
         return _chain_tables(doc)
+    if doc.get("kind") == "cam":
+        return _cam_tables(doc)
     instant = f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>" if "time" in doc else ""
     return _linkage_tables(doc) + _moving_point_table(doc.get("moving_points", [])) + instant
 
@@ -79,6 +82,28 @@ def _chain_tables(doc: Mapping[str, Any]) -> str:
             for n, p in doc.get("points", {}).items()
         ),
     )
+
+
+def _cam_tables(doc: Mapping[str, Any]) -> str:
+    """A cam's circle, speed, follower and segments."""
+    cam, follower = doc.get("cam", {}), doc.get("follower", {})
+    return _table(
+        "Cam and follower (m, rad/s)",
+        ["field", "value"],
+        (
+            [_e(k), _vector(v)]
+            for k, v in (*cam.items(), *follower.items())
+            if isinstance(v, str | int | float | list)
+        ),
+    ) + _table(
+        "Segments (lift in m, or rad for an oscillating follower)",
+        ["segment", "type", "law", "lift", "duration (deg)"],
+        (
+            [str(i), _e(s.get("type")), _e(s.get("law", "")), _e(s.get("lift", "")),
+             _e(s.get("duration_deg"))]
+            for i, s in enumerate(doc.get("segments", []))
+        ),
+    )  # fmt: skip
 
 
 def _linkage_tables(doc: Mapping[str, Any]) -> str:
@@ -148,9 +173,8 @@ def _inline_svg(figure: str) -> str:
 
 def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
     """The page of ``solution`` (a /solution body) for the scene document ``doc``."""
-    title = doc.get("title") or (
-        "spatial chain" if doc.get("kind") == "spatial_chain" else "linkage"
-    )
+    kinds = {"spatial_chain": "spatial chain", "cam": "cam"}
+    title = doc.get("title") or kinds.get(str(doc.get("kind")), "linkage")
     steps = "".join(
         f'<li class="step"><h3>{_e(s["title"])}</h3>'
         + (

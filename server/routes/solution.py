@@ -40,7 +40,7 @@ def _example(name: str) -> dict[str, Any]:
 
 class SolutionRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: kind 'linkage' or 'spatial_chain'.",
+        description="A scene-v1 document: kind 'linkage', 'spatial_chain' or 'cam'.",
         examples=[_example("S000-T2"), _example("S002-spatial-arm")],
     )
     method: Method = Field(
@@ -57,6 +57,11 @@ class SolutionRequest(Strict):
         strict=True,
         description="Significant digits of the numbers shown (1 to 15).",
     )
+    angle_deg: float | None = Field(
+        None,
+        allow_inf_nan=False,
+        description="A cam's cam angle in degrees (default 0; docs/CAMS.md); not for a linkage.",
+    )
     strict: bool = STRICT
 
 
@@ -67,11 +72,18 @@ class SolutionRequest(Strict):
 )
 def solution_route(request: SolutionRequest) -> ResultResponse:
     read = budget.read_instant(request.scene, request.strict)
-    return respond(solver.solve(read, request.method, request.digits))
+    return respond(solver.solve(read, request.method, request.digits, angle_deg=request.angle_deg))
 
 
-def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -> HTMLResponse:
-    solution = solver.solve(budget.read_instant(doc, strict), method, digits)
+def _page(
+    doc: dict[str, Any],
+    method: str,
+    digits: int,
+    strict: bool = False,
+    angle_deg: float | None = None,
+) -> HTMLResponse:
+    read = budget.read_instant(doc, strict)
+    solution = solver.solve(read, method, digits, angle_deg=angle_deg)
     return HTMLResponse(solution_page(doc, solution))
 
 
@@ -114,4 +126,4 @@ def solution_page_preset(
     "/solution.html", summary="Printable worked solution of a scene", response_class=HTMLResponse
 )
 def solution_page_scene(request: SolutionRequest) -> HTMLResponse:
-    return _page(request.scene, request.method, request.digits, request.strict)
+    return _page(request.scene, request.method, request.digits, request.strict, request.angle_deg)

@@ -13,10 +13,12 @@ from dataclasses import replace
 from typing import Literal, get_args
 
 from solver.analysis.instant import LinkageAnalysis, analyze
+from solver.cams.model import CamScene
 from solver.errors import InvalidScene
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain
 from solver.model.scene import LinkageScene
 from solver.solutions import latex as tex
+from solver.solutions.cam import cam_solution
 from solver.solutions.classification import classification_steps
 from solver.solutions.digits import DigitPlan
 from solver.solutions.format import Formatter
@@ -140,9 +142,15 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
     return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
 
 
-def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: int = 4) -> Solution:
+def solve(
+    scene: LinkageScene | SpatialChain | CamScene,
+    method: str = "vector",
+    digits: int = 4,
+    angle_deg: float = 0.0,
+) -> Solution:
     """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
-    ``digits`` significant digits (1..15). Raises ``InvalidScene`` for an unknown method or a
+    ``digits`` significant digits (1..15); a cam's at cam angle ``angle_deg``, by its own method
+    ('cam', whatever ``method`` says). Raises ``InvalidScene`` for an unknown method or a
     bad digit count, and the analysis' own errors (NotAssemblable, SingularConfiguration...)."""
     if method not in METHODS:
         raise InvalidScene(f"method: unknown method {method!r}; available: {', '.join(METHODS)}")
@@ -156,6 +164,8 @@ def solve(scene: LinkageScene | SpatialChain, method: str = "vector", digits: in
         )
     if isinstance(scene, LinkageScene):
         return _linkage(scene, method, digits)
+    if isinstance(scene, CamScene):
+        return cam_solution(scene, angle_deg, digits)
     analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
     lead = []
