@@ -12,9 +12,11 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.errors import InvalidScene
+from solver.exercises.cams import cam_mistakes
 from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
+from solver.exercises.registry import TYPES
 
 
 def _diagnosis(
@@ -29,6 +31,14 @@ def _diagnosis(
         ):
             return mistake
     return None
+
+
+def diagnoses(exercise: Exercise) -> list[WrongAnswers]:
+    """The typical mistakes that apply to the exercise with the wrong answers they give: a
+    cam's (``solver.exercises.cams``), or ``solver.exercises.mistakes``' for the others."""
+    if TYPES[exercise.id.type].mistakes == "cam":
+        return [WrongAnswers(*made) for made in cam_mistakes(exercise)]
+    return typical_mistakes(exercise)
 
 
 def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:
@@ -52,7 +62,7 @@ def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> di
             result |= {"verdict": "correct", "relative_error": error, "diagnosis": None}
         else:
             if mistakes is None:
-                mistakes = typical_mistakes(exercise)
+                mistakes = diagnoses(exercise)
             found = _diagnosis(asked, given, expected, mistakes)
             result |= {
                 "verdict": "incorrect",

@@ -15,7 +15,9 @@ from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
+from solver.cams import parse_cam
 from solver.model.scene import Joint, ground_pivot, parse_linkage
+from solver.solutions.cam import cam_context, cam_figure
 from solver.teaching.svg import Attribute, Canvas, View, element
 
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
@@ -333,4 +335,6 @@ def _spatial(scene: Mapping[str, Any]) -> str:
 
 def figure_svg(scene: Mapping[str, Any]) -> str:
     """The exercise's figure (a standalone SVG document)."""
+    if scene.get("kind") == "cam":  # at cam angle 0, the pressure angle marked, not given
+        return cam_figure(cam_context(parse_cam(scene), 0.0), labelled=False)
     return _spatial(scene) if scene.get("kind") == "spatial_chain" else _linkage(scene)

@@ -10,7 +10,7 @@ import random
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from solver.exercises import dynamics
+from solver.exercises import cams, dynamics
 from solver.exercises.families import (
     four_bar_acceleration,
     four_bar_poles,
@@ -142,6 +142,20 @@ TYPES: Mapping[str, ExerciseType] = {
             "(weights and a load from standard on; the mean torque at challenging).",
             ("energy_fluctuation", "flywheel_inertia", "mean_torque"), dynamics.flywheel,
             "flywheel",
+        ),
+        _type(
+            "cam_follower_motion", "Cam: the follower's velocity and acceleration",
+            "A disc cam with a translating roller follower, its rise and return by textbook "
+            "laws: the follower's velocity and acceleration at a cam angle (the jerk at "
+            "challenging), by the chain rule.",
+            ("v", "a", "j"), cams.follower_motion, "cam",
+        ),
+        _type(
+            "cam_pressure_angle", "Cam: pressure angle and radius of curvature",
+            "A disc cam with an offset knife-edge or roller follower: the pressure angle at a "
+            "cam angle, the cam surface's radius of curvature (standard), the smallest and largest "
+            "pressure angles over the revolution (challenging).",
+            ("phi", "rho", "phi_min", "phi_max"), cams.pressure_angle, "cam",
         ),
     )
 }  # fmt: skip

@@ -42,8 +42,10 @@ from solver.cams.laws import LAWS, MODIFIED_SINE, MODIFIED_TRAPEZOID, Accelerati
 from solver.cams.model import CamScene, Segment
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Boxed, Equation, Num, Paren, Piece, Pt, Ref, Sym
+from solver.solutions.figures import nice_scale
 from solver.solutions.format import Formatter
 from solver.solutions.model import Mistake, Solution, Step, Value
+from solver.teaching.mistakes import cam_beta_in_degrees, cam_rate_without_omega, typical_mistake
 from solver.teaching.svg import Canvas, View, element
 
 JSON = dict[str, Any]
@@ -104,12 +106,7 @@ class LawValues(NamedTuple):
 def cam_solution(scene: CamScene, angle_deg: float, digits: int) -> Solution:
     """The worked solution of ``scene`` at cam angle ``angle_deg`` (modulo 360), numbers shown
     with ``digits`` significant digits."""
-    body = analyze_cam(scene, angle_deg)
-    theta = body["cam_angle"]
-    lift = follower_lift(scene, np.array([theta]))
-    index = int(lift.segment[0])
-    fmt = Formatter(digits, unit_scales(scene, body))
-    ctx = CamContext(scene, theta, body, lift, scene.segments[index], index, fmt)
+    ctx = cam_context(scene, angle_deg, digits)
     steps = [data_step(ctx)]
     law: tuple[float, ...] | None = None
     if ctx.segment.law is not None:
@@ -119,7 +116,18 @@ def cam_solution(scene: CamScene, angle_deg: float, digits: int) -> Solution:
     steps += [motion, pressure_angle_step(ctx), curvature_step(ctx), fundamental_law_step(ctx)]
     steps.append(summary_step(ctx))
     mistakes = cam_mistakes(ctx, steps.index(motion))
-    return Solution(tuple(steps), tuple(mistakes), body, "cam", "cam", digits)
+    return Solution(tuple(steps), tuple(mistakes), ctx.body, "cam", "cam", digits)
+
+
+def cam_context(scene: CamScene, angle_deg: float, digits: int = 4) -> CamContext:
+    """The cam at ``angle_deg`` as the steps read it: /analyze's body there, the lift, the
+    segment, a formatter of ``digits`` significant digits."""
+    body = analyze_cam(scene, angle_deg)
+    theta = body["cam_angle"]
+    lift = follower_lift(scene, np.array([theta]))
+    index = int(lift.segment[0])
+    fmt = Formatter(digits, unit_scales(scene, body))
+    return CamContext(scene, theta, body, lift, scene.segments[index], index, fmt)
 
 
 def _per_radian(unit: str, order: int) -> str:
@@ -218,10 +226,10 @@ def _turned(points: np.ndarray, angle: float) -> np.ndarray:
     return np.stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]], 1)
 
 
-def cam_figure(ctx: CamContext) -> str:
+def cam_figure(ctx: CamContext, labelled: bool = True) -> str:
     """The cam turned to theta (its profile, base circle dashed), the follower, and at the pitch
     point the common normal and the follower's direction of motion, the pressure angle between
-    them."""
+    them (its value written unless not ``labelled``: an exercise's figure)."""
     scene, f = ctx.scene, ctx.scene.follower
     mirror = np.array([math.copysign(1.0, scene.omega), 1.0])
     profile = _turned(np.asarray(ctx.body["profile"]), math.copysign(ctx.theta, scene.omega))
@@ -286,8 +294,12 @@ def cam_figure(ctx: CamContext) -> str:
     label = [("font-size", "3.4"), ("font-family", "sans-serif")]
     phi = math.degrees(float(ctx.body["pressure_angle"]))
     at = canvas.px(pitch + (normal + direction) * 0.5 * length)
-    canvas.text((at[0] + 1.5, at[1]), f"phi = {phi:.3g} deg", label)
+    canvas.text((at[0] + 1.5, at[1]), f"phi = {phi:.3g} deg" if labelled else "phi", label)
     canvas.text(canvas.px((0.0, 0.0)), "O", [*label, ("dx", "1.5"), ("dy", "3.5")])
+    bar = nice_scale(0.2 * FIGURE / view.scale, 1.0)  # a round length, a fifth of the drawing
+    width = bar * view.scale
+    canvas.path(f"M4 {FIGURE - 7:g}v2h{width:.2f}v-2", [("fill", "none"), ("stroke", "#000000")])
+    canvas.text((width + 6.0, FIGURE - 5.0), f"{bar:g} m", label)
     title = element("title", [], f"The cam at theta = {math.degrees(ctx.theta):g} deg")
     size = f"{FIGURE:g}"
     return canvas.document(
@@ -1470,34 +1482,38 @@ def summary_step(ctx: CamContext) -> Step:
 
 
 def cam_mistakes(ctx: CamContext, motion: int) -> list[Mistake]:
-    """Typical mistakes with the chain rule: v = ds/dtheta (omega left out), and beta in
-    degrees in ds/dtheta = h y'/beta."""
+    """Typical mistakes with the chain rule (``solver.teaching.mistakes``): v = ds/dtheta (the
+    cam's speed left out), and beta in degrees in ds/dtheta = h y'/beta."""
     if ctx.segment.law is None:
         return []
     fmt, unit = ctx.fmt, ctx.unit
-    ds = float(ctx.lift.ds[0])
     v = float(ctx.body["follower"]["velocity"])
-    w = abs(ctx.scene.omega)
+    omega, duration = ctx.scene.omega, ctx.segment.duration_deg
 
     def value(x: float, u: str) -> Value:
         return Value(x, u, fmt.display(x, u))
 
-    left_out = Mistake(
-        "cam_omega_left_out",
-        "Velocity without the cam's speed",
-        "ds/dtheta is the velocity per radian of cam turn; the follower's velocity in time "
-        f"is v = (ds/dtheta) omega. Leaving omega out gives {fmt.text(ds)} instead of "
-        f"{fmt.text(v)} {unit}/s.",
-        {"wrong": value(ds, f"{unit}/rad"), "right": value(v, f"{unit}/s")},
-        step=motion,
-    )
-    wrong = ds * ctx.segment.duration / ctx.segment.duration_deg * w
-    degrees = Mistake(
-        "cam_beta_in_degrees",
-        "The segment's duration in degrees",
-        "In ds/dtheta = h y'/beta the duration beta is in radians (theta is). With beta in "
-        f"degrees, v comes out as {fmt.text(wrong)} instead of {fmt.text(v)} {unit}/s.",
-        {"wrong": value(wrong, f"{unit}/s"), "right": value(v, f"{unit}/s")},
-        step=motion,
-    )
-    return [left_out, degrees]
+    def mistake(kind: str, text: str, wrong: float, wrong_unit: str) -> Mistake:
+        entry = typical_mistake(kind)
+        values = {"wrong": value(wrong, wrong_unit), "right": value(v, f"{unit}/s")}
+        return Mistake(kind, entry.title, text, values, step=motion)
+
+    ds = cam_rate_without_omega(v, omega, 1)
+    wrong = cam_beta_in_degrees(v, duration, 1)
+    return [
+        mistake(
+            "cam_omega_left_out",
+            "ds/dtheta is the velocity per radian of cam turn; the follower's velocity in time "
+            f"is v = (ds/dtheta) omega. Leaving omega out gives {fmt.text(ds)} instead of "
+            f"{fmt.text(v)} {unit}/s.",
+            ds,
+            _per_radian(unit if unit == "m" else "", 1),
+        ),
+        mistake(
+            "cam_beta_in_degrees",
+            "In ds/dtheta = h y'/beta the duration beta is in radians (theta is). With beta in "
+            f"degrees, v comes out as {fmt.text(wrong)} instead of {fmt.text(v)} {unit}/s.",
+            wrong,
+            f"{unit}/s",
+        ),
+    ]

@@ -15,7 +15,7 @@ import pytest
 from solver.errors import InvalidScene
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
 from solver.exercises.answers import solve_scene
-from solver.exercises.checking import check, check_answers
+from solver.exercises.checking import check, check_answers, diagnoses
 from solver.exercises.mistakes import (
     Numbers,
     lever_alpha,
@@ -91,7 +91,7 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         for difficulty in DIFFICULTIES:
             for seed in SEEDS[:3]:
                 e = build(ExerciseId(kind, difficulty, seed, 0))
-                mistakes = typical_mistakes(e)
+                mistakes = diagnoses(e)
                 for i, mistake in enumerate(mistakes):
                     for key, wrong in mistake.values.items():
                         asked = next(a for a in e.asked if a.key == key)
@@ -110,6 +110,8 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
                             assert row["diagnosis"] == mistake.sentence
                             diagnosed[mistake.kind] += 1
     assert set(diagnosed) == {
+        "cam_omega_left_out",
+        "cam_beta_in_degrees",
         "coriolis_left_out",
         "coriolis_without_factor_2",
         "coriolis_on_fixed_guide",

@@ -4,7 +4,9 @@ arithmetic recomputes, and the fundamental law is judged as the warnings judge i
 
 from __future__ import annotations
 
+import json
 import math
+import subprocess
 from typing import Any
 
 import numpy as np
@@ -14,6 +16,7 @@ import solver
 from solver.cams import LAW_NAMES, LAWS
 from solver.errors import InvalidScene
 from solver.teaching.cam_presets import CAM_PRESETS
+from tests.server.test_exercise_exports import NODE, ROOT
 from tests.solver.cams.test_cams import BETA_DEG, FOLLOWERS, OMEGA, H, scene
 from tests.solver.solutions.test_solve import unit_floors, unrecomputable, verify
 
@@ -195,3 +198,23 @@ def test_angle_deg_belongs_to_a_cam() -> None:
         solver.solve(linkage, angle_deg=30.0)
     with pytest.raises(InvalidScene, match="angle_deg"):
         solver.solve(scene(), angle_deg=math.inf)
+
+
+def test_every_step_typesets_with_katex() -> None:
+    """The LaTeX of every step, for every law and follower preset at angles in each segment,
+    compiles with the vendored KaTeX (tests/katex_check.mjs, throwOnError)."""
+    latex = []
+    for preset in CAM_PRESETS.values():
+        for law in range(len(LAW_NAMES)):
+            doc = preset.build({"rise_law": law, "return_law": law})
+            for angle in (0.0, 30.0, 150.0, 200.0):
+                latex += [s["latex"] for s in _solution(doc, angle)["steps"]]
+    done = subprocess.run(
+        [str(NODE), str(ROOT / "tests" / "katex_check.mjs")],
+        input="\n".join(json.dumps(s) for s in latex),
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    failures = [line for line in done.stdout.splitlines() if '"ok":false' in line]
+    assert done.returncode == 0 and not failures, failures[:3]
