@@ -293,7 +293,7 @@ def cam_figure(ctx: CamContext, labelled: bool = True) -> str:
     canvas.circle(canvas.px(contact), 0.9, [("fill", "#000000")])
     label = [("font-size", "3.4"), ("font-family", "sans-serif")]
     phi = math.degrees(float(ctx.body["pressure_angle"]))
-    at = canvas.px(pitch + (normal + direction) * 0.5 * length)
+    at = canvas.px(pitch + normal * 1.05 * length)  # beside the normal, clear of the follower
     canvas.text((at[0] + 1.5, at[1]), f"phi = {phi:.3g} deg" if labelled else "phi", label)
     canvas.text(canvas.px((0.0, 0.0)), "O", [*label, ("dx", "1.5"), ("dy", "3.5")])
     bar = nice_scale(0.2 * FIGURE / view.scale, 1.0)  # a round length, a fifth of the drawing

@@ -67,6 +67,8 @@ async function call(method, path, body) {
 }
 
 export const getPresets = () => call('GET', '/presets');
+/** The presets of one family (`gear_trains`, `cams`; docs/GEARS.md). */
+export const getPresetFamily = (family) => call('GET', `/presets?family=${encodeURIComponent(family)}`);
 export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
 export const analyze = (scene, quantities) =>
   call('POST', '/analyze', quantities ? { scene, quantities } : { scene });
@@ -74,6 +76,8 @@ export const sweep = (scene, samples, quantities, timeRange) =>
   call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
 export const balance = (scene, counterweights) => call('POST', '/balance', { scene, counterweights });
+/** A cam's worked solution at cam angle `angleDeg` (docs/CAMS.md). */
+export const camSolution = (scene, angleDeg, digits = 4) => call('POST', '/solution', { scene, angle_deg: angleDeg, digits });
 
 /** The printable worked solution: a whole HTML page (text, not JSON). */
 export async function solutionPage(scene, method, digits = 4) {

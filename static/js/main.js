@@ -24,6 +24,7 @@ import { installExport } from './export.js';
 import { renderMagnitudes } from './magnitudes.js';
 import { Editor } from './editor.js';
 import { DynamicsPanel } from './dynamics.js';
+import { CamApp } from './cam-view.js';
 
 // The least samples per revolution (1.5 deg apart: smooth cycle plots, the dynamics' cycle means);
 // more where the drawing needs them (fetchTrack).
@@ -132,6 +133,9 @@ class App {
     const drawn = (x) => !x.kind || x.kind === 'linkage' || x.kind === 'spatial_chain';
     this.examples = examples.status === 'fulfilled' ? (examples.value.examples || []).filter(drawn) : [];
     this.controls.setPresetChoices([...this.presets.values()], this.examples);
+    // Cams (issue 24): their own group in the menu and their own section (js/cam-view.js).
+    this.cams = new CamApp($('cam-app'));
+    this.cams.addChoices($('preset'));
 
     const state = shared.status === 'fulfilled' ? shared.value : null;
     if (state && !state.error) await this.restore(state);
@@ -158,6 +162,11 @@ class App {
 
   async onSource(value) {
     const [type, name] = [value.slice(0, value.indexOf(':')), value.slice(value.indexOf(':') + 1)];
+    if (type === 'cam') {
+      this.setPlaying(false, { analyse: false });
+      return this.cams.open(name);
+    }
+    this.cams?.close();
     this.driverEdits = {};
     // A newly chosen mechanism starts moving, as the page does on opening.
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
