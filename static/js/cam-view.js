@@ -511,5 +511,7 @@ export class CamApp {
     if (seq !== this.solutionSeq) return;
     this.el.steps.dataset.angle = String(angle);
     renderSolution(this.el.steps, this.el.mistakes, body);
+    // A long equation scrolls sideways (on a narrow screen): reachable by the keyboard too.
+    for (const math of this.el.steps.querySelectorAll('.step-math')) math.setAttribute('tabindex', '0');
   }
 }
