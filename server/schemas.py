@@ -608,7 +608,9 @@ class SolutionResponse(Open):
     digits: int
     steps: list[StepModel]
     mistakes: list[MistakeModel]
-    results: AnalyzeResponse = Field(description="The /analyze body of the same scene")
+    results: AnalyzeResponse | CamAnalyzeResponse = Field(
+        description="The /analyze body of the same scene (a cam's at the same angle_deg)"
+    )
     polygons: PolygonValues | None = Field(
         None, description="A linkage's velocity and acceleration polygons, segment by segment"
     )

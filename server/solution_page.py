@@ -20,6 +20,7 @@ METHODS = {
     "loop": "loop closure in complex form",
     "newton_euler": "Newton-Euler (joint forces and the driving torque)",
     "tabular": "the tabular (Willis) method and the formula method",
+    "cam": "the follower's motion law and the cam's geometry",
 }
 
 
@@ -54,6 +55,8 @@ def _scene_tables(doc: Mapping[str, Any]) -> str:
         return _chain_tables(doc)
     if doc.get("kind") == "gear_train":
         return _gear_tables(doc)
+    if doc.get("kind") == "cam":
+        return _cam_tables(doc)
     instant = f"<p>Analysed instant: t = {_e(doc['time'])} s.</p>" if "time" in doc else ""
     return _linkage_tables(doc) + _moving_point_table(doc.get("moving_points", [])) + instant
 
@@ -114,6 +117,28 @@ def _gear_tables(doc: Mapping[str, Any]) -> str:
             ([_e(n), _e(w)] for n, w in doc.get("inputs", {}).items()),
         )
     )
+
+
+def _cam_tables(doc: Mapping[str, Any]) -> str:
+    """A cam's circle, speed, follower and segments."""
+    cam, follower = doc.get("cam", {}), doc.get("follower", {})
+    return _table(
+        "Cam and follower (m, rad/s)",
+        ["field", "value"],
+        (
+            [_e(k), _vector(v)]
+            for k, v in (*cam.items(), *follower.items())
+            if isinstance(v, str | int | float | list)
+        ),
+    ) + _table(
+        "Segments (lift in m, or rad for an oscillating follower)",
+        ["segment", "type", "law", "lift", "duration (deg)"],
+        (
+            [str(i), _e(s.get("type")), _e(s.get("law", "")), _e(s.get("lift", "")),
+             _e(s.get("duration_deg"))]
+            for i, s in enumerate(doc.get("segments", []))
+        ),
+    )  # fmt: skip
 
 
 def _linkage_tables(doc: Mapping[str, Any]) -> str:
@@ -186,6 +211,8 @@ def solution_page(doc: Mapping[str, Any], solution: Mapping[str, Any]) -> str:
     kinds = {"spatial_chain": "spatial chain", "gear_train": "gear train"}
     title = doc.get("title") or kinds.get(str(doc.get("kind")), "linkage")
     # a step's equations scroll sideways where they are long: the keyboard reaches them
+    kinds = {"spatial_chain": "spatial chain", "cam": "cam"}
+    title = doc.get("title") or kinds.get(str(doc.get("kind")), "linkage")
     steps = "".join(
         f'<li class="step"><h3>{_e(s["title"])}</h3>'
         + (

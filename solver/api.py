@@ -258,18 +258,25 @@ def find_event(
 
 
 def solve(
-    scene: SceneInput, method: str = "vector", digits: int = 4, *, strict: bool = False
+    scene: SceneInput,
+    method: str = "vector",
+    digits: int = 4,
+    *,
+    strict: bool = False,
+    angle_deg: float | None = None,
 ) -> SolutionResult:
     """The worked solution (POST /solution) by ``method`` ('vector', 'loop' or 'newton_euler'),
     numbers shown with ``digits`` significant digits; ``results`` is the /analyze body of the
     same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's
-    order."""
+    order. A cam's at cam angle ``angle_deg`` (default 0; docs/CAMS.md)."""
     parsed, found = _scene(scene, strict)
     if isinstance(parsed, CamScene):
-        raise InvalidScene(
-            "kind: worked solutions take a 'linkage' or 'spatial_chain' scene "
-            "(a cam's is not written yet)"
-        )
+        angle = 0.0 if angle_deg is None else angle_deg
+        cam = worked.solve(parsed, method, digits, angle_deg=angle)
+        body = {**cam.analysis, "warnings": [*found, *cam.analysis["warnings"]]}
+        return SolutionResult(worked.solution_body(cam, body, None, body["warnings"]))
+    if angle_deg is not None:
+        raise InvalidScene("angle_deg: the cam angle of a 'cam' scene's worked solution")
     solution = worked.solve(parsed, method, digits)
     if isinstance(parsed, GearTrainScene):  # its steps' numbers point into its /analyze body
         body = analyze_gear_train(parsed, None, found).as_dict()

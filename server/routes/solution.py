@@ -41,8 +41,9 @@ def _example(name: str) -> dict[str, Any]:
 
 class SolutionRequest(Strict):
     scene: dict[str, Any] = Field(
-        description="A scene-v1 document: kind 'linkage' or 'spatial_chain', or 'gear_train' "
-        "(written out by the tabular and formula methods whatever 'method' asks; docs/GEARS.md).",
+        description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (at 'angle_deg'; "
+        "docs/CAMS.md) or 'gear_train' (written out by the tabular and formula methods whatever "
+        "'method' asks; docs/GEARS.md).",
         examples=[_example("S000-T2"), _example("S002-spatial-arm")],
     )
     method: Method = Field(
@@ -58,6 +59,11 @@ class SolutionRequest(Strict):
         le=15,
         strict=True,
         description="Significant digits of the numbers shown (1 to 15).",
+    )
+    angle_deg: float | None = Field(
+        None,
+        allow_inf_nan=False,
+        description="A cam's cam angle in degrees (default 0; docs/CAMS.md); not for a linkage.",
     )
     strict: bool = STRICT
 
@@ -75,11 +81,18 @@ def solution_cost(request: SolutionRequest, path: str = "/api/v1/solution") -> f
 @front_check(solution_cost)
 def solution_route(request: SolutionRequest) -> ResultResponse:
     read = solver.read_scene(request.scene, strict=request.strict)
-    return respond(solver.solve(read, request.method, request.digits))
+    return respond(solver.solve(read, request.method, request.digits, angle_deg=request.angle_deg))
 
 
-def _page(doc: dict[str, Any], method: str, digits: int, strict: bool = False) -> HTMLResponse:
-    solution = solver.solve(solver.read_scene(doc, strict=strict), method, digits)
+def _page(
+    doc: dict[str, Any],
+    method: str,
+    digits: int,
+    strict: bool = False,
+    angle_deg: float | None = None,
+) -> HTMLResponse:
+    read = solver.read_scene(doc, strict=strict)
+    solution = solver.solve(read, method, digits, angle_deg=angle_deg)
     return HTMLResponse(solution_page(doc, solution))
 
 
@@ -128,4 +141,4 @@ def solution_page_preset(
 )
 @front_check(lambda request: solution_cost(request, "/api/v1/solution.html"))
 def solution_page_scene(request: SolutionRequest) -> HTMLResponse:
-    return _page(request.scene, request.method, request.digits, request.strict)
+    return _page(request.scene, request.method, request.digits, request.strict, request.angle_deg)

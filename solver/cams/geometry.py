@@ -128,7 +128,7 @@ def pitch_radius_of_curvature(p: Array, dp: Array, d2p: Array) -> Array:
     return rho
 
 
-def _pitch_point(scene: CamScene, lift: Lift) -> tuple[Array, Array, Array, Array]:
+def pitch_point(scene: CamScene, lift: Lift) -> tuple[Array, Array, Array, Array]:
     """The pitch point P, P', P'' (d/dtheta) in the ground and the follower's direction of
     motion T there, for a cam turning counter-clockwise."""
     f, n = scene.follower, lift.s.size
@@ -218,7 +218,7 @@ def cam_geometry(scene: CamScene, theta: Array) -> CamGeometry:
         contact, radius = _flat_face(scene, lift)
         angle = np.zeros_like(theta)  # the face's normal is the contact point's path's direction
     else:
-        p, dp, d2p, direction = _pitch_point(scene, lift)
+        p, dp, d2p, direction = pitch_point(scene, lift)
         u = pitch_curve_tangent(p, dp)
         angle = pressure_angle(u, direction)
         rho = pitch_radius_of_curvature(p, dp, d2p)

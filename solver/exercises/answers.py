@@ -23,7 +23,9 @@ from solver.analysis.events import find_event
 from solver.analysis.instant import LinkageAnalysis, analyze
 from solver.api import analyze as analyze_body
 from solver.api import sweep as sweep_body
+from solver.cams import CamScene, analyze_cam, parse_cam
 from solver.errors import InvalidScene
+from solver.exercises.cams import parse_cam_root
 from solver.exercises.model import Exercise
 from solver.gears import GearTrainScene, parse_gear_train
 from solver.kinematics.spatial import (
@@ -54,8 +56,9 @@ _FIELDS = frozenset(
 class Solved:
     """A scene parsed and analysed once (all quantities), to read any number of paths from."""
 
-    scene: LinkageScene | SpatialChain | GearTrainScene
-    analysis: LinkageAnalysis | SpatialAnalysis | Mapping[str, Any]  # a gear train's body
+    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene
+    # a gear train's analysis is its /analyze body, a cam's its /analyze at cam angle 0
+    analysis: LinkageAnalysis | SpatialAnalysis | Mapping[str, Any]
     document: Mapping[str, Any] = field(default_factory=dict)  # for the dynamics' bodies
     bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
 
@@ -68,11 +71,13 @@ class Solved:
         return self.bodies[key]
 
 
-def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScene:
+def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScene | CamScene:
     if doc.get("kind") == "spatial_chain":
         return parse_spatial_chain(doc)
     if doc.get("kind") == "gear_train":
         return parse_gear_train(doc)
+    if doc.get("kind") == "cam":
+        return parse_cam(doc)
     return parse_linkage(doc)
 
 
@@ -83,6 +88,8 @@ def solve_scene(doc: Mapping[str, Any]) -> Solved:
         return Solved(scene, analyze(scene), doc)
     if isinstance(scene, GearTrainScene):  # its /analyze body (docs/GEARS.md)
         return Solved(scene, analyze_body(doc).as_dict(), doc)
+    if isinstance(scene, CamScene):
+        return Solved(scene, analyze_cam(scene), doc)
     return Solved(scene, analyze_spatial_chain(scene), doc)
 
 
@@ -149,8 +156,15 @@ def value_at(solved: Solved, path: str) -> float:
             raise InvalidScene(f"path {path!r}: dynamics are defined for planar linkages only")
         body: Any = solved.dynamics(parts[0])
         return _number(body, parts[1:] if parts[0].startswith("sweep[") else parts, path)
+    if isinstance(solved.scene, CamScene):  # analyze[angle_deg=N]: /analyze at that cam angle
+        angle = parse_cam_root(parts[0])
+        if angle is None:
+            raise InvalidScene(f"path {path!r}: a cam's paths start with analyze[angle_deg=N]")
+        if parts[0] not in solved.bodies:
+            solved.bodies[parts[0]] = analyze_cam(solved.scene, angle)
+        return _number(solved.bodies[parts[0]], parts[1:], path)
     a = solved.analysis
-    assert isinstance(a, LinkageAnalysis | SpatialAnalysis)
+    assert not isinstance(a, Mapping)
     roots: dict[str, Any] = {"points": a.points}
     if isinstance(a, LinkageAnalysis):
         roots |= {"links": a.links, "joints": a.joints, "moving_points": a.moving_points}

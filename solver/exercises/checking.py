@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from solver.errors import InvalidScene
+from solver.exercises.cams import cam_mistakes
 from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
@@ -33,10 +34,13 @@ def _diagnosis(
 
 
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
-    """The typical mistakes of any exercise: a gear train's (``solver.exercises.gear_mistakes``),
-    else a linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
+    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), else a
+    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``)."""
     if exercise.scene.get("kind") == "gear_train":
         return gear_train_mistakes(exercise)
+    if exercise.scene.get("kind") == "cam":
+        return [WrongAnswers(*made) for made in cam_mistakes(exercise)]
     return typical_mistakes(exercise)
 
 

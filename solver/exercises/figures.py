@@ -15,8 +15,10 @@ from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
+from solver.cams import parse_cam
 from solver.gears import parse_gear_train
 from solver.model.scene import Joint, ground_pivot, parse_linkage
+from solver.solutions.cam import cam_context, cam_figure
 from solver.solutions.gear_train import train_figure
 from solver.teaching.svg import Attribute, Canvas, View, element
 
@@ -337,4 +339,6 @@ def figure_svg(scene: Mapping[str, Any]) -> str:
     """The exercise's figure (a standalone SVG document)."""
     if scene.get("kind") == "gear_train":
         return train_figure(parse_gear_train(scene))
+    if scene.get("kind") == "cam":  # at cam angle 0, the pressure angle marked, not given
+        return cam_figure(cam_context(parse_cam(scene), 0.0), labelled=False)
     return _spatial(scene) if scene.get("kind") == "spatial_chain" else _linkage(scene)

@@ -10,7 +10,7 @@ import random
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from solver.exercises import dynamics, gear_trains
+from solver.exercises import cams, dynamics, gear_trains
 from solver.exercises.families import (
     four_bar_acceleration,
     four_bar_poles,
@@ -157,6 +157,20 @@ TYPES: Mapping[str, ExerciseType] = {
             "differential (sun and ring driven).",
             ("omega_carrier", "omega_planet1_rel", "omega_arm", "omega_planet_rel"),
             gear_trains.differential_carrier, "gear_train",
+        ),
+        _type(
+            "cam_follower_motion", "Cam: the follower's velocity and acceleration",
+            "A disc cam with a translating roller follower, its rise and return by textbook "
+            "laws: the follower's velocity and acceleration at a cam angle (the jerk at "
+            "challenging), by the chain rule.",
+            ("v", "a", "j"), cams.follower_motion, "cam",
+        ),
+        _type(
+            "cam_pressure_angle", "Cam: pressure angle and radius of curvature",
+            "A disc cam with an offset knife-edge or roller follower: the pressure angle at a "
+            "cam angle, the cam surface's radius of curvature (standard), the smallest and largest "
+            "pressure angles over the revolution (challenging).",
+            ("phi", "rho", "phi_min", "phi_max"), cams.pressure_angle, "cam",
         ),
     )
 }  # fmt: skip

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
+from solver.exercises.cams import cam_angle_of
 from solver.exercises.model import Exercise
 from solver.exercises.registry import TYPES
 from solver.model.laws import parse_time_law
@@ -76,9 +77,10 @@ def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
     the dynamics types (and the cycle's flywheel), the vector method otherwise."""
     family = TYPES[exercise.id.type].mistakes
     dynamic = family in ("dynamics_torque", "flywheel")
-    steps = list(
-        solve(parse(exercise.scene), "newton_euler" if dynamic else "vector", DIGITS).steps
-    )
+    method = "newton_euler" if dynamic else "vector"
+    angle = cam_angle_of(exercise)  # a cam's solution is at the asked cam angle
+    scene = parse(exercise.scene)
+    steps = list(solve(scene, method, DIGITS, angle_deg=float(angle or 0)).steps)
     if family == "flywheel":
         steps.append(_cycle_step(exercise))
     steps += [

@@ -150,6 +150,11 @@ class Solution:
     @property
     def convention(self) -> str:
         """The sign convention, one sentence for the page's header (planar or spatial)."""
+        if self.method == "cam":
+            return (
+                "cam centre at the origin, x to the right, y up; omega counter-clockwise "
+                "positive; s, v, a, j positive away from the cam centre"
+            )
         if isinstance(self.analysis, SpatialAnalysis):
             return (
                 "vectors are components in the fixed frame E1, E2, E3; angular velocities "

@@ -13,11 +13,13 @@ from dataclasses import replace
 from typing import Literal, get_args
 
 from solver.analysis.instant import LinkageAnalysis, analyze
+from solver.cams.model import CamScene
 from solver.errors import InvalidScene
 from solver.gears import GearTrainScene
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain
 from solver.model.scene import LinkageScene
 from solver.solutions import latex as tex
+from solver.solutions.cam import cam_solution
 from solver.solutions.classification import classification_steps
 from solver.solutions.format import Formatter
 from solver.solutions.gear_train import solve_gear_train
@@ -140,13 +142,17 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
 
 
 def solve(
-    scene: LinkageScene | SpatialChain | GearTrainScene, method: str = "vector", digits: int = 4
+    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene,
+    method: str = "vector",
+    digits: int = 4,
+    angle_deg: float = 0.0,
 ) -> Solution:
     """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
-    ``digits`` significant digits (1..15). Raises ``InvalidScene`` for an unknown method or a
-    bad digit count, and the analysis' own errors (NotAssemblable, SingularConfiguration...).
-    A gear train has one method whatever is asked: the tabular and the formula method
-    (``solver.solutions.gear_train``, method 'tabular')."""
+    ``digits`` significant digits (1..15); a cam's at cam angle ``angle_deg``, by its own method
+    ('cam', whatever ``method`` says); a gear train's by the tabular and the formula method
+    (``solver.solutions.gear_train``, method 'tabular', whatever is asked). Raises
+    ``InvalidScene`` for an unknown method or a bad digit count, and the analysis' own errors
+    (NotAssemblable, SingularConfiguration...)."""
     if method not in METHODS:
         raise InvalidScene(f"method: unknown method {method!r}; available: {', '.join(METHODS)}")
     if (
@@ -161,6 +167,8 @@ def solve(
         return _linkage(scene, method, digits)
     if isinstance(scene, GearTrainScene):
         return solve_gear_train(scene, digits)
+    if isinstance(scene, CamScene):
+        return cam_solution(scene, angle_deg, digits)
     analysis = analyze_spatial_chain(scene)
     fmt = Formatter(digits)
     lead = []

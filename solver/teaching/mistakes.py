@@ -10,6 +10,7 @@ Coriolis term a_Cor = 2 omega x v_rel written omega x v_rel.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
@@ -202,6 +203,18 @@ _ENTRIES = (
         "The flywheel's factor 2",
         "I_F = 2 Delta E / (k omega^2) from Delta E = (1/2) I k omega^2.",
     ),
+    # --- cams: the chain rule (worked solutions and exercises) ---
+    TypicalMistake(
+        "cam_omega_left_out",
+        "The cam's speed left out",
+        "v = ds/dtheta for v = (ds/dtheta) omega (and a = d2s/dtheta2 for (d2s/dtheta2) omega^2): "
+        "the derivatives in the cam angle taken for the rates in time.",
+    ),
+    TypicalMistake(
+        "cam_beta_in_degrees",
+        "The segment's duration in degrees",
+        "ds/dtheta = h y'/beta with beta in degrees instead of radians (beta^2 in d2s/dtheta2).",
+    ),
 )
 
 CATALOGUE: Mapping[str, TypicalMistake] = {m.id: m for m in _ENTRIES}
@@ -269,3 +282,13 @@ def rings_as_external(scene: GearTrainScene) -> GearTrainScene:
         meshes=tuple(replace(m, internal=False) for m in scene.meshes),
         module=None,
     )
+
+
+def cam_rate_without_omega(rate: float, omega: float, order: int) -> float:
+    """d^k s/dtheta^k for the rate d^k s/dt^k = (d^k s/dtheta^k) |omega|^k: rate / |omega|^k."""
+    return rate / abs(omega) ** order
+
+
+def cam_beta_in_degrees(rate: float, duration_deg: float, order: int) -> float:
+    """The rate with beta in degrees in h y^(k) / beta^k: rate (beta_rad / beta_deg)^k."""
+    return rate * (math.radians(duration_deg) / duration_deg) ** order

@@ -76,6 +76,8 @@ export const sweep = (scene, samples, quantities, timeRange) =>
   call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
 export const balance = (scene, counterweights) => call('POST', '/balance', { scene, counterweights });
+/** A cam's worked solution at cam angle `angleDeg` (docs/CAMS.md). */
+export const camSolution = (scene, angleDeg, digits = 4) => call('POST', '/solution', { scene, angle_deg: angleDeg, digits });
 
 /** The printable worked solution: a whole HTML page (text, not JSON). */
 export async function solutionPage(scene, method, digits = 4) {

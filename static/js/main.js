@@ -25,6 +25,7 @@ import { renderMagnitudes } from './magnitudes.js';
 import { Editor } from './editor.js';
 import { DynamicsPanel } from './dynamics.js';
 import { GearTrains } from './gear-view.js';
+import { CamApp } from './cam-view.js';
 
 // The least samples per revolution (1.5 deg apart: smooth cycle plots, the dynamics' cycle means);
 // more where the drawing needs them (fetchTrack).
@@ -138,6 +139,9 @@ class App {
     this.gearTrains = new GearTrains($('gear-train'));
     this.gearTrains.load(examples.status === 'fulfilled' ? examples.value.examples || [] : [])
       .then(() => this.gearTrains.addChoices($('preset')));
+    // Cams (issue 24): their own group in the menu and their own section (js/cam-view.js).
+    this.cams = new CamApp($('cam-app'));
+    this.cams.addChoices($('preset'));
 
     const state = shared.status === 'fulfilled' ? shared.value : null;
     if (state && !state.error) await this.restore(state);
@@ -166,9 +170,15 @@ class App {
     const [type, name] = [value.slice(0, value.indexOf(':')), value.slice(value.indexOf(':') + 1)];
     if (type === 'gear' || type === 'gear-example') {
       this.setPlaying(false, { analyse: false });
+      this.cams?.close();
       return this.gearTrains.open(type, name);
     }
     this.gearTrains?.close();
+    if (type === 'cam') {
+      this.setPlaying(false, { analyse: false });
+      return this.cams.open(name);
+    }
+    this.cams?.close();
     this.driverEdits = {};
     // A newly chosen mechanism starts moving, as the page does on opening.
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;

@@ -99,7 +99,8 @@ def test_errors_are_problems_with_the_numbers(client: TestClient, openapi: dict[
     linkage = json.loads((ROOT / "server" / "examples" / "S000-T1.json").read_text())
     angle = _problem(client, "/analyze", {"scene": linkage, "angle_deg": 30})
     assert angle.startswith("angle_deg: the cam angle of a 'cam' scene")
-    assert "a cam's is not written yet" in _problem(client, "/solution", {"scene": cam()})
+    angle = _problem(client, "/solution", {"scene": linkage, "angle_deg": 30})
+    assert angle.startswith("angle_deg: the cam angle of a 'cam' scene")
     timed = {"scene": cam(), "time_range": [0, 1]}
     assert _problem(client, "/sweep", timed).startswith("time_range: a cam is swept")
     dynamics = {"scene": cam(), "quantities": ["forces"]}
@@ -190,3 +191,22 @@ def test_cam_preset_parameters(client: TestClient) -> None:
     detail = _problem(client, "/presets/cam_flat_faced", long)
     assert detail.startswith("rise_deg + dwell_deg + return_deg = 200 + 60 + 150 = 410 deg")
     assert "cams: cam_roller_translating" in _problem(client, "/presets/cam_nope", {})
+
+
+def test_worked_solution_at_a_cam_angle(client: TestClient, openapi: dict[str, Any]) -> None:
+    """POST /solution with a cam and angle_deg: the library's body, its results the /analyze body
+    at that angle, the steps of docs/CAMS.md; the printable page shows them with the figure."""
+    request = {"scene": cam(), "angle_deg": 60}
+    response = client.post("/api/v1/solution", json=request)
+    assert response.status_code == 200, response.text
+    body = response.json()
+    assert body == plain(solver.solve(cam(), angle_deg=60).as_dict())
+    assert body["results"] == plain(solver.analyze(cam(), angle_deg=60).as_dict())
+    check(openapi, "/solution", "post", response)
+    kinds = [s["kind"] for s in body["steps"]]
+    assert kinds == ["cam.data", "cam.law", "cam.motion", "cam.pressure_angle",
+                     "cam.curvature", "cam.fundamental_law", "cam.summary"]  # fmt: skip
+    page = client.post("/api/v1/solution.html", json=request)
+    assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
+    assert "The pressure angle" in page.text and 'data-kind="cam"' in page.text
+    assert "Segments (lift in m" in page.text and "cycloidal" in page.text

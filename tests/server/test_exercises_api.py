@@ -18,6 +18,7 @@ from fastapi.testclient import TestClient
 
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
 from solver.exercises.answers import DYNAMIC_ROOTS, parse_sweep_root
+from solver.exercises.cams import parse_cam_root
 from solver.exercises.mistakes import typical_mistakes
 from solver.exercises.model import within
 
@@ -45,6 +46,13 @@ def remote_value(
         assert r.status_code == 200, r.text
         return at_path(r.json(), field)
     root, _, rest = path.partition(".")
+    angle = parse_cam_root(root)
+    if angle is not None:  # a cam at a cam angle
+        if root not in cache:
+            r = client.post(f"{API}/analyze", json={"scene": scene, "angle_deg": angle})
+            assert r.status_code == 200, r.text
+            cache[root] = r.json()
+        return at_path(cache[root], rest)
     sweep = parse_sweep_root(root)
     if sweep is not None:  # a cycle figure of /sweep (dynamics exercises)
         if root not in cache:

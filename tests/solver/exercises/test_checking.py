@@ -110,6 +110,8 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
                             assert row["diagnosis"] == mistake.sentence
                             diagnosed[mistake.kind] += 1
     assert set(diagnosed) == {
+        "cam_omega_left_out",
+        "cam_beta_in_degrees",
         "coriolis_left_out",
         "coriolis_without_factor_2",
         "coriolis_on_fixed_guide",

@@ -70,6 +70,8 @@ def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
     if e.scene["kind"] == "gear_train":  # each gear labelled with its name and teeth
         gears = e.scene["gears"]
         assert {f"{name} ({g['teeth']})" for name, g in gears.items()} <= labels
+    elif e.scene["kind"] == "cam":  # the centre O and the pressure angle marked, not given
+        assert {"O", "phi"} <= labels
     else:
         assert set(e.scene["points"]) <= labels
     assert any(text and " m" in text for text in labels)  # the scale bar

@@ -45,6 +45,8 @@ SHARED = {
     "coriolis_on_fixed_guide",
     "internal_mesh_as_external",
     "relative_for_absolute",
+    "cam_omega_left_out",
+    "cam_beta_in_degrees",
 }
 
 
