@@ -52,6 +52,7 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
             tolerance=request.tolerance,
             angle_deg=request.angle_deg,
             input_torque=request.input_torque,
+            statics=request.statics,
         )
     )
 
@@ -82,6 +83,7 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
                 request.quantities,
                 speed_fluctuation=request.speed_fluctuation,
                 tolerance=request.tolerance,
+                statics=request.statics,
             )
         )
     return respond(
@@ -91,6 +93,7 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
             request.samples,
             request.quantities,
             tolerance=request.tolerance,
+            statics=request.statics,
         )
     )
 

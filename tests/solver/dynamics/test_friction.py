@@ -177,8 +177,9 @@ def test_friction_power_is_never_positive_and_the_driver_pays_it(
 
 @pytest.mark.parametrize("mu", [0.05, 0.2, 0.4])
 def test_efficiency_is_at_most_one(mu: float) -> None:
-    """A pump-like slider-crank (the load resists the slider both ways) with friction at every
-    joint: 0 < efficiency <= 1, lower for more friction."""
+    """A slider-crank whose load on the slider switches with the rod's sense of rotation (so
+    the driver puts net work in), with friction at every joint: 0 < efficiency < 1, lower for
+    more friction."""
     doc = with_friction(slider_crank(0.0), mu, 0.01)
     doc["forces"][0]["magnitude"] = 'where(omega("rod") >= 0, -1000, 1000)'
     eta = solver.sweep(doc, 360, ["forces"]).as_dict()["cycle"]["efficiency"]
