@@ -34,6 +34,7 @@ from solver.analysis.sweeps import sweep as sweep_linkage
 from solver.analysis.sweeps import sweep_time as sweep_linkage_time
 from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
+from solver.dynamics.friction import has_friction
 from solver.errors import InvalidScene
 from solver.gears import (
     GEAR_TRAIN_FIELDS,
@@ -286,6 +287,11 @@ def solve(
         )
     if isinstance(parsed, GearTrainScene):
         raise InvalidScene("kind: the worked solution of a gear_train is not written yet")
+    if method == "newton_euler" and isinstance(parsed, LinkageScene) and has_friction(parsed):
+        raise InvalidScene(
+            "joints[].friction: the Newton-Euler worked solution is written for frictionless "
+            "joints; the forces and torques with friction are answered by /analyze and /sweep"
+        )
     solution = worked.solve(parsed, method, digits)
     if not isinstance(parsed, LinkageScene):
         body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)

@@ -208,3 +208,10 @@ def test_bad_friction_is_an_invalid_scene(
     doc["joints"][joint]["friction"] = friction
     with pytest.raises(InvalidScene, match=re.escape(message)):
         solver.analyze(doc, ["forces"])
+
+
+def test_the_worked_solution_refuses_friction() -> None:
+    """The Newton-Euler steps are frictionless: with friction they would contradict the answer."""
+    doc = slider_crank(30.0, B={"coefficient": 0.2})
+    with pytest.raises(InvalidScene, match=r"joints\[\]\.friction: the Newton-Euler worked"):
+        solver.solve(doc, "newton_euler")
