@@ -22,6 +22,9 @@ from solver.kinematics.rigid import Array
 from solver.model.scene import LinkageScene
 from solver.position.assembly import Motion
 
+# A mean input power below this fraction of the mean absolute input power is zero (rounding).
+NET_POWER = 1e-9
+
 
 @dataclass(frozen=True)
 class DriverLoad:
@@ -159,13 +162,17 @@ def mechanical_advantage(dynamics: LinkageDynamics, omega: Array) -> dict[str, A
 def efficiency(dynamics: LinkageDynamics, omega: float) -> float | None:
     """eta = mean(M_0 omega) / mean(M omega) over a revolution at constant ``omega``: the
     frictionless mean input power over that with friction, of a driven machine (None where the
-    frictionless mean input power is not positive, or the mechanism locks)."""
+    frictionless mean input power is not positive, to ``NET_POWER`` of the mean absolute input
+    power, or the mechanism locks)."""
     driver = dynamics.drivers[0]
     if driver.torque_frictionless is None:
         return None
     ideal = float(np.mean(driver.torque_frictionless)) * omega
     real = float(np.mean(driver.torque)) * omega
-    if not (math.isfinite(real) and ideal > 0.0 and real > 0.0):
+    # A machine whose loads do no net work (a constant moment on a rocker, the weights) has a
+    # frictionless mean input power of rounding: not a driven machine either.
+    gross = float(np.mean(np.abs(driver.torque_frictionless))) * abs(omega)
+    if not (math.isfinite(real) and ideal > NET_POWER * gross and real > 0.0):
         return None
     return ideal / real
 
