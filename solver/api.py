@@ -146,6 +146,8 @@ def analyze(
     static force analysis, the masses counting only through their weight (docs/DYNAMICS.md)."""
     parsed, found = _scene(scene, strict)
     if isinstance(parsed, GearTrainScene):
+        if statics:
+            raise InvalidScene("statics: a gear_train's torques are static already (input_torque)")
         return analyze_gear_train(parsed, input_torque, found)
     if input_torque is not None:
         raise InvalidScene("input_torque: a torque on an input is given for a gear_train")
@@ -234,6 +236,8 @@ def sweep_time(
     if isinstance(parsed, CamScene):
         raise InvalidScene("time_range: a cam is swept over a revolution of its cam angle")
     if isinstance(parsed, GearTrainScene):
+        if statics:
+            raise InvalidScene("statics: a gear_train's torques are static already (input_torque)")
         return sweep_gear_train(parsed, time_range, samples, found)
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")

@@ -5,7 +5,9 @@ inertia; the virtual-work balance of the weights and loads to 1e-12)."""
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -163,3 +165,10 @@ def test_statics_is_dynamics_with_the_linkage_at_rest() -> None:
 def test_statics_asks_for_forces() -> None:
     with pytest.raises(InvalidScene, match="statics: a static force analysis asks"):
         solver.analyze(four_bar(), ["position"], statics=True)
+
+
+def test_a_gear_train_has_no_statics_flag() -> None:
+    """A gear train's torques come from input_torque, static already: the flag is refused."""
+    path = Path(__file__).resolve().parents[3] / "server" / "examples" / "G001-planetary.json"
+    with pytest.raises(InvalidScene, match="statics: a gear_train's torques are static"):
+        solver.analyze(json.loads(path.read_text()), ["forces"], statics=True)
