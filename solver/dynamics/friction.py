@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.dynamics.newton_euler import DENSE_LIMIT, System, neighbour_mean
-from solver.kinematics.rigid import Array, cross, dot, perp, rigid_body_velocity, rotate
+from solver.kinematics.rigid import Array, cross, dot, rigid_body_velocity, rotate
 from solver.model.scene import LinkageScene
 from solver.position.assembly import Motion
 
@@ -87,7 +87,6 @@ class _Joint:
     sense: Array  # sgn(omega_rel) or sgn(v_rel . u)
     relative: Array  # omega_rel or v_rel . u
     direction: Array | None  # u (N, 2) at a slot
-    normal: Array | None  # k x u (N, 2)
     arms: tuple[Array | None, Array | None]  # P - R of the first and second link (slot)
 
 
@@ -116,7 +115,6 @@ def _joints(scene: LinkageScene, motion: Motion, system: System) -> list[_Joint]
                     np.sign(relative),
                     relative,
                     None,
-                    None,
                     (None, None),
                 )
             )
@@ -139,7 +137,6 @@ def _joints(scene: LinkageScene, motion: Motion, system: System) -> list[_Joint]
                 np.sign(relative),
                 relative,
                 u,
-                perp(u),
                 (arms[0], arms[1]),
             )
         )
@@ -276,7 +273,6 @@ def _locks(
         joint.sense[pick],
         joint.relative[pick],
         None if joint.direction is None else joint.direction[pick],
-        None if joint.normal is None else joint.normal[pick],
         (
             None if joint.arms[0] is None else joint.arms[0][pick],
             None if joint.arms[1] is None else joint.arms[1][pick],
