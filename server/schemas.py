@@ -49,6 +49,20 @@ NewtonTolerance = Annotated[
 ]
 
 
+Statics = Annotated[
+    bool,
+    Field(
+        description="dynamics-v1 (issue 27): with the quantity 'forces', the static force "
+        "analysis: the masses count only through their weight (no inertia force), the fields "
+        "as with dynamics; with one driver also each load's mechanical_advantage. A scene's "
+        "joints may carry friction: {'coefficient': mu} at a slider or prismatic joint, "
+        "{'coefficient': mu, 'pin_radius': r} at a revolute joint (0 <= mu <= 10, r > 0 m); "
+        "then drivers[i].torque is with friction and drivers[i].torque_frictionless without. "
+        "docs/DYNAMICS.md",
+    ),
+]
+
+
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (docs/CAMS.md) "
@@ -78,16 +92,7 @@ class AnalyzeRequest(Strict):
         '{"sun": 12.0}; the response then carries every member\'s torque and power (ideal '
         "gears, from the balances of torque and power).",
     )
-    statics: bool = Field(
-        False,
-        description="dynamics-v1 (issue 27): with the quantity 'forces', the static force "
-        "analysis: the masses count only through their weight (no inertia force), the fields "
-        "as with dynamics; with one driver also each load's mechanical_advantage. A scene's "
-        "joints may carry friction: {'coefficient': mu} at a slider or prismatic joint, "
-        "{'coefficient': mu, 'pin_radius': r} at a revolute joint (0 <= mu <= 10, r > 0 m); "
-        "then drivers[i].torque is with friction and drivers[i].torque_frictionless without. "
-        "docs/DYNAMICS.md",
-    )
+    statics: Statics = False
 
 
 class SweepRequest(Strict):
@@ -120,16 +125,7 @@ class SweepRequest(Strict):
         "gives the flywheel inertia energy_fluctuation / (k omega^2).",
     )
     tolerance: NewtonTolerance = None
-    statics: bool = Field(
-        False,
-        description="dynamics-v1 (issue 27): with the quantity 'forces', the static force "
-        "analysis: the masses count only through their weight (no inertia force), the fields "
-        "as with dynamics; with one driver also each load's mechanical_advantage. A scene's "
-        "joints may carry friction: {'coefficient': mu} at a slider or prismatic joint, "
-        "{'coefficient': mu, 'pin_radius': r} at a revolute joint (0 <= mu <= 10, r > 0 m); "
-        "then drivers[i].torque is with friction and drivers[i].torque_frictionless without. "
-        "docs/DYNAMICS.md",
-    )
+    statics: Statics = False
 
 
 class EventSpec(Strict):

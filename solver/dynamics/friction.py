@@ -104,39 +104,30 @@ def _joints(scene: LinkageScene, motion: Motion, system: System) -> list[_Joint]
         first, second = (motion.links[name] for name in joint.links)
         assert first.omega is not None and second.omega is not None
         rows = tuple(row.get(name) for name in joint.links)
-        if joint.type == "revolute":
-            relative = second.omega - first.omega
-            out.append(
-                _Joint(
-                    index,
-                    tuple(columns[index]),
-                    (rows[0], rows[1]),
-                    friction.circle_radius,
-                    np.sign(relative),
-                    relative,
-                    None,
-                    (None, None),
-                )
+        direction: Array | None = None
+        arms: tuple[Array | None, ...] = (None, None)
+        if joint.type == "revolute":  # omega_rel
+            coefficient, relative = friction.circle_radius, second.omega - first.omega
+        else:  # v_rel . u, with P's arms from each link's reference point
+            assert joint.axis is not None
+            P = second.point(scene.drawn(joint.point))
+            assert P.v is not None and first.anchor.v is not None
+            direction = rotate(np.array(joint.axis), first.theta)
+            v_first = rigid_body_velocity(first.anchor.v, first.omega, P.p - first.anchor.p)
+            coefficient, relative = friction.coefficient, dot(P.v - v_first, direction)
+            arms = tuple(
+                None if name == scene.ground else P.p - system.reference[name]
+                for name in joint.links
             )
-            continue
-        assert joint.axis is not None
-        P = second.point(scene.drawn(joint.point))
-        assert P.v is not None and first.anchor.v is not None
-        u = rotate(np.array(joint.axis), first.theta)
-        v_first = rigid_body_velocity(first.anchor.v, first.omega, P.p - first.anchor.p)
-        relative = dot(P.v - v_first, u)
-        arms = tuple(
-            None if name == scene.ground else P.p - system.reference[name] for name in joint.links
-        )
         out.append(
             _Joint(
                 index,
                 tuple(columns[index]),
                 (rows[0], rows[1]),
-                friction.coefficient,
+                coefficient,
                 np.sign(relative),
                 relative,
-                u,
+                direction,
                 (arms[0], arms[1]),
             )
         )
