@@ -49,6 +49,20 @@ NewtonTolerance = Annotated[
 ]
 
 
+Statics = Annotated[
+    bool,
+    Field(
+        description="dynamics-v1 (issue 27): with the quantity 'forces', the static force "
+        "analysis: the masses count only through their weight (no inertia force), the fields "
+        "as with dynamics; with one driver also each load's mechanical_advantage. A scene's "
+        "joints may carry friction: {'coefficient': mu} at a slider or prismatic joint, "
+        "{'coefficient': mu, 'pin_radius': r} at a revolute joint (0 <= mu <= 10, r > 0 m); "
+        "then drivers[i].torque is with friction and drivers[i].torque_frictionless without. "
+        "docs/DYNAMICS.md",
+    ),
+]
+
+
 class AnalyzeRequest(Strict):
     scene: dict[str, Any] = Field(
         description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (docs/CAMS.md) "
@@ -78,6 +92,7 @@ class AnalyzeRequest(Strict):
         '{"sun": 12.0}; the response then carries every member\'s torque and power (ideal '
         "gears, from the balances of torque and power).",
     )
+    statics: Statics = False
 
 
 class SweepRequest(Strict):
@@ -110,6 +125,7 @@ class SweepRequest(Strict):
         "gives the flywheel inertia energy_fluctuation / (k omega^2).",
     )
     tolerance: NewtonTolerance = None
+    statics: Statics = False
 
 
 class EventSpec(Strict):
@@ -241,6 +257,14 @@ class AnalyzeResponse(Open):
     diagnostics: DiagnosticsValues | None = None
     bodies: dict[str, BodyValues] | None = None
     warnings: list[str] = WARNINGS
+    mechanical_advantage: dict[str, float | None] | None = Field(
+        None,
+        description="statics, one driver: each named load over the driver torque that holds it "
+        "alone, omega_driver / v_load (a moment: 1; a force: 1/m); null at a toggle",
+    )
+    self_locking: str | None = Field(
+        None, description="with friction: null, or why no driving torque moves the mechanism"
+    )
 
 
 class SweepPointValues(Open):
@@ -339,6 +363,32 @@ class SweepMovingPointValues(Open):
     acceleration: Vectors | None = None
 
 
+class SelfLockingValues(Open):
+    driver_angle_deg: float = Field(description="the first pose of the revolution that locks")
+    reason: str = Field(description="the joints whose friction locks it, and why, in words")
+
+
+class CycleValues(Open):
+    """A revolution's figures (dynamics-v1); with friction at some joint also its efficiency
+    and self-locking (issue 27)."""
+
+    period: float
+    mean_torque: float | None
+    mean_power: float | None
+    work: dict[str, float]
+    energy_fluctuation: float | None
+    flywheel_inertia: float | None
+    speed_fluctuation: float | None
+    efficiency: float | None = Field(
+        None,
+        description="with friction: the frictionless mean input power over that with friction "
+        "(a driven machine; null where the first is not positive or the mechanism locks)",
+    )
+    self_locking: SelfLockingValues | None = Field(
+        None, description="with friction: null, or the first pose that locks and why"
+    )
+
+
 class SweepResponse(Open):
     """A revolution of the first driver, or its feasible range (arrays over driver_angle)."""
 
@@ -357,6 +407,12 @@ class SweepResponse(Open):
     )
     sliders: list[SweepSliderValues] | None = Field(
         None, description="each slider's travel along its guide; a ram's quick-return ratio"
+    )
+    mechanical_advantage: dict[str, list[float | None]] | None = Field(
+        None, description="statics, one driver: each named load's mechanical advantage per sample"
+    )
+    cycle: CycleValues | None = Field(
+        None, description="with forces, one driver turning fully at constant omega"
     )
 
 

@@ -34,6 +34,7 @@ from solver.analysis.sweeps import sweep as sweep_linkage
 from solver.analysis.sweeps import sweep_time as sweep_linkage_time
 from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
+from solver.dynamics.friction import has_friction
 from solver.errors import InvalidScene
 from solver.gears import (
     GEAR_TRAIN_FIELDS,
@@ -133,6 +134,7 @@ def analyze(
     tolerance: float | None = None,
     angle_deg: float | None = None,
     input_torque: Mapping[str, float] | None = None,
+    statics: bool = False,
 ) -> AnalysisResult:
     """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
     ``angle_law`` at ``time``), the spatial chain, or the cam at cam angle ``angle_deg``
@@ -140,13 +142,17 @@ def analyze(
     components (default: all); only those are computed (a cam answers all its fields).
     ``tolerance``: a Newton group's residual relative to the scene size (1e-15 to 1e-6, default
     1e-13). A gear train answers its speeds whatever the quantities, and with ``input_torque``
-    (N m on inputs) every member's torque (docs/GEARS.md)."""
+    (N m on inputs) every member's torque (docs/GEARS.md). ``statics`` (with ``forces``): the
+    static force analysis, the masses counting only through their weight (docs/DYNAMICS.md)."""
     parsed, found = _scene(scene, strict)
     if isinstance(parsed, GearTrainScene):
+        if statics:
+            raise InvalidScene("statics: a gear_train's torques are static already (input_torque)")
         return analyze_gear_train(parsed, input_torque, found)
     if input_torque is not None:
         raise InvalidScene("input_torque: a torque on an input is given for a gear_train")
     wanted = normalise_quantities(quantities)
+    _statics(statics, wanted)
     if isinstance(parsed, CamScene):
         _no_dynamics(wanted)
         return AnalysisResult(analyze_cam(parsed, 0.0 if angle_deg is None else angle_deg, found))
@@ -157,7 +163,7 @@ def analyze(
         )
     if isinstance(parsed, LinkageScene):
         result = instant.analyze(parsed, wanted, tolerance)
-        body = add_instant_dynamics(results.analysis_body(result, found), parsed, result)
+        body = add_instant_dynamics(results.analysis_body(result, found), parsed, result, statics)
         return AnalysisResult(body)
     _no_dynamics(wanted)
     return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
@@ -171,12 +177,15 @@ def sweep(
     strict: bool = False,
     speed_fluctuation: float | None = None,
     tolerance: float | None = None,
+    statics: bool = False,
 ) -> SweepResult:
     """The linkage over one revolution of its first driver from its start angle, or over its
     feasible range with the limit positions (POST /sweep). Default quantity: position. With
     ``forces``, a revolution at constant speed also gets its ``cycle`` (and the flywheel inertia
-    for the coefficient of ``speed_fluctuation``). A cam: one revolution of its cam angle with
-    every field of docs/CAMS.md."""
+    for the coefficient of ``speed_fluctuation``). ``statics`` (with ``forces``): the static
+    force analysis over the revolution. A cam: one revolution of its cam angle with every field
+    of docs/CAMS.md."""
+    _statics(statics, normalise_quantities(quantities))
     read, found = _scene(scene, strict)
     if isinstance(read, CamScene):
         _no_dynamics(normalise_quantities(quantities))
@@ -191,8 +200,14 @@ def sweep(
         "a sweep over a revolution (a spatial_chain is swept with a time range)",
     )
     result = sweep_linkage(parsed, samples, quantities, tolerance)
-    body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation)
+    body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation, statics)
     return SweepResult(body)
+
+
+def _statics(statics: bool, wanted: frozenset[str]) -> None:
+    """A static force analysis answers the quantity ``forces``."""
+    if statics and "forces" not in wanted:
+        raise InvalidScene("statics: a static force analysis asks for the quantity 'forces'")
 
 
 def _no_dynamics(wanted: frozenset[str]) -> None:
@@ -210,15 +225,19 @@ def sweep_time(
     *,
     strict: bool = False,
     tolerance: float | None = None,
+    statics: bool = False,
 ) -> TimeSweepResult:
     """The scene at ``samples`` instants over ``time_range`` = (t0, t1) (POST /sweep with
     ``time_range``): a linkage and its moving points through its time laws, or a spatial chain
     whose joints move from the scene's pose at t = 0 as q(t) = rate t + rate_dot t^2 / 2.
     Default quantity: position."""
+    _statics(statics, normalise_quantities(quantities))
     parsed, found = _scene(scene, strict)
     if isinstance(parsed, CamScene):
         raise InvalidScene("time_range: a cam is swept over a revolution of its cam angle")
     if isinstance(parsed, GearTrainScene):
+        if statics:
+            raise InvalidScene("statics: a gear_train's torques are static already (input_torque)")
         return sweep_gear_train(parsed, time_range, samples, found)
     if len(time_range) != 2:
         raise InvalidScene("time_range: expected [t0, t1]")
@@ -228,7 +247,7 @@ def sweep_time(
         chain = sweep_spatial_time(parsed, t0, t1, samples, quantities)
         return TimeSweepResult(results.spatial_time_sweep_body(chain, found))
     result = sweep_linkage_time(parsed, t0, t1, samples, quantities, tolerance)
-    body = add_sweep_dynamics(results.time_sweep_body(result, found), result)
+    body = add_sweep_dynamics(results.time_sweep_body(result, found), result, statics=statics)
     return TimeSweepResult(body)
 
 
@@ -277,6 +296,11 @@ def solve(
         return SolutionResult(worked.solution_body(cam, body, None, body["warnings"]))
     if angle_deg is not None:
         raise InvalidScene("angle_deg: the cam angle of a 'cam' scene's worked solution")
+    if method == "newton_euler" and isinstance(parsed, LinkageScene) and has_friction(parsed):
+        raise InvalidScene(
+            "joints[].friction: the Newton-Euler worked solution is written for frictionless "
+            "joints; the forces and torques with friction are answered by /analyze and /sweep"
+        )
     solution = worked.solve(parsed, method, digits)
     if isinstance(parsed, GearTrainScene):  # its steps' numbers point into its /analyze body
         body = analyze_gear_train(parsed, None, found).as_dict()

@@ -57,6 +57,7 @@ def analyze_route(request: AnalyzeRequest) -> ResultResponse:
             tolerance=request.tolerance,
             angle_deg=request.angle_deg,
             input_torque=request.input_torque,
+            statics=request.statics,
         )
     )
 
@@ -93,6 +94,7 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
                 request.quantities,
                 speed_fluctuation=request.speed_fluctuation,
                 tolerance=request.tolerance,
+                statics=request.statics,
             )
         )
     return respond(
@@ -102,6 +104,7 @@ def sweep_route(request: SweepRequest) -> ResultResponse:
             request.samples,
             request.quantities,
             tolerance=request.tolerance,
+            statics=request.statics,
         )
     )
 

@@ -10,6 +10,7 @@ torque, power and power-balance torque, and the frame's force and moment; ``ener
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -17,9 +18,18 @@ import numpy as np
 
 from solver.analysis.instant import LinkageAnalysis
 from solver.analysis.sweeps import Sweep, TimeSweep
-from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics, sweep_times
+from solver.dynamics.analysis import (
+    LinkageDynamics,
+    efficiency,
+    linkage_dynamics,
+    mechanical_advantage,
+    non_convergence,
+    self_locking,
+    sweep_times,
+)
 from solver.dynamics.balance import Balance
 from solver.dynamics.cycle import cycle_figures
+from solver.dynamics.loads import link_state
 from solver.kinematics.rigid import Array
 from solver.model.quantities import DYNAMIC_QUANTITIES
 from solver.model.scene import LinkageScene
@@ -32,14 +42,19 @@ Convert = Callable[[Array], Any]
 def _instant(value: Array) -> Any:
     """Sample 0 of an array over samples: a number or a vector; null for NaN."""
     first = value[0]
+    if np.isnan(first).any():  # a torque, force or moment that does not exist (self-locking)
+        return None
     if np.ndim(first) == 0:
-        return None if np.isnan(first) else float(first)
+        return float(first)
     return [float(x) for x in first]
 
 
 def _samples(value: Array) -> Any:
-    """The whole array (orjson serialises it); a list with nulls where it has NaN."""
+    """The whole array (orjson serialises it); a list with nulls where it has NaN (a vector
+    with NaN is null)."""
     if np.isnan(value).any():
+        if value.ndim == 2:
+            return [None if np.isnan(x).any() else [float(c) for c in x] for x in value]
         return [None if np.isnan(x) else float(x) for x in value]
     return np.ascontiguousarray(value, dtype=float)
 
@@ -58,15 +73,25 @@ def _add(body: JSON, dynamics: LinkageDynamics, wanted: frozenset[str], convert:
                 out["moment"] = convert(joint.moment)
             joints.append(out)
         body["joints"] = joints
-        body["drivers"] = [
-            {
+        drivers = []
+        for d in dynamics.drivers:
+            out = {
                 "link": d.link,
                 "torque": convert(d.torque),
                 "power": convert(d.power),
                 "torque_from_power_balance": convert(d.torque_from_power_balance),
             }
-            for d in dynamics.drivers
-        ]
+            if d.torque_frictionless is not None:
+                out["torque_frictionless"] = convert(d.torque_frictionless)
+            drivers.append(out)
+        body["drivers"] = drivers
+        if dynamics.statics and len(dynamics.drivers) == 1:
+            omega = dynamics.drivers[0].omega
+            assert omega is not None
+            body["mechanical_advantage"] = {
+                name: convert(value)
+                for name, value in mechanical_advantage(dynamics, omega).items()
+            }
         body["frame_force"] = convert(dynamics.forces.frame_force)
         body["frame_moment"] = convert(dynamics.forces.frame_moment)
     if "energy" in wanted:
@@ -86,12 +111,35 @@ def _add(body: JSON, dynamics: LinkageDynamics, wanted: frozenset[str], convert:
         }
 
 
-def add_instant_dynamics(body: JSON, scene: LinkageScene, result: LinkageAnalysis) -> JSON:
-    """The /analyze body with the requested dynamic quantities added (unchanged without)."""
+def _friction(body: JSON, dynamics: LinkageDynamics, angle: Array) -> None:
+    """With friction: why the iteration did not converge (a warning), and a locking's words."""
+    sentence = non_convergence(dynamics, angle)
+    if sentence is not None:
+        body["warnings"] = [*body.get("warnings", []), sentence]
+
+
+def _driver_angle(scene: LinkageScene, result: LinkageAnalysis) -> Array:
+    """The first driver's absolute angle (rad) at the instant (0 without drivers)."""
+    if not scene.drivers:
+        return np.zeros(1)
+    return link_state(scene, result.motion, [scene.drivers[0].link])[scene.drivers[0].link][0]
+
+
+def add_instant_dynamics(
+    body: JSON, scene: LinkageScene, result: LinkageAnalysis, statics: bool = False
+) -> JSON:
+    """The /analyze body with the requested dynamic quantities added (unchanged without);
+    ``statics``: the masses count only through their weight. With friction ``self_locking``
+    is null or says why the mechanism locks at this pose."""
     wanted = result.quantities
     if wanted & set(DYNAMIC_QUANTITIES):
-        dynamics = linkage_dynamics(scene, result.motion, np.array([scene.time]))
+        dynamics = linkage_dynamics(scene, result.motion, np.array([scene.time]), statics=statics)
         _add(body, dynamics, wanted, _instant)
+        if dynamics.friction is not None and "forces" in wanted:
+            angle = _driver_angle(scene, result)
+            _friction(body, dynamics, angle)
+            locking = self_locking(scene, dynamics, angle)
+            body["self_locking"] = None if locking is None else locking.reason
     return body
 
 
@@ -104,17 +152,25 @@ def add_dynamics_results(body: JSON, scene: LinkageScene, result: LinkageAnalysi
 
 
 def add_sweep_dynamics(
-    body: JSON, result: Sweep | TimeSweep, speed_fluctuation: float | None = None
+    body: JSON,
+    result: Sweep | TimeSweep,
+    speed_fluctuation: float | None = None,
+    statics: bool = False,
 ) -> JSON:
     """The /sweep body with the requested dynamic quantities added, and a revolution's ``cycle``
-    (with ``forces``, one driver turning fully at constant omega)."""
+    (with ``forces``, one driver turning fully at constant omega; with friction its
+    ``efficiency`` and ``self_locking``). ``statics``: the masses count only through their
+    weight."""
     wanted = result.quantities
     if not wanted & set(DYNAMIC_QUANTITIES):
         return body
     scene, motion = result.scene, result.motion
     if isinstance(result, TimeSweep):
-        dynamics = linkage_dynamics(scene, motion, result.time, cyclic=False)
+        dynamics = linkage_dynamics(scene, motion, result.time, cyclic=False, statics=statics)
         _add(body, dynamics, wanted, _samples)
+        if dynamics.friction is not None and "forces" in wanted and scene.drivers:
+            link = scene.drivers[0].link
+            _friction(body, dynamics, link_state(scene, motion, [link])[link][0])
         return body
     omega = motion.links[result.driver].omega
     alpha = motion.links[result.driver].alpha
@@ -123,9 +179,11 @@ def add_sweep_dynamics(
     start = driver_input(scene, scene.drivers[0], scene.time)[0]  # as the sweep began
     anchor = int(np.argmin(np.abs(motion.links[result.driver].theta - start)))
     dynamics = linkage_dynamics(
-        scene, motion, times, result.singular_samples, result.feasible, anchor
+        scene, motion, times, result.singular_samples, result.feasible, anchor, statics
     )
     _add(body, dynamics, wanted, _samples)
+    if dynamics.friction is not None and "forces" in wanted:
+        _friction(body, dynamics, result.driver_angle)
     if (
         "forces" in wanted
         and result.feasible
@@ -143,6 +201,20 @@ def add_sweep_dynamics(
             "flywheel_inertia": cycle.flywheel_inertia,
             "speed_fluctuation": speed_fluctuation,
         }
+        if dynamics.friction is not None:  # a locked pose has no torque: no means either
+            for key in ("mean_torque", "mean_power", "energy_fluctuation", "flywheel_inertia"):
+                value = body["cycle"][key]
+                body["cycle"][key] = None if value is None or math.isnan(value) else value
+            locking = self_locking(scene, dynamics, result.driver_angle)
+            body["cycle"]["efficiency"] = efficiency(dynamics, float(omega[0]))
+            body["cycle"]["self_locking"] = (
+                None
+                if locking is None
+                else {
+                    "driver_angle_deg": math.degrees(locking.driver_angle),
+                    "reason": locking.reason,
+                }
+            )
     return body
 
 

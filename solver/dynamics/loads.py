@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -110,6 +110,12 @@ def mass_elements(scene: LinkageScene, motion: Motion) -> list[MassElement]:
         element(pm.name, pm.link, pm.mass, 0.0, scene.drawn(pm.point))
         for pm in dynamics.point_masses
     ]
+
+
+def static_elements(elements: list[MassElement]) -> list[MassElement]:
+    """The masses of a static analysis: a_G = 0 and alpha = 0, so each counts only through its
+    weight m g (the inertia terms m a_G and I_G alpha left out)."""
+    return [replace(e, a=np.zeros_like(e.a), alpha=np.zeros_like(e.alpha)) for e in elements]
 
 
 def applied_loads(

@@ -17,6 +17,7 @@ linkages or as one block-diagonal sparse matrix by SuperLU for large ones.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,6 +31,7 @@ from solver.dynamics.loads import (
     applied_loads,
     dynamics_of,
     mass_elements,
+    static_elements,
 )
 from solver.errors import SingularConfiguration
 from solver.kinematics.rigid import Array, cross, perp, rotate
@@ -288,18 +290,41 @@ def inverse_dynamics(
     times: Array,
     singular: Array | None = None,
     cyclic: bool = True,
+    statics: bool = False,
 ) -> ForceAnalysis:
     """Joint forces, driver torques and the frame's load at every sample of ``motion``
-    (accelerations required); ``times`` are the samples' t for the load expressions."""
+    (accelerations required); ``times`` are the samples' t for the load expressions.
+    ``statics``: the masses count only through their weight (``static_elements``)."""
     elements = mass_elements(scene, motion)
+    if statics:
+        elements = static_elements(elements)
     forces, moments = applied_loads(scene, motion, times)
     system = newton_euler_system(scene, motion, elements, forces, moments)
     u = system.solve(np.array([], dtype=int) if singular is None else np.asarray(singular), cyclic)
-    n = times.size
+    return force_analysis(scene, motion, system, u, elements, forces, moments)
+
+
+def force_analysis(
+    scene: LinkageScene,
+    motion: Motion,
+    system: System,
+    u: Array,
+    elements: list[MassElement],
+    forces: list[AppliedForce],
+    moments: list[AppliedMoment],
+    friction_forces: Mapping[int, Array] | None = None,
+    friction_moments: Mapping[int, Array] | None = None,
+) -> ForceAnalysis:
+    """The joint forces, torques and frame load from the solved unknowns ``u``; a joint's
+    friction (by its index: a slot's force, a pin's moment, on its second link) is added to its
+    force and to the frame's load."""
+    n = u.shape[0]
+    friction_forces = friction_forces or {}
+    friction_moments = friction_moments or {}
     joints, torques = [], {}
     frame_force, frame_moment = np.zeros((n, 2)), np.zeros(n)
     column = 0
-    for joint in scene.joints:
+    for index, joint in enumerate(scene.joints):
         P = motion.points[joint.point].p
         moment = None
         if joint.type == "revolute":
@@ -311,6 +336,8 @@ def inverse_dynamics(
             if joint.type == "prismatic":
                 moment = u[:, column].copy()
                 column += 1
+        if index in friction_forces:
+            force = force + friction_forces[index]
         joints.append(JointForce(joint, force, moment))
         if scene.ground in joint.links:  # the force on the ground: -F if it is the first link
             sign = -1.0 if joint.links[0] == scene.ground else 1.0
@@ -318,6 +345,8 @@ def inverse_dynamics(
             frame_moment += sign * cross(P, force)
             if moment is not None:
                 frame_moment += sign * moment
+            if index in friction_moments:
+                frame_moment += sign * friction_moments[index]
     for driver in scene.drivers:
         torques[driver.link] = u[:, column].copy()
         frame_moment -= torques[driver.link]

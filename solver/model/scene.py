@@ -44,17 +44,33 @@ class Link:
 
 
 @dataclass(frozen=True)
+class Friction:
+    """Dry (Coulomb) friction at a joint: |f| = mu |N| along a slot, and at a revolute joint the
+    friction circle of radius mu r (``pin_radius`` r, None at a slot): a friction moment
+    mu r |F| against the relative rotation (docs/DYNAMICS.md, "Friction")."""
+
+    coefficient: float
+    pin_radius: float | None = None
+
+    @property
+    def circle_radius(self) -> float:
+        """mu r: the friction circle's radius (0 at a slot, where the pin has none)."""
+        return self.coefficient * (self.pin_radius or 0.0)
+
+
+@dataclass(frozen=True)
 class Joint:
     """A joint at ``point`` between ``links``; slider and prismatic: ``links = (guide, follower)``.
 
     ``axis`` is the unit direction of the slot (world coordinates at the drawn pose), fixed in the
-    guide; ``None`` for a revolute joint.
+    guide; ``None`` for a revolute joint. ``friction``: None for a frictionless joint.
     """
 
     type: JointType
     point: str
     links: tuple[str, str]
     axis: tuple[float, float] | None = None
+    friction: Friction | None = None
 
     @property
     def guide(self) -> str:
@@ -310,8 +326,44 @@ def _parse_joints(doc: Mapping[str, Any], links: Mapping[str, Link]) -> tuple[Jo
                     f"the {kind} point '{point}' slides in the guide "
                     f"'{a}' and must not be listed in the guide's points",
                 )
-        joints.append(Joint(kind, point, (a, b), axis))
+        friction = None
+        if "friction" in body:
+            friction = _parse_friction(body["friction"], kind, f"{path}.friction")
+        joints.append(Joint(kind, point, (a, b), axis, friction))
     return tuple(joints)
+
+
+# A coefficient of dry friction above this is a typo (rubber on dry concrete is about 1).
+MAX_FRICTION_COEFFICIENT = 10.0
+
+
+def _parse_friction(value: Any, kind: str, path: str) -> Friction:
+    """``{"coefficient": mu}`` at a slider or prismatic joint, ``{"coefficient": mu,
+    "pin_radius": r}`` at a revolute joint; mu in [0, 10], r > 0 (m)."""
+    body = _mapping(value, path)
+    for key in body:
+        if key not in ("coefficient", "pin_radius"):
+            raise _where(f"{path}.{key}", "friction takes 'coefficient' and 'pin_radius' only")
+    if "coefficient" not in body:
+        raise _where(f"{path}.coefficient", "friction needs its Coulomb coefficient")
+    mu = _number(body["coefficient"], f"{path}.coefficient", MAX_FRICTION_COEFFICIENT)
+    if mu < 0.0:
+        raise _where(f"{path}.coefficient", f"a friction coefficient is not negative (got {mu})")
+    if kind != "revolute":
+        if "pin_radius" in body:
+            raise _where(
+                f"{path}.pin_radius", f"a {kind} joint has no pin: its friction is mu |N| alone"
+            )
+        return Friction(mu)
+    if "pin_radius" not in body:
+        raise _where(
+            f"{path}.pin_radius",
+            "a revolute joint's friction needs the pin radius (friction circle mu r)",
+        )
+    r = _number(body["pin_radius"], f"{path}.pin_radius", MAX_COORDINATE)
+    if r <= 0.0:
+        raise _where(f"{path}.pin_radius", f"the pin radius is positive (got {r} m)")
+    return Friction(mu, r)
 
 
 def ground_pivot(link: str, joints: Iterable[Joint], ground: str) -> str | None:
@@ -470,7 +522,7 @@ SCENE_FIELDS: dict[str, dict[str, frozenset[str]]] = {
             )
         ),
         "links.*": frozenset(("points", "ground")),
-        "joints[]": frozenset(("type", "point", "links", "axis")),
+        "joints[]": frozenset(("type", "point", "links", "axis", "friction")),
         "drivers[]": frozenset(("link", "omega", "alpha", "angle_deg", "angle_law")),
         "moving_points[]": frozenset(("name", "link", "path", "s_law")),
         "moving_points[].path": frozenset(("type", "center", "start", "direction", "through")),
