@@ -46,6 +46,12 @@ class PathGeometry:
     curvature: float
 
 
+def path_radius(scene: LinkageScene, mp: MovingPoint) -> float:
+    """R = |P_0 - C|: the radius of an arc path, its start P_0 and centre C as drawn."""
+    assert mp.path.center is not None
+    return math.hypot(*(scene.drawn(mp.path.start) - scene.drawn(mp.path.center)))
+
+
 def path_geometry(scene: LinkageScene, mp: MovingPoint, s: Array) -> PathGeometry:
     """M0(s), its unit tangent (direction of increasing s) and inward normal, drawn frame."""
     route = mp.path
@@ -58,7 +64,7 @@ def path_geometry(scene: LinkageScene, mp: MovingPoint, s: Array) -> PathGeometr
         return PathGeometry(start + np.outer(s, u), np.broadcast_to(u, (s.size, 2)), n, 0.0)
     assert route.center is not None
     center = scene.drawn(route.center)
-    radius = math.hypot(*(start - center))
+    radius = path_radius(scene, mp)
     turn = 1.0 if route.direction == "ccw" else -1.0
     phi = math.atan2(start[1] - center[1], start[0] - center[0]) + turn * s / radius
     radial = np.stack((np.cos(phi), np.sin(phi)), axis=-1)

@@ -22,7 +22,7 @@ import numpy as np
 import sympy
 from scipy.optimize import brentq
 
-from solver.kinematics.relative_motion import MovingPointMotion
+from solver.kinematics.relative_motion import MovingPointMotion, path_radius
 from solver.kinematics.rigid import normal_acceleration, omega_cross
 from solver.model.laws import parse_time_law
 from solver.model.scene import MovingPoint
@@ -209,13 +209,6 @@ class MovingPointSteps:
         """+1 for an arc run counter-clockwise, -1 clockwise."""
         return 1.0 if self.mp.path.direction == "ccw" else -1.0
 
-    def path_radius(self) -> float:
-        """R = |P_0 - C|, the arc's radius on the drawing (P_0 its start, C its centre)."""
-        route = self.mp.path
-        assert route.center is not None
-        drawn = self.ctx.scene.drawn
-        return float(np.hypot(*(drawn(route.start) - drawn(route.center))))
-
     # --- the time law and the place on the path -------------------------------------------------
 
     def law_step(self) -> Step:
@@ -271,7 +264,7 @@ class MovingPointSteps:
         assert route.center is not None
         center = ctx.pos(route.center)
         c = b.value(f"pos({route.center})", center, "m", ("points", route.center, "position"))
-        radius = self.path_radius()
+        radius = path_radius(self.ctx.scene, self.mp)
         r = b.value("R", radius, "m")
         start = ctx.scene.drawn(route.start) - ctx.scene.drawn(route.center)
         theta = float(ctx.analysis.motion.links[self.carrier].theta[0])
@@ -314,13 +307,12 @@ class MovingPointSteps:
         )
 
     def line_values(self, b: StepBuilder, law: LawValues, m: Ref) -> LineValues:
-        """M = P_0 + s u, u the unit vector from the line's start P_0 towards its second point."""
+        """M = P_0 + s u, u the unit vector from the line's start P_0 towards its second point
+        (the path's tangent)."""
         ctx, route = self.ctx, self.mp.path
-        assert route.through is not None
         start = ctx.pos(route.start)
         s0 = b.value(f"pos({route.start})", start, "m", ("points", route.start, "position"))
-        u_np = ctx.pos(route.through) - start
-        u = b.value("u", u_np / float(np.hypot(*u_np)), "")
+        u = b.value("u", self.m.tangent, "")
         d = b.value(f"r({route.start},{self.name})", np.asarray(self.m.position) - start, "m")
         b.check("product", d, law.s, u)
         b.check("sum", m, s0, d)
@@ -712,7 +704,7 @@ class MovingPointSteps:
             except (OverflowError, ValueError, ZeroDivisionError):
                 return law.value(t)
 
-        radius = self.path_radius()
+        radius = path_radius(self.ctx.scene, self.mp)
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"
         )
