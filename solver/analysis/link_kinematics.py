@@ -14,7 +14,7 @@ import numpy as np
 from solver.kinematics.four_bar import FourBarLoop, grashof_class, transmission_angle
 from solver.kinematics.instant_centres import InstantCentre, centres_of_pairs
 from solver.kinematics.poles import Poles, acceleration_poles, velocity_poles
-from solver.kinematics.rigid import perp
+from solver.kinematics.rigid import rigid_body_velocity
 from solver.model.scene import LinkageScene
 from solver.position.assembly import DriverInput, Motion, assemble
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, Plan
@@ -61,7 +61,7 @@ def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Ins
     p, v = (np.array([getattr(m.anchor, order)[0] for m in links]) for order in ("p", "v"))
     omega = np.array([m.omega[0] for m in links if m.omega is not None])
     assert omega.shape == (len(links),)
-    V = v - omega[:, None] * perp(p)  # each link's velocity field at the origin
+    V = rigid_body_velocity(v, omega, -p)  # each link's velocity field at the origin
     i, j = np.array(list(combinations(range(len(links)), 2))).T
     pairs = list(combinations(scene.links, 2))
     return centres_of_pairs(pairs, V[i], omega[i], V[j], omega[j], scene.size)

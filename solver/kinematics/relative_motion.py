@@ -25,6 +25,7 @@ from solver.kinematics.rigid import (
     Array,
     LinkMotion,
     dot,
+    omega_cross,
     perp,
     rigid_body_acceleration,
     rigid_body_velocity,
@@ -45,6 +46,12 @@ class PathGeometry:
     curvature: float
 
 
+def path_radius(scene: LinkageScene, mp: MovingPoint) -> float:
+    """R = |P_0 - C|: the radius of an arc path, its start P_0 and centre C as drawn."""
+    assert mp.path.center is not None
+    return math.hypot(*(scene.drawn(mp.path.start) - scene.drawn(mp.path.center)))
+
+
 def path_geometry(scene: LinkageScene, mp: MovingPoint, s: Array) -> PathGeometry:
     """M0(s), its unit tangent (direction of increasing s) and inward normal, drawn frame."""
     route = mp.path
@@ -57,7 +64,7 @@ def path_geometry(scene: LinkageScene, mp: MovingPoint, s: Array) -> PathGeometr
         return PathGeometry(start + np.outer(s, u), np.broadcast_to(u, (s.size, 2)), n, 0.0)
     assert route.center is not None
     center = scene.drawn(route.center)
-    radius = math.hypot(*(start - center))
+    radius = path_radius(scene, mp)
     turn = 1.0 if route.direction == "ccw" else -1.0
     phi = math.atan2(start[1] - center[1], start[0] - center[0]) + turn * s / radius
     radial = np.stack((np.cos(phi), np.sin(phi)), axis=-1)
@@ -66,7 +73,9 @@ def path_geometry(scene: LinkageScene, mp: MovingPoint, s: Array) -> PathGeometr
 
 @dataclass(frozen=True)
 class MovingPointMotion:
-    """M's motion and its parts; arrays over samples (see ``at`` for one instant)."""
+    """M's motion and its parts; arrays over samples (see ``at`` for one instant). ``tangent``
+    and ``normal`` are the path's unit tangent tau (direction of increasing s) and inward normal
+    n at M in the world frame, ``curvature`` its 1/R (0 on a line)."""
 
     position: Array
     velocity: Array
@@ -85,6 +94,9 @@ class MovingPointMotion:
     s: Array
     s_dot: Array
     s_ddot: Array
+    tangent: Array
+    normal: Array
+    curvature: Array
 
     def at(self, k: int) -> MovingPointMotion:
         """The same quantities at sample ``k`` alone."""
@@ -102,7 +114,7 @@ def intrinsic_parts(acceleration: Array, velocity: Array) -> tuple[Array, Array]
 
 def coriolis_acceleration(omega_carrier: Array, v_rel: Array) -> Array:
     """a_coriolis = 2 omega x v_rel (zero when the carrier does not turn or M rests on it)."""
-    return scale(2.0 * omega_carrier, perp(v_rel))
+    return omega_cross(2.0 * omega_carrier, v_rel)
 
 
 def sliding_velocity_parts(
@@ -162,4 +174,7 @@ def moving_point_motion(
         s,
         s_dot,
         s_ddot,
+        tangent,
+        normal,
+        np.broadcast_to(path.curvature, s.shape),
     )

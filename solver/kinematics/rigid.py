@@ -93,7 +93,7 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
     return out
 
 
-def scale(factor: Array, vector: Array) -> Array:
+def scale(factor: Column, vector: Array) -> Array:
     """factor[i] * vector[i] for each sample (column by column: faster than broadcasting)."""
     shape = np.shape(factor)
     if shape != vector.shape[:-1]:
@@ -139,14 +139,27 @@ class LinkMotion:
         return PointMotion(p, v, a)
 
 
+def omega_cross(omega: Column, r: Array) -> Array:
+    """omega x r = omega (k x r): a rate about k (an angular velocity or acceleration) crossed
+    with a planar vector, sample by sample. The rotation's term of a rigid body's velocity
+    (omega x r_AB) and its tangential acceleration (alpha x r_AB)."""
+    return scale(omega, perp(r))
+
+
+def normal_acceleration(omega: Column, r_AB: Array) -> Array:
+    """a_n = omega x (omega x r_AB) = -omega^2 r_AB: the normal (centripetal) term of a point B
+    of a link turning at omega, towards A."""
+    return scale(-(omega**2), r_AB)
+
+
 def rigid_body_velocity(v_A: Array, omega: Array, r_AB: Array) -> Array:
     """v_B = v_A + omega x r_AB."""
-    return v_A + scale(omega, perp(r_AB))
+    return v_A + omega_cross(omega, r_AB)
 
 
 def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array) -> Array:
     """a_B = a_A + alpha x r_AB - omega^2 r_AB (tangential plus normal term)."""
-    return a_A + scale(alpha, perp(r_AB)) - scale(omega**2, r_AB)
+    return a_A + omega_cross(alpha, r_AB) + normal_acceleration(omega, r_AB)
 
 
 @dataclass(frozen=True)

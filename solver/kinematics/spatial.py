@@ -56,9 +56,24 @@ class SpatialChain:
 
 
 @dataclass(frozen=True)
+class CompositionTerms:
+    """Joint k's terms in body k's rates (``composition_terms``):
+
+    omega_k = omega_{k-1} + rate e_k,  alpha_k = alpha_{k-1} + rate_dot e_k + rate de_k/dt
+
+    for a revolute joint; zero for a prismatic one, which adds no rotation.
+    """
+
+    rate_axis: np.ndarray
+    rate_dot_axis: np.ndarray
+    rate_axis_rate: np.ndarray
+
+
+@dataclass(frozen=True)
 class BodyMotion:
     """Motion of body k; ``velocity_origin``/``acceleration_origin`` are those of the joint origin
-    O_k taken as a point of body k. ``axis_rate`` is d(e_k)/dt = omega_{k-1} x e_k."""
+    O_k taken as a point of body k. ``axis_rate`` is d(e_k)/dt = omega_{k-1} x e_k and
+    ``composition`` joint k's terms in omega_k and alpha_k."""
 
     omega: np.ndarray
     alpha: np.ndarray
@@ -66,6 +81,20 @@ class BodyMotion:
     velocity_origin: np.ndarray
     acceleration_origin: np.ndarray
     axis_rate: np.ndarray
+    composition: CompositionTerms
+
+
+@dataclass(frozen=True)
+class RigidTerms:
+    """The terms of a point P of a rigid body turning at omega, alpha, r = P - O (``rigid_terms``):
+
+    v_P = v_O + omega x r,  a_P = a_O + alpha x r + omega x (omega x r).
+    """
+
+    r: np.ndarray
+    omega_x_r: np.ndarray
+    alpha_x_r: np.ndarray
+    centripetal: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -75,6 +104,8 @@ class PointMotion:
     ``a_origin`` is the acceleration of O_k carried by the joint's guide: O_k as a point of body k
     itself for a revolute joint, the coincident point of body k-1 for a prismatic one, whose
     sliding then gives ``coriolis`` = 2 omega_{k-1} x v_rel and ``relative`` = rate_dot e_k.
+    ``rigid`` holds r, omega x r, ``tangential`` = alpha x r and ``centripetal`` =
+    omega x (omega x r) (all zero for a point of the ground).
     """
 
     position: np.ndarray
@@ -85,6 +116,7 @@ class PointMotion:
     centripetal: np.ndarray
     coriolis: np.ndarray
     relative: np.ndarray
+    rigid: RigidTerms
 
 
 @dataclass(frozen=True)
@@ -186,42 +218,57 @@ def parse_spatial_chain(doc: Mapping[str, Any]) -> SpatialChain:
 # --- the textbook steps --------------------------------------------------------------------------
 
 
-def angular_velocity_composition(omega_parent: np.ndarray, joint: SpatialJoint) -> np.ndarray:
-    """omega_k = omega_{k-1} + rate_k e_k (revolute); omega_k = omega_{k-1} (prismatic)."""
-    if joint.type == "revolute":
-        return omega_parent + joint.rate * joint.axis
-    return omega_parent.copy()
-
-
 def axis_rate(omega_parent: np.ndarray, axis: np.ndarray) -> np.ndarray:
     """de_k/dt = omega_{k-1} x e_k: the axis is fixed in body k-1 and turns with it."""
     return np.cross(omega_parent, axis)
 
 
-def angular_acceleration_composition(
-    alpha_parent: np.ndarray, omega_parent: np.ndarray, joint: SpatialJoint
-) -> np.ndarray:
-    """alpha_k = alpha_{k-1} + rate_dot_k e_k + omega_{k-1} x (rate_k e_k) (revolute);
-    alpha_k = alpha_{k-1} (prismatic)."""
+def composition_terms(joint: SpatialJoint, axis_rate: np.ndarray) -> CompositionTerms:
+    """rate e_k, rate_dot e_k and rate de_k/dt (de_k/dt = ``axis_rate``): the terms of
+    omega_k = omega_{k-1} + rate e_k and alpha_k = alpha_{k-1} + rate_dot e_k + rate de_k/dt
+    (a revolute joint; zero for a prismatic one)."""
     if joint.type == "revolute":
-        return (
-            alpha_parent
-            + joint.rate_dot * joint.axis
-            + joint.rate * axis_rate(omega_parent, joint.axis)
+        return CompositionTerms(
+            joint.rate * joint.axis, joint.rate_dot * joint.axis, joint.rate * axis_rate
         )
+    zero = np.zeros_like(axis_rate)
+    return CompositionTerms(zero, zero, zero)
+
+
+def angular_velocity_composition(
+    omega_parent: np.ndarray, joint: SpatialJoint, terms: CompositionTerms
+) -> np.ndarray:
+    """omega_k = omega_{k-1} + rate_k e_k (revolute); omega_k = omega_{k-1} (prismatic)."""
+    if joint.type == "revolute":
+        return omega_parent + terms.rate_axis
+    return omega_parent.copy()
+
+
+def angular_acceleration_composition(
+    alpha_parent: np.ndarray, joint: SpatialJoint, terms: CompositionTerms
+) -> np.ndarray:
+    """alpha_k = alpha_{k-1} + rate_dot_k e_k + rate_k de_k/dt, de_k/dt = omega_{k-1} x e_k
+    (revolute); alpha_k = alpha_{k-1} (prismatic)."""
+    if joint.type == "revolute":
+        return alpha_parent + terms.rate_dot_axis + terms.rate_axis_rate
     return alpha_parent.copy()
 
 
-def rigid_body_velocity(v_origin: np.ndarray, omega: np.ndarray, r: np.ndarray) -> np.ndarray:
+def rigid_terms(omega: np.ndarray, alpha: np.ndarray, r: np.ndarray) -> RigidTerms:
+    """omega x r, alpha x r and omega x (omega x r): the terms of v_P = v_O + omega x r and
+    a_P = a_O + alpha x r + omega x (omega x r) for a point P of a rigid body, r = P - O."""
+    omega_x_r = np.cross(omega, r)
+    return RigidTerms(r, omega_x_r, np.cross(alpha, r), np.cross(omega, omega_x_r))
+
+
+def rigid_body_velocity(v_origin: np.ndarray, terms: RigidTerms) -> np.ndarray:
     """v_P = v_O + omega x r_{OP}."""
-    return v_origin + np.cross(omega, r)
+    return v_origin + terms.omega_x_r
 
 
-def rigid_body_acceleration(
-    a_origin: np.ndarray, omega: np.ndarray, alpha: np.ndarray, r: np.ndarray
-) -> np.ndarray:
+def rigid_body_acceleration(a_origin: np.ndarray, terms: RigidTerms) -> np.ndarray:
     """a_P = a_O + alpha x r_{OP} + omega x (omega x r_{OP})."""
-    return a_origin + np.cross(alpha, r) + np.cross(omega, np.cross(omega, r))
+    return a_origin + terms.alpha_x_r + terms.centripetal
 
 
 def sliding_terms(omega_parent: np.ndarray, joint: SpatialJoint) -> tuple[np.ndarray, ...]:
@@ -233,20 +280,8 @@ def sliding_terms(omega_parent: np.ndarray, joint: SpatialJoint) -> tuple[np.nda
     return zero, zero, zero
 
 
-def five_term_acceleration(
-    a_origin: np.ndarray,
-    omega: np.ndarray,
-    alpha: np.ndarray,
-    r: np.ndarray,
-    coriolis: np.ndarray,
-    relative: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel, term by term."""
-    return a_origin, np.cross(alpha, r), np.cross(omega, np.cross(omega, r)), coriolis, relative
-
-
 @dataclass(frozen=True)
-class OriginTerms:
+class OriginTerms(RigidTerms):
     """The terms carrying joint k's origin O_k with body k-1, r = O_k - O_{k-1}:
 
     v_{O_k} = v_{O_{k-1}} + omega x r + v_rel,
@@ -255,73 +290,71 @@ class OriginTerms:
     with body k-1's omega and alpha, and the sliding terms of joint k (zero for a revolute one).
     """
 
-    r: np.ndarray
-    omega_x_r: np.ndarray
-    alpha_x_r: np.ndarray
-    centripetal: np.ndarray
     v_rel: np.ndarray
     coriolis: np.ndarray
     a_rel: np.ndarray
 
 
 def origin_terms(parent: BodyMotion, joint: SpatialJoint) -> OriginTerms:
-    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates, and
-    v_rel = rate e_k, 2 omega x v_rel, a_rel = rate_dot e_k of joint k's sliding
-    (``sliding_terms``)."""
-    r = joint.origin - parent.origin
-    omega_x_r = np.cross(parent.omega, r)
+    """r = O_k - O_{k-1}, omega x r, alpha x r, omega x (omega x r) with body k-1's rates
+    (``rigid_terms``), and v_rel = rate e_k, 2 omega x v_rel, a_rel = rate_dot e_k of joint k's
+    sliding (``sliding_terms``)."""
+    carried = rigid_terms(parent.omega, parent.alpha, joint.origin - parent.origin)
     v_rel, a_rel, coriolis = sliding_terms(parent.omega, joint)
     return OriginTerms(
-        r,
-        omega_x_r,
-        np.cross(parent.alpha, r),
-        np.cross(parent.omega, omega_x_r),
-        v_rel,
-        coriolis,
-        a_rel,
+        carried.r, carried.omega_x_r, carried.alpha_x_r, carried.centripetal, v_rel, coriolis, a_rel
     )
 
 
 def ground_motion(like: np.ndarray) -> BodyMotion:
     """The ground as body 0: at rest at the origin (zeros shaped like ``like``: (3,) or (N, 3))."""
     zero = np.zeros_like(like)
-    return BodyMotion(zero, zero, zero, zero, zero, zero)
+    return BodyMotion(zero, zero, zero, zero, zero, zero, CompositionTerms(zero, zero, zero))
 
 
 def analyze_spatial_chain(chain: SpatialChain) -> SpatialAnalysis:
     """Walk the chain from the ground: omega, alpha and the joint-origin motion of every body,
-    then the velocity and the five-term acceleration of every point."""
+    then the velocity and the five-term acceleration of every point,
+    a_P = a_O + alpha x r + omega x (omega x r) + 2 omega x v_rel + a_rel."""
     parent = ground_motion(chain.joints[0].origin)
     bodies: dict[str, BodyMotion] = {}
     guides: dict[str, tuple[np.ndarray, OriginTerms]] = {}  # O_k as a point of body k-1
     for joint in chain.joints:
         terms = origin_terms(parent, joint)
-        a_guide = parent.acceleration_origin + terms.alpha_x_r + terms.centripetal
+        a_guide = rigid_body_acceleration(parent.acceleration_origin, terms)
         guides[joint.name] = (a_guide, terms)
+        turning = axis_rate(parent.omega, joint.axis)
+        composition = composition_terms(joint, turning)
         parent = BodyMotion(
-            omega=angular_velocity_composition(parent.omega, joint),
-            alpha=angular_acceleration_composition(parent.alpha, parent.omega, joint),
+            omega=angular_velocity_composition(parent.omega, joint, composition),
+            alpha=angular_acceleration_composition(parent.alpha, joint, composition),
             origin=joint.origin,
-            velocity_origin=parent.velocity_origin + terms.omega_x_r + terms.v_rel,
+            velocity_origin=rigid_body_velocity(parent.velocity_origin, terms) + terms.v_rel,
             acceleration_origin=a_guide + terms.a_rel + terms.coriolis,
-            axis_rate=axis_rate(parent.omega, joint.axis),
+            axis_rate=turning,
+            composition=composition,
         )
         bodies[joint.name] = parent
     points: dict[str, PointMotion] = {}
     for point in chain.points:
         if point.body == GROUND:
             rest = np.zeros_like(point.position)
-            points[point.name] = PointMotion(point.position, *(rest for _ in range(7)))
+            still = RigidTerms(rest, rest, rest, rest)
+            points[point.name] = PointMotion(
+                point.position, rest, rest, rest, rest, rest, rest, rest, still
+            )
             continue
         body, (a_guide, guide) = bodies[point.body], guides[point.body]
-        r = point.position - body.origin
-        five = five_term_acceleration(
-            a_guide, body.omega, body.alpha, r, guide.coriolis, guide.a_rel
-        )
+        rigid = rigid_terms(body.omega, body.alpha, point.position - body.origin)
         points[point.name] = PointMotion(
             point.position,
-            rigid_body_velocity(body.velocity_origin, body.omega, r),
-            rigid_body_acceleration(body.acceleration_origin, body.omega, body.alpha, r),
-            *five,
+            rigid_body_velocity(body.velocity_origin, rigid),
+            rigid_body_acceleration(body.acceleration_origin, rigid),
+            a_guide,
+            rigid.alpha_x_r,
+            rigid.centripetal,
+            guide.coriolis,
+            guide.a_rel,
+            rigid,
         )
     return SpatialAnalysis(bodies=bodies, points=points)

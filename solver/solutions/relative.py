@@ -22,8 +22,8 @@ import numpy as np
 import sympy
 from scipy.optimize import brentq
 
-from solver.kinematics.relative_motion import MovingPointMotion
-from solver.kinematics.rigid import perp
+from solver.kinematics.relative_motion import MovingPointMotion, path_radius
+from solver.kinematics.rigid import normal_acceleration, omega_cross
 from solver.model.laws import parse_time_law
 from solver.model.scene import MovingPoint
 from solver.solutions import latex as tex
@@ -51,7 +51,6 @@ from solver.solutions.linkage import (
     LinkageContext,
     a_vec,
     al_vec,
-    k_cross,
     origin,
     put_motion,
     r_vec,
@@ -106,12 +105,12 @@ def transport_terms(
     w = b.put(f"omega({carrier.link})", carrier.omega, "rad/s", carrier.source("omega"))
     if order == VELOCITY:
         r = b.put(f"r({a},{m})", r_np, "m")
-        wxr = b.put(f"omega x r{suffix}", k_cross(carrier.omega, r_np), "m/s")
+        wxr = b.put(f"omega x r{suffix}", omega_cross(carrier.omega, r_np), "m/s")
         return TransportTerms(a, base, w, r, wxr)
     al = b.put(f"alpha({carrier.link})", carrier.alpha, "rad/s^2", carrier.source("alpha"))
     r = b.put(f"r({a},{m})", r_np, "m")
-    t = b.put(f"alpha x r{suffix}", k_cross(carrier.alpha, r_np), "m/s^2")
-    n = b.put(f"normal{suffix}", -(carrier.omega**2) * r_np, "m/s^2")
+    t = b.put(f"alpha x r{suffix}", omega_cross(carrier.alpha, r_np), "m/s^2")
+    n = b.put(f"normal{suffix}", normal_acceleration(carrier.omega, r_np), "m/s^2")
     return TransportTerms(a, base, w, r, t, al, n)
 
 
@@ -210,28 +209,6 @@ class MovingPointSteps:
         """+1 for an arc run counter-clockwise, -1 clockwise."""
         return 1.0 if self.mp.path.direction == "ccw" else -1.0
 
-    def path_radius(self) -> float:
-        """R = |P_0 - C|, the arc's radius on the drawing (P_0 its start, C its centre)."""
-        route = self.mp.path
-        assert route.center is not None
-        drawn = self.ctx.scene.drawn
-        return float(np.hypot(*(drawn(route.start) - drawn(route.center))))
-
-    def tangent_normal(self) -> tuple[np.ndarray, np.ndarray, float]:
-        """Unit tangent (increasing s), inward normal and curvature of the path at M, now."""
-        ctx, route = self.ctx, self.mp.path
-        position = np.asarray(self.m.position, dtype=float)
-        if route.type == "line":
-            assert route.through is not None
-            u = ctx.pos(route.through) - ctx.pos(route.start)
-            u = u / float(np.hypot(*u))
-            return u, perp(u), 0.0
-        assert route.center is not None
-        radial = position - ctx.pos(route.center)
-        radius = float(np.hypot(*radial))
-        radial = radial / radius
-        return self.turn * perp(radial), -radial, 1.0 / radius
-
     # --- the time law and the place on the path -------------------------------------------------
 
     def law_step(self) -> Step:
@@ -287,7 +264,7 @@ class MovingPointSteps:
         assert route.center is not None
         center = ctx.pos(route.center)
         c = b.value(f"pos({route.center})", center, "m", ("points", route.center, "position"))
-        radius = self.path_radius()
+        radius = path_radius(self.ctx.scene, self.mp)
         r = b.value("R", radius, "m")
         start = ctx.scene.drawn(route.start) - ctx.scene.drawn(route.center)
         theta = float(ctx.analysis.motion.links[self.carrier].theta[0])
@@ -330,13 +307,12 @@ class MovingPointSteps:
         )
 
     def line_values(self, b: StepBuilder, law: LawValues, m: Ref) -> LineValues:
-        """M = P_0 + s u, u the unit vector from the line's start P_0 towards its second point."""
+        """M = P_0 + s u, u the unit vector from the line's start P_0 towards its second point
+        (the path's tangent)."""
         ctx, route = self.ctx, self.mp.path
-        assert route.through is not None
         start = ctx.pos(route.start)
         s0 = b.value(f"pos({route.start})", start, "m", ("points", route.start, "position"))
-        u_np = ctx.pos(route.through) - start
-        u = b.value("u", u_np / float(np.hypot(*u_np)), "")
+        u = b.value("u", self.m.tangent, "")
         d = b.value(f"r({route.start},{self.name})", np.asarray(self.m.position) - start, "m")
         b.check("product", d, law.s, u)
         b.check("sum", m, s0, d)
@@ -427,7 +403,7 @@ class MovingPointSteps:
         """v_rel = s' tau, tau the path's unit tangent (the carrier's rate does not enter)."""
         b = self.ctx.builder("relative.relative_velocity", f"Relative velocity of {self.name}")
         sd = b.value("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot"))
-        t = b.value("tau", self.tangent_normal()[0], "")
+        t = b.value("tau", self.m.tangent, "")
         rel = self.put(b, "relative_velocity")
         b.check("product", rel, sd, t)
         relative = Equation.of(
@@ -584,12 +560,12 @@ class MovingPointSteps:
 
     def relative_acceleration_values(self, b: StepBuilder) -> RelativeAcceleration:
         """s', s'', tau, n, 1/R and the parts s'' tau and (s'^2 / R) n of a_rel."""
-        tau, normal, curvature = self.tangent_normal()
+        curvature = float(self.m.curvature)
         return RelativeAcceleration(
             b.value("s_dot", float(self.m.s_dot), "m/s", self.src("s_dot")),
             b.value("s_ddot", float(self.m.s_ddot), "m/s^2", self.src("s_ddot")),
-            b.value("tau", tau, ""),
-            b.value("n", normal, ""),
+            b.value("tau", self.m.tangent, ""),
+            b.value("n", self.m.normal, ""),
             b.value("1/R", curvature, "1/m" if curvature else ""),
             b.value(
                 "a_rel tangential",
@@ -673,7 +649,7 @@ class MovingPointSteps:
                 "drive it turn.",
             )
             return b.build()
-        half = b.value("omega x v_rel", k_cross(omega, self.m.relative_velocity), "m/s^2")
+        half = b.value("omega x v_rel", omega_cross(omega, self.m.relative_velocity), "m/s^2")
         b.check("cross", half, w, vrel)
         coriolis = Equation.of(
             lhs,
@@ -728,7 +704,7 @@ class MovingPointSteps:
             except (OverflowError, ValueError, ZeroDivisionError):
                 return law.value(t)
 
-        radius = self.path_radius()
+        radius = path_radius(self.ctx.scene, self.mp)
         b = self.ctx.builder(
             "relative.event", f"When {self.name} reaches the far end and its start"
         )

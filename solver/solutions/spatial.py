@@ -255,7 +255,7 @@ class SpatialSteps:
             b.say("A prismatic joint adds no rotation: ", same, ".")
             return b.build()
         q = b.value(f"rate({joint.name})", joint.rate, "rad/s")
-        term = b.value(f"rate e({joint.name})", joint.rate * joint.axis, "rad/s")
+        term = b.value(f"rate e({joint.name})", body.composition.rate_axis, "rad/s")
         b.check("product", term, q, e)
         b.check("sum", w, wp, term)
         composition = Equation.of(
@@ -322,8 +322,9 @@ class SpatialSteps:
         ed = b.value(f"e_dot({joint.name})", body.axis_rate, "1/s")
         q = b.value(f"rate({joint.name})", joint.rate, "rad/s")
         qd = b.value(f"rate_dot({joint.name})", joint.rate_dot, "rad/s^2")
-        t1 = b.value(f"rate_dot e({joint.name})", joint.rate_dot * joint.axis, "rad/s^2")
-        t2 = b.value(f"rate e_dot({joint.name})", joint.rate * body.axis_rate, "rad/s^2")
+        terms = body.composition
+        t1 = b.value(f"rate_dot e({joint.name})", terms.rate_dot_axis, "rad/s^2")
+        t2 = b.value(f"rate e_dot({joint.name})", terms.rate_axis_rate, "rad/s^2")
         b.check("product", t1, qd, e)
         b.check("product", t2, q, ed)
         b.check("sum", al, alp, t1, t2)
@@ -510,13 +511,13 @@ class SpatialSteps:
         """v_P = v_O + omega x r, r from the body's joint origin O to P."""
         name = point.name
         body = self.analysis.bodies[point.body]
-        r_np = point.position - body.origin
+        terms = self.analysis.points[name].rigid
         n, k = tex.name(name), tex.name(point.body)
         b = self.builder("spatial.point.velocity", f"Velocity of {name}{role}")
         vo = b.value(f"v(O{point.body})", body.velocity_origin, "m/s")
         w = b.value(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
-        r = b.value(f"r(O{point.body},{name})", r_np, "m")
-        wxr = b.value("omega x r", np.cross(body.omega, r_np), "m/s")
+        r = b.value(f"r(O{point.body},{name})", terms.r, "m")
+        wxr = b.value("omega x r", terms.omega_x_r, "m/s")
         v = b.value(
             f"v({name})", self.analysis.points[name].velocity, "m/s", ("points", name, "velocity")
         )
@@ -546,7 +547,6 @@ class SpatialSteps:
         name = point.name
         motion = self.analysis.points[name]
         body = self.analysis.bodies[point.body]
-        r_np = point.position - body.origin
         b = self.builder(
             "spatial.point.acceleration", f"Acceleration of {name}{role}: the five-term formula"
         )
@@ -554,9 +554,9 @@ class SpatialSteps:
         ao = b.value("a_O", motion.a_origin, "m/s^2", (*src, "origin"))
         al = b.value(f"alpha({point.body})", body.alpha, "rad/s^2", ("bodies", point.body, "alpha"))
         w = b.value(f"omega({point.body})", body.omega, "rad/s", ("bodies", point.body, "omega"))
-        r = b.value(f"r(O{point.body},{name})", r_np, "m")
+        r = b.value(f"r(O{point.body},{name})", motion.rigid.r, "m")
         t = b.value("alpha x r", motion.tangential, "m/s^2", (*src, "tangential"))
-        inner = b.value("omega x r", np.cross(body.omega, r_np), "m/s")
+        inner = b.value("omega x r", motion.rigid.omega_x_r, "m/s")
         c = b.value("omega x (omega x r)", motion.centripetal, "m/s^2", (*src, "centripetal"))
         cor = b.value("2 omega x v_rel", motion.coriolis, "m/s^2", (*src, "coriolis"))
         rel = b.value("a_rel", motion.relative, "m/s^2", (*src, "relative"))

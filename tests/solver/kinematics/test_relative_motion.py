@@ -397,7 +397,8 @@ def test_parts_add_up_and_match_the_textbook_formulas(drawn: tuple[LinkageScene,
 @given(any_scene)
 def test_relative_motion_follows_the_path_geometry(drawn: tuple[LinkageScene, float]) -> None:
     """v_rel is tangent to the path (|v_rel| = |s_dot|); a_rel_t = s_ddot along the tangent;
-    |a_rel_n| = s_dot^2 / R towards the centre on an arc and 0 on a line; M lies on the path.
+    |a_rel_n| = s_dot^2 / R towards the centre on an arc and 0 on a line; M lies on the path;
+    the path's unit tangent, normal and curvature at M are those of the circle or the line.
     Tolerance 1e-9 relative to the group's scale (the geometry is recomputed here from the
     solver's positions of the path's points)."""
     scene, t = drawn
@@ -442,6 +443,9 @@ def test_relative_motion_follows_the_path_geometry(drawn: tuple[LinkageScene, fl
         # to the carrier) for s_dot > 0.
         turn = 1.0 if mp.path.direction == "ccw" else -1.0
         _close(m.relative_velocity, turn * m.s_dot * _perp(r / radius), 1e-9, sv, "cw / ccw")
+        _close(m.tangent, turn * _perp(r / radius), 1e-9, 1.0, "tau, the arc's unit tangent")
+        _close(m.normal, -r / radius, 1e-9, 1.0, "n, the unit normal towards the centre")
+        _close(m.curvature, 1.0 / radius, 1e-12, 1.0 / radius, "1/R")
     else:
         assert mp.path.through is not None
         a, b = result.points[mp.path.start].position, result.points[mp.path.through].position
@@ -451,6 +455,9 @@ def test_relative_motion_follows_the_path_geometry(drawn: tuple[LinkageScene, fl
         _close(float(np.dot(m.position - a, u)), m.s, 1e-9, sr, "s measured from start")
         _close(m.relative_velocity, m.s_dot * u, 1e-9, sv, "v_rel along the line")
         _close(m.relative_normal, [0.0, 0.0], 1e-12, sa, "no normal part on a line")
+        _close(m.tangent, u, 1e-9, 1.0, "tau along the line")
+        _close(m.normal, _perp(u), 1e-9, 1.0, "n, tau turned counter-clockwise on a line")
+        assert m.curvature == 0.0
 
 
 @pytest.mark.slow
