@@ -139,14 +139,37 @@ class LinkMotion:
         return PointMotion(p, v, a)
 
 
+def _planar(vector: Array, factor: Array, r: Array) -> Array:
+    """An empty (..., 2) array for ``vector`` plus ``factor`` times a function of ``r`` (a
+    factor per sample, broadcast; made at once where all three are float columns over the same
+    samples, the common case)."""
+    if vector.shape == r.shape and vector.dtype == r.dtype == FLOAT:
+        return np.empty(r.shape)
+    shape = np.broadcast_shapes(vector.shape, (*np.shape(factor), 1), r.shape)
+    return np.empty(shape, dtype=np.result_type(vector, factor, r))
+
+
 def rigid_body_velocity(v_A: Array, omega: Array, r_AB: Array) -> Array:
-    """v_B = v_A + omega x r_AB."""
-    return v_A + scale(omega, perp(r_AB))
+    """v_B = v_A + omega x r_AB = (v_Ax - omega r_y, v_Ay + omega r_x), column by column."""
+    x, y = r_AB[..., 0], r_AB[..., 1]
+    out = _planar(v_A, omega, r_AB)
+    np.subtract(v_A[..., 0], y * omega, out=out[..., 0])
+    np.add(v_A[..., 1], x * omega, out=out[..., 1])
+    return out
 
 
 def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array) -> Array:
-    """a_B = a_A + alpha x r_AB - omega^2 r_AB (tangential plus normal term)."""
-    return a_A + scale(alpha, perp(r_AB)) - scale(omega**2, r_AB)
+    """a_B = a_A + alpha x r_AB - omega^2 r_AB (tangential plus normal term) = (a_Ax - alpha r_y
+    - omega^2 r_x, a_Ay + alpha r_x - omega^2 r_y), column by column."""
+    x, y = r_AB[..., 0], r_AB[..., 1]
+    out = _planar(a_A, alpha, r_AB)
+    squared = omega**2
+    first, second = out[..., 0], out[..., 1]
+    np.subtract(a_A[..., 0], y * alpha, out=first)
+    first -= squared * x
+    np.add(a_A[..., 1], x * alpha, out=second)
+    second -= squared * y
+    return out
 
 
 @dataclass(frozen=True)
