@@ -286,7 +286,7 @@ def _limit(driven: _Driven, inside: float, outside: float) -> float:
 
 def _turns_fully(motion: Motion) -> bool:
     """Every sample closes, and no window between two samples fails to."""
-    return bool(np.all(motion.feasible)) and not motion.windows
+    return bool(motion.feasible.all()) and not motion.windows
 
 
 def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:
@@ -359,8 +359,8 @@ def _cycle(
     the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
     (that range, the limits, is returned too; None for a full revolution). ``revolution``: the
     turns and the motion over the full revolution where the sweep ran it as its own feasibility
-    probe."""
-    if revolution is not None and _turns_fully(revolution[1]):
+    probe and the linkage turns fully (``_turns_fully``)."""
+    if revolution is not None:
         return *revolution, None
     turns = _revolution(samples, start, direction)
     if not driven.plan.closed_form:
@@ -409,7 +409,9 @@ def sweep(
     unchecked = revolution is None or not _turns_fully(revolution[1])
     if unchecked and start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
-    turns, motion, span = _cycle(driven, samples, order, start, direction, revolution)
+    turns, motion, span = _cycle(
+        driven, samples, order, start, direction, None if unchecked else revolution
+    )
     approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
     if span is None:  # the closing sample off
         approaches = once_a_turn(approaches)
