@@ -15,8 +15,9 @@ singular, the motion smooth) take their rates from their two neighbours and are 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 from numpy.polynomial import chebyshev
@@ -72,13 +73,34 @@ def check_samples(samples: int) -> None:
 
 
 class _Warned:
-    """A sweep's warnings in words: one per close approach of two branches."""
+    """A sweep's warnings in words (one per close approach of two branches), and its four-bar
+    loops and sliders, computed on first access: a caller pays only for what it reads."""
 
+    scene: LinkageScene
+    motion: Motion
+    quantities: frozenset[str]
     close_approaches: tuple[CloseApproach, ...]
+    order: int  # the order the motion was computed to (``required_order``)
 
     @property
     def warnings(self) -> list[str]:
         return [a.warning for a in self.close_approaches]
+
+    @cached_property
+    def four_bar_loops(self) -> list[FourBarLoop]:
+        """The four-bar loops' transmission angles at every sample (``four_bar_loops``), where
+        positions were asked for; computed on first access."""
+        if "position" not in self.quantities:
+            return []
+        return four_bar_loops(self.scene, build_plan(self.scene), self.motion, every_sample=True)
+
+    @cached_property
+    def sliders(self) -> list[SliderTravel]:
+        """The sliders' travel along their guides (``slider_travel``: positions, velocities or
+        accelerations, as asked); computed on first access."""
+        if not self.quantities & {"position", "velocity", "acceleration"}:
+            return []
+        return slider_travel(self.scene, self.motion, self.order)
 
 
 @dataclass(frozen=True)
@@ -96,9 +118,25 @@ class Sweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
-    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
-    sliders: list[SliderTravel] = field(default_factory=list)
-    strokes: dict[str, Strokes | None] = field(default_factory=dict)
+    order: int = 0
+    # A ram's strokes refined from the sweep's own run (``_strokes`` on it; None: not a full
+    # revolution).
+    stroke_of: Callable[[SliderTravel], Strokes | None] | None = field(
+        default=None, repr=False, compare=False
+    )
+
+    @cached_property
+    def strokes(self) -> dict[str, Strokes | None]:
+        """Each ram's (slider on a fixed guide) extreme positions over a full revolution
+        (``Strokes``, refined to rounding by further runs), where positions were asked for;
+        computed on first access."""
+        strokes: dict[str, Strokes | None] = {}
+        if self.stroke_of is None or "position" not in self.quantities:
+            return strokes
+        for travel in self.sliders:
+            if travel.links[0] == self.scene.ground:
+                strokes[travel.point] = self.stroke_of(travel)
+        return strokes
 
 
 @dataclass(frozen=True)
@@ -248,7 +286,7 @@ def _limit(driven: _Driven, inside: float, outside: float) -> float:
 
 def _turns_fully(motion: Motion) -> bool:
     """Every sample closes, and no window between two samples fails to."""
-    return bool(np.all(motion.feasible)) and not motion.windows
+    return bool(motion.feasible.all()) and not motion.windows
 
 
 def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:
@@ -321,8 +359,8 @@ def _cycle(
     the linkage cannot turn fully, the midpoints of ``samples`` equal parts of its feasible range
     (that range, the limits, is returned too; None for a full revolution). ``revolution``: the
     turns and the motion over the full revolution where the sweep ran it as its own feasibility
-    probe."""
-    if revolution is not None and _turns_fully(revolution[1]):
+    probe and the linkage turns fully (``_turns_fully``)."""
+    if revolution is not None:
         return *revolution, None
     turns = _revolution(samples, start, direction)
     if not driven.plan.closed_form:
@@ -371,7 +409,9 @@ def sweep(
     unchecked = revolution is None or not _turns_fully(revolution[1])
     if unchecked and start != 0.0 and not driven.closes(start):
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
-    turns, motion, span = _cycle(driven, samples, order, start, direction, revolution)
+    turns, motion, span = _cycle(
+        driven, samples, order, start, direction, None if unchecked else revolution
+    )
     approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
     if span is None:  # the closing sample off
         approaches = once_a_turn(approaches)
@@ -383,12 +423,9 @@ def sweep(
         singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
-    loops, sliders = _loops_and_sliders(scene, plan, motion, wanted, order)
-    strokes: dict[str, Strokes | None] = {}
-    if span is None and "position" in wanted:
-        for travel in sliders:
-            if travel.links[0] == scene.ground:
-                strokes[travel.point] = _strokes(driven, travel, turns, drawn, motion)
+    stroke_of = None
+    if span is None:
+        stroke_of = partial(_strokes, driven, turns=turns, drawn=drawn, motion=motion)
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -400,22 +437,9 @@ def sweep(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         approaches,
-        loops,
-        sliders,
-        strokes,
+        order,
+        stroke_of,
     )
-
-
-def _loops_and_sliders(
-    scene: LinkageScene, plan: Plan, motion: Motion, wanted: frozenset[str], order: int
-) -> tuple[list[FourBarLoop], list[SliderTravel]]:
-    """The four-bar loops' transmission angles (with positions) and the sliders' travel along
-    their guides (with positions, velocities or accelerations), at every sample."""
-    loops = four_bar_loops(scene, plan, motion, every_sample=True) if "position" in wanted else []
-    sliders = []
-    if wanted & {"position", "velocity", "acceleration"}:
-        sliders = slider_travel(scene, motion, order)
-    return loops, sliders
 
 
 def _hermite_interpolation() -> Array:
@@ -555,8 +579,7 @@ class TimeSweep(_Warned):
     joints: list[SlidingJoint]
     poles: dict[str, tuple[Poles, Poles]]
     close_approaches: tuple[CloseApproach, ...] = ()
-    four_bar_loops: list[FourBarLoop] = field(default_factory=list)
-    sliders: list[SliderTravel] = field(default_factory=list)
+    order: int = 0
 
 
 def sweep_time(
@@ -603,5 +626,5 @@ def sweep_time(
         wanted,
         *_joints_and_poles(scene, motion, wanted, order),
         close_approaches(motion, first or "", angle),
-        *_loops_and_sliders(scene, plan, motion, wanted, order),
+        order,
     )

@@ -200,7 +200,7 @@ def rates_alone(inputs: Sequence[DriverInput], order: int, path: Sequence[PathSt
         return False
     moving = path[0][0]
     return all(
-        bool(np.all(given.omega != 0.0)) if driver == moving else not given.omega.any()
+        bool((given.omega != 0.0).all()) if driver == moving else not given.omega.any()
         for driver, given in enumerate(inputs)
     )
 
@@ -529,7 +529,7 @@ class _Assembler:
     def close(self, margin: Array, message: Callable[[], str]) -> None:
         """Record a group's relative margin, and its message where it newly fails to close."""
         fails = margin < -loci.COINCIDENCE_TOLERANCE
-        if fails.any() and np.any(fails & self.closed()):
+        if fails.any() and (fails & self.closed()).any():
             self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
@@ -858,7 +858,7 @@ def assemble(
 def require_feasible(motion: Motion, where: str) -> None:
     """Raise ``NotAssemblable`` with the numbers of the first group that did not close (at a
     sample, or in a window between two samples)."""
-    if not np.all(motion.feasible):
+    if not motion.feasible.all():
         raise NotAssemblable(f"the linkage cannot be closed {where}: " + "; ".join(motion.failures))
     if motion.windows:
         window = motion.windows[0]
