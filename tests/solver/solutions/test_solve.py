@@ -1244,7 +1244,9 @@ def test_step_kinds_present(name: str, solution: Solution) -> None:
         "reading",
         "summary",
     } <= kinds, name
-    assert ("classification" in kinds) == bool(solution.analysis.four_bar_loops), name
+    # four-bars (Grashof) and slider mechanisms (dead centres, issue 29) are classified
+    sliding = bool(solution.analysis.joints)
+    assert ("classification" in kinds) == bool(solution.analysis.four_bar_loops or sliding), name
     assert "position.crank" in kinds, name
     dyads = [s for s in solution.analysis.plan.steps if type(s).__name__ == "DyadStep"]
     if dyads:

@@ -1,0 +1,117 @@
+"""The classification step of the slider mechanisms (issue 29): slider-crank, offset
+slider-crank, inverted slider-crank and quick-return, for every seed example and preset of those
+kinds. Its stroke, time ratio and slow stroke are checked against the sweep's ram extremes
+(``Sweep.strokes``, refined to rounding: tolerance 1e-9 relative), its lever swing and time
+ratio against the lever's angle sampled over a turn (tolerance 1e-4 rad: 20000 samples of a
+smooth curve near its extremes), and the formulas against their closed forms."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from solver.analysis.sweeps import sweep
+from solver.kinematics.dead_centres import (
+    crank_turns_fully,
+    quick_return_ratio,
+    slider_crank_dead_centres,
+    slotted_lever_dead_centres,
+)
+from solver.model.scene import LinkageScene, parse_linkage
+from solver.solutions import Step, solve
+from solver.teaching.presets import build_preset
+
+EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
+SEEDS = ("S000-T2", "S000-T3", "S000-T4", "S001-offset-slider-crank")
+PRESETS = ("slider_crank", "quick_return", "inverted_slider_crank", "slider_guide_extension")
+
+
+def _scene(name: str) -> LinkageScene:
+    doc: dict[str, Any] = (
+        json.loads((EXAMPLES / f"{name}.json").read_text())
+        if name in SEEDS
+        else build_preset(name, {})
+    )
+    return parse_linkage(doc)
+
+
+def _steps(scene: LinkageScene) -> list[Step]:
+    return [
+        s
+        for s in solve(scene, "vector").steps
+        if s.kind == "classification" and "four-bar" not in s.title
+    ]
+
+
+@pytest.mark.parametrize("name", SEEDS + PRESETS)
+def test_every_slider_mechanism_is_classified(name: str) -> None:
+    assert len(_steps(_scene(name))) == 1
+
+
+@pytest.mark.parametrize("name", ["S000-T4", "S001-offset-slider-crank", "slider_crank"])
+def test_slider_crank_stroke_and_time_ratio_match_the_sweep(name: str) -> None:
+    scene = _scene(name)
+    (step,) = _steps(scene)
+    strokes = sweep(scene, 720).strokes
+    (found,) = [s for s in strokes.values() if s is not None]
+    stroke = abs(found.displacements[0] - found.displacements[1])
+    assert step.values["stroke"].value == pytest.approx(stroke, rel=1e-9)
+    assert step.values["time ratio"].value == pytest.approx(found.time_ratio, rel=1e-9)
+    assert step.values["slow stroke"].value == pytest.approx(found.slow_stroke, rel=1e-9)
+
+
+def test_quick_return_stroke_and_time_ratio_match_the_sweep() -> None:
+    scene = _scene("quick_return")
+    (step,) = _steps(scene)
+    found = sweep(scene, 720).strokes["C"]
+    assert found is not None
+    stroke = abs(found.displacements[0] - found.displacements[1])
+    assert step.values["stroke"].value == pytest.approx(stroke, rel=1e-9)
+    assert step.values["time ratio"].value == pytest.approx(found.time_ratio, rel=1e-9)
+    assert step.values["slow stroke"].value == pytest.approx(found.slow_stroke, rel=1e-9)
+
+
+def test_inverted_slider_crank_swing_and_time_ratio_by_sampling_the_lever() -> None:
+    """The lever's angle psi(theta) = angle of A(theta) - C (slot through C), sampled over a
+    turn of the crank: its range is the swing, the crank's turn between its extremes the
+    strokes."""
+    scene = _scene("inverted_slider_crank")
+    (step,) = _steps(scene)
+    o, c, a = (np.array(scene.points[p]) for p in ("O", "C", "A"))
+    r = float(np.hypot(*(a - o)))
+    theta = np.linspace(0.0, 2.0 * math.pi, 20001)
+    pins = o + r * np.stack([np.cos(theta), np.sin(theta)], axis=1)
+    psi = np.unwrap(np.arctan2(pins[:, 1] - c[1], pins[:, 0] - c[0]))
+    assert step.values["swing"].value == pytest.approx(float(np.ptp(psi)), abs=1e-4)
+    turn = abs(theta[int(np.argmax(psi))] - theta[int(np.argmin(psi))])
+    slow, fast = max(turn, 2 * math.pi - turn), min(turn, 2 * math.pi - turn)
+    assert step.values["time ratio"].value == pytest.approx(slow / fast, abs=1e-3)
+
+
+def test_a_crank_that_cannot_turn_fully_gets_no_stroke() -> None:
+    """Seed 000 Task 3: r + |e| = 0.54 m >= l = 0.5 m."""
+    (step,) = _steps(_scene("S000-T3"))
+    assert "stroke" not in step.values and "does not turn fully" not in step.text
+    assert "rocks between two limit positions" in step.text
+
+
+def test_dead_centre_closed_forms() -> None:
+    """Centred slider-crank: stroke 2 r, ratio 1, mu_min = acos(r / l); the offset one's a from
+    its two crank angles; slotted lever r/d = 1/2: swing 60 deg, ratio 240/120 = 2."""
+    centred = slider_crank_dead_centres(0.1, 0.4, 0.0)
+    assert centred.stroke == pytest.approx(0.2, rel=1e-15)
+    assert centred.time_ratio == 1.0 and centred.mu_min == pytest.approx(math.acos(0.25))
+    offset = slider_crank_dead_centres(0.1, 0.35, 0.05)
+    assert offset.theta_near - offset.theta_far == pytest.approx(math.pi + offset.advance)
+    assert offset.time_ratio == pytest.approx(quick_return_ratio(offset.advance))
+    assert not crank_turns_fully(0.2, 0.5, 0.34) and crank_turns_fully(0.2, 0.5, 0.29)
+    lever = slotted_lever_dead_centres(0.15, 0.3)
+    assert math.degrees(lever.swing) == pytest.approx(60.0)
+    assert lever.time_ratio == pytest.approx(2.0)
+    with pytest.raises(ValueError):
+        slider_crank_dead_centres(0.2, 0.5, 0.34)
