@@ -723,6 +723,84 @@ class LoopMethod:
             Boxed((Num(Ref(f.th13), unit=True),)),
         )
         self.four_bar_sentence(b, loop, f)
+        self.freudenstein_lines(b, loop)
+
+    def freudenstein_lines(self, b: StepBuilder, loop: Loop) -> None:
+        """Freudenstein's equation K1 cos phi4 - K2 cos phi2 + K3 = cos(phi2 - phi4), angles
+        from the ground line (phi_k = th1k - th11), K1 = a1/a2, K2 = a1/a4,
+        K3 = (a2^2 - a3^2 + a4^2 + a1^2) / (2 a2 a4): the phase form divided by 2 a2 a4, since
+        A cos th14 + B sin th14 - C = 2 a2 a4 (K1 cos phi4 - K2 cos phi2 + K3 - cos(phi2 - phi4))
+        with |d|^2 = a1^2 + a2^2 - 2 a1 a2 cos phi2; both sides evaluated at the solved pose."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
+        a1, a2, a3, a4 = (b.scalar(f"a{n}") for n in (n1, n2, n3, n4))
+        th11 = b.scalar(f"theta1{n1}")
+        phi2 = b.put(f"phi{n2}", b.scalar(f"theta1{n2}") - th11, "rad")
+        phi4 = b.put(f"phi{n4}", b.scalar(f"theta1{n4}") - th11, "rad")
+        b.check("sum", phi2, f"theta1{n2}", f"-theta1{n1}")
+        b.check("sum", phi4, f"theta1{n4}", f"-theta1{n1}")
+        k1 = b.put("K1", a1 / a2, "")
+        k2 = b.put("K2", a1 / a4, "")
+        k3 = b.put("K3", (a2**2 - a3**2 + a4**2 + a1**2) / (2.0 * a2 * a4), "")
+        b.check("quotient", k1, f"a{n1}", f"a{n2}")
+        b.check("quotient", k2, f"a{n1}", f"a{n4}")
+        p2, p4 = b.scalar(phi2), b.scalar(phi4)
+        left = b.put(
+            "Freudenstein: left",
+            b.scalar(k1) * math.cos(p4) - b.scalar(k2) * math.cos(p2) + b.scalar(k3),
+            "",
+            reference=abs(b.scalar(k1)) + abs(b.scalar(k2)) + abs(b.scalar(k3)),
+        )
+        right = b.put("Freudenstein: right", math.cos(p2 - p4), "", reference=1.0)
+        ph = {n: rf"\varphi_{{{n}}}" for n in (n2, n4)}
+        sub = {n: f"a_{{{n}}}" for n in (n1, n2, n3, n4)}
+        b.line(
+            rf"&\text{{Freudenstein: }} K_1\cos{ph[n4]} - K_2\cos{ph[n2]} + K_3 = "
+            rf"\cos({ph[n2]} - {ph[n4]}), \quad {ph[n2]} = \theta_{{1{n2}}} - \theta_{{1{n1}}}, "
+            rf"\; {ph[n4]} = \theta_{{1{n4}}} - \theta_{{1{n1}}}"
+        )
+        b.line(
+            rf"&K_1 = \frac{{{sub[n1]}}}{{{sub[n2]}}} = ",
+            Num(Ref(k1)),
+            rf", \quad K_2 = \frac{{{sub[n1]}}}{{{sub[n4]}}} = ",
+            Num(Ref(k2)),
+            rf", \quad K_3 = \frac{{{sub[n2]}^2 - {sub[n3]}^2 + {sub[n4]}^2 + {sub[n1]}^2}}"
+            rf"{{2{sub[n2]}{sub[n4]}}} = ",
+            Num(Ref(k3)),
+        )
+        b.line(
+            rf"&A\cos\theta_{{1{n4}}} + B\sin\theta_{{1{n4}}} - C = 2{sub[n2]}{sub[n4]}"
+            rf"\left(K_1\cos{ph[n4]} - K_2\cos{ph[n2]} + K_3 - \cos({ph[n2]} - {ph[n4]})\right)"
+            rf", \quad |\vec{{d}}|^2 = {sub[n1]}^2 + {sub[n2]}^2 - 2{sub[n1]}{sub[n2]}\cos{ph[n2]}"
+        )
+        b.line(
+            rf"&{ph[n2]} = ",
+            Num(Ref(phi2), unit=True),
+            rf", \; {ph[n4]} = ",
+            Num(Ref(phi4), unit=True),
+            r": \quad ",
+            Num(Ref(left)),
+            " = ",
+            Num(Ref(right)),
+        )
+        b.say(
+            f"The same equation in Freudenstein's form, with the angles measured from the ground "
+            f"line (phi{n2} = theta1{n2} - theta1{n1}, phi{n4} = theta1{n4} - theta1{n1}): "
+            f"K1 cos phi{n4} - K2 cos phi{n2} + K3 = cos(phi{n2} - phi{n4}) with "
+            f"K1 = a{n1}/a{n2} = ",
+            Num(Ref(k1)),
+            f", K2 = a{n1}/a{n4} = ",
+            Num(Ref(k2)),
+            f" and K3 = (a{n2}^2 - a{n3}^2 + a{n4}^2 + a{n1}^2)/(2 a{n2} a{n4}) = ",
+            Num(Ref(k3)),
+            f"; it is the phase form divided by 2 a{n2} a{n4}, since |d|^2 = a{n1}^2 + a{n2}^2 - "
+            f"2 a{n1} a{n2} cos phi{n2}. At the solved pose both sides are ",
+            Num(Ref(left)),
+            " and ",
+            Num(Ref(right)),
+            ".",
+        )
 
     def four_bar_sentence(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
         """Say the closed form: the elimination of th13, then the assembly taken."""

@@ -1,9 +1,12 @@
-"""The classification step of the slider mechanisms (issue 29): slider-crank, offset
+"""Worked solutions, third edition (issue 29).
+
+The classification step of the slider mechanisms: slider-crank, offset
 slider-crank, inverted slider-crank and quick-return, for every seed example and preset of those
 kinds. Its stroke, time ratio and slow stroke are checked against the sweep's ram extremes
 (``Sweep.strokes``, refined to rounding: tolerance 1e-9 relative), its lever swing and time
 ratio against the lever's angle sampled over a turn (tolerance 1e-4 rad: 20000 samples of a
-smooth curve near its extremes), and the formulas against their closed forms."""
+smooth curve near its extremes), and the formulas against their closed forms. The loop method's
+Freudenstein equation against its closed-form coefficients."""
 
 from __future__ import annotations
 
@@ -115,3 +118,28 @@ def test_dead_centre_closed_forms() -> None:
     assert lever.time_ratio == pytest.approx(2.0)
     with pytest.raises(ValueError):
         slider_crank_dead_centres(0.2, 0.5, 0.34)
+
+
+@pytest.mark.parametrize("name", ["S000-T1", "four_bar"])
+def test_the_loop_method_writes_freudensteins_equation(name: str) -> None:
+    """K1 = a1/a2, K2 = a1/a4, K3 = (a2^2 - a3^2 + a4^2 + a1^2)/(2 a2 a4) from the link lengths,
+    and K1 cos phi4 - K2 cos phi2 + K3 = cos(phi2 - phi4) at the solved pose (1e-12): the phase
+    form A cos + B sin = C divided by 2 a2 a4."""
+    doc = (
+        json.loads((EXAMPLES / f"{name}.json").read_text())
+        if name.startswith("S")
+        else build_preset(name, {})
+    )
+    (step,) = [
+        s
+        for s in solve(parse_linkage(doc), "loop").steps
+        if s.kind == "position.loop" and "K1" in s.values
+    ]
+    a1, a2, a3, a4 = (step.values[f"a{n}"].value for n in (1, 2, 3, 4))
+    assert step.values["K1"].value == pytest.approx(a1 / a2, rel=1e-14)
+    assert step.values["K2"].value == pytest.approx(a1 / a4, rel=1e-14)
+    k3 = (a2**2 - a3**2 + a4**2 + a1**2) / (2 * a2 * a4)
+    assert step.values["K3"].value == pytest.approx(k3, rel=1e-14)
+    left, right = step.values["Freudenstein: left"].value, step.values["Freudenstein: right"].value
+    assert left == pytest.approx(right, abs=1e-12)
+    assert r"\text{Freudenstein: }" in step.latex and "A\\cos" in step.latex
