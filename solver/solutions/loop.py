@@ -234,6 +234,20 @@ class FourBarClosedForm:
     turn: str
 
 
+def member_parts(m: Member) -> tuple[str, str]:
+    """The real and imaginary parts of a loop member in symbols: a cos theta and a sin theta of
+    a e^(i theta); s cos phi - c sin phi and s sin phi + c cos phi of (s + i c) e^(i phi)."""
+    n = m.number
+    if m.kind in ("slider", "slot"):
+        angle = rf"\varphi_{{{n}}}" if m.kind == "slider" else rf"\beta_{{{n}}}"
+        s, c = f"s_{{1{n}}}", f"c_{{{n}}}"
+        return (
+            rf"({s}\cos{angle} - {c}\sin{angle})",
+            rf"({s}\sin{angle} + {c}\cos{angle})",
+        )
+    return rf"a_{{{n}}}\cos\theta_{{1{n}}}", rf"a_{{{n}}}\sin\theta_{{1{n}}}"
+
+
 @dataclass
 class LoopMethod:
     ctx: LinkageContext
@@ -460,6 +474,17 @@ class LoopMethod:
         ]
         left, right = written[: len(loop.left)], written[len(loop.left) :]
         b.line("&" + " + ".join(s for s, _ in left) + " = " + " + ".join(s for s, _ in right))
+        parts = [member_parts(m) for m in (*loop.left, *loop.right)]
+        for label, k in (("Re", 0), ("Im", 1)):
+            sides = [
+                " + ".join(p[k] for p in side)
+                for side in (parts[: len(loop.left)], parts[len(loop.left) :])
+            ]
+            b.line(rf"&\text{{{label}: }} " + " = ".join(sides))
+        b.say(
+            "In symbols first: its real and imaginary parts are the loop's two scalar equations, "
+            "each vector giving length times cos and length times sin of its angle."
+        )
         b.line(
             "&",
             *joined(" + ", [n for _, n in left]),

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -143,3 +144,16 @@ def test_the_loop_method_writes_freudensteins_equation(name: str) -> None:
     left, right = step.values["Freudenstein: left"].value, step.values["Freudenstein: right"].value
     assert left == pytest.approx(right, abs=1e-12)
     assert r"\text{Freudenstein: }" in step.latex and "A\\cos" in step.latex
+
+
+@pytest.mark.parametrize("name", ["S000-T1", "S000-T2", "S000-T4", "S001-offset-slider-crank"])
+def test_the_loop_equations_come_in_symbols_before_the_numbers(name: str) -> None:
+    """The loop closure and its real and imaginary parts in general symbols (no number in
+    them), before the line with the numbers."""
+    doc = json.loads((EXAMPLES / f"{name}.json").read_text())
+    loop = next(s for s in solve(parse_linkage(doc), "loop").steps if s.kind == "loop.position")
+    lines = loop.latex.split(r" \\ ")
+    assert lines[1].startswith(r"&\text{Re: }") and lines[2].startswith(r"&\text{Im: }")
+    for line in lines[:3]:  # digits only in subscripts: symbols, no numbers
+        assert not re.search(r"\d", re.sub(r"_\{[^}]*\}", "", line)), line
+    assert r"\text{both sides}" in lines[-1].removesuffix(r" \end{aligned}")
