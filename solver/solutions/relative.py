@@ -276,7 +276,8 @@ class MovingPointSteps:
         b.line("&", *now)
         b.say(
             f"{self.name} moves along a path fixed in link {self.carrier}; its arc length from "
-            f"{self.mp.path.start} is s(t) = {self.mp.s_law} (m). At ",
+            f"{self.mp.path.start} is s(t) = "
+            f"{tex.law_text(self.mp.s_law, parse_time_law(self.mp.s_law).expression)} (m). At ",
             *now,
             ".",
         )
@@ -411,7 +412,7 @@ class MovingPointSteps:
         b.line(transport)
         if b.is_zero(w):
             b.say(
-                f"The carrier {carrier} translates at this instant (omega = 0): every point of "
+                f"{the_carrier(carrier)} translates at this instant (omega = 0): every point of "
                 f"it, including the one under {self.name}, moves like {a}: v_tr = ",
                 Col(tr),
                 ".",
@@ -554,7 +555,7 @@ class MovingPointSteps:
         )
         if b.is_zero(v.omega) and b.is_zero(v.alpha):
             b.say(
-                f"The carrier {carrier} translates (omega = alpha = 0): all its points have "
+                f"{the_carrier(carrier)} translates (omega = alpha = 0): all its points have "
                 f"the acceleration of {a}, so a_tr = a({a}) = ",
                 Col(tr),
                 ".",
@@ -668,7 +669,7 @@ class MovingPointSteps:
                 )
             )
             b.say(
-                f"The carrier {carrier} does not rotate (omega({carrier}) = ",
+                f"{the_carrier(carrier)} does not rotate (omega({carrier}) = ",
                 Num(w, unit=True),
                 "): it translates, so there is no Coriolis acceleration, even if the links that "
                 "drive it turn.",
@@ -754,7 +755,7 @@ class MovingPointSteps:
             found = True
         if found and route.sweep_deg < 360.0:
             b.say(
-                f"Past its end (s = {route.sweep_deg:g} deg times R) {self.name} is off the "
+                f"Past its end (s = {route.sweep_deg / 180.0:g} pi R) {self.name} is off the "
                 "groove: no later instant is an event of this path."
             )
         return b.build() if found else None
@@ -765,7 +766,11 @@ class MovingPointSteps:
         factor = "" if turns == 1.0 else f"{turns:g}"
         level = Equation.of("s(t)", latex_only(rf"{factor}\pi R"), Num(lv, unit=True))
         root = Equation.of(
-            Sym(tex.law(law.expression, self.ctx.fmt.digits), self.mp.s_law), Num(lv)
+            Sym(
+                tex.law(law.expression, self.ctx.fmt.digits),
+                tex.law_text(self.mp.s_law, law.expression),
+            ),
+            Num(lv),
         )
         time = Equation.of("t", Boxed((Num(te, unit=True),)))
         then = r" \;\Rightarrow\; "
@@ -788,6 +793,12 @@ class MovingPointSteps:
             *self.acceleration_steps(),
             *([event] if event is not None else []),
         ]
+
+
+def the_carrier(link: str) -> str:
+    """'The carrier' for a link named so, else 'The carrier <link>' (not 'The carrier
+    carrier')."""
+    return "The carrier" if link.lower() == "carrier" else f"The carrier {link}"
 
 
 def arc_events(sweep_deg: float, start: str) -> list[tuple[float, str]]:

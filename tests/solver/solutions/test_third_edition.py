@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+import sympy
 
 from solver.analysis.sweeps import sweep
 from solver.kinematics.dead_centres import (
@@ -28,6 +29,7 @@ from solver.kinematics.dead_centres import (
 )
 from solver.model.scene import LinkageScene, parse_linkage
 from solver.solutions import Step, solve
+from solver.solutions import latex as tex
 from solver.teaching.presets import build_preset
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "server" / "examples"
@@ -157,3 +159,51 @@ def test_the_loop_equations_come_in_symbols_before_the_numbers(name: str) -> Non
     for line in lines[:3]:  # digits only in subscripts: symbols, no numbers
         assert not re.search(r"\d", re.sub(r"_\{[^}]*\}", "", line)), line
     assert r"\text{both sides}" in lines[-1].removesuffix(r" \end{aligned}")
+
+
+def _seed_solutions() -> list[tuple[str, Step]]:
+    out = []
+    for path in sorted(EXAMPLES.glob("S00[0-13]*.json")):
+        scene = parse_linkage(json.loads(path.read_text()))
+        for method in ("vector", "loop"):
+            out += [(f"{path.stem}-{method}", s) for s in solve(scene, method).steps]
+    return out
+
+
+def test_notation_a_lecturer_would_correct() -> None:
+    """Issue 29's list, over every planar seed solution in both methods: no 'The carrier
+    carrier', no 'same sense' reading of a zero dot product, no 'a/-b', no number of 15 or more
+    digits (a law printed as 0.23561944901923448*t)."""
+    for name, step in _seed_solutions():
+        both = step.text + " " + step.latex
+        assert "carrier carrier" not in both, (name, step.title)
+        assert not re.search(r"= -?0(\s\S+)?: the same sense", step.text), (name, step.title)
+        assert not re.search(r"\d/-\d", step.text), (name, step.title)
+        assert not re.search(r"\d{15,}", both), (name, step.title)
+
+
+def test_laws_print_as_typed_or_as_exact_multiples_of_pi() -> None:
+    """Seed 003 Task 2: s(t) = 75 pi (0.1 t + 0.3 t^2) cm typed in metres as
+    0.23561944901923448*t + 0.7068583470577035*t^2 is 3 pi t/40 + 9 pi t^2/40; a plain decimal
+    stays as typed."""
+    law = sympy.sympify("0.23561944901923448*t + 0.7068583470577035*t**2")
+    t = sympy.Symbol("t")
+    assert tex.exact_pi(law) == 3 * sympy.pi * t / 40 + 9 * sympy.pi * t**2 / 40
+    assert tex.law_text("2.0*t + -0.3*t^2", sympy.sympify("2.0*t - 0.3*t**2")) == (
+        "2.0*t + -0.3*t^2"
+    )
+    assert tex.exact_pi(sympy.sympify("1.23456789*t")) == sympy.sympify("1.23456789*t")
+    (law_step,) = [
+        s
+        for n, s in _seed_solutions()
+        if n == "S003-T2-rotating-carrier-vector" and s.kind == "relative.law"
+    ]
+    assert "s(t) = 9*pi*t^2/40 + 3*pi*t/40 (m)" in law_step.text
+
+
+def test_a_negative_denominator_is_put_in_parentheses() -> None:
+    """Seed 000 Task 3's instant centre P13: t = 0.32/(-0.18), not 0.32/-0.18."""
+    (step,) = [
+        s for n, s in _seed_solutions() if n == "S000-T3-vector" and s.kind == "instant_centres"
+    ]
+    assert "t = 0.32/(-0.18)" in step.text
