@@ -42,10 +42,24 @@ def escape_text(text: str) -> str:
     return "".join(out) or "?"
 
 
+GREEK = frozenset(
+    ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+     "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
+     "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi",
+     "Omega")
+)  # fmt: skip
+_GREEK_NAME = re.compile(r"([A-Za-z]+)([0-9]{0,2})")
+
+
 def name(raw: str) -> str:
-    """A point or link name as a LaTeX subscript body."""
+    """A point or link name as a LaTeX subscript body; a Greek letter spelled out (a point
+    'Gamma', 'omega1') as its symbol, \\Gamma, \\omega1 (not 'Gamma' in text beside a
+    \\Gamma_{13})."""
     if _PLAIN.fullmatch(raw):
         return raw
+    greek = _GREEK_NAME.fullmatch(raw)
+    if greek is not None and greek.group(1) in GREEK:
+        return "\\" + greek.group(1) + "{}" + greek.group(2)  # {}: safe before a letter
     return r"\text{" + escape_text(raw) + "}"
 
 

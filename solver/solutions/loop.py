@@ -85,15 +85,26 @@ class Degrees:
 @dataclass(frozen=True)
 class Complex:
     """A 2-vector value as a complex number: 'a', 'b i', '(a + b i)'; with ``unknown`` (its
-    LaTeX) the coefficient of that unknown: 'u', '-u', '(a + b i)\\,u'."""
+    LaTeX) the coefficient of that unknown: 'u', '-u', '(a + b i)\\,u'; ``whole``: always
+    '(a + b i)', a vector's two components even where one is 0 (a velocity written as a complex
+    number is not set equal to a scalar)."""
 
     ref: Ref
     unknown: str = ""
+    whole: bool = False
 
     def latex(self, shows: Shows) -> str:
         re, im = shows.entries(self.ref, 2)
         imaginary = {"1": "i", "-1": "-i"}.get(im, im + r"\,i")
-        number = re if im == "0" else imaginary if re == "0" else f"({re} {tex.signed(imaginary)})"
+        number = (
+            f"({re} {tex.signed(imaginary)})"
+            if self.whole
+            else re
+            if im == "0"
+            else imaginary
+            if re == "0"
+            else f"({re} {tex.signed(imaginary)})"
+        )
         if not self.unknown:
             return number
         if number in ("1", "-1"):
@@ -1180,7 +1191,7 @@ class LoopMethod:
             r"&\phantom{\vec{v}} = ",
             SumOf(tuple(Complex(Ref(k)) for k in keys)),
             " = ",
-            Boxed((Complex(Ref(total)), latex_unit(unit))),
+            Boxed((Complex(Ref(total), whole=True), latex_unit(unit))),
         )
         b.say(
             f"The {what} of {x} is the derivative of the left side of the loop (the position "

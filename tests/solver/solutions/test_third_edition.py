@@ -207,3 +207,24 @@ def test_a_negative_denominator_is_put_in_parentheses() -> None:
         s for n, s in _seed_solutions() if n == "S000-T3-vector" and s.kind == "instant_centres"
     ]
     assert "t = 0.32/(-0.18)" in step.text
+
+
+def test_a_velocity_written_as_a_complex_number_keeps_both_parts() -> None:
+    """Seed 001, loop method: v_B = (-0.9186 + 0 i) m/s, a vector, not '= -0.9186 m/s'."""
+    doc = json.loads((EXAMPLES / "S001-offset-slider-crank.json").read_text())
+    (step,) = [
+        s
+        for s in solve(parse_linkage(doc), "loop").steps
+        if s.kind == "loop.velocity.point" and "of B " in s.title
+    ]
+    assert r"\underline{\underline{(-0.9186 + 0\,i)\,\mathrm{m/s}}}" in step.latex
+
+
+def test_a_point_named_after_a_greek_letter_is_that_letter() -> None:
+    """Seed 004's pivot 'Gamma' is \\Gamma in every formula, never the word."""
+    assert tex.name("Gamma") == r"\Gamma{}" and tex.name("omega1") == r"\omega{}1"
+    assert tex.name("A0") == "A0" and tex.name("crank") == r"\text{crank}"
+    for step in solve(parse_linkage(build_preset("seed004", {})), "vector").steps:
+        assert r"\text{Gamma}" not in step.latex and "Gamma" not in step.latex.replace(
+            r"\Gamma{}", ""
+        ), step.title
