@@ -228,3 +228,27 @@ def test_a_point_named_after_a_greek_letter_is_that_letter() -> None:
         assert r"\text{Gamma}" not in step.latex and "Gamma" not in step.latex.replace(
             r"\Gamma{}", ""
         ), step.title
+
+
+@pytest.mark.parametrize(
+    ("name", "coriolis"),
+    [("S000-T1", False), ("S000-T2", True), ("S003-T1-translating-carrier", False),
+     ("S003-T2-rotating-carrier", True)],
+)  # fmt: skip
+def test_the_acceleration_polygon_tabulates_its_parts_at_scale(name: str, coriolis: bool) -> None:
+    """Every part drawn (normal omega^2 r, tangential alpha r, transport, Coriolis, relative)
+    with its length on paper, |part| / k_a (1e-12 relative); the Coriolis part only where the
+    guide turns."""
+    doc = json.loads((EXAMPLES / f"{name}.json").read_text())
+    (step,) = [
+        s for s in solve(parse_linkage(doc), "vector").steps if s.kind == "graphical.acceleration"
+    ]
+    scale = step.values["k_a"].value
+    parts = [k.removeprefix("length ") for k in step.values if k.startswith("length a")]
+    parts = [p for p in parts if ":" in p or p.startswith("a_")]  # drawn parts, not images
+    assert any(p.startswith("an(") for p in parts) and any(p.startswith("at(") for p in parts)
+    assert any(p.startswith("a_cor(") for p in parts) == coriolis
+    for part in parts:
+        length = step.values[f"length {part}"].value
+        assert length == pytest.approx(step.values[f"|{part}|"].value / scale, rel=1e-12)
+    assert "in the order drawn" in step.text
