@@ -252,3 +252,18 @@ def test_the_acceleration_polygon_tabulates_its_parts_at_scale(name: str, coriol
         length = step.values[f"length {part}"].value
         assert length == pytest.approx(step.values[f"|{part}|"].value / scale, rel=1e-12)
     assert "in the order drawn" in step.text
+
+
+@pytest.mark.parametrize(
+    ("name", "expected"),
+    [("S000-T2", True), ("S003-T2-rotating-carrier", False), ("S000-T1", False)],
+)
+def test_the_rounding_mistake_only_where_the_data_can_be_rounded(name: str, expected: bool) -> None:
+    """The data are the drawn coordinates: seed 000 Task 2's x = sqrt(0.12) m rounds to another
+    ground; seed 003 Task 2's plate, exact in its data, has only turned by t = 1 s (the issue's
+    |PQ| = 0.3025 m), so no rounding mistake there; the note keeps ground and crank apart."""
+    doc = json.loads((EXAMPLES / f"{name}.json").read_text())
+    found = [m for m in solve(parse_linkage(doc), "vector").mistakes if m.kind == "inputs.rounding"]
+    assert bool(found) == expected
+    for m in found:
+        assert "link ground: |CA| becomes 0.35 m instead of 0.3464 m" in m.text
