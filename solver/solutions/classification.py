@@ -519,6 +519,8 @@ def _ram_stroke(
                 )
                 along = float(g @ (end_i - ram))
                 off = float(cross(g, end_i - ram))
+                if abs(off) > length:  # the rod cannot reach the guide there: no full turn
+                    return None
                 xs.append(along + side * math.sqrt(length**2 - off**2))
             return j.point, abs(xs[0] - xs[1])
     return None
