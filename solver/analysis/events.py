@@ -54,7 +54,8 @@ class Event:
 
 
 def _path_levels(scene: LinkageScene, mp: MovingPoint, target: str) -> tuple[float, float]:
-    """(s of the target on M's path, the period of the path: 2 pi R for an arc, 0 for a line)."""
+    """(s of the target on M's path, the period of the path: 2 pi R for a whole circle, 0 for a
+    line or a groove with an end, ``sweep_deg`` < 360, beyond whose end no target lies)."""
     route = mp.path
     start, point = scene.drawn(route.start), scene.drawn(target)
     if route.type == "line":
@@ -79,7 +80,16 @@ def _path_levels(scene: LinkageScene, mp: MovingPoint, target: str) -> tuple[flo
         )
     turn = 1.0 if route.direction == "ccw" else -1.0
     angle = turn * (math.atan2(*(point - center)[::-1]) - math.atan2(*(start - center)[::-1]))
-    return radius * (angle % (2.0 * math.pi)), 2.0 * math.pi * radius
+    angle %= 2.0 * math.pi
+    if route.sweep_deg >= 360.0:
+        return radius * angle, 2.0 * math.pi * radius
+    sweep = math.radians(route.sweep_deg)
+    if angle > sweep * (1.0 + ON_PATH_TOLERANCE):
+        raise NoEvent(
+            f"{target} is past the end of the groove of {mp.name} ({route.sweep_deg:g} deg from "
+            f"{route.start}), so {mp.name} never reaches it there"
+        )
+    return radius * angle, 0.0  # a groove with an end: no whole turns
 
 
 def _zeros(f: Callable[[float], float], grid: Array, values: Array) -> Iterator[float]:

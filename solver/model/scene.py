@@ -99,13 +99,17 @@ class Driver:
 
 @dataclass(frozen=True)
 class Path:
-    """A path fixed in a link: an ``arc`` about ``center`` from ``start`` or a ``line``."""
+    """A path fixed in a link: an ``arc`` about ``center`` from ``start`` or a ``line``.
+
+    An arc spans ``sweep_deg`` degrees from ``start`` in its ``direction`` (360: a whole circle,
+    whose arc length wraps round; less: a groove with an end, 180 a semicircle)."""
 
     type: Literal["arc", "line"]
     start: str
     center: str | None = None
     direction: Literal["cw", "ccw"] = "ccw"
     through: str | None = None
+    sweep_deg: float = 360.0
 
 
 @dataclass(frozen=True)
@@ -452,7 +456,10 @@ def _parse_moving_points(
             center, start = point_of_link("center"), point_of_link("start")
             if scene_points[center] == scene_points[start]:
                 raise _where(f"{path}.path", "the arc's start coincides with its centre")
-            route = Path("arc", start, center=center, direction=direction)
+            sweep = _number(raw.get("sweep_deg", 360.0), f"{path}.path.sweep_deg", 360.0)
+            if sweep <= 0.0:
+                raise _where(f"{path}.path.sweep_deg", "expected 0 < sweep_deg <= 360")
+            route = Path("arc", start, center=center, direction=direction, sweep_deg=sweep)
         elif kind == "line":
             start, through = point_of_link("start"), point_of_link("through")
             if scene_points[start] == scene_points[through]:
@@ -525,7 +532,9 @@ SCENE_FIELDS: dict[str, dict[str, frozenset[str]]] = {
         "joints[]": frozenset(("type", "point", "links", "axis", "friction")),
         "drivers[]": frozenset(("link", "omega", "alpha", "angle_deg", "angle_law")),
         "moving_points[]": frozenset(("name", "link", "path", "s_law")),
-        "moving_points[].path": frozenset(("type", "center", "start", "direction", "through")),
+        "moving_points[].path": frozenset(
+            ("type", "center", "start", "direction", "through", "sweep_deg")
+        ),
         "masses.*": frozenset(("mass", "bar", "center", "inertia")),
         "point_masses[]": frozenset(("name", "link", "point", "mass")),
         "forces[]": frozenset(

@@ -11,11 +11,18 @@ from |g - a| to g + a, which gives mu's extremes over the cycle.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from solver.kinematics.dead_centres import (
+    SlottedLeverLimits,
+    crank_turns_fully,
+    slider_crank_dead_centres,
+    slotted_lever_dead_centres,
+)
 from solver.kinematics.four_bar import FourBarLoop
+from solver.kinematics.rigid import cross, rotate
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Equation, Num, Ref, Sym
@@ -248,3 +255,272 @@ def _write_cycle(
         f", so mu runs from {ctx.fmt.text(lo)} to {ctx.fmt.text(hi)} deg (at most "
         f"{ctx.fmt.text(worst)} deg from 90 deg), {verdict}.",
     )
+
+
+def _crank_of(ctx: LinkageContext, link: str) -> str | None:
+    """The ground pivot of ``link`` if it is a driven crank, else None."""
+    return next((d.pivot for d in ctx.scene.drivers if d.link == link), None)
+
+
+def _ground_pivot(ctx: LinkageContext, link: str) -> str | None:
+    """The point at which ``link`` turns about the ground (a revolute joint with it), or None."""
+    return next(
+        (
+            j.point
+            for j in ctx.scene.joints
+            if j.type == "revolute" and ctx.scene.ground in j.links and link in j.links
+        ),
+        None,
+    )
+
+
+def _partner(ctx: LinkageContext, link: str, point: str) -> str | None:
+    """The other link of the revolute joint of ``link`` at ``point``, or None."""
+    for j in ctx.scene.joints:
+        if j.type == "revolute" and j.point == point and link in j.links:
+            return j.links[1] if j.links[0] == link else j.links[0]
+    return None
+
+
+def slider_classification_steps(ctx: LinkageContext) -> list[Step]:
+    """One step per slider mechanism driven by a crank: a slider-crank (the ram's rod pinned to
+    the crank: ``slider_crank_dead_centres``) and a crank with a slotted lever, with or without a
+    ram (inverted slider-crank, quick-return: ``slotted_lever_dead_centres``)."""
+    scene, out = ctx.scene, []
+    for joint in scene.joints:
+        if joint.type != "slider" or joint.axis is None:
+            continue
+        guide, follower = joint.links
+        if guide == scene.ground:
+            for pin in scene.links[follower].points:
+                crank = _partner(ctx, follower, pin)
+                pivot = None if crank is None else _crank_of(ctx, crank)
+                if crank is not None and pivot is not None:
+                    out.append(_slider_crank_step(ctx, joint.point, joint.axis, pivot, pin))
+                    break
+        else:
+            pivot, lever_pivot = _crank_of(ctx, follower), _ground_pivot(ctx, guide)
+            if pivot is not None and lever_pivot is not None and lever_pivot != pivot:
+                step = _slotted_lever_step(ctx, joint.point, joint.axis, pivot, guide, lever_pivot)
+                out += [] if step is None else [step]
+    return out
+
+
+def _slider_crank_step(
+    ctx: LinkageContext, slider: str, axis: tuple[float, float], pivot: str, pin: str
+) -> Step:
+    """r + |e| < l, the dead centres x = sqrt((l +- r)^2 - e^2), the stroke, the time ratio
+    (180 + a) / (180 - a) and the transmission angle's extremes of a slider-crank."""
+    a, b_, c = ctx.pos(pivot), ctx.pos(pin), ctx.pos(slider)
+    u = np.asarray(axis, dtype=float)
+    if float(u @ (c - a)) < 0.0:  # x along the guide towards the slider
+        u = -u
+    n = np.array([-u[1], u[0]])
+    b = ctx.builder("classification", f"Classification of the slider-crank {pivot}{pin}{slider}")
+    r = b.value(f"r = |{pivot}{pin}|", float(np.hypot(*(b_ - a))), "m")
+    rod = b.value(f"l = |{pin}{slider}|", float(np.hypot(*(c - b_))), "m")
+    e = b.value("e", float(n @ (c - a)), "m")
+    reach = b.value("r + |e|", b.scalar(r) + abs(b.scalar(e)), "m")
+    b.check("sum", reach, r, e if b.scalar(e) >= 0.0 else -e)
+    turns = crank_turns_fully(b.scalar(r), b.scalar(rod), b.scalar(e))
+    relation = "<" if turns else r"\ge"
+    b.line(
+        "&r + |e| = ",
+        Num(r),
+        " + ",
+        Num(e),
+        " = ",
+        Num(reach, unit=True),
+        rf" \; {relation} \; l = ",
+        Num(rod, unit=True),
+    )
+    if not turns:
+        b.say(
+            "The crank turns fully only if r + |e| < l: here r + |e| = ",
+            Num(reach, unit=True),
+            " is not less than l = ",
+            Num(rod, unit=True),
+            ", so the crank rocks between two limit positions.",
+        )
+        return b.build()
+    lim = slider_crank_dead_centres(b.scalar(r), b.scalar(rod), b.scalar(e))
+    far = b.value("x_far", lim.x_far, "m")
+    near = b.value("x_near", lim.x_near, "m")
+    stroke = b.value("stroke", lim.stroke, "m")
+    b.check("sum", stroke, far, -near)
+    advance = b.value("a", abs(lim.advance), "rad")
+    slow = b.value("slow stroke", lim.slow_stroke, "rad")
+    fast = b.value("fast stroke", lim.fast_stroke, "rad")
+    pi = b.value("pi", math.pi, "")
+    b.check("sum", slow, pi, advance)
+    b.check("sum", fast, pi, -advance)
+    ratio = b.value("time ratio", lim.time_ratio, "")
+    b.check("quotient", ratio, slow, fast)
+    b.value("mu_min", lim.mu_min, "rad")
+    b.value("mu_max", lim.mu_max, "rad")
+    deg = ctx.fmt
+    a_deg = math.degrees(abs(lim.advance))
+    b.line(
+        r"&x_{\max} = \sqrt{(l + r)^2 - e^2} = ",
+        Num(far, unit=True),
+        r", \; x_{\min} = \sqrt{(l - r)^2 - e^2} = ",
+        Num(near, unit=True),
+    )
+    b.line(r"&H = x_{\max} - x_{\min} = ", Num(stroke, unit=True))
+    b.line(
+        r"&a = \left|\arcsin\frac{e}{l - r} - \arcsin\frac{e}{l + r}\right| = "
+        rf"{deg.latex(a_deg)}^\circ"
+        rf" \;\Rightarrow\; K = \frac{{180^\circ + a}}{{180^\circ - a}} = ",
+        Num(ratio),
+    )
+    b.line(
+        r"&\mu_{\min} = \arccos\frac{r + |e|}{l} = "
+        rf"{deg.latex(math.degrees(lim.mu_min))}^\circ, \; "
+        r"\mu_{\max} = \arccos\frac{\max(0, |e| - r)}{l} = "
+        rf"{deg.latex(math.degrees(lim.mu_max))}^\circ"
+    )
+    b.say(
+        "The crank turns fully, since r + |e| = ",
+        Num(reach, unit=True),
+        " < l = ",
+        Num(rod, unit=True),
+        ". The slider's limit positions are where crank and rod lie in one line: x_max = "
+        "sqrt((l + r)^2 - e^2) = ",
+        Num(far, unit=True),
+        " (extended) and x_min = sqrt((l - r)^2 - e^2) = ",
+        Num(near, unit=True),
+        " (folded), so the stroke is H = ",
+        Num(stroke, unit=True),
+        f". Between them the crank turns 180 + a and 180 - a deg with a = {deg.text(a_deg)} deg, "
+        "so the time ratio is K = (180 + a)/(180 - a) = ",
+        Num(ratio),
+        ". The transmission angle (between the rod and the normal to the guide) runs from "
+        f"{deg.text(math.degrees(lim.mu_min))} deg (crank perpendicular to the guide, away from "
+        f"it) to {deg.text(math.degrees(lim.mu_max))} deg.",
+    )
+    return b.build()
+
+
+def _slotted_lever_step(
+    ctx: LinkageContext,
+    block: str,
+    axis: tuple[float, float],
+    pivot: str,
+    lever: str,
+    lever_pivot: str,
+) -> Step | None:
+    """r < d, the limit positions (crank perpendicular to the slot, cos theta = r / d), the
+    lever's swing 2 asin(r / d) and the time ratio (180 + a) / (180 - a), a = 2 asin(r / d), of
+    a crank with a slotted lever (inverted slider-crank; with a ram, the quick-return). None for
+    a slot that misses the lever's pivot (its limit positions are not these)."""
+    o, pin, c = ctx.pos(pivot), ctx.pos(block), ctx.pos(lever_pivot)
+    u = np.asarray(axis, dtype=float)
+    if abs(float(u[0] * (pin - c)[1] - u[1] * (pin - c)[0])) > 1e-9 * ctx.scene.size:
+        return None
+    b = ctx.builder(
+        "classification",
+        f"Classification of the crank {pivot}{block} and its slotted lever (link {lever})",
+    )
+    r = b.value(f"r = |{pivot}{block}|", float(np.hypot(*(pin - o))), "m")
+    d = b.value(f"d = |{pivot}{lever_pivot}|", float(np.hypot(*(c - o))), "m")
+    if b.scalar(r) >= b.scalar(d):
+        b.line(r"&r = ", Num(r, unit=True), r" \; \ge \; d = ", Num(d, unit=True))
+        b.say(
+            "The crank is at least as long as the distance between the pivots (r = ",
+            Num(r, unit=True),
+            ", d = ",
+            Num(d, unit=True),
+            "): the lever turns round with the crank (a Whitworth drive), no limit positions.",
+        )
+        return b.build()
+    lim = slotted_lever_dead_centres(b.scalar(r), b.scalar(d))
+    b.value("swing", lim.swing, "rad")
+    slow = b.value("slow stroke", lim.slow_stroke, "rad")
+    fast = b.value("fast stroke", lim.fast_stroke, "rad")
+    full = b.value("2 pi", 2.0 * math.pi, "")
+    b.check("sum", slow, full, -fast)
+    ratio = b.value("time ratio", lim.time_ratio, "")
+    b.check("quotient", ratio, slow, fast)
+    fmt = ctx.fmt
+    half = math.degrees(lim.theta_1)
+    b.line(
+        r"&r = ",
+        Num(r, unit=True),
+        r" < d = ",
+        Num(d, unit=True),
+        rf" \;\Rightarrow\; \cos\theta = \frac{{r}}{{d}}, \; \theta = \pm {fmt.latex(half)}^\circ",
+    )
+    b.line(
+        rf"&\psi = 2\arcsin\frac{{r}}{{d}} = {fmt.latex(math.degrees(lim.swing))}^\circ, \;"
+        r" K = \frac{360^\circ - 2\arccos(r/d)}{2\arccos(r/d)} = "
+        r"\frac{180^\circ + a}{180^\circ - a} = ",
+        Num(ratio),
+    )
+    sentences: list[Any] = [
+        "The crank turns fully and the lever rocks, since r = ",
+        Num(r, unit=True),
+        " < d = ",
+        Num(d, unit=True),
+        ". The lever's limit positions are where the slot is tangent to the crank circle (crank "
+        f"perpendicular to the slot), at theta = +-{fmt.text(half)} deg from {pivot}{lever_pivot}; "
+        f"the lever swings through 2 asin(r/d) = {fmt.text(math.degrees(lim.swing))} deg. The "
+        f"crank turns {fmt.text(math.degrees(lim.slow_stroke))} deg over the slow stroke and "
+        f"{fmt.text(math.degrees(lim.fast_stroke))} deg over the quick return, a time ratio "
+        "K = (180 + a)/(180 - a) = ",
+        Num(ratio),
+        f" with a = 2 asin(r/d) = {fmt.text(math.degrees(lim.swing))} deg.",
+    ]
+    ram = _ram_stroke(ctx, lever, block, (o, c), lim)
+    if ram is not None:
+        name, stroke = ram
+        h = b.value("stroke", stroke, "m")
+        b.line(rf"&H_{{{tex.name(name)}}} = ", Num(h, unit=True))
+        sentences += [
+            f" The ram {name} moves between the lever's limit positions: stroke H = ",
+            Num(h, unit=True),
+            ".",
+        ]
+    b.say(*sentences)
+    return b.build()
+
+
+def _ram_stroke(
+    ctx: LinkageContext,
+    lever: str,
+    block: str,
+    centres: tuple[np.ndarray, np.ndarray],
+    lim: SlottedLeverLimits,
+) -> tuple[str, float] | None:
+    """The stroke of a ram on a fixed guide driven by the lever through a rod (the
+    quick-return): the rod's end on the guide (on the drawn side) at the lever's two limit
+    positions, crank pin O + r (cos, sin)(angle of OC + theta); None without a ram."""
+    scene, (o, c) = ctx.scene, centres
+    pin = ctx.pos(block)
+    r = float(np.hypot(*(pin - o)))
+    toward_c = math.atan2(*(c - o)[::-1])
+    lever_now = math.atan2(*(pin - c)[::-1])
+    for point in scene.links[lever].points:
+        rod = _partner(ctx, lever, point)
+        for j in scene.joints:
+            if rod is None or j.type != "slider" or j.links != (scene.ground, rod):
+                continue
+            assert j.axis is not None
+            g = np.asarray(j.axis, dtype=float)
+            ram, end = ctx.pos(j.point), ctx.pos(point)
+            length = float(np.hypot(*(ram - end)))
+            side = math.copysign(1.0, float(g @ (ram - end)))
+            xs = []
+            for theta in (lim.theta_1, lim.theta_2):
+                limit_pin = o + r * np.array(
+                    [math.cos(toward_c + theta), math.sin(toward_c + theta)]
+                )
+                end_i = c + rotate(
+                    end - c, np.asarray(math.atan2(*(limit_pin - c)[::-1]) - lever_now)
+                )
+                along = float(g @ (end_i - ram))
+                off = float(cross(g, end_i - ram))
+                if abs(off) > length:  # the rod cannot reach the guide there: no full turn
+                    return None
+                xs.append(along + side * math.sqrt(length**2 - off**2))
+            return j.point, abs(xs[0] - xs[1])
+    return None

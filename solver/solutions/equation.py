@@ -144,7 +144,8 @@ class Num:
 
 @dataclass(frozen=True)
 class Frac:
-    """The quotient of two scalar values: '\\frac{a}{b}' in LaTeX, 'a/b' in text."""
+    """The quotient of two scalar values: '\\frac{a}{b}' in LaTeX, 'a/b' in text, a negative
+    denominator in parentheses ('0.32/(-0.18)', not '0.32/-0.18')."""
 
     numerator: Ref
     denominator: Ref
@@ -153,7 +154,8 @@ class Frac:
         return rf"\frac{{{shows.num(self.numerator)}}}{{{shows.num(self.denominator)}}}"
 
     def text(self, shows: Shows) -> str:
-        return f"{shows.txtn(self.numerator)}/{shows.txtn(self.denominator)}"
+        below = shows.txtn(self.denominator)
+        return f"{shows.txtn(self.numerator)}/{f'({below})' if below.startswith('-') else below}"
 
 
 @dataclass(frozen=True)

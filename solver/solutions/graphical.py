@@ -26,6 +26,22 @@ from solver.solutions.model import Step
 READING = 0.05  # cm: what a careful drawing is read to (half a millimetre)
 
 
+COMPONENT = {
+    "normal": "normal omega^2 r",
+    "tangential": "tangential alpha r",
+    "transport": "transport",
+    "coriolis": "Coriolis",
+    "relative": "relative",
+}  # the parts of an acceleration polygon, by their arrows' style
+COMPONENT_LATEX = {
+    "normal": r"\omega^2 r_{{{}}}",
+    "tangential": r"\alpha\, r_{{{}}}",
+    "transport": r"a_{{{},\mathrm{{tr}}}}",
+    "coriolis": r"a_{{{},\mathrm{{Cor}}}}",
+    "relative": r"a_{{{},\mathrm{{rel}}}}",
+}
+
+
 def link_pairs(ctx: LinkageContext) -> list[tuple[str, str, str]]:
     """(link, X, Y) for every moving link and every point Y of it after its first point X."""
     out = []
@@ -150,6 +166,7 @@ class Polygons:
             "the image of the next point; at a slot, the transport, Coriolis and relative parts."
         )
         arrows = self.link_acceleration_arrows(accelerations) + self.slot_acceleration_arrows()
+        self.component_lengths(b, ka, arrows)
         self.lengths(b, ka, accelerations, "a", "m/s^2")
         self.mehmke(b, "a")
         caption = (
@@ -196,6 +213,40 @@ class Polygons:
                 arrows.append(Arrow(tr, tr + cor, f"a_cor({point})", "Cor", "coriolis"))
             arrows.append(Arrow(tr + cor, total, f"a_rel({point})", "rel", "relative"))
         return arrows
+
+    def component_lengths(self, b: StepBuilder, scale: Ref, arrows: list[Arrow]) -> None:
+        """|component| / k_a = its length on paper, for every part drawn (normal omega^2 r,
+        tangential alpha r, transport, Coriolis, relative), in the order it is drawn, so a
+        student can check the drawing step by step."""
+        rows: list[tuple[Piece, ...]] = []
+        texts: list[tuple[Piece, ...]] = []
+        for arrow in arrows:
+            size = float(np.hypot(*(arrow.end - arrow.start)))
+            if b.fmt.is_zero(size, "m/s^2"):
+                continue
+            norm = b.value(f"|{arrow.name}|", size, "m/s^2")
+            length = b.value(f"length {arrow.name}", size / b.scalar(scale), "cm")
+            b.check("quotient", length, norm, scale)
+            inside = arrow.name.partition("(")[2].rstrip(")")  # 'link:X,Y' or a slot's point
+            ends = inside.partition(":")[2].split(",") if ":" in inside else []
+            if ends:  # r_YX, from X to Y
+                what = f"{COMPONENT[arrow.style]} {ends[1]}{ends[0]}"
+                sub = tex.pair(ends[1], ends[0])
+            else:
+                what, sub = f"{COMPONENT[arrow.style]} of {inside}", tex.name(inside)
+            rows.append(
+                (
+                    COMPONENT_LATEX[arrow.style].format(sub) + " = ",
+                    Num(norm, unit=True),
+                    r" \to ",
+                    Equation.of(Frac(norm, scale), Num(length, unit=True)),
+                )
+            )
+            texts.append((f"{what} ", Num(norm, unit=True), ", drawn ", Num(length, unit=True)))
+        for i in range(0, len(rows), 2):
+            b.line("&", *joined(r", \quad ", rows[i : i + 2]))
+        if texts:
+            b.say("The parts at the scale, in the order drawn: ", *joined("; ", texts), ".")
 
     def lengths(
         self, b: StepBuilder, scale: Ref, vectors: dict[str, np.ndarray], letter: str, unit: str

@@ -9,6 +9,7 @@ in the first row.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Sequence
 
@@ -41,10 +42,24 @@ def escape_text(text: str) -> str:
     return "".join(out) or "?"
 
 
+GREEK = frozenset(
+    ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+     "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
+     "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi",
+     "Omega")
+)  # fmt: skip
+_GREEK_NAME = re.compile(r"([A-Za-z]+)([0-9]{0,2})")
+
+
 def name(raw: str) -> str:
-    """A point or link name as a LaTeX subscript body."""
+    """A point or link name as a LaTeX subscript body; a Greek letter spelled out (a point
+    'Gamma', 'omega1') as its symbol, \\Gamma, \\omega1 (not 'Gamma' in text beside a
+    \\Gamma_{13})."""
     if _PLAIN.fullmatch(raw):
         return raw
+    greek = _GREEK_NAME.fullmatch(raw)
+    if greek is not None and greek.group(1) in GREEK:
+        return "\\" + greek.group(1) + "{}" + greek.group(2)  # {}: safe before a letter
     return r"\text{" + escape_text(raw) + "}"
 
 
@@ -116,7 +131,37 @@ def boxed_result(latex: str) -> str:
     return r"\underline{\underline{" + latex + "}}"
 
 
+def exact_pi(expression: sympy.Expr) -> sympy.Expr:
+    """The law with each decimal number that is a simple multiple of pi (p pi / q, |p|, q <=
+    1000, equal to the float within 2 units in the last place) written so: 0.23561944901923448
+    -> 3 pi / 40; other numbers stay as typed."""
+    exact = {}
+    for f in expression.atoms(sympy.Float):
+        guess = sympy.nsimplify(f, [sympy.pi], tolerance=1e-15)
+        ratio = sympy.nsimplify(guess / sympy.pi)
+        if (
+            guess.has(sympy.pi)
+            and ratio.is_Rational
+            and abs(ratio.p) <= 1000
+            and ratio.q <= 1000
+            and abs(float(guess) - float(f)) <= 4.0 * math.ulp(float(f))
+        ):
+            exact[f] = guess
+    return expression.xreplace(exact)
+
+
+def law_text(typed: str, expression: sympy.Expr) -> str:
+    """A time law in plain text: as the user typed it, or its exact form where its decimals are
+    simple multiples of pi (``exact_pi``), never 17 digits of pi."""
+    exact = exact_pi(expression)
+    if exact == expression:
+        return typed
+    return str(exact).replace("**", "^")
+
+
 def law(expression: sympy.Expr, digits: int) -> str:
-    """A time law (or a derivative) in LaTeX, its decimal numbers rounded to ``digits``."""
+    """A time law (or a derivative) in LaTeX, exact multiples of pi as such (``exact_pi``),
+    its other decimal numbers rounded to ``digits``."""
+    expression = exact_pi(expression)
     rounded = {f: sympy.Float(f, digits) for f in expression.atoms(sympy.Float)}
     return str(sympy.latex(expression.xreplace(rounded)))

@@ -396,7 +396,8 @@ def _write_time_law(
         Num(al, unit=True),
     )
     b.say(
-        f"Link {link} turns by phi(t) = {angle_law} (rad) from its drawn pose; "
+        f"Link {link} turns by phi(t) = {tex.law_text(angle_law, law.expression)} (rad) from "
+        "its drawn pose; "
         "its derivatives give, at t = ",
         Num(t, unit=True),
         f", omega({link}) = ",
@@ -966,7 +967,7 @@ def _read_slider(ctx: LinkageContext, b: StepBuilder, joint: Joint) -> None:
         Pt(arel),
         " (their dot product ",
         Num(power, unit=True),
-        f": the same sense means speeding up): {words}.",
+        f"{sense_clause(b, power, 'speeding up')}): {words}.",
     )
 
 
@@ -1006,6 +1007,14 @@ def speed_trend(b: StepBuilder, power: str | Ref, steady: str) -> str:
     if b.is_zero(power):
         return steady
     return "speeding up" if b.scalar(power) > 0 else "slowing down"
+
+
+def sense_clause(b: StepBuilder, power: str | Ref, speeding: str) -> str:
+    """What the sign of a dot product v . a (omega . alpha) says, after its number: the same
+    sense means ``speeding`` up; zero, that the rate neither grows nor falls at this instant."""
+    if b.is_zero(power):
+        return ": zero, so the rate neither grows nor falls at this instant"
+    return f": the same sense means {speeding}"
 
 
 def summary_step(ctx: LinkageContext) -> Step:

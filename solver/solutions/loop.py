@@ -85,15 +85,26 @@ class Degrees:
 @dataclass(frozen=True)
 class Complex:
     """A 2-vector value as a complex number: 'a', 'b i', '(a + b i)'; with ``unknown`` (its
-    LaTeX) the coefficient of that unknown: 'u', '-u', '(a + b i)\\,u'."""
+    LaTeX) the coefficient of that unknown: 'u', '-u', '(a + b i)\\,u'; ``whole``: always
+    '(a + b i)', a vector's two components even where one is 0 (a velocity written as a complex
+    number is not set equal to a scalar)."""
 
     ref: Ref
     unknown: str = ""
+    whole: bool = False
 
     def latex(self, shows: Shows) -> str:
         re, im = shows.entries(self.ref, 2)
         imaginary = {"1": "i", "-1": "-i"}.get(im, im + r"\,i")
-        number = re if im == "0" else imaginary if re == "0" else f"({re} {tex.signed(imaginary)})"
+        number = (
+            f"({re} {tex.signed(imaginary)})"
+            if self.whole
+            else re
+            if im == "0"
+            else imaginary
+            if re == "0"
+            else f"({re} {tex.signed(imaginary)})"
+        )
         if not self.unknown:
             return number
         if number in ("1", "-1"):
@@ -232,6 +243,20 @@ class FourBarClosedForm:
     r_coupler: str
     sign: float
     turn: str
+
+
+def member_parts(m: Member) -> tuple[str, str]:
+    """The real and imaginary parts of a loop member in symbols: a cos theta and a sin theta of
+    a e^(i theta); s cos phi - c sin phi and s sin phi + c cos phi of (s + i c) e^(i phi)."""
+    n = m.number
+    if m.kind in ("slider", "slot"):
+        angle = rf"\varphi_{{{n}}}" if m.kind == "slider" else rf"\beta_{{{n}}}"
+        s, c = f"s_{{1{n}}}", f"c_{{{n}}}"
+        return (
+            rf"({s}\cos{angle} - {c}\sin{angle})",
+            rf"({s}\sin{angle} + {c}\cos{angle})",
+        )
+    return rf"a_{{{n}}}\cos\theta_{{1{n}}}", rf"a_{{{n}}}\sin\theta_{{1{n}}}"
 
 
 @dataclass
@@ -460,6 +485,17 @@ class LoopMethod:
         ]
         left, right = written[: len(loop.left)], written[len(loop.left) :]
         b.line("&" + " + ".join(s for s, _ in left) + " = " + " + ".join(s for s, _ in right))
+        parts = [member_parts(m) for m in (*loop.left, *loop.right)]
+        for label, k in (("Re", 0), ("Im", 1)):
+            sides = [
+                " + ".join(p[k] for p in side)
+                for side in (parts[: len(loop.left)], parts[len(loop.left) :])
+            ]
+            b.line(rf"&\text{{{label}: }} " + " = ".join(sides))
+        b.say(
+            "In symbols first: its real and imaginary parts are the loop's two scalar equations, "
+            "each vector giving length times cos and length times sin of its angle."
+        )
         b.line(
             "&",
             *joined(" + ", [n for _, n in left]),
@@ -723,6 +759,84 @@ class LoopMethod:
             Boxed((Num(Ref(f.th13), unit=True),)),
         )
         self.four_bar_sentence(b, loop, f)
+        self.freudenstein_lines(b, loop)
+
+    def freudenstein_lines(self, b: StepBuilder, loop: Loop) -> None:
+        """Freudenstein's equation K1 cos phi4 - K2 cos phi2 + K3 = cos(phi2 - phi4), angles
+        from the ground line (phi_k = th1k - th11), K1 = a1/a2, K2 = a1/a4,
+        K3 = (a2^2 - a3^2 + a4^2 + a1^2) / (2 a2 a4): the phase form divided by 2 a2 a4, since
+        A cos th14 + B sin th14 - C = 2 a2 a4 (K1 cos phi4 - K2 cos phi2 + K3 - cos(phi2 - phi4))
+        with |d|^2 = a1^2 + a2^2 - 2 a1 a2 cos phi2; both sides evaluated at the solved pose."""
+        crank, coupler = loop.left
+        ground, rocker = loop.right
+        n1, n2, n3, n4 = ground.number, crank.number, coupler.number, rocker.number
+        a1, a2, a3, a4 = (b.scalar(f"a{n}") for n in (n1, n2, n3, n4))
+        th11 = b.scalar(f"theta1{n1}")
+        phi2 = b.put(f"phi{n2}", b.scalar(f"theta1{n2}") - th11, "rad")
+        phi4 = b.put(f"phi{n4}", b.scalar(f"theta1{n4}") - th11, "rad")
+        b.check("sum", phi2, f"theta1{n2}", f"-theta1{n1}")
+        b.check("sum", phi4, f"theta1{n4}", f"-theta1{n1}")
+        k1 = b.put("K1", a1 / a2, "")
+        k2 = b.put("K2", a1 / a4, "")
+        k3 = b.put("K3", (a2**2 - a3**2 + a4**2 + a1**2) / (2.0 * a2 * a4), "")
+        b.check("quotient", k1, f"a{n1}", f"a{n2}")
+        b.check("quotient", k2, f"a{n1}", f"a{n4}")
+        p2, p4 = b.scalar(phi2), b.scalar(phi4)
+        left = b.put(
+            "Freudenstein: left",
+            b.scalar(k1) * math.cos(p4) - b.scalar(k2) * math.cos(p2) + b.scalar(k3),
+            "",
+            reference=abs(b.scalar(k1)) + abs(b.scalar(k2)) + abs(b.scalar(k3)),
+        )
+        right = b.put("Freudenstein: right", math.cos(p2 - p4), "", reference=1.0)
+        ph = {n: rf"\varphi_{{{n}}}" for n in (n2, n4)}
+        sub = {n: f"a_{{{n}}}" for n in (n1, n2, n3, n4)}
+        b.line(
+            rf"&\text{{Freudenstein: }} K_1\cos{ph[n4]} - K_2\cos{ph[n2]} + K_3 = "
+            rf"\cos({ph[n2]} - {ph[n4]}), \quad {ph[n2]} = \theta_{{1{n2}}} - \theta_{{1{n1}}}, "
+            rf"\; {ph[n4]} = \theta_{{1{n4}}} - \theta_{{1{n1}}}"
+        )
+        b.line(
+            rf"&K_1 = \frac{{{sub[n1]}}}{{{sub[n2]}}} = ",
+            Num(Ref(k1)),
+            rf", \quad K_2 = \frac{{{sub[n1]}}}{{{sub[n4]}}} = ",
+            Num(Ref(k2)),
+            rf", \quad K_3 = \frac{{{sub[n2]}^2 - {sub[n3]}^2 + {sub[n4]}^2 + {sub[n1]}^2}}"
+            rf"{{2{sub[n2]}{sub[n4]}}} = ",
+            Num(Ref(k3)),
+        )
+        b.line(
+            rf"&A\cos\theta_{{1{n4}}} + B\sin\theta_{{1{n4}}} - C = 2{sub[n2]}{sub[n4]}"
+            rf"\left(K_1\cos{ph[n4]} - K_2\cos{ph[n2]} + K_3 - \cos({ph[n2]} - {ph[n4]})\right)"
+            rf", \quad |\vec{{d}}|^2 = {sub[n1]}^2 + {sub[n2]}^2 - 2{sub[n1]}{sub[n2]}\cos{ph[n2]}"
+        )
+        b.line(
+            rf"&{ph[n2]} = ",
+            Num(Ref(phi2), unit=True),
+            rf", \; {ph[n4]} = ",
+            Num(Ref(phi4), unit=True),
+            r": \quad ",
+            Num(Ref(left)),
+            " = ",
+            Num(Ref(right)),
+        )
+        b.say(
+            f"The same equation in Freudenstein's form, with the angles measured from the ground "
+            f"line (phi{n2} = theta1{n2} - theta1{n1}, phi{n4} = theta1{n4} - theta1{n1}): "
+            f"K1 cos phi{n4} - K2 cos phi{n2} + K3 = cos(phi{n2} - phi{n4}) with "
+            f"K1 = a{n1}/a{n2} = ",
+            Num(Ref(k1)),
+            f", K2 = a{n1}/a{n4} = ",
+            Num(Ref(k2)),
+            f" and K3 = (a{n2}^2 - a{n3}^2 + a{n4}^2 + a{n1}^2)/(2 a{n2} a{n4}) = ",
+            Num(Ref(k3)),
+            f"; it is the phase form divided by 2 a{n2} a{n4}, since |d|^2 = a{n1}^2 + a{n2}^2 - "
+            f"2 a{n1} a{n2} cos phi{n2}. At the solved pose both sides are ",
+            Num(Ref(left)),
+            " and ",
+            Num(Ref(right)),
+            ".",
+        )
 
     def four_bar_sentence(self, b: StepBuilder, loop: Loop, f: FourBarClosedForm) -> None:
         """Say the closed form: the elimination of th13, then the assembly taken."""
@@ -1077,7 +1191,7 @@ class LoopMethod:
             r"&\phantom{\vec{v}} = ",
             SumOf(tuple(Complex(Ref(k)) for k in keys)),
             " = ",
-            Boxed((Complex(Ref(total)), latex_unit(unit))),
+            Boxed((Complex(Ref(total), whole=True), latex_unit(unit))),
         )
         b.say(
             f"The {what} of {x} is the derivative of the left side of the loop (the position "

@@ -618,14 +618,17 @@ class LinkageMistakes:
             return
 
     def rounding(self) -> None:
-        """E000-T2-6: x = sqrt(0.12) = 0.346 rounded to 0.35 changes the crank's length."""
+        """E000-T2-6: x = sqrt(0.12) = 0.346 rounded to 0.35 changes the crank's length. Only
+        where it can happen: the inputs are the drawn coordinates (the data), not the pose at the
+        instant analysed (seed 003 Task 2's plate has turned by then, its data are exact)."""
         ctx, fmt = self.ctx, self.fmt
-        rounded = {p: np.array([_round2(c) for c in ctx.pos(p)]) for p in ctx.scene.points}
+        drawn = ctx.scene.drawn
+        rounded = {p: np.array([_round2(c) for c in drawn(p)]) for p in ctx.scene.points}
         worst = None
         for link in ctx.scene.links:
             points = ctx.scene.links[link].points
             for a, b in pairwise(points):
-                exact = float(np.hypot(*(ctx.pos(b) - ctx.pos(a))))
+                exact = float(np.hypot(*(drawn(b) - drawn(a))))
                 approx = float(np.hypot(*(rounded[b] - rounded[a])))
                 change = abs(approx - exact) / exact if exact > 0 else 0.0
                 if change > 1e-3 and (worst is None or change > worst[0]):
@@ -638,9 +641,11 @@ class LinkageMistakes:
                 fmt,
                 "inputs.rounding",
                 f"Rounded to two significant digits, the coordinates of {a} and {b} no longer "
-                f"give the length of link {link}: |{a}{b}| becomes {fmt.text(approx)} m. Seed 000 "
-                "type 2 rounded x = 0.346 m to 0.35 m and so solved another mechanism (crank "
-                "0.4031 m instead of 0.4 m). Keep the inputs exact (or round all of them from "
+                f"give the length of link {link}: |{a}{b}| becomes {fmt.text(approx)} m instead of "
+                f"{fmt.text(exact)} m. Seed 000 type 2 rounded the pivot's x = 0.346 m to 0.35 m: "
+                "its ground became 0.35 m instead of 0.3464 m, and the crank pin drawn from it "
+                "0.4031 m from the pivot instead of 0.4 m, another mechanism. Keep the inputs "
+                "exact (or round all of them from "
                 "the same geometry) and round only the results.",
                 approx,
                 exact,

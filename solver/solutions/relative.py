@@ -9,7 +9,8 @@ For each moving point, at the scene's instant t:
   a_rel = s'' tau + (s'^2 / R) n, tangential and normal (towards the centre of the arc);
 - Coriolis: a_cor = 2 omega_carrier x v_rel, or why it is zero (the carrier translates);
 - v = v_tr + v_rel and a = a_tr + a_rel + a_cor;
-- on an arc, the times at which M is opposite its start (s = pi R) and back at it (s = 2 pi R).
+- on an arc, the times at which M is opposite its start (s = pi R) and back at it (s = 2 pi R),
+  only where the arc reaches there: a groove (``sweep_deg`` < 360) ends, and M leaves it there.
 """
 
 from __future__ import annotations
@@ -252,7 +253,8 @@ class MovingPointSteps:
         b.line("&", *now)
         b.say(
             f"{self.name} moves along a path fixed in link {self.carrier}; its arc length from "
-            f"{self.mp.path.start} is s(t) = {self.mp.s_law} (m). At ",
+            f"{self.mp.path.start} is s(t) = "
+            f"{tex.law_text(self.mp.s_law, parse_time_law(self.mp.s_law).expression)} (m). At ",
             *now,
             ".",
         )
@@ -386,7 +388,7 @@ class MovingPointSteps:
         b.line(transport)
         if b.is_zero(w):
             b.say(
-                f"The carrier {carrier} translates at this instant (omega = 0): every point of "
+                f"{the_carrier(carrier)} translates at this instant (omega = 0): every point of "
                 f"it, including the one under {self.name}, moves like {a}: v_tr = ",
                 Col(tr),
                 ".",
@@ -529,7 +531,7 @@ class MovingPointSteps:
         )
         if b.is_zero(v.omega) and b.is_zero(v.alpha):
             b.say(
-                f"The carrier {carrier} translates (omega = alpha = 0): all its points have "
+                f"{the_carrier(carrier)} translates (omega = alpha = 0): all its points have "
                 f"the acceleration of {a}, so a_tr = a({a}) = ",
                 Col(tr),
                 ".",
@@ -643,7 +645,7 @@ class MovingPointSteps:
                 )
             )
             b.say(
-                f"The carrier {carrier} does not rotate (omega({carrier}) = ",
+                f"{the_carrier(carrier)} does not rotate (omega({carrier}) = ",
                 Num(w, unit=True),
                 "): it translates, so there is no Coriolis acceleration, even if the links that "
                 "drive it turn.",
@@ -690,8 +692,10 @@ class MovingPointSteps:
     # --- events ---------------------------------------------------------------------------------
 
     def event_step(self) -> Step | None:
-        """s(t_e) = pi R (M opposite its start) and s(t_e) = 2 pi R (M back at its start), each
-        for the first t_e > 0 (``first_time_at``); None on a line or if neither is reached."""
+        """s(t_e) = pi R (M opposite its start), s(t_e) = 2 pi R (M back at its start) and, on a
+        groove of sweep theta < 2 pi, s(t_e) = theta R (M at the groove's end, where it leaves
+        it), each for the first t_e > 0 (``first_time_at``): only the events within the path
+        (``arc_events``). None on a line or if none is reached."""
         route = self.mp.path
         if route.type != "arc":
             return None
@@ -705,34 +709,44 @@ class MovingPointSteps:
                 return law.value(t)
 
         radius = path_radius(self.ctx.scene, self.mp)
-        b = self.ctx.builder(
-            "relative.event", f"When {self.name} reaches the far end and its start"
+        events = arc_events(route.sweep_deg, route.start)
+        title = (
+            f"When {self.name} reaches the far end and its start"
+            if route.sweep_deg >= 360.0
+            else f"When {self.name} reaches the end of its groove"
         )
+        b = self.ctx.builder("relative.event", title)
         r = b.value("R", radius, "m")
         pi = b.value("pi", math.pi, "")
         found = False
-        for turns, where in (
-            (1, "opposite its start (half a turn, s = pi R)"),
-            (2, f"back at {route.start} (a full turn, s = 2 pi R)"),
-        ):
+        for k, (turns, where) in enumerate(events, start=1):
             level = turns * math.pi * radius
             t_e = first_time_at(s_of_t, level)
             if t_e is None:
                 continue
-            lv = b.value(f"s_{turns}", level, "m", reference=level)
-            te = b.value(f"t_{turns}", t_e, "s")
-            b.check("product", lv, pi, r, factor=float(turns))
+            lv = b.value(f"s_{k}", level, "m", reference=level)
+            te = b.value(f"t_{k}", t_e, "s")
+            b.check("product", lv, pi, r, factor=turns)
             self.write_event(b, turns, where, lv, te)
             found = True
+        if found and route.sweep_deg < 360.0:
+            b.say(
+                f"Past its end (s = {route.sweep_deg / 180.0:g} pi R) {self.name} is off the "
+                "groove: no later instant is an event of this path."
+            )
         return b.build() if found else None
 
-    def write_event(self, b: StepBuilder, turns: int, where: str, lv: Ref, te: Ref) -> None:
+    def write_event(self, b: StepBuilder, turns: float, where: str, lv: Ref, te: Ref) -> None:
         """s(t) = k pi R solved for its first root t_k."""
         law = parse_time_law(self.mp.s_law)
-        factor = "" if turns == 1 else "2"
+        factor = "" if turns == 1.0 else f"{turns:g}"
         level = Equation.of("s(t)", latex_only(rf"{factor}\pi R"), Num(lv, unit=True))
         root = Equation.of(
-            Sym(tex.law(law.expression, self.ctx.fmt.digits), self.mp.s_law), Num(lv)
+            Sym(
+                tex.law(law.expression, self.ctx.fmt.digits),
+                tex.law_text(self.mp.s_law, law.expression),
+            ),
+            Num(lv),
         )
         time = Equation.of("t", Boxed((Num(te, unit=True),)))
         then = r" \;\Rightarrow\; "
@@ -755,6 +769,32 @@ class MovingPointSteps:
             *self.acceleration_steps(),
             *([event] if event is not None else []),
         ]
+
+
+def the_carrier(link: str) -> str:
+    """'The carrier' for a link named so, else 'The carrier <link>' (not 'The carrier
+    carrier')."""
+    return "The carrier" if link.lower() == "carrier" else f"The carrier {link}"
+
+
+def arc_events(sweep_deg: float, start: str) -> list[tuple[float, str]]:
+    """The events of a point on an arc of ``sweep_deg`` degrees from ``start``, as (s / (pi R),
+    what happens there), only those within the arc: opposite the start (s = pi R) where the arc
+    goes beyond it, back at the start (s = 2 pi R) on a whole circle, and the end of a groove
+    (s = theta R, theta < 2 pi), where the point leaves the path."""
+    if sweep_deg >= 360.0:
+        return [
+            (1.0, "opposite its start (half a turn, s = pi R)"),
+            (2.0, f"back at {start} (a full turn, s = 2 pi R)"),
+        ]
+    end = sweep_deg / 180.0
+    leaves = f"at the end of its groove ({sweep_deg:g} deg, s = {end:g} pi R) and leaves it"
+    if sweep_deg == 180.0:
+        leaves = (
+            "at the end of its semicircular groove, opposite its start (s = pi R), and leaves it"
+        )
+    opposite = [(1.0, "opposite its start (half a turn, s = pi R)")] if end > 1.0 else []
+    return [*opposite, (end, leaves)]
 
 
 def first_time_at(s_of_t: Callable[[float], float], level: float) -> float | None:

@@ -53,7 +53,7 @@ from solver.solutions.equation import (
     text_only,
 )
 from solver.solutions.format import Formatter
-from solver.solutions.linkage import speed_trend
+from solver.solutions.linkage import sense_clause, speed_trend
 from solver.solutions.model import Step
 
 V0 = r"\vec{0}"
@@ -718,7 +718,7 @@ class SpatialSteps:
             f" (nearest {_nearest_axis(body.omega)}), counter-clockwise seen from the tip of u, "
             f"{trend} (omega . alpha = ",
             Num(power, unit=True),
-            ": the same sense means the rotation speeds up).",
+            f"{sense_clause(b, power, 'the rotation speeding up')}).",
         )
 
     def read_point(self, b: StepBuilder, name: str, motion: PointMotion) -> None:
@@ -760,7 +760,7 @@ class SpatialSteps:
             said,
             " (v . a = ",
             Num(power, unit=True),
-            ": the same sense means speeding up).",
+            f"{sense_clause(b, power, 'speeding up')}).",
         )
 
     def figure(self) -> str:

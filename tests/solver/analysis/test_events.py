@@ -1135,3 +1135,19 @@ def test_event_position_after_thousands_of_change_points(t_max: float) -> None:
     ``assembly.MAX_DRIVER_STEP``. Followed at 24 rad a sample as it was, the position was that
     of the crossed assembly, 0.44 m off."""
     _event_position_on_the_parallelogram(60.0, 2e-4, t_max)
+
+
+def test_a_groove_with_an_end_has_no_whole_turns_and_nothing_past_its_end() -> None:
+    """On a groove of sweep 180 deg (seed 003 Task 1's semicircle) s = c t^2 reaches a target an
+    arc R beta along it once, at sqrt(R beta / c); a second occurrence (a whole turn later on a
+    circle) and a target past the end are no events."""
+    radius, c, beta = 0.4, 0.9, 1.0
+    doc = arc_disc(f"{c}*t^2", radius, (0.1, 0.5), 0.3, "cw", radius * beta)
+    doc["moving_points"][0]["path"]["sweep_deg"] = 180
+    _assert_time(_event_time(doc, "T", 1, 60.0), math.sqrt(radius * beta / c), "first", 1e-9)
+    with pytest.raises(NoEvent):
+        _event_time(doc, "T", 2, 60.0)
+    beyond = arc_disc(f"{c}*t^2", radius, (0.1, 0.5), 0.3, "cw", radius * 4.0)
+    beyond["moving_points"][0]["path"]["sweep_deg"] = 180
+    with pytest.raises(NoEvent, match="past the end of the groove"):
+        _event_time(beyond, "T", 1, 60.0)

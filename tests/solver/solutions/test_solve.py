@@ -41,6 +41,7 @@ from solver.model.quantities import QUANTITIES
 from solver.model.scene import parse_linkage
 from solver.solutions import Solution, Step, solve
 from solver.solutions.format import Formatter
+from solver.solutions.relative import arc_events
 from solver.teaching.presets import PRESETS, build_preset
 from tests.linkage_strategies import linkages
 from tests.strategies import assemblable_presets
@@ -869,6 +870,38 @@ def test_s003_t1_event_is_root_three() -> None:
     assert event.values["t_1"].value == pytest.approx(math.sqrt(3), abs=1e-12)
 
 
+def test_s003_t1_states_only_the_events_within_its_semicircular_groove() -> None:
+    """Seed 003 Task 1: M runs in a semicircular groove (sweep_deg 180) and leaves it at its end,
+    s = pi R (t = sqrt 3 s, ERRATA); the full turn s = 2 pi R (t = sqrt 6 = 2.449 s) lies past
+    the groove's end and is no event."""
+    event = next(
+        s
+        for s in solution_of(example("S003-T1-translating-carrier")).steps
+        if s.kind == "relative.event"
+    )
+    times = [v.value for k, v in event.values.items() if k.startswith("t_")]
+    assert times == [pytest.approx(math.sqrt(3), abs=1e-12)]
+    assert "back at" not in event.text and "2.449" not in event.latex
+    assert "end of its semicircular groove" in event.text and "leaves it" in event.text
+
+
+@pytest.mark.parametrize(
+    ("sweep", "levels"),
+    [(360.0, [1.0, 2.0]), (270.0, [1.0, 1.5]), (180.0, [1.0]), (90.0, [0.5])],
+)
+def test_arc_events_lie_within_the_arc(sweep: float, levels: list[float]) -> None:
+    """s / (pi R) of the events: never past the arc's end (sweep_deg / 180)."""
+    assert [k for k, _ in arc_events(sweep, "S")] == levels
+
+
+@pytest.mark.parametrize("sweep", [0, -90, 361, "180"])
+def test_an_arc_sweep_outside_0_to_360_degrees_is_refused(sweep: Any) -> None:
+    doc = example("S003-T1-translating-carrier")
+    doc["moving_points"][0]["path"]["sweep_deg"] = sweep
+    with pytest.raises(InvalidScene, match="sweep_deg"):
+        parse_linkage(doc)
+
+
 def test_spatial_chain_computes_each_point_once_and_speaks_of_space() -> None:
     solution = solution_of(example("S002-spatial-arm"))
     velocities = [s for s in solution.steps if s.kind.endswith("velocity")]
@@ -1211,7 +1244,9 @@ def test_step_kinds_present(name: str, solution: Solution) -> None:
         "reading",
         "summary",
     } <= kinds, name
-    assert ("classification" in kinds) == bool(solution.analysis.four_bar_loops), name
+    # four-bars (Grashof) and slider mechanisms (dead centres, issue 29) are classified
+    sliding = bool(solution.analysis.joints)
+    assert ("classification" in kinds) == bool(solution.analysis.four_bar_loops or sliding), name
     assert "position.crank" in kinds, name
     dyads = [s for s in solution.analysis.plan.steps if type(s).__name__ == "DyadStep"]
     if dyads:
