@@ -44,19 +44,31 @@ def poles_at(scene: LinkageScene, motion: Motion, k: int) -> tuple[Poles, Poles]
     )
 
 
+TINY_RATE = 1e-150  # rad/s: below it a rate times a length squared may underflow
+
+
 def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[InstantCentre]:
     """Instant centres of every pair of links (ground included), from the velocity fields.
 
-    They depend on the geometry alone (for one degree of freedom): with every driver at rest the
-    same pose is differentiated at unit driver rates instead.
+    They depend on the geometry and the ratios of the driver rates alone: with every driver at
+    rest the same pose is differentiated at unit driver rates instead, and with rates so small
+    that the velocities would lose their digits to underflow (below ``TINY_RATE``), at the rates
+    divided by the largest.
     """
-    driver_rates = [motion.links[d.link].omega for d in scene.drivers]
-    if all(rate is not None and rate[0] == 0.0 for rate in driver_rates):
-        unit = [
-            DriverInput(motion.links[d.link].theta[:1], np.ones(1), np.zeros(1))
-            for d in scene.drivers
-        ]
-        motion = assemble(scene, plan, unit, 1)
+    rates = [motion.links[d.link].omega for d in scene.drivers]
+    if all(rate is not None for rate in rates):
+        largest = max(abs(float(rate[0])) for rate in rates if rate is not None)
+        if largest < TINY_RATE:
+            unit = [
+                DriverInput(
+                    motion.links[d.link].theta[:1],
+                    np.ones(1) if largest == 0.0 else rate[:1] / largest,
+                    np.zeros(1),
+                )
+                for d, rate in zip(scene.drivers, rates, strict=True)
+                if rate is not None
+            ]
+            motion = assemble(scene, plan, unit, 1)
     links = [motion.links[name] for name in scene.links]
     p, v = (np.array([getattr(m.anchor, order)[0] for m in links]) for order in ("p", "v"))
     omega = np.array([m.omega[0] for m in links if m.omega is not None])

@@ -36,10 +36,12 @@ STYLE = {  # class: (colour, dash pattern)
 
 def nice_scale(largest: float, paper_cm: float) -> float:
     """A round scale k (units per cm: 1, 2, 2.5 or 5 times a power of ten) that draws
-    ``largest`` in at most ``paper_cm`` centimetres."""
-    if largest <= 0.0:
-        return 1.0
+    ``largest`` in at most ``paper_cm`` centimetres; 1 where there is nothing to draw (0, or
+    below 1e-290, which no round scale could hold without underflow: drawn as a point, as at
+    rest)."""
     raw = largest / paper_cm
+    if not raw >= 1e-290:
+        return 1.0
     power = 10.0 ** math.floor(math.log10(raw))
     for step in (*NICE, 10.0):
         if step * power >= raw * (1 - 1e-12):

@@ -625,6 +625,28 @@ def test_seed_steps_re_evaluate_and_carry_the_solver_numbers(name: str, method: 
     _check_solution(solve(scene_of(example(name)), method))
 
 
+@pytest.mark.parametrize(
+    ("omega", "alpha"), [(0.0, 5e-324), (5e-324, 0.0), (1e-200, 0.0), (0.0, 1e-200)]
+)
+def test_a_crank_at_a_subnormal_rate_is_worked_as_any_other(omega: float, alpha: float) -> None:
+    """Rates whose products underflow (5e-324 rad/s, the smallest float): the polygons are drawn
+    (as points where nothing is left to draw), the instant centres are the geometry's (the
+    same as at a rate of 1 rad/s), and every step re-evaluates."""
+    values = {"crank": 0.5, "ground": 1.0, "slot_offset": 0.0, "lever": 3.0}
+    scene = parse_linkage(
+        build_preset("inverted_slider_crank", {**values, "omega": omega, "alpha": alpha})
+    )
+    solution = solve(scene, "vector")
+    _check_solution(solution)
+    unit = solve(parse_linkage(build_preset("inverted_slider_crank", {**values, "omega": 1.0})))
+
+    def kennedy(steps: Sequence[Step]) -> dict[str, Any]:  # the centres P_ij between links
+        step = next(s for s in steps if s.kind == "instant_centres")
+        return {k: v.value for k, v in step.values.items() if re.fullmatch(r"P\d\d", k)}
+
+    assert kennedy(solution.steps) == kennedy(unit.steps) != {}
+
+
 @pytest.mark.slow
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(assemblable_presets(), st.sampled_from(["vector", "loop"]))
