@@ -4,6 +4,8 @@ Exercises are generated, never stored: ``type:difficulty:seed:index`` determines
 so checking needs nothing but the id. Extensions beyond the spec: ``with_solutions`` on
 POST /exercises adds each exercise's worked solution (``solution``: the steps), and
 GET /exercises/{id} answers one exercise with its worked solution (the student mode's share link).
+``exam: true`` makes an exam set (docs/EXERCISES.md, "Exam sets"): opaque ids under the deployment
+secret KINEMATICS_EXAM_SECRET, whose GET is the statement only and whose check is refused.
 """
 
 from __future__ import annotations

@@ -10,6 +10,10 @@
   worked solution. LaTeX is typeset by KaTeX from the app's /vendor/katex/ when the sheet is
   opened from the app; every formula also has its plain-text form.
 - CSV: the answer key, one row per exercise and asked quantity, numbers in full precision.
+
+An exam set (``solver.exercises.exam``) is named by its exam ids everywhere, and by
+``set_name`` (no seed) in file names and the Moodle category; the figure's alt text describes the
+figure and names no id.
 """
 
 from __future__ import annotations
