@@ -737,6 +737,9 @@ class ExerciseModel(Open):
     scene: dict[str, Any]
     asked: list[AskedQuantity]
     answers: dict[str, float]
+    exam: Literal[True] | None = Field(
+        None, description="Extension: present (true) on an exam exercise, whose id is opaque."
+    )
 
 
 class ExamAsked(Open):
