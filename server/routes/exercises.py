@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, HTTPException
+from fastapi import APIRouter, Depends, HTTPException
 from fastapi.responses import Response
 from pydantic import Field
 
@@ -81,10 +81,19 @@ class ExercisesRequest(Strict):
     )
 
 
-def exam_secret() -> bytes:
-    """The deployment secret of exam ids, or a 503 problem saying how to set it."""
+def configured_secret() -> bytes | None:
+    """The deployment secret of exam ids, read in the server's process (a dependency: the
+    workers, forked from a server started earlier, get it with the request), or None."""
     secret = os.environ.get(SECRET_VARIABLE, "")
-    if len(secret) < MIN_SECRET_LENGTH:
+    return secret.encode() if len(secret) >= MIN_SECRET_LENGTH else None
+
+
+ExamSecret = Annotated[bytes | None, Depends(configured_secret)]
+
+
+def exam_secret(secret: bytes | None) -> bytes:
+    """The deployment secret of exam ids, or a 503 problem saying how to set it."""
+    if secret is None:
         raise HTTPException(
             503,
             f"exam sets need the deployment secret {SECRET_VARIABLE} (at least "
@@ -94,10 +103,10 @@ def exam_secret() -> bytes:
             "and restart it; keep it private and unchanged (a new secret makes every exam id "
             "unknown)",
         )
-    return secret.encode()
+    return secret
 
 
-def set_secret(request: ExercisesRequest) -> bytes | None:
+def set_secret(request: ExercisesRequest, secret: bytes | None) -> bytes | None:
     """The exam secret for an exam set (refusing a guessable seed), None for a practice set."""
     if not request.exam:
         return None
@@ -107,7 +116,7 @@ def set_secret(request: ExercisesRequest) -> bytes | None:
             f"key from this server): expected a random integer from {MIN_EXAM_SEED} to "
             f"{MAX_SEED}, got {request.seed}"
         )
-    return exam_secret()
+    return exam_secret(secret)
 
 
 def exercise_body(exercise: Exercise, with_solution: bool) -> dict[str, Any]:
@@ -140,10 +149,13 @@ def types_route() -> ResultResponse:
     )
 
 
-def exercises_cost(request: ExercisesRequest, path: str = "/api/v1/exercises") -> float:
-    """In the server's process: the request's bounds, then count x the type's cost."""
+def exercises_cost(
+    request: ExercisesRequest, secret: bytes | None, path: str = "/api/v1/exercises"
+) -> float:
+    """In the server's process: the request's bounds (an exam set: its seed and the secret),
+    then count x the type's cost."""
     check_generation(request.type, request.difficulty, request.count)
-    set_secret(request)
+    set_secret(request, secret)
     return budget.exercises(request.type, request.count, request.with_solutions, path)
 
 
@@ -153,27 +165,30 @@ def exercises_cost(request: ExercisesRequest, path: str = "/api/v1/exercises") -
     response_model=ExerciseList,
 )
 @front_check(exercises_cost)
-def exercises_route(request: ExercisesRequest) -> ResultResponse:
+def exercises_route(request: ExercisesRequest, secret: ExamSecret) -> ResultResponse:
     exercises = generate(
-        request.type, request.difficulty, request.seed, request.count, set_secret(request)
+        request.type, request.difficulty, request.seed, request.count, set_secret(request, secret)
     )
     return ResultResponse(
         {"exercises": [exercise_body(e, request.with_solutions) for e in exercises]}
     )
 
 
-def open_exam(exercise_id: str) -> ExerciseId:
+def open_exam(exercise_id: str, secret: bytes | None) -> ExerciseId:
     """The parameters of an exam id, or a 404 problem (an id this server did not make)."""
     try:
-        return open_exam_id(exercise_id, exam_secret())
+        return open_exam_id(exercise_id, exam_secret(secret))
     except UnknownExamId as unknown:
         raise HTTPException(404, unknown.message) from None
 
 
-def one_exercise_cost(exercise_id: str) -> float:
+def one_exercise_cost(exercise_id: str, secret: bytes | None) -> float:
     """The id's form (an exam id: that it opens), then one exercise of its type with its worked
     solution."""
-    kind = open_exam(exercise_id).type if is_exam_id(exercise_id) else parse_id(exercise_id).type
+    if is_exam_id(exercise_id):
+        kind = open_exam(exercise_id, secret).type
+    else:
+        kind = parse_id(exercise_id).type
     return solver.exercise_work(kind, 1, True).seconds
 
 
@@ -184,9 +199,9 @@ def one_exercise_cost(exercise_id: str) -> float:
     response_model=ExerciseModel | ExamStatementModel,
 )
 @front_check(one_exercise_cost)
-def exercise_route(exercise_id: str) -> ResultResponse:
+def exercise_route(exercise_id: str, secret: ExamSecret) -> ResultResponse:
     if is_exam_id(exercise_id):
-        exam = build_exam(open_exam(exercise_id), exam_secret())
+        exam = build_exam(open_exam(exercise_id, secret), exam_secret(secret))
         return ResultResponse(exam.statement_json())
     return ResultResponse(exercise_body(build(parse_id(exercise_id)), True))
 
@@ -256,10 +271,10 @@ class ExportRequest(ExercisesRequest):
         }
     },
 )
-@front_check(lambda request: exercises_cost(request, "/api/v1/exercises/export"))
-def export_route(request: ExportRequest) -> Response:
+@front_check(lambda request, secret: exercises_cost(request, secret, "/api/v1/exercises/export"))
+def export_route(request: ExportRequest, secret: ExamSecret) -> Response:
     exercises = generate(
-        request.type, request.difficulty, request.seed, request.count, set_secret(request)
+        request.type, request.difficulty, request.seed, request.count, set_secret(request, secret)
     )
     if request.format == "moodle_xml":
         content = moodle_xml(exercises, request.moodle_question)

@@ -27,7 +27,8 @@ KEY_NAMES = {"answers", "expected", "solution", "steps", "scene", "path"}
 
 @pytest.fixture(scope="module")
 def exam_client() -> Iterator[TestClient]:
-    """A server started with the secret in its environment (its workers inherit it)."""
+    """A server with the secret in its environment (read in its process, sent to its workers
+    with each request)."""
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv(VARIABLE, SECRET)
         with TestClient(app, raise_server_exceptions=False) as test_client:
