@@ -28,6 +28,8 @@ TITLES = {
     "request_timeout": "The request did not arrive in time",
     "no_event": "The event does not occur",
     "not_found": "Not found",
+    "forbidden": "Not served to anyone",
+    "not_configured": "Not configured on this server",
     "method_not_allowed": "Method not allowed",
     "internal_error": "Internal error",
 }
@@ -102,9 +104,13 @@ async def validation_error(_: Request, error: Exception) -> JSONResponse:
 
 async def http_error(_: Request, error: Exception) -> JSONResponse:
     assert isinstance(error, HTTPException)
-    code = {404: "not_found", 405: "method_not_allowed", 413: "limit_exceeded"}.get(
-        error.status_code, "invalid_scene"
-    )
+    code = {
+        403: "forbidden",
+        404: "not_found",
+        405: "method_not_allowed",
+        413: "limit_exceeded",
+        503: "not_configured",
+    }.get(error.status_code, "invalid_scene")
     return problem(error.status_code, code, str(error.detail))
 
 

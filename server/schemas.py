@@ -737,6 +737,27 @@ class ExerciseModel(Open):
     scene: dict[str, Any]
     asked: list[AskedQuantity]
     answers: dict[str, float]
+    exam: Literal[True] | None = Field(
+        None, description="Extension: present (true) on an exam exercise, whose id is opaque."
+    )
+
+
+class ExamAsked(Open):
+    key: str
+    label: str
+    unit: str
+    symbol: str
+    tolerance: float
+
+
+class ExamStatementModel(Open):
+    """GET /exercises/{id} of an exam exercise: the statement only (no scene, key or solution)."""
+
+    id: str
+    exam: Literal[True]
+    title: str
+    statement: ExerciseStatement
+    asked: list[ExamAsked]
 
 
 class ExerciseList(Open):
@@ -790,6 +811,8 @@ class ProblemCode(StrEnum):
     limit_exceeded = "limit_exceeded"
     no_event = "no_event"
     not_found = "not_found"
+    forbidden = "forbidden"
+    not_configured = "not_configured"
     method_not_allowed = "method_not_allowed"
     internal_error = "internal_error"
     busy = "busy"

@@ -4,13 +4,16 @@ Exercises are generated, never stored: ``type:difficulty:seed:index`` determines
 so checking needs nothing but the id. Extensions beyond the spec: ``with_solutions`` on
 POST /exercises adds each exercise's worked solution (``solution``: the steps), and
 GET /exercises/{id} answers one exercise with its worked solution (the student mode's share link).
+``exam: true`` makes an exam set (docs/EXERCISES.md, "Exam sets"): opaque ids under the deployment
+secret KINEMATICS_EXAM_SECRET, whose GET is the statement only and whose check is refused.
 """
 
 from __future__ import annotations
 
+import os
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Depends, HTTPException
 from fastapi.responses import Response
 from pydantic import Field
 
@@ -20,20 +23,35 @@ from server.responses import ResultResponse
 from server.schemas import (
     PROBLEMS,
     CheckResponse,
+    ExamStatementModel,
     ExerciseList,
     ExerciseModel,
     ExerciseTypeList,
     Strict,
 )
 from server.workers import WorkerRoute, front_check
-from solver.exercises import DIFFICULTIES, MAX_COUNT, TYPES, Exercise, build, generate, parse_id
+from solver.errors import InvalidScene
+from solver.exercises import (
+    DIFFICULTIES,
+    MAX_COUNT,
+    TYPES,
+    Exercise,
+    ExerciseId,
+    build,
+    generate,
+    parse_id,
+)
 from solver.exercises.checking import check
-from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml
-from solver.exercises.generation import check_generation
+from solver.exercises.exam import UnknownExamId, is_exam_id, open_exam_id
+from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml, set_name
+from solver.exercises.generation import build_exam, check_generation
 from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
 from solver.exercises.solutions import worked_solution
 
 MAX_ANSWER = 1e15  # a given answer beyond this is no number a student means
+SECRET_VARIABLE = "KINEMATICS_EXAM_SECRET"
+MIN_SECRET_LENGTH = 16
+MIN_EXAM_SEED = 2**32  # below: a student number, a date, a small count: guessable
 
 router = APIRouter(
     prefix="/exercises",
@@ -54,6 +72,51 @@ class ExercisesRequest(Strict):
     with_solutions: bool = Field(
         False, description="Extension: add each exercise's worked solution (its steps)."
     )
+    exam: bool = Field(
+        False,
+        description="Extension: an exam set. Its ids are opaque (an HMAC-SHA-256 token under the "
+        f"deployment secret {SECRET_VARIABLE}), GET /exercises/{{id}} serves only their "
+        "statements and /exercises/check refuses them. The seed is the set's password: at least "
+        f"{MIN_EXAM_SEED} (draw it at random) and kept private, as this answer's keys.",
+    )
+
+
+def configured_secret() -> bytes | None:
+    """The deployment secret of exam ids, read in the server's process (a dependency: the
+    workers, forked from a server started earlier, get it with the request), or None."""
+    secret = os.environ.get(SECRET_VARIABLE, "")
+    return secret.encode() if len(secret) >= MIN_SECRET_LENGTH else None
+
+
+ExamSecret = Annotated[bytes | None, Depends(configured_secret)]
+
+
+def exam_secret(secret: bytes | None) -> bytes:
+    """The deployment secret of exam ids, or a 503 problem saying how to set it."""
+    if secret is None:
+        raise HTTPException(
+            503,
+            f"exam sets need the deployment secret {SECRET_VARIABLE} (at least "
+            f"{MIN_SECRET_LENGTH} characters), which this server does not have: set it in the "
+            "server's environment, e.g. export "
+            f"{SECRET_VARIABLE}=$(python3 -c 'import secrets; print(secrets.token_urlsafe(32))'), "
+            "and restart it; keep it private and unchanged (a new secret makes every exam id "
+            "unknown)",
+        )
+    return secret
+
+
+def set_secret(request: ExercisesRequest, secret: bytes | None) -> bytes | None:
+    """The exam secret for an exam set (refusing a guessable seed), None for a practice set."""
+    if not request.exam:
+        return None
+    if request.seed < MIN_EXAM_SEED:
+        raise InvalidScene(
+            f"seed: an exam set's seed is its password (anyone who has it and the type gets the "
+            f"key from this server): expected a random integer from {MIN_EXAM_SEED} to "
+            f"{MAX_SEED}, got {request.seed}"
+        )
+    return exam_secret(secret)
 
 
 def exercise_body(exercise: Exercise, with_solution: bool) -> dict[str, Any]:
@@ -86,9 +149,13 @@ def types_route() -> ResultResponse:
     )
 
 
-def exercises_cost(request: ExercisesRequest, path: str = "/api/v1/exercises") -> float:
-    """In the server's process: the request's bounds, then count x the type's cost."""
+def exercises_cost(
+    request: ExercisesRequest, secret: bytes | None, path: str = "/api/v1/exercises"
+) -> float:
+    """In the server's process: the request's bounds (an exam set: its seed and the secret),
+    then count x the type's cost."""
     check_generation(request.type, request.difficulty, request.count)
+    set_secret(request, secret)
     return budget.exercises(request.type, request.count, request.with_solutions, path)
 
 
@@ -98,25 +165,44 @@ def exercises_cost(request: ExercisesRequest, path: str = "/api/v1/exercises") -
     response_model=ExerciseList,
 )
 @front_check(exercises_cost)
-def exercises_route(request: ExercisesRequest) -> ResultResponse:
-    exercises = generate(request.type, request.difficulty, request.seed, request.count)
+def exercises_route(request: ExercisesRequest, secret: ExamSecret) -> ResultResponse:
+    exercises = generate(
+        request.type, request.difficulty, request.seed, request.count, set_secret(request, secret)
+    )
     return ResultResponse(
         {"exercises": [exercise_body(e, request.with_solutions) for e in exercises]}
     )
 
 
-def one_exercise_cost(exercise_id: str) -> float:
-    """The id's form, then one exercise of its type with its worked solution."""
-    return solver.exercise_work(parse_id(exercise_id).type, 1, True).seconds
+def open_exam(exercise_id: str, secret: bytes | None) -> ExerciseId:
+    """The parameters of an exam id, or a 404 problem (an id this server did not make)."""
+    try:
+        return open_exam_id(exercise_id, exam_secret(secret))
+    except UnknownExamId as unknown:
+        raise HTTPException(404, unknown.message) from None
+
+
+def one_exercise_cost(exercise_id: str, secret: bytes | None) -> float:
+    """The id's form (an exam id: that it opens), then one exercise of its type with its worked
+    solution."""
+    if is_exam_id(exercise_id):
+        kind = open_exam(exercise_id, secret).type
+    else:
+        kind = parse_id(exercise_id).type
+    return solver.exercise_work(kind, 1, True).seconds
 
 
 @router.get(
     "/{exercise_id}",
-    summary="One exercise by its id, with its worked solution",
-    response_model=ExerciseModel,
+    summary="One exercise by its id: a practice one with its key and worked solution, an exam "
+    "one with its statement only",
+    response_model=ExerciseModel | ExamStatementModel,
 )
 @front_check(one_exercise_cost)
-def exercise_route(exercise_id: str) -> ResultResponse:
+def exercise_route(exercise_id: str, secret: ExamSecret) -> ResultResponse:
+    if is_exam_id(exercise_id):
+        exam = build_exam(open_exam(exercise_id, secret), exam_secret(secret))
+        return ResultResponse(exam.statement_json())
     return ResultResponse(exercise_body(build(parse_id(exercise_id)), True))
 
 
@@ -132,7 +218,14 @@ class CheckRequest(Strict):
 
 
 def check_cost(request: CheckRequest) -> float:
-    """The id's form, then one exercise of its type (its key)."""
+    """The id's form (an exam id is refused: a check within 1 % would let a student bisect the
+    key), then one exercise of its type (its key)."""
+    if is_exam_id(request.id):
+        raise HTTPException(
+            403,
+            "this is an exam exercise: the server does not check its answers (a check within "
+            "1 % would let anyone bisect the key); your instructor grades it",
+        )
     return solver.exercise_work(parse_id(request.id).type, 1, False).seconds
 
 
@@ -178,9 +271,11 @@ class ExportRequest(ExercisesRequest):
         }
     },
 )
-@front_check(lambda request: exercises_cost(request, "/api/v1/exercises/export"))
-def export_route(request: ExportRequest) -> Response:
-    exercises = generate(request.type, request.difficulty, request.seed, request.count)
+@front_check(lambda request, secret: exercises_cost(request, secret, "/api/v1/exercises/export"))
+def export_route(request: ExportRequest, secret: ExamSecret) -> Response:
+    exercises = generate(
+        request.type, request.difficulty, request.seed, request.count, set_secret(request, secret)
+    )
     if request.format == "moodle_xml":
         content = moodle_xml(exercises, request.moodle_question)
     elif request.format == "html":
@@ -191,7 +286,7 @@ def export_route(request: ExportRequest) -> Response:
         content = exercises_json(exercises, request.with_solutions)
     media, extension = _MEDIA[request.format]
     key = "-key" if request.with_solutions and request.format == "html" else ""
-    name = f"exercises-{request.type}-{request.difficulty}-{request.seed}{key}.{extension}"
+    name = f"exercises-{set_name(exercises, '-')}{key}.{extension}"
     return Response(
         content,
         media_type=media,

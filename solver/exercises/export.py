@@ -10,6 +10,10 @@
   worked solution. LaTeX is typeset by KaTeX from the app's /vendor/katex/ when the sheet is
   opened from the app; every formula also has its plain-text form.
 - CSV: the answer key, one row per exercise and asked quantity, numbers in full precision.
+
+An exam set (``solver.exercises.exam``) is named by its exam ids everywhere, and by
+``set_name`` (no seed) in file names and the Moodle category; the figure's alt text describes the
+figure and names no id.
 """
 
 from __future__ import annotations
@@ -23,6 +27,7 @@ from html import escape
 from typing import Any
 from xml.sax.saxutils import escape as xml_escape
 
+from solver.exercises.exam import PREFIX as EXAM_PREFIX
 from solver.exercises.model import Exercise
 from solver.exercises.solutions import worked_solution
 
@@ -31,6 +36,19 @@ MOODLE_STYLES = ("auto", "numerical", "cloze")
 
 def absolute_tolerance(answer: float, relative: float) -> float:
     return abs(answer) * relative
+
+
+def set_name(exercises: Sequence[Exercise], sep: str) -> str:
+    """A set's name in a file name or a Moodle category: ``type-difficulty-seed`` for practice;
+    for an exam set, whose seed is a secret of the instructor's, ``type-difficulty-exam-<tag>``
+    with a piece of the first exam id (which tells nothing of the key)."""
+    first = exercises[0]
+    parts = [first.id.type, first.id.difficulty]
+    if first.exam_id is None:
+        parts.append(str(first.id.seed) if sep == "-" else f"seed {first.id.seed}")
+    else:
+        parts.append(f"exam-{first.exam_id.removeprefix(EXAM_PREFIX)[:10]}")
+    return sep.join(parts)
 
 
 def _number(x: float) -> str:
@@ -45,9 +63,14 @@ def _statement_html(e: Exercise, figure_src: str) -> str:
     return (
         f"<p>{escape(e.statement.text)}</p>"
         f"<p>\\({escape(e.statement.latex)}\\)</p>"
-        f'<p><img src="{figure_src}" alt="figure of {escape(str(e.id))}" width="420" '
+        f'<p><img src="{figure_src}" alt="{escape(figure_alt(e))}" width="420" '
         'height="300"/></p>'
     )
+
+
+def figure_alt(e: Exercise) -> str:
+    """The figure's alt text: what it shows, never the exercise's id (a practice id is the key)."""
+    return f"Figure: {e.title}, drawn to scale with its points labelled"
 
 
 def _figure_file(e: Exercise) -> str:
@@ -82,7 +105,7 @@ def _numerical(e: Exercise, index: int) -> str:
         "</unit></units><unitgradingtype>0</unitgradingtype><unitpenalty>0.1</unitpenalty>"
         "<showunits>3</showunits><unitsleft>0</unitsleft>"
     )
-    return _question("numerical", f"{e.id} {asked.key}", text, e, body)
+    return _question("numerical", f"{e.name} {asked.key}", text, e, body)
 
 
 def _cloze(e: Exercise) -> str:
@@ -93,13 +116,12 @@ def _cloze(e: Exercise) -> str:
         for a in e.asked
     )
     text = _statement_html(e, "@@PLUGINFILE@@/figure.svg") + f"<ul>{rows}</ul>"
-    return _question("cloze", str(e.id), text, e, "")
+    return _question("cloze", e.name, text, e, "")
 
 
 def moodle_xml(exercises: Sequence[Exercise], style: str = "auto") -> str:
     """A Moodle XML question bank (see the module docstring)."""
-    first = exercises[0].id
-    category = f"$course$/Kinematics exercises/{first.type}/{first.difficulty}/seed {first.seed}"
+    category = f"$course$/Kinematics exercises/{set_name(exercises, '/')}"
     parts = [
         '<?xml version="1.0" encoding="UTF-8"?>\n<quiz>',
         f'<question type="category"><category><text>{xml_escape(category)}</text></category>'
@@ -126,7 +148,7 @@ def answer_csv(exercises: Sequence[Exercise]) -> str:
         for a in e.asked:
             answer = e.answers[a.key]
             writer.writerow(
-                [str(e.id), e.id.type, e.id.difficulty, e.id.seed, e.id.index, a.key, a.label,
+                [e.name, e.id.type, e.id.difficulty, e.id.seed, e.id.index, a.key, a.label,
                  a.unit, a.path, _number(answer), a.tolerance,
                  _number(absolute_tolerance(answer, a.tolerance))]
             )  # fmt: skip
@@ -185,8 +207,8 @@ def _sheet(e: Exercise, with_solutions: bool) -> str:
         "<th>answer</th><th>tolerance</th>" if with_solutions else "<th>your answer</th>"
     )
     out = [
-        f'<section class="sheet" data-id="{escape(str(e.id))}">',
-        f"<h1>{escape(e.title)}</h1><div class='id'>Exercise {escape(str(e.id))}</div>",
+        f'<section class="sheet" data-id="{escape(e.name)}">',
+        f"<h1>{escape(e.title)}</h1><div class='id'>Exercise {escape(e.name)}</div>",
         "<div class='name'>Name: ____________________________</div>",
         f"<p>{escape(e.statement.text)}</p>",
         _tex(e.statement.latex),

@@ -21,6 +21,7 @@ from dataclasses import replace
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
 from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.exam import exam_id, generator_seed
 from solver.exercises.figures import figure_svg
 from solver.exercises.model import (
     DIFFICULTIES,
@@ -93,10 +94,21 @@ def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exerc
 
 def build(ident: ExerciseId) -> Exercise:
     """The exercise named by ``ident`` (its id string seeds the generator)."""
+    return _drawn(ident, str(ident))
+
+
+def build_exam(ident: ExerciseId, secret: bytes) -> Exercise:
+    """The exam exercise of ``ident`` under the deployment secret: drawn from a generator only
+    the secret seeds, named by its exam id (``solver.exercises.exam``)."""
+    exercise = _drawn(ident, generator_seed(ident, secret))
+    return replace(exercise, exam_id=exam_id(ident, secret))
+
+
+def _drawn(ident: ExerciseId, seed: str) -> Exercise:
     kind = exercise_type(ident.type)
     check_difficulty(ident.difficulty)
     check_seed_index(ident.seed, ident.index)
-    rng = random.Random(str(ident))
+    rng = random.Random(seed)
     for _ in range(MAX_ATTEMPTS):
         exercise = _candidate(kind, ident.difficulty, rng)
         if exercise is not None:
@@ -113,7 +125,13 @@ def check_generation(kind: str, difficulty: str, count: int) -> None:
         raise LimitExceeded(f"count: expected 1 to {MAX_COUNT} exercises, got {count}")
 
 
-def generate(kind: str, difficulty: str, seed: int, count: int) -> list[Exercise]:
-    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``."""
+def generate(
+    kind: str, difficulty: str, seed: int, count: int, exam_secret: bytes | None = None
+) -> list[Exercise]:
+    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``; with ``exam_secret``
+    their exam versions (``build_exam``)."""
     check_generation(kind, difficulty, count)
-    return [build(ExerciseId(kind, difficulty, seed, index)) for index in range(count)]
+    idents = [ExerciseId(kind, difficulty, seed, index) for index in range(count)]
+    if exam_secret is None:
+        return [build(ident) for ident in idents]
+    return [build_exam(ident, exam_secret) for ident in idents]

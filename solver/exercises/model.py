@@ -101,11 +101,21 @@ class Exercise:
     scene: Mapping[str, Any]
     asked: tuple[Asked, ...]
     answers: Mapping[str, float]
+    exam_id: str | None = None  # an exam exercise's opaque id (solver.exercises.exam)
+
+    @property
+    def name(self) -> str:
+        """The id a student may see: the exam id of an exam exercise, else ``str(id)``."""
+        return str(self.id) if self.exam_id is None else self.exam_id
 
     def as_json(self) -> dict[str, Any]:
+        """The instructor's view: everything, the key included (an exam exercise adds
+        ``exam: true``; its id is the exam id)."""
         i = self.id
+        exam = {} if self.exam_id is None else {"exam": True}
         return {
-            "id": str(i),
+            "id": self.name,
+            **exam,
             "type": i.type,
             "difficulty": i.difficulty,
             "seed": i.seed,
@@ -119,6 +129,30 @@ class Exercise:
             "scene": self.scene,
             "asked": [a.as_json() for a in self.asked],
             "answers": dict(self.answers),
+        }
+
+    def statement_json(self) -> dict[str, Any]:
+        """The student's view of an exam exercise: its id, title, statement and what is asked
+        (labels, units, symbols, tolerance); no scene, no path, no key, no solution."""
+        return {
+            "id": self.name,
+            "exam": self.exam_id is not None,
+            "title": self.title,
+            "statement": {
+                "text": self.statement.text,
+                "latex": self.statement.latex,
+                "figure_svg": self.statement.figure_svg,
+            },
+            "asked": [
+                {
+                    "key": a.key,
+                    "label": a.label,
+                    "unit": a.unit,
+                    "symbol": a.symbol,
+                    "tolerance": a.tolerance,
+                }
+                for a in self.asked
+            ],
         }
 
 

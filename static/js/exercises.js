@@ -5,7 +5,9 @@
 // exercise); the preview shows each statement with its figure and, folded, its key; each export
 // downloads as a file. Student (exercises.html#id=<id>, the share link): the statement, a field
 // per asked quantity, a check that grades and names a typical mistake, and the worked solution
-// revealed one step at a time. The server computes everything; this page only shows it.
+// revealed one step at a time. "Exam set" asks for opaque ids (a random seed, the set's password):
+// their student mode shows the statement only, with no check and no solution. The server computes
+// everything; this page only shows it.
 
 import {
   checkAnswers,
@@ -61,13 +63,32 @@ function request() {
     difficulty: $('ex-difficulty').value,
     count: Number($('ex-count').value),
     seed: Number($('ex-seed').value),
+    exam: $('ex-exam').checked,
   };
+}
+
+// An exam set's seed is its password (whoever has it gets the key from the server, which
+// refuses one below 2^32): a random one from 2^32 to 2^53 - 1, exact as a JavaScript number.
+const MIN_EXAM_SEED = 2 ** 32;
+
+function examSeed() {
+  const [high, low] = crypto.getRandomValues(new Uint32Array(2));
+  return ((high % (2 ** 21 - 1)) + 1) * 2 ** 32 + low;
+}
+
+function examChanged() {
+  if ($('ex-exam').checked && Number($('ex-seed').value) < MIN_EXAM_SEED) {
+    $('ex-seed').value = String(examSeed());
+  }
 }
 
 function card(exercise) {
   const box = el('article', { class: 'panel card', 'data-id': exercise.id });
   box.appendChild(el('h3', {}, `${exercise.index + 1}. ${exercise.title}`));
   box.appendChild(el('p', { class: 'muted small mono' }, exercise.id));
+  if (exercise.exam) {
+    box.appendChild(el('p', { class: 'muted small' }, 'Exam: students see only the statement; keep the seed and this key private.'));
+  }
   box.appendChild(el('p', {}, exercise.statement.text));
   const tex = el('div', { class: 'tex' });
   typeset(exercise.statement.latex, tex);
@@ -135,6 +156,7 @@ async function instructor() {
     $('ex-type').addEventListener('change', describe);
     describe();
     $('generate-form').addEventListener('submit', preview);
+    $('ex-exam').addEventListener('change', examChanged);
     for (const button of document.querySelectorAll('.downloads button')) {
       button.addEventListener('click', () => download(button));
     }
@@ -169,6 +191,7 @@ function answerRow(asked) {
 
 async function check(event) {
   event.preventDefault();
+  if (current.exam) return;
   const answers = {};
   for (const field of document.querySelectorAll('#answer-rows input')) {
     const value = parseNumber(field.value);
@@ -230,8 +253,13 @@ async function student(id) {
   $('answer-rows').replaceChildren(...current.asked.map(answerRow));
   $('score').textContent = '';
   $('st-steps').replaceChildren();
-  $('next-step').disabled = false;
-  $('step-count').textContent = `${current.solution.steps.length} steps`;
+  // an exam exercise comes without solution, and the server checks none of its answers
+  const exam = current.exam === true;
+  $('check').hidden = exam;
+  $('st-exam').hidden = !exam;
+  $('st-solution').hidden = exam;
+  $('next-step').disabled = exam;
+  $('step-count').textContent = exam ? '' : `${current.solution.steps.length} steps`;
   $('st-share-url').hidden = true;
   document.title = `${current.title}: exercise`;
   status('');

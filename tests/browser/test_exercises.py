@@ -151,3 +151,39 @@ def test_a_bad_share_link_says_why(app: AppPage) -> None:
         "() => (document.getElementById('status').textContent.includes('id'))"
     )
     assert "type:difficulty:seed:index" in app.page.inner_text("#status")
+
+
+def test_the_exam_checkbox_draws_a_password_seed_and_asks_for_an_exam_set(app: AppPage) -> None:
+    # the live server has no KINEMATICS_EXAM_SECRET: the page shows the server's refusal
+    app.log.allow("503")
+    page = app.page
+    open_page(app)
+    page.wait_for_selector("#preview .card")
+    page.check("#ex-exam")
+    seed = int(page.input_value("#ex-seed"))
+    assert 2**32 <= seed < 2**53
+    with page.expect_request(lambda r: r.url.endswith("/api/v1/exercises")) as sent:
+        page.click("#ex-generate")
+    body = json.loads(sent.value.post_data or "{}")
+    assert body["exam"] is True and body["seed"] == seed
+    page.wait_for_function(
+        "() => document.getElementById('status').textContent.includes('KINEMATICS_EXAM_SECRET')"
+    )
+
+
+def test_the_student_mode_of_an_exam_exercise_shows_the_statement_only(app: AppPage) -> None:
+    from solver.exercises import generate
+
+    exercise = generate("slider_crank", "standard", 2**40, 1, b"a secret of this test only")[0]
+    body = exercise.statement_json()
+    page = app.page
+    page.route(
+        f"**/api/v1/exercises/{body['id']}",
+        lambda route: route.fulfill(status=200, content_type="application/json", json=body),
+    )
+    open_page(app, f"#id={body['id']}")
+    page.wait_for_selector("#answer-rows tr")
+    assert page.inner_text("#st-id") == body["id"]
+    assert page.locator("#answer-rows tr").count() == len(exercise.asked)
+    assert page.locator("#check").is_hidden() and page.locator("#st-solution").is_hidden()
+    assert page.locator("#st-exam").is_visible()
