@@ -109,3 +109,70 @@ def test_space_plays_while_the_crank_slider_has_focus(app: AppPage) -> None:
     assert page.get_attribute("#play", "aria-pressed") == "true"
     page.keyboard.press("Space")
     assert page.get_attribute("#play", "aria-pressed") == "false"
+
+
+# ---- layout: no two panels overlap, nothing scrolls sideways ---------------------------------
+
+VIEWPORTS = [(1440, 900), (1280, 800), (1024, 768), (390, 844)]
+
+OVERLAPS = """() => {
+  // Every shown panel of the page (the grid's children and the top bar), in viewport pixels.
+  const shown = (e) => !e.closest('[hidden]') && e.getClientRects().length > 0;
+  const panels = [document.querySelector('.topbar'),
+                  ...document.querySelectorAll('main.layout > *')].filter(shown);
+  const name = (e) => e.id || e.className;
+  const found = [];
+  for (let i = 0; i < panels.length; i++) {
+    for (let j = i + 1; j < panels.length; j++) {
+      const a = panels[i].getBoundingClientRect();
+      const b = panels[j].getBoundingClientRect();
+      const w = Math.min(a.right, b.right) - Math.max(a.left, b.left);
+      const h = Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top);
+      const size = `${w.toFixed(0)}x${h.toFixed(0)} px`;
+      if (w > 0.5 && h > 0.5) found.push(`${name(panels[i])} over ${name(panels[j])} (${size})`);
+    }
+  }
+  return found;
+}"""
+
+
+def layout_defects(page: Any) -> list[str]:
+    """Panels whose boxes intersect, at the top, in the middle and at the bottom of the page
+    (sticky panels move as it scrolls), and a page wider than the window."""
+    defects: list[str] = []
+    height = page.evaluate("() => document.documentElement.scrollHeight - window.innerHeight")
+    for y in sorted({0, height // 3, 2 * height // 3, height}):
+        page.evaluate("(y) => window.scrollTo(0, y)", y)
+        page.wait_for_timeout(50)
+        defects += [f"at scroll {y}: {d}" for d in page.evaluate(OVERLAPS)]
+    sideways = page.evaluate("() => document.documentElement.scrollWidth - window.innerWidth")
+    if sideways > 0:
+        defects.append(f"the page scrolls sideways by {sideways} px")
+    page.evaluate("() => window.scrollTo(0, 0)")
+    return defects
+
+
+@pytest.mark.parametrize(("width", "height"), VIEWPORTS)
+def test_no_panels_overlap_and_nothing_scrolls_sideways(
+    app: AppPage, width: int, height: int
+) -> None:
+    page = app.page
+    page.set_viewport_size({"width": width, "height": height})
+    app.open()
+    pause_and_wait(page)
+    defects = [f"four-bar, plots: {d}" for d in layout_defects(page)]
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps .step")
+    defects += [f"four-bar, worked solution: {d}" for d in layout_defects(page)]
+    page.click("#tab-plots")
+    page.click("#new-mechanism")
+    defects += [f"editor: {d}" for d in layout_defects(page)]
+    page.click("#editor-cancel")
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    page.wait_for_function("() => document.getElementById('dynamics-plots').data !== undefined")
+    pause_and_wait(page)
+    defects += [f"dynamics: {d}" for d in layout_defects(page)]
+    page.evaluate("() => document.getElementById('dynamics').scrollIntoView()")
+    app.screenshot(f"seams-dynamics-{width}x{height}")
+    assert not defects, defects
