@@ -394,7 +394,8 @@ export class LinkageView {
         if (!p || atFixed(p)) continue;
         const label = naming(this.scene, name);
         if (!this.inView(p)) {
-          offView.push(`${label} (${show('length', p[0], this.options.units, 3)}, ${show('length', p[1], this.options.units, 3)})`);
+          const at = (c) => show('length', c, this.options.units, 3, this.map.size);
+          offView.push(`${label} (${at(p[0])}, ${at(p[1])})`);
           continue;
         }
         const [x, y] = this.px(p);

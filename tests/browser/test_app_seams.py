@@ -176,3 +176,29 @@ def test_no_panels_overlap_and_nothing_scrolls_sideways(
     page.evaluate("() => document.getElementById('dynamics').scrollIntoView()")
     app.screenshot(f"seams-dynamics-{width}x{height}")
     assert not defects, defects
+
+
+# ---- numbers: float noise is 0 ---------------------------------------------------------------
+
+
+def test_a_coordinate_within_1e_12_of_the_drawing_scale_is_shown_as_0(app: AppPage) -> None:
+    """seed004 at 270 deg: the coupler's velocity pole is at (-4.85e-41, 2.09) m from the server
+    (the crank points straight down, so the pole lies on the y axis up to rounding). The note
+    of poles outside the picture printed "-4.85e-41 m"; it says 0 m."""
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    app.wait_ready()
+    pause_and_wait(page)
+    page.evaluate(
+        """() => { const s = document.getElementById('crank-angle');
+                   s.value = '270'; s.dispatchEvent(new Event('change')); }"""
+    )
+    page.wait_for_function(
+        "() => document.getElementById('linkage').dataset.analysed !== undefined"
+        " && Math.abs(+document.getElementById('linkage').dataset.analysed"
+        " - 3 * Math.PI / 2) < 1e-9"
+    )
+    notes = page.eval_on_selector("#linkage .layer-notes", "(g) => g.textContent")
+    assert "I₁₃ (0 m, 2.09 m)" in notes, notes
+    assert "e-4" not in notes and "e-1" not in notes, notes
