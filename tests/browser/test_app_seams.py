@@ -202,3 +202,29 @@ def test_a_coordinate_within_1e_12_of_the_drawing_scale_is_shown_as_0(app: AppPa
     notes = page.eval_on_selector("#linkage .layer-notes", "(g) => g.textContent")
     assert "I₁₃ (0 m, 2.09 m)" in notes, notes
     assert "e-4" not in notes and "e-1" not in notes, notes
+
+
+# ---- the student entry to the exercises ------------------------------------------------------
+
+
+def test_the_exercises_link_opens_student_mode_with_a_type_chooser(app: AppPage) -> None:
+    app.open()
+    page = app.page
+    page.click("a.exercises-link")
+    page.wait_for_selector("#st-type option", state="attached")
+    assert page.locator("#student").is_visible()
+    assert page.locator("#instructor").is_hidden(), "a student lands on the student mode"
+    assert page.locator("#st-type option").count() >= 3
+    page.select_option("#st-type", index=1)
+    chosen = page.eval_on_selector("#st-type", "(s) => s.value")
+    page.click("#st-new")
+    page.wait_for_function("() => document.getElementById('st-title').textContent !== ''")
+    assert page.evaluate("() => location.hash").startswith(f"#id={chosen}")
+    assert page.locator("#answer-rows input").count() >= 1
+    assert page.locator("#st-type").is_visible(), "another exercise is one choice away"
+    app.screenshot("seams-exercises-student")
+    assert app.serious_accessibility_violations("#student") == []
+    # The instructor page is one click away.
+    page.click("#to-instructor")
+    page.wait_for_selector("#instructor:not([hidden])")
+    assert page.locator("#student").is_hidden()
