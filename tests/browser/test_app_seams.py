@@ -84,12 +84,13 @@ def test_pressing_the_crank_end_joint_turns_the_crank(app: AppPage) -> None:
     wait_until(lambda: page.input_value("#preset") == "shared", what="an edited scene")
 
 
-def test_pressing_the_crank_bar_turns_it_and_other_joints_stay(app: AppPage) -> None:
+def test_joints_off_the_driver_stay_in_turn_mode(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
-    # Another joint in Turn mode: nothing moves, the geometry is the preset's.
-    box = page.locator("#linkage [data-point='C']").bounding_box()
+    # A joint off the driver (the fixed pivot D, which main let a press drag) in Turn mode:
+    # nothing moves, the geometry is the preset's.
+    box = page.locator("#linkage [data-point='D']").bounding_box()
     assert box is not None
     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
     page.mouse.move(x, y)
