@@ -78,11 +78,12 @@ export class Controls {
     for (const r of document.querySelectorAll('input[name="method"]')) {
       r.addEventListener('change', () => r.checked && this.on.method(r.value));
     }
-    // Space toggles play anywhere except in a text field or on a button (where it clicks).
+    // Space toggles play anywhere except in a text field or on a button (where it clicks); on
+    // the crank slider too, as its hint says (a range input does nothing with Space).
     document.addEventListener('keydown', (ev) => {
       if (ev.key !== ' ' || ev.ctrlKey || ev.metaKey || ev.altKey) return;
       const t = ev.target;
-      if (t.closest && t.closest('input, select, textarea, button, [contenteditable]')) return;
+      if (t !== e.slider && t.closest && t.closest('input, select, textarea, button, [contenteditable]')) return;
       ev.preventDefault();
       e.play.click();
     });

@@ -5,9 +5,10 @@
 // exercise); the preview shows each statement with its figure and, folded, its key; each export
 // downloads as a file. Student (exercises.html#id=<id>, the share link): the statement, a field
 // per asked quantity, a check that grades and names a typical mistake, and the worked solution
-// revealed one step at a time. "Exam set" asks for opaque ids (a random seed, the set's password):
-// their student mode shows the statement only, with no check and no solution. The server computes
-// everything; this page only shows it.
+// revealed one step at a time; exercises.html#student (the app's link) starts with a type
+// chooser. "Exam set" asks for opaque ids (a random seed, the set's password): their student
+// mode shows the statement only, with no check and no solution. The server computes everything;
+// this page only shows it.
 
 import {
   checkAnswers,
@@ -265,9 +266,43 @@ async function student(id) {
   status('');
 }
 
+// --- student entry: a type chooser (exercises.html#student, the app's Exercises link) ----------
+
+/** The chooser's types, once: a new exercise is type:difficulty:seed:0 with a fresh seed. */
+async function chooser() {
+  if ($('st-type').options.length) return;
+  const { types } = await exerciseTypes();
+  for (const t of types) $('st-type').appendChild(el('option', { value: t.name }, t.title));
+  const describe = () => {
+    const t = types.find((x) => x.name === $('st-type').value);
+    $('st-type-description').textContent = t ? t.description : '';
+  };
+  $('st-type').addEventListener('change', describe);
+  describe();
+}
+
+function studentHome() {
+  $('instructor').hidden = true;
+  $('student').hidden = false;
+  $('st-exercise').hidden = true;
+  $('st-solution').hidden = true;
+  chooser().catch((err) => status(err.detail || String(err), true));
+}
+
+$('st-chooser').addEventListener('submit', (event) => {
+  event.preventDefault();
+  const seed = Math.floor(Math.random() * 1_000_000);
+  location.hash = `#id=${encodeURIComponent(`${$('st-type').value}:${$('st-difficulty').value}:${seed}:0`)}`;
+});
+
 function route() {
   const match = /^#id=(.+)$/.exec(location.hash);
-  if (match) student(decodeURIComponent(match[1]));
+  if (match) {
+    $('st-exercise').hidden = false;
+    $('st-solution').hidden = false;
+    chooser().catch((err) => status(err.detail || String(err), true));
+    student(decodeURIComponent(match[1]));
+  } else if (location.hash === '#student') studentHome();
   else instructor().catch((err) => status(err.detail || String(err), true));
 }
 

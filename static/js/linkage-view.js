@@ -47,6 +47,8 @@ export class LinkageView {
   constructor(svg, callbacks = {}) {
     this.svg = svg;
     this.editable = false; // joints can be dragged (set by main.js for scenes without time laws)
+    // Turn (the default: pressing anywhere on the driver turns it) or Edit (joints move).
+    this.mode = 'turn';
     this.pointDrag = null; // {name, pointerId, moved} while a joint is dragged
     this.callbacks = callbacks;
     this.options = { showVelocity: true, showAcceleration: false, showPoles: true, trace: null, units: 'si' };
@@ -71,6 +73,21 @@ export class LinkageView {
       this.rebuild();
       if (this.lastFrame) this.draw(this.lastFrame);
     }
+  }
+
+  /** 'turn' or 'edit': what a press in the drawing does (the toggle above the drawing). */
+  setMode(mode) {
+    this.mode = mode === 'edit' ? 'edit' : 'turn';
+    this.svg.dataset.mode = this.mode;
+    if (this.scene) {
+      this.rebuild();
+      if (this.lastFrame) this.draw(this.lastFrame);
+    }
+  }
+
+  /** Joints move: Edit mode, on a scene that can be edited by dragging. */
+  movesJoints() {
+    return this.editable && this.mode === 'edit';
   }
 
   /** The server's answer for the analysed instant (poles, slider parts); null while playing. */
@@ -236,7 +253,7 @@ export class LinkageView {
       const colour = this.colours[name];
       if (pts.length === 2) {
         const outer = svgEl('line', { stroke: colour, 'stroke-width': 11, 'stroke-linecap': 'round', class: 'link', 'data-link': name }, this.layers.links);
-        const inner = svgEl('line', { stroke: '#ffffff', 'stroke-opacity': 0.35, 'stroke-width': 3, 'stroke-linecap': 'round' }, this.layers.links);
+        const inner = svgEl('line', { stroke: '#ffffff', 'stroke-opacity': 0.35, 'stroke-width': 3, 'stroke-linecap': 'round', 'pointer-events': 'none' }, this.layers.links);
         this.linkNodes.push({ name, pts, kind: 'bar', nodes: [outer, inner] });
       } else if (this.isDisc(name)) {
         // A turning link that carries a circular groove is a disc about its pivot.
@@ -283,7 +300,7 @@ export class LinkageView {
         class: isJoint ? 'joint' : 'point',
         'data-point': name,
       }, this.layers.joints);
-      if (this.editable) svgEl('title', {}, node).textContent = `Drag ${name} to change the geometry (Shift: no snapping)`;
+      if (this.movesJoints()) svgEl('title', {}, node).textContent = `Drag ${name} to change the geometry (Shift: no snapping)`;
       this.jointNodes.push({ name, node });
     }
     for (const m of movingPoints(scene)) {
@@ -377,7 +394,8 @@ export class LinkageView {
         if (!p || atFixed(p)) continue;
         const label = naming(this.scene, name);
         if (!this.inView(p)) {
-          offView.push(`${label} (${show('length', p[0], this.options.units, 3)}, ${show('length', p[1], this.options.units, 3)})`);
+          const at = (c) => show('length', c, this.options.units, 3, this.map.size);
+          offView.push(`${label} (${at(p[0])}, ${at(p[1])})`);
           continue;
         }
         const [x, y] = this.px(p);
@@ -655,7 +673,7 @@ export class LinkageView {
     return unit(axis || joint.axis || [1, 0]);
   }
 
-  // ---- dragging the crank ------------------------------------------------------------------
+  // ---- dragging the crank (Turn) or a joint (Edit) ------------------------------------------------------------------
 
   installPointer() {
     const svg = this.svg;
@@ -666,9 +684,16 @@ export class LinkageView {
       const q = pt.matrixTransform(svg.getScreenCTM().inverse());
       return this.world(q.x, q.y);
     };
+    // What a press lands on: the topmost joint, ring or link under the pointer, seen through the
+    // arrows, poles and names drawn above them (a velocity arrow starts on the crank's end joint).
+    const grabbed = (ev) => {
+      const under = document.elementsFromPoint(ev.clientX, ev.clientY).filter((e) => svg.contains(e));
+      return under.find((e) => e.dataset?.point || e.dataset?.link || e.classList.contains('crank-handle')) || ev.target;
+    };
     svg.addEventListener('pointerdown', (ev) => {
-      const name = ev.target.dataset?.point;
-      if (this.editable && name && this.lastFrame?.position[name]) {
+      const target = grabbed(ev);
+      const name = target.dataset?.point;
+      if (this.movesJoints() && name && this.lastFrame?.position[name]) {
         this.pointDrag = { name, frame: this.lastFrame, at: this.lastFrame.position[name] };
         svg.setPointerCapture(ev.pointerId);
         svg.classList.add('dragging');
@@ -676,8 +701,10 @@ export class LinkageView {
         return;
       }
       if (!this.handle || !this.lastFrame) return;
-      const target = ev.target;
-      if (!(target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link)) return;
+      // Anywhere on the driver turns it: its ring, its bar, its points other than the pivot.
+      const onDriver = target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link
+        || (name && name !== this.handle.pivot && this.scene.links[this.handle.link].points.includes(name));
+      if (!onDriver) return;
       this.dragging = true;
       svg.setPointerCapture(ev.pointerId);
       svg.classList.add('dragging');

@@ -92,6 +92,14 @@ class App {
       onDragEnd: () => this.scheduleAnalysis(0),
       onPointDrop: (name, at, frame) => this.onPointDrop(name, at, frame),
     });
+    // Turn (default) or Edit: the toggle above the drawing, or the key E outside a field.
+    $('edit-mode').addEventListener('click', () => this.setEditMode($('edit-mode').getAttribute('aria-pressed') !== 'true'));
+    document.addEventListener('keydown', (ev) => {
+      if (ev.key.toLowerCase() !== 'e' || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      if (ev.target.closest?.('input, select, textarea, [contenteditable]') || !$('editor-panel').hidden) return;
+      ev.preventDefault();
+      this.setEditMode($('edit-mode').getAttribute('aria-pressed') !== 'true');
+    });
     this.history = []; // earlier {scene, source}, for undo
     this.future = []; // undone ones, for redo
     $('undo').addEventListener('click', () => this.undo());
@@ -262,11 +270,18 @@ class App {
     this.remember(before);
   }
 
+  /** Edit mode: joints move in the drawing; Turn mode (off): a press on the driver turns it. */
+  setEditMode(on) {
+    $('edit-mode').setAttribute('aria-pressed', String(on));
+    this.linkage.setMode(on ? 'edit' : 'turn');
+    this.status(on ? 'Edit mode: drag a joint to change the geometry (E or the button to turn the crank again).' : 'Turn mode: press anywhere on the crank to turn it.');
+  }
+
   openEditor(scene) {
     this.setPlaying(false, { analyse: false });
     $('linkage').toggleAttribute('hidden', true);
     $('spatial').toggleAttribute('hidden', true);
-    document.querySelector('.motion').toggleAttribute('hidden', true);
+    // The motion controls stay: Play, the slider and Speed are there in every mode (issue 30).
     this.editor.open(scene);
   }
 

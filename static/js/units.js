@@ -71,7 +71,18 @@ export function fmt(value, digits = 4) {
   return value.toExponential(digits - 1);
 }
 
-/** "1.234 m/s" in the chosen system. */
-export function show(kind, value, system, digits = 4) {
-  return `${fmt(toDisplay(kind, value, system), digits)} ${unitLabel(kind, system)}`;
+/** Relative size under which a value is rounding noise of the figure it belongs to. */
+export const NOISE = 1e-12;
+
+/**
+ * 0 where |value| <= NOISE · scale (scale: the size of the figure the value belongs to, e.g. the
+ * drawing's extent in m): a pole at (-3.7e-41, 2.09) m is at (0, 2.09) m as a textbook prints it.
+ */
+export function denoise(value, scale) {
+  return scale > 0 && Math.abs(value) <= NOISE * scale ? 0 : value;
+}
+
+/** "1.234 m/s" in the chosen system; with `scale` (SI, as value), float noise shown as 0. */
+export function show(kind, value, system, digits = 4, scale = 0) {
+  return `${fmt(toDisplay(kind, denoise(value, scale), system), digits)} ${unitLabel(kind, system)}`;
 }

@@ -980,6 +980,7 @@ def test_dragging_a_joint_changes_the_geometry_and_the_analysis_and_undo_restore
     assert page.locator("#linkage [data-point]").count() >= 5
     polygon = plot_data(page, "velocity-polygon")
     ground = page.inner_html("#linkage .layer-ground")
+    page.click("#edit-mode")  # joints move in Edit mode only (issue 30)
     drag(page, "#linkage [data-point='D']", 60, 0)
     wait_until(lambda: page.input_value("#preset") == "shared", what="an edited scene")
     page.wait_for_selector("#f-point_D_0")
