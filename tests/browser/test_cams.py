@@ -149,9 +149,4 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     form = _boxes(page, "#cam-form")[0]
     for box in _boxes(page, "#cam-form input, #cam-form select"):
         assert form[0] - 1 <= box[0] and box[2] <= form[2] + 1, (box, form)
-    axe = pytest.importorskip("axe_playwright_python.sync_playwright")
-    results = axe.Axe().run(page, context="#cam-app")
-    serious = [
-        v["id"] for v in results.response["violations"] if v["impact"] in ("serious", "critical")
-    ]
-    assert not serious, results.generate_report()
+    assert not app.serious_accessibility_violations("#cam-app")
