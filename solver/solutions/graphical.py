@@ -16,11 +16,12 @@ import math
 
 import numpy as np
 
+from solver.kinematics.rigid import omega_cross
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Equation, Frac, Num, Piece, Ref, joined
 from solver.solutions.figures import Arrow, Dot, model_scale, polygon_scale, scale_text, svg
-from solver.solutions.linkage import LinkageContext, k_cross
+from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
 
 READING = 0.05  # cm: what a careful drawing is read to (half a millimetre)
@@ -184,7 +185,7 @@ class Polygons:
             r = ctx.pos(y) - ctx.pos(x)
             ax = accelerations.get(x, np.zeros(2))
             normal = -(ctx.omega(link) ** 2) * r
-            tangential = k_cross(ctx.alpha(link), r)
+            tangential = omega_cross(ctx.alpha(link), r)
             if float(np.hypot(*normal)) > 0:
                 arrows.append(Arrow(ax, ax + normal, f"an({link}:{x},{y})", f"n {y}{x}", "normal"))
             if float(np.hypot(*tangential)) > 0:
@@ -328,7 +329,7 @@ class Polygons:
                     b.check("cross", diff, w, rk)
                 else:
                     al = b.value(f"alpha({link})", alpha, "rad/s^2", ("links", link, "alpha"))
-                    t = b.value(f"alpha x r({first},{second})", k_cross(alpha, r), unit)
+                    t = b.value(f"alpha x r({first},{second})", omega_cross(alpha, r), unit)
                     n = b.value(f"normal({first},{second})", -(omega**2) * r, unit)
                     b.check("cross", t, al, rk)
                     b.check("sum", diff, t, n)

@@ -22,7 +22,7 @@ from solver.kinematics.relative_motion import (
     sliding_acceleration_parts,
     sliding_velocity_parts,
 )
-from solver.kinematics.rigid import perp
+from solver.kinematics.rigid import omega_cross
 from solver.model.laws import parse_time_law
 from solver.model.scene import Joint, LinkageScene, ground_pivot
 from solver.solutions import latex as tex
@@ -305,11 +305,6 @@ def put_motion(b: StepBuilder, ctx: LinkageContext, point: str, order: int) -> s
     )
 
 
-def k_cross(scalar_z: float, r: np.ndarray) -> np.ndarray:
-    """(0, 0, z) x (r_x, r_y, 0) in the plane."""
-    return scalar_z * perp(np.asarray(r, dtype=float))
-
-
 def origin(b: StepBuilder, ctx: LinkageContext, point: str, motion: Ref) -> Piece:
     """The motion of ``point`` as a column: the zero vector in LaTeX for a fixed point at rest
     (its value in text)."""
@@ -480,7 +475,7 @@ def rigid_velocity_step(
     r = b.value(f"r({base},{target})", ctx.pos(target) - ctx.pos(base), "m")
     wxr = b.value(
         f"omega x r({base},{target})",
-        k_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
+        omega_cross(ctx.omega(link), ctx.pos(target) - ctx.pos(base)),
         "m/s",
     )
     vy = b.value(f"v({target})", ctx.vel(target), "m/s", ("points", target, "velocity"))
@@ -521,7 +516,7 @@ def rigid_acceleration_step(
     w = b.value(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
     al = b.value(f"alpha({link})", alpha, "rad/s^2", ctx.link_source(link, "alpha"))
     r = b.value(f"r({base},{target})", r_np, "m")
-    t = b.value(f"alpha x r({base},{target})", k_cross(alpha, r_np), "m/s^2")
+    t = b.value(f"alpha x r({base},{target})", omega_cross(alpha, r_np), "m/s^2")
     n = b.value(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.value(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
     w2 = b.value(f"omega^2({link})", omega**2, "1/s^2")
@@ -811,7 +806,7 @@ def _acceleration_pole_check(
     ay = b.value(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
     ry = b.value(f"r(G,{y})", ry_np, "m")
     py = b.value(f"pos({y})", ctx.pos(y), "m", ("points", y, "position"))
-    t = b.value(f"alpha x r(G,{y})", k_cross(ctx.alpha(link), ry_np), "m/s^2")
+    t = b.value(f"alpha x r(G,{y})", omega_cross(ctx.alpha(link), ry_np), "m/s^2")
     n = b.value(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
     b.check("sum", ry, py, -pole)
     b.check("cross", t, al, ry)

@@ -19,13 +19,13 @@ from itertools import pairwise
 import numpy as np
 
 from solver.kinematics.relative_motion import MovingPointMotion, coriolis_acceleration
-from solver.kinematics.rigid import perp, solve_2x2
+from solver.kinematics.rigid import omega_cross, perp, solve_2x2
 from solver.kinematics.spatial import SpatialAnalysis, SpatialChain
 from solver.model.scene import MovingPoint
 from solver.position.topology import CircleSpec, DriverStep, DyadStep, LeverStep, LineSpec
 from solver.solutions.format import Formatter
 from solver.solutions.groups import solution_group
-from solver.solutions.linkage import LinkageContext, SlotMotion, k_cross
+from solver.solutions.linkage import LinkageContext, SlotMotion
 from solver.solutions.model import Mistake, Step, Value
 from solver.teaching.mistakes import (
     alpha_squared,
@@ -382,7 +382,7 @@ class LinkageMistakes:
                 fmt,
                 "unknowns.which_link",
                 text,
-                ctx.vel(first.center) + k_cross(ctx.omega(known), r),
+                ctx.vel(first.center) + omega_cross(ctx.omega(known), r),
                 ctx.vel(step.point),
                 "m/s",
                 ("velocity.dyad.side", f"through link {first.link}"),

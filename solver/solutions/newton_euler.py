@@ -20,12 +20,12 @@ import numpy as np
 
 from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics
 from solver.dynamics.loads import dynamics_of
-from solver.kinematics.rigid import cross, dot
+from solver.kinematics.rigid import cross, dot, omega_cross
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Boxed, Col, Frac, Num, Paren, Piece, Pt, Ref, Signed, joined
 from solver.solutions.free_body import Arrow, Couple, figure
-from solver.solutions.linkage import LinkageContext, k_cross
+from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Mistake, Step, Value
 
 FORCE, MOMENT = "N", "N m"
@@ -130,7 +130,7 @@ def _center_step(d: _Dynamics, index: int) -> Step:
     kw = b.value(f"omega({e.link})", w, "rad/s", ctx.link_source(e.link, "omega"))
     ka = b.value(f"alpha({e.link})", al, "rad/s^2", ctx.link_source(e.link, "alpha"))
     kr = b.value(f"r({R},G)", r, "m")
-    t = b.value("a_t = alpha x r", k_cross(al, r), "m/s^2")
+    t = b.value("a_t = alpha x r", omega_cross(al, r), "m/s^2")
     n = b.value("a_n = -omega^2 r", -(w**2) * r, "m/s^2")
     aG = b.value(f"a_G({e.name})", e.a[0], "m/s^2")
     b.check("cross", t, ka, kr)

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver.kinematics.rigid import perp
+from solver.kinematics.rigid import omega_cross, perp
 from solver.position.constraints import ConstraintSystem, KnownPoses
 from solver.position.topology import (
     CircleSpec,
@@ -67,7 +67,6 @@ from solver.solutions.linkage import (
     acceleration_pole_step,
     al_vec,
     fixed_points_step,
-    k_cross,
     origin,
     put_motion,
     r_vec,
@@ -485,7 +484,7 @@ class VectorMethod:
         ctx, (g, point), (r, w) = self.ctx, pair, rw
         vg = Ref(put_motion(b, ctx, g, VELOCITY))
         wxr = b.value(
-            f"omega x r({g},{point})", k_cross(ctx.omega(guide), np.asarray(b.vector(r))), "m/s"
+            f"omega x r({g},{point})", omega_cross(ctx.omega(guide), np.asarray(b.vector(r))), "m/s"
         )
         b.check("cross", wxr, w, r)
         b.check("sum", tr, vg, wxr)
@@ -517,7 +516,7 @@ class VectorMethod:
         r_np, omega, alpha = np.asarray(b.vector(r)), ctx.omega(guide), ctx.alpha(guide)
         ag = Ref(put_motion(b, ctx, g, ACCELERATION))
         al = b.value(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
-        t = b.value(f"alpha x r({g},{point})", k_cross(alpha, r_np), "m/s^2")
+        t = b.value(f"alpha x r({g},{point})", omega_cross(alpha, r_np), "m/s^2")
         n = b.value(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
         b.check("cross", t, al, r)
         b.check("product", n, w, w, r, factor=-1.0)
@@ -636,7 +635,7 @@ class VectorMethod:
         (point, guide), (cor, w, vrel) = pair, keys
         half = b.value(
             f"omega x v_rel({point})",
-            k_cross(sliding.omega_guide, sliding.relative_velocity),
+            omega_cross(sliding.omega_guide, sliding.relative_velocity),
             "m/s^2",
         )
         b.check("cross", half, w, vrel)
