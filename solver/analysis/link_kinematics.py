@@ -57,7 +57,7 @@ def instant_centres(scene: LinkageScene, plan: Plan, motion: Motion) -> list[Ins
     """
     rates = [motion.links[d.link].omega for d in scene.drivers]
     if all(rate is not None for rate in rates):
-        largest = max(abs(float(rate[0])) for rate in rates if rate is not None)
+        largest = max((abs(float(rate[0])) for rate in rates if rate is not None), default=0.0)
         if largest < TINY_RATE:
             unit = [
                 DriverInput(

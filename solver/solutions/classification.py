@@ -369,15 +369,15 @@ def _slider_crank_step(
     b.line(r"&H = x_{\max} - x_{\min} = ", Num(stroke, unit=True))
     b.line(
         r"&a = \left|\arcsin\frac{e}{l - r} - \arcsin\frac{e}{l + r}\right| = "
-        rf"{deg.latex(a_deg)}^\circ"
+        rf"{deg.latex(a_deg)}{{}}^{{\circ}}"
         rf" \;\Rightarrow\; K = \frac{{180^\circ + a}}{{180^\circ - a}} = ",
         Num(ratio),
     )
     b.line(
         r"&\mu_{\min} = \arccos\frac{r + |e|}{l} = "
-        rf"{deg.latex(math.degrees(lim.mu_min))}^\circ, \; "
+        rf"{deg.latex(math.degrees(lim.mu_min))}{{}}^{{\circ}}, \; "
         r"\mu_{\max} = \arccos\frac{\max(0, |e| - r)}{l} = "
-        rf"{deg.latex(math.degrees(lim.mu_max))}^\circ"
+        rf"{deg.latex(math.degrees(lim.mu_max))}{{}}^{{\circ}}"
     )
     b.say(
         "The crank turns fully, since r + |e| = ",
@@ -448,10 +448,11 @@ def _slotted_lever_step(
         Num(r, unit=True),
         r" < d = ",
         Num(d, unit=True),
-        rf" \;\Rightarrow\; \cos\theta = \frac{{r}}{{d}}, \; \theta = \pm {fmt.latex(half)}^\circ",
+        r" \;\Rightarrow\; \cos\theta = \frac{r}{d}, \; "
+        rf"\theta = \pm {fmt.latex(half)}{{}}^{{\circ}}",
     )
     b.line(
-        rf"&\psi = 2\arcsin\frac{{r}}{{d}} = {fmt.latex(math.degrees(lim.swing))}^\circ, \;"
+        rf"&\psi = 2\arcsin\frac{{r}}{{d}} = {fmt.latex(math.degrees(lim.swing))}{{}}^{{\circ}}, \;"
         r" K = \frac{360^\circ - 2\arccos(r/d)}{2\arccos(r/d)} = "
         r"\frac{180^\circ + a}{180^\circ - a} = ",
         Num(ratio),

@@ -625,6 +625,18 @@ def test_seed_steps_re_evaluate_and_carry_the_solver_numbers(name: str, method: 
     _check_solution(solve(scene_of(example(name)), method))
 
 
+@pytest.mark.parametrize("offset", [1e-17, -1e-9, 0.05])
+def test_the_slider_classification_typesets_angles_written_with_a_power_of_ten(
+    offset: float,
+) -> None:
+    """A nearly centred slider-crank (an offset of 1e-17 m, as a drawing leaves it) has a
+    time-ratio angle of order 1e-16 deg, written 6.9 \\cdot 10^{-16} deg: every step still
+    typesets with the vendored KaTeX (a degree sign after a power of ten needs its own group)."""
+    scene = parse_linkage(build_preset("slider_crank", {"offset": offset}))
+    for method in ("vector", "loop"):
+        assert not run_katex(all_latex(solve(scene, method)))
+
+
 @pytest.mark.parametrize(
     ("omega", "alpha"), [(0.0, 5e-324), (5e-324, 0.0), (1e-200, 0.0), (0.0, 1e-200)]
 )
