@@ -1,6 +1,6 @@
-"""Issue 30, the app's third edition: nothing breaks where a student touches it.
+"""The app's controls and layout where a student touches them.
 
-Each test here failed on main 7e15300: the motion controls gone after the editor, the crank's end
+Each test here failed before its fix: the motion controls gone after the editor, the crank's end
 joint dragged as a joint, Space ignored on the crank slider, panels overlapping at common
 window sizes, float noise in the drawing, the Exercises link landing on the instructor page.
 Run against the real server under its Content-Security-Policy (conftest.app).

@@ -1,8 +1,8 @@
-"""Worked solutions, third edition (issue 29).
+"""The worked solutions in the textbook's form.
 
-The classification step of the slider mechanisms: slider-crank, offset
-slider-crank, inverted slider-crank and quick-return, for every seed example and preset of those
-kinds. Its stroke, time ratio and slow stroke are checked against the sweep's ram extremes
+The classification step of the slider mechanisms: slider-crank, offset slider-crank,
+inverted slider-crank and quick-return, for every seed example and preset of those kinds.
+Its stroke, time ratio and slow stroke are checked against the sweep's ram extremes
 (``Sweep.strokes``, refined to rounding: tolerance 1e-9 relative), its lever swing and time
 ratio against the lever's angle sampled over a turn (tolerance 1e-4 rad: 20000 samples of a
 smooth curve near its extremes), and the formulas against their closed forms. The loop method's
