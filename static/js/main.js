@@ -325,10 +325,18 @@ class App {
 
   /** Put the selector back on what is shown (after a mechanism could not be opened). */
   reselectSource() {
+    if (this.source) this.controls.el.preset.value = this.sourceValue();
+  }
+
+  /** The selector's value for what is shown. */
+  sourceValue() {
     const src = this.source;
-    if (!src) return;
-    const value = src.type === 'preset' ? `preset:${src.name}` : src.type === 'example' ? `example:${src.file}` : 'shared';
-    this.controls.el.preset.value = value;
+    return src.type === 'preset' ? `preset:${src.name}` : src.type === 'example' ? `example:${src.file}` : 'shared';
+  }
+
+  /** Say which source's drawing is on screen (the selector's data-shown), once it is. */
+  markShown() {
+    if (this.source) this.controls.el.preset.dataset.shown = this.sourceValue();
   }
 
   setExampleFields(scene) {
@@ -518,6 +526,7 @@ class App {
     this.analysis = null;
     this.analysisU = null;
     showView('linkage');
+    this.markShown();
     $('view-title').textContent = scene.title || 'Mechanism';
 
     const v = track.values;
@@ -595,6 +604,7 @@ class App {
     this.analysis = null;
     this.u = this.track && instant !== null && instant !== undefined ? indexOfValue(this.track, instant) : 0;
     showView('spatial');
+    this.markShown();
     $('view-title').textContent = scene.title || 'Spatial chain';
     $('instant-readout').textContent = '';
     this.mechanismFacts(null); // Grashof and transmission angles are planar facts

@@ -68,8 +68,15 @@ def wait_analysed(page: Any) -> None:
 
 
 def choose(app: AppPage, value: str) -> None:
+    """Choose a source in the selector and wait until its drawing is the one on screen (the
+    selector's data-shown; a linkage or spatial chain) or, for a cam or gear train, until the
+    selector holds it."""
     app.page.select_option("#preset", value)
-    app.page.wait_for_function("(v) => document.getElementById('preset').value === v", arg=value)
+    drawn = value.split(":")[0] in ("preset", "example")
+    shown = "p.dataset.shown === v" if drawn else "p.value === v"
+    app.page.wait_for_function(
+        f"(v) => {{ const p = document.getElementById('preset'); return {shown}; }}", arg=value
+    )
 
 
 # ---- opening the page ----------------------------------------------------------------------

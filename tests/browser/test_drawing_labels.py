@@ -92,7 +92,6 @@ def test_names_in_the_drawing_never_overlap(app: AppPage) -> None:
     poles = 0
     for name in sources(app):
         choose(app, name)
-        page.wait_for_selector("#linkage .link-label, #spatial .body", state="attached")
         if page.locator("#linkage[hidden]").count():
             continue  # the spatial arm: no linkage drawing
         pause_and_wait(page)
