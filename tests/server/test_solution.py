@@ -178,9 +178,10 @@ def test_printable_page_of_a_cam_or_gear_train_preset(
     body = post({"scene": scene, **options}).json()
     assert _page(response.text).latex == [s["latex"] for s in body["steps"] if s["latex"]]
     if options:
-        assert _page(response.text).latex != _page(
-            client.get(f"/api/v1/solution.html?preset={name}").text
-        ).latex
+        assert (
+            _page(response.text).latex
+            != _page(client.get(f"/api/v1/solution.html?preset={name}").text).latex
+        )
 
 
 def test_printable_page_by_post_with_options_and_escaping() -> None:
