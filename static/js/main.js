@@ -69,8 +69,11 @@ class App {
     this.controls = new Controls({
       preset: (v) => this.onSource(v),
       instant: (v, final) => this.onInstant(v, final),
-      // Space and Play drive the gear train while one is shown (js/gear-view.js).
-      play: (p) => (this.gearTrains?.shown ? this.gearTrains.setPlaying(!this.gearTrains.playing) : this.setPlaying(p)),
+      // Space and Play drive the gear train or the designed linkage while one is shown.
+      play: (p) => {
+        const other = [this.gearTrains, this.designer].find((v) => v?.shown);
+        return other ? other.setPlaying(!other.playing) : this.setPlaying(p);
+      },
       speed: (s) => { this.speed = s; this.saveHash(); },
       units: (u) => this.onUnits(u),
       options: (o) => this.onOptions(o),

@@ -169,6 +169,7 @@ export class LinkageDesigner {
       if (this.answer) this.onOpen(structuredClone(this.answer.scene));
     });
     this.setPlaying(this.playing);
+    this.el.open.disabled = true; // until there is a design
   }
 
   setTask(task) {
@@ -356,6 +357,7 @@ export class LinkageDesigner {
     this.clearInvalid();
     const focusKey = document.activeElement?.closest?.('[data-handle]')?.dataset.handle;
     this.answer = answer;
+    this.el.open.disabled = false;
     const track = trackFromSweep(sweep);
     // The task's handles stay in the picture: extra positions for the fit only (never drawn by
     // the view, which draws the scene's points).

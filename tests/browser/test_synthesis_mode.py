@@ -188,6 +188,11 @@ def test_dragging_a_position_or_moving_it_by_keyboard_updates_the_design(app: Ap
         assert value == pytest.approx(body["dimensions"][link], rel=1e-4)
     # the focus stays on the handle the student moved, after the drawing is rebuilt
     assert page.evaluate("() => document.activeElement.dataset.handle") == "P2"
+    # Space plays the designed linkage (not the analyser's, hidden behind it)
+    assert page.get_attribute("#syn-play", "aria-pressed") == "false"
+    page.keyboard.press(" ")
+    assert page.get_attribute("#syn-play", "aria-pressed") == "true"
+    assert page.get_attribute("#play", "aria-pressed") == "false"
 
 
 def test_a_refused_task_shows_the_servers_reason_next_to_the_fields(app: AppPage) -> None:
