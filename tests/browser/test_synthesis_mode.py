@@ -152,6 +152,18 @@ def test_three_typed_positions_give_a_linkage_whose_defects_are_shown(app: AppPa
     assert page.locator("#syn-steps .step-error").count() == 0
     assert page.locator("#syn-steps .step-figure svg").count() >= 1
     assert "poles" in page.inner_text("#syn-steps").lower()
+    # The inverse problem from the design's own fixed pivots gives the same linkage back: the
+    # fields take A and D from the design, and the lengths shown stay (to the digits shown).
+    lengths = shown_lengths(page)
+    count = designs(page)
+    page.check("input[name='syn-pivots'][value='fixed_pivots']")
+    wait_designs(page, count + 1)
+    a = body["scene"]["points"]["A"]
+    assert float(page.input_value("#syn-A-x")) == pytest.approx(a[0], abs=1e-12)
+    assert float(page.input_value("#syn-A-y")) == pytest.approx(a[1], abs=1e-12)
+    for link, value in shown_lengths(page).items():
+        assert value == pytest.approx(lengths[link], rel=1e-4)
+    assert page.locator("#syn-linkage [data-handle='A']").count() == 1
 
 
 def test_dragging_a_position_or_moving_it_by_keyboard_updates_the_design(app: AppPage) -> None:
