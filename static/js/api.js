@@ -79,6 +79,9 @@ export const balance = (scene, counterweights) => call('POST', '/balance', { sce
 /** A cam's worked solution at cam angle `angleDeg` (docs/CAMS.md). */
 export const camSolution = (scene, angleDeg, digits = 4) => call('POST', '/solution', { scene, angle_deg: angleDeg, digits });
 
+/** A four-bar for two or three coupler positions, a function or a time ratio (docs/SYNTHESIS.md). */
+export const synthesis = (task) => call('POST', '/synthesis', task);
+
 /** The printable worked solution: a whole HTML page (text, not JSON). */
 export async function solutionPage(scene, method, digits = 4) {
   const response = await fetch(BASE + '/solution.html', {
