@@ -355,7 +355,7 @@ def _motion_task(task: Mapping[str, Any]) -> str:
     so they are not drawn)."""
     positions = task["positions"]
     places = [(float(p["point"][0]), float(p["point"][1])) for p in positions]
-    b1, c1 = (tuple(map(float, q)) for q in task["moving_pivots"])
+    b1, c1 = ((float(q[0]), float(q[1])) for q in task["moving_pivots"])
     size = math.dist(b1, c1)
     heads = [
         (x + 0.5 * size * math.cos(math.radians(p["angle_deg"])),

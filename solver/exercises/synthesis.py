@@ -21,13 +21,19 @@ import random
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
+
 from solver.errors import KinematicsError
 from solver.exercises.families import asked_latex, four_bar_scene, givens_latex, num, pick
 from solver.exercises.model import Asked, Draft
-from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
+from solver.kinematics.four_bar import (
+    extreme_transmission_angles,
+    grashof_class,
+    transmission_angle,
+)
 from solver.synthesis import parse_task
 from solver.synthesis.function import design_function
-from solver.synthesis.motion import cross, synthesise_motion
+from solver.synthesis.motion import cross, rotor, synthesise_motion
 from solver.synthesis.task import FunctionTask, MotionTask
 from solver.synthesis.verify import MIN_TRANSMISSION_DEG
 from solver.teaching.presets import build_preset
@@ -94,10 +100,16 @@ def _crank_rocker(ground: float, crank: float, coupler: float, rocker: float) ->
     lengths = (ground, crank, coupler, rocker)
     if grashof_class(*lengths) != CRANK_ROCKER or _in_proportion(lengths) is not None:
         return False
-    worst = min(
-        min(mu, math.pi - mu) for mu in extreme_transmission_angles(crank, coupler, rocker, ground)
-    )
-    return math.degrees(worst) >= MIN_TRANSMISSION_DEG
+    return all(_transmits(mu) for mu in extreme_transmission_angles(crank, coupler, rocker, ground))
+
+
+def _transmits(mu: float | np.ndarray) -> bool:
+    """min(mu, 180 - mu) at least MIN_TRANSMISSION_DEG."""
+    return math.degrees(min(float(mu), math.pi - float(mu))) >= MIN_TRANSMISSION_DEG
+
+
+def _xy(z: complex) -> np.ndarray:
+    return np.array([z.real, z.imag])
 
 
 def _in_proportion(lengths: Sequence[float]) -> str | None:
@@ -120,12 +132,14 @@ def _function_check(body: Any) -> str | None:
 
 
 def _ranges(rng: random.Random, difficulty: str) -> tuple[list[float], list[float]]:
-    """The crank's and the rocker's angle ranges (deg, multiples of 15), decreasing ones at
-    challenging."""
-    start = pick(rng, 0.0, 90.0, 15.0)
-    inputs = [start, start + pick(rng, 60.0, 120.0, 15.0)]
-    start = pick(rng, 30.0, 150.0, 15.0)
-    outputs = [start, start + pick(rng, 45.0, 90.0, 15.0)]
+    """The crank's and the rocker's angle ranges (deg, multiples of 15): the crank turning 150
+    to 240 deg while the rocker swings 30 to 60 deg, the rocker's range starting 45 to 135 deg
+    from the crank's, or that plus 180 (where most draws give a Grashof crank-rocker that
+    transmits well); decreasing ranges at challenging."""
+    start = pick(rng, 0.0, 120.0, 15.0)
+    inputs = [start, start + pick(rng, 150.0, 240.0, 15.0)]
+    start = (start + pick(rng, 45.0, 135.0, 15.0) + (180.0 if rng.random() < 0.5 else 0.0)) % 360
+    outputs = [start, start + pick(rng, 30.0, 60.0, 15.0)]
     if difficulty == "challenging":
         if rng.random() < 0.5:
             inputs.reverse()
@@ -134,10 +148,22 @@ def _ranges(rng: random.Random, difficulty: str) -> tuple[list[float], list[floa
     return inputs, outputs
 
 
+def _one_assembly(places: Sequence[tuple[complex, complex]], D: complex) -> bool:
+    """The coupler BC and the rocker DC meet at C with the same sense at every (B, C)."""
+    return len({cross(B - C, D - C) > 0 for B, C in places}) == 1
+
+
 def _function_passes(task: Any) -> bool:
     assert isinstance(task, FunctionTask)
     design = design_function(task)
-    return _crank_rocker(task.ground_length, abs(design.a), design.b, abs(design.c))
+    D = complex(task.ground_length, 0.0)
+    # a signed length along the link angle is the link pointing the other way
+    places = [
+        (design.a * rotor(float(t2)), D + design.c * rotor(float(t4)))
+        for t2, t4 in zip(design.crank, design.rocker, strict=True)
+    ]
+    lengths = (task.ground_length, abs(design.a), design.b, abs(design.c))
+    return _one_assembly(places, D) and _crank_rocker(*lengths)
 
 
 def function_generator(rng: random.Random, difficulty: str) -> Draft:
@@ -268,11 +294,14 @@ def _motion_passes(task: Any) -> bool:
     if max(abs(design.A - design.P), abs(design.D - design.P)) > MAX_PIVOT_DISTANCE * size:
         return False
     lengths = [abs(design.D - design.A), abs(design.B - design.A), size, abs(design.C - design.D)]
-    # one assembly: the coupler and the rocker meet at C with the same sense at every position
-    senses = {cross(t["B"] - t["C"], design.D - t["C"]) > 0 for t in design.targets}
-    if len(design.targets) == 2:  # a crank that rocks will do
-        return len(senses) == 1 and _in_proportion(lengths) is None
-    return len(senses) == 1 and _crank_rocker(*lengths)
+    if not _one_assembly([(t["B"], t["C"]) for t in design.targets], design.D):
+        return False
+    if len(design.targets) == 2:  # a crank that rocks will do, if it transmits well there
+        return _in_proportion(lengths) is None and all(
+            _transmits(transmission_angle(_xy(t["B"]), _xy(t["C"]), _xy(design.D)))
+            for t in design.targets
+        )
+    return _crank_rocker(*lengths)
 
 
 def fixed_pivots(rng: random.Random, difficulty: str) -> Draft:

@@ -16,6 +16,7 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+import solver
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
 from solver.exercises.answers import DYNAMIC_ROOTS, parse_sweep_root
 from solver.exercises.cams import parse_cam_root
@@ -93,29 +94,30 @@ def assert_well_posed(exercise: dict[str, Any], analyzed: dict[str, Any] | None)
 def test_answers_equal_analyze_at_their_paths(
     client: TestClient, kind: str, difficulty: str
 ) -> None:
-    r = client.post(
-        f"{API}/exercises",
-        json={
-            "type": kind,
-            "count": min(EXERCISE_COUNT, 100),
-            "seed": 11,
-            "difficulty": difficulty,
-        },
-    )
-    assert r.status_code == 200, r.text
-    exercises = r.json()["exercises"]
-    for start in range(100, EXERCISE_COUNT, 100):  # the long run: further batches by seed
+    # batches of at most 100, or as many as the type's budget allows (synthesis: fewer)
+    batch = min(100, int(5.0 / solver.exercise_work(kind, 1, False).seconds))
+    exercises: list[dict[str, Any]] = []
+    for start in range(0, EXERCISE_COUNT, batch):  # the long run: further batches by seed
         more = client.post(
             f"{API}/exercises",
-            json={"type": kind, "count": min(100, EXERCISE_COUNT - start), "seed": 11 + start,
+            json={"type": kind, "count": min(batch, EXERCISE_COUNT - start), "seed": 11 + start,
                   "difficulty": difficulty},
         )  # fmt: skip
+        assert more.status_code == 200, more.text
         exercises += more.json()["exercises"]
     assert len(exercises) == EXERCISE_COUNT
     for e in exercises:
         assert e["id"] == f"{kind}:{difficulty}:{e['seed']}:{e['index']}"
         assert e["statement"]["figure_svg"].startswith("<svg")
         cache: dict[str, Any] = {}
+        if "task" in e:  # a synthesis exercise: its paths point into /synthesis of its task
+            r = client.post(f"{API}/synthesis", json=e["task"])
+            assert r.status_code == 200, r.text
+            for asked in e["asked"]:
+                expected = at_path(r.json(), asked["path"])
+                assert abs(e["answers"][asked["key"]] - expected) <= 1e-12 * max(1.0, abs(expected))
+            assert_well_posed(e, None)
+            continue
         for asked in e["asked"]:
             expected = remote_value(client, e["scene"], asked["path"], cache)
             assert abs(e["answers"][asked["key"]] - expected) <= 1e-12 * max(1.0, abs(expected))
@@ -231,3 +233,27 @@ def test_a_huge_seed_is_a_seed_like_any_other(client: TestClient) -> None:
     assert r.json()["exercises"][0]["id"] == f"spatial_arm:standard:{seed}:0"
     r = client.post(f"{API}/exercises", json={"type": "spatial_arm", "seed": seed + 1})
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
+
+
+@pytest.mark.parametrize("kind", ["synthesis_function", "synthesis_fixed_pivots"])
+def test_synthesis_types_are_served_and_keyed_by_the_synthesis_body(
+    client: TestClient, kind: str
+) -> None:
+    """Listed, generated, served by id and checked through the exercises contract; the key is
+    the /synthesis body of the exercise's task at each path."""
+    listed = {t["name"]: t for t in client.get(f"{API}/exercises/types").json()["types"]}
+    assert listed[kind]["asks"]
+    e = client.post(f"{API}/exercises", json={"type": kind, "seed": 12}).json()["exercises"][0]
+    assert "scene" not in e and e["task"]["task"] in ("function", "motion")
+    body = client.post(f"{API}/synthesis", json=e["task"]).json()
+    for asked in e["asked"]:
+        assert e["answers"][asked["key"]] == at_path(body, asked["path"])
+    alone = client.get(f"{API}/exercises/{e['id']}").json()
+    assert alone["task"] == e["task"] and alone["solution"]["steps"][0]["kind"].startswith(
+        "synthesis."
+    )
+    first = e["asked"][0]["key"]
+    wrong = client.post(
+        f"{API}/exercises/check", json={"id": e["id"], "answers": {first: 2 * e["answers"][first]}}
+    ).json()
+    assert wrong["results"][0]["verdict"] == "incorrect" and wrong["score"] == 0.0
