@@ -1,5 +1,6 @@
 """The synthesis exercise types: keys against independent computations, the typical mistakes
-diagnosed as themselves, the worked solution, an exercise built on a task.
+against the misread systems (each diagnosed as itself: ``test_checking``, over every type), the
+worked solution, an exercise built on a task.
 
 Independent values: Freudenstein's 3x3 system K1 cos(theta_4) - K2 cos(theta_2) + K3 =
 cos(theta_2 - theta_4) written and solved here with numpy at x_j = (x0 + xf)/2 - (xf - x0)/2
@@ -57,7 +58,7 @@ def chebyshev(x0: float, xf: float) -> np.ndarray:
 
 @pytest.mark.parametrize("difficulty", DIFFICULTIES)
 def test_function_keys_are_freudensteins_system_solved_with_numpy(difficulty: str) -> None:
-    for e in generate("synthesis_function", difficulty, 3, 6):
+    for e in generate("synthesis_function", difficulty, 3, 3):
         task = e.task
         assert task is not None and e.as_json()["task"] == task and "scene" not in e.as_json()
         given = task["precision_points"]
@@ -84,7 +85,7 @@ def test_the_answered_fixed_pivots_guide_the_coupler_through_every_position(
     """The four-bar A B1 C1 D (P1 on the coupler) built here from the answers, analysed by the
     solver at the crank angle where B reaches B_j = P_j + e^{i(phi_j - phi_1)} (B1 - P1): P is at
     P_j and the coupler turned by phi_j - phi_1, to 1e-9 of the coupler's length."""
-    for e in generate("synthesis_fixed_pivots", difficulty, 4, 4):
+    for e in generate("synthesis_fixed_pivots", difficulty, 4, 2):
         task, k = e.task, e.answers
         assert task is not None
         positions = task["positions"]
@@ -148,40 +149,11 @@ def test_the_function_mistakes_are_the_misread_systems_solved_with_numpy() -> No
     assert made["synthesis.k1_k2_swapped"] == {"a": e.answers["c"], "c": e.answers["a"]}
 
 
-@pytest.mark.parametrize(
-    ("kind", "difficulty", "seed"),
-    [("synthesis_function", "standard", 6), ("synthesis_function", "challenging", 2),
-     ("synthesis_fixed_pivots", "basic", 3), ("synthesis_fixed_pivots", "challenging", 5)],
-)  # fmt: skip
-def test_every_mistake_is_diagnosed_as_itself(kind: str, difficulty: str, seed: int) -> None:
-    e = build(ExerciseId(kind, difficulty, seed, 0))
-    right = check_answers(e, dict(e.answers))
-    assert right["score"] == 1.0
-    named = 0
-    for mistake in mistakes_of(e):
-        for key, wrong in mistake.values.items():
-            if abs(wrong - e.answers[key]) <= 0.05 * abs(e.answers[key]):
-                continue  # the mistake changes nothing here, or too little to tell
-            result = check_answers(e, {key: wrong})["results"]
-            verdict = next(r for r in result if r["key"] == key)
-            assert verdict["verdict"] == "incorrect"
-            # the first mistake in the list giving this value is named (two may coincide)
-            first = next(
-                m for m in mistakes_of(e)
-                if key in m.values and abs(m.values[key] - wrong) <= 0.01 * abs(wrong)
-            )  # fmt: skip
-            assert verdict["mistake"] == first.kind, (e.id, key, mistake.kind)
-            named += 1
-    assert named >= 3
-
-
 def test_a_negative_k_given_as_a_length_is_the_sign_of_k() -> None:
     """A crank pointing the other way (K1 < 0): -|a| is diagnosed as the signed d / K1."""
-    for e in generate("synthesis_function", "standard", 1, 30):
-        if e.answers["K1"] < 0:
-            break
-    else:
-        pytest.fail("no negative K1 among 30 exercises")
+    e = build(ExerciseId("synthesis_function", "challenging", 1, 0))
+    assert e.answers["K1"] < 0
+    assert check_answers(e, dict(e.answers))["score"] == 1.0
     result = check_answers(e, {"a": -e.answers["a"]})["results"][3]
     assert result["key"] == "a" and result["mistake"] == "synthesis.signed_length"
 
