@@ -91,12 +91,6 @@ EXERCISE_COSTS: dict[str, tuple[float, float]] = {
     "spatial_arm": (0.019, 0.075),
     "four_bar_torque": (0.049, 0.15),
     "flywheel": (0.049, 0.24),
-    # Synthesis exercises: each candidate is a /synthesis (its verifying sweep; a linkage that
-    # rocks, as two positions give, sweeps slowly), the worked solution another. Measured
-    # 2026-11-29 at a load average of 12 to 14, the larger of two runs of 10: so a request holds
-    # at most about 50 function generators or 16 fixed-pivot exercises (413 beyond, before work).
-    "synthesis_function": (0.1, 0.2),
-    "synthesis_fixed_pivots": (0.31, 0.46),
 }
 
 

@@ -24,7 +24,6 @@ from solver.analysis.events import find_event
 from solver.analysis.instant import LinkageAnalysis, analyze
 from solver.api import analyze as analyze_body
 from solver.api import sweep as sweep_body
-from solver.api import synthesize
 from solver.cams import CamScene, analyze_cam, parse_cam
 from solver.errors import InvalidScene
 from solver.exercises.cams import parse_cam_root
@@ -37,7 +36,7 @@ from solver.kinematics.spatial import (
     parse_spatial_chain,
 )
 from solver.model.scene import LinkageScene, parse_linkage
-from solver.synthesis import parse_task
+from solver.synthesis import parse_task, synthesize
 from solver.synthesis.task import FunctionTask, MotionTask, QuickReturnTask, Task
 
 EVENT_OCCURRENCE = 1  # /events' defaults
@@ -88,7 +87,8 @@ def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScen
 
 def solve_scene(doc: Mapping[str, Any]) -> Solved:
     """The scene analysed as /analyze analyses it, with every quantity; a synthesis task
-    designed as /synthesis designs it (its body)."""
+    designed as /synthesis designs it (its body, but for the worked solution's ``steps``, which
+    ``solver.api.synthesize`` adds and no path names)."""
     if is_task(doc):
         return Solved(parse_task(doc), synthesize(doc).as_dict(), doc)
     scene = parse(doc)

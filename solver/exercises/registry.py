@@ -186,9 +186,9 @@ TYPES: Mapping[str, ExerciseType] = {
         ),
         _type(
             "synthesis_fixed_pivots", "Motion generation: the fixed pivots",
-            "A coupler to guide through two positions (basic, the free choice on the bisectors "
-            "stated) or three, its moving pivots given: the fixed pivots A and D (the centre "
-            "points), and at challenging the pole P12.",
+            "A coupler to guide through three positions, its moving pivots given: the fixed "
+            "pivots A and D (the centre points; the first position at angle 0 at basic), and at "
+            "challenging the pole P12.",
             ("A_x", "A_y", "D_x", "D_y", "P12_x", "P12_y"), synthesis.fixed_pivots,
             "synthesis_motion",
         ),

@@ -5,9 +5,9 @@ for a synthesis task, the steps of its /synthesis body (``solver.solutions.synth
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import Any
 
+from solver.api import synthesize
 from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
 from solver.exercises.cams import cam_angle_of
 from solver.exercises.model import Exercise
@@ -79,9 +79,7 @@ def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
     the dynamics types (and the cycle's flywheel), the synthesis' own steps for a synthesis task
     (its /synthesis body's ``steps``), the vector method otherwise."""
     if exercise.task is not None:
-        body = solve_scene(exercise.scene).analysis
-        assert isinstance(body, Mapping)
-        return list(body["steps"])
+        return list(synthesize(exercise.task).as_dict()["steps"])
     family = TYPES[exercise.id.type].mistakes
     dynamic = family in ("dynamics_torque", "flywheel")
     method = "newton_euler" if dynamic else "vector"

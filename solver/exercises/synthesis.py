@@ -21,16 +21,10 @@ import random
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import numpy as np
-
 from solver.errors import KinematicsError
 from solver.exercises.families import asked_latex, four_bar_scene, givens_latex, num, pick
 from solver.exercises.model import Asked, Draft
-from solver.kinematics.four_bar import (
-    extreme_transmission_angles,
-    grashof_class,
-    transmission_angle,
-)
+from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
 from solver.synthesis import parse_task
 from solver.synthesis.function import design_function
 from solver.synthesis.motion import cross, rotor, synthesise_motion
@@ -103,13 +97,9 @@ def _crank_rocker(ground: float, crank: float, coupler: float, rocker: float) ->
     return all(_transmits(mu) for mu in extreme_transmission_angles(crank, coupler, rocker, ground))
 
 
-def _transmits(mu: float | np.ndarray) -> bool:
+def _transmits(mu: float) -> bool:
     """min(mu, 180 - mu) at least MIN_TRANSMISSION_DEG."""
     return math.degrees(min(float(mu), math.pi - float(mu))) >= MIN_TRANSMISSION_DEG
-
-
-def _xy(z: complex) -> np.ndarray:
-    return np.array([z.real, z.imag])
 
 
 def _in_proportion(lengths: Sequence[float]) -> str | None:
@@ -253,14 +243,9 @@ POLE_ASKED = _xy_asked("P12", "the pole P12", "construction.poles.P12", "P_{12}"
 
 def _motion_check(body: Any) -> str | None:
     """A motion generator without defects (every position reached, on one assembly, in order,
-    the crank turning fully: two positions may be met by a crank that rocks between them) or
-    other warnings, its fixed pivots near the positions."""
-    defects = body["defects"]
-    rocking = defects["grashof"] and len(body["checks"]) == 2  # two positions: a rocker will do
-    if defects["branch"] or defects["order"] or (defects["grashof"] and not rocking):
-        return "; ".join(body["warnings"])
-    if len(body["warnings"]) != int(rocking):
-        return "; ".join(body["warnings"])
+    the crank turning fully) or warnings, its fixed pivots near the positions."""
+    if any(body["defects"][k] for k in ("branch", "order", "grashof")) or body["warnings"]:
+        return "; ".join(body["warnings"]) or "a defect"
     points = body["scene"]["points"]
     coupler = math.dist(points["B"], points["C"])
     first = body["construction"]["places"]["P"][0]
@@ -296,18 +281,14 @@ def _motion_passes(task: Any) -> bool:
     lengths = [abs(design.D - design.A), abs(design.B - design.A), size, abs(design.C - design.D)]
     if not _one_assembly([(t["B"], t["C"]) for t in design.targets], design.D):
         return False
-    if len(design.targets) == 2:  # a crank that rocks will do, if it transmits well there
-        return _in_proportion(lengths) is None and all(
-            _transmits(transmission_angle(_xy(t["B"]), _xy(t["C"]), _xy(design.D)))
-            for t in design.targets
-        )
     return _crank_rocker(*lengths)
 
 
 def fixed_pivots(rng: random.Random, difficulty: str) -> Draft:
-    """The fixed pivots A and D of a four-bar whose coupler passes through two (basic) or three
-    positions with its moving pivots B1, C1 given; at challenging also the pole P12; the design
-    a Grashof crank-rocker with its pivots near the positions (``_screened``)."""
+    """The fixed pivots A and D (the centre points) of a four-bar whose coupler passes through
+    three positions with its moving pivots B1, C1 given (basic: the first at angle 0); at
+    challenging also the pole P12; the design a Grashof crank-rocker with its pivots near the
+    positions (``_screened``)."""
     return _screened(_motion_draft, _motion_passes, rng, difficulty)
 
 
@@ -316,7 +297,7 @@ def _poses(rng: random.Random, count: int) -> tuple[list[dict[str, Any]], list[l
     off the origin) at crank angles 40 to 70 deg apart: its point P (m) and the direction of BC
     (deg), rounded to millimetres and whole degrees; and B, C at the first pose, rounded."""
     _, values = four_bar_scene(rng, "standard", False, False)
-    # P off the line BC (the two-position choice is made on a side of that line)
+    # P off the line BC
     values |= {"coupler_point_u": pick(rng, 0.1, 0.3, 0.05),
                "coupler_point_v": pick(rng, 0.1, 0.25, 0.05)}  # fmt: skip
     shift = _point(rng, (0.1, 0.5), (0.1, 0.5))
@@ -335,26 +316,21 @@ def _poses(rng: random.Random, count: int) -> tuple[list[dict[str, Any]], list[l
 
 
 def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
-    count = 2 if difficulty == "basic" else 3
-    positions, (b1, c1) = _poses(rng, count)
+    positions, (b1, c1) = _poses(rng, 3)
+    if difficulty == "basic":  # the first position at angle 0: the turns are the angles
+        positions = [{**p, "angle_deg": p["angle_deg"] - positions[0]["angle_deg"]}
+                     for p in positions]  # fmt: skip
     task = {"task": "motion", "positions": positions, "moving_pivots": [b1, c1]}
     asked = PIVOTS_ASKED + (POLE_ASKED if difficulty == "challenging" else ())
-    choice = (
-        " Two positions leave each fixed pivot free on the perpendicular bisector of its "
-        "moving pivot's two places: take the point of the bisector one chord length from the "
-        "chord's midpoint, on the side of the line B1C1 away from P1."
-        if count == 2
-        else ""
-    )
     pole = " Find also the pole P12 of the coupler's displacement from position 1 to 2." if (
         difficulty == "challenging") else ""  # fmt: skip
     text = (
-        f"A coupler carries a point P and the pivots B and C. It is to pass through {count} "
+        "A coupler carries a point P and the pivots B and C. It is to pass through three "
         f"positions, each given by P and the coupler's angle (counter-clockwise from the x "
         f"axis): {_positions_text(positions)}. In the first position B1 = ({num(b1[0])}, "
         f"{num(b1[1])}) m and C1 = ({num(c1[0])}, {num(c1[1])}) m. Find the fixed pivots A "
         f"(the centre of B's circle) and D (that of C's) of the four-bar ABCD that guides "
-        f"it.{choice}{pole}"
+        f"it.{pole}"
     )
     givens: list[tuple[str, float, str]] = []
     for k, p in enumerate(positions, start=1):
@@ -365,7 +341,7 @@ def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
     latex = givens_latex(givens) + r"\\" + asked_latex(asked)
     coupler = math.dist(b1, c1)
     return Draft(
-        f"Motion generation: fixed pivots for {count} positions",
+        "Motion generation: fixed pivots for three positions",
         text,
         latex,
         task,

@@ -89,7 +89,7 @@ def test_the_answered_fixed_pivots_guide_the_coupler_through_every_position(
         task, k = e.task, e.answers
         assert task is not None
         positions = task["positions"]
-        assert len(positions) == (2 if difficulty == "basic" else 3)
+        assert len(positions) == 3 and (positions[0]["angle_deg"] == 0) == (difficulty == "basic")
         A, D = complex(k["A_x"], k["A_y"]), complex(k["D_x"], k["D_y"])
         B1, C1 = (_z(p) for p in task["moving_pivots"])
         P1, phi1 = _z(positions[0]["point"]), positions[0]["angle_deg"]
@@ -117,16 +117,9 @@ def test_the_answered_fixed_pivots_guide_the_coupler_through_every_position(
             at = {n: _z(body["points"][n]["position"]) for n in "BCP"}
             assert abs(at["P"] - _z(p["point"])) <= 1e-9 * size, e.id
             assert abs(at["C"] - Cj) <= 1e-9 * size, e.id
-        if len(places) == 3:  # A is the centre of the circle through B1, B2, B3
-            radii = [abs(b - A) for b in places]
-            assert max(radii) - min(radii) <= 1e-9 * size
-        else:  # A on the bisector of B1 B2, one chord length from its midpoint
-            chord = places[1] - places[0]
-            middle = (places[0] + places[1]) / 2
-            assert abs(abs(A - middle) - abs(chord)) <= 1e-9 * size
-            assert abs((A - middle).real * chord.real + (A - middle).imag * chord.imag) <= (
-                1e-9 * size * abs(chord)
-            )
+        # A is the centre of the circle through B1, B2, B3
+        radii = [abs(b - A) for b in places]
+        assert max(radii) - min(radii) <= 1e-9 * size
         if difficulty == "challenging":  # P12 is fixed by the rotation taking pose 1 to pose 2
             pole = complex(k["P12_x"], k["P12_y"])
             turn = _rotor(positions[1]["angle_deg"] - phi1)
@@ -169,13 +162,13 @@ def test_the_worked_solution_is_the_synthesis_construction() -> None:
 
 
 def test_the_statement_gives_what_the_task_gives() -> None:
-    e = build(ExerciseId("synthesis_fixed_pivots", "basic", 9, 0))
+    e = build(ExerciseId("synthesis_fixed_pivots", "challenging", 9, 0))
     task = e.task
     assert task is not None
     for p in task["positions"]:
         assert f"({p['point'][0]:g}, {p['point'][1]:g}) m at {p['angle_deg']:g} deg" in (
             e.statement.text
         )
-    assert "one chord length from the chord's midpoint" in e.statement.text
+    assert "pole P12" in e.statement.text
     f = build(ExerciseId("synthesis_function", "basic", 9, 0)).task
     assert f is not None and isinstance(f["precision_points"], list)
