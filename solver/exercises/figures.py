@@ -350,25 +350,25 @@ def _arrow(canvas: Canvas, p: Point, angle: float, length: float, color: str) ->
 
 
 def _motion_task(task: Mapping[str, Any]) -> str:
-    """The coupler's positions: each point P_j with an arrow along the coupler's angle there,
-    and the coupler B1 C1 P1 of the first position drawn as a plate (the fixed pivots are asked,
-    so they are not drawn)."""
+    """The coupler's positions: each point P_j with an arrow along the coupler's angle there
+    (the angles are in the statement), and the coupler B1 C1 P1 of the first position drawn as
+    a plate (the fixed pivots are asked, so they are not drawn)."""
     positions = task["positions"]
     places = [(float(p["point"][0]), float(p["point"][1])) for p in positions]
     b1, c1 = ((float(q[0]), float(q[1])) for q in task["moving_pivots"])
     size = math.dist(b1, c1)
     heads = [
-        (x + 0.5 * size * math.cos(math.radians(p["angle_deg"])),
-         y + 0.5 * size * math.sin(math.radians(p["angle_deg"])))
+        (x + 0.3 * size * math.cos(math.radians(p["angle_deg"])),
+         y + 0.3 * size * math.sin(math.radians(p["angle_deg"])))
         for (x, y), p in zip(places, positions, strict=True)
     ]  # fmt: skip
     canvas = _canvas([*places, *heads, b1, c1])
     plate = [canvas.px(q) for q in (b1, c1, places[0])]
     canvas.points("polygon", plate, [("fill", "#dbeafe"), ("stroke", LINK), ("stroke-width", 2)])
     for k, (place, p) in enumerate(zip(places, positions, strict=True), start=1):
-        _arrow(canvas, place, math.radians(p["angle_deg"]), 0.5 * size, ROTATION)
+        _arrow(canvas, place, math.radians(p["angle_deg"]), 0.3 * size, ROTATION)
         canvas.circle(canvas.px(place), "3.5", [("fill", "white"), ("stroke", INK)])
-        _text(canvas, place, f"P{k} ({p['angle_deg']:g}°)", dx=-10, dy=18)
+        _text(canvas, place, f"P{k}", dx=-24, dy=4 + 12 * (k - 2))  # stacked: poses are near
     for name, q in (("B1", b1), ("C1", c1)):
         canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
         _text(canvas, q, name, dy=16)
