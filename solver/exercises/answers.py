@@ -2,7 +2,8 @@
 
 A path names a number of the /analyze response of the scene (``points.C.velocity.0``,
 ``links.coupler.omega``, ``joints.0.coriolis_acceleration.1``, ``moving_points.M.acceleration.0``,
-``bodies.3.omega.2``; a gear train's ``members.arm.omega``, walked on its /analyze body); the
+``bodies.3.omega.2``; a gear train's ``members.arm.omega``, walked on its /analyze body; a
+synthesis task's ``freudenstein.K1`` or ``scene.points.A.0``, walked on its /synthesis body); the
 solver's result objects carry the same names, so the path is walked on them directly.
 ``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
 Dynamics paths (``drivers.0.torque``, ``joints.1.force.0``, ``sweep[samples=720,k=4/100].cycle.
@@ -26,7 +27,7 @@ from solver.api import sweep as sweep_body
 from solver.cams import CamScene, analyze_cam, parse_cam
 from solver.errors import InvalidScene
 from solver.exercises.cams import parse_cam_root
-from solver.exercises.model import Exercise
+from solver.exercises.model import Exercise, is_task
 from solver.gears import GearTrainScene, parse_gear_train
 from solver.kinematics.spatial import (
     SpatialAnalysis,
@@ -35,6 +36,8 @@ from solver.kinematics.spatial import (
     parse_spatial_chain,
 )
 from solver.model.scene import LinkageScene, parse_linkage
+from solver.synthesis import parse_task, synthesize
+from solver.synthesis.task import FunctionTask, MotionTask, QuickReturnTask, Task
 
 EVENT_OCCURRENCE = 1  # /events' defaults
 EVENT_T_MAX = 60.0
@@ -56,8 +59,9 @@ _FIELDS = frozenset(
 class Solved:
     """A scene parsed and analysed once (all quantities), to read any number of paths from."""
 
-    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene
-    # a gear train's analysis is its /analyze body, a cam's its /analyze at cam angle 0
+    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene | Task
+    # a gear train's analysis is its /analyze body, a cam's its /analyze at cam angle 0, a
+    # synthesis task's its /synthesis body
     analysis: LinkageAnalysis | SpatialAnalysis | Mapping[str, Any]
     document: Mapping[str, Any] = field(default_factory=dict)  # for the dynamics' bodies
     bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
@@ -82,7 +86,11 @@ def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScen
 
 
 def solve_scene(doc: Mapping[str, Any]) -> Solved:
-    """The scene analysed as /analyze analyses it, with every quantity."""
+    """The scene analysed as /analyze analyses it, with every quantity; a synthesis task
+    designed as /synthesis designs it (its body, but for the worked solution's ``steps``, which
+    ``solver.api.synthesize`` adds and no path names)."""
+    if is_task(doc):
+        return Solved(parse_task(doc), synthesize(doc).as_dict(), doc)
     scene = parse(doc)
     if isinstance(scene, LinkageScene):
         return Solved(scene, analyze(scene), doc)
@@ -145,7 +153,8 @@ def _step(node: Any, part: str, path: str) -> Any:
 def value_at(solved: Solved, path: str) -> float:
     """The number at ``path`` (see the module docstring); ``InvalidScene`` if there is none."""
     parts = path.split(".")
-    if isinstance(solved.scene, GearTrainScene):  # members.<name>.omega, meshes.<k>...
+    # a gear train's members.<name>.omega; a synthesis task's freudenstein.K1, scene.points.A.0
+    if isinstance(solved.scene, GearTrainScene | MotionTask | FunctionTask | QuickReturnTask):
         return _number(solved.analysis, parts, path)
     if parts[0] == "events":
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
