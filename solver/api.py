@@ -34,7 +34,6 @@ from solver.analysis.sweeps import sweep as sweep_linkage
 from solver.analysis.sweeps import sweep_time as sweep_linkage_time
 from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
-from solver.dynamics.friction import has_friction
 from solver.errors import InvalidScene
 from solver.gears import (
     GEAR_TRAIN_FIELDS,
@@ -297,12 +296,6 @@ def solve(
         return SolutionResult(worked.solution_body(cam, body, None, body["warnings"]))
     if angle_deg is not None:
         raise InvalidScene("angle_deg: the cam angle of a 'cam' scene's worked solution")
-    dynamic = method in ("newton_euler", "statics")
-    if dynamic and isinstance(parsed, LinkageScene) and has_friction(parsed):
-        raise InvalidScene(
-            "joints[].friction: the Newton-Euler worked solution is written for frictionless "
-            "joints; the forces and torques with friction are answered by /analyze and /sweep"
-        )
     solution = worked.solve(parsed, method, digits)
     if isinstance(parsed, GearTrainScene):  # its steps' numbers point into its /analyze body
         body = analyze_gear_train(parsed, None, found).as_dict()

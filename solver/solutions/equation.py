@@ -308,7 +308,7 @@ class Component:
 @dataclass(frozen=True)
 class Sum:
     """Terms of a sum, each starting with its sign ('+ ', '- ' or a ``Signed`` value): '+ a - b'
-    is written 'a - b', '- a + b' is '-a + b'; no terms is '0'."""
+    is written 'a - b', '- a + b' is '-a + b'; an empty term is left out; no terms is '0'."""
 
     terms: tuple[tuple[Piece, ...], ...]
 
@@ -321,10 +321,10 @@ class Sum:
         return written or "0"
 
     def latex(self, shows: Shows) -> str:
-        return self._lead(" ".join(latex_of(t, shows) for t in self.terms))
+        return self._lead(" ".join(latex_of(t, shows) for t in self.terms if t))
 
     def text(self, shows: Shows) -> str:
-        return self._lead(" ".join(text_of(t, shows) for t in self.terms))
+        return self._lead(" ".join(text_of(t, shows) for t in self.terms if t))
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,8 @@ Box = tuple[float, float, float, float]  # x0, y0, x1, y1 in the drawing
 @dataclass(frozen=True)
 class Arrow:
     """A force on the link: its name, where it acts and its vector (N); ``kind`` says what it is
-    ('joint', 'weight', 'load')."""
+    ('joint' as solved, 'weight', 'load', 'friction' at a slot as the converged answer gives
+    it)."""
 
     name: str
     kind: str
@@ -266,7 +267,7 @@ _BAR = (
     ("opacity", "0.6"),
 )
 
-_COLORS = {"weight": "#2c3e50", "load": "#27ae60"}
+_COLORS = {"weight": "#2c3e50", "load": "#27ae60", "friction": "#d35400"}
 
 
 def _known(

@@ -18,10 +18,16 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from solver.dynamics.analysis import LinkageDynamics, linkage_dynamics
-from solver.dynamics.loads import dynamics_of
+from solver.dynamics.analysis import (
+    LinkageDynamics,
+    linkage_dynamics,
+    non_convergence,
+    self_locking,
+)
+from solver.dynamics.loads import dynamics_of, link_state
 from solver.dynamics.newton_euler import slot_normal
-from solver.kinematics.rigid import cross, dot, omega_cross
+from solver.errors import SingularConfiguration
+from solver.kinematics.rigid import cross, dot, omega_cross, rotate
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import (
@@ -68,6 +74,17 @@ class _Dynamics:
             scene, ctx.analysis.motion, np.array([scene.time]), statics=statics
         )
         self.forces = self.result.forces
+        self.friction = self.result.friction
+        if self.friction is not None and not (
+            self.friction.converged[0] and not self.friction.locked[0]
+        ):
+            angle = link_state(scene, ctx.analysis.motion, [scene.drivers[0].link])
+            why = self_locking(scene, self.result, angle[scene.drivers[0].link][0])
+            words = non_convergence(self.result, angle[scene.drivers[0].link][0])
+            raise SingularConfiguration(
+                "joints[].friction: " + (why.reason if why is not None else str(words)),
+                float("inf"),
+            )
         self.system = self.forces.system
         self.u = self.forces.solution[0]
         self.gravity = np.array(dynamics_of(scene).gravity)
@@ -184,7 +201,7 @@ def _on_link(d: _Dynamics, link: str) -> tuple[list[Arrow], list[Assumed], list[
     moments (a driver's and a prismatic joint's unknown)."""
     scene = d.ctx.scene
     arrows, unknowns, couples = [], [], []
-    for joint, solved in zip(scene.joints, d.forces.joints, strict=True):
+    for index, (joint, solved) in enumerate(zip(scene.joints, d.forces.joints, strict=True)):
         if link not in joint.links:
             continue
         sign = 1.0 if joint.links[1] == link else -1.0
@@ -203,6 +220,12 @@ def _on_link(d: _Dynamics, link: str) -> tuple[list[Arrow], list[Assumed], list[
         if solved.moment is not None:
             moment = sign * float(solved.moment[0])
             couples.append(Couple(f"{minus}M_{joint.point}", "joint", moment, unknown=True))
+        if d.friction is not None and index in d.friction.forces:  # known at the answer
+            f = sign * d.friction.forces[index][0]
+            arrows.append(Arrow(f"{minus}f_{joint.point}", "friction", at, _xy(f)))
+        if d.friction is not None and index in d.friction.moments:
+            moment = sign * float(d.friction.moments[index][0])
+            couples.append(Couple(f"{minus}M_f,{joint.point}", "friction", moment))
     for e in d.forces.elements:
         if e.link == link and np.any(d.gravity):
             arrows.append(Arrow(f"W_{e.name}", "weight", _xy(e.p[0]), _xy(e.mass * d.gravity)))
@@ -283,16 +306,18 @@ class _Row:
     operands: list[Operand] = field(default_factory=list)
 
     def known(self, symbol: Sym, number: tuple[Piece, ...], value: Operand) -> None:
-        """A known force or moment on the left (``value``: its number as the check sees it),
-        moved to the right when the equation is collected."""
-        self.symbols.append(("+ ", symbol))
-        self.numbers.append(("+ ", *number))
+        """A known force or moment on the left (``value``: its number as the check sees it,
+        negated where it acts as a reaction), moved to the right when the equation is
+        collected."""
+        plus, minus = ("+ ", "- ") if value.sign > 0 else ("- ", "+ ")
+        self.symbols.append((plus, symbol))
+        self.numbers.append((plus, *number))
         shown = (
             Paren(value.ref)
             if value.component is None
             else Component(value.ref, value.component, factor=True)
         )
-        self.moved.append(("- ", shown))
+        self.moved.append((minus, shown))
         self.operands.append(-value)
 
     def inertia(self, symbol: Sym, number: tuple[Piece, ...], value: Operand) -> None:
@@ -303,9 +328,12 @@ class _Row:
 
 
 def _term(d: _Dynamics, b: StepBuilder, coefficient: Ref, column: int) -> tuple[Piece, ...]:
-    r"""c u as a term of a sum: '+ F_{B,x}' for c = 1, '- F_{B,x}' for -1, else '+ 0.3\,F_{B,x}'."""
+    r"""c u as a term of a sum: '+ F_{B,x}' for c = 1, '- F_{B,x}' for -1, else '+ 0.3\,F_{B,x}';
+    nothing for c = 0 exactly (a slot's normal across an axis)."""
     symbol = Sym(*d.symbols[column])
     value = b.scalar(coefficient)
+    if value == 0.0:
+        return ()
     if abs(value) == 1.0:
         return ("+ " if value > 0 else "- ", symbol)
     return (Signed(coefficient), THIN, symbol)
@@ -331,6 +359,119 @@ def _sense(d: _Dynamics, column: int, link: str) -> float:
     link), -1 on its joint's first link (the reaction)."""
     kind, index, _ = d.system.origins[column]
     return 1.0 if kind == "driver" or d.ctx.scene.joints[index].links[1] == link else -1.0
+
+
+def _frictions(
+    d: _Dynamics, b: StepBuilder, link: str
+) -> tuple[dict[int, tuple[Ref, float]], dict[int, tuple[Ref, float]]]:
+    """The friction on ``link`` at the converged answer, registered in ``b``: each slot's force
+    f (N) and each pin's moment M_f (N m) as on its joint's second link, with +1 on that link
+    and -1 on the first (the reaction), by the joint's index."""
+    slots: dict[int, tuple[Ref, float]] = {}
+    pins: dict[int, tuple[Ref, float]] = {}
+    if d.friction is None:
+        return slots, pins
+    for index, joint in enumerate(d.ctx.scene.joints):
+        if link not in joint.links:
+            continue
+        sense = 1.0 if joint.links[1] == link else -1.0
+        if index in d.friction.forces:
+            f = d.friction.forces[index][0]
+            slots[index] = (b.value(f"f({joint.point})", f, FORCE), sense)
+        if index in d.friction.moments:
+            m = float(d.friction.moments[index][0])
+            pins[index] = (b.value(f"M_f({joint.point})", m, MOMENT), sense)
+    return slots, pins
+
+
+def _friction_step(d: _Dynamics) -> Step:
+    """Each joint's friction at this instant, with its reasoning: at a pin the friction circle
+    (radius mu r) and M_f = -mu r |F| sgn(omega_rel); at a slot the friction angle atan mu and
+    f = -mu |N| sgn(v_rel . u) u; then the iteration that finds |F| and |N|."""
+    ctx = d.ctx
+    scene = ctx.scene
+    friction = d.friction
+    assert friction is not None
+    b = ctx.builder("dynamics.friction", "Friction at the joints")
+    motion = ctx.analysis.motion
+    for index, joint in enumerate(scene.joints):
+        spec = joint.friction
+        if spec is None:
+            continue
+        P, (first, second) = joint.point, joint.links
+        mu = b.value(f"mu({P})", spec.coefficient, "")
+        if index in friction.moments:
+            assert spec.pin_radius is not None
+            r = b.value(f"r_pin({P})", spec.pin_radius, "m")
+            rho = b.value(f"mu r({P})", spec.circle_radius, "m")
+            b.check("product", rho, mu, r)
+            w_rel = ctx.omega(second) - ctx.omega(first)
+            rel = b.value(f"omega_rel({P})", w_rel, "rad/s")
+            F = d.forces.joints[index].force[0]
+            size = b.value(f"|F({P})|", float(np.hypot(*F)), FORCE)
+            m = b.value(f"M_f({P})", float(friction.moments[index][0]), MOMENT)
+            sense = float(np.sign(w_rel))
+            b.check("product", m, rho, size, factor=-sense)
+            turns = "counter-clockwise" if w_rel > 0 else "clockwise"
+            b.line(
+                rf"&\text{{pin }}{tex.name(P)}:\; \rho = \mu r = ",
+                Num(mu), TIMES_DOT, Num(r), " = ", Num(rho, unit=True),
+                r",\; M_f = -\rho\,|\vec F|\,\operatorname{sgn}\omega_\text{rel} = ",
+                Sym("-" if sense > 0 else "", "-" if sense > 0 else ""),
+                Num(rho), TIMES_DOT, Num(size), " = ", Num(m, unit=True),
+            )  # fmt: skip
+            b.say(
+                f"Pin {P}: {second} turns {turns} relative to {first} (omega_rel = ",
+                Num(rel, unit=True),
+                "), so the reaction there is tangent to the friction circle of radius mu r = ",
+                Num(rho, unit=True),
+                f" on the side that opposes that rotation: on {second} the friction moment is "
+                "M_f = -mu r |F| sgn(omega_rel) = ",
+                Num(m, unit=True),
+                " (|F| = ",
+                Num(size, unit=True),
+                f"), on {first} the opposite.",
+            )
+        elif index in friction.forces:
+            angle = b.value(f"phi({P})", float(np.degrees(np.arctan(spec.coefficient))), "deg")
+            normal = d.forces.joints[index].force[0] - friction.forces[index][0]
+            n = slot_normal(joint, motion)[0]
+            N = b.value(f"|N({P})|", abs(float(np.dot(normal, n))), FORCE)
+            f = b.value(f"f({P})", friction.forces[index][0], FORCE)
+            u = rotate(np.array(joint.axis, dtype=float), motion.links[first].theta[0])
+            along = float(np.dot(friction.forces[index][0], u))
+            direction = b.value(f"u({P})", u, "")
+            sense = float(np.sign(-along))  # the follower's motion along u
+            b.check("product", f, mu, N, direction, factor=-sense)
+            b.line(
+                rf"&\text{{slot }}{tex.name(P)}:\; \varphi = \arctan\mu = ",
+                Num(angle),
+                r"^\circ,\; \vec f = -\mu\,|N|\,\operatorname{sgn}(v_\text{rel})\,\vec u = ",
+                Sym("-" if sense > 0 else "", "-" if sense > 0 else ""),
+                Num(mu), TIMES_DOT, Num(N), TIMES_DOT, Col(direction, dims=2), " = ",
+                Col(f, unit=True, dims=2),
+            )  # fmt: skip
+            moves = "along +u" if sense > 0 else "against u"
+            b.say(
+                f"Slot {P}: {second} slides {moves} relative to {first}, so Coulomb friction "
+                "acts against that motion, f = -mu |N| sgn(v_rel . u) u = ",
+                Col(f),
+                f" on {second} (|N| = ",
+                Num(N, unit=True),
+                "); the whole reaction N n + f leans from the normal by the friction angle "
+                "phi = atan mu = ",
+                Num(angle, unit=True),
+                " towards the side that resists the sliding (no Coriolis or other velocity "
+                "term enters: only the sense of the relative velocity).",
+            )
+    b.say(
+        "|F| and |N| depend on the unknowns, so the equations with friction are not linear: "
+        "they are solved by iteration from the frictionless answer, each step taking the "
+        f"senses and the magnitudes of the step before (converged in {friction.iterations} "
+        "steps). The friction terms in the equations below are those of the converged answer, "
+        "which satisfies them."
+    )
+    return b.build()
 
 
 def _equations_step(d: _Dynamics, link: str) -> Step:
@@ -364,6 +505,7 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
             weight[e.name] = b.value(f"m g({e.name})", e.mass * d.gravity, FORCE)
             b.check("product", weight[e.name], mass[e.name], g)
     force = {f.name: b.value(f"F({f.name})", f.force[0], FORCE) for f in loads}
+    slots, pins = _frictions(d, b, link)
     for column in (c for group in groups for c in group):
         b.put(d.system.unknowns[column], d.u[column], d.unit(column), d.source(column))
 
@@ -408,6 +550,13 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
                 Sym(_load_symbol(f.name, axis), f"{f.name}_{axis}"),
                 (Component(force[f.name], k, factor=True),),
                 force[f.name][k],
+            )
+        for index, (friction, sense) in slots.items():
+            P = ctx.scene.joints[index].point
+            row.known(
+                Sym(rf"f_{{{tex.name(P)},{axis}}}", f"f{axis}({P})"),
+                (Component(friction, k, factor=True),),
+                friction[k] if sense > 0 else -friction[k],
             )
 
     row = rows[2]  # the moment equation about R
@@ -481,6 +630,20 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
         named = Sym(rf"{r_sym.tex} \times {_load_symbol(f.name)}", f"{r_sym.plain} cross {f.name}")
         lines.append((named, " = ", Cross(r, force[f.name]), " = ", Num(moment, unit=True)))
         row.known(named, (Paren(moment),), moment.operand)
+    for index, (friction, sense) in slots.items():
+        P = ctx.scene.joints[index].point
+        r, r_sym = arm(P, ctx.pos(P))
+        moment = b.value(
+            f"r x f({P})", cross(ctx.pos(P) - origin, np.array(b.vector(friction))), MOMENT
+        )
+        b.check("cross", moment, r, friction)
+        named = Sym(rf"{r_sym.tex} \times \vec f_{{{tex.name(P)}}}", f"{r_sym.plain} cross f({P})")
+        lines.append((named, " = ", Cross(r, friction), " = ", Num(moment, unit=True)))
+        row.known(named, (Paren(moment),), moment.operand if sense > 0 else -moment)
+    for index, (friction, sense) in pins.items():
+        P = ctx.scene.joints[index].point
+        named = Sym(rf"M_{{f,{tex.name(P)}}}", f"M_f({P})")
+        row.known(named, (Paren(friction),), friction.operand if sense > 0 else -friction)
     for m_ in couples:
         moment = b.value(f"M({m_.name})", m_.moment[0], MOMENT)
         row.known(
@@ -609,13 +772,51 @@ def _solution_step(d: _Dynamics) -> Step:
         for name, (_, text) in zip(d.system.unknowns, d.symbols, strict=True)
     ]
     b.say("The solution of the system: ", *joined(", ", solved), ".")
+    if d.friction is not None and len(d.ctx.scene.drivers) == 1:
+        _without_friction(d, b)
     return b.build()
 
 
-def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[Ref, Ref, Ref, Ref]:
-    """dT/dt + dV/dt - P_loads, with dT/dt = sum (m a_G . v_G + I omega alpha), dV/dt =
-    -sum m g . v_G and P_loads the power of the loads: the keys of the three terms and of the
-    net (``net_key``)."""
+def _without_friction(d: _Dynamics, b: StepBuilder) -> None:
+    """The driving torque without friction M_0 beside M, and at a driven pose (M_0 omega > 0,
+    M omega > 0) the instantaneous efficiency M_0 / M."""
+    link = d.ctx.scene.drivers[0].link
+    driver = d.result.drivers[0]
+    assert driver.torque_frictionless is not None
+    M0 = b.value(
+        "M_0", float(driver.torque_frictionless[0]), MOMENT, ("drivers", 0, "torque_frictionless")
+    )
+    M = Ref(d.system.unknowns[d.system.origins.index(("driver", 0, 0))])
+    b.line(r"&M_0 = ", Num(M0, unit=True), r"\quad\text{(without friction)}")
+    omega = d.ctx.omega(link)
+    if b.scalar(M0) * omega > 0 and b.scalar(M) * omega > 0:
+        eta = b.value("eta", b.scalar(M0) / b.scalar(M), "")
+        b.check("quotient", eta, M0, M)
+        b.line(r"&\eta = \frac{M_0}{M} = ", Frac(M0, M), " = ", Boxed((Num(eta),)))
+        b.say(
+            "Without friction the driver would need M_0 = ",
+            Num(M0, unit=True),
+            "; at this pose the driver drives the machine, so its instantaneous efficiency is "
+            "eta = M_0 / M = ",
+            Num(eta),
+            " (over a revolution: the sweep's cycle.efficiency, the mean powers' ratio).",
+        )
+    else:
+        b.say(
+            "Without friction the driver would need M_0 = ",
+            Num(M0, unit=True),
+            "; at this pose the driver does not drive the machine (the loads drive it, or it "
+            "holds them back), so no efficiency is defined here.",
+        )
+
+
+def _energy_rate(
+    d: _Dynamics, b: StepBuilder, net_key: str
+) -> tuple[Ref, Ref, Ref, Ref | None, Ref]:
+    """dT/dt + dV/dt - P_loads - P_friction, with dT/dt = sum (m a_G . v_G + I omega alpha),
+    dV/dt = -sum m g . v_G, P_loads the power of the loads and P_friction that of the joints'
+    friction (never positive; None without friction): the keys of the terms and of the net
+    (``net_key``)."""
     elements, g = d.forces.elements, d.gravity
     dT = sum(
         e.mass * float(dot(e.a[0], e.v[0])) + e.inertia * float(e.omega[0] * e.alpha[0])
@@ -627,14 +828,21 @@ def _energy_rate(d: _Dynamics, b: StepBuilder, net_key: str) -> tuple[Ref, Ref, 
     )
     kT, kV = b.value("dT/dt", dT, "W"), b.value("dV/dt", dV, "W")
     kP = b.value("P_loads", P, "W")
-    net = b.value(net_key, dT + dV - P, "W")
-    b.check("sum", net, kT, kV, -kP)
-    return kT, kV, kP, net
+    if d.friction is None:
+        net = b.value(net_key, dT + dV - P, "W")
+        b.check("sum", net, kT, kV, -kP)
+        return kT, kV, kP, None, net
+    friction = float(d.friction.power[0])
+    kF = b.value("P_friction", friction, "W")
+    net = b.value(net_key, dT + dV - P - friction, "W")
+    b.check("sum", net, kT, kV, -kP, -kF)
+    return kT, kV, kP, kF, net
 
 
-def _energy_latex(kT: Ref, kV: Ref, kP: Ref) -> tuple[Piece, ...]:
-    """dT/dt + dV/dt - P_loads with the numbers, as LaTeX pieces."""
-    return (Num(kT), " ", Signed(kV), " - ", Paren(kP))
+def _energy_latex(kT: Ref, kV: Ref, kP: Ref, kF: Ref | None) -> tuple[Piece, ...]:
+    """dT/dt + dV/dt - P_loads (- P_friction) with the numbers, as LaTeX pieces."""
+    friction: tuple[Piece, ...] = () if kF is None else (" - ", Paren(kF))
+    return (Num(kT), " ", Signed(kV), " - ", Paren(kP), *friction)
 
 
 def _power_step(d: _Dynamics) -> Step:
@@ -649,21 +857,24 @@ def _power_step(d: _Dynamics) -> Step:
         else "Check: the driving torque from the power balance"
     )
     b = ctx.builder("dynamics.power_balance", title)
-    kT, kV, kP, net = _energy_rate(d, b, "M omega")
+    kT, kV, kP, kF, net = _energy_rate(d, b, "M omega")
     kw = b.value(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    rubbing: tuple[Piece, ...] = () if kF is None else (" - ", Paren(kF))
+    lost = "" if kF is None else r" - P_\text{friction}"
     if d.statics:  # dT/dt is left out with the inertia: 0
         b.line(
-            r"&M\,\omega = \frac{dV}{dt} - P_\text{loads} = ",
+            rf"&M\,\omega = \frac{{dV}}{{dt}} - P_\text{{loads}}{lost} = ",
             Num(kV),
             " - ",
             Paren(kP),
+            *rubbing,
             " = ",
             Num(net, unit=True),
         )
     else:
         b.line(
-            r"&M\,\omega = \frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = ",
-            *_energy_latex(kT, kV, kP),
+            rf"&M\,\omega = \frac{{dT}}{{dt}} + \frac{{dV}}{{dt}} - P_\text{{loads}}{lost} = ",
+            *_energy_latex(kT, kV, kP, kF),
             " = ",
             Num(net, unit=True),
         )
@@ -689,11 +900,17 @@ def _power_step(d: _Dynamics) -> Step:
         Num(ne, unit=True),
         ")",
     )
+    if kF is not None:
+        b.say(
+            "The joints' friction does the power P_friction = ",
+            Num(kF, unit=True),
+            " (never positive: it opposes every relative motion), which the driver pays too.",
+        )
     if d.statics:
         b.say(
             "Virtual work: in equilibrium the power of every force for the motion the driver "
             "would give (its omega) adds up to zero, and frictionless joints do none, so "
-            "M omega + sum m g . v_G + P_loads = 0: M omega = dV/dt - P_loads = ",
+            "M omega + sum m g . v_G + P_loads (+ P_friction) = 0: M omega = ",
             Num(net, unit=True),
             ", M = ",
             Num(torque, unit=True),
@@ -704,7 +921,8 @@ def _power_step(d: _Dynamics) -> Step:
         return b.build()
     b.say(
         "Frictionless joints do no work, so the driver's power goes into the kinetic and "
-        "potential energy and against the loads: M omega = dT/dt + dV/dt - P_loads = ",
+        "potential energy and against the loads (and the friction, where there is some): "
+        "M omega = dT/dt + dV/dt - P_loads (- P_friction) = ",
         Num(net, unit=True),
         ", M = ",
         Num(torque, unit=True),
@@ -738,7 +956,7 @@ def _drivers_power_step(d: _Dynamics) -> Step:
         )
     total = b.value("P_drivers", sum(float(dr.power[0]) for dr in d.result.drivers), "W")
     b.check("sum", total, *terms)
-    kT, kV, kP, net = _energy_rate(d, b, "dT/dt + dV/dt - P_loads")
+    kT, kV, kP, kF, net = _energy_rate(d, b, "dT/dt + dV/dt - P_loads")
     b.check("sum", net, total)
     symbols = " + ".join(
         rf"M_{{{tex.name(dr.link)}}}\,\omega_{{{tex.name(dr.link)}}}" for dr in ctx.scene.drivers
@@ -751,7 +969,7 @@ def _drivers_power_step(d: _Dynamics) -> Step:
     )
     b.line(
         r"&\frac{dT}{dt} + \frac{dV}{dt} - P_\text{loads} = ",
-        *_energy_latex(kT, kV, kP),
+        *_energy_latex(kT, kV, kP, kF),
         " = ",
         Boxed((Num(net, unit=True),)),
     )
@@ -784,6 +1002,8 @@ def newton_euler_steps(ctx: LinkageContext, statics: bool = False) -> list[Step]
     steps = [_data_step(d)]
     if not statics:
         steps += [_center_step(d, k) for k in range(len(d.forces.elements))]
+    if d.friction is not None and (d.friction.forces or d.friction.moments):
+        steps.append(_friction_step(d))
     for link in ctx.scene.moving_links:
         steps.append(_free_body_step(d, link))
         steps.append(_equations_step(d, link))
