@@ -995,6 +995,77 @@ def _drivers_power_step(d: _Dynamics) -> Step:
     return b.build()
 
 
+def _whole_mechanism_step(d: _Dynamics) -> Step:
+    """sum m a_G = sum R_ground + sum m g + sum F (+ sum f at the ground's slots): the whole
+    mechanism cut free from its frame, where the joint forces between moving links cancel (seed
+    004's 7th question; in statics sum m a_G = 0)."""
+    ctx = d.ctx
+    scene = ctx.scene
+    title = "Check: the whole mechanism, cut free from the frame"
+    b = ctx.builder("dynamics.whole_mechanism", title)
+    external: list[Ref] = []
+    words: list[tuple[Piece, ...]] = []
+    for index, (joint, solved) in enumerate(zip(scene.joints, d.forces.joints, strict=True)):
+        if scene.ground not in joint.links:
+            continue
+        sign = 1.0 if joint.links[0] == scene.ground else -1.0  # the ground's force on the link
+        source = ("joints", index, "force") if sign > 0 else None
+        key = b.value(f"R({joint.point})", sign * solved.force[0], FORCE, source)
+        external.append(key)
+        words.append((f"R({joint.point}) = ", Col(key)))
+    for e in d.forces.elements:
+        if np.any(d.gravity):
+            key = b.value(f"m g({e.name})", e.mass * d.gravity, FORCE)
+            external.append(key)
+            words.append((f"m g({e.name}) = ", Col(key)))
+    for f in d.forces.forces:
+        key = b.value(f"F({f.name})", f.force[0], FORCE)
+        external.append(key)
+        words.append((f"{f.name} = ", Col(key)))
+    inertial = []
+    if not d.statics:
+        for e in d.forces.elements:
+            inertial.append(b.value(f"m a_G({e.name})", e.mass * e.a[0], FORCE))
+    vectors = [np.array(b.vector(k)) for k in external]
+    size = float(sum(np.hypot(*v) for v in vectors))
+    left = b.value("sum external", sum(vectors, np.zeros(2)), FORCE, reference=size)
+    b.check("sum", left, *external)
+    right = b.value(
+        "sum m a_G",
+        sum((np.array(b.vector(k)) for k in inertial), np.zeros(2)),
+        FORCE,
+        reference=size,
+    )
+    if inertial:
+        b.check("sum", right, *inertial)
+    b.check("sum", left, right)
+    b.line(
+        r"&\textstyle\sum \vec R_\text{ground} + \sum m\vec g + \sum \vec F = ",
+        *joined(" + ", [(Col(k, dims=2),) for k in external]),
+        " = ",
+        Col(left, unit=True, dims=2),
+    )
+    if inertial:
+        b.line(
+            r"&\textstyle\sum m\,\vec a_G = ",
+            *joined(" + ", [(Col(k, dims=2),) for k in inertial]),
+            " = ",
+            Boxed((Col(right, unit=True, dims=2),)),
+        )
+    b.say(
+        "Cut the whole mechanism free from its frame: the forces between moving links cancel in "
+        "pairs, so the ground's reactions, the weights and the loads add up to "
+        + ("zero in equilibrium" if d.statics else "the sum of m a_G of every mass")
+        + ". External forces: ",
+        *joined("; ", words),
+        "; their sum ",
+        Col(left),
+        ("." if d.statics else "; sum of m a_G: "),
+        *(() if d.statics else (Col(right), ", the same.")),
+    )
+    return b.build()
+
+
 def newton_euler_steps(ctx: LinkageContext, statics: bool = False) -> list[Step]:
     """The dynamics steps of one instant (after the kinematics); ``statics``: the static force
     analysis (no accelerations of the centres, no inertia terms, the virtual-work check)."""
@@ -1007,7 +1078,7 @@ def newton_euler_steps(ctx: LinkageContext, statics: bool = False) -> list[Step]
     for link in ctx.scene.moving_links:
         steps.append(_free_body_step(d, link))
         steps.append(_equations_step(d, link))
-    steps += [_system_step(d), _solution_step(d)]
+    steps += [_system_step(d), _solution_step(d), _whole_mechanism_step(d)]
     if len(ctx.scene.drivers) == 1:
         steps.append(_power_step(d))
     elif ctx.scene.drivers:

@@ -319,3 +319,19 @@ def test_the_equations_of_member_3_term_by_term(client: TestClient) -> None:
     assert r"I_{G,\text{rocker}}\,\alpha = " in latex
     assert "r(Gamma,B) cross F(B) = " in step["text"]
     assert "passes through Gamma" in step["text"]
+
+
+def test_the_whole_mechanism_is_the_seeds_seventh_question(client: TestClient) -> None:
+    """Seed 004's 7th question at theta = 90 deg: the ground's reactions at O and Gamma add up to
+    the reference's sum (1e-9), and with the weights and the load to the reference's total m a_G
+    (1e-9)."""
+    body = solve(client, seed004_scene(90))
+    check(body)
+    (step,) = [s for s in body["steps"] if s["kind"] == "dynamics.whole_mechanism"]
+    values = {key: np.array(v["value"]) for key, v in step["values"].items()}
+    reactions = values["R(O)"] + values["R(Gamma)"]
+    expected = EXPECTED["theta=90deg/sum_ground_reactions_O_plus_Gamma"]["value"]
+    assert reactions == pytest.approx(expected, rel=1e-9)
+    total = EXPECTED["theta=90deg/m_total_times_a_G"]["value"]
+    assert values["sum m a_G"] == pytest.approx(total, rel=1e-9)
+    assert values["sum external"] == pytest.approx(total, rel=1e-9)
