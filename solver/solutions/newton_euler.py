@@ -78,9 +78,12 @@ class _Dynamics:
         if self.friction is not None and not (
             self.friction.converged[0] and not self.friction.locked[0]
         ):
-            angle = link_state(scene, ctx.analysis.motion, [scene.drivers[0].link])
-            why = self_locking(scene, self.result, angle[scene.drivers[0].link][0])
-            words = non_convergence(self.result, angle[scene.drivers[0].link][0])
+            angle = np.zeros(1)  # the first driver's angle, as /analyze reports it
+            if scene.drivers:
+                link = scene.drivers[0].link
+                angle = link_state(scene, ctx.analysis.motion, [link])[link][0]
+            why = self_locking(scene, self.result, angle)
+            words = non_convergence(self.result, angle)
             raise SingularConfiguration(
                 "joints[].friction: " + (why.reason if why is not None else str(words)),
                 float("inf"),
