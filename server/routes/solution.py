@@ -51,7 +51,8 @@ class SolutionRequest(Strict):
         description="'vector' (relative velocities, seed 000 form) or 'loop' (loop "
         "closure in complex form with Cramer's rule, seed 001 form; for linkages that are not "
         "chains of four-bar, slider-crank or slotted-lever loops the solution falls back to "
-        "'vector' and says so).",
+        "'vector' and says so); 'newton_euler' (the dynamics of the instant) or 'statics' (the "
+        "static force analysis; docs/DYNAMICS.md).",
     )
     digits: int = Field(
         4,

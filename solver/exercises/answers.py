@@ -7,7 +7,8 @@ synthesis task's ``freudenstein.K1`` or ``scene.points.A.0``, walked on its /syn
 solver's result objects carry the same names, so the path is walked on them directly.
 ``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
 Dynamics paths (``drivers.0.torque``, ``joints.1.force.0``, ``sweep[samples=720,k=4/100].cycle.
-flywheel_inertia``) are walked on the /analyze (or /sweep) body itself.
+flywheel_inertia``, ``statics.drivers.0.torque`` of the static force analysis) are walked on the
+/analyze (or /sweep) body itself.
 Nothing here computes a kinematic quantity: every number is the solver's.
 """
 
@@ -44,6 +45,9 @@ EVENT_T_MAX = 60.0
 # The roots of paths into the dynamics answers (dynamics-v1), besides joints.<k>.force.<axis> and
 # sweep[samples=N,k=P/100].cycle.<figure> (solver.exercises.dynamics).
 DYNAMIC_ROOTS = frozenset({"drivers", "frame_force", "frame_moment", "energy", "center_of_mass"})
+# The root of paths into the /analyze body of the static force analysis ("statics": true):
+# statics.drivers.0.torque, statics.joints.2.force.1.
+STATICS = "statics"
 # The attributes a path may name (the /analyze field names that the result objects share).
 _FIELDS = frozenset(
     {
@@ -67,9 +71,9 @@ class Solved:
     bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
 
     def dynamics(self, root: str) -> Mapping[str, Any]:
-        """The /analyze body with ``forces`` and ``energy``, or a /sweep body (``sweep[...]``
-        roots), computed once per root."""
-        key = root if root.startswith("sweep[") else ""
+        """The /analyze body with ``forces`` and ``energy``, that with ``statics`` (root
+        ``statics``), or a /sweep body (``sweep[...]`` roots), computed once per root."""
+        key = root if root.startswith("sweep[") or root == STATICS else ""
         if key not in self.bodies:
             self.bodies[key] = dynamic_body(self.document, key)
         return self.bodies[key]
@@ -125,10 +129,13 @@ def flywheel_request(exercise: Exercise) -> tuple[str, int, float, float]:
 
 def dynamic_body(doc: Mapping[str, Any], root: str) -> Mapping[str, Any]:
     """The /analyze body with every kinematic quantity and ``forces`` and ``energy`` (root ""),
-    or the /sweep body with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
+    that of the static force analysis with ``forces`` (root ``statics``), or the /sweep body
+    with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
     if not root:
         quantities = ["position", "velocity", "acceleration", "forces", "energy"]
         return analyze_body(doc, quantities).as_dict()
+    if root == STATICS:
+        return analyze_body(doc, ["position", "velocity", "forces"], statics=True).as_dict()
     sweep = parse_sweep_root(root)
     if sweep is None:
         raise InvalidScene(f"path root {root!r}: expected sweep[samples=N,k=P/100]")
@@ -160,11 +167,12 @@ def value_at(solved: Solved, path: str) -> float:
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: expected events.<moving point>.<target>.time")
         return find_event(solved.scene, parts[1], parts[2], EVENT_OCCURRENCE, EVENT_T_MAX).time
-    if parts[0] in DYNAMIC_ROOTS or parts[0].startswith("sweep[") or parts[2:3] == ["force"]:
+    rooted = parts[0].startswith("sweep[") or parts[0] == STATICS
+    if parts[0] in DYNAMIC_ROOTS or rooted or parts[2:3] == ["force"]:
         if not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: dynamics are defined for planar linkages only")
         body: Any = solved.dynamics(parts[0])
-        return _number(body, parts[1:] if parts[0].startswith("sweep[") else parts, path)
+        return _number(body, parts[1:] if rooted else parts, path)
     if isinstance(solved.scene, CamScene):  # analyze[angle_deg=N]: /analyze at that cam angle
         angle = parse_cam_root(parts[0])
         if angle is None:

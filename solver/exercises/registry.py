@@ -144,6 +144,21 @@ TYPES: Mapping[str, ExerciseType] = {
             ("energy_fluctuation", "flywheel_inertia", "mean_torque"), dynamics.flywheel,
             "flywheel",
         ),
+        _type(
+            "holding_torque", "Four-bar linkage: holding torque (statics)",
+            "A Grashof crank-rocker of uniform bars with a moment on its rocker, in statics: the "
+            "torque on the crank that holds it in position, with the bars' weights and the pin "
+            "force at B from standard on.",
+            ("M_crank", "F_B_x", "F_B_y"), dynamics.holding_torque, "statics",
+        ),
+        _type(
+            "slider_crank_friction", "Slider-crank with friction (statics)",
+            "A massless slider-crank pushing a piston force with Coulomb friction at the slider: "
+            "the driving torque with friction; from standard on with a friction circle at the "
+            "crank pin and the torque without friction, at challenging with an offset guide and "
+            "the guide's force on the slider.",
+            ("M_crank", "M_0", "N_C_x", "N_C_y"), dynamics.slider_crank_friction, "friction",
+        ),
         # gear trains (docs/GEARS.md): mistakes in solver.exercises.gear_trains
         _type(
             "planetary_output", "Planetary train: output speed",

@@ -231,6 +231,12 @@ _ENTRIES = (
         "The static answer: without -m a_G and -I_G alpha of the moving links.",
     ),
     TypicalMistake(
+        "friction_left_out",
+        "The friction left out",
+        "The frictionless torque: without the Coulomb force at the slider (and the friction "
+        "moments at the pins), which the driver must overcome as well.",
+    ),
+    TypicalMistake(
         "mean_torque_for_fluctuation",
         "The mean torque's work for the energy fluctuation",
         "2 pi |M_mean| taken for the largest swing of the energy over a revolution.",
