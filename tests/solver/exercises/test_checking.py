@@ -120,6 +120,7 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "alpha_in_normal_term",
         "weights_left_out",
         "inertia_left_out",
+        "friction_left_out",
         "mean_torque_for_fluctuation",
         "flywheel_factor_two",
         "internal_mesh_as_external",
