@@ -267,3 +267,27 @@ def test_the_rounding_mistake_only_where_the_data_can_be_rounded(name: str, expe
     assert bool(found) == expected
     for m in found:
         assert "link ground: |CA| becomes 0.35 m instead of 0.3464 m" in m.text
+
+
+@pytest.mark.parametrize("name", SEEDS + PRESETS)
+def test_the_classification_angles_are_values_of_the_step_written_once(name: str) -> None:
+    """Every angle the slider classification shows in degrees is a value of the step (unit
+    'deg', 180/pi times its radians by a ``product`` check), and the LaTeX and the text show that
+    value's digits: the number with a degree sign in the LaTeX, its display ('12.34 deg') in
+    the text. A crank that turns fully shows a (or the lever's theta and swing) this way."""
+    (step,) = _steps(_scene(name))
+    degrees = {k: v for k, v in step.values.items() if v.unit == "deg"}
+    if "stroke" not in step.values and "swing" not in step.values:
+        assert not degrees  # S000-T3: the crank rocks, no angles to show
+        return
+    assert degrees
+    checked = {c.result.ref.key: c for c in step.checks if c.relation == "product"}
+    for key, value in degrees.items():
+        check = checked[key]
+        (radians,) = check.operands
+        assert step.values[radians.ref.key].unit == "rad"
+        assert value.value == pytest.approx(math.degrees(step.values[radians.ref.key].value))
+        assert check.factor == pytest.approx(180 / math.pi)
+        assert value.display in step.text, (key, value.display)
+        number = value.display.removesuffix(" deg")
+        assert number + r"{}^{\circ}" in step.latex, (key, number)
