@@ -21,6 +21,7 @@ from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Equation, Frac, Num, Piece, Ref, joined
 from solver.solutions.figures import (
+    SHORTEST,
     Arrow,
     Dot,
     Groove,
@@ -51,6 +52,13 @@ COMPONENT_LATEX = {
     "coriolis": r"a_{{{},\mathrm{{Cor}}}}",
     "relative": r"a_{{{},\mathrm{{rel}}}}",
 }
+
+
+def undrawn(size: float, scale: float) -> bool:
+    """True for a vector of length ``size`` that the figure at 1 cm = ``scale`` does not draw:
+    shorter than ``SHORTEST`` mm on paper (a subnormal rate's image, 1e-311 cm): it has no
+    length to read off and no reading error."""
+    return 10.0 * size / scale < SHORTEST
 
 
 def link_pairs(ctx: LinkageContext) -> list[tuple[str, str, str]]:
@@ -275,7 +283,7 @@ class Polygons:
         texts: list[tuple[Piece, ...]] = []
         for arrow in arrows:
             size = float(np.hypot(*(arrow.end - arrow.start)))
-            if b.fmt.is_zero(size, "m/s^2"):
+            if b.fmt.is_zero(size, "m/s^2") or undrawn(size, b.scalar(scale)):
                 continue
             norm = b.value(f"|{arrow.name}|", size, "m/s^2")
             length = b.value(f"length {arrow.name}", size / b.scalar(scale), "cm")
@@ -310,7 +318,7 @@ class Polygons:
         shortest: Ref | None = None
         for p, v in vectors.items():
             size = float(np.hypot(*v))
-            if size == 0.0 or b.fmt.is_zero(size, unit):
+            if size == 0.0 or b.fmt.is_zero(size, unit) or undrawn(size, b.scalar(scale)):
                 continue
             src = ("moving_points", p, "velocity" if letter == "v" else "acceleration")
             if p in self.ctx.scene.points:

@@ -352,3 +352,16 @@ def test_a_point_named_after_a_greek_letter_is_drawn_as_the_letter() -> None:
     assert "Γ" in texts["positions"]
     assert {"n BΓ", "n DΓ"} <= set(texts["graphical.acceleration"])
     assert not any("Gamma" in (t or "") for words in texts.values() for t in words)
+
+
+def test_an_image_too_short_to_draw_has_no_length_to_read() -> None:
+    """A slider-crank at rest with a subnormal alpha (2.2e-311 rad/s^2): its acceleration images
+    are 1e-311 cm long, not drawn, so the polygon's step lists no length and no reading error
+    for them (which would be 0.05 cm / 1e-311 cm = inf) and the solution is built."""
+    values = {"crank": 1.0, "rod": 1.0, "offset": 0.0, "crank_angle_deg": 0.0}
+    doc = build_preset("slider_crank", {**values, "omega": 0.0, "alpha": 2.225073858507e-311})
+    solution = solve(parse_linkage(doc))
+    step = next(s for s in solution.steps if s.kind == "graphical.acceleration")
+    assert "relative error" not in step.values
+    assert not [k for k in step.values if k.startswith("length ")]
+    assert not [e for e in ET.fromstring(step.figure).iter() if "data-vector" in e.attrib]
