@@ -35,17 +35,31 @@ def _diagnosis(
 
 
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
-    """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
-    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), a
+    """The typical mistakes that can be made in the exercise with the wrong answers they give: a
+    gear train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), a
     synthesis task's (``solver.exercises.synthesis_mistakes``), else a linkage's or a spatial
-    chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    chain's (``solver.exercises.mistakes.typical_mistakes``); of each only the answers it gets
+    wrong (beyond the asked tolerance), and none that gets every answer right in this exercise (a
+    sign mistake on a zero, weights where there is no gravity)."""
     if exercise.task is not None:
-        return synthesis_mistakes(exercise)
-    if exercise.scene.get("kind") == "gear_train":
-        return gear_train_mistakes(exercise)
-    if exercise.scene.get("kind") == "cam":
-        return [WrongAnswers(*made) for made in cam_mistakes(exercise)]
-    return typical_mistakes(exercise)
+        found = synthesis_mistakes(exercise)
+    elif exercise.scene.get("kind") == "gear_train":
+        found = gear_train_mistakes(exercise)
+    elif exercise.scene.get("kind") == "cam":
+        found = [WrongAnswers(*made) for made in cam_mistakes(exercise)]
+    else:
+        found = typical_mistakes(exercise)
+    asked = {a.key: a for a in exercise.asked}
+    made = []
+    for mistake in found:
+        wrong = {
+            key: value
+            for key, value in mistake.values.items()
+            if key not in asked or not within(value, exercise.answers[key], asked[key].tolerance)
+        }
+        if any(key in asked for key in wrong):
+            made.append(WrongAnswers(mistake.kind, mistake.sentence, wrong))
+    return made
 
 
 def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:

@@ -1483,7 +1483,9 @@ def summary_step(ctx: CamContext) -> Step:
 
 def cam_mistakes(ctx: CamContext, motion: int) -> list[Mistake]:
     """Typical mistakes with the chain rule (``solver.teaching.mistakes``): v = ds/dtheta (the
-    cam's speed left out), and beta in degrees in ds/dtheta = h y'/beta."""
+    cam's speed left out), and beta in degrees in ds/dtheta = h y'/beta; only where the wrong
+    number shows differently from v (at a dwell, or at rest, both are 0: nothing to get
+    wrong)."""
     if ctx.segment.law is None:
         return []
     fmt, unit = ctx.fmt, ctx.unit
@@ -1500,7 +1502,7 @@ def cam_mistakes(ctx: CamContext, motion: int) -> list[Mistake]:
 
     ds = cam_rate_without_omega(v, omega, 1)
     wrong = cam_beta_in_degrees(v, duration, 1)
-    return [
+    made = [
         mistake(
             "cam_omega_left_out",
             "ds/dtheta is the velocity per radian of cam turn; the follower's velocity in time "
@@ -1517,3 +1519,4 @@ def cam_mistakes(ctx: CamContext, motion: int) -> list[Mistake]:
             f"{unit}/s",
         ),
     ]
+    return [m for m in made if m.values["wrong"].display.rsplit(" ", 1)[0] != fmt.text(v)]

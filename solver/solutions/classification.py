@@ -78,6 +78,13 @@ def _angle(
     return mu
 
 
+def _degrees(b: StepBuilder, angle: Ref) -> Ref:
+    """The angle in degrees, 180/pi times its radians (a ``product`` check)."""
+    value = b.value(f"{angle.key} (deg)", math.degrees(b.scalar(angle)), "deg")
+    b.check("product", value, angle, factor=180.0 / math.pi)
+    return value
+
+
 class Grashof(NamedTuple):
     """Grashof's criterion as put: the roles of the shortest s, the longest l and the others p, q,
     s + l and p + q, and how they compare ('<', '=' or '>')."""
@@ -119,14 +126,14 @@ def _classification_step(ctx: LinkageContext, index: int, loop: FourBarLoop) -> 
     for role, link, length in zip(ROLES, loop.links, loop.lengths, strict=True):
         keys[role] = b.value(f"{role} ({link})", length, "m", (*src, "lengths", role))
     _write_grashof(b, loop, keys, _grashof_values(b, loop, keys))
-    _write_transmission(ctx, b, _transmission_values(ctx, b, loop, keys, src))
+    _write_transmission(b, _transmission_values(ctx, b, loop, keys, src))
     if loop.grashof in ("Grashof crank-rocker", "Grashof double-crank"):
         near, far = _diagonal_range(b, keys)
         extremes = [
             _angle(b, label, _cos_mu(b, label, side, keys["coupler"], keys["rocker"]))
             for label, side in (("mu_min", near), ("mu_max", far))
         ]
-        _write_cycle(ctx, b, (near, far), extremes)
+        _write_cycle(b, (near, far), extremes)
     else:
         b.say(
             "The crank does not turn fully, so the transmission angle is only defined between "
@@ -187,11 +194,11 @@ def _transmission_values(
     return Transmission(joint_b, joint_d, bd, cos_now, mu)
 
 
-def _write_transmission(ctx: LinkageContext, b: StepBuilder, t: Transmission) -> None:
+def _write_transmission(b: StepBuilder, t: Transmission) -> None:
     """Write cos mu by the law of cosines and mu in rad and degrees."""
     bd_tex = f"{tex.name(t.joint_b)}{tex.name(t.joint_d)}"
     bd = f"{t.joint_b}{t.joint_d}"
-    degrees = math.degrees(b.scalar(t.mu))
+    degrees = _degrees(b, t.mu)
     law_of_cosines = Equation.of(
         Sym(r"\cos\mu", "cos mu"),
         Sym(rf"\frac{{b^2 + c^2 - |{bd_tex}|^2}}{{2bc}}", f"(b^2 + c^2 - |{bd}|^2)/(2 b c)"),
@@ -202,14 +209,17 @@ def _write_transmission(ctx: LinkageContext, b: StepBuilder, t: Transmission) ->
         law_of_cosines,
         r" \;\Rightarrow\; \mu = ",
         Num(t.mu, unit=True),
-        rf" = {ctx.fmt.latex(degrees)}{{}}^{{\circ}}",
+        " = ",
+        Num(degrees, unit=True),
     )
     b.say(
         f"Transmission angle now (between coupler and rocker): |{bd}| = ",
         Num(t.bd, unit=True),
         ", ",
         law_of_cosines,
-        f", mu = {ctx.fmt.text(degrees)} deg.",
+        ", mu = ",
+        Num(degrees, unit=True),
+        ".",
     )
 
 
@@ -226,24 +236,31 @@ def _diagonal_range(b: StepBuilder, keys: dict[str, Ref]) -> tuple[Ref, Ref]:
     return near, far
 
 
-def _write_cycle(
-    ctx: LinkageContext, b: StepBuilder, diagonal: tuple[Ref, Ref], extremes: list[Ref]
-) -> None:
+def _write_cycle(b: StepBuilder, diagonal: tuple[Ref, Ref], extremes: list[Ref]) -> None:
     """Write mu's range over a turn of the crank and whether it stays within 40 to 140 deg."""
     near, far = diagonal
-    lo, hi = (math.degrees(b.scalar(k)) for k in extremes)
+    lo, hi = (_degrees(b, k) for k in extremes)
+    right = b.value("90 deg", 90.0, "deg")
+    low, high = b.scalar(lo), b.scalar(hi)
+    if abs(90.0 - low) >= abs(90.0 - high):
+        worst = b.value("from 90 deg", abs(90.0 - low), "deg")
+        b.check("sum", worst, *((right, -lo) if low <= 90.0 else (lo, -right)))
+    else:
+        worst = b.value("from 90 deg", abs(90.0 - high), "deg")
+        b.check("sum", worst, *((hi, -right) if high >= 90.0 else (right, -hi)))
     b.line(
         r"&|BD| \in [",
         Num(near),
         ", ",
         Num(far),
-        rf"]\,\mathrm{{m}} \;\Rightarrow\; \mu_{{\min}} = {ctx.fmt.latex(lo)}{{}}^{{\circ}}, "
-        rf"\; \mu_{{\max}} = {ctx.fmt.latex(hi)}{{}}^{{\circ}}",
+        r"]\,\mathrm{m} \;\Rightarrow\; \mu_{\min} = ",
+        Num(lo, unit=True),
+        r", \; \mu_{\max} = ",
+        Num(hi, unit=True),
     )
-    worst = max(abs(90.0 - lo), abs(90.0 - hi))
     verdict = (
         "within the usual 40 to 140 deg: the linkage transmits force well all round"
-        if GOOD[0] <= lo and hi <= GOOD[1]
+        if GOOD[0] <= low and high <= GOOD[1]
         else "outside the usual 40 to 140 deg at times: near there the rocker is driven "
         "poorly (a small turning moment for a large force along the coupler)"
     )
@@ -252,8 +269,13 @@ def _write_cycle(
         Num(near, unit=True),
         " (crank along the ground, towards D) to g + a = ",
         Num(far, unit=True),
-        f", so mu runs from {ctx.fmt.text(lo)} to {ctx.fmt.text(hi)} deg (at most "
-        f"{ctx.fmt.text(worst)} deg from 90 deg), {verdict}.",
+        ", so mu runs from ",
+        Num(lo, unit=True),
+        " to ",
+        Num(hi, unit=True),
+        " (at most ",
+        Num(worst, unit=True),
+        f" from 90 deg), {verdict}.",
     )
 
 
@@ -356,10 +378,9 @@ def _slider_crank_step(
     b.check("sum", fast, pi, -advance)
     ratio = b.value("time ratio", lim.time_ratio, "")
     b.check("quotient", ratio, slow, fast)
-    b.value("mu_min", lim.mu_min, "rad")
-    b.value("mu_max", lim.mu_max, "rad")
-    deg = ctx.fmt
-    a_deg = math.degrees(abs(lim.advance))
+    a_deg = _degrees(b, advance)
+    mu_min = _degrees(b, b.value("mu_min", lim.mu_min, "rad"))
+    mu_max = _degrees(b, b.value("mu_max", lim.mu_max, "rad"))
     b.line(
         r"&x_{\max} = \sqrt{(l + r)^2 - e^2} = ",
         Num(far, unit=True),
@@ -368,16 +389,16 @@ def _slider_crank_step(
     )
     b.line(r"&H = x_{\max} - x_{\min} = ", Num(stroke, unit=True))
     b.line(
-        r"&a = \left|\arcsin\frac{e}{l - r} - \arcsin\frac{e}{l + r}\right| = "
-        rf"{deg.latex(a_deg)}{{}}^{{\circ}}"
-        rf" \;\Rightarrow\; K = \frac{{180^\circ + a}}{{180^\circ - a}} = ",
+        r"&a = \left|\arcsin\frac{e}{l - r} - \arcsin\frac{e}{l + r}\right| = ",
+        Num(a_deg, unit=True),
+        r" \;\Rightarrow\; K = \frac{180^\circ + a}{180^\circ - a} = ",
         Num(ratio),
     )
     b.line(
-        r"&\mu_{\min} = \arccos\frac{r + |e|}{l} = "
-        rf"{deg.latex(math.degrees(lim.mu_min))}{{}}^{{\circ}}, \; "
-        r"\mu_{\max} = \arccos\frac{\max(0, |e| - r)}{l} = "
-        rf"{deg.latex(math.degrees(lim.mu_max))}{{}}^{{\circ}}"
+        r"&\mu_{\min} = \arccos\frac{r + |e|}{l} = ",
+        Num(mu_min, unit=True),
+        r", \; \mu_{\max} = \arccos\frac{\max(0, |e| - r)}{l} = ",
+        Num(mu_max, unit=True),
     )
     b.say(
         "The crank turns fully, since r + |e| = ",
@@ -391,12 +412,15 @@ def _slider_crank_step(
         Num(near, unit=True),
         " (folded), so the stroke is H = ",
         Num(stroke, unit=True),
-        f". Between them the crank turns 180 + a and 180 - a deg with a = {deg.text(a_deg)} deg, "
-        "so the time ratio is K = (180 + a)/(180 - a) = ",
+        ". Between them the crank turns 180 + a and 180 - a deg with a = ",
+        Num(a_deg, unit=True),
+        ", so the time ratio is K = (180 + a)/(180 - a) = ",
         Num(ratio),
-        ". The transmission angle (between the rod and the normal to the guide) runs from "
-        f"{deg.text(math.degrees(lim.mu_min))} deg (crank perpendicular to the guide, away from "
-        f"it) to {deg.text(math.degrees(lim.mu_max))} deg.",
+        ". The transmission angle (between the rod and the normal to the guide) runs from ",
+        Num(mu_min, unit=True),
+        " (crank perpendicular to the guide, away from it) to ",
+        Num(mu_max, unit=True),
+        ".",
     )
     return b.build()
 
@@ -434,27 +458,31 @@ def _slotted_lever_step(
         )
         return b.build()
     lim = slotted_lever_dead_centres(b.scalar(r), b.scalar(d))
-    b.value("swing", lim.swing, "rad")
+    swing = _degrees(b, b.value("swing", lim.swing, "rad"))
     slow = b.value("slow stroke", lim.slow_stroke, "rad")
     fast = b.value("fast stroke", lim.fast_stroke, "rad")
+    slow_deg, fast_deg = _degrees(b, slow), _degrees(b, fast)
+    half = _degrees(b, b.value("theta", lim.theta_1, "rad"))
     full = b.value("2 pi", 2.0 * math.pi, "")
     b.check("sum", slow, full, -fast)
     ratio = b.value("time ratio", lim.time_ratio, "")
     b.check("quotient", ratio, slow, fast)
-    fmt = ctx.fmt
-    half = math.degrees(lim.theta_1)
     b.line(
         r"&r = ",
         Num(r, unit=True),
         r" < d = ",
         Num(d, unit=True),
-        r" \;\Rightarrow\; \cos\theta = \frac{r}{d}, \; "
-        rf"\theta = \pm {fmt.latex(half)}{{}}^{{\circ}}",
+        r" \;\Rightarrow\; \cos\theta = \frac{r}{d}, \; \theta = \pm ",
+        Num(half, unit=True),
     )
     b.line(
-        rf"&\psi = 2\arcsin\frac{{r}}{{d}} = {fmt.latex(math.degrees(lim.swing))}{{}}^{{\circ}}, \;"
-        r" K = \frac{360^\circ - 2\arccos(r/d)}{2\arccos(r/d)} = "
-        r"\frac{180^\circ + a}{180^\circ - a} = ",
+        r"&\psi = 2\arcsin\frac{r}{d} = ",
+        Num(swing, unit=True),
+        r", \; K = \frac{360^\circ - 2\arccos(r/d)}{2\arccos(r/d)} = \frac{",
+        Num(slow_deg, unit=True),
+        "}{",
+        Num(fast_deg, unit=True),
+        r"} = \frac{180^\circ + a}{180^\circ - a} = ",
         Num(ratio),
     )
     sentences: list[Any] = [
@@ -463,13 +491,19 @@ def _slotted_lever_step(
         " < d = ",
         Num(d, unit=True),
         ". The lever's limit positions are where the slot is tangent to the crank circle (crank "
-        f"perpendicular to the slot), at theta = +-{fmt.text(half)} deg from {pivot}{lever_pivot}; "
-        f"the lever swings through 2 asin(r/d) = {fmt.text(math.degrees(lim.swing))} deg. The "
-        f"crank turns {fmt.text(math.degrees(lim.slow_stroke))} deg over the slow stroke and "
-        f"{fmt.text(math.degrees(lim.fast_stroke))} deg over the quick return, a time ratio "
-        "K = (180 + a)/(180 - a) = ",
+        "perpendicular to the slot), at theta = +-",
+        Num(half, unit=True),
+        f" from {pivot}{lever_pivot}; the lever swings through 2 asin(r/d) = ",
+        Num(swing, unit=True),
+        ". The crank turns ",
+        Num(slow_deg, unit=True),
+        " over the slow stroke and ",
+        Num(fast_deg, unit=True),
+        " over the quick return, a time ratio K = (180 + a)/(180 - a) = ",
         Num(ratio),
-        f" with a = 2 asin(r/d) = {fmt.text(math.degrees(lim.swing))} deg.",
+        " with a = 2 asin(r/d) = ",
+        Num(swing, unit=True),
+        ".",
     ]
     ram = _ram_stroke(ctx, lever, block, (o, c), lim)
     if ram is not None:

@@ -20,7 +20,18 @@ from solver.kinematics.rigid import omega_cross
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Equation, Frac, Num, Piece, Ref, joined
-from solver.solutions.figures import Arrow, Dot, model_scale, polygon_scale, scale_text, svg
+from solver.solutions.figures import (
+    SHORTEST,
+    Arrow,
+    Dot,
+    Groove,
+    Slider,
+    figure_name,
+    model_scale,
+    polygon_scale,
+    scale_text,
+    svg,
+)
 from solver.solutions.linkage import LinkageContext
 from solver.solutions.model import Step
 
@@ -43,6 +54,13 @@ COMPONENT_LATEX = {
 }
 
 
+def undrawn(size: float, scale: float) -> bool:
+    """True for a vector of length ``size`` that the figure at 1 cm = ``scale`` does not draw:
+    shorter than ``SHORTEST`` mm on paper (a subnormal rate's image, 1e-311 cm): it has no
+    length to read off and no reading error."""
+    return 10.0 * size / scale < SHORTEST
+
+
 def link_pairs(ctx: LinkageContext) -> list[tuple[str, str, str]]:
     """(link, X, Y) for every moving link and every point Y of it after its first point X."""
     out = []
@@ -57,8 +75,45 @@ def slot_points(ctx: LinkageContext) -> list[tuple[str, str]]:
     return [(j.guide, j.point) for j in ctx.scene.joints if j.type != "revolute"]
 
 
+def sliders(ctx: LinkageContext) -> list[Slider]:
+    """Every sliding joint's block on its guide as it lies now (the slot's direction turned with
+    the guide)."""
+    return [
+        Slider(j.point, ctx.pos(j.point), ctx.slot_direction(j), j.guide == ctx.scene.ground)
+        for j in ctx.scene.joints
+        if j.type != "revolute"
+    ]
+
+
+def grooves(ctx: LinkageContext) -> list[Groove]:
+    """Every moving point's path in its carrier as it lies now: an arc about its centre from its
+    start through its sweep, in a disc about that centre reaching past the carrier's points; or a
+    line from its start through the point it passes, reaching the moving point."""
+    out = []
+    for mp in ctx.scene.moving_points:
+        start = ctx.pos(mp.path.start)
+        m = np.asarray(ctx.analysis.moving_points[mp.name].position)
+        if mp.path.center is None:
+            assert mp.path.through is not None
+            through = ctx.pos(mp.path.through)
+            u = (through - start) / float(np.hypot(*(through - start)))
+            reach = max(float(np.hypot(*(through - start))), float(u @ (m - start)))
+            out.append(Groove(mp.name, None, 0.0, 0.0, 0.0, start, start + reach * u))
+            continue
+        centre = ctx.pos(mp.path.center)
+        radius = float(np.hypot(*(start - centre)))
+        sweep = math.radians(mp.path.sweep_deg) * (1.0 if mp.path.direction == "ccw" else -1.0)
+        carrier = [ctx.pos(p) for p in ctx.scene.links[mp.link].points]
+        disc = 1.15 * max([radius, *(float(np.hypot(*(p - centre))) for p in carrier)])
+        angle = math.atan2(*(start - centre)[::-1])
+        out.append(Groove(mp.name, centre, radius, angle, sweep, start, start, disc))
+    return out
+
+
 def mechanism_figure(ctx: LinkageContext) -> str:
-    """The mechanism at the analysed instant, to scale, with the position vectors of the steps."""
+    """The mechanism at the analysed instant, to scale, with the position vectors of the steps:
+    the links, every slider's block on its guide, every moving point's groove in its carrier
+    and the point itself."""
     positions = [ctx.pos(p) for p in ctx.scene.points]
     per_mm = model_scale(positions)
     fixed = set(ctx.scene.links[ctx.scene.ground].points)
@@ -74,6 +129,7 @@ def mechanism_figure(ctx: LinkageContext) -> str:
         if not np.allclose(ctx.pos(a), ctx.pos(b))
     ]
     dots = [Dot(ctx.pos(p), p, p in fixed) for p in ctx.scene.points]
+    dots += [Dot(np.asarray(m.position), name) for name, m in ctx.analysis.moving_points.items()]
     k = per_mm * 10.0
     return svg(
         "The mechanism at the analysed instant",
@@ -83,6 +139,8 @@ def mechanism_figure(ctx: LinkageContext) -> str:
         per_mm,
         f"Mechanism, {scale_text(k, 'm')}",
         {"data-kind": "mechanism", "data-scale": repr(k), "data-unit": "m"},
+        sliders(ctx),
+        grooves(ctx),
     )
 
 
@@ -124,7 +182,8 @@ class Polygons:
             vx = moving.get(x, np.zeros(2))
             vy = moving.get(y, np.zeros(2))
             if float(np.hypot(*(vy - vx))) > 0:
-                arrows.append(Arrow(vx, vy, f"v({y})-v({x})", f"{y}{x}".lower(), "relative"))
+                label = figure_name(y.lower()) + figure_name(x.lower())
+                arrows.append(Arrow(vx, vy, f"v({y})-v({x})", label, "relative"))
             order.append(
                 f"through {x.lower()} (the image of {x}) the direction perpendicular to {x}{y} "
                 f"(link {link}) gives {y.lower()}"
@@ -184,14 +243,15 @@ class Polygons:
         for link, x, y in link_pairs(ctx):
             r = ctx.pos(y) - ctx.pos(x)
             ax = accelerations.get(x, np.zeros(2))
+            pair = figure_name(y) + figure_name(x)
             normal = -(ctx.omega(link) ** 2) * r
             tangential = omega_cross(ctx.alpha(link), r)
             if float(np.hypot(*normal)) > 0:
-                arrows.append(Arrow(ax, ax + normal, f"an({link}:{x},{y})", f"n {y}{x}", "normal"))
+                arrows.append(Arrow(ax, ax + normal, f"an({link}:{x},{y})", f"n {pair}", "normal"))
             if float(np.hypot(*tangential)) > 0:
                 end = ax + normal + tangential
                 name = f"at({link}:{x},{y})"
-                arrows.append(Arrow(ax + normal, end, name, f"t {y}{x}", "tangential"))
+                arrows.append(Arrow(ax + normal, end, name, f"t {pair}", "tangential"))
         return arrows
 
     def slot_acceleration_arrows(self) -> list[Arrow]:
@@ -223,7 +283,7 @@ class Polygons:
         texts: list[tuple[Piece, ...]] = []
         for arrow in arrows:
             size = float(np.hypot(*(arrow.end - arrow.start)))
-            if b.fmt.is_zero(size, "m/s^2"):
+            if b.fmt.is_zero(size, "m/s^2") or undrawn(size, b.scalar(scale)):
                 continue
             norm = b.value(f"|{arrow.name}|", size, "m/s^2")
             length = b.value(f"length {arrow.name}", size / b.scalar(scale), "cm")
@@ -258,7 +318,7 @@ class Polygons:
         shortest: Ref | None = None
         for p, v in vectors.items():
             size = float(np.hypot(*v))
-            if size == 0.0 or b.fmt.is_zero(size, unit):
+            if size == 0.0 or b.fmt.is_zero(size, unit) or undrawn(size, b.scalar(scale)):
                 continue
             src = ("moving_points", p, "velocity" if letter == "v" else "acceleration")
             if p in self.ctx.scene.points:
@@ -360,7 +420,8 @@ def _polygon(
     letter, prime = ("v", "") if velocity else ("a", "'")
     drawn = [(p, v) for p, v in images.items() if float(np.hypot(*v)) > 0]
     absolute = [Arrow(np.zeros(2), v, f"{letter}({p})", "", "absolute") for p, v in drawn]
-    dots = [Dot(np.zeros(2), "p" + prime)] + [Dot(v, p.lower() + prime) for p, v in drawn]
+    dots = [Dot(np.zeros(2), "p" + prime)]
+    dots += [Dot(v, figure_name(p.lower()) + prime) for p, v in drawn]
     kind, unit = ("velocity", "m/s") if velocity else ("acceleration", "m/s^2")
     attributes = {"data-kind": kind, "data-scale": repr(k), "data-unit": unit}
     return svg(title, absolute[::-1] + arrows, dots, [], k / 10.0, caption, attributes)

@@ -51,15 +51,24 @@ GREEK = frozenset(
 _GREEK_NAME = re.compile(r"([A-Za-z]+)([0-9]{0,2})")
 
 
+def greek(raw: str) -> tuple[str, str] | None:
+    """A name that is a Greek letter spelled out, with at most two digits after it ('Gamma',
+    'omega1'): (the letter's name, the digits); None for any other name."""
+    found = _GREEK_NAME.fullmatch(raw)
+    if found is None or found.group(1) not in GREEK:
+        return None
+    return found.group(1), found.group(2)
+
+
 def name(raw: str) -> str:
     """A point or link name as a LaTeX subscript body; a Greek letter spelled out (a point
     'Gamma', 'omega1') as its symbol, \\Gamma, \\omega1 (not 'Gamma' in text beside a
     \\Gamma_{13})."""
     if _PLAIN.fullmatch(raw):
         return raw
-    greek = _GREEK_NAME.fullmatch(raw)
-    if greek is not None and greek.group(1) in GREEK:
-        return "\\" + greek.group(1) + "{}" + greek.group(2)  # {}: safe before a letter
+    letter = greek(raw)
+    if letter is not None:
+        return "\\" + letter[0] + "{}" + letter[1]  # {}: safe before a letter
     return r"\text{" + escape_text(raw) + "}"
 
 

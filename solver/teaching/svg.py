@@ -8,17 +8,28 @@ y; a ``Canvas`` collects the elements of a drawing in the drawing's coordinates,
 with its attributes in order and its numbers to the digits asked, and closes them into a
 standalone SVG document (no script, no external reference). Labels come from the user's scene:
 every text and attribute value is escaped here, once.
+
+Labels are placed so that no two overlap: a label's box is estimated from its font size and its
+number of characters (``text_box``: ``CHAR_WIDTH`` em per character, ``ASCENT`` em above the
+baseline and ``DESCENT`` below, wider than a sans-serif font sets most labels), and
+``Canvas.label`` takes the first of its candidate places whose box meets no label placed before,
+else the nearest free place on rings around the first candidate.
 """
 
 from __future__ import annotations
 
 import html
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 Point = tuple[float, float]
+CHAR_WIDTH = 0.62  # em: the width estimated for one character of a label (sans-serif)
+ASCENT = 0.8  # em: a label's box above its baseline
+DESCENT = 0.25  # em: and below it
+RING = 1.5  # mm: the step between the rings of places tried when no candidate is free
 Coordinates = Sequence[float] | np.ndarray  # a model point: (x, y), a (2,) array
 Attribute = tuple[str, str | float]
 
@@ -73,6 +84,34 @@ class View:
         return cls(centre[0], centre[1], (size - 2 * margin) / span, size / 2, size / 2)
 
 
+@dataclass(frozen=True)
+class Box:
+    """An axis-aligned box in the drawing's coordinates (y down): left <= right, top <= bottom."""
+
+    left: float
+    top: float
+    right: float
+    bottom: float
+
+    def overlaps(self, other: Box) -> bool:
+        """True when the two boxes share an area (touching edges do not overlap)."""
+        return (
+            self.left < other.right
+            and other.left < self.right
+            and self.top < other.bottom
+            and other.top < self.bottom
+        )
+
+
+def text_box(at: Point, label: str, size: float, anchor: str = "start") -> Box:
+    """The box of a label set at ``at`` (its baseline) in a font of ``size``:
+    width = CHAR_WIDTH size n for n characters, from ASCENT size above the baseline to
+    DESCENT size below, starting at x, centred on it or ending there by ``anchor``."""
+    width = CHAR_WIDTH * size * len(label)
+    left = at[0] - {"start": 0.0, "middle": width / 2, "end": width}[anchor]
+    return Box(left, at[1] - ASCENT * size, left + width, at[1] + DESCENT * size)
+
+
 def escape_text(text: str) -> str:
     """A label as element text: &, < and > escaped."""
     return html.escape(text, quote=False)
@@ -110,6 +149,8 @@ class Canvas:
         self.view = view
         self.digits = digits
         self.parts: list[str] = []
+        self.labels: list[Box] = []  # the boxes of the labels placed so far
+        self.clear: list[Box] = []  # drawn shapes that labels keep clear of (``keep_clear``)
 
     def px(self, p: Coordinates) -> Point:
         return self.view.px(p)
@@ -150,6 +191,33 @@ class Canvas:
         x, y = self._n(at[0], digits), self._n(at[1], digits)
         self.add(element("text", [("x", x), ("y", y), *style], label))
 
+    def label(
+        self,
+        candidates: Sequence[tuple[Point, str]],
+        label: str,
+        size: float,
+        style: Sequence[Attribute],
+        digits: int | None = None,
+    ) -> Box:
+        """<text> of ``label`` in a font of ``size`` at the first candidate (a place and its
+        text-anchor) whose box overlaps no label placed before and no shape kept clear of; if
+        every one does, at the nearest free place on rings of radius RING, 2 RING, ... around
+        the first. Its box is kept (``labels``) and returned."""
+        places = self.digits if digits is None else digits
+        place = _free_place(candidates, label, size, [*self.labels, *self.clear], places)
+        (x, y), anchor = place
+        box = text_box((x, y), label, size, anchor)
+        self.labels.append(box)
+        lead = [("font-size", f"{size:g}"), ("text-anchor", anchor)]
+        self.text((x, y), label, [*lead, *style], digits)
+        return box
+
+    def keep_clear(self, corners: Iterable[Point]) -> None:
+        """Labels placed from now on keep clear of the box around these corners (a drawn
+        shape a label would hide)."""
+        xs, ys = zip(*corners, strict=True)
+        self.clear.append(Box(min(xs), min(ys), max(xs), max(ys)))
+
     def points(self, tag: str, corners: Iterable[Point], style: Sequence[Attribute]) -> None:
         """<polyline> or <polygon> through the corners (drawing coordinates)."""
         chain = " ".join(f"{self._n(x, None)},{self._n(y, None)}" for x, y in corners)
@@ -164,3 +232,35 @@ class Canvas:
         elements."""
         root = f'<svg xmlns="http://www.w3.org/2000/svg"{attributes(pairs)}>'
         return root + "".join(head) + "".join(self.parts) + "</svg>"
+
+
+def _free_place(
+    candidates: Sequence[tuple[Point, str]],
+    label: str,
+    size: float,
+    placed: Sequence[Box],
+    digits: int,
+) -> tuple[Point, str]:
+    """The first candidate whose box meets none of ``placed``; else, on rings of radius k RING
+    (k = 1, 2, ...) around the first candidate, 16 places each, the first free one. A place is
+    rounded to the ``digits`` it is written with before its box is tried."""
+
+    def rounded(at: Point) -> Point:
+        return round(at[0], digits), round(at[1], digits)
+
+    def free(at: Point, anchor: str) -> bool:
+        box = text_box(at, label, size, anchor)
+        return not any(box.overlaps(other) for other in placed)
+
+    for at, anchor in candidates:
+        if free(rounded(at), anchor):
+            return rounded(at), anchor
+    (x, y), anchor = candidates[0]
+    ring = 1
+    while True:  # the placed boxes are finitely many: a ring beyond them all is free
+        for k in range(16):
+            angle = 2 * math.pi * k / 16
+            at = rounded((x + ring * RING * math.cos(angle), y + ring * RING * math.sin(angle)))
+            if free(at, anchor):
+                return at, anchor
+        ring += 1

@@ -366,15 +366,17 @@ def lever_acceleration_lines(
     lever, pivot, pin = step.link, step.pivot, step.pin
     (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
     (ap, cor), sub = pin_keys, tex.name(pin)
+    part = {name: rf"\vec{{a}}_{{{sub},\mathrm{{{name}}}}}" for name in ("tr", "rel", "Cor")}
+    b.line(rf"&{a_vec(pin)} = {part['tr']} + {part['rel']} + {part['Cor']}")
     b.line(
-        rf"&{a_vec(pin)} = \vec{{a}}_{{{sub},\mathrm{{tr}}}} + "
-        rf"\vec{{a}}_{{{sub},\mathrm{{rel}}}} + \vec{{a}}_{{{sub},\mathrm{{Cor}}}}, "
-        rf"\quad \vec{{a}}_{{{sub},\mathrm{{tr}}}} = {a_vec(pivot)} + {al_vec(lever)}"
+        rf"&\phantom{{{a_vec(pin)}}} = \underbrace{{{a_vec(pivot)} + {al_vec(lever)}"
         rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
-        rf"{r_vec(pivot, pin)}"
+        rf"{r_vec(pivot, pin)}}}_{{{part['tr']}}} + \underbrace{{{slide.latex}\,\vec{{u}}}}"
+        rf"_{{{part['rel']}}} + \underbrace{{2\,{w_vec(lever)} \times "
+        rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}}}_{{{part['Cor']}}}"
     )
     b.line(
-        rf"&\phantom{{{a_vec(pin)}}} = ",
+        rf"&\phantom{{{a_vec(pin)}}} = \underbrace{{",
         origin(b, v.ctx, pivot, Ref(known.base)),
         " + ",
         ZCross(rate.symbol, Ref(rkey)),
@@ -382,10 +384,11 @@ def lever_acceleration_lines(
         Paren(Ref(known.omega)),
         r"^2 \cdot ",
         Col(Ref(rkey)),
-        f" + {slide.latex} ",
+        rf"}}_{{{part['tr']}}} + \underbrace{{{slide.latex} ",
         Col(Ref(ukey)),
-        " + ",
+        rf"}}_{{{part['rel']}}} + \underbrace{{",
         Col(Ref(cor)),
+        rf"}}_{{{part['Cor']}}}",
     )
     b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, side)}{latex_unit('m/s^2')}")
     b.say(

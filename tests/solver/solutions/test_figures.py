@@ -11,7 +11,9 @@ caption is the one used.
 
 from __future__ import annotations
 
+import itertools
 import json
+import math
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -169,3 +171,197 @@ def test_user_names_are_escaped_in_figures() -> None:
     for _, root in figures(solution):
         assert root.tag == f"{SVG}svg"
     assert "B<&>" in "".join(ET.fromstring(solution.steps[1].figure).itertext())
+
+
+# --- what the mechanism figure draws, and where its words go -----------------------------------
+
+MECHANISMS = [(n, doc) for n, doc, m in CASES if m == "vector"]
+MECHANISM_IDS = [n for n, _ in MECHANISMS]
+EM_WIDTH, ASCENT, DESCENT = 0.6, 0.75, 0.2  # a text's box, in em: per character, above, below
+
+
+def mechanism(solution: Solution) -> ET.Element:
+    return next(root for kind, root in figures(solution) if kind == "positions")
+
+
+def paper(root: ET.Element, p: list[float]) -> np.ndarray:
+    """A model point (m) on the mechanism drawing (mm, y down) at its stated scale (m per cm)."""
+    per_mm = float(root.attrib["data-scale"]) / 10.0
+    return np.array([p[0] / per_mm, -p[1] / per_mm])
+
+
+def corners(element: ET.Element) -> np.ndarray:
+    return np.array([[float(v) for v in c.split(",")] for c in element.attrib["points"].split()])
+
+
+def line_ends(element: ET.Element) -> tuple[np.ndarray, np.ndarray]:
+    x1, y1, x2, y2 = (float(element.attrib[a]) for a in ("x1", "y1", "x2", "y2"))
+    return np.array([x1, y1]), np.array([x2, y2])
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+def parallel(a: np.ndarray, b: np.ndarray) -> bool:
+    return abs(cross(a, b)) <= 1e-3 * np.linalg.norm(a) * np.linalg.norm(b)
+
+
+@pytest.mark.parametrize(("name", "doc"), MECHANISMS, ids=MECHANISM_IDS)
+def test_every_sliding_joint_is_drawn_as_a_block_between_the_rails_of_its_guide(
+    name: str, doc: dict[str, Any]
+) -> None:
+    """For every slider and prismatic joint the mechanism figure has a four-cornered block
+    centred on the joint's point (to 0.01 mm at the drawing's scale) and two rails of its guide
+    parallel to the block's long side, one either side of it; the long side lies along the slot:
+    along the scene's axis for a guide fixed in the ground, along the relative velocity where the
+    point slides."""
+    solution = solve(parse_linkage(doc))
+    root = mechanism(solution)
+    body = analysis_body(solution.analysis, [])
+    sliding = [j for j in doc["joints"] if j["type"] != "revolute"]
+    for joint, answer in zip(sliding, body["joints"], strict=True):
+        point = joint["point"]
+        (block,) = [e for e in root.iter(f"{SVG}polygon") if e.attrib.get("data-slider") == point]
+        box = corners(block)
+        assert box.shape == (4, 2)
+        centre = paper(root, body["points"][point]["position"])
+        assert np.linalg.norm(box.mean(axis=0) - centre) < 0.01, (name, point)
+        long_side = box[1] - box[0]
+        assert np.linalg.norm(long_side) > np.linalg.norm(box[2] - box[1])
+        rails = [e for e in root.iter(f"{SVG}line") if e.attrib.get("data-guide") == point]
+        assert len(rails) == 2, (name, point)
+        sides = []
+        for rail in rails:
+            start, end = line_ends(rail)
+            assert parallel(end - start, long_side), (name, point)
+            offset = centre - start
+            sides.append(np.sign(cross(long_side, offset)))
+        assert sorted(sides) == [-1.0, 1.0]
+        ground = next(k for k, v in doc["links"].items() if v.get("ground"))
+        if joint["links"][0] == ground:
+            assert parallel(np.array([joint["axis"][0], -joint["axis"][1]]), long_side)
+        v_rel = np.array(answer["relative_velocity"], float)
+        if np.linalg.norm(v_rel) > 1e-9:
+            assert parallel(np.array([v_rel[0], -v_rel[1]]), long_side), (name, point)
+
+
+def test_a_four_bar_has_no_slider_block() -> None:
+    root = mechanism(solve(parse_linkage(build_preset("four_bar", {}))))
+    assert not [e for e in root.iter() if "data-slider" in e.attrib or "data-guide" in e.attrib]
+
+
+def arc_points(d: str) -> np.ndarray:
+    """The end points of an SVG path made of M and A commands."""
+    numbers = [float(x) for x in re.findall(r"-?\d+\.?\d*(?:e-?\d+)?", d)]
+    out = [numbers[:2]]
+    rest = numbers[2:]
+    while rest:
+        out.append(rest[5:7])
+        rest = rest[7:]
+    return np.array(out)
+
+
+@pytest.mark.parametrize(
+    ("name", "sweep_deg"),
+    [("S003-T1-translating-carrier", 180.0), ("S003-T2-rotating-carrier", 360.0)],
+)
+def test_a_groove_is_drawn_in_its_disc_with_the_moving_point_on_it(
+    name: str, sweep_deg: float
+) -> None:
+    """Seed 003: the carrier is a disc about the groove's centre, the groove an arc of radius R
+    = |start - centre| from the start through the path's sweep (a semicircle in Task 1, the
+    whole circle in Task 2), every end of its pieces at R from the centre, and M a labelled point
+    at its /analyze position, on the groove."""
+    doc = json.loads((EXAMPLES / f"{name}.json").read_text())
+    solution = solve(parse_linkage(doc))
+    root = mechanism(solution)
+    body = analysis_body(solution.analysis, [])
+    (mp,) = doc["moving_points"]
+    centre = paper(root, body["points"][mp["path"]["center"]]["position"])
+    start = paper(root, body["points"][mp["path"]["start"]]["position"])
+    radius = float(np.linalg.norm(start - centre))
+    (groove,) = [e for e in root.iter(f"{SVG}path") if e.attrib.get("data-groove") == "M"]
+    ends = arc_points(groove.attrib["d"])
+    assert np.linalg.norm(ends[0] - start) < 1e-3
+    np.testing.assert_allclose(np.linalg.norm(ends - centre, axis=1), radius, rtol=1e-4)
+    turned = math.degrees(
+        sum(
+            math.atan2(cross(a - centre, b - centre), float((a - centre) @ (b - centre)))
+            for a, b in itertools.pairwise(ends)
+        )
+    )
+    sense = 1.0 if mp["path"].get("direction", "ccw") == "ccw" else -1.0
+    assert turned == pytest.approx(-sense * sweep_deg, abs=1e-6)  # y down: ccw turns negative
+    (disc,) = [e for e in root.iter(f"{SVG}circle") if e.attrib.get("class") == "disc"]
+    disc_centre = np.array([float(disc.attrib["cx"]), float(disc.attrib["cy"])])
+    assert np.linalg.norm(disc_centre - centre) < 1e-3
+    assert float(disc.attrib["r"]) > radius
+    m = paper(root, body["moving_points"]["M"]["position"])
+    assert abs(float(np.linalg.norm(m - centre)) - radius) < 1e-3
+    dots = [
+        np.array([float(c.attrib["cx"]), float(c.attrib["cy"])])
+        for c in root.iter(f"{SVG}circle")
+        if c.attrib.get("class") != "disc"
+    ]
+    assert min(float(np.linalg.norm(d - m)) for d in dots) < 0.01
+    assert "M" in [t.text for t in root.iter(f"{SVG}text")]
+
+
+def text_boxes(root: ET.Element) -> list[tuple[str, tuple[float, float, float, float]]]:
+    """(text, (left, top, right, bottom)) of every <text>, estimated from its font size and its
+    number of characters: EM_WIDTH em a character, ASCENT em above the baseline, DESCENT below."""
+    out = []
+    for t in root.iter(f"{SVG}text"):
+        size = float(t.attrib["font-size"])
+        width = EM_WIDTH * size * len(t.text or "")
+        x, y = float(t.attrib["x"]), float(t.attrib["y"])
+        left = (
+            x
+            - {"start": 0.0, "middle": width / 2, "end": width}[
+                t.attrib.get("text-anchor", "start")
+            ]
+        )
+        out.append((t.text or "", (left, y - ASCENT * size, left + width, y + DESCENT * size)))
+    return out
+
+
+@pytest.mark.parametrize(("name", "doc", "method"), CASES, ids=IDS)
+def test_no_two_words_overlap_and_none_is_cut_off(
+    name: str, doc: dict[str, Any], method: str
+) -> None:
+    """Every figure of every seed and preset: no two texts' boxes share an area (the polygon's
+    'n BΓ' and 'n DΓ' of seed 004 included), and every text's box lies within the view box
+    (the caption 'Acceleration polygon, 1 cm = 20 m/s^2; n normal, ...' included)."""
+    for kind, root in figures(solve(parse_linkage(doc), method)):
+        x0, y0, width, height = (float(v) for v in root.attrib["viewBox"].split())
+        boxes = text_boxes(root)
+        for i, (text, (left, top, right, bottom)) in enumerate(boxes):
+            assert x0 <= left and right <= x0 + width, (name, kind, text)
+            assert y0 <= top and bottom <= y0 + height, (name, kind, text)
+            for other, (l2, t2, r2, b2) in boxes[i + 1 :]:
+                apart = right <= l2 or r2 <= left or bottom <= t2 or b2 <= top
+                assert apart, (name, kind, text, other)
+
+
+def test_a_point_named_after_a_greek_letter_is_drawn_as_the_letter() -> None:
+    """Seed 004's pivot Gamma: 'Γ' on the mechanism, 'n BΓ' and 'n DΓ' on the acceleration
+    polygon, never the spelled-out name."""
+    solution = solve(parse_linkage(build_preset("seed004", {})))
+    texts = {kind: [t.text for t in root.iter(f"{SVG}text")] for kind, root in figures(solution)}
+    assert "Γ" in texts["positions"]
+    assert {"n BΓ", "n DΓ"} <= set(texts["graphical.acceleration"])
+    assert not any("Gamma" in (t or "") for words in texts.values() for t in words)
+
+
+def test_an_image_too_short_to_draw_has_no_length_to_read() -> None:
+    """A slider-crank at rest with a subnormal alpha (2.2e-311 rad/s^2): its acceleration images
+    are 1e-311 cm long, not drawn, so the polygon's step lists no length and no reading error
+    for them (which would be 0.05 cm / 1e-311 cm = inf) and the solution is built."""
+    values = {"crank": 1.0, "rod": 1.0, "offset": 0.0, "crank_angle_deg": 0.0}
+    doc = build_preset("slider_crank", {**values, "omega": 0.0, "alpha": 2.225073858507e-311})
+    solution = solve(parse_linkage(doc))
+    step = next(s for s in solution.steps if s.kind == "graphical.acceleration")
+    assert "relative error" not in step.values
+    assert not [k for k in step.values if k.startswith("length ")]
+    assert not [e for e in ET.fromstring(step.figure).iter() if "data-vector" in e.attrib]

@@ -267,3 +267,73 @@ def test_the_rounding_mistake_only_where_the_data_can_be_rounded(name: str, expe
     assert bool(found) == expected
     for m in found:
         assert "link ground: |CA| becomes 0.35 m instead of 0.3464 m" in m.text
+
+
+@pytest.mark.parametrize("name", SEEDS + PRESETS)
+def test_the_classification_angles_are_values_of_the_step_written_once(name: str) -> None:
+    """Every angle the slider classification shows in degrees is a value of the step (unit
+    'deg', 180/pi times its radians by a ``product`` check), and the LaTeX and the text show that
+    value's digits: the number with a degree sign in the LaTeX, its display ('12.34 deg') in
+    the text. A crank that turns fully shows a (or the lever's theta and swing) this way."""
+    (step,) = _steps(_scene(name))
+    degrees = {k: v for k, v in step.values.items() if v.unit == "deg"}
+    if "stroke" not in step.values and "swing" not in step.values:
+        assert not degrees  # S000-T3: the crank rocks, no angles to show
+        return
+    assert degrees
+    checked = {c.result.ref.key: c for c in step.checks if c.relation == "product"}
+    for key, value in degrees.items():
+        check = checked[key]
+        (radians,) = check.operands
+        assert step.values[radians.ref.key].unit == "rad"
+        assert value.value == pytest.approx(math.degrees(step.values[radians.ref.key].value))
+        assert check.factor == pytest.approx(180 / math.pi)
+        assert value.display in step.text, (key, value.display)
+        number = value.display.removesuffix(" deg")
+        assert number + r"{}^{\circ}" in step.latex, (key, number)
+
+
+def _group(text: str, at: int) -> tuple[str, int]:
+    """The brace group opening at ``text[at]`` ('{'): its inside and the index after it."""
+    depth = 0
+    for i in range(at, len(text)):
+        depth += {"{": 1, "}": -1}.get(text[i], 0)
+        if depth == 0:
+            return text[at + 1 : i], i + 1
+    raise AssertionError("unbalanced braces")
+
+
+def underbraces(latex: str) -> list[tuple[str, str]]:
+    """(inside, label) of every \\underbrace{inside}_{label}."""
+    out = []
+    for found in re.finditer(r"\\underbrace\{", latex):
+        inside, after = _group(latex, found.end() - 1)
+        assert latex[after] == "_"
+        label, _ = _group(latex, after + 1)
+        out.append((inside, label))
+    return out
+
+
+def test_the_lever_pins_acceleration_labels_each_part_it_adds() -> None:
+    """Seed 000 Task 2, the pin B in the guide's slot: a_B = a_tr + a_rel + a_Cor, then each
+    group of terms under a brace naming its part (the transport part's three terms, s-double-dot
+    u the relative part, the Coriolis column the Coriolis part), never a definition of a_tr
+    followed by a line that reads as its continuation."""
+    doc = json.loads((EXAMPLES / "S000-T2.json").read_text())
+    (step,) = [
+        s for s in solve(parse_linkage(doc), "vector").steps if s.kind == "acceleration.lever.side"
+    ]
+    lines = step.latex.split(r"\\")
+    assert not any(r"\quad \vec{a}_{B,\mathrm{tr}} =" in line for line in lines)
+    assert lines[0].strip().startswith(r"\begin{aligned} &\vec{a}_{B} = \vec{a}_{B,\mathrm{tr}} +")
+    braces = underbraces(step.latex)
+    parts: dict[str, list[str]] = {}
+    for inside, label in braces:
+        parts.setdefault(label, []).append(inside)
+    tr, rel, cor = (rf"\vec{{a}}_{{B,\mathrm{{{p}}}}}" for p in ("tr", "rel", "Cor"))
+    assert set(parts) == {tr, rel, cor} and all(len(v) == 2 for v in parts.values())
+    assert all(r"\ddot{s}_{B}" in inside for inside in parts[rel])
+    assert r"\times \vec{v}_{B,\mathrm{rel}}" in parts[cor][0]
+    shown = step.values["a_cor(B)"].display.removesuffix(" m/s^2").strip("()").split(", ")
+    assert all(number in parts[cor][1] for number in shown)
+    assert r"\omega_{\text{guide}}^2" in parts[tr][0] and "(-2)^2" in parts[tr][1]

@@ -18,6 +18,7 @@ import pytest
 
 import solver
 from solver.exercises import DIFFICULTIES, TYPES, Exercise, ExerciseId, build
+from solver.exercises.cams import cam_angle_of
 from solver.exercises.checking import check_answers, mistakes_of
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.kinematics.relative_motion import coriolis_acceleration
@@ -50,9 +51,19 @@ SHARED = {
 }
 
 
-def _shown(scene: Mapping[str, Any], method: str = "vector") -> list[dict[str, Any]]:
-    mistakes: list[dict[str, Any]] = solver.solve(scene, method=method).as_dict()["mistakes"]
+def _shown(
+    scene: Mapping[str, Any], method: str = "vector", angle_deg: float | None = None
+) -> list[dict[str, Any]]:
+    """The mistakes a worked solution lists (a cam's at ``angle_deg``, as an exercise's worked
+    solution is at the cam angle it asks about)."""
+    body = solver.solve(scene, method=method, angle_deg=angle_deg).as_dict()
+    mistakes: list[dict[str, Any]] = body["mistakes"]
     return mistakes
+
+
+def _angle(e: Exercise) -> float | None:
+    angle = cam_angle_of(e)
+    return None if angle is None else float(angle)
 
 
 @cache
@@ -81,7 +92,7 @@ def test_every_id_either_output_carries_is_in_the_catalogue_and_every_entry_is_u
             diagnosed |= {m.kind for m in mistakes_of(e)}
             method = "newton_euler" if kind in DYNAMIC else "vector"
             if e.task is None:  # a synthesis task's worked solution names no mistakes
-                shown |= {m["kind"] for m in _shown(e.scene, method)}
+                shown |= {m["kind"] for m in _shown(e.scene, method, _angle(e))}
     assert shown <= set(CATALOGUE), shown - set(CATALOGUE)
     assert diagnosed <= set(CATALOGUE), diagnosed - set(CATALOGUE)
     assert shown | diagnosed == set(CATALOGUE), set(CATALOGUE) - shown - diagnosed
@@ -163,3 +174,81 @@ def test_alpha_in_the_normal_term_differs_from_the_right_one_by_the_normal_term(
     np.testing.assert_allclose(
         alpha_in_normal_term(a_A, omega, alpha, r) - right, (omega**2 - alpha) * r, atol=1e-15
     )
+
+
+# --- every family of the catalogue: a wrong value, and named where it is made -------------------
+
+
+@cache
+def _shown_by_id() -> dict[str, list[tuple[str, dict[str, Any], int]]]:
+    """Catalogue id -> (where, the mistake as the /solution body lists it, the number of steps)
+    over the worked solutions of the seed scenes (every method) and of one exercise of every
+    type and difficulty."""
+    found: dict[str, list[tuple[str, dict[str, Any], int]]] = {}
+    scenes: list[tuple[str, Mapping[str, Any], str, float | None]] = []
+    for path in SOLVED:
+        doc = json.loads(path.read_text())
+        methods = ("vector",) if doc.get("kind") == "spatial_chain" else ("vector", "loop")
+        scenes += [(f"{path.stem}-{method}", doc, method, None) for method in methods]
+    for kind in TYPES:
+        for difficulty in DIFFICULTIES:
+            e = _exercise(kind, difficulty, 1)
+            method = "newton_euler" if kind in DYNAMIC else "vector"
+            scenes.append((str(e.id), e.scene, method, _angle(e)))
+    for where, scene, method, angle in scenes:
+        body = solver.solve(scene, method=method, angle_deg=angle).as_dict()
+        for m in body["mistakes"]:
+            found.setdefault(m["kind"], []).append((where, m, len(body["steps"])))
+    return found
+
+
+@cache
+def _diagnosed_by_id() -> dict[str, list[tuple[Exercise, WrongAnswers]]]:
+    """Catalogue id -> (exercise, its wrong answers) over one exercise of every type and
+    difficulty."""
+    found: dict[str, list[tuple[Exercise, WrongAnswers]]] = {}
+    for kind in TYPES:
+        for difficulty in DIFFICULTIES:
+            e = _exercise(kind, difficulty, 1)
+            for made in mistakes_of(e):
+                found.setdefault(made.kind, []).append((e, made))
+    return found
+
+
+@pytest.mark.parametrize("mistake_id", sorted(CATALOGUE))
+def test_each_family_of_mistakes_gives_a_wrong_value_and_is_named_for_it(mistake_id: str) -> None:
+    """For every entry of the catalogue, wherever a worked solution lists it: its wrong value
+    shows differently from the right one at the solution's digits (a mistake that changes
+    nothing in this problem is not listed; a mistake of form has words and no values), under
+    the catalogue's title, below a step of the solution. Wherever the checker makes it with
+    wrong answers: an answer with those values is graded incorrect and diagnosed as this
+    mistake for at least one asked quantity (a mistake may leave a quantity right: a pole's
+    coordinate it does not move)."""
+    shown = _shown_by_id().get(mistake_id, [])
+    diagnosed = [(e, m) for e, m in _diagnosed_by_id().get(mistake_id, []) if m.values]
+    assert shown or diagnosed, f"{mistake_id}: made nowhere"
+    for where, m, steps in shown:
+        assert m["text"], (where, mistake_id)
+        if m["values"]:  # else a mistake of form, explained in words (E3 x E1 is E2, not E1)
+            wrong, right = m["values"]["wrong"], m["values"]["right"]
+            assert wrong["display"] != right["display"], (where, mistake_id, wrong["display"])
+        if mistake_id != "dynamics.moment_about_accelerating_point":  # titled with its pin
+            assert m["title"] == typical_mistake(mistake_id).title
+        assert 0 <= m["step"] < steps, (where, mistake_id)
+    for e, made in diagnosed:
+        named = set()
+        for key, value in made.values.items():
+            row = next(r for r in check_answers(e, {key: value})["results"] if r["key"] == key)
+            if row["verdict"] == "incorrect":
+                named.add(row["mistake"])
+        assert mistake_id in named, (str(e.id), mistake_id, named, dict(made.values))
+
+
+def test_a_cam_at_rest_lists_no_chain_rule_mistake() -> None:
+    """At the start of the rise (v = 0: leaving omega out or beta in degrees gives 0 as well)
+    the cam's worked solution lists neither chain-rule mistake; at the cam angle the exercise
+    asks about, inside the lift, it lists both."""
+    e = _exercise("cam_follower_motion", "standard", 2)
+    assert not {m["kind"] for m in _shown(e.scene, "vector", 0.0)} & SHARED
+    inside = {m["kind"] for m in _shown(e.scene, "vector", _angle(e))}
+    assert {"cam_omega_left_out", "cam_beta_in_degrees"} <= inside

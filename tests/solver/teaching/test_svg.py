@@ -15,11 +15,11 @@ from hypothesis import strategies as st
 
 from solver.exercises import ExerciseId, build
 from solver.exercises.figures import figure_svg
-from solver.solutions.figures import Arrow, Dot, svg
+from solver.solutions.figures import Arrow, Dot, svg, wrap
 from solver.solutions.free_body import Arrow as Force
 from solver.solutions.free_body import Couple
 from solver.solutions.free_body import svg as free_body_svg
-from solver.teaching.svg import Canvas, View, element
+from solver.teaching.svg import CHAR_WIDTH, Canvas, View, element, text_box
 
 SVG = "{http://www.w3.org/2000/svg}"
 coordinate = st.floats(-1e3, 1e3, allow_nan=False)
@@ -119,3 +119,50 @@ def test_an_exercise_figure_is_standalone_xml_with_its_title() -> None:
     assert root.find(f"{SVG}title").text == NASTY  # type: ignore[union-attr]
     spatial = build(ExerciseId("spatial_arm", "basic", 4, 0))
     assert _parses(figure_svg(spatial.scene)).get("width") == "420"
+
+
+@given(st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=12), st.integers(1, 9))
+def test_labels_placed_on_one_canvas_never_overlap(places: list, length: int) -> None:  # type: ignore[type-arg]
+    """Labels asked for at any places, the same place many times included: the boxes
+    ``Canvas.label`` keeps (``text_box`` of the place it chose) share no area, and each is where
+    its <text> is written."""
+    canvas = Canvas(View.paper(1.0))
+    for x, y in places + places[:1] * 3:
+        canvas.label([((x, y), "start"), ((x, y), "end")], "W" * length, 3.0, [])
+    boxes = canvas.labels
+    for i, a in enumerate(boxes):
+        assert not any(a.overlaps(b) for b in boxes[i + 1 :])
+    texts = ET.fromstring(canvas.document([])).iter(f"{SVG}text")
+    for box, t in zip(boxes, texts, strict=True):
+        at = (float(t.attrib["x"]), float(t.attrib["y"]))
+        expected = text_box(at, t.text or "", 3.0, t.attrib["text-anchor"])
+        assert expected.left == pytest.approx(box.left, abs=0.01)
+        assert expected.top == pytest.approx(box.top, abs=0.01)
+
+
+def test_a_text_box_grows_with_its_characters_and_font() -> None:
+    """width = CHAR_WIDTH size n; the anchor puts the box after, about or before the point."""
+    start = text_box((10.0, 20.0), "abcd", 3.0, "start")
+    assert start.right - start.left == pytest.approx(CHAR_WIDTH * 3.0 * 4)
+    assert start.left == 10.0 and start.top < 20.0 < start.bottom
+    middle = text_box((10.0, 20.0), "abcd", 3.0, "middle")
+    assert (middle.left + middle.right) / 2 == pytest.approx(10.0)
+    assert text_box((10.0, 20.0), "abcd", 3.0, "end").right == pytest.approx(10.0)
+    assert not start.overlaps(text_box((start.right, 20.0), "x", 3.0))  # touching is apart
+
+
+def test_a_long_caption_is_wrapped_after_its_commas_within_a_narrow_drawing() -> None:
+    """A caption longer than its drawing is broken after its commas and semicolons (the scale
+    kept whole) and every line lies inside the view box."""
+    caption = "Acceleration polygon, 1 cm = 20 m/s^2; n normal, t tangential, tr transport"
+    root = ET.fromstring(
+        svg("t", [], [Dot(np.zeros(2), "A")], [], 1.0, caption, {"data-scale": "1"})
+    )
+    x0, _, width, _ = (float(v) for v in root.attrib["viewBox"].split())
+    lines = [t.text or "" for t in root.iter(f"{SVG}text")][1:]
+    assert len(lines) > 1 and " ".join(lines) == caption
+    assert "1 cm = 20 m/s^2;" in lines
+    for t in list(root.iter(f"{SVG}text"))[1:]:
+        box = text_box((float(t.attrib["x"]), float(t.attrib["y"])), t.text or "", 3.4)
+        assert x0 <= box.left and box.right <= x0 + width
+    assert wrap("a, b", 1e9, 3.0) == ["a, b"]
