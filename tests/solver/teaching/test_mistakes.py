@@ -194,7 +194,8 @@ def _shown_by_id() -> dict[str, list[tuple[str, dict[str, Any], int]]]:
         for difficulty in DIFFICULTIES:
             e = _exercise(kind, difficulty, 1)
             method = "newton_euler" if kind in DYNAMIC else "vector"
-            scenes.append((str(e.id), e.scene, method, _angle(e)))
+            if e.task is None:  # a synthesis task's worked solution names no mistakes
+                scenes.append((str(e.id), e.scene, method, _angle(e)))
     for where, scene, method, angle in scenes:
         body = solver.solve(scene, method=method, angle_deg=angle).as_dict()
         for m in body["mistakes"]:
