@@ -42,6 +42,7 @@ from solver.cams.laws import LAWS, MODIFIED_SINE, MODIFIED_TRAPEZOID, Accelerati
 from solver.cams.model import CamScene, Segment
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import (
+    CDOT,
     Alt,
     Boxed,
     Equation,
@@ -567,7 +568,7 @@ def _polynomial(b: StepBuilder, x: Ref, coefficients: dict[int, float]) -> LawVa
             sign = ("-" if c < 0 else "") if i == 0 else (" - " if c < 0 else " + ")
             numbers.append(f"{sign}{abs(c):g}")
             if k:
-                numbers += [Sym(r" \cdot ", " x "), Paren(powers[k])]
+                numbers += [CDOT, Paren(powers[k])]
         sums: list[Piece] = []
         for i, (_, _, t) in enumerate(terms):
             if i:
@@ -842,7 +843,7 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
             (
                 Sym(rf"{sign_tex}\frac{{", f"{sign_tex}("),
                 Num(lift),
-                Sym(r" \cdot ", " x "),
+                CDOT,
                 Paren(y),
                 Sym("}{", ")/"),
                 Num(power) if order == 1 else Paren(beta),
@@ -873,7 +874,7 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
         equation = Equation.of(
             Sym(letter, letter),
             Sym(f"s{primes}\\,{w_tex}", f"s{primes} {w_text}"),
-            (Num(d), Sym(r" \cdot ", " x "), Num(rate)),
+            (Num(d), CDOT, Num(rate)),
             Boxed((Num(answer, unit=True),)),
         )
         b.line(equation)
@@ -1037,15 +1038,15 @@ def pressure_angle_step(ctx: CamContext) -> Step:
         numbers = (
             Sym(r"\arctan\frac{", "arctan(("),
             Num(arm),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(less),
             " + ",
             Num(dist),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(cos),
             Sym("}{", ")/("),
             Num(dist),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(sin),
             Sym("}", "))"),
         )
