@@ -189,14 +189,16 @@ def data_step(ctx: GearContext) -> Step:
         n = _teeth(b, scene, gear.name)
         axis = f"on {gear.carrier}" if gear.carrier else "fixed in the frame"
         kind = "internal (annulus)" if gear.internal else "external"
-        rows.append(
-            (
-                rf"\text{{{tex.escape_text(gear.name)}}} & N = ",
-                Num(n),
+        row = (
+            Sym(rf"\text{{{tex.escape_text(gear.name)}}} & N = ", f"Gear {gear.name}: "),
+            Num(n),
+            Sym(
                 rf" & \text{{{kind}, axis {tex.escape_text(axis)}}}",
-            )
+                f" teeth, {kind}, its axis {axis}.",
+            ),
         )
-        b.say(f"Gear {gear.name}: ", Num(n), f" teeth, {kind}, its axis {axis}.")
+        rows.append(row)
+        b.say(*row)
     b.line(r"&\begin{array}{lll} ", *joined(r" \\ ", rows), r" \end{array}")
     for carrier in scene.carriers:
         held = [g.name for g in scene.gears if g.carrier == carrier]
@@ -547,21 +549,26 @@ def summary_step(ctx: GearContext) -> Step:
         w = _speed(b, ctx, name)
         entry = ctx.body["members"][name]
         sense = "" if entry["omega"] == 0 else (" (ccw)" if entry["omega"] > 0 else " (cw)")
-        row: tuple[Piece, ...] = (_w(name), " = ", Num(w, unit=True), rf"\text{{{sense}}}")
+        row: tuple[Piece, ...] = (
+            Sym(f"{_w(name).tex} = ", f"{name}: "),
+            Num(w, unit=True),
+            Sym(rf"\text{{{sense}}}", sense),
+        )
         if entry.get("carrier"):
             rel = b.value(f"omega({name}) rel", entry["omega_relative"], "rad/s",
                           ("members", name, "omega_relative"))  # fmt: skip
             arm = _speed(b, ctx, entry["carrier"])
             b.check("sum", rel, w, -arm)
             row += (
-                rf" & \omega_{{{tex.name(name)}/{tex.name(entry['carrier'])}}} = ",
+                Sym(
+                    rf" & \omega_{{{tex.name(name)}/{tex.name(entry['carrier'])}}} = ",
+                    f", relative to {entry['carrier']}: ",
+                ),
                 Num(rel, unit=True),
             )
-            b.say(f"{name}: ", Num(w, unit=True), f"{sense}, relative to {entry['carrier']}: ",
-                  Num(rel, unit=True), ".")  # fmt: skip
         else:
-            row += (" &",)
-            b.say(f"{name}: ", Num(w, unit=True), f"{sense}.")
+            row += (Sym(" &", ""),)
+        b.say(*row, ".")
         rows.append(row)
     b.line(r"&\begin{array}{ll} ", *joined(r" \\ ", rows), r" \end{array}")
     return b.build()

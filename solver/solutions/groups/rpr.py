@@ -405,10 +405,7 @@ def lever_parts(v: VectorMethod, step: LeverStep, order: int) -> Step:
     u = b.value(f"u({pin}/{lever})", sliding.direction, "")
     rel = Ref(sliding.put(b, f"relative_{what}", pin))
     check_transport(b, terms, tr.key)
-    if order == VELOCITY:
-        transport = lever_transport_velocity(v, b, step, terms, tr)
-    else:
-        transport = lever_transport_acceleration(v, b, step, terms, tr)
+    transport = lever_transport(v, b, step, terms, tr, order)
     relative_line(b, what[0], tex.name(pin), slide.latex, s, u, rel)
     b.say(
         *transport,
@@ -423,65 +420,42 @@ def lever_parts(v: VectorMethod, step: LeverStep, order: int) -> Step:
     return b.build()
 
 
-def lever_transport_velocity(
-    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
+def lever_transport(
+    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref, order: int
 ) -> tuple[Piece, ...]:
-    """Write v_tr = v_Q + omega x r_QP; returns the sentence that says it."""
+    """Write v_tr = v_Q + omega x r_QP (a_tr = a_Q + alpha x r_QP - omega^2 r_QP); returns the
+    sentence that says it."""
     lever, pivot, pin = step.link, step.pivot, step.pin
+    what = MOTION[order][0]
     moving = not (v.ctx.is_fixed(pivot) and b.is_zero(terms.base))
     base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-    start = f"{v_vec(pivot)} + " if moving else ""
-    b.line(
-        rf"&\vec{{v}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{w_vec(lever)} \times "
-        rf"{r_vec(pivot, pin)} = ",
-        *base,
-        ZCross(Ref(terms.omega), Ref(terms.r)),
-        " = ",
-        Col(tr, unit=True),
+    point_vec, rate_vec, rate, rate_name = (
+        (v_vec, w_vec, terms.omega, "omega")
+        if order == VELOCITY
+        else (a_vec, al_vec, terms.alpha, "alpha")
     )
+    start = f"{point_vec(pivot)} + " if moving else ""
+    r = Ref(terms.r)
+    formula = (
+        rf"&\vec{{{what[0]}}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{rate_vec(lever)} "
+        rf"\times {r_vec(pivot, pin)}"
+    )
+    numbers: tuple[Piece, ...] = (*base, ZCross(Ref(rate), r))
+    parts: tuple[Piece, ...] = (Col(tr),)
+    where = f" (the point of {lever} under the pin)"
+    if order != VELOCITY:  # the normal term -omega^2 r_QP, and the two terms' columns
+        formula += rf" - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)}"
+        t, n = Ref(terms.rotation), Ref(terms.normal)
+        numbers += (" - ", Paren(Ref(terms.omega)), r"^2 \cdot ", Col(r), " = ", *base, Col(t))
+        numbers += (" + ", Col(n))
+        parts = (Col(t), " + ", Col(n), " = ", Col(tr))
+        where = ""
+    b.line(formula + " = ", *numbers, " = ", Col(tr, unit=True))
     return (
-        f"With omega({lever}) = ",
-        Num(Ref(terms.omega), unit=True),
-        f": the transport velocity of {pin} (the point of {lever} under the pin) is ",
-        Col(tr),
-    )
-
-
-def lever_transport_acceleration(
-    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
-) -> tuple[Piece, ...]:
-    """Write a_tr = a_Q + alpha x r_QP - omega^2 r_QP; returns the sentence that says it."""
-    lever, pivot, pin = step.link, step.pivot, step.pin
-    moving = not (v.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-    base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-    start = f"{a_vec(pivot)} + " if moving else ""
-    r, t, n = Ref(terms.r), Ref(terms.rotation), Ref(terms.normal)
-    b.line(
-        rf"&\vec{{a}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{al_vec(lever)} \times "
-        rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = ",
-        *base,
-        ZCross(Ref(terms.alpha), r),
-        " - ",
-        Paren(Ref(terms.omega)),
-        r"^2 \cdot ",
-        Col(r),
-        " = ",
-        *base,
-        Col(t),
-        " + ",
-        Col(n),
-        " = ",
-        Col(tr, unit=True),
-    )
-    return (
-        f"With alpha({lever}) = ",
-        Num(Ref(terms.alpha), unit=True),
-        f": the transport acceleration of {pin} is ",
-        Col(t),
-        " + ",
-        Col(n),
-        " = ",
-        Col(tr),
+        f"With {rate_name}({lever}) = ",
+        Num(Ref(rate), unit=True),
+        f": the transport {what} of {pin}{where} is ",
+        *parts,
     )
 
 
