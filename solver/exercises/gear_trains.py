@@ -52,7 +52,7 @@ def planetary_output(rng: random.Random, difficulty: str) -> Draft:
         "planetary_ring_fixed",
         {"N_sun": sun, "N_planet": planet, "omega_sun": omega_sun, "module": MODULE},
     )
-    ring = sun + 2 * planet
+    ring = doc["gears"]["ring"]["teeth"]
     omega_ring = rate(rng, 5, 100) if difficulty == "challenging" else 0.0
     doc["inputs"] = {"sun": omega_sun, "ring": omega_ring}
     asked: tuple[Asked, ...] = (_omega("arm", "angular velocity of the arm", r"\omega_{arm}"),)
@@ -87,19 +87,20 @@ def differential_carrier(rng: random.Random, difficulty: str) -> Draft:
         )
         doc["inputs"] = inputs
         doc["title"] = "planetary differential"
+        ring = doc["gears"]["ring"]["teeth"]
         asked: tuple[Asked, ...] = (
             _omega("arm", "angular velocity of the carrier (arm)", r"\omega_{arm}"),
             _relative("planet", "arm", r"\omega_{planet/arm}"),
         )
         text = (
             f"A planetary differential: the sun ({sun} teeth) turns at {num(inputs['sun'])} "
-            f"rad/s and the internal ring ({sun + 2 * planet} teeth) at {num(inputs['ring'])} "
+            f"rad/s and the internal ring ({ring} teeth) at {num(inputs['ring'])} "
             f"rad/s (counter-clockwise positive), both driven; a planet ({planet} teeth) on the "
             "carrier (arm) meshes with both. Find the angular velocity of the carrier and the "
             "planet's angular velocity relative to the carrier."
         )
         latex = (
-            rf"N_{{sun}} = {sun},\; N_{{planet}} = {planet},\; N_{{ring}} = {sun + 2 * planet},"
+            rf"N_{{sun}} = {sun},\; N_{{planet}} = {planet},\; N_{{ring}} = {ring},"
             rf"\\ \omega_{{sun}} = {num(inputs['sun'])}\,\mathrm{{rad/s}},\; "
             rf"\omega_{{ring}} = {num(inputs['ring'])}\,\mathrm{{rad/s}}\\" + asked_latex(asked)
         )

@@ -41,7 +41,19 @@ from solver.cams.geometry import Lift, follower_lift, pitch_curve_tangent, pitch
 from solver.cams.laws import LAWS, MODIFIED_SINE, MODIFIED_TRAPEZOID, AccelerationPieces
 from solver.cams.model import CamScene, Segment
 from solver.solutions.builder import StepBuilder
-from solver.solutions.equation import Boxed, Equation, Num, Paren, Piece, Pt, Ref, Sym
+from solver.solutions.equation import (
+    CDOT,
+    Alt,
+    Boxed,
+    Equation,
+    Num,
+    Paren,
+    Piece,
+    Pt,
+    Ref,
+    Sym,
+    latex_only,
+)
 from solver.solutions.figures import nice_scale
 from solver.solutions.format import Formatter
 from solver.solutions.model import Mistake, Solution, Step, Value
@@ -183,15 +195,25 @@ def data_step(ctx: CamContext) -> Step:
     rb = b.value("R_b", scene.base_radius, "m", ("diagnostics", "base_radius"))
     omega = b.value("omega", scene.omega, "rad/s")
     theta = b.value("theta", ctx.theta / DEG, "deg", ("cam_angle_deg",))
-    b.line("&R_b = ", Num(rb, unit=True), r",\quad \omega = ", Num(omega, unit=True))
-    b.line(r"&\theta = ", Num(theta, unit=True))
-    roller = ""
+    base = Equation.of("R_b", Num(rb, unit=True))
+    speed = Equation.of(Sym(r"\omega", "omega"), Num(omega, unit=True))
+    angle = Equation.of(Sym(r"\theta", "theta"), Num(theta, unit=True))
+    b.line("&", *_joined((base, speed)))
+    b.line(angle)
+    roller: tuple[Piece, ...] = ()
     if scene.follower.contact == "roller":
         rf = b.value("r_f", scene.follower.roller_radius, "m")
         rp = b.value("R_p", scene.prime_radius, "m", ("diagnostics", "prime_radius"))
         b.check("sum", rp, rb, rf)
-        b.line("&R_p = R_b + r_f = ", Num(rb), " + ", Num(rf), " = ", Num(rp, unit=True))
-        roller = " The prime circle is R_p = R_b + r_f = " + f"{scene.prime_radius:g} m."
+        prime = Equation.of(
+            "R_p",
+            "R_b + r_f",
+            latex_only(Num(rb), " + ", Num(rf)),
+            # the text gives R_p as the scene has it, not to the step's digits
+            Alt((Num(rp, unit=True),), (f"{scene.prime_radius:g} m",)),
+        )
+        b.line(prime)
+        roller = (" The prime circle is ", prime, ".")
     sense = "counter-clockwise" if scene.omega > 0 else "clockwise"
     segments = "; ".join(
         f"{s.type} {s.law + ' ' if s.law else ''}"
@@ -200,13 +222,14 @@ def data_step(ctx: CamContext) -> Step:
         for s in scene.segments
     )
     b.say(
-        "A disc cam of base radius R_b = ",
-        Num(rb, unit=True),
-        f" turns {sense} at omega = ",
-        Num(omega, unit=True),
-        f" with {_follower_words(scene)}. The segments from cam angle 0: {segments}.{roller} "
-        "At theta = ",
-        Num(theta, unit=True),
+        "A disc cam of base radius ",
+        base,
+        f" turns {sense} at ",
+        speed,
+        f" with {_follower_words(scene)}. The segments from cam angle 0: {segments}.",
+        *roller,
+        " At ",
+        angle,
         f" the follower is in {seg.describe(ctx.number)}, from "
         f"{math.degrees(seg.start):g} deg to {math.degrees(seg.start) + seg.duration_deg:g} deg.",
     )
@@ -360,30 +383,20 @@ def law_values(ctx: CamContext) -> tuple[Step, tuple[float, ...]]:
     x = b.value("x", x_solver, "")
     b.check("sum", turned, theta, -start)
     b.check("quotient", x, turned, beta)
-    b.line(
-        "&",
-        Equation.of(
-            "x",
-            Sym(r"\frac{\theta - \theta_0}{\beta}", "(theta - theta_0)/beta"),
-            (
-                Sym(r"\frac{", "("),
-                Num(theta),
-                " - ",
-                Num(start),
-                Sym("}{", ")/"),
-                Num(beta),
-                Sym("}", ""),
-            ),
-            Num(x),
-        ),
+    fraction = Equation.of(
+        "x",
+        Sym(r"\frac{\theta - \theta_0}{\beta}", "(theta - theta_0)/beta"),
+        latex_only(r"\frac{", Num(theta), " - ", Num(start), "}{", Num(beta), "}"),
+        Num(x),
     )
+    b.line(fraction)
     b.say(
         "The cam has turned theta - theta_0 = ",
         Num(turned, unit=True),
         " into the segment of duration beta = ",
         Num(beta, unit=True),
-        ": x = (theta - theta_0)/beta = ",
-        Num(x),
+        ": ",
+        fraction,
         ".",
     )
     if seg.law == "uniform":
@@ -409,10 +422,11 @@ def _uniform(b: StepBuilder, x: Ref) -> LawValues:
     y = b.value("y", b.scalar(x), "")
     b.check("sum", y, x)
     _write(b, Sym("y", "y"), "x", Num(y))
-    b.line(r"&y' = 1,\quad y'' = y''' = 0")
+    constant = (Equation.of("y'", "1"), Sym(r",\quad ", " and "), Equation.of("y''", "y'''", "0"))
+    b.line("&", *constant)
     b.say(
-        "y' = 1 and y'' = y''' = 0 inside the segment; at its ends the velocity jumps, an "
-        "infinite acceleration."
+        *constant,
+        " inside the segment; at its ends the velocity jumps, an infinite acceleration.",
     )
     return LawValues(y, one, zero2, zero3)
 
@@ -434,8 +448,7 @@ def _harmonic(b: StepBuilder, x: Ref) -> LawValues:
     b.check("product", dy, sin, factor=math.pi / 2.0)
     b.check("product", d2y, cos, factor=math.pi**2 / 2.0)
     b.check("product", d3y, sin, factor=-(math.pi**3) / 2.0)
-    b.line(r"&\pi x = ", Num(angle, unit=True))
-    b.say("pi x = ", Num(angle, unit=True), ".")
+    _write(b, Sym(r"\pi x", "pi x"), Num(angle, unit=True))
     _write(
         b,
         Sym("y", "y"),
@@ -484,8 +497,7 @@ def _cycloidal(b: StepBuilder, x: Ref) -> LawValues:
     d3y = b.value("y'''", 4.0 * math.pi**2 * b.scalar(cos), "")
     b.check("product", d2y, sin, factor=2.0 * math.pi)
     b.check("product", d3y, cos, factor=4.0 * math.pi**2)
-    b.line(r"&2\pi x = ", Num(angle, unit=True))
-    b.say("2 pi x = ", Num(angle, unit=True), ".")
+    _write(b, Sym(r"2\pi x", "2 pi x"), Num(angle, unit=True))
     _write(
         b,
         Sym("y", "y"),
@@ -556,7 +568,7 @@ def _polynomial(b: StepBuilder, x: Ref, coefficients: dict[int, float]) -> LawVa
             sign = ("-" if c < 0 else "") if i == 0 else (" - " if c < 0 else " + ")
             numbers.append(f"{sign}{abs(c):g}")
             if k:
-                numbers += [Sym(r" \cdot ", " x "), Paren(powers[k])]
+                numbers += [CDOT, Paren(powers[k])]
         sums: list[Piece] = []
         for i, (_, _, t) in enumerate(terms):
             if i:
@@ -599,27 +611,21 @@ def _pieces(b: StepBuilder, x: Ref, law: AccelerationPieces) -> LawValues:
     u = b.value("u", xv - law.starts[i], "")
     b.check("sum", u, x, -xi)
     end = (*law.starts[1:], 1.0)[i]
-    b.line(
-        "&A = ",
-        Num(a),
-        rf",\quad x \in [{law.starts[i]:g}, {end:g}):\; u = x - x_i = ",
-        Num(u),
-        r",\; y_i = ",
-        Num(yi),
-        r",\; y'_i = ",
-        Num(dyi),
+    piece = (
+        Sym("&", "The amplitude from y(1) = 1 is "),
+        Equation.of("A", Num(a)),
+        Sym(
+            rf",\quad x \in [{law.starts[i]:g}, {end:g}):\; ",
+            f"; x lies in the piece from x_i = {law.starts[i]:g} to {end:g}, ",
+        ),
+        Equation.of("u", "x - x_i", Num(u)),
+        Sym(r",\; ", ", where "),
+        Equation.of("y_i", Num(yi)),
+        Sym(r",\; ", " and "),
+        Equation.of("y'_i", Num(dyi)),
     )
-    b.say(
-        "The amplitude from y(1) = 1 is A = ",
-        Num(a),
-        f"; x lies in the piece from x_i = {law.starts[i]:g} to {end:g}, u = x - x_i = ",
-        Num(u),
-        ", where y_i = ",
-        Num(yi),
-        " and y'_i = ",
-        Num(dyi),
-        ".",
-    )
+    b.line(*piece)
+    b.say(*piece, ".")
     drift = b.value("y'_i u", b.scalar(dyi) * b.scalar(u), "")
     b.check("product", drift, dyi, u)
     if p:  # constant acceleration pA
@@ -638,8 +644,7 @@ def _pieces(b: StepBuilder, x: Ref, law: AccelerationPieces) -> LawValues:
         b.check("sum", y, yi, drift, half)
         sign = "" if p > 0 else "-"
         _write(b, Sym("y''", "y''"), Sym(f"{sign}A", f"{sign}A"), Num(d2y))
-        b.line("&y''' = 0")
-        b.say("y''' = 0.")
+        _write(b, Sym("y'''", "y'''"), "0")
         _write(
             b,
             Sym("y'", "y'"),
@@ -663,8 +668,7 @@ def _pieces(b: StepBuilder, x: Ref, law: AccelerationPieces) -> LawValues:
     b.check("product", ku, u, factor=k)
     cos, sin = _trig(b, "k u", ku)
     one = b.value("1", 1.0, "")
-    b.line(rf"&k u = {k_tex}\, u = ", Num(ku, unit=True))
-    b.say(f"k u = {k_text} u = ", Num(ku, unit=True), ".")
+    _write(b, Sym("k u", "k u"), Sym(rf"{k_tex}\, u", f"{k_text} u"), Num(ku, unit=True))
     if q:  # y'' = A sin k u
         d2y = b.value("y''", amplitude * b.scalar(sin), "")
         b.check("product", d2y, a, sin)
@@ -765,14 +769,15 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
     w = b.value("|omega|", abs(ctx.scene.omega), "rad/s")
     if numbers is None:
         s = b.value("s", follower["displacement"], unit, (*src, "displacement"))
-        b.line("&s = s_0 = ", Num(s, unit=True))
+        still = Equation.of("s", "s_0", Num(s, unit=True))
+        b.line(still)
         b.line(
             r"&\frac{ds}{d\theta} = \frac{d^2s}{d\theta^2} = \frac{d^3s}{d\theta^3} = 0 "
             r"\;\Rightarrow\; v = a = j = 0"
         )
         b.say(
-            "In a dwell the follower stands still at s = s_0 = ",
-            Num(s, unit=True),
+            "In a dwell the follower stands still at ",
+            still,
             ": s', s'' and s''' are 0, and so are v, a and j.",
         )
         return b.build()
@@ -788,25 +793,26 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
     b.check("product", hy, lift, law.y)
     s = b.value("s", follower["displacement"], unit, (*src, "displacement"))
     b.check("sum", s, s0, hy if ctx.sign > 0 else -hy)
-    b.line(r"&\beta = ", Num(beta_deg, unit=True), " = ", Num(beta, unit=True))
-    b.line(
-        "&",
-        Equation.of(
-            "s",
-            f"s_0 {pm} h\\,y",
-            (Num(s0), f" {pm} ", Num(lift), r" \cdot ", Paren(law.y)),
-            Num(s, unit=True),
-        ),
+    duration = Equation.of(
+        Sym(r"\beta", "beta"), latex_only(Num(beta_deg, unit=True)), Num(beta, unit=True)
     )
+    displacement = Equation.of(
+        "s",
+        Sym(f"s_0 {pm} h\\,y", f"s_0 {pm} h y"),
+        latex_only(Num(s0), f" {pm} ", Num(lift), r" \cdot ", Paren(law.y)),
+        Num(s, unit=True),
+    )
+    b.line(duration)
+    b.line(displacement)
     b.say(
         f"On a {word} of h = ",
         Num(lift, unit=True),
         " from s_0 = ",
         Num(s0, unit=True),
-        f": s = s_0 {pm} h y = ",
-        Num(s, unit=True),
-        "; beta = ",
-        Num(beta, unit=True),
+        ": ",
+        displacement,
+        "; ",
+        duration,
         ".",
     )
     derivatives = []
@@ -837,7 +843,7 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
             (
                 Sym(rf"{sign_tex}\frac{{", f"{sign_tex}("),
                 Num(lift),
-                Sym(r" \cdot ", " x "),
+                CDOT,
                 Paren(y),
                 Sym("}{", ")/"),
                 Num(power) if order == 1 else Paren(beta),
@@ -868,7 +874,7 @@ def motion_step(ctx: CamContext, numbers: tuple[float, ...] | None) -> Step:
         equation = Equation.of(
             Sym(letter, letter),
             Sym(f"s{primes}\\,{w_tex}", f"s{primes} {w_text}"),
-            (Num(d), Sym(r" \cdot ", " x "), Num(rate)),
+            (Num(d), CDOT, Num(rate)),
             Boxed((Num(answer, unit=True),)),
         )
         b.line(equation)
@@ -908,21 +914,22 @@ def _offset(b: StepBuilder, ctx: CamContext) -> tuple[Ref, Ref, Ref]:
     b.check("product", eps2, eps, eps)
     b.check("sum", d2, rp2, -eps2)
     b.check("product", d2, d, d)
-    b.line(
-        r"&\varepsilon = e\,\operatorname{sign}\omega = ",
+    offset = Equation.of(
+        Sym(r"\varepsilon", "epsilon"),
+        Sym(r"e\,\operatorname{sign}\omega", "e sign(omega)"),
         Num(eps, unit=True),
-        r",\quad \sqrt{R_p^2 - \varepsilon^2} = \sqrt{",
-        Num(rp2),
-        " - ",
-        Paren(eps2),
-        "} = ",
+    )
+    axis = Equation.of(
+        Sym(r"\sqrt{R_p^2 - \varepsilon^2}", "sqrt(R_p^2 - epsilon^2)"),
+        latex_only(r"\sqrt{", Num(rp2), " - ", Paren(eps2), "}"),
         Num(d, unit=True),
     )
+    b.line("&", offset, r",\quad ", axis)
     b.say(
-        "The offset seen from a counter-clockwise cam is epsilon = e sign(omega) = ",
-        Num(eps, unit=True),
-        "; the follower's axis meets the prime circle at sqrt(R_p^2 - epsilon^2) = ",
-        Num(d, unit=True),
+        "The offset seen from a counter-clockwise cam is ",
+        offset,
+        "; the follower's axis meets the prime circle at ",
+        axis,
         " from the cam's centre line.",
     )
     return eps, rp, d
@@ -1006,25 +1013,22 @@ def pressure_angle_step(ctx: CamContext) -> Step:
         den = b.value("d sin beta", b.scalar(dist) * b.scalar(sin), "m")
         b.check("product", den, dist, sin)
         phi = _angle_of(b, ctx, den, num)
-        b.line(
-            r"&\beta = \beta_0 + s = ",
-            Num(rest),
-            " + ",
-            Paren(s),
-            " = ",
+        turned = Equation.of(
+            Sym(r"\beta", "beta"),
+            Sym(r"\beta_0 + s", "beta_0 + s"),
+            latex_only(Num(rest), " + ", Paren(s)),
             Num(beta, unit=True),
-            r",\quad d = ",
-            Num(dist, unit=True),
-            r",\quad l = ",
-            Num(arm, unit=True),
         )
+        pivot_distance = Equation.of("d", Num(dist, unit=True))
+        arm_length = Equation.of("l", Num(arm, unit=True))
+        b.line("&", *_joined((turned, pivot_distance, arm_length)))
         b.say(
-            "The arm's angle from the line to the cam centre is beta = beta_0 + s = ",
-            Num(beta, unit=True),
-            "; the pivot is d = ",
-            Num(dist, unit=True),
-            " from the cam centre, the arm l = ",
-            Num(arm, unit=True),
+            "The arm's angle from the line to the cam centre is ",
+            turned,
+            "; the pivot is ",
+            pivot_distance,
+            " from the cam centre, the arm ",
+            arm_length,
             " long.",
         )
         formula = Sym(
@@ -1034,15 +1038,15 @@ def pressure_angle_step(ctx: CamContext) -> Step:
         numbers = (
             Sym(r"\arctan\frac{", "arctan(("),
             Num(arm),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(less),
             " + ",
             Num(dist),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(cos),
             Sym("}{", ")/("),
             Num(dist),
-            Sym(r" \cdot ", " x "),
+            CDOT,
             Paren(sin),
             Sym("}", "))"),
         )
@@ -1153,47 +1157,47 @@ def _translating_pitch_radius(b: StepBuilder, ctx: CamContext, s: Ref, ds: Ref, 
     b.check("sum", den, a2, bc, -as2)
     pitch = b.value("rho_p", _solvers(ctx, b.scalar(cube) / b.scalar(den)), "m", _pitch_source(ctx))
     b.check("quotient", pitch, cube, den)
-    b.line(
-        "&A = \\sqrt{R_p^2 - \\varepsilon^2} + s = ",
+    sum_a = Equation.of(
+        "A",
+        Sym(r"\sqrt{R_p^2 - \varepsilon^2} + s", "sqrt(R_p^2 - epsilon^2) + s"),
         Num(a, unit=True),
-        r",\quad B = \frac{ds}{d\theta} - \varepsilon = ",
-        Num(bb, unit=True),
     )
-    b.line(
-        "&",
-        Equation.of(
-            Sym(r"\rho_p", "rho_p"),
-            Sym(
-                r"\frac{(A^2 + B^2)^{3/2}}{A^2 + B\,(B + s') - A\,s''}",
-                "(A^2 + B^2)^(3/2)/(A^2 + B (B + s') - A s'')",
-            ),
-            (
-                Sym(r"\frac{", "("),
-                Num(length),
-                Sym("^3}{", "^3)/("),
-                Num(a2),
-                " + ",
-                Paren(bb),
-                Sym(r" \cdot ", " x "),
-                Paren(c),
-                " - ",
-                Paren(a),
-                Sym(r" \cdot ", " x "),
-                Paren(d2s),
-                Sym("}", ")"),
-            ),
-            (Sym(r"\frac{", "("), Num(cube), Sym("}{", ")/("), Num(den), Sym("}", ")")),
-            Num(pitch, unit=True),
+    sum_b = Equation.of(
+        "B", Sym(r"\frac{ds}{d\theta} - \varepsilon", "s' - epsilon"), Num(bb, unit=True)
+    )
+    radius = Equation.of(
+        Sym(r"\rho_p", "rho_p"),
+        Sym(
+            r"\frac{(A^2 + B^2)^{3/2}}{A^2 + B\,(B + s') - A\,s''}",
+            "(A^2 + B^2)^(3/2)/(A^2 + B (B + s') - A s'')",
         ),
-    )
-    b.say(
-        "The pitch curve's radius of curvature (Norton eq. 8.33, with the offset: A = "
-        "sqrt(R_p^2 - epsilon^2) + s = ",
-        Num(a, unit=True),
-        ", B = s' - epsilon = ",
-        Num(bb, unit=True),
-        "): rho_p = (A^2 + B^2)^(3/2)/(A^2 + B (B + s') - A s'') = ",
+        latex_only(
+            r"\frac{",
+            Num(length),
+            "^3}{",
+            Num(a2),
+            " + ",
+            Paren(bb),
+            r" \cdot ",
+            Paren(c),
+            " - ",
+            Paren(a),
+            r" \cdot ",
+            Paren(d2s),
+            "}",
+        ),
+        latex_only(r"\frac{", Num(cube), "}{", Num(den), "}"),
         Num(pitch, unit=True),
+    )
+    b.line("&", sum_a, r",\quad ", sum_b)
+    b.line(radius)
+    b.say(
+        "The pitch curve's radius of curvature (Norton eq. 8.33, with the offset: ",
+        sum_a,
+        ", ",
+        sum_b,
+        "): ",
+        radius,
         ".",
     )
     return pitch
@@ -1246,21 +1250,24 @@ def _pitch_radius_vectors(b: StepBuilder, ctx: CamContext) -> Ref:
         r",\quad P'' = ",
         *_point(d2p),
     )
-    b.line("&u = P' - JP = ", *_point(u), r",\quad w = P'' - 2JP' - P = ", *_point(w))
-    b.line(
-        "&",
-        Equation.of(
-            Sym(r"\rho_p", "rho_p"),
-            Sym(r"-\frac{|u|^3}{u \times w}", "-|u|^3/(u x w)"),
-            (Sym(r"-\frac{", "-("), Num(length), Sym("^3}{", "^3)/"), Paren(cross), Sym("}", "")),
-            Num(pitch, unit=True),
-        ),
+    tangent = Equation.of("u", Sym("P' - JP", "P' - J P"), latex_only(*_point(u)))
+    turn = Equation.of("w", Sym("P'' - 2JP' - P", "P'' - 2 J P' - P"), latex_only(*_point(w)))
+    radius = Equation.of(
+        Sym(r"\rho_p", "rho_p"),
+        Sym(r"-\frac{|u|^3}{u \times w}", "-|u|^3/(u x w)"),
+        latex_only(r"-\frac{", Num(length), "^3}{", Paren(cross), "}"),
+        Num(pitch, unit=True),
     )
+    b.line("&", tangent, r",\quad ", turn)
+    b.line(radius)
     b.say(
         "The pitch point P(theta) (in the ground, the cam turning counter-clockwise) traces the "
-        "pitch curve as the cam sees it; its tangent is u = P' - J P (J the quarter turn), "
-        "w = P'' - 2 J P' - P, and rho_p = -|u|^3/(u x w) = ",
-        Num(pitch, unit=True),
+        "pitch curve as the cam sees it; its tangent is ",
+        tangent,
+        " (J the quarter turn), ",
+        turn,
+        ", and ",
+        radius,
         ".",
     )
     return pitch
@@ -1320,7 +1327,9 @@ def _flat_radius(b: StepBuilder, ctx: CamContext, s: Ref, ds: Ref, d2s: Ref) -> 
     haa = b.value("d2h/dalpha2", b.scalar(top) / b.scalar(da3), "m")
     b.check("quotient", haa, top, da3)
     b.check("sum", rho, h, haa)
-    b.line(r"&h = d \sin\beta = ", Num(h, unit=True), r",\quad \alpha' = s' - 1 = ", Num(da))
+    height = Equation.of("h", Sym(r"d \sin\beta", "d sin beta"), Num(h, unit=True))
+    turning = Equation.of(Sym(r"\alpha'", "alpha'"), "s' - 1", Num(da))
+    b.line("&", height, r",\quad ", turning)
     equation = Equation.of(
         Sym(r"\rho", "rho"),
         Sym(
@@ -1332,10 +1341,10 @@ def _flat_radius(b: StepBuilder, ctx: CamContext, s: Ref, ds: Ref, d2s: Ref) -> 
     )
     b.line(equation)
     b.say(
-        "The face through the pivot is the line n . x = h with h = d sin beta = ",
-        Num(h, unit=True),
-        "; its normal turns at alpha' = s' - 1 = ",
-        Num(da),
+        "The face through the pivot is the line n . x = h with ",
+        height,
+        "; its normal turns at ",
+        turning,
         " in the cam's frame; the cam surface is the envelope of those lines: ",
         equation,
         ".",
@@ -1381,10 +1390,12 @@ def fundamental_law_step(ctx: CamContext) -> Step:
     ):
         angle = math.degrees(where) % 360.0
         left, right = _ends(scene, before)[1], _ends(scene, after)[0]
-        pieces: list[Piece] = [rf"&\theta = {angle:g}^\circ:\;"]
-        words: list[Piece] = [
-            f"At theta = {angle:g} deg ({scene.segments[before].describe(before)} "
-            f"into {scene.segments[after].describe(after)}): "
+        pieces: list[Piece] = [
+            Sym(
+                rf"&\theta = {angle:g}^\circ:\;",
+                f"At theta = {angle:g} deg ({scene.segments[before].describe(before)} "
+                f"into {scene.segments[after].describe(after)}): ",
+            )
         ]
         for k, (letter, factor, u) in enumerate(
             (("s", 1.0, unit), ("v", w, f"{unit}/s"), ("a", w * w, f"{unit}/s^2"))
@@ -1399,25 +1410,16 @@ def fundamental_law_step(ctx: CamContext) -> Step:
             broken = letter != "s" and abs(b.scalar(jump)) > JUMP_TOLERANCE * scales[letter]
             if broken:
                 faults.append(f"{letter} at {angle:g} deg")
-            mark = r"\;(\text{jump})" if broken else ""
             pieces += [
-                (r",\;" if k else ""),
-                f"{letter}: ",
+                Sym(r",\;" if k else "", "; " if k else ""),
+                Sym(f"{letter}: ", f"{letter} "),
                 Num(one),
-                r" \to ",
-                Num(two),
-                mark,
-            ]
-            words += [
-                ("; " if k else ""),
-                f"{letter} ",
-                Num(one),
-                " to ",
-                Num(two, unit=True),
-                " (a jump)" if broken else "",
+                Sym(r" \to ", " to "),
+                Alt((Num(two),), (Num(two, unit=True),)),
+                Sym(r"\;(\text{jump})", " (a jump)") if broken else "",
             ]
         b.line(*pieces)
-        b.say(*words, ".")
+        b.say(*pieces, ".")
     if faults:
         b.say(
             "The fundamental law of cam design is broken (" + ", ".join(faults) + "): a jump in "
@@ -1452,30 +1454,18 @@ def summary_step(ctx: CamContext) -> Step:
     j = b.value("j", f["jerk"], f"{unit}/s^3", ("follower", "jerk"))
     phi = b.value("phi", body["pressure_angle"], "rad", ("pressure_angle",))
     rho = b.value("rho", body["radius_of_curvature"], "m", ("radius_of_curvature",))
-    b.line(
-        "&s = ",
-        Num(s, unit=True),
-        r",\quad v = ",
-        Num(v, unit=True),
-        r",\quad a = ",
-        Num(a, unit=True),
-        r",\quad j = ",
-        Num(j, unit=True),
-    )
-    b.line(r"&\phi = ", Num(phi, unit=True), r",\quad \rho = ", Num(rho, unit=True))
+    motion = _joined([Equation.of(k.key, Num(k, unit=True)) for k in (s, v, a, j)])
+    angle = Equation.of(Sym(r"\phi", "phi"), Num(phi, unit=True))
+    radius = Equation.of(Sym(r"\rho", "rho"), Num(rho, unit=True))
+    b.line("&", *motion)
+    b.line("&", angle, r",\quad ", radius)
     b.say(
-        f"At theta = {math.degrees(ctx.theta):g} deg: s = ",
-        Num(s, unit=True),
-        ", v = ",
-        Num(v, unit=True),
-        ", a = ",
-        Num(a, unit=True),
-        ", j = ",
-        Num(j, unit=True),
-        "; pressure angle phi = ",
-        Num(phi, unit=True),
-        ", radius of curvature rho = ",
-        Num(rho, unit=True),
+        f"At theta = {math.degrees(ctx.theta):g} deg: ",
+        *motion,
+        "; pressure angle ",
+        angle,
+        ", radius of curvature ",
+        radius,
         ".",
     )
     return b.build()

@@ -370,6 +370,7 @@ class Det2:
 
 
 TIMES = Sym(r" \times ", " cross ")
+CDOT = Sym(r" \cdot ", " x ")  # a product of two numbers
 
 
 def _side(side: Side) -> tuple[Piece, ...]:

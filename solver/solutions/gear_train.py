@@ -30,6 +30,8 @@ from solver.gears.train import relations
 from solver.solutions import latex as tex
 from solver.solutions.builder import Source, StepBuilder, Unknown, present_solution
 from solver.solutions.equation import (
+    CDOT,
+    Alt,
     Boxed,
     Equation,
     Frac,
@@ -40,6 +42,7 @@ from solver.solutions.equation import (
     Signed,
     Sym,
     joined,
+    latex_only,
 )
 from solver.solutions.figures import model_scale, paper_document, scale_text
 from solver.solutions.format import Formatter
@@ -158,6 +161,12 @@ class GearContext:
         return StepBuilder(self.fmt, kind, title)
 
 
+def _quotient(numerator: Ref, denominator: Ref) -> Alt:
+    """numerator / denominator: a fraction in LaTeX, 'a/b' in text (a negative denominator
+    without parentheses, as these steps have always written it)."""
+    return Alt((Frac(numerator, denominator),), (Num(numerator), "/", Num(denominator)))
+
+
 def _w(name: str) -> Sym:
     """omega of a member: \\omega_{sun} and 'omega_sun'."""
     return Sym(rf"\omega_{{{tex.name(name)}}}", f"omega_{name}")
@@ -180,14 +189,16 @@ def data_step(ctx: GearContext) -> Step:
         n = _teeth(b, scene, gear.name)
         axis = f"on {gear.carrier}" if gear.carrier else "fixed in the frame"
         kind = "internal (annulus)" if gear.internal else "external"
-        rows.append(
-            (
-                rf"\text{{{tex.escape_text(gear.name)}}} & N = ",
-                Num(n),
+        row = (
+            Sym(rf"\text{{{tex.escape_text(gear.name)}}} & N = ", f"Gear {gear.name}: "),
+            Num(n),
+            Sym(
                 rf" & \text{{{kind}, axis {tex.escape_text(axis)}}}",
-            )
+                f" teeth, {kind}, its axis {axis}.",
+            ),
         )
-        b.say(f"Gear {gear.name}: ", Num(n), f" teeth, {kind}, its axis {axis}.")
+        rows.append(row)
+        b.say(*row)
     b.line(r"&\begin{array}{lll} ", *joined(r" \\ ", rows), r" \end{array}")
     for carrier in scene.carriers:
         held = [g.name for g in scene.gears if g.carrier == carrier]
@@ -201,15 +212,9 @@ def data_step(ctx: GearContext) -> Step:
     b.say(f"Meshes: {meshes}.")
     given = []
     for name, _ in scene.inputs:
-        w = _speed(b, ctx, name)
-        given.append((_w(name), " = ", Num(w, unit=True)))
-        b.say(
-            "Given: ",
-            _w(name),
-            " = ",
-            Num(w, unit=True),
-            " (fixed)." if ctx.omega(name) == 0 else ".",
-        )
+        speed = Equation.of(_w(name), Num(_speed(b, ctx, name), unit=True))
+        given.append((speed,))
+        b.say("Given: ", speed, " (fixed)." if ctx.omega(name) == 0 else ".")
     b.line("&", *joined(r",\quad ", given))
     b.say(CONVENTION)
     step = b.build()
@@ -226,14 +231,15 @@ def freedom_step(ctx: GearContext) -> Step:
     r = b.value("r", float(rank), "")
     f = b.value("f", float(ctx.body["degrees_of_freedom"]), "", ("degrees_of_freedom",))
     b.check("sum", f, n, -r)
-    b.line("&", Equation.of("f", "n - r", (Num(n), " - ", Num(r)), Num(f)))
+    freedom = Equation.of("f", "n - r", latex_only(Num(n), " - ", Num(r)), Num(f))
+    b.line(freedom)
     b.say(
         "Each mesh gives one Willis relation and each keyed member one equality; of these, ",
         Num(r),
         " are independent, so the ",
         Num(n),
-        " members (gears and carriers) have f = n - r = ",
-        Num(f),
+        " members (gears and carriers) have ",
+        freedom,
         f" degree{'s' if members - rank != 1 else ''} of freedom, fixed by the "
         f"{len(scene.inputs)} given speed{'s' if len(scene.inputs) != 1 else ''}.",
     )
@@ -273,7 +279,7 @@ def _stage_ratio(
     written: list[Piece] = []
     for i, (_, pieces) in enumerate(factors):
         if i:
-            written.append(Sym(r" \cdot ", " x "))
+            written.append(CDOT)
         written.extend(pieces)
     return e, tuple(written)
 
@@ -304,13 +310,11 @@ def ordinary_step(ctx: GearContext, stage: Stage) -> Step:
         e, written = _stage_ratio(b, ctx, stage, gear)
         wi = _speed(b, ctx, gear)
         b.check("product", wi, e, wf)
-        b.line("&", Equation.of(_e_symbol(stage, gear), written, Num(e)))
-        boxed = Boxed((Num(wi, unit=True),))
-        b.line("&", Equation.of(_w(gear), (Num(e), r" \cdot ", Paren(wf)), boxed))
-        b.say(
-            _e_symbol(stage, gear), " = ", *written, " = ", Num(e), ", so ",
-            _w(gear), " = ", Num(e), " x ", Paren(wf), " = ", Num(wi, unit=True), ".",
-        )  # fmt: skip
+        value = Equation.of(_e_symbol(stage, gear), written, Num(e))
+        speed = Equation.of(_w(gear), (Num(e), CDOT, Paren(wf)), Boxed((Num(wi, unit=True),)))
+        b.line(value)
+        b.line(speed)
+        b.say(value, ", so ", speed, ".")
     return b.build()
 
 
@@ -384,14 +388,14 @@ def tabular_step(ctx: GearContext, stage: Stage, known: Sequence[str]) -> Step:
             continue
         e = one if member == f else ratios[member][0]
         b.check("linear", w, e, x, one, y)
-        b.line(
-            "&",
-            Equation.of(
-                _w(member), (Num(e), r"\,x + y"), (Num(e), r" \cdot ", Paren(x), " ", Signed(y)),
-                Boxed((Num(w, unit=True),)),
-            ),
-        )  # fmt: skip
-        b.say(_w(member), " = ", Num(e), " x + y = ", Num(w, unit=True), ".")
+        speed = Equation.of(
+            _w(member),
+            (Num(e), Sym(r"\,x + y", " x + y")),
+            latex_only(Num(e), r" \cdot ", Paren(x), " ", Signed(y)),
+            Boxed((Num(w, unit=True),)),
+        )
+        b.line(speed)
+        b.say(speed, ".")
     return b.build()
 
 
@@ -432,7 +436,8 @@ def formula_step(ctx: GearContext, stage: Stage, known: Sequence[str]) -> Step:
         b.check("sum", den, one, -e)
         b.check("quotient", wa, num, den)
         sym_e = _e_symbol(stage, last)
-        b.line("&", Equation.of(sym_e, written, Num(e)))
+        value = Equation.of(sym_e, latex_only(*written), Num(e))
+        b.line(value)
         b.line(
             "&",
             Equation.of(
@@ -442,21 +447,19 @@ def formula_step(ctx: GearContext, stage: Stage, known: Sequence[str]) -> Step:
                 Num(e),
             ),
         )  # fmt: skip
-        b.line(
-            "&",
-            Equation.of(
-                _w(arm),
-                Sym(rf"\frac{{\omega_{{{tex.name(last)}}} - e\,\omega_{{{tex.name(f)}}}}}{{1 - e}}",
-                    f"(omega_{last} - e omega_{f})/(1 - e)"),
-                Frac(num, den),
-                Boxed((Num(wa, unit=True),)),
+        carrier = Equation.of(
+            _w(arm),
+            Alt(
+                (rf"\frac{{\omega_{{{tex.name(last)}}} - e\,\omega_{{{tex.name(f)}}}}}{{1 - e}}",),
+                ("(", Num(wl), " - ", Paren(e), " x ", Paren(wf), ")/(1 - ", Paren(e), ")"),
             ),
-        )  # fmt: skip
+            _quotient(num, den),
+            Boxed((Num(wa, unit=True),)),
+        )
+        b.line(carrier)
         b.say(
-            "With ", _w(f), " = ", Num(wf, unit=True), " and ", _w(last), " = ",
-            Num(wl, unit=True), ": ", sym_e, " = ", Num(e), ", ", _w(arm),
-            " = (", Num(wl), " - ", Paren(e), " x ", Paren(wf), ")/(1 - ", Paren(e), ") = ",
-            Num(num), "/", Num(den), " = ", Num(wa, unit=True), ".",
+            "With ", Equation.of(_w(f), Num(wf, unit=True)), " and ",
+            Equation.of(_w(last), Num(wl, unit=True)), ": ", value, ", ", carrier, ".",
         )  # fmt: skip
         others = [g for g in others if g != last]
     else:
@@ -471,21 +474,16 @@ def formula_step(ctx: GearContext, stage: Stage, known: Sequence[str]) -> Step:
         b.check("product", term, e, d)
         b.check("sum", wi, wa, term)
         b.line("&", Equation.of(_e_symbol(stage, gear), written, Num(e)))
-        b.line(
-            "&",
-            Equation.of(
-                _w(gear),
-                Sym(rf"\omega_{{{tex.name(arm)}}} + e\,(\omega_{{{tex.name(f)}}} - "
-                    rf"\omega_{{{tex.name(arm)}}})",
-                    f"omega_{arm} + e (omega_{f} - omega_{arm})"),
-                (Num(wa), " + ", Paren(e), r" \cdot ", Paren(d)),
-                Boxed((Num(wi, unit=True),)),
-            ),
+        speed = Equation.of(
+            _w(gear),
+            Sym(rf"\omega_{{{tex.name(arm)}}} + e\,(\omega_{{{tex.name(f)}}} - "
+                rf"\omega_{{{tex.name(arm)}}})",
+                f"omega_{arm} + e (omega_{f} - omega_{arm})"),
+            (Num(wa), " + ", Paren(e), CDOT, Paren(d)),
+            Boxed((Num(wi, unit=True),)),
         )  # fmt: skip
-        b.say(
-            _w(gear), " = ", _w(arm), " + e (", _w(f), " - ", _w(arm), ") = ", Num(wa), " + ",
-            Paren(e), " x ", Paren(d), " = ", Num(wi, unit=True), ".",
-        )  # fmt: skip
+        b.line(speed)
+        b.say(speed, ".")
     return b.build()
 
 
@@ -494,9 +492,9 @@ def keyed_step(ctx: GearContext, found: Sequence[tuple[str, str]]) -> Step:
     b = ctx.builder("gears.keyed", "Keyed members")
     for member, source in found:
         w = _speed(b, ctx, member)
-        b.line("&", Equation.of(_w(member), _w(source), Num(w, unit=True)))
-        b.say(f"{member} is keyed to {source}: ", _w(member), " = ", _w(source), " = ",
-              Num(w, unit=True), ".")  # fmt: skip
+        keyed = Equation.of(_w(member), _w(source), Num(w, unit=True))
+        b.line(keyed)
+        b.say(f"{member} is keyed to {source}: ", keyed, ".")
     return b.build()
 
 
@@ -509,8 +507,9 @@ def system_step(ctx: GearContext, members: Sequence[str]) -> Step:
     )
     for member in members:
         w = _speed(b, ctx, member)
-        b.line("&", Equation.of(_w(member), Boxed((Num(w, unit=True),))))
-        b.say(_w(member), " = ", Num(w, unit=True), ".")
+        speed = Equation.of(_w(member), Boxed((Num(w, unit=True),)))
+        b.line(speed)
+        b.say(speed, ".")
     return b.build()
 
 
@@ -532,11 +531,13 @@ def train_value_step(ctx: GearContext) -> Step | None:
             ("members", name, "train_value"),
         )
         b.check("quotient", tv, wi, w1)
-        b.line("&", Equation.of(
-            Sym(rf"\frac{{\omega_{{{tex.name(name)}}}}}{{\omega_{{{tex.name(first)}}}}}",
-                f"omega_{name}/omega_{first}"),
-            Frac(wi, w1), Num(tv)))  # fmt: skip
-        b.say(f"Train value of {name}: ", Num(wi), "/", Num(w1), " = ", Num(tv), ".")
+        value = Equation.of(
+            latex_only(rf"\frac{{\omega_{{{tex.name(name)}}}}}{{\omega_{{{tex.name(first)}}}}}"),
+            _quotient(wi, w1),
+            Num(tv),
+        )
+        b.line(value)
+        b.say(f"Train value of {name}: ", value, ".")
     return b.build()
 
 
@@ -548,21 +549,26 @@ def summary_step(ctx: GearContext) -> Step:
         w = _speed(b, ctx, name)
         entry = ctx.body["members"][name]
         sense = "" if entry["omega"] == 0 else (" (ccw)" if entry["omega"] > 0 else " (cw)")
-        row: tuple[Piece, ...] = (_w(name), " = ", Num(w, unit=True), rf"\text{{{sense}}}")
+        row: tuple[Piece, ...] = (
+            Sym(f"{_w(name).tex} = ", f"{name}: "),
+            Num(w, unit=True),
+            Sym(rf"\text{{{sense}}}", sense),
+        )
         if entry.get("carrier"):
             rel = b.value(f"omega({name}) rel", entry["omega_relative"], "rad/s",
                           ("members", name, "omega_relative"))  # fmt: skip
             arm = _speed(b, ctx, entry["carrier"])
             b.check("sum", rel, w, -arm)
             row += (
-                rf" & \omega_{{{tex.name(name)}/{tex.name(entry['carrier'])}}} = ",
+                Sym(
+                    rf" & \omega_{{{tex.name(name)}/{tex.name(entry['carrier'])}}} = ",
+                    f", relative to {entry['carrier']}: ",
+                ),
                 Num(rel, unit=True),
             )
-            b.say(f"{name}: ", Num(w, unit=True), f"{sense}, relative to {entry['carrier']}: ",
-                  Num(rel, unit=True), ".")  # fmt: skip
         else:
-            row += (" &",)
-            b.say(f"{name}: ", Num(w, unit=True), f"{sense}.")
+            row += (Sym(" &", ""),)
+        b.say(*row, ".")
         rows.append(row)
     b.line(r"&\begin{array}{ll} ", *joined(r" \\ ", rows), r" \end{array}")
     return b.build()

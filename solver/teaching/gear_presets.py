@@ -12,7 +12,7 @@ linkage menu and its answers stay as they are.
 from __future__ import annotations
 
 import inspect
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
@@ -84,20 +84,42 @@ def _compound_reverted(v: Mapping[str, float]) -> dict[str, Any]:
     }  # fmt: skip
 
 
+def _planetary_stage(sun: int, planet: int, stage: str = "") -> dict[str, Any]:
+    """One simple planetary stage (its members' names end in ``stage``): a sun, a planet on the
+    arm, the annulus around them with N_ring = N_sun + 2 N_planet teeth (one module)."""
+    s, p, r, arm = (f"{name}{stage}" for name in ("sun", "planet", "ring", "arm"))
+    return {
+        "gears": {s: {"teeth": sun}, p: {"teeth": planet},
+                  r: {"teeth": sun + 2 * planet, "internal": True}},
+        "carriers": [arm],
+        "mounts": {p: arm},
+        "meshes": [[s, p], [p, r]],
+    }  # fmt: skip
+
+
+def _planetary_train(
+    stages: Sequence[Mapping[str, Any]],
+    shafts: list[list[str]],
+    inputs: dict[str, float],
+    module: float,
+) -> dict[str, Any]:
+    """The planetary ``stages`` in one train, members keyed together by ``shafts``."""
+    return {
+        "gears": {k: g for stage in stages for k, g in stage["gears"].items()},
+        "carriers": [c for stage in stages for c in stage["carriers"]],
+        "mounts": {k: c for stage in stages for k, c in stage["mounts"].items()},
+        "shafts": shafts,
+        "meshes": [m for stage in stages for m in stage["meshes"]],
+        "inputs": inputs,
+        "module": module,
+    }
+
+
 def _planetary_ring_fixed(v: Mapping[str, float]) -> dict[str, Any]:
     """A sun driven, one planet on the arm, the annulus fixed (N_ring = N_sun + 2 N_planet on one
     module): the arm turns at omega_arm / omega_sun = N_sun / (N_sun + N_ring)."""
-    sun, planet = _n(v, "N_sun"), _n(v, "N_planet")
-    return {
-        "gears": {"sun": {"teeth": sun}, "planet": {"teeth": planet},
-                  "ring": {"teeth": sun + 2 * planet, "internal": True}},
-        "carriers": ["arm"],
-        "mounts": {"planet": "arm"},
-        "shafts": [],
-        "meshes": [["sun", "planet"], ["planet", "ring"]],
-        "inputs": {"sun": v["omega_sun"], "ring": 0.0},
-        "module": v["module"],
-    }  # fmt: skip
+    stage = _planetary_stage(_n(v, "N_sun"), _n(v, "N_planet"))
+    return _planetary_train([stage], [], {"sun": v["omega_sun"], "ring": 0.0}, v["module"])
 
 
 def _differential(v: Mapping[str, float]) -> dict[str, Any]:
@@ -121,20 +143,9 @@ def _two_stage_planetary(v: Mapping[str, float]) -> dict[str, Any]:
     """Two simple planetary stages in series, both rings fixed, the first arm keyed to the
     second sun: e = N_sun1 / (N_sun1 + N_ring1) x N_sun2 / (N_sun2 + N_ring2), with
     N_ring = N_sun + 2 N_planet in each stage."""
-    s1, p1, s2, p2 = (_n(v, k) for k in ("N_sun1", "N_planet1", "N_sun2", "N_planet2"))
-    return {
-        "gears": {"sun1": {"teeth": s1}, "planet1": {"teeth": p1},
-                  "ring1": {"teeth": s1 + 2 * p1, "internal": True},
-                  "sun2": {"teeth": s2}, "planet2": {"teeth": p2},
-                  "ring2": {"teeth": s2 + 2 * p2, "internal": True}},
-        "carriers": ["arm1", "arm2"],
-        "mounts": {"planet1": "arm1", "planet2": "arm2"},
-        "shafts": [["arm1", "sun2"]],
-        "meshes": [["sun1", "planet1"], ["planet1", "ring1"], ["sun2", "planet2"],
-                   ["planet2", "ring2"]],
-        "inputs": {"sun1": v["omega_sun"], "ring1": 0.0, "ring2": 0.0},
-        "module": v["module"],
-    }  # fmt: skip
+    stages = [_planetary_stage(_n(v, f"N_sun{k}"), _n(v, f"N_planet{k}"), str(k)) for k in (1, 2)]
+    inputs = {"sun1": v["omega_sun"], "ring1": 0.0, "ring2": 0.0}
+    return _planetary_train(stages, [["arm1", "sun2"]], inputs, v["module"])
 
 
 def _preset(

@@ -24,7 +24,6 @@ from solver.solutions.format import latex_unit
 from solver.solutions.groups.base import SolutionGroup
 from solver.solutions.groups.pose import point_value
 from solver.solutions.linkage import (
-    ACCELERATION,
     MOTION,
     VELOCITY,
     LinkageContext,
@@ -224,12 +223,9 @@ def lever_vector_steps(v: VectorMethod, step: LeverStep, order: int) -> list[Ste
     ctx = v.ctx
     lever, pivot, pin = step.link, step.pivot, step.pin
     ctx.use(pivot, pin)
-    if order == VELOCITY:
-        out, what = [], "velocity"
-        side_step, lever_side, known_side = lever_velocity_side(v, step)
-    else:
-        out, what = [v.coriolis_step(pin, lever)], "acceleration"
-        side_step, lever_side, known_side = lever_acceleration_side(v, step)
+    what = MOTION[order][0]
+    out = [] if order == VELOCITY else [v.coriolis_step(pin, lever)]
+    side_step, lever_side, known_side = lever_sides(v, step, order)
     out.append(side_step)
     out.append(
         v.equate(
@@ -264,23 +260,33 @@ def lever_terms(v: VectorMethod, step: LeverStep, order: int) -> list[Term]:
     ]
 
 
-def lever_velocity_side(v: VectorMethod, step: LeverStep) -> tuple[Step, Side, Side]:
-    """v_P = v_Q + omega x r_QP + s' u, omega and s' unknown; v_P known from its crank.
+def lever_sides(v: VectorMethod, step: LeverStep, order: int) -> tuple[Step, Side, Side]:
+    """v_P = v_Q + omega x r_QP + s' u, omega and s' unknown (a_P = a_Q + alpha x r_QP -
+    omega^2 r_QP + s'' u + a_Cor, alpha and s'' unknown); v_P (a_P) known from its crank.
     Returns the step, the lever's side and the pin's."""
     ctx, lever, pivot, pin = v.ctx, step.link, step.pivot, step.pin
-    terms = lever_terms(v, step, VELOCITY)
+    what, unit = MOTION[order]
+    terms = lever_terms(v, step, order)
     rate, slide = (t.unknown for t in terms)
     b = ctx.builder(
-        "velocity.lever.side",
-        f"Velocity of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
+        f"{what}.lever.side",
+        f"{what.capitalize()} of {pin} in the slot of {lever} ({rate.text} and {slide.text} "
+        "unknown)",
     )
-    vq = put_motion(b, ctx, pivot, VELOCITY)
-    vp = put_motion(b, ctx, pin, VELOCITY)
-    for t in terms:
-        b.put(t.of, t.of_value, t.of_unit)
-    lever_side = Side(vq, ctx.vel(pivot), "m/s", terms)
-    lever_velocity_lines(v, b, step, lever_side, vp)
-    return b.build(), lever_side, Side(vp, ctx.vel(pin), "m/s")
+    base = put_motion(b, ctx, pivot, order)
+    known_pin = put_motion(b, ctx, pin, order)
+    if order == VELOCITY:
+        for t in terms:
+            b.put(t.of, t.of_value, t.of_unit)
+        lever_side = Side(base, ctx.vel(pivot), unit, terms)
+        lever_velocity_lines(v, b, step, lever_side, known_pin)
+        pin_motion = ctx.vel(pin)
+    else:
+        known, cor = lever_known_acceleration(v, b, step, base, terms)
+        lever_side = Side(known.key, known.value, unit, terms)
+        lever_acceleration_lines(v, b, step, lever_side, known, (known_pin, cor))
+        pin_motion = ctx.acc(pin)
+    return b.build(), lever_side, Side(known_pin, pin_motion, unit)
 
 
 def lever_velocity_lines(
@@ -313,24 +319,6 @@ def lever_velocity_lines(
         f"omega({lever}) cross r({pivot},{pin}) + {slide.text} u = "
         f"{side_text(b, side)} m/s, with {rate.text} and {slide.text} unknown.",
     )
-
-
-def lever_acceleration_side(v: VectorMethod, step: LeverStep) -> tuple[Step, Side, Side]:
-    """a_P = a_Q + alpha x r_QP - omega^2 r_QP + s'' u + a_Cor, alpha and s'' unknown; a_P
-    known from its crank. Returns the step, the lever's side and the pin's."""
-    ctx, lever, pivot, pin = v.ctx, step.link, step.pivot, step.pin
-    terms = lever_terms(v, step, ACCELERATION)
-    rate, slide = (t.unknown for t in terms)
-    b = ctx.builder(
-        "acceleration.lever.side",
-        f"Acceleration of {pin} in the slot of {lever} ({rate.text} and {slide.text} unknown)",
-    )
-    aq = put_motion(b, ctx, pivot, ACCELERATION)
-    ap = put_motion(b, ctx, pin, ACCELERATION)
-    known, cor = lever_known_acceleration(v, b, step, aq, terms)
-    lever_side = Side(known.key, known.value, "m/s^2", terms)
-    lever_acceleration_lines(v, b, step, lever_side, known, (ap, cor))
-    return b.build(), lever_side, Side(ap, ctx.acc(pin), "m/s^2")
 
 
 def lever_known_acceleration(
@@ -420,10 +408,7 @@ def lever_parts(v: VectorMethod, step: LeverStep, order: int) -> Step:
     u = b.value(f"u({pin}/{lever})", sliding.direction, "")
     rel = Ref(sliding.put(b, f"relative_{what}", pin))
     check_transport(b, terms, tr.key)
-    if order == VELOCITY:
-        transport = lever_transport_velocity(v, b, step, terms, tr)
-    else:
-        transport = lever_transport_acceleration(v, b, step, terms, tr)
+    transport = lever_transport(v, b, step, terms, tr, order)
     relative_line(b, what[0], tex.name(pin), slide.latex, s, u, rel)
     b.say(
         *transport,
@@ -438,65 +423,42 @@ def lever_parts(v: VectorMethod, step: LeverStep, order: int) -> Step:
     return b.build()
 
 
-def lever_transport_velocity(
-    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
+def lever_transport(
+    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref, order: int
 ) -> tuple[Piece, ...]:
-    """Write v_tr = v_Q + omega x r_QP; returns the sentence that says it."""
+    """Write v_tr = v_Q + omega x r_QP (a_tr = a_Q + alpha x r_QP - omega^2 r_QP); returns the
+    sentence that says it."""
     lever, pivot, pin = step.link, step.pivot, step.pin
+    what = MOTION[order][0]
     moving = not (v.ctx.is_fixed(pivot) and b.is_zero(terms.base))
     base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-    start = f"{v_vec(pivot)} + " if moving else ""
-    b.line(
-        rf"&\vec{{v}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{w_vec(lever)} \times "
-        rf"{r_vec(pivot, pin)} = ",
-        *base,
-        ZCross(Ref(terms.omega), Ref(terms.r)),
-        " = ",
-        Col(tr, unit=True),
+    point_vec, rate_vec, rate, rate_name = (
+        (v_vec, w_vec, terms.omega, "omega")
+        if order == VELOCITY
+        else (a_vec, al_vec, terms.alpha, "alpha")
     )
+    start = f"{point_vec(pivot)} + " if moving else ""
+    r = Ref(terms.r)
+    formula = (
+        rf"&\vec{{{what[0]}}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{rate_vec(lever)} "
+        rf"\times {r_vec(pivot, pin)}"
+    )
+    numbers: tuple[Piece, ...] = (*base, ZCross(Ref(rate), r))
+    parts: tuple[Piece, ...] = (Col(tr),)
+    where = f" (the point of {lever} under the pin)"
+    if order != VELOCITY:  # the normal term -omega^2 r_QP, and the two terms' columns
+        formula += rf" - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)}"
+        t, n = Ref(terms.rotation), Ref(terms.normal)
+        numbers += (" - ", Paren(Ref(terms.omega)), r"^2 \cdot ", Col(r), " = ", *base, Col(t))
+        numbers += (" + ", Col(n))
+        parts = (Col(t), " + ", Col(n), " = ", Col(tr))
+        where = ""
+    b.line(formula + " = ", *numbers, " = ", Col(tr, unit=True))
     return (
-        f"With omega({lever}) = ",
-        Num(Ref(terms.omega), unit=True),
-        f": the transport velocity of {pin} (the point of {lever} under the pin) is ",
-        Col(tr),
-    )
-
-
-def lever_transport_acceleration(
-    v: VectorMethod, b: StepBuilder, step: LeverStep, terms: TransportTerms, tr: Ref
-) -> tuple[Piece, ...]:
-    """Write a_tr = a_Q + alpha x r_QP - omega^2 r_QP; returns the sentence that says it."""
-    lever, pivot, pin = step.link, step.pivot, step.pin
-    moving = not (v.ctx.is_fixed(pivot) and b.is_zero(terms.base))
-    base: tuple[Piece, ...] = (Col(Ref(terms.base)), " + ") if moving else ()
-    start = f"{a_vec(pivot)} + " if moving else ""
-    r, t, n = Ref(terms.r), Ref(terms.rotation), Ref(terms.normal)
-    b.line(
-        rf"&\vec{{a}}_{{{tex.name(pin)},\mathrm{{tr}}}} = {start}{al_vec(lever)} \times "
-        rf"{r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)} = ",
-        *base,
-        ZCross(Ref(terms.alpha), r),
-        " - ",
-        Paren(Ref(terms.omega)),
-        r"^2 \cdot ",
-        Col(r),
-        " = ",
-        *base,
-        Col(t),
-        " + ",
-        Col(n),
-        " = ",
-        Col(tr, unit=True),
-    )
-    return (
-        f"With alpha({lever}) = ",
-        Num(Ref(terms.alpha), unit=True),
-        f": the transport acceleration of {pin} is ",
-        Col(t),
-        " + ",
-        Col(n),
-        " = ",
-        Col(tr),
+        f"With {rate_name}({lever}) = ",
+        Num(Ref(rate), unit=True),
+        f": the transport {what} of {pin}{where} is ",
+        *parts,
     )
 
 
