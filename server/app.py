@@ -110,11 +110,12 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
 
 def _publish_problems(app: FastAPI) -> None:
-    """The OpenAPI document declares errors as application/problem+json (server.schemas)."""
+    """The OpenAPI document declares errors as application/problem+json and types the scene
+    (server.schemas.publish)."""
     generate = app.openapi
 
     def openapi() -> dict[str, Any]:
-        return schemas.problems_as_problem_json(generate())
+        return schemas.publish(generate())
 
     app.openapi = openapi  # type: ignore[method-assign]
 

@@ -15,6 +15,8 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 import solver
+from server import scene_schema
+from server.scene_schema import LinkageSceneObject, SceneObject
 
 EXAMPLES = Path(__file__).parent / "examples"
 
@@ -64,7 +66,7 @@ Statics = Annotated[
 
 
 class AnalyzeRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (docs/CAMS.md) "
         "or 'gear_train' (docs/GEARS.md).",
         examples=[
@@ -96,7 +98,7 @@ class AnalyzeRequest(Strict):
 
 
 class SweepRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 document: a 'linkage' or a 'cam', or a 'spatial_chain' or "
         "'gear_train' with time_range.",
         examples=[_example("S000-T1"), _example("cams/cam-roller-translating")],
@@ -136,7 +138,7 @@ class EventSpec(Strict):
 
 
 class EventsRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 'linkage' with moving_points.",
         examples=[_example("S003-T2-rotating-carrier")],
     )
@@ -734,7 +736,7 @@ class ExerciseModel(Open):
     index: int
     title: str
     statement: ExerciseStatement
-    scene: dict[str, Any]
+    scene: SceneObject
     asked: list[AskedQuantity]
     answers: dict[str, float]
     exam: Literal[True] | None = Field(
@@ -798,7 +800,7 @@ class BalanceResponse(Open):
     counterweights: list[CounterweightValues]
     center_of_mass: list[float]
     mass: float
-    scene: dict[str, Any]
+    scene: LinkageSceneObject = Field(description="The scene with its counterweights' masses")
 
 
 class ProblemCode(StrEnum):
@@ -848,6 +850,16 @@ PROBLEMS: dict[int | str, dict[str, Any]] = {
         "not_assemblable, singular_configuration, limit_exceeded, no_event",
     },
 }
+
+
+def publish(document: dict[str, Any]) -> dict[str, Any]:
+    """The OpenAPI document as published: the typed scene's schemas (server.scene_schema) among
+    its components, and every error as application/problem+json."""
+    found = document.setdefault("components", {}).setdefault("schemas", {})
+    for name, schema in scene_schema.components().items():
+        if found.setdefault(name, schema) != schema:
+            raise ValueError(f"two schemas named {name} in the OpenAPI document")
+    return problems_as_problem_json(document)
 
 
 def problems_as_problem_json(document: dict[str, Any]) -> dict[str, Any]:
