@@ -836,18 +836,42 @@ class Problem(Open):
 
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
-PROBLEMS: dict[int | str, dict[str, Any]] = {
-    503: {"model": Problem, "description": "Every worker is busy (busy): see Retry-After"},
-    413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
-    429: {
+RETRY_AFTER = {
+    "Retry-After": {
+        "description": "Seconds to wait before trying again",
+        "schema": {"type": "integer", "minimum": 0},
+    }
+}
+# What any route can answer: the request too slow to arrive (server.deadlines), too large, not
+# answerable, or a defect.
+FRONT_PROBLEMS: dict[int | str, dict[str, Any]] = {
+    408: {
         "model": Problem,
-        "description": "This client already has its share of slow requests running or waiting "
-        "(too_many_requests): see Retry-After",
+        "description": "The request's headers and body did not arrive within the server's "
+        "request timeout (request_timeout; KINEMATICS_REQUEST_TIMEOUT, default 15 s): the "
+        "connection is closed (Connection: close)",
     },
+    413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
     422: {
         "model": Problem,
         "description": "The request cannot be answered: invalid_scene, invalid_expression, "
         "not_assemblable, singular_configuration, limit_exceeded, no_event",
+    },
+    500: {"model": Problem, "description": "An unexpected error (internal_error): a defect"},
+}
+# What a route that runs in the worker pool (server.workers) can answer besides.
+PROBLEMS: dict[int | str, dict[str, Any]] = {
+    **FRONT_PROBLEMS,
+    429: {
+        "model": Problem,
+        "description": "This client already has its share of slow requests running or waiting "
+        "(too_many_requests): see Retry-After",
+        "headers": RETRY_AFTER,
+    },
+    503: {
+        "model": Problem,
+        "description": "Every worker is busy (busy): see Retry-After",
+        "headers": RETRY_AFTER,
     },
 }
 
