@@ -344,9 +344,26 @@ def components() -> dict[str, Any]:
 
 def scene_field(model: str = "Scene") -> Any:
     """A request's or response's ``scene``: a JSON object at run time (the parsers read it), the
-    typed ``model`` in the OpenAPI document."""
+    typed ``model`` in the OpenAPI document (an ``allOf`` of its one reference for pydantic, which
+    resolves a bare reference; ``plain_references`` makes it the reference)."""
     return Annotated[dict[str, Any], WithJsonSchema({"allOf": [{"$ref": REF.format(model=model)}]})]
 
 
 SceneObject = scene_field()
 LinkageSceneObject = scene_field("LinkageScene")
+FIELD_REFERENCES = [[{"$ref": REF.format(model=model)}] for model in ("Scene", "LinkageScene")]
+
+
+def plain_references(value: Any) -> Any:
+    """``value`` (an OpenAPI document, changed in place) with every ``{"allOf": [{"$ref": R}],
+    ...}`` of a scene made ``{"$ref": R, ...}``: a generated TypeScript client reads an ``allOf``
+    of a discriminated union as a subtype of it, the bare reference as the union itself."""
+    if isinstance(value, dict):
+        if value.get("allOf") in FIELD_REFERENCES:
+            value["$ref"] = value.pop("allOf")[0]["$ref"]
+        for item in value.values():
+            plain_references(item)
+    elif isinstance(value, list):
+        for item in value:
+            plain_references(item)
+    return value

@@ -883,7 +883,7 @@ def publish(document: dict[str, Any]) -> dict[str, Any]:
     for name, schema in scene_schema.components().items():
         if found.setdefault(name, schema) != schema:
             raise ValueError(f"two schemas named {name} in the OpenAPI document")
-    return problems_as_problem_json(document)
+    return problems_as_problem_json(scene_schema.plain_references(document))
 
 
 def problems_as_problem_json(document: dict[str, Any]) -> dict[str, Any]:
