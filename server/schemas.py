@@ -16,6 +16,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 import solver
 from server import scene_schema
+from solver.analysis.sweeps import MAX_SAMPLES
 from server.scene_schema import LinkageSceneObject, SceneObject
 
 EXAMPLES = Path(__file__).parent / "examples"
@@ -104,7 +105,10 @@ class SweepRequest(Strict):
         examples=[_example("S000-T1"), _example("cams/cam-roller-translating")],
     )
     samples: int = Field(
-        360, description="Samples over the revolution (or feasible range, or time range)."
+        360,
+        description="Samples over the revolution (or feasible range, or time range); outside "
+        f"2..{MAX_SAMPLES} (a cam: from 3) the answer is 413 limit_exceeded.",
+        json_schema_extra={"minimum": 2, "maximum": MAX_SAMPLES},
     )
     quantities: list[Quantity] | None = Field(
         None,
@@ -801,6 +805,12 @@ class BalanceResponse(Open):
     center_of_mass: list[float]
     mass: float
     scene: LinkageSceneObject = Field(description="The scene with its counterweights' masses")
+
+
+class Health(Open):
+    """GET /health."""
+
+    status: Literal["ok"]
 
 
 class ProblemCode(StrEnum):

@@ -177,6 +177,7 @@ def requests_of_every_route(client: TestClient) -> list[tuple[str, str, dict[str
     out.append(("post", "/api/v1/balance", {"body": balance}, 200))
     task = {"task": "quick_return", "time_ratio": 1.25, "rocker_length": 0.1, "swing_deg": 60}
     out.append(("post", "/api/v1/synthesis", {"body": task}, 200))
+    out.append(("get", "/health", {}, 200))
     return out
 
 
