@@ -16,8 +16,8 @@ from pydantic import BaseModel, ConfigDict, Field
 
 import solver
 from server import scene_schema
-from solver.analysis.sweeps import MAX_SAMPLES
 from server.scene_schema import LinkageSceneObject, SceneObject
+from solver.analysis.sweeps import MAX_SAMPLES
 
 EXAMPLES = Path(__file__).parent / "examples"
 
