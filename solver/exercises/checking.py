@@ -17,6 +17,7 @@ from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
+from solver.exercises.synthesis_mistakes import synthesis_mistakes
 
 
 def _diagnosis(
@@ -35,8 +36,11 @@ def _diagnosis(
 
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
     """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
-    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), else a
-    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), a
+    synthesis task's (``solver.exercises.synthesis_mistakes``), else a linkage's or a spatial
+    chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    if exercise.task is not None:
+        return synthesis_mistakes(exercise)
     if exercise.scene.get("kind") == "gear_train":
         return gear_train_mistakes(exercise)
     if exercise.scene.get("kind") == "cam":

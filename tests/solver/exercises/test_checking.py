@@ -124,6 +124,12 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "flywheel_factor_two",
         "internal_mesh_as_external",
         "relative_for_absolute",
+        "degrees_as_radians",
+        "synthesis.chebyshev_spacing",
+        "synthesis.freudenstein_sign",
+        "synthesis.signed_length",
+        "synthesis.k1_k2_swapped",
+        "synthesis.absolute_turn",
     }, diagnosed
 
 
