@@ -100,7 +100,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         """Swagger UI from /vendor, started by a script file (no inline script: see CSP)."""
         return HTMLResponse(SWAGGER_PAGE.format(openapi=f"{API_PREFIX}/openapi.json"))
 
-    @app.get("/health", include_in_schema=False)
+    @app.get(
+        "/health",
+        summary="Liveness: answered on the event loop, while every worker is busy",
+        tags=["health"],
+        response_model=schemas.Health,
+        responses=schemas.FRONT_PROBLEMS,
+    )
     async def health() -> dict[str, str]:
         """On the event loop: it answers while every worker is busy."""
         return {"status": "ok"}
@@ -110,11 +116,12 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
 
 def _publish_problems(app: FastAPI) -> None:
-    """The OpenAPI document declares errors as application/problem+json (server.schemas)."""
+    """The OpenAPI document declares errors as application/problem+json and types the scene
+    (server.schemas.publish)."""
     generate = app.openapi
 
     def openapi() -> dict[str, Any]:
-        return schemas.problems_as_problem_json(generate())
+        return schemas.publish(generate())
 
     app.openapi = openapi  # type: ignore[method-assign]
 

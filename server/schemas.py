@@ -15,6 +15,9 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 import solver
+from server import scene_schema
+from server.scene_schema import LinkageSceneObject, SceneObject
+from solver.analysis.sweeps import MAX_SAMPLES
 
 EXAMPLES = Path(__file__).parent / "examples"
 
@@ -64,7 +67,7 @@ Statics = Annotated[
 
 
 class AnalyzeRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (docs/CAMS.md) "
         "or 'gear_train' (docs/GEARS.md).",
         examples=[
@@ -96,13 +99,16 @@ class AnalyzeRequest(Strict):
 
 
 class SweepRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 document: a 'linkage' or a 'cam', or a 'spatial_chain' or "
         "'gear_train' with time_range.",
         examples=[_example("S000-T1"), _example("cams/cam-roller-translating")],
     )
     samples: int = Field(
-        360, description="Samples over the revolution (or feasible range, or time range)."
+        360,
+        description="Samples over the revolution (or feasible range, or time range); outside "
+        f"2..{MAX_SAMPLES} (a cam: from 3) the answer is 413 limit_exceeded.",
+        json_schema_extra={"minimum": 2, "maximum": MAX_SAMPLES},
     )
     quantities: list[Quantity] | None = Field(
         None,
@@ -136,7 +142,7 @@ class EventSpec(Strict):
 
 
 class EventsRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 'linkage' with moving_points.",
         examples=[_example("S003-T2-rotating-carrier")],
     )
@@ -735,7 +741,7 @@ class ExerciseModel(Open):
     index: int
     title: str
     statement: ExerciseStatement
-    scene: dict[str, Any] | None = Field(
+    scene: SceneObject | None = Field(
         None, description="The scene the exercise is built on (its paths point into /analyze)."
     )
     task: dict[str, Any] | None = Field(
@@ -806,7 +812,13 @@ class BalanceResponse(Open):
     counterweights: list[CounterweightValues]
     center_of_mass: list[float]
     mass: float
-    scene: dict[str, Any]
+    scene: LinkageSceneObject = Field(description="The scene with its counterweights' masses")
+
+
+class Health(Open):
+    """GET /health."""
+
+    status: Literal["ok"]
 
 
 class ProblemCode(StrEnum):
@@ -842,20 +854,54 @@ class Problem(Open):
 
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
-PROBLEMS: dict[int | str, dict[str, Any]] = {
-    503: {"model": Problem, "description": "Every worker is busy (busy): see Retry-After"},
-    413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
-    429: {
+RETRY_AFTER = {
+    "Retry-After": {
+        "description": "Seconds to wait before trying again",
+        "schema": {"type": "integer", "minimum": 0},
+    }
+}
+# What any route can answer: the request too slow to arrive (server.deadlines), too large, not
+# answerable, or a defect.
+FRONT_PROBLEMS: dict[int | str, dict[str, Any]] = {
+    408: {
         "model": Problem,
-        "description": "This client already has its share of slow requests running or waiting "
-        "(too_many_requests): see Retry-After",
+        "description": "The request's headers and body did not arrive within the server's "
+        "request timeout (request_timeout; KINEMATICS_REQUEST_TIMEOUT, default 15 s): the "
+        "connection is closed (Connection: close)",
     },
+    413: {"model": Problem, "description": "The request is too large (limit_exceeded)"},
     422: {
         "model": Problem,
         "description": "The request cannot be answered: invalid_scene, invalid_expression, "
         "not_assemblable, singular_configuration, limit_exceeded, no_event",
     },
+    500: {"model": Problem, "description": "An unexpected error (internal_error): a defect"},
 }
+# What a route that runs in the worker pool (server.workers) can answer besides.
+PROBLEMS: dict[int | str, dict[str, Any]] = {
+    **FRONT_PROBLEMS,
+    429: {
+        "model": Problem,
+        "description": "This client already has its share of slow requests running or waiting "
+        "(too_many_requests): see Retry-After",
+        "headers": RETRY_AFTER,
+    },
+    503: {
+        "model": Problem,
+        "description": "Every worker is busy (busy): see Retry-After",
+        "headers": RETRY_AFTER,
+    },
+}
+
+
+def publish(document: dict[str, Any]) -> dict[str, Any]:
+    """The OpenAPI document as published: the typed scene's schemas (server.scene_schema) among
+    its components, and every error as application/problem+json."""
+    found = document.setdefault("components", {}).setdefault("schemas", {})
+    for name, schema in scene_schema.components().items():
+        if found.setdefault(name, schema) != schema:
+            raise ValueError(f"two schemas named {name} in the OpenAPI document")
+    return problems_as_problem_json(scene_schema.plain_references(document))
 
 
 def problems_as_problem_json(document: dict[str, Any]) -> dict[str, Any]:

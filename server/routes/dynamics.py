@@ -13,6 +13,7 @@ from pydantic import Field
 
 import solver
 from server.responses import ResultResponse
+from server.scene_schema import LinkageSceneObject
 from server.schemas import PROBLEMS, BalanceResponse, Strict
 from server.workers import WorkerRoute, front_check
 from solver.analysis.work_estimate import BALANCE_COST
@@ -28,7 +29,7 @@ class CounterweightSpec(Strict):
 
 
 class BalanceRequest(Strict):
-    scene: dict[str, Any] = Field(description="A four-bar 'linkage' with masses (dynamics-v1).")
+    scene: LinkageSceneObject = Field(description="A four-bar 'linkage' with masses (dynamics-v1).")
     counterweights: list[CounterweightSpec] = Field(
         max_length=2, description="One counterweight on each link that turns about the ground."
     )

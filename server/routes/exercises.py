@@ -248,6 +248,10 @@ _MEDIA = {
 }
 
 
+# The JSON export is the POST /exercises body; the others are text.
+EXPORT_SCHEMAS = {"application/json": {"$ref": "#/components/schemas/ExerciseList"}}
+
+
 class ExportRequest(ExercisesRequest):
     format: ExportFormat = Field(
         description="moodle_xml (question bank), html (printable sheet), csv (answer key), json."
@@ -267,7 +271,10 @@ class ExportRequest(ExercisesRequest):
     responses={
         200: {
             "description": "The file, as an attachment",
-            "content": {media: {"schema": {"type": "string"}} for media, _ in _MEDIA.values()},
+            "content": {
+                media: {"schema": EXPORT_SCHEMAS.get(media, {"type": "string"})}
+                for media, _ in _MEDIA.values()
+            },
         }
     },
 )

@@ -14,7 +14,8 @@ from pydantic import BaseModel, ConfigDict, Field, create_model
 
 from server.edge import FiniteJSONResponse, StrictJSONRoute
 from server.responses import ResultResponse
-from server.schemas import PROBLEMS, PresetList
+from server.scene_schema import SceneObject
+from server.schemas import FRONT_PROBLEMS, PresetList
 from solver.errors import InvalidScene
 from solver.teaching.cam_presets import CAM_PRESETS
 from solver.teaching.gear_presets import GEAR_PRESETS
@@ -36,7 +37,7 @@ router = APIRouter(
     tags=["presets"],
     route_class=StrictJSONRoute,
     default_response_class=ResultResponse,
-    responses=PROBLEMS,
+    responses=FRONT_PROBLEMS,
 )
 
 
@@ -104,7 +105,7 @@ def _route(preset: Preset) -> None:
         summary=preset.title,
         description=preset.description,
         name=f"preset_{preset.name}",
-        response_model=dict[str, Any],
+        response_model=SceneObject,
         response_description="A scene-v1 document",
     )
 

@@ -18,6 +18,7 @@ import solver
 from server import budget
 from server.responses import ResultResponse, respond
 from server.routes.presets import build_any_preset
+from server.scene_schema import SceneObject
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
 from server.workers import WorkerRoute, front_check
@@ -40,7 +41,7 @@ def _example(name: str) -> dict[str, Any]:
 
 
 class SolutionRequest(Strict):
-    scene: dict[str, Any] = Field(
+    scene: SceneObject = Field(
         description="A scene-v1 document: kind 'linkage', 'spatial_chain', 'cam' (at 'angle_deg'; "
         "docs/CAMS.md) or 'gear_train' (written out by the tabular and formula methods whatever "
         "'method' asks; docs/GEARS.md).",

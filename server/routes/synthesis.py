@@ -17,6 +17,7 @@ from pydantic import Field
 
 import solver
 from server.responses import ResultResponse, respond
+from server.scene_schema import LinkageSceneObject
 from server.schemas import PROBLEMS, WARNINGS, Open, Strict
 from server.workers import WorkerRoute
 
@@ -100,7 +101,9 @@ class SynthesisResponse(Open):
     """POST /synthesis (docs/SYNTHESIS.md)."""
 
     task: str
-    scene: dict[str, Any] = Field(description="The scene-v1 linkage, ready for /analyze, /sweep.")
+    scene: LinkageSceneObject = Field(
+        description="The scene-v1 linkage, ready for /analyze, /sweep."
+    )
     dimensions: dict[str, Any]
     checks: list[SynthesisCheck]
     defects: SynthesisDefects

@@ -14,6 +14,9 @@ from jsonschema import Draft202012Validator
 
 import solver
 from server import problems
+from server.app import API_PREFIX
+from server.routes import dynamics, exercises, kinematics, presets, solution, synthesis
+from server.workers import WorkerRoute
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 NAMES = sorted(path.stem for path in EXAMPLES.glob("*.json"))
@@ -199,3 +202,31 @@ def test_exercise_responses_satisfy_the_published_schema(
     answers = {a["key"]: 1.0 for a in exercise["asked"]}
     graded = client.post("/api/v1/exercises/check", json={"id": exercise["id"], "answers": answers})
     check(openapi, "/exercises/check", "post", graded)
+
+
+def test_timeouts_limits_and_busy_answers_are_declared(openapi: dict[str, Any]) -> None:
+    """Every operation declares the answers any request can get (408 past the request timeout,
+    413, 422, 500); one that runs in the worker pool also 429 and 503, each with Retry-After;
+    all as problem+json of the Problem schema."""
+    pooled = {
+        (API_PREFIX + route.path, method.lower())
+        for module in (dynamics, exercises, kinematics, presets, solution, synthesis)
+        for route in module.router.routes
+        if isinstance(route, WorkerRoute)
+        for method in route.methods
+    }
+    assert ("/api/v1/sweep", "post") in pooled and ("/api/v1/presets", "get") not in pooled
+    problem = {"$ref": "#/components/schemas/Problem"}
+    for path, operations in openapi["paths"].items():
+        for method, operation in operations.items():
+            declared = operation["responses"]
+            expected = {"408", "413", "422", "500"}
+            if (path, method) in pooled:
+                expected |= {"429", "503"}
+                for status in ("429", "503"):
+                    header = declared[status]["headers"]["Retry-After"]
+                    assert header["schema"] == {"type": "integer", "minimum": 0}
+            assert expected <= set(declared), (path, method, expected - set(declared))
+            for status in expected:
+                content = declared[status]["content"]
+                assert content == {"application/problem+json": {"schema": problem}}, (path, status)
