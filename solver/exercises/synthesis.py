@@ -338,8 +338,9 @@ def _pose_givens(
     for k, p in enumerate(positions, start=1):
         givens += [(f"x_{{P{k}}}", p["point"][0], "m"), (f"y_{{P{k}}}", p["point"][1], "m"),
                    (f"\\varphi_{k}", p["angle_deg"], "deg")]  # fmt: skip
-    return givens + [("x_{B1}", b1[0], "m"), ("y_{B1}", b1[1], "m"), ("x_{C1}", c1[0], "m"),
-                     ("y_{C1}", c1[1], "m")]  # fmt: skip
+    pivots = [("x_{B1}", b1[0], "m"), ("y_{B1}", b1[1], "m"), ("x_{C1}", c1[0], "m"),
+              ("y_{C1}", c1[1], "m")]  # fmt: skip
+    return [*givens, *pivots]
 
 
 def _from_zero(positions: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
@@ -408,8 +409,8 @@ def _two_positions_draft(rng: random.Random, difficulty: str) -> Draft:
         "each positive to the left of the chord's direction B1 -> B2 (C1 -> C2). Find A and D "
         f"of the four-bar ABCD that guides the coupler.{pole}"
     )
-    givens = _pose_givens(positions, b1, c1) + [("d_A", offsets[0], "m"),
-                                                 ("d_D", offsets[1], "m")]  # fmt: skip
+    givens = [*_pose_givens(positions, b1, c1), ("d_A", offsets[0], "m"),
+              ("d_D", offsets[1], "m")]  # fmt: skip
     latex = givens_latex(givens) + r"\\" + asked_latex(asked)
     return Draft(
         "Motion generation: fixed pivots for two positions",

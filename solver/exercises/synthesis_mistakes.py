@@ -2,10 +2,11 @@
 solver as the others' are: a misread task is synthesised by /synthesis (the Chebyshev spacing
 replaced by the ends and the middle of the range; the coupler turned the other way, by its
 degrees read as radians, or by its absolute angle instead of its turn from the first position;
-two positions: the bisector offsets taken to the other side), a fixed pivot put on the wrong
-perpendicular bisector (the coupler's B1C1) by the synthesis' own ``offset_point``, and a misread equation is solved by the synthesis' own Freudenstein functions on the body's
-numbers (the angles in degrees fed to the cosines, the sign of K2, the lengths from K1 and K2
-swapped or given with the sign of K). Their ids are entries of the catalogue
+two positions: the bisector offsets taken to the other side), a fixed pivot is put on the wrong
+perpendicular bisector (the coupler's B1C1) by the synthesis' own ``offset_point``, and a
+misread equation is solved by the synthesis' own Freudenstein functions on the body's numbers
+(the angles in degrees fed to the cosines, the sign of K2, the lengths from K1 and K2 swapped
+or given with the sign of K). Their ids are entries of the catalogue
 ``solver.teaching.mistakes``.
 """
 

@@ -72,9 +72,7 @@ class QuickReturnTask:
 Task = MotionTask | FunctionTask | QuickReturnTask
 
 FIELDS: dict[str, frozenset[str]] = {
-    "motion": frozenset(
-        {"task", "positions", "moving_pivots", "fixed_pivots", "bisector_offsets"}
-    ),
+    "motion": frozenset({"task", "positions", "moving_pivots", "fixed_pivots", "bisector_offsets"}),
     "function": frozenset(
         {
             "task",
