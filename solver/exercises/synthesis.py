@@ -43,6 +43,7 @@ SCREEN_DRAWS = 200  # cheap draws (the design alone, no analysis) before a candi
 CRANK_ROCKER = "Grashof crank-rocker"
 MAX_PROPORTION = 6.0  # the longest link (ground included) over the shortest
 MAX_PIVOT_DISTANCE = 5.0  # a fixed pivot's distance from P1, in coupler lengths (BC)
+MIN_LINK_TURN_DEG = 15.0  # two positions: the crank's and the rocker's turn between them
 
 # (the function in the task's language, its LaTeX, the x range)
 _FUNCTIONS: tuple[tuple[str, str, tuple[float, float]], ...] = (
@@ -382,7 +383,20 @@ def two_positions(rng: random.Random, difficulty: str) -> Draft:
     from the chord's midpoint (``bisector_offsets``: the free choice of two positions, here
     the drawn crank-rocker's own, rounded to millimetres); basic: the first position at angle
     0; at challenging also the pole P12; the design screened as for three positions."""
-    return _screened(_two_positions_draft, _motion_passes, rng, difficulty)
+    return _screened(_two_positions_draft, _two_positions_pass, rng, difficulty)
+
+
+def _two_positions_pass(task: Any) -> bool:
+    """``_motion_passes``, and each link turning at least ``MIN_LINK_TURN_DEG`` between the two
+    positions, 2 atan(|chord| / (2 |d|)): a pivot far out on the bisector of a short chord moves
+    a lot with the last digit of the chord's direction (ill-conditioned for a hand solution)."""
+    assert isinstance(task, MotionTask) and task.bisector_offsets is not None
+    design = synthesise_motion(task)
+    for name, offset in zip("BC", task.bisector_offsets, strict=True):
+        chord = abs(design.targets[1][name] - design.targets[0][name])
+        if 2.0 * math.degrees(math.atan2(chord, 2.0 * abs(offset))) < MIN_LINK_TURN_DEG:
+            return False
+    return _motion_passes(task)
 
 
 def _two_positions_draft(rng: random.Random, difficulty: str) -> Draft:
