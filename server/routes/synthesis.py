@@ -47,6 +47,15 @@ class MotionTask(Strict):
         description="[A, D]: the fixed pivots (the inverse problem: the moving pivots B, C are "
         "then the circle points).",
     )
+    bisector_offsets: list[float] | None = Field(
+        None,
+        min_length=2,
+        max_length=2,
+        description="[dA, dD] (m), two positions with moving_pivots only: A on the "
+        "perpendicular bisector of B1B2 at the signed distance dA from the chord's midpoint "
+        "(positive to the left of B1 -> B2), D on that of C1C2 at dD. Absent: each one chord "
+        "length from the midpoint, on the side of B1C1 away from P1.",
+    )
 
 
 class FunctionTask(Strict):

@@ -372,6 +372,11 @@ def _motion_task(task: Mapping[str, Any]) -> str:
     for name, q in (("B1", b1), ("C1", c1)):
         canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
         _text(canvas, q, name, dy=16)
+    if "bisector_offsets" in task:  # two positions: the free choice the task states
+        d_a, d_d = task["bisector_offsets"]
+        style = [("font-size", "12"), ("font-family", "sans-serif"), ("fill", INK)]
+        note = f"on the bisectors of B1B2, C1C2: dA = {d_a:g} m, dD = {d_d:g} m"
+        canvas.text((12.0, 18.0), note, style)  # in the top margin
     _scale_bar(canvas)
     return _document(canvas, "coupler positions to pass through")
 

@@ -207,5 +207,13 @@ TYPES: Mapping[str, ExerciseType] = {
             ("A_x", "A_y", "D_x", "D_y", "P12_x", "P12_y"), synthesis.fixed_pivots,
             "synthesis_motion",
         ),
+        _type(
+            "synthesis_two_positions", "Motion generation: the fixed pivots for two positions",
+            "A coupler to guide through two positions, its moving pivots given and each fixed "
+            "pivot's offset along its perpendicular bisector: the fixed pivots A and D (the "
+            "first position at angle 0 at basic), and at challenging the pole P12.",
+            ("A_x", "A_y", "D_x", "D_y", "P12_x", "P12_y"), synthesis.two_positions,
+            "synthesis_motion",
+        ),
     )
 }  # fmt: skip

@@ -27,8 +27,15 @@ from solver.exercises.model import Asked, Draft
 from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
 from solver.synthesis import parse_task
 from solver.synthesis.function import design_function
-from solver.synthesis.motion import cross, rotor, synthesise_motion
-from solver.synthesis.task import FunctionTask, MotionTask
+from solver.synthesis.motion import (
+    bisector_offset,
+    cross,
+    in_coupler,
+    in_pose,
+    rotor,
+    synthesise_motion,
+)
+from solver.synthesis.task import FunctionTask, MotionTask, Pose
 from solver.synthesis.verify import MIN_TRANSMISSION_DEG
 from solver.teaching.presets import build_preset
 
@@ -36,6 +43,7 @@ SCREEN_DRAWS = 200  # cheap draws (the design alone, no analysis) before a candi
 CRANK_ROCKER = "Grashof crank-rocker"
 MAX_PROPORTION = 6.0  # the longest link (ground included) over the shortest
 MAX_PIVOT_DISTANCE = 5.0  # a fixed pivot's distance from P1, in coupler lengths (BC)
+MIN_LINK_TURN_DEG = 15.0  # two positions: the crank's and the rocker's turn between them
 
 # (the function in the task's language, its LaTeX, the x range)
 _FUNCTIONS: tuple[tuple[str, str, tuple[float, float]], ...] = (
@@ -292,10 +300,13 @@ def fixed_pivots(rng: random.Random, difficulty: str) -> Draft:
     return _screened(_motion_draft, _motion_passes, rng, difficulty)
 
 
-def _poses(rng: random.Random, count: int) -> tuple[list[dict[str, Any]], list[list[float]]]:
+def _poses(
+    rng: random.Random, count: int
+) -> tuple[list[dict[str, Any]], list[list[float]], tuple[complex, complex]]:
     """``count`` poses of the coupler of a drawn Grashof crank-rocker (``four_bar_scene``, moved
     off the origin) at crank angles 40 to 70 deg apart: its point P (m) and the direction of BC
-    (deg), rounded to millimetres and whole degrees; and B, C at the first pose, rounded."""
+    (deg), rounded to millimetres and whole degrees; B, C at the first pose, rounded; and its
+    fixed pivots A, D (moved, not rounded)."""
     _, values = four_bar_scene(rng, "standard", False, False)
     # P off the line BC
     values |= {"coupler_point_u": pick(rng, 0.1, 0.3, 0.05),
@@ -311,19 +322,40 @@ def _poses(rng: random.Random, count: int) -> tuple[list[dict[str, Any]], list[l
         positions.append({"point": point, "angle_deg": float(round(angle))})
         if k == 0:
             pivots = [[round(q[0] + shift[0], 3), round(q[1] + shift[1], 3)] for q in (b, c)]
+            fixed = tuple(complex(q[0] + shift[0], q[1] + shift[1])
+                          for q in (points["A"], points["D"]))  # fmt: skip
         crank += pick(rng, 40.0, 70.0, 5.0)
-    return positions, pivots
+    return positions, pivots, (fixed[0], fixed[1])
+
+
+POLE_SENTENCE = " Find also the pole P12 of the coupler's displacement from position 1 to 2."
+
+
+def _pose_givens(
+    positions: Sequence[Mapping[str, Any]], b1: Sequence[float], c1: Sequence[float]
+) -> list[tuple[str, float, str]]:
+    """The givens of a motion task: each position's P and angle, then B1 and C1."""
+    givens: list[tuple[str, float, str]] = []
+    for k, p in enumerate(positions, start=1):
+        givens += [(f"x_{{P{k}}}", p["point"][0], "m"), (f"y_{{P{k}}}", p["point"][1], "m"),
+                   (f"\\varphi_{k}", p["angle_deg"], "deg")]  # fmt: skip
+    pivots = [("x_{B1}", b1[0], "m"), ("y_{B1}", b1[1], "m"), ("x_{C1}", c1[0], "m"),
+              ("y_{C1}", c1[1], "m")]  # fmt: skip
+    return [*givens, *pivots]
+
+
+def _from_zero(positions: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The positions turned so that the first is at angle 0: the turns are the angles."""
+    return [{**p, "angle_deg": p["angle_deg"] - positions[0]["angle_deg"]} for p in positions]
 
 
 def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
-    positions, (b1, c1) = _poses(rng, 3)
-    if difficulty == "basic":  # the first position at angle 0: the turns are the angles
-        positions = [{**p, "angle_deg": p["angle_deg"] - positions[0]["angle_deg"]}
-                     for p in positions]  # fmt: skip
+    positions, (b1, c1), _ = _poses(rng, 3)
+    if difficulty == "basic":
+        positions = _from_zero(positions)
     task = {"task": "motion", "positions": positions, "moving_pivots": [b1, c1]}
     asked = PIVOTS_ASKED + (POLE_ASKED if difficulty == "challenging" else ())
-    pole = " Find also the pole P12 of the coupler's displacement from position 1 to 2." if (
-        difficulty == "challenging") else ""  # fmt: skip
+    pole = POLE_SENTENCE if difficulty == "challenging" else ""
     text = (
         "A coupler carries a point P and the pivots B and C. It is to pass through three "
         f"positions, each given by P and the coupler's angle (counter-clockwise from the x "
@@ -332,13 +364,7 @@ def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
         f"(the centre of B's circle) and D (that of C's) of the four-bar ABCD that guides "
         f"it.{pole}"
     )
-    givens: list[tuple[str, float, str]] = []
-    for k, p in enumerate(positions, start=1):
-        givens += [(f"x_{{P{k}}}", p["point"][0], "m"), (f"y_{{P{k}}}", p["point"][1], "m"),
-                   (f"\\varphi_{k}", p["angle_deg"], "deg")]  # fmt: skip
-    givens += [("x_{B1}", b1[0], "m"), ("y_{B1}", b1[1], "m"), ("x_{C1}", c1[0], "m"),
-               ("y_{C1}", c1[1], "m")]  # fmt: skip
-    latex = givens_latex(givens) + r"\\" + asked_latex(asked)
+    latex = givens_latex(_pose_givens(positions, b1, c1)) + r"\\" + asked_latex(asked)
     coupler = math.dist(b1, c1)
     return Draft(
         "Motion generation: fixed pivots for three positions",
@@ -347,5 +373,65 @@ def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
         task,
         asked,
         {"m": coupler},
+        _motion_check,
+    )
+
+
+def two_positions(rng: random.Random, difficulty: str) -> Draft:
+    """The fixed pivots A and D of a four-bar whose coupler passes through two positions, its
+    moving pivots B1, C1 given and each fixed pivot's offset along its perpendicular bisector
+    from the chord's midpoint (``bisector_offsets``: the free choice of two positions, here
+    the drawn crank-rocker's own, rounded to millimetres); basic: the first position at angle
+    0; at challenging also the pole P12; the design screened as for three positions."""
+    return _screened(_two_positions_draft, _two_positions_pass, rng, difficulty)
+
+
+def _two_positions_pass(task: Any) -> bool:
+    """``_motion_passes``, and each link turning at least ``MIN_LINK_TURN_DEG`` between the two
+    positions, 2 atan(|chord| / (2 |d|)): a pivot far out on the bisector of a short chord moves
+    a lot with the last digit of the chord's direction (ill-conditioned for a hand solution)."""
+    assert isinstance(task, MotionTask) and task.bisector_offsets is not None
+    design = synthesise_motion(task)
+    for name, offset in zip("BC", task.bisector_offsets, strict=True):
+        chord = abs(design.targets[1][name] - design.targets[0][name])
+        if 2.0 * math.degrees(math.atan2(chord, 2.0 * abs(offset))) < MIN_LINK_TURN_DEG:
+            return False
+    return _motion_passes(task)
+
+
+def _two_positions_draft(rng: random.Random, difficulty: str) -> Draft:
+    positions, (b1, c1), (A, D) = _poses(rng, 2)
+    if difficulty == "basic":
+        positions = _from_zero(positions)
+    poses = [Pose(complex(*p["point"]), math.radians(p["angle_deg"])) for p in positions]
+    offsets = []
+    for first, fixed in ((complex(*b1), A), (complex(*c1), D)):
+        second = in_pose(poses[1], in_coupler(poses[0], first))
+        offsets.append(round(bisector_offset(first, second, fixed), 3))
+    task = {"task": "motion", "positions": positions, "moving_pivots": [b1, c1],
+            "bisector_offsets": offsets}  # fmt: skip
+    asked = PIVOTS_ASKED + (POLE_ASKED if difficulty == "challenging" else ())
+    pole = POLE_SENTENCE if difficulty == "challenging" else ""
+    text = (
+        "A coupler carries a point P and the pivots B and C. It is to pass through two "
+        f"positions, each given by P and the coupler's angle (counter-clockwise from the x "
+        f"axis): {_positions_text(positions)}. In the first position B1 = ({num(b1[0])}, "
+        f"{num(b1[1])}) m and C1 = ({num(c1[0])}, {num(c1[1])}) m. Two positions leave each "
+        f"fixed pivot free on a perpendicular bisector: A (the centre of B's circle) is to lie "
+        f"on the perpendicular bisector of B1B2 at dA = {num(offsets[0])} m from the chord's "
+        f"midpoint, D (that of C's) on the bisector of C1C2 at dD = {num(offsets[1])} m, "
+        "each positive to the left of the chord's direction B1 -> B2 (C1 -> C2). Find A and D "
+        f"of the four-bar ABCD that guides the coupler.{pole}"
+    )
+    givens = [*_pose_givens(positions, b1, c1), ("d_A", offsets[0], "m"),
+              ("d_D", offsets[1], "m")]  # fmt: skip
+    latex = givens_latex(givens) + r"\\" + asked_latex(asked)
+    return Draft(
+        "Motion generation: fixed pivots for two positions",
+        text,
+        latex,
+        task,
+        asked,
+        {"m": math.dist(b1, c1)},
         _motion_check,
     )

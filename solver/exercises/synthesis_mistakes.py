@@ -1,10 +1,12 @@
 """The typical mistakes of the synthesis exercises (``solver.exercises.synthesis``), made with the
 solver as the others' are: a misread task is synthesised by /synthesis (the Chebyshev spacing
 replaced by the ends and the middle of the range; the coupler turned the other way, by its
-degrees read as radians, or by its absolute angle instead of its turn from the first position),
-and a misread equation is solved by the synthesis' own Freudenstein functions on the body's
-numbers (the angles in degrees fed to the cosines, the sign of K2, the lengths from K1 and K2
-swapped or given with the sign of K). Their ids are entries of the catalogue
+degrees read as radians, or by its absolute angle instead of its turn from the first position;
+two positions: the bisector offsets taken to the other side), a fixed pivot is put on the wrong
+perpendicular bisector (the coupler's B1C1) by the synthesis' own ``offset_point``, and a
+misread equation is solved by the synthesis' own Freudenstein functions on the body's numbers
+(the angles in degrees fed to the cosines, the sign of K2, the lengths from K1 and K2 swapped
+or given with the sign of K). Their ids are entries of the catalogue
 ``solver.teaching.mistakes``.
 """
 
@@ -22,6 +24,7 @@ from solver.exercises.mistakes import WrongAnswers
 from solver.exercises.model import Exercise
 from solver.synthesis import freudenstein_coefficients
 from solver.synthesis.function import link_lengths
+from solver.synthesis.motion import offset_point
 
 DEGREES = 180.0 / math.pi
 
@@ -133,6 +136,33 @@ def _motion_mistakes(exercise: Exercise, task: Mapping[str, Any]) -> list[WrongA
         values = _values(exercise, _turned(task, wrong))
         if values is not None:
             out.append(WrongAnswers(kind, sentence, values))
+    if "bisector_offsets" in task:
+        out += _offset_mistakes(exercise, task)
+    return out
+
+
+def _offset_mistakes(exercise: Exercise, task: Mapping[str, Any]) -> list[WrongAnswers]:
+    """Two positions with the bisector offsets given: the offsets' sign flipped (synthesised),
+    and each pivot on the bisector of the coupler B1C1 (A from B1 -> C1, D from C1 -> B1)."""
+    dA, dD = task["bisector_offsets"]
+    out = []
+    values = _values(exercise, {**task, "bisector_offsets": [-dA, -dD]})
+    if values is not None:
+        out.append(WrongAnswers(
+            "synthesis.offset_side",
+            "This is the fixed pivots at -dA and -dD: the offset along each bisector is "
+            "positive to the left of the chord's direction B1 -> B2 (C1 -> C2), A = M + dA "
+            "i (B2 - B1)/|B2 - B1|.",
+            values,
+        ))  # fmt: skip
+    B1, C1 = (complex(*q) for q in task["moving_pivots"])
+    A, D = offset_point(B1, C1, dA), offset_point(C1, B1, dD)
+    out.append(WrongAnswers(
+        "synthesis.coupler_bisector",
+        "This is A on the perpendicular bisector of B1C1 (the coupler): A is on that of B1B2, "
+        "the chord between B's places in the two positions (D on that of C1C2).",
+        {"A_x": A.real, "A_y": A.imag, "D_x": D.real, "D_y": D.imag},
+    ))  # fmt: skip
     return out
 
 

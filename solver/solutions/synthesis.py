@@ -5,7 +5,8 @@ Motion (three positions): the poles P12, P13, P23; the centre point A of B's pla
 the point equally far from the three (|AB1| = |AB2| = |AB3|, where the perpendicular bisectors
 meet), and D likewise of C1, C2, C3 (with the fixed pivots given, the circle points are found
 the same way from A and D seen from the coupler); two positions, the stated choice on each
-bisector. Function: the precision points, Freudenstein's equation
+bisector (with the task's offsets d, the pivot M + d n: the chord's midpoint M, its unit normal
+n to the left, and |AB1| = |AB2|). Function: the precision points, Freudenstein's equation
 
     K1 cos(theta_4) - K2 cos(theta_2) + K3 = cos(theta_2 - theta_4)
 
@@ -136,6 +137,53 @@ def _poles_step(body: JSON) -> Step:
     return b.build()
 
 
+def _offset_step(body: JSON, fixed: str, moving: str, offset: float) -> Step:
+    """A = M + d n on the perpendicular bisector of B1B2: M = (B1 + B2)/2, n = k x (B2 - B1) /
+    |B2 - B1| (the chord turned 90 deg to its left), and |AB1| = |AB2|."""
+    places = body["construction"]["places"][moving]
+    b = _builder("offset", f"The fixed pivot {fixed} on the bisector of {moving}1{moving}2")
+    first = b.value(f"{moving}1", tuple(places[0]), "m", ("construction", "places", moving, 0))
+    second = b.value(f"{moving}2", tuple(places[1]), "m", ("construction", "places", moving, 1))
+    (x1, y1), (x2, y2) = places[0], places[1]
+    chord = b.value(f"{moving}1{moving}2", (x2 - x1, y2 - y1), "m")
+    b.check("sum", chord, second, -first)
+    middle = b.value("M", (0.5 * (x1 + x2), 0.5 * (y1 + y2)), "m")
+    b.check("sum", middle, first, second, factor=0.5)
+    length = b.value(f"|{moving}1{moving}2|", math.hypot(x2 - x1, y2 - y1), "m")
+    b.check("norm", length, chord)
+    one = b.value("k", 1.0, "")
+    turned = b.value("k x chord", (y1 - y2, x2 - x1), "m")
+    b.check("cross", turned, one, chord)
+    norm = math.hypot(x2 - x1, y2 - y1)
+    normal = b.value("n", ((y1 - y2) / norm, (x2 - x1) / norm), "")
+    b.check("quotient", normal, turned, length)
+    index = 0 if fixed == "A" else 1
+    d = b.value(f"d{fixed}", offset, "m", ("construction", "bisector_offsets", index))
+    nx, ny = b.vector(normal)
+    step = b.value(f"d{fixed} n", (offset * nx, offset * ny), "m")
+    b.check("product", step, d, normal)
+    centre = b.value(fixed, _point(body, fixed), "m", ("scene", "points", fixed))
+    b.check("sum", centre, middle, step)
+    b.line(Equation.of(Sym("M", "M"), Pt(middle, "m")))
+    b.line(Equation.of(Sym(r"\vec n", "n"), Pt(normal)))
+    b.line(Equation.of(Sym(fixed, fixed), Pt(centre, "m")))
+    cx, cy = b.vector(centre)
+    radius = b.value(f"|{fixed}{moving}|", math.dist((cx, cy), places[0]), "m")
+    for j, place in ((1, first), (2, second)):
+        arm = b.value(f"{fixed}{moving}{j}", (places[j - 1][0] - cx, places[j - 1][1] - cy), "m")
+        b.check("sum", arm, place, -centre)
+        b.check("norm", radius, arm)
+    b.say(
+        f"{moving}1 = ", Pt(first, "m"), f" and {moving}2 = ", Pt(second, "m"),
+        ": the chord's midpoint M = ", Pt(middle, "m"), ", its length ", Num(length, unit=True),
+        f", its unit normal to the left of {moving}1 -> {moving}2 n = ", Pt(normal),
+        f". {fixed} = M + d{fixed} n with d{fixed} = ", Num(d, unit=True), ": ",
+        Pt(centre, "m"), f", equally far from {moving}1 and {moving}2 (",
+        Num(radius, unit=True), f"), so {moving} turns about {fixed} through both positions.",
+    )  # fmt: skip
+    return b.build()
+
+
 def _motion_steps(body: JSON) -> list[Step]:
     places = body["construction"]["places"]
     steps = [_poles_step(body)]
@@ -150,6 +198,10 @@ def _motion_steps(body: JSON) -> list[Step]:
             + "."
         )
         steps.append(b.build())
+        offsets = body["construction"].get("bisector_offsets")
+        if offsets is not None:
+            steps.append(_offset_step(body, "A", "B", offsets[0]))
+            steps.append(_offset_step(body, "D", "C", offsets[1]))
     steps.append(_lengths_step(body))
     steps.append(_checks_step(body, "Position"))
     return steps

@@ -134,7 +134,8 @@ def _motion(task: MotionTask) -> JSON:
             "poles": {k: None if p is None else _xy(p) for k, p in design.poles.items()},
             "places": {name: [_xy(t[name]) for t in design.targets] for name in ("B", "C", "P")},
             "choices": list(design.choices),
-        },
+        }
+        | ({} if task.bisector_offsets is None else {"bisector_offsets": [*task.bisector_offsets]}),
         "checks": checks,
         "defects": defects,
         "transmission_angle": {"min_deg": mu, "at_driver_angle_deg": mu_at},

@@ -7,7 +7,8 @@ is the centre point: the centre of the circle through B_1, B_2, B_3 (the point w
 perpendicular bisectors of B_1B_2 and B_2B_3 meet). With the fixed pivot A given (the inverse
 problem), A is seen from the coupler at a_j = e^{-i phi_j} (A - P_j) and the circle point B is
 the centre of the circle through a_1, a_2, a_3, carried back to the first pose. Two poses leave
-one free choice on each bisector; ``BISECTOR_DISTANCE`` states it. The poles P_jk (the centres
+one free choice on each bisector: the task's ``bisector_offsets`` state it (``offset_point``),
+else ``BISECTOR_DISTANCE`` does. The poles P_jk (the centres
 of the rotations taking pose j to pose k) are where the bisectors of every dyad meet: three
 coincident poles leave no four-bar.
 """
@@ -81,6 +82,20 @@ def bisector_point(
         if cross(end - start, candidate - start) * side > 0.0:
             return candidate
     return middle + normal
+
+
+def offset_point(first: complex, second: complex, offset: float) -> complex:
+    """M + d i (z_2 - z_1) / |z_2 - z_1|: the point of the perpendicular bisector of z_1 z_2 (M
+    the midpoint) at the signed distance d from M, positive to the left of z_1 -> z_2."""
+    chord = second - first
+    return 0.5 * (first + second) + offset * 1j * chord / abs(chord)
+
+
+def bisector_offset(first: complex, second: complex, z: complex) -> float:
+    """d = (z_2 - z_1) x (z - M) / |z_2 - z_1|: the signed distance along the perpendicular
+    bisector of z_1 z_2 from its midpoint M to the foot of z (``offset_point``'s d)."""
+    chord = second - first
+    return cross(chord, z - 0.5 * (first + second)) / abs(chord)
 
 
 @dataclass(frozen=True)
@@ -185,6 +200,16 @@ def _direct(task: MotionTask, size: float) -> tuple[dict[str, complex], list[str
                     "not move between the two positions, so it has no perpendicular bisector; "
                     "choose another moving pivot"
                 )
+        if task.bisector_offsets is not None:
+            dA, dD = task.bisector_offsets
+            A = offset_point(places["B"][0], places["B"][1], dA)
+            D = offset_point(places["C"][0], places["C"][1], dD)
+            choices.append(
+                f"two positions: A is taken on the perpendicular bisector of B1B2 at dA = {dA:g} "
+                f"m from the chord's midpoint and D on that of C1C2 at dD = {dD:g} m (the "
+                "bisector_offsets given; positive to the left of B1 -> B2 and C1 -> C2)"
+            )
+            return {"A": A, "B": B1, "C": C1, "D": D}, choices
         side = -1.0 if cross(C1 - B1, first.point - B1) > 0.0 else 1.0
         A = bisector_point(places["B"][0], places["B"][1], (B1, C1), side)
         D = bisector_point(places["C"][0], places["C"][1], (B1, C1), side)

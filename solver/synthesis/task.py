@@ -33,11 +33,15 @@ class Pose:
 @dataclass(frozen=True)
 class MotionTask:
     """Motion generation: the coupler through two or three poses, with the coupler's two moving
-    pivots (B, C at the first pose) or the two fixed pivots (A, D) given."""
+    pivots (B, C at the first pose) or the two fixed pivots (A, D) given; for two poses with the
+    moving pivots, optionally ``bisector_offsets`` (dA, dD; m): each fixed pivot's signed
+    distance along its perpendicular bisector from the chord's midpoint (positive to the left of
+    B1 -> B2, C1 -> C2), None for the stated default choice."""
 
     positions: tuple[Pose, ...]
     moving_pivots: tuple[complex, complex] | None
     fixed_pivots: tuple[complex, complex] | None
+    bisector_offsets: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -68,7 +72,7 @@ class QuickReturnTask:
 Task = MotionTask | FunctionTask | QuickReturnTask
 
 FIELDS: dict[str, frozenset[str]] = {
-    "motion": frozenset({"task", "positions", "moving_pivots", "fixed_pivots"}),
+    "motion": frozenset({"task", "positions", "moving_pivots", "fixed_pivots", "bisector_offsets"}),
     "function": frozenset(
         {
             "task",
@@ -175,9 +179,26 @@ def _motion(doc: Mapping[str, Any]) -> MotionTask:
     pair = (_point(pivots[0], f"{key}[0]"), _point(pivots[1], f"{key}[1]"))
     if pair[0] == pair[1]:
         raise InvalidScene(f"{key}: the two pivots coincide at {_xy(pair[0])}")
+    offsets = _offsets(doc, len(poses), key) if "bisector_offsets" in doc else None
     if key == "moving_pivots":
-        return MotionTask(tuple(poses), pair, None)
+        return MotionTask(tuple(poses), pair, None, offsets)
     return MotionTask(tuple(poses), None, pair)
+
+
+def _offsets(doc: Mapping[str, Any], count: int, pivots: str) -> tuple[float, float]:
+    """``bisector_offsets`` [dA, dD] (m): only for two positions with the moving pivots given
+    (three positions fix A and D; with the fixed pivots given there is nothing to place)."""
+    if count != 2:
+        raise InvalidScene(
+            f"bisector_offsets: {count} positions fix the centre points A and D (where the "
+            "bisectors meet); the offsets are the free choice of two positions only"
+        )
+    if pivots != "moving_pivots":
+        raise InvalidScene(
+            "bisector_offsets: they place the fixed pivots A and D on the bisectors of B1B2 and "
+            "C1C2, so they go with moving_pivots, not with fixed_pivots (which gives A and D)"
+        )
+    return _pair(doc["bisector_offsets"], "bisector_offsets")
 
 
 def _function(doc: Mapping[str, Any]) -> FunctionTask:

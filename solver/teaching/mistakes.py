@@ -150,6 +150,18 @@ _ENTRIES = (
         "A moving pivot carried to position j by the coupler's angle phi_j, not by its turn "
         "phi_j - phi_1 from the first position.",
     ),
+    TypicalMistake(
+        "synthesis.offset_side",
+        "The offset along the bisector taken to the other side",
+        "A fixed pivot placed at -d from the chord's midpoint: the offset is positive to the "
+        "left of the chord's direction B1 -> B2 (C1 -> C2).",
+    ),
+    TypicalMistake(
+        "synthesis.coupler_bisector",
+        "The bisector of the coupler instead of the pivot's chord",
+        "A fixed pivot placed on the perpendicular bisector of B1C1 (the coupler) rather than "
+        "of B1B2 (the chord between B's two places), likewise D on that of C1B1, not C1C2.",
+    ),
     # --- a point moving on a moving body ---
     TypicalMistake(
         "relative.carrier_rate",

@@ -192,7 +192,9 @@ def test_statements_and_event_steps_typeset_with_katex() -> None:
     assert done.returncode == 0 and not failures, failures
 
 
-@pytest.mark.parametrize("kind", ["synthesis_function", "synthesis_fixed_pivots"])
+@pytest.mark.parametrize(
+    "kind", ["synthesis_function", "synthesis_fixed_pivots", "synthesis_two_positions"]
+)
 def test_synthesis_exercises_in_every_export(client: TestClient, kind: str) -> None:
     """Exercises built on a synthesis task: the JSON carries the task, the CSV its paths into
     /synthesis and the key, the HTML sheets a figure each and the key with the worked solution."""

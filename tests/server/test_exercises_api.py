@@ -241,7 +241,9 @@ def test_a_huge_seed_is_a_seed_like_any_other(client: TestClient) -> None:
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
 
 
-@pytest.mark.parametrize("kind", ["synthesis_function", "synthesis_fixed_pivots"])
+@pytest.mark.parametrize(
+    "kind", ["synthesis_function", "synthesis_fixed_pivots", "synthesis_two_positions"]
+)
 def test_synthesis_types_are_served_and_keyed_by_the_synthesis_body(
     client: TestClient, kind: str
 ) -> None:

@@ -31,9 +31,19 @@ FUNCTION = {
     "precision_points": 3,
 }
 QUICK_RETURN = {"task": "quick_return", "time_ratio": 1.25, "rocker_length": 0.1, "swing_deg": 60}
+TWO_POSITIONS = {
+    "task": "motion",
+    "positions": [{"point": [0, 0], "angle_deg": 0}, {"point": [1, 0.2], "angle_deg": 25}],
+    "moving_pivots": [[-0.4, 0.1], [0.5, 0.2]],
+    "bisector_offsets": [0.7, -0.3],
+}
 
 
-@pytest.mark.parametrize("task", [MOTION, FUNCTION, QUICK_RETURN], ids=lambda t: t["task"])
+@pytest.mark.parametrize(
+    "task",
+    [MOTION, FUNCTION, QUICK_RETURN, TWO_POSITIONS],
+    ids=["motion", "function", "quick_return", "bisector_offsets"],
+)
 def test_the_body_is_the_libraries_and_its_scene_is_analysed(
     client: TestClient, task: dict[str, Any]
 ) -> None:
@@ -77,6 +87,10 @@ def test_the_motion_checks_over_http(client: TestClient) -> None:
             {"point": [2, 0], "angle_deg": 0}]}, "invalid_scene", "lie on one line"),
         ({**MOTION, "extra": 1}, "invalid_scene", "extra"),
         ({"task": "design"}, "invalid_scene", "task"),
+        ({**TWO_POSITIONS, "bisector_offsets": [0.1, 0.2, 0.3]}, "invalid_scene",
+         "bisector_offsets"),
+        ({**MOTION, "bisector_offsets": [0.1, 0.2]}, "invalid_scene",
+         "the free choice of two positions only"),
     ],
 )  # fmt: skip
 def test_refusals_are_problems_with_the_reason(
@@ -108,3 +122,5 @@ def test_published_in_openapi(client: TestClient) -> None:
     text = str(spec["components"]["schemas"])
     for name in ("MotionTask", "FunctionTask", "QuickReturnTask", "SynthesisResponse"):
         assert name in text
+    motion = spec["components"]["schemas"]["MotionTask"]["properties"]
+    assert "positive to the left of B1 -> B2" in str(motion["bisector_offsets"])

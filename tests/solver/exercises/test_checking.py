@@ -131,6 +131,8 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "synthesis.signed_length",
         "synthesis.k1_k2_swapped",
         "synthesis.absolute_turn",
+        "synthesis.offset_side",
+        "synthesis.coupler_bisector",
     }, diagnosed
 
 

@@ -22,6 +22,7 @@ import pytest
 import solver
 from solver.exercises import DIFFICULTIES, ExerciseId, build, generate
 from solver.exercises.checking import check_answers, mistakes_of
+from solver.exercises.figures import figure_svg
 from solver.exercises.solutions import worked_solution
 from solver.synthesis.function import parse_function
 
@@ -78,6 +79,40 @@ def _z(p: Any) -> complex:
     return complex(p[0], p[1])
 
 
+def _guided(eid: str, A: complex, D: complex, task: dict[str, Any]) -> list[complex]:
+    """The four-bar A B1 C1 D (P1 on the coupler) built here, analysed by the solver at the crank
+    angle where B reaches each B_j = P_j + e^{i(phi_j - phi_1)} (B1 - P1): P must be at P_j and
+    C at C_j (the coupler turned by phi_j - phi_1), to 1e-9 of the coupler. The places B_j."""
+    positions = task["positions"]
+    B1, C1 = (_z(p) for p in task["moving_pivots"])
+    P1, phi1 = _z(positions[0]["point"]), positions[0]["angle_deg"]
+    size = abs(C1 - B1)
+    places_1 = zip("ABCDP", (A, B1, C1, D, P1), strict=True)
+    doc = {
+        "kind": "linkage",
+        "points": {n: [z.real, z.imag] for n, z in places_1},
+        "links": {"ground": {"points": ["A", "D"], "ground": True},
+                  "crank": {"points": ["A", "B"]}, "coupler": {"points": ["B", "C", "P"]},
+                  "rocker": {"points": ["D", "C"]}},
+        "joints": [{"type": "revolute", "point": "A", "links": ["ground", "crank"]},
+                   {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
+                   {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
+                   {"type": "revolute", "point": "D", "links": ["rocker", "ground"]}],
+    }  # fmt: skip
+    places = []
+    for p in positions:
+        turn = _rotor(p["angle_deg"] - phi1)
+        Bj, Cj = _z(p["point"]) + turn * (B1 - P1), _z(p["point"]) + turn * (C1 - P1)
+        places.append(Bj)
+        angle = math.degrees(cmath.phase(Bj - A))
+        driver = {"link": "crank", "omega": 1.0, "alpha": 0.0, "angle_deg": angle}
+        body = solver.analyze({**doc, "drivers": [driver]}).as_dict()
+        at = {n: _z(body["points"][n]["position"]) for n in "BCP"}
+        assert abs(at["P"] - _z(p["point"])) <= 1e-9 * size, eid
+        assert abs(at["C"] - Cj) <= 1e-9 * size, eid
+    return places
+
+
 @pytest.mark.parametrize("difficulty", DIFFICULTIES)
 def test_the_answered_fixed_pivots_guide_the_coupler_through_every_position(
     difficulty: str,
@@ -94,29 +129,7 @@ def test_the_answered_fixed_pivots_guide_the_coupler_through_every_position(
         B1, C1 = (_z(p) for p in task["moving_pivots"])
         P1, phi1 = _z(positions[0]["point"]), positions[0]["angle_deg"]
         size = abs(C1 - B1)
-        places_1 = zip("ABCDP", (A, B1, C1, D, P1), strict=True)
-        doc = {
-            "kind": "linkage",
-            "points": {n: [z.real, z.imag] for n, z in places_1},
-            "links": {"ground": {"points": ["A", "D"], "ground": True},
-                      "crank": {"points": ["A", "B"]}, "coupler": {"points": ["B", "C", "P"]},
-                      "rocker": {"points": ["D", "C"]}},
-            "joints": [{"type": "revolute", "point": "A", "links": ["ground", "crank"]},
-                       {"type": "revolute", "point": "B", "links": ["crank", "coupler"]},
-                       {"type": "revolute", "point": "C", "links": ["coupler", "rocker"]},
-                       {"type": "revolute", "point": "D", "links": ["rocker", "ground"]}],
-        }  # fmt: skip
-        places = []
-        for p in positions:
-            turn = _rotor(p["angle_deg"] - phi1)
-            Bj, Cj = _z(p["point"]) + turn * (B1 - P1), _z(p["point"]) + turn * (C1 - P1)
-            places.append(Bj)
-            angle = math.degrees(cmath.phase(Bj - A))
-            driver = {"link": "crank", "omega": 1.0, "alpha": 0.0, "angle_deg": angle}
-            body = solver.analyze({**doc, "drivers": [driver]}).as_dict()
-            at = {n: _z(body["points"][n]["position"]) for n in "BCP"}
-            assert abs(at["P"] - _z(p["point"])) <= 1e-9 * size, e.id
-            assert abs(at["C"] - Cj) <= 1e-9 * size, e.id
+        places = _guided(e.id, A, D, task)
         # A is the centre of the circle through B1, B2, B3
         radii = [abs(b - A) for b in places]
         assert max(radii) - min(radii) <= 1e-9 * size
@@ -172,3 +185,82 @@ def test_the_statement_gives_what_the_task_gives() -> None:
     assert "pole P12" in e.statement.text
     f = build(ExerciseId("synthesis_function", "basic", 9, 0)).task
     assert f is not None and isinstance(f["precision_points"], list)
+
+
+def _on_bisector(first: complex, second: complex, offset: float) -> complex:
+    """M + d n with numpy: the chord's midpoint plus the offset times its unit normal to the
+    left of first -> second."""
+    chord = np.array([second.real - first.real, second.imag - first.imag])
+    normal = np.array([-chord[1], chord[0]]) / np.linalg.norm(chord)
+    x, y = np.array([first.real + second.real, first.imag + second.imag]) / 2 + offset * normal
+    return complex(x, y)
+
+
+@pytest.mark.parametrize("difficulty", DIFFICULTIES)
+def test_two_position_keys_are_the_midpoint_plus_the_offset_along_the_normal(
+    difficulty: str,
+) -> None:
+    """Two positions: B2 = P2 + e^{i(phi_2 - phi_1)} (B1 - P1) (C2 likewise), A = M + dA n of
+    B1B2 and D of C1C2 (numpy), to 1e-9 of the coupler; A equidistant from B1 and B2; the
+    four-bar built from the answers guides the coupler through both (``_guided``); P12 the
+    fixed point of the rotation at challenging."""
+    for e in generate("synthesis_two_positions", difficulty, 4, 3):
+        task, k = e.task, e.answers
+        assert task is not None
+        positions = task["positions"]
+        assert len(positions) == 2 and (positions[0]["angle_deg"] == 0) == (difficulty == "basic")
+        dA, dD = task["bisector_offsets"]
+        assert round(dA, 3) == dA and round(dD, 3) == dD  # millimetres
+        B1, C1 = (_z(p) for p in task["moving_pivots"])
+        P1, P2 = (_z(p["point"]) for p in positions)
+        turn = _rotor(positions[1]["angle_deg"] - positions[0]["angle_deg"])
+        B2, C2 = P2 + turn * (B1 - P1), P2 + turn * (C1 - P1)
+        size = abs(C1 - B1)
+        A, D = complex(k["A_x"], k["A_y"]), complex(k["D_x"], k["D_y"])
+        assert abs(A - _on_bisector(B1, B2, dA)) <= 1e-9 * size, e.id
+        assert abs(D - _on_bisector(C1, C2, dD)) <= 1e-9 * size, e.id
+        assert abs(abs(A - B1) - abs(A - B2)) <= 1e-9 * size
+        places = _guided(e.id, A, D, task)
+        assert abs(places[1] - B2) <= 1e-12 * size
+        assert (difficulty == "challenging") == ("P12_x" in k)
+        if difficulty == "challenging":
+            pole = complex(k["P12_x"], k["P12_y"])
+            assert abs(pole + turn * (P1 - pole) - P2) <= 1e-9 * size
+
+
+def test_the_two_position_mistakes_are_the_other_side_and_the_coupler_s_bisector() -> None:
+    """The offsets' sign flipped: A = M - dA n; the coupler's bisector: A = M + dA n of B1C1 and
+    D of C1B1 (numpy); each diagnosed by the check."""
+    e = build(ExerciseId("synthesis_two_positions", "standard", 3, 0))
+    task = e.task
+    assert task is not None
+    made = {m.kind: m.values for m in mistakes_of(e)}
+    dA, dD = task["bisector_offsets"]
+    B1, C1 = (_z(p) for p in task["moving_pivots"])
+    P1, P2 = (_z(p["point"]) for p in task["positions"])
+    turn = _rotor(task["positions"][1]["angle_deg"] - task["positions"][0]["angle_deg"])
+    B2, C2 = P2 + turn * (B1 - P1), P2 + turn * (C1 - P1)
+    expected = {
+        "synthesis.offset_side": (_on_bisector(B1, B2, -dA), _on_bisector(C1, C2, -dD)),
+        "synthesis.coupler_bisector": (_on_bisector(B1, C1, dA), _on_bisector(C1, B1, dD)),
+    }
+    for kind, (A, D) in expected.items():
+        values = made[kind]
+        got = (complex(values["A_x"], values["A_y"]), complex(values["D_x"], values["D_y"]))
+        assert abs(got[0] - A) <= 1e-9 * abs(C1 - B1) and abs(got[1] - D) <= 1e-9 * abs(C1 - B1)
+        row = check_answers(e, {"A_x": values["A_x"]})["results"][0]
+        assert row["key"] == "A_x" and row["mistake"] == kind, (kind, row)
+
+
+def test_the_two_position_statement_and_figure_give_the_offsets() -> None:
+    e = build(ExerciseId("synthesis_two_positions", "challenging", 9, 0))
+    task = e.task
+    assert task is not None
+    dA, dD = task["bisector_offsets"]
+    assert f"dA = {dA:g} m" in e.statement.text and f"dD = {dD:g} m" in e.statement.text
+    assert "pole P12" in e.statement.text and "d_A" in e.statement.latex
+    figure = figure_svg(task)
+    assert f"dA = {dA:g} m, dD = {dD:g} m" in figure and figure.count("B1") >= 1
+    steps = worked_solution(e)
+    assert all(s["kind"].startswith("synthesis.") for s in steps)
+    assert any(f"dA = {dA:g} m" in s["text"] for s in steps)

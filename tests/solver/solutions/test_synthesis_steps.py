@@ -27,6 +27,12 @@ TASKS: dict[str, dict[str, Any]] = {
         "positions": [{"point": [0, 0], "angle_deg": 0}, {"point": [1, 0.5], "angle_deg": 30}],
         "fixed_pivots": [[-0.5, -1.2], [1.5, -1.3]],
     },
+    "two positions, bisector offsets": {
+        "task": "motion",
+        "positions": [{"point": [0, 0], "angle_deg": 0}, {"point": [1, 0.2], "angle_deg": 25}],
+        "moving_pivots": [[-0.4, 0.1], [0.5, 0.2]],
+        "bisector_offsets": [0.7, -0.3],
+    },
     "function": {
         "task": "function",
         "function": "log(x)",

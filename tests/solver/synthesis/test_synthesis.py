@@ -140,6 +140,67 @@ def test_two_positions_take_the_stated_points_of_the_bisectors() -> None:
         assert check["reached"] and check["error"] < TOL
 
 
+TWO_POSITIONS = [{"point": [0, 0], "angle_deg": 0}, {"point": [1, 0.2], "angle_deg": 25}]
+
+
+def offset_along_bisector(first: complex, second: complex, z: complex) -> float:
+    """d with the foot of z at M + d n on the bisector of first -> second: numpy's dot of z - M
+    with the unit normal n (the chord turned 90 deg counter-clockwise, to its left)."""
+    chord = np.array([second.real - first.real, second.imag - first.imag])
+    normal = np.array([-chord[1], chord[0]]) / np.linalg.norm(chord)
+    middle = 0.5 * (first + second)
+    return float(np.dot([z.real - middle.real, z.imag - middle.imag], normal))
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_two_positions_with_bisector_offsets_give_the_four_bar_back(seed: int) -> None:
+    """Two poses of a known crank-rocker, its own fixed pivots' offsets along the bisectors
+    (numpy): the answer is that four-bar (A, D to 1e-9 of its size), A and D equidistant from
+    their moving pivot's two places, every position reached by /analyze at the checks' crank
+    angles (B, C and P where the task puts them), and the choice stated with the numbers."""
+    case = three_poses(np.random.default_rng(100 + seed))
+    case["poses"] = case["poses"][:2]
+    (B1, C1, _, _), (B2, C2, _, _) = case["poses"]
+    offsets = [offset_along_bisector(B1, B2, case["A"]), offset_along_bisector(C1, C2, case["D"])]
+    body = solver.synthesize(motion_task(case, "moving") | {"bisector_offsets": offsets})
+    size = max(case["lengths"])
+    A, D = point(body, "A"), point(body, "D")
+    assert abs(A - case["A"]) < TOL * size and abs(D - case["D"]) < TOL * size
+    assert abs(abs(A - B1) - abs(A - B2)) < TOL * size
+    assert abs(abs(D - C1) - abs(D - C2)) < TOL * size
+    assert f"dA = {offsets[0]:g} m" in body["construction"]["choices"][0]
+    assert not any(body["defects"][k] for k in ("branch", "order", "grashof"))
+    for check, (B, C, P, _) in zip(body["checks"], case["poses"], strict=True):
+        assert check["reached"] and check["error"] < TOL * size
+        scene = copy.deepcopy(body.as_dict()["scene"])
+        scene["drivers"][0]["angle_deg"] = check["driver_angle_deg"]
+        at = solver.analyze(scene, ["position"])["points"]
+        for name, where in (("B", B), ("C", C), ("P", P)):
+            assert abs(complex(*at[name]["position"]) - where) < TOL * size
+
+
+@pytest.mark.parametrize("offsets", [[0.7, -0.3], [-1.2, 0.4], [0.0, 0.9]])
+def test_bisector_offsets_place_the_pivots_at_midpoint_plus_offset_times_normal(
+    offsets: list[float],
+) -> None:
+    """A = M_B + dA n_B and D = M_C + dD n_C (numpy: the chords' midpoints and their unit normals
+    to the left), any sign, zero included."""
+    task = {
+        "task": "motion",
+        "positions": TWO_POSITIONS,
+        "moving_pivots": [[-0.4, 0.1], [0.5, 0.2]],
+        "bisector_offsets": offsets,
+    }
+    body = solver.synthesize(task)
+    places = body["construction"]["places"]
+    for fixed, name, offset in (("A", "B", offsets[0]), ("D", "C", offsets[1])):
+        first, second = (np.array(p) for p in places[name])
+        chord = second - first
+        normal = np.array([-chord[1], chord[0]]) / np.linalg.norm(chord)
+        expected = 0.5 * (first + second) + offset * normal
+        assert np.allclose(body["scene"]["points"][fixed], expected, rtol=0, atol=1e-12)
+
+
 def freudenstein_task(function: str = "x^2", **more: Any) -> dict[str, Any]:
     return {
         "task": "function",
@@ -386,6 +447,21 @@ def test_defects_match_the_sweep(seed: int) -> None:
         ({"task": "motion", "positions": [{"point": [0, 0], "angle_deg": 0},
                                           {"point": [1, 0], "angle_deg": 30}],
           "moving_pivots": [[0, 1], [1, 1]], "fixed_pivots": [[0, 1], [1, 1]]}, "not both"),
+        ({"task": "motion", "positions": TWO_POSITIONS, "moving_pivots": [[0, 1], [1, 1]],
+          "bisector_offsets": [0.1]}, "bisector_offsets: expected two numbers"),
+        ({"task": "motion", "positions": TWO_POSITIONS, "moving_pivots": [[0, 1], [1, 1]],
+          "bisector_offsets": [0.1, "a"]}, "bisector_offsets[1]: expected a number"),
+        ({"task": "motion", "positions": TWO_POSITIONS, "moving_pivots": [[0, 1], [1, 1]],
+          "bisector_offsets": [math.inf, 0.1]}, "not a finite number"),
+        ({"task": "motion", "positions": TWO_POSITIONS, "fixed_pivots": [[0, 1], [1, 1]],
+          "bisector_offsets": [0.1, 0.2]}, "they go with moving_pivots"),
+        ({"task": "motion", "positions": [{"point": [0, 0], "angle_deg": 0},
+                                          {"point": [1, 0.5], "angle_deg": 30},
+                                          {"point": [2, 0.3], "angle_deg": 60}],
+          "moving_pivots": [[-0.5, -0.2], [0.5, -0.3]], "bisector_offsets": [0.1, 0.2]},
+         "the free choice of two positions only"),
+        ({"task": "motion", "positions": TWO_POSITIONS, "moving_pivots": [[0, 1], [1, 1]],
+          "bisector_offset": [0.1, 0.2]}, "did you mean bisector_offsets"),
         (freudenstein_task(precision_points=4), "give 3 (Chebyshev spacing)"),
         (freudenstein_task(precision_points=[1.2, 1.8]), "exactly 3 precision points"),
         (freudenstein_task(precision_points=[1.1, 1.5, 2.5]), "outside x_range"),
