@@ -544,11 +544,12 @@ def _groove_disc(rng: random.Random) -> Carrier:
 
 
 def _slotted_rod(rng: random.Random) -> Carrier:
-    """A rod with a straight slot at the angle theta from x: S = |OS| u, T = (|OS| + |ST|) u,
-    u = (cos theta, sin theta)."""
+    """A rod with a straight slot at the angle theta_0 from x at t = 0 (stated, and dimensioned in
+    the figure): S = |OS| u, T = (|OS| + |ST|) u, u = (cos theta_0, sin theta_0)."""
     start = pick(rng, 0.05, 0.15, 0.05)
     length = pick(rng, 0.2, 0.5, 0.05)
-    angle = math.radians(pick(rng, 0.0, 60.0, 15.0))
+    angle_deg = pick(rng, 0.0, 60.0, 15.0)
+    angle = math.radians(angle_deg)
     unit = (math.cos(angle), math.sin(angle))
     points = {
         "O": [0.0, 0.0],
@@ -557,10 +558,11 @@ def _slotted_rod(rng: random.Random) -> Carrier:
     }
     where = (
         f"a straight slot along the rod, from S ({num(start)} m from O) outwards to its end T "
-        f"({num(length)} m further); M starts at S"
+        f"({num(length)} m further); at t = 0 the rod points {num(angle_deg)} deg "
+        "counter-clockwise from the x axis; M starts at S"
     )
     path = {"type": "line", "start": "S", "through": "T"}
-    rows = [("|OS|", start, "m"), ("|ST|", length, "m")]
+    rows = [("|OS|", start, "m"), ("|ST|", length, "m"), (r"\theta_0", angle_deg, "deg")]
     return Carrier("rod", points, ["O", "S", "T"], path, where, start + length, rows)
 
 

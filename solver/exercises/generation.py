@@ -8,6 +8,8 @@ it until one passes every check below, so an id always gives the same exercise:
 - the pose is well away from a dead centre: the condition number of the velocity equations is at
   most ``MAX_CONDITION`` (a dead centre is infinite);
 - the family's own test holds (the asked Grashof class, the transmission angle);
+- the statement ends with the sign convention of its kind of scene
+  (``solver.exercises.conventions``);
 - every answer is finite, at least ``SMALL`` and at most ``LARGE`` times the size of a quantity in
   its unit (omega of the crank for rad/s, omega^2 L for m/s^2, ...): never negligibly small, where
   a relative tolerance means nothing, and never absurd.
@@ -21,6 +23,7 @@ from dataclasses import replace
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
 from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.conventions import sign_convention
 from solver.exercises.exam import exam_id, generator_seed
 from solver.exercises.figures import figure_svg
 from solver.exercises.model import (
@@ -88,7 +91,8 @@ def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exerc
         return None
     if ill_posed(draft, solved, answers) is not None:
         return None
-    statement = Statement(draft.text, draft.latex, figure_svg(draft.scene))
+    text = f"{draft.text} {sign_convention(draft.scene)}".rstrip()
+    statement = Statement(text, draft.latex, figure_svg(draft.scene))
     return Exercise(PENDING, draft.title, statement, draft.scene, draft.asked, answers)
 
 
