@@ -12,8 +12,7 @@ from __future__ import annotations
 import math
 import random
 import re
-from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, TypeVar
 
 import pytest
 
@@ -25,6 +24,10 @@ from solver.exercises.generation import build
 from solver.exercises.model import DIFFICULTIES, Draft, ExerciseId
 from solver.exercises.registry import TYPES
 
+if TYPE_CHECKING:
+    from _typeshed import SupportsLenAndGetItem
+
+T = TypeVar("T")
 SEEDS = (3, 8)
 _SCALE_BAR = re.compile(r"^[0-9.e+-]+ m$")  # the scale bar's length: a drawing aid, not a datum
 
@@ -52,7 +55,7 @@ class Perturbed(random.Random):
         value = super().random()
         return (value + 0.5) % 1.0 if self._hit() else value
 
-    def choice(self, seq: Sequence[Any]) -> Any:
+    def choice(self, seq: SupportsLenAndGetItem[T]) -> T:
         index = self.randint(0, len(seq) - 1)
         return seq[index]
 
