@@ -29,23 +29,36 @@ def export(app: AppPage, **body: Any) -> str:
 
 
 @pytest.mark.parametrize("with_solutions", [False, True])
-def test_the_printable_sheet_renders_with_its_figures(app: AppPage, with_solutions: bool) -> None:
+def test_the_printable_sheet_renders_from_disk_with_its_figures_and_formulas(
+    app: AppPage, with_solutions: bool, tmp_path: Path
+) -> None:
+    students = "name\nAda Lovelace\nJames Watt\nEmmy Noether\n"
     html = export(
-        app, type="quick_return", seed=12, count=3, format="html", with_solutions=with_solutions
-    )
-    app.log.allow(r"favicon\.ico")  # asked for by the JSON page of /health, which has none
-    app.page.goto(f"{app.url}/health")  # the app's origin, so /vendor/katex/ resolves
-    app.page.set_content(html, wait_until="load")
+        app, type="quick_return", seed=12, format="html", with_solutions=with_solutions,
+        students_csv=students,
+    )  # fmt: skip
+    saved = tmp_path / "sheet.html"
+    saved.write_text(html)
     page = app.page
+    requests: list[str] = []
+    page.on("request", lambda r: requests.append(r.url))
+    page.goto(saved.as_uri(), wait_until="load")  # opened from disk: nothing else to load
+    assert requests == [saved.as_uri()]
     assert page.locator("section.sheet").count() == 3
+    names = page.locator(".name").all_inner_texts()
+    assert names == ["Name: Ada Lovelace", "Name: James Watt", "Name: Emmy Noether"]
     figures = page.locator("section.sheet figure svg")
     assert figures.count() == 3
     for k in range(3):
         box = figures.nth(k).bounding_box()
         assert box is not None and box["width"] > 300 and box["height"] > 200
         assert figures.nth(k).locator("line, polygon").count() >= 3
-    page.wait_for_function("() => (document.querySelectorAll('.tex .katex').length > 0)")
-    assert page.locator(".tex .katex-error").count() == 0
+    formulas = page.locator(".tex math")
+    assert formulas.count() >= 3 and page.locator(".tex code").count() == 0
+    for k in range(formulas.count()):  # typeset: MathML laid out, not raw LaTeX
+        box = formulas.nth(k).bounding_box()
+        assert box is not None and box["height"] > 8 and box["width"] > 8
+    assert "\\mathrm" not in page.locator("body").inner_text()
     pdf = page.pdf(format="A4")
     pages = len(re.findall(rb"/Type\s*/Page[^s]", pdf))
     if with_solutions:
