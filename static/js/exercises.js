@@ -63,22 +63,30 @@ function request() {
     type: $('ex-type').value,
     difficulty: $('ex-difficulty').value,
     count: Number($('ex-count').value),
-    seed: Number($('ex-seed').value),
+    seed: seedValue(),
     exam: $('ex-exam').checked,
   };
 }
 
+/** The seed as typed, exact: a BigInt of its digits (sent as a JSON number of those digits,
+ * api.jsonBody), or the text itself, which the server refuses with its reason. */
+function seedValue() {
+  const text = $('ex-seed').value.trim();
+  return /^[0-9]{1,19}$/.test(text) ? BigInt(text) : text;
+}
+
 // An exam set's seed is its password (whoever has it gets the key from the server, which
-// refuses one below 2^32): a random one from 2^32 to 2^53 - 1, exact as a JavaScript number.
-const MIN_EXAM_SEED = 2 ** 32;
+// refuses one below 2^32): a random one from 2^32 to 2^63 - 1, handled as digits (BigInt).
+const MIN_EXAM_SEED = 2n ** 32n;
 
 function examSeed() {
   const [high, low] = crypto.getRandomValues(new Uint32Array(2));
-  return ((high % (2 ** 21 - 1)) + 1) * 2 ** 32 + low;
+  return (BigInt((high & 0x7fffffff) || 1) << 32n) | BigInt(low);
 }
 
 function examChanged() {
-  if ($('ex-exam').checked && Number($('ex-seed').value) < MIN_EXAM_SEED) {
+  const seed = seedValue();
+  if ($('ex-exam').checked && (typeof seed !== 'bigint' || seed < MIN_EXAM_SEED)) {
     $('ex-seed').value = String(examSeed());
   }
 }

@@ -174,11 +174,16 @@ def test_the_exam_checkbox_draws_a_password_seed_and_asks_for_an_exam_set(app: A
     page.wait_for_selector("#preview .card")
     page.check("#ex-exam")
     seed = int(page.input_value("#ex-seed"))
-    assert 2**32 <= seed < 2**53
+    assert 2**32 <= seed < 2**63
     with page.expect_request(lambda r: r.url.endswith("/api/v1/exercises")) as sent:
         page.click("#ex-generate")
-    body = json.loads(sent.value.post_data or "{}")
+    body = json.loads(sent.value.post_data or "{}")  # Python's json: integers exact
     assert body["exam"] is True and body["seed"] == seed
+    page.fill("#ex-seed", str(2**63 - 1))  # the documented maximum, every digit kept
+    page.uncheck("#ex-exam")
+    with page.expect_request(lambda r: r.url.endswith("/api/v1/exercises")) as sent:
+        page.click("#ex-generate")
+    assert f'"seed":{2**63 - 1}' in (sent.value.post_data or "")
     page.wait_for_function(
         "() => document.getElementById('status').textContent.includes('KINEMATICS_EXAM_SECRET')"
     )
