@@ -56,6 +56,7 @@ from solver.exercises.export import (
 )
 from solver.exercises.generation import build_exam, check_generation
 from solver.exercises.model import DEFAULT_DIFFICULTY, DEFAULT_TOLERANCE, MAX_SEED
+from solver.exercises.qti import qti_package
 from solver.exercises.solutions import worked_solution
 
 MAX_ANSWER = 1e15  # a given answer beyond this is no number a student means
@@ -253,18 +254,20 @@ def check_route(request: CheckRequest) -> ResultResponse:
     return ResultResponse(check(request.id, request.answers))
 
 
-ExportFormat = Literal["moodle_xml", "html", "csv", "json"]
+ExportFormat = Literal["moodle_xml", "html", "csv", "json", "qti"]
 _MEDIA = {
     "moodle_xml": ("application/xml", "xml"),
     "html": ("text/html; charset=utf-8", "html"),
     "csv": ("text/csv; charset=utf-8", "csv"),
     "json": ("application/json", "json"),
+    "qti": ("application/zip", "zip"),
 }
 
 
 class ExportRequest(ExercisesRequest):
     format: ExportFormat = Field(
-        description="moodle_xml (question bank), html (printable sheet), csv (answer key), json."
+        description="moodle_xml (question bank), html (printable sheet), csv (answer key), json, "
+        "qti (an IMS QTI 2.1 content package, a zip)."
     )
     moodle_question: Literal["auto", "numerical", "cloze"] = Field(
         "auto",
@@ -319,12 +322,15 @@ def export_route(request: ExportRequest, secret: ExamSecret) -> Response:
         request.type, request.difficulty, request.seed, count, set_secret(request, secret)
     )
     exercises = with_tolerance(exercises, request.tolerance)
+    content: str | bytes
     if request.format == "moodle_xml":
         content = moodle_xml(exercises, request.moodle_question, request.with_solutions)
     elif request.format == "html":
         content = html_sheets(exercises, request.with_solutions, mathml, students)
     elif request.format == "csv":
         content = answer_csv(exercises)
+    elif request.format == "qti":
+        content = qti_package(exercises)
     else:
         content = exercises_json(exercises, request.with_solutions)
     media, extension = _MEDIA[request.format]
