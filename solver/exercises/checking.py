@@ -15,7 +15,7 @@ from solver.errors import InvalidScene
 from solver.exercises.cams import cam_mistakes
 from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
-from solver.exercises.mistakes import WrongAnswers, typical_mistakes
+from solver.exercises.mistakes import WrongAnswers, answer_mistakes, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
 
 
@@ -36,12 +36,19 @@ def _diagnosis(
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
     """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
     train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), else a
-    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``)."""
+    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``); first a
+    negative answer given as its magnitude (named before a reversed rotation, which gives the
+    same value), last the x and y components swapped (``answer_mistakes``)."""
+    written = answer_mistakes(exercise)
+    magnitude = [m for m in written if m.kind == "magnitude_for_component"]
+    swapped = [m for m in written if m.kind == "components_swapped"]
     if exercise.scene.get("kind") == "gear_train":
-        return gear_train_mistakes(exercise)
-    if exercise.scene.get("kind") == "cam":
-        return [WrongAnswers(*made) for made in cam_mistakes(exercise)]
-    return typical_mistakes(exercise)
+        made = gear_train_mistakes(exercise)
+    elif exercise.scene.get("kind") == "cam":
+        made = [WrongAnswers(*m) for m in cam_mistakes(exercise)]
+    else:
+        made = typical_mistakes(exercise)
+    return magnitude + made + swapped
 
 
 def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:

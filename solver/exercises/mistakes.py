@@ -424,3 +424,32 @@ def typical_mistakes(exercise: Exercise) -> list[WrongAnswers]:
         WrongAnswers(m.kind, m.sentence, {k: v for k, v in m.values.items() if k in asked})
         for m in made
     ]
+
+
+def answer_mistakes(exercise: Exercise) -> list[WrongAnswers]:
+    """Mistakes in writing the answer down, for any type: a negative answer given as its
+    magnitude (``magnitude_for_component``), the x and y components of an asked vector swapped
+    (``components_swapped``); only where they change an answer."""
+    answers = exercise.answers
+    magnitude = {k: -v for k, v in answers.items() if v < 0.0}
+    swapped: dict[str, float] = {}
+    for key in answers:
+        twin = key[:-2] + "_y"
+        if key.endswith("_x") and twin in answers:
+            swapped |= {key: answers[twin], twin: answers[key]}
+    made = []
+    if magnitude:
+        made.append(WrongAnswers(
+            "magnitude_for_component",
+            "This is the magnitude of a negative answer: each component, angular velocity and "
+            "acceleration is asked with its sign (the statement's sign convention), or the "
+            "rotation was taken the other way round.",
+            magnitude,
+        ))  # fmt: skip
+    if swapped:
+        made.append(WrongAnswers(
+            "components_swapped",
+            "This is the other component's value: the x and y components swapped.",
+            swapped,
+        ))  # fmt: skip
+    return made

@@ -124,6 +124,8 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "flywheel_factor_two",
         "internal_mesh_as_external",
         "relative_for_absolute",
+        "magnitude_for_component",
+        "components_swapped",
     }, diagnosed
 
 
