@@ -46,6 +46,7 @@ from solver.exercises.checking import check
 from solver.exercises.exam import UnknownExamId, is_exam_id, open_exam_id
 from solver.exercises.export import (
     MAX_TOLERANCE,
+    MIN_TOLERANCE,
     answer_csv,
     exercises_json,
     html_sheets,
@@ -277,10 +278,10 @@ class ExportRequest(ExercisesRequest):
     )
     tolerance: float = Field(
         DEFAULT_TOLERANCE,
-        gt=0.0,
+        ge=MIN_TOLERANCE,
         le=MAX_TOLERANCE,
         description="Relative tolerance of every answer in this export (the Moodle answers, the "
-        f"key's tolerance column): 0.01 is 1 %; at most {MAX_TOLERANCE}.",
+        f"key's tolerance column): 0.01 is 1 %; from {MIN_TOLERANCE} to {MAX_TOLERANCE}.",
     )
     students_csv: str | None = Field(
         None,

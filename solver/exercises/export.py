@@ -45,7 +45,8 @@ from solver.exercises.solutions import worked_solution
 from solver.teaching.mistakes import typical_mistake
 
 MOODLE_STYLES = ("auto", "numerical", "cloze")
-MAX_TOLERANCE = 0.2  # relative: an export may grade within up to 20 %
+MAX_TOLERANCE = 0.2  # relative: an export may grade within 0.01 % to 20 %
+MIN_TOLERANCE = 1e-4
 CATEGORY_NOTE = (
     "<p>One exercise per student: add to the quiz one <em>random question</em> from this "
     "category (Add, a random question, this category, 1 question) and Moodle gives each "
@@ -298,7 +299,10 @@ def student_names(text: str) -> list[str]:
     """The names of a class list in CSV: the first cell of each row that has one, a first row
     reading "name" or "student" (any case) taken as a header; ``InvalidScene`` for an empty
     list or more than ``MAX_COUNT`` names."""
-    rows = [row[0].strip() for row in csv.reader(io.StringIO(text)) if row and row[0].strip()]
+    try:
+        rows = [r[0].strip() for r in csv.reader(io.StringIO(text)) if r and r[0].strip()]
+    except csv.Error as error:
+        raise InvalidScene(f"students_csv: not CSV text ({error})") from None
     if rows and rows[0].lower() in ("name", "names", "student", "students"):
         rows = rows[1:]
     if not 1 <= len(rows) <= MAX_COUNT:
