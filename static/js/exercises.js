@@ -99,10 +99,11 @@ function card(exercise) {
     box.appendChild(el('p', { class: 'muted small' }, 'Exam: students see only the statement; keep the seed and this key private.'));
   }
   box.appendChild(el('p', {}, exercise.statement.text));
-  const tex = el('div', { class: 'tex' });
+  // tabindex: on a phone the formulas and the figure scroll sideways, by keyboard too
+  const tex = el('div', { class: 'tex', tabindex: '0', role: 'group', 'aria-label': 'Data' });
   typeset(exercise.statement.latex, tex);
   box.appendChild(tex);
-  const fig = el('figure');
+  const fig = el('figure', { tabindex: '0' });
   figure(fig, exercise.statement.figure_svg);
   box.appendChild(fig);
   const key = el('details');
@@ -136,8 +137,22 @@ async function preview(event) {
   }
 }
 
+/** The export's own fields: the tolerance (the field in %, sent relative) and, when a class list
+ * is chosen, its text (one exercise per student, named on the sheets). */
+async function exportFields() {
+  const fields = { tolerance: Number($('ex-tolerance').value) / 100 };
+  const file = $('ex-students').files[0];
+  if (file) fields.students_csv = await file.text();
+  return fields;
+}
+
 async function download(button) {
-  const body = { ...request(), format: button.dataset.format, with_solutions: button.dataset.solutions === 'true' };
+  const body = {
+    ...request(),
+    ...(await exportFields()),
+    format: button.dataset.format,
+    with_solutions: button.dataset.solutions === 'true',
+  };
   status('Preparing the download…');
   try {
     const { blob, filename } = await exportExercises(body);

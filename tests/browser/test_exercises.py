@@ -108,6 +108,28 @@ def test_the_instructor_page_generates_previews_and_downloads(app: AppPage) -> N
     for exercise in body["exercises"]:
         for asked in exercise["asked"]:
             assert repr(exercise["answers"][asked["key"]]) in text
+    # the export's own fields: the tolerance in %, a class list (one sheet per student), QTI
+    page.fill("#ex-tolerance", "2")
+    page.set_input_files(
+        "#ex-students",
+        files=[{"name": "class.csv", "mimeType": "text/csv",
+                "buffer": b"name\nAda Lovelace\nJames Watt\nEmmy Noether\n"}],
+    )  # fmt: skip
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="html"]:not([data-solutions])')
+    sheets = Path(download_info.value.path()).read_text(encoding="utf-8")
+    assert sheets.count('<section class="sheet"') == 3 and "Name: Emmy Noether" in sheets
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="qti"]')
+    assert download_info.value.suggested_filename.endswith(".zip")
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="csv"]')
+    rows = Path(download_info.value.path()).read_text(encoding="utf-8").splitlines()[1:]
+    assert rows and all(",0.02," in row for row in rows)
+    app.screenshot("exercises-instructor-1440")
+    page.set_viewport_size({"width": 390, "height": 844})
+    app.screenshot("exercises-instructor-390")
+    assert not app.serious_accessibility_violations()
     with page.expect_download() as download_info:
         page.click('.downloads button[data-format="moodle_xml"]')
     assert download_info.value.suggested_filename.endswith(".xml")
