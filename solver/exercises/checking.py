@@ -36,11 +36,12 @@ def _diagnosis(
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
     """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
     train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), else a
-    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``); first a
-    negative answer given as its magnitude (named before a reversed rotation, which gives the
-    same value), last the x and y components swapped (``answer_mistakes``)."""
+    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``); first a force
+    given as the reaction and a negative answer given as its magnitude (named before a reversed
+    rotation, which may give the same value), last the x and y components swapped
+    (``answer_mistakes``)."""
     written = answer_mistakes(exercise)
-    magnitude = [m for m in written if m.kind == "magnitude_for_component"]
+    first = [m for m in written if m.kind != "components_swapped"]
     swapped = [m for m in written if m.kind == "components_swapped"]
     if exercise.scene.get("kind") == "gear_train":
         made = gear_train_mistakes(exercise)
@@ -48,7 +49,7 @@ def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
         made = [WrongAnswers(*m) for m in cam_mistakes(exercise)]
     else:
         made = typical_mistakes(exercise)
-    return magnitude + made + swapped
+    return first + made + swapped
 
 
 def check_answers(exercise: Exercise, answers: Mapping[str, float | None]) -> dict[str, Any]:

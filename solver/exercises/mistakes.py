@@ -427,10 +427,12 @@ def typical_mistakes(exercise: Exercise) -> list[WrongAnswers]:
 
 
 def answer_mistakes(exercise: Exercise) -> list[WrongAnswers]:
-    """Mistakes in writing the answer down, for any type: a negative answer given as its
+    """Mistakes in writing the answer down, for any type: a force given as the reaction on the
+    other body (``action_reaction_sign``, force answers), a negative answer given as its
     magnitude (``magnitude_for_component``), the x and y components of an asked vector swapped
-    (``components_swapped``); only where they change an answer."""
+    (``components_swapped``)."""
     answers = exercise.answers
+    reaction = {a.key: -answers[a.key] for a in exercise.asked if a.unit == "N"}
     magnitude = {k: -v for k, v in answers.items() if v < 0.0}
     swapped: dict[str, float] = {}
     for key in answers:
@@ -438,6 +440,13 @@ def answer_mistakes(exercise: Exercise) -> list[WrongAnswers]:
         if key.endswith("_x") and twin in answers:
             swapped |= {key: answers[twin], twin: answers[key]}
     made = []
+    if reaction:
+        made.append(WrongAnswers(
+            "action_reaction_sign",
+            "This is the force on the other body: the pin force asked is the one the named body "
+            "exerts, and the reaction has the opposite sign.",
+            reaction,
+        ))  # fmt: skip
     if magnitude:
         made.append(WrongAnswers(
             "magnitude_for_component",

@@ -218,6 +218,11 @@ _ENTRIES = (
         "component with its sign.",
     ),
     TypicalMistake(
+        "action_reaction_sign",
+        "The force on the other body",
+        "F_12 written for F_21 = -F_12: the pin force the other body exerts, of the opposite sign.",
+    ),
+    TypicalMistake(
         "components_swapped",
         "The x and y components swapped",
         "v_y written for v_x and v_x for v_y.",

@@ -126,6 +126,7 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "relative_for_absolute",
         "magnitude_for_component",
         "components_swapped",
+        "action_reaction_sign",
     }, diagnosed
 
 
