@@ -19,9 +19,10 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+from server.mathml import mathml
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
 from solver.exercises.checking import mistakes_of
-from solver.exercises.export import latex_items, moodle_xml, significant_digits
+from solver.exercises.export import html_sheets, latex_items, moodle_xml, significant_digits
 from solver.exercises.model import parse_id, within
 from solver.teaching.mistakes import typical_mistake
 from tests.moodle_rules import cloze_parts, math_problems, problems
@@ -313,3 +314,12 @@ def test_one_sheet_per_student_of_the_class_list(client: TestClient) -> None:
         r = client.post(f"{API}/export", json={"type": "slider_crank", "format": "html",
                                                 "students_csv": bad})  # fmt: skip
         assert r.status_code == 422, (bad[:20], r.text)
+
+
+def test_every_statement_and_solution_line_converts_to_mathml() -> None:
+    """No formula of any type falls back to its LaTeX source on the sheets; the fallback itself
+    keeps an unreadable formula legible instead of failing the sheet."""
+    for kind in TYPES:
+        sheet = html_sheets([build(ExerciseId(kind, "standard", 2, 0))], True, mathml)
+        assert "<code class='tex'>" not in sheet and sheet.count("<math") > 5, kind
+    assert mathml(r"\frac{").startswith("<code class='tex'>")
