@@ -725,7 +725,8 @@ class ExerciseStatement(Open):
 
 
 class ExerciseModel(Open):
-    """One generated exercise (exercises-v1): its id, statement, scene, asked quantities, key."""
+    """One generated exercise (exercises-v1): its id, statement, scene (or synthesis task),
+    asked quantities, key."""
 
     id: str
     type: str
@@ -734,7 +735,14 @@ class ExerciseModel(Open):
     index: int
     title: str
     statement: ExerciseStatement
-    scene: dict[str, Any]
+    scene: dict[str, Any] | None = Field(
+        None, description="The scene the exercise is built on (its paths point into /analyze)."
+    )
+    task: dict[str, Any] | None = Field(
+        None,
+        description="Extension: instead of a scene, the synthesis task a synthesis exercise is "
+        "built on (its paths point into the /synthesis body of that task).",
+    )
     asked: list[AskedQuantity]
     answers: dict[str, float]
     exam: Literal[True] | None = Field(

@@ -19,6 +19,7 @@ METHODS = {
     "vector": "relative velocities (vector method)",
     "loop": "loop closure in complex form",
     "newton_euler": "Newton-Euler (joint forces and the driving torque)",
+    "statics": "Static force analysis (joint forces and the holding torque)",
     "tabular": "the tabular (Willis) method and the formula method",
     "cam": "the follower's motion law and the cam's geometry",
 }

@@ -34,7 +34,6 @@ from solver.analysis.sweeps import sweep as sweep_linkage
 from solver.analysis.sweeps import sweep_time as sweep_linkage_time
 from solver.cams import CamScene, analyze_cam, parse_cam, sweep_cam
 from solver.dynamics.body import add_dynamics_results, add_instant_dynamics, add_sweep_dynamics
-from solver.dynamics.friction import has_friction
 from solver.errors import InvalidScene
 from solver.gears import (
     GEAR_TRAIN_FIELDS,
@@ -284,7 +283,8 @@ def solve(
     strict: bool = False,
     angle_deg: float | None = None,
 ) -> SolutionResult:
-    """The worked solution (POST /solution) by ``method`` ('vector', 'loop' or 'newton_euler'),
+    """The worked solution (POST /solution) by ``method`` ('vector', 'loop', 'newton_euler' or
+    'statics', the static force analysis),
     numbers shown with ``digits`` significant digits; ``results`` is the /analyze body of the
     same instant and, for a linkage, ``polygons`` the polygons' segments in the vector method's
     order. A cam's at cam angle ``angle_deg`` (default 0; docs/CAMS.md)."""
@@ -296,11 +296,6 @@ def solve(
         return SolutionResult(worked.solution_body(cam, body, None, body["warnings"]))
     if angle_deg is not None:
         raise InvalidScene("angle_deg: the cam angle of a 'cam' scene's worked solution")
-    if method == "newton_euler" and isinstance(parsed, LinkageScene) and has_friction(parsed):
-        raise InvalidScene(
-            "joints[].friction: the Newton-Euler worked solution is written for frictionless "
-            "joints; the forces and torques with friction are answered by /analyze and /sweep"
-        )
     solution = worked.solve(parsed, method, digits)
     if isinstance(parsed, GearTrainScene):  # its steps' numbers point into its /analyze body
         body = analyze_gear_train(parsed, None, found).as_dict()
@@ -311,13 +306,13 @@ def solve(
     # The polygons follow the vector method's steps, whichever method the solution uses.
     vector_steps = (
         solution.steps
-        if solution.method in ("vector", "newton_euler")
+        if solution.method in ("vector", "newton_euler", "statics")
         else vector_method_steps(parsed, solution.analysis, digits)
     )
     shapes = polygons(parsed, solution.analysis, vector_steps)
     body = results.analysis_body(solution.analysis, found)
-    if solution.method == "newton_euler":  # its steps' numbers point into forces and energy
-        add_dynamics_results(body, parsed, solution.analysis)
+    if solution.method in ("newton_euler", "statics"):  # its numbers point into forces, energy
+        add_dynamics_results(body, parsed, solution.analysis, solution.method == "statics")
     return SolutionResult(worked.solution_body(solution, body, shapes, found))
 
 

@@ -28,7 +28,8 @@ MAX_INLINE = 80  # characters of LaTeX in one \( \): about a phone's width (390 
 
 @dataclass(frozen=True)
 class Alternative:
-    """One answer of a cloze NUMERICAL part: its fraction (%), value, tolerance and feedback."""
+    """One answer of a cloze NUMERICAL part: its fraction (%), value, tolerance and feedback (its
+    escapes undone, as Moodle shows it)."""
 
     fraction: float
     value: float
@@ -48,9 +49,8 @@ def cloze_parts(text: str) -> list[list[Alternative]]:
                 raise ValueError(f"not a NUMERICAL answer: {alt[:80]!r}")
             mark, fraction, value, tolerance, feedback = m.groups()
             percent = 100.0 if mark == "=" else float(fraction) if fraction else 0.0
-            alternatives.append(
-                Alternative(percent, float(value), float(tolerance), feedback or "")
-            )
+            shown = re.sub(r"\\(.)", r"\1", feedback or "")  # as Moodle shows it, unescaped
+            alternatives.append(Alternative(percent, float(value), float(tolerance), shown))
         parts.append(alternatives)
     return parts
 

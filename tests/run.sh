@@ -59,4 +59,13 @@ else
   echo "$audit"
   exit 1
 fi
-.venv/bin/python -m pytest -p no:cacheprovider "$@"
+# The suite in two processes (pytest-xdist, one per core of CI's two; the browser tests all in one
+# of them, tests/conftest.py), then the tests that time a server under load (marked `serial`)
+# alone. Arguments replace this: they go to one pytest run (add `-n 2 --dist loadgroup` to it for
+# two processes).
+if [ $# -eq 0 ]; then
+  .venv/bin/python -m pytest -p no:cacheprovider -n 2 --dist loadgroup -m "not serial"
+  .venv/bin/python -m pytest -p no:cacheprovider -m serial
+else
+  .venv/bin/python -m pytest -p no:cacheprovider "$@"
+fi

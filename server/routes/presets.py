@@ -113,9 +113,23 @@ for _preset in ALL_PRESETS.values():
     _route(_preset)
 
 
-@router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
-def unknown_preset(name: str) -> FiniteJSONResponse:
-    raise InvalidScene(
+def no_such_preset(name: str) -> InvalidScene:
+    """The refusal of an unknown preset name, listing every family's names."""
+    return InvalidScene(
         f"unknown preset '{name[:64]}'; available: "
         + "; ".join(f"{family}: {', '.join(presets)}" for family, presets in FAMILIES.items())
     )
+
+
+def build_any_preset(name: str, values: Mapping[str, float]) -> dict[str, Any]:
+    """The scene document of the preset ``name`` of any family (a linkage, a cam, a gear train)
+    with the given parameter values."""
+    preset = ALL_PRESETS.get(name)
+    if preset is None:
+        raise no_such_preset(name)
+    return preset.build(values)
+
+
+@router.post("/{name}", summary="Unknown preset names", include_in_schema=False)
+def unknown_preset(name: str) -> FiniteJSONResponse:
+    raise no_such_preset(name)

@@ -17,12 +17,12 @@ from pydantic import Field
 import solver
 from server import budget
 from server.responses import ResultResponse, respond
+from server.routes.presets import build_any_preset
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
 from server.workers import WorkerRoute, front_check
 from solver.analysis.work_estimate import SOLUTION_COST
 from solver.errors import InvalidScene
-from solver.teaching.presets import build_preset
 
 router = APIRouter(
     tags=["solutions"],
@@ -51,7 +51,8 @@ class SolutionRequest(Strict):
         description="'vector' (relative velocities, seed 000 form) or 'loop' (loop "
         "closure in complex form with Cramer's rule, seed 001 form; for linkages that are not "
         "chains of four-bar, slider-crank or slotted-lever loops the solution falls back to "
-        "'vector' and says so).",
+        "'vector' and says so); 'newton_euler' (the dynamics of the instant) or 'statics' (the "
+        "static force analysis; docs/DYNAMICS.md).",
     )
     digits: int = Field(
         4,
@@ -97,13 +98,13 @@ def _page(
 
 
 def preset_values(request: Request) -> dict[str, float]:
-    """Every query parameter but preset, method and digits, as a parameter of the preset
+    """Every query parameter but preset, method, digits and angle_deg, as a parameter of the preset
     (``crank=0.2``): a number, or ``invalid_scene`` (not a number, given twice, not finite);
     the preset refuses unknown names. Read on the server's side, so only numbers go to a
     worker."""
     values: dict[str, float] = {}
     for key, raw in request.query_params.multi_items():
-        if key in ("preset", "method", "digits"):
+        if key in ("preset", "method", "digits", "angle_deg"):
             continue
         try:
             number = float(raw)
@@ -122,18 +123,24 @@ def preset_values(request: Request) -> dict[str, float]:
 )
 @front_check(
     lambda preset, values, **_: budget.read_instant(
-        build_preset(preset, values), False, "/api/v1/solution.html", SOLUTION_COST
+        build_any_preset(preset, values), False, "/api/v1/solution.html", SOLUTION_COST
     )
 )
 def solution_page_preset(
-    preset: Annotated[str, Query(max_length=64, description="A preset name (GET /presets).")],
+    preset: Annotated[
+        str, Query(max_length=64, description="A preset name of any family (GET /presets).")
+    ],
     values: Annotated[dict[str, float], Depends(preset_values)],
     method: Annotated[Method, Query()] = "vector",
     digits: Annotated[int, Query(ge=1, le=15)] = 4,
+    angle_deg: Annotated[
+        float | None,
+        Query(allow_inf_nan=False, description="A cam's cam angle in degrees (default 0)."),
+    ] = None,
 ) -> HTMLResponse:
-    """Every other query parameter is a parameter of the preset (``crank=0.2``), never silently
-    ignored."""
-    return _page(build_preset(preset, values), method, digits)
+    """A linkage, cam or gear-train preset; every other query parameter is a parameter of the
+    preset (``crank=0.2``), never silently ignored."""
+    return _page(build_any_preset(preset, values), method, digits, angle_deg=angle_deg)
 
 
 @router.post(

@@ -143,10 +143,12 @@ def add_instant_dynamics(
     return body
 
 
-def add_dynamics_results(body: JSON, scene: LinkageScene, result: LinkageAnalysis) -> JSON:
+def add_dynamics_results(
+    body: JSON, scene: LinkageScene, result: LinkageAnalysis, statics: bool = False
+) -> JSON:
     """The /analyze body of a worked solution with ``forces`` and ``energy`` added (the paths
-    of its Newton-Euler steps' numbers point into them)."""
-    dynamics = linkage_dynamics(scene, result.motion, np.array([scene.time]))
+    of its Newton-Euler steps' numbers point into them; ``statics``: of the static analysis)."""
+    dynamics = linkage_dynamics(scene, result.motion, np.array([scene.time]), statics=statics)
     _add(body, dynamics, result.quantities | set(DYNAMIC_QUANTITIES), _instant)
     return body
 

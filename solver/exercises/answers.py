@@ -2,11 +2,13 @@
 
 A path names a number of the /analyze response of the scene (``points.C.velocity.0``,
 ``links.coupler.omega``, ``joints.0.coriolis_acceleration.1``, ``moving_points.M.acceleration.0``,
-``bodies.3.omega.2``; a gear train's ``members.arm.omega``, walked on its /analyze body); the
+``bodies.3.omega.2``; a gear train's ``members.arm.omega``, walked on its /analyze body; a
+synthesis task's ``freudenstein.K1`` or ``scene.points.A.0``, walked on its /synthesis body); the
 solver's result objects carry the same names, so the path is walked on them directly.
 ``events.<M>.<target>.time`` is ``find_event``'s answer with /events' defaults.
 Dynamics paths (``drivers.0.torque``, ``joints.1.force.0``, ``sweep[samples=720,k=4/100].cycle.
-flywheel_inertia``) are walked on the /analyze (or /sweep) body itself.
+flywheel_inertia``, ``statics.drivers.0.torque`` of the static force analysis) are walked on the
+/analyze (or /sweep) body itself.
 Nothing here computes a kinematic quantity: every number is the solver's.
 """
 
@@ -26,7 +28,7 @@ from solver.api import sweep as sweep_body
 from solver.cams import CamScene, analyze_cam, parse_cam
 from solver.errors import InvalidScene
 from solver.exercises.cams import parse_cam_root
-from solver.exercises.model import Exercise
+from solver.exercises.model import Exercise, is_task
 from solver.gears import GearTrainScene, parse_gear_train
 from solver.kinematics.spatial import (
     SpatialAnalysis,
@@ -35,12 +37,17 @@ from solver.kinematics.spatial import (
     parse_spatial_chain,
 )
 from solver.model.scene import LinkageScene, parse_linkage
+from solver.synthesis import parse_task, synthesize
+from solver.synthesis.task import FunctionTask, MotionTask, QuickReturnTask, Task
 
 EVENT_OCCURRENCE = 1  # /events' defaults
 EVENT_T_MAX = 60.0
 # The roots of paths into the dynamics answers (dynamics-v1), besides joints.<k>.force.<axis> and
 # sweep[samples=N,k=P/100].cycle.<figure> (solver.exercises.dynamics).
 DYNAMIC_ROOTS = frozenset({"drivers", "frame_force", "frame_moment", "energy", "center_of_mass"})
+# The root of paths into the /analyze body of the static force analysis ("statics": true):
+# statics.drivers.0.torque, statics.joints.2.force.1.
+STATICS = "statics"
 # The attributes a path may name (the /analyze field names that the result objects share).
 _FIELDS = frozenset(
     {
@@ -56,16 +63,17 @@ _FIELDS = frozenset(
 class Solved:
     """A scene parsed and analysed once (all quantities), to read any number of paths from."""
 
-    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene
-    # a gear train's analysis is its /analyze body, a cam's its /analyze at cam angle 0
+    scene: LinkageScene | SpatialChain | GearTrainScene | CamScene | Task
+    # a gear train's analysis is its /analyze body, a cam's its /analyze at cam angle 0, a
+    # synthesis task's its /synthesis body
     analysis: LinkageAnalysis | SpatialAnalysis | Mapping[str, Any]
     document: Mapping[str, Any] = field(default_factory=dict)  # for the dynamics' bodies
     bodies: dict[str, Mapping[str, Any]] = field(default_factory=dict, compare=False)
 
     def dynamics(self, root: str) -> Mapping[str, Any]:
-        """The /analyze body with ``forces`` and ``energy``, or a /sweep body (``sweep[...]``
-        roots), computed once per root."""
-        key = root if root.startswith("sweep[") else ""
+        """The /analyze body with ``forces`` and ``energy``, that with ``statics`` (root
+        ``statics``), or a /sweep body (``sweep[...]`` roots), computed once per root."""
+        key = root if root.startswith("sweep[") or root == STATICS else ""
         if key not in self.bodies:
             self.bodies[key] = dynamic_body(self.document, key)
         return self.bodies[key]
@@ -82,7 +90,11 @@ def parse(doc: Mapping[str, Any]) -> LinkageScene | SpatialChain | GearTrainScen
 
 
 def solve_scene(doc: Mapping[str, Any]) -> Solved:
-    """The scene analysed as /analyze analyses it, with every quantity."""
+    """The scene analysed as /analyze analyses it, with every quantity; a synthesis task
+    designed as /synthesis designs it (its body, but for the worked solution's ``steps``, which
+    ``solver.api.synthesize`` adds and no path names)."""
+    if is_task(doc):
+        return Solved(parse_task(doc), synthesize(doc).as_dict(), doc)
     scene = parse(doc)
     if isinstance(scene, LinkageScene):
         return Solved(scene, analyze(scene), doc)
@@ -117,10 +129,13 @@ def flywheel_request(exercise: Exercise) -> tuple[str, int, float, float]:
 
 def dynamic_body(doc: Mapping[str, Any], root: str) -> Mapping[str, Any]:
     """The /analyze body with every kinematic quantity and ``forces`` and ``energy`` (root ""),
-    or the /sweep body with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
+    that of the static force analysis with ``forces`` (root ``statics``), or the /sweep body
+    with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
     if not root:
         quantities = ["position", "velocity", "acceleration", "forces", "energy"]
         return analyze_body(doc, quantities).as_dict()
+    if root == STATICS:
+        return analyze_body(doc, ["position", "velocity", "forces"], statics=True).as_dict()
     sweep = parse_sweep_root(root)
     if sweep is None:
         raise InvalidScene(f"path root {root!r}: expected sweep[samples=N,k=P/100]")
@@ -145,17 +160,19 @@ def _step(node: Any, part: str, path: str) -> Any:
 def value_at(solved: Solved, path: str) -> float:
     """The number at ``path`` (see the module docstring); ``InvalidScene`` if there is none."""
     parts = path.split(".")
-    if isinstance(solved.scene, GearTrainScene):  # members.<name>.omega, meshes.<k>...
+    # a gear train's members.<name>.omega; a synthesis task's freudenstein.K1, scene.points.A.0
+    if isinstance(solved.scene, GearTrainScene | MotionTask | FunctionTask | QuickReturnTask):
         return _number(solved.analysis, parts, path)
     if parts[0] == "events":
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: expected events.<moving point>.<target>.time")
         return find_event(solved.scene, parts[1], parts[2], EVENT_OCCURRENCE, EVENT_T_MAX).time
-    if parts[0] in DYNAMIC_ROOTS or parts[0].startswith("sweep[") or parts[2:3] == ["force"]:
+    rooted = parts[0].startswith("sweep[") or parts[0] == STATICS
+    if parts[0] in DYNAMIC_ROOTS or rooted or parts[2:3] == ["force"]:
         if not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: dynamics are defined for planar linkages only")
         body: Any = solved.dynamics(parts[0])
-        return _number(body, parts[1:] if parts[0].startswith("sweep[") else parts, path)
+        return _number(body, parts[1:] if rooted else parts, path)
     if isinstance(solved.scene, CamScene):  # analyze[angle_deg=N]: /analyze at that cam angle
         angle = parse_cam_root(parts[0])
         if angle is None:

@@ -17,6 +17,7 @@ from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
 from solver.exercises.mistakes import WrongAnswers, answer_mistakes, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
+from solver.exercises.synthesis_mistakes import synthesis_mistakes
 
 
 def _diagnosis(
@@ -35,15 +36,17 @@ def _diagnosis(
 
 def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
     """The typical mistakes that apply to the exercise with the wrong answers they give: a gear
-    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), else a
-    linkage's or a spatial chain's (``solver.exercises.mistakes.typical_mistakes``); first a force
-    given as the reaction and a negative answer given as its magnitude (named before a reversed
-    rotation, which may give the same value), last the x and y components swapped
-    (``answer_mistakes``)."""
+    train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), a
+    synthesis task's (``solver.exercises.synthesis_mistakes``), else a linkage's or a spatial
+    chain's (``solver.exercises.mistakes.typical_mistakes``); first a force given as the reaction
+    and a negative answer given as its magnitude (named before a reversed rotation, which may
+    give the same value), last the x and y components swapped (``answer_mistakes``)."""
     written = answer_mistakes(exercise)
     first = [m for m in written if m.kind != "components_swapped"]
     swapped = [m for m in written if m.kind == "components_swapped"]
-    if exercise.scene.get("kind") == "gear_train":
+    if exercise.task is not None:
+        made = synthesis_mistakes(exercise)
+    elif exercise.scene.get("kind") == "gear_train":
         made = gear_train_mistakes(exercise)
     elif exercise.scene.get("kind") == "cam":
         made = [WrongAnswers(*m) for m in cam_mistakes(exercise)]

@@ -1,5 +1,6 @@
-"""The dynamics exercise types (dynamics-v1): a four-bar's driving torque at an instant, and the
-flywheel for a coefficient of speed fluctuation over a cycle.
+"""The dynamics exercise types (dynamics-v1): a four-bar's driving torque at an instant, the
+flywheel for a coefficient of speed fluctuation over a cycle, and in statics a four-bar's holding
+torque and a slider-crank's driving torque with friction.
 
 Both draw a Grashof crank-rocker (``families.four_bar_scene``) with uniform bars of a given mass
 per length and, from standard on, gravity; the torque's rocker carries a constant load moment
@@ -7,7 +8,9 @@ from standard on, the flywheel's a resisting moment during its counter-clockwise
 working stroke, so that the mean torque is not zero). Their paths
 point into the dynamics answers: ``drivers.0.torque`` and ``joints.1.force.0`` of ``/analyze``
 with the quantities ``forces`` and ``energy``, and ``sweep[samples=720,k=P/100].cycle.<figure>``,
-the ``cycle`` of ``/sweep`` over a revolution with 720 samples and ``speed_fluctuation`` P/100.
+the ``cycle`` of ``/sweep`` over a revolution with 720 samples and ``speed_fluctuation`` P/100;
+``statics.drivers.0.torque`` (and ``torque_frictionless``, ``joints.<k>.force.<axis>``) of
+``/analyze`` with ``statics``.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from solver.exercises.families import (
     four_bar_check,
     four_bar_scene,
     four_bar_text,
+    givens_latex,
     num,
     pick,
     scales,
@@ -162,4 +166,127 @@ def flywheel(rng: random.Random, difficulty: str) -> Draft:
     return Draft(
         "Four-bar: flywheel", text, latex + r"\\" + asked_latex(asked), scene, asked,
         _dynamic_scales(v), four_bar_check,
+    )  # fmt: skip
+
+
+# --- statics and friction (docs/DYNAMICS.md "Statics", "Friction") ------------------------------
+
+HOLDING_TORQUE = Asked(
+    "M_crank", "torque on the crank AB that holds the linkage", "N m", "statics.drivers.0.torque",
+    r"M_{AB}",
+)  # fmt: skip
+STATIC_FORCE_B = tuple(
+    Asked(
+        f"F_B_{axis}", f"force of the crank on the coupler at B, {axis} component", "N",
+        f"statics.joints.1.force.{index}", rf"F_{{B,{axis}}}",
+    )
+    for index, axis in enumerate("xy")
+)  # fmt: skip
+QUASI_STATIC = (
+    " The crank turns so slowly that the inertia forces are negligible: a static force analysis."
+)
+
+
+def holding_torque(rng: random.Random, difficulty: str) -> Draft:
+    """The torque that holds a four-bar against a load moment on its rocker (statics: the masses
+    count only through their weight, ``statics.drivers.0.torque``); from standard on with the
+    bars' weights and the pin force at B (``statics.joints.1.force.<axis>``)."""
+    _, v = four_bar_scene(rng, difficulty, False, False)
+    masses = _bars(rng, v, difficulty != "basic")
+    v["load"] = pick(rng, -60.0, 60.0, 5.0) or 20.0
+    masses += (
+        f" The rocker carries a constant external moment of {num(v['load'])} N m "
+        "(counter-clockwise positive)."
+    )
+    scene = build_preset("four_bar", v)
+    asked: tuple[Asked, ...] = (HOLDING_TORQUE,)
+    if difficulty != "basic":
+        asked += STATIC_FORCE_B
+    goal = (
+        masses.strip()
+        + QUASI_STATIC
+        + " Find the torque on the crank that holds the linkage in this position"
+        + (" and the force the crank exerts on the coupler at B." if difficulty != "basic" else ".")
+    )
+    text, latex = four_bar_text(v, goal, False)
+    return Draft(
+        "Four-bar: holding torque (statics)", text, latex + r"\\" + asked_latex(asked), scene,
+        asked, _dynamic_scales({**v, "omega": 0.0, "alpha": 0.0}), four_bar_check,
+    )  # fmt: skip
+
+
+def slider_crank_friction(rng: random.Random, difficulty: str) -> Draft:
+    """A slider-crank pushing a piston force P with Coulomb friction mu at the slider (statics,
+    no masses): the driving torque with friction (``statics.drivers.0.torque``), from standard
+    on with a friction circle at the pin B and the torque without friction
+    (``statics.drivers.0.torque_frictionless``); challenging: an offset guide and the guide's
+    reaction on the slider (``statics.joints.2.force.<axis>``)."""
+    crank = pick(rng, 0.05, 0.2, 0.01)
+    v = {
+        "crank": crank,
+        "rod": round(crank * pick(rng, 3.0, 5.0, 0.5), 10),
+        "offset": 0.0,
+        "crank_angle_deg": pick(rng, 15.0, 345.0, 15.0),
+        "assembly": 0.0,
+        "coupler_point_u": 0.0,
+        "coupler_point_v": 0.0,
+        "omega": float(rng.choice([-1, 1]) if difficulty != "basic" else 1),
+        "alpha": 0.0,
+        "mass_per_length": 0.0,
+        "gravity": 0.0,
+        "load": pick(rng, 200.0, 2000.0, 100.0),
+    }
+    if difficulty == "challenging":
+        v["offset"] = round(pick(rng, 0.01, 0.4, 0.01) * crank / 0.2, 3)
+    mu = pick(rng, 0.05, 0.3, 0.05)
+    scene = build_preset("slider_crank", v)
+    slider = next(k for k, j in enumerate(scene["joints"]) if j["point"] == "C")
+    scene["joints"][slider]["friction"] = {"coefficient": mu}
+    friction = f"Coulomb friction mu = {num(mu)} between the slider and its guide"
+    rows = [
+        ("|AB|", crank, "m"),
+        ("|BC|", v["rod"], "m"),
+        ("e", v["offset"], "m"),
+        (r"\varphi_{AB}", v["crank_angle_deg"], "deg"),
+        ("P", v["load"], "N"),
+        (r"\mu_C", mu, ""),
+    ]
+    if difficulty != "basic":
+        pin, radius = pick(rng, 0.1, 0.3, 0.05), pick(rng, 0.005, 0.02, 0.005)
+        pin_b = next(k for k, j in enumerate(scene["joints"]) if j["point"] == "B")
+        scene["joints"][pin_b]["friction"] = {"coefficient": pin, "pin_radius": radius}
+        friction += f", and at the pin B (radius {num(radius)} m) mu = {num(pin)}"
+        rows += [(r"\mu_B", pin, ""), ("r_B", radius, "m")]
+    asked: tuple[Asked, ...] = (
+        Asked("M_crank", "driving torque on the crank AB with friction", "N m",
+              "statics.drivers.0.torque", r"M_{AB}"),
+    )  # fmt: skip
+    if difficulty != "basic":
+        asked += (
+            Asked("M_0", "driving torque on the crank AB without friction", "N m",
+                  "statics.drivers.0.torque_frictionless", r"M_0"),
+        )  # fmt: skip
+    if difficulty == "challenging":
+        asked += tuple(
+            Asked(f"N_C_{axis}", f"force of the guide on the slider C, {axis} component", "N",
+                  f"statics.joints.{slider}.force.{index}", rf"F_{{C,{axis}}}")
+            for index, axis in enumerate("xy")
+        )  # fmt: skip
+    sense = "counter-clockwise" if v["omega"] > 0 else "clockwise"
+    guide = "through A" if v["offset"] == 0 else f"at y = {num(v['offset'])} m (offset)"
+    text = (
+        f"In the slider-crank ABC the crank AB = {num(crank)} m turns {sense} about the fixed "
+        f"pivot A, the connecting rod BC = {num(v['rod'])} m drives the slider C along the "
+        f"horizontal guide {guide}, C to the right of B. The crank is drawn at "
+        f"{num(v['crank_angle_deg'])} deg. A force P = {num(v['load'])} N acts on the slider "
+        f"along -x; {friction}. The links' masses are negligible." + QUASI_STATIC + " Find the "
+        "torque on the crank that keeps it turning at this position"
+        + (", the same torque without friction" if difficulty != "basic" else "")
+        + (" and the guide's force on the slider." if difficulty == "challenging" else ".")
+    )
+    size = v["load"]
+    return Draft(
+        "Slider-crank with friction (statics)", text,
+        givens_latex(rows) + r"\\" + asked_latex(asked), scene, asked,
+        scales(v["omega"], 0.0, crank + v["rod"]) | {"N": size, "N m": size * crank},
     )  # fmt: skip

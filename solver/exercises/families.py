@@ -131,6 +131,7 @@ def givens_latex(rows: Sequence[tuple[str, float, str]]) -> str:
     r"""``symbol = value\,unit`` rows, comma-separated, four to a line."""
     units = {"m": r"\,\mathrm{m}", "rad/s": r"\,\mathrm{rad/s}", "rad/s^2": r"\,\mathrm{rad/s^2}"}
     units |= {"deg": r"^\circ", "s": r"\,\mathrm{s}", "m/s^2": r"\,\mathrm{m/s^2}", "": ""}
+    units["N"] = r"\,\mathrm{N}"
     items = [f"{s} = {num(v)}{units[u]}" for s, v, u in rows]
     lines = [",\\; ".join(items[k : k + 4]) for k in range(0, len(items), 4)]
     return ",\\\\".join(lines)

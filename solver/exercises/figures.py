@@ -17,6 +17,7 @@ from itertools import pairwise
 from typing import Any
 
 from solver.cams import parse_cam
+from solver.exercises.model import is_task
 from solver.gears import parse_gear_train
 from solver.model.scene import Joint, ground_pivot, parse_linkage
 from solver.solutions.cam import cam_context, cam_figure
@@ -379,8 +380,106 @@ def _spatial(scene: Mapping[str, Any]) -> str:
     return _document(canvas, str(scene.get("title", "spatial chain")))
 
 
+def _arrow(canvas: Canvas, p: Point, angle: float, length: float, color: str) -> None:
+    """An arrow of ``length`` (m) from the world point ``p`` at ``angle`` (rad)."""
+    tip = (p[0] + length * math.cos(angle), p[1] + length * math.sin(angle))
+    _line(canvas, p, tip, color, 2.0)
+    x, y = canvas.px(tip)
+    hx, hy = math.cos(angle), -math.sin(angle)  # the drawing's y points down
+    canvas.path(
+        f"M{x + 6 * hx:.1f} {y + 6 * hy:.1f}L{x - 4 * hy:.1f} {y + 4 * hx:.1f}"
+        f"L{x + 4 * hy:.1f} {y - 4 * hx:.1f}z",
+        [("fill", color)],
+    )
+
+
+def _motion_task(task: Mapping[str, Any]) -> str:
+    """The coupler's positions: each point P_j with an arrow along the coupler's angle there
+    (the angles are in the statement), and the coupler B1 C1 P1 of the first position drawn as
+    a plate (the fixed pivots are asked, so they are not drawn)."""
+    positions = task["positions"]
+    places = [(float(p["point"][0]), float(p["point"][1])) for p in positions]
+    b1, c1 = ((float(q[0]), float(q[1])) for q in task["moving_pivots"])
+    size = math.dist(b1, c1)
+    heads = [
+        (x + 0.3 * size * math.cos(math.radians(p["angle_deg"])),
+         y + 0.3 * size * math.sin(math.radians(p["angle_deg"])))
+        for (x, y), p in zip(places, positions, strict=True)
+    ]  # fmt: skip
+    canvas = _canvas([*places, *heads, b1, c1])
+    plate = [canvas.px(q) for q in (b1, c1, places[0])]
+    canvas.points("polygon", plate, [("fill", "#dbeafe"), ("stroke", LINK), ("stroke-width", 2)])
+    for k, (place, p) in enumerate(zip(places, positions, strict=True), start=1):
+        _arrow(canvas, place, math.radians(p["angle_deg"]), 0.3 * size, ROTATION)
+        canvas.circle(canvas.px(place), "3.5", [("fill", "white"), ("stroke", INK)])
+        _text(canvas, place, f"P{k}", dx=-24, dy=4 + 12 * (k - 2))  # stacked: poses are near
+    for name, q in (("B1", b1), ("C1", c1)):
+        canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
+        _text(canvas, q, name, dy=16)
+    _scale_bar(canvas)
+    return _document(canvas, "coupler positions to pass through")
+
+
+def _range_arc(
+    canvas: Canvas, centre: Point, angles_deg: Sequence[float], radius: float, label: str
+) -> None:
+    """Two rays from ``centre`` at the ends of an angle range and the arc between them, from
+    the first end to the second, labelled with the range."""
+    first, second = (math.radians(a) for a in angles_deg)
+    for angle in (first, second):
+        tip = (centre[0] + radius * math.cos(angle), centre[1] + radius * math.sin(angle))
+        _line(canvas, centre, tip, LINK, 1.4)
+    r = 0.6 * radius
+    x0, y0 = canvas.px((centre[0] + r * math.cos(first), centre[1] + r * math.sin(first)))
+    x1, y1 = canvas.px((centre[0] + r * math.cos(second), centre[1] + r * math.sin(second)))
+    pixels = r * canvas.view.scale
+    large = 1 if abs(second - first) > math.pi else 0
+    sweep = 0 if second > first else 1  # SVG's y points down: a ccw arc on paper is sweep 0
+    canvas.path(
+        f"M{x0:.1f} {y0:.1f}A{pixels:.1f} {pixels:.1f} 0 {large} {sweep} {x1:.1f} {y1:.1f}",
+        [("fill", "none"), ("stroke", ROTATION), ("stroke-width", "1.6")],
+    )
+    middle = 0.5 * (first + second)
+    _text(
+        canvas,
+        (centre[0] + radius * math.cos(middle), centre[1] + radius * math.sin(middle)),
+        label,
+        dx=-20,
+        color=ROTATION,
+    )
+
+
+def _function_task(task: Mapping[str, Any]) -> str:
+    """The ground link A D to scale, and at A (D) the crank's (rocker's) angle range from the
+    ground line (the links themselves are asked, so they are not drawn)."""
+    d = float(task["ground_length"])
+    a, dpoint = (0.0, 0.0), (d, 0.0)
+    radius = 0.45 * d
+    extent = [a, dpoint]
+    for centre in (a, dpoint):
+        extent += [
+            (centre[0] + radius * math.cos(math.radians(t)),
+             centre[1] + radius * math.sin(math.radians(t)))
+            for t in range(0, 360, 30)
+        ]  # fmt: skip
+    canvas = _canvas(extent)
+    _line(canvas, a, dpoint, GUIDE, 1.4, "6 4")
+    for centre, key, symbol in ((a, "input_range_deg", "θ2"), (dpoint, "output_range_deg", "θ4")):
+        ends = task[key]
+        _range_arc(canvas, centre, ends, radius, f"{symbol}: {ends[0]:g}° → {ends[1]:g}°")
+    for name, q in (("A", a), ("D", dpoint)):
+        _ground_pivot(canvas, q)
+        canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
+        _text(canvas, q, name, dx=-16, dy=-6)
+    _scale_bar(canvas)
+    return _document(canvas, "ground link and angle ranges of the function generator")
+
+
 def figure_svg(scene: Mapping[str, Any]) -> str:
-    """The exercise's figure (a standalone SVG document)."""
+    """The exercise's figure (a standalone SVG document); for a synthesis task, what the task
+    gives (the positions, or the ground link and the angle ranges), never the answer."""
+    if is_task(scene):
+        return _motion_task(scene) if scene["task"] == "motion" else _function_task(scene)
     if scene.get("kind") == "gear_train":
         return train_figure(parse_gear_train(scene))
     if scene.get("kind") == "cam":  # at cam angle 0, the pressure angle marked, not given

@@ -380,6 +380,40 @@ def _dynamics_torque(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
     ]
 
 
+def _statics(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
+    scene = exercise.scene
+    if not any(scene.get("gravity", [0.0, 0.0])):
+        return []
+    return [
+        WrongAnswers(
+            "weights_left_out",
+            "This is what you get without the weights: each link's m g acts at its centre and "
+            "has a moment about every pivot.",
+            _variant_values(exercise, {**scene, "gravity": [0.0, 0.0]}),
+        )
+    ]
+
+
+def _friction(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
+    scene = exercise.scene
+    joints = [{k: v for k, v in j.items() if k != "friction"} for j in scene["joints"]]
+    without = solve_scene({**scene, "joints": joints})
+    values = {  # the frictionless scene has no torque_frictionless: that key is not affected
+        a.key: value_at(without, a.path)
+        for a in exercise.asked
+        if not a.path.endswith("torque_frictionless")
+    }
+    return [
+        WrongAnswers(
+            "friction_left_out",
+            "This is the torque without friction: the Coulomb force mu |N| at the slider (and "
+            "the friction moment mu r |F| at the pin) resists the motion, and the driver must "
+            "overcome it as well.",
+            values,
+        )
+    ]
+
+
 def _flywheel(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
     root, _, k, omega = flywheel_request(exercise)
     mean = value_at(solved, f"{root}.cycle.mean_torque")
@@ -411,6 +445,8 @@ _FAMILIES: Mapping[str, Callable[[Exercise, Solved], list[WrongAnswers]]] = {
     "spatial": lambda e, s: [],
     "dynamics_torque": _dynamics_torque,
     "flywheel": _flywheel,
+    "statics": _statics,
+    "friction": _friction,
 }
 
 

@@ -63,7 +63,8 @@ class Asked:
     ``path`` is a dotted path into the /analyze response of the exercise's scene
     (``links.coupler.omega``, ``points.C.velocity.0``), or ``events.<M>.<target>.time`` for the
     first instant after t = 0 at which moving point M reaches ``target`` (as /events answers with
-    its default ``occurrence`` 1 and ``t_max`` 60 s).
+    its default ``occurrence`` 1 and ``t_max`` 60 s); for an exercise built on a synthesis task,
+    a path into its /synthesis body (``freudenstein.K1``, ``scene.points.A.0``).
     """
 
     key: str
@@ -91,9 +92,20 @@ class Statement:
     figure_svg: str
 
 
+def is_task(doc: Mapping[str, Any]) -> bool:
+    """Whether an exercise's document is a synthesis task (``{"task": "function", ...}``, POST
+    /synthesis) rather than a scene (scene-v1, POST /analyze)."""
+    return isinstance(doc.get("task"), str)
+
+
 @dataclass(frozen=True)
 class Exercise:
-    """A generated exercise: its id, statement, scene (scene-v1), asked quantities and key."""
+    """A generated exercise: its id, statement, the document it is built on, asked quantities
+    and key.
+
+    ``scene`` is that document: a scene-v1 scene, whose /analyze body the paths point into, or
+    (``task``) a synthesis task, whose /synthesis body they point into; the JSON names it
+    ``scene`` or ``task`` accordingly."""
 
     id: ExerciseId
     title: str
@@ -102,6 +114,11 @@ class Exercise:
     asked: tuple[Asked, ...]
     answers: Mapping[str, float]
     exam_id: str | None = None  # an exam exercise's opaque id (solver.exercises.exam)
+
+    @property
+    def task(self) -> Mapping[str, Any] | None:
+        """The synthesis task the exercise is built on, or None for one built on a scene."""
+        return self.scene if is_task(self.scene) else None
 
     @property
     def name(self) -> str:
@@ -126,7 +143,7 @@ class Exercise:
                 "latex": self.statement.latex,
                 "figure_svg": self.statement.figure_svg,
             },
-            "scene": self.scene,
+            ("scene" if self.task is None else "task"): self.scene,
             "asked": [a.as_json() for a in self.asked],
             "answers": dict(self.answers),
         }
@@ -168,6 +185,9 @@ def within(given: float, expected: float, tolerance: float) -> bool:
 @dataclass(frozen=True)
 class Draft:
     """A candidate exercise drawn by a family before the well-posedness checks.
+
+    ``scene`` is the document the exercise is built on: a scene, or a synthesis task
+    (``is_task``), whose ``check`` then receives the /synthesis body.
 
     ``scales`` gives, per unit, the size an answer in that unit is measured against (the crank
     speed for rad/s, omega^2 L for m/s^2, ...): an answer below ``SMALL`` or above ``LARGE``

@@ -1,5 +1,6 @@
 """The registry of exercise types: every type by name, what it asks, how to draw it (a family of
-``solver.exercises.families`` or ``solver.exercises.dynamics``) and which typical mistakes apply.
+``solver.exercises.families``, ``dynamics``, ``gear_trains``, ``cams`` or ``synthesis``) and which
+typical mistakes apply.
 
 Adding a type is one draw function in its family module and one entry here.
 """
@@ -10,7 +11,7 @@ import random
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from solver.exercises import cams, dynamics, gear_trains
+from solver.exercises import cams, dynamics, gear_trains, synthesis
 from solver.exercises.families import (
     four_bar_acceleration,
     four_bar_poles,
@@ -143,6 +144,21 @@ TYPES: Mapping[str, ExerciseType] = {
             ("energy_fluctuation", "flywheel_inertia", "mean_torque"), dynamics.flywheel,
             "flywheel",
         ),
+        _type(
+            "holding_torque", "Four-bar linkage: holding torque (statics)",
+            "A Grashof crank-rocker of uniform bars with a moment on its rocker, in statics: the "
+            "torque on the crank that holds it in position, with the bars' weights and the pin "
+            "force at B from standard on.",
+            ("M_crank", "F_B_x", "F_B_y"), dynamics.holding_torque, "statics",
+        ),
+        _type(
+            "slider_crank_friction", "Slider-crank with friction (statics)",
+            "A massless slider-crank pushing a piston force with Coulomb friction at the slider: "
+            "the driving torque with friction; from standard on with a friction circle at the "
+            "crank pin and the torque without friction, at challenging with an offset guide and "
+            "the guide's force on the slider.",
+            ("M_crank", "M_0", "N_C_x", "N_C_y"), dynamics.slider_crank_friction, "friction",
+        ),
         # gear trains (docs/GEARS.md): mistakes in solver.exercises.gear_trains
         _type(
             "planetary_output", "Planetary train: output speed",
@@ -171,6 +187,25 @@ TYPES: Mapping[str, ExerciseType] = {
             "cam angle, the cam surface's radius of curvature (standard), the smallest and largest "
             "pressure angles over the revolution (challenging).",
             ("phi", "rho", "phi_min", "phi_max"), cams.pressure_angle, "cam",
+        ),
+        # synthesis (docs/SYNTHESIS.md): built on a task of /synthesis, not on a scene; mistakes
+        # in solver.exercises.synthesis_mistakes
+        _type(
+            "synthesis_function", "Function generator: Freudenstein's equation",
+            "A four-bar generating y = f(x) over a range: Freudenstein's coefficients K1, K2, K3 "
+            "at three precision points (given at basic, Chebyshev spacing from standard on), and "
+            "from standard on the link lengths; decreasing ranges and other functions at "
+            "challenging.",
+            ("K1", "K2", "K3", "a", "b", "c"), synthesis.function_generator,
+            "synthesis_function",
+        ),
+        _type(
+            "synthesis_fixed_pivots", "Motion generation: the fixed pivots",
+            "A coupler to guide through three positions, its moving pivots given: the fixed "
+            "pivots A and D (the centre points; the first position at angle 0 at basic), and at "
+            "challenging the pole P12.",
+            ("A_x", "A_y", "D_x", "D_y", "P12_x", "P12_y"), synthesis.fixed_pivots,
+            "synthesis_motion",
         ),
     )
 }  # fmt: skip

@@ -1,11 +1,13 @@
 """The worked solution of an exercise: the solver's own steps (``solver.solutions.solve``) for its
-scene, then, for an asked event time, a step saying how the instant was found and what s is then.
+scene, then, for an asked event time, a step saying how the instant was found and what s is then;
+for a synthesis task, the steps of its /synthesis body (``solver.solutions.synthesis``).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from solver.api import synthesize
 from solver.exercises.answers import flywheel_request, parse, solve_scene, value_at
 from solver.exercises.cams import cam_angle_of
 from solver.exercises.model import Exercise
@@ -74,10 +76,15 @@ def _cycle_step(exercise: Exercise) -> Step:
 
 def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
     """The steps as JSON, in the order a student should read them: the Newton-Euler method for
-    the dynamics types (and the cycle's flywheel), the vector method otherwise."""
+    the dynamics types (and the cycle's flywheel), the static force analysis for the statics
+    types, the synthesis' own steps for a synthesis task (its /synthesis body's ``steps``), the
+    vector method otherwise."""
+    if exercise.task is not None:
+        return list(synthesize(exercise.task).as_dict()["steps"])
     family = TYPES[exercise.id.type].mistakes
     dynamic = family in ("dynamics_torque", "flywheel")
-    method = "newton_euler" if dynamic else "vector"
+    method = "statics" if family in ("statics", "friction") else (
+        "newton_euler" if dynamic else "vector")  # fmt: skip
     angle = cam_angle_of(exercise)  # a cam's solution is at the asked cam angle
     scene = parse(exercise.scene)
     steps = list(solve(scene, method, DIGITS, angle_deg=float(angle or 0)).steps)

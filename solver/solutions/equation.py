@@ -265,17 +265,66 @@ class ZCross:
 
 
 @dataclass(frozen=True)
+class Cross:
+    """r x F of a planar arm r (a value) and a force F (a value, or its two components written
+    as pieces, 'F_{B,x}'): the determinant with the unit vectors in its first row in LaTeX,
+    '(rx, ry) cross (Fx, Fy)' in text."""
+
+    r: Ref
+    f: Ref | tuple[tuple[Piece, ...], tuple[Piece, ...]]
+
+    def _row(self, shows: Shows, latex: bool) -> list[str]:
+        if isinstance(self.f, Ref):
+            return shows.entries(self.f) if latex else [shows.txtn(self.f)]
+        render = latex_of if latex else text_of
+        return [render(e, shows) for e in self.f]
+
+    def latex(self, shows: Shows) -> str:
+        return tex.determinant3(shows.entries(self.r), [*self._row(shows, True)[:2], "0"])
+
+    def text(self, shows: Shows) -> str:
+        row = self._row(shows, False)
+        f = row[0] if len(row) == 1 else f"({row[0]}, {row[1]})"
+        return f"{shows.txtn(self.r)} cross {f}"
+
+
+@dataclass(frozen=True)
 class Component:
-    """Component i of a vector value, as its column shows it."""
+    """Component i of a vector value, as its column shows it (with ``factor``: in parentheses
+    where negative, as a factor of a product)."""
 
     ref: Ref
     index: int
+    factor: bool = False
 
     def latex(self, shows: Shows) -> str:
-        return shows.entries(self.ref)[self.index]
+        entry = shows.entries(self.ref)[self.index]
+        return tex.paren(entry) if self.factor else entry
 
     def text(self, shows: Shows) -> str:
-        return shows.entries(self.ref)[self.index]
+        return self.latex(shows)
+
+
+@dataclass(frozen=True)
+class Sum:
+    """Terms of a sum, each starting with its sign ('+ ', '- ' or a ``Signed`` value): '+ a - b'
+    is written 'a - b', '- a + b' is '-a + b'; an empty term is left out; no terms is '0'."""
+
+    terms: tuple[tuple[Piece, ...], ...]
+
+    @staticmethod
+    def _lead(written: str) -> str:
+        if written.startswith("+ "):
+            return written[2:]
+        if written.startswith("- "):
+            return "-" + written[2:]
+        return written or "0"
+
+    def latex(self, shows: Shows) -> str:
+        return self._lead(" ".join(latex_of(t, shows) for t in self.terms if t))
+
+    def text(self, shows: Shows) -> str:
+        return self._lead(" ".join(text_of(t, shows) for t in self.terms if t))
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from solver.analysis.instant import LinkageAnalysis
-from solver.kinematics.rigid import perp
+from solver.kinematics.rigid import normal_acceleration, omega_cross
 from solver.model.scene import LinkageScene
 from solver.solutions import Step
 
@@ -89,9 +89,9 @@ def polygons(scene: LinkageScene, analysis: LinkageAnalysis, steps: Iterable[Ste
                 "link": link,
                 "base": base,
                 "point": point,
-                "velocity": (motion.omega * perp(r)).tolist(),
-                "tangential": (motion.alpha * perp(r)).tolist(),
-                "normal": (-(motion.omega**2) * r).tolist(),
+                "velocity": omega_cross(motion.omega, r).tolist(),
+                "tangential": omega_cross(motion.alpha, r).tolist(),
+                "normal": normal_acceleration(motion.omega, r).tolist(),
             }
         )
     return {"segments": segments, "sliding": _sliding_order(steps)}

@@ -47,7 +47,9 @@ from solver.solutions.relative import moving_point_steps
 from solver.solutions.spatial import spatial_steps
 from solver.solutions.vector import vector_steps
 
-Method = Literal["vector", "loop", "newton_euler"]  # declared once; the server imports it
+Method = Literal[
+    "vector", "loop", "newton_euler", "statics"
+]  # declared once; the server imports it
 METHODS: tuple[Method, ...] = get_args(Method)
 MIN_DIGITS, MAX_DIGITS = 1, 15
 
@@ -60,6 +62,10 @@ _SENTENCES = {
     "newton_euler": "Method: Newton-Euler. The kinematics by relative velocities, then for every "
     "moving link sum F = m a_G and the sum of moments about a point of the link, one linear "
     "system for the joint forces and the driving torque, checked by the power balance.",
+    "statics": "Method: static force analysis. The velocities by relative velocities (for the "
+    "virtual-work check), then for every moving link sum F = 0 and the sum of moments about a "
+    "point of the link = 0, the masses counting only through their weight: one linear system "
+    "for the joint forces and the torque that holds the mechanism, checked by virtual work.",
 }
 
 
@@ -93,8 +99,8 @@ def _linkage_steps(
         body = _vector_method(ctx)
     body += graphical_steps(ctx)
     body.append(instant_centres_step(ctx))
-    if method == "newton_euler":
-        body += newton_euler_steps(ctx)
+    if method in ("newton_euler", "statics"):
+        body += newton_euler_steps(ctx, statics=method == "statics")
     positions = positions_step(ctx)
     positions = replace(positions, figure=mechanism_figure(ctx))
     steps = [
@@ -137,6 +143,7 @@ def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
         mistakes += loop_mistakes(ctx)
     if used == "newton_euler":
         mistakes += newton_euler_mistakes(ctx)
+    if used in ("newton_euler", "statics"):
         in_scene_order(steps, mistakes, ctx)
     placed = place_mistakes(steps, mistakes, used == "loop")
     return Solution(tuple(steps), tuple(placed), analysis, used, method, digits)
@@ -148,7 +155,8 @@ def solve(
     digits: int = 4,
     angle_deg: float = 0.0,
 ) -> Solution:
-    """The worked solution of ``scene`` by ``method`` ('vector' or 'loop'), numbers shown with
+    """The worked solution of ``scene`` by ``method`` ('vector', 'loop', 'newton_euler' or
+    'statics': the static force analysis, inertia left out), numbers shown with
     ``digits`` significant digits (1..15); a cam's at cam angle ``angle_deg``, by its own method
     ('cam', whatever ``method`` says); a gear train's by the tabular and the formula method
     (``solver.solutions.gear_train``, method 'tabular', whatever is asked). Raises
@@ -181,10 +189,11 @@ def solve(
                 "to close; its velocities follow from the composition of angular velocities.",
             )
         )
-    elif method == "newton_euler":
+    elif method in ("newton_euler", "statics"):
         lead.append(
             _fallback_step(
-                "Newton-Euler", "Masses and forces are defined for planar linkages only."
+                "Newton-Euler" if method == "newton_euler" else "statics",
+                "Masses and forces are defined for planar linkages only.",
             )
         )
     steps = lead + spatial_steps(scene, analysis, fmt)

@@ -15,17 +15,10 @@ from typing import Any
 import numpy as np
 
 from solver.analysis.results import Result
-from solver.kinematics.rigid import Array
 from solver.model.scene import parse_linkage
 from solver.position.assembly import DriverInput, assemble
 from solver.position.topology import build_plan
-from solver.synthesis.function import (
-    Scales,
-    chebyshev_spacing,
-    freudenstein_coefficients,
-    link_lengths,
-    parse_function,
-)
+from solver.synthesis.function import Scales, design_function
 from solver.synthesis.motion import MotionDesign, rotor, synthesise_motion
 from solver.synthesis.quick_return import synthesise_quick_return
 from solver.synthesis.task import FunctionTask, MotionTask, QuickReturnTask, parse_task
@@ -150,16 +143,11 @@ def _motion(task: MotionTask) -> JSON:
 
 
 def _function(task: FunctionTask) -> JSON:
-    law = parse_function(task.function)
-    scales = Scales(task, law)
+    design = design_function(task)
+    scales, xs, ys, theta2, theta4 = design.scales, design.x, design.y, design.crank, design.rocker
+    (k1, k2, k3), a, b, c = design.k, design.a, design.b, design.c
     spacing = "given" if task.precision_x else "chebyshev"
-    low, high = sorted(task.x_range)
-    xs: Array = np.array(task.precision_x or chebyshev_spacing(low, high, 3))
-    ys = scales.y(xs)
-    theta2, theta4 = scales.crank(xs), scales.rocker(ys)
-    k1, k2, k3 = freudenstein_coefficients(theta2, theta4)
     d = task.ground_length
-    a, b, c = link_lengths(d, k1, k2, k3)
     # A negative length is the link pointing the other way: its link angle is theta + pi.
     crank_offset = math.pi if a < 0.0 else 0.0
     rocker_offset = math.pi if c < 0.0 else 0.0

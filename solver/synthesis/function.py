@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -149,3 +150,33 @@ def _value(law: TimeLaw, x: float, text: str) -> float:
     except InvalidExpression as error:
         raise in_x(error, text) from None
     return value
+
+
+@dataclass(frozen=True)
+class FunctionDesign:
+    """A function task's design before any analysis: the precision points (x, y = f(x)), the
+    crank's and the rocker's angles there (rad), Freudenstein's K1, K2, K3 and the signed crank
+    a, coupler b and rocker c they give."""
+
+    scales: Scales
+    x: Array
+    y: Array
+    crank: Array
+    rocker: Array
+    k: tuple[float, float, float]
+    a: float
+    b: float
+    c: float
+
+
+def design_function(task: FunctionTask) -> FunctionDesign:
+    """Freudenstein's equation at the task's precision points (given, or Chebyshev spacing over
+    the x range) solved for K1, K2, K3, and the link lengths from them."""
+    scales = Scales(task, parse_function(task.function))
+    low, high = sorted(task.x_range)
+    xs: Array = np.array(task.precision_x or chebyshev_spacing(low, high, 3))
+    ys = scales.y(xs)
+    theta2, theta4 = scales.crank(xs), scales.rocker(ys)
+    k = freudenstein_coefficients(theta2, theta4)
+    a, b, c = link_lengths(task.ground_length, *k)
+    return FunctionDesign(scales, xs, ys, theta2, theta4, k, a, b, c)

@@ -113,6 +113,43 @@ _ENTRIES = (
         "A planet's speed relative to its carrier for its absolute speed",
         "omega_planet - omega_arm (the arm locked) taken for omega_planet, or the other way round.",
     ),
+    # --- linkage synthesis (exercises) ---
+    TypicalMistake(
+        "degrees_as_radians",
+        "Degrees read as radians",
+        "An angle in degrees put into a cosine or a rotation e^(i phi) that takes radians (a "
+        "calculator in radian mode).",
+    ),
+    TypicalMistake(
+        "synthesis.chebyshev_spacing",
+        "The Chebyshev spacing of the precision points",
+        "The precision points taken at the ends and the middle of the range, not at "
+        "x_j = (x0 + xf)/2 - (xf - x0)/2 cos((2j - 1) pi / 6).",
+    ),
+    TypicalMistake(
+        "synthesis.freudenstein_sign",
+        "The sign of K2 in Freudenstein's equation",
+        "K1 cos theta_4 + K2 cos theta_2 + K3 = cos(theta_2 - theta_4) for "
+        "K1 cos theta_4 - K2 cos theta_2 + K3: K2 (and the coupler from it) with the wrong sign.",
+    ),
+    TypicalMistake(
+        "synthesis.signed_length",
+        "A length from a negative K",
+        "a = d/K1 (or c = d/K2) given with its sign: a negative K is a link pointing the other "
+        "way, whose length is |d/K|.",
+    ),
+    TypicalMistake(
+        "synthesis.k1_k2_swapped",
+        "K1 = d/a and K2 = d/c swapped",
+        "The crank and the rocker from the other texts' lettering (K1 = d/c, K2 = d/a) in this "
+        "equation.",
+    ),
+    TypicalMistake(
+        "synthesis.absolute_turn",
+        "The coupler's turn from the first position",
+        "A moving pivot carried to position j by the coupler's angle phi_j, not by its turn "
+        "phi_j - phi_1 from the first position.",
+    ),
     # --- a point moving on a moving body ---
     TypicalMistake(
         "relative.carrier_rate",
@@ -192,6 +229,12 @@ _ENTRIES = (
         "inertia_left_out",
         "The inertia forces left out",
         "The static answer: without -m a_G and -I_G alpha of the moving links.",
+    ),
+    TypicalMistake(
+        "friction_left_out",
+        "The friction left out",
+        "The frictionless torque: without the Coulomb force at the slider (and the friction "
+        "moments at the pins), which the driver must overcome as well.",
     ),
     TypicalMistake(
         "mean_torque_for_fluctuation",

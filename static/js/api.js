@@ -81,12 +81,19 @@ export const getPresetFamily = (family) => call('GET', `/presets?family=${encode
 export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
 export const analyze = (scene, quantities) =>
   call('POST', '/analyze', quantities ? { scene, quantities } : { scene });
-export const sweep = (scene, samples, quantities, timeRange) =>
-  call('POST', '/sweep', timeRange ? { scene, samples, quantities, time_range: timeRange } : { scene, samples, quantities });
+export const sweep = (scene, samples, quantities, timeRange, statics = false) =>
+  call('POST', '/sweep', {
+    scene, samples, quantities,
+    ...(timeRange ? { time_range: timeRange } : {}),
+    ...(statics ? { statics: true } : {}),
+  });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
 export const balance = (scene, counterweights) => call('POST', '/balance', { scene, counterweights });
 /** A cam's worked solution at cam angle `angleDeg` (docs/CAMS.md). */
 export const camSolution = (scene, angleDeg, digits = 4) => call('POST', '/solution', { scene, angle_deg: angleDeg, digits });
+
+/** A four-bar for two or three coupler positions, a function or a time ratio (docs/SYNTHESIS.md). */
+export const synthesis = (task) => call('POST', '/synthesis', task);
 
 /** The printable worked solution: a whole HTML page (text, not JSON). */
 export async function solutionPage(scene, method, digits = 4) {

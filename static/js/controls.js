@@ -79,11 +79,13 @@ export class Controls {
       r.addEventListener('change', () => r.checked && this.on.method(r.value));
     }
     // Space toggles play anywhere except in a text field or on a button (where it clicks); on
-    // the crank slider too, as its hint says (a range input does nothing with Space).
+    // the crank slider and the cam's or gear train's slider too, as the hint says (a range input
+    // does nothing with Space).
     document.addEventListener('keydown', (ev) => {
       if (ev.key !== ' ' || ev.ctrlKey || ev.metaKey || ev.altKey) return;
       const t = ev.target;
-      if (t !== e.slider && t.closest && t.closest('input, select, textarea, button, [contenteditable]')) return;
+      const slider = t.matches?.('input[type="range"]');
+      if (!slider && t.closest && t.closest('input, select, textarea, button, [contenteditable]')) return;
       ev.preventDefault();
       e.play.click();
     });

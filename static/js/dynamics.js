@@ -73,6 +73,18 @@ export function counterweights(scene) {
   return grounded(scene).map((link) => ({ link, mass: scene.masses?.[link]?.mass || 1 }));
 }
 
+/** The scene with Coulomb friction ``slider`` at every slider and prismatic joint and a friction
+ * circle (``pin`` times ``radius``) at every revolute joint; unchanged where both are 0. */
+export function withFriction(scene, slider, pin, radius) {
+  if (!(slider > 0) && !(pin > 0)) return scene;
+  const joints = scene.joints.map((joint) => {
+    const { friction, ...rest } = joint;
+    if (joint.type === 'revolute') return pin > 0 ? { ...rest, friction: { coefficient: pin, pin_radius: radius } } : rest;
+    return slider > 0 ? { ...rest, friction: { coefficient: slider } } : rest;
+  });
+  return { ...scene, joints };
+}
+
 function isFourBar(scene) {
   const moving = Object.values(scene.links).filter((l) => !l.ground).length;
   return moving === 3 && scene.joints.length === 4 && scene.joints.every((j) => j.type === 'revolute');
@@ -88,14 +100,36 @@ export class DynamicsPanel {
     this.balanced = null;
     balance.addEventListener('change', () => this.drawHodograph());
     arrows.addEventListener('change', () => onArrows());
+    // statics and friction (docs/DYNAMICS.md): the same sweep asked again with them
+    const field = (id) => section.querySelector(`#${id}`);
+    this.statics = field('dynamics-statics');
+    this.friction = ['dynamics-mu-slider', 'dynamics-mu-pin', 'dynamics-pin-radius'].map(field);
+    for (const input of [this.statics, ...this.friction]) {
+      input.addEventListener('change', () => {
+        if (this.original) this.show(this.original, this.units, this.samples);
+      });
+    }
+  }
+
+  /** The scene as asked: with the friction of the panel's fields (a bad value: none). */
+  asked(scene) {
+    const [slider, pin, radius] = this.friction.map((input) => Number(input.value));
+    const ok = (x) => Number.isFinite(x) && x >= 0;
+    if (!ok(slider) || !ok(pin) || !(radius > 0)) return scene;
+    return withFriction(scene, slider, pin, radius);
   }
 
   /** The sweep (``samples`` as the animation's, so that its frames index both). */
-  async show(scene, units, samples) {
+  async show(original, units, samples) {
     const seq = ++this.seq;
     this.units = units;
-    this.section.hidden = !hasDynamics(scene);
+    this.samples = samples;
+    this.original = original;
+    this.section.hidden = !hasDynamics(original);
     if (this.section.hidden) return;
+    delete this.section.dataset.asked;
+    const scene = this.asked(original);
+    const statics = this.statics.checked;
     this.scene = scene;
     this.sweep = null;
     this.balanced = null;
@@ -104,7 +138,7 @@ export class DynamicsPanel {
     this.message.hidden = true;
     let sweep;
     try {
-      sweep = await api.sweep(scene, samples, ['forces', 'energy']);
+      sweep = await api.sweep(scene, samples, ['forces', 'energy'], undefined, statics);
     } catch (err) {
       if (seq !== this.seq) return;
       this.message.textContent = err.detail;
@@ -114,6 +148,8 @@ export class DynamicsPanel {
     if (seq !== this.seq) return;
     this.sweep = sweep;
     this.drawCycle();
+    // what the plots show, for a reader (and a test) to wait on
+    this.section.dataset.asked = `${statics ? 'statics' : 'dynamics'}${scene === original ? '' : '+friction'}`;
     if (isFourBar(scene)) {
       try {
         const answer = await api.balance(scene, counterweights(scene));
@@ -127,6 +163,14 @@ export class DynamicsPanel {
     this.drawHodograph();
   }
 
+  /** The cycle's efficiency and self-locking, in words (with friction only). */
+  frictionWords(c) {
+    if (!('efficiency' in c)) return '';
+    const eta = c.efficiency === null ? 'no efficiency (not a driven machine, or it locks)' : `efficiency ${fmt(c.efficiency)}`;
+    const locking = c.self_locking ? ` ${c.self_locking.reason}.` : ' No self-locking.';
+    return ` With friction: ${eta}.${locking}`;
+  }
+
   drawCycle() {
     const P = globalThis.Plotly;
     const s = this.sweep;
@@ -137,6 +181,9 @@ export class DynamicsPanel {
     const traces = [];
     if (driver) {
       traces.push({ x, y: driver.torque, name: `torque M (${driver.link})`, yaxis: 'y', line: { color: '#c0392b' } });
+      if (driver.torque_frictionless) {
+        traces.push({ x, y: driver.torque_frictionless, name: 'torque without friction', yaxis: 'y', line: { dash: 'dot', color: '#7f8c8d' } });
+      }
       if (s.cycle) {
         traces.push({ x: [x[0], x[x.length - 1]], y: [s.cycle.mean_torque, s.cycle.mean_torque], name: 'mean torque', yaxis: 'y', line: { dash: 'dash', color: '#c0392b' } });
       }
@@ -165,7 +212,7 @@ export class DynamicsPanel {
     this.info.textContent = c
       ? `Period ${fmt(c.period)} s, mean torque ${fmt(c.mean_torque)} N m, mean power ${fmt(c.mean_power)} W, ` +
         `work per cycle ${Object.entries(c.work).map(([k, v]) => `${k} ${fmt(v)} J`).join(', ') || '(no loads)'}, ` +
-        `energy fluctuation ${fmt(c.energy_fluctuation)} J.`
+        `energy fluctuation ${fmt(c.energy_fluctuation)} J.` + this.frictionWords(c)
       : 'The driver does not turn fully at constant speed: no cycle figures.';
   }
 

@@ -26,6 +26,7 @@ import { Editor } from './editor.js';
 import { DynamicsPanel } from './dynamics.js';
 import { GearTrains } from './gear-view.js';
 import { CamApp } from './cam-view.js';
+import { LinkageDesigner } from './synthesis-view.js';
 
 // The least samples per revolution (1.5 deg apart: smooth cycle plots, the dynamics' cycle means);
 // more where the drawing needs them (fetchTrack).
@@ -68,8 +69,12 @@ class App {
     this.controls = new Controls({
       preset: (v) => this.onSource(v),
       instant: (v, final) => this.onInstant(v, final),
-      // Space and Play drive the gear train while one is shown (js/gear-view.js).
-      play: (p) => (this.gearTrains?.shown ? this.gearTrains.setPlaying(!this.gearTrains.playing) : this.setPlaying(p)),
+      // Space and Play drive the gear train, the cam or the designed linkage while one is shown
+      // (js/gear-view.js, js/cam-view.js, js/synthesis-view.js).
+      play: (p) => {
+        const other = [this.gearTrains, this.cams, this.designer].find((view) => view?.shown);
+        return other ? other.setPlaying(!other.playing) : this.setPlaying(p);
+      },
       speed: (s) => { this.speed = s; this.saveHash(); },
       units: (u) => this.onUnits(u),
       options: (o) => this.onOptions(o),
@@ -150,6 +155,17 @@ class App {
     // Cams (issue 24): their own group in the menu and their own section (js/cam-view.js).
     this.cams = new CamApp($('cam-app'));
     this.cams.addChoices($('preset'));
+    // Design a linkage (issue 26): its own group and section; "Open in the analyser" comes back
+    // here with the designed scene as a shared scene.
+    this.designer = new LinkageDesigner($('synthesis-app'), {
+      onOpen: (scene) => {
+        this.designer.close();
+        this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
+        this.controls.setPlaying(this.playing);
+        return this.openScene(scene, { name: 'the linkage designer' });
+      },
+    });
+    this.designer.addChoices($('preset'));
 
     const state = shared.status === 'fulfilled' ? shared.value : null;
     if (state && !state.error) await this.restore(state);
@@ -176,6 +192,13 @@ class App {
 
   async onSource(value) {
     const [type, name] = [value.slice(0, value.indexOf(':')), value.slice(value.indexOf(':') + 1)];
+    if (type === 'design') {
+      this.setPlaying(false, { analyse: false });
+      this.cams?.close();
+      this.gearTrains?.close();
+      return this.designer.open();
+    }
+    this.designer?.close();
     if (type === 'gear' || type === 'gear-example') {
       this.setPlaying(false, { analyse: false });
       this.cams?.close();

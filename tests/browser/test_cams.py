@@ -50,6 +50,18 @@ def test_the_cam_turns_and_the_follower_moves_without_requests(app: AppPage) -> 
     assert len([u for u in app.log.requests[before:] if "/api/" in u]) == 0  # played back
 
 
+def test_space_plays_and_pauses_the_cam(app: AppPage) -> None:
+    """Space drives the cam shown, as it drives a linkage (not the hidden linkage view)."""
+    page = open_cam(app)
+    page.focus("#cam-angle")
+    for pressed in ("false", "true"):
+        page.keyboard.press("Space")
+        page.wait_for_function(
+            "(p) => document.getElementById('cam-play').getAttribute('aria-pressed') === p",
+            arg=pressed,
+        )
+
+
 def test_paused_at_an_angle_the_drawing_plots_and_solution_agree_with_the_server(
     app: AppPage,
 ) -> None:

@@ -151,3 +151,32 @@ def test_the_frame_force_is_a_polar_diagram(app: AppPage) -> None:
         what="the current vector to follow the animation",
     )
     app.screenshot("frame-force-polar-diagram", "#dynamics-hodograph")
+
+
+def test_statics_and_friction_toggle(app: AppPage) -> None:
+    """The panel's statics toggle and friction coefficients ask the sweep again: in statics the
+    torque is seed 004's holding torque (its mean over a turn the dynamic one's, each pose's
+    different), and with mu at the pins the plot adds the torque without friction and the info
+    its efficiency or why there is none."""
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics[data-asked='dynamics']")
+    dynamic = json.loads(plot_data(page, "dynamics-plots"))[0]["y"]
+    page.check("#dynamics-statics")
+    page.wait_for_selector("#dynamics[data-asked='statics']")
+    traces = json.loads(plot_data(page, "dynamics-plots"))
+    static = traces[0]["y"]
+    # over a revolution the kinetic and potential energies come back: the mean holding torque is
+    # the mean driving torque, -W_load / 2 pi (seed004-dynamics.json "mean_driving_torque"),
+    # while at each pose they differ by the inertia
+    assert traces[1]["name"] == "mean torque"
+    assert traces[1]["y"][0] == pytest.approx(-63.6456581982242, rel=1e-3)
+    assert max(abs(a - b) for a, b in zip(static, dynamic, strict=True)) > 100
+    page.fill("#dynamics-mu-pin", "0.2")
+    page.dispatch_event("#dynamics-mu-pin", "change")
+    page.wait_for_selector("#dynamics[data-asked='statics+friction']")
+    names = [t["name"] for t in json.loads(plot_data(page, "dynamics-plots"))]
+    assert "torque without friction" in names
+    assert "With friction:" in page.inner_text("#dynamics-info")
+    app.screenshot("dynamics-statics-friction")

@@ -16,6 +16,7 @@ from fastapi.testclient import TestClient
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from solver.solutions.free_body import FONT, label_width
 from tests.dynamics_cases import (
     EXPECTED,
     five_bar_points,
@@ -95,7 +96,26 @@ def test_the_seed_mistake_about_an_accelerating_pin(client: TestClient) -> None:
     )
 
 
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def _label_boxes(root: ET.Element) -> list[tuple[float, float, float, float]]:
+    """Each <text>'s box as free_body places it: its width from label_width (the subscript in
+    its <tspan>), FONT + 2 high above its baseline."""
+    boxes = []
+    for text in root.iter(f"{SVG}text"):
+        spans = list(text)
+        name = (text.text or "") + ("_" + (spans[0].text or "") if spans else "")
+        x, y = float(text.attrib["x"]), float(text.attrib["y"])
+        boxes.append((x, y - FONT, x + label_width(name), y + 2))
+    return boxes
+
+
 def test_free_body_diagrams(client: TestClient) -> None:
+    """Each diagram: the forces as solved (their sum is sum m a), the unknown joint-force
+    components with their assumed senses (+x, +y on a joint's second link, -x, -y on its first)
+    valued as solved, drawn dashed, the known forces drawn to the force scale, and no label over
+    another or outside the drawing."""
     body = solve(client, seed004_scene(180))
     free_body = [s for s in body["steps"] if s["kind"] == "dynamics.free_body"]
     diagrams = [s["diagram"] for s in free_body]
@@ -112,13 +132,41 @@ def test_free_body_diagrams(client: TestClient) -> None:
         ]["a_G(rocker)"]["value"]
     )
     a_D = np.array(EXPECTED["theta=180deg/a_D"]["value"])
-    assert total == pytest.approx(60 * a_rocker + 90 * a_D, abs=1e-6 * 3e4)
+    inertia = 60 * a_rocker + 90 * a_D
+    assert total == pytest.approx(inertia, abs=1e-6 * 3e4)
+    # the same sum from the unknowns as drawn: value times assumed sense, plus the known forces
+    assert [u["name"] for u in rocker["unknowns"]] == ["F_B,x", "F_B,y", "F_Gamma,x", "F_Gamma,y"]
+    assert [u["sense"] for u in rocker["unknowns"]] == [[1, 0], [0, 1]] * 2
+    drawn = sum(np.array(u["sense"]) * u["value"] for u in rocker["unknowns"])
+    known = np.sum([f["vector"] for f in rocker["forces"] if f["kind"] != "joint"], axis=0)
+    assert drawn + known == pytest.approx(inertia, abs=1e-6 * 3e4)
+    joints = body["results"]["joints"]
+    assert [u["value"] for u in rocker["unknowns"]] == pytest.approx(
+        [*joints[2]["force"], *joints[3]["force"]], rel=1e-12
+    )
+    crank = diagrams[0]  # the crank is the first link of the pin A: the reaction, -x and -y
+    assert [u["sense"] for u in crank["unknowns"]] == [[1, 0], [0, 1], [-1, 0], [0, -1]]
+    assert [(m["name"], m["unknown"]) for m in crank["moments"]] == [("M_crank", True)]
     for diagram, svg in zip(diagrams, svgs, strict=True):
         root = ET.fromstring(svg)
-        arrows = [f for f in diagram["forces"] if math.hypot(*f["vector"]) > 1e-9 * 3e4]
-        lines = root.findall("{http://www.w3.org/2000/svg}line")
-        assert len(lines) == len(arrows)
-    assert [m["name"] for m in diagrams[0]["moments"]] == ["M_crank"]
+        lines = root.findall(f"{SVG}line")
+        dashed = [line for line in lines if "stroke-dasharray" in line.attrib]
+        arrows = [line for line in lines if "marker-end" in line.attrib]
+        known = [
+            f
+            for f in diagram["forces"]
+            if f["kind"] != "joint" and math.hypot(*f["vector"]) > 1e-9 * 3e4
+        ]
+        assert len(dashed) == len(diagram["unknowns"])
+        assert len(arrows) == len(diagram["unknowns"]) + len(known)
+        width, height = (float(v) for v in root.attrib["viewBox"].split()[2:])
+        boxes = _label_boxes(root)
+        assert "Γ" in "".join(root.itertext()) or diagram["link"] != "rocker"
+        for k, (x0, y0, x1, y1) in enumerate(boxes):
+            assert x0 >= 0 and x1 <= width and y0 >= 0 and y1 <= height, diagram["link"]
+            for other in boxes[k + 1 :]:
+                apart = x1 <= other[0] or other[2] <= x0 or y1 <= other[1] or other[3] <= y0
+                assert apart, (diagram["link"], (x0, y0, x1, y1), other)
 
 
 def test_a_spatial_chain_falls_back(client: TestClient) -> None:
@@ -237,3 +285,53 @@ def test_power_balance_of_two_drivers(client: TestClient) -> None:
     assert values["P_drivers"] == pytest.approx(rate - loads, abs=1e-6 * size)
     assert "M_{\\text{crank1}}\\,\\omega_{\\text{crank1}}" in step["latex"]
     assert "M_crank2 omega(crank2)" in step["text"]
+
+
+def test_the_equations_of_member_3_term_by_term(client: TestClient) -> None:
+    """Seed 004 at theta = 90 deg, member 3 about Gamma: each term the step writes is the one
+    computed here from the reference's positions, accelerations and load (1e-9), and the collected
+    right-hand sides are the reference's joint forces put into the equations (1e-9)."""
+    body = solve(client, seed004_scene(90))
+    (step,) = [s for s in body["steps"] if s["title"] == "Equations of motion of rocker"]
+    values = {key: v["value"] for key, v in step["values"].items()}
+
+    def ref(name: str) -> np.ndarray:
+        return np.array(EXPECTED[f"theta=90deg/{name}"]["value"], dtype=float)
+
+    def cross(a: np.ndarray, b: np.ndarray) -> float:
+        return float(a[0] * b[1] - a[1] * b[0])
+
+    gamma = np.array([1.0, 0.0])
+    r_D, a_D, g = ref("r_D") - gamma, ref("a_D"), np.array([0.0, -9.81])
+    alpha = float(ref("alpha_rocker_z"))
+    assert values["I_G alpha(rocker)"] == pytest.approx(60 * 0.7**2 / 12 * alpha, rel=1e-9)
+    assert values["r x m a_G(mD)"] == pytest.approx(cross(r_D, 90 * a_D), rel=1e-9)
+    assert values["r x m g(mD)"] == pytest.approx(cross(r_D, 90 * g), rel=1e-9)
+    assert values["r x m g(rocker)"] == pytest.approx(cross(r_D / 2, 60 * g), rel=1e-9)
+    assert values["r x F(F_D)"] == pytest.approx(cross(r_D, ref("F_D_vector")), abs=1e-9)
+    B, G = ref("force_B_coupler_on_member3"), ref("force_Gamma_ground_on_member3")
+    assert values["b_Fx"] == pytest.approx(B[0] + G[0], rel=1e-9)
+    assert values["b_Fy"] == pytest.approx(B[1] + G[1], rel=1e-9)
+    moment = cross(ref("r_B") - gamma, B)
+    assert values["b_Mz(Gamma)"] == pytest.approx(moment, rel=1e-9)
+    latex = step["latex"]
+    assert latex.count(r"\begin{vmatrix}") == 6  # F_B, two weights, F_D, two m a_G
+    assert r"I_{G,\text{rocker}}\,\alpha = " in latex
+    assert "r(Gamma,B) cross F(B) = " in step["text"]
+    assert "passes through Gamma" in step["text"]
+
+
+def test_the_whole_mechanism_is_the_seeds_seventh_question(client: TestClient) -> None:
+    """Seed 004's 7th question at theta = 90 deg: the ground's reactions at O and Gamma add up to
+    the reference's sum (1e-9), and with the weights and the load to the reference's total m a_G
+    (1e-9)."""
+    body = solve(client, seed004_scene(90))
+    check(body)
+    (step,) = [s for s in body["steps"] if s["kind"] == "dynamics.whole_mechanism"]
+    values = {key: np.array(v["value"]) for key, v in step["values"].items()}
+    reactions = values["R(O)"] + values["R(Gamma)"]
+    expected = EXPECTED["theta=90deg/sum_ground_reactions_O_plus_Gamma"]["value"]
+    assert reactions == pytest.approx(expected, rel=1e-9)
+    total = EXPECTED["theta=90deg/m_total_times_a_G"]["value"]
+    assert values["sum m a_G"] == pytest.approx(total, rel=1e-9)
+    assert values["sum external"] == pytest.approx(total, rel=1e-9)

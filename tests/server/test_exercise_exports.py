@@ -323,3 +323,35 @@ def test_every_statement_and_solution_line_converts_to_mathml() -> None:
         sheet = html_sheets([build(ExerciseId(kind, "standard", 2, 0))], True, mathml)
         assert "<code class='tex'>" not in sheet and sheet.count("<math") > 5, kind
     assert mathml(r"\frac{").startswith("<code class='tex'>")
+
+
+@pytest.mark.parametrize("kind", ["synthesis_function", "synthesis_fixed_pivots"])
+def test_synthesis_exercises_in_every_export(client: TestClient, kind: str) -> None:
+    """Exercises built on a synthesis task: the JSON carries the task, the CSV its paths into
+    /synthesis and the key, the HTML sheets a figure each and the key with the worked solution."""
+    exercises = client.post(API, json={"type": kind, "seed": 5, "count": 2}).json()["exercises"]
+    assert all("task" in e and "scene" not in e for e in exercises)
+    one = {"type": kind, "count": 2}
+    assert json.loads(export(client, **one, format="json").content)["exercises"] == exercises
+    rows = list(csv.DictReader(io.StringIO(export(client, **one, format="csv").text)))
+    expected = [(e, a) for e in exercises for a in e["asked"]]
+    assert [(r["id"], r["key"], r["path"]) for r in rows] == [
+        (e["id"], a["key"], a["path"]) for e, a in expected
+    ]
+    assert [float(r["answer"]) for r in rows] == [e["answers"][a["key"]] for e, a in expected]
+    student = _Sheets()
+    student.feed(export(client, **one, format="html").text)
+    assert student.sections == [e["id"] for e in exercises] and not student.answers
+    assert student.svgs == len(exercises)
+    key = _Sheets()
+    key_page = export(client, **one, format="html", with_solutions=True).text
+    key.feed(key_page)
+    for e in exercises:
+        assert key.answers[e["id"]] == [
+            f"{a['key']}={e['answers'][a['key']]:.6g}" for a in e["asked"]
+        ]
+    assert key_page.count("class='step'") >= 4 * len(exercises)
+    numerical = ET.fromstring(
+        export(client, **one, format="moodle_xml", moodle_question="numerical").content
+    )
+    assert len(numerical.findall("question")) == 1 + len(expected)

@@ -116,6 +116,14 @@ def test_answers_equal_analyze_at_their_paths(
         assert e["id"] == f"{kind}:{difficulty}:{e['seed']}:{e['index']}"
         assert e["statement"]["figure_svg"].startswith("<svg")
         cache: dict[str, Any] = {}
+        if "task" in e:  # a synthesis exercise: its paths point into /synthesis of its task
+            r = client.post(f"{API}/synthesis", json=e["task"])
+            assert r.status_code == 200, r.text
+            for asked in e["asked"]:
+                expected = at_path(r.json(), asked["path"])
+                assert abs(e["answers"][asked["key"]] - expected) <= 1e-12 * max(1.0, abs(expected))
+            assert_well_posed(e, None)
+            continue
         for asked in e["asked"]:
             expected = remote_value(client, e["scene"], asked["path"], cache)
             assert abs(e["answers"][asked["key"]] - expected) <= 1e-12 * max(1.0, abs(expected))
@@ -231,3 +239,27 @@ def test_a_huge_seed_is_a_seed_like_any_other(client: TestClient) -> None:
     assert r.json()["exercises"][0]["id"] == f"spatial_arm:standard:{seed}:0"
     r = client.post(f"{API}/exercises", json={"type": "spatial_arm", "seed": seed + 1})
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
+
+
+@pytest.mark.parametrize("kind", ["synthesis_function", "synthesis_fixed_pivots"])
+def test_synthesis_types_are_served_and_keyed_by_the_synthesis_body(
+    client: TestClient, kind: str
+) -> None:
+    """Listed, generated, served by id and checked through the exercises contract; the key is
+    the /synthesis body of the exercise's task at each path."""
+    listed = {t["name"]: t for t in client.get(f"{API}/exercises/types").json()["types"]}
+    assert listed[kind]["asks"]
+    e = client.post(f"{API}/exercises", json={"type": kind, "seed": 12}).json()["exercises"][0]
+    assert "scene" not in e and e["task"]["task"] in ("function", "motion")
+    body = client.post(f"{API}/synthesis", json=e["task"]).json()
+    for asked in e["asked"]:
+        assert e["answers"][asked["key"]] == at_path(body, asked["path"])
+    alone = client.get(f"{API}/exercises/{e['id']}").json()
+    assert alone["task"] == e["task"] and alone["solution"]["steps"][0]["kind"].startswith(
+        "synthesis."
+    )
+    first = e["asked"][0]["key"]
+    wrong = client.post(
+        f"{API}/exercises/check", json={"id": e["id"], "answers": {first: 2 * e["answers"][first]}}
+    ).json()
+    assert wrong["results"][0]["verdict"] == "incorrect" and wrong["score"] == 0.0

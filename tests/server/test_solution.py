@@ -160,6 +160,30 @@ def test_printable_page_of_every_preset(name: str) -> None:
     assert page.latex == [s["latex"] for s in body["steps"] if s["latex"]]
 
 
+@pytest.mark.parametrize(
+    ("name", "query", "options"),
+    [
+        ("cam_roller_translating", "&angle_deg=60", {"angle_deg": 60}),
+        ("planetary_ring_fixed", "", {}),
+    ],
+)
+def test_printable_page_of_a_cam_or_gear_train_preset(
+    name: str, query: str, options: dict[str, Any]
+) -> None:
+    """GET /solution.html?preset= takes a preset of any family: the page has the steps of
+    POST /solution of the preset's scene (a cam's at angle_deg)."""
+    response = client.get(f"/api/v1/solution.html?preset={name}{query}")
+    assert response.status_code == 200
+    scene = client.post(f"/api/v1/presets/{name}").json()
+    body = post({"scene": scene, **options}).json()
+    assert _page(response.text).latex == [s["latex"] for s in body["steps"] if s["latex"]]
+    if options:
+        assert (
+            _page(response.text).latex
+            != _page(client.get(f"/api/v1/solution.html?preset={name}").text).latex
+        )
+
+
 def test_printable_page_by_post_with_options_and_escaping() -> None:
     scene = example("S000-T2")
     scene["title"] = "<script>alert(1)</script> & co"

@@ -213,13 +213,6 @@ def test_bad_friction_is_an_invalid_scene(
         solver.analyze(doc, ["forces"])
 
 
-def test_the_worked_solution_refuses_friction() -> None:
-    """The Newton-Euler steps are frictionless: with friction they would contradict the answer."""
-    doc = slider_crank(30.0, B={"coefficient": 0.2})
-    with pytest.raises(InvalidScene, match=r"joints\[\]\.friction: the Newton-Euler worked"):
-        solver.solve(doc, "newton_euler")
-
-
 def test_no_efficiency_where_the_loads_do_no_net_work() -> None:
     """A four-bar with weights and a constant moment on its rocker: over a turn the loads do no
     net work (the frictionless mean input power is rounding), so there is no efficiency."""

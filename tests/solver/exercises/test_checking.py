@@ -127,6 +127,12 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "magnitude_for_component",
         "components_swapped",
         "action_reaction_sign",
+        "degrees_as_radians",
+        "synthesis.chebyshev_spacing",
+        "synthesis.freudenstein_sign",
+        "synthesis.signed_length",
+        "synthesis.k1_k2_swapped",
+        "synthesis.absolute_turn",
     }, diagnosed
 
 

@@ -33,7 +33,8 @@ def test_generation_is_deterministic_by_seed(kind: str) -> None:
     again = [e.as_json() for e in generate(kind, "standard", 2024, 3)]
     assert first == again
     other = [e.as_json() for e in generate(kind, "standard", 2025, 3)]
-    assert [e["scene"] for e in other] != [e["scene"] for e in first]
+    documents = [e.get("scene") or e["task"] for e in first]
+    assert [e.get("scene") or e["task"] for e in other] != documents
     # exercise k of a batch is the exercise of its own id
     assert build(parse_id(first[2]["id"])).as_json() == first[2]
 
@@ -70,7 +71,15 @@ def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
     root = ET.fromstring(e.statement.figure_svg)
     assert root.tag == "{http://www.w3.org/2000/svg}svg"
     labels = {t.text for t in root.iter("{http://www.w3.org/2000/svg}text")}
-    if e.scene["kind"] == "gear_train":  # each gear labelled with its name and teeth
+    if e.task is not None:  # what the task gives, never the answer: no fixed pivot of a motion
+        if e.task["task"] == "motion":
+            count = len(e.task["positions"])
+            assert {"B1", "C1"} <= labels and "A" not in labels and "D" not in labels
+            assert sum(bool(t and t.startswith("P")) for t in labels) == count
+        else:  # the ground link and the two angle ranges, the links not drawn
+            assert {"A", "D"} <= labels and "B" not in labels
+            assert sum(bool(t and "→" in t) for t in labels) == 2
+    elif e.scene["kind"] == "gear_train":  # each gear labelled with its name and teeth
         gears = e.scene["gears"]
         assert {f"{name} ({g['teeth']})" for name, g in gears.items()} <= labels
     elif e.scene["kind"] == "cam":  # the centre O and the pressure angle marked, not given
@@ -78,7 +87,7 @@ def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
     else:
         assert set(e.scene["points"]) <= labels
     assert any(text and " m" in text for text in labels)  # the scale bar
-    if e.scene["kind"] == "linkage":
+    if e.scene.get("kind") == "linkage":
         assert any(text and ("ω" in text or "φ" in text) for text in labels)
 
 

@@ -80,7 +80,8 @@ def test_every_id_either_output_carries_is_in_the_catalogue_and_every_entry_is_u
             e = _exercise(kind, difficulty, 1)
             diagnosed |= {m.kind for m in mistakes_of(e)}
             method = "newton_euler" if kind in DYNAMIC else "vector"
-            shown |= {m["kind"] for m in _shown(e.scene, method)}
+            if e.task is None:  # a synthesis task's worked solution names no mistakes
+                shown |= {m["kind"] for m in _shown(e.scene, method)}
     assert shown <= set(CATALOGUE), shown - set(CATALOGUE)
     assert diagnosed <= set(CATALOGUE), diagnosed - set(CATALOGUE)
     assert shown | diagnosed == set(CATALOGUE), set(CATALOGUE) - shown - diagnosed
