@@ -127,6 +127,7 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "magnitude_for_component",
         "components_swapped",
         "action_reaction_sign",
+        "friction_left_out",
         "degrees_as_radians",
         "synthesis.chebyshev_spacing",
         "synthesis.freudenstein_sign",
