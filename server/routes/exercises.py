@@ -19,6 +19,7 @@ from pydantic import Field
 
 import solver
 from server import budget
+from server.mathml import mathml
 from server.responses import ResultResponse
 from server.schemas import (
     PROBLEMS,
@@ -43,9 +44,20 @@ from solver.exercises import (
 )
 from solver.exercises.checking import check
 from solver.exercises.exam import UnknownExamId, is_exam_id, open_exam_id
-from solver.exercises.export import answer_csv, exercises_json, html_sheets, moodle_xml, set_name
+from solver.exercises.export import (
+    MAX_TOLERANCE,
+    MIN_TOLERANCE,
+    answer_csv,
+    exercises_json,
+    html_sheets,
+    moodle_xml,
+    set_name,
+    student_names,
+    with_tolerance,
+)
 from solver.exercises.generation import build_exam, check_generation
-from solver.exercises.model import DEFAULT_DIFFICULTY, MAX_SEED
+from solver.exercises.model import DEFAULT_DIFFICULTY, DEFAULT_TOLERANCE, MAX_SEED
+from solver.exercises.qti import qti_package
 from solver.exercises.solutions import worked_solution
 
 MAX_ANSWER = 1e15  # a given answer beyond this is no number a student means
@@ -150,13 +162,17 @@ def types_route() -> ResultResponse:
 
 
 def exercises_cost(
-    request: ExercisesRequest, secret: bytes | None, path: str = "/api/v1/exercises"
+    request: ExercisesRequest,
+    secret: bytes | None,
+    path: str = "/api/v1/exercises",
+    count: int | None = None,
 ) -> float:
     """In the server's process: the request's bounds (an exam set: its seed and the secret),
-    then count x the type's cost."""
-    check_generation(request.type, request.difficulty, request.count)
+    then count (the request's unless given) x the type's cost."""
+    count = request.count if count is None else count
+    check_generation(request.type, request.difficulty, count)
     set_secret(request, secret)
-    return budget.exercises(request.type, request.count, request.with_solutions, path)
+    return budget.exercises(request.type, count, request.with_solutions, path)
 
 
 @router.post(
@@ -239,12 +255,13 @@ def check_route(request: CheckRequest) -> ResultResponse:
     return ResultResponse(check(request.id, request.answers))
 
 
-ExportFormat = Literal["moodle_xml", "html", "csv", "json"]
+ExportFormat = Literal["moodle_xml", "html", "csv", "json", "qti"]
 _MEDIA = {
     "moodle_xml": ("application/xml", "xml"),
     "html": ("text/html; charset=utf-8", "html"),
     "csv": ("text/csv; charset=utf-8", "csv"),
     "json": ("application/json", "json"),
+    "qti": ("application/zip", "zip"),
 }
 
 
@@ -254,7 +271,8 @@ EXPORT_SCHEMAS = {"application/json": {"$ref": "#/components/schemas/ExerciseLis
 
 class ExportRequest(ExercisesRequest):
     format: ExportFormat = Field(
-        description="moodle_xml (question bank), html (printable sheet), csv (answer key), json."
+        description="moodle_xml (question bank), html (printable sheet), csv (answer key), json, "
+        "qti (an IMS QTI 2.1 content package, a zip)."
     )
     moodle_question: Literal["auto", "numerical", "cloze"] = Field(
         "auto",
@@ -262,6 +280,32 @@ class ExportRequest(ExercisesRequest):
         "quantity and a cloze question of one asking several; 'numerical' one numerical "
         "question per asked quantity; 'cloze' one cloze question per exercise.",
     )
+    tolerance: float = Field(
+        DEFAULT_TOLERANCE,
+        ge=MIN_TOLERANCE,
+        le=MAX_TOLERANCE,
+        description="Relative tolerance of every answer in this export (the Moodle answers, the "
+        f"key's tolerance column): 0.01 is 1 %; from {MIN_TOLERANCE} to {MAX_TOLERANCE}.",
+    )
+    students_csv: str | None = Field(
+        None,
+        max_length=20_000,
+        description="Extension: the class list as CSV text, one student a row, the name in the "
+        "first column (a first row reading name or student is a header). One exercise per "
+        "student: count is the number of students, and each sheet of the html export carries "
+        "its student's name.",
+    )
+
+    def students(self) -> list[str] | None:
+        """The class list's names, or None without one."""
+        return None if self.students_csv is None else student_names(self.students_csv)
+
+
+def export_cost(request: ExportRequest, secret: bytes | None) -> float:
+    """The export's cost: one exercise per student when a class list is given."""
+    students = request.students()
+    count = None if students is None else len(students)
+    return exercises_cost(request, secret, "/api/v1/exercises/export", count)
 
 
 @router.post(
@@ -278,17 +322,23 @@ class ExportRequest(ExercisesRequest):
         }
     },
 )
-@front_check(lambda request, secret: exercises_cost(request, secret, "/api/v1/exercises/export"))
+@front_check(export_cost)
 def export_route(request: ExportRequest, secret: ExamSecret) -> Response:
+    students = request.students()
+    count = request.count if students is None else len(students)
     exercises = generate(
-        request.type, request.difficulty, request.seed, request.count, set_secret(request, secret)
+        request.type, request.difficulty, request.seed, count, set_secret(request, secret)
     )
+    exercises = with_tolerance(exercises, request.tolerance)
+    content: str | bytes
     if request.format == "moodle_xml":
-        content = moodle_xml(exercises, request.moodle_question)
+        content = moodle_xml(exercises, request.moodle_question, request.with_solutions)
     elif request.format == "html":
-        content = html_sheets(exercises, request.with_solutions)
+        content = html_sheets(exercises, request.with_solutions, mathml, students)
     elif request.format == "csv":
         content = answer_csv(exercises)
+    elif request.format == "qti":
+        content = qti_package(exercises)
     else:
         content = exercises_json(exercises, request.with_solutions)
     media, extension = _MEDIA[request.format]

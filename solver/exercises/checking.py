@@ -15,7 +15,7 @@ from solver.errors import InvalidScene
 from solver.exercises.cams import cam_mistakes
 from solver.exercises.gear_mistakes import gear_train_mistakes
 from solver.exercises.generation import build
-from solver.exercises.mistakes import WrongAnswers, typical_mistakes
+from solver.exercises.mistakes import WrongAnswers, answer_mistakes, typical_mistakes
 from solver.exercises.model import Asked, Exercise, parse_id, relative_error, within
 from solver.exercises.synthesis_mistakes import synthesis_mistakes
 
@@ -38,9 +38,14 @@ def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
     """The typical mistakes that can be made in the exercise with the wrong answers they give: a
     gear train's (``solver.exercises.gear_mistakes``), a cam's (``solver.exercises.cams``), a
     synthesis task's (``solver.exercises.synthesis_mistakes``), else a linkage's or a spatial
-    chain's (``solver.exercises.mistakes.typical_mistakes``); of each only the answers it gets
-    wrong (beyond the asked tolerance), and none that gets every answer right in this exercise (a
-    sign mistake on a zero, weights where there is no gravity)."""
+    chain's (``solver.exercises.mistakes.typical_mistakes``); first a force given as the reaction
+    and a negative answer given as its magnitude (named before a reversed rotation, which may
+    give the same value), last the x and y components swapped (``answer_mistakes``). Of each
+    only the answers it gets wrong (beyond the asked tolerance), and none that gets every answer
+    right in this exercise (a sign mistake on a zero, weights where there is no gravity)."""
+    written = answer_mistakes(exercise)
+    first = [m for m in written if m.kind != "components_swapped"]
+    swapped = [m for m in written if m.kind == "components_swapped"]
     if exercise.task is not None:
         found = synthesis_mistakes(exercise)
     elif exercise.scene.get("kind") == "gear_train":
@@ -51,7 +56,7 @@ def mistakes_of(exercise: Exercise) -> list[WrongAnswers]:
         found = typical_mistakes(exercise)
     asked = {a.key: a for a in exercise.asked}
     made = []
-    for mistake in found:
+    for mistake in first + found + swapped:
         wrong = {
             key: value
             for key, value in mistake.values.items()

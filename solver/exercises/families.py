@@ -37,8 +37,21 @@ def rate(rng: random.Random, low: int, high: int, signed: bool = True) -> float:
 
 
 def num(x: float) -> str:
-    """A given number as printed in the statement."""
-    return f"{x:g}"
+    """A given number as printed in the statement (a zero without its sign: never "-0")."""
+    return f"{x + 0.0:g}"
+
+
+def polynomial(terms: Sequence[tuple[float, str]]) -> str:
+    """c1 x1 + c2 x2 + ... as a lecturer writes it: "3 t - 0.05 t^2", never "+ -", zero terms
+    left out (a lone 0 if all are); each term is (coefficient, its variable part)."""
+    out = ""
+    for coefficient, part in terms:
+        if coefficient == 0.0:
+            continue
+        sign = "-" if coefficient < 0 else "+"
+        body = f"{num(abs(coefficient))} {part}".strip()
+        out = (f"-{body}" if sign == "-" else body) if not out else f"{out} {sign} {body}"
+    return out or "0"
 
 
 def sense(omega: float) -> str:
@@ -198,9 +211,10 @@ def four_bar_text(v: Mapping[str, float], goal: str, point: bool) -> tuple[str, 
         + crank_sentence("B", "A", v["omega"], v["alpha"])
     )
     if point:
+        side = "left" if v["coupler_point_v"] >= 0 else "right"
         text += (
             f" The coupler point P lies {num(v['coupler_point_u'])} m along BC from B and "
-            f"{num(v['coupler_point_v'])} m to the left of the line from B to C."
+            f"{num(abs(v['coupler_point_v']))} m to the {side} of the line from B to C."
         )
     rows = [
         (r"|AD|", v["ground"], "m"),
@@ -260,6 +274,24 @@ def _pole(link: str, kind: str, sub: str) -> tuple[Asked, ...]:
     )  # fmt: skip
 
 
+POLE_REACH = 3.0  # an asked pole lies within 3 |AD| of A: on the figure's sheet
+
+
+def poles_check(analysis: Any) -> str | None:
+    """``four_bar_check``, and the coupler's poles within ``POLE_REACH`` |AD| of A (a pole
+    tens of |AD| away is off any sheet, and ill-conditioned to construct)."""
+    reason = four_bar_check(analysis)
+    if reason is not None:
+        return reason
+    a, d = analysis.points["A"].position, analysis.points["D"].position
+    ground = float(math.dist(a, d))
+    coupler = analysis.links["coupler"]
+    for pole in (coupler.velocity_pole, coupler.acceleration_pole):
+        if pole is not None and math.dist(pole, a) > POLE_REACH * ground:
+            return f"a pole {math.dist(pole, a) / ground:.1f} |AD| from A"
+    return None
+
+
 def four_bar_poles(rng: random.Random, difficulty: str) -> Draft:
     scene, v = four_bar_scene(rng, difficulty, difficulty == "challenging", False)
     asked: tuple[Asked, ...] = _pole("coupler", "velocity", "BC")
@@ -273,7 +305,7 @@ def four_bar_poles(rng: random.Random, difficulty: str) -> Draft:
     text, latex = four_bar_text(v, goal + ", with A as the origin and x along AD.", False)
     return Draft(
         "Four-bar: poles of the coupler", text, latex + r"\\" + asked_latex(asked), scene, asked,
-        scales(v["omega"], v["alpha"], v["ground"]), four_bar_check,
+        scales(v["omega"], v["alpha"], v["ground"]), poles_check,
     )  # fmt: skip
 
 
@@ -342,7 +374,8 @@ def _inverted_slider_crank_text(v: Mapping[str, float], difficulty: str) -> str:
         f"pivot O; its pin A carries a block sliding in the slot of the lever CD, pivoted at C, "
         f"{num(v['ground'])} m to the right of O"
         + (
-            f"; the slot runs {num(v['slot_offset'])} m from C (left of C->D)"
+            f"; the slot runs {num(abs(v['slot_offset']))} m from C, to the "
+            f"{'left' if v['slot_offset'] > 0 else 'right'} of C->D"
             if v["slot_offset"]
             else "; the slot runs through C"
         )
@@ -545,11 +578,12 @@ def _groove_disc(rng: random.Random) -> Carrier:
 
 
 def _slotted_rod(rng: random.Random) -> Carrier:
-    """A rod with a straight slot at the angle theta from x: S = |OS| u, T = (|OS| + |ST|) u,
-    u = (cos theta, sin theta)."""
+    """A rod with a straight slot at the angle theta_0 from x at t = 0 (stated, and dimensioned in
+    the figure): S = |OS| u, T = (|OS| + |ST|) u, u = (cos theta_0, sin theta_0)."""
     start = pick(rng, 0.05, 0.15, 0.05)
     length = pick(rng, 0.2, 0.5, 0.05)
-    angle = math.radians(pick(rng, 0.0, 60.0, 15.0))
+    angle_deg = pick(rng, 0.0, 60.0, 15.0)
+    angle = math.radians(angle_deg)
     unit = (math.cos(angle), math.sin(angle))
     points = {
         "O": [0.0, 0.0],
@@ -558,10 +592,11 @@ def _slotted_rod(rng: random.Random) -> Carrier:
     }
     where = (
         f"a straight slot along the rod, from S ({num(start)} m from O) outwards to its end T "
-        f"({num(length)} m further); M starts at S"
+        f"({num(length)} m further); at t = 0 the rod points {num(angle_deg)} deg "
+        "counter-clockwise from the x axis; M starts at S"
     )
     path = {"type": "line", "start": "S", "through": "T"}
-    rows = [("|OS|", start, "m"), ("|ST|", length, "m")]
+    rows = [("|OS|", start, "m"), ("|ST|", length, "m"), (r"\theta_0", angle_deg, "deg")]
     return Carrier("rod", points, ["O", "S", "T"], path, where, start + length, rows)
 
 
@@ -593,7 +628,7 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
     epsilon = rate(rng, 1, 3) / 10 if difficulty == "challenging" else 0.0
     c = pick(rng, 0.02, 0.1, 0.01)
     t1 = pick(rng, 0.5, 2.0, 0.5)
-    law = f"{num(omega)}*t" + (f" + {num(epsilon / 2)}*t^2" if epsilon else "")
+    law = polynomial([(omega, "t"), (epsilon / 2, "t^2")])
     carrier = _groove_disc(rng) if groove else _slotted_rod(rng)
     asked: tuple[Asked, ...] = _moving("v_M", "velocity", "velocity of M", "m/s", "v_{M")
     asked += _moving(
@@ -604,8 +639,8 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
         asked += _moving("a_M", "acceleration", "acceleration of M", "m/s^2", "a_{M")
         asked += (Asked("t_M_T", "time at which M reaches T", "s", "events.M.T.time", "t_{T}"),)
     text = (
-        f"A {carrier.name} turns about the fixed pivot O by the angle phi(t) = "
-        f"{law.replace('*', ' ')} rad (phi counter-clockwise positive: the {carrier.name} turns "
+        f"A {carrier.name} turns about the fixed pivot O by the angle phi(t) = {law} rad (phi "
+        f"counter-clockwise positive: the {carrier.name} turns "
         f"{sense(omega)}). It carries {carrier.where}, by the law s(t) = {num(c)} t^2 (s in m, "
         f"t in s). Drawn at t = 0. At t = {num(t1)} s find the velocity of M and its Coriolis "
         "acceleration"
@@ -616,14 +651,14 @@ def moving_point(rng: random.Random, difficulty: str) -> Draft:
         )
     )
     latex = (
-        rf"\varphi(t) = {law.replace('*', ' ')}"
+        rf"\varphi(t) = {law}"
         + rf",\; s(t) = {num(c)}\,t^2,\; t_1 = {num(t1)}\,\mathrm{{s}},\; "
         + givens_latex(carrier.rows)
     )
     rates = max(omega * omega, abs(epsilon), 1.0)
     return Draft(
         "Point moving on a turning " + carrier.name, text, latex + r"\\" + asked_latex(asked),
-        _moving_point_scene(carrier, law, f"{num(c)}*t^2", t1), asked,
+        _moving_point_scene(carrier, law.replace(" t", "*t"), f"{num(c)}*t^2", t1), asked,
         {"m/s": max(abs(omega), 1.0) * carrier.size, "m/s^2": rates * carrier.size, "s": 1.0},
     )  # fmt: skip
 

@@ -3,7 +3,8 @@
 Planar scenes are drawn in the x-y plane (y up) at one scale with a scale bar: links as bars
 (a link with three or more points as a plate), fixed pivots hatched, sliders as blocks on their
 guide (a fixed guide hatched, a slot drawn on its link), the driver's rotation as an arrow about
-its pivot with omega (and alpha) beside it, a moving point's path dashed. Spatial chains are
+its pivot with omega (and alpha) beside it, a moving point's path dashed, a straight path through
+its pivot with its angle from x dimensioned, and the x and y axes at the origin. Spatial chains are
 drawn in an oblique projection with each joint's axis and rate.
 """
 
@@ -198,8 +199,51 @@ def _linkage(scene: Mapping[str, Any]) -> str:
     for name, link in links.items():
         _draw_link(canvas, drawing, name, [drawing.pts[p] for p in link["points"]])
     _draw_marks(canvas, drawing)
+    _slot_angles(canvas, drawing)
+    _axes(canvas)
     _scale_bar(canvas)
     return _document(canvas, str(scene.get("title", "linkage")))
+
+
+def _axes(canvas: Canvas) -> None:
+    """The frame the answers are given in: x and y arrows, 34 px, from the origin (0, 0)."""
+    x, y = canvas.px((0.0, 0.0))
+    style: list[Attribute] = [("stroke", GUIDE), ("stroke-width", "1.2"), ("fill", "none")]
+    canvas.path(f"M{x:.1f} {y:.1f}h34m-6 -4l6 4l-6 4", style)
+    canvas.path(f"M{x:.1f} {y:.1f}v-34m-4 6l4 -6l4 6", style)
+    label = [("font-size", "11"), ("fill", GUIDE), ("font-family", "sans-serif")]
+    canvas.text((x + 37, y + 4), "x", label)
+    canvas.text((x - 4, y - 38), "y", label)
+
+
+def _slot_angles(canvas: Canvas, drawing: _Linkage) -> None:
+    """The angle dimension of each straight path through its carrier's pivot: an arc from the
+    x direction to the path, labelled with the angle at the drawn instant (t = 0)."""
+    for mp in drawing.moving_points:
+        path = mp["path"]
+        if path["type"] != "line":
+            continue
+        o = drawing.pivot(mp["link"])
+        s, t = drawing.pts[path["start"]], drawing.pts[path["through"]]
+        cross = (s[0] - o[0]) * (t[1] - o[1]) - (s[1] - o[1]) * (t[0] - o[0])
+        if abs(cross) > 1e-9 * max(math.dist(o, t), 1e-12) ** 2:
+            continue  # a slot off the pivot: its angle is not a dimension from O
+        theta = math.atan2(t[1] - o[1], t[0] - o[0])
+        x, y = canvas.px(o)
+        r = 40.0
+        ex, ey = x + r * math.cos(theta), y - r * math.sin(theta)
+        sweep = 0 if theta >= 0 else 1
+        large = 1 if abs(theta) > math.pi else 0
+        style: list[Attribute] = [("stroke", GUIDE), ("stroke-width", "1"), ("fill", "none")]
+        canvas.path(f"M{x:.1f} {y:.1f}h{r + 14:.0f}", [*style, ("stroke-dasharray", "3 3")])
+        canvas.path(f"M{x + r:.1f} {y:.1f}A{r} {r} 0 {large} {sweep} {ex:.1f} {ey:.1f}", style)
+        half = theta / 2
+        label = [("font-size", "12"), ("fill", INK), ("font-family", "sans-serif")]
+        canvas.text(
+            (x + (r + 8) * math.cos(half), y - (r + 8) * math.sin(half) + 4),
+            f"θ0 = {math.degrees(theta):.4g}°",
+            label,
+        )
 
 
 def _arc_paths(drawing: _Linkage) -> list[tuple[Point, float]]:

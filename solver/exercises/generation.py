@@ -8,19 +8,25 @@ it until one passes every check below, so an id always gives the same exercise:
 - the pose is well away from a dead centre: the condition number of the velocity equations is at
   most ``MAX_CONDITION`` (a dead centre is infinite);
 - the family's own test holds (the asked Grashof class, the transmission angle);
+- the statement ends with the sign convention of its kind of scene
+  (``solver.exercises.conventions``);
 - every answer is finite, at least ``SMALL`` and at most ``LARGE`` times the size of a quantity in
   its unit (omega of the crank for rad/s, omega^2 L for m/s^2, ...): never negligibly small, where
-  a relative tolerance means nothing, and never absurd.
+  a relative tolerance means nothing, and never absurd;
+- no two asked answers within twice the tolerance of each other (swapped, both would be marked
+  right: a flywheel with k omega^2 = 1 has Delta E = I_F).
 """
 
 from __future__ import annotations
 
+import json
 import random
 from dataclasses import replace
 
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
 from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.conventions import sign_convention
 from solver.exercises.exam import exam_id, generator_seed
 from solver.exercises.figures import figure_svg
 from solver.exercises.model import (
@@ -30,6 +36,7 @@ from solver.exercises.model import (
     ExerciseId,
     Statement,
     check_seed_index,
+    within,
 )
 from solver.exercises.registry import TYPES, ExerciseType
 
@@ -38,6 +45,7 @@ MAX_CONDITION = 60.0
 SMALL = 0.02
 LARGE = 50.0
 MAX_COUNT = 100  # exercises per request
+MAX_INDEX_SPREAD = 4  # a set of n draws its n distinct exercises from the indices below 4 n
 PENDING = ExerciseId("", "", 0, 0)
 
 
@@ -74,6 +82,11 @@ def ill_posed(draft: Draft, solved: Solved, answers: dict[str, float]) -> str | 
         value = abs(answers[asked.key])
         if not SMALL * size <= value <= LARGE * size:
             return f"{asked.key} = {answers[asked.key]:.3g} {asked.unit} is out of scale"
+    for k, first in enumerate(draft.asked):
+        for second in draft.asked[k + 1 :]:
+            tolerance = 2 * max(first.tolerance, second.tolerance)
+            if within(answers[first.key], answers[second.key], tolerance):
+                return f"{first.key} and {second.key} coincide: swapped, both would be right"
     return None
 
 
@@ -88,7 +101,8 @@ def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exerc
         return None
     if ill_posed(draft, solved, answers) is not None:
         return None
-    statement = Statement(draft.text, draft.latex, figure_svg(draft.scene))
+    text = f"{draft.text} {sign_convention(draft.scene)}".rstrip()
+    statement = Statement(text, draft.latex, figure_svg(draft.scene))
     return Exercise(PENDING, draft.title, statement, draft.scene, draft.asked, answers)
 
 
@@ -128,10 +142,23 @@ def check_generation(kind: str, difficulty: str, count: int) -> None:
 def generate(
     kind: str, difficulty: str, seed: int, count: int, exam_secret: bytes | None = None
 ) -> list[Exercise]:
-    """``count`` exercises ``kind:difficulty:seed:0`` .. ``count - 1``; with ``exam_secret``
-    their exam versions (``build_exam``)."""
+    """``count`` distinct exercises ``kind:difficulty:seed:0``, ``1``, ... (with ``exam_secret``
+    their exam versions, ``build_exam``): an index whose scene an earlier one of the set already
+    has is passed over for the next, so no two students of a set share an exercise while each id
+    still determines its exercise alone."""
     check_generation(kind, difficulty, count)
-    idents = [ExerciseId(kind, difficulty, seed, index) for index in range(count)]
-    if exam_secret is None:
-        return [build(ident) for ident in idents]
-    return [build_exam(ident, exam_secret) for ident in idents]
+    made: list[Exercise] = []
+    seen: set[str] = set()
+    for index in range(MAX_INDEX_SPREAD * count):
+        ident = ExerciseId(kind, difficulty, seed, index)
+        exercise = build(ident) if exam_secret is None else build_exam(ident, exam_secret)
+        scene = json.dumps(exercise.scene, sort_keys=True)
+        if scene not in seen:
+            seen.add(scene)
+            made.append(exercise)
+            if len(made) == count:
+                return made
+    raise GenerationFailed(
+        f"{kind} {difficulty}: fewer than {count} distinct exercises in "
+        f"{MAX_INDEX_SPREAD * count} indices"
+    )

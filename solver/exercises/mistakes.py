@@ -460,3 +460,41 @@ def typical_mistakes(exercise: Exercise) -> list[WrongAnswers]:
         WrongAnswers(m.kind, m.sentence, {k: v for k, v in m.values.items() if k in asked})
         for m in made
     ]
+
+
+def answer_mistakes(exercise: Exercise) -> list[WrongAnswers]:
+    """Mistakes in writing the answer down, for any type: a force given as the reaction on the
+    other body (``action_reaction_sign``, force answers), a negative answer given as its
+    magnitude (``magnitude_for_component``), the x and y components of an asked vector swapped
+    (``components_swapped``)."""
+    answers = exercise.answers
+    reaction = {a.key: -answers[a.key] for a in exercise.asked if a.unit == "N"}
+    magnitude = {k: -v for k, v in answers.items() if v < 0.0}
+    swapped: dict[str, float] = {}
+    for key in answers:
+        twin = key[:-2] + "_y"
+        if key.endswith("_x") and twin in answers:
+            swapped |= {key: answers[twin], twin: answers[key]}
+    made = []
+    if reaction:
+        made.append(WrongAnswers(
+            "action_reaction_sign",
+            "This is the force on the other body: the pin force asked is the one the named body "
+            "exerts, and the reaction has the opposite sign.",
+            reaction,
+        ))  # fmt: skip
+    if magnitude:
+        made.append(WrongAnswers(
+            "magnitude_for_component",
+            "This is the magnitude of a negative answer: each component, angular velocity and "
+            "acceleration is asked with its sign (the statement's sign convention), or the "
+            "rotation was taken the other way round.",
+            magnitude,
+        ))  # fmt: skip
+    if swapped:
+        made.append(WrongAnswers(
+            "components_swapped",
+            "This is the other component's value: the x and y components swapped.",
+            swapped,
+        ))  # fmt: skip
+    return made

@@ -265,6 +265,23 @@ _ENTRIES = (
         "v = ds/dtheta for v = (ds/dtheta) omega (and a = d2s/dtheta2 for (d2s/dtheta2) omega^2): "
         "the derivatives in the cam angle taken for the rates in time.",
     ),
+    # --- writing the answer down (exercises, any type) ---
+    TypicalMistake(
+        "magnitude_for_component",
+        "A magnitude for a signed component",
+        "|v_x| written for a negative v_x (or |omega| for a clockwise omega): the answer asks the "
+        "component with its sign.",
+    ),
+    TypicalMistake(
+        "action_reaction_sign",
+        "The force on the other body",
+        "F_12 written for F_21 = -F_12: the pin force the other body exerts, of the opposite sign.",
+    ),
+    TypicalMistake(
+        "components_swapped",
+        "The x and y components swapped",
+        "v_y written for v_x and v_x for v_y.",
+    ),
     TypicalMistake(
         "cam_beta_in_degrees",
         "The segment's duration in degrees",

@@ -51,13 +51,22 @@ async function problemFrom(response, path) {
   });
 }
 
+/**
+ * JSON text of a request body, a BigInt written as its exact digits (a JSON number above 2^53
+ * loses digits in a JavaScript Number: an exercise seed goes up to 2^63 - 1).
+ */
+export function jsonBody(value) {
+  const marked = JSON.stringify(value, (key, v) => (typeof v === 'bigint' ? `\u0000bigint:${v}` : v));
+  return marked.replace(/"\\u0000bigint:(-?\d+)"/g, '$1');
+}
+
 async function call(method, path, body) {
   let response;
   try {
     response = await fetch(BASE + path, {
       method,
       headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
-      body: body === undefined ? undefined : JSON.stringify(body),
+      body: body === undefined ? undefined : jsonBody(body),
     });
   } catch (err) {
     throw new ApiError({ code: 'network', detail: `The server cannot be reached (${err.message}).` });
@@ -125,7 +134,7 @@ export async function exportExercises(request) {
     response = await fetch(BASE + '/exercises/export', {
       method: 'POST',
       headers: { 'Content-Type': 'application/json' },
-      body: JSON.stringify(request),
+      body: jsonBody(request),
     });
   } catch (err) {
     throw new ApiError({ code: 'network', detail: `The server cannot be reached (${err.message}).` });

@@ -63,22 +63,30 @@ function request() {
     type: $('ex-type').value,
     difficulty: $('ex-difficulty').value,
     count: Number($('ex-count').value),
-    seed: Number($('ex-seed').value),
+    seed: seedValue(),
     exam: $('ex-exam').checked,
   };
 }
 
+/** The seed as typed, exact: a BigInt of its digits (sent as a JSON number of those digits,
+ * api.jsonBody), or the text itself, which the server refuses with its reason. */
+function seedValue() {
+  const text = $('ex-seed').value.trim();
+  return /^[0-9]{1,19}$/.test(text) ? BigInt(text) : text;
+}
+
 // An exam set's seed is its password (whoever has it gets the key from the server, which
-// refuses one below 2^32): a random one from 2^32 to 2^53 - 1, exact as a JavaScript number.
-const MIN_EXAM_SEED = 2 ** 32;
+// refuses one below 2^32): a random one from 2^32 to 2^63 - 1, handled as digits (BigInt).
+const MIN_EXAM_SEED = 2n ** 32n;
 
 function examSeed() {
   const [high, low] = crypto.getRandomValues(new Uint32Array(2));
-  return ((high % (2 ** 21 - 1)) + 1) * 2 ** 32 + low;
+  return (BigInt((high & 0x7fffffff) || 1) << 32n) | BigInt(low);
 }
 
 function examChanged() {
-  if ($('ex-exam').checked && Number($('ex-seed').value) < MIN_EXAM_SEED) {
+  const seed = seedValue();
+  if ($('ex-exam').checked && (typeof seed !== 'bigint' || seed < MIN_EXAM_SEED)) {
     $('ex-seed').value = String(examSeed());
   }
 }
@@ -91,10 +99,11 @@ function card(exercise) {
     box.appendChild(el('p', { class: 'muted small' }, 'Exam: students see only the statement; keep the seed and this key private.'));
   }
   box.appendChild(el('p', {}, exercise.statement.text));
-  const tex = el('div', { class: 'tex' });
+  // tabindex: on a phone the formulas and the figure scroll sideways, by keyboard too
+  const tex = el('div', { class: 'tex', tabindex: '0', role: 'group', 'aria-label': 'Data' });
   typeset(exercise.statement.latex, tex);
   box.appendChild(tex);
-  const fig = el('figure');
+  const fig = el('figure', { tabindex: '0' });
   figure(fig, exercise.statement.figure_svg);
   box.appendChild(fig);
   const key = el('details');
@@ -128,8 +137,22 @@ async function preview(event) {
   }
 }
 
+/** The export's own fields: the tolerance (the field in %, sent relative) and, when a class list
+ * is chosen, its text (one exercise per student, named on the sheets). */
+async function exportFields() {
+  const fields = { tolerance: Number($('ex-tolerance').value) / 100 };
+  const file = $('ex-students').files[0];
+  if (file) fields.students_csv = await file.text();
+  return fields;
+}
+
 async function download(button) {
-  const body = { ...request(), format: button.dataset.format, with_solutions: button.dataset.solutions === 'true' };
+  const body = {
+    ...request(),
+    ...(await exportFields()),
+    format: button.dataset.format,
+    with_solutions: button.dataset.solutions === 'true',
+  };
   status('Preparing the download…');
   try {
     const { blob, filename } = await exportExercises(body);

@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, PageLog
 
 pytestmark = pytest.mark.browser
 
@@ -29,23 +29,36 @@ def export(app: AppPage, **body: Any) -> str:
 
 
 @pytest.mark.parametrize("with_solutions", [False, True])
-def test_the_printable_sheet_renders_with_its_figures(app: AppPage, with_solutions: bool) -> None:
+def test_the_printable_sheet_renders_from_disk_with_its_figures_and_formulas(
+    app: AppPage, with_solutions: bool, tmp_path: Path
+) -> None:
+    students = "name\nAda Lovelace\nJames Watt\nEmmy Noether\n"
     html = export(
-        app, type="quick_return", seed=12, count=3, format="html", with_solutions=with_solutions
-    )
-    app.log.allow(r"favicon\.ico")  # asked for by the JSON page of /health, which has none
-    app.page.goto(f"{app.url}/health")  # the app's origin, so /vendor/katex/ resolves
-    app.page.set_content(html, wait_until="load")
-    page = app.page
+        app, type="quick_return", seed=12, format="html", with_solutions=with_solutions,
+        students_csv=students,
+    )  # fmt: skip
+    saved = tmp_path / "sheet.html"
+    saved.write_text(html)
+    page = app.context.new_page()  # a page of its own: the app's page asks for 127.0.0.1 only
+    requests: list[str] = []
+    page.on("request", lambda r: requests.append(r.url))
+    page.goto(saved.as_uri(), wait_until="load")  # opened from disk: nothing else to load
+    assert requests == [saved.as_uri()]
     assert page.locator("section.sheet").count() == 3
+    names = page.locator(".name").all_inner_texts()
+    assert names == ["Name: Ada Lovelace", "Name: James Watt", "Name: Emmy Noether"]
     figures = page.locator("section.sheet figure svg")
     assert figures.count() == 3
     for k in range(3):
         box = figures.nth(k).bounding_box()
         assert box is not None and box["width"] > 300 and box["height"] > 200
         assert figures.nth(k).locator("line, polygon").count() >= 3
-    page.wait_for_function("() => (document.querySelectorAll('.tex .katex').length > 0)")
-    assert page.locator(".tex .katex-error").count() == 0
+    formulas = page.locator(".tex math")
+    assert formulas.count() >= 3 and page.locator(".tex code").count() == 0
+    for k in range(formulas.count()):  # typeset: MathML laid out, not raw LaTeX
+        box = formulas.nth(k).bounding_box()
+        assert box is not None and box["height"] > 8 and box["width"] > 8
+    assert "\\mathrm" not in page.locator("body").inner_text()
     pdf = page.pdf(format="A4")
     pages = len(re.findall(rb"/Type\s*/Page[^s]", pdf))
     if with_solutions:
@@ -53,7 +66,8 @@ def test_the_printable_sheet_renders_with_its_figures(app: AppPage, with_solutio
         assert page.locator(".step").count() > 30
     else:
         assert pages == 3  # one page per student
-    app.screenshot(f"exercise-sheet-{'key' if with_solutions else 'student'}")
+    sheet = AppPage(page=page, log=PageLog(), url=saved.as_uri())
+    sheet.screenshot(f"exercise-sheet-{'key' if with_solutions else 'student'}")
 
 
 def open_page(app: AppPage, fragment: str = "") -> None:
@@ -94,6 +108,28 @@ def test_the_instructor_page_generates_previews_and_downloads(app: AppPage) -> N
     for exercise in body["exercises"]:
         for asked in exercise["asked"]:
             assert repr(exercise["answers"][asked["key"]]) in text
+    # the export's own fields: the tolerance in %, a class list (one sheet per student), QTI
+    page.fill("#ex-tolerance", "2")
+    page.set_input_files(
+        "#ex-students",
+        files=[{"name": "class.csv", "mimeType": "text/csv",
+                "buffer": b"name\nAda Lovelace\nJames Watt\nEmmy Noether\n"}],
+    )  # fmt: skip
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="html"]:not([data-solutions])')
+    sheets = Path(download_info.value.path()).read_text(encoding="utf-8")
+    assert sheets.count('<section class="sheet"') == 3 and "Name: Emmy Noether" in sheets
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="qti"]')
+    assert download_info.value.suggested_filename.endswith(".zip")
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="csv"]')
+    rows = Path(download_info.value.path()).read_text(encoding="utf-8").splitlines()[1:]
+    assert rows and all(",0.02," in row for row in rows)
+    app.screenshot("exercises-instructor-1440")
+    page.set_viewport_size({"width": 390, "height": 844})
+    app.screenshot("exercises-instructor-390")
+    assert not app.serious_accessibility_violations()
     with page.expect_download() as download_info:
         page.click('.downloads button[data-format="moodle_xml"]')
     assert download_info.value.suggested_filename.endswith(".xml")
@@ -161,14 +197,18 @@ def test_the_exam_checkbox_draws_a_password_seed_and_asks_for_an_exam_set(app: A
     page.wait_for_selector("#preview .card")
     page.check("#ex-exam")
     seed = int(page.input_value("#ex-seed"))
-    assert 2**32 <= seed < 2**53
+    assert 2**32 <= seed < 2**63
     with page.expect_request(lambda r: r.url.endswith("/api/v1/exercises")) as sent:
         page.click("#ex-generate")
-    body = json.loads(sent.value.post_data or "{}")
+    body = json.loads(sent.value.post_data or "{}")  # Python's json: integers exact
     assert body["exam"] is True and body["seed"] == seed
     page.wait_for_function(
         "() => document.getElementById('status').textContent.includes('KINEMATICS_EXAM_SECRET')"
     )
+    page.fill("#ex-seed", str(2**63 - 1))  # the documented maximum, every digit kept
+    with page.expect_request(lambda r: r.url.endswith("/api/v1/exercises")) as sent:
+        page.click("#ex-generate")
+    assert f'"seed":{2**63 - 1}' in (sent.value.post_data or "")
 
 
 def test_the_student_mode_of_an_exam_exercise_shows_the_statement_only(app: AppPage) -> None:

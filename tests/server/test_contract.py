@@ -181,6 +181,7 @@ def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> Non
                         "text/html; charset=utf-8",
                         "text/csv; charset=utf-8",
                         "application/json",
+                        "application/zip",
                     }
                 elif path.startswith("/api/v1/") and not path.endswith(".html"):
                     assert media == {"application/json"}, (path, method, status)

@@ -4,8 +4,10 @@ ids are 404, and a server without KINEMATICS_EXAM_SECRET refuses exam sets sayin
 
 from __future__ import annotations
 
+import io
 import re
 import xml.etree.ElementTree as ET
+import zipfile
 from collections.abc import Iterator
 from typing import Any
 
@@ -134,6 +136,18 @@ def test_student_facing_exports_of_an_exam_set_carry_no_id_and_no_key(
     assert not carries(sheet.text, answers)
     quiz = ET.fromstring(xml.content)
     assert str(SEED) not in (quiz.findtext("question/category/text") or "")
+    qti = exam_client.post(f"{API}/export", json={**body, "format": "qti"})
+    assert qti.status_code == 200 and str(SEED) not in qti.headers["content-disposition"]
+    package = zipfile.ZipFile(io.BytesIO(qti.content))
+    for name in package.namelist():
+        assert PRACTICE_ID.search(name) is None and str(SEED) not in name
+        if name.startswith("items/") and name.endswith(".xml"):
+            item = ET.fromstring(package.read(name))
+            body_node = item.find("{http://www.imsglobal.org/xsd/imsqti_v2p1}itemBody")
+            assert body_node is not None
+            shown = ET.tostring(body_node, encoding="unicode")  # what the LMS shows
+            assert PRACTICE_ID.search(shown) is None and str(SEED) not in shown
+            assert not carries(shown, answers)
 
 
 def test_the_instructor_key_of_an_exam_set_names_the_exam_ids(exam_client: TestClient) -> None:

@@ -11,6 +11,7 @@ import re
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
+from html import escape
 from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any
@@ -18,12 +19,18 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+from server.mathml import mathml
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
+from solver.exercises.checking import mistakes_of
+from solver.exercises.export import html_sheets, latex_items, moodle_xml, significant_digits
+from solver.exercises.model import parse_id, within
+from solver.teaching.mistakes import typical_mistake
+from tests.moodle_rules import cloze_parts, math_problems, problems
 
 API = "/api/v1/exercises"
 ROOT = Path(__file__).resolve().parents[2]
 NODE = shutil.which("node")
-CLOZE_PART = re.compile(r"\{1:NUMERICAL:=([-0-9.e+]+):([0-9.e+-]+)\}")
+REFERENCES = ROOT / "tests" / "reference" / "moodle"
 
 
 def export(client: TestClient, **body: Any) -> Any:
@@ -47,17 +54,27 @@ def _svg_file(question: ET.Element) -> None:
     assert "@@PLUGINFILE@@/figure.svg" in (question.findtext("questiontext/text") or "")
 
 
+def _written(text: str, expected: float, tolerance: float) -> None:
+    """An answer as the key writes it: within a tenth of the tolerance of the solver's value,
+    in at most ``significant_digits`` digits (not sized by the value's repr)."""
+    assert abs(float(text) - expected) <= 0.1 * tolerance * abs(expected)
+    assert len(text.lstrip("-").replace(".", "").lstrip("0")) <= significant_digits(tolerance)
+
+
 @pytest.mark.parametrize("kind", list(TYPES))
-def test_moodle_xml_cloze_questions_carry_the_key(client: TestClient, kind: str) -> None:
+def test_moodle_xml_cloze_questions_carry_the_key_and_the_mistakes(
+    client: TestClient, kind: str
+) -> None:
     r = export(client, type=kind, format="moodle_xml")
     assert r.headers["content-type"].startswith("application/xml")
     assert r.headers["content-disposition"] == (
         f'attachment; filename="exercises-{kind}-standard-5.xml"'
     )
+    assert problems(r.text) == []
     quiz = ET.fromstring(r.content)
-    assert quiz.tag == "quiz"
     category, *questions = quiz.findall("question")
     assert category.get("type") == "category" and category.findtext("category/text")
+    assert "random question" in (category.findtext("info/text") or "")
     exercises = key_of(client, kind)
     assert len(questions) == len(exercises)
     for q, e in zip(questions, exercises, strict=True):
@@ -65,38 +82,115 @@ def test_moodle_xml_cloze_questions_carry_the_key(client: TestClient, kind: str)
         assert q.findtext("name/text") == e["id"]
         _svg_file(q)
         text = q.findtext("questiontext/text") or ""
-        parts = CLOZE_PART.findall(text)
+        parts = cloze_parts(text)
         assert len(parts) == len(e["asked"])
-        for (answer, tolerance), asked in zip(parts, e["asked"], strict=True):
+        made = mistakes_of(build(parse_id(e["id"])))
+        for (right, *wrong), asked in zip(parts, e["asked"], strict=True):
             expected = e["answers"][asked["key"]]
-            assert float(answer) == expected
-            assert float(tolerance) == pytest.approx(abs(expected) * asked["tolerance"], rel=1e-15)
+            assert right.fraction == 100
+            _written(str(right.value), expected, asked["tolerance"])
+            assert right.tolerance == pytest.approx(abs(expected) * asked["tolerance"], rel=5e-3)
+            for w in wrong:  # each at a typical mistake's value, its feedback naming it
+                assert w.fraction == 0
+                assert not within(w.value, expected, asked["tolerance"])
+                named = [
+                    m
+                    for m in made
+                    if m.values.get(asked["key"]) is not None
+                    and within(w.value, m.values[asked["key"]], 0.1 * asked["tolerance"])
+                ]
+                assert named, (asked["key"], w)
+                assert typical_mistake(named[0].kind).title.rstrip(".") in w.feedback
         assert int(q.findtext("defaultgrade") or 0) == len(e["asked"])
+        feedback = q.findtext("generalfeedback/text") or ""
+        assert "The answers:" in feedback and "Worked solution" not in feedback
 
 
-def test_moodle_xml_numerical_questions_one_per_quantity(client: TestClient) -> None:
-    r = export(client, type="four_bar_acceleration", format="moodle_xml",
-               moodle_question="numerical")  # fmt: skip
-    questions = ET.fromstring(r.content).findall("question")[1:]
-    exercises = key_of(client, "four_bar_acceleration")
-    expected = [(e, a) for e in exercises for a in e["asked"]]
-    assert len(questions) == len(expected)
-    for q, (e, asked) in zip(questions, expected, strict=True):
-        assert q.get("type") == "numerical"
-        assert q.findtext("name/text") == f"{e['id']} {asked['key']}"
-        _svg_file(q)
-        answers = q.findall("answer")
-        assert len(answers) == 1 and answers[0].get("fraction") == "100"
-        value = float(answers[0].findtext("text") or "nan")
-        assert value == e["answers"][asked["key"]]
-        tolerance = float(answers[0].findtext("tolerance") or "nan")
-        assert tolerance == pytest.approx(abs(value) * asked["tolerance"], rel=1e-15)
-        assert q.findtext("units/unit/unit_name") == asked["unit"]
+def test_moodle_xml_names_the_typical_mistakes_of_every_family(client: TestClient) -> None:
+    """A distractor per mistake that gives a distinct wrong value: the sense of rotation, degrees
+    for radians, the Coriolis term left out and halved."""
+    r = export(client, type="moving_point", format="moodle_xml", count=4)
+    feedback = " ".join(
+        a.feedback
+        for q in ET.fromstring(r.content).findall("question")[1:]
+        for part in cloze_parts(q.findtext("questiontext/text") or "")
+        for a in part
+    )
+    for kind in ("rotation_sign", "degrees_for_radians", "coriolis_left_out",
+                 "coriolis_without_factor_2"):  # fmt: skip
+        assert typical_mistake(kind).title.rstrip(".") in feedback
+
+
+def test_moodle_xml_general_feedback_has_the_worked_solution_when_asked(
+    client: TestClient,
+) -> None:
+    r = export(client, type="slider_crank", format="moodle_xml", count=1, with_solutions=True)
+    assert problems(r.text) == []
+    q = ET.fromstring(r.content).findall("question")[1]
+    feedback = q.findtext("generalfeedback/text") or ""
+    assert "Worked solution" in feedback and feedback.count("\\[") > 5
+
+
+def test_moodle_xml_statement_data_one_formula_a_line() -> None:
+    """The data as a list of short inline formulas (MathJax 3 ignores \\\\ in inline math)."""
+    e = build(ExerciseId("four_bar_acceleration", "challenging", 3, 0))
+    text = ET.fromstring(moodle_xml([e])).findall("question")[1].findtext("questiontext/text")
+    assert text is not None
+    items = re.findall(r"<li>\\\((.*?)\\\)</li>", text)
+    assert items == latex_items(e.statement.latex) and len(items) >= 7
+    assert any(item.startswith(r"\varphi_{AB} = ") for item in items)
+    assert all("\\\\" not in item and len(item) <= 80 for item in items)
+    assert math_problems(text, "statement") == []
+
+
+@pytest.mark.parametrize("tolerance", [0.05, 0.002])
+def test_the_tolerance_is_chosen_per_export(client: TestClient, tolerance: float) -> None:
+    r = export(client, type="four_bar_velocity", format="moodle_xml", count=1,
+               tolerance=tolerance)  # fmt: skip
+    (e,) = key_of(client, "four_bar_velocity")[:1]
+    parts = cloze_parts(ET.fromstring(r.content).findall("question")[1].findtext(
+        "questiontext/text") or "")  # fmt: skip
+    for (right, *_), asked in zip(parts, e["asked"], strict=True):
+        expected = e["answers"][asked["key"]]
+        _written(str(right.value), expected, tolerance)
+        assert right.tolerance == pytest.approx(abs(expected) * tolerance, rel=5e-3)
+    rows = list(csv.DictReader(io.StringIO(export(client, type="four_bar_velocity",
+                format="csv", count=1, tolerance=tolerance).text)))  # fmt: skip
+    assert {float(row["tolerance"]) for row in rows} == {tolerance}
+
+
+@pytest.mark.parametrize("tolerance", [0, -0.01, 0.00001, 0.5])
+def test_a_tolerance_out_of_range_is_refused(client: TestClient, tolerance: float) -> None:
+    r = client.post(f"{API}/export", json={"type": "slider_crank", "format": "moodle_xml",
+                                            "tolerance": tolerance})  # fmt: skip
+    assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
+
+
+@pytest.mark.parametrize("reference", sorted(REFERENCES.glob("*.xml")), ids=lambda p: p.stem)
+def test_the_reference_moodle_files_follow_moodles_import_rules(reference: Path) -> None:
+    assert reference.stem in TYPES
+    xml = reference.read_text()
+    assert problems(xml) == []
+    q = ET.fromstring(xml).findall("question")[1]
+    assert "Worked solution" in (q.findtext("generalfeedback/text") or "")
+
+
+def test_the_rules_catch_what_moodle_would_refuse() -> None:
+    """The checker's own test: each broken rule is reported."""
+    good = moodle_xml([build(ExerciseId("slider_crank", "basic", 1, 0))])
+    assert problems(good) == []
+    broken = {
+        "inline break": good.replace("<li>\\(", "<li>\\(a \\\\ b ", 1),
+        "no 100 %": good.replace(":NUMERICAL:=", ":NUMERICAL:%50%"),
+        "no file": re.sub(r"<file [^>]*>[^<]*</file>", "", good),
+        "category": good.replace("$course$/", "", 1),
+        "unescaped": re.sub(r"#Right\.", "#Right } now", good, count=1),
+    }
+    for name, xml in broken.items():
+        assert problems(xml), name
 
 
 def test_moodle_auto_makes_a_single_quantity_numerical(client: TestClient) -> None:
-    from solver.exercises.export import moodle_xml
-
     e = build(ExerciseId("slider_crank", "basic", 1, 0))
     one = type(e)(e.id, e.title, e.statement, e.scene, e.asked[:1], e.answers)
     quiz = ET.fromstring(moodle_xml([one]))
@@ -190,6 +284,45 @@ def test_statements_and_event_steps_typeset_with_katex() -> None:
     )
     failures = [json.loads(line) for line in done.stdout.splitlines() if '"ok":false' in line]
     assert done.returncode == 0 and not failures, failures
+
+
+def test_html_sheets_are_self_contained_with_mathml(client: TestClient) -> None:
+    """No script, no external file: every formula typeset on the server as MathML."""
+    for with_solutions in (False, True):
+        page = export(client, type="moving_point", format="html", with_solutions=with_solutions)
+        html = page.text
+        assert "<script" not in html and "/vendor/" not in html
+        assert not re.search(r"""(?:src|href)=["'](?!@)""", re.sub(r"<svg.*?</svg>", "", html,
+                                                                  flags=re.S))  # fmt: skip
+        assert html.count("<math") >= 3 and "<code class='tex'>" not in html
+        assert "@media print" in html and "break-after: page" in html
+
+
+def test_one_sheet_per_student_of_the_class_list(client: TestClient) -> None:
+    names = ["Ada Lovelace", "James Watt", 'Emmy "E." Noether', "Ludwig Burmester"]
+    csv_text = "name,number\n" + "".join(f'"{n.replace(chr(34), 2 * chr(34))}",{k}\n'
+                                          for k, n in enumerate(names))  # fmt: skip
+    sheets = _Sheets()
+    page = export(client, type="slider_crank", format="html", students_csv=csv_text)
+    sheets.feed(page.text)
+    assert len(sheets.sections) == len(names) == len(set(sheets.sections))
+    for name in names:
+        assert f"Name: {escape(name)}</div>" in page.text
+    moodle = export(client, type="slider_crank", format="moodle_xml", students_csv=csv_text)
+    assert len(ET.fromstring(moodle.content).findall("question")) == 1 + len(names)
+    for bad in ("name\n", "".join(f"student {k}\n" for k in range(101))):  # 0 and 101 names
+        r = client.post(f"{API}/export", json={"type": "slider_crank", "format": "html",
+                                                "students_csv": bad})  # fmt: skip
+        assert r.status_code == 422, (bad[:20], r.text)
+
+
+def test_every_statement_and_solution_line_converts_to_mathml() -> None:
+    """No formula of any type falls back to its LaTeX source on the sheets; the fallback itself
+    keeps an unreadable formula legible instead of failing the sheet."""
+    for kind in TYPES:
+        sheet = html_sheets([build(ExerciseId(kind, "standard", 2, 0))], True, mathml)
+        assert "<code class='tex'>" not in sheet and sheet.count("<math") > 5, kind
+    assert mathml(r"\frac{").startswith("<code class='tex'>")
 
 
 @pytest.mark.parametrize(

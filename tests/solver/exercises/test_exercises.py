@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import itertools
 import math
+import re
 import xml.etree.ElementTree as ET
 
 import pytest
 
 from solver.errors import InvalidScene
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build, generate, parse_id
+from solver.exercises.families import POLE_REACH, num, polynomial
 from solver.exercises.figures import nice_length
 
 
@@ -102,3 +105,54 @@ def test_the_scale_bar_is_a_round_length_within_its_room(target: float) -> None:
     assert 0.2 * target < length <= target
     mantissa = length / 10.0 ** math.floor(math.log10(length) + 1e-9)
     assert round(mantissa, 9) in (1.0, 2.0, 5.0)
+
+
+def test_a_set_is_of_distinct_exercises_each_determined_by_its_id() -> None:
+    """The inverted slider-crank at basic has a few thousand scenes: among indices 0..39 of seed
+    7 two scenes repeat; the set of 40 passes over them, and each id still gives its exercise."""
+    raw = [build(ExerciseId("inverted_slider_crank", "basic", 7, i)).scene for i in range(40)]
+    assert len({repr(s) for s in raw}) < 40
+    made = generate("inverted_slider_crank", "basic", 7, 40)
+    assert len({repr(e.scene) for e in made}) == 40
+    assert [e.id.index for e in made][:3] == [0, 1, 2] and made[-1].id.index >= 40
+    for e in made[-3:]:
+        assert build(e.id) == e
+
+
+def test_statements_read_as_a_lecturer_writes_them() -> None:
+    assert num(-0.0) == "0" and num(-0.25) == "-0.25"
+    assert polynomial([(-1.0, "t"), (-0.05, "t^2")]) == "-1 t - 0.05 t^2"
+    assert polynomial([(3.0, "t"), (0.0, "t^2")]) == "3 t"
+    assert polynomial([(0.0, "t"), (0.5, "t^2")]) == "0.5 t^2"
+    for kind in TYPES:
+        for difficulty in DIFFICULTIES:
+            for seed in (0, 1):
+                e = build(ExerciseId(kind, difficulty, seed, 0))
+                text = e.statement.text + " " + e.statement.latex
+                assert not re.search(r"(?<![\d.])-0(?![.\d])", text), (e.id, text)
+                assert "+ -" not in text and "+-" not in text, (e.id, text)
+                assert not re.search(r"-[\d.]+ m to the (left|right)", text), (e.id, text)
+                values = sorted(e.answers.values())
+                for a, b in itertools.pairwise(values):  # no two answers one could swap
+                    assert abs(a - b) > 0.02 * max(abs(a), abs(b)), (e.id, e.answers)
+
+
+def test_a_moving_point_law_with_a_negative_term_is_the_solvers_law() -> None:
+    """The law as stated is the law analysed: phi(t) = -1 t - 0.05 t^2 in the scene too."""
+    for seed in range(40):
+        e = build(ExerciseId("moving_point", "challenging", seed, 0))
+        law = e.scene["drivers"][0]["angle_law"]
+        assert law.replace("*t", " t") in e.statement.text
+        if "- " in law:
+            return
+    raise AssertionError("no law with a negative term in 40 seeds")
+
+
+def test_the_coupler_poles_lie_on_the_sheet() -> None:
+    for seed in range(25):
+        e = build(ExerciseId("four_bar_poles", "standard", seed, 0))
+        a, d = e.scene["points"]["A"], e.scene["points"]["D"]
+        ground = math.dist(a, d)
+        for kind in ("velocity_pole_coupler", "acceleration_pole_coupler"):
+            pole = (e.answers[f"{kind}_x"], e.answers[f"{kind}_y"])
+            assert math.dist(pole, a) <= POLE_REACH * ground
