@@ -12,10 +12,15 @@ import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
 import { velocityPoleName, accelerationPoleName, linkNumbers } from './notation.js';
 import { measureLabel, aroundPoint, besideBar, boxAt, markerBox, placeAll } from './drawing-labels.js';
+import { drawCentres } from './instant-centres.js';
 
 const WIDTH = 1000;
 const MARGIN = 70;
 const BLOCK = [30, 18]; // slider block, px along and across the slot
+const ZOOM = [0.25, 40]; // the least and the greatest zoom over the fitted drawing
+export const ZOOM_STEP = 1.25; // one press of + or −
+const PAN_STEP = 60; // viewBox px panned by an arrow key
+const CLICK = 4; // px a press may move and still be a click (a tap on a point)
 
 /**
  * How the drawing fits a track into the viewBox, WIDTH wide: its box (the extent of every position
@@ -51,16 +56,33 @@ export class LinkageView {
     this.mode = 'turn';
     this.pointDrag = null; // {name, pointerId, moved} while a joint is dragged
     this.callbacks = callbacks;
-    this.options = { showVelocity: true, showAcceleration: false, showPoles: true, trace: null, units: 'si' };
+    this.options = { showVelocity: true, showAcceleration: false, showPoles: true, showCentres: false, kennedy: null, trace: null, units: 'si' };
     this.scene = null;
     this.track = null;
     this.analysis = null;
     this.lastFrame = null;
     this.dragging = false;
+    // Zoom and pan: the scale over the fitted drawing and the world point (m) at the centre of
+    // the picture (null: the fitted drawing's centre). Kept across frames, options, analyses and
+    // edits of the same mechanism; a mechanism with other points starts fitted.
+    this.view = { scale: 1, centre: null };
+    this.pan = null; // {pointers: Map(id -> viewBox point)} while panning or pinching
+    // Paths traced besides the one of the options (point-readout.js adds and removes them), and
+    // the point whose readout is shown (ringed in the drawing).
+    this.traces = [];
+    this.picked = null;
+    this.afterDraw = []; // functions of the frame, called after each frame is drawn
     this.installPointer();
+    this.installZoom();
   }
 
   setScene(scene, track) {
+    const same = this.scene && sameNames(Object.keys(this.scene.points), Object.keys(scene.points));
+    if (!same) {
+      this.view = { scale: 1, centre: null };
+      this.traces = [];
+      this.picked = null;
+    }
     this.scene = scene;
     this.track = track;
     this.analysis = null;
@@ -73,6 +95,18 @@ export class LinkageView {
       this.rebuild();
       if (this.lastFrame) this.draw(this.lastFrame);
     }
+  }
+
+  /** The paths traced besides the options' one (names of points), drawn from the sweep. */
+  setTraces(names) {
+    this.traces = [...names];
+    this.redraw();
+  }
+
+  /** The point whose readout is shown, ringed in the drawing (null: none). */
+  setPicked(name) {
+    this.picked = name;
+    this.redraw();
   }
 
   /** 'turn' or 'edit': what a press in the drawing does (the toggle above the drawing). */
@@ -112,9 +146,81 @@ export class LinkageView {
     return width ? fit.k * Math.min(width / WIDTH, tallest / fit.height) : fit.k;
   }
 
+  /**
+   * The map from the world to the viewBox: the fitted drawing (fitDrawing) zoomed by view.scale
+   * about view.centre, the world point drawn at the middle of the picture. Zooming changes the
+   * map, not the SVG's viewBox, so lines, markers and names keep their size.
+   */
   computeBox() {
-    this.map = fitDrawing(this.track);
+    const fit = fitDrawing(this.track);
+    const { scale, centre } = this.view;
+    const k = fit.k * scale;
+    const c = centre || [(fit.box[0] + fit.box[2]) / 2, (fit.box[1] + fit.box[3]) / 2];
+    this.map = { ...fit, k, ox: WIDTH / 2 - (c[0] - fit.box[0]) * k, oy: fit.height / 2 - (c[1] - fit.box[1]) * k };
     this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${Math.round(this.map.height)}`);
+    this.svg.dataset.zoom = String(Number(scale.toFixed(4)));
+  }
+
+  // ---- zoom and pan ----------------------------------------------------------------------------
+
+  /** Zoom by `factor` about the viewBox point `at` (the middle by default), which stays put. */
+  zoomBy(factor, at = null) {
+    if (!this.map) return;
+    const q = at || [WIDTH / 2, this.map.height / 2];
+    const w = this.world(q[0], q[1]);
+    const scale = Math.min(Math.max(this.view.scale * factor, ZOOM[0]), ZOOM[1]);
+    const k = (this.map.k / this.view.scale) * scale;
+    this.view = { scale, centre: [w[0] - (q[0] - WIDTH / 2) / k, w[1] + (q[1] - this.map.height / 2) / k] };
+    this.redraw();
+  }
+
+  /** Move the picture by (dx, dy) viewBox px (the drawing follows the hand). */
+  panBy(dx, dy) {
+    if (!this.map) return;
+    this.view = { ...this.view, centre: this.world(WIDTH / 2 - dx, this.map.height / 2 - dy) };
+    this.redraw();
+  }
+
+  /** Back to the whole mechanism, fitted to the picture (the Fit button, the key 0). */
+  fit() {
+    this.view = { scale: 1, centre: null };
+    this.redraw();
+  }
+
+  /** Rebuild at the current map and draw the last frame again. */
+  redraw() {
+    if (!this.scene) return;
+    this.rebuild();
+    if (this.lastFrame) this.draw(this.lastFrame);
+  }
+
+  /** A pointer event's position in viewBox px. */
+  viewBoxPoint(ev) {
+    const pt = this.svg.createSVGPoint();
+    pt.x = ev.clientX;
+    pt.y = ev.clientY;
+    const q = pt.matrixTransform(this.svg.getScreenCTM().inverse());
+    return [q.x, q.y];
+  }
+
+  /**
+   * The wheel zooms about the pointer; with the drawing focused, + and − zoom, 0 fits and the
+   * arrow keys pan (the buttons and the global keys are wired by main.js to zoomBy and fit).
+   */
+  installZoom() {
+    const svg = this.svg;
+    svg.addEventListener('wheel', (ev) => {
+      if (!this.scene) return;
+      ev.preventDefault();
+      const lines = ev.deltaMode === 1 ? 16 : ev.deltaMode === 2 ? 400 : 1;
+      this.zoomBy(Math.exp(-ev.deltaY * lines * 0.002), this.viewBoxPoint(ev));
+    }, { passive: false });
+    svg.addEventListener('keydown', (ev) => {
+      const pan = { ArrowLeft: [PAN_STEP, 0], ArrowRight: [-PAN_STEP, 0], ArrowUp: [0, PAN_STEP], ArrowDown: [0, -PAN_STEP] }[ev.key];
+      if (!pan || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      ev.preventDefault();
+      this.panBy(pan[0], pan[1]);
+    });
   }
 
   /** World (m, y up) to viewBox (px, y down). */
@@ -155,7 +261,7 @@ export class LinkageView {
     this.layers = {};
     // The crank's handle ring lies under the joints: the ring turns the crank, a joint's own
     // circle moves the joint (editing the geometry).
-    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'handle', 'joints', 'vectors', 'poles', 'labels', 'notes']) {
+    for (const name of ['ground', 'trace', 'paths', 'links', 'slots', 'blocks', 'handle', 'joints', 'pick', 'vectors', 'centres', 'poles', 'labels', 'notes']) {
       this.layers[name] = svgEl('g', { class: `layer-${name}` }, svg);
     }
     this.buildGround();
@@ -224,12 +330,24 @@ export class LinkageView {
     svgEl('polygon', { points: poly.map((p) => p.join(',')).join(' '), fill: this.hatch, stroke: 'none', class: 'guide-hatch' }, g);
   }
 
+  /**
+   * The paths of the traced points over the sweep already fetched (no request): the options'
+   * point dashed in the trace colour, each added one (a click on a point, point-readout.js) in
+   * its own colour, solid.
+   */
   buildTrace() {
-    const name = this.options.trace;
-    const positions = name && this.track.points[name]?.position;
-    if (!positions || positions.length < 2) return;
-    const pts = positions.filter(Boolean).map((p) => this.px(p).join(',')).join(' ');
-    svgEl('polyline', { points: pts, fill: 'none', stroke: COLOURS.trace, 'stroke-width': 1.8, 'stroke-dasharray': '5 4', class: 'coupler-curve' }, this.layers.trace);
+    const names = [this.options.trace, ...this.traces.filter((n) => n !== this.options.trace)];
+    names.forEach((name, i) => {
+      const positions = name && this.track.points[name]?.position;
+      if (!positions || positions.length < 2) return;
+      const pts = positions.filter(Boolean).map((p) => this.px(p).join(',')).join(' ');
+      const extra = i > 0;
+      svgEl('polyline', {
+        points: pts, fill: 'none', stroke: extra ? traceColour(i - 1) : COLOURS.trace, 'stroke-width': 1.8,
+        'stroke-dasharray': extra ? null : '5 4', class: extra ? 'coupler-curve added-trace' : 'coupler-curve', 'data-trace': name,
+      }, this.layers.trace);
+    });
+    this.pickNode = this.picked ? svgEl('circle', { r: 12, fill: 'none', stroke: COLOURS.trace, 'stroke-width': 2.5, class: 'picked-point', 'pointer-events': 'none' }, this.layers.pick) : null;
   }
 
   buildPaths() {
@@ -343,6 +461,7 @@ export class LinkageView {
   rebuildVectors() {
     clear(this.layers.vectors);
     clear(this.layers.poles);
+    clear(this.layers.centres);
     clear(this.layers.notes);
     this.vectorNodes = [];
     const opt = this.options;
@@ -379,6 +498,15 @@ export class LinkageView {
     const notes = [];
     this.poleMarks = [];
     if (this.analysis && opt.showPoles) notes.push(...this.buildPoles());
+    if (this.analysis && opt.showCentres) {
+      const joints = [];
+      for (const group of [this.analysis.points, this.analysis.moving_points]) {
+        for (const q of Object.values(group || {})) if (q.position) joints.push(markerBox(this.px(q.position), 8));
+      }
+      const centres = drawCentres(this, this.layers.centres, this.analysis, opt.kennedy, [...this.fixedMarks, ...this.poleMarks, ...joints], opt.showPoles);
+      notes.push(...centres.notes);
+      this.poleMarks.push(...centres.marks);
+    }
     this.buildNotes(notes);
   }
 
@@ -451,7 +579,7 @@ export class LinkageView {
       const on = kind === 'velocity' ? this.options.showVelocity : this.options.showAcceleration;
       const scale = this.scale[kind];
       if (!on || !scale) continue;
-      const value = niceBelow((this.map.size * 0.22) / scale);
+      const value = niceBelow((this.map.size * 0.22) / this.view.scale / scale);
       bars.push({ kind, value, px: value * scale * this.map.k });
     }
     const lineHeight = 18;
@@ -485,6 +613,8 @@ export class LinkageView {
       setAttrs(node, { cx, cy, visibility: null });
     }
     this.drawLabels(frame, bars);
+    const picked = this.pickNode && frame.position[this.picked];
+    if (this.pickNode) setAttrs(this.pickNode, picked ? { cx: this.px(picked)[0], cy: this.px(picked)[1], visibility: null } : { visibility: 'hidden' });
     if (this.handle) {
       const p = frame.position[this.handle.handle];
       if (p) {
@@ -493,6 +623,7 @@ export class LinkageView {
       }
     }
     this.drawVectors(frame);
+    for (const f of this.afterDraw) f(frame);
   }
 
   /** Bars, plates and discs at the frame; returns the bars' axes (px) for the label placer. */
@@ -627,6 +758,7 @@ export class LinkageView {
       setAttrs(v.node, { x1: a[0], y1: a[1], x2: b[0], y2: b[1], visibility: null });
     }
     this.layers.poles.setAttribute('visibility', frame.exact ? 'visible' : 'hidden');
+    this.layers.centres.setAttribute('visibility', frame.exact ? 'visible' : 'hidden');
   }
 
   /** True for a link pinned to the ground that carries a moving point's circular groove. */
@@ -658,7 +790,7 @@ export class LinkageView {
 
   /** The grid step for snapping a dragged joint: a round value near 1/40 of the picture. */
   gridStep() {
-    return niceBelow(this.map.size / 40);
+    return niceBelow(this.map.size / 40 / this.view.scale);
   }
 
   snap(p) {
@@ -673,16 +805,13 @@ export class LinkageView {
     return unit(axis || joint.axis || [1, 0]);
   }
 
-  // ---- dragging the crank (Turn) or a joint (Edit) ------------------------------------------------------------------
+  // ---- dragging the crank (Turn) or a joint (Edit), panning, pinching, picking a point ------
 
   installPointer() {
     const svg = this.svg;
     const toWorld = (ev) => {
-      const pt = svg.createSVGPoint();
-      pt.x = ev.clientX;
-      pt.y = ev.clientY;
-      const q = pt.matrixTransform(svg.getScreenCTM().inverse());
-      return this.world(q.x, q.y);
+      const [x, y] = this.viewBoxPoint(ev);
+      return this.world(x, y);
     };
     // What a press lands on: the topmost joint, ring or link under the pointer, seen through the
     // arrows, poles and names drawn above them (a velocity arrow starts on the crank's end joint).
@@ -690,27 +819,40 @@ export class LinkageView {
       const under = document.elementsFromPoint(ev.clientX, ev.clientY).filter((e) => svg.contains(e));
       return under.find((e) => e.dataset?.point || e.dataset?.link || e.classList.contains('crank-handle')) || ev.target;
     };
+    // A press that ends where it began on a point picks that point (its readout and trace).
+    let press = null;
     svg.addEventListener('pointerdown', (ev) => {
       const target = grabbed(ev);
       const name = target.dataset?.point;
+      press = { id: ev.pointerId, name, x: ev.clientX, y: ev.clientY };
       if (this.movesJoints() && name && this.lastFrame?.position[name]) {
         this.pointDrag = { name, frame: this.lastFrame, at: this.lastFrame.position[name] };
+        press = null;
         svg.setPointerCapture(ev.pointerId);
         svg.classList.add('dragging');
         ev.preventDefault();
         return;
       }
-      if (!this.handle || !this.lastFrame) return;
       // Anywhere on the driver turns it: its ring, its bar, its points other than the pivot.
-      const onDriver = target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link
-        || (name && name !== this.handle.pivot && this.scene.links[this.handle.link].points.includes(name));
-      if (!onDriver) return;
-      this.dragging = true;
+      const onDriver = this.handle && this.lastFrame && !this.pan && (target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link
+        || (name && name !== this.handle.pivot && this.scene.links[this.handle.link].points.includes(name)));
+      if (onDriver) {
+        this.dragging = true;
+        svg.setPointerCapture(ev.pointerId);
+        svg.classList.add('dragging');
+        ev.preventDefault();
+        return;
+      }
+      // Elsewhere one pointer pans the picture and two pinch it.
+      if (!this.scene) return;
+      this.pan = this.pan || { pointers: new Map() };
+      this.pan.pointers.set(ev.pointerId, this.viewBoxPoint(ev));
       svg.setPointerCapture(ev.pointerId);
-      svg.classList.add('dragging');
+      svg.classList.add('panning');
       ev.preventDefault();
     });
     svg.addEventListener('pointermove', (ev) => {
+      if (press && press.id === ev.pointerId && Math.hypot(ev.clientX - press.x, ev.clientY - press.y) > CLICK) press = null;
       if (this.pointDrag) {
         // The joint follows the pointer, snapped to the grid; the bars follow it (drawing only).
         const d = this.pointDrag;
@@ -718,6 +860,10 @@ export class LinkageView {
         const frame = { ...d.frame, position: { ...d.frame.position, [d.name]: d.at }, velocity: {}, acceleration: {}, parts: {}, exact: false };
         this.draw(frame);
         this.lastFrame = d.frame;
+        return;
+      }
+      if (this.pan?.pointers.has(ev.pointerId)) {
+        this.movePan(ev.pointerId, this.viewBoxPoint(ev));
         return;
       }
       if (!this.dragging) return;
@@ -737,28 +883,74 @@ export class LinkageView {
       this.callbacks.onDrag?.(linkAngle + wrap(pointer - now));
     });
     const end = (ev) => {
+      const picked = press && press.id === ev.pointerId && ev.type === 'pointerup' ? press.name : null;
+      press = null;
+      if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
       if (this.pointDrag) {
         const d = this.pointDrag;
         this.pointDrag = null;
         svg.classList.remove('dragging');
-        if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
         const start = d.frame.position[d.name];
         if (Math.hypot(d.at[0] - start[0], d.at[1] - start[1]) > 0) this.callbacks.onPointDrop?.(d.name, d.at, d.frame);
         else this.draw(d.frame);
         return;
       }
-      if (!this.dragging) return;
-      this.dragging = false;
-      svg.classList.remove('dragging');
-      if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
-      this.callbacks.onDragEnd?.();
+      if (this.pan?.pointers.delete(ev.pointerId) && !this.pan.pointers.size) {
+        this.pan = null;
+        svg.classList.remove('panning');
+      }
+      if (this.dragging) {
+        this.dragging = false;
+        svg.classList.remove('dragging');
+        this.callbacks.onDragEnd?.();
+      }
+      if (picked) this.callbacks.onPointPick?.(picked);
     };
     svg.addEventListener('pointerup', end);
     svg.addEventListener('pointercancel', end);
+    // Hovering a point reads it out until the pointer leaves it (a tap or a click keeps it).
+    svg.addEventListener('pointerover', (ev) => {
+      const name = ev.target.dataset?.point;
+      if (name && ev.pointerType === 'mouse' && !this.dragging && !this.pan) this.callbacks.onPointHover?.(name);
+    });
+    svg.addEventListener('pointerout', (ev) => {
+      if (ev.target.dataset?.point && ev.pointerType === 'mouse') this.callbacks.onPointHover?.(null);
+    });
+  }
+
+  /**
+   * One pointer of a pan moved to `at` (viewBox px): alone it drags the picture; with a second
+   * one the pair pinches, zooming by the ratio of their distances about their midpoint, which
+   * also moves with the hand.
+   */
+  movePan(id, at) {
+    const pointers = this.pan.pointers;
+    const before = pointers.get(id);
+    const others = [...pointers.entries()].filter(([k]) => k !== id).map(([, p]) => p);
+    pointers.set(id, at);
+    if (!others.length) {
+      this.panBy(at[0] - before[0], at[1] - before[1]);
+      return;
+    }
+    const other = others[0];
+    const d0 = Math.hypot(before[0] - other[0], before[1] - other[1]);
+    const d1 = Math.hypot(at[0] - other[0], at[1] - other[1]);
+    const m0 = [(before[0] + other[0]) / 2, (before[1] + other[1]) / 2];
+    const m1 = [(at[0] + other[0]) / 2, (at[1] + other[1]) / 2];
+    if (d0 > 1 && d1 > 1) this.zoomBy(d1 / d0, m0);
+    this.panBy(m1[0] - m0[0], m1[1] - m0[1]);
   }
 }
 
 // ---- small geometry helpers for drawing ------------------------------------------------------
+
+/** The colours of added traces, in turn (distinct from the quantities' colours). */
+const TRACE_COLOURS = ['#9333ea', '#0f766e', '#b45309', '#be123c', '#1d4ed8', '#4d7c0f'];
+export const traceColour = (i) => TRACE_COLOURS[i % TRACE_COLOURS.length];
+
+function sameNames(a, b) {
+  return a.length === b.length && a.every((n) => b.includes(n));
+}
 
 function unit(v) {
   const n = Math.hypot(v[0], v[1]) || 1;

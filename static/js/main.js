@@ -7,7 +7,9 @@
 
 import * as api from './api.js';
 import { Controls, POSE_PARAMETER } from './controls.js';
-import { LinkageView } from './linkage-view.js';
+import { LinkageView, ZOOM_STEP } from './linkage-view.js';
+import { PointReadout } from './point-readout.js';
+import { CentreControls } from './instant-centres.js';
 import { SpatialView } from './spatial-view.js';
 import { SpatialFields, spatialTrack, sweepRequest, chainAt, extentOf, renderSpatialPlots } from './spatial-motion.js';
 import { renderPolygons, clearPolygons } from './polygons.js';
@@ -96,6 +98,21 @@ class App {
       onDrag: (angle) => this.onDrag(angle),
       onDragEnd: () => this.scheduleAnalysis(0),
       onPointDrop: (name, at, frame) => this.onPointDrop(name, at, frame),
+    });
+    // A point's readout and the paths traced (point-readout.js); zoom and pan: the buttons, and
+    // the keys + − 0 outside a field (the wheel, pinch, drag and arrows are the view's own).
+    this.pointReadout = new PointReadout(this.linkage, { select: $('readout-point'), trace: $('readout-trace'), clear: $('clear-traces'), out: $('point-readout') });
+    this.centreControls = new CentreControls(this.linkage, { toggle: $('show-centres'), triple: $('kennedy-triple') });
+    $('zoom-in').addEventListener('click', () => this.linkage.zoomBy(ZOOM_STEP));
+    $('zoom-out').addEventListener('click', () => this.linkage.zoomBy(1 / ZOOM_STEP));
+    $('zoom-fit').addEventListener('click', () => this.linkage.fit());
+    document.addEventListener('keydown', (ev) => {
+      const zoom = { '+': ZOOM_STEP, '=': ZOOM_STEP, '-': 1 / ZOOM_STEP, '0': 0 }[ev.key];
+      if (zoom === undefined || ev.ctrlKey || ev.metaKey || ev.altKey || $('linkage').hidden) return;
+      if (ev.target.closest?.('input, select, textarea, [contenteditable]')) return;
+      ev.preventDefault();
+      if (zoom) this.linkage.zoomBy(zoom);
+      else this.linkage.fit();
     });
     // Turn (default) or Edit: the toggle above the drawing, or the key E outside a field.
     $('edit-mode').addEventListener('click', () => this.setEditMode($('edit-mode').getAttribute('aria-pressed') !== 'true'));

@@ -35,12 +35,111 @@ function el(tag, attrs = {}, text = null) {
 
 /**
  * A step's equations as a block: typeset with KaTeX (the LaTeX as text, and the KaTeX error,
- * when it cannot be read) in a group that the keyboard reaches, since a long line scrolls
- * sideways inside it. Returns [block, error or null].
+ * when it cannot be read) in a group that the keyboard reaches. Once laid out, a block wider
+ * than its column is typeset again with each clause on its own line (narrowLatex, once:
+ * `data-narrow` holds the width it had); what is still wider scrolls sideways inside the group. Returns [block, error
+ * or null].
  */
 export function mathBlock(latex, label) {
   const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': label });
-  return [math, typeset(latex, math)];
+  const error = typeset(latex, math);
+  if (!error && narrowLatex(latex) !== latex) {
+    sources.set(math, latex);
+    narrowing().observe(math);
+  }
+  return [math, error];
+}
+
+const sources = new WeakMap(); // a block waiting to be measured -> its LaTeX
+let observer = null;
+
+/** The one ResizeObserver that narrows a block the first time it is laid out too wide. */
+function narrowing() {
+  observer = observer || new ResizeObserver((entries) => {
+    for (const { target } of entries) {
+      if (!target.isConnected || !target.clientWidth) continue;
+      observer.unobserve(target);
+      const wide = target.scrollWidth;
+      if (wide <= target.clientWidth + 1) continue;
+      // Kept only where it reads better: typeset, and no wider than before (an indented
+      // relation can widen a row that holds one long matrix).
+      const latex = sources.get(target);
+      sources.delete(target);
+      if (!typeset(narrowLatex(latex), target) && target.scrollWidth <= wide) target.dataset.narrow = String(wide);
+      else typeset(latex, target);
+    }
+  });
+  return observer;
+}
+
+/**
+ * The same equations with each clause on its own line: every `\quad` between two clauses of a
+ * row starts a new row of the aligned block, and so does every further relation of a clause (its
+ * second `=`, `\Rightarrow`, `\to`, `\approx`, indented by `\qquad`), outside braces,
+ * environments and \left…\right (a single-line equation becomes an aligned block). Nothing else
+ * changes; with no such place the LaTeX is returned as it is.
+ */
+export function narrowLatex(latex) {
+  const text = latex.trim();
+  const aligned = text.match(/^\\begin\{aligned\}([\s\S]*)\\end\{aligned\}$/);
+  const parts = clauses(aligned ? aligned[1] : text).filter((p) => p.trim());
+  if (parts.length < 2) return latex;
+  const rows = aligned ? parts : parts.map((p, i) => (i ? p : `&${p}`));
+  return `\\begin{aligned}${rows.join(' \\\\ &')}\\end{aligned}`;
+}
+
+const RELATIONS = new Set(['Rightarrow', 'to', 'approx']);
+
+/** True when a break after `before` ends a clause (not one at a row's start). */
+function opensClause(before) {
+  const b = before.trimEnd();
+  return Boolean(b) && !b.endsWith('&') && !b.endsWith('\\\\');
+}
+
+/** LaTeX cut at each top-level \quad (dropped) and before each further relation of a clause. */
+function clauses(body) {
+  const out = [];
+  let start = 0;
+  let depth = 0; // braces, environments and \left…\right open
+  let relations = 0; // relations of the clause so far
+  const cut = (at, next) => {
+    out.push(body.slice(start, at));
+    start = next;
+    relations = 0;
+  };
+  for (let i = 0; i < body.length; i++) {
+    const c = body[i];
+    if (c === '{') depth += 1;
+    else if (c === '}') depth -= 1;
+    else if (c === '=' && depth === 0) {
+      if (relations && opensClause(body.slice(start, i))) {
+        cut(i, i);
+        body = `${body.slice(0, i)}\\qquad ${body.slice(i)}`;
+        i += 7;
+      } else relations += 1;
+    } else if (c === '\\') {
+      const name = body.slice(i + 1).match(/^[a-zA-Z]+/)?.[0];
+      if (!name) {
+        if (body[i + 1] === '\\' && depth === 0) relations = 0; // a new row
+        i += 1; // an escaped symbol: \{ \} \\ \, …
+        continue;
+      }
+      if (name === 'begin' || name === 'left') depth += 1;
+      else if (name === 'end' || name === 'right') depth -= 1;
+      else if (depth === 0 && name === 'quad' && opensClause(body.slice(start, i))) {
+        cut(i, i + 5);
+      } else if (depth === 0 && RELATIONS.has(name)) {
+        if (relations && opensClause(body.slice(start, i))) {
+          cut(i, i);
+          body = `${body.slice(0, i)}\\qquad ${body.slice(i)}`;
+          i += 7;
+        } else relations += 1;
+      }
+      i += name.length;
+    }
+  }
+  out.push(body.slice(start));
+  return out;
 }
 
 function typeset(latex, target) {
