@@ -17,7 +17,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build
-from solver.exercises.answers import DYNAMIC_ROOTS, parse_sweep_root
+from solver.exercises.answers import DYNAMIC_ROOTS, STATICS, parse_sweep_root
 from solver.exercises.cams import parse_cam_root
 from solver.exercises.mistakes import typical_mistakes
 from solver.exercises.model import within
@@ -59,6 +59,13 @@ def remote_value(
             samples, k = sweep
             request = {"scene": scene, "samples": samples, "quantities": ["forces"]}
             r = client.post(f"{API}/sweep", json=request | {"speed_fluctuation": k})
+            assert r.status_code == 200, r.text
+            cache[root] = r.json()
+        return at_path(cache[root], rest)
+    if root == STATICS:  # the static force analysis: /analyze with "statics": true
+        if root not in cache:
+            request = {"scene": scene, "quantities": ["forces"], "statics": True}
+            r = client.post(f"{API}/analyze", json=request)
             assert r.status_code == 200, r.text
             cache[root] = r.json()
         return at_path(cache[root], rest)
