@@ -124,6 +124,19 @@ class Sweep(_Warned):
     stroke_of: Callable[[SliderTravel], Strokes | None] | None = field(
         default=None, repr=False, compare=False
     )
+    # A link's extreme angles refined from the sweep's own run (``_angle_extremes`` on it; None:
+    # not a full revolution).
+    extremes_of: Callable[[str], AngleExtremes | None] | None = field(
+        default=None, repr=False, compare=False
+    )
+
+    def angle_extremes(self, link: str) -> AngleExtremes | None:
+        """``link``'s least and greatest angle over a full revolution of the driver and the
+        driver's angles there (``AngleExtremes``, refined to rounding by further runs); None
+        where the driver does not turn fully or the link turns fully (never turns back)."""
+        if self.extremes_of is None or link not in self.motion.links:
+            return None
+        return self.extremes_of(link)
 
     @cached_property
     def strokes(self) -> dict[str, Strokes | None]:
@@ -423,9 +436,10 @@ def sweep(
         singular = np.flatnonzero(motion.gradient_sine < MIN_GRADIENT_SINE)
     if singular.size:
         _smooth_singular_samples(motion, singular, cyclic=span is None)
-    stroke_of = None
+    stroke_of = extremes_of = None
     if span is None:
         stroke_of = partial(_strokes, driven, turns=turns, drawn=drawn, motion=motion)
+        extremes_of = partial(_angle_extremes, driven, turns=turns, drawn=drawn, motion=motion)
     return Sweep(
         scene,
         scene.drivers[0].link,
@@ -439,6 +453,7 @@ def sweep(
         approaches,
         order,
         stroke_of,
+        extremes_of,
     )
 
 
@@ -494,11 +509,16 @@ def _stationary_points(
     return x, chebyshev.chebval(x, values, tensor=False), error
 
 
+Columns = Callable[[Motion], tuple[Array, Array, Array]]
+"""A quantity s of a run and its derivatives ds/dtheta, d2s/dtheta2 (the run at unit driver
+rate: ``_Driven.rates``)."""
+
+
 def _extremes(
-    driven: _Driven, point: str, brackets: list[tuple[float, float]], signs: dict[int, float]
+    driven: _Driven, columns: Columns, brackets: list[tuple[float, float]], signs: dict[int, float]
 ) -> list[tuple[float, float]] | None:
-    """The driver turns where ``point``'s slider is stationary on its guide, one in each
-    bracket (low, high) of turns, with s there: ``_stationary_points`` on ds/dtheta from one
+    """The driver turns where the quantity ``columns`` gives is stationary, one in each bracket
+    (low, high) of turns, with its value there: ``_stationary_points`` on ds/dtheta from one
     run (``_Driven.rates``, on the branches ``signs``) over every bracket's nodes, repeated on
     brackets shrunk around the roots until each root's estimated error is below
     ``STROKE_TOLERANCE`` (None if it is not after ``STROKE_RUNS`` runs, or where ds/dtheta does
@@ -507,10 +527,7 @@ def _extremes(
     widths = np.array([0.5 * (high - low) for low, high in brackets])
     for _ in range(STROKE_RUNS):
         motion = driven.rates((centres[:, None] + widths[:, None] * _NODES).ravel(), signs)
-        travel = next(t for t in slider_travel(driven.scene, motion, 2) if t.point == point)
-        assert travel.sliding_velocity is not None and travel.sliding_acceleration is not None
-        columns = (travel.displacement, travel.sliding_velocity, travel.sliding_acceleration)
-        s, rate, curvature = (c.reshape(centres.size, -1) for c in columns)
+        s, rate, curvature = (c.reshape(centres.size, -1) for c in columns(motion))
         found = _stationary_points(s, rate, curvature, widths)
         if found is None:
             return None
@@ -523,39 +540,58 @@ def _extremes(
     return None
 
 
-def _strokes(
-    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, motion: Motion
-) -> Strokes | None:
-    """The ram's extreme positions over a revolution sampled at ``turns`` (one turn, without
-    the closing sample; ``motion`` the sweep's): each sampled extreme of s bracketed by its two
-    neighbours, and refined to rounding where ds/dtheta = 0 (``_extremes``, on the branches the
-    sweep followed there; as the limit positions are refined, whatever the number of
-    samples)."""
-    size = motion.size
-    s = travel.displacement
-    step = np.diff(np.append(s, s[0]))  # s[k + 1] - s[k], cyclic
-    moving = np.flatnonzero(np.abs(step) > 1e-12 * size)
+def _travel_columns(scene: LinkageScene, point: str) -> Columns:
+    """The displacement of ``point``'s slider on its guide and its derivatives."""
+
+    def columns(motion: Motion) -> tuple[Array, Array, Array]:
+        travel = next(t for t in slider_travel(scene, motion, 2) if t.point == point)
+        assert travel.sliding_velocity is not None and travel.sliding_acceleration is not None
+        return travel.displacement, travel.sliding_velocity, travel.sliding_acceleration
+
+    return columns
+
+
+def _turning_points(
+    driven: _Driven, values: Array, columns: Columns, turns: Array, motion: Motion, scale: float
+) -> list[tuple[float, float]] | None:
+    """Where a quantity sampled as ``values`` at ``turns`` (one turn, without the closing
+    sample; ``motion`` the sweep's) turns back over the revolution: each sampled extreme
+    bracketed by its two neighbours and refined to rounding where ds/dtheta = 0 (``_extremes``
+    on ``columns``, on the branches the sweep followed there), as (turn, value) in the order the
+    driver reaches them (steps below 1e-12 ``scale`` count as standing still). [] where it never
+    turns back; None where a refinement fails."""
+    step = np.diff(np.append(values, values[0]))  # s[k + 1] - s[k], cyclic
+    moving = np.flatnonzero(np.abs(step) > 1e-12 * scale)
     signs = np.sign(step[moving])
     turning = np.flatnonzero(signs != np.roll(signs, 1))  # s turns back between moving steps
-    if turning.size != 2:
-        return None
     delta = turns[1] - turns[0]
     period = delta * turns.size  # +-2 pi, as the driver turns
-    brackets, branches = [], []
+    runs: dict[tuple[tuple[int, float], ...], list[tuple[float, float]]] = {}
     for j in turning:
         before, after = int(moving[j - 1]), int(moving[j])  # steps k -> k + 1 (cyclic)
         ends = (turns[before], turns[after] + delta + (period if after < before else 0.0))
-        brackets.append((min(ends), max(ends)))
-        branches.append(branches_at(motion.flips, float((before + 1) % turns.size)))
-    if branches[0] == branches[1]:
-        extremes = _extremes(driven, travel.point, brackets, branches[0])
-    else:  # (the extremes on two branches: a run each)
-        each = [_extremes(driven, travel.point, [b], branches[k]) for k, b in enumerate(brackets)]
-        extremes = None if None in each else [e for found in each if found for e in found]
-    if extremes is None:
-        return None
+        branches = branches_at(motion.flips, float((before + 1) % turns.size))
+        runs.setdefault(tuple(sorted(branches.items())), []).append((min(ends), max(ends)))
+    extremes: list[tuple[float, float]] = []
+    for branches_key, brackets in runs.items():  # (one run per set of branches)
+        found = _extremes(driven, columns, brackets, dict(branches_key))
+        if found is None:
+            return None
+        extremes += found
     turned = [(turns[0] + (((root - turns[0]) / period) % 1.0) * period, s) for root, s in extremes]
-    found = sorted(turned, key=lambda f: (f[0] - turns[0]) / period)  # as the driver reaches them
+    return sorted(turned, key=lambda f: (f[0] - turns[0]) / period)  # as the driver reaches them
+
+
+def _strokes(
+    driven: _Driven, travel: SliderTravel, turns: Array, drawn: float, motion: Motion
+) -> Strokes | None:
+    """The ram's extreme positions over a revolution sampled at ``turns``: its two turning
+    points (``_turning_points``; as the limit positions are refined, whatever the number of
+    samples), None unless it turns back exactly twice."""
+    columns = _travel_columns(driven.scene, travel.point)
+    found = _turning_points(driven, travel.displacement, columns, turns, motion, motion.size)
+    if found is None or len(found) != 2:
+        return None
     first = abs(found[1][0] - found[0][0])
     second = 2.0 * math.pi - first
     return Strokes(
@@ -564,6 +600,44 @@ def _strokes(
         float(max(first, second)),
         float(min(first, second)),
     )
+
+
+@dataclass(frozen=True)
+class AngleExtremes:
+    """A link's least and greatest absolute angle over a full revolution of the driver (rad,
+    the angle followed continuously from the drawn pose) at the driver's absolute angles
+    ``driver_angles`` (rad, in [drawn, drawn + 2 pi) as the driver turns from its drawn angle),
+    where its angular velocity is zero (refined to rounding: ``_turning_points``)."""
+
+    least: float
+    greatest: float
+    driver_angles: tuple[float, float]  # at the least, at the greatest
+
+
+def _angle_extremes(
+    driven: _Driven, link: str, turns: Array, drawn: float, motion: Motion
+) -> AngleExtremes | None:
+    """``link``'s extreme angles over the revolution sampled at ``turns`` (``motion`` the
+    sweep's): its turning points' least and greatest; None where it turns fully (never turns
+    back) or a refinement fails."""
+    own = drawn_angle(driven.scene, link)
+
+    def columns(run: Motion) -> tuple[Array, Array, Array]:
+        m = run.links[link]
+        assert m.omega is not None and m.alpha is not None
+        return own + m.theta, m.omega, m.alpha
+
+    sampled = own + motion.links[link].theta
+    found = _turning_points(driven, sampled, columns, turns, motion, 1.0)
+    if not found:
+        return None
+    # Each refined angle on the sweep's continuous branch (that of the nearest sample).
+    near = []
+    for t, v in found:
+        k = round((t - turns[0]) / (turns[1] - turns[0])) % turns.size
+        near.append((t, v + 2.0 * math.pi * round((sampled[k] - v) / (2.0 * math.pi))))
+    low, high = min(near, key=lambda f: f[1]), max(near, key=lambda f: f[1])
+    return AngleExtremes(low[1], high[1], (float(drawn + low[0]), float(drawn + high[0])))
 
 
 @dataclass(frozen=True)

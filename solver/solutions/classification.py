@@ -15,6 +15,9 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from solver.analysis.sweeps import AngleExtremes
+from solver.analysis.sweeps import sweep as linkage_sweep
+from solver.analysis.work_estimate import SOLUTION_COST, estimate_work
 from solver.kinematics.dead_centres import (
     SlottedLeverLimits,
     crank_turns_fully,
@@ -559,3 +562,83 @@ def _ram_stroke(
                 xs.append(along + side * math.sqrt(length**2 - off**2))
             return j.point, abs(xs[0] - xs[1])
     return None
+
+
+DEG = "{}^{\\circ}"
+ANGLE_SAMPLES = 360  # the revolution sampled each degree; the extremes are refined to rounding
+
+
+def angle_extreme_steps(ctx: LinkageContext) -> list[Step]:
+    """One step per four-bar loop whose crank is the (only) driver and turns fully: the least
+    and greatest angle of the coupler and of the rocker over a turn of the crank, where
+    omega = 0, and the crank angles there (``Sweep.angle_extremes``: the sweep's sampled extremes
+    refined to rounding); none where that revolution would cost more than the writing of a worked
+    solution (``SOLUTION_COST``, estimated as the request budget does)."""
+    scene = ctx.scene
+    loops = [
+        loop
+        for loop in ctx.analysis.four_bar_loops
+        if len(scene.drivers) == 1 and scene.drivers[0].link == loop.links[1]
+    ]
+    # The revolution within the worked solution's allowance of the request budget (every
+    # four-bar; a large mechanism's revolution would not be paid for).
+    if not loops or estimate_work(scene, ANGLE_SAMPLES).seconds > SOLUTION_COST:
+        return []
+    sweep = linkage_sweep(scene, ANGLE_SAMPLES, ["position"])
+    if not sweep.feasible:
+        return []
+    steps = []
+    for loop in loops:
+        found = [(link, sweep.angle_extremes(link)) for link in loop.links[2:]]
+        rocking = [(link, e) for link, e in found if e is not None]
+        if rocking:
+            steps.append(_angle_extremes_step(ctx, loop, rocking))
+    return steps
+
+
+def _angle_extremes_step(
+    ctx: LinkageContext, loop: FourBarLoop, rocking: list[tuple[str, AngleExtremes]]
+) -> Step:
+    """phi_min, phi_max of each rocking link and the crank angles theta there (d phi/d theta =
+    0)."""
+    crank = loop.links[1]
+    names = " and ".join(_called(loop, link) for link, _ in rocking)
+    b = ctx.builder("angle_extremes", f"Extremes of the angles of {names} over a turn of the crank")
+    b.say(
+        f"As {_called(loop, crank)} turns once from its drawn angle, each angle phi below (of the "
+        "link's line from its first to its second point, counter-clockwise from +x) swings "
+        "between a least and a greatest value, reached where the link stands still for an "
+        "instant (omega = d phi/dt = 0). The revolution is sampled every degree and each "
+        "sampled extreme refined where d phi/d theta = 0."
+    )
+    for link, e in rocking:
+        low = b.value(f"phi_min ({link})", math.degrees(e.least), "deg")
+        high = b.value(f"phi_max ({link})", math.degrees(e.greatest), "deg")
+        at_low, at_high = (
+            b.value(f"theta at phi_{end} ({link})", math.degrees(angle) % 360.0, "deg")
+            for end, angle in zip(("min", "max"), e.driver_angles, strict=True)
+        )
+        sub = tex.name(link)
+        b.line(
+            rf"&\varphi_{{{sub},\min}} = ", Num(low), DEG, r"\;\text{at}\;\theta = ", Num(at_low),
+            DEG, rf", \quad \varphi_{{{sub},\max}} = ", Num(high), DEG,
+            r"\;\text{at}\;\theta = ", Num(at_high), DEG,
+        )  # fmt: skip
+        b.say(
+            f"{_called(loop, link).capitalize()}: phi from ",
+            Num(low, unit=True),
+            " (crank at ",
+            Num(at_low, unit=True),
+            ") to ",
+            Num(high, unit=True),
+            " (crank at ",
+            Num(at_high, unit=True),
+            f"), a swing of {ctx.fmt.text(math.degrees(e.greatest - e.least))} deg.",
+        )
+    return b.build()
+
+
+def _called(loop: FourBarLoop, link: str) -> str:
+    """'the rocker' for a link named so, else 'the rocker BC'."""
+    role = ROLES[loop.links.index(link)]
+    return f"the {role}" if role == link else f"the {role} {link}"

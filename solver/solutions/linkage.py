@@ -528,8 +528,55 @@ def rigid_acceleration_step(
         b.say(reason)
     base_a = origin(b, ctx, base, ax)
     _write_rigid_acceleration(b, (link, base, target), base_a, (w, al, r, t, n, ay, w2))
+    if base == ctx.ground_pivot(link):
+        _write_turning_parts(b, (link, base, target), (al, r, t, n, ay, w2))
     ctx.shown_acceleration.add(target)
     return b.build()
+
+
+def _write_turning_parts(
+    b: StepBuilder, names: tuple[str, str, str], refs: tuple[Ref, Ref, Ref, Ref, Ref, Ref]
+) -> None:
+    """a_Y = a_Y^t + a_Y^n for Y turning about the fixed pivot X: |a^t| = |alpha| |r_XY|
+    (perpendicular to XY), |a^n| = omega^2 |r_XY| (from Y towards X), |a_Y| = sqrt(|a^t|^2 +
+    |a^n|^2)."""
+    link, base, target = names
+    al, r, t, n, ay, w2 = refs
+    length = b.value(f"|r({base},{target})|", float(np.linalg.norm(b.vector(r))), "m")
+    tangential = b.value(f"|a_t({target})|", float(np.linalg.norm(b.vector(t))), "m/s^2")
+    radial = b.value(f"|a_n({target})|", float(np.linalg.norm(b.vector(n))), "m/s^2")
+    size = b.value(f"|a({target})|", float(np.linalg.norm(b.vector(ay))), "m/s^2")
+    alpha = b.value(f"|alpha({link})|", abs(b.scalar(al)), "rad/s^2")
+    b.check("norm", length, r)
+    b.check("norm", tangential, t)
+    b.check("norm", radial, n)
+    b.check("norm", size, ay)
+    b.check("product", tangential, alpha, length)
+    b.check("product", radial, w2, length)
+    sub, link_sub = tex.name(target), tex.name(link)
+    b.line(
+        rf"&{a_vec(target)} = \vec{{a}}^{{\,t}}_{{{sub}}} + \vec{{a}}^{{\,n}}_{{{sub}}}, \quad "
+        rf"|\vec{{a}}^{{\,t}}_{{{sub}}}| = |\alpha_{{{link_sub}}}|\,|{r_vec(base, target)}| = ",
+        Num(alpha), r" \cdot ", Num(length), " = ", Num(tangential, unit=True),
+    )  # fmt: skip
+    b.line(
+        rf"&|\vec{{a}}^{{\,n}}_{{{sub}}}| = \omega_{{{link_sub}}}^2\,"
+        rf"|{r_vec(base, target)}| = ", Num(w2), r" \cdot ", Num(length), " = ",
+        Num(radial, unit=True),
+        rf", \quad |{a_vec(target)}| = ", Num(size, unit=True),
+    )  # fmt: skip
+    b.say(
+        f"{target} turns about the fixed pivot {base}, so its acceleration has a tangential part "
+        f"a_t = alpha({link}) cross r({base},{target}), perpendicular to {base}-{target}, of "
+        f"magnitude |alpha| |r| = ",
+        Num(tangential, unit=True),
+        f", and a radial (normal) part a_n = -omega^2 r({base},{target}), from {target} towards "
+        f"{base}, of magnitude omega^2 |r| = ",
+        Num(radial, unit=True),
+        "; together |a| = ",
+        Num(size, unit=True),
+        ".",
+    )
 
 
 def _write_rigid_acceleration(

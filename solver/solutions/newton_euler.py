@@ -1004,7 +1004,9 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
     004's 7th question; in statics sum m a_G = 0)."""
     ctx = d.ctx
     scene = ctx.scene
-    title = "Check: the whole mechanism, cut free from the frame"
+    title = "The whole mechanism, cut free from the frame: the ground's reactions" + (
+        "" if d.statics else " beside the sum of m a_G"
+    )
     b = ctx.builder("dynamics.whole_mechanism", title)
     external: list[Ref] = []
     words: list[tuple[Piece, ...]] = []
@@ -1016,6 +1018,7 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
         key = b.value(f"R({joint.point})", sign * solved.force[0], FORCE, source)
         external.append(key)
         words.append((f"R({joint.point}) = ", Col(key)))
+    reactions = list(external)
     for e in d.forces.elements:
         if np.any(d.gravity):
             key = b.value(f"m g({e.name})", e.mass * d.gravity, FORCE)
@@ -1033,6 +1036,13 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
     size = float(sum(np.hypot(*v) for v in vectors))
     left = b.value("sum external", sum(vectors, np.zeros(2)), FORCE, reference=size)
     b.check("sum", left, *external)
+    ground = b.value(
+        "sum R_ground",
+        sum((np.array(b.vector(k)) for k in reactions), np.zeros(2)),
+        FORCE,
+        reference=size,
+    )
+    b.check("sum", ground, *reactions)
     right = b.value(
         "sum m a_G",
         sum((np.array(b.vector(k)) for k in inertial), np.zeros(2)),
@@ -1055,6 +1065,12 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
             " = ",
             Boxed((Col(right, unit=True, dims=2),)),
         )
+    b.line(
+        r"&\textstyle\sum \vec R_\text{ground} = ",
+        *joined(" + ", [(Col(k, dims=2),) for k in reactions]),
+        " = ",
+        Boxed((Col(ground, unit=True, dims=2),)),
+    )
     b.say(
         "Cut the whole mechanism free from its frame: the forces between moving links cancel in "
         "pairs, so the ground's reactions, the weights and the loads add up to "
@@ -1065,6 +1081,13 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
         Col(left),
         ("." if d.statics else "; sum of m a_G: "),
         *(() if d.statics else (Col(right), ", the same.")),
+        " The ground's reactions alone add up to ",
+        Col(ground, unit=True),
+        (
+            "."
+            if d.statics
+            else ": sum m a_G less the weights and the loads, what the frame must supply."
+        ),
     )
     return b.build()
 

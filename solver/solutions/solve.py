@@ -20,7 +20,11 @@ from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain
 from solver.model.scene import LinkageScene
 from solver.solutions import latex as tex
 from solver.solutions.cam import cam_solution
-from solver.solutions.classification import classification_steps, slider_classification_steps
+from solver.solutions.classification import (
+    angle_extreme_steps,
+    classification_steps,
+    slider_classification_steps,
+)
 from solver.solutions.format import Formatter
 from solver.solutions.gear_train import solve_gear_train
 from solver.solutions.graphical import graphical_steps, mechanism_figure
@@ -109,6 +113,7 @@ def _linkage_steps(
         positions,
         *position_steps(ctx),
         *classification_steps(ctx),
+        *angle_extreme_steps(ctx),
         *slider_classification_steps(ctx),
         *body,
         reading_step(ctx),

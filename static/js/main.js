@@ -1024,7 +1024,7 @@ class App {
     this.controls.setUnits(this.units);
     this.speed = view.speed || 1;
     this.controls.setSpeed(this.speed);
-    this.method = ['loop', 'newton_euler'].includes(view.method) ? view.method : 'vector';
+    this.method = ['loop', 'newton_euler', 'statics'].includes(view.method) ? view.method : 'vector';
     this.controls.setMethod(this.method);
     if (view.camera) this.camera = view.camera;
     if (view.plot) {

@@ -180,3 +180,28 @@ def test_statics_and_friction_toggle(app: AppPage) -> None:
     assert "torque without friction" in names
     assert "With friction:" in page.inner_text("#dynamics-info")
     app.screenshot("dynamics-statics-friction")
+
+
+def test_statics_is_a_method_of_the_worked_solution(app: AppPage) -> None:
+    """The method selector offers the static force analysis: its equilibrium equations for each
+    moving link, no inertia terms, and the choice kept in the shared link."""
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    pause_and_wait(page)
+    page.click("#tab-solution")
+    page.check("input[name='method'][value='statics']")
+    page.wait_for_selector("#steps li:has-text('Equilibrium equations of')")
+    equilibrium = page.locator("#steps li").filter(has_text="Equilibrium equations of")
+    assert equilibrium.count() == 3, "one set of equilibrium equations per moving link"
+    assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
+    assert "m a_G" not in page.inner_text("#steps li:has-text('Equilibrium equations of')")
+    assert app.serious_accessibility_violations(".solution-panel") == []
+    for width, height in ((1440, 900), (1024, 768), (390, 844)):  # the selector's four choices
+        page.set_viewport_size({"width": width, "height": height})
+        app.screenshot(f"statics-method-{width}", ".solution-panel .panel-head")
+    fragment = page.url.split("/", 3)[3]
+    app.open(fragment)
+    page.click("#tab-solution")
+    assert page.is_checked("input[name='method'][value='statics']"), "the shared link keeps it"
