@@ -83,7 +83,7 @@ class StrictJSONRoute(APIRoute):
             scope = request.scope
             if takes_body and declared is None:  # read as JSON, not as bytes
                 scope = {**scope, "headers": [*scope["headers"], JSON_CONTENT_TYPE]}
-            elif takes_body and not is_json_media_type(declared or ""):
+            elif takes_body and declared is not None and not is_json_media_type(declared):
                 raise HTTPException(
                     415,
                     f"the body is sent as {declared[:80]!r}; send it as application/json",
