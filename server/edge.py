@@ -24,6 +24,7 @@ from server import text
 from solver.errors import InvalidScene
 
 MAX_BODY_BYTES = 1_000_000
+JSON_CONTENT_TYPE = (b"content-type", b"application/json")
 
 
 class StrictJSONRequest(Request):
@@ -56,16 +57,38 @@ class StrictJSONRequest(Request):
         return self._json
 
 
+def is_json_media_type(content_type: str) -> bool:
+    """Whether a Content-Type names JSON: application/json or application/<anything>+json,
+    parameters (``; charset=utf-8``) aside, in any case."""
+    media = content_type.split(";", 1)[0].strip().lower()
+    kind, _, subtype = media.partition("/")
+    return kind == "application" and (subtype == "json" or subtype.endswith("+json"))
+
+
 # The request being answered, for endpoint wrappers (server.workers) that need its client.
 CURRENT_REQUEST: ContextVar[Request] = ContextVar("CURRENT_REQUEST")
 
 
 class StrictJSONRoute(APIRoute):
+    """A route whose body, if it takes one, is strict JSON: a body sent under another declared
+    media type (text/plain, a form) is 415 unsupported_media_type; one sent without a
+    Content-Type is read as JSON."""
+
     def get_route_handler(self) -> Callable[[Request], Coroutine[Any, Any, Response]]:
         handler = super().get_route_handler()
+        takes_body = self.body_field is not None
 
         async def strict(request: Request) -> Response:
-            strict_request = StrictJSONRequest(request.scope, request.receive)
+            declared = request.headers.get("content-type")
+            scope = request.scope
+            if takes_body and declared is None:  # read as JSON, not as bytes
+                scope = {**scope, "headers": [*scope["headers"], JSON_CONTENT_TYPE]}
+            elif takes_body and declared is not None and not is_json_media_type(declared):
+                raise HTTPException(
+                    415,
+                    f"the body is sent as {declared[:80]!r}; send it as application/json",
+                )
+            strict_request = StrictJSONRequest(scope, request.receive)
             CURRENT_REQUEST.set(strict_request)
             return await handler(strict_request)
 

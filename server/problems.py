@@ -31,6 +31,7 @@ TITLES = {
     "forbidden": "Not served to anyone",
     "not_configured": "Not configured on this server",
     "method_not_allowed": "Method not allowed",
+    "unsupported_media_type": "Unsupported media type",
     "internal_error": "Internal error",
 }
 log = logging.getLogger("kinematics")
@@ -109,9 +110,12 @@ async def http_error(_: Request, error: Exception) -> JSONResponse:
         404: "not_found",
         405: "method_not_allowed",
         413: "limit_exceeded",
+        415: "unsupported_media_type",
         503: "not_configured",
     }.get(error.status_code, "invalid_scene")
-    return problem(error.status_code, code, str(error.detail))
+    response = problem(error.status_code, code, str(error.detail))
+    response.headers.update(error.headers or {})  # a 405's Allow
+    return response
 
 
 async def unexpected_error(_: Request, error: Exception) -> JSONResponse:

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
+from pydantic.fields import FieldInfo
 
 import solver
 from server import scene_schema
@@ -834,6 +835,7 @@ class ProblemCode(StrEnum):
     forbidden = "forbidden"
     not_configured = "not_configured"
     method_not_allowed = "method_not_allowed"
+    unsupported_media_type = "unsupported_media_type"
     internal_error = "internal_error"
     busy = "busy"
     too_many_requests = "too_many_requests"
@@ -875,7 +877,21 @@ FRONT_PROBLEMS: dict[int | str, dict[str, Any]] = {
         "description": "The request cannot be answered: invalid_scene, invalid_expression, "
         "not_assemblable, singular_configuration, limit_exceeded, no_event",
     },
+    405: {
+        "model": Problem,
+        "description": "Another method on this path (method_not_allowed): the Allow header "
+        "lists the methods it answers",
+        "headers": {
+            "Allow": {"description": "The path's methods, e.g. POST", "schema": {"type": "string"}}
+        },
+    },
     500: {"model": Problem, "description": "An unexpected error (internal_error): a defect"},
+}
+# What a route that takes a body answers when the body is sent as anything but JSON.
+UNSUPPORTED_MEDIA_TYPE = {
+    "description": "The body was sent under a Content-Type other than application/json "
+    "(unsupported_media_type); a body without a Content-Type is read as JSON",
+    "content": {PROBLEM_MEDIA_TYPE: {"schema": {"$ref": "#/components/schemas/Problem"}}},
 }
 # What a route that runs in the worker pool (server.workers) can answer besides.
 PROBLEMS: dict[int | str, dict[str, Any]] = {
@@ -888,7 +904,8 @@ PROBLEMS: dict[int | str, dict[str, Any]] = {
     },
     503: {
         "model": Problem,
-        "description": "Every worker is busy (busy): see Retry-After",
+        "description": "Every worker is busy (busy): see Retry-After. On the exercise routes "
+        "also an exam request where no exam secret is set (not_configured)",
         "headers": RETRY_AFTER,
     },
 }
@@ -901,7 +918,54 @@ def publish(document: dict[str, Any]) -> dict[str, Any]:
     for name, schema in scene_schema.components().items():
         if found.setdefault(name, schema) != schema:
             raise ValueError(f"two schemas named {name} in the OpenAPI document")
+    exact_integer_bounds(document)
+    for path in document.get("paths", {}).values():
+        for operation in path.values():
+            if "requestBody" in operation:
+                operation["responses"].setdefault("415", UNSUPPORTED_MEDIA_TYPE)
     return problems_as_problem_json(scene_schema.plain_references(document))
+
+
+# An integer field's bound (annotated_types Ge, Le, Gt, Lt) and its JSON Schema keyword.
+INTEGER_BOUNDS = {
+    "ge": "minimum",
+    "le": "maximum",
+    "gt": "exclusiveMinimum",
+    "lt": "exclusiveMaximum",
+}
+
+
+def _request_models(model: type[BaseModel]) -> list[type[BaseModel]]:
+    """``model`` and every model derived from it."""
+    return [model, *(m for sub in model.__subclasses__() for m in _request_models(sub))]
+
+
+def integer_bounds(field: FieldInfo) -> dict[str, int]:
+    """The JSON Schema bounds of an integer field, exact: its constraints and the bounds it
+    publishes without enforcing them (``json_schema_extra``)."""
+    bounds = {
+        keyword: getattr(constraint, attribute)
+        for constraint in field.metadata
+        for attribute, keyword in INTEGER_BOUNDS.items()
+        if isinstance(getattr(constraint, attribute, None), int)
+    }
+    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+    bounds.update(
+        (k, v) for k, v in extra.items() if k in INTEGER_BOUNDS.values() and isinstance(v, int)
+    )
+    return bounds
+
+
+def exact_integer_bounds(document: dict[str, Any]) -> None:
+    """Give the integer fields of the request models their bounds as integers, as the models
+    state them: FastAPI writes every bound as a float, so a seed's maximum 2**63 - 1 would be
+    published as 9.223372036854776e18, which is 2**63 (a seed the server refuses)."""
+    found = document.get("components", {}).get("schemas", {})
+    for model in _request_models(Strict):
+        published = found.get(model.__name__, {}).get("properties", {})
+        for name, field in model.model_fields.items():
+            if field.annotation is int and (field.alias or name) in published:
+                published[field.alias or name].update(integer_bounds(field))
 
 
 def problems_as_problem_json(document: dict[str, Any]) -> dict[str, Any]:

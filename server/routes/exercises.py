@@ -28,6 +28,7 @@ from server.schemas import (
     ExerciseList,
     ExerciseModel,
     ExerciseTypeList,
+    Problem,
     Strict,
 )
 from server.workers import WorkerRoute, front_check
@@ -76,7 +77,12 @@ router = APIRouter(
 
 class ExercisesRequest(Strict):
     type: str = Field(description="An exercise type from GET /exercises/types.", max_length=64)
-    count: int = Field(1, strict=True, description=f"How many exercises (1 to {MAX_COUNT}).")
+    count: int = Field(
+        1,
+        strict=True,
+        description=f"How many exercises (1 to {MAX_COUNT}; outside them 413 limit_exceeded).",
+        json_schema_extra={"minimum": 1, "maximum": MAX_COUNT},
+    )
     seed: int = Field(0, strict=True, ge=0, le=MAX_SEED, description="Seed (e.g. a student id).")
     difficulty: str = Field(
         DEFAULT_DIFFICULTY, max_length=32, description=f"One of {', '.join(DIFFICULTIES)}."
@@ -213,6 +219,14 @@ def one_exercise_cost(exercise_id: str, secret: bytes | None) -> float:
     summary="One exercise by its id: a practice one with its key and worked solution, an exam "
     "one with its statement only",
     response_model=ExerciseModel | ExamStatementModel,
+    responses={
+        404: {
+            "model": Problem,
+            "description": "An exam id that this server did not make, or made under another "
+            "secret (not_found); a practice id that is not of the form "
+            "type:difficulty:seed:index is 422 invalid_scene",
+        }
+    },
 )
 @front_check(one_exercise_cost)
 def exercise_route(exercise_id: str, secret: ExamSecret) -> ResultResponse:
@@ -249,6 +263,13 @@ def check_cost(request: CheckRequest) -> float:
     "/check",
     summary="Grade answers within tolerance and diagnose typical mistakes",
     response_model=CheckResponse,
+    responses={
+        403: {
+            "model": Problem,
+            "description": "An exam exercise (forbidden): its answers are graded by the "
+            "instructor, never checked by the server",
+        }
+    },
 )
 @front_check(check_cost)
 def check_route(request: CheckRequest) -> ResultResponse:

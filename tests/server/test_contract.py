@@ -17,6 +17,7 @@ from server import problems
 from server.app import API_PREFIX
 from server.routes import dynamics, exercises, kinematics, presets, solution, synthesis
 from server.workers import WorkerRoute
+from solver.exercises import MAX_COUNT
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 NAMES = sorted(path.stem for path in EXAMPLES.glob("*.json"))
@@ -231,3 +232,44 @@ def test_timeouts_limits_and_busy_answers_are_declared(openapi: dict[str, Any]) 
             for status in expected:
                 content = declared[status]["content"]
                 assert content == {"application/problem+json": {"schema": problem}}, (path, status)
+
+
+def test_wrong_methods_other_media_types_and_exam_refusals_are_declared(
+    openapi: dict[str, Any],
+) -> None:
+    """405 (with Allow) on every operation; 415 on every one that takes a body, and only there;
+    404 on one exercise by id (an exam id not made here), 403 on a check (an exam exercise)."""
+    problem = {"application/problem+json": {"schema": {"$ref": "#/components/schemas/Problem"}}}
+    for path, operations in openapi["paths"].items():
+        for method, operation in operations.items():
+            declared = operation["responses"]
+            assert declared["405"]["content"] == problem, (path, method)
+            assert declared["405"]["headers"]["Allow"]["schema"] == {"type": "string"}
+            assert ("415" in declared) == ("requestBody" in operation), (path, method)
+    exercises = "/api/v1/exercises"
+    assert openapi["paths"][exercises + "/{exercise_id}"]["get"]["responses"]["404"]["content"] == (
+        problem
+    )
+    assert openapi["paths"][exercises + "/check"]["post"]["responses"]["403"]["content"] == problem
+
+
+def test_integer_bounds_are_published_exactly(openapi: dict[str, Any]) -> None:
+    """A bound is the integer the server enforces: the seed's maximum 2**63 - 1 (as a float it
+    would read 2**63, a seed the server refuses); count 1..100, samples 2..100000."""
+    schemas = openapi["components"]["schemas"]
+    for model in ("ExercisesRequest", "ExportRequest"):
+        fields = schemas[model]["properties"]
+        assert (fields["seed"]["minimum"], fields["seed"]["maximum"]) == (0, 2**63 - 1)
+        assert type(fields["seed"]["maximum"]) is int
+        assert (fields["count"]["minimum"], fields["count"]["maximum"]) == (1, MAX_COUNT)
+    samples = schemas["SweepRequest"]["properties"]["samples"]
+    assert (samples["minimum"], samples["maximum"]) == (2, 100_000)
+    assert all(type(samples[k]) is int for k in ("minimum", "maximum"))
+
+
+def test_the_published_integer_bounds_are_the_servers(client: TestClient) -> None:
+    """The bounds just published, at the edges: inside them answered, past them refused."""
+    base = {"type": "four_bar_velocity", "count": 1}
+    assert client.post("/api/v1/exercises", json={**base, "seed": 2**63 - 1}).status_code == 200
+    assert client.post("/api/v1/exercises", json={**base, "seed": 2**63}).status_code == 422
+    assert client.post("/api/v1/exercises", json={**base, "count": 0}).status_code == 413

@@ -404,8 +404,32 @@ def test_unknown_api_route_is_404(client: TestClient, method: str) -> None:
     assert_problem(response, 404, "not_found")
 
 
-def test_wrong_method_is_405(client: TestClient) -> None:
-    assert_problem(client.get("/api/v1/analyze"), 405, "method_not_allowed")
+def test_wrong_method_is_405_with_allow(client: TestClient) -> None:
+    """A 405 names the methods the path answers (RFC 9110 15.5.6)."""
+    response = client.get("/api/v1/analyze")
+    assert_problem(response, 405, "method_not_allowed")
+    assert response.headers["allow"] == "POST"
+    assert client.delete("/api/v1/exercises/types").headers["allow"] == "GET"
+
+
+@pytest.mark.parametrize(
+    "media", ["text/plain", "application/x-www-form-urlencoded", "multipart/form-data; b=x"]
+)
+def test_a_body_that_is_not_json_is_415(client: TestClient, media: str) -> None:
+    """A valid scene sent under another media type is refused before it is read."""
+    body = json.dumps({"scene": scene()}).encode()
+    response = client.post("/api/v1/analyze", content=body, headers={"content-type": media})
+    assert media.split(";")[0] in assert_problem(response, 415, "unsupported_media_type")["detail"]
+
+
+@pytest.mark.parametrize("media", [None, "application/json; charset=utf-8", "Application/JSON"])
+def test_a_json_body_is_read_under_any_json_media_type_or_none(
+    client: TestClient, media: str | None
+) -> None:
+    body = json.dumps({"scene": scene()}).encode()
+    headers = {} if media is None else {"content-type": media}
+    response = client.post("/api/v1/analyze", content=body, headers=headers)
+    assert response.status_code == 200, response.text
 
 
 # --- fuzz: random mutations of valid scenes ---------------------------------------------------

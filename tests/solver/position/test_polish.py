@@ -259,6 +259,24 @@ def test_drawn_pose_is_not_polished() -> None:
     assert np.array_equal(result.points["C"].position, doc["points"]["C"])
 
 
+@pytest.mark.parametrize("distance", ["1e-5", "1e-10"])
+@pytest.mark.parametrize("family", list(FAMILIES))
+def test_drawn_next_to_a_singular_pose_as_precise_as_posed(family: str, distance: str) -> None:
+    """The exact pose next to a dead centre or change point, rounded and drawn (no angle_deg):
+    its rates within the posed bound (1e-9, or cond x 1e-15 past cond 1e6) of the 50-digit
+    rates of the drawn coordinates themselves, and the drawn coordinates answered unchanged."""
+    make, pose, reference = FAMILIES[family]
+    doc, phi = make(mp.mpf(distance), 1)
+    drawn = _rounded(pose(doc, phi))
+    result = analyze(parse_linkage(drawn), ["position", "velocity", "acceleration"])
+    true_cond = exact_condition(drawn)
+    bound = 1e-9 if true_cond < 1e6 else true_cond * 1e-15
+    assert errors(result, reference(drawn)) <= bound
+    assert result.diagnostics.position_residual == 0.0
+    for name, point in drawn["points"].items():
+        assert np.array_equal(result.points[name].position, point), name
+
+
 # --- a triad (a Newton group) posed next to its limit positions -----------------------------------
 
 
