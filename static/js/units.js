@@ -83,8 +83,8 @@ export function fmt(value, digits = 4, scale = 0) {
   return `${Number(mantissa)}e${exponent.replace('+', '')}`;
 }
 
-/** Significant digits of a value put back into a field: 12, which keeps every digit a user typed. */
-export const TYPED_DIGITS = 12;
+/** Significant digits of a value put back into a field: 15, every digit a double holds without its last-place noise. */
+export const TYPED_DIGITS = 15;
 
 /**
  * A value shown in a field, in the digits the user typed: the value at TYPED_DIGITS significant
