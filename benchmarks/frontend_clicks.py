@@ -113,9 +113,9 @@ def main() -> None:
         page = browser.new_page(viewport={"width": 1440, "height": 900})
         page.goto(url)
         page.wait_for_function(
-            "performance.getEntriesByName('first-frame').length > 0", timeout=60_000
+            "() => performance.getEntriesByName('first-frame').length > 0", timeout=60_000
         )
-        page.wait_for_function("() => document.getElementById('linkage').dataset.analysed !== undefined")
+        page.wait_for_function("() => document.getElementById('linkage').dataset.analysed")
         if page.get_attribute("#play", "aria-pressed") == "true":
             page.click("#play")
         for label, kind, values in CASES:

@@ -85,8 +85,8 @@ def test_a_number_is_printed_as_a_textbook_prints_it(
 
 
 def test_typed_gives_back_every_digit_a_user_typed() -> None:
-    """A value typed with up to 12 significant digits (15 are kept), after a round trip through SI (mm -> m ->
-    mm, deg -> rad -> deg), is shown in exactly the digits typed."""
+    """A value typed with up to 12 significant digits (15 are kept), after a round trip through
+    SI (mm -> m -> mm, deg -> rad -> deg), is shown in exactly the digits typed."""
     rng = random.Random(12)
     typed = [f"{rng.randint(1, 10**k - 1) / 10 ** rng.randint(0, k)}" for k in range(1, 12)]
     typed = [f"{float(t):.12g}" for t in typed]
