@@ -81,11 +81,12 @@ export const getPresetFamily = (family) => call('GET', `/presets?family=${encode
 export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
 export const analyze = (scene, quantities) =>
   call('POST', '/analyze', quantities ? { scene, quantities } : { scene });
-export const sweep = (scene, samples, quantities, timeRange, statics = false) =>
+export const sweep = (scene, samples, quantities, timeRange, statics = false, speedFluctuation = null) =>
   call('POST', '/sweep', {
     scene, samples, quantities,
     ...(timeRange ? { time_range: timeRange } : {}),
     ...(statics ? { statics: true } : {}),
+    ...(speedFluctuation ? { speed_fluctuation: speedFluctuation } : {}),
   });
 export const solution = (scene, method, digits = 4) => call('POST', '/solution', { scene, method, digits });
 export const balance = (scene, counterweights) => call('POST', '/balance', { scene, counterweights });

@@ -17,7 +17,7 @@ import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { plotlyReady } from './vendor.js';
 import { renderSolution, renderMessage } from './steps.js';
-import { fmt } from './units.js';
+import { fmt, typed } from './units.js';
 
 const SAMPLES = 360;
 const CYCLE_SECONDS = 6; // one revolution at 1x
@@ -186,7 +186,7 @@ export class CamApp {
       const lab = el('label', { for: id }, `${label} `);
       lab.appendChild(el('span', { class: 'unit' }, `(${unit})`));
       const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': key });
-      input.value = String(value);
+      input.value = typed(value);
       input.addEventListener('change', () => this.commit(input, apply));
       wrap.append(lab, input);
       box.appendChild(wrap);
@@ -231,7 +231,7 @@ export class CamApp {
       else {
         // A rise and the return that follows carry the same lift: one edit changes both.
         const input = el('input', { type: 'text', inputmode: 'decimal', 'aria-label': `lift of segment ${i}`, 'data-field': 'lift', size: 7 });
-        input.value = String(seg.lift);
+        input.value = typed(seg.lift);
         input.addEventListener('change', () => this.commitCell(input, (s, v) => {
           const before = s.segments[i].lift;
           for (const other of s.segments) if (other.type !== 'dwell' && other.lift === before) other.lift = v;
@@ -241,7 +241,7 @@ export class CamApp {
       row.appendChild(liftCell);
       const durationCell = el('td');
       const duration = el('input', { type: 'text', inputmode: 'decimal', 'aria-label': `duration of segment ${i} in degrees`, 'data-field': 'duration_deg', size: 5 });
-      duration.value = String(seg.duration_deg);
+      duration.value = typed(seg.duration_deg);
       // The last dwell takes up the difference, so that the durations keep summing to 360 deg.
       duration.addEventListener('change', () => this.commitCell(duration, (s, v) => {
         const last = s.segments.length - 1;

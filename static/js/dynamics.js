@@ -13,6 +13,7 @@ import { toDisplay, unitLabel, fmt } from './units.js';
 import { svgEl, setAttrs, arrowMarker } from './svg.js';
 import { LinkageView } from './linkage-view.js';
 import { trackFromSweep, frameAt } from './track.js';
+import { toCsv, download } from './export.js';
 
 const ARROW_PX = 70; // the largest joint force of the cycle, on the drawing
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
@@ -90,6 +91,27 @@ function isFourBar(scene) {
   return moving === 3 && scene.joints.length === 4 && scene.joints.every((j) => j.type === 'revolute');
 }
 
+/**
+ * The cycle as the plots draw it, one row per sample: the driver angle (display units), the
+ * driving torque M [N m], the power M ω [W], every joint force F_x, F_y, |F| [N], the kinetic
+ * energy T [J] and the equivalent inertia [kg m²]; the server's numbers, unrounded.
+ */
+export function cycleCsv(sweep, units) {
+  const driver = sweep.drivers[0];
+  const columns = [[`driver angle [${unitLabel('angle', units)}]`, sweep.driver_angle.map((a) => toDisplay('angle', a, units))]];
+  if (driver) columns.push([`torque M (${driver.link}) [N m]`, driver.torque], ['power M ω [W]', driver.power]);
+  for (const joint of sweep.joints) {
+    columns.push(
+      [`F_x at ${joint.point} [N]`, joint.force.map((f) => f[0])],
+      [`F_y at ${joint.point} [N]`, joint.force.map((f) => f[1])],
+      [`|F| at ${joint.point} [N]`, joint.force.map(norm)],
+    );
+  }
+  columns.push(['kinetic energy T [J]', sweep.energy.kinetic], ['equivalent inertia [kg m²]', sweep.energy.equivalent_inertia]);
+  const rows = sweep.driver_angle.map((_, i) => columns.map(([, values]) => values[i]));
+  return toCsv([columns.map(([title]) => title), ...rows]);
+}
+
 export class DynamicsPanel {
   constructor({ section, plots, hodograph, info, message, balance, arrows, onArrows, balancedBox, balancedSvg }) {
     Object.assign(this, { section, plots, hodograph, info, message, balance, arrows, balancedBox });
@@ -104,7 +126,12 @@ export class DynamicsPanel {
     const field = (id) => section.querySelector(`#${id}`);
     this.statics = field('dynamics-statics');
     this.friction = ['dynamics-mu-slider', 'dynamics-mu-pin', 'dynamics-pin-radius'].map(field);
-    for (const input of [this.statics, ...this.friction]) {
+    this.fluctuation = field('dynamics-k');
+    field('dynamics-csv').addEventListener('click', () => {
+      // the series drawn (a newer sweep may be on its way)
+      if (this.plotted) download('cycle-dynamics.csv', new Blob([cycleCsv(this.plotted, this.units)], { type: 'text/csv' }));
+    });
+    for (const input of [this.statics, this.fluctuation, ...this.friction]) {
       input.addEventListener('change', () => {
         if (this.original) this.show(this.original, this.units, this.samples);
       });
@@ -138,7 +165,7 @@ export class DynamicsPanel {
     this.message.hidden = true;
     let sweep;
     try {
-      sweep = await api.sweep(scene, samples, ['forces', 'energy'], undefined, statics);
+      sweep = await api.sweep(scene, samples, ['forces', 'energy'], undefined, statics, this.k());
     } catch (err) {
       if (seq !== this.seq) return;
       this.message.textContent = err.detail;
@@ -161,6 +188,12 @@ export class DynamicsPanel {
       }
     }
     this.drawHodograph();
+  }
+
+  /** The coefficient of speed fluctuation k of the panel's field, or null where it is not in (0, 1]. */
+  k() {
+    const k = Number(this.fluctuation.value);
+    return k > 0 && k <= 1 ? k : null;
   }
 
   /** The cycle's efficiency and self-locking, in words (with friction only). */
@@ -208,11 +241,14 @@ export class DynamicsPanel {
       yaxis5: axis('I_eq [kg m²]', [0, 0.19]),
     };
     P.react(this.plots, traces, layout, CONFIG);
+    this.plotted = s;
     const c = s.cycle;
     this.info.textContent = c
       ? `Period ${fmt(c.period)} s, mean torque ${fmt(c.mean_torque)} N m, mean power ${fmt(c.mean_power)} W, ` +
         `work per cycle ${Object.entries(c.work).map(([k, v]) => `${k} ${fmt(v)} J`).join(', ') || '(no loads)'}, ` +
-        `energy fluctuation ${fmt(c.energy_fluctuation)} J.` + this.frictionWords(c)
+        `energy fluctuation ${fmt(c.energy_fluctuation)} J` +
+        (c.flywheel_inertia === null || c.flywheel_inertia === undefined ? '.' : `, flywheel inertia ${fmt(c.flywheel_inertia)} kg m² for k = ${fmt(c.speed_fluctuation)}.`) +
+        this.frictionWords(c)
       : 'The driver does not turn fully at constant speed: no cycle figures.';
   }
 

@@ -18,6 +18,7 @@ import {
   getExercise,
 } from './api.js';
 import { katexReady } from './vendor.js';
+import { fmt } from './units.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -112,7 +113,7 @@ function card(exercise) {
   for (const asked of exercise.asked) {
     const row = el('tr');
     row.appendChild(el('td', {}, asked.label));
-    row.appendChild(el('td', { class: 'mono key-value', 'data-key': asked.key }, exercise.answers[asked.key].toPrecision(6)));
+    row.appendChild(el('td', { class: 'mono key-value', 'data-key': asked.key }, fmt(exercise.answers[asked.key], 6)));
     row.appendChild(el('td', {}, asked.unit));
     row.appendChild(el('td', {}, `± ${asked.tolerance * 100} %`));
     table.appendChild(row);

@@ -15,7 +15,7 @@ import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { katexReady } from './vendor.js';
-import { fmt } from './units.js';
+import { fmt, typed } from './units.js';
 
 const FAMILY = 'gear_trains';
 const SAMPLES = 61;
@@ -125,7 +125,7 @@ export class GearTrains {
       const label = el('label', { for: id }, `${row.label} `);
       label.appendChild(el('span', { class: 'unit' }, `[${row.unit}]`));
       const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': row.key, 'aria-describedby': `${id}-error`, title: row.help });
-      input.value = String(row.value);
+      input.value = typed(row.value);
       const error = el('div', { id: `${id}-error`, class: 'field-error', role: 'alert' });
       input.addEventListener('change', () => this.onField(row.key, input, error));
       wrap.append(label, input, error);
@@ -385,7 +385,7 @@ export class GearTrains {
     }
     placeLabels(wanted, this.fontSize());
     const slow = this.span / TURN_SECONDS;
-    this.readout.textContent = `t = ${t.toFixed(4)} s, shown ${fmt(1 / slow, 3)}× slower than real time`;
+    this.readout.textContent = `t = ${fmt(t, 4)} s, shown ${fmt(1 / slow, 3)}× slower than real time`;
   }
 
   /** The labels' font size in the drawing's units (larger on a phone, css/gears.css). */

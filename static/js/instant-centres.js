@@ -13,7 +13,7 @@ import { svgEl, setAttrs } from './svg.js';
 import { COLOURS } from './theme.js';
 import { linkNumbers, instantCentre } from './notation.js';
 import { groundLink, movingLinks } from './scene.js';
-import { show } from './units.js';
+import { show, fmt } from './units.js';
 import { measureLabel, aroundPoint, boxAt, markerBox, placeAll } from './drawing-labels.js';
 
 const KENNEDY = '#1f2933'; // ink: Kennedy's lines are construction lines
@@ -68,7 +68,7 @@ export function drawCentres(view, layer, analysis, kennedy, avoid, poles = false
     if (poles && c.links.includes(ground) && !(c.position && view.isGroundPoint(c.position))) continue;
     if (!c.position) {
       const d = c.direction_at_infinity;
-      notes.push(`${name} at infinity${d ? `, direction (${d[0].toFixed(3)}, ${d[1].toFixed(3)})` : ''}`);
+      notes.push(`${name} at infinity${d ? `, direction (${fmt(d[0], 3, 1)}, ${fmt(d[1], 3, 1)})` : ''}`);
       continue;
     }
     if (!view.inView(c.position)) {

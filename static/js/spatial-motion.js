@@ -10,6 +10,7 @@
 //   origin by q0: Rodrigues' formula v cos q + (e x v) sin q + e (e . v)(1 - cos q);
 // - a link length moves everything after body k along O_k -> O_{k+1} (for the last body, along
 //   O_n -> its first point) so that the distance becomes the new length.
+import { typed } from './units.js';
 
 const SPATIAL_SAMPLES = 241;
 const TURNS = 1; // the time range: one turn of the fastest revolute joint (2 s to 20 s)
@@ -173,7 +174,7 @@ export class SpatialFields {
     const wrap = document.createElement('label');
     wrap.className = 'inline';
     wrap.textContent = `${label} `;
-    const input = Object.assign(document.createElement('input'), { id, type: 'text', inputMode: 'decimal', value: String(Number(value.toPrecision(6))) });
+    const input = Object.assign(document.createElement('input'), { id, type: 'text', inputMode: 'decimal', value: typed(value) });
     input.setAttribute('aria-invalid', 'false');
     const commit = () => {
       const v = Number(input.value.trim().replace(',', '.'));

@@ -16,7 +16,7 @@ import { trackFromSweep, frameAt, indexOfValue, valueAt } from './track.js';
 import { svgEl } from './svg.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { katexReady, plotlyReady } from './vendor.js';
-import { fmt } from './units.js';
+import { fmt, typed } from './units.js';
 
 const SAMPLES = 241;
 const CYCLE_SECONDS = 5; // the whole sweep played once (a rocking crank: one way) at 1x
@@ -194,7 +194,7 @@ export class LinkageDesigner {
     const attrs = { id, type: 'text', inputmode: text ? 'text' : 'decimal', spellcheck: 'false', 'aria-describedby': 'syn-error', 'data-request': request };
     if (label) attrs['aria-label'] = label;
     const input = el('input', attrs);
-    input.value = String(value);
+    input.value = typed(value);
     input.addEventListener('change', () => {
       const raw = input.value.trim();
       const number = Number(raw.replace(',', '.'));
@@ -255,13 +255,13 @@ export class LinkageDesigner {
     for (let j = 0; j < m.count; j += 1) {
       ['x', 'y', 'angle'].forEach((name, k) => {
         const input = this.root.querySelector(`#syn-p${j + 1}-${name}`);
-        if (input) input.value = String(m.positions[j][k]);
+        if (input) input.value = typed(m.positions[j][k]);
       });
     }
     const names = m.kind === 'fixed_pivots' ? ['A', 'D'] : ['B', 'C'];
     names.forEach((name, i) => ['x', 'y'].forEach((axis, k) => {
       const input = this.root.querySelector(`#syn-${name}-${axis}`);
-      if (input) input.value = String(m.pivots[m.kind][i][k]);
+      if (input) input.value = typed(m.pivots[m.kind][i][k]);
     }));
   }
 
@@ -450,10 +450,12 @@ export class LinkageDesigner {
     for (const h of ['where', 'crank angle (deg)', 'error', 'reached']) head.appendChild(el('th', { scope: 'col' }, h));
     checks.appendChild(el('thead')).appendChild(head);
     const rows = checks.appendChild(el('tbody'));
+    // An error within NOISE of the linkage's size is 0 (the server's "reached" uses 1e-9 of it).
+    const size = Math.max(d.ground, d.crank, d.coupler, d.rocker);
     a.checks.forEach((c, k) => {
       const where = c.limit ? `${c.limit} limit` : a.task === 'function' ? `x = ${fmt(c.x, 4)}` : `position ${c.position}`;
       const tr = rows.appendChild(el('tr', { 'data-reached': String(c.reached) }));
-      tr.append(el('th', { scope: 'row' }, where), el('td', {}, fmt(c.driver_angle_deg, 5)), el('td', {}, fmt(c.error, 2)), el('td', {}, c.reached ? 'yes' : 'no'));
+      tr.append(el('th', { scope: 'row' }, where), el('td', {}, fmt(c.driver_angle_deg, 5)), el('td', {}, fmt(c.error, 2, size)), el('td', {}, c.reached ? 'yes' : 'no'));
       tr.dataset.check = String(k);
     });
   }
@@ -652,7 +654,7 @@ export class LinkageDesigner {
     if (!this.track) return;
     this.view.draw(frameAt(this.track, this.u));
     const deg = (valueAt(this.track, this.u) * 180) / Math.PI;
-    this.el.readout.textContent = `crank angle θ₂ = ${deg.toFixed(1)}°`;
+    this.el.readout.textContent = `crank angle θ₂ = ${fmt(deg, 4)}°`;
     this.el.svg.dataset.u = this.u.toFixed(3);
   }
 

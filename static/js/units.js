@@ -59,16 +59,41 @@ export function fromDisplay(kind, value, system) {
   return e && value !== null && value !== undefined ? value / e[1] : value;
 }
 
-/** A number with `digits` significant digits, without exponent for everyday magnitudes. */
-export function fmt(value, digits = 4) {
+/**
+ * The app's one rounding rule: a number as a textbook prints it, `digits` significant digits
+ * with trailing zeros dropped (0.29, not 0.289999 or 0.2900), no exponent for everyday
+ * magnitudes (1e-3 <= |x| < 1e6) and a short one otherwise (1.5e-7, not 1.500e-7); with `scale`
+ * (the size of the figure the value belongs to) a value within NOISE · scale of zero is 0.
+ * Every view prints numbers through this function (or `show`, `typed`, which use it).
+ */
+export function fmt(value, digits = 4, scale = 0) {
   if (value === null || value === undefined || Number.isNaN(value)) return '—';
-  if (value === 0) return '0';
-  const abs = Math.abs(value);
+  if (!Number.isFinite(value)) return value > 0 ? '∞' : '−∞';
+  const v = denoise(value, scale);
+  if (v === 0) return '0';
+  const abs = Math.abs(v);
   if (abs >= 1e-3 && abs < 1e6) {
-    const decimals = Math.max(0, digits - 1 - Math.floor(Math.log10(abs)));
-    return Number(value.toFixed(Math.min(decimals, 10))).toString();
+    const decimals = digits - 1 - Math.floor(Math.log10(abs));
+    // Above 10^digits the last places are zeros: 123456.7 to 4 digits is 123500.
+    const rounded = decimals >= 0 ? v.toFixed(Math.min(decimals, 10)) : Math.round(v / 10 ** -decimals) * 10 ** -decimals;
+    const text = Number(rounded).toString();
+    return text === '-0' ? '0' : text;
   }
-  return value.toExponential(digits - 1);
+  const [mantissa, exponent] = v.toExponential(digits - 1).split('e');
+  return `${Number(mantissa)}e${exponent.replace('+', '')}`;
+}
+
+/** Significant digits of a value put back into a field: 15, every digit a double holds without its last-place noise. */
+export const TYPED_DIGITS = 15;
+
+/**
+ * A value shown in a field, in the digits the user typed: the value at TYPED_DIGITS significant
+ * digits, trailing zeros dropped, so 0.1 + 0.2 reads 0.3 and 0.28999999999999998 reads 0.29.
+ */
+export function typed(value) {
+  if (typeof value !== 'number') return String(value ?? '');
+  if (!Number.isFinite(value)) return String(value);
+  return Number(value.toPrecision(TYPED_DIGITS)).toString();
 }
 
 /** Relative size under which a value is rounding noise of the figure it belongs to. */

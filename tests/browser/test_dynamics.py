@@ -5,8 +5,12 @@ the animated linkage, and the Newton-Euler worked solution with its free-body di
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
+import re
+from pathlib import Path
 
 import pytest
 
@@ -205,3 +209,69 @@ def test_statics_is_a_method_of_the_worked_solution(app: AppPage) -> None:
     app.open(fragment)
     page.click("#tab-solution")
     assert page.is_checked("input[name='method'][value='statics']"), "the shared link keeps it"
+
+
+def test_the_flywheel_inertia_for_k_and_the_cycle_as_csv(app: AppPage) -> None:
+    """seed004: the panel gives the flywheel inertia I = ΔE / (k ω²) for the k typed (ω the
+    crank's 25.13 rad/s, ΔE the energy fluctuation it prints; halving k doubles I), and
+    "Download the cycle (CSV)" writes the plotted series, unrounded: one row per sample, the
+    torque, the power M ω, every joint force with |F| = hypot(F_x, F_y)."""
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics:not([hidden])")
+    omega = build_preset("seed004", {})["drivers"][0]["omega"]
+
+    def figures() -> dict[str, float]:
+        page.wait_for_function(
+            "() => /flywheel inertia/.test(document.getElementById('dynamics-info').textContent)"
+        )
+        text = page.inner_text("#dynamics-info")
+        number = r"(-?\d+(?:\.\d+)?(?:e-?\d+)?)"
+        found = {
+            "dE": re.search(rf"energy fluctuation {number} J", text),
+            "I": re.search(rf"flywheel inertia {number} kg m² for k = {number}", text),
+            "M": re.search(rf"mean torque {number} N m", text),
+        }
+        assert all(found.values()), text
+        return {
+            "dE": float(found["dE"][1]),  # type: ignore[index]
+            "I": float(found["I"][1]),  # type: ignore[index]
+            "k": float(found["I"][2]),  # type: ignore[index]
+            "M": float(found["M"][1]),  # type: ignore[index]
+        }
+
+    first = figures()
+    assert first["k"] == 0.05
+    # 4 significant digits printed for both I and ΔE: 1e-3 relative
+    assert first["I"] == pytest.approx(first["dE"] / (0.05 * omega**2), rel=1e-3)
+    page.fill("#dynamics-k", "0.025")
+    page.dispatch_event("#dynamics-k", "change")
+    page.wait_for_function(
+        "() => /k = 0.025/.test(document.getElementById('dynamics-info').textContent)"
+    )
+    second = figures()
+    assert second["I"] == pytest.approx(2 * first["I"], rel=1e-3)
+
+    with page.expect_download() as info:
+        page.click("#dynamics-csv")
+    assert info.value.suggested_filename == "cycle-dynamics.csv"
+    rows = list(csv.reader(io.StringIO(Path(info.value.path()).read_text())))
+    header, body = rows[0], [[float(v) for v in r] for r in rows[1:]]
+    assert header[:3] == ["driver angle [rad]", "torque M (crank) [N m]", "power M ω [W]"]
+    assert header[-2:] == ["kinetic energy T [J]", "equivalent inertia [kg m²]"]
+    assert len(body) >= 100
+    for row in body:
+        assert row[2] == pytest.approx(row[1] * omega, rel=1e-9, abs=1e-9)
+    joints = [h.removeprefix("|F| at ").removesuffix(" [N]") for h in header if h.startswith("|F|")]
+    assert {"O", "A", "B"} <= set(joints)
+    for name in joints:
+        fx, fy, size = (header.index(f"{c} at {name} [N]") for c in ("F_x", "F_y", "|F|"))
+        for row in body:
+            assert row[size] == pytest.approx(math.hypot(row[fx], row[fy]), rel=1e-9, abs=1e-9)
+    # the columns are the plotted series, unrounded
+    traces = {t["name"]: t for t in json.loads(plot_data(page, "dynamics-plots"))}
+    assert [row[1] for row in body] == pytest.approx(traces["torque M (crank)"]["y"], rel=1e-12)
+    assert [row[2] for row in body] == pytest.approx(traces["power M ω"]["y"], rel=1e-12)
+    size = header.index("|F| at A [N]")
+    assert [row[size] for row in body] == pytest.approx(traces["|F| at A"]["y"], rel=1e-12)

@@ -1,0 +1,139 @@
+"""Time from a click or a slider input to the drawn frame that shows its result, in headless
+Chromium, against a baseline measured in the same run.
+
+Starts the real app with uvicorn on a free loopback port, opens the page in Debian's Chromium at
+1440x900, and measures each input in the page itself (no Playwright round trip inside the
+interval): ``t0 = performance.now()``, the input is dispatched as the browser dispatches a user's
+(a ``change`` on the select or the slider, a ``click`` on a tab), then every animation frame
+checks the state the page signals when the result is drawn, and the time is taken at the frame
+after it (the frame that paints it):
+
+- baseline: a ``click`` on an element with no handler, until the next frame (the floor every
+  input pays: one event and one frame);
+- crank slider: a new crank angle until ``#linkage[data-analysed]`` is that angle (set once the
+  drawing and the velocity and acceleration polygons of the instant are drawn);
+- preset switch: another mechanism in the menu until ``#preset[data-shown]`` is it and
+  ``#linkage[data-analysed]`` is set again (its drawing and polygons drawn);
+- worked-solution tab: a click on the tab until its panel is shown with a typeset step.
+
+Usage: ``.venv/bin/python benchmarks/frontend_clicks.py [--repeat 7]``. Each case is run
+``repeat`` times in the same page, alternating between two targets so that every input changes
+something; the table gives the median and the worst, and each median less the baseline's.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # run as `python benchmarks/frontend_clicks.py`
+    sys.path.insert(0, str(ROOT))
+
+from benchmarks.frontend_fps import ARGS, CHROMIUM  # noqa: E402
+from server.local import serve_locally  # noqa: E402
+
+# In the page: dispatch the input named `kind` with `value`, then the ms to the frame after the
+# one on which the page signals its result (rejects after 30 s).
+TIME_INPUT = """([kind, value]) => new Promise((resolve, reject) => {
+  const $ = (id) => document.getElementById(id);
+  const linkage = $('linkage');
+  let done;
+  const t0 = performance.now();
+  if (kind === 'baseline') {
+    document.querySelector('footer').dispatchEvent(new MouseEvent('click', { bubbles: true }));
+    done = () => true;
+  } else if (kind === 'slider') {
+    const s = $('crank-angle');
+    s.value = String(value);
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+    s.dispatchEvent(new Event('change', { bubbles: true }));
+    done = () => Math.abs(+linkage.dataset.analysed - (value * Math.PI) / 180) < 1e-9;
+  } else if (kind === 'preset') {
+    delete linkage.dataset.analysed;
+    const sel = $('preset');
+    sel.value = value;
+    sel.dispatchEvent(new Event('change', { bubbles: true }));
+    done = () => sel.dataset.shown === value && linkage.dataset.analysed !== undefined;
+  } else if (kind === 'tab') {
+    $(value).click();
+    done = value === 'tab-solution'
+      ? () => !$('solution-panel').hidden && document.querySelector('#steps .step .katex') !== null
+      : () => $('solution-panel').hidden;
+  }
+  const check = () => {
+    if (done()) requestAnimationFrame(() => resolve(performance.now() - t0));
+    else if (performance.now() - t0 > 30000) reject(new Error(`${kind} ${value}: none in 30 s`));
+    else requestAnimationFrame(check);
+  };
+  requestAnimationFrame(check);
+})"""
+
+# (label, kind, the two values alternated)
+CASES: list[tuple[str, str, tuple[Any, Any]]] = [
+    ("baseline: a click with no handler, to the next frame", "baseline", (None, None)),
+    ("crank slider to a new angle (four-bar)", "slider", (60, 150)),
+    (
+        "preset switch (four-bar <-> quick-return)",
+        "preset",
+        ("preset:quick_return", "preset:four_bar"),
+    ),
+    (
+        "preset switch (four-bar <-> seed 004, with dynamics)",
+        "preset",
+        ("preset:seed004", "preset:four_bar"),
+    ),
+    ("worked-solution tab (four-bar)", "tab", ("tab-solution", "tab-plots")),
+]
+
+
+def measure(page: Any, kind: str, values: tuple[Any, Any], repeat: int) -> list[float]:
+    """The times of `repeat` inputs to the first value (each followed by one back to the second,
+    not timed, so that every timed input changes the page)."""
+    times = []
+    for _ in range(repeat):
+        times.append(float(page.evaluate(TIME_INPUT, [kind, values[0]])))
+        page.evaluate(TIME_INPUT, [kind, values[1]])
+    return times
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    args = parser.parse_args()
+    from playwright.sync_api import sync_playwright
+
+    rows = []
+    with serve_locally() as url, sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        page = browser.new_page(viewport={"width": 1440, "height": 900})
+        page.goto(url)
+        page.wait_for_function(
+            "() => performance.getEntriesByName('first-frame').length > 0", timeout=60_000
+        )
+        page.wait_for_function("() => document.getElementById('linkage').dataset.analysed")
+        if page.get_attribute("#play", "aria-pressed") == "true":
+            page.click("#play")
+        for label, kind, values in CASES:
+            times = measure(page, kind, values, args.repeat)
+            rows.append((label, statistics.median(times), max(times)))
+        browser.close()
+    base = rows[0][1]
+    load = os.getloadavg()[0]
+    print(
+        f"click to drawn frame, headless Chromium 1440x900, {args.repeat} inputs per case "
+        f"(median, worst); load average {load:.2f} on {os.cpu_count()} cores"
+    )
+    print()
+    print("| input | ms to the drawn frame (median / worst) | median less the baseline ms |")
+    print("|---|---:|---:|")
+    for label, median, worst in rows:
+        print(f"| {label} | {median:.0f} / {worst:.0f} | {median - base:.0f} |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,51 @@
+"""The app on a 390x844 phone (issue 30): the drawing and the polygons come first, before the
+controls, also after an input (they were ~4000 px down the page after every input, under the
+controls); screenshot, axe-core on the page. Real server, Debian's Chromium."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+from tests.browser.conftest import AppPage
+from tests.browser.test_app import pause_and_wait
+
+pytestmark = pytest.mark.browser
+
+TOPS = """() => Object.fromEntries(['.view-panel', '.polygons-panel', '.controls', '.tabs']
+  .map((s) => { const r = document.querySelector(s).getBoundingClientRect();
+                return [s, [r.top + window.scrollY, r.bottom + window.scrollY]]; }))"""
+
+
+def order(page: Any) -> dict[str, list[float]]:
+    boxes: dict[str, list[float]] = page.evaluate(TOPS)
+    return boxes
+
+
+def first_screen(page: Any, when: str) -> None:
+    """The drawing, then the polygons right under it (the grid's gap), then the controls."""
+    boxes = order(page)
+    view, polygons, controls = boxes[".view-panel"], boxes[".polygons-panel"], boxes[".controls"]
+    assert view[1] <= polygons[0] + 1, (when, boxes)
+    assert polygons[1] <= controls[0] + 1, (when, boxes)
+    assert polygons[0] - view[1] < 30, (when, boxes)
+
+
+def test_on_a_phone_the_drawing_and_the_polygons_come_first(app: AppPage) -> None:
+    page = app.page
+    page.set_viewport_size({"width": 390, "height": 844})
+    app.open()
+    pause_and_wait(page)
+    first_screen(page, "opened")
+    page.evaluate(
+        """() => { const s = document.getElementById('crank-angle');
+                   s.value = '120'; s.dispatchEvent(new Event('change')); }"""
+    )
+    page.wait_for_function(
+        "() => Math.abs(+document.getElementById('linkage').dataset.analysed"
+        " - 2 * Math.PI / 3) < 1e-9"
+    )
+    first_screen(page, "after an input")
+    app.screenshot("phone-order-390x844")
+    assert app.serious_accessibility_violations() == []
