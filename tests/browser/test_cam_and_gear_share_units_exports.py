@@ -46,6 +46,16 @@ def readout_numbers(page: Any) -> dict[str, tuple[float, str]]:
     return {name: (float(value), unit) for name, value, unit in found}
 
 
+def type_in(page: Any, selector: str, value: str) -> None:
+    """Type `value` into the field and commit it (one change event, as a user's Enter; no focus
+    left behind whose blur would commit it again)."""
+    page.eval_on_selector(
+        selector,
+        "(input, v) => { input.value = v; input.dispatchEvent(new Event('change')); }",
+        value,
+    )
+
+
 def share_url(page: Any) -> str:
     page.evaluate("document.getElementById('share-url').value = ''")
     page.click("#share")
@@ -57,9 +67,7 @@ def share_url(page: Any) -> str:
 def test_a_cam_link_opens_the_same_edited_cam_at_the_same_angle(app: AppPage) -> None:
     page = open_cam(app)
     pause_cam_at(page, 100)
-    page.fill("#cam-segments tr[data-segment='0'] input[data-field='lift']", "0.02")
-    page.dispatch_event("#cam-segments tr[data-segment='0'] input[data-field='lift']", "change")
-    page.wait_for_function("() => document.getElementById('cam-readout').textContent")
+    type_in(page, "#cam-segments tr[data-segment='0'] input[data-field='lift']", "0.02")
     page.wait_for_function(
         "() => document.querySelector(\"#cam-segments tr[data-segment='2'] input\").value"
         " === '0.02'"
@@ -94,8 +102,7 @@ def test_a_cam_link_opens_the_same_edited_cam_at_the_same_angle(app: AppPage) ->
 def test_a_gear_link_opens_the_same_train_paused_at_the_same_time(app: AppPage) -> None:
     page = open_gears(app)
     page.select_option("#units", "mm")
-    page.fill("#gear-fields input[data-key='omega_sun']", "600")
-    page.dispatch_event("#gear-fields input[data-key='omega_sun']", "change")
+    type_in(page, "#gear-fields input[data-key='omega_sun']", "600")
     page.wait_for_function(
         "() => Math.abs(+document.querySelector(\"#gear-fields input[data-key='omega_sun']\")"
         ".dataset.si - 600 / (30 / Math.PI)) < 1e-9"
@@ -156,7 +163,9 @@ def test_the_units_switch_converts_the_cam_by_the_linkage_views_factors(app: App
     assert status == 200
     si = readout_numbers(page)
     page.select_option("#units", "mm")
-    page.wait_for_function("() => document.getElementById('cam-readout').textContent.includes('mm')")
+    page.wait_for_function(
+        "() => document.getElementById('cam-readout').textContent.includes('mm')"
+    )
     mm = readout_numbers(page)
     follower = at["follower"]
     assert mm["s"] == (pytest.approx(follower["displacement"] * 1000, rel=5e-4), "mm")
@@ -181,19 +190,23 @@ def test_the_units_switch_converts_the_cam_by_the_linkage_views_factors(app: App
     )
     assert svaj == [pytest.approx(follower["displacement"] * 1000, rel=1e-9), "s (mm)"]
     # a value typed in mm reaches the server in m
-    page.fill("#cam-f-base_radius", "45")
-    page.dispatch_event("#cam-f-base_radius", "change")
-    page.wait_for_function("() => document.getElementById('cam-f-base_radius').dataset.si === '0.045'")
+    type_in(page, "#cam-f-base_radius", "45")
+    page.wait_for_function(
+        "() => document.getElementById('cam-f-base_radius').dataset.si === '0.045'"
+    )
 
 
 def test_the_units_switch_converts_the_gear_speeds_to_rpm(app: AppPage) -> None:
     page = open_gears(app)
     omega = table(page)
     page.select_option("#units", "mm")
-    page.wait_for_function("() => document.getElementById('gear-speeds').textContent.includes('rpm')")
+    page.wait_for_function(
+        "() => document.getElementById('gear-speeds').textContent.includes('rpm')"
+    )
     cells = page.eval_on_selector_all(
         "#gear-speeds tbody tr",
-        "(rows) => rows.map((r) => [r.dataset.member, r.querySelector('[data-omega]').textContent])",
+        "(rows) => rows.map((r) =>"
+        " [r.dataset.member, r.querySelector('[data-omega]').textContent])",
     )
     for name, text in cells:
         assert float(text) == pytest.approx(omega[name] * RPM, rel=5e-4, abs=1e-9)
@@ -210,7 +223,9 @@ def test_cam_exports_are_accepted_back_by_the_server_and_the_page(
     page = open_cam(app)
     pause_cam_at(page, 60)
     page.select_option("#units", "mm")
-    page.wait_for_function("() => document.getElementById('cam-readout').textContent.includes('mm')")
+    page.wait_for_function(
+        "() => document.getElementById('cam-readout').textContent.includes('mm')"
+    )
     name, content = download(page, "#export-scene")
     assert name.endswith(".json")
     scene = json.loads(content)
