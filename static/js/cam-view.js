@@ -12,12 +12,18 @@
 //
 // The page computes no kinematics: it places the follower on the server's contact point (a
 // roller's centre at its radius from it on the follower's axis or arm), as drawing.
+//
+// The page's units switch (units.js, the linkage view's one conversion) applies to the fields,
+// the lifts, the readout, the plots and the CSV of the SVAJ table; the cam angle θ and the
+// pressure angle φ stay in degrees (the scene gives the segments in degrees of cam angle). A share
+// link (share.js) carries the scene, the preset's name and the view: the angle, playing, units.
 
 import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { plotlyReady } from './vendor.js';
 import { renderSolution, renderMessage } from './steps.js';
-import { fmt, typed } from './units.js';
+import { fmt, typed, toDisplay, fromDisplay, unitLabel } from './units.js';
+import { toCsv } from './export.js';
 
 const SAMPLES = 360;
 const CYCLE_SECONDS = 6; // one revolution at 1x
@@ -49,6 +55,9 @@ export class CamApp {
     this.shown = false;
     this.presets = new Map();
     this.laws = [];
+    this.name = null; // the preset shown (null: a scene from a file)
+    this.units = 'si';
+    this.onChange = () => {}; // main.js keeps the share link up to date
     this.scene = null;
     this.track = null;
     this.index = 0;
@@ -94,6 +103,7 @@ export class CamApp {
   }
 
   async open(name) {
+    this.name = name;
     this.shown = true;
     this.root.hidden = false;
     document.body.dataset.family = 'cams';
@@ -111,6 +121,81 @@ export class CamApp {
     this.u = 0;
     this.setPlaying(!matchMedia('(prefers-reduced-motion: reduce)').matches);
     await this.load(scene);
+  }
+
+  /** A cam scene from elsewhere (a file, a link) shown at `angle` (deg): true, or the reason it cannot be (also shown). */
+  async openScene(scene, source = 'file', angle = 0) {
+    this.name = null;
+    this.shown = true;
+    this.root.hidden = false;
+    document.body.dataset.family = 'cams';
+    this.el.title.textContent = scene.title || 'Cam';
+    this.el.description.textContent = `Opened from ${source}.`;
+    this.index = ((angle % SAMPLES) + SAMPLES) % SAMPLES;
+    this.u = this.index / SAMPLES;
+    if (await this.load(scene)) return true;
+    const why = this.el.editMessage.textContent;
+    this.say(`This cam cannot be shown: ${why}`);
+    return why;
+  }
+
+  /** What a share link carries: the scene whole, the preset's name, the angle shown, playing. */
+  shareState() {
+    return {
+      scene: this.scene,
+      source: this.name ? { type: 'cam', name: this.name } : { type: 'cam-scene' },
+      view: { family: 'cams', angle_deg: this.index, playing: this.playing, units: this.units },
+    };
+  }
+
+  /** Open a share link's state (shareState): the scene as it was, at its angle. */
+  async restore(state) {
+    const view = state.view || {};
+    this.units = view.units === 'mm' ? 'mm' : 'si';
+    this.setPlaying(view.playing === true);
+    const meta = state.source?.type === 'cam' ? this.presets.get(state.source.name) : null;
+    const ok = await this.openScene(state.scene, 'a link', Number.isInteger(view.angle_deg) ? view.angle_deg : 0);
+    if (meta && ok === true) {
+      this.name = meta.name;
+      this.el.title.textContent = meta.title || this.el.title.textContent;
+      this.el.description.textContent = meta.description || '';
+    }
+    return ok;
+  }
+
+  /** The units switch: the fields, the table, the readout and the plots in `units`. */
+  async setUnits(units) {
+    this.units = units;
+    if (!this.track) return;
+    this.renderFields();
+    this.renderTable();
+    this.draw();
+    await this.renderPlots();
+  }
+
+  /** The follower's quantities' kinds in units.js: a translating follower's or an arm's. */
+  kinds() {
+    return this.scene.follower.motion === 'oscillating'
+      ? { s: 'angle', v: 'omega', a: 'alpha', j: 'angular_jerk' }
+      : { s: 'length', v: 'velocity', a: 'acceleration', j: 'jerk' };
+  }
+
+  /** The SVAJ table, one row per degree of cam angle, in the units chosen (header with units). */
+  svajCsv() {
+    const t = this.track;
+    const k = this.kinds();
+    const u = (kind) => unitLabel(kind, this.units);
+    const header = ['cam angle θ [deg]', `s [${u(k.s)}]`, `v [${u(k.v)}]`, `a [${u(k.a)}]`, `j [${u(k.j)}]`, 'pressure angle φ [deg]', `ρ cam [${u('length')}]`];
+    if (t.pitch_radius_of_curvature) header.push(`ρ pitch [${u('length')}]`);
+    const f = t.follower;
+    const rows = t.cam_angle.map((theta, i) => {
+      const row = [(theta * 180) / Math.PI, toDisplay(k.s, f.displacement[i], this.units), toDisplay(k.v, f.velocity[i], this.units),
+        toDisplay(k.a, f.acceleration[i], this.units), toDisplay(k.j, f.jerk[i], this.units), (t.pressure_angle[i] * 180) / Math.PI,
+        toDisplay('length', t.radius_of_curvature[i], this.units)];
+      if (t.pitch_radius_of_curvature) row.push(toDisplay('length', t.pitch_radius_of_curvature[i], this.units));
+      return row;
+    });
+    return toCsv([header, ...rows]);
   }
 
   close() {
@@ -147,6 +232,7 @@ export class CamApp {
     await this.renderPlots();
     if (this.playing) renderMessage(this.el.steps, 'Pause, or pick an angle, for the worked solution at the angle shown.');
     this.scheduleSolution();
+    this.onChange();
     return true;
   }
 
@@ -169,28 +255,34 @@ export class CamApp {
     box.replaceChildren(el('legend', {}, 'Cam and follower'));
     const f = this.scene.follower;
     const rows = [
-      ['base_radius', 'Base radius R_b', 'm', this.scene.cam.base_radius, (s, v) => { s.cam.base_radius = v; }],
-      ['omega', 'Cam speed ω (ccw +)', 'rad/s', this.scene.cam.omega, (s, v) => { s.cam.omega = v; }],
+      ['base_radius', 'Base radius R_b', 'length', this.scene.cam.base_radius, (s, v) => { s.cam.base_radius = v; }],
+      ['omega', 'Cam speed ω (ccw +)', 'omega', this.scene.cam.omega, (s, v) => { s.cam.omega = v; }],
     ];
-    if ('roller_radius' in f) rows.push(['roller_radius', 'Roller radius r_f', 'm', f.roller_radius, (s, v) => { s.follower.roller_radius = v; }]);
-    if (f.motion === 'translating') rows.push(['offset', 'Offset e', 'm', f.offset || 0, (s, v) => { s.follower.offset = v; }]);
+    if ('roller_radius' in f) rows.push(['roller_radius', 'Roller radius r_f', 'length', f.roller_radius, (s, v) => { s.follower.roller_radius = v; }]);
+    if (f.motion === 'translating') rows.push(['offset', 'Offset e', 'length', f.offset || 0, (s, v) => { s.follower.offset = v; }]);
     if (f.motion === 'oscillating') {
-      rows.push(['pivot_x', 'Pivot x', 'm', f.pivot[0], (s, v) => { s.follower.pivot = [v, s.follower.pivot[1]]; }]);
-      rows.push(['pivot_y', 'Pivot y', 'm', f.pivot[1], (s, v) => { s.follower.pivot = [s.follower.pivot[0], v]; }]);
-      if ('arm_length' in f) rows.push(['arm_length', 'Arm length l', 'm', f.arm_length, (s, v) => { s.follower.arm_length = v; }]);
+      rows.push(['pivot_x', 'Pivot x', 'length', f.pivot[0], (s, v) => { s.follower.pivot = [v, s.follower.pivot[1]]; }]);
+      rows.push(['pivot_y', 'Pivot y', 'length', f.pivot[1], (s, v) => { s.follower.pivot = [s.follower.pivot[0], v]; }]);
+      if ('arm_length' in f) rows.push(['arm_length', 'Arm length l', 'length', f.arm_length, (s, v) => { s.follower.arm_length = v; }]);
     }
     box.appendChild(el('p', { class: 'muted small' }, `${f.motion} follower, ${f.contact} contact`));
-    for (const [key, label, unit, value, apply] of rows) {
+    for (const [key, label, kind, value, apply] of rows) {
       const id = `cam-f-${key}`;
       const wrap = el('div', { class: 'field' });
       const lab = el('label', { for: id }, `${label} `);
-      lab.appendChild(el('span', { class: 'unit' }, `(${unit})`));
-      const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': key });
-      input.value = typed(value);
-      input.addEventListener('change', () => this.commit(input, apply));
+      lab.appendChild(el('span', { class: 'unit' }, `(${unitLabel(kind, this.units)})`));
+      const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': key, 'data-si': String(value) });
+      input.value = this.typed(kind, value);
+      input.addEventListener('change', () => this.commit(input, (s, v) => apply(s, fromDisplay(kind, v, this.units))));
       wrap.append(lab, input);
       box.appendChild(wrap);
     }
+  }
+
+  /** A value of the scene (SI) as typed in the units chosen (units.typed: the factor's rounding
+   *  noise dropped). */
+  typed(kind, value) {
+    return typed(toDisplay(kind, value, this.units));
   }
 
   async commit(input, apply) {
@@ -208,7 +300,8 @@ export class CamApp {
   renderTable() {
     const table = this.el.table;
     table.replaceChildren();
-    const unit = this.scene.follower.motion === 'oscillating' ? 'rad' : 'm';
+    const liftKind = this.kinds().s;
+    const unit = unitLabel(liftKind, this.units);
     table.appendChild(el('caption', {}, `Segments from cam angle 0: lift in ${unit}, length in degrees of cam angle (summing to 360°)`));
     const head = el('tr');
     for (const h of ['segment', 'law', 'lift', 'length']) head.appendChild(el('th', { scope: 'col' }, h));
@@ -231,10 +324,12 @@ export class CamApp {
       else {
         // A rise and the return that follows carry the same lift: one edit changes both.
         const input = el('input', { type: 'text', inputmode: 'decimal', 'aria-label': `lift of segment ${i}`, 'data-field': 'lift', size: 7 });
-        input.value = typed(seg.lift);
+        input.value = this.typed(liftKind, seg.lift);
+        input.dataset.si = String(seg.lift);
         input.addEventListener('change', () => this.commitCell(input, (s, v) => {
           const before = s.segments[i].lift;
-          for (const other of s.segments) if (other.type !== 'dwell' && other.lift === before) other.lift = v;
+          const lift = fromDisplay(liftKind, v, this.units);
+          for (const other of s.segments) if (other.type !== 'dwell' && other.lift === before) other.lift = lift;
         }));
         liftCell.appendChild(input);
       }
@@ -377,9 +472,10 @@ export class CamApp {
     }
     if (this.roller) { this.roller.setAttribute('cx', P[0]); this.roller.setAttribute('cy', P[1]); }
     this.contactDot.setAttribute('cx', C[0]); this.contactDot.setAttribute('cy', C[1]);
-    const lift = f.motion === 'oscillating' ? 'rad' : 'm';
     const fol = t.follower;
-    this.el.readout.textContent = `θ = ${k}°: s = ${fmt(fol.displacement[k])} ${lift}, v = ${fmt(fol.velocity[k])} ${lift}/s, a = ${fmt(fol.acceleration[k])} ${lift}/s², φ = ${fmt((t.pressure_angle[k] * 180) / Math.PI, 3)}°`;
+    const kinds = this.kinds();
+    const q = (kind, v) => `${fmt(toDisplay(kind, v, this.units))} ${unitLabel(kind, this.units)}`;
+    this.el.readout.textContent = `θ = ${k}°: s = ${q(kinds.s, fol.displacement[k])}, v = ${q(kinds.v, fol.velocity[k])}, a = ${q(kinds.a, fol.acceleration[k])}, φ = ${fmt((t.pressure_angle[k] * 180) / Math.PI, 3)}°`;
     this.el.slider.value = String(k);
   }
 
@@ -394,6 +490,7 @@ export class CamApp {
       this.moveCursor();
       this.scheduleSolution();
     }
+    this.onChange();
   }
 
   show(index) {
@@ -402,6 +499,7 @@ export class CamApp {
     this.draw();
     this.moveCursor();
     if (!this.playing) this.scheduleSolution();
+    this.onChange();
   }
 
   tick(time) {
@@ -431,20 +529,21 @@ export class CamApp {
     }
     const t = this.track;
     const x = t.cam_angle.map((a) => (a * 180) / Math.PI);
-    const f = this.scene.follower;
-    const u = f.motion === 'oscillating' ? 'rad' : 'm';
+    const k = this.kinds();
+    const y = (kind, values) => values.map((v) => toDisplay(kind, v, this.units));
+    const label = (name, kind) => `${name} (${unitLabel(kind, this.units)})`;
     const rows = [
-      ['s', t.follower.displacement, `s (${u})`, COLOURS.s],
-      ['v', t.follower.velocity, `v (${u}/s)`, COLOURS.v],
-      ['a', t.follower.acceleration, `a (${u}/s²)`, COLOURS.a],
-      ['j', t.follower.jerk, `j (${u}/s³)`, COLOURS.j],
+      ['s', y(k.s, t.follower.displacement), label('s', k.s), COLOURS.s],
+      ['v', y(k.v, t.follower.velocity), label('v', k.v), COLOURS.v],
+      ['a', y(k.a, t.follower.acceleration), label('a', k.a), COLOURS.a],
+      ['j', y(k.j, t.follower.jerk), label('j', k.j), COLOURS.j],
     ];
     await this.stacked(Plotly, this.el.svaj, x, rows, 'SVAJ diagrams');
     const geometry = [
       ['φ', t.pressure_angle.map((p) => (p * 180) / Math.PI), 'φ (°)', COLOURS.phi],
-      ['ρ', t.radius_of_curvature, 'ρ cam (m)', COLOURS.rho],
+      ['ρ', y('length', t.radius_of_curvature), label('ρ cam', 'length'), COLOURS.rho],
     ];
-    if (t.pitch_radius_of_curvature) geometry.push(['ρp', t.pitch_radius_of_curvature, 'ρ pitch (m)', COLOURS.cam]);
+    if (t.pitch_radius_of_curvature) geometry.push(['ρp', y('length', t.pitch_radius_of_curvature), label('ρ pitch', 'length'), COLOURS.cam]);
     await this.stacked(Plotly, this.el.geometry, x, geometry, 'Pressure angle and radius of curvature');
     this.moveCursor();
   }

@@ -217,7 +217,11 @@ export function installExport(app) {
       app.status(`Export failed: ${err.message}`, 'error');
     }
   };
+  // A cam's or a gear train's view (js/cam-view.js, gear-view.js): its table and its scene.
   $('export-csv').addEventListener('click', guard(() => {
+    const view = app.familyView();
+    if (view === app.cams) return download(`${slug(view.scene?.title)}-svaj.csv`, new Blob([view.svajCsv()], { type: 'text/csv' }));
+    if (view) return download(`${slug(view.scene?.title)}-speeds.csv`, new Blob([view.speedsCsv()], { type: 'text/csv' }));
     if (!app.track || app.track.n < 2) throw new Error('there is no cycle (sweep) to export for this scene');
     download(`${name()}-cycle.csv`, new Blob([sweepCsv(app.scene, app.track, app.units)], { type: 'text/csv' }));
   }));
@@ -245,8 +249,9 @@ export function installExport(app) {
     download(`${name()}-${which}.${format}`, blob);
   }));
   $('export-scene').addEventListener('click', guard(() => {
-    if (!app.scene) throw new Error('no scene loaded');
-    download(`${name()}.json`, new Blob([JSON.stringify(app.scene, null, 2)], { type: 'application/json' }));
+    const scene = app.familyView()?.scene ?? app.scene;
+    if (!scene) throw new Error('no scene loaded');
+    download(`${slug(scene.title)}.json`, new Blob([JSON.stringify(scene, null, 2)], { type: 'application/json' }));
   }));
   $('import-scene').addEventListener('change', guard(async (ev) => {
     const file = ev.target.files?.[0];

@@ -10,12 +10,17 @@
 // a member's angle after k sweeps is k times its angle at the end plus the angle within the
 // sweep). The drawing itself (pitch circles, teeth marks, a planet's centre turned with its
 // carrier) is geometry: no speed is computed here.
+//
+// The page's units switch (units.js, the linkage view's one conversion) applies to the speed
+// fields, the table of speeds and its CSV (rad/s or rpm). A share link (share.js) carries the
+// scene, the preset and its parameters (or the example) and the view: the time shown, playing.
 
 import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { katexReady } from './vendor.js';
-import { fmt, typed } from './units.js';
+import { fmt, typed, toDisplay, fromDisplay, unitLabel, kindOfUnit } from './units.js';
+import { toCsv } from './export.js';
 
 const FAMILY = 'gear_trains';
 const SAMPLES = 61;
@@ -46,6 +51,8 @@ export class GearTrains {
     this.shown = false;
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
     this.seq = 0;
+    this.units = 'si';
+    this.onChange = () => {}; // main.js keeps the share link up to date
     this.t = 0; // display time within the playback, s
     this.last = null;
     this.playButton.addEventListener('click', () => this.setPlaying(!this.playing));
@@ -73,16 +80,65 @@ export class GearTrains {
 
   /** Show the panel with a preset (`gear`) or an example (`gear-example`). */
   async open(type, name) {
+    return this.show({ type, name }, {}, null, null);
+  }
+
+  /** A gear-train scene from elsewhere (an uploaded file), its inputs and teeth as fields. */
+  async openScene(scene) {
+    return this.show({ type: 'gear-scene', name: null }, {}, scene, null);
+  }
+
+  /** What a share link carries: the scene whole, the preset and its parameters (or the example),
+   * the time shown and playing. */
+  shareState() {
+    const source = this.source.type === 'gear' ? { ...this.source, params: { ...this.params } } : { ...this.source };
+    return { scene: this.scene, source, view: { family: FAMILY, time: this.t, playing: this.playing, units: this.units } };
+  }
+
+  /** Open a share link's state (shareState): the scene as it was, at its time. */
+  async restore(state) {
+    const view = state.view || {};
+    this.units = view.units === 'mm' ? 'mm' : 'si';
+    this.setPlaying(view.playing === true);
+    const src = state.source || {};
+    const source = ['gear', 'gear-example'].includes(src.type) ? { type: src.type, name: src.name } : { type: 'gear-scene', name: null };
+    const time = Number.isFinite(view.time) ? view.time : 0;
+    return this.show(source, src.type === 'gear' ? { ...(src.params || {}) } : {}, state.scene, time);
+  }
+
+  /** The units switch: the fields and the table of speeds in `units`. */
+  setUnits(units) {
+    this.units = units;
+    if (!this.scene) return;
+    this.buildFields();
+    this.renderTable();
+  }
+
+  /** The table of speeds as CSV, in the units chosen (header with units). */
+  speedsCsv() {
+    const unit = unitLabel('omega', this.units);
+    const rows = [['member', 'type', 'teeth', `ω [${unit}]`, `ω relative to its carrier [${unit}]`, 'carrier', 'train value']];
+    for (const [name, m] of Object.entries(this.analysis.members)) {
+      const planet = m.type === 'gear' && m.carrier;
+      rows.push([name, m.type, m.type === 'gear' ? m.teeth : null, toDisplay('omega', m.omega, this.units),
+        planet ? toDisplay('omega', m.omega_relative, this.units) : null, planet ? m.carrier : null, m.train_value]);
+    }
+    return toCsv(rows);
+  }
+
+  /** Show `source` (a preset with `params`, an example, a scene) with `scene` when given, at
+   * `time` (null: from 0); true, or the reason it cannot be shown (also on the page). */
+  async show(source, params, scene, time) {
     this.shown = true;
     document.body.dataset.family = FAMILY;
     this.root.hidden = false;
-    this.source = { type, name };
+    this.source = source;
     let ok;
     try {
-      this.params = {};
-      this.doc = type === 'gear' ? null : await api.getExample(name);
+      this.params = params;
+      this.doc = source.type === 'gear' ? null : scene || await api.getExample(source.name);
       this.buildFields();
-      ok = await this.update();
+      ok = await this.update(source.type === 'gear' ? scene : null, time);
     } catch (err) {
       ok = err.detail || err.message;
     }
@@ -91,6 +147,7 @@ export class GearTrains {
       this.message.hidden = false;
     }
     this.loop();
+    return ok;
   }
 
   close() {
@@ -103,6 +160,7 @@ export class GearTrains {
     this.playing = playing;
     this.playButton.textContent = playing ? 'Pause' : 'Play';
     this.playButton.setAttribute('aria-pressed', String(playing));
+    this.onChange();
   }
 
   // ---- fields --------------------------------------------------------------------------------
@@ -114,27 +172,29 @@ export class GearTrains {
     const rows = [];
     if (this.source.type === 'gear') {
       const meta = this.presets.get(this.source.name);
-      for (const p of meta?.parameters || []) rows.push({ key: p.name, label: p.name, unit: p.unit, value: p.default, help: p.description });
+      for (const p of meta?.parameters || []) rows.push({ key: p.name, label: p.name, unit: p.unit, kind: kindOfUnit(p.unit), value: this.params[p.name] ?? p.default, help: p.description });
     } else {
-      for (const [name, w] of Object.entries(this.doc.inputs)) rows.push({ key: `input:${name}`, label: `ω ${name}`, unit: 'rad/s', value: w, help: `Angular velocity of ${name} (0: fixed).` });
-      for (const [name, g] of Object.entries(this.doc.gears)) rows.push({ key: `teeth:${name}`, label: `N ${name}`, unit: 'teeth', value: g.teeth, help: `Teeth of ${name}.` });
+      for (const [name, w] of Object.entries(this.doc.inputs)) rows.push({ key: `input:${name}`, label: `ω ${name}`, unit: 'rad/s', kind: 'omega', value: w, help: `Angular velocity of ${name} (0: fixed).` });
+      for (const [name, g] of Object.entries(this.doc.gears)) rows.push({ key: `teeth:${name}`, label: `N ${name}`, unit: 'teeth', kind: null, value: g.teeth, help: `Teeth of ${name}.` });
     }
     for (const row of rows) {
       const id = `gear-f-${row.key.replace(/[^a-zA-Z0-9_-]/g, '_')}`;
       const wrap = el('div', { class: 'field' });
       const label = el('label', { for: id }, `${row.label} `);
-      label.appendChild(el('span', { class: 'unit' }, `[${row.unit}]`));
-      const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': row.key, 'aria-describedby': `${id}-error`, title: row.help });
-      input.value = typed(row.value);
+      label.appendChild(el('span', { class: 'unit' }, `[${unitLabel(row.kind, this.units, row.unit)}]`));
+      const input = el('input', { id, type: 'text', inputmode: 'decimal', spellcheck: 'false', 'data-key': row.key, 'aria-describedby': `${id}-error`, title: row.help, 'data-si': String(row.value) });
+      // typed in the units chosen, the factor's rounding noise dropped
+      input.value = typed(row.kind ? toDisplay(row.kind, row.value, this.units) : row.value);
       const error = el('div', { id: `${id}-error`, class: 'field-error', role: 'alert' });
-      input.addEventListener('change', () => this.onField(row.key, input, error));
+      input.addEventListener('change', () => this.onField(row.key, input, error, row.kind));
       wrap.append(label, input, error);
       this.fields.appendChild(wrap);
     }
   }
 
-  async onField(key, input, error) {
-    const value = Number(input.value.trim().replace(',', '.'));
+  async onField(key, input, error, kind) {
+    const number = Number(input.value.trim().replace(',', '.'));
+    const value = kind ? fromDisplay(kind, number, this.units) : number;
     const mark = (text) => {
       error.textContent = text;
       if (text) input.setAttribute('aria-invalid', 'true');
@@ -147,6 +207,7 @@ export class GearTrains {
     else this.doc.gears[key.slice(6)].teeth = value;
     const ok = await this.update();
     if (ok === true) {
+      input.dataset.si = String(value);
       for (const other of this.fields.querySelectorAll('[aria-invalid]')) other.removeAttribute('aria-invalid');
       for (const other of this.fields.querySelectorAll('.field-error')) other.textContent = '';
     } else if (ok !== null) {
@@ -160,13 +221,13 @@ export class GearTrains {
 
   /** The scene, its speeds, its sweep and its solution: true, or the server's message (null for
    * an answer overtaken by a newer request). */
-  async update() {
+  async update(given = null, time = null) {
     const seq = ++this.seq;
     let scene;
     let analysis;
     let sweep;
     try {
-      scene = this.source.type === 'gear' ? await api.buildPreset(this.source.name, this.params) : this.doc;
+      scene = given || (this.source.type === 'gear' ? await api.buildPreset(this.source.name, this.params) : this.doc);
       analysis = await api.analyze(scene);
       const fastest = Math.max(...Object.values(analysis.members).map((m) => Math.abs(m.omega)));
       this.span = fastest > 0 ? (2 * Math.PI) / fastest : 1;
@@ -179,13 +240,14 @@ export class GearTrains {
     this.scene = scene;
     this.analysis = analysis;
     this.sweep = sweep;
-    this.t = 0;
+    this.t = time ?? 0;
     this.message.hidden = true;
     this.root.querySelector('#gear-title').textContent = scene.title || 'Gear train';
     this.layout();
     this.renderTable();
-    this.drawAt(0);
+    this.drawAt(this.t);
     this.solve(seq);
+    this.onChange();
     return true;
   }
 
@@ -423,7 +485,8 @@ export class GearTrains {
     const table = this.table;
     clear(table);
     const first = this.analysis.first_input;
-    table.appendChild(el('caption', {}, `Speeds (rad/s, counter-clockwise positive); train value ω/ω_${first ?? '?'}`));
+    const unit = unitLabel('omega', this.units);
+    table.appendChild(el('caption', {}, `Speeds (${unit}, counter-clockwise positive); train value ω/ω_${first ?? '?'}`));
     const head = el('tr');
     for (const h of ['member', 'teeth', 'ω', 'ω relative to its carrier', 'train value']) head.appendChild(el('th', { scope: 'col' }, h));
     table.appendChild(el('thead')).appendChild(head);
@@ -434,8 +497,8 @@ export class GearTrains {
       const given = name in inputs ? (inputs[name] === 0 ? ' (fixed)' : ' (input)') : '';
       row.appendChild(el('th', { scope: 'row' }, `${name}${m.type === 'carrier' ? ' (carrier)' : ''}${given}`));
       row.appendChild(el('td', {}, m.type === 'gear' ? `${m.teeth}${m.internal ? ' int.' : ''}` : '–'));
-      row.appendChild(el('td', { 'data-omega': String(m.omega) }, fmt(m.omega)));
-      row.appendChild(el('td', {}, m.type === 'gear' && m.carrier ? `${fmt(m.omega_relative)} (${m.carrier})` : '–'));
+      row.appendChild(el('td', { 'data-omega': String(m.omega) }, fmt(toDisplay('omega', m.omega, this.units))));
+      row.appendChild(el('td', {}, m.type === 'gear' && m.carrier ? `${fmt(toDisplay('omega', m.omega_relative, this.units))} (${m.carrier})` : '–'));
       row.appendChild(el('td', {}, m.train_value === null ? '–' : fmt(m.train_value)));
       body.appendChild(row);
     }

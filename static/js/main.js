@@ -167,11 +167,16 @@ class App {
     this.controls.setPresetChoices([...this.presets.values()], this.examples);
     // Gear trains (issue 25): their own group at the end of the menu and their own panel.
     this.gearTrains = new GearTrains($('gear-train'));
-    this.gearTrains.load(examples.status === 'fulfilled' ? examples.value.examples || [] : [])
+    this.gearsReady = this.gearTrains.load(examples.status === 'fulfilled' ? examples.value.examples || [] : [])
       .then(() => this.gearTrains.addChoices($('preset')));
     // Cams (issue 24): their own group in the menu and their own section (js/cam-view.js).
     this.cams = new CamApp($('cam-app'));
-    this.cams.addChoices($('preset'));
+    this.camsReady = this.cams.addChoices($('preset'));
+    // Their share links, units and exports are the page's (js/share.js, units.js, export.js).
+    for (const view of [this.cams, this.gearTrains]) {
+      view.onChange = () => this.saveHash();
+      view.setUnits(this.units);
+    }
     // Design a linkage (issue 26): its own group and section; "Open in the analyser" comes back
     // here with the designed scene as a shared scene.
     this.designer = new LinkageDesigner($('synthesis-app'), {
@@ -272,6 +277,9 @@ class App {
 
   /** A scene document from elsewhere (an uploaded file, the editor): analysed at once. */
   async openScene(scene, { name = 'file' } = {}) {
+    if (scene.kind === 'cam' || scene.kind === 'gear_train') return this.openFamilyScene(scene, name);
+    this.cams?.close();
+    this.gearTrains?.close();
     const before = this.snapshot();
     this.driverEdits = {};
     this.source = { type: 'shared' };
@@ -897,6 +905,9 @@ class App {
   onUnits(units) {
     this.units = units;
     this.controls.setUnits(units);
+    this.cams.setUnits(units);
+    this.gearTrains.setUnits(units);
+    if (!this.scene) return this.saveHash(); // only a cam or a gear train has been shown
     this.linkage.setOptions({ units });
     this.spatial.setOptions({ units });
     this.mechanismFacts(this.analysis);
@@ -972,7 +983,39 @@ class App {
 
   // ---- share ---------------------------------------------------------------------------------
 
+  /** The cam or gear-train view while one is shown (else null: the linkage view). */
+  familyView() {
+    return [this.cams, this.gearTrains].find((view) => view?.shown) || null;
+  }
+
+  /** A cam or gear-train scene (an uploaded file) in its own view. */
+  async openFamilyScene(scene, name) {
+    this.setPlaying(false, { analyse: false });
+    this.designer?.close();
+    const [view, other] = scene.kind === 'cam' ? [this.cams, this.gearTrains] : [this.gearTrains, this.cams];
+    other.close();
+    this.controls.selectSource('shared', `Opened from ${name}.`);
+    return view.openScene(scene, name);
+  }
+
+  /** A share link of a cam or a gear train (its view's shareState). */
+  async restoreFamily(state) {
+    this.setPlaying(false, { analyse: false });
+    this.designer?.close();
+    const cam = state.view.family === 'cams';
+    const [view, other, ready] = cam ? [this.cams, this.gearTrains, this.camsReady] : [this.gearTrains, this.cams, this.gearsReady];
+    other.close();
+    await ready;
+    const src = state.source || {};
+    const value = ['cam', 'gear', 'gear-example'].includes(src.type) ? `${src.type}:${src.name}` : 'shared';
+    this.controls.selectSource(value, 'A mechanism opened from a link.');
+    const ok = await view.restore(state);
+    if (ok !== true) this.status(`This link could not be opened: ${ok}`, 'error');
+  }
+
   shareState() {
+    const family = this.familyView();
+    if (family) return family.shareState();
     return {
       scene: this.scene,
       source: this.source,
@@ -999,8 +1042,9 @@ class App {
   saveHash() {
     clearTimeout(this.hashTimer);
     this.hashTimer = setTimeout(async () => {
-      if (!this.scene) return;
-      await writeHash(this.shareState());
+      const state = this.shareState();
+      if (!state.scene) return;
+      await writeHash(state);
       this.lastHash = location.hash;
     }, 300);
   }
@@ -1022,6 +1066,9 @@ class App {
     const view = state.view || {};
     this.units = view.units === 'mm' ? 'mm' : 'si';
     this.controls.setUnits(this.units);
+    this.cams.setUnits(this.units);
+    this.gearTrains.setUnits(this.units);
+    if (view.family === 'cams' || view.family === 'gear_trains') return this.restoreFamily(state);
     this.speed = view.speed || 1;
     this.controls.setSpeed(this.speed);
     this.method = ['loop', 'newton_euler', 'statics'].includes(view.method) ? view.method : 'vector';

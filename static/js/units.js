@@ -14,6 +14,8 @@ const SYSTEMS = {
     velocity: ['m/s', 1],
     acceleration: ['m/s²', 1],
     time: ['s', 1],
+    jerk: ['m/s³', 1],
+    angular_jerk: ['rad/s³', 1],
   },
   mm: {
     length: ['mm', 1000],
@@ -23,6 +25,8 @@ const SYSTEMS = {
     velocity: ['mm/s', 1000],
     acceleration: ['mm/s²', 1000],
     time: ['s', 1],
+    jerk: ['mm/s³', 1000],
+    angular_jerk: ['rad/s³', 1],
   },
 };
 
