@@ -70,12 +70,4 @@ else
   echo "$audit"
   exit 1
 fi
-# The suite in two processes (pytest-xdist, one per core of CI's two), then the tests that time a
-# server under load (marked `serial`) alone. Arguments replace this: they go to one pytest run
-# (add `-n 2` to it for two processes).
-if [ $# -eq 0 ]; then
-  .venv/bin/python -m pytest -p no:cacheprovider -n 2 -m "not serial"
-  .venv/bin/python -m pytest -p no:cacheprovider -m serial
-else
-  .venv/bin/python -m pytest -p no:cacheprovider "$@"
-fi
+.venv/bin/python -m pytest -p no:cacheprovider "$@"

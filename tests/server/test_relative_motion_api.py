@@ -27,9 +27,6 @@ from fastapi.testclient import TestClient
 
 from server.app import app
 
-# timed against a server under load: run alone, not beside other tests (tests/run.sh)
-pytestmark = pytest.mark.serial
-
 CASES = Path(__file__).resolve().parents[1] / "reference" / "seed-cases.json"
 PROBLEM = "application/problem+json"
 _LOCAL: TestClient | None = None

@@ -19,9 +19,6 @@ from server.settings import Settings, from_environment
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import request, server
 
-# timed against a server under load: run alone, not beside other tests (tests/run.sh)
-pytestmark = pytest.mark.serial
-
 LIMIT = "1"
 
 
