@@ -217,7 +217,8 @@ export class LinkageView {
     }, { passive: false });
     svg.addEventListener('keydown', (ev) => {
       const pan = { ArrowLeft: [PAN_STEP, 0], ArrowRight: [-PAN_STEP, 0], ArrowUp: [0, PAN_STEP], ArrowDown: [0, -PAN_STEP] }[ev.key];
-      if (!pan || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      // a key a handle inside the drawing used (the designer's positions) does not pan
+      if (!pan || ev.defaultPrevented || ev.ctrlKey || ev.metaKey || ev.altKey) return;
       ev.preventDefault();
       this.panBy(pan[0], pan[1]);
     });
