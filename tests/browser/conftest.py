@@ -182,3 +182,28 @@ def pytest_terminal_summary(terminalreporter: Any) -> None:
 
 def pytest_configure(config: Any) -> None:
     config.addinivalue_line("markers", "browser: drives the page in headless Chromium")
+
+
+def shown_boxes(page: Any, selector: str) -> list[list[float]]:
+    """The screen boxes [left, top, right, bottom] (px) of the shown elements matching
+    ``selector``."""
+    found: list[list[float]] = page.evaluate(
+        "(s) => [...document.querySelectorAll(s)].filter((e) => e.offsetParent !== null)"
+        ".map((e) => { const r = e.getBoundingClientRect();"
+        " return [r.left, r.top, r.right, r.bottom]; })",
+        selector,
+    )
+    return found
+
+
+def overlapping_pairs(
+    boxes: list[list[float]], slack: float = 1.0
+) -> list[tuple[list[float], ...]]:
+    """Every pair of boxes that overlap by more than ``slack`` px (sub-pixel layout rounding)."""
+    return [
+        (a, b)
+        for i, a in enumerate(boxes)
+        for b in boxes[i + 1 :]
+        if not (a[2] <= b[0] + slack or b[2] <= a[0] + slack or a[3] <= b[1] + slack
+                or b[3] <= a[1] + slack)
+    ]  # fmt: skip

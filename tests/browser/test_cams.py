@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
 from tests.browser.test_app import choose
 
 ROLLER = "cam:cam_roller_translating"
@@ -132,16 +132,6 @@ def test_back_to_a_linkage(app: AppPage) -> None:
     assert not page.locator("#cam-app").is_visible()
 
 
-def _boxes(page: Any, selector: str) -> list[list[float]]:
-    found: list[list[float]] = page.evaluate(
-        "(s) => [...document.querySelectorAll(s)].filter((e) => e.offsetParent !== null)"
-        ".map((e) => { const r = e.getBoundingClientRect();"
-        " return [r.left, r.top, r.right, r.bottom]; })",
-        selector,
-    )
-    return found
-
-
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     app: AppPage, width: int, height: int
@@ -153,12 +143,9 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     app.screenshot(f"cams-{width}x{height}")
     assert page.evaluate("() => document.documentElement.scrollWidth <= window.innerWidth + 1")
     # the panels of the section do not overlap, and no control sticks out of its panel
-    panels = _boxes(page, "#cam-app > .panel")
-    for i, a in enumerate(panels):
-        for b in panels[i + 1 :]:
-            apart = a[2] <= b[0] + 1 or b[2] <= a[0] + 1 or a[3] <= b[1] + 1 or b[3] <= a[1] + 1
-            assert apart, f"panels overlap: {a} {b}"
-    form = _boxes(page, "#cam-form")[0]
-    for box in _boxes(page, "#cam-form input, #cam-form select"):
+    panels = shown_boxes(page, "#cam-app > .panel")
+    assert not overlapping_pairs(panels), "panels overlap"
+    form = shown_boxes(page, "#cam-form")[0]
+    for box in shown_boxes(page, "#cam-form input, #cam-form select"):
         assert form[0] - 1 <= box[0] and box[2] <= form[2] + 1, (box, form)
     assert not app.serious_accessibility_violations("#cam-app")

@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
 from tests.browser.test_app import choose
 
 DESIGN = "design:linkage"
@@ -327,16 +327,6 @@ def test_open_in_the_analyser_loads_the_design_as_a_shared_scene(app: AppPage) -
     assert page.locator("#linkage .link").count() == 3
 
 
-def _boxes(page: Any, selector: str) -> list[list[float]]:
-    found: list[list[float]] = page.evaluate(
-        "(s) => [...document.querySelectorAll(s)].filter((e) => e.offsetParent !== null)"
-        ".map((e) => { const r = e.getBoundingClientRect();"
-        " return [r.left, r.top, r.right, r.bottom]; })",
-        selector,
-    )
-    return found
-
-
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     app: AppPage, width: int, height: int
@@ -347,17 +337,14 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     page.wait_for_selector("#syn-steps .step .katex", state="attached")
     app.screenshot(f"synthesis-{width}x{height}")
     assert page.evaluate("() => document.documentElement.scrollWidth <= window.innerWidth + 1")
-    panels = _boxes(page, "#synthesis-app > .panel")
-    for i, a in enumerate(panels):
-        for b in panels[i + 1 :]:
-            apart = a[2] <= b[0] + 1 or b[2] <= a[0] + 1 or a[3] <= b[1] + 1 or b[3] <= a[1] + 1
-            assert apart, f"panels overlap: {a} {b}"
-    form = _boxes(page, "#syn-form")[0]
-    for box in _boxes(page, "#syn-form input, #syn-form button"):
+    panels = shown_boxes(page, "#synthesis-app > .panel")
+    assert not overlapping_pairs(panels), "panels overlap"
+    form = shown_boxes(page, "#syn-form")[0]
+    for box in shown_boxes(page, "#syn-form input, #syn-form button"):
         assert form[0] - 1 <= box[0] and box[2] <= form[2] + 1, (box, form)
     # the handles are inside the drawing
-    drawing = _boxes(page, "#syn-linkage")[0]
-    for box in _boxes(page, "#syn-linkage .syn-handles circle"):
+    drawing = shown_boxes(page, "#syn-linkage")[0]
+    for box in shown_boxes(page, "#syn-linkage .syn-handles circle"):
         assert drawing[0] <= box[0] and box[2] <= drawing[2], (box, drawing)
         assert drawing[1] <= box[1] and box[3] <= drawing[3], (box, drawing)
     assert not app.serious_accessibility_violations("#synthesis-app")
