@@ -4,7 +4,9 @@ units in the last shown digit of the result.
 A step shows its numbers with ``digits`` significant digits. Where a check's result, recomputed
 from its operands as they are shown, would not round to the result as shown (-0.03125 / 0.0127
 gives -2.461, the step says -2.462), the operands are shown with one more digit, and again, up to
-``MAX_DIGITS``, until every check of the step recomputes (a fixed point: digits only grow). A
+``MAX_DIGITS``, until every check of the step recomputes (a fixed point: digits only grow). The
+operands of one check are shown at one precision: a line reads 0.1205 * 1.582, never
+0.347195^2 * 1.582 (a result may show fewer digits than the numbers it is computed from). A
 step settles its digits in one pass over its values when it is built (``StepBuilder.build``).
 """
 
@@ -170,7 +172,10 @@ def needed_digits(
     checks: Sequence[Check],
     fmt: Formatter,
 ) -> dict[str, int]:
-    """The values that need more than ``fmt.digits`` digits for every check to recompute."""
+    """The values that need more than ``fmt.digits`` digits for every check to recompute, the
+    operands of one check at one precision (0.1205 * 1.582, never 0.347195^2 * 1.582): where
+    a check does not recompute, all its operands take one digit more than the most precise of
+    them; where its operands differ, the others take the most precise one's digits."""
     digits = dict.fromkeys(values, fmt.digits)
     shown = ShownValues(values, references, fmt, digits)
     shown_checks = [c for c in checks if c.relation not in UNSHOWN]
@@ -182,12 +187,15 @@ def needed_digits(
             now = [digits[k] for k in keys[i]]
             if passed.get(i) == now:
                 continue  # the same shown numbers recompute again
-            if shown.recomputes(check):
+            level = max(now[1:])
+            if min(now[1:]) == level and shown.recomputes(check):
                 passed[i] = now
                 continue
+            if min(now[1:]) == level or not shown.recomputes(check):
+                level = min(level + 1, MAX_DIGITS)
             for key in keys[i][1:]:
-                if digits[key] < MAX_DIGITS:
-                    digits[key] += 1
+                if digits[key] < level:
+                    digits[key] = level
                     changed = True
         if not changed:
             break

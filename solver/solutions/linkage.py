@@ -590,21 +590,14 @@ def _write_rigid_acceleration(
     link, base, target = names
     w, al, r, t, n, ay, w2 = refs
     again = rf"&\phantom{{{a_vec(target)}}} = "
+    b.line(rf"&\omega_{{{tex.name(link)}}}^2 = ", Paren(w), "^2 = ", Num(w2), latex_unit("1/s^2"))
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
     )
-    b.line(again, base_a, " + ", ZCross(al, r), " - ", Paren(w), r"^2 \cdot ", Col(r))
+    b.line(again, base_a, " + ", ZCross(al, r), " - ", Num(w2), r" \cdot ", Col(r))
     b.line(
         again,
-        base_a,
-        " + ",
-        Col(t),
-        " - ",
-        Num(w2),
-        r" \cdot ",
-        Col(r),
-        " = ",
         base_a,
         " + ",
         Col(t),

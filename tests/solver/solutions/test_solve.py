@@ -1210,6 +1210,66 @@ def test_shown_arithmetic_recomputes_to_the_shown_digits(name: str, solution: So
     assert not failures, (name, failures[:3])
 
 
+def significant_digits(number: float, ulp: float) -> int:
+    """The significant digits of a shown number, from the unit in its last digit."""
+    return math.floor(math.log10(abs(number))) - round(math.log10(ulp)) + 1
+
+
+def mixed_precision(step: Any) -> list[str]:
+    """The checks whose operands are shown at different precisions: with D the most significant
+    digits any operand shows, an operand shown with fewer is wrong unless its number rounded to
+    D digits is what it shows (trailing zeros are dropped: 0.15 at four digits)."""
+    shown = {k: shown_number(v.display) for k, v in step.values.items()}
+    exact = {k: np.atleast_1d(np.asarray(v.value, float)) for k, v in step.values.items()}
+    failures = []
+    for check in step.checks:
+        if check.relation == "linear":
+            continue
+        keys = {o.ref.key for o in check.operands}
+        numbers = [
+            (key, float(x), float(u), float(e))
+            for key in keys
+            for x, u, e in zip(*shown[key], exact[key], strict=False)
+            if x != 0.0 and u > 0.0
+        ]
+        if not numbers:
+            continue
+        most = max(significant_digits(x, u) for _, x, u, _ in numbers)
+        for key, x, _, e in numbers:
+            if float(f"{e:.{most - 1}e}") != pytest.approx(x, rel=1e-12):
+                failures.append(f"{step.kind} '{step.title}': {key} = {x} beside {most} digits")
+    return failures
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_the_operands_of_a_check_are_shown_at_one_precision(name: str, solution: Solution) -> None:
+    """0.347195^2 beside 1.582 in one product: the factors of one piece of shown arithmetic
+    (a product, a sum, a quotient) have one count of significant digits."""
+    failures = [f for step in solution.steps for f in mixed_precision(step)]
+    assert not failures, (name, failures[:3])
+
+
+def test_the_precision_check_can_fail() -> None:
+    """The issue's line: omega = 0.347195 (six digits) times r = 1.582 (four)."""
+    from solver.solutions.equation import Ref
+    from solver.solutions.model import Check, Step, Value
+
+    step = Step(
+        "x",
+        "x",
+        "",
+        "",
+        {
+            "w": Value(0.34719529, "rad/s", "0.347195 rad/s"),
+            "r": Value(1.58213, "m", "1.582 m"),
+            "n": Value(0.34719529**2 * 1.58213, "m/s^2", "0.1907 m/s^2"),
+        },
+        (Check("product", Ref("n").operand, tuple(Ref(k).operand for k in "wwr")),),
+    )
+    assert mixed_precision(step)
+    assert significant_digits(0.15, 0.01) == 2
+
+
 def test_the_recompute_check_can_fail() -> None:
     """The issue's example: 0.0127 shown with four digits makes -0.03125/0.0127 = -2.461."""
     from solver.solutions.equation import Ref
