@@ -289,6 +289,12 @@ def lever_sides(v: VectorMethod, step: LeverStep, order: int) -> tuple[Step, Sid
     return b.build(), lever_side, Side(known_pin, pin_motion, unit)
 
 
+def braced(label: str, *pieces: Piece) -> tuple[Piece, ...]:
+    """The pieces of one part of a sum under a brace naming it: \\underbrace{...}_{label} (a
+    term of v_tr that reads as a term of v_tr, not of the whole sum)."""
+    return (r"\underbrace{", *pieces, rf"}}_{{{label}}}")
+
+
 def lever_velocity_lines(
     v: VectorMethod, b: StepBuilder, step: LeverStep, side: Side, vp: str
 ) -> None:
@@ -296,21 +302,22 @@ def lever_velocity_lines(
     lever, pivot, pin = step.link, step.pivot, step.pin
     (rate, rkey), (slide, ukey) = ((t.unknown, t.of) for t in side.terms)
     sub, base = tex.name(pin), origin(b, v.ctx, pivot, Ref(side.known_key))
+    part = {name: rf"\vec{{v}}_{{{sub},\mathrm{{{name}}}}}" for name in ("tr", "rel")}
+    again = rf"&\phantom{{{v_vec(pin)}}} = "
+    b.line(rf"&{v_vec(pin)} = {part['tr']} + {part['rel']}, \quad \vec{{u}} = ", Col(Ref(ukey)))
     b.line(
-        rf"&{v_vec(pin)} = \vec{{v}}_{{{sub},\mathrm{{tr}}}} + "
-        rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}} = {v_vec(pivot)} + {w_vec(lever)} \times "
-        rf"{r_vec(pivot, pin)} + {slide.latex}\,\vec{{u}}, \quad \vec{{u}} = ",
-        Col(Ref(ukey)),
-    )
-    b.line(
-        rf"&\phantom{{{v_vec(pin)}}} = ",
-        base,
+        again,
+        *braced(part["tr"], rf"{v_vec(pivot)} + {w_vec(lever)} \times {r_vec(pivot, pin)}"),
         " + ",
-        ZCross(rate.symbol, Ref(rkey)),
-        f" + {slide.latex} ",
-        Col(Ref(ukey)),
-        f" = {side_column(b, side)}{latex_unit('m/s')}",
+        *braced(part["rel"], rf"{slide.latex}\,\vec{{u}}"),
     )
+    b.line(
+        again,
+        *braced(part["tr"], base, " + ", ZCross(rate.symbol, Ref(rkey))),
+        " + ",
+        *braced(part["rel"], f"{slide.latex} ", Col(Ref(ukey))),
+    )
+    b.line(f"{again}{side_column(b, side)}{latex_unit('m/s')}")
     b.say(
         f"Geometric connection: {pin} is the pin of its crank, so v({pin}) = ",
         Col(Ref(vp)),
@@ -356,29 +363,37 @@ def lever_acceleration_lines(
     (ap, cor), sub = pin_keys, tex.name(pin)
     part = {name: rf"\vec{{a}}_{{{sub},\mathrm{{{name}}}}}" for name in ("tr", "rel", "Cor")}
     b.line(rf"&{a_vec(pin)} = {part['tr']} + {part['rel']} + {part['Cor']}")
+    again = rf"&\phantom{{{a_vec(pin)}}} = "
     b.line(
-        rf"&\phantom{{{a_vec(pin)}}} = \underbrace{{{a_vec(pivot)} + {al_vec(lever)}"
-        rf" \times {r_vec(pivot, pin)} - \omega_{{{tex.name(lever)}}}^2\,"
-        rf"{r_vec(pivot, pin)}}}_{{{part['tr']}}} + \underbrace{{{slide.latex}\,\vec{{u}}}}"
-        rf"_{{{part['rel']}}} + \underbrace{{2\,{w_vec(lever)} \times "
-        rf"\vec{{v}}_{{{sub},\mathrm{{rel}}}}}}_{{{part['Cor']}}}"
-    )
-    b.line(
-        rf"&\phantom{{{a_vec(pin)}}} = \underbrace{{",
-        origin(b, v.ctx, pivot, Ref(known.base)),
+        again,
+        *braced(
+            part["tr"],
+            rf"{a_vec(pivot)} + {al_vec(lever)} \times {r_vec(pivot, pin)} - "
+            rf"\omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)}",
+        ),
         " + ",
-        ZCross(rate.symbol, Ref(rkey)),
-        " - ",
-        Paren(Ref(known.omega)),
-        r"^2 \cdot ",
-        Col(Ref(rkey)),
-        rf"}}_{{{part['tr']}}} + \underbrace{{{slide.latex} ",
-        Col(Ref(ukey)),
-        rf"}}_{{{part['rel']}}} + \underbrace{{",
-        Col(Ref(cor)),
-        rf"}}_{{{part['Cor']}}}",
+        *braced(part["rel"], rf"{slide.latex}\,\vec{{u}}"),
+        " + ",
+        *braced(part["Cor"], rf"2\,{w_vec(lever)} \times \vec{{v}}_{{{sub},\mathrm{{rel}}}}"),
     )
-    b.line(rf"&\phantom{{{a_vec(pin)}}} = {side_column(b, side)}{latex_unit('m/s^2')}")
+    b.line(
+        again,
+        *braced(
+            part["tr"],
+            origin(b, v.ctx, pivot, Ref(known.base)),
+            " + ",
+            ZCross(rate.symbol, Ref(rkey)),
+            " - ",
+            Paren(Ref(known.omega)),
+            r"^2 \cdot ",
+            Col(Ref(rkey)),
+        ),
+        " + ",
+        *braced(part["rel"], f"{slide.latex} ", Col(Ref(ukey))),
+        " + ",
+        *braced(part["Cor"], Col(Ref(cor))),
+    )
+    b.line(f"{again}{side_column(b, side)}{latex_unit('m/s^2')}")
     b.say(
         f"Geometric connection: a({pin}) = ",
         Col(Ref(ap)),

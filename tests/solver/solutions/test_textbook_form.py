@@ -337,3 +337,25 @@ def test_the_lever_pins_acceleration_labels_each_part_it_adds() -> None:
     shown = step.values["a_cor(B)"].display.removesuffix(" m/s^2").strip("()").split(", ")
     assert all(number in parts[cor][1] for number in shown)
     assert r"\omega_{\text{guide}}^2" in parts[tr][0] and "(-2)^2" in parts[tr][1]
+
+
+def test_the_lever_pins_velocity_labels_each_part_it_adds() -> None:
+    """Seed 000 Task 2, the pin B: v_B = v_tr + v_rel, then v_A + omega x r_AB under a brace
+    naming the transport part and s-dot u under one naming the relative part, in symbols and
+    again with the numbers, so s-dot u never reads as a term of v_tr."""
+    doc = json.loads((EXAMPLES / "S000-T2.json").read_text())
+    (step,) = [
+        s for s in solve(parse_linkage(doc), "vector").steps if s.kind == "velocity.lever.side"
+    ]
+    lines = step.latex.split(r"\\")
+    first = r"\begin{aligned} &\vec{v}_{B} = \vec{v}_{B,\mathrm{tr}} + \vec{v}_{B,\mathrm{rel}},"
+    assert lines[0].strip().startswith(first)
+    assert not any(r"\mathrm{rel}} = \vec{v}_{A}" in line for line in lines)
+    parts: dict[str, list[str]] = {}
+    for inside, label in underbraces(step.latex):
+        parts.setdefault(label, []).append(inside)
+    tr, rel = (rf"\vec{{v}}_{{B,\mathrm{{{p}}}}}" for p in ("tr", "rel"))
+    assert set(parts) == {tr, rel} and all(len(v) == 2 for v in parts.values())
+    assert parts[tr][0] == r"\vec{v}_{A} + \vec{\omega}_{\text{guide}} \times \vec{r}_{AB}"
+    assert r"\omega_{\text{guide}}" in parts[tr][1] and r"\dot{s}_{B}" not in parts[tr][1]
+    assert all(inside.startswith(r"\dot{s}_{B}") for inside in parts[rel])
