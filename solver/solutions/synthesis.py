@@ -26,6 +26,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from solver.model.scene import parse_linkage
 from solver.solutions.builder import StepBuilder
 from solver.solutions.equation import Equation, Frac, Num, Pt, Signed, Sym
 from solver.solutions.format import Formatter
@@ -48,11 +49,13 @@ def _point(body: JSON, name: str) -> tuple[float, float]:
 
 
 def _checks_step(body: JSON, what: str) -> Step:
-    """The checks by analysis and the defects, in words with the numbers."""
+    """The checks by analysis and the defects, in words with the numbers; an error that is
+    rounding noise at the linkage's scale (its size) reads 0."""
     b = _builder("checks", "Checks by analysis of the synthesised linkage")
+    size = parse_linkage(body["scene"]).size
     for k, check in enumerate(body["checks"]):
         angle = b.value(f"crank angle {k + 1}", math.radians(check["driver_angle_deg"]), "rad")
-        error = b.value(f"error {k + 1}", check["error"], "")
+        error = b.value(f"error {k + 1}", check["error"], "", reference=size)
         reached = "reaches it" if check["reached"] else "does not reach it on this assembly"
         b.say(
             f"{what} {k + 1}: with the crank at ",

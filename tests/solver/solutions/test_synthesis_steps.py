@@ -4,6 +4,7 @@ the first step carries the construction's figure as a standalone SVG."""
 
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from typing import Any
 
@@ -74,3 +75,17 @@ def test_the_steps_show_the_bodys_numbers() -> None:
     motion = solver.synthesize(TASKS["three positions"]).as_dict()
     centre = next(s for s in motion["steps"] if s["title"].startswith("The centre point A"))
     assert centre["values"]["A"]["value"] == motion["scene"]["points"]["A"]
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_a_check_off_by_rounding_noise_reads_zero(name: str) -> None:
+    """'off by 1.665 x 10^-16' was float noise: an error within 1e-11 of the linkage's size (the
+    diagonal of its points' bounding box) reads 0, a larger one its digits."""
+    body = solver.synthesize(TASKS[name]).as_dict()
+    (step,) = [s for s in body["steps"] if s["kind"] == "synthesis.checks"]
+    xy = [tuple(p) for p in body["scene"]["points"].values()]
+    size = math.dist(*(tuple(f(c) for c in zip(*xy, strict=True)) for f in (min, max)))
+    for k, check in enumerate(body["checks"], start=1):
+        display = step["values"][f"error {k}"]["display"]
+        assert (display == "0") == (check["error"] <= 1e-11 * size), (display, check["error"])
+    assert "10^-" not in step["text"]
