@@ -347,6 +347,23 @@ def _write(b: StepBuilder, symbol: Sym, *sides: Piece | tuple[Piece, ...]) -> No
     b.say(equation, ".")
 
 
+# a derivative c f(angle) of a law: its symbol, its formula (LaTeX, text), the factor written
+# before the number of f (LaTeX, text), f's value and the derivative's value
+ScaledTrig = tuple[str, tuple[str, str], tuple[str, str], Ref, Ref]
+PI_HALF = (r"\frac{\pi}{2} \cdot ", "(pi/2) x ")
+PI2_HALF = (r"\frac{\pi^2}{2} \cdot ", "(pi^2/2) x ")
+PI3_HALF = (r"-\frac{\pi^3}{2} \cdot ", "-(pi^3/2) x ")
+TWO_PI = (r"2\pi \cdot ", "2 pi x ")
+FOUR_PI2 = (r"4\pi^2 \cdot ", "4 pi^2 x ")
+
+
+def _scaled_trig(b: StepBuilder, rows: Sequence[ScaledTrig]) -> None:
+    """y^(n) = c f(angle) = c (f) = value, a line each: y' = (pi/2) sin(pi x) = (pi/2) x
+    (0.7071) = 1.111."""
+    for symbol, formula, factor, trig, result in rows:
+        _write(b, Sym(symbol, symbol), Sym(*formula), (Sym(*factor), Paren(trig)), Num(result))
+
+
 def _trig(b: StepBuilder, name: str, angle: Ref) -> tuple[Ref, Ref]:
     """cos and sin of ``angle`` (rad), checked through (cos, sin) = e^(i angle)."""
     value = b.scalar(angle)
@@ -456,26 +473,13 @@ def _harmonic(b: StepBuilder, x: Ref) -> LawValues:
         (Sym(r"\frac{1 - ", "(1 - "), Paren(cos), Sym("}{2}", ")/2")),
         Num(y),
     )
-    _write(
+    _scaled_trig(
         b,
-        Sym("y'", "y'"),
-        Sym(r"\frac{\pi}{2}\sin \pi x", "(pi/2) sin(pi x)"),
-        (Sym(r"\frac{\pi}{2} \cdot ", "(pi/2) x "), Paren(sin)),
-        Num(dy),
-    )
-    _write(
-        b,
-        Sym("y''", "y''"),
-        Sym(r"\frac{\pi^2}{2}\cos \pi x", "(pi^2/2) cos(pi x)"),
-        (Sym(r"\frac{\pi^2}{2} \cdot ", "(pi^2/2) x "), Paren(cos)),
-        Num(d2y),
-    )
-    _write(
-        b,
-        Sym("y'''", "y'''"),
-        Sym(r"-\frac{\pi^3}{2}\sin \pi x", "-(pi^3/2) sin(pi x)"),
-        (Sym(r"-\frac{\pi^3}{2} \cdot ", "-(pi^3/2) x "), Paren(sin)),
-        Num(d3y),
+        (
+            ("y'", (r"\frac{\pi}{2}\sin \pi x", "(pi/2) sin(pi x)"), PI_HALF, sin, dy),
+            ("y''", (r"\frac{\pi^2}{2}\cos \pi x", "(pi^2/2) cos(pi x)"), PI2_HALF, cos, d2y),
+            ("y'''", (r"-\frac{\pi^3}{2}\sin \pi x", "-(pi^3/2) sin(pi x)"), PI3_HALF, sin, d3y),
+        ),
     )
     return LawValues(y, dy, d2y, d3y)
 
@@ -505,26 +509,13 @@ def _cycloidal(b: StepBuilder, x: Ref) -> LawValues:
         (Num(x), Sym(r" - \frac{", " - "), Paren(sin), Sym(r"}{2\pi}", "/(2 pi)")),
         Num(y),
     )
-    _write(
+    _scaled_trig(
         b,
-        Sym("y'", "y'"),
-        Sym(r"1 - \cos 2\pi x", "1 - cos(2 pi x)"),
-        ("1 - ", Paren(cos)),
-        Num(dy),
-    )
-    _write(
-        b,
-        Sym("y''", "y''"),
-        Sym(r"2\pi \sin 2\pi x", "2 pi sin(2 pi x)"),
-        (Sym(r"2\pi \cdot ", "2 pi x "), Paren(sin)),
-        Num(d2y),
-    )
-    _write(
-        b,
-        Sym("y'''", "y'''"),
-        Sym(r"4\pi^2 \cos 2\pi x", "4 pi^2 cos(2 pi x)"),
-        (Sym(r"4\pi^2 \cdot ", "4 pi^2 x "), Paren(cos)),
-        Num(d3y),
+        (
+            ("y'", (r"1 - \cos 2\pi x", "1 - cos(2 pi x)"), ("1 - ", "1 - "), cos, dy),
+            ("y''", (r"2\pi \sin 2\pi x", "2 pi sin(2 pi x)"), TWO_PI, sin, d2y),
+            ("y'''", (r"4\pi^2 \cos 2\pi x", "4 pi^2 cos(2 pi x)"), FOUR_PI2, cos, d3y),
+        ),
     )
     return LawValues(y, dy, d2y, d3y)
 
@@ -984,13 +975,6 @@ def pressure_angle_step(ctx: CamContext) -> Step:
             Paren(s),
             Sym("}", "))"),
         )
-        quotient: tuple[Piece, ...] = (
-            Sym(r"\arctan\frac{", "arctan("),
-            Num(num),
-            Sym("}{", "/"),
-            Num(den),
-            Sym("}", ")"),
-        )
         source = "Norton eq. 8.31"
     else:
         pivot = b.value("pivot", f.pivot, "m")
@@ -1050,14 +1034,8 @@ def pressure_angle_step(ctx: CamContext) -> Step:
             Paren(sin),
             Sym("}", "))"),
         )
-        quotient = (
-            Sym(r"\arctan\frac{", "arctan("),
-            Num(num),
-            Sym("}{", "/"),
-            Num(den),
-            Sym("}", ")"),
-        )
         source = "the oscillating arm's form of tan phi = (u . T)/(u . n)"
+    quotient = (Sym(r"\arctan\frac{", "arctan("), Num(num), Sym("}{", "/"), Num(den), Sym("}", ")"))
     degrees = b.value("phi (deg)", math.degrees(b.scalar(phi)), "deg")
     b.check("product", degrees, phi, factor=1.0 / DEG)
     equation = Equation.of(
