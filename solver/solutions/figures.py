@@ -227,6 +227,8 @@ def wrap(text: str, width: float, size: float) -> list[str]:
 
 
 CAPTION_FONT = 3.4  # mm
+BAR_WIDTH = 1.4  # mm: a link's bar
+RAIL_WIDTH = 0.5  # mm: a guide's rail
 ARROW_FONT = 3.0  # mm
 LEADING = 4.4  # mm between the caption's lines
 _LABEL = (("font-size", f"{CAPTION_FONT:g}"),)
@@ -251,12 +253,14 @@ def _segment(
     link = style == "link"
     stroke = [
         ("stroke", "#222222" if link else colour),
-        ("stroke-width", "1.4" if link else "0.35"),
+        ("stroke-width", f"{BAR_WIDTH:g}" if link else "0.35"),
         ("stroke-linecap", "round"),
     ]
     if dash and not link:
         stroke.append(("stroke-dasharray", dash))
     canvas.line(start, end, stroke, lead=[("class", style)], digits=4)
+    if link:
+        canvas.keep_off(start, end, BAR_WIDTH)
 
 
 def _arrow(canvas: Canvas, arrow: Arrow) -> list[tuple[Point, str]]:
@@ -316,13 +320,14 @@ def _rails(canvas: Canvas, slider: Slider) -> list[Point]:
     u = np.array([slider.axis[0], -slider.axis[1]])  # y down
     n = np.array([-u[1], u[0]])
     corners: list[Point] = []
-    ink = [("stroke", "#222222"), ("stroke-width", "0.5")]
+    ink = [("stroke", "#222222"), ("stroke-width", f"{RAIL_WIDTH:g}")]
     for side in (1.0, -1.0):
         offset = n * side * (BLOCK[1] / 2 + 0.3)
         a = np.array([x, y]) + offset - RAIL * u
         b = np.array([x, y]) + offset + RAIL * u
         lead = [("class", "guide"), ("data-guide", slider.name)]
         canvas.line((a[0], a[1]), (b[0], b[1]), ink, lead=lead, digits=4)
+        canvas.keep_off((a[0], a[1]), (b[0], b[1]), RAIL_WIDTH)
         corners += [(a[0], a[1]), (b[0], b[1])]
         if slider.fixed:
             for k in range(int(2 * RAIL / HATCH) + 1):

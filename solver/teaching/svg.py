@@ -30,6 +30,7 @@ CHAR_WIDTH = 0.62  # em: the width estimated for one character of a label (sans-
 ASCENT = 0.8  # em: a label's box above its baseline
 DESCENT = 0.25  # em: and below it
 RING = 1.5  # mm: the step between the rings of places tried when no candidate is free
+SEARCH_RINGS = 4  # rings within which a label looks for a place off every bar
 Coordinates = Sequence[float] | np.ndarray  # a model point: (x, y), a (2,) array
 Attribute = tuple[str, str | float]
 
@@ -85,6 +86,15 @@ class View:
 
 
 @dataclass(frozen=True)
+class Bar:
+    """A drawn segment from a to b, ``width`` wide, that labels keep off."""
+
+    a: Point
+    b: Point
+    width: float
+
+
+@dataclass(frozen=True)
 class Box:
     """An axis-aligned box in the drawing's coordinates (y down): left <= right, top <= bottom."""
 
@@ -101,6 +111,25 @@ class Box:
             and self.top < other.bottom
             and other.top < self.bottom
         )
+
+
+def crosses(box: Box, a: Point, b: Point, pad: float) -> bool:
+    """True when the segment ab passes through ``box`` grown by ``pad`` on every side (a bar's
+    half width): the segment clipped to the box's slab in x, then in y, keeps a piece."""
+    low, high = 0.0, 1.0
+    for start, delta, lo, hi in (
+        (a[0], b[0] - a[0], box.left - pad, box.right + pad),
+        (a[1], b[1] - a[1], box.top - pad, box.bottom + pad),
+    ):
+        if delta == 0.0:
+            if not lo < start < hi:
+                return False
+            continue
+        t1, t2 = sorted(((lo - start) / delta, (hi - start) / delta))
+        low, high = max(low, t1), min(high, t2)
+        if low >= high:
+            return False
+    return True
 
 
 def text_box(at: Point, label: str, size: float, anchor: str = "start") -> Box:
@@ -151,6 +180,7 @@ class Canvas:
         self.parts: list[str] = []
         self.labels: list[Box] = []  # the boxes of the labels placed so far
         self.clear: list[Box] = []  # drawn shapes that labels keep clear of (``keep_clear``)
+        self.bars: list[Bar] = []  # drawn segments that labels keep off (``keep_off``)
 
     def px(self, p: Coordinates) -> Point:
         return self.view.px(p)
@@ -200,17 +230,25 @@ class Canvas:
         digits: int | None = None,
     ) -> Box:
         """<text> of ``label`` in a font of ``size`` at the first candidate (a place and its
-        text-anchor) whose box overlaps no label placed before and no shape kept clear of; if
-        every one does, at the nearest free place on rings of radius RING, 2 RING, ... around
-        the first. Its box is kept (``labels``) and returned."""
+        text-anchor) whose box overlaps no label placed before and no shape kept clear of and
+        crosses no bar kept off; if every one does, at the nearest such place on rings of radius
+        RING, 2 RING, ... up to SEARCH_RINGS around the first; if none is free of the bars
+        there, the first place free of the labels and shapes alone (the candidates, then rings
+        without end). Its box is kept (``labels``) and returned."""
         places = self.digits if digits is None else digits
-        place = _free_place(candidates, label, size, [*self.labels, *self.clear], places)
+        boxes = [*self.labels, *self.clear]
+        place = _free_place(candidates, label, size, boxes, places, self.bars)
         (x, y), anchor = place
         box = text_box((x, y), label, size, anchor)
         self.labels.append(box)
         lead = [("font-size", f"{size:g}"), ("text-anchor", anchor)]
         self.text((x, y), label, [*lead, *style], digits)
         return box
+
+    def keep_off(self, a: Point, b: Point, width: float) -> None:
+        """Labels placed from now on do not cross the segment ab drawn ``width`` wide (a link's
+        bar, a guide's rail)."""
+        self.bars.append(Bar(a, b, width))
 
     def keep_clear(self, corners: Iterable[Point]) -> None:
         """Labels placed from now on keep clear of the box around these corners (a drawn
@@ -240,27 +278,36 @@ def _free_place(
     size: float,
     placed: Sequence[Box],
     digits: int,
+    bars: Sequence[Bar] = (),
 ) -> tuple[Point, str]:
-    """The first candidate whose box meets none of ``placed``; else, on rings of radius k RING
-    (k = 1, 2, ...) around the first candidate, 16 places each, the first free one. A place is
-    rounded to the ``digits`` it is written with before its box is tried."""
+    """The first candidate whose box meets none of ``placed`` and crosses none of ``bars``;
+    else, on rings of radius k RING (k = 1 .. SEARCH_RINGS) around the first candidate, 16
+    places each, the first such one; else the same without the bars, the rings without end. A
+    place is rounded to the ``digits`` it is written with before its box is tried."""
 
     def rounded(at: Point) -> Point:
         return round(at[0], digits), round(at[1], digits)
 
-    def free(at: Point, anchor: str) -> bool:
+    def free(at: Point, anchor: str, off: Sequence[Bar]) -> bool:
         box = text_box(at, label, size, anchor)
-        return not any(box.overlaps(other) for other in placed)
+        return not any(box.overlaps(other) for other in placed) and not any(
+            crosses(box, bar.a, bar.b, bar.width / 2) for bar in off
+        )
 
-    for at, anchor in candidates:
-        if free(rounded(at), anchor):
-            return rounded(at), anchor
-    (x, y), anchor = candidates[0]
-    ring = 1
-    while True:  # the placed boxes are finitely many: a ring beyond them all is free
-        for k in range(16):
-            angle = 2 * math.pi * k / 16
-            at = rounded((x + ring * RING * math.cos(angle), y + ring * RING * math.sin(angle)))
-            if free(at, anchor):
-                return at, anchor
-        ring += 1
+    def ring(k: int) -> list[Point]:
+        (x, y), r = candidates[0][0], k * RING
+        turns = (2 * math.pi * i / 16 for i in range(16))
+        return [rounded((x + r * math.cos(t), y + r * math.sin(t))) for t in turns]
+
+    anchor = candidates[0][1]
+    for off in (bars, ()):
+        for at, side in candidates:
+            if free(rounded(at), side, off):
+                return rounded(at), side
+        k = 1
+        while not off or k <= SEARCH_RINGS:  # finitely many boxes: a ring beyond is free
+            for at in ring(k):
+                if free(at, anchor, off):
+                    return at, anchor
+            k += 1
+    raise AssertionError("unreachable: a ring beyond every box is free")

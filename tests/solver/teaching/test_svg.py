@@ -19,7 +19,16 @@ from solver.solutions.figures import Arrow, Dot, svg, wrap
 from solver.solutions.free_body import Arrow as Force
 from solver.solutions.free_body import Couple
 from solver.solutions.free_body import svg as free_body_svg
-from solver.teaching.svg import CHAR_WIDTH, Canvas, View, element, text_box
+from solver.teaching.svg import (
+    CHAR_WIDTH,
+    RING,
+    SEARCH_RINGS,
+    Box,
+    Canvas,
+    View,
+    element,
+    text_box,
+)
 
 SVG = "{http://www.w3.org/2000/svg}"
 coordinate = st.floats(-1e3, 1e3, allow_nan=False)
@@ -166,3 +175,27 @@ def test_a_long_caption_is_wrapped_after_its_commas_within_a_narrow_drawing() ->
         box = text_box((float(t.attrib["x"]), float(t.attrib["y"])), t.text or "", 3.4)
         assert x0 <= box.left and box.right <= x0 + width
     assert wrap("a, b", 1e9, 3.0) == ["a, b"]
+
+
+def _near_bar(box: Box, y: float, half: float) -> bool:
+    """The box comes within ``half`` of the horizontal bar y = ``y``, x in [-50, 50]."""
+    return box.top - half < y < box.bottom + half and box.left < 50 and box.right > -50
+
+
+def test_a_label_moves_off_a_bar_within_its_search_radius() -> None:
+    """A label asked for on a bar (its first and only candidate across the bar) is set beside
+    it, within SEARCH_RINGS rings of RING; with bars every 1 mm around it (no free place within
+    the radius) it keeps its first place, off the other labels only."""
+    canvas = Canvas(View.paper(1.0))
+    canvas.keep_off((-50.0, 0.0), (50.0, 0.0), 1.4)
+    box = canvas.label([((0.0, 1.0), "middle")], "B", 3.0, [])
+    assert not _near_bar(box, 0.0, 0.7)
+    assert math.hypot((box.left + box.right) / 2, box.bottom - 3.0 * 0.25 - 1.0) <= (
+        SEARCH_RINGS * RING + 1e-9
+    )
+    hemmed = Canvas(View.paper(1.0))
+    for k in range(-30, 31):
+        hemmed.keep_off((-50.0, float(k)), (50.0, float(k)), 0.5)
+    assert hemmed.label([((0.0, 1.0), "middle")], "B", 3.0, []) == text_box(
+        (0.0, 1.0), "B", 3.0, "middle"
+    )
