@@ -317,6 +317,22 @@ def det_row_z(b: StepBuilder, key: str) -> list[str]:
     return ["0", "0", b.num(key)]
 
 
+def omega_squared(b: StepBuilder, link: str, w: Ref, write: bool = True) -> Ref:
+    """omega_L^2 = (omega_L)^2 as a value of its own, checked, and (``write``) on a line of its
+    own (``omega_squared_line``): the normal term -omega^2 r then multiplies r by it, at r's
+    precision (never 0.347195^2 beside 1.582)."""
+    w2 = b.value(f"omega^2({link})", b.scalar(w) ** 2, "1/s^2")
+    b.check("product", w2, w, w)
+    if write:
+        omega_squared_line(b, link, w, w2)
+    return w2
+
+
+def omega_squared_line(b: StepBuilder, link: str, w: Ref, w2: Ref) -> None:
+    """The line omega_L^2 = (omega_L)^2 = value."""
+    b.line(rf"&\omega_{{{tex.name(link)}}}^2 = ", Paren(w), "^2 = ", Num(w2), latex_unit("1/s^2"))
+
+
 # --- the common steps -------------------------------------------------------------------------
 
 
@@ -519,13 +535,12 @@ def rigid_acceleration_step(
     t = b.value(f"alpha x r({base},{target})", omega_cross(alpha, r_np), "m/s^2")
     n = b.value(f"normal({base},{target})", -(omega**2) * r_np, "m/s^2")
     ay = b.value(f"a({target})", ctx.acc(target), "m/s^2", ("points", target, "acceleration"))
-    w2 = b.value(f"omega^2({link})", omega**2, "1/s^2")
-    b.check("cross", t, al, r)
-    b.check("product", w2, w, w)
-    b.check("product", n, w2, r, factor=-1.0)
-    b.check("sum", ay, ax, t, n)
     if reason:
         b.say(reason)
+    w2 = omega_squared(b, link, w)
+    b.check("cross", t, al, r)
+    b.check("product", n, w2, r, factor=-1.0)
+    b.check("sum", ay, ax, t, n)
     base_a = origin(b, ctx, base, ax)
     _write_rigid_acceleration(b, (link, base, target), base_a, (w, al, r, t, n, ay, w2))
     if base == ctx.ground_pivot(link):
@@ -590,7 +605,6 @@ def _write_rigid_acceleration(
     link, base, target = names
     w, al, r, t, n, ay, w2 = refs
     again = rf"&\phantom{{{a_vec(target)}}} = "
-    b.line(rf"&\omega_{{{tex.name(link)}}}^2 = ", Paren(w), "^2 = ", Num(w2), latex_unit("1/s^2"))
     b.line(
         rf"&{a_vec(target)} = {a_vec(base)} + {al_vec(link)} \times {r_vec(base, target)} - "
         rf"\omega_{{{tex.name(link)}}}^2\, {r_vec(base, target)}"
@@ -776,12 +790,13 @@ def _acceleration_pole_from(
     [-omega^2, -alpha; alpha, -omega^2] r_GX = a_X solved by Cramer's rule, then G = X - r_GX."""
     sub = "G_{" + tex.name(link) + "}"
     w, al, pole = Ref(f"omega({link})"), Ref(f"alpha({link})"), Ref(f"G({link})")
-    omega, alpha = ctx.omega(link), ctx.alpha(link)
+    alpha = ctx.alpha(link)
     a = ctx.acc(x)
     r_np = ctx.pos(x) - pole_np
     ax = b.value(f"a({x})", a, "m/s^2", ("points", x, "acceleration"))
     px = b.value(f"pos({x})", ctx.pos(x), "m", ("points", x, "position"))
     rx_sym, ry_sym = (rf"r_{{{sub}{tex.name(x)},{c}}}" for c in "xy")
+    w2 = omega_squared(b, link, w)
     b.line(
         rf"&{a_vec(x)} = \vec{{a}}_{{{sub}}} + {al_vec(link)} \times \vec{{r}}_{{{sub}"
         rf"{tex.name(x)}}} - \omega_{{{tex.name(link)}}}^2\,\vec{{r}}_{{{sub}{tex.name(x)}}}, "
@@ -793,10 +808,10 @@ def _acceleration_pole_from(
         " = ",
         ZCross(al, (rx_sym, ry_sym)),
         " - ",
-        Paren(w),
-        "^2 " + tex.column([rx_sym, ry_sym, "0"]),
+        Num(w2),
+        r"\, " + tex.column([rx_sym, ry_sym, "0"]),
     )
-    coefficients = _pole_coefficients(b, omega, alpha, w, al)
+    coefficients = _pole_coefficients(b, alpha, w2, al)
     b1 = b.value("b1", float(a[0]), "m/s^2")
     b2 = b.value("b2", float(a[1]), "m/s^2")
     b.check("sum", b1, ax[0])
@@ -820,19 +835,17 @@ def _acceleration_pole_from(
     b.say(f"G = {x} - r(G,{x}) = ", Pt(pole), ".")
 
 
-def _pole_coefficients(
-    b: StepBuilder, omega: float, alpha: float, w: Ref, al: Ref
-) -> list[list[Ref]]:
-    """The matrix of a_X = alpha x r - omega^2 r in r: [[-omega^2, -alpha], [alpha, -omega^2]]."""
-    w2 = omega**2
-    c11 = b.value("c11", -w2, "")
+def _pole_coefficients(b: StepBuilder, alpha: float, w2: Ref, al: Ref) -> list[list[Ref]]:
+    """The matrix of a_X = alpha x r - omega^2 r in r: [[-omega^2, -alpha], [alpha, -omega^2]]
+    (``w2``: omega^2)."""
+    c11 = b.value("c11", -b.scalar(w2), "")
     c12 = b.value("c12", -alpha, "")
     c21 = b.value("c21", alpha, "")
-    c22 = b.value("c22", -w2, "")
-    b.check("product", c11, w, w, factor=-1.0)
+    c22 = b.value("c22", -b.scalar(w2), "")
+    b.check("product", c11, w2, factor=-1.0)
     b.check("product", c12, al, factor=-1.0)
     b.check("product", c21, al)
-    b.check("product", c22, w, w, factor=-1.0)
+    b.check("product", c22, w2, factor=-1.0)
     return [[c11, c12], [c21, c22]]
 
 
@@ -841,7 +854,7 @@ def _acceleration_pole_check(
 ) -> None:
     """The check at a second point Y: a_Y = alpha x r_GY - omega^2 r_GY."""
     sub = "G_{" + tex.name(link) + "}"
-    w, al, pole = Ref(f"omega({link})"), Ref(f"alpha({link})"), Ref(f"G({link})")
+    w2, al, pole = Ref(f"omega^2({link})"), Ref(f"alpha({link})"), Ref(f"G({link})")
     ry_np = ctx.pos(y) - pole_np
     ay = b.value(f"a({y})", ctx.acc(y), "m/s^2", ("points", y, "acceleration"))
     ry = b.value(f"r(G,{y})", ry_np, "m")
@@ -850,7 +863,7 @@ def _acceleration_pole_check(
     n = b.value(f"normal(G,{y})", -(ctx.omega(link) ** 2) * ry_np, "m/s^2")
     b.check("sum", ry, py, -pole)
     b.check("cross", t, al, ry)
-    b.check("product", n, w, w, ry, factor=-1.0)
+    b.check("product", n, w2, ry, factor=-1.0)
     b.check("sum", ay, t, n)
     b.line(
         rf"&\text{{check at }} {tex.name(y)}: \; {al_vec(link)} \times "

@@ -52,6 +52,8 @@ from solver.solutions.linkage import (
     LinkageContext,
     a_vec,
     al_vec,
+    omega_squared,
+    omega_squared_line,
     origin,
     put_motion,
     r_vec,
@@ -88,6 +90,7 @@ class TransportTerms:
     rotation: str  # omega x r (velocity) or alpha x r (acceleration)
     alpha: str = ""
     normal: str = ""
+    omega2: str = ""  # omega^2, the factor of the normal term
 
 
 def transport_terms(
@@ -112,7 +115,8 @@ def transport_terms(
     r = b.put(f"r({a},{m})", r_np, "m")
     t = b.put(f"alpha x r{suffix}", omega_cross(carrier.alpha, r_np), "m/s^2")
     n = b.put(f"normal{suffix}", normal_acceleration(carrier.omega, r_np), "m/s^2")
-    return TransportTerms(a, base, w, r, t, al, n)
+    w2 = omega_squared(b, carrier.link, Ref(w), write=False)
+    return TransportTerms(a, base, w, r, t, al, n, w2.key)
 
 
 def check_transport(b: StepBuilder, terms: TransportTerms, total: str | Ref) -> None:
@@ -122,7 +126,7 @@ def check_transport(b: StepBuilder, terms: TransportTerms, total: str | Ref) -> 
         b.check("sum", total, terms.base, terms.rotation)
         return
     b.check("cross", terms.rotation, terms.alpha, terms.r)
-    b.check("product", terms.normal, terms.omega, terms.omega, terms.r, factor=-1.0)
+    b.check("product", terms.normal, terms.omega2, terms.r, factor=-1.0)
     b.check("sum", total, terms.base, terms.rotation, terms.normal)
 
 
@@ -493,6 +497,8 @@ class MovingPointSteps:
         carrier, a = self.carrier, v.origin
         k, r = tex.name(carrier), Ref(v.r)
         base = origin(b, self.ctx, a, Ref(v.base))
+        if not b.is_zero(v.omega):
+            omega_squared_line(b, carrier, Ref(v.omega), Ref(v.omega2))
         transport = Equation.of(
             latex_only(self.part("a", "tr")),
             (
@@ -508,8 +514,8 @@ class MovingPointSteps:
                 " + ",
                 ZCross(Ref(v.alpha), r),
                 " - ",
-                Paren(Ref(v.omega)),
-                r"^2 \cdot ",
+                Num(Ref(v.omega2)),
+                r" \cdot ",
                 Col(r),
             ),
             (base, " + ", Col(Ref(v.rotation)), " + ", Col(Ref(v.normal))),

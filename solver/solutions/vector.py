@@ -47,7 +47,6 @@ from solver.solutions.equation import (
     Col,
     Frac,
     Num,
-    Paren,
     Ref,
     ZCol,
     ZCross,
@@ -67,6 +66,7 @@ from solver.solutions.linkage import (
     acceleration_pole_step,
     al_vec,
     fixed_points_step,
+    omega_squared,
     origin,
     put_motion,
     r_vec,
@@ -164,12 +164,12 @@ def _register_side(b: StepBuilder, side: Side) -> None:
 @dataclass(frozen=True)
 class KnownAcceleration:
     """a_C - omega_L^2 r_CX, the known part of a_X through link L (``value``, put as ``key``),
-    and the keys of its terms a_C, omega_L, r_CX and -omega_L^2 r_CX."""
+    and the keys of its terms a_C, omega_L^2, r_CX and -omega_L^2 r_CX."""
 
     key: str
     value: np.ndarray
     base: str
-    omega: str
+    omega2: str
     r: str
     normal: str
 
@@ -181,14 +181,15 @@ def circle_known_acceleration(
     link, center = spec.link, spec.center
     omega = ctx.omega(link)
     base = put_motion(b, ctx, center, ACCELERATION)
-    w = b.put(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    w = b.value(f"omega({link})", omega, "rad/s", ctx.link_source(link, "omega"))
+    w2 = omega_squared(b, link, w)
     r = b.put(f"r({center},{point})", r_np, "m")
     n = b.put(f"normal({center},{point})", -(omega**2) * r_np, "m/s^2")
     value = ctx.acc(center) - omega**2 * r_np
     key = b.put(f"known({point} via {link})", value, "m/s^2")
-    b.check("product", n, w, w, r, factor=-1.0)
+    b.check("product", n, w2, r, factor=-1.0)
     b.check("sum", key, base, n)
-    return KnownAcceleration(key, value, base, w, r, n)
+    return KnownAcceleration(key, value, base, w2.key, r, n)
 
 
 @dataclass(frozen=True)
@@ -420,7 +421,7 @@ class VectorMethod:
         alpha_L."""
         link, center, k = spec.link, spec.center, side.terms[0]
         base = origin(b, self.ctx, center, Ref(known.base))
-        r, w, normal = Ref(known.r), Ref(known.omega), Ref(known.normal)
+        r, w2, normal = Ref(known.r), Ref(known.omega2), Ref(known.normal)
         again = rf"&\phantom{{{a_vec(point)}}} = "
         b.line(
             rf"&{a_vec(point)} = {a_vec(center)} + {al_vec(link)} \times {r_vec(center, point)}"
@@ -432,8 +433,8 @@ class VectorMethod:
             " + ",
             ZCross(k.unknown.symbol, r),
             " - ",
-            Paren(w),
-            r"^2 \cdot ",
+            Num(w2),
+            r" \cdot ",
             Col(r),
         )
         b.line(
@@ -445,10 +446,9 @@ class VectorMethod:
         )
         b.say(
             f"Through link {link}: a({point}) = a({center}) + alpha({link}) cross "
-            f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term "
-            "-(",
-            Num(w),
-            ") squared times ",
+            f"r({center},{point}) - omega({link}) squared r({center},{point}). The normal term -",
+            Num(w2),
+            " times ",
             Num(r),
             " = ",
             Col(normal),
@@ -518,8 +518,9 @@ class VectorMethod:
         al = b.value(f"alpha({guide})", alpha, "rad/s^2", ctx.link_source(guide, "alpha"))
         t = b.value(f"alpha x r({g},{point})", omega_cross(alpha, r_np), "m/s^2")
         n = b.value(f"normal({g},{point})", -(omega**2) * r_np, "m/s^2")
+        w2 = omega_squared(b, guide, w)
         b.check("cross", t, al, r)
-        b.check("product", n, w, w, r, factor=-1.0)
+        b.check("product", n, w2, r, factor=-1.0)
         b.check("sum", tr, ag, t, n)
         sub, base = tex.name(point) + r",\mathrm{tr}", origin(b, ctx, g, ag)
         b.line(
@@ -529,8 +530,8 @@ class VectorMethod:
             " + ",
             ZCross(al, r),
             " - ",
-            Paren(w),
-            r"^2 \cdot ",
+            Num(w2),
+            r" \cdot ",
             Col(r),
         )
         b.line(

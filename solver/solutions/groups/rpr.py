@@ -29,6 +29,8 @@ from solver.solutions.linkage import (
     LinkageContext,
     a_vec,
     al_vec,
+    omega_squared,
+    omega_squared_line,
     origin,
     put_motion,
     r_vec,
@@ -337,16 +339,17 @@ def lever_known_acceleration(
     sliding = ctx.slot(lever, pin)
     assert sliding.coriolis_acceleration is not None
     omega, r_np = ctx.omega(lever), terms[0].of_value
-    w = b.put(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
+    w = b.value(f"omega({lever})", omega, "rad/s", ctx.link_source(lever, "omega"))
+    w2 = omega_squared(b, lever, w)
     for t in terms:
         b.put(t.of, t.of_value, t.of_unit)
     n = b.put(f"normal({pivot},{pin})", -(omega**2) * r_np, "m/s^2")
     cor = sliding.put(b, "coriolis_acceleration", pin)
     value = ctx.acc(pivot) - omega**2 * r_np + sliding.coriolis_acceleration
     key = b.put(f"known({pin} in {lever})", value, "m/s^2")
-    b.check("product", n, w, w, terms[0].of, factor=-1.0)
+    b.check("product", n, w2, terms[0].of, factor=-1.0)
     b.check("sum", key, aq, n, cor)
-    return KnownAcceleration(key, value, aq, w, terms[0].of, n), cor
+    return KnownAcceleration(key, value, aq, w2.key, terms[0].of, n), cor
 
 
 def lever_acceleration_lines(
@@ -384,8 +387,8 @@ def lever_acceleration_lines(
             " + ",
             ZCross(rate.symbol, Ref(rkey)),
             " - ",
-            Paren(Ref(known.omega)),
-            r"^2 \cdot ",
+            Num(Ref(known.omega2)),
+            r" \cdot ",
             Col(Ref(rkey)),
         ),
         " + ",
@@ -464,10 +467,12 @@ def lever_transport(
     if order != VELOCITY:  # the normal term -omega^2 r_QP, and the two terms' columns
         formula += rf" - \omega_{{{tex.name(lever)}}}^2\,{r_vec(pivot, pin)}"
         t, n = Ref(terms.rotation), Ref(terms.normal)
-        numbers += (" - ", Paren(Ref(terms.omega)), r"^2 \cdot ", Col(r), " = ", *base, Col(t))
+        numbers += (" - ", Num(Ref(terms.omega2)), r" \cdot ", Col(r), " = ", *base, Col(t))
         numbers += (" + ", Col(n))
         parts = (Col(t), " + ", Col(n), " = ", Col(tr))
         where = ""
+        if not b.is_zero(terms.omega):
+            omega_squared_line(b, lever, Ref(terms.omega), Ref(terms.omega2))
     b.line(formula + " = ", *numbers, " = ", Col(tr, unit=True))
     return (
         f"With {rate_name}({lever}) = ",

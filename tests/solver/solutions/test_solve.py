@@ -1249,6 +1249,23 @@ def test_the_operands_of_a_check_are_shown_at_one_precision(name: str, solution:
     assert not failures, (name, failures[:3])
 
 
+SQUARED_FACTOR = re.compile(r"(\d|\))\^\{?2\}?\s*(\\cdot|\\,|\\begin|\()")
+
+
+@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+def test_omega_squared_is_a_value_of_its_own(name: str, solution: Solution) -> None:
+    """'- 0.347195^2 . (0.77165, -0.21108)': no line multiplies a squared number by another;
+    omega^2 is written once (omega_3^2 = 0.3472^2 = 0.1205) and that value multiplies r."""
+    squared = [
+        (step.kind, line)
+        for step in solution.steps
+        for line in step.latex.split(r"\\")
+        if SQUARED_FACTOR.search(line)
+    ]
+    assert not squared, (name, squared[:2])
+    assert SQUARED_FACTOR.search(r"- 0.347195^2 \cdot \begin{pmatrix}")
+
+
 def test_the_precision_check_can_fail() -> None:
     """The issue's line: omega = 0.347195 (six digits) times r = 1.582 (four)."""
     from solver.solutions.equation import Ref

@@ -318,14 +318,17 @@ def test_the_lever_pins_acceleration_labels_each_part_it_adds() -> None:
     """Seed 000 Task 2, the pin B in the guide's slot: a_B = a_tr + a_rel + a_Cor, then each
     group of terms under a brace naming its part (the transport part's three terms, s-double-dot
     u the relative part, the Coriolis column the Coriolis part), never a definition of a_tr
-    followed by a line that reads as its continuation."""
+    followed by a line that reads as its continuation; omega^2 = (-2)^2 = 4 on a line before
+    them, and 4 times r in the transport part."""
     doc = json.loads((EXAMPLES / "S000-T2.json").read_text())
     (step,) = [
         s for s in solve(parse_linkage(doc), "vector").steps if s.kind == "acceleration.lever.side"
     ]
     lines = step.latex.split(r"\\")
     assert not any(r"\quad \vec{a}_{B,\mathrm{tr}} =" in line for line in lines)
-    assert lines[0].strip().startswith(r"\begin{aligned} &\vec{a}_{B} = \vec{a}_{B,\mathrm{tr}} +")
+    omega2 = r"&\omega_{\text{guide}}^2 = (-2)^2 = 4\,\mathrm{1/s^{2}}"
+    assert lines[0].strip() == r"\begin{aligned} " + omega2
+    assert lines[1].strip().startswith(r"&\vec{a}_{B} = \vec{a}_{B,\mathrm{tr}} +")
     braces = underbraces(step.latex)
     parts: dict[str, list[str]] = {}
     for inside, label in braces:
@@ -336,7 +339,7 @@ def test_the_lever_pins_acceleration_labels_each_part_it_adds() -> None:
     assert r"\times \vec{v}_{B,\mathrm{rel}}" in parts[cor][0]
     shown = step.values["a_cor(B)"].display.removesuffix(" m/s^2").strip("()").split(", ")
     assert all(number in parts[cor][1] for number in shown)
-    assert r"\omega_{\text{guide}}^2" in parts[tr][0] and "(-2)^2" in parts[tr][1]
+    assert r"\omega_{\text{guide}}^2" in parts[tr][0] and r"- 4 \cdot" in parts[tr][1]
 
 
 def test_the_lever_pins_velocity_labels_each_part_it_adds() -> None:
