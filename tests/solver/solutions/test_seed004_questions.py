@@ -158,3 +158,17 @@ def test_question_7_sum_m_a_G_beside_the_ground_reactions(angle: int) -> None:
     )
     assert v["sum m a_G"] == pytest.approx(ref(key + "m_total_times_a_G"), rel=1e-9)
     assert "beside the sum of m a_G" in step["title"]
+
+
+@pytest.mark.parametrize("angle", ANGLES)
+def test_question_3_in_the_loop_method(angle: int) -> None:
+    """The loop method states D's acceleration with the same decomposition as the vector
+    method (the same function): |a_t(D)|, |a_n(D)| and |a(D)| the reference's (rel 1e-12)."""
+    step = step_of(worked("loop", angle), "loop.acceleration.point", "Acceleration of D")
+    v = values(step)
+    key = f"theta={angle}deg/"
+    assert v["|a_t(D)|"] == pytest.approx(abs(ref(key + "a_D_tangential_along_e_theta")), rel=1e-12)
+    assert v["|a_n(D)|"] == pytest.approx(abs(ref(key + "a_D_radial_along_e_r")), rel=1e-12)
+    assert v["|a(D)|"] == pytest.approx(ref(key + "a_D_magnitude"), rel=1e-12)
+    assert r"\vec{a}^{\,t}_{D} + \vec{a}^{\,n}_{D}" in step["latex"]
+    assert "tangential part" in step["text"] and "radial (normal) part" in step["text"]
