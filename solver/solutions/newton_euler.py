@@ -636,33 +636,31 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
         row.unknowns += terms
         lines.append((r_sym, TIMES, on, " = ", determinant, " = ",
                       Sum(tuple(_term(d, b, c, column) for c, column in terms))))  # fmt: skip
-    for e in elements:
-        if not weighty:
-            continue
-        r, r_sym = arm(where[e.name], e.p[0])
-        moment = b.value(f"r x m g({e.name})", cross(e.p[0] - origin, e.mass * d.gravity), MOMENT)
-        b.check("cross", moment, r, weight[e.name])
-        named = Sym(
-            rf"{r_sym.tex} \times m_{{{names[e.name]}}}\vec g", f"{r_sym.plain} cross m({e.name}) g"
+
+    def moment_of(key: str, point: str, at: np.ndarray, vector: Ref, on: Sym) -> tuple[Ref, Sym]:
+        """r_RP x V (``vector`` the key of a force or of m a_G at ``point``) as a determinant of
+        numbers, its line written; the moment's key and its symbol r_RP x ``on``."""
+        r, r_sym = arm(point, at)
+        moment = b.value(key, cross(at - origin, np.array(b.vector(vector))), MOMENT)
+        b.check("cross", moment, r, vector)
+        named = Sym(rf"{r_sym.tex} \times {on.tex}", f"{r_sym.plain} cross {on.plain}")
+        lines.append((named, " = ", Cross(r, vector), " = ", Num(moment, unit=True)))
+        return moment, named
+
+    for e in elements if weighty else []:
+        weighs = Sym(rf"m_{{{names[e.name]}}}\vec g", f"m({e.name}) g")
+        moment, named = moment_of(
+            f"r x m g({e.name})", where[e.name], e.p[0], weight[e.name], weighs
         )
-        lines.append((named, " = ", Cross(r, weight[e.name]), " = ", Num(moment, unit=True)))
         row.known(named, (Paren(moment),), moment.operand)
     for f in loads:
-        r, r_sym = arm(f.point, f.position[0])
-        moment = b.value(f"r x F({f.name})", cross(f.position[0] - origin, f.force[0]), MOMENT)
-        b.check("cross", moment, r, force[f.name])
-        named = Sym(rf"{r_sym.tex} \times {_load_symbol(f.name)}", f"{r_sym.plain} cross {f.name}")
-        lines.append((named, " = ", Cross(r, force[f.name]), " = ", Num(moment, unit=True)))
+        on = Sym(_load_symbol(f.name), f.name)
+        moment, named = moment_of(f"r x F({f.name})", f.point, f.position[0], force[f.name], on)
         row.known(named, (Paren(moment),), moment.operand)
     for index, (friction, sense) in slots.items():
         P = ctx.scene.joints[index].point
-        r, r_sym = arm(P, ctx.pos(P))
-        moment = b.value(
-            f"r x f({P})", cross(ctx.pos(P) - origin, np.array(b.vector(friction))), MOMENT
-        )
-        b.check("cross", moment, r, friction)
-        named = Sym(rf"{r_sym.tex} \times \vec f_{{{tex.name(P)}}}", f"{r_sym.plain} cross f({P})")
-        lines.append((named, " = ", Cross(r, friction), " = ", Num(moment, unit=True)))
+        on = Sym(rf"\vec f_{{{tex.name(P)}}}", f"f({P})")
+        moment, named = moment_of(f"r x f({P})", P, ctx.pos(P), friction, on)
         row.known(named, (Paren(moment),), moment.operand if sense > 0 else -moment)
     for index, (friction, sense) in pins.items():
         P = ctx.scene.joints[index].point
@@ -684,14 +682,10 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
                 (named, " = ", Num(inertia), TIMES_DOT, Paren(alpha), " = ", Num(spin, unit=True))
             )
             row.inertia(named, (Paren(spin),), spin.operand)
-        r, r_sym = arm(where[e.name], e.p[0])
-        moment = b.value(f"r x m a_G({e.name})", cross(e.p[0] - origin, e.mass * e.a[0]), MOMENT)
-        b.check("cross", moment, r, inertial[e.name])
-        named = Sym(
-            rf"{r_sym.tex} \times m_{{{names[e.name]}}}\vec a_{{{tex.name(where[e.name])}}}",
-            f"{r_sym.plain} cross m({e.name}) a({where[e.name]})",
-        )
-        lines.append((named, " = ", Cross(r, inertial[e.name]), " = ", Num(moment, unit=True)))
+        G = where[e.name]
+        accelerated = Sym(rf"m_{{{names[e.name]}}}\vec a_{{{tex.name(G)}}}", f"m({e.name}) a({G})")
+        key = f"r x m a_G({e.name})"
+        moment, named = moment_of(key, G, e.p[0], inertial[e.name], accelerated)
         row.inertia(named, (Paren(moment),), moment.operand)
 
     heads = (
