@@ -30,7 +30,8 @@ class Acting:
     point it acts at (a pin's centre), the force on the link as solved, a pin's friction moment
     on the link (0 without), the joint's index (None for a load or a weight), and its line's
     direction where the problem gives it before solving (a load's or a weight's, a frictionless
-    slot's normal; None), with ``whole`` for a force known in full (a load, a weight)."""
+    slot's normal; None), with ``whole`` for a force known in full (a load, a weight) and
+    ``pin`` for a revolute joint's."""
 
     name: str
     at: np.ndarray
@@ -39,6 +40,7 @@ class Acting:
     joint: int | None = None
     direction: np.ndarray | None = None
     whole: bool = False
+    pin: bool = False
 
     @property
     def through(self) -> np.ndarray:
@@ -53,7 +55,7 @@ def is_two_force(acting: list[Acting]) -> bool:
     """Two pins and nothing else on the link, at distinct points."""
     return (
         len(acting) == 2
-        and all(a.joint is not None and not a.whole for a in acting)
+        and all(a.pin for a in acting)
         and float(np.hypot(*(acting[1].at - acting[0].at))) > 0.0
     )
 
@@ -99,8 +101,13 @@ def two_force_step(ctx: LinkageContext, link: str, acting: list[Acting]) -> Step
             rf",\quad \vec F_{{{sub_p}}} + \vec F_{{{sub_q}}} = ",
             Col(total, dims=2),
         )
-        sense = "tension (it pulls on its pins)" if b.scalar(S) > 0 else (
-            "compression (it pushes on its pins)")  # fmt: skip
+        sense = (
+            "no force at this instant"
+            if b.fmt.is_zero(b.scalar(S), FORCE)
+            else "tension (it pulls on its pins)"
+            if b.scalar(S) > 0
+            else "compression (it pushes on its pins)"
+        )
         b.say(
             reason + ", and no friction at those pins: a two-force member. Its moment equation "
             f"about {P} leaves r({P},{Q}) x F({Q}) = 0, so the force at {Q} lies along {P}{Q}, "

@@ -1135,7 +1135,8 @@ def _acting(d: _Dynamics, link: str) -> list[Acting] | None:
             direction = slot_normal(joint, d.ctx.analysis.motion)[0]
         label = ("F" if joint.type == "revolute" else "N") + f"_{joint.point}"
         at = d.ctx.pos(joint.point)
-        out.append(Acting(label, at, sign * solved.force[0], moment, index, direction))
+        pin = joint.type == "revolute"
+        out.append(Acting(label, at, sign * solved.force[0], moment, index, direction, pin=pin))
     if np.any(d.gravity):
         for e in elements:
             weight = e.mass * d.gravity

@@ -17,6 +17,7 @@ import pytest
 
 import solver
 from solver.api import parse_scene, solve
+from tests.solver.dynamics.test_statics import F, L, R, slider_crank
 from tests.solver.solutions.test_solve import unit_floors, verify
 
 CRANK, COUPLER, ROCKER, GROUND, EXTENSION = 0.3, 1.0, 0.8, 1.0, 1.2
@@ -181,3 +182,16 @@ def test_with_pin_friction_the_line_is_tangent_to_the_friction_circles() -> None
     for pin in "AB":
         assert abs(float(value(step, f"d({pin})"))) == pytest.approx(0.2 * 0.01, rel=1e-9)
     assert "tangent to each friction circle" in step["text"]
+
+
+@pytest.mark.parametrize("theta_deg", [30.0, 120.0, 250.0])
+def test_the_slider_cranks_rod_meets_at_the_slider(theta_deg: float) -> None:
+    """The rod of ``slider_crank`` (pin A, the slot's N at B, the load -F x at B) is a
+    three-force member meeting at B: the force at A runs along AB, s(F_A) = F / cos beta along
+    u = (B - A) / |AB| and |s(N_B)| = F tan beta, the closed forms (1e-9 relative)."""
+    doc = slider_crank(theta_deg)
+    step = steps_of(worked(doc), "dynamics.three_force")["rod"]
+    beta = math.asin(R * math.sin(math.radians(theta_deg)) / L)
+    assert value(step, "K(rod)") == pytest.approx(np.array(doc["points"]["B"]), abs=1e-12)
+    assert float(value(step, "s(F_A)")) == pytest.approx(F / math.cos(beta), rel=1e-9)
+    assert abs(float(value(step, "s(N_B)"))) == pytest.approx(F * abs(math.tan(beta)), rel=1e-9)
