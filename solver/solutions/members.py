@@ -24,6 +24,17 @@ from solver.solutions.model import Step
 FORCE = "N"
 
 
+def force_symbol(name: str, axis: str = "", vector: bool = True) -> str:
+    """A force's symbol: 'F_D' as \\vec F_{D} (with ``axis``: F_{D,x}; not ``vector``: F_{D}),
+    another name as \\vec{name} (name_{x}; name)."""
+    base, _, sub = name.partition("_")
+    if sub and len(base) == 1:
+        inner = tex.name(sub) + (f",{axis}" if axis else "")
+        return rf"{base}_{{{inner}}}" if axis or not vector else rf"\vec {base}_{{{inner}}}"
+    plain = tex.name(name)
+    return rf"{plain}_{axis}" if axis else rf"\vec{{{plain}}}" if vector else plain
+
+
 @dataclass(frozen=True)
 class Acting:
     """One force on a link at this instant: its name (``F_B``, ``N_C``, a load's, ``W_rod``), the
@@ -202,8 +213,8 @@ def three_force_step(ctx: LinkageContext, link: str, acting: list[Acting]) -> St
             reference=size,
         )  # fmt: skip
         b.check("cross", moment, arm, F)
-        name = tex.name(a.name)
-        b.line(rf"&\vec r_{{K,{name}}} \times \vec {name} = ", Col(arm, dims=2), r" \times ",
+        scalar, symbol = force_symbol(a.name, vector=False), force_symbol(a.name)
+        b.line(rf"&\vec r_{{K,{scalar}}} \times {symbol} = ", Col(arm, dims=2), r" \times ",
                Col(F, dims=2), " = ", Num(moment, unit=True))  # fmt: skip
     words = (
         f"{link} carries three forces and no couple ({names}): a three-force member. In "
@@ -276,7 +287,7 @@ def _force_triangle(
         [
             Unknown(
                 f"s({a.name})",
-                rf"s_{{{tex.name(a.name)}}}",
+                rf"s_{{{force_symbol(a.name, vector=False)}}}",
                 f"s({a.name})",
                 FORCE,
                 float(a.force @ b.vector(units[a.name])),

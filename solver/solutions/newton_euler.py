@@ -50,7 +50,13 @@ from solver.solutions.equation import (
 )
 from solver.solutions.free_body import Arrow, Assumed, Couple, figure
 from solver.solutions.linkage import LinkageContext
-from solver.solutions.members import Acting, is_two_force, three_force_step, two_force_step
+from solver.solutions.members import (
+    Acting,
+    force_symbol,
+    is_two_force,
+    three_force_step,
+    two_force_step,
+)
 from solver.solutions.model import Mistake, Step, Value
 
 FORCE, MOMENT = "N", "N m"
@@ -302,16 +308,6 @@ def _free_body_step(d: _Dynamics, link: str, pins: tuple[str, str] | None = None
 
 TIMES_DOT = Sym(r" \cdot ", " x ")
 THIN = Sym(r"\,", " ")
-
-
-def _load_symbol(name: str, axis: str = "") -> str:
-    """A load's symbol: 'F_D' as \\vec F_{D} (with ``axis``: F_{D,x}), another name as
-    \\vec{name} (name_{x})."""
-    base, _, sub = name.partition("_")
-    if sub and len(base) == 1:
-        inner = tex.name(sub) + (f",{axis}" if axis else "")
-        return rf"{base}_{{{inner}}}" if axis else rf"\vec {base}_{{{inner}}}"
-    return rf"{tex.name(name)}_{axis}" if axis else rf"\vec{{{tex.name(name)}}}"
 
 
 @dataclass
@@ -571,7 +567,7 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
             )
         for f in loads:
             row.known(
-                Sym(_load_symbol(f.name, axis), f"{f.name}_{axis}"),
+                Sym(force_symbol(f.name, axis), f"{f.name}_{axis}"),
                 (Component(force[f.name], k, factor=True),),
                 force[f.name][k],
             )
@@ -654,7 +650,7 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
         )
         row.known(named, (Paren(moment),), moment.operand)
     for f in loads:
-        on = Sym(_load_symbol(f.name), f.name)
+        on = Sym(force_symbol(f.name), f.name)
         moment, named = moment_of(f"r x F({f.name})", f.point, f.position[0], force[f.name], on)
         row.known(named, (Paren(moment),), moment.operand)
     for index, (friction, sense) in slots.items():
