@@ -78,7 +78,8 @@ def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
     """The steps as JSON, in the order a student should read them: the Newton-Euler method for
     the dynamics types (and the cycle's flywheel), the static force analysis for the statics
     types, the synthesis' own steps for a synthesis task (its /synthesis body's ``steps``), the
-    vector method otherwise."""
+    vector method otherwise; without the links' extreme angles over a turn, which no exercise
+    asks."""
     if exercise.task is not None:
         return list(synthesize(exercise.task).as_dict()["steps"])
     family = TYPES[exercise.id.type].mistakes
@@ -87,7 +88,11 @@ def worked_solution(exercise: Exercise) -> list[dict[str, Any]]:
         "newton_euler" if dynamic else "vector")  # fmt: skip
     angle = cam_angle_of(exercise)  # a cam's solution is at the asked cam angle
     scene = parse(exercise.scene)
-    steps = list(solve(scene, method, DIGITS, angle_deg=float(angle or 0)).steps)
+    # No exercise asks a link's extreme angles over a turn (its answers are one instant's, or a
+    # cycle's torque figures): its solution leaves that step out.
+    steps = list(
+        solve(scene, method, DIGITS, angle_deg=float(angle or 0), angle_extremes=False).steps
+    )
     if family == "flywheel":
         steps.append(_cycle_step(exercise))
     steps += [

@@ -544,12 +544,12 @@ def rigid_acceleration_step(
     base_a = origin(b, ctx, base, ax)
     _write_rigid_acceleration(b, (link, base, target), base_a, (w, al, r, t, n, ay, w2))
     if base == ctx.ground_pivot(link):
-        _write_turning_parts(b, (link, base, target), (al, r, t, n, ay, w2))
+        write_turning_parts(b, (link, base, target), (al, r, t, n, ay, w2))
     ctx.shown_acceleration.add(target)
     return b.build()
 
 
-def _write_turning_parts(
+def write_turning_parts(
     b: StepBuilder, names: tuple[str, str, str], refs: tuple[Ref, Ref, Ref, Ref, Ref, Ref]
 ) -> None:
     """a_Y = a_Y^t + a_Y^n for Y turning about the fixed pivot X: |a^t| = |alpha| |r_XY|

@@ -54,6 +54,7 @@ from solver.solutions.linkage import (
     acceleration_pole_step,
     put_motion,
     velocity_pole_step,
+    write_turning_parts,
 )
 from solver.solutions.model import Step
 
@@ -1251,6 +1252,11 @@ class LoopMethod:
             b.check("phasor", n, bl, w, w, th, factor=-1.0)
             b.check("sum", ends[1], ends[0], t, n)
             self.point_acceleration_lines(b, (link, base, point), ends, (t, n))
+            if base == ctx.ground_pivot(link):  # a_X = a_X^t + a_X^n, as the vector method
+                w2 = b.value(f"omega^2({link})", ctx.omega(link) ** 2, "1/s^2")
+                b.check("product", w2, w, w)
+                parts = (Ref(al), Ref(r), Ref(t), Ref(n), Ref(ends[1]), w2)
+                write_turning_parts(b, (link, base, point), parts)
         return b.build()
 
     def point_velocity_lines(

@@ -50,6 +50,13 @@ from solver.solutions.equation import (
 )
 from solver.solutions.free_body import Arrow, Assumed, Couple, figure
 from solver.solutions.linkage import LinkageContext
+from solver.solutions.members import (
+    Acting,
+    force_symbol,
+    is_two_force,
+    three_force_step,
+    two_force_step,
+)
 from solver.solutions.model import Mistake, Step, Value
 
 FORCE, MOMENT = "N", "N m"
@@ -197,11 +204,14 @@ def _xy(vector: np.ndarray) -> tuple[float, float]:
     return float(vector[0]), float(vector[1])
 
 
-def _on_link(d: _Dynamics, link: str) -> tuple[list[Arrow], list[Assumed], list[Couple]]:
+def _on_link(
+    d: _Dynamics, link: str, pins: tuple[str, str] | None = None
+) -> tuple[list[Arrow], list[Assumed], list[Couple]]:
     """Every force on ``link`` at this instant as solved (joint forces from the solution), the
     unknown components with their assumed senses (a joint's force as its first link exerts it on
-    its second: + on the second link, - on the first; a slot's N along its normal n), and the
-    moments (a driver's and a prismatic joint's unknown)."""
+    its second: + on the second link, - on the first; a slot's N along its normal n; a two-force
+    member's, with its ``pins`` P, Q, as one S along e_PQ at Q and -e_PQ at P), and the moments
+    (a driver's and a prismatic joint's unknown)."""
     scene = d.ctx.scene
     arrows, unknowns, couples = [], [], []
     for index, (joint, solved) in enumerate(zip(scene.joints, d.forces.joints, strict=True)):
@@ -212,7 +222,12 @@ def _on_link(d: _Dynamics, link: str) -> tuple[list[Arrow], list[Assumed], list[
         label = ("F" if joint.type == "revolute" else "N") + f"_{joint.point}"
         at = _xy(d.ctx.pos(joint.point))
         arrows.append(Arrow(minus + label, "joint", at, _xy(sign * solved.force[0])))
-        if joint.type == "revolute":
+        if pins is not None:
+            e = d.ctx.pos(pins[1]) - d.ctx.pos(pins[0])
+            e = e / float(np.hypot(*e)) * (1.0 if joint.point == pins[1] else -1.0)
+            value = float(np.dot(sign * solved.force[0], e))
+            unknowns.append(Assumed(f"S_{pins[0]}{pins[1]}", at, _xy(e), value))
+        elif joint.type == "revolute":
             for axis, sense in (("x", (sign, 0.0)), ("y", (0.0, sign))):
                 value = float(solved.force[0][0 if axis == "x" else 1])
                 unknowns.append(Assumed(f"{label},{axis}", at, sense, value))
@@ -245,10 +260,12 @@ def _on_link(d: _Dynamics, link: str) -> tuple[list[Arrow], list[Assumed], list[
     return arrows, unknowns, couples
 
 
-def _free_body_step(d: _Dynamics, link: str) -> Step:
+def _free_body_step(d: _Dynamics, link: str, pins: tuple[str, str] | None = None) -> Step:
+    """The link cut free: its forces as solved, the unknowns with assumed senses (a two-force
+    member's, with its ``pins``, as one force along their line)."""
     ctx = d.ctx
     b = ctx.builder("dynamics.free_body", f"Free-body diagram of {link}")
-    arrows, unknowns, couples = _on_link(d, link)
+    arrows, unknowns, couples = _on_link(d, link, pins)
     for a in arrows:
         b.put(f"{a.name}", a.vector, FORCE)
     for c in couples:
@@ -258,7 +275,7 @@ def _free_body_step(d: _Dynamics, link: str) -> Step:
     center = None if body is None else _xy(body.p[0])
     points = {p: _xy(ctx.pos(p)) for p in ctx.scene.links[link].points}
     known = [a.name for a in arrows if a.kind != "joint"]
-    wanted = [u.name.replace("_", "(", 1) + ")" for u in unknowns] + [
+    wanted = list(dict.fromkeys(u.name.replace("_", "(", 1) + ")" for u in unknowns)) + [
         c.name for c in couples if c.unknown
     ]
     moments = [c.name for c in couples if not c.unknown]
@@ -266,13 +283,23 @@ def _free_body_step(d: _Dynamics, link: str) -> Step:
         "; known: " + ", ".join(known + moments) if known or moments else ""
     )
     b.line(rf"\text{{Forces on {tex.escape_text(link)}: {tex.escape_text(names)}}}")
-    b.say(
-        f"Link {link} cut free. Unknown: {', '.join(wanted) or 'none'}, each joint force by its "
-        "components with an assumed sense (dashed: positive along x and y on the joint's second "
-        "link, the reaction, negative, on its first; a slot's N along its normal n) and the "
-        "driving torque counter-clockwise; a negative answer means the other sense. Known: "
-        f"{', '.join(known + moments) or 'none'}, drawn to the force scale under the diagram."
-    )
+    if pins is None:
+        b.say(
+            f"Link {link} cut free. Unknown: {', '.join(wanted) or 'none'}, each joint force by "
+            "its components with an assumed sense (dashed: positive along x and y on the joint's "
+            "second link, the reaction, negative, on its first; a slot's N along its normal n) "
+            "and the driving torque counter-clockwise; a negative answer means the other sense. "
+            f"Known: {', '.join(known + moments) or 'none'}, drawn to the force scale under the "
+            "diagram."
+        )
+    else:
+        P, Q = pins
+        b.say(
+            f"Link {link} cut free: loaded at its pins {P} and {Q} alone, a two-force member "
+            f"(next step). Unknown: the one magnitude {wanted[0]} along {P}{Q}, drawn dashed as "
+            f"tension (S e({P},{Q}) at {Q}, -S e({P},{Q}) at {P}); a negative answer means "
+            "compression."
+        )
     step = b.build()
     drawing = figure(link, points, center, arrows, couples, unknowns)
     svg = drawing.pop("svg")
@@ -281,16 +308,6 @@ def _free_body_step(d: _Dynamics, link: str) -> Step:
 
 TIMES_DOT = Sym(r" \cdot ", " x ")
 THIN = Sym(r"\,", " ")
-
-
-def _load_symbol(name: str, axis: str = "") -> str:
-    """A load's symbol: 'F_D' as \\vec F_{D} (with ``axis``: F_{D,x}), another name as
-    \\vec{name} (name_{x})."""
-    base, _, sub = name.partition("_")
-    if sub and len(base) == 1:
-        inner = tex.name(sub) + (f",{axis}" if axis else "")
-        return rf"{base}_{{{inner}}}" if axis else rf"\vec {base}_{{{inner}}}"
-    return rf"{tex.name(name)}_{axis}" if axis else rf"\vec{{{tex.name(name)}}}"
 
 
 @dataclass
@@ -550,7 +567,7 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
             )
         for f in loads:
             row.known(
-                Sym(_load_symbol(f.name, axis), f"{f.name}_{axis}"),
+                Sym(force_symbol(f.name, axis), f"{f.name}_{axis}"),
                 (Component(force[f.name], k, factor=True),),
                 force[f.name][k],
             )
@@ -615,33 +632,31 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
         row.unknowns += terms
         lines.append((r_sym, TIMES, on, " = ", determinant, " = ",
                       Sum(tuple(_term(d, b, c, column) for c, column in terms))))  # fmt: skip
-    for e in elements:
-        if not weighty:
-            continue
-        r, r_sym = arm(where[e.name], e.p[0])
-        moment = b.value(f"r x m g({e.name})", cross(e.p[0] - origin, e.mass * d.gravity), MOMENT)
-        b.check("cross", moment, r, weight[e.name])
-        named = Sym(
-            rf"{r_sym.tex} \times m_{{{names[e.name]}}}\vec g", f"{r_sym.plain} cross m({e.name}) g"
+
+    def moment_of(key: str, point: str, at: np.ndarray, vector: Ref, on: Sym) -> tuple[Ref, Sym]:
+        """r_RP x V (``vector`` the key of a force or of m a_G at ``point``) as a determinant of
+        numbers, its line written; the moment's key and its symbol r_RP x ``on``."""
+        r, r_sym = arm(point, at)
+        moment = b.value(key, cross(at - origin, np.array(b.vector(vector))), MOMENT)
+        b.check("cross", moment, r, vector)
+        named = Sym(rf"{r_sym.tex} \times {on.tex}", f"{r_sym.plain} cross {on.plain}")
+        lines.append((named, " = ", Cross(r, vector), " = ", Num(moment, unit=True)))
+        return moment, named
+
+    for e in elements if weighty else []:
+        weighs = Sym(rf"m_{{{names[e.name]}}}\vec g", f"m({e.name}) g")
+        moment, named = moment_of(
+            f"r x m g({e.name})", where[e.name], e.p[0], weight[e.name], weighs
         )
-        lines.append((named, " = ", Cross(r, weight[e.name]), " = ", Num(moment, unit=True)))
         row.known(named, (Paren(moment),), moment.operand)
     for f in loads:
-        r, r_sym = arm(f.point, f.position[0])
-        moment = b.value(f"r x F({f.name})", cross(f.position[0] - origin, f.force[0]), MOMENT)
-        b.check("cross", moment, r, force[f.name])
-        named = Sym(rf"{r_sym.tex} \times {_load_symbol(f.name)}", f"{r_sym.plain} cross {f.name}")
-        lines.append((named, " = ", Cross(r, force[f.name]), " = ", Num(moment, unit=True)))
+        on = Sym(force_symbol(f.name), f.name)
+        moment, named = moment_of(f"r x F({f.name})", f.point, f.position[0], force[f.name], on)
         row.known(named, (Paren(moment),), moment.operand)
     for index, (friction, sense) in slots.items():
         P = ctx.scene.joints[index].point
-        r, r_sym = arm(P, ctx.pos(P))
-        moment = b.value(
-            f"r x f({P})", cross(ctx.pos(P) - origin, np.array(b.vector(friction))), MOMENT
-        )
-        b.check("cross", moment, r, friction)
-        named = Sym(rf"{r_sym.tex} \times \vec f_{{{tex.name(P)}}}", f"{r_sym.plain} cross f({P})")
-        lines.append((named, " = ", Cross(r, friction), " = ", Num(moment, unit=True)))
+        on = Sym(rf"\vec f_{{{tex.name(P)}}}", f"f({P})")
+        moment, named = moment_of(f"r x f({P})", P, ctx.pos(P), friction, on)
         row.known(named, (Paren(moment),), moment.operand if sense > 0 else -moment)
     for index, (friction, sense) in pins.items():
         P = ctx.scene.joints[index].point
@@ -663,14 +678,10 @@ def _equations_step(d: _Dynamics, link: str) -> Step:
                 (named, " = ", Num(inertia), TIMES_DOT, Paren(alpha), " = ", Num(spin, unit=True))
             )
             row.inertia(named, (Paren(spin),), spin.operand)
-        r, r_sym = arm(where[e.name], e.p[0])
-        moment = b.value(f"r x m a_G({e.name})", cross(e.p[0] - origin, e.mass * e.a[0]), MOMENT)
-        b.check("cross", moment, r, inertial[e.name])
-        named = Sym(
-            rf"{r_sym.tex} \times m_{{{names[e.name]}}}\vec a_{{{tex.name(where[e.name])}}}",
-            f"{r_sym.plain} cross m({e.name}) a({where[e.name]})",
-        )
-        lines.append((named, " = ", Cross(r, inertial[e.name]), " = ", Num(moment, unit=True)))
+        G = where[e.name]
+        accelerated = Sym(rf"m_{{{names[e.name]}}}\vec a_{{{tex.name(G)}}}", f"m({e.name}) a({G})")
+        key = f"r x m a_G({e.name})"
+        moment, named = moment_of(key, G, e.p[0], inertial[e.name], accelerated)
         row.inertia(named, (Paren(moment),), moment.operand)
 
     heads = (
@@ -1092,6 +1103,73 @@ def _whole_mechanism_step(d: _Dynamics) -> Step:
     return b.build()
 
 
+def _acting(d: _Dynamics, link: str) -> list[Acting] | None:
+    """The forces on ``link`` as solved, where it carries forces alone: None where it carries a
+    couple (a driver's torque, a moment, a prismatic joint's moment) or, in dynamics, a mass (its
+    inertia). A weight counts as a force at its centre; a pin's friction moment shifts its
+    force's line (``Acting.through``)."""
+    scene = d.ctx.scene
+    elements = [e for e in d.forces.elements if e.link == link and e.mass != 0.0]
+    if any(dr.link == link for dr in scene.drivers) or any(
+        m.link == link for m in d.forces.moments
+    ):
+        return None
+    if elements and not d.statics:
+        return None
+    out = []
+    for index, (joint, solved) in enumerate(zip(scene.joints, d.forces.joints, strict=True)):
+        if link not in joint.links:
+            continue
+        if solved.moment is not None:
+            return None
+        sign = 1.0 if joint.links[1] == link else -1.0
+        moment = 0.0
+        if d.friction is not None and index in d.friction.moments:
+            moment = sign * float(d.friction.moments[index][0])
+        direction = None
+        if joint.type != "revolute" and (d.friction is None or index not in d.friction.forces):
+            direction = slot_normal(joint, d.ctx.analysis.motion)[0]
+        label = ("F" if joint.type == "revolute" else "N") + f"_{joint.point}"
+        at = d.ctx.pos(joint.point)
+        pin = joint.type == "revolute"
+        out.append(Acting(label, at, sign * solved.force[0], moment, index, direction, pin=pin))
+    if np.any(d.gravity):
+        for e in elements:
+            weight = e.mass * d.gravity
+            out.append(Acting(f"W_{e.name}", e.p[0], weight, direction=weight, whole=True))
+    for f in d.forces.forces:
+        if f.link == link:
+            force = f.force[0]
+            out.append(Acting(f.name, f.position[0], force, direction=force, whole=True))
+    return out
+
+
+def _member_steps(d: _Dynamics) -> tuple[dict[str, Step], dict[str, tuple[str, str]]]:
+    """Each two- or three-force member's step by link, and the pins (P, Q) of each two-force
+    member without friction: two-force members first, whose pins' lines are then known to their
+    neighbours' three-force steps."""
+    acting = {link: _acting(d, link) for link in d.ctx.scene.moving_links}
+    steps: dict[str, Step] = {}
+    pins: dict[str, tuple[str, str]] = {}
+    along: dict[int, np.ndarray] = {}  # a two-force member's pin: the pins' line
+    for link, forces in acting.items():
+        if forces is not None and is_two_force(forces):
+            steps[link] = two_force_step(d.ctx, link, forces)
+            if all(a.moment == 0.0 for a in forces):
+                P, Q = (d.ctx.scene.joints[a.joint].point for a in forces if a.joint is not None)
+                pins[link] = (P, Q)
+                for a in forces:
+                    assert a.joint is not None
+                    along[a.joint] = forces[1].at - forces[0].at
+    for link, forces in acting.items():
+        if forces is not None and len(forces) == 3 and link not in steps:
+            known = [
+                a if a.joint not in along else replace(a, direction=along[a.joint]) for a in forces
+            ]
+            steps[link] = three_force_step(d.ctx, link, known)
+    return steps, pins
+
+
 def newton_euler_steps(ctx: LinkageContext, statics: bool = False) -> list[Step]:
     """The dynamics steps of one instant (after the kinematics); ``statics``: the static force
     analysis (no accelerations of the centres, no inertia terms, the virtual-work check)."""
@@ -1101,8 +1179,11 @@ def newton_euler_steps(ctx: LinkageContext, statics: bool = False) -> list[Step]
         steps += [_center_step(d, k) for k in range(len(d.forces.elements))]
     if d.friction is not None and (d.friction.forces or d.friction.moments):
         steps.append(_friction_step(d))
+    members, two_force = _member_steps(d)
     for link in ctx.scene.moving_links:
-        steps.append(_free_body_step(d, link))
+        steps.append(_free_body_step(d, link, two_force.get(link)))
+        if link in members:
+            steps.append(members[link])
         steps.append(_equations_step(d, link))
     steps += [_system_step(d), _solution_step(d), _whole_mechanism_step(d)]
     if len(ctx.scene.drivers) == 1:

@@ -80,12 +80,16 @@ def _fallback_step(requested: str, reason: str) -> Step:
 
 
 def _linkage_steps(
-    scene: LinkageScene, analysis: LinkageAnalysis, fmt: Formatter, method: str
+    scene: LinkageScene,
+    analysis: LinkageAnalysis,
+    fmt: Formatter,
+    method: str,
+    angle_extremes: bool,
 ) -> tuple[list[Step], LinkageContext, str]:
     """The steps by ``method`` (or the vector method, when it does not apply), the context they
-    were built in, and the method used. Every step is written with typed references and settles
-    its digits as it is built, so that its shown arithmetic recomputes: the solution is built
-    once."""
+    were built in, and the method used (``angle_extremes``: with the step of the links' extreme
+    angles over a turn). Every step is written with typed references and settles its digits as
+    it is built, so that its shown arithmetic recomputes: the solution is built once."""
     ctx = LinkageContext(scene, analysis, fmt)
     used = method
     lead: list[Step] = []
@@ -113,7 +117,7 @@ def _linkage_steps(
         positions,
         *position_steps(ctx),
         *classification_steps(ctx),
-        *angle_extreme_steps(ctx),
+        *(angle_extreme_steps(ctx) if angle_extremes else ()),
         *slider_classification_steps(ctx),
         *body,
         reading_step(ctx),
@@ -139,10 +143,10 @@ def vector_method_steps(scene: LinkageScene, analysis: LinkageAnalysis, digits: 
     return _vector_method(LinkageContext(scene, analysis, _formatter(scene, analysis, digits)))
 
 
-def _linkage(scene: LinkageScene, method: str, digits: int) -> Solution:
+def _linkage(scene: LinkageScene, method: str, digits: int, angle_extremes: bool) -> Solution:
     analysis = analyze(scene)
     fmt = _formatter(scene, analysis, digits)
-    steps, ctx, used = _linkage_steps(scene, analysis, fmt, method)
+    steps, ctx, used = _linkage_steps(scene, analysis, fmt, method, angle_extremes)
     mistakes = linkage_mistakes(ctx)
     if used == "loop":
         mistakes += loop_mistakes(ctx)
@@ -159,12 +163,15 @@ def solve(
     method: str = "vector",
     digits: int = 4,
     angle_deg: float = 0.0,
+    angle_extremes: bool = True,
 ) -> Solution:
     """The worked solution of ``scene`` by ``method`` ('vector', 'loop', 'newton_euler' or
     'statics': the static force analysis, inertia left out), numbers shown with
     ``digits`` significant digits (1..15); a cam's at cam angle ``angle_deg``, by its own method
     ('cam', whatever ``method`` says); a gear train's by the tabular and the formula method
-    (``solver.solutions.gear_train``, method 'tabular', whatever is asked). Raises
+    (``solver.solutions.gear_train``, method 'tabular', whatever is asked). ``angle_extremes``
+    False leaves out a linkage's step of the coupler's and the rocker's extreme angles over a
+    turn (``angle_extremes``: a question that does not ask them need not pay for the turn). Raises
     ``InvalidScene`` for an unknown method or a bad digit count, and the analysis' own errors
     (NotAssemblable, SingularConfiguration...)."""
     if method not in METHODS:
@@ -178,7 +185,7 @@ def solve(
             f"digits: expected an integer from {MIN_DIGITS} to {MAX_DIGITS}, got {digits!r}"
         )
     if isinstance(scene, LinkageScene):
-        return _linkage(scene, method, digits)
+        return _linkage(scene, method, digits, angle_extremes)
     if isinstance(scene, GearTrainScene):
         return solve_gear_train(scene, digits)
     if isinstance(scene, CamScene):

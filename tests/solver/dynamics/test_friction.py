@@ -72,12 +72,10 @@ def test_slider_friction_tilts_the_reaction_by_the_friction_angle() -> None:
     assert body["cycle"]["efficiency"] is None  # a constant load does no net work in a turn
 
 
-@pytest.mark.parametrize("omega", [3.0, -3.0])
-def test_pin_friction_is_the_friction_circle(omega: float) -> None:
-    """A bar O-A (2 m) held against a force F = 100 N at A across it, pin O of radius 0.02 m
-    with mu = 0.3: the reaction (F at O) is tangent to the friction circle mu r = 6 mm, on the
-    side that opposes the rotation, so T = -2 F + mu r F sgn(omega)."""
-    doc = {
+def pin_bar(omega: float) -> dict[str, Any]:
+    """A bar O-A (2 m) on the pin O (radius 0.02 m, mu = 0.3) driven at ``omega``, with a force
+    of 100 N across it at A (+y)."""
+    return {
         "kind": "linkage",
         "points": {"O": [0, 0], "A": [2, 0]},
         "links": {"ground": {"points": ["O"], "ground": True}, "bar": {"points": ["O", "A"]}},
@@ -94,6 +92,14 @@ def test_pin_friction_is_the_friction_circle(omega: float) -> None:
             {"name": "F", "link": "bar", "point": "A", "magnitude": 100, "direction_deg": 90}
         ],
     }
+
+
+@pytest.mark.parametrize("omega", [3.0, -3.0])
+def test_pin_friction_is_the_friction_circle(omega: float) -> None:
+    """A bar O-A (2 m) held against a force F = 100 N at A across it, pin O of radius 0.02 m
+    with mu = 0.3: the reaction (F at O) is tangent to the friction circle mu r = 6 mm, on the
+    side that opposes the rotation, so T = -2 F + mu r F sgn(omega)."""
+    doc = pin_bar(omega)
     body = solver.analyze(doc, ["forces"]).as_dict()
     driver = body["drivers"][0]
     assert driver["torque_frictionless"] == pytest.approx(-200.0, abs=1e-12)

@@ -9,10 +9,12 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
+from solver.api import parse_scene, solve
 from solver.errors import InvalidScene
 from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build, generate, parse_id
 from solver.exercises.families import POLE_REACH, num, polynomial
 from solver.exercises.figures import nice_length
+from solver.exercises.solutions import worked_solution
 
 
 def test_an_id_round_trips() -> None:
@@ -156,3 +158,15 @@ def test_the_coupler_poles_lie_on_the_sheet() -> None:
         for kind in ("velocity_pole_coupler", "acceleration_pole_coupler"):
             pole = (e.answers[f"{kind}_x"], e.answers[f"{kind}_y"])
             assert math.dist(pole, a) <= POLE_REACH * ground
+
+
+@pytest.mark.parametrize("kind", ["four_bar_velocity", "four_bar_acceleration"])
+def test_the_angle_extremes_only_where_asked(kind: str) -> None:
+    """A four-bar exercise asks one instant's velocities or accelerations, not the links'
+    extreme angles over a turn: its worked solution leaves that step out, while the worked
+    solution of its scene (/solution, any method) keeps it."""
+    exercise = generate(kind, "standard", 5, 1)[0]
+    kinds = [step["kind"] for step in worked_solution(exercise)]
+    full = [step["kind"] for step in solve(parse_scene(exercise.scene)).as_dict()["steps"]]
+    assert "angle_extremes" in full
+    assert kinds == [kind for kind in full if kind != "angle_extremes"]

@@ -8,8 +8,8 @@ phi3 is measured from +y clockwise, phi3 = 90 deg - the rocker's angle):
   quartic through the five samples around each sampled extreme: 1e-9 rad), and by the property
   of each extreme (the coupler stands still where the crank is parallel to the rocker, the
   rocker where the crank and the coupler are collinear: 1e-9);
-- question 3 (the tangential and radial parts of D's acceleration): the vector method's step for
-  D, at four crank angles (rel 1e-12);
+- question 3 (the tangential and radial parts of D's acceleration): the vector and the loop
+  method's step for D, at four crank angles (rel 1e-12);
 - question 7 (sum m a_G beside the ground's reactions): the Newton-Euler step
   ``dynamics.whole_mechanism``, at four crank angles (rel 1e-9).
 """
@@ -132,11 +132,17 @@ def test_question_1_extremes_where_the_link_stands_still() -> None:
             )
 
 
+@pytest.mark.parametrize(
+    ("method", "kind"), [("vector", "acceleration.rigid"), ("loop", "loop.acceleration.point")]
+)
 @pytest.mark.parametrize("angle", ANGLES)
-def test_question_3_the_tangential_and_radial_parts_of_a_D(angle: int) -> None:
+def test_question_3_the_tangential_and_radial_parts_of_a_D(
+    method: str, kind: str, angle: int
+) -> None:
     """|a_t(D)| = (l3 + lD) |phi3''| and |a_n(D)| = (l3 + lD) phi3'^2, the reference's
-    a_D_tangential_along_e_theta and a_D_radial_along_e_r in size (rel 1e-12)."""
-    step = step_of(worked("vector", angle), "acceleration.rigid", "Acceleration of D")
+    a_D_tangential_along_e_theta and a_D_radial_along_e_r in size (rel 1e-12), in the vector
+    method's step for D and in the loop method's (the same function writes both)."""
+    step = step_of(worked(method, angle), kind, "Acceleration of D")
     v = values(step)
     key = f"theta={angle}deg/"
     assert v["|a_t(D)|"] == pytest.approx(abs(ref(key + "a_D_tangential_along_e_theta")), rel=1e-12)
