@@ -256,7 +256,9 @@ class _Driven:
     def run(self, turns: Array, order: int, start: float | None = 0.0) -> Motion:
         """The linkage at ``turns``, on the drawn branch at the turn nearest ``start`` (None:
         at the first turn)."""
-        anchor = 0 if start is None else int(np.argmin(np.abs(turns - start)))
+        anchor = 0
+        if start is not None and turns[0] != start:  # (a revolution starts at ``start``)
+            anchor = int(np.argmin(np.abs(turns - start)))
         return assemble(
             self.scene,
             self.plan,
@@ -425,11 +427,13 @@ def sweep(
     turns, motion, span = _cycle(
         driven, samples, order, start, direction, None if unchecked else revolution
     )
-    approaches = close_approaches(motion, scene.drivers[0].link, drawn + turns)
+    angles = drawn + turns
+    approaches = close_approaches(motion, scene.drivers[0].link, angles)
     if span is None:  # the closing sample off
         approaches = once_a_turn(approaches)
-        motion, turns = motion.cut(slice(0, samples)), turns[:samples]
-    require_feasible(motion, "during the sweep")
+        motion, turns, angles = motion.cut(slice(0, samples)), turns[:samples], angles[:samples]
+    if unchecked:  # (a revolution that turns fully closes at every sample and between them)
+        require_feasible(motion, "during the sweep")
     limits: tuple[float, ...] = span or ()
     singular = np.array([], dtype=int)
     if order and motion.gradient_sine.min() < MIN_GRADIENT_SINE:  # (one pass where none is)
@@ -443,7 +447,7 @@ def sweep(
     return Sweep(
         scene,
         scene.drivers[0].link,
-        drawn + turns,
+        angles,
         motion,
         span is None,
         tuple(drawn + limit for limit in limits),

@@ -88,17 +88,26 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
     else:  # object (40 digits, solver.position.polish) stays object
         kind = np.result_type(cos, x, float)
         out = np.empty((*np.broadcast_shapes(cos.shape, x.shape), 2), dtype=kind)
-    out[..., 0] = cos * x - sin * y
-    out[..., 1] = sin * x + cos * y
+    # (each product written into its column, the second subtracted or added in place: the same
+    # operations as cos x - sin y, without a temporary copied in)
+    np.multiply(cos, x, out=out[..., 0])
+    np.subtract(out[..., 0], sin * y, out=out[..., 0])
+    np.multiply(sin, x, out=out[..., 1])
+    np.add(out[..., 1], cos * y, out=out[..., 1])
     return out
+
+
+def _like(factor: Column, vector: Array) -> Array:
+    """An empty (..., 2) array for ``factor`` times ``vector`` (their shapes broadcast)."""
+    shape = np.shape(factor)
+    if shape != vector.shape[:-1]:
+        shape = np.broadcast_shapes(shape, vector.shape[:-1])
+    return np.empty((*shape, 2))
 
 
 def scale(factor: Column, vector: Array) -> Array:
     """factor[i] * vector[i] for each sample (column by column: faster than broadcasting)."""
-    shape = np.shape(factor)
-    if shape != vector.shape[:-1]:
-        shape = np.broadcast_shapes(shape, vector.shape[:-1])
-    out = np.empty((*shape, 2))
+    out = _like(factor, vector)
     np.multiply(vector[..., 0], factor, out=out[..., 0])
     np.multiply(vector[..., 1], factor, out=out[..., 1])
     return out
@@ -142,8 +151,16 @@ class LinkMotion:
 def omega_cross(omega: Column, r: Array) -> Array:
     """omega x r = omega (k x r): a rate about k (an angular velocity or acceleration) crossed
     with a planar vector, sample by sample. The rotation's term of a rigid body's velocity
-    (omega x r_AB) and its tangential acceleration (alpha x r_AB)."""
-    return scale(omega, perp(r))
+    (omega x r_AB) and its tangential acceleration (alpha x r_AB): ``scale(omega, perp(r))``
+    written into one array, (-r_y) omega as -(r_y omega) (the same number in IEEE arithmetic; a
+    vector not in floats as written, negated in its own arithmetic as ``perp`` does)."""
+    if r.dtype != FLOAT:
+        return scale(omega, perp(r))
+    out = _like(omega, r)
+    np.multiply(r[..., 1], omega, out=out[..., 0])
+    np.negative(out[..., 0], out=out[..., 0])
+    np.multiply(r[..., 0], omega, out=out[..., 1])
+    return out
 
 
 def normal_acceleration(omega: Column, r_AB: Array) -> Array:

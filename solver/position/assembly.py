@@ -137,8 +137,13 @@ class Motion:
         def take(a: Array | None) -> Array | None:
             return None if a is None else a[part]
 
+        cut: dict[int, PointMotion] = {}  # (a link's anchor is a point's motion: cut once)
+
         def point(m: PointMotion) -> PointMotion:
-            return PointMotion(m.p[part], take(m.v), take(m.a))
+            found = cut.get(id(m))
+            if found is None:
+                found = cut[id(m)] = PointMotion(m.p[part], take(m.v), take(m.a))
+            return found
 
         links = {
             k: LinkMotion(m.anchor0, point(m.anchor), m.theta[part], take(m.omega), take(m.alpha))
@@ -480,8 +485,8 @@ class _Assembler:
         self.samples = len(inputs[0].theta) if inputs else 1
         # Samples at the drawn pose (every driver unturned): the drawn coordinates are the answer
         # there (they close by construction; a re-solved point near a tangency would not be).
-        self.at_drawn = np.ones(self.samples, dtype=bool)
-        for given in inputs:
+        self.at_drawn = inputs[0].theta == 0.0 if inputs else np.ones(1, dtype=bool)
+        for given in inputs[1:]:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
