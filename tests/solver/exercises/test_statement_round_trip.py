@@ -296,6 +296,9 @@ def function_task(e: Exercise) -> dict[str, Any]:
     rocker's ranges, the ground d, the given precision points or Chebyshev spacing."""
     d = stated(e)
     function = words(e, rf"generate y = (.+?) for ({NUMBER}) <= x <= ({NUMBER})").group(1)
+    # the book's notation in the API's expressions: ln(x) (the natural logarithm) is log(x)
+    function = function.replace(" (the natural logarithm)", "").replace("ln(", "log(")
+    function = function.replace("e^x", "exp(x)")
     given = re.search(rf"precision points x = ({NUMBER}), ({NUMBER}), ({NUMBER})",
                       e.statement.text)  # fmt: skip
     if given is None:
