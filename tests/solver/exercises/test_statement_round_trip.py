@@ -6,9 +6,10 @@ Each type's rebuild is written here from its statement, as a lecturer would set 
 from the printed sheet: the preset of the mechanism (``build_preset``) with the stated lengths,
 angle and rates (``build_gear_preset`` for the trains), or the document written out (the moving
 point, the spatial arm, the cam, the synthesis tasks). It does not call the exercise's own
-generator, so a datum the statement leaves out (or prints wrong) fails here. The default run takes three seeds per type and difficulty (about 8 s of CPU
-for the 60 cases); the ``slow`` run takes the issue's 200 (10 to 36 s a case at a load average of
-15 to 20 on 2 cores, about half an hour in all).
+generator, so a datum the statement leaves out (or prints wrong) fails here. The default run
+takes three seeds per type and difficulty (about 8 s of CPU for the 60 cases); the ``slow`` run
+takes the issue's 200 (10 to 36 s a case at a load average of 15 to 20 on 2 cores, about half an
+hour in all).
 """
 
 from __future__ import annotations
