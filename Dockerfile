@@ -7,6 +7,13 @@ ENV PYTHONDONTWRITEBYTECODE=1 \
     PIP_NO_CACHE_DIR=1
 
 RUN useradd --create-home --uid 10001 app
+# Chromium prints the exercise sheets to PDF (POST /api/v1/exercises/export with "format": "pdf",
+# server/pdf.py), with fonts for its text; without it that export alone answers 503. Debian's
+# package is not pinned: the archive replaces it with each security update.
+# hadolint ignore=DL3008
+RUN apt-get update \
+    && apt-get install -y --no-install-recommends chromium fonts-liberation fonts-dejavu-core \
+    && rm -rf /var/lib/apt/lists/*
 WORKDIR /app
 
 COPY pyproject.toml README.md requirements.lock ./

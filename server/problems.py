@@ -30,6 +30,7 @@ TITLES = {
     "not_found": "Not found",
     "forbidden": "Not served to anyone",
     "not_configured": "Not configured on this server",
+    "pdf_unavailable": "No PDF printer on this server",
     "method_not_allowed": "Method not allowed",
     "unsupported_media_type": "Unsupported media type",
     "internal_error": "Internal error",
@@ -56,8 +57,16 @@ def problem(status: int, code: str, detail: str, **extra: Any) -> JSONResponse:
     return JSONResponse(body, status_code=status, media_type=PROBLEM)
 
 
+class Unavailable(KinematicsError):
+    """A part of the server that this installation lacks (a system program): 503, its own
+    ``code``, the message saying what to install."""
+
+
 def _status(error: KinematicsError) -> int:
-    """413 for a request larger or longer than the server allows, 422 for the others."""
+    """413 for a request larger or longer than the server allows, 503 for a part the server
+    lacks (``Unavailable``), 422 for the others."""
+    if isinstance(error, Unavailable):
+        return 503
     return 413 if isinstance(error, LimitExceeded) else 422
 
 

@@ -834,6 +834,7 @@ class ProblemCode(StrEnum):
     not_found = "not_found"
     forbidden = "forbidden"
     not_configured = "not_configured"
+    pdf_unavailable = "pdf_unavailable"
     method_not_allowed = "method_not_allowed"
     unsupported_media_type = "unsupported_media_type"
     internal_error = "internal_error"
@@ -905,7 +906,8 @@ PROBLEMS: dict[int | str, dict[str, Any]] = {
     503: {
         "model": Problem,
         "description": "Every worker is busy (busy): see Retry-After. On the exercise routes "
-        "also an exam request where no exam secret is set (not_configured)",
+        "also an exam request where no exam secret is set (not_configured), and a PDF export where "
+        "the server has no Chromium to print it with (pdf_unavailable)",
         "headers": RETRY_AFTER,
     },
 }

@@ -383,7 +383,8 @@ table { border-collapse: collapse; margin: 0.8rem 0; width: 100%; break-inside: 
 td, th { border: 1px solid #9ca3af; padding: 0.35rem 0.5rem; text-align: left; }
 td.blank { width: 35%; } .step { margin: 0.6rem 0; break-inside: avoid; }
 .step h3 { font-size: 0.95rem; margin: 0.2rem 0; } .plain { color: #374151; font-size: 0.85rem; }
-@media print { .sheet { padding: 0; } @page { margin: 15mm; } .tex { overflow: visible; } }
+@media print { .sheet { padding: 0; } @page { size: A4; margin: 15mm; } .tex { overflow: visible; }
+  body { font-size: 10.5pt; } figure svg { width: 100mm; } }
 """
 
 

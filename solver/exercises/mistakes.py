@@ -31,6 +31,8 @@ from solver.teaching.mistakes import (
     coriolis_left_out,
     coriolis_with_omega_of,
     coriolis_without_factor_2,
+    cross_order,
+    cross_order_acceleration,
     typical_mistake,
 )
 
@@ -108,6 +110,11 @@ class Numbers:
 
     def p(self, name: str) -> Array:
         value = self.a.points[name].position
+        assert value is not None
+        return value
+
+    def vel(self, name: str) -> Array:
+        value = self.a.points[name].velocity
         assert value is not None
         return value
 
@@ -285,6 +292,45 @@ def _moving_point(solved: Solved) -> list[WrongAnswers]:
     ]
 
 
+def _cross_order(exercise: Exercise, solved: Solved) -> list[WrongAnswers]:
+    """The cross products of the rigid-body formula in the wrong order for each asked point X of
+    a turning link: v_X = v_Q + r_QX x omega (``cross_order``) and a_X = a_Q + r_QX x alpha +
+    (r_QX x omega) x omega (``cross_order_acceleration``), Q the link's first point (its pivot
+    or the joint it is driven through: B of the coupler BC), every other value the solver's."""
+    n = Numbers(solved)
+    links = exercise.scene["links"]
+    values: dict[str, float] = {}
+    for a in exercise.asked:
+        root, point, field, axis = [*a.path.split("."), "", "", ""][:4]
+        if root != "points" or field not in ("velocity", "acceleration"):
+            continue
+        link = next(
+            (k for k, v in links.items() if not v.get("ground") and point in v["points"][1:]),
+            None,
+        )
+        if link is None:
+            continue
+        pivot = links[link]["points"][0]
+        r = n.p(point) - n.p(pivot)
+        if field == "velocity":
+            wrong = cross_order(n.vel(pivot), n.omega(link), r)
+        else:
+            wrong = cross_order_acceleration(n.acc(pivot), n.omega(link), n.alpha(link), r)
+        values[a.key] = float(wrong[int(axis)])
+    if not values:
+        return []
+    return [
+        WrongAnswers(
+            "cross.order",
+            "This is what you get with the cross product in the wrong order: the relative "
+            "velocity of a point of a turning link is omega x r (r from the known point to the "
+            "asked one), its tangential acceleration alpha x r; r x omega and r x alpha reverse "
+            "them.",
+            values,
+        )
+    ]
+
+
 # --- misread inputs, made in the scene -----------------------------------------------------------
 
 
@@ -450,11 +496,18 @@ _FAMILIES: Mapping[str, Callable[[Exercise, Solved], list[WrongAnswers]]] = {
 }
 
 
+# the planar linkages whose asked points' rates follow from the rigid-body formula
+_POINT_FAMILIES = ("four_bar", "slider", "lever", "quick_return")
+
+
 def typical_mistakes(exercise: Exercise) -> list[WrongAnswers]:
     """Every typical mistake that applies to the exercise, with the wrong answers it gives
     (only for the asked keys it changes)."""
     family = TYPES[exercise.id.type].mistakes
-    made = _FAMILIES[family](exercise, solve_scene(exercise.scene)) + _scene_mistakes(exercise)
+    solved = solve_scene(exercise.scene)
+    made = _FAMILIES[family](exercise, solved) + _scene_mistakes(exercise)
+    if family in _POINT_FAMILIES:  # last: where it gives a misread input's value, that is named
+        made += _cross_order(exercise, solved)
     asked = {a.key for a in exercise.asked}
     return [
         WrongAnswers(m.kind, m.sentence, {k: v for k, v in m.values.items() if k in asked})

@@ -6,7 +6,11 @@ An item states the exercise in words (the statement, which states every datum an
 convention), shows the figure (``<img>``, its alt text naming no id) and asks each quantity in a
 ``textEntryInteraction`` with a float ``responseDeclaration`` whose ``correctResponse`` is the
 key; response processing adds 1 to SCORE for each answer ``equal`` to it with ``toleranceMode``
-relative (QTI's tolerance is in percent). Validated against the IMS QTI 2.1 XSD in the tests.
+relative (QTI's tolerance is in percent). Else, for each typical mistake of the exercise whose
+wrong value lies apart from the key (``export.distractors``, the Moodle export's 0 % answers),
+an answer ``equal`` to that value scores nothing and adds the mistake's identifier to FEEDBACK,
+which shows the ``feedbackBlock`` naming it under the answer's field. Validated against the IMS
+QTI 2.1 XSD in the tests.
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ import zipfile
 from collections.abc import Sequence
 from xml.sax.saxutils import escape, quoteattr
 
-from solver.exercises.export import answer_text, figure_alt, set_name
+from solver.exercises.export import Distractor, answer_text, distractors, figure_alt, set_name
 from solver.exercises.model import Exercise
 
 NAMESPACE = "http://www.imsglobal.org/xsd/imsqti_v2p1"
@@ -33,9 +37,33 @@ def _response(e: Exercise, key: str) -> str:
     return f"RESPONSE_{key}"
 
 
+def mistake_identifier(key: str, k: int) -> str:
+    """The FEEDBACK identifier of the k-th typical mistake's answer to the quantity ``key``."""
+    return f"MISTAKE_{key}_{k}"
+
+
+def _equal(response: str, tolerance: float, value: str) -> str:
+    return (
+        f'<equal toleranceMode="relative" tolerance="{tolerance * 100:g}">'
+        f'<variable identifier="{response}"/>{value}</equal>'
+    )
+
+
+def _mistake_branch(response: str, tolerance: float, identifier: str, d: Distractor) -> str:
+    """``responseElseIf`` the answer equals the mistake's value: FEEDBACK gets its identifier."""
+    value = f'<baseValue baseType="float">{answer_text(d.value, tolerance)}</baseValue>'
+    return (
+        f"<responseElseIf>{_equal(response, tolerance, value)}"
+        '<setOutcomeValue identifier="FEEDBACK"><multiple><variable identifier="FEEDBACK"/>'
+        f'<baseValue baseType="identifier">{identifier}</baseValue></multiple>'
+        "</setOutcomeValue></responseElseIf>"
+    )
+
+
 def assessment_item(e: Exercise, figure: str) -> str:
     """The QTI 2.1 ``assessmentItem`` of one exercise, its figure at the relative URL
     ``figure``."""
+    wrong = distractors(e)
     declarations = "".join(
         f'<responseDeclaration identifier="{_response(e, a.key)}" cardinality="single" '
         f'baseType="float"><correctResponse><value>'
@@ -47,16 +75,24 @@ def assessment_item(e: Exercise, figure: str) -> str:
         f"<p>{escape(a.label[:1].upper() + a.label[1:])} ({escape(a.unit)}): "
         f'<textEntryInteraction responseIdentifier="{_response(e, a.key)}" '
         'expectedLength="12"/></p>'
+        + "".join(
+            f'<feedbackBlock outcomeIdentifier="FEEDBACK" '
+            f'identifier="{mistake_identifier(a.key, k)}" showHide="show">'
+            f"<p>{escape(d.feedback)}</p></feedbackBlock>"
+            for k, d in enumerate(wrong[a.key])
+        )
         for a in e.asked
     )
     rules = "".join(
         "<responseCondition><responseIf>"
-        f'<equal toleranceMode="relative" tolerance="{a.tolerance * 100:g}">'
-        f'<variable identifier="{_response(e, a.key)}"/>'
-        f'<correct identifier="{_response(e, a.key)}"/></equal>'
-        '<setOutcomeValue identifier="SCORE"><sum><variable identifier="SCORE"/>'
-        '<baseValue baseType="float">1</baseValue></sum></setOutcomeValue>'
-        "</responseIf></responseCondition>"
+        + _equal(_response(e, a.key), a.tolerance, f'<correct identifier="{_response(e, a.key)}"/>')
+        + '<setOutcomeValue identifier="SCORE"><sum><variable identifier="SCORE"/>'
+        '<baseValue baseType="float">1</baseValue></sum></setOutcomeValue></responseIf>'
+        + "".join(
+            _mistake_branch(_response(e, a.key), a.tolerance, mistake_identifier(a.key, k), d)
+            for k, d in enumerate(wrong[a.key])
+        )
+        + "</responseCondition>"
         for a in e.asked
     )
     return (
@@ -68,6 +104,7 @@ def assessment_item(e: Exercise, figure: str) -> str:
         f"{declarations}"
         '<outcomeDeclaration identifier="SCORE" cardinality="single" baseType="float">'
         "<defaultValue><value>0</value></defaultValue></outcomeDeclaration>"
+        '<outcomeDeclaration identifier="FEEDBACK" cardinality="multiple" baseType="identifier"/>'
         '<outcomeDeclaration identifier="MAXSCORE" cardinality="single" baseType="float">'
         f"<defaultValue><value>{len(e.asked)}</value></defaultValue></outcomeDeclaration>"
         f"<itemBody><p>{escape(e.statement.text)}</p>"

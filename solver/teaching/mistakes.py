@@ -78,7 +78,8 @@ _ENTRIES = (
     TypicalMistake(
         "cross.order",
         "The order of the cross product",
-        "r x omega for omega x r in the relative velocity.",
+        "r x omega for omega x r in the relative velocity (and r x alpha for alpha x r in the "
+        "tangential acceleration).",
     ),
     TypicalMistake(
         "labels.omega_alpha",
@@ -332,6 +333,13 @@ def normal_term_sign(a_A: Array, omega: float, alpha: float, r_AB: Array) -> Arr
 def cross_order(v_A: Array, omega: float, r_AB: Array) -> Array:
     """v_B = v_A + r_AB x omega = v_A - omega x r_AB for v_A + omega x r_AB."""
     return v_A - omega * perp(r_AB)
+
+
+def cross_order_acceleration(a_A: Array, omega: float, alpha: float, r_AB: Array) -> Array:
+    """a_B = a_A + r_AB x alpha + (r_AB x omega) x omega = a_A - alpha x r_AB - omega^2 r_AB for
+    a_A + alpha x r_AB - omega^2 r_AB: the tangential term reversed, the normal term unchanged
+    (both of its cross products reversed)."""
+    return rigid_body_acceleration(a_A, np.asarray(omega), np.asarray(-alpha), r_AB)
 
 
 def omega_for_alpha(a_A: Array, omega: float, r_AB: Array) -> Array:

@@ -180,6 +180,7 @@ def test_every_error_is_declared_as_problem_json(openapi: dict[str, Any]) -> Non
                     assert media == {
                         "application/xml",
                         "text/html; charset=utf-8",
+                        "application/pdf",
                         "text/csv; charset=utf-8",
                         "application/json",
                         "application/zip",

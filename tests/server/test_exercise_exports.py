@@ -260,7 +260,7 @@ def test_html_sheets_one_page_per_exercise_with_and_without_the_key(client: Test
 
 
 def test_export_rejects_an_unknown_format(client: TestClient) -> None:
-    r = client.post(f"{API}/export", json={"type": "slider_crank", "format": "pdf"})
+    r = client.post(f"{API}/export", json={"type": "slider_crank", "format": "docx"})
     assert r.status_code == 422 and r.json()["code"] == "invalid_scene"
 
 

@@ -83,3 +83,45 @@ def test_the_chosen_tolerance_reaches_the_items(client: TestClient) -> None:
     package = _package(client, "four_bar_velocity", count=1, tolerance=0.02)
     item = next(package.read(n) for n in package.namelist() if n.endswith(".xml") and "items/" in n)
     assert b'tolerance="2"' in item
+
+
+@pytest.mark.parametrize(
+    "kind", ["four_bar_acceleration", "inverted_slider_crank", "flywheel", "synthesis_function"]
+)
+def test_each_typical_mistake_has_a_zero_answer_whose_feedback_names_it(
+    client: TestClient, schema: Any, kind: str
+) -> None:
+    """Like the Moodle export's 0 % answers: after the right answer's branch, a branch per
+    typical mistake ``equal`` (relative, the tolerance) to its value scores nothing and shows a
+    feedbackBlock naming it; the checker, given that value, names the same mistake."""
+    package = _package(client, kind, count=2, difficulty="challenging")
+    branches = 0
+    for name in package.namelist():
+        if not (name.startswith("items/") and name.endswith(".xml")):
+            continue
+        item = etree.fromstring(package.read(name))
+        assert schema.validate(item), schema.error_log
+        blocks = {b.get("identifier"): b for b in item.iter(f"{QTI}feedbackBlock")}
+        practice_id = item.get("identifier").replace("-", ":")
+        for condition in item.iter(f"{QTI}responseCondition"):
+            first, *others = list(condition)
+            assert first.tag == f"{QTI}responseIf"
+            assert first.find(f".//{QTI}correct") is not None
+            for branch in others:
+                assert branch.tag == f"{QTI}responseElseIf"
+                equal = branch.find(f"{QTI}equal")
+                assert equal.get("toleranceMode") == "relative" and equal.get("tolerance") == "1"
+                response = equal.find(f"{QTI}variable").get("identifier")
+                value = float(equal.find(f"{QTI}baseValue").text or "nan")
+                assert branch.find(f".//{QTI}setOutcomeValue").get("identifier") == "FEEDBACK"
+                shown = branch.find(f".//{QTI}multiple/{QTI}baseValue").text
+                text = "".join(blocks[shown].itertext())
+                key = response.removeprefix("RESPONSE_")
+                checked = client.post(
+                    "/api/v1/exercises/check", json={"id": practice_id, "answers": {key: value}}
+                ).json()["results"]
+                row = next(r for r in checked if r["key"] == key)
+                assert row["verdict"] == "incorrect" and row["mistake"] is not None
+                assert text.startswith("Not right: ") and row["diagnosis"] in text
+                branches += 1
+    assert branches > 0

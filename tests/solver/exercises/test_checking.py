@@ -136,7 +136,44 @@ def test_every_typical_mistake_is_diagnosed_as_itself() -> None:
         "synthesis.absolute_turn",
         "synthesis.offset_side",
         "synthesis.coupler_bisector",
+        "cross.order",
     }, diagnosed
+
+
+@pytest.mark.parametrize(
+    ("kind", "pivot", "link", "points"),
+    [
+        ("four_bar_velocity", "B", "coupler", {"C", "P"}),
+        ("four_bar_acceleration", "B", "coupler", {"C", "P"}),
+        ("slider_crank", "B", "coupler", {"C"}),
+        ("slider_extension", "B", "coupler", {"D"}),
+        ("quick_return", "B", "rod", {"C"}),
+    ],
+)
+def test_the_cross_product_in_the_wrong_order_reverses_the_relative_terms(
+    kind: str, pivot: str, link: str, points: set[str]
+) -> None:
+    """r x omega for omega x r: v_X' = v_Q - omega x r = 2 v_Q - v_X, and the tangential term
+    alone reversed: a_X' = a_Q - alpha x r - omega^2 r = 2 a_Q - 2 omega^2 r - a_X (from the
+    solver's v_Q, v_X, a_Q, a_X, to 1e-9); diagnosed as itself where no earlier mistake gives
+    the same value."""
+    named = 0
+    for seed in SEEDS:
+        e = build(ExerciseId(kind, "challenging", seed, 0))
+        n = Numbers(solve_scene(e.scene))
+        (made,) = [m for m in typical_mistakes(e) if m.kind == "cross.order"]
+        for key, value in made.values.items():
+            field, point, axis = key[0], key[2:-2], "xy".index(key[-1])
+            assert point in points
+            r = n.p(point) - n.p(pivot)
+            v = 2 * n.a.points[pivot].velocity - n.a.points[point].velocity
+            a = 2 * n.acc(pivot) - 2 * n.omega(link) ** 2 * r - n.acc(point)
+            expected = (v if field == "v" else a)[axis]
+            assert abs(value - expected) <= 1e-9 * (1 + abs(expected))
+            row = check_answers(e, {key: value})["results"]
+            found = next(x for x in row if x["key"] == key)
+            named += found["mistake"] == "cross.order"
+    assert named > 0
 
 
 def test_a_wrong_answer_that_is_no_typical_mistake_has_no_diagnosis() -> None:

@@ -49,6 +49,7 @@ SHARED = {
     "relative_for_absolute",
     "cam_omega_left_out",
     "cam_beta_in_degrees",
+    "cross.order",  # the solution at the driven link's pin, the checker at the asked points
 }
 
 
