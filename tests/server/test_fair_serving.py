@@ -34,6 +34,9 @@ from tests import run_apart
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import NEWTON_RUNAWAY, server
 
+# timed against servers of its own under load: run alone, after the others (tests/run.sh)
+pytestmark = pytest.mark.serial
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 S003_T1 = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
 # The example: the crank turns 113,097 rad by t = 60 s (its law is 0.5236 t^3); it ran
