@@ -160,6 +160,7 @@ def test_bad_and_too_costly_requests_are_refused_while_every_worker_is_busy(
             holder.close()
 
 
+@pytest.mark.slow  # timed: a 1 s sleep stands for the first request reaching the pool
 def test_one_client_holds_at_most_its_share_of_the_slow_lane(two_workers: str) -> None:
     """With two workers the slow lane is one worker and a client's share is one request: the
     same address's second slow request is answered 429 with Retry-After at once; another
