@@ -14,7 +14,9 @@ tests/run.sh runs the suite in two processes (pytest-xdist, ``-n 2 --dist loadgr
 test under tests/browser is one work unit (``BrowserTestsTogether``): one worker runs them all,
 with one Chromium, while the other runs the solver and API tests, then both share what is left.
 The tests marked ``serial`` (timed against servers of their own under load) are left out of that
-run with ``--serial=skip`` and run after it, alone, with ``--serial=only``.
+run with ``--serial=skip`` and run after it, alone, with ``--serial=only``: mark them with
+``pytest.mark.serial`` written in their module (``pytestmark = pytest.mark.serial`` or a
+decorator), which is what ``--serial=only`` looks for before importing a module.
 """
 
 from __future__ import annotations
@@ -67,6 +69,17 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         help="the tests marked serial: run them with the others (all, the default), leave them "
         "out (skip) or run only them (only); tests/run.sh runs skip in two processes, then only",
     )
+
+
+def pytest_ignore_collect(collection_path: Path, config: pytest.Config) -> bool | None:
+    """With ``--serial=only``, a test module whose text never says ``mark.serial`` is not
+    collected at all (importing every module costs about half a minute; the serial tests are in
+    a few). None: pytest decides as usual."""
+    if config.getoption("serial") != "only" or not collection_path.name.startswith("test_"):
+        return None
+    if collection_path.suffix != ".py" or "mark.serial" in collection_path.read_text():
+        return None
+    return True
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
