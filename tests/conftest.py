@@ -35,6 +35,9 @@ from server.local import serve_locally
 ROOT = Path(__file__).resolve().parents[1]
 WORKER = os.environ.get("PYTEST_XDIST_WORKER", "main")
 SERVER_LOG = ROOT / "test-artifacts" / f"uvicorn-{WORKER}.log"
+# s for the server to answer GET /health: a few on a quiet machine; two workers each starting one
+# while the other jobs of a loaded 2-core machine run took more than serve_locally's 40 s.
+SERVER_START_TIMEOUT = 120.0
 BROWSER_TESTS = "tests/browser/"  # the start of their node ids (relative to the root)
 
 
@@ -103,7 +106,7 @@ def live_server() -> Iterator[str]:
     with contextlib.ExitStack() as stack:
         log = stack.enter_context(SERVER_LOG.open("w+b"))
         try:
-            base = stack.enter_context(serve_locally(log))
+            base = stack.enter_context(serve_locally(log, timeout=SERVER_START_TIMEOUT))
         except RuntimeError as err:
             pytest.fail(f"{err}\n(log: {SERVER_LOG})", pytrace=False)
         yield base
