@@ -70,4 +70,25 @@ else
   echo "$audit"
   exit 1
 fi
-.venv/bin/python -m pytest -p no:cacheprovider "$@"
+# pytest in two runs. First every test but those marked `serial`, in two processes (pytest-xdist,
+# one per core of CI's two; the browser tests all in one of them, with one Chromium:
+# tests/conftest.py); then the `serial` ones (timed against servers of their own under load)
+# alone. Arguments go to both runs (`-m "not slow"`, `-x`, a folder, `-k ...`); a run that selects
+# no test (pytest's exit status 5) is no failure unless neither run selects one. Without -x the
+# second run goes ahead after a failure in the first (every failure is reported), and the
+# script's status is the first run's failure.
+pytest_run() {
+  status=0
+  .venv/bin/python -m pytest -p no:cacheprovider "$@" || status=$?
+}
+pytest_run -n 2 --dist loadgroup --serial=skip "$@"
+first=$status
+case " $* " in
+  *" -x "* | *" --exitfirst "*) if [ "$first" != 0 ] && [ "$first" != 5 ]; then exit "$first"; fi ;;
+esac
+pytest_run --serial=only "$@"
+second=$status
+if [ "$first" = 5 ] && [ "$second" = 5 ]; then exit 5; fi
+for s in "$first" "$second"; do
+  if [ "$s" != 0 ] && [ "$s" != 5 ]; then exit "$s"; fi
+done

@@ -34,6 +34,9 @@ from tests import run_apart
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import NEWTON_RUNAWAY, server
 
+# timed against servers of its own under load: run alone, after the others (tests/run.sh)
+pytestmark = pytest.mark.serial
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
 S003_T1 = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text())
 # The issue's example: the crank turns 113,097 rad by t = 60 s (its law is 0.5236 t^3); it ran
@@ -157,6 +160,7 @@ def test_bad_and_too_costly_requests_are_refused_while_every_worker_is_busy(
             holder.close()
 
 
+@pytest.mark.slow  # timed: a 1 s sleep stands for the first request reaching the pool
 def test_one_client_holds_at_most_its_share_of_the_slow_lane(two_workers: str) -> None:
     """With two workers the slow lane is one worker and a client's share is one request: the
     same address's second slow request is answered 429 with Retry-After at once; another

@@ -304,6 +304,7 @@ def _with_law(case: dict[str, Any], index: int, field: str, law: str) -> dict[st
 
 
 @pytest.mark.slow  # timed: its outcome depends on the machine's load
+@pytest.mark.serial  # timed: run alone, after the others (tests/run.sh)
 @pytest.mark.parametrize("endpoint", ["analyze", "events"])
 @pytest.mark.parametrize("field", ["angle_law", "s_law"])
 @pytest.mark.parametrize(("law", "positions"), HOSTILE)
@@ -328,6 +329,7 @@ def test_hostile_law_is_an_invalid_expression(
 
 
 @pytest.mark.slow  # timed: its outcome depends on the machine's load
+@pytest.mark.serial  # timed: run alone, after the others (tests/run.sh)
 def test_law_over_the_body_limit_is_limit_exceeded(hostile_api: Any) -> None:
     """A 1.2 MB law makes the body exceed the server's 1 MB limit: 413, code limit_exceeded
     (spec: limit_exceeded, 413 or 422); the server stays healthy."""

@@ -37,6 +37,9 @@ from tests import run_apart
 from tests.scenes import triads
 from tests.server.test_errors import FOUR_BAR
 
+# timed against servers of its own under load: run alone, after the others (tests/run.sh)
+pytestmark = pytest.mark.serial
+
 LOGS = Path(__file__).resolve().parents[2] / "test-artifacts"
 # A hundred of the costliest exercises (a flywheel's cycle of dynamics each) with their worked
 # solutions: legal, and about 3.3 s of work on a quiet machine (measured 2026-11-25), more than

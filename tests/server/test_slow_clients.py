@@ -19,6 +19,9 @@ from server.settings import Settings, from_environment
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import request, server
 
+# timed against servers of its own under load: run alone, after the others (tests/run.sh)
+pytestmark = pytest.mark.serial
+
 LIMIT = "1"
 
 
