@@ -7,9 +7,10 @@ characters) keep in check:
   chain's points + bodies + joints; a gear train's ``sweep_entries``) x quantities;
 - the Newton-Raphson work: the links solved by Newton-Raphson x (samples + ``SETUP_SAMPLES`` +
   ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose), in link-samples,
-  at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
-  feasible-range search, and the walk of the continuation from the drawn pose). The constants
-  are fitted to ``benchmarks/bench_budget.py`` (docs/SERVING.md quotes a run);
+  at ``SAMPLE_COST`` + the group's links x ``GROUP_SAMPLE_COST`` seconds of one core each (a
+  sweep's samples, its path tracing and feasible-range search, and the walk of the
+  continuation from the drawn pose). Every constant is fitted to ``benchmarks/bench_budget.py``
+  (docs/BENCHMARKS.md quotes a run);
 - the closed-form work: the groups solved in closed form x (samples + ``SETUP_SAMPLES``) at
   ``CLOSED_FORM_COST``, and, where the continuation follows the path, the radians the drivers
   turn from the drawn pose x the dyads and levers at ``TURN_COST`` (a group passing its change
@@ -21,8 +22,9 @@ characters) keep in check:
   t_max (both works above);
 - the seconds of the whole request (``WorkEstimate.seconds``, with ``reckoning`` stating the
   products), and of the requests that solve no scene given to them: exercises and their exports
-  (``exercise_work``: count x the type's measured cost), a worked solution's writing
-  (``SOLUTION_COST`` on top of its instant) and a balancing (``BALANCE_COST``).
+  (``exercise_work``: count x the type's measured cost, and an export's sheet), a worked
+  solution's writing (``SOLUTION_COST`` on top of its instant), a balancing
+  (``BALANCE_COST``) and a synthesis task (``SYNTHESIS_COST``).
 
 The estimate only counts; the caller compares it with its limits (the server: ``server.budget``).
 Its parts are computed when first read, so a caller that refuses on the response's size does not
