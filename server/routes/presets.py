@@ -19,7 +19,7 @@ from server.schemas import FRONT_PROBLEMS, PresetList
 from solver.errors import InvalidScene
 from solver.teaching.cam_presets import CAM_PRESETS
 from solver.teaching.gear_presets import GEAR_PRESETS
-from solver.teaching.presets import PRESETS, Preset
+from solver.teaching.presets import PRESETS, Preset, PresetParameter
 
 Family = Literal["linkages", "cams", "gear_trains"]
 FAMILIES: dict[str, Mapping[str, Preset]] = {
@@ -72,6 +72,14 @@ def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
     )
 
 
+def _published(q: PresetParameter) -> dict[str, Any] | None:
+    """What the schema says of a parameter beyond its bounds (published, not enforced: the
+    preset's own check answers 422 with its reason): its choices, or whole teeth."""
+    if q.choices is not None:
+        return {"enum": [*q.choices, None]}
+    return {"multipleOf": 1} if q.unit == "teeth" else None
+
+
 def _parameters_model(preset: Preset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
@@ -81,6 +89,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
                 description=f"{q.description} [{q.unit or '-'}]; default {q.default:g}",
                 ge=q.minimum,
                 le=q.maximum,
+                json_schema_extra=_published(q),
             ),
         )
         for q in preset.parameters
