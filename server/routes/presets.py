@@ -6,7 +6,7 @@ Each preset gets its own POST route with a request model built from its paramete
 OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any, Literal
 
 from fastapi import APIRouter
@@ -72,12 +72,20 @@ def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
     )
 
 
-def _published(q: PresetParameter) -> dict[str, Any] | None:
-    """What the schema says of a parameter beyond its bounds (published, not enforced: the
-    preset's own check answers 422 with its reason): its choices, or whole teeth."""
-    if q.choices is not None:
-        return {"enum": [*q.choices, None]}
-    return {"multipleOf": 1} if q.unit == "teeth" else None
+def _published(q: PresetParameter) -> Callable[[dict[str, Any]], None] | None:
+    """What the schema says of a parameter's number beyond its bounds (published, not
+    enforced: the preset's own check answers 422 with its reason): whole teeth. Its choices
+    are not published: openapi-python-client generates no endpoint for a number enum."""
+    if q.unit != "teeth":
+        return None
+    extra = {"multipleOf": 1}
+
+    def publish(schema: dict[str, Any]) -> None:
+        for branch in schema.get("anyOf", []):  # the number, not the null
+            if branch.get("type") == "number":
+                branch.update(extra)
+
+    return publish
 
 
 def _parameters_model(preset: Preset) -> type[BaseModel]:
