@@ -371,7 +371,8 @@ GENERATOR_HEAD = [
 BURST_HEAD = [
     "",
     "Burst: 50 sweeps of eight triads (32 links by Newton-Raphson, 1,512 samples: the most the "
-    "work budget allows) sent at once, while 2 clients asked /health and 3 asked /analyze every "
+    "work budget allowed before its refit of 2026-11-29) sent at once, while 2 clients asked "
+    "/health and 3 asked /analyze every "
     "50 ms. Two bursts each, alternating, on two servers: the workers at the server's CPU "
     "priority (the default, `KINEMATICS_WORKER_NICE=0`) and 10 levels below it (the "
     "Dockerfile's `KINEMATICS_WORKER_NICE=10`):",

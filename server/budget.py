@@ -81,11 +81,13 @@ def _newton(estimate: WorkEstimate, what: str, path: str) -> None:
         )
     seconds, allowed = work.seconds, time_limit(path) / SAFETY
     if seconds > allowed:
+        per_group = work.squared_links / work.links
         raise LimitExceeded(
             f"Newton-Raphson work: {work.links} links solved by Newton-Raphson x ({work.samples} "
             f"samples {what} + {work.setup_samples} for tracing the path + {work.turn:.4g} rad "
             f"from the drawn pose x {work.samples_per_radian}) = {work.link_samples:,.0f} "
-            f"link-samples x {work.sample_cost * 1e6:g} us = {seconds:.4g} s of estimated work, "
+            f"link-samples x ({work.sample_cost * 1e6:g} us + {work.group_sample_cost * 1e6:g} "
+            f"us x {per_group:g} links per group) = {seconds:.4g} s of estimated work, "
             f"more than the limit of {allowed:.4g} s ({path}'s time limit of "
             f"{time_limit(path):g} s / safety factor {SAFETY:g}); use fewer samples or a pose "
             "nearer the drawn one"
@@ -176,8 +178,8 @@ def event(
 
 
 def exercises(kind: str, count: int, with_solutions: bool, path: str) -> float:
-    """/exercises and /exercises/export: count x the type's cost."""
-    cost = solver.exercise_work(kind, count, with_solutions)
+    """/exercises and /exercises/export: count x the type's cost (and an export's sheet)."""
+    cost = solver.exercise_work(kind, count, with_solutions, path.endswith("/export"))
     return seconds(cost.seconds, cost.reckoning, path)
 
 

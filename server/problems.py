@@ -7,6 +7,7 @@ all end here; an unexpected exception is answered as a 500 problem (and is a def
 from __future__ import annotations
 
 import logging
+import re
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -112,7 +113,26 @@ async def validation_error(_: Request, error: Exception) -> JSONResponse:
     return problem(422, "invalid_scene", "; ".join(messages) or "invalid request")
 
 
-async def http_error(_: Request, error: Exception) -> JSONResponse:
+def allowed_methods(request: Request) -> str | None:
+    """The methods the OpenAPI document gives the request's path, as a 405's ``Allow``: those of
+    its concrete path if it has one, else of every templated path it matches (OpenAPI matches a
+    concrete path before a templated one: ``/exercises/check`` is POST only, although GET
+    ``/exercises/{exercise_id}`` would take it as an id); None for a path it does not name."""
+    paths: dict[str, dict[str, Any]] = request.app.openapi()["paths"]
+    path = request.url.path
+    if path in paths:
+        matching = [paths[path]]
+    else:
+        matching = [
+            item
+            for template, item in paths.items()
+            if re.fullmatch(re.sub(r"\\\{[^/]+?\\\}", "[^/]+", re.escape(template)), path)
+        ]
+    methods = {method.upper() for item in matching for method in item}
+    return ", ".join(sorted(methods)) or None
+
+
+async def http_error(request: Request, error: Exception) -> JSONResponse:
     assert isinstance(error, HTTPException)
     code = {
         403: "forbidden",
@@ -123,7 +143,10 @@ async def http_error(_: Request, error: Exception) -> JSONResponse:
         503: "not_configured",
     }.get(error.status_code, "invalid_scene")
     response = problem(error.status_code, code, str(error.detail))
-    response.headers.update(error.headers or {})  # a 405's Allow
+    response.headers.update(error.headers or {})  # a 405's Allow (the first route's methods)
+    allow = allowed_methods(request) if error.status_code == 405 else None
+    if allow is not None:  # every method of the path, as documented
+        response.headers["Allow"] = allow
     return response
 
 

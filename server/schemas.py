@@ -251,10 +251,18 @@ class SpatialPointValues(PointValues):
     acceleration_terms: dict[str, Vector] | None = None
 
 
+ANSWER_KIND = (
+    "what the answer is (the discriminator of /analyze's and /sweep's answers): the scene's "
+    "kind, and 'linkage_time' for a linkage swept over a time_range (arrays over time rather "
+    "than over driver_angle)"
+)
+
+
 class AnalyzeResponse(Open):
     """One instant. A linkage has points, links, four_bar_loops and diagnostics (joints,
     moving_points, instant_centres where asked or present); a spatial chain bodies and points."""
 
+    kind: Literal["linkage", "spatial_chain"] = Field(description=ANSWER_KIND)
     points: dict[str, SpatialPointValues]
     links: dict[str, LinkValues] | None = None
     joints: list[JointValues] | None = None
@@ -399,6 +407,7 @@ class CycleValues(Open):
 class SweepResponse(Open):
     """A revolution of the first driver, or its feasible range (arrays over driver_angle)."""
 
+    kind: Literal["linkage"] = Field(description=ANSWER_KIND)
     driver: str
     driver_angle: list[float] = Field(description="rad, the driver link's absolute angle")
     samples: int
@@ -424,8 +433,9 @@ class SweepResponse(Open):
 
 
 class TimeSweepResponse(Open):
-    """The scene over a time range through its laws (arrays over time)."""
+    """A linkage over a time range through its laws (arrays over time)."""
 
+    kind: Literal["linkage_time"] = Field(description=ANSWER_KIND)
     time: list[float]
     driver_angle: list[float]
     samples: int
@@ -464,6 +474,7 @@ class SpatialTimeSweepResponse(Open):
     """A spatial chain over a time range: each joint moves from the scene's pose at t = 0 by
     q(t) = rate t + rate_dot t^2 / 2 (arrays over time)."""
 
+    kind: Literal["spatial_chain"] = Field(description=ANSWER_KIND)
     time: list[float]
     samples: int
     bodies: dict[str, SpatialSweepBodyValues]
@@ -517,7 +528,7 @@ class GearMeshValues(Open):
 class GearTrainAnalyzeResponse(Open):
     """A gear train at its inputs' speeds (docs/GEARS.md)."""
 
-    kind: Literal["gear_train"]
+    kind: Literal["gear_train"] = Field(description=ANSWER_KIND)
     degrees_of_freedom: int
     first_input: str | None
     members: dict[str, GearMemberValues]
@@ -535,7 +546,7 @@ class GearSweepMemberValues(Open):
 class GearTrainSweepResponse(Open):
     """A gear train over a time range (arrays over time)."""
 
-    kind: Literal["gear_train"]
+    kind: Literal["gear_train"] = Field(description=ANSWER_KIND)
     time: list[float]
     samples: int
     members: dict[str, GearSweepMemberValues]
@@ -588,6 +599,7 @@ CAM_PRESSURE_ANGLE = "rad, between the common normal and the follower's directio
 class CamSweepResponse(Open):
     """A cam over one revolution (arrays over cam_angle; docs/CAMS.md)."""
 
+    kind: Literal["cam"] = Field(description=ANSWER_KIND)
     samples: int
     cam_angle: list[float] = Field(description="rad turned in the cam's direction, from 0")
     follower: CamFollowerValues
@@ -603,6 +615,7 @@ class CamSweepResponse(Open):
 class CamAnalyzeResponse(Open):
     """A cam at one cam angle (docs/CAMS.md)."""
 
+    kind: Literal["cam"] = Field(description=ANSWER_KIND)
     cam_angle: float = Field(description="rad, angle_deg modulo 360 deg")
     cam_angle_deg: float
     segment: int = Field(description="the index of the segment the angle lies in")
@@ -614,6 +627,19 @@ class CamAnalyzeResponse(Open):
     profile: Vectors = Field(description="the cam surface at 360 points, cam's frame at angle 0")
     diagnostics: CamDiagnostics
     warnings: list[str] = WARNINGS
+
+
+AnalyzeAnswer = Annotated[
+    AnalyzeResponse | CamAnalyzeResponse | GearTrainAnalyzeResponse, Field(discriminator="kind")
+]
+SweepAnswer = Annotated[
+    SweepResponse
+    | TimeSweepResponse
+    | SpatialTimeSweepResponse
+    | CamSweepResponse
+    | GearTrainSweepResponse,
+    Field(discriminator="kind"),
+]
 
 
 class ValueModel(Open):
@@ -671,7 +697,7 @@ class SolutionResponse(Open):
     digits: int
     steps: list[StepModel]
     mistakes: list[MistakeModel]
-    results: AnalyzeResponse | CamAnalyzeResponse = Field(
+    results: AnalyzeAnswer = Field(
         description="The /analyze body of the same scene (a cam's at the same angle_deg)"
     )
     polygons: PolygonValues | None = Field(

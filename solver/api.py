@@ -154,7 +154,8 @@ def analyze(
     _statics(statics, wanted)
     if isinstance(parsed, CamScene):
         _no_dynamics(wanted)
-        return AnalysisResult(analyze_cam(parsed, 0.0 if angle_deg is None else angle_deg, found))
+        body = analyze_cam(parsed, 0.0 if angle_deg is None else angle_deg, found)
+        return AnalysisResult(_kind("cam", body))
     if angle_deg is not None:
         raise InvalidScene(
             "angle_deg: the cam angle of a 'cam' scene; a linkage's driver takes "
@@ -163,9 +164,10 @@ def analyze(
     if isinstance(parsed, LinkageScene):
         result = instant.analyze(parsed, wanted, tolerance)
         body = add_instant_dynamics(results.analysis_body(result, found), parsed, result, statics)
-        return AnalysisResult(body)
+        return AnalysisResult(_kind("linkage", body))
     _no_dynamics(wanted)
-    return AnalysisResult(results.spatial_body(analyze_spatial_chain(parsed), wanted, found))
+    body = results.spatial_body(analyze_spatial_chain(parsed), wanted, found)
+    return AnalysisResult(_kind("spatial_chain", body))
 
 
 def sweep(
@@ -190,7 +192,7 @@ def sweep(
         _no_dynamics(normalise_quantities(quantities))
         if speed_fluctuation is not None:
             raise InvalidScene("speed_fluctuation: a cam's sweep has no dynamics")
-        return SweepResult(sweep_cam(read, samples, found))
+        return SweepResult(_kind("cam", sweep_cam(read, samples, found)))
     if isinstance(read, GearTrainScene):
         raise InvalidScene("time_range: a gear_train is swept over a time range [t0, t1]")
     parsed, found = _linkage(
@@ -200,7 +202,14 @@ def sweep(
     )
     result = sweep_linkage(parsed, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.sweep_body(result, found), result, speed_fluctuation, statics)
-    return SweepResult(body)
+    return SweepResult(_kind("linkage", body))
+
+
+def _kind(kind: str, body: Mapping[str, Any]) -> dict[str, Any]:
+    """``body`` with its ``kind`` first: what the answer is, the discriminator of /analyze's and
+    /sweep's answers (the scene's kind; a linkage over a time range ``linkage_time``, its arrays
+    over time rather than over the driver's angle)."""
+    return {"kind": kind, **body}
 
 
 def _statics(statics: bool, wanted: frozenset[str]) -> None:
@@ -244,10 +253,11 @@ def sweep_time(
     if isinstance(parsed, SpatialChain):
         _no_dynamics(normalise_quantities(quantities))
         chain = sweep_spatial_time(parsed, t0, t1, samples, quantities)
-        return TimeSweepResult(results.spatial_time_sweep_body(chain, found))
+        body = results.spatial_time_sweep_body(chain, found)
+        return TimeSweepResult(_kind("spatial_chain", body))
     result = sweep_linkage_time(parsed, t0, t1, samples, quantities, tolerance)
     body = add_sweep_dynamics(results.time_sweep_body(result, found), result, statics=statics)
-    return TimeSweepResult(body)
+    return TimeSweepResult(_kind("linkage_time", body))
 
 
 def find_event(
@@ -292,7 +302,7 @@ def solve(
     if isinstance(parsed, CamScene):
         angle = 0.0 if angle_deg is None else angle_deg
         cam = worked.solve(parsed, method, digits, angle_deg=angle)
-        body = {**cam.analysis, "warnings": [*found, *cam.analysis["warnings"]]}
+        body = _kind("cam", {**cam.analysis, "warnings": [*found, *cam.analysis["warnings"]]})
         return SolutionResult(worked.solution_body(cam, body, None, body["warnings"]))
     if angle_deg is not None:
         raise InvalidScene("angle_deg: the cam angle of a 'cam' scene's worked solution")
@@ -301,7 +311,8 @@ def solve(
         body = analyze_gear_train(parsed, None, found).as_dict()
         return SolutionResult(worked.solution_body(solution, body, None, found))
     if not isinstance(parsed, LinkageScene):
-        body = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
+        spatial = results.spatial_body(solution.analysis, frozenset(QUANTITIES), found)
+        body = _kind("spatial_chain", spatial)
         return SolutionResult(worked.solution_body(solution, body, None, found))
     # The polygons follow the vector method's steps, whichever method the solution uses.
     vector_steps = (
@@ -310,7 +321,7 @@ def solve(
         else vector_method_steps(parsed, solution.analysis, digits)
     )
     shapes = polygons(parsed, solution.analysis, vector_steps)
-    body = results.analysis_body(solution.analysis, found)
+    body = _kind("linkage", results.analysis_body(solution.analysis, found))
     if solution.method in ("newton_euler", "statics"):  # its numbers point into forces, energy
         add_dynamics_results(body, parsed, solution.analysis, solution.method == "statics")
     return SolutionResult(worked.solution_body(solution, body, shapes, found))

@@ -77,7 +77,11 @@ router = APIRouter(
 
 
 class ExercisesRequest(Strict):
-    type: str = Field(description="An exercise type from GET /exercises/types.", max_length=64)
+    type: str = Field(
+        description="An exercise type from GET /exercises/types.",
+        max_length=64,
+        json_schema_extra={"enum": list(TYPES)},  # published; an unknown one is 422 with the list
+    )
     count: int = Field(
         1,
         strict=True,

@@ -13,18 +13,12 @@ from server import budget
 from server.responses import ResultResponse, respond
 from server.schemas import (
     PROBLEMS,
+    AnalyzeAnswer,
     AnalyzeRequest,
-    AnalyzeResponse,
-    CamAnalyzeResponse,
-    CamSweepResponse,
     EventResponse,
     EventsRequest,
-    GearTrainAnalyzeResponse,
-    GearTrainSweepResponse,
-    SpatialTimeSweepResponse,
+    SweepAnswer,
     SweepRequest,
-    SweepResponse,
-    TimeSweepResponse,
 )
 from server.workers import WorkerRoute, front_check
 from solver.cams import CamScene
@@ -45,7 +39,7 @@ def analyze_cost(request: AnalyzeRequest) -> float:
 @router.post(
     "/analyze",
     summary="One instant: positions, velocities, accelerations, poles, slider components",
-    response_model=AnalyzeResponse | CamAnalyzeResponse | GearTrainAnalyzeResponse,
+    response_model=AnalyzeAnswer,
 )
 @front_check(analyze_cost)
 def analyze_route(request: AnalyzeRequest) -> ResultResponse:
@@ -77,11 +71,7 @@ def sweep_cost(request: SweepRequest) -> float:
     "/sweep",
     summary="The linkage over one revolution of its first driver (or its feasible range), or "
     "the scene over a time range",
-    response_model=SweepResponse
-    | TimeSweepResponse
-    | SpatialTimeSweepResponse
-    | CamSweepResponse
-    | GearTrainSweepResponse,
+    response_model=SweepAnswer,
 )
 @front_check(sweep_cost)
 def sweep_route(request: SweepRequest) -> ResultResponse:

@@ -6,7 +6,7 @@ Each preset gets its own POST route with a request model built from its paramete
 OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any, Literal
 
 from fastapi import APIRouter
@@ -19,7 +19,7 @@ from server.schemas import FRONT_PROBLEMS, PresetList
 from solver.errors import InvalidScene
 from solver.teaching.cam_presets import CAM_PRESETS
 from solver.teaching.gear_presets import GEAR_PRESETS
-from solver.teaching.presets import PRESETS, Preset
+from solver.teaching.presets import PRESETS, Preset, PresetParameter
 
 Family = Literal["linkages", "cams", "gear_trains"]
 FAMILIES: dict[str, Mapping[str, Preset]] = {
@@ -72,6 +72,22 @@ def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
     )
 
 
+def _published(q: PresetParameter) -> Callable[[dict[str, Any]], None] | None:
+    """What the schema says of a parameter's number beyond its bounds (published, not
+    enforced: the preset's own check answers 422 with its reason): whole teeth. Its choices
+    are not published: openapi-python-client generates no endpoint for a number enum."""
+    if q.unit != "teeth":
+        return None
+    extra = {"multipleOf": 1}
+
+    def publish(schema: dict[str, Any]) -> None:
+        for branch in schema.get("anyOf", []):  # the number, not the null
+            if branch.get("type") == "number":
+                branch.update(extra)
+
+    return publish
+
+
 def _parameters_model(preset: Preset) -> type[BaseModel]:
     fields: dict[str, Any] = {
         q.name: (
@@ -81,6 +97,7 @@ def _parameters_model(preset: Preset) -> type[BaseModel]:
                 description=f"{q.description} [{q.unit or '-'}]; default {q.default:g}",
                 ge=q.minimum,
                 le=q.maximum,
+                json_schema_extra=_published(q),
             ),
         )
         for q in preset.parameters

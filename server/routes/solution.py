@@ -17,7 +17,7 @@ from pydantic import Field
 import solver
 from server import budget
 from server.responses import ResultResponse, respond
-from server.routes.presets import build_any_preset
+from server.routes.presets import ALL_PRESETS, build_any_preset
 from server.scene_schema import SceneObject
 from server.schemas import EXAMPLES, PROBLEMS, STRICT, SolutionResponse, Strict
 from server.solution_page import solution_page
@@ -129,7 +129,12 @@ def preset_values(request: Request) -> dict[str, float]:
 )
 def solution_page_preset(
     preset: Annotated[
-        str, Query(max_length=64, description="A preset name of any family (GET /presets).")
+        str,
+        Query(
+            max_length=64,
+            description="A preset name of any family (GET /presets).",
+            json_schema_extra={"enum": list(ALL_PRESETS)},
+        ),
     ],
     values: Annotated[dict[str, float], Depends(preset_values)],
     method: Annotated[Method, Query()] = "vector",

@@ -16,10 +16,12 @@ from fastapi import APIRouter, Body
 from pydantic import Field
 
 import solver
+from server import budget
 from server.responses import ResultResponse, respond
 from server.scene_schema import LinkageSceneObject
 from server.schemas import PROBLEMS, WARNINGS, Open, Strict
-from server.workers import WorkerRoute
+from server.workers import WorkerRoute, front_check
+from solver.analysis.work_estimate import SYNTHESIS_COST
 
 Point = Annotated[list[float], Field(min_length=2, max_length=2, description="[x, y] (m)")]
 
@@ -166,12 +168,20 @@ router = APIRouter(
 )
 
 
+def synthesis_cost(request: SynthesisTask) -> float:
+    """A task's cost: the design and its checks (its sizes are fixed: at most three positions
+    or precision points), ``SYNTHESIS_COST``."""
+    reckoning = f"a synthesis task, {SYNTHESIS_COST:g} s"
+    return budget.seconds(SYNTHESIS_COST, reckoning, "/api/v1/synthesis")
+
+
 @router.post(
     "/synthesis",
     summary="Design a four-bar: two or three coupler positions, a function, or a quick-return "
     "time ratio; checked by the solver's own analysis",
     response_model=SynthesisResponse,
 )
+@front_check(synthesis_cost)
 def synthesis_route(
     request: Annotated[SynthesisTask, Body(openapi_examples=EXAMPLES)],
 ) -> ResultResponse:

@@ -7,9 +7,10 @@ characters) keep in check:
   chain's points + bodies + joints; a gear train's ``sweep_entries``) x quantities;
 - the Newton-Raphson work: the links solved by Newton-Raphson x (samples + ``SETUP_SAMPLES`` +
   ``SAMPLES_PER_RADIAN`` x the radians the drivers turn from the drawn pose), in link-samples,
-  at ``SAMPLE_COST`` seconds of one core each (a sweep's samples, its path tracing and
-  feasible-range search, and the walk of the continuation from the drawn pose). The constants
-  are fitted to ``benchmarks/bench_budget.py`` (docs/SERVING.md quotes a run);
+  at ``SAMPLE_COST`` + the group's links x ``GROUP_SAMPLE_COST`` seconds of one core each (a
+  sweep's samples, its path tracing and feasible-range search, and the walk of the
+  continuation from the drawn pose). Every constant is fitted to ``benchmarks/bench_budget.py``
+  (docs/BENCHMARKS.md quotes a run);
 - the closed-form work: the groups solved in closed form x (samples + ``SETUP_SAMPLES``) at
   ``CLOSED_FORM_COST``, and, where the continuation follows the path, the radians the drivers
   turn from the drawn pose x the dyads and levers at ``TURN_COST`` (a group passing its change
@@ -21,8 +22,9 @@ characters) keep in check:
   t_max (both works above);
 - the seconds of the whole request (``WorkEstimate.seconds``, with ``reckoning`` stating the
   products), and of the requests that solve no scene given to them: exercises and their exports
-  (``exercise_work``: count x the type's measured cost), a worked solution's writing
-  (``SOLUTION_COST`` on top of its instant) and a balancing (``BALANCE_COST``).
+  (``exercise_work``: count x the type's measured cost, and an export's sheet), a worked
+  solution's writing (``SOLUTION_COST`` on top of its instant), a balancing
+  (``BALANCE_COST``) and a synthesis task (``SYNTHESIS_COST``).
 
 The estimate only counts; the caller compares it with its limits (the server: ``server.budget``).
 Its parts are computed when first read, so a caller that refuses on the response's size does not
@@ -51,46 +53,59 @@ from solver.position.topology import DriverStep, DyadStep, LeverStep, NewtonStep
 
 FREQUENCY_GRID = 1 << 18  # samples of s'(t) that estimate a law's frequency
 EVENT_SAMPLES = DISTANCE_GRID + 1  # samples of |M - P| in an event search (solver.analysis.events)
-# The Newton-Raphson cost model, fitted by benchmarks/bench_budget.py (best of 3, shared 2-core
-# machine): the largest rate measured per link-sample (groups of up to 32 links, positions,
-# velocities and accelerations), a sweep's fixed work in samples, and the continuation's cost per
-# radian of driver turn in samples.
-SAMPLE_COST = 70e-6  # s of one core per link-sample
-SETUP_SAMPLES = 720  # fixed work: a revolution's path tracing and feasible-range search
-SAMPLES_PER_RADIAN = 60  # walking the path from the drawn pose (instants, time sweeps, events)
-# The closed-form cost model (benchmarks/bench_budget.py, wall time on the shared 2-core machine
-# at a load average of about 8): a 3,600-sample revolution of S000-T1 (three closed-form groups,
-# positions to accelerations) took 0.29 s; a time sweep of S003-T1 (a parallelogram, which
-# passes a change point every half turn) turning 524 rad took 6.2 s and the event search over the
-# same turn 4.6 s.
-CLOSED_FORM_COST = 25e-6  # s of one core per closed-form group and sample
-TURN_COST = 12e-3  # s per radian of driver turn and two-branch group (dyad or lever)
+# The cost model: seconds of one core (CPU time) per unit of each kind of work, fitted by
+# benchmarks/bench_budget.py to 146 requests of every kind (non-negative least squares on the
+# ratio estimate / measured; its run of 2026-11-29 and the residual spread are in
+# docs/BENCHMARKS.md, "The cost model, fitted"). The fixed cost of a request through the app
+# (about 6 ms: HTTP, validation, serialising) is fitted and not charged.
+# Newton-Raphson: a group of n links costs n x (SAMPLE_COST + n x GROUP_SAMPLE_COST) per sample
+# (its Jacobian grows with it: a 32-link group costs 40 times a 4-link one per sample), over the
+# sweep's samples, a fixed work and the walk of the continuation per radian from the drawn pose.
+SAMPLE_COST = 2.9e-6  # s per link-sample
+GROUP_SAMPLE_COST = 0.32e-6  # s per link-sample and link of its group
+SETUP_SAMPLES = 260  # fixed work: a revolution's path tracing and feasible-range search
+SAMPLES_PER_RADIAN = 19  # walking the path from the drawn pose (instants, time sweeps, events)
+# Closed form: per group and sample, a group's fixed work in samples, and per radian of driver
+# turn and two-branch group walked (a parallelogram, S003-T1, passes a change point every half
+# turn and has each pass screened for its branch: the costliest walk measured).
+CLOSED_FORM_COST = 4.6e-6  # s per closed-form group and sample
+CLOSED_FORM_SETUP_SAMPLES = 360  # a closed-form group's fixed work, in samples
+TURN_COST = 1.9e-3  # s per radian of driver turn and two-branch group (dyad or lever)
+VALUE_COST = (
+    0.36e-6  # s per value of the response of a scene solved in closed form alone (cams, ...)
+)
 # Work that solves no scene of the request's: a worked solution's writing beyond its instant
-# (S000-T1 by the loop method: 0.06 s; Newton-Euler with its diagrams about twice that) and
-# a balancing (two counterweights on a four-bar: a few instants).
-SOLUTION_COST = 0.15
-VALUE_COST = 2e-6  # s per value of the response of a scene solved in closed form alone (cams, ...)
-BALANCE_COST = 0.1
+# (the fit's; a linkage's by the vector or loop method measured 50 to 75 ms more, a cam's or a
+# gear train's less), a balancing (the fit leaves it to the fixed cost; measured whole: 5 ms),
+# a synthesis task, and an exported exercise's sheet on top of the exercise (HTML with MathML).
+SOLUTION_COST = 0.005
+BALANCE_COST = 0.005
+SYNTHESIS_COST = 0.043
+EXPORT_COST = 0.017  # s per exercise exported, on top of the exercise
 # s per exercise of each type at its costliest difficulty, (alone, with its worked solution),
-# generation and serialisation included (benchmarks/bench_budget.py); an export costs the same
-# (the sheets are text around the same numbers). A type not listed costs the costliest.
-# Measured 2026-11-29 at a load average of 8 to 10 (benchmarks/bench_budget.py --whole times them
-# against measured runs): alone, the median of four runs of 6 to 20 exercises (the cost varies
-# with the seed, as a type draws until its exercise is well posed: flywheel 15 to 154 ms), so
-# that a hundred of any type, the most a request may ask, stay within /exercises' 5 s; with the
-# worked solution the larger of two runs (JSON with solutions, printable sheet with them).
+# generation and serialisation included (fitted to 4 and 12 exercises alone, 2 and 5 with their
+# solutions, and an export of 3 with them, of each type). A type not listed costs the costliest.
 EXERCISE_COSTS: dict[str, tuple[float, float]] = {
-    "four_bar_velocity": (0.031, 0.09),
-    "four_bar_acceleration": (0.035, 0.085),
-    "four_bar_poles": (0.013, 0.11),
-    "slider_crank": (0.009, 0.065),
-    "inverted_slider_crank": (0.019, 0.085),
-    "quick_return": (0.03, 0.13),
-    "slider_extension": (0.021, 0.105),
-    "moving_point": (0.036, 0.14),
-    "spatial_arm": (0.019, 0.075),
-    "four_bar_torque": (0.049, 0.15),
-    "flywheel": (0.049, 0.24),
+    "four_bar_velocity": (0.0028, 0.031),
+    "four_bar_acceleration": (0.0032, 0.033),
+    "four_bar_poles": (0.0025, 0.028),
+    "slider_crank": (0.0019, 0.02),
+    "inverted_slider_crank": (0.0039, 0.022),
+    "quick_return": (0.0072, 0.039),
+    "slider_extension": (0.004, 0.027),
+    "moving_point": (0.004, 0.18),
+    "spatial_arm": (0.0019, 0.014),
+    "four_bar_torque": (0.009, 0.049),
+    "flywheel": (0.011, 0.06),
+    "holding_torque": (0.0067, 0.04),
+    "slider_crank_friction": (0.0096, 0.049),
+    "planetary_output": (0.00047, 0.0045),
+    "differential_carrier": (0.00085, 0.0051),
+    "cam_follower_motion": (0.014, 0.026),
+    "cam_pressure_angle": (0.017, 0.031),
+    "synthesis_function": (0.012, 0.021),
+    "synthesis_fixed_pivots": (0.0094, 0.015),
+    "synthesis_two_positions": (0.068, 0.068),  # solved: fitted 0.038 < alone, so alone's
 }
 
 
@@ -104,8 +119,9 @@ class ChapterScene(Protocol):
 
 @dataclass(frozen=True)
 class NewtonWork:
-    """The Newton-Raphson groups' work: ``groups`` (links per group) x (``samples`` +
-    ``setup_samples`` + ``turn`` rad from the drawn pose x ``samples_per_radian``)."""
+    """The Newton-Raphson groups' work: each group of n links costs n x (``sample_cost`` + n x
+    ``group_sample_cost``) per sample (a group's Jacobian grows with it), over (``samples`` +
+    ``setup_samples`` + ``turn`` rad from the drawn pose x ``samples_per_radian``) samples."""
 
     groups: tuple[int, ...]
     samples: int
@@ -113,6 +129,7 @@ class NewtonWork:
     setup_samples: int = SETUP_SAMPLES
     samples_per_radian: int = SAMPLES_PER_RADIAN
     sample_cost: float = SAMPLE_COST
+    group_sample_cost: float = GROUP_SAMPLE_COST
 
     @property
     def links(self) -> int:
@@ -120,14 +137,34 @@ class NewtonWork:
         return sum(self.groups)
 
     @property
+    def squared_links(self) -> int:
+        """The sum of each group's links squared."""
+        return sum(n * n for n in self.groups)
+
+    @property
+    def per_link(self) -> float:
+        """Samples per link: the sweep's, the path tracing's and the walk's."""
+        return self.samples + self.setup_samples + self.samples_per_radian * self.turn
+
+    @property
     def link_samples(self) -> float:
-        per_link = self.samples + self.setup_samples + self.samples_per_radian * self.turn
-        return self.links * per_link
+        return self.links * self.per_link
 
     @property
     def seconds(self) -> float:
         """Estimated seconds of one core."""
-        return self.link_samples * self.sample_cost
+        rate = self.links * self.sample_cost + self.squared_links * self.group_sample_cost
+        return self.per_link * rate
+
+    @property
+    def reckoning(self) -> str:
+        """The products, with their numbers."""
+        return (
+            f"{self.links} links solved by Newton-Raphson x ({self.samples} samples + "
+            f"{self.setup_samples} + {self.turn:,.6g} rad x {self.samples_per_radian}) x "
+            f"({self.sample_cost * 1e6:g} us + {self.group_sample_cost * 1e6:g} us x "
+            f"{self.squared_links / self.links:g} links per group)"
+        )
 
 
 @dataclass(frozen=True)
@@ -140,7 +177,7 @@ class ClosedFormWork:
     branch_groups: int
     samples: int
     turn: float
-    setup_samples: int = SETUP_SAMPLES
+    setup_samples: int = CLOSED_FORM_SETUP_SAMPLES
     sample_cost: float = CLOSED_FORM_COST
     turn_cost: float = TURN_COST
 
@@ -273,12 +310,7 @@ class WorkEstimate:
         if not isinstance(self.scene, LinkageScene):
             parts.append(f"{self.values:,} values x {VALUE_COST * 1e6:g} us")
         if self.newton is not None:
-            n = self.newton
-            parts.append(
-                f"{n.links} links solved by Newton-Raphson x ({n.samples} samples + "
-                f"{n.setup_samples} + {n.turn:,.6g} rad x {n.samples_per_radian}) x "
-                f"{n.sample_cost * 1e6:g} us"
-            )
+            parts.append(self.newton.reckoning)
         if self.closed_form is not None:
             parts.append(self.closed_form.reckoning)
         return " + ".join(parts) + f" = {self.seconds:,.4g} s"
@@ -309,13 +341,16 @@ class WorkEstimate:
         return Oscillations(name, t_max, turns / (2.0 * t_max), turns < FREQUENCY_GRID // 4)
 
 
-def exercise_work(kind: str, count: int, with_solutions: bool) -> Cost:
-    """``count`` exercises of type ``kind`` (or an export of them): count x the type's measured
-    cost (``EXERCISE_COSTS``; the costliest for a type not listed)."""
+def exercise_work(kind: str, count: int, with_solutions: bool, export: bool = False) -> Cost:
+    """``count`` x (the type's measured cost + ``EXPORT_COST`` for an export): ``count``
+    exercises of type ``kind`` (``EXERCISE_COSTS``; the costliest for a type not listed), or an
+    export of them (its sheet written on top)."""
     costliest = max(EXERCISE_COSTS.values(), key=lambda c: c[1])
     alone, solved = EXERCISE_COSTS.get(kind, costliest)
-    each = solved if with_solutions else alone
+    each = (solved if with_solutions else alone) + (EXPORT_COST if export else 0.0)
     what = "with its worked solution" if with_solutions else "each"
+    if export:
+        what += " and its sheet"
     seconds = count * each
     return Cost(
         seconds, f"{count} exercises x {each * 1e3:g} ms {what} ({kind}) = {seconds:,.4g} s"

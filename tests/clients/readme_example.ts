@@ -1,13 +1,14 @@
 // The README's /analyze example as a program author writes it in TypeScript, against the types
 // that openapi-typescript generates from /api/v1/openapi.json (schema.d.ts, written by
-// tests/server/test_generated_clients.py). Compiled with tsc --strict: no cast, no any.
+// tests/server/test_generated_clients.py). Compiled with tsc --strict: no cast, no any; the
+// answers of /analyze and /sweep are narrowed by their `kind`.
 import type { components, paths } from "./schema";
 
 type Analyze = paths["/api/v1/analyze"]["post"];
 type AnalyzeRequest = Analyze["requestBody"]["content"]["application/json"];
+type AnalyzeAnswer = Analyze["responses"][200]["content"]["application/json"];
+type SweepAnswer = paths["/api/v1/sweep"]["post"]["responses"][200]["content"]["application/json"];
 type Problem = components["schemas"]["Problem"];
-// The 200 answer is one of Analyze["responses"][200]'s; a linkage's is this one:
-type LinkageAnswer = components["schemas"]["AnalyzeResponse"];
 
 export const request: AnalyzeRequest = {
   scene: {
@@ -41,6 +42,21 @@ export async function couplerOmega(base: string): Promise<number | string> {
     const problem: Problem = await response.json();
     return `${problem.code}: ${problem.detail}`;
   }
-  const answer: LinkageAnswer = await response.json();
+  const answer: AnalyzeAnswer = await response.json();
+  // The answers are a union discriminated on `kind`: a linkage's has links.
+  if (answer.kind !== "linkage") return `a ${answer.kind} has no coupler`;
   return answer.links?.["coupler"]?.omega ?? "no omega";
+}
+
+/** What a sweep's arrays run over: the driver's angle (rad) or time (s), narrowed by `kind`. */
+export function abscissa(answer: SweepAnswer): number[] {
+  switch (answer.kind) {
+    case "linkage":
+    case "cam":
+      return answer.kind === "linkage" ? answer.driver_angle : answer.cam_angle;
+    case "linkage_time":
+    case "spatial_chain":
+    case "gear_train":
+      return answer.time;
+  }
 }

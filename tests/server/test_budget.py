@@ -22,7 +22,9 @@ from fastapi.testclient import TestClient
 import solver
 from server import budget
 from server.app import app
+from server.routes.presets import ALL_PRESETS, build_any_preset
 from server.settings import Settings
+from solver.analysis.work_estimate import BALANCE_COST, SOLUTION_COST, SYNTHESIS_COST
 from solver.errors import LimitExceeded
 from solver.exercises import TYPES
 from solver.model.laws import MAX_COMPOSITION, composition_depth, parse_time_law
@@ -74,15 +76,19 @@ def test_a_sweep_just_inside_the_response_budget_answers() -> None:
 
 
 def test_newton_work_of_a_sweep_is_bounded_at_half_its_time_limit() -> None:
-    """32 links by Newton-Raphson: 32 x (samples + 720) link-samples x 70 us must stay within
-    /sweep's 10 s / 2 = 5 s, so 1,512 samples are allowed and 1,513 refused (by hand: 32 x
-    2,232 x 70 us = 4.99968 s, 32 x 2,233 x 70 us = 5.00192 s)."""
+    """One group of 32 links by Newton-Raphson costs 32 x (2.9 + 0.32 x 32) us = 420.48 us per
+    sample, over (samples + 260 + 19 x turn) samples, within /sweep's 10 s / 2 = 5 s. The crank
+    turns 2 t + 0.25 t^2 rad: 140 rad by t = 20 s, 480 by 40 s. By hand: 3,000 samples over [0,
+    20] s: (3,000 + 260 + 2,660) x 420.48 us = 2.489 s, allowed; over [0, 40] s: 32 x (3,000 +
+    260 + 9,120) = 396,160 link-samples x 13.14 us = 5.2055 s, refused."""
     scene = solver.read_scene(triads(8)).scene
     assert isinstance(scene, LinkageScene)
-    budget.sweep(scene, 1512, None)  # no refusal (and no work: the budget only counts)
-    detail = refused("/api/v1/sweep", {"scene": triads(8), "samples": 1513})
-    assert "32 links solved by Newton-Raphson x (1513 samples over the revolution + 720" in detail
-    assert "= 71,456 link-samples x 70 us = 5.002 s of estimated work" in detail
+    assert budget.sweep(scene, 3000, None, [0.0, 20.0]) == pytest.approx(2.4892, rel=1e-4)
+    body = {"scene": triads(8), "samples": 3000, "time_range": [0, 40]}
+    detail = refused("/api/v1/sweep", body)
+    assert "32 links solved by Newton-Raphson x (3000 samples over the time range + 260" in detail
+    assert "+ 480 rad from the drawn pose x 19) = 396,160 link-samples" in detail
+    assert "x (2.9 us + 0.32 us x 32 links per group) = 5.206 s of estimated work" in detail
     assert "more than the limit of 5 s (/api/v1/sweep's time limit of 10 s / safety factor 2)" in (
         detail
     )
@@ -95,27 +101,29 @@ def test_a_newton_group_past_the_measured_sizes_is_refused() -> None:
 
 
 def test_newton_work_of_a_time_sweep_counts_the_turn_from_the_drawn_pose() -> None:
-    """omega 2, alpha 0.5: the crank turns 2 + 0.25 = 2.25 rad by t = 1 s; 4 x (20,000 + 720 +
-    2.25 x 60) = 83,420 link-samples x 70 us = 5.839 s."""
-    body = {"scene": triads(1), "samples": 20_000, "time_range": [0, 1]}
-    detail = refused("/api/v1/sweep", body)
-    assert "4 links solved by Newton-Raphson x (20000 samples over the time range" in detail
-    assert "+ 2.25 rad from the drawn pose x 60) = 83,420 link-samples x 70 us = 5.839 s" in detail
+    """omega 2, alpha 0.5: the crank turns 2 + 0.25 = 2.25 rad by t = 1 s; 4 x (20,000 + 260 +
+    2.25 x 19) = 81,211 link-samples x (2.9 + 0.32 x 4) us = 0.33946 s."""
+    scene = solver.read_scene(triads(1)).scene
+    assert isinstance(scene, LinkageScene)
+    work = solver.estimate_work(scene, 20_000, None, time_range=[0, 1]).newton
+    assert work is not None
+    assert work.link_samples == pytest.approx(81_211)
+    assert work.seconds == pytest.approx(81_211 * 4.18e-6)
 
 
 def test_continuation_to_a_far_pose_is_bounded() -> None:
     """An angle law at t = 1e5 s puts the crank 1e8 rad from the drawn pose, which the
-    continuation would walk; /analyze allows 2 s / 2 = 1 s: 4 x (1 + 720 + 60 x turn) x 70 us
-    <= 1 s for a turn up to 47.51 rad."""
+    continuation would walk; /analyze allows 2 s / 2 = 1 s: 4 x (1 + 260 + 19 x turn) x (2.9 +
+    0.32 x 4) us <= 1 s for a turn up to (1 / 16.72e-6 - 261) / 19 = 3,134.0 rad."""
     scene = triads(1)
     scene["drivers"] = [{"link": "crank", "angle_law": "1000*t"}]
     scene["time"] = 1e5
     for path in ("/api/v1/analyze", "/api/v1/solution"):
         assert "1e+08 rad from the drawn pose" in refused(path, {"scene": scene})
-    scene["time"] = 0.0474  # 47.4 rad: inside
+    scene["time"] = 3.1340  # 3,134.0 rad: inside
     budget.instant(solver.read_scene(scene).scene)  # type: ignore[arg-type]
-    scene["time"] = 0.0476  # 47.6 rad: outside
-    assert "47.6 rad from the drawn pose" in refused("/api/v1/analyze", {"scene": scene})
+    scene["time"] = 3.1342  # 3,134.2 rad: outside
+    assert "3134 rad from the drawn pose" in refused("/api/v1/analyze", {"scene": scene})
 
 
 def test_a_triad_at_its_drawn_pose_still_answers() -> None:
@@ -213,28 +221,28 @@ S003_T1 = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text()
 
 def test_the_closed_form_work_of_a_revolution() -> None:
     """S000-T1: three closed-form groups (the dyad and two points placed on known links) x
-    (360 + 720) samples x 25 us = 0.081 s; no turn from the drawn pose."""
+    (360 + 360) samples x 4.6 us = 9.936 ms; no turn from the drawn pose."""
     estimate = solver.estimate_work(solver.parse_scene(S000_T1), 360)
     assert estimate.newton is None
     assert estimate.closed_form is not None
     assert (estimate.closed_form.groups, estimate.closed_form.branch_groups) == (3, 1)
-    assert estimate.seconds == pytest.approx(3 * 1080 * 25e-6)
+    assert estimate.seconds == pytest.approx(3 * 720 * 4.6e-6)
 
 
 def test_the_drivers_turn_is_charged_per_dyad() -> None:
     """S003-T1's crank turns 0.5236 t^3 rad: 8 x 0.5236 = 4.18879 rad by t = 2 s; 3 x (100 +
-    720) x 25 us + 1 dyad x 4.18879 rad x 12 ms."""
+    360) x 4.6 us + 1 dyad x 4.18879 rad x 1.9 ms."""
     estimate = solver.estimate_work(solver.parse_scene(S003_T1), 100, None, time_range=[0.0, 2.0])
     turn = 0.5235987755982988 * 8
-    assert estimate.seconds == pytest.approx(3 * 820 * 25e-6 + turn * 12e-3, rel=1e-3)
-    assert "4.18879 rad the drivers turn from the drawn pose x 12 ms" in estimate.reckoning
+    assert estimate.seconds == pytest.approx(3 * 460 * 4.6e-6 + turn * 1.9e-3, rel=1e-3)
+    assert "4.18879 rad the drivers turn from the drawn pose x 1.9 ms" in estimate.reckoning
 
 
 def test_a_time_sweep_past_the_whole_budget_is_refused_with_its_turn() -> None:
-    """The same over [0, 60] s: 113,097 rad x 12 ms = 1,357 s of /sweep's 5 s."""
+    """The same over [0, 60] s: 113,097 rad x 1.9 ms = 214.9 s of /sweep's 5 s."""
     body = {"scene": S003_T1, "samples": 100, "time_range": [0, 60]}
     detail = refused("/api/v1/sweep", body)
-    assert "113,097 rad the drivers turn" in detail and "= 1,357 s" in detail
+    assert "113,097 rad the drivers turn" in detail and "= 214.9 s" in detail
     assert "more than the limit of 5 s (/api/v1/sweep's time limit of 10 s" in detail
 
 
@@ -250,16 +258,26 @@ def test_an_event_on_the_carrier_is_not_charged_the_walk() -> None:
 
 
 def test_exercises_cost_count_times_their_types_cost() -> None:
-    assert solver.exercise_work("flywheel", 20, True).seconds == pytest.approx(20 * 0.24)
-    assert solver.exercise_work("slider_crank", 100, False).seconds == pytest.approx(0.9)
-    assert solver.exercise_work("not-a-type", 1, False).seconds == pytest.approx(0.049)
-    for kind in TYPES:  # a hundred of any type, the most allowed, fit
+    assert solver.exercise_work("flywheel", 20, True).seconds == pytest.approx(20 * 0.06)
+    assert solver.exercise_work("slider_crank", 100, False).seconds == pytest.approx(0.19)
+    # a type not listed: the costliest with its solution (moving_point, 0.18 s), alone 4 ms
+    assert solver.exercise_work("not-a-type", 1, False).seconds == pytest.approx(0.004)
+    export = solver.exercise_work("flywheel", 10, True, export=True)
+    assert export.seconds == pytest.approx(10 * (0.06 + 0.017))
+    assert "10 exercises x 77 ms with its worked solution and its sheet (flywheel)" in (
+        export.reckoning
+    )
+    for kind in set(TYPES) - {"synthesis_two_positions"}:  # a hundred, the most allowed, fit
         assert budget.exercises(kind, 100, False, "/api/v1/exercises") <= 5.0
+    # but not of the costliest alone: 68 ms each (measured 61 ms of CPU), 73 fit in 5 s
+    assert budget.exercises("synthesis_two_positions", 73, False, "/api/v1/exercises") <= 5.0
+    with pytest.raises(LimitExceeded, match="74 exercises x 68 ms each"):
+        budget.exercises("synthesis_two_positions", 74, False, "/api/v1/exercises")
     detail = refused(
         "/api/v1/exercises",
-        {"type": "flywheel", "difficulty": "challenging", "count": 21, "with_solutions": True},
+        {"type": "flywheel", "difficulty": "challenging", "count": 84, "with_solutions": True},
     )
-    assert "21 exercises x 240 ms with its worked solution (flywheel) = 5.04 s" in detail
+    assert "84 exercises x 60 ms with its worked solution (flywheel) = 5.04 s" in detail
 
 
 def test_the_budget_follows_a_raised_time_limit_but_not_a_lowered_one() -> None:
@@ -270,3 +288,68 @@ def test_the_budget_follows_a_raised_time_limit_but_not_a_lowered_one() -> None:
             assert budget.limit("/api/v1/sweep") == allowed
         finally:
             budget.SETTINGS.reset(token)
+
+
+# --- every route's costliest legal request (issue 28) -------------------------------------------
+
+FAR = triads(1)
+FAR["drivers"] = [{"link": "crank", "angle_law": "1000*t"}]
+FAR["time"] = 1e5  # the crank 1e8 rad from the drawn pose: the costliest instant a law may ask
+FLYWHEELS = {"type": "flywheel", "difficulty": "challenging", "count": 100, "with_solutions": True}
+REFUSED = {  # the costliest legal request of each route whose cost grows with its request
+    ("POST", "/api/v1/analyze"): {"scene": FAR},
+    ("POST", "/api/v1/solution"): {"scene": FAR},
+    ("POST", "/api/v1/solution.html"): {"scene": FAR},
+    ("POST", "/api/v1/sweep"): {"scene": triads(8), "samples": 100_000},
+    ("POST", "/api/v1/events"): {
+        "scene": S003_T1,
+        "event": {"moving_point": "M", "reaches": "O1", "t_max": 1e6},
+    },
+    ("POST", "/api/v1/exercises"): FLYWHEELS,
+    ("POST", "/api/v1/exercises/export"): {**FLYWHEELS, "format": "html"},
+}
+# The routes whose cost is bounded by what a request may ask: one exercise, a balancing, a
+# preset's instant, the list of types.
+BOUNDED = {
+    ("GET", "/api/v1/exercises/{exercise_id}"),
+    ("POST", "/api/v1/exercises/check"),
+    ("POST", "/api/v1/balance"),
+    ("GET", "/api/v1/solution.html"),
+    ("GET", "/api/v1/exercises/types"),
+    ("POST", "/api/v1/synthesis"),
+}
+
+
+def test_every_route_answered_in_a_worker_is_covered_here() -> None:
+    """The operations answered in the worker pool are those that declare 429 (one client's
+    share of slow work) in the OpenAPI document."""
+    routes = {
+        (method.upper(), path)
+        for path, item in app.openapi()["paths"].items()
+        for method, operation in item.items()
+        if "429" in operation["responses"]
+    }
+    assert routes == set(REFUSED) | BOUNDED
+
+
+@pytest.mark.parametrize(("method", "path"), sorted(REFUSED))
+def test_the_costliest_legal_request_is_refused_before_any_work_with_its_numbers(
+    method: str, path: str
+) -> None:
+    """Refused by the budget (413 with the product and the limit), not by a time limit."""
+    detail = refused(path, REFUSED[(method, path)])
+    stated = re.search(r" x .* = ([0-9,.e+]+)[ ,].*more than the limit of ([0-9,.]+)", detail)
+    assert stated is not None, detail
+
+
+def test_the_bounded_routes_costliest_requests_are_within_their_limits() -> None:
+    """One exercise of the costliest type with its worked solution (GET by id; a check needs
+    its key alone), a balancing, a synthesis and every preset's worked solution fit."""
+    for kind in TYPES:
+        assert solver.exercise_work(kind, 1, True).seconds <= budget.limit("/api/v1/exercises")
+    assert budget.limit("/api/v1/balance") >= BALANCE_COST
+    assert budget.limit("/api/v1/synthesis") >= SYNTHESIS_COST
+    for name in ALL_PRESETS:
+        scene = build_any_preset(name, {})
+        cost = budget.read_instant(scene, False, "/api/v1/solution.html", SOLUTION_COST)
+        assert cost <= budget.limit("/api/v1/solution.html")

@@ -412,6 +412,17 @@ def test_wrong_method_is_405_with_allow(client: TestClient) -> None:
     assert client.delete("/api/v1/exercises/types").headers["allow"] == "GET"
 
 
+def test_a_405_allows_every_method_of_the_documented_path(client: TestClient) -> None:
+    """Found by schemathesis: a path with two routes (GET and POST /solution.html) named only
+    the first's method, and /exercises/check the GET of /exercises/{exercise_id} (which would take
+    'check' as an id) instead of its own POST. A concrete path is matched before a templated
+    one, as OpenAPI matches them."""
+    assert client.options("/api/v1/solution.html").headers["allow"] == "GET, POST"
+    assert client.options("/api/v1/exercises/check").headers["allow"] == "POST"
+    assert client.options("/api/v1/exercises/export").headers["allow"] == "POST"
+    assert client.delete("/api/v1/exercises/any-id").headers["allow"] == "GET"
+
+
 @pytest.mark.parametrize(
     "media", ["text/plain", "application/x-www-form-urlencoded", "multipart/form-data; b=x"]
 )

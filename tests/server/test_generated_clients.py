@@ -84,10 +84,16 @@ def test_the_readme_example_compiles_against_generated_typescript(
     assert "drivers: [" in example
     (tmp_path / "readme_example.ts").write_text(example)
     (tmp_path / "typo.ts").write_text(example.replace("drivers: [", "drivres: ["))
-    compiled = tsc(tmp_path, "readme_example.ts", "typo.ts")  # one compiler run for both
+    # Without narrowing by kind, a field of one answer is not a field of the union.
+    narrowing = 'if (answer.kind !== "linkage") return `a ${answer.kind} has no coupler`;'
+    assert narrowing in example
+    (tmp_path / "unnarrowed.ts").write_text(example.replace(narrowing, ""))
+    compiled = tsc(tmp_path, "readme_example.ts", "typo.ts", "unnarrowed.ts")  # one run for all
     errors = compiled.stdout.splitlines()
-    assert errors and all(line.startswith(("typo.ts(", " ")) for line in errors), errors
+    assert errors, errors
+    assert all(line.startswith(("typo.ts(", "unnarrowed.ts(", " ")) for line in errors), errors
     assert "'drivres' does not exist" in compiled.stdout, errors
+    assert any(line.startswith("unnarrowed.ts(") for line in errors), errors
 
 
 # --- Python --------------------------------------------------------------------------------------
