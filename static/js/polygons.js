@@ -279,7 +279,8 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
 
 /**
- * One polygon: its figure, then its labels, then its detail (each step waits for Plotly). A newer
+ * One polygon: its figure, then its labels, then (once they are painted) its detail, each step
+ * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. A newer
  * drawing of the same div stops what is left of an older one, so a fast series of instants never
  * leaves one instant's labels or detail on another's polygon, nor marks a detail done too early.
  */
@@ -290,6 +291,7 @@ function drawPolygon(P, div, figure, kind, units) {
   div.dataset.detail = 'pending';
   P.react(div, figure.traces, figure.layout, CONFIG)
     .then(() => current() && placeFigureLabels(P, div, figure))
+    .then(() => current() && new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0))))
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 
