@@ -73,9 +73,15 @@ const norm = (a) => Math.hypot(a[0], a[1]);
 function baseLayout(title, kind, units) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
+  // On a phone the polygon is too narrow for its title beside Plotly's toolbar (top right): the
+  // title goes under the toolbar, just above the axes.
+  const under = matchMedia(PHONE).matches;
   return {
-    title: { text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left' },
-    margin: { l: 44, r: 12, t: 38, b: 28 },
+    title: {
+      text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
+      ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 } } : {}),
+    },
+    margin: { l: 44, r: 12, t: under ? 68 : 38, b: 28 },
     xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
     legend: { orientation: 'h', y: -0.08, yanchor: 'top', font: { size: 11 } },
@@ -88,6 +94,7 @@ function baseLayout(title, kind, units) {
 }
 
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
+const PHONE = '(max-width: 760px)'; // the one-column layout (css/app.css)
 
 /** Points of the analysis with their vectors, converted to display units. */
 function collect(scene, analysis, quantity, units) {
