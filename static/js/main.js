@@ -5,6 +5,7 @@
 //   pause, drag end, slider, edit (debounced)         -> one /solution (it carries the analysis)
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
+import { afterPaint } from './playback.js';
 import * as api from './api.js';
 import { Controls, POSE_PARAMETER } from './controls.js';
 import { LinkageView, ZOOM_STEP } from './linkage-view.js';
@@ -1234,11 +1235,6 @@ function carried(b1, c1, p, b2, c2) {
   const w = (d1[0] * r[1] - d1[1] * r[0]) / n;
   const d2 = [c2[0] - b2[0], c2[1] - b2[1]];
   return [b2[0] + u * d2[0] - w * d2[1], b2[1] + u * d2[1] + w * d2[0]];
-}
-
-/** Resolves after the next frame has been painted (a task queued from its animation frame). */
-function afterPaint() {
-  return new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
 }
 
 function setMessage(el, text) {

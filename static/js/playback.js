@@ -1,7 +1,12 @@
-// playback.js: the animation loop of a family's view (the cam, the gear train, the designer):
-// one requestAnimationFrame loop per view, running while the view is shown, that hands the view
-// the time since the last frame. The linkage view's own loop is main.js's (it also redraws on
-// demand).
+// playback.js: animation frames. The animation loop of a family's view (the cam, the gear
+// train, the designer): one requestAnimationFrame loop per view, running while the view is shown,
+// that hands the view the time since the last frame (the linkage view's own loop is main.js's,
+// which also redraws on demand); and afterPaint, to do secondary work once a frame is painted.
+
+/** Resolves after the next frame has been painted (a task queued from its animation frame). */
+export function afterPaint() {
+  return new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+}
 
 /** The longest step a frame may take (s): a tab in the background does not make the motion jump. */
 export const MAX_STEP = 0.1;

@@ -11,6 +11,7 @@
 // Every vector is the server's: the segments, their base points and their order are those of the
 // worked solution (/solution's `polygons`); this module only places them head to tail.
 
+import { afterPaint } from './playback.js';
 import { COLOURS } from './theme.js';
 import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
@@ -298,7 +299,7 @@ function drawPolygon(P, div, figure, kind, units) {
   div.dataset.detail = 'pending';
   P.react(div, figure.traces, figure.layout, CONFIG)
     .then(() => current() && placeFigureLabels(P, div, figure))
-    .then(() => current() && new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0))))
+    .then(() => current() && afterPaint())
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 
