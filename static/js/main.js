@@ -629,6 +629,7 @@ class App {
     this.track = track;
     this.analysis = null;
     this.analysisU = null;
+    $('linkage').dataset.samples = String(track.n); // the sweep drawn (for a reader, a test)
     showView('linkage');
     this.markShown();
     $('view-title').textContent = scene.title || 'Mechanism';
