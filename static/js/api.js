@@ -60,13 +60,38 @@ export function jsonBody(value) {
   return marked.replace(/"\\u0000bigint:(-?\d+)"/g, '$1');
 }
 
+// The server's answers are functions of the request (the same scene, samples, method ... give the
+// same numbers), so an answer already fetched is reused rather than asked again: a return to a
+// preset, to an instant or to a method seen before costs no request. The newest ANSWERS_KEPT
+// answers are kept (a sweep is ~0.5 MB of objects); a request still under way is shared; a
+// failure is never kept. Each caller gets its own copy (callers edit scenes they were given).
+const ANSWERS_KEPT = 16;
+const REUSED = /^\/(presets\/[^/?]+|sweep|solution|analyze|balance)$/;
+const answers = new Map(); // method + path + body text -> promise of the parsed JSON
+
 async function call(method, path, body) {
+  const text = body === undefined ? undefined : jsonBody(body);
+  if (method !== 'POST' || !REUSED.test(path)) return ask(method, path, text);
+  const key = `${path} ${text}`;
+  let answer = answers.get(key);
+  if (answer) answers.delete(key); // re-inserted below as the newest
+  else {
+    answer = ask(method, path, text);
+    answer.catch(() => answers.get(key) === answer && answers.delete(key));
+  }
+  answers.set(key, answer);
+  while (answers.size > ANSWERS_KEPT) answers.delete(answers.keys().next().value);
+  return structuredClone(await answer);
+}
+
+/** One request; `text` the JSON body. */
+async function ask(method, path, text) {
   let response;
   try {
     response = await fetch(BASE + path, {
       method,
-      headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
-      body: body === undefined ? undefined : jsonBody(body),
+      headers: text === undefined ? {} : { 'Content-Type': 'application/json' },
+      body: text,
     });
   } catch (err) {
     throw new ApiError({ code: 'network', detail: `The server cannot be reached (${err.message}).` });

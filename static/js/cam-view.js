@@ -18,6 +18,7 @@
 // pressure angle φ stay in degrees (the scene gives the segments in degrees of cam angle). A share
 // link (share.js) carries the scene, the preset's name and the view: the angle, playing, units.
 
+import { Playback } from './playback.js';
 import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { plotlyReady } from './vendor.js';
@@ -63,7 +64,19 @@ export class CamApp {
     this.index = 0;
     this.u = 0;
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
-    this.lastTime = null;
+    // one revolution per CYCLE_SECONDS, drawn at each new sample; the plots' cursor every CURSOR_MS
+    this.playback = new Playback(() => this.shown, (dt, now) => {
+      if (!this.playing || !this.track) return;
+      this.u = (this.u + dt / CYCLE_SECONDS) % 1;
+      const index = Math.floor(this.u * SAMPLES) % SAMPLES;
+      if (index === this.index) return;
+      this.index = index;
+      this.draw();
+      if (now - this.lastCursor > CURSOR_MS) {
+        this.lastCursor = now;
+        this.moveCursor();
+      }
+    });
     this.lastCursor = 0;
     this.seq = 0;
     this.solutionSeq = 0;
@@ -81,7 +94,6 @@ export class CamApp {
       this.setPlaying(false);
       this.show(Number(this.el.slider.value));
     });
-    requestAnimationFrame((t) => this.tick(t));
   }
 
   /** The Cams group of the mechanism menu (GET /presets?family=cams). */
@@ -105,6 +117,7 @@ export class CamApp {
   async open(name) {
     this.name = name;
     this.shown = true;
+    this.playback.start();
     this.root.hidden = false;
     document.body.dataset.family = 'cams';
     const meta = this.presets.get(name);
@@ -127,6 +140,7 @@ export class CamApp {
   async openScene(scene, source = 'file', angle = 0) {
     this.name = null;
     this.shown = true;
+    this.playback.start();
     this.root.hidden = false;
     document.body.dataset.family = 'cams';
     this.el.title.textContent = scene.title || 'Cam';
@@ -485,7 +499,6 @@ export class CamApp {
     this.playing = playing;
     this.el.play.textContent = playing ? 'Pause' : 'Play';
     this.el.play.setAttribute('aria-pressed', String(playing));
-    this.lastTime = null;
     if (!playing) {
       this.moveCursor();
       this.scheduleSolution();
@@ -500,23 +513,6 @@ export class CamApp {
     this.moveCursor();
     if (!this.playing) this.scheduleSolution();
     this.onChange();
-  }
-
-  tick(time) {
-    if (this.shown && this.playing && this.track) {
-      if (this.lastTime !== null) this.u = (this.u + (time - this.lastTime) / 1000 / CYCLE_SECONDS) % 1;
-      this.lastTime = time;
-      const index = Math.floor(this.u * SAMPLES) % SAMPLES;
-      if (index !== this.index) {
-        this.index = index;
-        this.draw();
-        if (time - this.lastCursor > CURSOR_MS) {
-          this.lastCursor = time;
-          this.moveCursor();
-        }
-      }
-    }
-    requestAnimationFrame((t) => this.tick(t));
   }
 
   // ---- the plots -------------------------------------------------------------------------------

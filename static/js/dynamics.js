@@ -230,9 +230,12 @@ export class DynamicsPanel {
     const axis = (title, domain) => ({ title: { text: title, font: { size: 11 } }, domain, zeroline: true });
     const layout = {
       margin: { l: 70, r: 16, t: 16, b: 44 },
-      height: 640,
+      // a phone's column stacks the legend one entry a row (~210 px): the figure grows by as much,
+      // so that the axes keep their height and the legend (placed in their fractions) its place
+      height: matchMedia('(max-width: 760px)').matches ? 860 : 640,
       showlegend: true,
-      legend: { orientation: 'h', y: -0.08 },
+      // the legend's top under the x axis' title (which ends about 75 px under the axes)
+      legend: { orientation: 'h', y: -0.15, yanchor: 'top' },
       xaxis: { title: { text: xTitle }, anchor: 'y5' },
       yaxis: axis('torque [N m]', [0.82, 1]),
       yaxis2: axis('power [W]', [0.62, 0.79]),
@@ -297,8 +300,9 @@ export class DynamicsPanel {
     ];
     const axis = { range: [-1.25 * radius, 1.25 * radius], showgrid: false, zeroline: false, showticklabels: false, fixedrange: true };
     const layout = {
-      title: { text: 'Polar diagram of the frame force (shaking force): F on the frame, from O', font: { size: 13 } },
-      margin: { l: 16, r: 16, t: 40, b: 16 },
+      // two short lines: one long one was cut at both ends in the panel's column
+      title: { text: 'Polar diagram of the frame force<br>(shaking force): F on the frame, from O', font: { size: 13 } },
+      margin: { l: 16, r: 16, t: 56, b: 16 },
       height: 380,
       xaxis: axis,
       yaxis: { ...axis, scaleanchor: 'x', scaleratio: 1 },

@@ -15,6 +15,7 @@
 // fields, the table of speeds and its CSV (rad/s or rpm). A share link (share.js) carries the
 // scene, the preset and its parameters (or the example) and the view: the time shown, playing.
 
+import { Playback } from './playback.js';
 import * as api from './api.js';
 import { svgEl, clear } from './svg.js';
 import { renderSolution, renderMessage } from './steps.js';
@@ -54,7 +55,12 @@ export class GearTrains {
     this.units = 'si';
     this.onChange = () => {}; // main.js keeps the share link up to date
     this.t = 0; // display time within the playback, s
-    this.last = null;
+    // while playing, the display time runs at one turn of the input per TURN_SECONDS
+    this.playback = new Playback(() => this.shown, (dt) => {
+      if (!this.playing || !this.sweep) return;
+      this.t += dt * (this.span / TURN_SECONDS);
+      this.drawAt(this.t);
+    });
     this.playButton.addEventListener('click', () => this.setPlaying(!this.playing));
   }
 
@@ -146,7 +152,7 @@ export class GearTrains {
       this.message.textContent = `This gear train cannot be shown: ${ok}`;
       this.message.hidden = false;
     }
-    this.loop();
+    this.playback.start();
     return ok;
   }
 
@@ -457,26 +463,6 @@ export class GearTrains {
       this.labelSize = label ? parseFloat(getComputedStyle(label).fontSize) || 22 : 22;
     }
     return this.labelSize;
-  }
-
-  loop() {
-    if (this.looping) return;
-    this.looping = true;
-    const frame = (now) => {
-      if (!this.shown) {
-        this.looping = false;
-        this.last = null;
-        return;
-      }
-      const dt = this.last === null ? 0 : Math.min((now - this.last) / 1000, 0.1);
-      this.last = now;
-      if (this.playing && this.sweep) {
-        this.t += dt * (this.span / TURN_SECONDS);
-        this.drawAt(this.t);
-      }
-      requestAnimationFrame(frame);
-    };
-    requestAnimationFrame(frame);
   }
 
   // ---- the table of speeds ---------------------------------------------------------------------

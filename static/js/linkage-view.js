@@ -47,7 +47,9 @@ function fitDrawing(track) {
 export class LinkageView {
   /**
    * @param {SVGSVGElement} svg
-   * @param {{onDrag?: (linkAngle: number) => void, onDragEnd?: () => void}} callbacks
+   * @param {{onDrag?: (linkAngle: number) => void, onDragEnd?: () => void}} callbacks; also
+   *   onPointDrop, onPointPick, onPointHover and onLinkPick(link, at, frame): a click on a link's
+   *   bar or plate (not the driver's) at world point `at` of the frame shown
    */
   constructor(svg, callbacks = {}) {
     this.svg = svg;
@@ -72,16 +74,27 @@ export class LinkageView {
     this.traces = [];
     this.picked = null;
     this.afterDraw = []; // functions of the frame, called after each frame is drawn
+    // Boxes (viewBox px) its owner draws over the linkage (the designer's handles): the names of
+    // points and links are placed clear of them too.
+    this.overlayMarks = [];
     this.installPointer();
     this.installZoom();
   }
 
-  setScene(scene, track) {
-    const same = this.scene && sameNames(Object.keys(this.scene.points), Object.keys(scene.points));
+  /**
+   * A scene and its track to draw. The zoom, the paths and the picked point are kept for the same
+   * mechanism (the same point names, or `sameMechanism`: a point added to or removed from it).
+   */
+  setScene(scene, track, { sameMechanism = false } = {}) {
+    const names = Object.keys(scene.points);
+    const same = this.scene && (sameMechanism || sameNames(Object.keys(this.scene.points), names));
     if (!same) {
       this.view = { scale: 1, centre: null };
       this.traces = [];
       this.picked = null;
+    } else {
+      this.traces = this.traces.filter((n) => names.includes(n));
+      if (!names.includes(this.picked)) this.picked = null;
     }
     this.scene = scene;
     this.track = track;
@@ -708,7 +721,7 @@ export class LinkageView {
    * centroid (drawing-labels.js).
    */
   drawLabels(frame, bars) {
-    const markers = [...this.fixedMarks];
+    const markers = [...this.fixedMarks, ...this.overlayMarks];
     for (const { name, node } of this.jointNodes) {
       const p = frame.position[name];
       if (p) markers.push(markerBox(this.px(p), Number(node.getAttribute('r')) + 2));
@@ -820,12 +833,14 @@ export class LinkageView {
       const under = document.elementsFromPoint(ev.clientX, ev.clientY).filter((e) => svg.contains(e));
       return under.find((e) => e.dataset?.point || e.dataset?.link || e.classList.contains('crank-handle')) || ev.target;
     };
-    // A press that ends where it began on a point picks that point (its readout and trace).
+    // A press that ends where it began on a point picks that point (its readout and trace); on a
+    // link's bar or plate away from its named points, it asks for that point of the link.
     let press = null;
     svg.addEventListener('pointerdown', (ev) => {
       const target = grabbed(ev);
       const name = target.dataset?.point;
-      press = { id: ev.pointerId, name, x: ev.clientX, y: ev.clientY };
+      const link = name ? null : target.dataset?.link || null;
+      press = { id: ev.pointerId, name, link, at: this.lastFrame ? toWorld(ev) : null, x: ev.clientX, y: ev.clientY };
       if (this.movesJoints() && name && this.lastFrame?.position[name]) {
         this.pointDrag = { name, frame: this.lastFrame, at: this.lastFrame.position[name] };
         press = null;
@@ -838,6 +853,7 @@ export class LinkageView {
       const onDriver = this.handle && this.lastFrame && !this.pan && (target.classList.contains('crank-handle') || target.dataset?.link === this.handle.link
         || (name && name !== this.handle.pivot && this.scene.links[this.handle.link].points.includes(name)));
       if (onDriver) {
+        press.link = null; // a press on the driver turns it, even one that does not move
         this.dragging = true;
         svg.setPointerCapture(ev.pointerId);
         svg.classList.add('dragging');
@@ -884,7 +900,8 @@ export class LinkageView {
       this.callbacks.onDrag?.(linkAngle + wrap(pointer - now));
     });
     const end = (ev) => {
-      const picked = press && press.id === ev.pointerId && ev.type === 'pointerup' ? press.name : null;
+      const clicked = press && press.id === ev.pointerId && ev.type === 'pointerup' ? press : null;
+      const picked = clicked?.name || null;
       press = null;
       if (svg.hasPointerCapture(ev.pointerId)) svg.releasePointerCapture(ev.pointerId);
       if (this.pointDrag) {
@@ -906,6 +923,7 @@ export class LinkageView {
         this.callbacks.onDragEnd?.();
       }
       if (picked) this.callbacks.onPointPick?.(picked);
+      else if (clicked?.link && clicked.at && this.lastFrame) this.callbacks.onLinkPick?.(clicked.link, clicked.at, this.lastFrame);
     };
     svg.addEventListener('pointerup', end);
     svg.addEventListener('pointercancel', end);

@@ -5,6 +5,7 @@
 //   pause, drag end, slider, edit (debounced)         -> one /solution (it carries the analysis)
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
+import { afterPaint } from './playback.js';
 import * as api from './api.js';
 import { Controls, POSE_PARAMETER } from './controls.js';
 import { LinkageView, ZOOM_STEP } from './linkage-view.js';
@@ -36,6 +37,7 @@ const SAMPLES = 241;
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
 const DEBOUNCE_MS = 250; // analysis after the last slider/drag movement
 const QUANTITIES = ['position', 'velocity', 'acceleration'];
+const FIRST_STEPS = 4; // worked-solution steps typeset before the page is given back (the rest follow)
 
 const $ = (id) => document.getElementById(id);
 
@@ -98,10 +100,14 @@ class App {
       onDrag: (angle) => this.onDrag(angle),
       onDragEnd: () => this.scheduleAnalysis(0),
       onPointDrop: (name, at, frame) => this.onPointDrop(name, at, frame),
+      onLinkPick: (link, at, frame) => this.addLinkPoint(link, at, frame),
     });
     // A point's readout and the paths traced (point-readout.js); zoom and pan: the buttons, and
     // the keys + − 0 outside a field (the wheel, pinch, drag and arrows are the view's own).
-    this.pointReadout = new PointReadout(this.linkage, { select: $('readout-point'), trace: $('readout-trace'), clear: $('clear-traces'), out: $('point-readout') });
+    this.addedPoints = []; // points picked on a link (addLinkPoint), removable
+    this.pointReadout = new PointReadout(this.linkage, {
+      select: $('readout-point'), trace: $('readout-trace'), clear: $('clear-traces'), remove: $('remove-point'), out: $('point-readout'),
+    }, { removable: (name) => this.addedPoints.includes(name), remove: (name) => this.removeLinkPoint(name) });
     this.centreControls = new CentreControls(this.linkage, { toggle: $('show-centres'), triple: $('kennedy-triple') });
     $('zoom-in').addEventListener('click', () => this.linkage.zoomBy(ZOOM_STEP));
     $('zoom-out').addEventListener('click', () => this.linkage.zoomBy(1 / ZOOM_STEP));
@@ -318,6 +324,56 @@ class App {
     this.remember(before);
   }
 
+  // ---- a point of a link picked in the drawing -------------------------------------------------
+
+  /**
+   * A click at `at` (world, m) on `link` in `frame`: that point of the link becomes a point of the
+   * scene, fixed in the link, and is analysed by the server (the sweep for its path, the instant
+   * for its readout) like a coupler point; its readout is shown and its path traced. The click is
+   * carried to the drawn pose of the scene in the link's own frame: with B, C two points of the
+   * link, P = B + u BC + w k×BC, the same u, w at both poses (drawing, not kinematics).
+   */
+  async addLinkPoint(link, at, frame) {
+    const scene = structuredClone(this.scene);
+    const [b, c] = (scene.links[link]?.points || []).filter((n) => scene.points[n] && frame.position[n]);
+    if (!c) {
+      this.status(`A point of ${link} cannot be placed: the link has fewer than two named points to fix it by.`, 'warning');
+      return;
+    }
+    const name = freshPointName(scene);
+    scene.points[name] = carried(frame.position[b], frame.position[c], at, scene.points[b], scene.points[c]);
+    scene.links[link].points.push(name);
+    const before = this.snapshot();
+    try {
+      await this.loadScene(scene, { keepInstant: true, sameMechanism: true });
+    } catch (err) {
+      this.status(`No point of ${link} there: ${err.detail || err.message}`, 'error');
+      return;
+    }
+    if (this.scene !== scene) return; // a newer change won
+    this.addedPoints = [...this.addedPoints, name];
+    this.remember(before);
+    this.pointReadout.pick(name);
+    this.pointReadout.setTraced(name, true);
+    this.status(`Point ${name} added to ${link}: its readout, and its path traced (Remove point takes it away).`);
+  }
+
+  /** A point added by addLinkPoint taken out of the scene again. */
+  async removeLinkPoint(name) {
+    const scene = structuredClone(this.scene);
+    delete scene.points[name];
+    for (const body of Object.values(scene.links)) body.points = body.points.filter((n) => n !== name);
+    const before = this.snapshot();
+    try {
+      await this.loadScene(scene, { keepInstant: true, sameMechanism: true });
+    } catch (err) {
+      this.status(`Point ${name} cannot be removed: ${err.detail || err.message}`, 'error');
+      return;
+    }
+    this.remember(before);
+    this.pointReadout.pick('');
+  }
+
   /** Edit mode: joints move in the drawing; Turn mode (off): a press on the driver turns it. */
   setEditMode(on) {
     $('edit-mode').setAttribute('aria-pressed', String(on));
@@ -506,7 +562,7 @@ class App {
    * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
    * server's error (and leaves the page as it was) when the scene is not acceptable.
    */
-  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null } = {}) {
+  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false } = {}) {
     const seq = ++this.geometrySeq;
     const previous = keepInstant && this.track ? valueAt(this.track, this.u) : null;
     if (S.isSpatial(scene)) return this.loadSpatial(scene, seq, previous ?? instant, spatial);
@@ -534,7 +590,7 @@ class App {
         : `No animation: ${err.detail} The drawn pose is analysed.`;
     }
     if (seq !== this.geometrySeq) return; // a newer edit won
-    this.commitPlanar(scene, track, note, previous ?? instant, keepChoices);
+    this.commitPlanar(scene, track, note, previous ?? instant, keepChoices, sameMechanism);
   }
 
   async fetchTrack(scene, timeDriven) {
@@ -568,11 +624,12 @@ class App {
     return sweepFollowingTheDrawing(scene);
   }
 
-  commitPlanar(scene, track, note, instant, keepChoices) {
+  commitPlanar(scene, track, note, instant, keepChoices, sameMechanism = false) {
     this.scene = scene;
     this.track = track;
     this.analysis = null;
     this.analysisU = null;
+    $('linkage').dataset.samples = String(track.n); // the sweep drawn (for a reader, a test)
     showView('linkage');
     this.markShown();
     $('view-title').textContent = scene.title || 'Mechanism';
@@ -604,7 +661,8 @@ class App {
 
     this.linkage.options = { ...this.linkage.options, ...this.controls.options(), units: this.units };
     this.linkage.editable = !timeDrivenScene(scene);
-    this.linkage.setScene(scene, track);
+    this.linkage.setScene(scene, track, { sameMechanism });
+    this.addedPoints = sameMechanism ? this.addedPoints.filter((n) => names.includes(n)) : [];
 
     const messages = [];
     if (note) messages.push(note);
@@ -616,11 +674,15 @@ class App {
     this.viewMessage(messages.join(' '));
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
     // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
+    // The instant is asked for before the plots are drawn, so that the server works on it while
+    // Plotly lays them out; the dynamics panel (a sweep of forces, figures under the fold) waits
+    // until the instant is shown.
     this.drawFrame();
-    this.drawPlots();
-    plotlyReady().then((ok) => ok && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
     this.dirty = true;
-    this.scheduleAnalysis(0);
+    clearTimeout(this.analysisTimer);
+    const analysed = this.analyzeNow();
+    this.drawPlots();
+    Promise.all([analysed, plotlyReady()]).then(([, ok]) => ok && this.scene === scene && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
     this.saveHash();
   }
 
@@ -761,7 +823,8 @@ class App {
       await polygons;
       if (seq !== this.analysisSeq) return; // a newer instant is being analysed
       $('linkage').dataset.analysed = String(this.instantValue(u));
-      await katexReady();
+      // The worked solution is typeset once the frame that shows the instant is painted.
+      await Promise.all([katexReady(), afterPaint()]);
       if (solutionSeq === this.solutionSeq) this.showSolution(solution);
     }
     this.dirty = true;
@@ -786,10 +849,13 @@ class App {
     return this.track ? chainAt(this.scene, this.track, Math.round(this.u)).scene : this.scene;
   }
 
-  showSolution(solution) {
+  /** The steps a reader sees first at once, the rest in later tasks (steps.renderSolution). */
+  async showSolution(solution) {
     this.solution = solution;
-    const failures = renderSolution($('steps'), $('mistakes'), solution, this.units);
-    if (failures) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
+    const rendered = renderSolution($('steps'), $('mistakes'), solution, this.units, { first: FIRST_STEPS });
+    $('steps').dataset.method = solution.method; // its first steps are in (for a reader, a test)
+    const failures = await rendered;
+    if (failures && this.solution === solution) this.status(`${failures} step(s) of the worked solution could not be typeset; they are shown as text.`, 'error');
   }
 
   solutionFailed(err) {
@@ -912,7 +978,7 @@ class App {
     this.spatial.setOptions({ units });
     this.mechanismFacts(this.analysis);
     // The worked solution follows the units switch without asking the server again.
-    if (this.solution) renderSolution($('steps'), $('mistakes'), this.solution, units);
+    if (this.solution) this.showSolution(this.solution);
     if (S.isSpatial(this.scene)) this.paintSpatialInfo();
     this.drawPolygons();
     this.drawPlots();
@@ -1149,6 +1215,27 @@ function showView(which) {
   $('dimensions').toggleAttribute('hidden', which === 'spatial');
   $('plot-choices').toggleAttribute('hidden', which === 'spatial');
   for (const el of document.querySelectorAll('.planar-only')) el.toggleAttribute('hidden', which === 'spatial');
+}
+
+/** The first of P1, P2, … that names no point of `scene`. */
+function freshPointName(scene) {
+  let i = 1;
+  while (`P${i}` in scene.points) i += 1;
+  return `P${i}`;
+}
+
+/**
+ * The point that is to (b2, c2) what `p` is to (b1, c1): p = b1 + u (c1 − b1) + w k×(c1 − b1)
+ * solved for u, w, then b2 + u (c2 − b2) + w k×(c2 − b2).
+ */
+function carried(b1, c1, p, b2, c2) {
+  const d1 = [c1[0] - b1[0], c1[1] - b1[1]];
+  const n = d1[0] ** 2 + d1[1] ** 2;
+  const r = [p[0] - b1[0], p[1] - b1[1]];
+  const u = (r[0] * d1[0] + r[1] * d1[1]) / n;
+  const w = (d1[0] * r[1] - d1[1] * r[0]) / n;
+  const d2 = [c2[0] - b2[0], c2[1] - b2[1]];
+  return [b2[0] + u * d2[0] - w * d2[1], b2[1] + u * d2[1] + w * d2[0]];
 }
 
 function setMessage(el, text) {

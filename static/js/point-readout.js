@@ -8,6 +8,10 @@
 // the server's: at the analysed instant the /analyze answer's, while the mechanism plays the
 // sweep's nearest sample (named with its crank angle or time), never an interpolation. The paths
 // are the sweep's positions already fetched: no request is made for a readout or a path.
+//
+// A click on a link's bar or plate away from its named points adds that point of the link to the
+// scene (main.js addLinkPoint: the server sweeps and analyses it like a coupler point); it is then
+// read and traced like any other, and "Remove point" takes it away again.
 
 import { show, unitLabel, toDisplay, fmt, denoise } from './units.js';
 
@@ -16,11 +20,14 @@ const NONE = '';
 export class PointReadout {
   /**
    * @param {import('./linkage-view.js').LinkageView} view
-   * @param {{select: HTMLSelectElement, trace: HTMLInputElement, clear: HTMLButtonElement, out: HTMLElement}} els
+   * @param {{select: HTMLSelectElement, trace: HTMLInputElement, clear: HTMLButtonElement, remove: HTMLButtonElement, out: HTMLElement}} els
+   * @param {{removable: (name: string) => boolean, remove: (name: string) => void}} points the
+   *   points added on a link, and how one is taken away
    */
-  constructor(view, els) {
+  constructor(view, els, points) {
     this.view = view;
     this.els = els;
+    this.points = points;
     this.scene = null;
     this.pinned = NONE; // the picked point (a click, a tap, the menu)
     this.hover = null; // the point under the mouse, read out while it is there
@@ -34,6 +41,7 @@ export class PointReadout {
     view.afterDraw.push((frame) => this.update(frame));
     els.select.addEventListener('change', () => this.pick(els.select.value));
     els.trace.addEventListener('change', () => this.setTraced(this.pinned, els.trace.checked));
+    els.remove.addEventListener('click', () => this.pinned && this.points.removable(this.pinned) && this.points.remove(this.pinned));
     els.clear.addEventListener('click', () => {
       this.view.setTraces([]);
       this.paintTools();
@@ -58,7 +66,7 @@ export class PointReadout {
 
   /** The menu of points (on a new mechanism), the trace box and the clear button's state. */
   paintTools() {
-    const { select, trace, clear } = this.els;
+    const { select, trace, clear, remove } = this.els;
     if (this.view.scene !== this.scene) {
       this.scene = this.view.scene;
       const names = Object.keys(this.view.track?.points || {});
@@ -69,6 +77,7 @@ export class PointReadout {
     trace.disabled = !this.pinned;
     trace.checked = Boolean(this.pinned) && this.view.traces.includes(this.pinned);
     clear.disabled = !this.view.traces.length;
+    remove.hidden = !(this.pinned && this.points.removable(this.pinned));
     this.els.out.dataset.traces = this.view.traces.join(' ');
   }
 
@@ -84,7 +93,8 @@ export class PointReadout {
     const out = this.els.out;
     out.dataset.point = name || NONE;
     if (!name) {
-      out.replaceChildren('Click or tap a point of the drawing (or choose it here) to read its position, velocity and acceleration.');
+      delete out.dataset.values;
+      out.replaceChildren('Click or tap a point of the drawing (or choose it here) to read its position, velocity and acceleration; a click on a link away from its points adds that point.');
       delete out.dataset.instant;
       return;
     }
@@ -93,6 +103,8 @@ export class PointReadout {
     const size = this.view.map?.size || 0;
     const when = frame.exact ? 'at the analysed instant' : `at the sample ${track.param === 'time' ? 't' : 'θ'} = ${show(track.param === 'time' ? 'time' : 'angle', track.values[sample], units, 4)} (pause for any instant)`;
     out.dataset.instant = frame.exact ? 'analysed' : `sample ${sample}`;
+    // the server's numbers unrounded, SI (r, v, a), for a reader of the page's data (a test)
+    out.dataset.values = JSON.stringify({ r: q?.position ?? null, v: q?.velocity ?? null, a: q?.acceleration ?? null });
     const parts = [];
     for (const [symbol, kind, key2] of [['r', 'length', 'position'], ['v', 'velocity', 'velocity'], ['a', 'acceleration', 'acceleration']]) {
       const v = q?.[key2];

@@ -73,16 +73,17 @@ const pxPerUnit = (div) => {
 
 /**
  * Draw `figure` (polygons.js) zoomed on its detail region in `detail`, and mark the region in the
- * polygon `main` (already drawn with its labels); hide `detail` when no detail is needed. When
+ * polygon `main` (already drawn with its labels, from a layout without the box); hide `detail`
+ * when no detail is needed. When
  * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
  * `current()` false: a newer drawing of `main` has begun, stop here.
  */
 export async function renderDetail(P, main, detail, figure, kind, units, current) {
   const region = detailRegion(figure.traces);
   if (!region) {
+    // `main` was just drawn from a layout without the dashed box (polygons.js): nothing to clear.
     detail.hidden = true;
     P.purge(detail);
-    await P.relayout(main, { shapes: [] });
     if (current()) main.dataset.detail = 'none';
     return;
   }

@@ -11,6 +11,7 @@
 // Every vector is the server's: the segments, their base points and their order are those of the
 // worked solution (/solution's `polygons`); this module only places them head to tail.
 
+import { afterPaint } from './playback.js';
 import { COLOURS } from './theme.js';
 import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
@@ -73,9 +74,15 @@ const norm = (a) => Math.hypot(a[0], a[1]);
 function baseLayout(title, kind, units) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
+  // On a phone the polygon is too narrow for its title beside Plotly's toolbar (top right): the
+  // title goes under the toolbar, just above the axes.
+  const under = matchMedia(PHONE).matches;
   return {
-    title: { text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left' },
-    margin: { l: 44, r: 12, t: 38, b: 28 },
+    title: {
+      text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
+      ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 } } : {}),
+    },
+    margin: { l: 44, r: 12, t: under ? 68 : 38, b: 28 },
     xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
     legend: { orientation: 'h', y: -0.08, yanchor: 'top', font: { size: 11 } },
@@ -88,6 +95,7 @@ function baseLayout(title, kind, units) {
 }
 
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
+const PHONE = '(max-width: 760px)'; // the one-column layout (css/app.css)
 
 /** Points of the analysis with their vectors, converted to display units. */
 function collect(scene, analysis, quantity, units) {
@@ -279,7 +287,8 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
 
 /**
- * One polygon: its figure, then its labels, then its detail (each step waits for Plotly). A newer
+ * One polygon: its figure, then its labels, then (once they are painted) its detail, each step
+ * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. A newer
  * drawing of the same div stops what is left of an older one, so a fast series of instants never
  * leaves one instant's labels or detail on another's polygon, nor marks a detail done too early.
  */
@@ -290,6 +299,7 @@ function drawPolygon(P, div, figure, kind, units) {
   div.dataset.detail = 'pending';
   P.react(div, figure.traces, figure.layout, CONFIG)
     .then(() => current() && placeFigureLabels(P, div, figure))
+    .then(() => current() && afterPaint())
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 

@@ -157,45 +157,71 @@ function typeset(latex, target) {
   }
 }
 
+/** After the first steps, the rest follow STEPS_PER_TASK at a time, each batch a task of its own. */
+const STEPS_PER_TASK = 4;
+const rendering = new WeakMap(); // a steps container -> the render under way in it
+
 /**
  * Render {steps, mistakes} into the two containers, with each step's values also in `units`
- * when they are not SI. Returns the number of LaTeX failures.
+ * when they are not SI. With `first`, the first steps (those a reader sees first) are typeset at
+ * once and the rest in later tasks, so that a long solution never holds the page for its whole
+ * typesetting (without it, every step at once); a newer render into the same container stops an
+ * older one. `stepsEl.dataset.typeset` is `partial` until every step is in, then `done`.
+ * Resolves to the number of LaTeX failures.
  */
-export function renderSolution(stepsEl, mistakesEl, solution, units = 'si') {
+export async function renderSolution(stepsEl, mistakesEl, solution, units = 'si', { first = Infinity } = {}) {
+  const token = {};
+  rendering.set(stepsEl, token);
   stepsEl.replaceChildren();
+  stepsEl.dataset.typeset = 'partial';
   let failures = 0;
   if (units !== 'si') {
     stepsEl.appendChild(el('p', { class: 'hint units-note' }, `The working is in SI units, as the equations are written; each step's values are also given in ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)} (the units chosen above).`));
   }
   const list = el('ol', { class: 'step-list' });
-  for (const [i, step] of (solution.steps || []).entries()) {
-    const item = el('li', { class: 'step' });
-    if (step.title) item.appendChild(el('h3', { class: 'step-title' }, step.title));
-    if (step.latex) {
-      const [math, error] = mathBlock(step.latex, `Equations of step ${i + 1}`);
-      if (error) {
-        failures += 1;
-        math.classList.add('step-error');
-        math.title = `KaTeX could not read this step: ${error}`;
-      }
-      item.appendChild(math);
+  stepsEl.appendChild(list);
+  renderMistakes(mistakesEl, solution.mistakes || []);
+  const steps = solution.steps || [];
+  for (let i = 0; i < steps.length; i++) {
+    if (i >= first && (i - first) % STEPS_PER_TASK === 0) {
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      if (rendering.get(stepsEl) !== token) return failures;
     }
-    if (step.text) item.appendChild(el('p', { class: 'step-text' }, step.text));
-    const converted = units !== 'si' ? valuesInUnits(step.values, units) : '';
-    if (converted) item.appendChild(el('p', { class: 'step-units' }, `In ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)}: ${converted}`));
-    if (step.figure) {
-      // A figure beside the step (mechanism, polygons, free-body diagram): the server's SVG,
-      // every name in it escaped there.
-      const figure = el('div', { class: 'step-figure' });
-      figure.innerHTML = step.figure;
-      item.appendChild(figure);
-    }
+    const [item, error] = stepItem(steps[i], i, units);
+    if (error) failures += 1;
     list.appendChild(item);
   }
-  stepsEl.appendChild(list);
+  stepsEl.dataset.typeset = 'done';
+  return failures;
+}
 
+/** One step as a list item: title, equations, text, values in `units`, figure. [item, error]. */
+function stepItem(step, i, units) {
+  const item = el('li', { class: 'step' });
+  if (step.title) item.appendChild(el('h3', { class: 'step-title' }, step.title));
+  let error = null;
+  if (step.latex) {
+    let math;
+    [math, error] = mathBlock(step.latex, `Equations of step ${i + 1}`);
+    if (error) {
+      math.classList.add('step-error');
+      math.title = `KaTeX could not read this step: ${error}`;
+    }
+    item.appendChild(math);
+  }
+  if (step.text) item.appendChild(el('p', { class: 'step-text' }, step.text));
+  const converted = units !== 'si' ? valuesInUnits(step.values, units) : '';
+  if (converted) item.appendChild(el('p', { class: 'step-units' }, `In ${unitLabel('length', units)}, ${unitLabel('angle', units)}, ${unitLabel('omega', units)}: ${converted}`));
+  if (step.figure) {
+    const figure = el('div', { class: 'step-figure' });
+    figure.innerHTML = step.figure;
+    item.appendChild(figure);
+  }
+  return [item, error];
+}
+
+function renderMistakes(mistakesEl, mistakes) {
   mistakesEl.replaceChildren();
-  const mistakes = solution.mistakes || [];
   if (mistakes.length) {
     const ul = el('ul', { class: 'mistake-list' });
     for (const m of mistakes) {
@@ -208,9 +234,10 @@ export function renderSolution(stepsEl, mistakesEl, solution, units = 'si') {
   } else {
     mistakesEl.appendChild(el('p', { class: 'muted' }, 'No typical mistakes listed for this mechanism.'));
   }
-  return failures;
 }
 
 export function renderMessage(stepsEl, text) {
+  rendering.delete(stepsEl);
+  delete stepsEl.dataset.typeset;
   stepsEl.replaceChildren(el('p', { class: 'panel-message' }, text));
 }

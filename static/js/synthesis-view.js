@@ -10,6 +10,7 @@
 // pivots are handles drawn over it in the same SVG, at the same scale. Nothing kinematic is
 // computed here: the handles are the task's own numbers, everything else is the server's.
 
+import { Playback } from './playback.js';
 import * as api from './api.js';
 import { LinkageView } from './linkage-view.js';
 import { trackFromSweep, frameAt, indexOfValue, valueAt } from './track.js';
@@ -17,10 +18,13 @@ import { svgEl } from './svg.js';
 import { renderSolution, renderMessage } from './steps.js';
 import { katexReady, plotlyReady } from './vendor.js';
 import { fmt, typed } from './units.js';
+import { markerBox } from './drawing-labels.js';
 
 const SAMPLES = 241;
 const CYCLE_SECONDS = 5; // the whole sweep played once (a rocking crank: one way) at 1x
-const KEY_DELAY_MS = 350; // a design after the last key press on a handle
+const KEY_DELAY_MS = 350;
+const PIVOT_HALF = 15; // half the side of a given pivot's square (viewBox px)
+const POSITION_REACH = 26; // a position's body, turned any way, stays within this of its dot (px) // a design after the last key press on a handle
 const ARROW_PX = 64; // a position's direction arrow, viewBox px
 const INK = '#6a1b9a'; // the task's handles (positions, given pivots)
 
@@ -79,8 +83,20 @@ export class LinkageDesigner {
     this.track = null;
     this.u = 0;
     this.direction = 1;
-    this.last = null;
     this.keyTimer = null;
+    // one revolution per CYCLE_SECONDS; a crank that cannot turn fully rocks between its limits
+    this.playback = new Playback(() => this.shown, (dt) => {
+      const t = this.track;
+      if (!this.playing || !t || t.n < 2) return;
+      const span = t.n - 1;
+      this.u += (this.direction * dt * span) / CYCLE_SECONDS;
+      if (t.closed) this.u = ((this.u % span) + span) % span;
+      else if (this.u > span || this.u < 0) {
+        this.direction = -this.direction;
+        this.u = Math.min(Math.max(this.u, 0), span);
+      }
+      this.drawFrame();
+    });
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
     this.task = 'motion';
     this.motion = {
@@ -119,7 +135,7 @@ export class LinkageDesigner {
     this.shown = true;
     this.root.hidden = false;
     document.body.dataset.family = 'synthesis';
-    this.loop();
+    this.playback.start();
     if (!this.answer) await this.design();
   }
 
@@ -524,18 +540,22 @@ export class LinkageDesigner {
     m.pivots[m.kind].forEach((_, i) => {
       const name = m.kind === 'fixed_pivots' ? ['A', 'D'][i] : ['B', 'C'][i];
       const g = svgEl('g', { class: 'syn-pivot', tabindex: '0', role: 'button', 'aria-roledescription': 'movable pivot', 'data-handle': name }, layer);
-      const box = svgEl('rect', { x: -15, y: -15, width: 30, height: 30, fill: 'transparent', stroke: INK, 'stroke-width': 3, 'data-part': 'move' }, g);
+      const box = svgEl('rect', { x: -PIVOT_HALF, y: -PIVOT_HALF, width: 2 * PIVOT_HALF, height: 2 * PIVOT_HALF, fill: 'transparent', stroke: INK, 'stroke-width': 3, 'data-part': 'move' }, g);
       // A moving pivot is given where it is at the first position: B₁, C₁ (A and D stay put).
       const label = svgEl('text', { class: 'syn-handle-label syn-pivot-label', fill: INK, x: -44, y: 30 }, g);
       label.textContent = m.kind === 'fixed_pivots' ? '' : `${name}₁`;
-      this.handles.push({ kind: 'pivot', index: i, name, g, box });
+      this.handles.push({ kind: 'pivot', index: i, name, g, box, label });
       this.wireHandle(g, { kind: 'pivot', index: i });
     });
     this.placeHandles();
   }
 
-  /** Each handle where the task puts it (at the drawing's scale). */
+  /**
+   * Each handle where the task puts it (at the drawing's scale); the handles' boxes and their
+   * labels' are given to the view, whose names of points keep clear of them ("B" off B₁).
+   */
   placeHandles() {
+    this.view.overlayMarks = [];
     if (!this.handles?.length || !this.view.map) return;
     const m = this.motion;
     for (const h of this.handles) {
@@ -544,6 +564,7 @@ export class LinkageDesigner {
         const [px, py] = this.view.px([x, y]);
         const a = (deg * Math.PI) / 180;
         h.g.setAttribute('transform', `translate(${px.toFixed(1)},${py.toFixed(1)})`);
+        this.view.overlayMarks.push(markerBox([px, py], POSITION_REACH));
         h.body.setAttribute('transform', `rotate(${(-deg).toFixed(2)})`);
         const [tx, ty] = [ARROW_PX * Math.cos(a), -ARROW_PX * Math.sin(a)];
         h.line.setAttribute('x2', tx.toFixed(1));
@@ -557,6 +578,11 @@ export class LinkageDesigner {
         const p = m.pivots[m.kind][h.index];
         const [px, py] = this.view.px(p);
         h.g.setAttribute('transform', `translate(${px.toFixed(1)},${py.toFixed(1)})`);
+        this.view.overlayMarks.push(markerBox([px, py], PIVOT_HALF + 2));
+        if (h.label.textContent) {
+          const b = h.label.getBBox();
+          this.view.overlayMarks.push({ x0: px + b.x, y0: py + b.y, x1: px + b.x + b.width, y1: py + b.y + b.height });
+        }
         h.g.setAttribute('aria-label', `Given ${m.kind === 'fixed_pivots' ? 'fixed' : 'moving'} pivot ${h.name} at (${fmt(p[0], 4)}, ${fmt(p[1], 4)}) m. Arrow keys move it.`);
       }
     }
@@ -656,33 +682,5 @@ export class LinkageDesigner {
     const deg = (valueAt(this.track, this.u) * 180) / Math.PI;
     this.el.readout.textContent = `crank angle θ₂ = ${fmt(deg, 4)}°`;
     this.el.svg.dataset.u = this.u.toFixed(3);
-  }
-
-  loop() {
-    if (this.looping) return;
-    this.looping = true;
-    const frame = (now) => {
-      if (!this.shown) {
-        this.looping = false;
-        this.last = null;
-        return;
-      }
-      const dt = this.last === null ? 0 : Math.min((now - this.last) / 1000, 0.1);
-      this.last = now;
-      const t = this.track;
-      if (this.playing && t && t.n > 1) {
-        const span = t.n - 1;
-        this.u += (this.direction * dt * span) / CYCLE_SECONDS;
-        if (t.closed) this.u = ((this.u % span) + span) % span;
-        else if (this.u > span || this.u < 0) {
-          // a rocking crank goes back and forth between its limit positions
-          this.direction = -this.direction;
-          this.u = Math.min(Math.max(this.u, 0), span);
-        }
-        this.drawFrame();
-      }
-      requestAnimationFrame(frame);
-    };
-    requestAnimationFrame(frame);
   }
 }

@@ -169,12 +169,13 @@ def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
     page.click("#tab-solution")  # the worked solution has its own tab
     page.wait_for_selector("#steps .katex")
     assert page.locator("#steps .katex").count() >= 3
+    page.wait_for_selector("#steps[data-typeset='done']")  # the first steps come first
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
     assert page.locator("#mistakes li").count() >= 1
     vector_text = page.inner_text("#steps")
     page.check("input[name='method'][value='loop']")
     wait_until(lambda: page.inner_text("#steps") != vector_text, what="the loop-method steps")
-    page.wait_for_selector("#steps .katex")
+    page.wait_for_selector("#steps[data-method='loop'][data-typeset='done'] .katex")
     assert page.locator("#steps .step-error").count() == 0
     app.screenshot("worked-solution", ".solution-panel")
 
@@ -951,10 +952,13 @@ def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
     requests = len(app.log.requests)
     page.select_option("#units", "mm")
     page.wait_for_selector("#steps .step-units")
+    page.wait_for_selector("#steps[data-typeset='done']")  # every step, not only the first
     assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "no new request"
-    text = page.inner_text("#steps")
+    # textContent: the steps out of sight are not laid out (content-visibility), so not in innerText
+    text = page.text_content("#steps") or ""
     assert "mm/s" in text and "rpm" in text
-    line = next(t for t in page.locator("#steps .step-units").all_inner_texts() if "v(B) = (" in t)
+    lines = page.locator("#steps .step-units").all_text_contents()
+    line = next(t for t in lines if "v(B) = (" in t)
     shown = [float(x) for x in line.split("v(B) = (")[1].split(")")[0].split(", ")]
     angle = float(page.get_attribute("#linkage", "data-analysed") or "nan")
     scene = exported_scene(page)

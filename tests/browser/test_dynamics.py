@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from solver.teaching.presets import build_preset
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
 from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
 
 pytestmark = pytest.mark.browser
@@ -94,7 +94,7 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     assert free_body.count() == 3, "one free-body diagram per moving link"
     assert free_body.locator(".step-figure svg").count() == 3
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
-    assert "power balance" in page.inner_text("#steps")
+    assert "power balance" in (page.text_content("#steps") or "")  # steps out of sight too
     app.screenshot("newton-euler-solution", ".solution-panel")
 
 
@@ -184,6 +184,38 @@ def test_statics_and_friction_toggle(app: AppPage) -> None:
     assert "torque without friction" in names
     assert "With friction:" in page.inner_text("#dynamics-info")
     app.screenshot("dynamics-statics-friction")
+
+
+@pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
+def test_the_panel_with_statics_and_friction_fits_every_viewport(
+    app: AppPage, width: int, height: int
+) -> None:
+    """The dynamics panel with its statics and friction fields: every field and figure inside
+    the panel, no figure's title cut at its edges, the cycle plots' legend clear of their x
+    axis' title, nothing scrolling sideways, axe-core clean (screenshots dynamics-panel-*)."""
+    app.page.set_viewport_size({"width": width, "height": height})
+    app.open()
+    page = app.page
+    choose(app, "preset:seed004")
+    page.wait_for_selector("#dynamics[data-asked='dynamics']")
+    page.check("#dynamics-statics")
+    page.fill("#dynamics-mu-pin", "0.2")
+    page.dispatch_event("#dynamics-mu-pin", "change")
+    page.wait_for_selector("#dynamics[data-asked='statics+friction']")
+    page.wait_for_function("() => document.querySelector('#dynamics-hodograph .gtitle') !== null")
+    panel = shown_boxes(page, "#dynamics")[0]
+    for box in shown_boxes(page, "#dynamics input, #dynamics button, #dynamics .js-plotly-plot"):
+        assert panel[0] - 1 <= box[0] and box[2] <= panel[2] + 1, (box, panel)
+    for figure in ("#dynamics-plots", "#dynamics-hodograph"):
+        frame = shown_boxes(page, f"{figure} .main-svg")[0]
+        for title in shown_boxes(page, f"{figure} .gtitle"):
+            assert frame[0] - 1 <= title[0] and title[2] <= frame[2] + 1, (figure, title, frame)
+    legend = shown_boxes(page, "#dynamics-plots .legend")
+    assert not overlapping_pairs(legend + shown_boxes(page, "#dynamics-plots .xtitle"))
+    assert page.evaluate("document.documentElement.scrollWidth - window.innerWidth") <= 0
+    page.evaluate("() => document.getElementById('dynamics').scrollIntoView()")
+    app.screenshot(f"dynamics-panel-{width}x{height}", "#dynamics")
+    assert app.serious_accessibility_violations("#dynamics") == []
 
 
 def test_statics_is_a_method_of_the_worked_solution(app: AppPage) -> None:

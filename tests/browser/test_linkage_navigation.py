@@ -206,6 +206,94 @@ def test_a_picked_point_reads_out_its_motion_and_traces_its_path(app: AppPage) -
     page.wait_for_function("() => document.getElementById('point-readout').dataset.point === 'C'")
 
 
+def readout_values(page: Any, name: str) -> dict[str, list[float]]:
+    """Point `name`'s readout at the analysed instant: r, v, a (SI) as the page holds them
+    unrounded (`#point-readout[data-values]`, the server's numbers)."""
+    page.select_option("#readout-point", name)
+    page.wait_for_function(
+        """(name) => { const d = document.getElementById('point-readout').dataset;
+                       return d.point === name && d.instant === 'analysed'; }""",
+        arg=name,
+    )
+    values: dict[str, list[float]] = page.evaluate(
+        "() => JSON.parse(document.getElementById('point-readout').dataset.values)"
+    )
+    return values
+
+
+def cross(a: list[float], b: list[float]) -> float:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def test_a_point_picked_on_the_coupler_moves_with_it(app: AppPage) -> None:
+    """A click on the coupler between B and C adds that point of the coupler (swept and
+    analysed by the server); its v and a are the rigid body's, v_P = v_B + omega x BP and
+    a_P = a_B + alpha x BP - omega^2 BP, with omega and alpha from the readouts of B and C
+    (0.05 %); its path keeps its distances to B's and C's; Remove point takes it away."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    sweeps = sum("/sweep" in u for u in app.log.requests)
+    b, c = point_at(page, "B"), point_at(page, "C")
+    page.mouse.click(b[0] + 0.4 * (c[0] - b[0]), b[1] + 0.4 * (c[1] - b[1]))
+    page.wait_for_function(
+        "() => [...document.getElementById('readout-point').options].some((o) => o.value === 'P1')"
+    )
+    wait_analysed(page)
+    assert sum("/sweep" in u for u in app.log.requests) > sweeps, "the server sweeps the new point"
+    p = readout_values(page, "P1")
+    text = page.inner_text("#point-readout")
+    bv, cv = readout_values(page, "B"), readout_values(page, "C")
+    bc = [cv["r"][i] - bv["r"][i] for i in range(2)]
+    bp = [p["r"][i] - bv["r"][i] for i in range(2)]
+    # Where it was clicked: 0.4 of the way from B to C, on the line (a pixel's play).
+    along = (bp[0] * bc[0] + bp[1] * bc[1]) / (bc[0] ** 2 + bc[1] ** 2)
+    assert along == pytest.approx(0.4, abs=0.02)
+    assert abs(cross(bc, bp)) / math.hypot(*bc) < 0.01 * math.hypot(*bc)
+    # The coupler's omega and alpha from B and C, then P's velocity and acceleration.
+    dv = [cv["v"][i] - bv["v"][i] for i in range(2)]
+    omega = cross(bc, dv) / (bc[0] ** 2 + bc[1] ** 2)
+    da = [cv["a"][i] - bv["a"][i] + omega**2 * bc[i] for i in range(2)]
+    alpha = cross(bc, da) / (bc[0] ** 2 + bc[1] ** 2)
+    v_p = [bv["v"][0] - omega * bp[1], bv["v"][1] + omega * bp[0]]
+    a_p = [
+        bv["a"][0] - alpha * bp[1] - omega**2 * bp[0],
+        bv["a"][1] + alpha * bp[0] - omega**2 * bp[1],
+    ]
+    assert math.dist(p["v"], v_p) <= 5e-4 * math.hypot(*v_p)
+    assert math.dist(p["a"], a_p) <= 5e-4 * math.hypot(*a_p)
+    # The text says the same numbers, rounded to 4 digits.
+    shown = float(re.findall(r"\|v\s*P1\s*\| = (-?[\d.]+(?:e-?\d+)?)", text)[0])
+    assert shown == pytest.approx(math.hypot(*p["v"]), rel=5e-4)
+    # Its path, traced at once, keeps its distances to B and C (viewBox px, rounding).
+    page.wait_for_selector("#linkage polyline.added-trace[data-trace='P1']")
+    for name in ("B", "C"):
+        page.select_option("#readout-point", name)
+        page.check("#readout-trace")
+        page.wait_for_selector(f"#linkage polyline[data-trace='{name}']")
+    distances = page.evaluate(
+        """() => { const svg = document.getElementById('linkage');
+                   const path = (n) => svg.querySelector(`polyline[data-trace='${n}']`)
+                     .getAttribute('points').trim().split(' ').map((q) => q.split(',').map(Number));
+                   const [p, b, c] = ['P1', 'B', 'C'].map(path);
+                   return p.map((q, i) => [Math.hypot(q[0] - b[i][0], q[1] - b[i][1]),
+                                           Math.hypot(q[0] - c[i][0], q[1] - c[i][1])]); }"""
+    )
+    assert len(distances) > 100
+    for k in (0, 1):
+        column = [d[k] for d in distances]
+        assert max(column) - min(column) < 0.05, "P1 keeps its distance to B and to C"
+    app.screenshot("point-on-link", ".view-panel")
+    # Removable: it leaves the scene, the menu and the drawing.
+    page.select_option("#readout-point", "P1")
+    page.click("#remove-point")
+    page.wait_for_function(
+        "() => ![...document.getElementById('readout-point').options].some((o) => o.value === 'P1')"
+    )
+    assert page.locator("#linkage [data-trace='P1'], #linkage [data-point='P1']").count() == 0
+    assert page.is_hidden("#remove-point")
+
+
 def centre_at(page: Any, links: str) -> tuple[float, float] | None:
     loc = page.locator(f"#linkage g.centre[data-links='{links}'] circle")
     if not loc.count():

@@ -8,7 +8,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
 from tests.browser.test_app import pause_and_wait
 
 pytestmark = pytest.mark.browser
@@ -49,3 +49,19 @@ def test_on_a_phone_the_drawing_and_the_polygons_come_first(app: AppPage) -> Non
     first_screen(page, "after an input")
     app.screenshot("phone-order-390x844")
     assert app.serious_accessibility_violations() == []
+
+
+def test_on_a_phone_plotlys_toolbar_leaves_the_polygons_titles_clear(app: AppPage) -> None:
+    """Each polygon's title sits under Plotly's toolbar, not behind it (the toolbar covered
+    "[m/s]" of "Velocity polygon [m/s]" at 390 px)."""
+    page = app.page
+    page.set_viewport_size({"width": 390, "height": 844})
+    app.open()
+    pause_and_wait(page)
+    for polygon in ("#velocity-polygon", "#acceleration-polygon"):
+        page.hover(polygon)  # the toolbar shows
+        page.wait_for_selector(f"{polygon} .modebar")
+        title = shown_boxes(page, f"{polygon} .gtitle")
+        toolbar = shown_boxes(page, f"{polygon} .modebar")
+        assert title and toolbar, polygon
+        assert not overlapping_pairs(title + toolbar), (polygon, title, toolbar)

@@ -347,5 +347,12 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     for box in shown_boxes(page, "#syn-linkage .syn-handles circle"):
         assert drawing[0] <= box[0] and box[2] <= drawing[2], (box, drawing)
         assert drawing[1] <= box[1] and box[3] <= drawing[3], (box, drawing)
+    # the linkage's names keep clear of the given pivots' squares and their names ("B" off B1)
+    names = shown_boxes(page, "#syn-linkage .point-label")
+    handles = shown_boxes(page, "#syn-linkage .syn-pivot rect, #syn-linkage .syn-pivot-label")
+    assert names and handles
+    for name in names:
+        for handle in handles:
+            assert not overlapping_pairs([name, handle]), (name, handle)
     assert not app.serious_accessibility_violations("#synthesis-app")
     assert re.search(r"Grashof", page.inner_text("#syn-defects"))
