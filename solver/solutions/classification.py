@@ -17,7 +17,7 @@ import numpy as np
 
 from solver.analysis.sweeps import AngleExtremes
 from solver.analysis.sweeps import sweep as linkage_sweep
-from solver.analysis.work_estimate import SOLUTION_COST, estimate_work
+from solver.analysis.work_estimate import estimate_work
 from solver.kinematics.dead_centres import (
     SlottedLeverLimits,
     crank_turns_fully,
@@ -566,23 +566,26 @@ def _ram_stroke(
 
 DEG = "{}^{\\circ}"
 ANGLE_SAMPLES = 360  # the revolution sampled each degree; the extremes are refined to rounding
+# The most a worked solution spends on that revolution, estimated as the request budget does (a
+# four-bar's is a few ms, within the spread of the solution's own writing, tens of ms).
+EXTREMES_ALLOWANCE = 0.05  # s
 
 
 def angle_extreme_steps(ctx: LinkageContext) -> list[Step]:
     """One step per four-bar loop whose crank is the (only) driver and turns fully: the least
     and greatest angle of the coupler and of the rocker over a turn of the crank, where
     omega = 0, and the crank angles there (``Sweep.angle_extremes``: the sweep's sampled extremes
-    refined to rounding); none where that revolution would cost more than the writing of a worked
-    solution (``SOLUTION_COST``, estimated as the request budget does)."""
+    refined to rounding); none where that revolution would cost more than ``EXTREMES_ALLOWANCE``
+    (estimated as the request budget does)."""
     scene = ctx.scene
     loops = [
         loop
         for loop in ctx.analysis.four_bar_loops
         if len(scene.drivers) == 1 and scene.drivers[0].link == loop.links[1]
     ]
-    # The revolution within the worked solution's allowance of the request budget (every
-    # four-bar; a large mechanism's revolution would not be paid for).
-    if not loops or estimate_work(scene, ANGLE_SAMPLES).seconds > SOLUTION_COST:
+    # The revolution within the worked solution's allowance (every four-bar; a large
+    # mechanism's revolution would not be paid for).
+    if not loops or estimate_work(scene, ANGLE_SAMPLES).seconds > EXTREMES_ALLOWANCE:
         return []
     sweep = linkage_sweep(scene, ANGLE_SAMPLES, ["position"])
     if not sweep.feasible:

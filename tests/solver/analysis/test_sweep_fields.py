@@ -139,6 +139,8 @@ def test_estimate_work_counts_the_response_and_the_newton_work() -> None:
     work = solver.estimate_work(triad, 360).newton
     assert work is not None and work.groups == (8,) and work.turn == 0.0
     assert work.link_samples == 8 * (360 + work.setup_samples)
-    assert work.seconds == work.link_samples * work.sample_cost
+    # one group of 8 links: 8 x (SAMPLE_COST + 8 x GROUP_SAMPLE_COST) per sample
+    per_sample = 8 * work.sample_cost + 8 * 8 * work.group_sample_cost
+    assert work.seconds == pytest.approx((360 + work.setup_samples) * per_sample, rel=1e-12)
     instant = solver.estimate_work(triad)
     assert instant.samples == 1 and instant.newton is not None
