@@ -119,6 +119,12 @@ def test_the_instructor_page_generates_previews_and_downloads(app: AppPage) -> N
         page.click('.downloads button[data-format="html"]:not([data-solutions])')
     sheets = Path(download_info.value.path()).read_text(encoding="utf-8")
     assert sheets.count('<section class="sheet"') == 3 and "Name: Emmy Noether" in sheets
+    # the same sheets printed by the server: one page per student
+    with page.expect_download() as download_info:
+        page.click('.downloads button[data-format="pdf"]:not([data-solutions])')
+    assert download_info.value.suggested_filename.endswith(".pdf")
+    pdf = Path(download_info.value.path()).read_bytes()
+    assert pdf.startswith(b"%PDF-") and len(re.findall(rb"/Type\s*/Page(?![a-zA-Z])", pdf)) == 3
     with page.expect_download() as download_info:
         page.click('.downloads button[data-format="qti"]')
     assert download_info.value.suggested_filename.endswith(".zip")
