@@ -823,6 +823,7 @@ class App {
       await polygons;
       if (seq !== this.analysisSeq) return; // a newer instant is being analysed
       $('linkage').dataset.analysed = String(this.instantValue(u));
+      this.dirty = true; // the next frame draws this instant (its poles, vectors, readouts)
       // The worked solution is typeset once the frame that shows the instant is painted.
       await Promise.all([katexReady(), afterPaint()]);
       if (solutionSeq === this.solutionSeq) this.showSolution(solution);

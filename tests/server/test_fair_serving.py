@@ -17,7 +17,7 @@ import json
 import multiprocessing
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -43,16 +43,42 @@ S003_T1 = json.loads((EXAMPLES / "S003-T1-translating-carrier.json").read_text()
 # 10 s and then was answered 413 by the time limit.
 ISSUE_EVENT = {"scene": S003_T1, "event": {"moving_point": "M", "reaches": "O1"}}
 SWEEP_360 = {"scene": FOUR_BAR, "samples": 360}
-# The costliest legal requests of two kinds: a Newton-Raphson sweep at the edge of the budget
-# (estimated 5 s of /sweep's 10 s / 2) and the most flywheel exercises with worked solutions
-# the budget allows (about 5 s estimated).
+
+
+def most_allowed(accepts: Callable[[int], object], most: int) -> int:
+    """The largest n in 1..``most`` whose request the budget accepts (``accepts`` raises
+    LimitExceeded past it), by bisection: the costliest legal request of a kind."""
+
+    def ok(n: int) -> bool:
+        try:
+            accepts(n)
+        except solver.errors.LimitExceeded:
+            return False
+        return True
+
+    low, high = 1, most
+    while low < high:
+        middle = (low + high + 1) // 2
+        low, high = (middle, high) if ok(middle) else (low, middle - 1)
+    return low
+
+
+NEWTON = solver.parse_scene(NEWTON_RUNAWAY["scene"])
+MOST_SAMPLES = most_allowed(lambda n: budget.sweep(NEWTON, n, None), 100_000)  # type: ignore[arg-type]
+MOST_FLYWHEELS = most_allowed(
+    lambda n: budget.exercises("flywheel", n, True, "/api/v1/exercises"), 100
+)
+# The costliest legal requests of two kinds, found from the budget itself: the Newton-Raphson
+# sweep of the largest group with the most samples it accepts, and the most flywheel exercises
+# with worked solutions it accepts.
 COSTLIEST = [
-    ("/api/v1/sweep", NEWTON_RUNAWAY),
+    ("/api/v1/sweep", {**NEWTON_RUNAWAY, "samples": MOST_SAMPLES}),
     (
         "/api/v1/exercises",
-        {"type": "flywheel", "difficulty": "challenging", "count": 20, "with_solutions": True},
+        {"type": "flywheel", "difficulty": "challenging", "count": MOST_FLYWHEELS,
+         "with_solutions": True},
     ),
-]
+]  # fmt: skip
 
 
 def _loop(base: str, address: str, stop: Any, answers: Any) -> None:
@@ -116,10 +142,13 @@ def test_the_issues_event_search_is_refused_before_any_work_with_its_numbers() -
 def test_the_costliest_requests_are_legal_and_slow_and_the_sweep_is_cheap() -> None:
     """The lane test below drives requests the budget accepts; they run in the slow lane, the
     360-sample sweep in the fast one."""
-    newton = solver.parse_scene(NEWTON_RUNAWAY["scene"])
-    assert LANE_SECONDS < budget.sweep(newton, NEWTON_RUNAWAY["samples"], None) <= 5.0  # type: ignore[arg-type]
-    count = COSTLIEST[1][1]["count"]
-    assert LANE_SECONDS < budget.exercises("flywheel", count, True, "/api/v1/exercises") <= 5.0
+    assert LANE_SECONDS < budget.sweep(NEWTON, MOST_SAMPLES, None) <= 5.0  # type: ignore[arg-type]
+    with pytest.raises(solver.errors.LimitExceeded):
+        budget.sweep(NEWTON, MOST_SAMPLES + 1, None)  # type: ignore[arg-type]
+    path = "/api/v1/exercises"
+    assert LANE_SECONDS < budget.exercises("flywheel", MOST_FLYWHEELS, True, path) <= 5.0
+    with pytest.raises(solver.errors.LimitExceeded):
+        budget.exercises("flywheel", MOST_FLYWHEELS + 1, True, path)
     assert budget.sweep(solver.parse_scene(FOUR_BAR), 360, None) < LANE_SECONDS  # type: ignore[arg-type]
 
 
@@ -166,8 +195,9 @@ def test_one_client_holds_at_most_its_share_of_the_slow_lane(two_workers: str) -
     same address's second slow request is answered 429 with Retry-After at once; another
     address's waits for the slow lane; a cheap request from the first address is answered."""
     first = Client(two_workers, "127.0.0.21")
+    path, costliest_sweep = COSTLIEST[0]  # about 2 s of one core on a quiet machine
     first.connection.request(
-        "POST", "/api/v1/sweep", json.dumps(NEWTON_RUNAWAY), {"content-type": "application/json"}
+        "POST", path, json.dumps(costliest_sweep), {"content-type": "application/json"}
     )
     try:
         time.sleep(1.0)  # the first slow request is in the pool (no timing asserted)
