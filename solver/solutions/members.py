@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.kinematics.rigid import cross
+from solver.kinematics.rigid import cross, solve_2x2
 from solver.solutions import latex as tex
 from solver.solutions.builder import StepBuilder, Unknown, present_solution
 from solver.solutions.equation import Boxed, Col, Num, Pt, Ref
@@ -162,11 +162,13 @@ def two_force_step(ctx: LinkageContext, link: str, acting: list[Acting]) -> Step
 
 
 def _meet(p1: np.ndarray, u1: np.ndarray, p2: np.ndarray, u2: np.ndarray) -> np.ndarray | None:
-    """The point where the lines p1 + t u1 and p2 + s u2 meet (None: parallel)."""
-    det = float(cross(u1, u2))
-    if abs(det) <= 1e-12 * float(np.hypot(*u1) * np.hypot(*u2)):
+    """The point where the lines p1 + t u1 and p2 + s u2 meet, t from t u1 - s u2 = p2 - p1
+    (the solver's one 2x2 solve; None: parallel)."""
+    if abs(float(cross(u1, u2))) <= 1e-12 * float(np.hypot(*u1) * np.hypot(*u2)):
         return None
-    return p1 + float(cross(p2 - p1, u2)) / det * u1
+    d = p2 - p1
+    t, _ = solve_2x2((u1[0], -u2[0]), (u1[1], -u2[1]), (d[0], d[1]))
+    return p1 + float(t) * u1
 
 
 def three_force_step(ctx: LinkageContext, link: str, acting: list[Acting]) -> Step:
