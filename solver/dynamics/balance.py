@@ -154,26 +154,27 @@ def balance_four_bar(
 def _with_counterweights(
     scene: LinkageScene, doc: Mapping[str, Any], placed: Sequence[Counterweight]
 ) -> dict[str, Any]:
-    """``doc`` with each counterweight as a point mass, at a new point of its link (or at the
-    link's point that is already there)."""
+    """``doc`` with each counterweight as a point mass, at a new point of its link named as the
+    textbook names them, K on the crank and L on the rocker (or at the link's point that is
+    already there), the masses mK and mL."""
     out = copy.deepcopy(dict(doc))
     out["point_masses"] = list(out.get("point_masses", []))
     names = {pm["name"] for pm in out["point_masses"] if isinstance(pm, Mapping) and "name" in pm}
-    for w in placed:
+    for w, letter in zip(placed, ("K", "L"), strict=True):
         K = complex(*w.position)
         near = [
             p
             for p in scene.links[w.link].points
             if abs(complex(*scene.points[p]) - K) <= 1e-9 * scene.size
         ]
-        point = near[0] if near else _fresh(f"{w.link}_counterweight", out["points"])
+        point = near[0] if near else _fresh(letter, out["points"])
         if not near:
             out["points"][point] = [K.real, K.imag]
             out["links"][w.link] = {
                 **out["links"][w.link],
                 "points": [*out["links"][w.link]["points"], point],
             }
-        name = _fresh(f"m_{w.link}_counterweight", names)
+        name = _fresh(f"m{letter}", names)
         names.add(name)
         out["point_masses"].append({"name": name, "link": w.link, "point": point, "mass": w.mass})
     out["title"] = f"{doc.get('title') or 'four-bar'}, balanced"[:200]

@@ -383,11 +383,11 @@ def construction_figure(body: JSON) -> str:
     for label, place in extra:
         canvas.circle(canvas.px(place), 2.5, [("fill", "#c33")])
         x, y = canvas.px(place)
-        canvas.text((x + 4, y - 4), label, [("font-size", 10), ("fill", "#c33")])
+        canvas.text((x + 4, y - 4), label, [("font-size", 11), ("fill", "#c33")])
     for name, place in points.items():
         canvas.circle(canvas.px(place), 3.5, [("fill", "#fff"), ("stroke", "#222")])
         x, y = canvas.px(place)
-        canvas.text((x + 5, y + 12), name, [("font-size", 11)])
+        canvas.text((x + 5, y + 13), name, [("font-size", 12)])
     return canvas.document(
         [("width", FIGURE_SIZE), ("height", FIGURE_SIZE),
          ("viewBox", f"0 0 {FIGURE_SIZE:g} {FIGURE_SIZE:g}")]

@@ -14,6 +14,7 @@ import { svgEl, setAttrs, arrowMarker } from './svg.js';
 import { LinkageView } from './linkage-view.js';
 import { trackFromSweep, frameAt } from './track.js';
 import { toCsv, download } from './export.js';
+import { pointName } from './notation.js';
 
 const ARROW_PX = 70; // the largest joint force of the cycle, on the drawing
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d', 'toImage'] };
@@ -223,7 +224,7 @@ export class DynamicsPanel {
       traces.push({ x, y: driver.power, name: 'power M ω', yaxis: 'y2', line: { color: '#8e44ad' } });
     }
     for (const joint of s.joints) {
-      traces.push({ x, y: joint.force.map(norm), name: `|F| at ${joint.point}`, yaxis: 'y3' });
+      traces.push({ x, y: joint.force.map(norm), name: `|F| at ${pointName(joint.point)}`, yaxis: 'y3' });
     }
     traces.push({ x, y: s.energy.kinetic, name: 'kinetic energy T', yaxis: 'y4', line: { color: '#27ae60' } });
     traces.push({ x, y: s.energy.equivalent_inertia, name: 'equivalent inertia', yaxis: 'y5', line: { color: '#2c3e50' } });
@@ -283,12 +284,12 @@ export class DynamicsPanel {
       {
         name: 'magnitude labels', mode: 'text', hoverinfo: 'skip', showlegend: false,
         x: rings.map((r) => r * Math.cos(Math.PI / 12)), y: rings.map((r) => r * Math.sin(Math.PI / 12)),
-        text: rings.map((r) => `${fmt(r, 3)} N`), textfont: { size: 10, color: '#6b7785' },
+        text: rings.map((r) => `${fmt(r, 3)} N`), textfont: { size: 11, color: '#6b7785' },
       },
       {
         name: 'angle labels', mode: 'text', hoverinfo: 'skip', showlegend: false,
         x: SPOKES.map((a) => 1.12 * radius * Math.cos(a)), y: SPOKES.map((a) => 1.12 * radius * Math.sin(a)),
-        text: SPOKES.map((a) => `${Math.round((a * 180) / Math.PI)}°`), textfont: { size: 10, color: '#6b7785' },
+        text: SPOKES.map((a) => `${Math.round((a * 180) / Math.PI)}°`), textfont: { size: 11, color: '#6b7785' },
       },
       ...curves.map((c) => ({
         name: c.name, mode: 'lines', line: { color: c.color, width: 2 },
@@ -408,7 +409,7 @@ export class DynamicsPanel {
       const y2 = y - (F[1] / size) * length;
       setAttrs(a.line, { x1: x, y1: y, x2, y2, visibility: null });
       setAttrs(a.label, { x: x2 + 4, y: y2 - 4, visibility: null });
-      a.label.textContent = `F ${a.joint.point} ${fmt(size, 3)} N`;
+      a.label.textContent = `F ${pointName(a.joint.point)} ${fmt(size, 3)} N`;
     }
   }
 }

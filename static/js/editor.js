@@ -14,7 +14,7 @@
 // joints: a pin in a slot both slides and turns) and explained until F = 1 and a driver is
 // chosen; then the scene goes to the app, which analyses it at once.
 
-import { svgEl, clear } from './svg.js';
+import { svgEl, clear, watchTextScale } from './svg.js';
 import { COLOURS } from './theme.js';
 import { groundLink } from './scene.js';
 
@@ -29,6 +29,8 @@ export class Editor {
   constructor(callbacks) {
     this.callbacks = callbacks;
     this.svg = $('editor');
+    this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${HEIGHT}`);
+    watchTextScale(this.svg);
     this.reset();
     this.install();
   }

@@ -5,12 +5,12 @@
 // draws what it is given (a frame of positions, optionally velocities and accelerations, and the
 // server's analysis of the analysed instant); it never computes motion itself.
 
-import { svgEl, setAttrs, clear, arrowMarker, hatchPattern } from './svg.js';
+import { svgEl, setAttrs, clear, arrowMarker, hatchPattern, watchTextScale } from './svg.js';
 import { COLOURS } from './theme.js';
 import { groundLink, movingLinks, movingPoints, linkColours, driverHandle } from './scene.js';
 import { extent, typicalNorm, PARTS, componentSources } from './track.js';
 import { show } from './units.js';
-import { velocityPoleName, accelerationPoleName, linkNumbers } from './notation.js';
+import { velocityPoleName, accelerationPoleName, linkNumbers, pointName } from './notation.js';
 import { measureLabel, aroundPoint, besideBar, boxAt, markerBox, placeAll } from './drawing-labels.js';
 import { drawCentres } from './instant-centres.js';
 
@@ -79,6 +79,11 @@ export class LinkageView {
     this.overlayMarks = [];
     this.installPointer();
     this.installZoom();
+    watchTextScale(svg, () => {
+      if (!this.scene) return;
+      this.rebuild();
+      if (this.lastFrame) this.draw(this.lastFrame);
+    });
   }
 
   /**
@@ -453,7 +458,7 @@ export class LinkageView {
       this.labelNodes.push({ ...named, node, size: measureLabel(node), last: -1 });
     };
     for (const name of [...Object.keys(this.scene.points), ...movingPoints(this.scene).map((m) => m.name)]) {
-      add(name, { class: 'point-label' }, { point: name });
+      add(pointName(name), { class: 'point-label' }, { point: name });
     }
     const numbers = linkNumbers(this.scene);
     for (const name of movingLinks(this.scene)) {
@@ -596,17 +601,41 @@ export class LinkageView {
       const value = niceBelow((this.map.size * 0.22) / this.view.scale / scale);
       bars.push({ kind, value, px: value * scale * this.map.k });
     }
-    const lineHeight = 18;
-    let y = this.map.height - 12 - (notes.length + bars.length - 1) * lineHeight;
-    for (const b of bars) {
-      svgEl('line', { x1: 12, y1: y - 4, x2: 12 + b.px, y2: y - 4, stroke: COLOURS[b.kind], 'stroke-width': 2.6, 'marker-end': this.markers[b.kind], class: 'scale-bar' }, this.layers.notes);
-      svgEl('text', { x: 20 + b.px, y, class: 'view-note' }, this.layers.notes).textContent = `${show(b.kind, b.value, this.options.units, 3)} (${b.kind} scale)`;
+    // The notes' size is the stylesheet's (at least 11 screen px): lines spaced and broken by it.
+    const node = (x, text) => {
+      const t = svgEl('text', { x, class: 'view-note' }, this.layers.notes);
+      t.textContent = text;
+      return t;
+    };
+    const nodes = bars.map((b) => node(20 + b.px, `${show(b.kind, b.value, this.options.units, 3)} (${b.kind} scale)`));
+    for (const note of notes) nodes.push(...this.brokenLines(note, (words) => node(12, words)));
+    const lineHeight = nodes.length ? measureLabel(nodes[0]).h : 0;
+    let y = this.map.height - 12 - (nodes.length - 1) * lineHeight;
+    nodes.forEach((t, i) => {
+      t.setAttribute('y', y.toFixed(1));
+      if (i < bars.length) {
+        const b = bars[i];
+        svgEl('line', { x1: 12, y1: y - 4, x2: 12 + b.px, y2: y - 4, stroke: COLOURS[b.kind], 'stroke-width': 2.6, 'marker-end': this.markers[b.kind], class: 'scale-bar' }, this.layers.notes);
+      }
       y += lineHeight;
+    });
+  }
+
+  /** A note in lines that fit the picture's width, broken between words (`make` draws a line). */
+  brokenLines(note, make) {
+    const lines = [];
+    let line = '';
+    const probe = make('');
+    for (const word of note.split(' ')) {
+      const longer = line ? `${line} ${word}` : word;
+      probe.textContent = longer;
+      if (line && measureLabel(probe).w > WIDTH - 24) {
+        lines.push(line);
+        line = word;
+      } else line = longer;
     }
-    for (const line of notes) {
-      svgEl('text', { x: 12, y, class: 'view-note' }, this.layers.notes).textContent = line;
-      y += lineHeight;
-    }
+    probe.remove();
+    return [...lines, line].map(make);
   }
 
   // ---- drawing one frame -------------------------------------------------------------------

@@ -5,7 +5,7 @@
 
 import { componentSources } from './track.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
-import { linkNumbers, imageName } from './notation.js';
+import { linkNumbers, imageName, pointName } from './notation.js';
 
 function el(tag, attrs = {}, text = null) {
   const node = document.createElement(tag);
@@ -43,7 +43,7 @@ export function renderMagnitudes(table, scene, analysis, polygons, units) {
   points.appendChild(row(['point (image)', `|v| [${u('velocity')}]`, `|a| [${u('acceleration')}]`], true));
   for (const group of [analysis.points, analysis.moving_points]) {
     for (const [name, q] of Object.entries(group || {})) {
-      points.appendChild(row([`${name} (${imageName(name)})`, val('velocity', mag(q.velocity)), val('acceleration', mag(q.acceleration))]));
+      points.appendChild(row([`${pointName(name)} (${imageName(name)})`, val('velocity', mag(q.velocity)), val('acceleration', mag(q.acceleration))]));
     }
   }
   const links = el('tbody');
@@ -59,8 +59,8 @@ export function renderMagnitudes(table, scene, analysis, polygons, units) {
     const body = el('tbody');
     body.appendChild(row(['point rel. base', `|ω|·r [${u('velocity')}]`, `aⁿ = ω²r [${u('acceleration')}]`, `aᵗ = |α|·r [${u('acceleration')}]`], true));
     for (const seg of segments) {
-      const tag = `${seg.point}${seg.base}`;
-      body.appendChild(row([[`${seg.point} rel. ${seg.base} (`, ...symbol('v', tag), ', ', ...symbol('a', tag, 'n'), ', ', ...symbol('a', tag, 't'), ')'],
+      const tag = `${pointName(seg.point)}${pointName(seg.base)}`;
+      body.appendChild(row([[`${pointName(seg.point)} rel. ${pointName(seg.base)} (`, ...symbol('v', tag), ', ', ...symbol('a', tag, 'n'), ', ', ...symbol('a', tag, 't'), ')'],
         val('velocity', mag(seg.velocity)), val('acceleration', mag(seg.normal)), val('acceleration', mag(seg.tangential))]));
     }
     table.appendChild(body);
@@ -70,7 +70,7 @@ export function renderMagnitudes(table, scene, analysis, polygons, units) {
     const body = el('tbody');
     body.appendChild(row(['part at', `|v| [${u('velocity')}]`, `|a| [${u('acceleration')}]`], true));
     for (const j of parts) {
-      const p = j.point;
+      const p = pointName(j.point);
       body.appendChild(row([[`${p} transport (`, ...symbol('v', `${p},tr`), ', ', ...symbol('a', `${p},tr`), ')'], val('velocity', mag(j.transport_velocity)), val('acceleration', mag(j.transport_acceleration))]));
       body.appendChild(row([[`${p} relative (`, ...symbol('v', `${p},rel`), ', ', ...symbol('a', `${p},rel`), ')'], val('velocity', mag(j.relative_velocity)), val('acceleration', mag(j.relative_acceleration))]));
       body.appendChild(row([[`${p} Coriolis (`, ...symbol('a', `${p},Cor`), ')'], '', val('acceleration', mag(j.coriolis_acceleration))]));

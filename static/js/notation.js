@@ -5,7 +5,10 @@
 //   - the velocity pole of link k (its instant centre with the ground) is I₁ₖ, its acceleration
 //     pole Γ₁ₖ (Latin capitals name points; I and Γ with two indices never do);
 //   - the poles of the polygons are O_v and O_a, and the image of point B is b (lowercase), so
-//     "O_v ≡ a, d" reads: the images of A and D sit at the pole.
+//     "O_v ≡ a, d" reads: the images of A and D sit at the pole;
+//   - a point named by a Greek letter spelled out ('Gamma', 'omega1') is written as the letter
+//     (Γ, ω1), as the worked solution's LaTeX and figures write it; its image is the small
+//     letter (γ).
 
 import { movingLinks } from './scene.js';
 
@@ -35,8 +38,23 @@ export function accelerationPoleName(scene, link) {
   return `Γ${subscript(1)}${k > 9 ? ',' : ''}${subscript(k)}`;
 }
 
-/** The image of a point in a polygon: its name in lowercase. */
-export const imageName = (point) => point.toLowerCase();
+const GREEK = {
+  alpha: 'α', beta: 'β', gamma: 'γ', delta: 'δ', epsilon: 'ε', zeta: 'ζ', eta: 'η', theta: 'θ',
+  iota: 'ι', kappa: 'κ', lambda: 'λ', mu: 'μ', nu: 'ν', xi: 'ξ', pi: 'π', rho: 'ρ', sigma: 'σ',
+  tau: 'τ', upsilon: 'υ', phi: 'φ', chi: 'χ', psi: 'ψ', omega: 'ω', Gamma: 'Γ', Delta: 'Δ',
+  Theta: 'Θ', Lambda: 'Λ', Xi: 'Ξ', Pi: 'Π', Sigma: 'Σ', Upsilon: 'Υ', Phi: 'Φ', Psi: 'Ψ',
+  Omega: 'Ω',
+};
+
+/** A point's name as the views write it: a Greek letter spelled out, with at most two digits
+ * after it ('Gamma', 'omega1'), as the letter (Γ, ω1); any other name as it is. */
+export function pointName(point) {
+  const found = /^([A-Za-z]+)([0-9]{0,2})$/.exec(point);
+  return found && Object.hasOwn(GREEK, found[1]) ? GREEK[found[1]] + found[2] : point;
+}
+
+/** The image of a point in a polygon: its name in lowercase (the image of Γ is γ). */
+export const imageName = (point) => pointName(point.toLowerCase());
 
 /** The poles of the velocity and acceleration polygons (Plotly text, HTML subscripts). */
 export const POLYGON_POLE = { velocity: 'O<sub>v</sub>', acceleration: 'O<sub>a</sub>' };

@@ -14,6 +14,7 @@
 // read and traced like any other, and "Remove point" takes it away again.
 
 import { show, unitLabel, toDisplay, fmt, denoise } from './units.js';
+import { pointName } from './notation.js';
 
 const NONE = '';
 
@@ -109,10 +110,10 @@ export class PointReadout {
     for (const [symbol, kind, key2] of [['r', 'length', 'position'], ['v', 'velocity', 'velocity'], ['a', 'acceleration', 'acceleration']]) {
       const v = q?.[key2];
       if (!v) continue;
-      parts.push(vectorText(symbol, name, kind, v, units, size));
+      parts.push(vectorText(symbol, pointName(name), kind, v, units, size));
     }
     const head = document.createElement('strong');
-    head.textContent = `Point ${name}`;
+    head.textContent = `Point ${pointName(name)}`;
     out.replaceChildren(head, ` ${when}: `, ...parts.flatMap((p, i) => (i ? ['; ', p] : [p])), parts.length ? '' : 'no values at this instant.');
   }
 }

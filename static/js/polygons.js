@@ -16,7 +16,7 @@ import { COLOURS } from './theme.js';
 import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
-import { imageName, POLYGON_POLE } from './notation.js';
+import { imageName, pointName, POLYGON_POLE } from './notation.js';
 import { placeLabels } from './labels.js';
 import { renderDetail } from './polygon-detail.js';
 
@@ -65,7 +65,7 @@ const add = (a, b) => [a[0] + b[0], a[1] + b[1]];
 const midpoint = (a, b) => [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
 
 /** v_CB, aⁿ_CB, aᵗ_CB: the vector of `seg.point` relative to `seg.base` (the worked solution's names). */
-const relativeName = (symbol, seg, part = '') => `${symbol}${part ? `<sup>${part}</sup>` : ''}<sub>${seg.point}${seg.base}</sub>`;
+const relativeName = (symbol, seg, part = '') => `${symbol}${part ? `<sup>${part}</sup>` : ''}<sub>${pointName(seg.point)}${pointName(seg.base)}</sub>`;
 
 /** v_B,rel, a_B,Cor: a part of the motion of a slider or moving point. */
 const slidingName = (symbol, point, part) => `${symbol}<sub>${point},${part}</sub>`;
@@ -160,7 +160,7 @@ export function velocityFigure(scene, analysis, polygons, units) {
   const lab = [];
   for (const [name, v] of Object.entries(tips)) {
     if (norm(v) < TINY) continue;
-    abs.push([[0, 0], v, vecText(`v_${name}`, v, 'velocity', units)]);
+    abs.push([[0, 0], v, vecText(`v_${pointName(name)}`, v, 'velocity', units)]);
     lab.push([v, lower(name)]);
   }
   // Relative velocities v_PB = ω × r_BP of the image segments, in the vector method's order
@@ -171,7 +171,7 @@ export function velocityFigure(scene, analysis, polygons, units) {
     if (!vBase || !tips[seg.point] || norm(vBase) < TINY) continue;
     const vr = seg.velocity.map((c) => toDisplay('velocity', c, units));
     if (norm(vr) < TINY) continue;
-    relative.push([vBase, add(vBase, vr), vecText(`v_${seg.point}${seg.base}`, vr, 'velocity', units)]);
+    relative.push([vBase, add(vBase, vr), vecText(`v_${pointName(seg.point)}${pointName(seg.base)}`, vr, 'velocity', units)]);
     parts.push([midpoint(vBase, add(vBase, vr)), relativeName('v', seg), COLOURS.velocity]);
   }
   traces.push(arrows('v relative to a point, ω×r', relative, COLOURS.velocity, { width: 1.4, dash: 'dot' }));
@@ -205,7 +205,7 @@ export function accelerationFigure(scene, analysis, polygons, units) {
   const parts = []; // labels of the component vectors, after the points'
   for (const [name, a] of Object.entries(tips)) {
     if (norm(a) < TINY) continue;
-    abs.push([[0, 0], a, vecText(`a_${name}`, a, 'acceleration', units)]);
+    abs.push([[0, 0], a, vecText(`a_${pointName(name)}`, a, 'acceleration', units)]);
     lab.push([a, lower(name)]);
   }
   // Normal and tangential parts of each image segment, in the worked solution's order.
@@ -216,7 +216,7 @@ export function accelerationFigure(scene, analysis, polygons, units) {
     if (!aBase || !tips[seg.point]) continue;
     const an = seg.normal.map((c) => toDisplay('acceleration', c, units));
     const at = seg.tangential.map((c) => toDisplay('acceleration', c, units));
-    const tag = `${seg.point}${seg.base}`;
+    const tag = `${pointName(seg.point)}${pointName(seg.base)}`;
     const corner = add(aBase, an);
     if (norm(an) > TINY) {
       normal.push([aBase, corner, vecText(`aⁿ_${tag}`, an, 'acceleration', units)]);

@@ -7,9 +7,10 @@
 // Dragging (or the arrow keys when the drawing has focus) turns the camera; the projection is
 // the only arithmetic here and it is pure drawing.
 
-import { svgEl, clear, arrowMarker } from './svg.js';
+import { svgEl, clear, arrowMarker, watchTextScale } from './svg.js';
 import { COLOURS } from './theme.js';
 import { fmt, toDisplay, unitLabel } from './units.js';
+import { pointName } from './notation.js';
 
 const W = 1000;
 const H = 640;
@@ -27,6 +28,7 @@ export class SpatialView {
     this.extent = null;
     svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
     this.installControls();
+    watchTextScale(svg);
   }
 
   setScene(scene) {
@@ -153,7 +155,7 @@ export class SpatialView {
         svgEl('line', { x1: x, y1: y, x2: tip[0], y2: tip[1], stroke: COLOURS[q], 'stroke-width': 2.6, 'marker-end': marks[q], class: `vector vector-${q}` }, svg);
       }
       svgEl('circle', { cx: x, cy: y, r: 5, fill: COLOURS.ink, class: 'point', 'data-point': name, 'data-position': pos.join(',') }, svg);
-      svgEl('text', { x: x + 9, y: y - 9, class: 'point-label' }, svg).textContent = name;
+      svgEl('text', { x: x + 9, y: y - 9, class: 'point-label' }, svg).textContent = pointName(name);
     }
     svgEl('text', { x: 14, y: H - 14, class: 'view-note' }, svg).textContent =
       `yaw ${Math.round(this.yaw)}°, pitch ${Math.round(this.pitch)}°: drag, or focus and use the arrow keys`;

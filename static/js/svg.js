@@ -46,3 +46,23 @@ export function hatchPattern(defs, id, colour = '#6b7280') {
   svgEl('line', { x1: 0, y1: 0, x2: 0, y2: 7, stroke: colour, 'stroke-width': 1.4 }, p);
   return `url(#${id})`;
 }
+
+/**
+ * Names in a drawing stay readable however small the drawing is drawn: the CSS variable --px on
+ * `svg` is kept at its viewBox units per screen pixel (app.css makes its names at least 11 screen
+ * px with it), and `changed` is called when that changes (a label measured in viewBox units must
+ * be measured again). Returns a function that updates it now.
+ */
+export function watchTextScale(svg, changed = () => {}) {
+  const update = () => {
+    const width = svg.getBoundingClientRect().width;
+    const box = svg.viewBox.baseVal;
+    if (!width || !box || !box.width) return;
+    const px = (Math.ceil((1000 * box.width) / width) / 1000).toFixed(3); // up: never under
+    if (svg.style.getPropertyValue('--px') === px) return;
+    svg.style.setProperty('--px', px);
+    changed();
+  };
+  new ResizeObserver(update).observe(svg);
+  return update;
+}

@@ -33,7 +33,7 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
     traces = json.loads(plot_data(page, "dynamics-plots"))
     names = [t["name"] for t in traces]
     assert names[:3] == ["torque M (crank)", "mean torque", "power M ω"]
-    assert {"|F| at O", "|F| at A", "|F| at B", "|F| at Gamma"} <= set(names)
+    assert {"|F| at O", "|F| at A", "|F| at B", "|F| at Γ"} <= set(names)
     mean = traces[1]["y"][0]
     # seed004-dynamics.json "mean_driving_torque"; 1e-3: 241 samples of a kinked load law
     assert mean == pytest.approx(-63.6456581982242, rel=1e-3)

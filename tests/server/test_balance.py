@@ -54,6 +54,20 @@ def test_the_balanced_centre_of_mass_stays_still(client: TestClient, data: st.Da
         )
 
 
+def test_the_counterweights_are_the_textbooks_points_k_and_l(client: TestClient) -> None:
+    """Seed 004 balanced: the counterweights are new points K on the crank and L on the rocker,
+    at the answer's positions, with point masses mK and mL of the masses asked for."""
+    body = balance(client, seed004_scene()).json()
+    scene = body["scene"]
+    for weight, point in zip(body["counterweights"], ("K", "L"), strict=True):
+        assert scene["points"][point] == pytest.approx(weight["position"], abs=1e-12)
+        assert point in scene["links"][weight["link"]]["points"]
+        masses = [m for m in scene["point_masses"] if m["point"] == point]
+        assert masses == [
+            {"name": f"m{point}", "link": weight["link"], "point": point, "mass": weight["mass"]}
+        ]
+
+
 def test_the_unbalanced_seed_moves_its_centre_of_mass(client: TestClient) -> None:
     sweep = client.post(
         "/api/v1/sweep",
