@@ -16,6 +16,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from solver.solutions.figures import figure_name
 from solver.teaching.svg import Canvas, View, element, escape_text, marker
 
 SIZE = 320  # px, the drawing is square
@@ -248,14 +249,13 @@ def _link(
         labels.place(canvas.px(center), "G", "#222")
 
 
-_GREEK = re.compile(r"(?<![A-Za-z])(Gamma|Delta|Omega|Sigma|Theta|Phi|Psi)(?![a-z])")
-_LETTERS = {"Gamma": "Γ", "Delta": "Δ", "Omega": "Ω", "Sigma": "Σ", "Theta": "Θ", "Phi": "Φ"}
-_LETTERS["Psi"] = "Ψ"
+_WORD = re.compile(r"[A-Za-z]+[0-9]{0,2}")
 
 
 def _greek(name: str) -> str:
-    """A name as the figures write it: 'Gamma' as Γ wherever it stands alone ('F_Gamma,x')."""
-    return _GREEK.sub(lambda m: _LETTERS[m.group(1)], name)
+    """A name as the figures write it: each Greek letter spelled out in it as the letter
+    ('F_Gamma,x' as F_Γ,x), as ``figures.figure_name`` writes a point's name."""
+    return _WORD.sub(lambda m: figure_name(m.group()), name)
 
 
 _BAR = (
