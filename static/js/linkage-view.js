@@ -77,6 +77,7 @@ export class LinkageView {
     // Boxes (viewBox px) its owner draws over the linkage (the designer's handles): the names of
     // points and links are placed clear of them too.
     this.overlayMarks = [];
+    this.noteMarks = []; // the boxes of the notes' lines and scale bars (viewBox px)
     this.installPointer();
     this.installZoom();
     watchTextScale(svg, () => {
@@ -516,6 +517,7 @@ export class LinkageView {
     }
     const notes = [];
     this.poleMarks = [];
+    this.poleLabels = [];
     if (this.analysis && opt.showPoles) notes.push(...this.buildPoles());
     if (this.analysis && opt.showCentres) {
       const joints = [];
@@ -527,6 +529,8 @@ export class LinkageView {
       this.poleMarks.push(...centres.marks);
     }
     this.buildNotes(notes);
+    // The poles' names last: clear of the centres' and of the notes' lines too.
+    this.placePoleLabels(this.poleLabels);
   }
 
   buildPoles() {
@@ -560,7 +564,7 @@ export class LinkageView {
         svgEl('title', {}, g).textContent = `${label}: ${key === 'velocity_pole' ? 'velocity pole (instant centre with the ground)' : 'acceleration pole'} of link ${name}`;
       }
     }
-    this.placePoleLabels(labels);
+    this.poleLabels = labels;
     return offView.length ? [`Poles outside the picture: ${offView.join(', ')}`] : [];
   }
 
@@ -570,7 +574,8 @@ export class LinkageView {
    * of these (poleMarks) whenever the poles are shown.
    */
   placePoleLabels(labels) {
-    const markers = [...this.fixedMarks, ...this.poleMarks];
+    if (!labels.length) return;
+    const markers = [...this.fixedMarks, ...this.poleMarks, ...this.noteMarks];
     for (const group of [this.analysis.points, this.analysis.moving_points]) {
       for (const q of Object.values(group || {})) if (q.position) markers.push(markerBox(this.px(q.position), 8));
     }
@@ -611,8 +616,12 @@ export class LinkageView {
     for (const note of notes) nodes.push(...this.brokenLines(note, (words) => node(12, words)));
     const lineHeight = nodes.length ? measureLabel(nodes[0]).h : 0;
     let y = this.map.height - 12 - (nodes.length - 1) * lineHeight;
+    this.noteMarks = [];
     nodes.forEach((t, i) => {
       t.setAttribute('y', y.toFixed(1));
+      const { w, h } = measureLabel(t);
+      const x = Number(t.getAttribute('x'));
+      this.noteMarks.push({ x0: i < bars.length ? 12 : x, x1: x + w, y0: y - 0.75 * h, y1: y + 0.25 * h });
       if (i < bars.length) {
         const b = bars[i];
         svgEl('line', { x1: 12, y1: y - 4, x2: 12 + b.px, y2: y - 4, stroke: COLOURS[b.kind], 'stroke-width': 2.6, 'marker-end': this.markers[b.kind], class: 'scale-bar' }, this.layers.notes);
@@ -750,7 +759,7 @@ export class LinkageView {
    * centroid (drawing-labels.js).
    */
   drawLabels(frame, bars) {
-    const markers = [...this.fixedMarks, ...this.overlayMarks];
+    const markers = [...this.fixedMarks, ...this.overlayMarks, ...this.noteMarks];
     for (const { name, node } of this.jointNodes) {
       const p = frame.position[name];
       if (p) markers.push(markerBox(this.px(p), Number(node.getAttribute('r')) + 2));

@@ -17,8 +17,8 @@ from tests.browser.test_app import choose, pause_and_wait
 
 pytestmark = pytest.mark.browser
 
-# The boxes of every name shown (screen px, as the browser laid them out) and of every joint
-# marker shown; a hidden layer (the poles while the pose is not the analysed one) is left out.
+# The boxes of every name and note shown (screen px, as the browser laid them out) and of every
+# joint marker shown; a hidden layer (the poles while the pose is not the analysed one) is left out.
 SHOWN = """() => {
   const shown = (el) => getComputedStyle(el).visibility !== 'hidden'
     && el.getAttribute('visibility') !== 'hidden';
@@ -29,7 +29,8 @@ SHOWN = """() => {
   const svg = document.getElementById('linkage');
   return {
     instant: svg.dataset.instant,
-    labels: [...svg.querySelectorAll('.point-label, .link-label, .pole-label')].filter(shown)
+    labels: [...svg.querySelectorAll('.point-label, .link-label, .pole-label, .view-note')]
+      .filter(shown)
       .map((t) => ({ text: t.textContent, box: box(t) })),
     joints: [...svg.querySelectorAll('.layer-joints circle')].filter(shown)
       .map((c) => ({ name: c.dataset.point || 'moving point', box: box(c) })),
