@@ -43,26 +43,27 @@ function segmentsOf(traces, toPx) {
 // ---- the plot area a figure is drawn in ---------------------------------------------------------
 // A figure whose axes' ranges are given (not autoranged) maps data to pixels linearly: its labels
 // can be placed before it is drawn, so that Plotly draws it once (not once to learn its scale and
-// again with its labels). The plot area is known from the div's last drawing: the same size and
-// the same legend (which takes its own room) give the same area.
+// again with its labels). The plot area is known from the div's earlier drawings: the same size
+// and the same legend (which takes its own room: one per mechanism) give the same area.
 
-const areas = new WeakMap(); // div -> {legend, width, height, w, h} of its last drawing
+const areas = new WeakMap(); // div -> Map(legend -> {width, height, w, h}) of its drawings
 
 /** The legend a figure's traces make (their names, in order). */
 const legendOf = (traces) => traces.filter((t) => t.showlegend !== false).map((t) => t.name).join('\n');
 
-/** The plot area {w, h} (px) `traces` will get in `div`, when its last drawing tells (else null). */
+/** The plot area {w, h} (px) `traces` will get in `div`, when an earlier drawing tells (else null). */
 export function knownArea(div, traces) {
-  const last = areas.get(div);
-  const same = last && last.legend === legendOf(traces) && last.width === div.clientWidth && last.height === div.clientHeight;
-  return same ? { w: last.w, h: last.h } : null;
+  const seen = areas.get(div)?.get(legendOf(traces));
+  const same = seen && seen.width === div.clientWidth && seen.height === div.clientHeight;
+  return same ? { w: seen.w, h: seen.h } : null;
 }
 
 /** The plot area {w, h} (px) of the drawn `div` (kept for knownArea), or null before a drawing. */
 export function drawnArea(div, traces) {
   const size = div._fullLayout?._size;
   if (!size) return null;
-  areas.set(div, { legend: legendOf(traces), width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h });
+  if (!areas.has(div)) areas.set(div, new Map());
+  areas.get(div).set(legendOf(traces), { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h });
   return { w: size.w, h: size.h };
 }
 

@@ -679,13 +679,14 @@ class App {
     this.viewMessage(messages.join(' '));
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
     // What is seen first comes first: the mechanism (this frame), then its instant (the drawing
-    // and the polygons), then, once that is painted, the cycle plots (Plotly, ~100 ms) while the
-    // server writes the worked solution, and last the dynamics panel (a sweep of forces, figures
-    // under the fold).
+    // and the polygons), then, a frame after that is painted, the cycle plots (Plotly, ~100 ms)
+    // while the server writes the worked solution, and last the dynamics panel (a sweep of
+    // forces, figures under the fold).
     this.drawFrame();
     this.dirty = true;
     clearTimeout(this.analysisTimer);
     this.analyzeNow()
+      .then(() => afterPaint())
       .then(() => this.scene === scene && this.drawPlots())
       .then(() => plotlyReady())
       .then((ok) => ok && this.scene === scene && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
