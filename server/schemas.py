@@ -29,6 +29,7 @@ def _example(name: str) -> dict[str, Any]:
 
 
 Quantity = solver.Quantity  # declared once, in solver.model.quantities
+InstantQuantity = solver.InstantQuantity  # /analyze's: the quantities and "polygons"
 
 
 class Strict(BaseModel):
@@ -78,10 +79,11 @@ class AnalyzeRequest(Strict):
             _example("G001-planetary"),
         ],
     )
-    quantities: list[Quantity] | None = Field(
+    quantities: list[InstantQuantity] | None = Field(
         None,
         description="What to compute (default: all). The server computes only these. A "
-        "gear_train answers its speeds whatever is asked.",
+        "gear_train answers its speeds whatever is asked. 'polygons' (an extension, a linkage "
+        "only): the velocity and acceleration polygons' segments, as /solution's 'polygons'.",
     )
     strict: bool = STRICT
     tolerance: NewtonTolerance = None
@@ -258,6 +260,25 @@ ANSWER_KIND = (
 )
 
 
+class SegmentValues(Open):
+    """One image segment B -> P of a link: v_P - v_B = velocity, a_P - a_B = tangential + normal."""
+
+    link: str
+    base: str
+    point: str
+    velocity: Vector = Field(description="omega x r_BP")
+    tangential: Vector = Field(description="alpha x r_BP")
+    normal: Vector = Field(description="-omega^2 r_BP, towards the base point")
+
+
+class PolygonValues(Open):
+    segments: list[SegmentValues] = Field(description="In the vector method's order")
+    sliding: list[list[str | int]] = Field(
+        description="Paths in results of the joints and moving points with a Coriolis part "
+        '(["joints", 0], ["moving_points", "M"]), in the order the solution takes them up'
+    )
+
+
 class AnalyzeResponse(Open):
     """One instant. A linkage has points, links, four_bar_loops and diagnostics (joints,
     moving_points, instant_centres where asked or present); a spatial chain bodies and points."""
@@ -279,6 +300,11 @@ class AnalyzeResponse(Open):
     )
     self_locking: str | None = Field(
         None, description="with friction: null, or why no driving torque moves the mechanism"
+    )
+    polygons: PolygonValues | None = Field(
+        None,
+        description="with the quantity 'polygons' (an extension): a linkage's velocity and "
+        "acceleration polygons, segment by segment, as /solution's 'polygons'",
     )
 
 
@@ -670,25 +696,6 @@ class MistakeModel(Open):
     title: str
     text: str
     values: dict[str, ValueModel]
-
-
-class SegmentValues(Open):
-    """One image segment B -> P of a link: v_P - v_B = velocity, a_P - a_B = tangential + normal."""
-
-    link: str
-    base: str
-    point: str
-    velocity: Vector = Field(description="omega x r_BP")
-    tangential: Vector = Field(description="alpha x r_BP")
-    normal: Vector = Field(description="-omega^2 r_BP, towards the base point")
-
-
-class PolygonValues(Open):
-    segments: list[SegmentValues] = Field(description="In the vector method's order")
-    sliding: list[list[str | int]] = Field(
-        description="Paths in results of the joints and moving points with a Coriolis part "
-        '(["joints", 0], ["moving_points", "M"]), in the order the solution takes them up'
-    )
 
 
 class SolutionResponse(Open):

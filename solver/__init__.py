@@ -48,13 +48,14 @@ from solver.errors import (
     NotAssemblable,
     SingularConfiguration,
 )
-from solver.model.quantities import Quantity
+from solver.model.quantities import InstantQuantity, Quantity
 from solver.solutions import Method
 from solver.synthesis import SynthesisResult
 
 __all__ = [
     "AnalysisResult",
     "EventResult",
+    "InstantQuantity",
     "InvalidExpression",
     "InvalidScene",
     "KinematicsError",

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import warnings as python_warnings
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from solver import solutions as worked
@@ -43,7 +43,12 @@ from solver.gears import (
     sweep_gear_train,
 )
 from solver.kinematics.spatial import SpatialChain, analyze_spatial_chain, parse_spatial_chain
-from solver.model.quantities import DYNAMIC_QUANTITIES, QUANTITIES, normalise_quantities
+from solver.model.quantities import (
+    DYNAMIC_QUANTITIES,
+    POLYGONS,
+    QUANTITIES,
+    normalise_quantities,
+)
 from solver.model.scene import LinkageScene, parse_linkage, unknown_keys
 from solver.solutions.polygons import polygons
 from solver.solutions.solve import vector_method_steps
@@ -52,6 +57,9 @@ from solver.synthesis import SynthesisResult
 from solver.synthesis import synthesize as synthesize_task
 
 Scene = LinkageScene | SpatialChain | CamScene | GearTrainScene
+# The digits of the vector method's steps that /analyze's polygons follow: the segments are the
+# analysis' numbers and the steps are read for their order only, which no digit count changes.
+POLYGON_DIGITS = 4
 
 
 class SceneWarning(UserWarning):
@@ -138,19 +146,23 @@ def analyze(
     """One instant (POST /analyze): the linkage at its drivers' angles (drawn, ``angle_deg``, or
     ``angle_law`` at ``time``), the spatial chain, or the cam at cam angle ``angle_deg``
     (default 0; docs/CAMS.md). ``quantities``: any of position, velocity, acceleration, poles,
-    components (default: all); only those are computed (a cam answers all its fields).
+    components (default: all); only those are computed (a cam answers all its fields); a
+    linkage's ``polygons`` adds the polygons' segments as /solution's ``polygons`` gives them.
     ``tolerance``: a Newton group's residual relative to the scene size (1e-15 to 1e-6, default
     1e-13). A gear train answers its speeds whatever the quantities, and with ``input_torque``
     (N m on inputs) every member's torque (docs/GEARS.md). ``statics`` (with ``forces``): the
     static force analysis, the masses counting only through their weight (docs/DYNAMICS.md)."""
     parsed, found = _scene(scene, strict)
+    quantities = None if quantities is None else tuple(quantities)
+    if POLYGONS in (quantities or ()) and not isinstance(parsed, LinkageScene):
+        raise InvalidScene("quantities: polygons are drawn for a planar linkage (kind 'linkage')")
     if isinstance(parsed, GearTrainScene):
         if statics:
             raise InvalidScene("statics: a gear_train's torques are static already (input_torque)")
         return analyze_gear_train(parsed, input_torque, found)
     if input_torque is not None:
         raise InvalidScene("input_torque: a torque on an input is given for a gear_train")
-    wanted = normalise_quantities(quantities)
+    wanted = normalise_quantities(quantities, instant=True)
     _statics(statics, wanted)
     if isinstance(parsed, CamScene):
         _no_dynamics(wanted)
@@ -162,8 +174,16 @@ def analyze(
             "drivers[].angle_deg"
         )
     if isinstance(parsed, LinkageScene):
-        result = instant.analyze(parsed, wanted, tolerance)
-        body = add_instant_dynamics(results.analysis_body(result, found), parsed, result, statics)
+        if POLYGONS not in wanted:
+            result = instant.analyze(parsed, wanted, tolerance)
+            body = results.analysis_body(result, found)
+        else:  # the polygons follow the vector method's steps, written from the whole analysis
+            result = instant.analyze(parsed, wanted - {POLYGONS} | set(QUANTITIES), tolerance)
+            steps = vector_method_steps(parsed, result, POLYGON_DIGITS)
+            result = replace(result, quantities=wanted - {POLYGONS})  # the body: those asked
+            body = results.analysis_body(result, found)
+            body[POLYGONS] = polygons(parsed, result, steps)
+        body = add_instant_dynamics(body, parsed, result, statics)
         return AnalysisResult(_kind("linkage", body))
     _no_dynamics(wanted)
     body = results.spatial_body(analyze_spatial_chain(parsed), wanted, found)

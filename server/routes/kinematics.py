@@ -21,6 +21,7 @@ from server.schemas import (
     SweepRequest,
 )
 from server.workers import WorkerRoute, front_check
+from solver.analysis.work_estimate import SOLUTION_COST
 from solver.cams import CamScene
 from solver.model.scene import LinkageScene
 
@@ -33,7 +34,10 @@ router = APIRouter(
 
 
 def analyze_cost(request: AnalyzeRequest) -> float:
-    return budget.read_instant(request.scene, request.strict, "/api/v1/analyze")
+    """The instant, and with ``polygons`` the writing of the vector method's steps they follow
+    (counted as a solution's writing)."""
+    extra = SOLUTION_COST if "polygons" in (request.quantities or ()) else 0.0
+    return budget.read_instant(request.scene, request.strict, "/api/v1/analyze", extra)
 
 
 @router.post(

@@ -1,6 +1,6 @@
 // labels.js: labels of a Plotly polygon placed so that no two overlap and few sit on a line.
 //
-// After Plotly has laid the figure out (equal axis scales, its own ranges), each label is tried
+// On the figure's frame (its axes' ranges, at equal scales, and its plot area), each label is tried
 // at growing distances in eight directions around its anchor (the tip it names); the position
 // with the least cost wins: overlapping a label already placed costs most, then leaving the plot
 // area, then crossing a drawn line (arrows, images, ticks are lines), then distance. Labels are
@@ -40,16 +40,64 @@ function segmentsOf(traces, toPx) {
   return out;
 }
 
+// ---- the plot area a figure is drawn in ---------------------------------------------------------
+// A figure whose axes' ranges are given (not autoranged) maps data to pixels linearly: its labels
+// can be placed before it is drawn, so that Plotly draws it once (not once to learn its scale and
+// again with its labels). The plot area is known from the div's earlier drawings: the same size
+// and the same legend (which takes its own room: one per mechanism) give the same area.
+
+const areas = new WeakMap(); // div -> Map(legend -> {width, height, w, h}) of its drawings
+
+/** The legend a figure's traces make (their names, in order). */
+const legendOf = (traces) => traces.filter((t) => t.showlegend !== false).map((t) => t.name).join('\n');
+
+/** The plot area {w, h} (px) `traces` will get in `div`, when an earlier drawing tells (else null). */
+export function knownArea(div, traces) {
+  const seen = areas.get(div)?.get(legendOf(traces));
+  const same = seen && seen.width === div.clientWidth && seen.height === div.clientHeight;
+  return same ? { w: seen.w, h: seen.h } : null;
+}
+
+/** The plot area {w, h} (px) of the drawn `div` (kept for knownArea), or null before a drawing. */
+export function drawnArea(div, traces) {
+  const size = div._fullLayout?._size;
+  if (!size) return null;
+  if (!areas.has(div)) areas.set(div, new Map());
+  areas.get(div).set(legendOf(traces), { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h });
+  return { w: size.w, h: size.h };
+}
+
+/** Whether two plot areas are the same to half a pixel. */
+export const sameArea = (a, b) => !!a && !!b && Math.abs(a.w - b.w) < 0.5 && Math.abs(a.h - b.h) < 0.5;
+
 /**
- * Annotations for `entries` = [{at: [x, y], text, colour}] on the laid-out Plotly `div`.
- * Returns [] when the figure has no axes yet.
+ * Ranges {x, y} that show every point of `traces` and the pole (0, 0) in a plot area `area`
+ * ({w, h} px) at equal scales, at least `pad` px from its edges, centred (a figure of one point:
+ * 1 unit across).
  */
-export function placeLabels(div, entries, traces) {
-  const xa = div._fullLayout?.xaxis;
-  const ya = div._fullLayout?.yaxis;
-  if (!xa?.l2p || !ya?.l2p) return [];
-  const toPx = ([x, y]) => [xa.l2p(x), ya.l2p(y)];
-  const area = { x0: 0, y0: 0, x1: xa._length, y1: ya._length };
+export function equalRanges(traces, area, pad) {
+  let [x0, x1, y0, y1] = [Infinity, -Infinity, Infinity, -Infinity];
+  const take = (x, y) => {
+    if (x === null || y === null || x === undefined || y === undefined) return;
+    x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
+  };
+  take(0, 0);
+  for (const t of traces) for (let i = 0; i < (t.x?.length || 0); i++) take(t.x[i], t.y[i]);
+  const span = Math.max(x1 - x0, y1 - y0);
+  // Pixels per unit that fit `extent` into `px` less the pads (a figure of one point: 1 unit).
+  const fit = (extent, px) => Math.max(px - 2 * pad, px / 2) / (span > 0 ? Math.max(extent, 1e-9 * span) : 1);
+  const k = Math.min(fit(x1 - x0, area.w), fit(y1 - y0, area.h));
+  const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
+  return { x: [cx - area.w / (2 * k), cx + area.w / (2 * k)], y: [cy - area.h / (2 * k), cy + area.h / (2 * k)] };
+}
+
+/**
+ * Annotations for `entries` = [{at: [x, y], text, colour}] on a figure drawn in the frame
+ * `frame`: {x, y} the ranges of its linear axes, {w, h} its plot area (px).
+ */
+export function placeLabels(frame, entries, traces) {
+  const toPx = ([x, y]) => [(frame.w * (x - frame.x[0])) / (frame.x[1] - frame.x[0]), (frame.h * (frame.y[1] - y)) / (frame.y[1] - frame.y[0])];
+  const area = { x0: 0, y0: 0, x1: frame.w, y1: frame.h };
   const segments = segmentsOf(traces, toPx);
   const placed = [];
   const out = [];

@@ -2,7 +2,8 @@
 //
 // Requests are made per decision, never per frame:
 //   geometry change (preset, dimension, driver, law) -> one /sweep for the whole cycle
-//   pause, drag end, slider, edit (debounced)         -> one /solution (it carries the analysis)
+//   pause, drag end, slider, edit (debounced)         -> one /analyze with the polygons, then
+//                                                       the /solution once the instant is drawn
 // The animation (requestAnimationFrame, time-based) only plays back the sweep it already has.
 
 import { afterPaint } from './playback.js';
@@ -37,6 +38,9 @@ const SAMPLES = 241;
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
 const DEBOUNCE_MS = 250; // analysis after the last slider/drag movement
 const QUANTITIES = ['position', 'velocity', 'acceleration'];
+// An instant as drawn: the /analyze body the worked solution carries as `results`, and the
+// polygons' segments (the extension `polygons`, docs/ARCHITECTURE.md).
+const INSTANT = ['position', 'velocity', 'acceleration', 'poles', 'components', 'polygons'];
 const FIRST_STEPS = 4; // worked-solution steps typeset before the page is given back (the rest follow)
 
 const $ = (id) => document.getElementById(id);
@@ -67,6 +71,7 @@ class App {
     this.firstFrame = false;
     this.lastTime = null;
     this.lastHash = null;
+    this.plotted = null;
   }
 
   async start() {
@@ -673,16 +678,18 @@ class App {
     for (const warning of track.warnings || []) messages.push(`Note: ${warning}.`);
     this.viewMessage(messages.join(' '));
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
-    // Draw the mechanism before Plotly lays out the cycle plots (~100 ms): first frame first.
-    // The instant is asked for before the plots are drawn, so that the server works on it while
-    // Plotly lays them out; the dynamics panel (a sweep of forces, figures under the fold) waits
-    // until the instant is shown.
+    // What is seen first comes first: the mechanism (this frame), then its instant (the drawing
+    // and the polygons), then, a frame after that is painted, the cycle plots (Plotly, ~100 ms)
+    // while the server writes the worked solution, and last the dynamics panel (a sweep of
+    // forces, figures under the fold).
     this.drawFrame();
     this.dirty = true;
     clearTimeout(this.analysisTimer);
-    const analysed = this.analyzeNow();
-    this.drawPlots();
-    Promise.all([analysed, plotlyReady()]).then(([, ok]) => ok && this.scene === scene && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
+    this.analyzeNow()
+      .then(() => afterPaint())
+      .then(() => this.scene === scene && this.drawPlots())
+      .then(() => plotlyReady())
+      .then((ok) => ok && this.scene === scene && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
     this.saveHash();
   }
 
@@ -779,7 +786,10 @@ class App {
     this.analysisTimer = setTimeout(() => this.analyzeNow(), delay);
   }
 
-  /** One request per pause: /solution carries the analysis (results), the polygons and the steps. */
+  /**
+   * One request per pause for what is drawn (/analyze with the polygons: the drawing, the
+   * polygons, the cursor), then the worked solution of the same instant once that is painted.
+   */
   async analyzeNow() {
     if (!this.scene) return;
     if (S.isSpatial(this.scene)) {
@@ -791,9 +801,9 @@ class App {
     const solutionSeq = this.solutionSeq;
     const u = this.u;
     const scene = this.instantScene(u);
-    let solution = null;
+    let answer = null;
     try {
-      solution = await api.solution(scene, this.method, 4);
+      answer = await api.analyze(scene, INSTANT);
     } catch (err) {
       if (seq !== this.analysisSeq) return;
       this.analysis = null;
@@ -803,11 +813,12 @@ class App {
       this.solutionFailed(err);
     }
     if (seq !== this.analysisSeq) return;
-    if (solution) {
-      this.analysis = solution.results;
-      this.polygons = solution.polygons;
+    if (answer) {
+      const { polygons: segments, ...results } = answer;
+      this.analysis = results;
+      this.polygons = segments;
       this.analysisU = u;
-      this.warnings(solution.warnings);
+      this.warnings(results.warnings);
       if (this.track.static) {
         // Without a sweep the picture is framed on the one pose the server placed.
         const frame = frameFromAnalysis(this.analysis);
@@ -815,18 +826,21 @@ class App {
         this.linkage.setScene(this.scene, this.track);
       }
       this.linkage.setAnalysis(this.analysis);
-      const polygons = this.drawPolygons();
+      const drawn = this.drawPolygons();
       this.mechanismFacts(this.analysis);
-      moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
       // Marked analysed once the polygons of this instant are being drawn (their details
       // "pending"), so that a detail marked done is never the previous instant's.
-      await polygons;
+      await drawn;
       if (seq !== this.analysisSeq) return; // a newer instant is being analysed
       $('linkage').dataset.analysed = String(this.instantValue(u));
       this.dirty = true; // the next frame draws this instant (its poles, vectors, readouts)
-      // The worked solution is typeset once the frame that shows the instant is painted.
-      await Promise.all([katexReady(), afterPaint()]);
-      if (solutionSeq === this.solutionSeq) this.showSolution(solution);
+      // The plots' cursor is moved, and the worked solution asked for and typeset, once the
+      // frame that shows the instant is painted (plots of a new geometry are drawn after it,
+      // with their cursor: commitPlanar).
+      await afterPaint();
+      if (seq !== this.analysisSeq) return;
+      if (this.plotted === this.track) moveCursor($('plots'), this.scene, this.track, this.instantValue(u), this.units);
+      if (solutionSeq === this.solutionSeq) this.requestSolution();
     }
     this.dirty = true;
     this.saveHash();
@@ -929,6 +943,7 @@ class App {
     const axis = this.controls.setAxisChoices(xAxes(this.scene, t), this.plot.axis);
     this.plot = { ...this.plot, quantity, axis };
     const { ok, facts } = renderPlots(div, this.scene, t, { links: this.plot.links, quantity, axis, units: this.units, cursor: this.analysisU === null ? null : this.instantValue(this.analysisU) });
+    this.plotted = t; // the cycle plotted (analyzeNow moves its cursor)
     $('plot-facts').replaceChildren(...facts.map((f) => Object.assign(document.createElement('li'), { textContent: f })));
     const have = available(t);
     this.plotsMessage(!ok ? 'The sweep has nothing to plot.' : !have.omega ? 'The server swept positions only: angular velocities and accelerations are not plotted.' : '');

@@ -11,7 +11,7 @@
 // detail's extent. The region is marked by a dashed box in the polygon; both scales are written
 // as "1 cm = …" (a CSS centimetre, 96/2.54 px), from the pixels per unit Plotly laid out.
 
-import { placeLabels } from './labels.js';
+import { placeLabels, knownArea, drawnArea, sameArea } from './labels.js';
 import { fmt, unitLabel } from './units.js';
 
 export const DETAIL_RULE = { negligible: 1e-3, short: 1 / 12, aspect: 5, sliver: 1 / 5, frame: 5 };
@@ -96,33 +96,52 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
     xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
     yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
   };
-  await P.react(detail, figure.traces, base, CONFIG);
+  // Drawn once, with its scale and labels, when its plot area is known from its last drawing;
+  // else once to learn the area first; and again if the area came out otherwise.
+  let area = knownArea(detail, figure.traces);
+  if (!area) {
+    await P.react(detail, figure.traces, base, CONFIG);
+    if (!current()) return;
+    area = drawnArea(detail, figure.traces);
+  }
+  let laid = detailLayout(base, region, area, figure, main, kind, units);
+  await P.react(detail, figure.traces, laid, CONFIG);
   if (!current()) return;
-  // Equal scales: the region centred in the plot area at the larger of the two fits' scales.
-  const { xaxis, yaxis } = detail._fullLayout;
-  const k = Math.min(xaxis._length / (region.x[1] - region.x[0]), yaxis._length / (region.y[1] - region.y[0]));
+  const drawn = drawnArea(detail, figure.traces);
+  if (!sameArea(area, drawn)) {
+    laid = detailLayout(base, region, drawn, figure, main, kind, units);
+    await P.react(detail, figure.traces, laid, CONFIG);
+    if (!current()) return;
+  }
+  const [x, y] = [laid.xaxis.range, laid.yaxis.range];
+  const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
+  await P.relayout(main, { shapes: [box] });
+  // Checked again: a newer drawing may have begun (and set "pending") while this one waited.
+  if (current()) main.dataset.detail = 'shown';
+}
+
+/**
+ * The detail's layout in a plot area `area` ({w, h} px): `region` centred at equal scales, the
+ * larger of the two fits' (k px per unit), its scale and the polygon's in the title, and the
+ * labels of the tips inside it.
+ */
+function detailLayout(base, region, area, figure, main, kind, units) {
+  const k = Math.min(area.w / (region.x[1] - region.x[0]), area.h / (region.y[1] - region.y[0]));
   const cx = (region.x[0] + region.x[1]) / 2;
   const cy = (region.y[0] + region.y[1]) / 2;
-  const x = [cx - xaxis._length / (2 * k), cx + xaxis._length / (2 * k)];
-  const y = [cy - yaxis._length / (2 * k), cy + yaxis._length / (2 * k)];
+  const x = [cx - area.w / (2 * k), cx + area.w / (2 * k)];
+  const y = [cy - area.h / (2 * k), cy + area.h / (2 * k)];
   const u = unitLabel(kind, units);
-  const laid = {
+  const inside = ([px, py]) => px >= x[0] && px <= x[1] && py >= y[0] && py <= y[1];
+  const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
+  return {
     ...base,
     title: {
       text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
       font: { size: 13 }, x: 0.02, xanchor: 'left',
     },
+    annotations: placeLabels({ x, y, ...area }, entries, figure.traces),
     xaxis: { ...base.xaxis, range: x },
     yaxis: { ...base.yaxis, range: y },
   };
-  await P.react(detail, figure.traces, laid, CONFIG);
-  if (!current()) return;
-  const inside = ([px, py]) => px >= x[0] && px <= x[1] && py >= y[0] && py <= y[1];
-  const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
-  await P.react(detail, figure.traces, { ...laid, annotations: placeLabels(detail, entries, figure.traces) }, CONFIG);
-  if (!current()) return;
-  const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
-  await P.relayout(main, { shapes: [box] });
-  // Checked again: a newer drawing may have begun (and set "pending") while this one waited.
-  if (current()) main.dataset.detail = 'shown';
 }

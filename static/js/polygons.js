@@ -17,7 +17,7 @@ import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
 import { imageName, pointName, POLYGON_POLE } from './notation.js';
-import { placeLabels } from './labels.js';
+import { placeLabels, knownArea, drawnArea, sameArea, equalRanges } from './labels.js';
 import { renderDetail } from './polygon-detail.js';
 
 const TINY = 1e-12;
@@ -287,36 +287,46 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
 
 /**
- * One polygon: its figure, then its labels, then (once they are painted) its detail, each step
- * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. A newer
- * drawing of the same div stops what is left of an older one, so a fast series of instants never
- * leaves one instant's labels or detail on another's polygon, nor marks a detail done too early.
+ * One polygon: its figure with its labels, then (once they are painted) its detail, each step
+ * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. The
+ * figure is drawn once with its labels when the plot area is known from the div's last drawing
+ * (labels.js, knownArea), else, the first time, once to learn it and again with the labels; and
+ * again if the area came out otherwise. A newer drawing of the same div stops what is left of an
+ * older one, so a fast series of instants never leaves one instant's labels or detail on
+ * another's polygon, nor marks a detail done too early.
  */
 function drawPolygon(P, div, figure, kind, units) {
   const turn = (turns.get(div) || 0) + 1;
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
   div.dataset.detail = 'pending';
-  P.react(div, figure.traces, figure.layout, CONFIG)
-    .then(() => current() && placeFigureLabels(P, div, figure))
+  const area = knownArea(div, figure.traces);
+  P.react(div, figure.traces, area ? labelled(figure, area) : figure.layout, CONFIG)
+    .then(() => {
+      const drawn = current() && drawnArea(div, figure.traces);
+      return drawn && !sameArea(area, drawn) && P.react(div, figure.traces, labelled(figure, drawn), CONFIG);
+    })
     .then(() => current() && afterPaint())
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 
-/** Labels of the tips and poles placed once Plotly has fixed the scale (labels.js). */
-function placeFigureLabels(P, div, figure) {
+const PAD = 24; // px between the outermost tip and the edge of the plot area (arrowheads)
+
+/**
+ * The layout of `figure` in a plot area `area` ({w, h} px): ranges that show it whole at equal
+ * scales (fixed: Plotly would otherwise widen them to fit the annotations, and a label's pixel
+ * offset would no longer match its neighbours'), and the labels of the tips and poles placed on
+ * them (labels.js).
+ */
+function labelled(figure, area) {
+  const { x, y } = equalRanges(figure.traces, area, PAD);
   const entries = figure.labels.map(([at, text, colour]) => ({ at, text, colour }));
-  const annotations = [...(figure.layout.annotations || []), ...placeLabels(div, entries, figure.traces)];
-  // Drawn again on the ranges the labels were placed on: Plotly would otherwise widen them to
-  // fit the annotations, and a label's pixel offset would no longer match its neighbours'.
-  const { xaxis, yaxis } = div._fullLayout;
-  const layout = {
+  return {
     ...figure.layout,
-    annotations,
-    xaxis: { ...figure.layout.xaxis, range: [...xaxis.range], autorange: false },
-    yaxis: { ...figure.layout.yaxis, range: [...yaxis.range], autorange: false },
+    annotations: [...(figure.layout.annotations || []), ...placeLabels({ x, y, ...area }, entries, figure.traces)],
+    xaxis: { ...figure.layout.xaxis, range: x, autorange: false },
+    yaxis: { ...figure.layout.yaxis, range: y, autorange: false },
   };
-  return P.react(div, figure.traces, layout, CONFIG);
 }
 
 /** The panel under a polygon that shows part of it at its own scale (polygon-detail.js). */

@@ -85,10 +85,7 @@ def test_slider_parts_are_labelled_and_listed(app: AppPage) -> None:
     the table's |a_C,Cor| is 2 |ω_guide| |v_C,rel| (1e-3 relative)."""
     app.open()
     page = app.page
-    page.select_option("#preset", "preset:quick_return")
-    page.wait_for_function(
-        "() => document.getElementById('preset').value === 'preset:quick_return'"
-    )
+    choose(app, "preset:quick_return")  # its drawing shown (the first instant may come before)
     page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
     pause_and_wait(page)
     page.wait_for_function(LABELS_PLACED, arg="acceleration-polygon")
@@ -165,8 +162,7 @@ def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_
     the pixels of every segment, in both directions (1 %); the two scales differ."""
     app.open()
     page = app.page
-    page.select_option("#preset", scene)
-    page.wait_for_function("(v) => document.getElementById('preset').value === v", arg=scene)
+    choose(app, scene)  # its drawing shown (the first instant may be analysed before that)
     page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
     pause_and_wait(page)
     set_instant(page, 0.35)
