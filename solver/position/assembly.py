@@ -17,7 +17,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TypeGuard
+from typing import cast
 
 import numpy as np
 import numpy.typing as npt
@@ -26,10 +26,8 @@ from scipy.optimize import brentq, minimize_scalar
 from solver.errors import LimitExceeded, NotAssemblable
 from solver.kinematics.rigid import (
     Array,
-    Columns,
     LinkMotion,
     PointMotion,
-    columns_of,
     link_from_two_points,
     repeat,
     rotate,
@@ -448,13 +446,6 @@ def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
     return DenseGrid(dense, index)
 
 
-def _two_branch(step: PlanStep) -> TypeGuard[DyadStep | LeverStep]:
-    """A lever, or a dyad with a circle among its loci (a pin in two slots has one solution)."""
-    if isinstance(step, DyadStep):
-        return any(isinstance(spec, CircleSpec) for spec in step.loci)
-    return isinstance(step, LeverStep)
-
-
 class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``).
 
@@ -490,8 +481,7 @@ class _Assembler:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
-        self.cols: dict[str, Columns] = {}  # (``columns``)
-        self.resting: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
+        self.resting_ids: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
         self.margin = np.ones(self.samples)
         self.converged = np.ones(self.samples, dtype=bool)
         self.gradient_sine = np.ones(self.samples)
@@ -515,17 +505,12 @@ class _Assembler:
     def two_point(self, step: TwoPointStep) -> None:
         """A link known from two of its known points (``rigid.link_from_two_points``)."""
         P, Q = self.points[step.first], self.points[step.second]
-        columns = self.columns(step.first), self.columns(step.second)
         P0, Q0 = self.scene.drawn(step.first), self.scene.drawn(step.second)
-        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns))
+        self.know(step.link, link_from_two_points(P0, Q0, P, Q, self.resting(step.first)))
 
-    def columns(self, point: str) -> Columns:
-        """A known point's motion column by column: views of its arrays (made once), plain
-        floats for a fixed point."""
-        found = self.cols.get(point)
-        if found is None:
-            found = self.cols[point] = columns_of(self.points[point])
-        return found
+    def resting(self, point: str) -> bool:
+        """Whether a known point is at rest by construction (fixed, or a driver's pivot)."""
+        return id(self.points[point]) in self.resting_ids
 
     def closed(self) -> Array:
         """Samples where every group so far closed (and every Newton group converged)."""
@@ -559,7 +544,7 @@ class _Assembler:
         else:
             zeros = np.zeros((self.samples, 2))
             anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
-            self.resting.add(id(anchor))
+            self.resting_ids.add(id(anchor))
         self.know(
             step.link,
             LinkMotion(
@@ -721,8 +706,7 @@ class _Assembler:
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
             drawn = self.scene.drawn(p)
             self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
-            self.cols[p] = Columns(float(drawn[0]), float(drawn[1]))
-            self.resting.add(id(self.points[p]))
+            self.resting_ids.add(id(self.points[p]))
         zeros = np.zeros(self.samples)
         anchor = ground.points[0]
         self.links[ground.name] = LinkMotion(
@@ -752,7 +736,7 @@ class _Assembler:
 
     def run(self, plan: Plan) -> Motion:
         self.steps = plan.steps
-        rated = self.rated
+        rated = self.rated(plan)
         if self.continuation and self.order == 0 and len(self.path) == 1 and rated:
             # The screens of groups measured from moving points need the pieces' rates: this run
             # computes velocities at unit rate of the moving driver (``sensitivities``), up to the
@@ -777,11 +761,12 @@ class _Assembler:
             self.flips,
         )
 
-    @property
-    def rated(self) -> list[int]:
+    @staticmethod
+    def rated(plan: Plan) -> list[int]:
         """The two-branch groups of the plan measured from points that do not turn with drivers
         alone (their ``reach`` is None): their screens need a velocity analysis."""
-        return [i for i, step in enumerate(self.steps) if _two_branch(step) and step.reach is None]
+        steps = cast("tuple[DyadStep | LeverStep, ...]", plan.steps)  # (at ``two_branch``)
+        return [i for i in plan.two_branch if steps[i].reach is None]
 
     def positions_only(self) -> tuple[dict[str, LinkMotion], dict[str, PointMotion]]:
         """The links and points as a run at order 0 gives them, from one that computed
@@ -790,7 +775,7 @@ class _Assembler:
         ground = self.links[self.scene.ground]
 
         def still(motion: PointMotion) -> PointMotion:
-            return motion if id(motion) in self.resting else PointMotion(motion.p)
+            return motion if id(motion) in self.resting_ids else PointMotion(motion.p)
 
         links = {
             name: link
@@ -825,7 +810,7 @@ class _Assembler:
 def follows_path(plan: Plan) -> bool:
     """Whether the continuation follows the path (then on a ``dense_grid`` where the drivers
     step too far): only a group with two branches, or a Newton group, depends on it."""
-    return any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
+    return bool(plan.two_branch) or not plan.closed_form
 
 
 def assemble(

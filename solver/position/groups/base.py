@@ -6,8 +6,7 @@ the samples (the smallest of its smooth pieces, with their rates: the branch sea
 them) and why it fails to close where m < 0; the ``Closure``'s ``place`` then solves it on a
 branch sign per sample, with velocities and accelerations up to ``order``, and gives what it
 made known (points or links) and the sine between its constraint gradients (0 at a dead centre).
-A group may read the points it needs column by column (``Known.columns``: no (N, 2) vector is
-built to be taken apart again). ``gradients`` gives those gradients at a pose in any arithmetic
+``gradients`` gives those gradients at a pose in any arithmetic
 (``polish`` reads the branch and the sine from them in 40 digits).
 """
 
@@ -17,7 +16,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
-from solver.kinematics.rigid import Array, Columns, LinkMotion, PointMotion
+from solver.kinematics.rigid import Array, LinkMotion, PointMotion
 from solver.position.groups.loci import Circle, Intersection, Locus, Piece, point_motion
 
 if TYPE_CHECKING:
@@ -54,8 +53,9 @@ class Known(Protocol):
     @property
     def points(self) -> Mapping[str, PointMotion]: ...
 
-    def columns(self, point: str) -> Columns:
-        """A known point's motion column by column (``Columns``)."""
+    def resting(self, point: str) -> bool:
+        """Whether a known point is at rest by construction (fixed, or a driver's pivot): its
+        velocity and acceleration are zeros."""
         ...
 
     @property
