@@ -103,7 +103,7 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
 
 def _like(factor: Column, vector: Array) -> Array:
     """An empty (..., 2) array for ``factor`` times ``vector`` (their shapes broadcast)."""
-    shape = np.shape(factor)
+    shape = factor.shape if isinstance(factor, np.ndarray) else ()
     if shape != vector.shape[:-1]:
         shape = np.broadcast_shapes(shape, vector.shape[:-1])
     return np.empty((*shape, 2))
@@ -183,28 +183,58 @@ def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array)
     return a_A + omega_cross(alpha, r_AB) + normal_acceleration(omega, r_AB)
 
 
+@dataclass(frozen=True)
+class Relative:
+    """A point Q seen from a point P over the samples: r = Q - P (N, 2), |r|^2 = r.r and, where
+    computed, v_rel = v_Q - v_P (N, 2)."""
+
+    r: Array
+    r2: Array
+    v: Array | None = None
+
+
+def relative(P: PointMotion, Q: PointMotion, resting: bool = False) -> Relative:
+    """r = Q - P, |r|^2 and v_rel = v_Q - v_P (v_Q itself where P is ``resting``: at rest, its
+    rates zeros; None without velocities)."""
+    r = Q.p - P.p
+    v = None
+    if P.v is not None and Q.v is not None:
+        v = Q.v if resting else Q.v - P.v
+    return Relative(r, dot(r, r), v)
+
+
+def direction(P0: Array, Q0: Array) -> float:
+    """angle(P0Q0) = atan2 of Q0 - P0: the direction of a link's drawn points."""
+    r0 = Q0 - P0
+    return float(np.arctan2(r0[1], r0[0]))
+
+
 def link_from_two_points(
-    P0: Array, Q0: Array, P: PointMotion, Q: PointMotion, resting: bool = False
+    P0: Array,
+    P: PointMotion,
+    Q: PointMotion,
+    drawn: float,
+    resting: bool = False,
+    seen: Relative | None = None,
 ) -> LinkMotion:
-    """The motion of a link from two of its points P, Q (drawn at P0, Q0; ``resting``: P at
-    rest, its rates zeros).
+    """The motion of a link from two of its points P, Q (P drawn at P0, the drawn direction
+    ``drawn`` = angle(P0Q0); ``resting``: P at rest, its rates zeros; ``seen``: Q seen from P
+    where known, ``relative``).
 
     theta = angle(PQ) - angle(P0Q0); omega = (r x v_rel) / |r|^2; alpha = (r x a_rel) / |r|^2,
     from v_rel = omega x r and a_rel = alpha x r - omega^2 r with r = Q - P (a_rel - 0 = a_rel:
     a point at rest is not subtracted).
     """
-    r = Q.p - P.p
-    rx, ry = r[:, 0], r[:, 1]
-    r0 = Q0 - P0
-    theta = np.arctan2(ry, rx) - np.arctan2(r0[1], r0[0])
-    r2 = dot(r, r)
+    if seen is None or (seen.v is None and P.v is not None and Q.v is not None):
+        seen = relative(P, Q, resting)
+    rx, ry = seen.r[:, 0], seen.r[:, 1]
+    theta = np.arctan2(ry, rx) - drawn
     omega = alpha = None
-    if P.v is not None and Q.v is not None:
-        v_rel = Q.v if resting else Q.v - P.v
-        omega = (rx * v_rel[:, 1] - ry * v_rel[:, 0]) / r2
+    if seen.v is not None:
+        omega = (rx * seen.v[:, 1] - ry * seen.v[:, 0]) / seen.r2
     if P.a is not None and Q.a is not None:
         a_rel = Q.a if resting else Q.a - P.a
-        alpha = (rx * a_rel[:, 1] - ry * a_rel[:, 0]) / r2
+        alpha = (rx * a_rel[:, 1] - ry * a_rel[:, 0]) / seen.r2
     return LinkMotion(P0, P, theta, omega, alpha)
 
 

@@ -11,6 +11,7 @@ import numpy as np
 from solver.kinematics.rigid import (
     Array,
     PointMotion,
+    Relative,
     dot,
     perp,
     scale,
@@ -113,15 +114,18 @@ class CircleCircle(DyadGroup):
         cut = chord(c2.p - c1.p, r1, r2)
         extended, folded = margin_pieces(cut.d, r1, r2)
         margin = np.minimum(extended, folded)
-        rates: tuple[Array | None, Array | None] = (None, None)
-        if c1.v is not None and c2.v is not None:
+
+        def pieces() -> tuple[Piece, ...]:
+            """The pieces with their rates -+ dd/du = -+ u.(v2 - v1) (None without velocities)."""
+            if c1.v is None or c2.v is None:
+                return ((extended, None), (folded, None))
             d_rate = dot(cut.u, c2.v - c1.v)
-            rates = (-d_rate, d_rate)
-        pieces: tuple[Piece, ...] = ((extended, rates[0]), (folded, rates[1]))
+            return ((extended, -d_rate), (folded, d_rate))
+
         message = failure(cut.d, margin, (first.center, second.center), (r1, r2), step.point)
         resting = known.resting(second.center)
 
-        def place(sign: Array, order: int) -> Placed:
+        def place(sign: Array | float, order: int) -> Placed:
             """X = C1 + a u + sign h (k x u), the drawn position at the drawn pose."""
             across = sign * root(cut.h2, r1**2)
             ux, uy = cut.u[:, 0], cut.u[:, 1]
@@ -129,8 +133,9 @@ class CircleCircle(DyadGroup):
             np.subtract(c1.p[:, 0] + ux * cut.a, uy * across, out=X[:, 0])
             np.add(c1.p[:, 1] + uy * cut.a, ux * across, out=X[:, 1])
             X[known.at_drawn] = known.drawn(step.point)
-            motion, sine = point_rates(X, c1, c2, order, resting)
-            return Placed(sine, points={step.point: motion})
+            motion, sine, seen = point_rates(X, c1, c2, order, resting)
+            relative = {(first.center, step.point): seen[0], (second.center, step.point): seen[1]}
+            return Placed(sine, points={step.point: motion}, relative=relative)
 
         return Closure(step.point, margin, pieces, message, True, place)
 
@@ -142,18 +147,19 @@ def _positive(x: Array) -> Array:
 
 def point_rates(
     X: Array, c1: PointMotion, c2: PointMotion, order: int, c2_resting: bool = False
-) -> tuple[PointMotion, Array]:
+) -> tuple[PointMotion, Array, tuple[Relative, Relative]]:
     """``loci.point_motion`` for two circles about C1, C2: G v_X = b and G a_X = b' by Cramer's
     rule, G = [X - C1; X - C2], b_i = (X - C_i).v_Ci, b'_i = (X - C_i).a_Ci - |v_X - v_Ci|^2,
     and the sine of the angle between the rows, |det G| / (|g1| |g2|); ``c2_resting``: C2 at
-    rest (v_X - v_C2 is v_X)."""
+    rest (v_X - v_C2 is v_X). With them, X seen from C1 and from C2 (``rigid.relative``: the
+    rows g_i, |g_i|^2 and, with accelerations, v_X - v_Ci)."""
     g1, g2 = X - c1.p, X - c2.p
     g1x, g1y, g2x, g2y = g1[:, 0], g1[:, 1], g2[:, 0], g2[:, 1]
     det = g1x * g2y - g1y * g2x
-    norms = np.sqrt(dot(g1, g1) * dot(g2, g2))
-    sine = np.abs(det) / _positive(norms)
+    squares = dot(g1, g1), dot(g2, g2)
+    sine = np.abs(det) / _positive(np.sqrt(squares[0] * squares[1]))
     if order < 1:
-        return PointMotion(X), sine
+        return PointMotion(X), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
     assert c1.v is not None and c2.v is not None
     if not det.all():
         det = np.where(det != 0.0, det, np.inf)
@@ -161,7 +167,7 @@ def point_rates(
     v = np.empty(X.shape)
     solve_2x2(*rows, (dot(g1, c1.v), dot(g2, c2.v)), det, (v[:, 0], v[:, 1]))
     if order < 2:
-        return PointMotion(X, v), sine
+        return PointMotion(X, v), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
     assert c1.a is not None and c2.a is not None
     w1 = v - c1.v
     w2 = v if c2_resting else v - c2.v
@@ -171,7 +177,8 @@ def point_rates(
     )
     a = np.empty(X.shape)
     solve_2x2(*rows, rhs, det, (a[:, 0], a[:, 1]))
-    return PointMotion(X, v, a), sine
+    seen = Relative(g1, squares[0], w1), Relative(g2, squares[1], w2)
+    return PointMotion(X, v, a), sine, seen
 
 
 GROUP = CircleCircle("RRR", circle_circle, two_branch=True)
