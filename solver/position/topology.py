@@ -91,7 +91,7 @@ class DyadStep:
     sign: float
     reach: tuple[Reach, ...] | None = None
 
-    @property
+    @cached_property
     def kind(self) -> str:
         """Its Assur group (``solver.position.groups``): RRR on two circles, RRP on a circle and
         a slot, PRP on two slots."""
