@@ -247,9 +247,9 @@ class _Driven:
         accelerations d2/d theta2 of the first driver's angle)."""
         n = turns.size
         first = (0.0, 1.0, 0.0) if unit else self.given[0]
-        rates = np.empty((2, n))  # (one array for both rates, filled row by row)
-        rates[0], rates[1] = first[1], first[2]
-        inputs = [DriverInput(turns, rates[0], rates[1])]
+        own = np.empty((2, n))  # (one array for both of its rates, filled row by row)
+        own[0], own[1] = first[1], first[2]
+        inputs = [DriverInput(turns, own[0], own[1])]
         for turn, omega, alpha in self.given[1:]:
             rates = (0.0, 0.0) if unit else (omega, alpha)
             inputs.append(DriverInput(np.full(n, turn), *(np.full(n, r) for r in rates)))
