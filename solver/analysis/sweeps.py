@@ -247,7 +247,9 @@ class _Driven:
         accelerations d2/d theta2 of the first driver's angle)."""
         n = turns.size
         first = (0.0, 1.0, 0.0) if unit else self.given[0]
-        inputs = [DriverInput(turns, np.full(n, first[1]), np.full(n, first[2]))]
+        own = np.empty((2, n))  # (one array for both of its rates, filled row by row)
+        own[0], own[1] = first[1], first[2]
+        inputs = [DriverInput(turns, own[0], own[1])]
         for turn, omega, alpha in self.given[1:]:
             rates = (0.0, 0.0) if unit else (omega, alpha)
             inputs.append(DriverInput(np.full(n, turn), *(np.full(n, r) for r in rates)))
@@ -358,7 +360,7 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
 
 def _revolution(samples: int, start: float, direction: float) -> Array:
     """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start)."""
-    return start + direction * 2.0 * math.pi * np.arange(samples + 1) / samples
+    return start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
 
 
 def _cycle(

@@ -7,7 +7,6 @@ quantity that was not asked for is ``None``: the solver computes only the reques
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,6 +21,11 @@ def cross(a: Array, b: Array) -> Array:
 
 
 def dot(a: Array, b: Array) -> Array:
+    """a . b = ax bx + ay by for planar vectors (of one shape: the products in one array
+    operation, then their sum)."""
+    if a.shape == b.shape:
+        products = a * b
+        return products[..., 0] + products[..., 1]
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
@@ -99,7 +103,7 @@ def rotate_by(vector: Array, cos: Array, sin: Array) -> Array:
 
 def _like(factor: Column, vector: Array) -> Array:
     """An empty (..., 2) array for ``factor`` times ``vector`` (their shapes broadcast)."""
-    shape = np.shape(factor)
+    shape = factor.shape if isinstance(factor, np.ndarray) else ()
     if shape != vector.shape[:-1]:
         shape = np.broadcast_shapes(shape, vector.shape[:-1])
     return np.empty((*shape, 2))
@@ -180,57 +184,57 @@ def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array)
 
 
 @dataclass(frozen=True)
-class Columns:
-    """A point's coordinates and rates column by column over the samples (x, y; vx, vy; ax, ay):
-    views of its (N, 2) arrays, plain floats for a fixed point (its rates 0.0), None for a rate
-    not computed."""
+class Relative:
+    """A point Q seen from a point P over the samples: r = Q - P (N, 2), |r|^2 = r.r and, where
+    computed, v_rel = v_Q - v_P (N, 2)."""
 
-    x: Column
-    y: Column
-    vx: Column | None = 0.0
-    vy: Column | None = 0.0
-    ax: Column | None = 0.0
-    ay: Column | None = 0.0
+    r: Array
+    r2: Array
+    v: Array | None = None
 
 
-def columns_of(motion: PointMotion) -> Columns:
-    """A point's motion column by column: views of its (N, 2) arrays."""
-    v, a = motion.v, motion.a
-    return Columns(
-        motion.p[:, 0],
-        motion.p[:, 1],
-        *((None, None) if v is None else (v[:, 0], v[:, 1])),
-        *((None, None) if a is None else (a[:, 0], a[:, 1])),
-    )
+def relative(P: PointMotion, Q: PointMotion, resting: bool = False) -> Relative:
+    """r = Q - P, |r|^2 and v_rel = v_Q - v_P (v_Q itself where P is ``resting``: at rest, its
+    rates zeros; None without velocities)."""
+    r = Q.p - P.p
+    v = None
+    if P.v is not None and Q.v is not None:
+        v = Q.v if resting else Q.v - P.v
+    return Relative(r, dot(r, r), v)
 
 
-def minus(a: Column, b: Column) -> Column:
-    """a - b column by column; a - (+0.0) is a exactly (a fixed point's rate), so not computed."""
-    if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0.0:
-        return a
-    return a - b
+def direction(P0: Array, Q0: Array) -> float:
+    """angle(P0Q0) = atan2 of Q0 - P0: the direction of a link's drawn points."""
+    r0 = Q0 - P0
+    return float(np.arctan2(r0[1], r0[0]))
 
 
 def link_from_two_points(
-    P0: Array, Q0: Array, P: PointMotion, Q: PointMotion, columns: tuple[Columns, Columns]
+    P0: Array,
+    P: PointMotion,
+    Q: PointMotion,
+    drawn: float,
+    resting: bool = False,
+    seen: Relative | None = None,
 ) -> LinkMotion:
-    """The motion of a link from two of its points P, Q (drawn at P0, Q0; ``columns``: theirs).
+    """The motion of a link from two of its points P, Q (P drawn at P0, the drawn direction
+    ``drawn`` = angle(P0Q0); ``resting``: P at rest, its rates zeros; ``seen``: Q seen from P
+    where known, ``relative``).
 
     theta = angle(PQ) - angle(P0Q0); omega = (r x v_rel) / |r|^2; alpha = (r x a_rel) / |r|^2,
-    from v_rel = omega x r and a_rel = alpha x r - omega^2 r with r = Q - P.
+    from v_rel = omega x r and a_rel = alpha x r - omega^2 r with r = Q - P (a_rel - 0 = a_rel:
+    a point at rest is not subtracted).
     """
-    (p, q), samples = columns, P.p.shape[0]
-    rx, ry = minus(q.x, p.x), minus(q.y, p.y)
-    if isinstance(rx, float) or isinstance(ry, float):  # two fixed points
-        rx, ry = np.full(samples, rx), np.full(samples, ry)
-    r0 = Q0 - P0
-    theta = np.arctan2(ry, rx) - np.arctan2(r0[1], r0[0])
-    r2 = rx * rx + ry * ry
+    if seen is None or (seen.v is None and P.v is not None and Q.v is not None):
+        seen = relative(P, Q, resting)
+    rx, ry = seen.r[:, 0], seen.r[:, 1]
+    theta = np.arctan2(ry, rx) - drawn
     omega = alpha = None
-    if not (p.vx is None or p.vy is None or q.vx is None or q.vy is None):
-        omega = (rx * minus(q.vy, p.vy) - ry * minus(q.vx, p.vx)) / r2
-    if not (p.ax is None or p.ay is None or q.ax is None or q.ay is None):
-        alpha = (rx * minus(q.ay, p.ay) - ry * minus(q.ax, p.ax)) / r2
+    if seen.v is not None:
+        omega = (rx * seen.v[:, 1] - ry * seen.v[:, 0]) / seen.r2
+    if P.a is not None and Q.a is not None:
+        a_rel = Q.a if resting else Q.a - P.a
+        alpha = (rx * a_rel[:, 1] - ry * a_rel[:, 0]) / seen.r2
     return LinkMotion(P0, P, theta, omega, alpha)
 
 

@@ -17,7 +17,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TypeGuard
+from typing import cast
 
 import numpy as np
 import numpy.typing as npt
@@ -26,10 +26,10 @@ from scipy.optimize import brentq, minimize_scalar
 from solver.errors import LimitExceeded, NotAssemblable
 from solver.kinematics.rigid import (
     Array,
-    Columns,
     LinkMotion,
     PointMotion,
-    columns_of,
+    Relative,
+    direction,
     link_from_two_points,
     repeat,
     rotate,
@@ -133,22 +133,27 @@ class Motion:
     def cut(self, part: slice | Array) -> Motion:
         """The same motion at the samples ``part`` only (a slice or sample indices; approaches,
         Newton reports and branch switches kept as found)."""
-
-        def take(a: Array | None) -> Array | None:
-            return None if a is None else a[part]
-
         cut: dict[int, PointMotion] = {}  # (a link's anchor is a point's motion: cut once)
 
         def point(m: PointMotion) -> PointMotion:
             found = cut.get(id(m))
             if found is None:
-                found = cut[id(m)] = PointMotion(m.p[part], take(m.v), take(m.a))
+                v, a = m.v, m.a
+                found = cut[id(m)] = PointMotion(
+                    m.p[part], None if v is None else v[part], None if a is None else a[part]
+                )
             return found
 
-        links = {
-            k: LinkMotion(m.anchor0, point(m.anchor), m.theta[part], take(m.omega), take(m.alpha))
-            for k, m in self.links.items()
-        }
+        links = {}
+        for k, m in self.links.items():
+            omega, alpha = m.omega, m.alpha
+            links[k] = LinkMotion(
+                m.anchor0,
+                point(m.anchor),
+                m.theta[part],
+                None if omega is None else omega[part],
+                None if alpha is None else alpha[part],
+            )
         return Motion(
             links,
             {k: point(m) for k, m in self.points.items()},
@@ -448,13 +453,6 @@ def dense_grid(inputs: Sequence[DriverInput]) -> DenseGrid | None:
     return DenseGrid(dense, index)
 
 
-def _two_branch(step: PlanStep) -> TypeGuard[DyadStep | LeverStep]:
-    """A lever, or a dyad with a circle among its loci (a pin in two slots has one solution)."""
-    if isinstance(step, DyadStep):
-        return any(isinstance(spec, CircleSpec) for spec in step.loci)
-    return isinstance(step, LeverStep)
-
-
 class _Assembler:
     """Runs one plan over one set of inputs (state lives only for the duration of ``run``).
 
@@ -490,19 +488,21 @@ class _Assembler:
             self.at_drawn &= given.theta == 0.0
         self.links: dict[str, LinkMotion] = {}
         self.points: dict[str, PointMotion] = {}
-        self.cols: dict[str, Columns] = {}  # (``columns``)
-        self.resting: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
-        self.margin = np.ones(self.samples)
+        self.relative: dict[tuple[str, str], Relative] = {}  # (``Placed.relative``)
+        self.resting_ids: set[int] = set()  # (ids of) the fixed points' and driver pivots' motions
+        # The smallest relative margin and gradient sine of the groups so far, per sample (1.0
+        # before the first group: ``per_sample``).
+        self.margin: Array | float = 1.0
         self.converged = np.ones(self.samples, dtype=bool)
-        self.gradient_sine = np.ones(self.samples)
+        self.gradient_sine: Array | float = 1.0
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
         self.steps: tuple[PlanStep, ...] = ()
         self.anchor = anchor
         self.flips: dict[int, tuple[float, list[float]]] = {}  # sign at sample 0, switches
-        self.sign_of: dict[int, Array] = {}  # each two-branch step's sign per sample
+        self.sign_of: dict[int, Array | float] = {}  # each two-branch step's sign per sample
         self.approaches: list[Approach] = []
-        self.last: tuple[loci.Piece, ...] = ()  # the last group's pieces of its margin
+        self.last: Callable[[], tuple[loci.Piece, ...]] = tuple  # the last group's pieces
         self.group_margins: dict[str, Array] = {}
 
     def know(self, link: str, motion: LinkMotion) -> None:
@@ -515,17 +515,20 @@ class _Assembler:
     def two_point(self, step: TwoPointStep) -> None:
         """A link known from two of its known points (``rigid.link_from_two_points``)."""
         P, Q = self.points[step.first], self.points[step.second]
-        columns = self.columns(step.first), self.columns(step.second)
-        P0, Q0 = self.scene.drawn(step.first), self.scene.drawn(step.second)
-        self.know(step.link, link_from_two_points(P0, Q0, P, Q, columns))
+        P0 = self.scene.drawn(step.first)
+        directions = self.scene.memo.setdefault("directions", {})  # (of the drawn pose: once)
+        drawn = directions.get((step.first, step.second))
+        if drawn is None:
+            drawn = directions[step.first, step.second] = direction(
+                P0, self.scene.drawn(step.second)
+            )
+        seen = self.relative.get((step.first, step.second))
+        motion = link_from_two_points(P0, P, Q, drawn, self.resting(step.first), seen)
+        self.know(step.link, motion)
 
-    def columns(self, point: str) -> Columns:
-        """A known point's motion column by column: views of its arrays (made once), plain
-        floats for a fixed point."""
-        found = self.cols.get(point)
-        if found is None:
-            found = self.cols[point] = columns_of(self.points[point])
-        return found
+    def resting(self, point: str) -> bool:
+        """Whether a known point is at rest by construction (fixed, or a driver's pivot)."""
+        return id(self.points[point]) in self.resting_ids
 
     def closed(self) -> Array:
         """Samples where every group so far closed (and every Newton group converged)."""
@@ -559,7 +562,7 @@ class _Assembler:
         else:
             zeros = np.zeros((self.samples, 2))
             anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
-            self.resting.add(id(anchor))
+            self.resting_ids.add(id(anchor))
         self.know(
             step.link,
             LinkMotion(
@@ -582,11 +585,12 @@ class _Assembler:
         point: str,
         drawn: float,
         margin: Array,
-        pieces: tuple[loci.Piece, ...],
-    ) -> Array:
+        pieces: Callable[[], tuple[loci.Piece, ...]],
+    ) -> Array | float:
         """The branch sign per sample: the drawn one, switched after every closest approach
-        between samples where the two branches meet within rounding (a change point)."""
-        sign = np.full(self.samples, self.signs.get(index, drawn))
+        between samples where the two branches meet within rounding (a change point); one sign
+        for every sample where it does not switch."""
+        sign: Array | float = self.signs.get(index, drawn)
         if not self.continuation:
             return sign
         size = self.scene.size
@@ -597,27 +601,38 @@ class _Assembler:
                 continue
             self.approaches.append(approach)
             if abs(approach.margin) <= loci.COINCIDENCE_TOLERANCE * size:
+                if not switches:  # (one sign per sample from here on, a copy)
+                    sign = np.full(self.samples, sign)
                 switches.append(approach.at)
+                assert isinstance(sign, np.ndarray)
                 sign[math.floor(approach.at) + 1 :] *= -1.0
-        if sign[self.anchor] != drawn:  # the drawn branch holds at the anchor sample
-            sign *= -1.0
-        self.flips[index] = (float(sign[0]), switches)
+        at_anchor = sign if isinstance(sign, float) else sign[self.anchor]
+        if at_anchor != drawn:  # the drawn branch holds at the anchor sample
+            sign = -sign
+        self.flips[index] = (float(sign if isinstance(sign, float) else sign[0]), switches)
         self.sign_of[index] = sign
         return sign
 
     def candidates(
-        self, index: int, step: DyadStep | LeverStep, margin: Array, pieces: tuple[loci.Piece, ...]
+        self,
+        index: int,
+        step: DyadStep | LeverStep,
+        margin: Array,
+        pieces: Callable[[], tuple[loci.Piece, ...]],
     ) -> list[tuple[int, int]]:
         """The intervals and pieces where group ``index``'s margin may dip below the warning
         threshold (``screen``); none where it is measured between points that turn with drivers
         and its Lipschitz bound clears the threshold (``lipschitz_clear``)."""
         size = self.scene.size
-        if not (self.path and pieces) or (
+        if not self.path or (
             step.reach is not None and lipschitz_clear(margin, step.reach, self.path, size)
         ):
             return []
-        sensitivities = [self.sensitivities(index, driver, pieces) for driver, _, _ in self.path]
-        values = [values for values, _ in pieces]
+        found = pieces()  # (their rates computed only here)
+        if not found:
+            return []
+        sensitivities = [self.sensitivities(index, driver, found) for driver, _, _ in self.path]
+        values = [values for values, _ in found]
         return screen(margin, values, sensitivities, self.path, size, self.closed())
 
     def sensitivities(self, index: int, driver: int, pieces: tuple[loci.Piece, ...]) -> list[Array]:
@@ -632,7 +647,7 @@ class _Assembler:
                 newton_groups=self.newton_groups,
             )  # fmt: skip
             source.run_steps(self.steps[: index + 1])
-            pieces = source.last
+            pieces = source.last()
         omega = source.inputs[driver].omega
         out = []
         for _, rate in pieces:
@@ -654,9 +669,10 @@ class _Assembler:
             inputs = interpolated_inputs(self.inputs, k, x)
             probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
-            values, rate = probe.last[piece]
+            last = probe.last()
+            values, rate = last[piece]
             assert rate is not None
-            margin = min(float(other[0]) for other, _ in probe.last)
+            margin = min(float(other[0]) for other, _ in last)
             return float(values[0]), float(rate[0]), margin
 
         start, rate_low, _ = evaluate(0.0)
@@ -708,6 +724,7 @@ class _Assembler:
         placed = closure.place(sign, self.computed(index))
         self.gradient_sine = np.minimum(self.gradient_sine, placed.gradient_sine)
         self.points.update(placed.points)
+        self.relative.update(placed.relative)
         for link, motion in placed.links.items():
             self.know(link, motion)
 
@@ -721,8 +738,7 @@ class _Assembler:
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
             drawn = self.scene.drawn(p)
             self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
-            self.cols[p] = Columns(float(drawn[0]), float(drawn[1]))
-            self.resting.add(id(self.points[p]))
+            self.resting_ids.add(id(self.points[p]))
         zeros = np.zeros(self.samples)
         anchor = ground.points[0]
         self.links[ground.name] = LinkMotion(
@@ -752,7 +768,7 @@ class _Assembler:
 
     def run(self, plan: Plan) -> Motion:
         self.steps = plan.steps
-        rated = self.rated
+        rated = self.rated(plan)
         if self.continuation and self.order == 0 and len(self.path) == 1 and rated:
             # The screens of groups measured from moving points need the pieces' rates: this run
             # computes velocities at unit rate of the moving driver (``sensitivities``), up to the
@@ -766,9 +782,9 @@ class _Assembler:
         return Motion(
             links,
             points,
-            self.margin,
+            self.per_sample(self.margin),
             self.converged,
-            self.gradient_sine,
+            self.per_sample(self.gradient_sine),
             self.failures,
             self.reports,
             self.approaches,
@@ -777,11 +793,16 @@ class _Assembler:
             self.flips,
         )
 
-    @property
-    def rated(self) -> list[int]:
+    def per_sample(self, value: Array | float) -> Array:
+        """``value`` at every sample (1.0: no group has lowered it)."""
+        return value if isinstance(value, np.ndarray) else np.full(self.samples, value)
+
+    @staticmethod
+    def rated(plan: Plan) -> list[int]:
         """The two-branch groups of the plan measured from points that do not turn with drivers
         alone (their ``reach`` is None): their screens need a velocity analysis."""
-        return [i for i, step in enumerate(self.steps) if _two_branch(step) and step.reach is None]
+        steps = cast("tuple[DyadStep | LeverStep, ...]", plan.steps)  # (at ``two_branch``)
+        return [i for i in plan.two_branch if steps[i].reach is None]
 
     def positions_only(self) -> tuple[dict[str, LinkMotion], dict[str, PointMotion]]:
         """The links and points as a run at order 0 gives them, from one that computed
@@ -790,7 +811,7 @@ class _Assembler:
         ground = self.links[self.scene.ground]
 
         def still(motion: PointMotion) -> PointMotion:
-            return motion if id(motion) in self.resting else PointMotion(motion.p)
+            return motion if id(motion) in self.resting_ids else PointMotion(motion.p)
 
         links = {
             name: link
@@ -825,7 +846,7 @@ class _Assembler:
 def follows_path(plan: Plan) -> bool:
     """Whether the continuation follows the path (then on a ``dense_grid`` where the drivers
     step too far): only a group with two branches, or a Newton group, depends on it."""
-    return any(_two_branch(step) or isinstance(step, NewtonStep) for step in plan.steps)
+    return bool(plan.two_branch) or not plan.closed_form
 
 
 def assemble(

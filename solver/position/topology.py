@@ -11,6 +11,7 @@ its length margin is measured between, where drivers alone turn them (``Reach``)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from itertools import combinations
 from typing import Any, cast
 
@@ -90,7 +91,7 @@ class DyadStep:
     sign: float
     reach: tuple[Reach, ...] | None = None
 
-    @property
+    @cached_property
     def kind(self) -> str:
         """Its Assur group (``solver.position.groups``): RRR on two circles, RRP on a circle and
         a slot, PRP on two slots."""
@@ -150,9 +151,20 @@ class Plan:
 
     steps: tuple[PlanStep, ...]
 
-    @property
+    @cached_property
     def closed_form(self) -> bool:
         return not any(isinstance(step, NewtonStep) for step in self.steps)
+
+    @cached_property
+    def two_branch(self) -> tuple[int, ...]:
+        """The indices of its two-branch steps: a lever, or a dyad with a circle among its loci
+        (a pin in two slots has one solution)."""
+        return tuple(
+            i
+            for i, step in enumerate(self.steps)
+            if isinstance(step, LeverStep)
+            or (isinstance(step, DyadStep) and any(isinstance(s, CircleSpec) for s in step.loci))
+        )
 
 
 def _locus(spec: LocusSpec, scene: LinkageScene) -> loci.Locus:

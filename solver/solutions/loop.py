@@ -636,7 +636,7 @@ class LoopMethod:
         d = b.put("d", d_np, "m")
         b.check("sum", d, r_ground, f"-{r_crank}")
         # the position layer's RRR: circles about the rocker's pivot (a4) and the crank pin (a3)
-        cut = chord(-d_np[:1], -d_np[1:], b.scalar(a4), b.scalar(a3))
+        cut = chord(-d_np[None], b.scalar(a4), b.scalar(a3))
         d_len = b.put("|d|", float(cut.d[0]), "m")
         b.check("norm", d_len, d)
         cos_gamma = -float(cut.a[0]) / b.scalar(a4)

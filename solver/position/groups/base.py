@@ -6,8 +6,7 @@ the samples (the smallest of its smooth pieces, with their rates: the branch sea
 them) and why it fails to close where m < 0; the ``Closure``'s ``place`` then solves it on a
 branch sign per sample, with velocities and accelerations up to ``order``, and gives what it
 made known (points or links) and the sine between its constraint gradients (0 at a dead centre).
-A group may read the points it needs column by column (``Known.columns``: no (N, 2) vector is
-built to be taken apart again). ``gradients`` gives those gradients at a pose in any arithmetic
+``gradients`` gives those gradients at a pose in any arithmetic
 (``polish`` reads the branch and the sine from them in 40 digits).
 """
 
@@ -17,7 +16,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
-from solver.kinematics.rigid import Array, Columns, LinkMotion, PointMotion
+from solver.kinematics.rigid import Array, LinkMotion, PointMotion, Relative
 from solver.position.groups.loci import Circle, Intersection, Locus, Piece, point_motion
 
 if TYPE_CHECKING:
@@ -27,25 +26,29 @@ if TYPE_CHECKING:
 @dataclass(frozen=True)
 class Placed:
     """A group solved on its branches: the sine between its constraint gradients per sample,
-    and the points and links it made known."""
+    and the points and links it made known; ``relative``: a located point seen from a known
+    one, (known, located) -> ``rigid.Relative``, where the group computed it (a link through
+    both takes it instead of computing it again)."""
 
     gradient_sine: Array
     points: Mapping[str, PointMotion] = field(default_factory=dict)
     links: Mapping[str, LinkMotion] = field(default_factory=dict)
+    relative: Mapping[tuple[str, str], Relative] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
 class Closure:
     """A group at the samples before its branch is chosen: its margin m (metres) and smooth
-    ``pieces``, named by ``label`` (the point, or the slot, it locates); ``two_branch`` false
-    where it has one solution; ``place(sign, order)`` solves it on the branch ``sign``."""
+    ``pieces`` (made when called: only a branch screen needs their rates), named by ``label``
+    (the point, or the slot, it locates); ``two_branch`` false where it has one solution;
+    ``place(sign, order)`` solves it on the branch ``sign`` (one per sample, or one for all)."""
 
     label: str
     margin: Array
-    pieces: tuple[Piece, ...]
+    pieces: Callable[[], tuple[Piece, ...]]
     describe: Callable[[], str]
     two_branch: bool
-    place: Callable[[Array, int], Placed]
+    place: Callable[[Array | float, int], Placed]
 
 
 class Known(Protocol):
@@ -54,8 +57,9 @@ class Known(Protocol):
     @property
     def points(self) -> Mapping[str, PointMotion]: ...
 
-    def columns(self, point: str) -> Columns:
-        """A known point's motion column by column (``Columns``)."""
+    def resting(self, point: str) -> bool:
+        """Whether a known point is at rest by construction (fixed, or a driver's pivot): its
+        velocity and acceleration are zeros."""
         ...
 
     @property
@@ -120,10 +124,12 @@ class DyadGroup:
         circle_first = isinstance(first, Circle) or not isinstance(second, Circle)
         cut = self.intersect(*((first, second) if circle_first else (second, first)), step.point)
 
-        def place(sign: Array, order: int) -> Placed:
+        def place(sign: Array | float, order: int) -> Placed:
             X = cut.point(sign)
             X[known.at_drawn] = known.drawn(step.point)
             motion, sine = point_motion(first, second, X, order)
             return Placed(sine, points={step.point: motion})
 
-        return Closure(step.point, cut.margin, cut.pieces, cut.describe, self.two_branch, place)
+        return Closure(
+            step.point, cut.margin, lambda: cut.pieces, cut.describe, self.two_branch, place
+        )

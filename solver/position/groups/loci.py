@@ -127,7 +127,7 @@ class Intersection:
     def message(self) -> str:
         return self.describe()
 
-    def point(self, sign: Array) -> Array:
+    def point(self, sign: Array | float) -> Array:
         return self.base + scale(sign * self.h, self.offset)
 
 

@@ -42,7 +42,7 @@ def slotted_lever(
     pivot: PointMotion,
     pin: PointMotion,
     offset: float,
-    sign: Array,
+    sign: Array | float,
     order: int,
     known: tuple[Array, float] | None = None,
 ) -> LeverSolution:
@@ -91,7 +91,7 @@ class LeverGroup:
                 f"{abs(step.offset):.6g} m of the slot of '{step.link}' from its pivot {step.pivot}"
             )
 
-        def place(sign: Array, order: int) -> Placed:
+        def place(sign: Array | float, order: int) -> Placed:
             drawn = math.atan2(step.direction0[1], step.direction0[0])
             solution = slotted_lever(pivot, pin, step.offset, sign, order, (known.at_drawn, drawn))
             theta = solution.beta - drawn
@@ -99,7 +99,7 @@ class LeverGroup:
             return Placed(solution.gradient_sine, links={step.link: link})
 
         label = f"the slot of '{step.link}'"
-        return Closure(label, piece[0], (piece,), describe, True, place)
+        return Closure(label, piece[0], lambda: (piece,), describe, True, place)
 
     def gradients(self, step: LeverStep, where: Where, turning: Turning) -> None:
         """None: ``polish`` does not check a lever's branch (its restarts keep the dyads')."""

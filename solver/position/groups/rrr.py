@@ -10,10 +10,9 @@ import numpy as np
 
 from solver.kinematics.rigid import (
     Array,
-    Columns,
     PointMotion,
+    Relative,
     dot,
-    minus,
     perp,
     scale,
     solve_2x2,
@@ -27,27 +26,30 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Chord:
-    """The common chord of two circles, column by column over samples (``chord``)."""
+    """The common chord of two circles, column by column over samples (``chord``): ``u`` is
+    (N, 2), the others (N,)."""
 
     d: Array
-    ux: Array
-    uy: Array
+    u: Array
     a: Array
     h2: Array
 
 
-def chord(dx: Array, dy: Array, r1: float, r2: float) -> Chord:
+def chord(d_vec: Array, r1: float, r2: float) -> Chord:
     """RRR: d = |C1C2|, u = (C2 - C1) / d, a = (r1^2 - r2^2 + d^2) / 2d along C1C2 from C1,
-    h^2 = r1^2 - a^2 across it, from (dx, dy) = C2 - C1; coincident centres (d = 0) take
+    h^2 = r1^2 - a^2 across it, from ``d_vec`` = C2 - C1 (N, 2); coincident centres (d = 0) take
     u = (1, 0): any direction (every point of the circle fits). The RRR formula, once: the
-    intersection of two circles (``circle_circle``) and the group's columns (``GROUP``) use it."""
-    d = np.sqrt(dx * dx + dy * dy)
+    intersection of two circles (``circle_circle``) and the group's closure (``GROUP``) use it."""
+    squares = d_vec * d_vec
+    d = np.sqrt(squares[:, 0] + squares[:, 1])
     safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
-    ux, uy = dx / safe_d, dy / safe_d
+    u = np.empty(d_vec.shape)
+    np.divide(d_vec[:, 0], safe_d, out=u[:, 0])
+    np.divide(d_vec[:, 1], safe_d, out=u[:, 1])
     if safe_d is not d:
-        ux[d == 0.0], uy[d == 0.0] = 1.0, 0.0
+        u[d == 0.0] = (1.0, 0.0)
     a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
-    return Chord(d, ux, uy, a, r1**2 - a**2)
+    return Chord(d, u, a, r1**2 - a**2)
 
 
 def margin_pieces(d: Array, r1: float, r2: float) -> tuple[Array, Array]:
@@ -83,9 +85,8 @@ def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     Margin m = min(r1 + r2 - d, d - |r1 - r2|), the pieces' rates -+ dd/du = -+ u.(v2 - v1),
     u = (C2 - C1) / d.
     """
-    d_vec = c2.center.p - c1.center.p
-    cut = chord(d_vec[:, 0], d_vec[:, 1], c1.radius, c2.radius)
-    u = np.stack((cut.ux, cut.uy), axis=-1)
+    cut = chord(c2.center.p - c1.center.p, c1.radius, c2.radius)
+    u = cut.u
     extended, folded = margin_pieces(cut.d, c1.radius, c2.radius)
     margin = np.minimum(extended, folded)
     rates: tuple[Array | None, Array | None] = (None, None)
@@ -101,38 +102,40 @@ def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
 
 @dataclass(frozen=True)
 class CircleCircle(DyadGroup):
-    """RRR on the columns of its centres (``Known.columns``): the same numbers as
-    ``circle_circle`` (x - y as x + (-y), a product by a negated factor as the negated product,
-    v - 0 as v: all exact in IEEE arithmetic) without building the (N, 2) vectors it takes
-    apart; its rates from the differentiated constraints (``point_rates``)."""
+    """RRR on the (N, 2) arrays of its centres' motions: the same numbers as ``circle_circle``
+    (a centre at rest subtracted as its zeros, v - 0 = v exactly) with the x and y of a
+    difference in one array operation; its rates from the differentiated constraints
+    (``point_rates``)."""
 
     def close(self, step: DyadStep, known: Known) -> Closure:
         first, second = cast("tuple[CircleSpec, CircleSpec]", step.loci)  # (RRR)
-        c1, c2 = known.columns(first.center), known.columns(second.center)
+        c1, c2 = known.points[first.center], known.points[second.center]
         r1, r2 = first.radius, second.radius
-        dx, dy = minus(c2.x, c1.x), minus(c2.y, c1.y)
-        if isinstance(dx, float) or isinstance(dy, float):  # two fixed centres
-            samples = known.at_drawn.size
-            dx, dy = np.full(samples, dx), np.full(samples, dy)
-        cut = chord(dx, dy, r1, r2)
+        cut = chord(c2.p - c1.p, r1, r2)
         extended, folded = margin_pieces(cut.d, r1, r2)
         margin = np.minimum(extended, folded)
-        rates: tuple[Array | None, Array | None] = (None, None)
-        if not (c1.vx is None or c1.vy is None or c2.vx is None or c2.vy is None):
-            d_rate = cut.ux * minus(c2.vx, c1.vx) + cut.uy * minus(c2.vy, c1.vy)
-            rates = (-d_rate, d_rate)
-        pieces: tuple[Piece, ...] = ((extended, rates[0]), (folded, rates[1]))
-        message = failure(cut.d, margin, (first.center, second.center), (r1, r2), step.point)
 
-        def place(sign: Array, order: int) -> Placed:
+        def pieces() -> tuple[Piece, ...]:
+            """The pieces with their rates -+ dd/du = -+ u.(v2 - v1) (None without velocities)."""
+            if c1.v is None or c2.v is None:
+                return ((extended, None), (folded, None))
+            d_rate = dot(cut.u, c2.v - c1.v)
+            return ((extended, -d_rate), (folded, d_rate))
+
+        message = failure(cut.d, margin, (first.center, second.center), (r1, r2), step.point)
+        resting = known.resting(second.center)
+
+        def place(sign: Array | float, order: int) -> Placed:
             """X = C1 + a u + sign h (k x u), the drawn position at the drawn pose."""
             across = sign * root(cut.h2, r1**2)
+            ux, uy = cut.u[:, 0], cut.u[:, 1]
             X = np.empty((across.size, 2))
-            np.subtract(c1.x + cut.ux * cut.a, cut.uy * across, out=X[:, 0])
-            np.add(c1.y + cut.uy * cut.a, cut.ux * across, out=X[:, 1])
+            np.subtract(c1.p[:, 0] + ux * cut.a, uy * across, out=X[:, 0])
+            np.add(c1.p[:, 1] + uy * cut.a, ux * across, out=X[:, 1])
             X[known.at_drawn] = known.drawn(step.point)
-            motion, sine = point_rates(X, c1, c2, order)
-            return Placed(sine, points={step.point: motion})
+            motion, sine, seen = point_rates(X, c1, c2, order, resting)
+            relative = {(first.center, step.point): seen[0], (second.center, step.point): seen[1]}
+            return Placed(sine, points={step.point: motion}, relative=relative)
 
         return Closure(step.point, margin, pieces, message, True, place)
 
@@ -142,36 +145,40 @@ def _positive(x: Array) -> Array:
     return x if x.min() > 0.0 else np.where(x > 0.0, x, 1.0)
 
 
-def point_rates(X: Array, c1: Columns, c2: Columns, order: int) -> tuple[PointMotion, Array]:
-    """``loci.point_motion`` for two circles on columns: G v_X = b and G a_X = b' by Cramer's
+def point_rates(
+    X: Array, c1: PointMotion, c2: PointMotion, order: int, c2_resting: bool = False
+) -> tuple[PointMotion, Array, tuple[Relative, Relative]]:
+    """``loci.point_motion`` for two circles about C1, C2: G v_X = b and G a_X = b' by Cramer's
     rule, G = [X - C1; X - C2], b_i = (X - C_i).v_Ci, b'_i = (X - C_i).a_Ci - |v_X - v_Ci|^2,
-    and the sine of the angle between the rows, |det G| / (|g1| |g2|)."""
-    x, y = X[:, 0], X[:, 1]
-    g1x, g1y, g2x, g2y = minus(x, c1.x), minus(y, c1.y), minus(x, c2.x), minus(y, c2.y)
+    and the sine of the angle between the rows, |det G| / (|g1| |g2|); ``c2_resting``: C2 at
+    rest (v_X - v_C2 is v_X). With them, X seen from C1 and from C2 (``rigid.relative``: the
+    rows g_i, |g_i|^2 and, with accelerations, v_X - v_Ci)."""
+    g1, g2 = X - c1.p, X - c2.p
+    g1x, g1y, g2x, g2y = g1[:, 0], g1[:, 1], g2[:, 0], g2[:, 1]
     det = g1x * g2y - g1y * g2x
-    norms = np.sqrt((g1x * g1x + g1y * g1y) * (g2x * g2x + g2y * g2y))
-    sine = np.abs(det) / _positive(norms)
+    squares = dot(g1, g1), dot(g2, g2)
+    sine = np.abs(det) / _positive(np.sqrt(squares[0] * squares[1]))
     if order < 1:
-        return PointMotion(X), sine
-    assert c1.vx is not None and c1.vy is not None and c2.vx is not None and c2.vy is not None
-    if not np.all(det):
+        return PointMotion(X), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
+    assert c1.v is not None and c2.v is not None
+    if not det.all():
         det = np.where(det != 0.0, det, np.inf)
     rows = (g1x, g1y), (g2x, g2y)
     v = np.empty(X.shape)
-    rhs = (g1x * c1.vx + g1y * c1.vy, g2x * c2.vx + g2y * c2.vy)
-    solve_2x2(*rows, rhs, det, (v[:, 0], v[:, 1]))
+    solve_2x2(*rows, (dot(g1, c1.v), dot(g2, c2.v)), det, (v[:, 0], v[:, 1]))
     if order < 2:
-        return PointMotion(X, v), sine
-    assert c1.ax is not None and c1.ay is not None and c2.ax is not None and c2.ay is not None
-    w1x, w1y = minus(v[:, 0], c1.vx), minus(v[:, 1], c1.vy)
-    w2x, w2y = minus(v[:, 0], c2.vx), minus(v[:, 1], c2.vy)
+        return PointMotion(X, v), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
+    assert c1.a is not None and c2.a is not None
+    w1 = v - c1.v
+    w2 = v if c2_resting else v - c2.v
     rhs = (
-        (g1x * c1.ax + g1y * c1.ay) - (w1x * w1x + w1y * w1y),
-        (g2x * c2.ax + g2y * c2.ay) - (w2x * w2x + w2y * w2y),
+        dot(g1, c1.a) - dot(w1, w1),
+        dot(g2, c2.a) - dot(w2, w2),
     )
     a = np.empty(X.shape)
     solve_2x2(*rows, rhs, det, (a[:, 0], a[:, 1]))
-    return PointMotion(X, v, a), sine
+    seen = Relative(g1, squares[0], w1), Relative(g2, squares[1], w2)
+    return PointMotion(X, v, a), sine, seen
 
 
 GROUP = CircleCircle("RRR", circle_circle, two_branch=True)

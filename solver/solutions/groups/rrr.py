@@ -67,7 +67,7 @@ def triangle_values(
     r1 = b.value(f"|{c1}{x}|", first.radius, "m")
     r2 = b.value(f"|{c2}{x}|", second.radius, "m")
     dv = ctx.pos(c2) - ctx.pos(c1)
-    cut = chord(dv[:1], dv[1:], first.radius, second.radius)  # the position layer's RRR
+    cut = chord(dv[None], first.radius, second.radius)  # the position layer's RRR
     dk = b.value(f"r({c1},{c2})", dv, "m")
     d = b.value(f"|{c1}{c2}|", float(cut.d[0]), "m")
     b.check("sum", dk, p2, -p1)

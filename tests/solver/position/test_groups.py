@@ -49,7 +49,7 @@ def test_step_kind_follows_its_loci() -> None:
 
 def test_rrr_chord_is_the_intersection_of_the_circles() -> None:
     """A 3-4-5 triangle: centres 5 apart, radii 4 and 3: a = 3.2, h = 2.4 (|C1X| = 4)."""
-    cut = rrr.chord(np.array([5.0]), np.array([0.0]), 4.0, 3.0)
+    cut = rrr.chord(np.array([[5.0, 0.0]]), 4.0, 3.0)
     assert cut.d[0] == 5.0 and cut.a[0] == pytest.approx(3.2) and cut.h2[0] == pytest.approx(5.76)
     circles = [
         loci.Circle(PointMotion(np.array([c])), r, n, "link")
@@ -60,8 +60,8 @@ def test_rrr_chord_is_the_intersection_of_the_circles() -> None:
 
 
 def test_coincident_centres_take_any_direction() -> None:
-    cut = rrr.chord(np.array([0.0, 1.0]), np.array([0.0, 0.0]), 1.0, 1.0)
-    assert (cut.ux[0], cut.uy[0]) == (1.0, 0.0) and cut.ux[1] == 1.0
+    cut = rrr.chord(np.array([[0.0, 0.0], [1.0, 0.0]]), 1.0, 1.0)
+    assert tuple(cut.u[0]) == (1.0, 0.0) and cut.u[1, 0] == 1.0
 
 
 def test_one_2x2_solve_by_cramers_rule() -> None:

@@ -32,7 +32,7 @@ def test_the_triangle_takes_the_chord_of_the_position_layer_and_its_arithmetic_r
     DC = sqrt(1.25)), and every check of the step recomputes from its shown numbers."""
     solution = solution_of(example("S000-T1"))
     step = next(s for s in solution.steps if s.kind == "position.triangle")
-    cut = chord(np.array([2.5]), np.array([-1.0]), 2.0, float(np.sqrt(1.25)))
+    cut = chord(np.array([[2.5, -1.0]]), 2.0, float(np.sqrt(1.25)))
     assert step.values["cos gamma"].value == float(cut.a[0]) / 2.0
     assert step.values["|BD|"].value == float(cut.d[0])
     _check_solution(solution)
