@@ -11,8 +11,10 @@ numpy, scipy and sympy installed and no web framework; the in-process ``client``
 tests/server/conftest.py.
 
 tests/run.sh runs the suite in two processes (pytest-xdist, ``-n 2 --dist loadgroup``). Every
-test under tests/browser is one work unit (``BrowserTestsTogether``): one worker runs them all,
-with one Chromium, while the other runs the solver and API tests, then both share what is left.
+test module is one work unit, handed out heaviest first (``ModulesHeaviestFirst``): each worker
+runs browser modules with a Chromium of its own and its own live server, and both end on short
+solver modules.
+
 The tests marked ``serial`` (timed against servers of their own under load) are left out of that
 run with ``--serial=skip`` and run after it, alone, with ``--serial=only``: mark them with
 ``pytest.mark.serial`` written in their module (``pytestmark = pytest.mark.serial`` or a
@@ -39,29 +41,57 @@ SERVER_LOG = ROOT / "test-artifacts" / f"uvicorn-{WORKER}.log"
 # while the other jobs of a loaded 2-core machine run took more than serve_locally's 40 s.
 SERVER_START_TIMEOUT = 120.0
 BROWSER_TESTS = "tests/browser/"  # the start of their node ids (relative to the root)
+# A browser test takes about 20 times as long as the mean of the others (a CI run of main on
+# 2026-11-29: 147 browser tests in 774 s, the other 3466 in about 980 s of the 2 x 876 s), a test
+# marked slow about 40 times (10 s and more among that run's 80 slowest).
+BROWSER_WEIGHT = 20
+SLOW_WEIGHT = 40
 
 
-class BrowserTestsTogether(LoadGroupScheduling):  # type: ignore[misc]
-    """pytest-xdist's ``loadgroup`` scheduling (a test is a work unit, tests of one
-    ``xdist_group`` are one), with every browser test in one work unit, ``browser``.
+class ModulesHeaviestFirst(LoadGroupScheduling):  # type: ignore[misc]
+    """pytest-xdist's ``loadgroup`` scheduling with every test module one work unit (its
+    module-scoped fixtures, a venv or a server, are built once, by one worker) and the units
+    handed out heaviest first, so that the last ones to run are short and both workers end
+    together (``cost``).
 
     Done here rather than with ``xdist_group`` marks: pytest-xdist 3.8 groups by a suffix it
     writes into the node id (``...@browser``), which pytest 9.2's node ids no longer take, so the
     marks are silently ignored (pytest-dev/pytest-xdist#1386)."""
 
+    ordered = False
+
     def _split_scope(self, nodeid: str) -> str:
-        if nodeid.startswith(BROWSER_TESTS):
-            return "browser"
-        scope: str = super()._split_scope(nodeid)
-        return scope
+        return nodeid.split("::", 1)[0]
+
+    def _assign_work_unit(self, node: Any) -> None:
+        """Hand out the heaviest unit left (the queue is sorted once, before the first)."""
+        if not self.ordered:
+            queue = self.workqueue
+            for scope in sorted(queue, key=lambda s: -cost(s, len(queue[s]))):
+                queue.move_to_end(scope)
+            self.ordered = True
+        super()._assign_work_unit(node)
+
+
+def cost(module: str, tests: int) -> int:
+    """The expected time of running ``tests`` tests of ``module`` (its path from the root), in
+    units of a mean solver test: a browser test counts ``BROWSER_WEIGHT``, another test 1, and
+    every ``mark.slow`` written in the module ``SLOW_WEIGHT`` more (ModulesHeaviestFirst's
+    order; an estimate from the node ids and the module's text: the controller, which orders
+    the units, collects no test)."""
+    if module.startswith(BROWSER_TESTS):
+        return BROWSER_WEIGHT * tests
+    path = ROOT / module
+    slow = path.read_text().count("mark.slow") if path.suffix == ".py" else 0
+    return tests + SLOW_WEIGHT * slow
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
-    """``--dist loadgroup`` schedules with ``BrowserTestsTogether``; other modes are xdist's."""
+    """``--dist loadgroup`` schedules with ``ModulesHeaviestFirst``; other modes are xdist's."""
     if config.getvalue("dist") != "loadgroup":
         return None
-    return BrowserTestsTogether(config, log)
+    return ModulesHeaviestFirst(config, log)
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:

@@ -52,6 +52,21 @@ def browser() -> Iterator[Any]:
         pw.stop()
 
 
+# The axe-core rules that can only report minor or moderate violations: the rule's own impact,
+# where it states one, and that of every one of its checks is one of those (run in the page).
+MINOR_RULES = """() => {
+  const low = (impact) => impact === 'minor' || impact === 'moderate';
+  const checks = axe._audit.data.checks;
+  return axe._audit.rules
+    .filter((rule) => {
+      const ids = [...rule.any, ...rule.all, ...rule.none].map((c) => c.id || c);
+      return (rule.impact == null || low(rule.impact)) && ids.length > 0
+        && ids.every((id) => low(checks[id]?.impact));
+    })
+    .map((rule) => rule.id);
+}"""
+
+
 @dataclass
 class PageLog:
     """What one page did: console errors, uncaught errors, every URL it asked for."""
@@ -134,8 +149,20 @@ class AppPage:
     def serious_accessibility_violations(self, context: str | None = None) -> list[str]:
         """axe-core (the version bundled with axe-playwright-python, run in the page) on the
         page or the element ``context``: each serious or critical violation as "rule: node"
-        (empty when the page is clean)."""
-        results = Axe().run(self.page, context=context)
+        (empty when the page is clean).
+
+        The rules that can only find minor or moderate violations (``MINOR_RULES``: a
+        violation's impact is its worst failed check's) are left out: they never change the
+        answer, and leaving them out saves about a sixth of axe's time (CPU time of the page,
+        the app at 1440x900: 5.8 s against 6.1 to 8.2 s)."""
+        axe = Axe()
+        self.page.evaluate(axe.axe_script)
+        unheeded: list[str] = self.page.evaluate(MINOR_RULES)
+        options = {
+            "resultTypes": ["violations"],
+            "rules": {rule: {"enabled": False} for rule in unheeded},
+        }
+        results = axe.run(self.page, context=context, options=options)
         return [
             f"{violation['id']}: {node['target']}"
             for violation in results.response["violations"]

@@ -13,6 +13,7 @@ from tests.browser.test_app import pause_and_wait
 SIZES = [(1440, 900), (390, 844)]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), SIZES)
 def test_the_app_with_its_plots_and_its_worked_solution(
     app: AppPage, width: int, height: int
@@ -26,6 +27,7 @@ def test_the_app_with_its_plots_and_its_worked_solution(
     assert not app.serious_accessibility_violations()
 
 
+@pytest.mark.slow
 def test_the_printable_solution_page(app: AppPage) -> None:
     app.page.goto(f"{app.url}/api/v1/solution.html?preset=four_bar")
     app.page.wait_for_selector(".katex")

@@ -162,6 +162,7 @@ def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
     app.screenshot("cycle-plots", ".plots-panel")
 
 
+@pytest.mark.slow
 def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -197,6 +198,7 @@ def test_printable_page_opens_with_the_typeset_solution(app: AppPage) -> None:
 # ---- changing the mechanism ------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -273,6 +275,7 @@ def test_units_switch_changes_the_display_only(app: AppPage) -> None:
 # ---- share link ----------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -330,6 +333,7 @@ def test_share_link_restores_the_scene_and_the_view(app: AppPage) -> None:
 # ---- other kinds of scene --------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_spatial_chain_example_renders(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -548,6 +552,7 @@ def test_unparseable_input_is_marked_invalid_without_a_request(app: AppPage, tex
 # ---- one crank angle ---------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_the_slider_is_the_one_crank_angle(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -866,6 +871,7 @@ def unlabelled_parts(page: Any, div: str) -> dict[str, list[int]]:
     return {name: c for name, c in counts.items() if c[0] != c[1]}
 
 
+@pytest.mark.slow
 def test_no_two_polygon_labels_overlap_on_any_preset_or_seed_example(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -983,6 +989,7 @@ def drag(page: Any, selector: str, dx: float, dy: float) -> None:
     page.mouse.up()
 
 
+@pytest.mark.slow
 def test_dragging_a_joint_changes_the_geometry_and_the_analysis_and_undo_restores(
     app: AppPage,
 ) -> None:
@@ -1019,6 +1026,7 @@ def sheet_click(page: Any, x: float, y: float) -> None:
     page.mouse.click(box["x"] + (120 + 400 * x) * scale, box["y"] + (380 - 400 * y) * scale)
 
 
+@pytest.mark.slow
 def test_a_four_bar_drawn_from_scratch_analyses(app: AppPage) -> None:
     app.open()
     page = app.page

@@ -153,6 +153,7 @@ def layout_defects(page: Any) -> list[str]:
     return defects
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), VIEWPORTS)
 def test_no_panels_overlap_and_nothing_scrolls_sideways(
     app: AppPage, width: int, height: int

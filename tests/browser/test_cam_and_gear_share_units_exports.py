@@ -69,6 +69,7 @@ def share_url(page: Any) -> str:
     return url
 
 
+@pytest.mark.slow
 def test_a_cam_link_opens_the_same_edited_cam_at_the_same_angle(app: AppPage) -> None:
     page = open_cam(app)
     pause_cam_at(page, 100)
@@ -278,6 +279,7 @@ def test_gear_exports_are_accepted_back_by_the_server_and_the_page(
     assert set(table(page)) == set(omega)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("size", [(1440, 900), (1024, 768), (390, 844)])
 def test_the_topbar_tools_fit_with_a_cam_and_a_gear_train(
     app: AppPage, size: tuple[int, int]

@@ -132,6 +132,7 @@ def test_back_to_a_linkage(app: AppPage) -> None:
     assert not page.locator("#cam-app").is_visible()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     app: AppPage, width: int, height: int

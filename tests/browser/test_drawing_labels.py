@@ -86,6 +86,7 @@ def move_slider(page: Any, stop: int) -> str:
     return value
 
 
+@pytest.mark.slow
 def test_names_in_the_drawing_never_overlap(app: AppPage) -> None:
     app.open()
     page = app.page

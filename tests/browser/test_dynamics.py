@@ -80,6 +80,7 @@ def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) 
     app.screenshot("linkage-with-forces", "#linkage")
 
 
+@pytest.mark.slow
 def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -186,6 +187,7 @@ def test_statics_and_friction_toggle(app: AppPage) -> None:
     app.screenshot("dynamics-statics-friction")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_the_panel_with_statics_and_friction_fits_every_viewport(
     app: AppPage, width: int, height: int
@@ -218,6 +220,7 @@ def test_the_panel_with_statics_and_friction_fits_every_viewport(
     assert app.serious_accessibility_violations("#dynamics") == []
 
 
+@pytest.mark.slow
 def test_statics_is_a_method_of_the_worked_solution(app: AppPage) -> None:
     """The method selector offers the static force analysis: its equilibrium equations for each
     moving link, no inertia terms, and the choice kept in the shared link."""

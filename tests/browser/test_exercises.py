@@ -28,6 +28,7 @@ def export(app: AppPage, **body: Any) -> str:
         return text
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("with_solutions", [False, True])
 def test_the_printable_sheet_renders_from_disk_with_its_figures_and_formulas(
     app: AppPage, with_solutions: bool, tmp_path: Path

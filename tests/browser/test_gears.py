@@ -100,6 +100,7 @@ def test_a_field_edited_in_the_page_asks_the_server_again(app: AppPage) -> None:
     assert page.is_hidden("#gear-train")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_screens_and_accessibility(app: AppPage, width: int, height: int) -> None:
     app.page.set_viewport_size({"width": width, "height": height})

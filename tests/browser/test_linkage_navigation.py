@@ -309,6 +309,7 @@ def off_line(p: tuple[float, float], a: tuple[float, float], b: tuple[float, flo
     return abs(cross) / math.dist(a, b)
 
 
+@pytest.mark.slow
 def test_instant_centres_and_kennedys_line(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -377,6 +378,7 @@ def test_instant_centres_and_kennedys_line(app: AppPage) -> None:
     assert app.serious_accessibility_violations() == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_navigation_tools_fit_every_viewport(app: AppPage, width: int, height: int) -> None:
     app.page.set_viewport_size({"width": width, "height": height})

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import pytest
+
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import choose
 from tests.browser.test_cams import ROLLER
@@ -27,6 +29,7 @@ def noise(page: Any) -> list[str]:
     return [line for line in text.splitlines() if NOISE.search(line)]
 
 
+@pytest.mark.slow
 def test_no_view_prints_float_noise(app: AppPage) -> None:
     app.open()
     page = app.page

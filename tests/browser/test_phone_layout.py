@@ -32,6 +32,7 @@ def first_screen(page: Any, when: str) -> None:
     assert polygons[0] - view[1] < 30, (when, boxes)
 
 
+@pytest.mark.slow
 def test_on_a_phone_the_drawing_and_the_polygons_come_first(app: AppPage) -> None:
     page = app.page
     page.set_viewport_size({"width": 390, "height": 844})

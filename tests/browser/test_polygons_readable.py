@@ -229,6 +229,7 @@ def choose_figure(page: Any, div: str, fmt: str) -> None:
     page.select_option("#export-figure-format", fmt)
 
 
+@pytest.mark.slow
 def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None:
     """The quick-return at 35 % of the turn: its acceleration polygon has a detail panel. The
     polygon's PNG and SVG hold the polygon and, under it, each panel shown on the page: the PNG

@@ -58,6 +58,7 @@ def blocks(page: Any) -> list[dict[str, Any]]:
     return found
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (390, 844)])
 def test_long_formulas_break_into_lines_or_scroll_in_reach(
     app: AppPage, width: int, height: int

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import choose
@@ -182,6 +183,7 @@ def edit_field(page: Any, field: str, value: str) -> None:
     )
 
 
+@pytest.mark.slow
 def test_share_link_of_an_edited_chain_restores_time_and_fields(app: AppPage) -> None:
     """An edited arm (offset of joint 1 and length of body 3), paused at slider 400 of 1000
     (t = 0.4 T), shared: the link opens at the same instant, with the same fields, the same

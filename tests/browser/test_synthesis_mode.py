@@ -103,6 +103,7 @@ def centre(page: Any, selector: str) -> tuple[float, float]:
     return box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
 
 
+@pytest.mark.slow
 def test_three_typed_positions_give_a_linkage_whose_defects_are_shown(app: AppPage) -> None:
     page = open_designer(app)
     assert page.is_hidden("#linkage") and page.is_visible("#syn-linkage")
@@ -207,6 +208,7 @@ def test_dragging_a_position_or_moving_it_by_keyboard_updates_the_design(app: Ap
     assert page.get_attribute("#play", "aria-pressed") == "false"
 
 
+@pytest.mark.slow
 def test_a_refused_task_shows_the_servers_reason_next_to_the_fields(app: AppPage) -> None:
     app.log.allow("status of 422")
     page = open_designer(app)
@@ -327,6 +329,7 @@ def test_open_in_the_analyser_loads_the_design_as_a_shared_scene(app: AppPage) -
     assert page.locator("#linkage .link").count() == 3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("width", "height"), [(1440, 900), (1024, 768), (390, 844)])
 def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
     app: AppPage, width: int, height: int

@@ -273,6 +273,7 @@ def test_a_parsed_scene_carries_no_key_warnings() -> None:
 # --- a library without the web -------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_the_solver_tests_need_no_web_framework() -> None:
     """Collect tests/solver with the web packages made unimportable: nothing there needs them."""
     block = "; ".join(f"sys.modules[{name!r}] = None" for name in WEB)
