@@ -42,6 +42,7 @@ def small_texts(page: Any) -> list[dict[str, Any]]:
     return [t for t in texts if t["px"] < 11.0]
 
 
+@pytest.mark.slow
 def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
     app.page.set_viewport_size({"width": 1440, "height": 900})
     app.open()
