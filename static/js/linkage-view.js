@@ -80,9 +80,12 @@ export class LinkageView {
     this.noteMarks = []; // the boxes of the notes' lines and scale bars (viewBox px)
     this.installPointer();
     this.installZoom();
+    // A new size of the names (the drawing drawn at another width): every name measured again
+    // and placed anew; what the owner draws over the linkage (the designer's handles) stays.
     watchTextScale(svg, () => {
-      if (!this.scene) return;
-      this.rebuild();
+      if (!this.layers) return;
+      for (const label of this.labelNodes) label.size = measureLabel(label.node);
+      this.rebuildVectors();
       if (this.lastFrame) this.draw(this.lastFrame);
     });
   }
