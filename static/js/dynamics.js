@@ -383,7 +383,7 @@ export class DynamicsPanel {
       this.arrowNodes = s.joints.map((j) => ({
         joint: j,
         line: svgEl('line', { class: 'force-arrow', stroke: '#c0392b', 'stroke-width': 2.5, 'marker-end': this.head }, g),
-        label: svgEl('text', { class: 'force-label', fill: '#c0392b', 'font-size': 13 }, g),
+        label: svgEl('text', { class: 'force-label', fill: '#c0392b' }, g),
       }));
       this.arrowNodes.sweep = s;
       this.largest = Math.max(...s.joints.flatMap((j) => j.force.map(norm)), 1e-300);

@@ -82,7 +82,7 @@ export class LinkageView {
     this.installZoom();
     // A new size of the names (the drawing drawn at another width): every name measured again
     // and placed anew; what the owner draws over the linkage (the designer's handles) stays.
-    watchTextScale(svg, () => {
+    this.textScale = watchTextScale(svg, () => {
       if (!this.layers) return;
       for (const label of this.labelNodes) label.size = measureLabel(label.node);
       this.rebuildVectors();
@@ -180,6 +180,7 @@ export class LinkageView {
     const c = centre || [(fit.box[0] + fit.box[2]) / 2, (fit.box[1] + fit.box[3]) / 2];
     this.map = { ...fit, k, ox: WIDTH / 2 - (c[0] - fit.box[0]) * k, oy: fit.height / 2 - (c[1] - fit.box[1]) * k };
     this.svg.setAttribute('viewBox', `0 0 ${WIDTH} ${Math.round(this.map.height)}`);
+    this.textScale(false); // the names built next take the size for this viewBox
     this.svg.dataset.zoom = String(Number(scale.toFixed(4)));
   }
 

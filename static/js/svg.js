@@ -51,18 +51,19 @@ export function hatchPattern(defs, id, colour = '#6b7280') {
  * Names in a drawing stay readable however small the drawing is drawn: the CSS variable --px on
  * `svg` is kept at its viewBox units per screen pixel (app.css makes its names at least 11 screen
  * px with it), and `changed` is called when that changes (a label measured in viewBox units must
- * be measured again). Returns a function that updates it now.
+ * be measured again). Returns a function that updates it now, `changed` called or not (`notify`:
+ * a new viewBox whose names are about to be built need not be told).
  */
 export function watchTextScale(svg, changed = () => {}) {
-  const update = () => {
+  const update = (notify = true) => {
     const width = svg.getBoundingClientRect().width;
     const box = svg.viewBox.baseVal;
     if (!width || !box || !box.width) return;
     const px = (Math.ceil((1000 * box.width) / width) / 1000).toFixed(3); // up: never under
     if (svg.style.getPropertyValue('--px') === px) return;
     svg.style.setProperty('--px', px);
-    changed();
+    if (notify) changed();
   };
-  new ResizeObserver(update).observe(svg);
+  new ResizeObserver(() => update()).observe(svg);
   return update;
 }

@@ -1,5 +1,5 @@
-"""The texts of every figure at 1440 wide: none under 11 screen px (the mechanism's drawing and
-the balanced one beside the dynamics, the polar diagram, the spatial chain, the editor's sheet,
+"""The texts of every figure at 1440 wide: none under 11 screen px (the mechanism's drawing with
+its instant centres and joint forces, and the balanced one beside the dynamics, the polar diagram, the spatial chain, the editor's sheet,
 the designer's worked solution, the cam and the gear train with theirs), and points named by a
 Greek letter spelled out written as the letter, as the worked solution writes them (Γ, not
 Gamma). Real server, real CSP (conftest.app)."""
@@ -50,8 +50,12 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
     # Seed 004 with its dynamics and the balanced mechanism beside the polar diagram.
     choose(app, "preset:seed004")
     pause_and_wait(page)
+    page.check("#show-centres")
+    page.check("#dynamics-arrows")
     page.check("#dynamics-balance")
     page.wait_for_selector("#dynamics-balanced:not([hidden]) #balanced-linkage .link-label")
+    page.wait_for_selector("#linkage .centre-label")
+    page.wait_for_selector("#linkage .force-label")
     assert small_texts(page) == []
     point_labels = page.locator("#linkage .point-label").all_text_contents()
     assert "Γ" in point_labels and "Gamma" not in point_labels
