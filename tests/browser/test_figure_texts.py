@@ -1,8 +1,8 @@
 """The texts of every figure at 1440 wide: none under 11 screen px (the mechanism's drawing with
-its instant centres and joint forces, and the balanced one beside the dynamics, the polar diagram, the spatial chain, the editor's sheet,
-the designer's worked solution, the cam and the gear train with theirs), and points named by a
-Greek letter spelled out written as the letter, as the worked solution writes them (Γ, not
-Gamma). Real server, real CSP (conftest.app)."""
+its instant centres and joint forces, the balanced one beside the dynamics, the polar diagram,
+the spatial chain, the editor's sheet, the designer's worked solution, the cam and the gear
+train with theirs), and points named by a Greek letter spelled out written as the letter, as
+the worked solution writes them (Γ, not Gamma). Real server, real CSP (conftest.app)."""
 
 from __future__ import annotations
 
