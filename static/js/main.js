@@ -488,6 +488,7 @@ class App {
     }
     this.controls.acceptField(fieldKey, valueSI);
     onAccept?.();
+    $('linkage').dataset.edited = fieldKey; // the last edit accepted (for a reader, a test)
     return true;
   }
 
