@@ -53,6 +53,7 @@ class App {
     this.scene = null;
     this.track = null;
     this.u = 0;
+    this.asked = null; // the instant put at u, exactly ({track, u, value}: placeAt)
     this.direction = 1;
     this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
     this.speed = 1;
@@ -475,11 +476,15 @@ class App {
 
   // ---- edits: each one is validated by the server before it replaces what is shown ---------------
 
-  async edit(fieldKey, valueSI, makeScene, onAccept = null) {
+  /**
+   * `posed`: the scene comes from the server checked at the instant shown (a preset posed there,
+   * posedAtInstant), so that instant is asked for beside the sweep (loadScene).
+   */
+  async edit(fieldKey, valueSI, makeScene, onAccept = null, { posed = false } = {}) {
     const before = this.snapshot();
     try {
       const scene = await makeScene();
-      await this.loadScene(scene, { keepInstant: true });
+      await this.loadScene(scene, { keepInstant: true, posed });
       this.remember(before);
     } catch (err) {
       this.controls.showFieldError(fieldKey, err.detail || err.message, err.position);
@@ -494,11 +499,13 @@ class App {
 
   onParam(name, value) {
     const params = { ...this.source.params, [name]: value };
+    const posed = this.posedAtInstant(params);
     return this.edit(
       `param:${name}`,
       value,
-      async () => this.withDriverEdits(await api.buildPreset(this.source.name, this.posedAtInstant(params))),
+      async () => this.withDriverEdits(await api.buildPreset(this.source.name, posed)),
       () => { this.source = { ...this.source, params }; this.saveHash(); },
+      { posed: posed !== params },
     );
   }
 
@@ -551,7 +558,7 @@ class App {
     const meta = this.presets.get(this.source.name);
     const t = this.track;
     if (!meta?.parameters?.some((p) => p.name === POSE_PARAMETER) || !t || t.static || t.param !== 'angle') return params;
-    const deg = (valueAt(t, this.u) * 180) / Math.PI;
+    const deg = (this.instantValue() * 180) / Math.PI;
     return { ...params, [POSE_PARAMETER]: Number((((deg % 360) + 360) % 360).toFixed(6)) };
   }
 
@@ -566,13 +573,19 @@ class App {
 
   /**
    * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
-   * server's error (and leaves the page as it was) when the scene is not acceptable.
+   * server's error (and leaves the page as it was) when the scene is not acceptable. `posed`
+   * (with `keepInstant`): the scene was checked at the crank angle shown, so the analysis of that
+   * instant is asked for at once, beside the sweep: analyzeNow's identical request then shares
+   * its answer (api.js) instead of waiting for the sweep first.
    */
-  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false } = {}) {
+  async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false, posed = false } = {}) {
     const seq = ++this.geometrySeq;
-    const previous = keepInstant && this.track ? valueAt(this.track, this.u) : null;
+    const previous = keepInstant && this.track ? this.instantValue() : null;
     if (S.isSpatial(scene)) return this.loadSpatial(scene, seq, previous ?? instant, spatial);
     const timeDriven = S.isTimeDriven(scene);
+    if (posed && previous !== null && this.track.param === 'angle' && !timeDriven) {
+      api.analyze(S.sceneAt(scene, 'angle', previous), INSTANT).catch(() => {}); // its error is analyzeNow's
+    }
     let track;
     let note = null;
     try {
@@ -642,7 +655,7 @@ class App {
 
     const v = track.values;
     this.controls.setInstantRange(track.param, Math.min(v[0], v[v.length - 1]), Math.max(v[0], v[v.length - 1]), track.n > 1);
-    this.u = instant === null || instant === undefined ? 0 : indexOfValue(track, instant);
+    this.placeAt(instant ?? null);
     this.direction = 1;
     if (track.n < 2 && this.playing) {
       this.playing = false;
@@ -770,16 +783,32 @@ class App {
 
   // ---- the analysed instant -------------------------------------------------------------------
 
+  /**
+   * Put the instant at `value` (rad or s; null: the track's start): its fractional index u, and
+   * the value itself, kept exactly while u stays there (the track's interpolation at u differs
+   * from it in the last digits; an angle brought into the swept turn or a time clamped to the
+   * range is the track's own value).
+   */
+  placeAt(value) {
+    this.u = value === null ? 0 : indexOfValue(this.track, value);
+    const near = value === null ? null : valueAt(this.track, this.u);
+    this.asked = near !== null && Math.abs(near - value) <= 1e-9 * Math.max(1, Math.abs(value)) ? { track: this.track, u: this.u, value } : null;
+  }
+
+  /** The driver's angle (rad) or the time (s) at the fractional index u: the value put there
+   * (placeAt), else the track's interpolation. */
   instantValue(u = this.u) {
-    return this.track ? valueAt(this.track, u) : null;
+    if (!this.track) return null;
+    const asked = this.asked;
+    return asked && asked.track === this.track && asked.u === u ? asked.value : valueAt(this.track, u);
   }
 
   instantScene(u = this.u) {
     const t = this.track;
     if (!t) return this.scene;
-    if (t.param === 'time') return S.sceneAt(this.scene, 'time', valueAt(t, u));
+    if (t.param === 'time') return S.sceneAt(this.scene, 'time', this.instantValue(u));
     // A static track (no sweep) analyses the drawn pose itself.
-    return t.static ? this.scene : S.sceneAt(this.scene, 'angle', valueAt(t, u));
+    return t.static ? this.scene : S.sceneAt(this.scene, 'angle', this.instantValue(u));
   }
 
   scheduleAnalysis(delay = DEBOUNCE_MS) {
@@ -972,7 +1001,7 @@ class App {
   onInstant(valueSI, final) {
     if (!this.track || this.track.n < 2) return;
     if (this.playing) this.setPlaying(false, { analyse: false });
-    this.u = indexOfValue(this.track, valueSI);
+    this.placeAt(valueSI);
     this.dirty = true;
     this.scheduleAnalysis(final ? 0 : DEBOUNCE_MS);
   }
@@ -980,7 +1009,7 @@ class App {
   onDrag(linkAngle) {
     if (!this.track || this.track.param !== 'angle') return;
     if (this.playing) this.setPlaying(false, { analyse: false });
-    this.u = indexOfValue(this.track, linkAngle);
+    this.placeAt(linkAngle);
     this.dirty = true;
     this.scheduleAnalysis();
   }

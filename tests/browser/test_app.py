@@ -586,6 +586,33 @@ def test_the_slider_is_the_one_crank_angle(app: AppPage) -> None:
     assert scene["drivers"][0]["angle_deg"] % 360 == pytest.approx(angle, abs=1e-6)
 
 
+def test_an_edit_keeps_the_instant_exactly_and_asks_for_it_beside_the_sweep(
+    app: AppPage,
+) -> None:
+    """A length edited at a crank angle set on the slider: the new mechanism is analysed at that
+    very angle (not its interpolation in the new sweep, which differs in the last digits), and
+    the instant's one /analyze is sent at once, before the sweep has answered (the preset is
+    checked at that angle), not after it."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.focus("#crank-angle")
+    for _ in range(7):
+        page.keyboard.press("ArrowRight")
+    wait_analysed(page)
+    analysed = page.get_attribute("#linkage", "data-analysed")
+    events: list[str] = []
+    page.on("request", lambda r: events.append(f"ask {r.url.rsplit('/', 1)[-1]}"))
+    page.on("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
+    edit(page, "#f-param_crank", "0.051")
+    page.wait_for_function("() => document.getElementById('linkage').dataset.edited")
+    wait_analysed(page)
+    assert page.get_attribute("#linkage", "data-analysed") == analysed
+    asked = [e for e in events if e == "ask analyze"]
+    assert len(asked) == 1, events
+    assert events.index("ask analyze") < events.index("got sweep"), events
+
+
 # ---- layout ------------------------------------------------------------------------------------
 
 
