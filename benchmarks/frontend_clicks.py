@@ -19,6 +19,10 @@ after it (the frame that paints it):
   is it (its first steps typeset);
 - worked-solution tab: a click on the tab until its panel is shown with a typeset step.
 
+Then every linkage preset of the menu, each visited once from the one before (its first visit,
+nothing reused: the preset, its sweep and its instant fetched), and its worked-solution tab
+opened once its solution is in.
+
 The page reuses an answer it has already fetched (api.js), so an input seen before costs no
 request: the slider and the field are given a value not asked before at every input (each input
 pays the server), and the table gives, beside the median and the worst, the first input of each
@@ -148,6 +152,26 @@ def measure(
     return times
 
 
+# The menu's linkage presets (their values, ``preset:<name>``).
+PRESETS = """() => [...document.querySelectorAll('#preset option')]
+  .map((o) => o.value).filter((v) => v.startsWith('preset:'))"""
+
+
+def every_preset(page: Any) -> list[tuple[str, float, float]]:
+    """Each linkage preset of the menu visited once from the one before (its first visit: no
+    answer reused) and then, once its worked solution is in (``#steps[data-method]``, cleared
+    before the visit), the worked-solution tab opened: (preset, ms of the visit, ms of the tab)."""
+    rows = []
+    for value in page.evaluate(PRESETS):
+        page.evaluate("() => { delete document.getElementById('steps').dataset.method; }")
+        visit = float(page.evaluate(TIME_INPUT, ["preset", value]))
+        page.wait_for_function("() => document.getElementById('steps').dataset.method")
+        tab = float(page.evaluate(TIME_INPUT, ["tab", "tab-solution"]))
+        page.evaluate(TIME_INPUT, ["tab", "tab-plots"])
+        rows.append((value.removeprefix("preset:"), visit, tab))
+    return rows
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=7)
@@ -175,6 +199,8 @@ def main() -> None:
                 print(f"{label}: {err}", file=sys.stderr)
                 continue
             rows.append((label, statistics.median(times), max(times), times[0]))
+        page.evaluate(TIME_INPUT, ["tab", "tab-plots"])
+        presets = every_preset(page)
         browser.close()
     base = rows[0][1]
     load = os.getloadavg()[0]
@@ -189,6 +215,18 @@ def main() -> None:
     print("|---|---:|---:|")
     for label, median, worst, first in rows:
         print(f"| {label} | {median:.0f} / {worst:.0f} / {first:.0f} | {median - base:.0f} |")
+    print()
+    print("Every linkage preset of the menu, visited once from the one before (no answer reused):")
+    print()
+    print("| preset | ms to the drawn frame (first visit) | worked-solution tab, ms |")
+    print("|---|---:|---:|")
+    for name, visit, tab in presets:
+        print(f"| {name} | {visit:.0f} | {tab:.0f} |")
+    visits, tabs = [r[1] for r in presets], [r[2] for r in presets]
+    print(
+        f"| median / worst of {len(presets)} | {statistics.median(visits):.0f} / {max(visits):.0f}"
+        f" | {statistics.median(tabs):.0f} / {max(tabs):.0f} |"
+    )
 
 
 if __name__ == "__main__":
