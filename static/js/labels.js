@@ -44,16 +44,20 @@ function segmentsOf(traces, toPx) {
 // A figure whose axes' ranges are given (not autoranged) maps data to pixels linearly: its labels
 // can be placed before it is drawn, so that Plotly draws it once (not once to learn its scale and
 // again with its labels). The plot area is known from the div's earlier drawings: the same size
-// and the same legend (which takes its own room: one per mechanism) give the same area.
+// and the same legend (which takes its own room: one per mechanism) give the same area. A legend
+// not drawn before is taken to need the room of the div's last one (most fit in as many rows):
+// a guess, which the caller checks against the drawn area and draws again when it was wrong.
 
 const areas = new WeakMap(); // div -> Map(legend -> {width, height, w, h}) of its drawings
+const LAST = Symbol('the last drawing');
 
 /** The legend a figure's traces make (their names, in order). */
 const legendOf = (traces) => traces.filter((t) => t.showlegend !== false).map((t) => t.name).join('\n');
 
 /** The plot area {w, h} (px) `traces` will get in `div`, when an earlier drawing tells (else null). */
 export function knownArea(div, traces) {
-  const seen = areas.get(div)?.get(legendOf(traces));
+  const drawings = areas.get(div);
+  const seen = drawings?.get(legendOf(traces)) ?? drawings?.get(LAST);
   const same = seen && seen.width === div.clientWidth && seen.height === div.clientHeight;
   return same ? { w: seen.w, h: seen.h } : null;
 }
@@ -63,7 +67,8 @@ export function drawnArea(div, traces) {
   const size = div._fullLayout?._size;
   if (!size) return null;
   if (!areas.has(div)) areas.set(div, new Map());
-  areas.get(div).set(legendOf(traces), { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h });
+  const area = { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h };
+  areas.get(div).set(legendOf(traces), area).set(LAST, area);
   return { w: size.w, h: size.h };
 }
 

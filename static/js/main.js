@@ -573,23 +573,30 @@ class App {
 
   /**
    * Ask the server for the whole cycle of `scene`, then replace what is shown. Throws the
-   * server's error (and leaves the page as it was) when the scene is not acceptable. `posed`
-   * (with `keepInstant`): the scene was checked at the crank angle shown, so the analysis of that
-   * instant is asked for at once, beside the sweep: analyzeNow's identical request then shares
-   * its answer (api.js) instead of waiting for the sweep first.
+   * server's error (and leaves the page as it was) when the scene is not acceptable.
+   *
+   * The instant to be analysed is asked for as soon as it is known to assemble, beside what is
+   * left of the sweep: analyzeNow's identical request then shares its answer (api.js) instead
+   * of waiting for the sweep first. `posed` (with `keepInstant`): the scene was checked at the
+   * instant shown (a preset posed there), so at once; a new mechanism is analysed at its
+   * track's start, which its first sweep (of up to three, "Samples per revolution") has placed
+   * when the crank turns fully or the track is over time.
    */
   async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false, posed = false } = {}) {
     const seq = ++this.geometrySeq;
     const previous = keepInstant && this.track ? this.instantValue() : null;
     if (S.isSpatial(scene)) return this.loadSpatial(scene, seq, previous ?? instant, spatial);
     const timeDriven = S.isTimeDriven(scene);
-    if (posed && previous !== null && this.track.param === 'angle' && !timeDriven) {
-      api.analyze(S.sceneAt(scene, 'angle', previous), INSTANT).catch(() => {}); // its error is analyzeNow's
-    }
+    const ask = (param, value) => api.analyze(S.sceneAt(scene, param, value), INSTANT).catch(() => {}); // (its error is analyzeNow's)
+    if (posed && previous !== null && this.track.param === 'angle' && !timeDriven) ask('angle', previous);
+    const startsAtItsStart = previous === null && (instant === null || instant === undefined);
+    // (a crank's turn, or a time range, starts where the first sweep starts; a rocking crank's
+    // samples are the midpoints of its range's parts, which move with their number)
+    const placed = startsAtItsStart ? (first) => (first.closed || first.param === 'time') && ask(first.param, first.values[0]) : null;
     let track;
     let note = null;
     try {
-      track = await this.fetchTrack(scene, timeDriven);
+      track = await this.fetchTrack(scene, timeDriven, placed);
     } catch (err) {
       // Not-assemblable and friends are answers about the scene: report them to the caller.
       // A network failure, or (for time laws) a sweep over the range chosen here that fails
@@ -612,7 +619,8 @@ class App {
     this.commitPlanar(scene, track, note, previous ?? instant, keepChoices, sameMechanism);
   }
 
-  async fetchTrack(scene, timeDriven) {
+  /** The sweep drawn for `scene`; `placed(track)` is told its first track (before any finer one). */
+  async fetchTrack(scene, timeDriven, placed = null) {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
     // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
     const quantities = timeDriven ? [...QUANTITIES, 'components'] : QUANTITIES;
@@ -622,6 +630,7 @@ class App {
     const sweepFollowingTheDrawing = async (target) => {
       let body = await api.sweep(target, SAMPLES, quantities, range);
       let track = trackFromSweep(body);
+      placed?.(track);
       for (let round = 0; round < 2; round++) {
         const n = samplesFor(track, this.linkage.pixelsPerMetre(track), { least: SAMPLES });
         if (n <= track.n) break;
