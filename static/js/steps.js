@@ -157,8 +157,14 @@ function typeset(latex, target) {
   }
 }
 
-/** After the first steps, the rest follow STEPS_PER_TASK at a time, each batch a task of its own. */
+/**
+ * After the first steps, the rest follow STEPS_PER_TASK at a time, each batch a task of its own
+ * run when the page is idle (within IDLE_WAIT_MS at the latest): a click's own work (an edit's
+ * answers, the drawing, the polygons) goes first, not after the typesetting of a long solution.
+ */
 const STEPS_PER_TASK = 4;
+const IDLE_WAIT_MS = 500;
+const idle = () => new Promise((resolve) => requestIdleCallback(resolve, { timeout: IDLE_WAIT_MS }));
 const rendering = new WeakMap(); // a steps container -> the render under way in it
 
 /**
@@ -184,7 +190,7 @@ export async function renderSolution(stepsEl, mistakesEl, solution, units = 'si'
   const steps = solution.steps || [];
   for (let i = 0; i < steps.length; i++) {
     if (i >= first && (i - first) % STEPS_PER_TASK === 0) {
-      await new Promise((resolve) => setTimeout(resolve, 0));
+      await idle();
       if (rendering.get(stepsEl) !== token) return failures;
     }
     const [item, error] = stepItem(steps[i], i, units);
