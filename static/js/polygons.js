@@ -291,9 +291,9 @@ const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
  * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. The
  * figure is drawn once with its labels when the plot area is known or guessed from the div's
  * earlier drawings (labels.js, knownArea), else, the very first time, once to learn it and again
- * with the labels; and again if the area came out otherwise. A newer drawing of the same div stops what is left of an
- * older one, so a fast series of instants never leaves one instant's labels or detail on
- * another's polygon, nor marks a detail done too early.
+ * with the labels; and again if the area came out otherwise. A newer drawing of the same div
+ * stops what is left of an older one, so a fast series of instants never leaves one instant's
+ * labels or detail on another's polygon, nor marks a detail done too early.
  */
 function drawPolygon(P, div, figure, kind, units) {
   const turn = (turns.get(div) || 0) + 1;
