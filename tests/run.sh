@@ -73,10 +73,10 @@ fi
 # pytest in two runs. First every test but those marked `serial`, in two processes (pytest-xdist,
 # one per core of CI's two; each test module one unit, the heaviest first, so that both run
 # browser modules, each with its own Chromium: tests/conftest.py); then the `serial` ones (timed
-# against servers of their own under load) alone. Arguments go to both runs (`-m "not slow"`, `-x`, a folder, `-k ...`); a run that selects
-# no test (pytest's exit status 5) is no failure unless neither run selects one. Without -x the
-# second run goes ahead after a failure in the first (every failure is reported), and the
-# script's status is the first run's failure.
+# against servers of their own under load) alone. Arguments go to both runs (`-m "not slow"`,
+# `-x`, a folder, `-k ...`); a run that selects no test (pytest's exit status 5) is no failure
+# unless neither run selects one. Without -x the second run goes ahead after a failure in the
+# first (every failure is reported), and the script's status is the first run's failure.
 pytest_run() {
   status=0
   .venv/bin/python -m pytest -p no:cacheprovider "$@" || status=$?

@@ -796,7 +796,8 @@ class App {
    * Put the instant at `value` (rad or s; null: the track's start): its fractional index u, and
    * the value itself, kept exactly while u stays there (the track's interpolation at u differs
    * from it in the last digits; an angle brought into the swept turn or a time clamped to the
-   * range is the track's own value).
+   * range is the track's own value). "The last digits": within 1e-9 of the value, far above the
+   * interpolation's rounding (~1e-15) and far below a turn brought back (2 pi).
    */
   placeAt(value) {
     this.u = value === null ? 0 : indexOfValue(this.track, value);
@@ -815,9 +816,8 @@ class App {
   instantScene(u = this.u) {
     const t = this.track;
     if (!t) return this.scene;
-    if (t.param === 'time') return S.sceneAt(this.scene, 'time', this.instantValue(u));
-    // A static track (no sweep) analyses the drawn pose itself.
-    return t.static ? this.scene : S.sceneAt(this.scene, 'angle', this.instantValue(u));
+    // A static track of a crank (no sweep) analyses the drawn pose itself.
+    return t.static && t.param === 'angle' ? this.scene : S.sceneAt(this.scene, t.param, this.instantValue(u));
   }
 
   scheduleAnalysis(delay = DEBOUNCE_MS) {

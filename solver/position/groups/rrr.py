@@ -58,6 +58,15 @@ def margin_pieces(d: Array, r1: float, r2: float) -> tuple[Array, Array]:
     return (r1 + r2) - d, d - abs(r1 - r2)
 
 
+def piece_rates(u: Array, v1: Array | None, v2: Array | None) -> tuple[Array | None, Array | None]:
+    """The rates of the margin's pieces (stretched, folded: ``margin_pieces``) as C1 and C2
+    move: -+ dd/du = -+ u.(v2 - v1), u = (C2 - C1) / d; None without velocities."""
+    if v1 is None or v2 is None:
+        return None, None
+    d_rate = dot(u, v2 - v1)
+    return -d_rate, d_rate
+
+
 def failure(
     d: Array, margin: Array, centres: tuple[str, str], radii: tuple[float, float], name: str
 ) -> Callable[[], str]:
@@ -89,10 +98,7 @@ def circle_circle(c1: Circle, c2: Circle, name: str) -> Intersection:
     u = cut.u
     extended, folded = margin_pieces(cut.d, c1.radius, c2.radius)
     margin = np.minimum(extended, folded)
-    rates: tuple[Array | None, Array | None] = (None, None)
-    if c1.center.v is not None and c2.center.v is not None:
-        d_rate = dot(u, c2.center.v - c1.center.v)
-        rates = (-d_rate, d_rate)
+    rates = piece_rates(u, c1.center.v, c2.center.v)
     message = failure(cut.d, margin, (c1.center_name, c2.center_name), (c1.radius, c2.radius), name)
     pieces = ((extended, rates[0]), (folded, rates[1]))
     return Intersection(
@@ -116,11 +122,9 @@ class CircleCircle(DyadGroup):
         margin = np.minimum(extended, folded)
 
         def pieces() -> tuple[Piece, ...]:
-            """The pieces with their rates -+ dd/du = -+ u.(v2 - v1) (None without velocities)."""
-            if c1.v is None or c2.v is None:
-                return ((extended, None), (folded, None))
-            d_rate = dot(cut.u, c2.v - c1.v)
-            return ((extended, -d_rate), (folded, d_rate))
+            """The pieces with their rates (``piece_rates``)."""
+            stretching, folding = piece_rates(cut.u, c1.v, c2.v)
+            return ((extended, stretching), (folded, folding))
 
         message = failure(cut.d, margin, (first.center, second.center), (r1, r2), step.point)
         resting = known.resting(second.center)

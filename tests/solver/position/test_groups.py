@@ -59,6 +59,23 @@ def test_rrr_chord_is_the_intersection_of_the_circles() -> None:
     assert X[0] == pytest.approx([3.2, 2.4])
 
 
+def test_the_margin_pieces_change_at_the_rate_of_the_centres_distance() -> None:
+    """C1 at rest, C2 = (3 + t, 4 + 2 t): d(t) = |C2 - C1|, so the stretched piece r1 + r2 - d
+    falls and the folded one d - |r1 - r2| rises at dd/dt, against a central difference (h =
+    1e-6, to 1e-8) and the closed form u.(v2 - v1) = (3 + 2 * 4) / 5 = 2.2 at t = 0."""
+    d_vec = np.array([[3.0, 4.0]])
+    cut = rrr.chord(d_vec, 4.0, 2.0)
+    stretching, folding = rrr.piece_rates(cut.u, np.zeros((1, 2)), np.array([[1.0, 2.0]]))
+    assert stretching is not None and folding is not None
+    h = 1e-6
+    (stretched_ahead, _), (stretched_behind, _) = (
+        rrr.margin_pieces(np.hypot(3.0 + s * h, 4.0 + 2.0 * s * h), 4.0, 2.0) for s in (1.0, -1.0)
+    )
+    assert stretching[0] == pytest.approx((stretched_ahead - stretched_behind) / (2 * h), abs=1e-8)
+    assert folding[0] == pytest.approx(2.2, rel=1e-15) and stretching[0] == -folding[0]
+    assert rrr.piece_rates(cut.u, None, np.array([[1.0, 2.0]])) == (None, None)
+
+
 def test_coincident_centres_take_any_direction() -> None:
     cut = rrr.chord(np.array([[0.0, 0.0], [1.0, 0.0]]), 1.0, 1.0)
     assert tuple(cut.u[0]) == (1.0, 0.0) and cut.u[1, 0] == 1.0
