@@ -27,6 +27,9 @@ def test_one_request_per_pause_and_the_servers_segments(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
+    # The paused instant's worked solution is asked for a frame after its polygons are drawn:
+    # counted before the requests of the next instant.
+    wait_until(lambda: api_calls(app)[-1:] == ["/solution"], what="the paused instant's solution")
     before = len(api_calls(app))
     page.focus("#crank-angle")
     page.keyboard.press("ArrowRight")
