@@ -264,9 +264,10 @@ class App {
       return;
     }
     this.source = { type: 'preset', name, params: { ...params } };
+    const shown = this.commitOrReport(scene, view); // (its sweep asked for before the fields are built)
     this.controls.setPresetFields(meta?.parameters || [], params, (p, v) => this.onParam(p, v));
     this.setDriverFields(scene);
-    await this.commitOrReport(scene, view);
+    await shown;
   }
 
   async openExample(file, view = null) {
@@ -581,6 +582,10 @@ class App {
    * instant shown (a preset posed there), so at once; a new mechanism is analysed at its
    * track's start, which its first sweep (of up to three, "Samples per revolution") has placed
    * when the crank turns fully or the track is over time.
+   *
+   * A new mechanism whose first sweep is too coarse for the drawing is shown from that sweep at
+   * once, analysed at its start, and its finer sweep replaces it when it comes (refineTrack: the
+   * same instant, exactly); its cycle plots and dynamics wait for the finer sweep.
    */
   async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false, posed = false } = {}) {
     const seq = ++this.geometrySeq;
@@ -592,12 +597,28 @@ class App {
     const startsAtItsStart = previous === null && (instant === null || instant === undefined);
     // (a crank's turn, or a time range, starts where the first sweep starts; a rocking crank's
     // samples are the midpoints of its range's parts, which move with their number)
-    const placed = startsAtItsStart ? (first) => (first.closed || first.param === 'time') && ask(first.param, first.values[0]) : null;
+    let early = null; // the first sweep, shown while a finer one is asked for
+    let settle;
+    const final = new Promise((resolve) => { settle = resolve; });
+    const placed = startsAtItsStart
+      ? (first, finer) => {
+          if (finer && seq === this.geometrySeq) {
+            early = first;
+            this.commitPlanar(scene, first, null, first.values[0], keepChoices, sameMechanism, final);
+          } else if (first.closed || first.param === 'time') {
+            ask(first.param, first.values[0]);
+          }
+        }
+      : null;
     let track;
     let note = null;
     try {
       track = await this.fetchTrack(scene, timeDriven, placed);
     } catch (err) {
+      if (early) { // (a finer sweep that failed leaves the first one shown)
+        settle(early);
+        return;
+      }
       // Not-assemblable and friends are answers about the scene: report them to the caller.
       // A network failure, or (for time laws) a sweep over the range chosen here that fails
       // although the scene's own instant may be fine, only costs the animation: check the
@@ -615,11 +636,17 @@ class App {
         ? `No animation over time: ${err.detail} The instant t = ${fmt(scene.time ?? 0)} s is analysed.`
         : `No animation: ${err.detail} The drawn pose is analysed.`;
     }
+    if (early) {
+      if (seq === this.geometrySeq && this.track === early) this.refineTrack(track);
+      settle(track);
+      return;
+    }
     if (seq !== this.geometrySeq) return; // a newer edit won
     this.commitPlanar(scene, track, note, previous ?? instant, keepChoices, sameMechanism);
   }
 
-  /** The sweep drawn for `scene`; `placed(track)` is told its first track (before any finer one). */
+  /** The sweep drawn for `scene`; `placed(track, finer)` is told its first track, and whether a
+   * finer one is asked for after it. */
   async fetchTrack(scene, timeDriven, placed = null) {
     const range = timeDriven ? [0, Math.max(2, 2 * (scene.time ?? 0))] : undefined;
     // Over time, also the transport/relative/Coriolis parts of the moving points, to animate them.
@@ -630,9 +657,9 @@ class App {
     const sweepFollowingTheDrawing = async (target) => {
       let body = await api.sweep(target, SAMPLES, quantities, range);
       let track = trackFromSweep(body);
-      placed?.(track);
       for (let round = 0; round < 2; round++) {
         const n = samplesFor(track, this.linkage.pixelsPerMetre(track), { least: SAMPLES });
+        if (round === 0) placed?.(track, n > track.n);
         if (n <= track.n) break;
         body = await api.sweep(target, n, quantities, range);
         track = trackFromSweep(body);
@@ -652,18 +679,21 @@ class App {
     return sweepFollowingTheDrawing(scene);
   }
 
-  commitPlanar(scene, track, note, instant, keepChoices, sameMechanism = false) {
+  /** Show `scene` swept as `track` at `instant`; `final`: the track its plots and dynamics are
+   * drawn from (when a finer sweep of it is still coming: loadScene). */
+  commitPlanar(scene, track, note, instant, keepChoices, sameMechanism = false, final = null) {
     this.scene = scene;
     this.track = track;
     this.analysis = null;
     this.analysisU = null;
-    $('linkage').dataset.samples = String(track.n); // the sweep drawn (for a reader, a test)
+    // the last sweep drawn (for a reader, a test): a first one that a finer one replaces is not
+    if (final) delete $('linkage').dataset.samples;
+    else $('linkage').dataset.samples = String(track.n);
     showView('linkage');
     this.markShown();
     $('view-title').textContent = scene.title || 'Mechanism';
 
-    const v = track.values;
-    this.controls.setInstantRange(track.param, Math.min(v[0], v[v.length - 1]), Math.max(v[0], v[v.length - 1]), track.n > 1);
+    this.setInstantRange(track);
     this.placeAt(instant ?? null);
     this.direction = 1;
     if (track.n < 2 && this.playing) {
@@ -692,14 +722,7 @@ class App {
     this.linkage.setScene(scene, track, { sameMechanism });
     this.addedPoints = sameMechanism ? this.addedPoints.filter((n) => names.includes(n)) : [];
 
-    const messages = [];
-    if (note) messages.push(note);
-    if (!track.feasible) {
-      const [a, b] = [v[0], v[v.length - 1]];
-      messages.push(`The crank cannot turn fully: it rocks between ${show('angle', Math.min(a, b), this.units)} and ${show('angle', Math.max(a, b), this.units)} (limit positions).`);
-    }
-    for (const warning of track.warnings || []) messages.push(`Note: ${warning}.`);
-    this.viewMessage(messages.join(' '));
+    this.trackMessages(track, note);
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
     // What is seen first comes first: the mechanism (this frame), then its instant (the drawing
     // and the polygons), then, a frame after that is painted, the cycle plots (Plotly, ~100 ms)
@@ -710,10 +733,54 @@ class App {
     clearTimeout(this.analysisTimer);
     this.analyzeNow()
       .then(() => afterPaint())
-      .then(() => this.scene === scene && this.drawPlots())
-      .then(() => plotlyReady())
-      .then((ok) => ok && this.scene === scene && this.dynamics.show(scene, this.units, track.n).then(() => this.drawFrame()));
+      .then(() => final ?? track)
+      .then((swept) => {
+        if (this.scene !== scene || this.track !== swept) return null;
+        return this.drawPlots()
+          .then(() => plotlyReady())
+          .then((ok) => ok && this.scene === scene && this.dynamics.show(scene, this.units, swept.n).then(() => this.drawFrame()));
+      });
     this.saveHash();
+  }
+
+  /** The slider's range: the track's first to last value. */
+  setInstantRange(track) {
+    const v = track.values;
+    this.controls.setInstantRange(track.param, Math.min(v[0], v[v.length - 1]), Math.max(v[0], v[v.length - 1]), track.n > 1);
+  }
+
+  /** `note`, the range of a crank that rocks and the sweep's warnings, above the drawing. */
+  trackMessages(track, note = null) {
+    const v = track.values;
+    const messages = [];
+    if (note) messages.push(note);
+    if (!track.feasible) {
+      const [a, b] = [v[0], v[v.length - 1]];
+      messages.push(`The crank cannot turn fully: it rocks between ${show('angle', Math.min(a, b), this.units)} and ${show('angle', Math.max(a, b), this.units)} (limit positions).`);
+    }
+    for (const warning of track.warnings || []) messages.push(`Note: ${warning}.`);
+    this.viewMessage(messages.join(' '));
+  }
+
+  /**
+   * The finer sweep of the mechanism shown replaces its first (loadScene): the same instant,
+   * exactly, now on the finer track, and the analysis drawn kept.
+   */
+  refineTrack(track) {
+    const value = this.instantValue();
+    const analysed = this.analysis && this.analysisU !== null ? this.instantValue(this.analysisU) : null;
+    const paused = this.analysisU === this.u;
+    this.track = track;
+    $('linkage').dataset.samples = String(track.n);
+    this.setInstantRange(track);
+    this.placeAt(value);
+    this.trackMessages(track);
+    this.linkage.setScene(this.scene, track, { sameMechanism: true });
+    if (analysed !== null) { // (one still asked for finds its index when it comes: analyzeNow)
+      this.analysisU = paused ? this.u : indexOfValue(track, analysed);
+      this.linkage.setAnalysis(this.analysis);
+    }
+    this.dirty = true;
   }
 
   /**
@@ -838,8 +905,10 @@ class App {
     const seq = ++this.analysisSeq;
     this.solutionSeq += 1; // a solution asked for earlier must not replace this one
     const solutionSeq = this.solutionSeq;
-    const u = this.u;
-    const scene = this.instantScene(u);
+    const track = this.track;
+    const asked = this.u;
+    const value = this.instantValue(asked);
+    const scene = this.instantScene(asked);
     let answer = null;
     try {
       answer = await api.analyze(scene, INSTANT);
@@ -852,6 +921,9 @@ class App {
       this.solutionFailed(err);
     }
     if (seq !== this.analysisSeq) return;
+    // (a finer sweep of the mechanism that replaced its first meanwhile has the same instant at
+    // its own index: refineTrack)
+    const u = this.track === track ? asked : indexOfValue(this.track, value);
     if (answer) {
       const { polygons: segments, ...results } = answer;
       this.analysis = results;

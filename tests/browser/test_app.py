@@ -613,6 +613,37 @@ def test_an_edit_keeps_the_instant_exactly_and_asks_for_it_beside_the_sweep(
     assert events.index("ask analyze") < events.index("got sweep"), events
 
 
+def test_a_mechanism_too_fine_for_its_first_sweep_is_shown_from_it_then_refined(
+    app: AppPage,
+) -> None:
+    """The slider-guide extension's crank rocks, and near its limit positions the drawing needs
+    more samples than the first sweep's: the mechanism is drawn and its start analysed from the
+    first sweep (the /analyze sent before the finer sweep has answered), and the finer sweep then
+    replaces the first at the same instant, exactly (no second /analyze; the analysed instant is
+    the one shown), ``data-samples`` the last sweep asked for."""
+    app.page.emulate_media(reduced_motion="reduce")  # a new mechanism stays at its start
+    app.open()
+    page = app.page
+    events: list[str] = []
+    samples: list[int] = []
+
+    def asked(request: Any) -> None:
+        name = request.url.rsplit("/", 1)[-1]
+        if name == "sweep" and "forces" not in request.post_data_json.get("quantities", []):
+            samples.append(request.post_data_json["samples"])
+        events.append(f"ask {name}")
+
+    page.on("request", asked)
+    page.on("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
+    choose(app, "preset:slider_guide_extension")
+    page.wait_for_selector("#linkage[data-samples]", state="attached")
+    wait_analysed(page)
+    assert len(samples) >= 2 and samples[-1] > samples[0], samples  # the premise: refined
+    assert page.get_attribute("#linkage", "data-samples") == str(samples[-1])
+    last_sweep = len(events) - 1 - events[::-1].index("got sweep")
+    assert events.count("ask analyze") == 1, events
+    assert events.index("ask analyze") < last_sweep, events
+
 # ---- layout ------------------------------------------------------------------------------------
 
 
