@@ -264,7 +264,11 @@ class App {
       return;
     }
     this.source = { type: 'preset', name, params: { ...params } };
-    const shown = this.commitOrReport(scene, view); // (its sweep asked for before the fields are built)
+    // A preset opens in the pose it was built in (its crank angle or its time, as the textbook
+    // states the problem), as a worked example does; the server has checked the scene there, so
+    // that instant is asked for beside the sweep (loadScene), and the sweep before the fields
+    // are built.
+    const shown = view ? this.commitOrReport(scene, view) : this.commitOrReport(scene, null, S.ownInstant(scene), true);
     this.controls.setPresetFields(meta?.parameters || [], params, (p, v) => this.onParam(p, v));
     this.setDriverFields(scene);
     await shown;
@@ -466,10 +470,11 @@ class App {
     this.controls.setDriverFields(scene, (f, v) => this.onDriver(f, v), (kind, name, text) => this.onLaw(kind, name, text));
   }
 
-  /** Load a chosen mechanism; an error has no field to sit next to, so it goes to the status line. */
-  async commitOrReport(scene, view, instant = null) {
+  /** Load a chosen mechanism; an error has no field to sit next to, so it goes to the status line.
+   * `posed`: the server checked the scene at `instant` (loadScene). */
+  async commitOrReport(scene, view, instant = null, posed = false) {
     try {
-      await this.loadScene(scene, view ? { instant: view.view?.instant, spatial: view.view?.spatial, keepChoices: true } : { instant });
+      await this.loadScene(scene, view ? { instant: view.view?.instant, spatial: view.view?.spatial, keepChoices: true } : { instant, posed });
     } catch (err) {
       this.status(`${scene.title || 'This mechanism'}: ${err.detail || err.message}`, 'error');
     }
@@ -578,14 +583,15 @@ class App {
    *
    * The instant to be analysed is asked for as soon as it is known to assemble, beside what is
    * left of the sweep: analyzeNow's identical request then shares its answer (api.js) instead
-   * of waiting for the sweep first. `posed` (with `keepInstant`): the scene was checked at the
-   * instant shown (a preset posed there), so at once; a new mechanism is analysed at its
-   * track's start, which its first sweep (of up to three, "Samples per revolution") has placed
-   * when the crank turns fully or the track is over time.
+   * of waiting for the sweep first. `posed`: the server checked the scene at the crank angle
+   * to be shown (the one kept by an edit, `keepInstant`, or `instant`: a preset built in its
+   * drawn pose), so at once; a new mechanism without an instant is analysed at its track's
+   * start, which its first sweep (of up to three, "Samples per revolution") has placed when the
+   * crank turns fully or the track is over time.
    *
    * A new mechanism whose first sweep is too coarse for the drawing is shown from that sweep at
-   * once, analysed at its start, and its finer sweep replaces it when it comes (refineTrack: the
-   * same instant, exactly); its cycle plots and dynamics wait for the finer sweep.
+   * once, and its finer sweep replaces it when it comes (refineTrack: the same instant,
+   * exactly); its cycle plots and dynamics wait for the finer sweep.
    */
   async loadScene(scene, { keepInstant = false, instant = null, keepChoices = keepInstant, spatial = null, sameMechanism = false, posed = false } = {}) {
     const seq = ++this.geometrySeq;
@@ -593,19 +599,20 @@ class App {
     if (S.isSpatial(scene)) return this.loadSpatial(scene, seq, previous ?? instant, spatial);
     const timeDriven = S.isTimeDriven(scene);
     const ask = (param, value) => api.analyze(S.sceneAt(scene, param, value), INSTANT).catch(() => {}); // (its error is analyzeNow's)
-    if (posed && previous !== null && this.track.param === 'angle' && !timeDriven) ask('angle', previous);
-    const startsAtItsStart = previous === null && (instant === null || instant === undefined);
+    const at = previous ?? instant ?? null; // the crank angle or time to be shown (null: the start)
+    if (posed && at !== null && previous === null) ask(timeDriven ? 'time' : 'angle', at);
+    else if (posed && at !== null && !timeDriven && this.track.param === 'angle') ask('angle', at);
     // (a crank's turn, or a time range, starts where the first sweep starts; a rocking crank's
     // samples are the midpoints of its range's parts, which move with their number)
     let early = null; // the first sweep, shown while a finer one is asked for
     let settle;
     const final = new Promise((resolve) => { settle = resolve; });
-    const placed = startsAtItsStart
+    const placed = previous === null
       ? (first, finer) => {
           if (finer && seq === this.geometrySeq) {
             early = first;
-            this.commitPlanar(scene, first, null, first.values[0], keepChoices, sameMechanism, final);
-          } else if (first.closed || first.param === 'time') {
+            this.commitPlanar(scene, first, null, at ?? first.values[0], keepChoices, sameMechanism, final);
+          } else if (at === null && (first.closed || first.param === 'time')) {
             ask(first.param, first.values[0]);
           }
         }
@@ -642,7 +649,7 @@ class App {
       return;
     }
     if (seq !== this.geometrySeq) return; // a newer edit won
-    this.commitPlanar(scene, track, note, previous ?? instant, keepChoices, sameMechanism);
+    this.commitPlanar(scene, track, note, at, keepChoices, sameMechanism);
   }
 
   /** The sweep drawn for `scene`; `placed(track, finer)` is told its first track, and whether a
