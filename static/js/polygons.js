@@ -71,7 +71,11 @@ const relativeName = (symbol, seg, part = '') => `${symbol}${part ? `<sup>${part
 const slidingName = (symbol, point, part) => `${symbol}<sub>${point},${part}</sub>`;
 const norm = (a) => Math.hypot(a[0], a[1]);
 
-function baseLayout(title, kind, units) {
+/**
+ * The layout of a polygon titled `title`, with `note` (optional: {text, colour}) heading its
+ * legend.
+ */
+function baseLayout(title, kind, units, note = null) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
   // On a phone the polygon is too narrow for its title beside Plotly's toolbar (top right): the
@@ -83,9 +87,17 @@ function baseLayout(title, kind, units) {
       ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 } } : {}),
     },
     margin: { l: 44, r: 12, t: under ? 68 : 38, b: 28 },
-    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
+    // The x axis' tick labels take their room under the axes (automargin), and the legend its own
+    // under them (at the bottom of the figure, `container`): the legend is never drawn on the tick
+    // labels, however short the axes (a fraction of their height, -0.08, was 7 px on a phone).
+    // A note heads the legend: beside the title it ran into it on a phone, and on a laptop it
+    // lay under Plotly's toolbar and the labels of vectors at the top of the axes.
+    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', automargin: 'height' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
-    legend: { orientation: 'h', y: -0.08, yanchor: 'top', font: { size: 11 } },
+    legend: {
+      orientation: 'h', yref: 'container', y: 0, yanchor: 'bottom', font: { size: 11 }, tracegroupgap: 0,
+      ...(note ? { title: { text: note.text, side: 'top', font: { size: 11, color: note.colour } } } : {}),
+    },
     paper_bgcolor: '#ffffff',
     plot_bgcolor: '#ffffff',
     font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink },
@@ -259,15 +271,10 @@ export function accelerationFigure(scene, analysis, polygons, units) {
   traces.push(arrows('Coriolis 2ω×v_rel', cor, COLOURS.coriolis, { width: 2.2 }));
   traces.push(arrows('relative', rel, COLOURS.relative, { width: 2 }));
   lab.unshift([[0, 0], poleLabel(POLYGON_POLE.acceleration, tips)]);
-  const layout = baseLayout('Acceleration polygon', 'acceleration', units);
-  if (zeroCoriolis.length) {
-    // In the top margin, right-aligned: never on a vector or a label.
-    layout.annotations.push({
-      xref: 'paper', yref: 'paper', x: 1, y: 1, xanchor: 'right', yanchor: 'bottom', showarrow: false,
-      text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`,
-      font: { size: 11, color: COLOURS.coriolis },
-    });
-  }
+  const note = zeroCoriolis.length
+    ? { text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`, colour: COLOURS.coriolis }
+    : null;
+  const layout = baseLayout('Acceleration polygon', 'acceleration', units, note);
   return { traces, labels: [...lab, ...parts], layout };
 }
 
