@@ -12,7 +12,7 @@
 // worked solution (/solution's `polygons`); this module only places them head to tail.
 
 import { afterPaint } from './playback.js';
-import { COLOURS } from './theme.js';
+import { COLOURS, PHONE } from './theme.js';
 import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
@@ -79,12 +79,13 @@ function baseLayout(title, kind, units, note = null) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
   // On a phone the polygon is too narrow for its title beside Plotly's toolbar (top right): the
-  // title goes under the toolbar, just above the axes.
+  // title goes under the toolbar, just above the axes and clear of y's top tick label (which
+  // reaches 7 px above them).
   const under = matchMedia(PHONE).matches;
   return {
     title: {
       text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
-      ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 } } : {}),
+      ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 14 } } : {}),
     },
     margin: { l: 44, r: 12, t: under ? 68 : 38, b: 28 },
     // The x axis' tick labels take their room under the axes (automargin), and the legend its own
@@ -107,7 +108,6 @@ function baseLayout(title, kind, units, note = null) {
 }
 
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
-const PHONE = '(max-width: 760px)'; // the one-column layout (css/app.css)
 
 /** Points of the analysis with their vectors, converted to display units. */
 function collect(scene, analysis, quantity, units) {
