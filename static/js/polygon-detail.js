@@ -13,7 +13,6 @@
 
 import { placeLabels, knownArea, drawnArea, sameArea } from './labels.js';
 import { fmt, unitLabel } from './units.js';
-import { PHONE } from './theme.js';
 
 export const DETAIL_RULE = { negligible: 1e-3, short: 1 / 12, aspect: 5, sliver: 1 / 5, frame: 5 };
 const CM = 96 / 2.54; // CSS px in a CSS centimetre
@@ -73,7 +72,8 @@ const pxPerUnit = (div) => {
 };
 
 /**
- * Draw `figure` (polygons.js) zoomed on its detail region in `detail`, and mark the region in the
+ * Draw `figure` (polygons.js: traces, labels, layout, and whether it is narrow) zoomed on its
+ * detail region in `detail`, and mark the region in the
  * polygon `main` (already drawn with its labels, from a layout without the box); hide `detail`
  * when no detail is needed. When
  * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
@@ -141,8 +141,8 @@ function detailLayout(base, region, area, figure, main, kind, units) {
       text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
       // Under Plotly's toolbar (its top 28 px at the right: it covered the title's end): the
       // first line from 31 px down (pad 42, as Plotly places it), the second ending 12 px above
-      // the axes (clear of y's top tick label); on a phone at 11 px, so that the scale fits.
-      font: { size: matchMedia(PHONE).matches ? 11 : 13 }, x: 0.02, xanchor: 'left',
+      // the axes (clear of y's top tick label); at 11 px in a narrow figure, so that it fits.
+      font: { size: figure.narrow ? 11 : 13 }, x: 0.02, xanchor: 'left',
       yref: 'container', y: 1, yanchor: 'top', pad: { t: 42 },
     },
     annotations: placeLabels({ x, y, ...area }, entries, figure.traces),

@@ -1,9 +1,5 @@
 // theme.js: the colours of the physical quantities, shared by the linkage view, the polygons,
-// the plots and the legend, so that "red" means acceleration everywhere on the page; and the
-// width under which the page is a phone's one column.
-
-/** The phone's one-column layout (css/app.css), for `matchMedia`. */
-export const PHONE = '(max-width: 760px)';
+// the plots and the legend, so that "red" means acceleration everywhere on the page.
 
 export const COLOURS = {
   ink: '#1f2933',

@@ -117,7 +117,7 @@ def figure_texts_clear(page: Any, div: str) -> dict[str, list[list[float]]]:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("width", "height"), [(390, 844), (1024, 768), (1440, 900)])
+@pytest.mark.parametrize(("width", "height"), [(390, 844), (1024, 768), (1280, 800), (1440, 900)])
 def test_the_polygons_legend_tick_labels_title_and_note_never_overlap(
     app: AppPage, width: int, height: int
 ) -> None:
@@ -126,8 +126,9 @@ def test_the_polygons_legend_tick_labels_title_and_note_never_overlap(
     and the toolbar do not overlap one another; the title and the legend are whole. On a phone
     the legend was drawn on the x axis' tick labels (placed at a fraction, -0.08, of the axes'
     height: 7 px there), the acceleration polygon's title on its Coriolis note and the detail's
-    title cut at the right; at 1024x768 the legend touched the tick labels; at 1440x900 the note
-    and the detail's title lay under the toolbar. Screenshots polygons-<preset>-<viewport>."""
+    title cut at the right; at 1024x768 the legend touched the tick labels; at 1280x800 the titles
+    lay under the toolbar; at 1440x900 the note and the detail's title did. Screenshots
+    polygons-<preset>-<viewport>."""
     page = app.page
     page.set_viewport_size({"width": width, "height": height})
     app.open()
