@@ -72,7 +72,8 @@ const pxPerUnit = (div) => {
 };
 
 /**
- * Draw `figure` (polygons.js) zoomed on its detail region in `detail`, and mark the region in the
+ * Draw `figure` (polygons.js: traces, labels, layout, and whether it is narrow) zoomed on its
+ * detail region in `detail`, and mark the region in the
  * polygon `main` (already drawn with its labels, from a layout without the box); hide `detail`
  * when no detail is needed. When
  * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
@@ -92,7 +93,7 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
     ...figure.layout,
     annotations: [],
     showlegend: false,
-    margin: { l: 44, r: 12, t: 44, b: 24 },
+    margin: { l: 44, r: 12, t: 76, b: 24 },
     xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
     yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
   };
@@ -138,7 +139,11 @@ function detailLayout(base, region, area, figure, main, kind, units) {
     ...base,
     title: {
       text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
-      font: { size: 13 }, x: 0.02, xanchor: 'left',
+      // Under Plotly's toolbar (its top 28 px at the right: it covered the title's end): the
+      // first line from 31 px down (pad 42, as Plotly places it), the second ending 12 px above
+      // the axes (clear of y's top tick label); at 11 px in a narrow figure, so that it fits.
+      font: { size: figure.narrow ? 11 : 13 }, x: 0.02, xanchor: 'left',
+      yref: 'container', y: 1, yanchor: 'top', pad: { t: 42 },
     },
     annotations: placeLabels({ x, y, ...area }, entries, figure.traces),
     xaxis: { ...base.xaxis, range: x },

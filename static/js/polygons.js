@@ -71,21 +71,33 @@ const relativeName = (symbol, seg, part = '') => `${symbol}${part ? `<sup>${part
 const slidingName = (symbol, point, part) => `${symbol}<sub>${point},${part}</sub>`;
 const norm = (a) => Math.hypot(a[0], a[1]);
 
-function baseLayout(title, kind, units) {
+/**
+ * The layout of a polygon titled `title` in a figure `narrow` or not (NARROW), with `note`
+ * (optional: {text, colour}) heading its legend.
+ */
+function baseLayout(title, kind, units, narrow, note = null) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
-  // On a phone the polygon is too narrow for its title beside Plotly's toolbar (top right): the
-  // title goes under the toolbar, just above the axes.
-  const under = matchMedia(PHONE).matches;
+  // A narrow polygon (a phone's, or in a laptop's third column at 1280 wide) has no room for its
+  // title beside Plotly's toolbar (top right): the title goes under the toolbar, just above the
+  // axes and clear of y's top tick label (which reaches 7 px above them).
   return {
     title: {
       text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
-      ...(under ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 } } : {}),
+      ...(narrow ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 14 } } : {}),
     },
-    margin: { l: 44, r: 12, t: under ? 68 : 38, b: 28 },
-    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
+    margin: { l: 44, r: 12, t: narrow ? 68 : 38, b: 28 },
+    // The x axis' tick labels take their room under the axes (automargin), and the legend its own
+    // under them (at the bottom of the figure, `container`): the legend is never drawn on the tick
+    // labels, however short the axes (a fraction of their height, -0.08, was 7 px on a phone).
+    // A note heads the legend: beside the title it ran into it on a phone, and on a laptop it
+    // lay under Plotly's toolbar and the labels of vectors at the top of the axes.
+    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', automargin: 'height' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
-    legend: { orientation: 'h', y: -0.08, yanchor: 'top', font: { size: 11 } },
+    legend: {
+      orientation: 'h', yref: 'container', y: 0, yanchor: 'bottom', font: { size: 11 }, tracegroupgap: 0,
+      ...(note ? { title: { text: note.text, side: 'top', font: { size: 11, color: note.colour } } } : {}),
+    },
     paper_bgcolor: '#ffffff',
     plot_bgcolor: '#ffffff',
     font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', color: COLOURS.ink },
@@ -95,7 +107,10 @@ function baseLayout(title, kind, units) {
 }
 
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
-const PHONE = '(max-width: 760px)'; // the one-column layout (css/app.css)
+// px: a polygon narrower than this is "narrow": its title (up to about 210 px, from 2 % of the
+// width) and Plotly's toolbar (216 px, at the right) do not fit side by side. At 1440x900 the
+// polygons are 439 px wide (beside), at 1366 406 px and at 1280 369 px (under), on a phone 340.
+const NARROW = 430;
 
 /** Points of the analysis with their vectors, converted to display units. */
 function collect(scene, analysis, quantity, units) {
@@ -151,7 +166,7 @@ function poleLabel(pole, tips) {
   return atPole.length ? `${pole} ≡ ${atPole.join(', ')}` : pole;
 }
 
-export function velocityFigure(scene, analysis, polygons, units) {
+export function velocityFigure(scene, analysis, polygons, units, narrow) {
   const tips = collect(scene, analysis, 'velocity', units);
   const segments = polygons?.segments || [];
   const parts = []; // labels of the relative and component vectors, after the points'
@@ -194,10 +209,10 @@ export function velocityFigure(scene, analysis, polygons, units) {
   traces.push(arrows('transport velocity', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('relative velocity', rel, COLOURS.relative, { width: 2 }));
   lab.unshift([[0, 0], poleLabel(POLYGON_POLE.velocity, tips)]);
-  return { traces, labels: [...lab, ...parts], layout: baseLayout('Velocity polygon', 'velocity', units) };
+  return { traces, labels: [...lab, ...parts], layout: baseLayout('Velocity polygon', 'velocity', units, narrow), narrow };
 }
 
-export function accelerationFigure(scene, analysis, polygons, units) {
+export function accelerationFigure(scene, analysis, polygons, units, narrow) {
   const tips = collect(scene, analysis, 'acceleration', units);
   const traces = [...linkImages(scene, analysis, tips, 'acceleration')];
   const abs = [];
@@ -259,27 +274,23 @@ export function accelerationFigure(scene, analysis, polygons, units) {
   traces.push(arrows('Coriolis 2ω×v_rel', cor, COLOURS.coriolis, { width: 2.2 }));
   traces.push(arrows('relative', rel, COLOURS.relative, { width: 2 }));
   lab.unshift([[0, 0], poleLabel(POLYGON_POLE.acceleration, tips)]);
-  const layout = baseLayout('Acceleration polygon', 'acceleration', units);
-  if (zeroCoriolis.length) {
-    // In the top margin, right-aligned: never on a vector or a label.
-    layout.annotations.push({
-      xref: 'paper', yref: 'paper', x: 1, y: 1, xanchor: 'right', yanchor: 'bottom', showarrow: false,
-      text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`,
-      font: { size: 11, color: COLOURS.coriolis },
-    });
-  }
-  return { traces, labels: [...lab, ...parts], layout };
+  const note = zeroCoriolis.length
+    ? { text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`, colour: COLOURS.coriolis }
+    : null;
+  const layout = baseLayout('Acceleration polygon', 'acceleration', units, narrow, note);
+  return { traces, labels: [...lab, ...parts], layout, narrow };
 }
 
 /** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
 export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units) {
   const P = plotly();
   if (!P) return false;
+  const narrow = velDiv.clientWidth < NARROW; // the two polygons share their column
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
-    drawPolygon(P, velDiv, velocityFigure(scene, analysis, polygons, units), 'velocity', units);
+    drawPolygon(P, velDiv, velocityFigure(scene, analysis, polygons, units, narrow), 'velocity', units);
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
-    drawPolygon(P, accDiv, accelerationFigure(scene, analysis, polygons, units), 'acceleration', units);
+    drawPolygon(P, accDiv, accelerationFigure(scene, analysis, polygons, units, narrow), 'acceleration', units);
   }
   return true;
 }

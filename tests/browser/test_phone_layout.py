@@ -1,6 +1,8 @@
 """The app on a 390x844 phone (issue 30): the drawing and the polygons come first, before the
 controls, also after an input (they were ~4000 px down the page after every input, under the
-controls); screenshot, axe-core on the page. Real server, Debian's Chromium."""
+controls); screenshot, axe-core on the page; the polygons' titles, notes, tick labels and legends
+clear of one another and of Plotly's toolbar (also on a laptop and a tablet). Real server,
+Debian's Chromium."""
 
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ from typing import Any
 import pytest
 
 from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
-from tests.browser.test_app import pause_and_wait
+from tests.browser.test_app import DETAIL_DONE, choose, pause_and_wait
 
 pytestmark = pytest.mark.browser
 
@@ -66,3 +68,86 @@ def test_on_a_phone_plotlys_toolbar_leaves_the_polygons_titles_clear(app: AppPag
         toolbar = shown_boxes(page, f"{polygon} .modebar")
         assert title and toolbar, polygon
         assert not overlapping_pairs(title + toolbar), (polygon, title, toolbar)
+
+
+# The boxes [left, top, right, bottom] (px) of the texts of a polygon (or its detail) around its
+# axes, by kind: its legend, the tick labels of its axes, its title, its notes (annotations other
+# than the labels of the vectors, "label:..."), and Plotly's toolbar (laid out, transparent until
+# the pointer is over the figure); and the figure's own box.
+FIGURE_TEXTS = """(id) => {
+    const div = document.getElementById(id);
+    const notes = div.layout.annotations || [];
+    const box = (e) => { const r = e.getBoundingClientRect();
+                         return [r.left, r.top, r.right, r.bottom]; };
+    return [box(div), {
+        legend: [...div.querySelectorAll('.legend')].map(box),
+        'tick label': [...div.querySelectorAll('.xtick text, .ytick text')].map(box),
+        title: [...div.querySelectorAll('.gtitle')].map(box),
+        note: [...div.querySelectorAll('g.annotation')]
+            .filter((g) => !String(notes[Number(g.dataset.index)]?.name || '').startsWith('label:'))
+            .map((g) => box(g.querySelector('.annotation-text-g'))),
+        toolbar: [...div.querySelectorAll('.modebar')].map(box),
+    }];
+}"""
+
+
+def clashes(texts: dict[str, list[list[float]]]) -> list[tuple[str, str]]:
+    """The kinds of every two boxes of different kinds that overlap (1 px of slack)."""
+    kinds = list(texts)
+    return [
+        (k1, k2)
+        for i, k1 in enumerate(kinds)
+        for k2 in kinds[i + 1 :]
+        for a in texts[k1]
+        for b in texts[k2]
+        if overlapping_pairs([a, b])
+    ]
+
+
+def figure_texts_clear(page: Any, div: str) -> dict[str, list[list[float]]]:
+    """The texts of `div` (FIGURE_TEXTS), having checked that no two of different kinds overlap
+    and that the title and the legend are not cut at the figure's left or right edge."""
+    frame, texts = page.evaluate(FIGURE_TEXTS, div)
+    assert all(texts[k] for k in ("tick label", "title", "toolbar")), (div, texts)
+    assert clashes(texts) == [], (div, texts)
+    whole = texts["title"] + texts["legend"]
+    cut = [b for b in whole if b[0] < frame[0] - 1 or b[2] > frame[2] + 1]
+    assert cut == [], (div, frame, cut)
+    return texts
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("width", "height"), [(390, 844), (1024, 768), (1280, 800), (1440, 900)])
+def test_the_polygons_legend_tick_labels_title_and_note_never_overlap(
+    app: AppPage, width: int, height: int
+) -> None:
+    """Every planar linkage in the menu, both polygons and their details: the legend, the tick
+    labels, the title, any note ("Coriolis = 0 at C (guide not turning)", wherever it is drawn)
+    and the toolbar do not overlap one another; the title and the legend are whole. On a phone
+    the legend was drawn on the x axis' tick labels (placed at a fraction, -0.08, of the axes'
+    height: 7 px there), the acceleration polygon's title on its Coriolis note and the detail's
+    title cut at the right; at 1024x768 the legend touched the tick labels; at 1280x800 the titles
+    lay under the toolbar; at 1440x900 the note and the detail's title did. Screenshots
+    polygons-<preset>-<viewport>."""
+    page = app.page
+    page.set_viewport_size({"width": width, "height": height})
+    app.open()
+    values = page.eval_on_selector_all("#preset option", "(os) => os.map((o) => o.value)")
+    planar = [v for v in values if v.split(":")[0] in ("preset", "example") and "spatial" not in v]
+    assert len(planar) >= 11
+    notes = details = 0
+    for value in planar:
+        choose(app, value)
+        page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
+        pause_and_wait(page)
+        for div in ("velocity-polygon", "acceleration-polygon"):
+            page.wait_for_function(DETAIL_DONE, arg=div)  # its last drawing done, its detail's too
+            assert figure_texts_clear(page, div)["legend"], (value, div)
+            notes += "Coriolis = 0" in (page.text_content(f"#{div} .infolayer") or "")
+            if page.get_attribute(f"#{div}", "data-detail") == "shown":
+                figure_texts_clear(page, f"{div}-detail")
+                details += 1
+        if value in ("preset:quick_return", "preset:four_bar"):
+            app.screenshot(f"polygons-{value.split(':')[1]}-{width}x{height}", ".polygons-panel")
+    assert notes >= 4, "the Coriolis notes were among the texts checked"
+    assert details >= 4, "details were among the figures checked"
