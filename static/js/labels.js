@@ -51,24 +51,26 @@ function segmentsOf(traces, toPx) {
 const areas = new WeakMap(); // div -> Map(legend -> {width, height, w, h}) of its drawings
 const LAST = Symbol('the last drawing');
 
-/** The legend a figure's traces make (their names, in order). */
-const legendOf = (traces) => traces.filter((t) => t.showlegend !== false).map((t) => t.name).join('\n');
+/** The legend a figure's traces make (their names, in order) under the title of `layout`'s. */
+const legendOf = (traces, layout) =>
+  [layout?.legend?.title?.text ?? '', ...traces.filter((t) => t.showlegend !== false).map((t) => t.name)].join('\n');
 
-/** The plot area {w, h} (px) `traces` will get in `div`, when an earlier drawing tells (else null). */
-export function knownArea(div, traces) {
+/** The plot area {w, h} (px) `traces` will get in `div` (laid out as `layout`, for its legend's
+ * title), when an earlier drawing tells (else null). */
+export function knownArea(div, traces, layout = null) {
   const drawings = areas.get(div);
-  const seen = drawings?.get(legendOf(traces)) ?? drawings?.get(LAST);
+  const seen = drawings?.get(legendOf(traces, layout)) ?? drawings?.get(LAST);
   const same = seen && seen.width === div.clientWidth && seen.height === div.clientHeight;
   return same ? { w: seen.w, h: seen.h } : null;
 }
 
 /** The plot area {w, h} (px) of the drawn `div` (kept for knownArea), or null before a drawing. */
-export function drawnArea(div, traces) {
+export function drawnArea(div, traces, layout = null) {
   const size = div._fullLayout?._size;
   if (!size) return null;
   if (!areas.has(div)) areas.set(div, new Map());
   const area = { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h };
-  areas.get(div).set(legendOf(traces), area).set(LAST, area);
+  areas.get(div).set(legendOf(traces, layout), area).set(LAST, area);
   return { w: size.w, h: size.h };
 }
 

@@ -311,10 +311,10 @@ function drawPolygon(P, div, figure, kind, units) {
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
   div.dataset.detail = 'pending';
-  const area = knownArea(div, figure.traces);
+  const area = knownArea(div, figure.traces, figure.layout);
   P.react(div, figure.traces, area ? labelled(figure, area) : figure.layout, CONFIG)
     .then(() => {
-      const drawn = current() && drawnArea(div, figure.traces);
+      const drawn = current() && drawnArea(div, figure.traces, figure.layout);
       return drawn && !sameArea(area, drawn) && P.react(div, figure.traces, labelled(figure, drawn), CONFIG);
     })
     .then(() => current() && afterPaint())
