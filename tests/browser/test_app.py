@@ -644,6 +644,7 @@ def test_a_mechanism_too_fine_for_its_first_sweep_is_shown_from_it_then_refined(
     assert events.count("ask analyze") == 1, events
     assert events.index("ask analyze") < last_sweep, events
 
+
 # ---- layout ------------------------------------------------------------------------------------
 
 
