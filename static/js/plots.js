@@ -9,7 +9,7 @@
 import { COLOURS } from './theme.js';
 import { linkColours } from './scene.js';
 import { unitLabel, toDisplay, fmt } from './units.js';
-import { cycleOrder, xValues, allSeries, extremes, groundSliders, timeRatio } from './series.js';
+import { cycleOrder, plottedAngle, xValues, allSeries, extremes, groundSliders, timeRatio } from './series.js';
 
 const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'], toImageButtonOptions: { filename: 'plots' } };
 const TWO_PI = 2 * Math.PI;
@@ -52,9 +52,7 @@ function cursorX(scene, track, axis, value, units) {
     const omega = scene.drivers[0].omega;
     return (((value - track.values[0]) / omega) % (TWO_PI / Math.abs(omega)) + TWO_PI / Math.abs(omega)) % (TWO_PI / Math.abs(omega));
   }
-  const lo = track.closed ? 0 : TWO_PI * Math.floor(Math.min(track.values[0], track.values[track.n - 1]) / TWO_PI);
-  const a = track.closed ? ((value % TWO_PI) + TWO_PI) % TWO_PI : value - lo;
-  return toDisplay('angle', a, units);
+  return toDisplay('angle', plottedAngle(track, value), units);
 }
 
 /**

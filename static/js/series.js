@@ -3,8 +3,9 @@
 // One list serves the plots (a student picks what to plot) and the CSV export (every series),
 // so a number in the CSV is the number on the plot. Everything is read from the server's sweep:
 // positions, velocities and accelerations of the points, angle, ω and α of the links. What is
-// done here is reading, not solving: the x axis (the driver angle brought into 0..360 deg, the
-// sweep starting at the drawn pose, or the time t = (θ − θ₀)/ω of a driver turning at constant ω).
+// done here is reading, not solving: the x axis (the driver angle brought into 0..360 deg for a
+// full turn, the sweep starting at the drawn pose, a rocking crank's angle as swept, or the time
+// t = (θ − θ₀)/ω of a driver turning at constant ω).
 // The server sends the rest: a slider's displacement s along its guide and its rates
 // (`sliders`), the transmission angle μ = ∠BCD of each four-bar loop (`four_bar_loops`) and a
 // ram's quick-return time ratio from its extreme positions (`sliders[].quick_return`).
@@ -16,23 +17,28 @@ const TWO_PI = 2 * Math.PI;
 const mod = (a, m) => ((a % m) + m) % m;
 
 /**
+ * The driver angle (rad) `value` as the cycle's x axis shows it: brought into [0, 2π) for a full
+ * revolution; as it is for a rocking crank (the angles its range, the slider and the analysed
+ * instant are named by).
+ */
+export function plottedAngle(track, value) {
+  return track.closed ? mod(value, TWO_PI) : value;
+}
+
+/**
  * The order in which to read the samples and the x value of each: for a full revolution the
  * driver angle in [0, 2π] ascending (the first sample repeated one turn later closes it); for a
- * rocking crank its range shifted into [0, 2π); for time the samples as they are.
+ * rocking crank its range as swept (plottedAngle); for time the samples as they are.
  */
 export function cycleOrder(track) {
   const v = track.values;
   const n = track.n;
   if (track.param === 'time') return { index: v.map((_, i) => i), x: [...v] };
-  if (track.closed) {
-    // The sweep's samples cover one turn without repeating the first at its end.
-    const idx = [...Array(n).keys()].sort((a, b) => mod(v[a], TWO_PI) - mod(v[b], TWO_PI));
-    const x = idx.map((i) => mod(v[i], TWO_PI));
-    return { index: [...idx, idx[0]], x: [...x, x[0] + TWO_PI] };
-  }
-  const lo = Math.min(v[0], v[n - 1]);
-  const shift = TWO_PI * Math.floor(lo / TWO_PI);
-  return { index: v.map((_, i) => i), x: v.map((a) => a - shift) };
+  if (!track.closed) return { index: v.map((_, i) => i), x: v.map((a) => plottedAngle(track, a)) };
+  // The sweep's samples cover one turn without repeating the first at its end.
+  const idx = [...Array(n).keys()].sort((a, b) => plottedAngle(track, v[a]) - plottedAngle(track, v[b]));
+  const x = idx.map((i) => plottedAngle(track, v[i]));
+  return { index: [...idx, idx[0]], x: [...x, x[0] + TWO_PI] };
 }
 
 /** The x axes the plots offer: driver angle, and time when the driver turns at constant ω. */

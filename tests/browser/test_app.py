@@ -643,6 +643,21 @@ def test_a_mechanism_too_fine_for_its_first_sweep_is_shown_from_it_then_refined(
     last_sweep = len(events) - 1 - events[::-1].index("got sweep")
     assert events.count("ask analyze") == 1, events
     assert events.index("ask analyze") < last_sweep, events
+    # The cycle plots name the crank's angle as the slider and the message do: the cursor at the
+    # analysed instant, the x axis from the first to the last swept angle (not 2 pi away).
+    page.wait_for_function(
+        "() => (document.getElementById('plots').layout?.shapes || []).length > 0"
+    )
+    cursor, first, last = page.evaluate(
+        """() => { const p = document.getElementById('plots');
+                   const x = p.data[0].x;
+                   return [p.layout.shapes[0].x0, x[0], x[x.length - 1]]; }"""
+    )
+    analysed = float(page.get_attribute("#linkage", "data-analysed") or "nan")
+    assert cursor == pytest.approx(analysed, abs=1e-12)
+    stated = page.inner_text("#view-message")
+    low, high = sorted((first, last))
+    assert f"rocks between {low:.4g} rad and {high:.4g} rad" in stated, (stated, low, high)
 
 
 # ---- layout ------------------------------------------------------------------------------------
