@@ -698,6 +698,9 @@ def test_drawing_motion_controls_and_polygons_fit_one_laptop_screen(app: AppPage
     assert page.get_attribute("#tab-solution", "aria-selected") == "true"
     page.click("#tab-plots")
     assert page.locator("#plots .main-svg").first.is_visible()
+    # (the clicks scrolled the tabs into view: back at the top, the sticky controls column is
+    # pictured where a student first sees it)
+    page.evaluate("() => scrollTo(0, 0)")
     app.screenshot("laptop-1440x900-first-screen", None)
 
 
