@@ -600,8 +600,8 @@ class App {
     const timeDriven = S.isTimeDriven(scene);
     const ask = (param, value) => api.analyze(S.sceneAt(scene, param, value), INSTANT).catch(() => {}); // (its error is analyzeNow's)
     const at = previous ?? instant ?? null; // the crank angle or time to be shown (null: the start)
-    if (posed && at !== null && previous === null) ask(timeDriven ? 'time' : 'angle', at);
-    else if (posed && at !== null && !timeDriven && this.track.param === 'angle') ask('angle', at);
+    // (an edit is posed at a crank angle only: posedAtInstant)
+    if (posed && at !== null) ask(timeDriven ? 'time' : 'angle', at);
     // (a crank's turn, or a time range, starts where the first sweep starts; a rocking crank's
     // samples are the midpoints of its range's parts, which move with their number)
     let early = null; // the first sweep, shown while a finer one is asked for
@@ -776,7 +776,6 @@ class App {
   refineTrack(track) {
     const value = this.instantValue();
     const analysed = this.analysis && this.analysisU !== null ? this.instantValue(this.analysisU) : null;
-    const paused = this.analysisU === this.u;
     this.track = track;
     $('linkage').dataset.samples = String(track.n);
     this.setInstantRange(track);
@@ -784,7 +783,7 @@ class App {
     this.trackMessages(track);
     this.linkage.setScene(this.scene, track, { sameMechanism: true });
     if (analysed !== null) { // (one still asked for finds its index when it comes: analyzeNow)
-      this.analysisU = paused ? this.u : indexOfValue(track, analysed);
+      this.analysisU = indexOfValue(track, analysed); // (this.u when paused there: placeAt)
       this.linkage.setAnalysis(this.analysis);
     }
     this.dirty = true;

@@ -36,8 +36,9 @@ export function cycleOrder(track) {
   if (track.param === 'time') return { index: v.map((_, i) => i), x: [...v] };
   if (!track.closed) return { index: v.map((_, i) => i), x: v.map((a) => plottedAngle(track, a)) };
   // The sweep's samples cover one turn without repeating the first at its end.
-  const idx = [...Array(n).keys()].sort((a, b) => plottedAngle(track, v[a]) - plottedAngle(track, v[b]));
-  const x = idx.map((i) => plottedAngle(track, v[i]));
+  const plotted = v.map((a) => plottedAngle(track, a));
+  const idx = [...Array(n).keys()].sort((a, b) => plotted[a] - plotted[b]);
+  const x = idx.map((i) => plotted[i]);
   return { index: [...idx, idx[0]], x: [...x, x[0] + TWO_PI] };
 }
 
