@@ -502,10 +502,10 @@ def measure_instant(doc: dict[str, Any], budget: Budget, res: Results) -> str:
 
 def solution_call(doc: dict[str, Any]) -> Callable[[], object]:
     """One worked solution in-process (issue 4): parse, solve (analysis included) and build
-    the /solution response body, as the route does, without HTTP."""
+    the /solution response body as the route does (``as_dict(arrays=True)``), without HTTP."""
     import solver
 
-    return lambda: solver.solve(doc, "vector", 4).as_dict()
+    return lambda: solver.solve(doc, "vector", 4).as_dict(arrays=True)
 
 
 def measure_solutions(budget: Budget, res: Results) -> str:

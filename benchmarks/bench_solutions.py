@@ -3,13 +3,20 @@
     git archive <commit> | (mkdir -p /tmp/base && tar -x -C /tmp/base)
     python -m benchmarks.bench_solutions --baseline /tmp/base --label <commit>
 
-Each preset at its defaults, ``solver.solve(doc, method, 4).as_dict()`` (``--methods``, vector
-and loop by default: parse, analysis, steps, the /solution body), timed in a fresh interpreter
-per tree and round, the two trees alternating so that both see the same load. Prints the median
-over rounds of each round's p50, wall clock and CPU time of the process (the CPU time is what a
-quiet machine would take, less sensitive to the other processes on a loaded one), and writes the
-report into its section of docs/BENCHMARKS.md (not with ``--no-write``). Issue 12's target:
-under 20 ms for the slowest preset on a quiet machine.
+Each preset at its defaults, ``solver.solve(doc, method, 4).as_dict(arrays=True)``
+(``--methods``, vector and loop by default: parse, analysis, steps, the /solution body as the
+route takes it; ``as_dict()`` in a tree older than ``arrays``, which kept the arrays), timed in a
+fresh interpreter per tree and round, the two trees alternating so that both see the same load.
+Prints the median over rounds of each round's p50, wall clock and CPU time of the process (the
+CPU time is what a quiet machine would take, less sensitive to the other processes on a loaded
+one), and writes the report into its section of docs/BENCHMARKS.md (not with ``--no-write``).
+Issue 12's target: under 20 ms for the slowest preset on a quiet machine; issue 22's: no slower
+than the tree before it (5c4fb6a).
+
+With ``--instructions`` it counts instead the instructions each solution runs, under valgrind's
+callgrind (``apt-get install valgrind``), in one process per tree: slow (one to three minutes a
+tree), but the same on a loaded, throttled or shared machine, where the times above can move by
+half between two runs of the same tree.
 """
 
 from __future__ import annotations
@@ -17,9 +24,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
+import tempfile
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -31,26 +40,53 @@ from benchmarks.sections import write_section  # noqa: E402
 
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 
-MEASURE = """
-import json, statistics, sys, time
+SETUP = """
+import functools, json, statistics, sys, time
 sys.path.insert(0, {tree!r})
 import solver
 from solver.teaching.presets import PRESETS, build_preset
+assert solver.__file__.startswith({tree!r}), solver.__file__
+def body(doc):
+    # the body as the route takes it: arrays kept (a tree older than ``arrays`` keeps them)
+    result = solver.solve(doc, {method!r}, 4)
+    try:
+        return result.as_dict(arrays=True)
+    except TypeError:
+        return result.as_dict()
+"""
+
+# Each preset's calls inside one ``functools.reduce``: callgrind counts the instructions run
+# within it (``--toggle-collect``) and writes one file per call (``--dump-after``).
+COUNT = (
+    SETUP
+    + """
+for name in PRESETS:
+    doc = build_preset(name, {{}})
+    for _ in range(2):
+        body(doc)
+    functools.reduce(lambda _, __: body(doc), range({calls}), None)
+print(json.dumps(list(PRESETS)))
+"""
+)
+
+MEASURE = (
+    SETUP
+    + """
 out = {{}}
 for name in PRESETS:
     doc = build_preset(name, {{}})
     for _ in range(3):
-        solver.solve(doc, {method!r}, 4).as_dict()
+        body(doc)
     wall, cpu = [], []
     for _ in range({calls}):
         w, c = time.perf_counter(), time.process_time()
-        solver.solve(doc, {method!r}, 4).as_dict()
+        body(doc)
         wall.append(time.perf_counter() - w)
         cpu.append(time.process_time() - c)
     out[name] = [statistics.median(wall), statistics.median(cpu)]
-assert solver.__file__.startswith({tree!r}), solver.__file__
 print(json.dumps(out))
 """
+)
 
 
 def measure(tree: Path, calls: int, method: str) -> dict[str, list[float]]:
@@ -60,6 +96,38 @@ def measure(tree: Path, calls: int, method: str) -> dict[str, list[float]]:
     )
     result: dict[str, list[float]] = json.loads(done.stdout.strip().splitlines()[-1])
     return result
+
+
+def count(tree: Path, calls: int, method: str) -> dict[str, float]:
+    """Instructions per solution of each preset in ``tree`` (callgrind: what the code does,
+    whatever the machine's speed or load)."""
+    code = COUNT.format(tree=str(tree), calls=calls, method=method)
+    with tempfile.TemporaryDirectory() as out:
+        done = subprocess.run(
+            ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+             "--toggle-collect=functools_reduce", "--dump-after=functools_reduce",
+             f"--callgrind-out-file={out}/calls", sys.executable, "-c", code],
+            cwd=tree, capture_output=True, text=True, check=True,
+        )  # fmt: skip
+        names = json.loads(done.stdout.strip().splitlines()[-1])
+        totals = []
+        for k in range(1, len(names) + 1):
+            found = re.search(r"^totals: (\d+)$", Path(out, f"calls.{k}").read_text(), re.M)
+            assert found is not None, f"no totals in callgrind's file {k}"
+            totals.append(int(found.group(1)))
+    return {name: total / calls for name, total in zip(names, totals, strict=True)}
+
+
+def count_table(counts: dict[str, dict[str, float]]) -> str:
+    """Per preset: instructions per solution, baseline and current, and their ratio."""
+    lines = [
+        "| preset | baseline instructions | current instructions | ratio |",
+        "|---|---|---|---|",
+    ]
+    for name, now in counts["current"].items():
+        base = counts["baseline"][name]
+        lines.append(f"| {name} | {base / 1e6:.1f} M | {now / 1e6:.1f} M | {now / base:.2f} |")
+    return "\n".join(lines)
 
 
 def table(runs: dict[str, list[dict[str, list[float]]]]) -> str:
@@ -88,10 +156,22 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--methods", default="vector,loop", help="comma-separated methods")
     parser.add_argument("--no-write", action="store_true", help="print only")
+    parser.add_argument(
+        "--instructions",
+        action="store_true",
+        help="count instructions under valgrind (callgrind) instead of timing: slow (about a "
+        "minute a tree and method), but what a loaded or throttled machine cannot skew",
+    )
     args = parser.parse_args()
     trees = {"baseline": args.baseline.resolve(), "current": ROOT}
     parts = []
-    for method in args.methods.split(","):
+    for method in args.methods.split(",") if args.instructions else ():
+        counts = {key: count(tree, args.calls, method) for key, tree in trees.items()}
+        parts.append(
+            f"Method {method}, instructions per solution (callgrind, {args.calls} calls per "
+            "preset after 2 to warm up).\n\n" + count_table(counts)
+        )
+    for method in () if args.instructions else args.methods.split(","):
         load = os.getloadavg()[0]
         runs: dict[str, list[dict[str, list[float]]]] = {k: [] for k in trees}
         for _ in range(args.rounds):
@@ -103,14 +183,24 @@ def main() -> None:
             f"({os.cpu_count()} cores).\n\n" + table(runs)
         )
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    how = (
+        "instructions counted by callgrind"
+        if args.instructions
+        else "alternating in the same run (medians over rounds of each round's p50; the CPU "
+        "time is the process's)"
+    )
+    flag = " --instructions" if args.instructions else ""
     report = (
-        f"Measured {when} by `python -m benchmarks.bench_solutions`: this tree against the "
-        f"baseline {args.label or args.baseline}, alternating in the same run (medians over "
-        "rounds of each round's p50; the CPU time is the process's).\n\n" + "\n\n".join(parts)
+        f"Measured {when} by `python -m benchmarks.bench_solutions{flag}`: this tree against "
+        f"the baseline {args.label or args.baseline}, {how}.\n\n" + "\n\n".join(parts)
     )
     print(report)
     if not args.no_write:
-        write_section(DOC, "solutions", "Worked solutions against a baseline", report)
+        section = "solution-instructions" if args.instructions else "solutions"
+        title = "Worked solutions against a baseline" + (
+            ", instructions" if args.instructions else ""
+        )
+        write_section(DOC, section, title, report)
 
 
 if __name__ == "__main__":

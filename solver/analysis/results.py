@@ -81,19 +81,22 @@ def holds(quantities: frozenset[str]) -> Contents:
 
 
 ATOMS = frozenset({str, float, int, bool, type(None)})  # the JSON leaves, frozen as they are
+# (the exact types of a body's containers: tested before an ``isinstance`` against the
+# ``Mapping`` ABC, which costs several times more, and a body has thousands of them)
+SEQUENCES = frozenset({list, tuple})
+MAPPINGS = frozenset({dict, MappingProxyType})
 
 
 def freeze(value: Any) -> Any:
     """A deep, read-only copy: mappings as ``MappingProxyType``, lists as tuples, arrays copied
-    with ``writeable = False``. (The exact-type tests come first: a body has thousands of leaves
-    and dicts, and an ``isinstance`` against the ``Mapping`` ABC costs several times more.)"""
+    with ``writeable = False``."""
     kind = type(value)
     if kind in ATOMS:
         return value
-    if kind is dict or isinstance(value, Mapping):
-        return MappingProxyType({key: freeze(item) for key, item in value.items()})
-    if isinstance(value, list | tuple):
+    if kind in SEQUENCES or (kind not in MAPPINGS and isinstance(value, list | tuple)):
         return tuple([freeze(item) for item in value])
+    if kind in MAPPINGS or isinstance(value, Mapping):
+        return MappingProxyType({key: freeze(item) for key, item in value.items()})
     if isinstance(value, np.ndarray):
         copy = np.array(value, copy=True, order="C")
         copy.flags.writeable = False
@@ -106,10 +109,10 @@ def thaw(value: Any) -> Any:
     kind = type(value)
     if kind in ATOMS:
         return value
-    if kind is MappingProxyType or isinstance(value, Mapping):
-        return {key: thaw(item) for key, item in value.items()}
-    if isinstance(value, tuple):
+    if kind is tuple or (kind not in MAPPINGS and isinstance(value, tuple)):
         return [thaw(item) for item in value]
+    if kind in MAPPINGS or isinstance(value, Mapping):
+        return {key: thaw(item) for key, item in value.items()}
     return value
 
 
@@ -120,10 +123,10 @@ def plain(value: Any) -> Any:
     kind = type(value)
     if kind in ATOMS:
         return value
-    if kind is MappingProxyType or isinstance(value, Mapping):
-        return {key: plain(item) for key, item in value.items()}
-    if isinstance(value, tuple | list):
+    if kind in SEQUENCES or (kind not in MAPPINGS and isinstance(value, list | tuple)):
         return [plain(item) for item in value]
+    if kind in MAPPINGS or isinstance(value, Mapping):
+        return {key: plain(item) for key, item in value.items()}
     if isinstance(value, np.ndarray | np.generic) and value.dtype.kind in "biuf":
         return value.tolist()
     raise TypeError(f"{kind.__name__} is no JSON value")

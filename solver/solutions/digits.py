@@ -149,21 +149,20 @@ class ShownValues:
         return value if operand.sign > 0 else tuple(-x for x in value)
 
     def recomputes(self, check: Check) -> bool:
-        """True when the check, evaluated with the shown operands, gives the shown result."""
-        ops = [self.operand(o) for o in check.operands]
-        value, scale = evaluate(check.relation, ops, check.factor)
+        """True when the check, evaluated with the shown operands, gives the shown result: every
+        component within 0.6 units in the last shown digit of the result's largest component (of
+        the terms' size where the result is 0), and 1e-12 of that size."""
+        operands = list(map(self.operand, check.operands))
+        value, scale = evaluate(check.relation, operands, check.factor)
         result = self.operand(check.result)
-        d = self.digits[check.result.ref.key]
         diff = [x - r for x, r in _zip(value, result)]
         if check.relation == "angle":
             diff = [(x + math.pi) % (2 * math.pi) - math.pi for x in diff]
-        largest = max(abs(r) for r in result)
-        floor = _ulp(largest if largest > 0 else scale, d)
-        for x, r in _zip(tuple(diff), result):
-            tolerance = TOLERANCE_ULP * max(_ulp(r, d), floor) * (1 + 1e-9)
-            if abs(x) > tolerance + 1e-12 * scale:
-                return False
-        return True
+        largest = max(map(abs, result))
+        # (a component's own last digit is never finer than the largest's: one tolerance for all)
+        unit = _ulp(largest if largest > 0 else scale, self.digits[check.result.ref.key])
+        tolerance = TOLERANCE_ULP * unit * (1 + 1e-9)
+        return max(map(abs, diff)) <= tolerance + 1e-12 * scale
 
 
 def needed_digits(
