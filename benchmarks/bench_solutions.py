@@ -25,6 +25,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -41,7 +42,7 @@ from benchmarks.sections import write_section  # noqa: E402
 DOC = ROOT / "docs" / "BENCHMARKS.md"
 
 SETUP = """
-import functools, json, statistics, sys, time
+import functools, gc, json, statistics, sys, time
 sys.path.insert(0, {tree!r})
 import solver
 from solver.teaching.presets import PRESETS, build_preset
@@ -56,16 +57,20 @@ def body(doc):
 """
 
 # Each preset's calls inside one ``functools.reduce``: callgrind counts the instructions run
-# within it (``--toggle-collect``) and writes one file per call (``--dump-after``).
+# within it (``--toggle-collect``) and writes one file per call (``--dump-after``). With them,
+# the size of each preset's body (its JSON, arrays as lists), what the instructions wrote.
 COUNT = (
     SETUP
     + """
+size = {{}}
 for name in PRESETS:
     doc = build_preset(name, {{}})
     for _ in range(2):
         body(doc)
+    gc.collect()  # (each preset's count starts with the same heap: no earlier garbage)
     functools.reduce(lambda _, __: body(doc), range({calls}), None)
-print(json.dumps(list(PRESETS)))
+    size[name] = len(json.dumps(body(doc), default=lambda array: array.tolist()))
+print(json.dumps(size))
 """
 )
 
@@ -98,9 +103,9 @@ def measure(tree: Path, calls: int, method: str) -> dict[str, list[float]]:
     return result
 
 
-def count(tree: Path, calls: int, method: str) -> dict[str, float]:
+def count(tree: Path, calls: int, method: str) -> dict[str, tuple[float, int]]:
     """Instructions per solution of each preset in ``tree`` (callgrind: what the code does,
-    whatever the machine's speed or load)."""
+    whatever the machine's speed or load), and the size of its body (bytes of JSON)."""
     code = COUNT.format(tree=str(tree), calls=calls, method=method)
     with tempfile.TemporaryDirectory() as out:
         done = subprocess.run(
@@ -108,25 +113,34 @@ def count(tree: Path, calls: int, method: str) -> dict[str, float]:
              "--toggle-collect=functools_reduce", "--dump-after=functools_reduce",
              f"--callgrind-out-file={out}/calls", sys.executable, "-c", code],
             cwd=tree, capture_output=True, text=True, check=True,
+            env={**os.environ, "PYTHONHASHSEED": "0"},  # (the same dict and set orders)
         )  # fmt: skip
-        names = json.loads(done.stdout.strip().splitlines()[-1])
-        totals = []
-        for k in range(1, len(names) + 1):
+        sizes: dict[str, int] = json.loads(done.stdout.strip().splitlines()[-1])
+        counted = {}
+        for k, name in enumerate(sizes, start=1):
             found = re.search(r"^totals: (\d+)$", Path(out, f"calls.{k}").read_text(), re.M)
             assert found is not None, f"no totals in callgrind's file {k}"
-            totals.append(int(found.group(1)))
-    return {name: total / calls for name, total in zip(names, totals, strict=True)}
+            counted[name] = (int(found.group(1)) / calls, sizes[name])
+    return counted
 
 
-def count_table(counts: dict[str, dict[str, float]]) -> str:
-    """Per preset: instructions per solution, baseline and current, and their ratio."""
+def count_table(counts: dict[str, dict[str, tuple[float, int]]]) -> str:
+    """Per preset: instructions per solution, baseline and current, their ratio, the bodies'
+    sizes and the ratio of instructions per byte written (the same work for more content is
+    1.00 there)."""
     lines = [
-        "| preset | baseline instructions | current instructions | ratio |",
-        "|---|---|---|---|",
+        "| preset | baseline instructions | current instructions | ratio | baseline body | "
+        "current body | ratio | instructions per byte, ratio |",
+        "|---|---|---|---|---|---|---|---|",
     ]
-    for name, now in counts["current"].items():
-        base = counts["baseline"][name]
-        lines.append(f"| {name} | {base / 1e6:.1f} M | {now / 1e6:.1f} M | {now / base:.2f} |")
+    for name, (now, now_size) in counts["current"].items():
+        base, base_size = counts["baseline"][name]
+        per_byte = (now / now_size) / (base / base_size)
+        lines.append(
+            f"| {name} | {base / 1e6:.1f} M | {now / 1e6:.1f} M | {now / base:.2f} | "
+            f"{base_size / 1e3:.1f} kB | {now_size / 1e3:.1f} kB | {now_size / base_size:.2f} | "
+            f"{per_byte:.2f} |"
+        )
     return "\n".join(lines)
 
 
@@ -163,6 +177,8 @@ def main() -> None:
         "minute a tree and method), but what a loaded or throttled machine cannot skew",
     )
     args = parser.parse_args()
+    if args.instructions and shutil.which("valgrind") is None:
+        parser.error("--instructions needs valgrind (apt-get install valgrind)")
     trees = {"baseline": args.baseline.resolve(), "current": ROOT}
     parts = []
     for method in args.methods.split(",") if args.instructions else ():

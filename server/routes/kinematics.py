@@ -34,8 +34,8 @@ router = APIRouter(
 
 
 def analyze_cost(request: AnalyzeRequest) -> float:
-    """The instant, and with ``polygons`` the writing of the vector method's steps they follow
-    (counted as a solution's writing)."""
+    """The instant, and with ``polygons`` the vector method's steps they follow (built, not
+    written: about half a solution's writing, counted as a whole one)."""
     extra = SOLUTION_COST if "polygons" in (request.quantities or ()) else 0.0
     return budget.read_instant(request.scene, request.strict, "/api/v1/analyze", extra)
 

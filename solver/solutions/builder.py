@@ -52,12 +52,18 @@ def _number(value: float | Sequence[float] | np.ndarray) -> Number:
 
 
 class StepBuilder:
-    """Collects one step's values, checks, LaTeX lines and text sentences."""
+    """Collects one step's values, checks, LaTeX lines and text sentences.
 
-    def __init__(self, fmt: Formatter, kind: str, title: str) -> None:
+    ``written=False``: the step's structure only (its kind, title, values with their sources,
+    and checks), for a reader of that alone (the polygons' order, ``solutions.polygons``): no
+    value's display, no digits settled, no LaTeX or text written.
+    """
+
+    def __init__(self, fmt: Formatter, kind: str, title: str, written: bool = True) -> None:
         self.fmt = fmt
         self.kind = kind
         self.title = title
+        self.written = written
         self.digits: dict[str, int] = {}
         self.values: dict[str, Value] = {}
         self.checks: list[Check] = []
@@ -104,7 +110,7 @@ class StepBuilder:
         if not all(math.isfinite(x) for x in (number if isinstance(number, tuple) else (number,))):
             raise ValueError(f"non-finite value {key} = {number}")
         self.references[key] = reference
-        display = self._digits_of(key).display(number, unit, reference)
+        display = self._digits_of(key).display(number, unit, reference) if self.written else ""
         self.values[key] = Value(number, unit, display, source)
         return key
 
@@ -240,6 +246,8 @@ class StepBuilder:
         self.settled = True
 
     def build(self) -> Step:
+        if not self.written:
+            return Step(self.kind, self.title, "", "", dict(self.values), tuple(self.checks))
         self.settle()
         lines: list[str] = []
         for line in self.lines:

@@ -129,6 +129,7 @@ class LinkageContext:
     scene: LinkageScene
     analysis: LinkageAnalysis
     fmt: Formatter
+    written: bool = True  # False: the steps' structure only (``StepBuilder``)
     used_vectors: list[tuple[str, str]] = field(default_factory=list)
     shown_velocity: set[str] = field(default_factory=set)
     shown_acceleration: set[str] = field(default_factory=set)
@@ -256,7 +257,7 @@ class LinkageContext:
 
     def builder(self, kind: str, title: str) -> StepBuilder:
         """A step's builder (written with references, it settles its own digits when built)."""
-        return StepBuilder(self.fmt, kind, title)
+        return StepBuilder(self.fmt, kind, title, self.written)
 
     def use(self, first: str, second: str) -> None:
         if (first, second) not in self.used_vectors:

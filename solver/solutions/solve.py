@@ -137,10 +137,12 @@ def _vector_method(ctx: LinkageContext) -> list[Step]:
 
 
 def vector_method_steps(scene: LinkageScene, analysis: LinkageAnalysis, digits: int) -> list[Step]:
-    """The vector method's steps alone, as the vector solution of ``analysis`` holds them (what
-    the polygons follow, whichever method a solution uses), without the solution's other steps
-    and mistakes."""
-    return _vector_method(LinkageContext(scene, analysis, _formatter(scene, analysis, digits)))
+    """The vector method's steps alone, as the vector solution of ``analysis`` holds them, their
+    structure only (kinds, values with their sources, checks; nothing written: ``StepBuilder``):
+    what the polygons follow, whichever method a solution uses, without the solution's other
+    steps and mistakes, and without writing them (most of a worked solution's time)."""
+    fmt = _formatter(scene, analysis, digits)
+    return _vector_method(LinkageContext(scene, analysis, fmt, written=False))
 
 
 def _linkage(scene: LinkageScene, method: str, digits: int, angle_extremes: bool) -> Solution:

@@ -79,3 +79,29 @@ def test_the_written_solution_settles_its_digits_in_one_pass() -> None:
     for key in ("D", "D1", "D2", "u1", "u2"):
         assert step.values[key].display in step.text
         assert step.values[key].display in step.latex
+
+
+def test_a_step_built_unwritten_has_the_written_steps_structure_and_no_words() -> None:
+    """``written=False`` (what the polygons read): the same kind, title, values with their
+    numbers, units and sources, and checks as the written step, and neither LaTeX, text nor
+    displays (nothing formatted, no digits settled)."""
+
+    def built(written: bool) -> StepBuilder:
+        b = StepBuilder(Formatter(4), "test", "a 2x2 system", written)
+        c = [[b.put(f"c{i}{j}", [[0.0126544, -1.0], [0.5, 3.0]][i][j], "", ("c", i, j))
+              for j in range(2)] for i in range(2)]  # fmt: skip
+        r = [b.put(f"b{i}", [-0.03125, 4.0][i], "m", ("b", i)) for i in range(2)]
+        unknowns = [Unknown(f"u{j}", f"u_{j}", f"u{j}", "", [-2.3, 1.7][j]) for j in range(2)]
+        present_solution(b, unknowns, c, r, "", cramer=True)
+        return b
+
+    written, structure = built(True).build(), built(False).build()
+    assert (structure.kind, structure.title) == (written.kind, written.title)
+    assert structure.checks == written.checks
+    assert list(structure.values) == list(written.values)
+    for key, value in structure.values.items():
+        shown = written.values[key]
+        assert (value.value, value.unit, value.source) == (shown.value, shown.unit, shown.source)
+        assert value.display == "" and shown.display != ""
+    assert (structure.latex, structure.text) == ("", "")
+    assert written.latex and written.text
