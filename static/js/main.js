@@ -689,6 +689,7 @@ class App {
   /** Show `scene` swept as `track` at `instant`; `final`: the track its plots and dynamics are
    * drawn from (when a finer sweep of it is still coming: loadScene). */
   commitPlanar(scene, track, note, instant, keepChoices, sameMechanism = false, final = null) {
+    this.dynamics.leave();
     this.scene = scene;
     this.track = track;
     this.analysis = null;
