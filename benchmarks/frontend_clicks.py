@@ -33,9 +33,9 @@ request: the slider and the field are given a value not asked before at every in
 pays the server), and the table gives, beside the median and the worst, the first input of each
 case (for the preset switch and the method: the first visit, before any answer is reused).
 
-Usage: ``.venv/bin/python benchmarks/frontend_clicks.py [--repeat 7] [--pages 1]``. Each case is run
-``repeat`` times in the same page, alternating between two targets so that every input changes
-something; the table gives the median, the worst and the first, and each median less the
+Usage: ``.venv/bin/python benchmarks/frontend_clicks.py [--repeat 7] [--pages 1]``. Each case is
+run ``repeat`` times in the same page, alternating between two targets so that every input
+changes something; the table gives the median, the worst and the first, and each median less the
 baseline's.
 """
 
