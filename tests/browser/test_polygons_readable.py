@@ -260,6 +260,36 @@ def test_the_polygons_are_drawn_again_at_their_size_when_the_window_changes(
     page.wait_for_function(FITTED)
 
 
+# The visibility of each trace of a polygon named `name` (true, or 'legendonly' when hidden).
+VISIBILITY = """([id, name]) => document.getElementById(id).data
+    .filter((t) => t.legendgroup === name).map((t) => t.visible ?? true)"""
+
+
+def test_a_legend_entry_hides_and_shows_its_traces(app: AppPage) -> None:
+    """The polygons' legends are HTML under the figures (docs/FRONTEND.md): the note and one
+    entry per group of traces, each a button that hides its traces and shows them again, as a
+    click on Plotly's legend did; the four-bar's velocity legend lists its traces' names."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_function(LABELS_PLACED, arg="velocity-polygon")
+    names = page.locator("#velocity-polygon-legend button").all_inner_texts()
+    traces = page.evaluate(
+        """() => document.getElementById('velocity-polygon').data
+            .filter((t) => t.showlegend !== false).map((t) => t.name)"""
+    )
+    assert names == traces and "absolute velocity" in names, (names, traces)
+    entry = page.locator("#velocity-polygon-legend button", has_text="absolute velocity")
+    shown = ["velocity-polygon", "absolute velocity"]
+    assert page.evaluate(VISIBILITY, shown) == [True]
+    entry.click()
+    assert entry.get_attribute("aria-pressed") == "false"
+    page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === 'legendonly')", arg=shown)
+    entry.click()
+    assert entry.get_attribute("aria-pressed") == "true"
+    page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === true)", arg=shown)
+
+
 @pytest.mark.slow
 def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None:
     """The quick-return at 35 % of the turn: its acceleration polygon has a detail panel. The
