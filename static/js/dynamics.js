@@ -147,6 +147,20 @@ export class DynamicsPanel {
     return withFriction(scene, slider, pin, radius);
   }
 
+  /**
+   * Another geometry is shown (a preset, an edit): the sweep of forces drawn is no longer its own,
+   * so the instant's arrow, the joint forces on the drawing and the balanced mechanism stop
+   * following the animation (an arrow moved on another mechanism's sweep, a Plotly relayout
+   * of 25-50 ms at every frame drawn while the next mechanism opened) until ``show`` draws
+   * the new one; a sweep still asked for is dropped.
+   */
+  leave() {
+    this.seq += 1;
+    this.sweep = null;
+    this.balanced = null;
+    clearTimeout(this.instantTimer);
+  }
+
   /** The sweep (``samples`` as the animation's, so that its frames index both). */
   async show(original, units, samples) {
     const seq = ++this.seq;

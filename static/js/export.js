@@ -9,6 +9,7 @@ import { cycleOrder, xValues, xAxes, allSeries } from './series.js';
 import { toDisplay, unitLabel } from './units.js';
 import { slug } from './plots.js';
 import { isSpatial } from './scene.js';
+import { withLegend } from './polygons.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -141,10 +142,10 @@ async function plotImage(div, format) {
 }
 
 /**
- * A polygon as the student sees it: the polygon and, when it is shown, its detail panel under
- * it (polygon-detail.js), stacked in one PNG or SVG. Each panel keeps its on-screen proportions,
- * magnified alike to at least 640 px wide (so the "1 cm = …" scales hold in an SVG of a panel at
- * least that wide).
+ * A polygon as the student sees it: the polygon with its legend and, when it is shown, its detail
+ * panel under it (polygon-detail.js), stacked in one PNG or SVG. Each panel keeps its on-screen
+ * proportions, magnified alike to at least 640 px wide (so the "1 cm = …" scales hold in an SVG
+ * of a panel at least that wide).
  */
 async function polygonImage(main, format) {
   const P = globalThis.Plotly;
@@ -157,8 +158,11 @@ async function polygonImage(main, format) {
   const scale = format === 'png' ? 2 : 1;
   const images = [];
   for (const div of panels) {
-    const height = Math.round(div.getBoundingClientRect().height * zoom);
-    images.push({ url: await P.toImage(div, { format, width, height, scale }), height });
+    // The polygon with its legend (HTML under it on the page, Plotly's in the image, in as much room)
+    const legend = div === main ? $(`${main.id}-legend`) : null;
+    const shown = div.getBoundingClientRect().height + (legend ? legend.getBoundingClientRect().height : 0);
+    const height = Math.round(shown * zoom);
+    images.push({ url: await P.toImage(legend ? withLegend(div) : div, { format, width, height, scale }), height });
   }
   const total = images.reduce((sum, im) => sum + im.height, 0);
   return format === 'png' ? stackPng(images, width, total, scale) : stackSvg(images, width, total);

@@ -43,35 +43,25 @@ function segmentsOf(traces, toPx) {
 // ---- the plot area a figure is drawn in ---------------------------------------------------------
 // A figure whose axes' ranges are given (not autoranged) maps data to pixels linearly: its labels
 // can be placed before it is drawn, so that Plotly draws it once (not once to learn its scale and
-// again with its labels). The plot area is known from the div's earlier drawings: the same size
-// and the same legend (which takes its own room: one per mechanism) give the same area. A legend
-// not drawn before is taken to need the room of the div's last one (most fit in as many rows):
-// a guess, which the caller checks against the drawn area and draws again when it was wrong.
+// again with its labels). With fixed margins (no automargin, no legend in the figure: polygons.js)
+// its plot area is known before it is drawn: the div's size less the margins.
 
-const areas = new WeakMap(); // div -> Map(legend -> {width, height, w, h}) of its drawings
-const LAST = Symbol('the last drawing');
-
-/** The legend a figure's traces make (their names, in order) under the title of `layout`'s. */
-const legendOf = (traces, layout) =>
-  [layout?.legend?.title?.text ?? '', ...traces.filter((t) => t.showlegend !== false).map((t) => t.name)].join('\n');
-
-/** The plot area {w, h} (px) `traces` will get in `div` (laid out as `layout`, for its legend's
- * title), when an earlier drawing tells (else null). */
-export function knownArea(div, traces, layout = null) {
-  const drawings = areas.get(div);
-  const seen = drawings?.get(legendOf(traces, layout)) ?? drawings?.get(LAST);
-  const same = seen && seen.width === div.clientWidth && seen.height === div.clientHeight;
-  return same ? { w: seen.w, h: seen.h } : null;
+/**
+ * The size {width, height} (px) of a figure drawn in `div` (its computed size, rounded, as Plotly
+ * sizes a figure to its div) and its plot area {w, h} (px) laid out with `margin` (fixed).
+ * Plotly sizes a figure to its div when first drawn, and keeps that size through later drawings:
+ * the figure is given this size (a polygon's div changes height with its legend's rows).
+ */
+export function plotArea(div, margin) {
+  const style = getComputedStyle(div);
+  const [width, height] = [Math.round(parseFloat(style.width)), Math.round(parseFloat(style.height))];
+  return { width, height, w: width - margin.l - margin.r, h: height - margin.t - margin.b };
 }
 
-/** The plot area {w, h} (px) of the drawn `div` (kept for knownArea), or null before a drawing. */
-export function drawnArea(div, traces, layout = null) {
-  const size = div._fullLayout?._size;
-  if (!size) return null;
-  if (!areas.has(div)) areas.set(div, new Map());
-  const area = { width: div.clientWidth, height: div.clientHeight, w: size.w, h: size.h };
-  areas.get(div).set(legendOf(traces, layout), area).set(LAST, area);
-  return { w: size.w, h: size.h };
+/** The size and plot area of the drawn `div` (as plotArea), or null before a drawing. */
+export function drawnArea(div) {
+  const layout = div._fullLayout;
+  return layout?._size ? { width: layout.width, height: layout.height, w: layout._size.w, h: layout._size.h } : null;
 }
 
 /** Whether two plot areas are the same to half a pixel. */

@@ -118,6 +118,13 @@ class App {
     $('zoom-in').addEventListener('click', () => this.linkage.zoomBy(ZOOM_STEP));
     $('zoom-out').addEventListener('click', () => this.linkage.zoomBy(1 / ZOOM_STEP));
     $('zoom-fit').addEventListener('click', () => this.linkage.fit());
+    // The polygons are drawn at their divs' size (polygons.js, labels placed for it): drawn
+    // again when the window takes another (a phone turned, a window resized), once it settles.
+    let resized = null;
+    window.addEventListener('resize', () => {
+      clearTimeout(resized);
+      resized = setTimeout(() => this.drawPolygons(), 150);
+    });
     document.addEventListener('keydown', (ev) => {
       const zoom = { '+': ZOOM_STEP, '=': ZOOM_STEP, '-': 1 / ZOOM_STEP, '0': 0 }[ev.key];
       if (zoom === undefined || ev.ctrlKey || ev.metaKey || ev.altKey || $('linkage').hidden) return;
@@ -689,6 +696,7 @@ class App {
   /** Show `scene` swept as `track` at `instant`; `final`: the track its plots and dynamics are
    * drawn from (when a finer sweep of it is still coming: loadScene). */
   commitPlanar(scene, track, note, instant, keepChoices, sameMechanism = false, final = null) {
+    this.dynamics.leave();
     this.scene = scene;
     this.track = track;
     this.analysis = null;

@@ -11,7 +11,7 @@
 // detail's extent. The region is marked by a dashed box in the polygon; both scales are written
 // as "1 cm = …" (a CSS centimetre, 96/2.54 px), from the pixels per unit Plotly laid out.
 
-import { placeLabels, knownArea, drawnArea, sameArea } from './labels.js';
+import { placeLabels, plotArea, drawnArea, sameArea } from './labels.js';
 import { fmt, unitLabel } from './units.js';
 
 export const DETAIL_RULE = { negligible: 1e-3, short: 1 / 12, aspect: 5, sliver: 1 / 5, frame: 5 };
@@ -93,22 +93,17 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
     ...figure.layout,
     annotations: [],
     showlegend: false,
-    margin: { l: 44, r: 12, t: 76, b: 24 },
+    margin: { l: 44, r: 12, t: 76, b: 28 }, // (fixed: the tick labels end 17 px under the axes)
     xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
     yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
   };
-  // Drawn once, with its scale and labels, when its plot area is known from its last drawing;
-  // else once to learn the area first; and again if the area came out otherwise.
-  let area = knownArea(detail, figure.traces);
-  if (!area) {
-    await P.react(detail, figure.traces, base, CONFIG);
-    if (!current()) return;
-    area = drawnArea(detail, figure.traces);
-  }
+  // Drawn once, with its scale and labels, on the plot area known before Plotly draws (its size
+  // less the fixed margins: labels.js, plotArea); again should Plotly have laid it out otherwise.
+  const area = plotArea(detail, base.margin);
   let laid = detailLayout(base, region, area, figure, main, kind, units);
   await P.react(detail, figure.traces, laid, CONFIG);
   if (!current()) return;
-  const drawn = drawnArea(detail, figure.traces);
+  const drawn = drawnArea(detail);
   if (!sameArea(area, drawn)) {
     laid = detailLayout(base, region, drawn, figure, main, kind, units);
     await P.react(detail, figure.traces, laid, CONFIG);
@@ -122,9 +117,9 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
 }
 
 /**
- * The detail's layout in a plot area `area` ({w, h} px): `region` centred at equal scales, the
- * larger of the two fits' (k px per unit), its scale and the polygon's in the title, and the
- * labels of the tips inside it.
+ * The detail's layout at the size and plot area `area` ({width, height, w, h} px): `region`
+ * centred at equal scales, the larger of the two fits' (k px per unit), its scale and the
+ * polygon's in the title, and the labels of the tips inside it.
  */
 function detailLayout(base, region, area, figure, main, kind, units) {
   const k = Math.min(area.w / (region.x[1] - region.x[0]), area.h / (region.y[1] - region.y[0]));
@@ -137,6 +132,8 @@ function detailLayout(base, region, area, figure, main, kind, units) {
   const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
   return {
     ...base,
+    width: area.width,
+    height: area.height,
     title: {
       text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
       // Under Plotly's toolbar (its top 28 px at the right: it covered the title's end): the
@@ -145,7 +142,7 @@ function detailLayout(base, region, area, figure, main, kind, units) {
       font: { size: figure.narrow ? 11 : 13 }, x: 0.02, xanchor: 'left',
       yref: 'container', y: 1, yanchor: 'top', pad: { t: 42 },
     },
-    annotations: placeLabels({ x, y, ...area }, entries, figure.traces),
+    annotations: placeLabels({ x, y, w: area.w, h: area.h }, entries, figure.traces),
     xaxis: { ...base.xaxis, range: x },
     yaxis: { ...base.yaxis, range: y },
   };

@@ -17,7 +17,7 @@ import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
 import { imageName, pointName, POLYGON_POLE } from './notation.js';
-import { placeLabels, knownArea, drawnArea, sameArea, equalRanges } from './labels.js';
+import { placeLabels, plotArea, drawnArea, sameArea, equalRanges } from './labels.js';
 import { renderDetail } from './polygon-detail.js';
 
 const TINY = 1e-12;
@@ -86,14 +86,15 @@ function baseLayout(title, kind, units, narrow, note = null) {
       text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
       ...(narrow ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 14 } } : {}),
     },
+    // Fixed margins (nothing pushes them: no automargin, no legend in the figure), so that the plot
+    // area is the div's size less them, known before Plotly draws (labels.js, plotArea): the x
+    // axis' tick labels end 17 px under the axes, 11 px clear of the legend under the figure.
     margin: { l: 44, r: 12, t: narrow ? 68 : 38, b: 28 },
-    // The x axis' tick labels take their room under the axes (automargin), and the legend its own
-    // under them (at the bottom of the figure, `container`): the legend is never drawn on the tick
-    // labels, however short the axes (a fraction of their height, -0.08, was 7 px on a phone).
-    // A note heads the legend: beside the title it ran into it on a phone, and on a laptop it
-    // lay under Plotly's toolbar and the labels of vectors at the top of the axes.
-    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', automargin: 'height' },
+    xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
+    // The legend is drawn in HTML under the figure (drawLegend); this one is an exported image's
+    // (`withLegend`), at the bottom of the image, under the tick labels, headed by the note.
+    showlegend: false,
     legend: {
       orientation: 'h', yref: 'container', y: 0, yanchor: 'bottom', font: { size: 11 }, tracegroupgap: 0,
       ...(note ? { title: { text: note.text, side: 'top', font: { size: 11, color: note.colour } } } : {}),
@@ -298,33 +299,103 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
 
 /**
- * One polygon: its figure with its labels, then (once they are painted) its detail, each step
- * waiting for Plotly: the polygon a reader looks at first is not held back by the detail. The
- * figure is drawn once with its labels when the plot area is known or guessed from the div's
- * earlier drawings (labels.js, knownArea), else, the very first time, once to learn it and again
- * with the labels; and again if the area came out otherwise. A newer drawing of the same div
- * stops what is left of an older one, so a fast series of instants never leaves one instant's
- * labels or detail on another's polygon, nor marks a detail done too early.
+ * One polygon: its legend (HTML, under the figure), then its figure with its labels, drawn once
+ * by Plotly on the plot area known before it draws (labels.js, plotArea: the div's size, with
+ * the legend in place, less fixed margins; drawn again should Plotly have laid it out otherwise),
+ * then (once painted) its detail, each step waiting for Plotly: the polygon a reader looks at
+ * first is not held back by the detail. A newer drawing of the same div stops what is left of an
+ * older one, so a fast series of instants never leaves one instant's labels or detail on
+ * another's polygon, nor marks a detail done too early.
  */
 function drawPolygon(P, div, figure, kind, units) {
   const turn = (turns.get(div) || 0) + 1;
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
   div.dataset.detail = 'pending';
-  const area = knownArea(div, figure.traces, figure.layout);
-  P.react(div, figure.traces, area ? labelled(figure, area) : figure.layout, CONFIG)
+  drawLegend(P, div, figure);
+  const area = plotArea(div, figure.layout.margin);
+  P.react(div, figure.traces, labelled(figure, area), CONFIG)
     .then(() => {
-      const drawn = current() && drawnArea(div, figure.traces, figure.layout);
+      const drawn = current() && drawnArea(div);
       return drawn && !sameArea(area, drawn) && P.react(div, figure.traces, labelled(figure, drawn), CONFIG);
     })
     .then(() => current() && afterPaint())
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
 }
 
+/** The HTML legend under a polygon (its id the figure's and "-legend"). */
+const legendOf = (div) => document.getElementById(`${div.id}-legend`);
+
+/**
+ * The legend of `figure` drawn in `div`, in HTML under it, as Plotly's own legend read: the
+ * note (the layout's legend title) first, then one entry per legend group, its first trace's
+ * name and line (colour, width, dash; an arrowhead for arrows, a fill for a plate's image). An entry is a button that hides or shows its group's
+ * traces (`aria-pressed`), as a click on Plotly's legend did. Plotly's legend took its room from
+ * the figure once drawn (a margin it reserved), so that the plot area was known only after a
+ * first drawing, and it cost a third of each polygon's drawing.
+ */
+function drawLegend(P, div, figure) {
+  const note = figure.layout.legend?.title;
+  const entries = figure.traces.filter((t) => t.showlegend !== false);
+  const items = entries.map((t) => {
+    const group = figure.traces.flatMap((u, i) => (u.legendgroup === t.legendgroup ? [i] : []));
+    const button = Object.assign(document.createElement('button'), { type: 'button', className: 'legend-entry' });
+    button.setAttribute('aria-pressed', 'true');
+    button.append(legendSymbol(t), t.name);
+    button.addEventListener('click', () => {
+      const shown = button.getAttribute('aria-pressed') !== 'true';
+      button.setAttribute('aria-pressed', String(shown));
+      P.restyle(div, { visible: shown ? true : 'legendonly' }, group);
+    });
+    const item = document.createElement('li');
+    item.append(button);
+    return item;
+  });
+  if (note) {
+    const title = Object.assign(document.createElement('li'), { className: 'legend-note', textContent: note.text });
+    title.style.color = note.font.color;
+    items.unshift(title);
+  }
+  legendOf(div).replaceChildren(...items);
+}
+
+const SYMBOL_WIDTH = 40; // px, as Plotly's legend draws a trace's line
+const SVG = 'http://www.w3.org/2000/svg';
+
+/** A legend entry's symbol: the trace's line across 40 px, with an arrowhead at its middle for an
+ * arrow, over its fill for a plate's image (Plotly's dashes: dot d d, dash 3d 3d, d = max(width, 3)). */
+function legendSymbol(t) {
+  const svg = document.createElementNS(SVG, 'svg');
+  svg.setAttribute('width', String(SYMBOL_WIDTH));
+  svg.setAttribute('height', '12');
+  svg.setAttribute('aria-hidden', 'true');
+  const make = (name, attrs) => {
+    const e = document.createElementNS(SVG, name);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
+    svg.appendChild(e);
+  };
+  const width = Math.min(t.line.width, 5);
+  const d = Math.max(t.line.width, 3);
+  const dash = { dot: `${d},${d}`, dash: `${3 * d},${3 * d}` }[t.line.dash] || 'none';
+  if (t.fill === 'toself') make('rect', { x: 5, y: 1, width: 30, height: 10, fill: t.fillcolor });
+  make('line', { x1: 5, y1: 6, x2: 35, y2: 6, stroke: t.line.color, 'stroke-width': width, 'stroke-dasharray': dash });
+  if (t.marker?.symbol === 'arrow') make('path', { d: 'M 16 2 L 24 6 L 16 10 Z', fill: t.line.color });
+  return svg;
+}
+
+/**
+ * The figure drawn in `div` with Plotly's legend in it (under the tick labels, headed by the
+ * note), for an image of it (export.js): {data, layout}.
+ */
+export function withLegend(div) {
+  return { data: div.data, layout: { ...div.layout, showlegend: true } };
+}
+
 const PAD = 24; // px between the outermost tip and the edge of the plot area (arrowheads)
 
 /**
- * The layout of `figure` in a plot area `area` ({w, h} px): ranges that show it whole at equal
+ * The layout of `figure` at the size and plot area `area` ({width, height, w, h} px: labels.js,
+ * plotArea): ranges that show it whole at equal
  * scales (fixed: Plotly would otherwise widen them to fit the annotations, and a label's pixel
  * offset would no longer match its neighbours'), and the labels of the tips and poles placed on
  * them (labels.js).
@@ -334,7 +405,9 @@ function labelled(figure, area) {
   const entries = figure.labels.map(([at, text, colour]) => ({ at, text, colour }));
   return {
     ...figure.layout,
-    annotations: [...(figure.layout.annotations || []), ...placeLabels({ x, y, ...area }, entries, figure.traces)],
+    width: area.width,
+    height: area.height,
+    annotations: [...(figure.layout.annotations || []), ...placeLabels({ x, y, w: area.w, h: area.h }, entries, figure.traces)],
     xaxis: { ...figure.layout.xaxis, range: x, autorange: false },
     yaxis: { ...figure.layout.yaxis, range: y, autorange: false },
   };
@@ -349,6 +422,7 @@ export function clearPolygons(...divs) {
   for (const d of divs) {
     turns.set(d, (turns.get(d) || 0) + 1);
     P.purge(d);
+    legendOf(d)?.replaceChildren();
     const detail = detailOf(d);
     if (detail) {
       P.purge(detail);

@@ -71,16 +71,18 @@ def test_on_a_phone_plotlys_toolbar_leaves_the_polygons_titles_clear(app: AppPag
 
 
 # The boxes [left, top, right, bottom] (px) of the texts of a polygon (or its detail) around its
-# axes, by kind: its legend, the tick labels of its axes, its title, its notes (annotations other
-# than the labels of the vectors, "label:..."), and Plotly's toolbar (laid out, transparent until
-# the pointer is over the figure); and the figure's own box.
+# axes, by kind: its legend (a polygon's, in HTML under the figure: its note and its entries), the
+# tick labels of its axes, its title, its notes (annotations other than the labels of the vectors,
+# "label:..."), and Plotly's toolbar (laid out, transparent until the pointer is over the figure);
+# and the figure's own box (a polygon's with its legend, or the detail's).
 FIGURE_TEXTS = """(id) => {
     const div = document.getElementById(id);
+    const legend = document.getElementById(`${id}-legend`);
     const notes = div.layout.annotations || [];
     const box = (e) => { const r = e.getBoundingClientRect();
                          return [r.left, r.top, r.right, r.bottom]; };
-    return [box(div), {
-        legend: [...div.querySelectorAll('.legend')].map(box),
+    return [box(legend ? div.parentElement : div), {
+        legend: legend ? [...legend.children].map(box) : [],
         'tick label': [...div.querySelectorAll('.xtick text, .ytick text')].map(box),
         title: [...div.querySelectorAll('.gtitle')].map(box),
         note: [...div.querySelectorAll('g.annotation')]
@@ -105,13 +107,17 @@ def clashes(texts: dict[str, list[list[float]]]) -> list[tuple[str, str]]:
 
 
 def figure_texts_clear(page: Any, div: str) -> dict[str, list[list[float]]]:
-    """The texts of `div` (FIGURE_TEXTS), having checked that no two of different kinds overlap
-    and that the title and the legend are not cut at the figure's left or right edge."""
+    """The texts of `div` (FIGURE_TEXTS), having checked that no two of different kinds overlap,
+    that the title and the legend are not cut at the figure's left or right edge, and that the
+    tick labels and the legend lie within the figure (the tick labels take fixed margins)."""
     frame, texts = page.evaluate(FIGURE_TEXTS, div)
     assert all(texts[k] for k in ("tick label", "title", "toolbar")), (div, texts)
     assert clashes(texts) == [], (div, texts)
     whole = texts["title"] + texts["legend"]
     cut = [b for b in whole if b[0] < frame[0] - 1 or b[2] > frame[2] + 1]
+    assert cut == [], (div, frame, cut)
+    inside = [b for b in texts["tick label"] + texts["legend"] if b[2] > b[0]]  # (drawn ones)
+    cut = [b for b in inside if b[1] < frame[1] - 1 or b[3] > frame[3] + 1]
     assert cut == [], (div, frame, cut)
     return texts
 
@@ -143,7 +149,7 @@ def test_the_polygons_legend_tick_labels_title_and_note_never_overlap(
         for div in ("velocity-polygon", "acceleration-polygon"):
             page.wait_for_function(DETAIL_DONE, arg=div)  # its last drawing done, its detail's too
             assert figure_texts_clear(page, div)["legend"], (value, div)
-            notes += "Coriolis = 0" in (page.text_content(f"#{div} .infolayer") or "")
+            notes += "Coriolis = 0" in (page.text_content(f"#{div}-legend") or "")
             if page.get_attribute(f"#{div}", "data-detail") == "shown":
                 figure_texts_clear(page, f"{div}-detail")
                 details += 1

@@ -209,9 +209,11 @@ def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_
     app.screenshot(f"detail-{scene.split(':')[1].split('.')[0]}", ".polygons-panel")
 
 
+# The panels of a polygon as shown: the polygon with its legend (HTML, under it), and its detail.
 PANEL_SIZES = """(id) => [id, `${id}-detail`].map((k) => document.getElementById(k))
     .filter((d) => !d.hidden && d.data).map((d) => {
-        const b = d.getBoundingClientRect();
+        const legend = document.getElementById(`${d.id}-legend`);
+        const b = (legend ? d.parentElement : d).getBoundingClientRect();
         return [b.width, b.height];
     })"""
 
@@ -227,6 +229,65 @@ def choose_figure(page: Any, div: str, fmt: str) -> None:
         page.click("#export-menu summary")
     page.select_option("#export-figure-which", div)
     page.select_option("#export-figure-format", fmt)
+
+
+# Whether each polygon is drawn at its div's size, on the plot area its labels were placed for.
+FITTED = """() => ['velocity-polygon', 'acceleration-polygon'].every((id) => {
+    const div = document.getElementById(id);
+    const full = div._fullLayout;
+    const style = getComputedStyle(div);
+    return full && full.width === Math.round(parseFloat(style.width))
+        && full.height === Math.round(parseFloat(style.height))
+        && full._size.w === full.width - 56 && ['shown', 'none'].includes(div.dataset.detail);
+})"""
+
+
+def test_the_polygons_are_drawn_again_at_their_size_when_the_window_changes(
+    app: AppPage,
+) -> None:
+    """A polygon is drawn at its div's size (its labels placed for that plot area): a window
+    made narrower (1440 to 1024 wide, the polygons move under the drawing) draws both again at
+    their new size (Plotly keeps a figure's size from its first drawing otherwise)."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_function(FITTED)
+    wide = page.evaluate("() => document.getElementById('velocity-polygon')._fullLayout.width")
+    page.set_viewport_size({"width": 1024, "height": 768})
+    page.wait_for_function(
+        f"() => document.getElementById('velocity-polygon')._fullLayout.width !== {wide}"
+    )
+    page.wait_for_function(FITTED)
+
+
+# The visibility of each trace of a polygon named `name` (true, or 'legendonly' when hidden).
+VISIBILITY = """([id, name]) => document.getElementById(id).data
+    .filter((t) => t.legendgroup === name).map((t) => t.visible ?? true)"""
+
+
+def test_a_legend_entry_hides_and_shows_its_traces(app: AppPage) -> None:
+    """The polygons' legends are HTML under the figures (docs/FRONTEND.md): the note and one
+    entry per group of traces, each a button that hides its traces and shows them again, as a
+    click on Plotly's legend did; the four-bar's velocity legend lists its traces' names."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_function(LABELS_PLACED, arg="velocity-polygon")
+    names = page.locator("#velocity-polygon-legend button").all_inner_texts()
+    traces = page.evaluate(
+        """() => document.getElementById('velocity-polygon').data
+            .filter((t) => t.showlegend !== false).map((t) => t.name)"""
+    )
+    assert names == traces and "absolute velocity" in names, (names, traces)
+    entry = page.locator("#velocity-polygon-legend button", has_text="absolute velocity")
+    shown = ["velocity-polygon", "absolute velocity"]
+    assert page.evaluate(VISIBILITY, shown) == [True]
+    entry.click()
+    assert entry.get_attribute("aria-pressed") == "false"
+    page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === 'legendonly')", arg=shown)
+    entry.click()
+    assert entry.get_attribute("aria-pressed") == "true"
+    page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === true)", arg=shown)
 
 
 @pytest.mark.slow
@@ -263,3 +324,5 @@ def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None
         assert float(root.get("height", "0")) == sum(heights)
         text = "".join(root.itertext())
         assert (scale in text) == (div == "acceleration-polygon"), (div, scale)
+        legend = page.locator(f"#{div}-legend button").all_inner_texts()
+        assert legend and all(name in text for name in legend), (div, legend)
