@@ -329,10 +329,11 @@ const legendOf = (div) => document.getElementById(`${div.id}-legend`);
 /**
  * The legend of `figure` drawn in `div`, in HTML under it, as Plotly's own legend read: the
  * note (the layout's legend title) first, then one entry per legend group, its first trace's
- * name and line (colour, width, dash; an arrowhead for arrows, a fill for a plate's image). An entry is a button that hides or shows its group's
- * traces (`aria-pressed`), as a click on Plotly's legend did. Plotly's legend took its room from
- * the figure once drawn (a margin it reserved), so that the plot area was known only after a
- * first drawing, and it cost a third of each polygon's drawing.
+ * name and line (colour, width, dash; an arrowhead for arrows, a fill for a plate's image). An
+ * entry is a button that hides or shows its group's traces (`aria-pressed`), as a click on
+ * Plotly's legend did. Plotly's legend took its room from the figure once drawn (a margin it
+ * reserved), so that the plot area was known only after a first drawing, and it cost a third of
+ * each polygon's drawing.
  */
 function drawLegend(P, div, figure) {
   const note = figure.layout.legend?.title;
@@ -395,10 +396,9 @@ const PAD = 24; // px between the outermost tip and the edge of the plot area (a
 
 /**
  * The layout of `figure` at the size and plot area `area` ({width, height, w, h} px: labels.js,
- * plotArea): ranges that show it whole at equal
- * scales (fixed: Plotly would otherwise widen them to fit the annotations, and a label's pixel
- * offset would no longer match its neighbours'), and the labels of the tips and poles placed on
- * them (labels.js).
+ * plotArea): ranges that show it whole at equal scales (fixed: Plotly would otherwise widen them
+ * to fit the annotations, and a label's pixel offset would no longer match its neighbours'), and
+ * the labels of the tips and poles placed on them (labels.js).
  */
 function labelled(figure, area) {
   const { x, y } = equalRanges(figure.traces, area, PAD);
