@@ -140,7 +140,7 @@ def vector_method_steps(scene: LinkageScene, analysis: LinkageAnalysis, digits: 
     """The vector method's steps alone, as the vector solution of ``analysis`` holds them, their
     structure only (kinds, values with their sources, checks; nothing written: ``StepBuilder``):
     what the polygons follow, whichever method a solution uses, without the solution's other
-    steps and mistakes, and without writing them (most of a worked solution's time)."""
+    steps and mistakes, and without writing them (more than half of the steps' time)."""
     fmt = _formatter(scene, analysis, digits)
     return _vector_method(LinkageContext(scene, analysis, fmt, written=False))
 
