@@ -55,6 +55,9 @@ PROBE_SAMPLES = 720  # feasibility probe: 0.5 degree
 # linkage cannot close between two samples is found by the closest-approach search of assembly.
 SELF_PROBING_SAMPLES = 90
 BISECTION_STEPS = 48  # limit positions to 2 pi / 720 / 2^48 rad
+# The halvings of the bisection decided by one assembly: the midpoints of all the ways the next
+# BISECTION_LEVELS can go (2^levels - 1 turns) probed at once (``_limit``).
+BISECTION_LEVELS = 6
 MIN_GRADIENT_SINE = 1e-12  # sine of the angle between a group's constraint gradients
 # A ram's extreme positions: STROKE_NODES Chebyshev-Lobatto nodes in each bracket, both extremes
 # in one run, until the root's estimated error is below STROKE_TOLERANCE rad (at most
@@ -280,25 +283,53 @@ class _Driven:
             self.scene, self.plan, inputs, 2, signs=signs, newton_groups=self.newton_groups
         )
 
-    def closes(self, turn: float, strictly: bool = False) -> bool:
-        """Whether the linkage closes at ``turn``; ``strictly``: without the tangency tolerance
-        (a limit found so lies inside the tolerance band and can be posed again)."""
-        inputs = self.inputs(np.array([turn]))
+    def closes(self, turns: Array, strictly: bool = False) -> Array:
+        """Whether the linkage closes at each of ``turns`` (each sample alone: no branch is
+        followed from one to the next); ``strictly``: without the tangency tolerance (a limit
+        found so lies inside the tolerance band and can be posed again)."""
+        inputs = self.inputs(turns)
         motion = assemble(self.scene, self.plan, inputs, 0, newton_groups=self.newton_groups)
         if strictly:
-            return bool(motion.margin[0] >= 0.0 and motion.converged[0])
-        return bool(motion.feasible[0])
+            closed: Array = (motion.margin >= 0.0) & motion.converged
+            return closed
+        return motion.feasible
 
 
 def _limit(driven: _Driven, inside: float, outside: float) -> float:
-    """Bisection for the limit position between a closing and a non-closing driver turn."""
-    for _ in range(BISECTION_STEPS):
-        middle = 0.5 * (inside + outside)
-        if driven.closes(middle, strictly=True):
-            inside = middle
-        else:
-            outside = middle
+    """Bisection for the limit position between a closing and a non-closing driver turn:
+    BISECTION_STEPS halvings, middle = (inside + outside) / 2 replacing the end on its side.
+    The midpoints of every way the next BISECTION_LEVELS halvings can go are probed in one
+    assembly (``_midpoints``), and the halvings then follow the probes' answers: each sample
+    closes or not alone, so the limit is the very turn one halving at a time finds."""
+    steps = BISECTION_STEPS
+    while steps:
+        levels = min(BISECTION_LEVELS, steps)
+        turns = _midpoints(inside, outside, levels)
+        closed = driven.closes(turns, strictly=True)
+        node = 0
+        for _ in range(levels):
+            if closed[node]:
+                inside, node = float(turns[node]), 2 * node + 2
+            else:
+                outside, node = float(turns[node]), 2 * node + 1
+        steps -= levels
     return inside
+
+
+def _midpoints(inside: float, outside: float, levels: int) -> Array:
+    """The midpoints of ``levels`` halvings of (inside, outside) whichever way each goes, as a
+    binary tree in an array: node j is the midpoint of its interval, its children 2j + 1 (j does
+    not close: the interval (inside, j)) and 2j + 2 (j closes: (j, outside))."""
+    midpoints: list[float] = []
+    intervals = [(inside, outside)]
+    for _ in range(levels):
+        halves = []
+        for low, high in intervals:
+            middle = 0.5 * (low + high)
+            midpoints.append(middle)
+            halves += [(low, middle), (middle, high)]
+        intervals = halves
+    return np.array(midpoints)
 
 
 def _turns_fully(motion: Motion) -> bool:
@@ -424,7 +455,7 @@ def sweep(
         revolution = turns, driven.run(turns, order, start)
     # The drawn pose closes by construction; a start at angle_deg must be checked.
     unchecked = revolution is None or not _turns_fully(revolution[1])
-    if unchecked and start != 0.0 and not driven.closes(start):
+    if unchecked and start != 0.0 and not driven.closes(np.array([start]))[0]:
         require_feasible(driven.run(np.array([start]), 0), "at the sweep's starting angle")
     turns, motion, span = _cycle(
         driven, samples, order, start, direction, None if unchecked else revolution
