@@ -91,6 +91,7 @@ def test_newton_euler_solution_draws_free_body_diagrams(app: AppPage) -> None:
     page.check("input[name='method'][value='newton_euler']")
     # The vector method's figures are there already: wait for the Newton-Euler steps themselves.
     page.wait_for_selector("#steps li:has-text('Free-body diagram of') .step-figure svg")
+    page.wait_for_selector("#steps[data-typeset='done']")  # every step, not only the first ones
     free_body = page.locator("#steps li").filter(has_text="Free-body diagram of")
     assert free_body.count() == 3, "one free-body diagram per moving link"
     assert free_body.locator(".step-figure svg").count() == 3
@@ -232,6 +233,7 @@ def test_statics_is_a_method_of_the_worked_solution(app: AppPage) -> None:
     page.click("#tab-solution")
     page.check("input[name='method'][value='statics']")
     page.wait_for_selector("#steps li:has-text('Equilibrium equations of')")
+    page.wait_for_selector("#steps[data-typeset='done']")  # every step, not only the first ones
     equilibrium = page.locator("#steps li").filter(has_text="Equilibrium equations of")
     assert equilibrium.count() == 3, "one set of equilibrium equations per moving link"
     assert page.locator("#steps .step-error").count() == 0, "a step's LaTeX did not render"
