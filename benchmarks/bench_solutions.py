@@ -54,6 +54,12 @@ def body(doc):
         return result.as_dict(arrays=True)
     except TypeError:
         return result.as_dict()
+def warmed(name, calls):
+    # the preset's document, its solution made ``calls`` times first (caches, imports)
+    doc = build_preset(name, {{}})
+    for _ in range(calls):
+        body(doc)
+    return doc
 """
 
 # Each preset's calls inside one ``functools.reduce``: callgrind counts the instructions run
@@ -64,9 +70,7 @@ COUNT = (
     + """
 size = {{}}
 for name in PRESETS:
-    doc = build_preset(name, {{}})
-    for _ in range(2):
-        body(doc)
+    doc = warmed(name, 2)
     gc.collect()  # (each preset's count starts with the same heap: no earlier garbage)
     functools.reduce(lambda _, __: body(doc), range({calls}), None)
     size[name] = len(json.dumps(body(doc), default=lambda array: array.tolist()))
@@ -79,9 +83,7 @@ MEASURE = (
     + """
 out = {{}}
 for name in PRESETS:
-    doc = build_preset(name, {{}})
-    for _ in range(3):
-        body(doc)
+    doc = warmed(name, 3)
     wall, cpu = [], []
     for _ in range({calls}):
         w, c = time.perf_counter(), time.process_time()
