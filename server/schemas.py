@@ -729,6 +729,10 @@ class PresetInfo(Open):
     title: str
     description: str
     parameters: list[PresetParameter]
+    scene: SceneObject = Field(
+        description="The preset's scene-v1 document at its defaults: what POST "
+        "/presets/{name} with {} answers."
+    )
 
 
 class PresetList(Open):

@@ -7,6 +7,7 @@ OpenAPI page documents every parameter with its unit, default and bounds.
 """
 
 from collections.abc import Callable, Mapping
+from functools import cache
 from typing import Any, Literal
 
 from fastapi import APIRouter
@@ -44,7 +45,8 @@ router = APIRouter(
 @router.get("", summary="The textbook mechanisms and their parameters", response_model=PresetList)
 def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
     """``family``: the linkages (default), the cams (docs/CAMS.md) or the gear trains
-    (docs/GEARS.md)."""
+    (docs/GEARS.md); each preset with its parameters and its ``scene`` at their defaults (what
+    ``POST /presets/{name}`` with ``{}`` answers)."""
     return FiniteJSONResponse(
         {
             "presets": [
@@ -65,11 +67,20 @@ def list_presets(family: Family = "linkages") -> FiniteJSONResponse:
                         }
                         for q in p.parameters
                     ],
+                    "scene": default_scene(p.name),
                 }
                 for p in FAMILIES[family].values()
             ]
         }
     )
+
+
+@cache
+def default_scene(name: str) -> dict[str, Any]:
+    """The scene of preset ``name`` at its defaults (the body of ``POST /presets/{name}`` with
+    ``{}``), built once per process: the listing carries it, so that the app opens a preset at
+    its defaults without another request."""
+    return ALL_PRESETS[name].build({})
 
 
 def _published(q: PresetParameter) -> Callable[[dict[str, Any]], None] | None:

@@ -40,3 +40,15 @@ def test_every_preset_round_trips_through_analyze(client: TestClient) -> None:
         for point, xy in scene["points"].items():
             got = answer.json()["points"][point]["position"]
             assert max(abs(got[0] - xy[0]), abs(got[1] - xy[1])) <= 1e-12 * size, (name, point)
+
+
+def test_the_listing_carries_each_preset_scene_at_its_defaults(client: TestClient) -> None:
+    """Every family's listing gives each preset's ``scene``: exactly what POST /presets/{name}
+    with {} answers (the app opens a preset at its defaults from it, without a request)."""
+    for family in ("linkages", "cams", "gear_trains"):
+        listing = client.get("/api/v1/presets", params={"family": family}).json()["presets"]
+        assert listing, family
+        for preset in listing:
+            built = client.post(f"/api/v1/presets/{preset['name']}", json={})
+            assert built.status_code == 200, built.text
+            assert preset["scene"] == built.json(), preset["name"]
