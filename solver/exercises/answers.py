@@ -157,12 +157,18 @@ def _step(node: Any, part: str, path: str) -> Any:
     return getattr(node, part)
 
 
+def value_in(body: Any, path: str) -> float:
+    """The number at ``path`` in a body of plain dicts and lists (a /synthesis or a gear
+    train's /analyze body: ``scene.points.A.0``); ``InvalidScene`` if there is none."""
+    return _number(body, path.split("."), path)
+
+
 def value_at(solved: Solved, path: str) -> float:
     """The number at ``path`` (see the module docstring); ``InvalidScene`` if there is none."""
     parts = path.split(".")
     # a gear train's members.<name>.omega; a synthesis task's freudenstein.K1, scene.points.A.0
     if isinstance(solved.scene, GearTrainScene | MotionTask | FunctionTask | QuickReturnTask):
-        return _number(solved.analysis, parts, path)
+        return value_in(solved.analysis, path)
     if parts[0] == "events":
         if len(parts) != 4 or parts[3] != "time" or not isinstance(solved.scene, LinkageScene):
             raise InvalidScene(f"path {path!r}: expected events.<moving point>.<target>.time")

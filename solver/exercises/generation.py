@@ -15,17 +15,21 @@ it until one passes every check below, so an id always gives the same exercise:
   a relative tolerance means nothing, and never absurd;
 - no two asked answers within twice the tolerance of each other (swapped, both would be marked
   right: a flywheel with k omega^2 = 1 has Delta E = I_F).
+
+The last two are checked first on the answers a draft foresees (``Draft.foreseen``, a synthesis
+task's design), before it is solved: the same drafts are refused, at less cost.
 """
 
 from __future__ import annotations
 
 import json
 import random
+from collections.abc import Mapping
 from dataclasses import replace
 
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
-from solver.exercises.answers import Solved, solve_scene, value_at
+from solver.exercises.answers import Solved, solve_scene, value_at, value_in
 from solver.exercises.conventions import sign_convention
 from solver.exercises.exam import exam_id, generator_seed
 from solver.exercises.figures import figure_svg
@@ -77,24 +81,48 @@ def ill_posed(draft: Draft, solved: Solved, answers: dict[str, float]) -> str | 
     reason = draft.check(analysis)
     if reason is not None:
         return reason
-    for asked in draft.asked:
+    return ill_posed_answers(draft, answers)
+
+
+def ill_posed_answers(draft: Draft, answers: Mapping[str, float]) -> str | None:
+    """Why the asked answers in ``answers`` (all of them, or those a draft foresees) make the
+    draft ill-posed, or None: one out of scale, or two that coincide (the module docstring)."""
+    known = [asked for asked in draft.asked if asked.key in answers]
+    for asked in known:
         size = draft.scales[asked.unit]
         value = abs(answers[asked.key])
         if not SMALL * size <= value <= LARGE * size:
             return f"{asked.key} = {answers[asked.key]:.3g} {asked.unit} is out of scale"
-    for k, first in enumerate(draft.asked):
-        for second in draft.asked[k + 1 :]:
+    for k, first in enumerate(known):
+        for second in known[k + 1 :]:
             tolerance = 2 * max(first.tolerance, second.tolerance)
             if within(answers[first.key], answers[second.key], tolerance):
                 return f"{first.key} and {second.key} coincide: swapped, both would be right"
     return None
 
 
+def foreseen_answers(draft: Draft) -> dict[str, float]:
+    """The asked answers of ``draft`` that its ``foreseen`` body holds (empty without one)."""
+    body = draft.foreseen()
+    if body is None:
+        return {}
+    found = {}
+    for asked in draft.asked:
+        try:
+            found[asked.key] = value_in(body, asked.path)
+        except InvalidScene:  # (not there, or no number: the solved body says)
+            continue
+    return found
+
+
 def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exercise | None:
     """A drawn draft as an exercise (its id filled in by the caller), or None when the draft
-    does not assemble or is not well-posed."""
+    does not assemble or is not well-posed (a draft whose foreseen answers make it ill-posed
+    is not solved at all: ``Draft.foreseen``)."""
     try:
         draft = kind.draw(rng, difficulty)
+        if ill_posed_answers(draft, foreseen_answers(draft)) is not None:
+            return None
         solved = solve_scene(draft.scene)
         answers = {a.key: value_at(solved, a.path) for a in draft.asked}
     except KinematicsError:

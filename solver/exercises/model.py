@@ -193,6 +193,12 @@ class Draft:
     speed for rad/s, omega^2 L for m/s^2, ...): an answer below ``SMALL`` or above ``LARGE``
     times its scale makes the draft ill-posed. ``check`` is the family's own test on the analysis
     (Grashof class, transmission angle, ...): a reason to reject, or None.
+
+    ``foreseen`` gives, where a family knows it at once, the part of the body the draft will be
+    solved into that holds some of its answers (a synthesis task's design, before /synthesis
+    verifies its linkage by analysis), else None: the answers found there are checked for scale
+    and coincidence before the draft is solved, so that a draft they make ill-posed costs no
+    analysis (the same drafts are kept: an id names the same exercise).
     """
 
     title: str
@@ -202,3 +208,4 @@ class Draft:
     asked: tuple[Asked, ...]
     scales: Mapping[str, float]
     check: Callable[[Any], str | None] = field(default=lambda analysis: None)
+    foreseen: Callable[[], Mapping[str, Any] | None] = field(default=lambda: None)

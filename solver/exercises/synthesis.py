@@ -11,7 +11,10 @@ b^2 <= 0, collinear places) is drawn again, like any ill-posed draft (``generati
 bounded number of draws, the generator seeded by the id). As /synthesis verifies its linkage by
 a sweep (a tenth of a second), a draw first screens its candidates by the design alone (the
 construction or Freudenstein's equation, no analysis; at most ``SCREEN_DRAWS`` of them): the
-lengths a Grashof crank-rocker in proportion, the fixed pivots near the positions.
+lengths a Grashof crank-rocker in proportion, the fixed pivots near the positions. A motion
+draft also foresees its answers from its design (``Draft.foreseen``: the fixed pivots and the
+pole, the numbers /synthesis writes), so that one whose answers coincide (a ground drawn level:
+A_y = D_y) is refused before its linkage is verified.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from solver.exercises.families import asked_latex, four_bar_scene, givens_latex,
 from solver.exercises.model import Asked, Draft
 from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
 from solver.synthesis import parse_task
+from solver.synthesis.answer import designed_motion
 from solver.synthesis.function import design_function
 from solver.synthesis.motion import (
     bisector_offset,
@@ -249,6 +253,14 @@ PIVOTS_ASKED = (
 POLE_ASKED = _xy_asked("P12", "the pole P12", "construction.poles.P12", "P_{12}")
 
 
+def _designed(task: Mapping[str, Any]) -> dict[str, Any]:
+    """The part of a motion task's /synthesis body its design fixes (the fixed pivots, the
+    pole): ``Draft.foreseen``."""
+    parsed = parse_task(task)
+    assert isinstance(parsed, MotionTask)
+    return designed_motion(parsed, synthesise_motion(parsed))
+
+
 def _motion_check(body: Any) -> str | None:
     """A motion generator without defects (every position reached, on one assembly, in order,
     the crank turning fully) or warnings, its fixed pivots near the positions."""
@@ -374,6 +386,7 @@ def _motion_draft(rng: random.Random, difficulty: str) -> Draft:
         asked,
         {"m": coupler},
         _motion_check,
+        lambda: _designed(task),
     )
 
 
@@ -434,4 +447,5 @@ def _two_positions_draft(rng: random.Random, difficulty: str) -> Draft:
         asked,
         {"m": math.dist(b1, c1)},
         _motion_check,
+        lambda: _designed(task),
     )

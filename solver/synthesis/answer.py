@@ -86,9 +86,31 @@ def _defect_sentences(defects: JSON, checks: list[JSON], what: str) -> list[str]
     return out
 
 
+def _pivots(design: MotionDesign) -> dict[str, complex]:
+    return {"A": design.A, "B": design.B, "C": design.C, "D": design.D, "P": design.P}
+
+
+def designed_motion(task: MotionTask, design: MotionDesign) -> JSON:
+    """The part of a motion task's /synthesis body that its ``design``
+    (``synthesise_motion(task)``) alone fixes, before the linkage is verified by analysis: the
+    points of the linkage (``scene.points``: A, B, C, D and P) and the construction (the poles,
+    the places of B, C and P, the choices made, the bisector offsets given). ``synthesize``
+    writes the same numbers; an exercise reads its answers here before it pays for the
+    verification (``solver.exercises.generation``)."""
+    return {
+        "scene": {"points": {name: _xy(z) for name, z in _pivots(design).items()}},
+        "construction": {
+            "poles": {k: None if p is None else _xy(p) for k, p in design.poles.items()},
+            "places": {name: [_xy(t[name]) for t in design.targets] for name in ("B", "C", "P")},
+            "choices": list(design.choices),
+        }
+        | ({} if task.bisector_offsets is None else {"bisector_offsets": [*task.bisector_offsets]}),
+    }
+
+
 def _motion(task: MotionTask) -> JSON:
     design: MotionDesign = synthesise_motion(task)
-    points = {"A": design.A, "B": design.B, "C": design.C, "D": design.D, "P": design.P}
+    points = _pivots(design)
     angles = [_angle(t["B"] - design.A) for t in design.targets]
     probe = four_bar_document(points, 1.0, "synthesised four-bar (motion)", True)
     found = travel(probe)
@@ -130,12 +152,7 @@ def _motion(task: MotionTask) -> JSON:
             },
             "grashof": found.grashof,
         },
-        "construction": {
-            "poles": {k: None if p is None else _xy(p) for k, p in design.poles.items()},
-            "places": {name: [_xy(t[name]) for t in design.targets] for name in ("B", "C", "P")},
-            "choices": list(design.choices),
-        }
-        | ({} if task.bisector_offsets is None else {"bisector_offsets": [*task.bisector_offsets]}),
+        "construction": designed_motion(task, design)["construction"],
         "checks": checks,
         "defects": defects,
         "transmission_angle": {"min_deg": mu, "at_driver_angle_deg": mu_at},

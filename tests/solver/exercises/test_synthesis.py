@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import cmath
 import math
+import random
 from typing import Any
 
 import numpy as np
@@ -21,8 +22,11 @@ import pytest
 
 import solver
 from solver.exercises import DIFFICULTIES, ExerciseId, build, generate
+from solver.exercises.answers import solve_scene, value_at
 from solver.exercises.checking import check_answers, mistakes_of
 from solver.exercises.figures import figure_svg
+from solver.exercises.generation import foreseen_answers
+from solver.exercises.registry import TYPES
 from solver.exercises.solutions import worked_solution
 from solver.synthesis.function import parse_function
 
@@ -264,3 +268,24 @@ def test_the_two_position_statement_and_figure_give_the_offsets() -> None:
     steps = worked_solution(e)
     assert all(s["kind"].startswith("synthesis.") for s in steps)
     assert any(f"dA = {dA:g} m" in s["text"] for s in steps)
+
+
+@pytest.mark.parametrize("kind", ["synthesis_fixed_pivots", "synthesis_two_positions"])
+def test_a_motion_drafts_foreseen_answers_are_its_solved_answers(kind: str) -> None:
+    """The answers a motion draft foresees from its design (``Draft.foreseen``: the fixed
+    pivots and the pole, before /synthesis verifies the linkage) are, to the last bit, those
+    read from the body it is solved into; so a draft rejected on them before solving is one
+    the solved answers reject too (the same exercises)."""
+    compared = 0
+    for difficulty in DIFFICULTIES:
+        rng = random.Random(f"{kind}:{difficulty}")
+        for _ in range(6):
+            draft = TYPES[kind].draw(rng, difficulty)
+            foreseen = foreseen_answers(draft)
+            assert {"A_x", "A_y", "D_x", "D_y"} <= set(foreseen)
+            solved = solve_scene(draft.scene)
+            for asked in draft.asked:
+                if asked.key in foreseen:
+                    assert foreseen[asked.key] == value_at(solved, asked.path), asked.key
+                    compared += 1
+    assert compared >= 4 * 18
