@@ -117,21 +117,30 @@ def scale(factor: Column, vector: Array) -> Array:
     return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class PointMotion:
-    """Position, velocity and acceleration of a point; orders not computed are ``None``."""
+    """Position, velocity and acceleration of a point; orders not computed are ``None``.
+
+    (Frozen, its fields written into the instance's dict by its own ``__init__``: a frozen
+    dataclass's generated one sets each through ``object.__setattr__``, some 1,800 machine
+    instructions a field, and a 360-sample sweep makes these motions by the dozen.)"""
 
     p: Array
     v: Array | None = None
     a: Array | None = None
 
+    def __init__(self, p: Array, v: Array | None = None, a: Array | None = None) -> None:
+        fields = self.__dict__
+        fields["p"], fields["v"], fields["a"] = p, v, a
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, init=False)
 class LinkMotion:
     """Motion of a rigid link: an anchor point's motion and the rotation from the drawn pose.
 
     ``theta`` is the rotation of the link from its drawn pose (not its absolute angle), so a
-    point drawn at ``X0`` is at ``anchor.p + R(theta) (X0 - anchor0)``.
+    point drawn at ``X0`` is at ``anchor.p + R(theta) (X0 - anchor0)``. (Frozen, its fields
+    written at once as ``PointMotion``'s.)
     """
 
     anchor0: Array
@@ -139,6 +148,18 @@ class LinkMotion:
     theta: Array
     omega: Array | None = None
     alpha: Array | None = None
+
+    def __init__(
+        self,
+        anchor0: Array,
+        anchor: PointMotion,
+        theta: Array,
+        omega: Array | None = None,
+        alpha: Array | None = None,
+    ) -> None:
+        fields = self.__dict__
+        fields["anchor0"], fields["anchor"], fields["theta"] = anchor0, anchor, theta
+        fields["omega"], fields["alpha"] = omega, alpha
 
     def point(self, drawn: Array) -> PointMotion:
         """Motion of the link's point drawn at ``drawn``: rigid-body velocity and acceleration."""
@@ -183,14 +204,19 @@ def rigid_body_acceleration(a_A: Array, omega: Array, alpha: Array, r_AB: Array)
     return a_A + omega_cross(alpha, r_AB) + normal_acceleration(omega, r_AB)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Relative:
     """A point Q seen from a point P over the samples: r = Q - P (N, 2), |r|^2 = r.r and, where
-    computed, v_rel = v_Q - v_P (N, 2)."""
+    computed, v_rel = v_Q - v_P (N, 2). (Frozen, its fields written at once as
+    ``PointMotion``'s.)"""
 
     r: Array
     r2: Array
     v: Array | None = None
+
+    def __init__(self, r: Array, r2: Array, v: Array | None = None) -> None:
+        fields = self.__dict__
+        fields["r"], fields["r2"], fields["v"] = r, r2, v
 
 
 def relative(P: PointMotion, Q: PointMotion, resting: bool = False) -> Relative:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import cast
 
@@ -97,7 +97,7 @@ class Approach:
     margin: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Motion:
     """The solved state of a linkage over N samples.
 
@@ -108,6 +108,7 @@ class Motion:
     by the point (or slot) it locates.
     With continuation, ``approaches`` lists every close approach found between samples: branch
     switches (the branches meet), near misses, and windows where the linkage cannot close.
+    (Frozen, its fields written at once as ``rigid.PointMotion``'s.)
     """
 
     links: dict[str, LinkMotion]
@@ -115,14 +116,38 @@ class Motion:
     margin: Array
     converged: Array
     gradient_sine: Array
-    failures: list[str] = field(default_factory=list)
-    newton: list[newton.NewtonReport] = field(default_factory=list)
-    approaches: list[Approach] = field(default_factory=list)
-    size: float = 1.0
-    group_margins: dict[str, Array] = field(default_factory=dict)
+    failures: list[str]
+    newton: list[newton.NewtonReport]
+    approaches: list[Approach]
+    size: float
+    group_margins: dict[str, Array]
     # With continuation, per two-branch step (its index in the plan): its branch sign at the first
     # sample and the fractional samples where it switches (``branches_at``).
-    flips: dict[int, tuple[float, list[float]]] = field(default_factory=dict)
+    flips: dict[int, tuple[float, list[float]]]
+
+    def __init__(
+        self,
+        links: dict[str, LinkMotion],
+        points: dict[str, PointMotion],
+        margin: Array,
+        converged: Array,
+        gradient_sine: Array,
+        failures: list[str],
+        newton: list[newton.NewtonReport],
+        approaches: list[Approach],
+        size: float,
+        group_margins: dict[str, Array],
+        flips: dict[int, tuple[float, list[float]]],
+    ) -> None:
+        fields = self.__dict__
+        fields["links"], fields["points"], fields["margin"] = links, points, margin
+        fields["converged"], fields["gradient_sine"], fields["failures"] = (
+            converged,
+            gradient_sine,
+            failures,
+        )
+        fields["newton"], fields["approaches"], fields["size"] = newton, approaches, size
+        fields["group_margins"], fields["flips"] = group_margins, flips
 
     @property
     def feasible(self) -> Array:
