@@ -106,9 +106,10 @@ class _Warned:
         return slider_travel(self.scene, self.motion, self.order)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Sweep(_Warned):
-    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle."""
+    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle.
+    (Frozen, its fields written at once as ``rigid.PointMotion``'s.)"""
 
     scene: LinkageScene
     driver: str
@@ -132,6 +133,31 @@ class Sweep(_Warned):
     extremes_of: Callable[[str], AngleExtremes | None] | None = field(
         default=None, repr=False, compare=False
     )
+
+    def __init__(
+        self,
+        scene: LinkageScene,
+        driver: str,
+        driver_angle: Array,
+        motion: Motion,
+        feasible: bool,
+        limits: tuple[float, ...],
+        singular_samples: Array,
+        quantities: frozenset[str],
+        joints: list[SlidingJoint],
+        poles: dict[str, tuple[Poles, Poles]],
+        close_approaches: tuple[CloseApproach, ...] = (),
+        order: int = 0,
+        stroke_of: Callable[[SliderTravel], Strokes | None] | None = None,
+        extremes_of: Callable[[str], AngleExtremes | None] | None = None,
+    ) -> None:
+        fields = self.__dict__
+        fields["scene"], fields["driver"], fields["driver_angle"] = scene, driver, driver_angle
+        fields["motion"], fields["feasible"], fields["limits"] = motion, feasible, limits
+        fields["singular_samples"], fields["quantities"] = singular_samples, quantities
+        fields["joints"], fields["poles"] = joints, poles
+        fields["close_approaches"], fields["order"] = close_approaches, order
+        fields["stroke_of"], fields["extremes_of"] = stroke_of, extremes_of
 
     def angle_extremes(self, link: str) -> AngleExtremes | None:
         """``link``'s least and greatest angle over a full revolution of the driver and the

@@ -76,13 +76,18 @@ MAX_DENSE_SAMPLES = 1_000_000
 STATIONARY = 1e-9
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class DriverInput:
-    """Rotation of a driven link from its drawn pose, and its rates, per sample (N,)."""
+    """Rotation of a driven link from its drawn pose, and its rates, per sample (N,). (Frozen,
+    its fields written at once as ``rigid.PointMotion``'s.)"""
 
     theta: Array
     omega: Array
     alpha: Array
+
+    def __init__(self, theta: Array, omega: Array, alpha: Array) -> None:
+        fields = self.__dict__
+        fields["theta"], fields["omega"], fields["alpha"] = theta, omega, alpha
 
 
 @dataclass(frozen=True)
@@ -250,16 +255,17 @@ def unit_rate(inputs: Sequence[DriverInput], driver: int) -> list[DriverInput]:
 
 
 def lipschitz_clear(
-    margin: Array, reaches: Sequence[Reach], path: Sequence[PathStep], size: float
+    least: float, reaches: Sequence[Reach], path: Sequence[PathStep], size: float
 ) -> bool:
-    """Whether the margin of a group measured between points of the given reaches stays above
-    WARNING_MARGIN size between every two samples, whatever its shape: m is 1-Lipschitz in those
-    points, so |dm/du| <= G = sum |P - pivot| max |delta| and m >= (m_k + m_k+1 - G) / 2 between
-    samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN size clears every interval."""
+    """Whether the margin of a group measured between points of the given reaches, ``least``
+    min(m) at the samples, stays above WARNING_MARGIN size between every two samples, whatever
+    its shape: m is 1-Lipschitz in those points, so |dm/du| <= G = sum |P - pivot| max |delta|
+    and m >= (m_k + m_k+1 - G) / 2 between samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN
+    size clears every interval."""
     bound = 0.0
     for moving, _, step in path:
         bound += step * sum(radius for driver, radius in reaches if driver == moving)
-    return bool(margin.min() - 0.5 * bound >= WARNING_MARGIN * size)
+    return bool(least - 0.5 * bound >= WARNING_MARGIN * size)
 
 
 def path_rates(sensitivities: Sequence[Array], path: Sequence[PathStep]) -> tuple[Array, Array]:
@@ -559,11 +565,13 @@ class _Assembler:
         """Samples where every group so far closed (and every Newton group converged)."""
         return (self.margin >= -loci.COINCIDENCE_TOLERANCE) & self.converged
 
-    def close(self, margin: Array, message: Callable[[], str]) -> None:
-        """Record a group's relative margin, and its message where it newly fails to close."""
-        fails = margin < -loci.COINCIDENCE_TOLERANCE
-        if fails.any() and (fails & self.closed()).any():
-            self.failures.append(message())
+    def close(self, margin: Array, least: float, message: Callable[[], str]) -> None:
+        """Record a group's relative margin (``least`` its smallest, NaN where one is), and its
+        message where it newly fails to close (no sample fails where ``least`` does not)."""
+        if not least >= -loci.COINCIDENCE_TOLERANCE:
+            fails = margin < -loci.COINCIDENCE_TOLERANCE
+            if fails.any() and (fails & self.closed()).any():
+                self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
     def locus(self, spec: LocusSpec) -> loci.Locus:
@@ -610,17 +618,18 @@ class _Assembler:
         point: str,
         drawn: float,
         margin: Array,
+        least: float,
         pieces: Callable[[], tuple[loci.Piece, ...]],
     ) -> Array | float:
         """The branch sign per sample: the drawn one, switched after every closest approach
         between samples where the two branches meet within rounding (a change point); one sign
-        for every sample where it does not switch."""
+        for every sample where it does not switch. ``least``: the margin's smallest value."""
         sign: Array | float = self.signs.get(index, drawn)
         if not self.continuation:
             return sign
         size = self.scene.size
         switches: list[float] = []
-        for k, piece in self.candidates(index, step, margin, pieces):
+        for k, piece in self.candidates(index, step, margin, least, pieces):
             approach = self.closest_approach(index, point, k, piece)
             if approach is None:
                 continue
@@ -643,14 +652,16 @@ class _Assembler:
         index: int,
         step: DyadStep | LeverStep,
         margin: Array,
+        least: float,
         pieces: Callable[[], tuple[loci.Piece, ...]],
     ) -> list[tuple[int, int]]:
-        """The intervals and pieces where group ``index``'s margin may dip below the warning
-        threshold (``screen``); none where it is measured between points that turn with drivers
-        and its Lipschitz bound clears the threshold (``lipschitz_clear``)."""
+        """The intervals and pieces where group ``index``'s margin (``least`` its smallest value)
+        may dip below the warning threshold (``screen``); none where it is measured between
+        points that turn with drivers and its Lipschitz bound clears the threshold
+        (``lipschitz_clear``)."""
         size = self.scene.size
         if not self.path or (
-            step.reach is not None and lipschitz_clear(margin, step.reach, self.path, size)
+            step.reach is not None and lipschitz_clear(least, step.reach, self.path, size)
         ):
             return []
         found = pieces()  # (their rates computed only here)
@@ -741,11 +752,15 @@ class _Assembler:
         """A closed-form group, asked through its type (``groups.group_of``): its margin, then
         its solution on the branch chosen for it."""
         closure = groups.group_of(step).close(step, self)
-        self.close(closure.margin / self.scene.size, closure.describe)
+        size = self.scene.size
+        least = float(closure.margin.min())  # (one reduction: the failures and the screen's)
+        self.close(closure.margin / size, least / size, closure.describe)
         self.last = closure.pieces
         if closure.two_branch:
             self.group_margins[closure.label] = closure.margin
-        sign = self.branch(index, step, closure.label, step.sign, closure.margin, closure.pieces)
+        sign = self.branch(
+            index, step, closure.label, step.sign, closure.margin, least, closure.pieces
+        )
         placed = closure.place(sign, self.computed(index))
         self.gradient_sine = np.minimum(self.gradient_sine, placed.gradient_sine)
         self.points.update(placed.points)

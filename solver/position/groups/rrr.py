@@ -24,15 +24,19 @@ if TYPE_CHECKING:
     from solver.position.topology import CircleSpec, DyadStep
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Chord:
     """The common chord of two circles, column by column over samples (``chord``): ``u`` is
-    (N, 2), the others (N,)."""
+    (N, 2), the others (N,). (Frozen, its fields written at once as ``rigid.PointMotion``'s.)"""
 
     d: Array
     u: Array
     a: Array
     h2: Array
+
+    def __init__(self, d: Array, u: Array, a: Array, h2: Array) -> None:
+        fields = self.__dict__
+        fields["d"], fields["u"], fields["a"], fields["h2"] = d, u, a, h2
 
 
 def chord(d_vec: Array, r1: float, r2: float) -> Chord:
