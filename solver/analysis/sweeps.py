@@ -360,7 +360,8 @@ def _midpoints(inside: float, outside: float, levels: int) -> Array:
 
 def _turns_fully(motion: Motion) -> bool:
     """Every sample closes, and no window between two samples fails to."""
-    return bool(motion.feasible.all()) and not motion.windows
+    feasible = motion.feasible
+    return np.count_nonzero(feasible) == feasible.size and not motion.windows
 
 
 def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:

@@ -253,14 +253,14 @@ def link_from_two_points(
     """
     if seen is None or (seen.v is None and P.v is not None and Q.v is not None):
         seen = relative(P, Q, resting)
-    rx, ry = seen.r[:, 0], seen.r[:, 1]
+    rx, ry = seen.r[..., 0], seen.r[..., 1]
     theta = np.arctan2(ry, rx) - drawn
     omega = alpha = None
     if seen.v is not None:
-        omega = (rx * seen.v[:, 1] - ry * seen.v[:, 0]) / seen.r2
+        omega = (rx * seen.v[..., 1] - ry * seen.v[..., 0]) / seen.r2
     if P.a is not None and Q.a is not None:
         a_rel = Q.a if resting else Q.a - P.a
-        alpha = (rx * a_rel[:, 1] - ry * a_rel[:, 0]) / seen.r2
+        alpha = (rx * a_rel[..., 1] - ry * a_rel[..., 0]) / seen.r2
     return LinkMotion(P0, P, theta, omega, alpha)
 
 
@@ -268,8 +268,8 @@ def repeat(point: Array, samples: int) -> Array:
     """The (2,) ``point`` at each of ``samples`` samples, (N, 2), a new array (filled column by
     column: five times faster than broadcasting the (2,) row at 3600 samples)."""
     out = np.empty((samples, 2))
-    out[:, 0] = point[0]
-    out[:, 1] = point[1]
+    out[..., 0] = point[0]
+    out[..., 1] = point[1]
     return out
 
 

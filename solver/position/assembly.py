@@ -524,7 +524,8 @@ class _Assembler:
         # The smallest relative margin and gradient sine of the groups so far, per sample (1.0
         # before the first group: ``per_sample``).
         self.margin: Array | float = 1.0
-        self.converged = np.ones(self.samples, dtype=bool)
+        self.converged = np.empty(self.samples, dtype=bool)
+        self.converged.fill(True)  # (cheaper than np.ones)
         self.gradient_sine: Array | float = 1.0
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
