@@ -594,7 +594,7 @@ class _Assembler:
         if step.pivot in self.scene.links[self.scene.ground].points:
             anchor = self.points[step.pivot]  # (at rest, as a driver's pivot is)
         else:
-            zeros = np.zeros((self.samples, 2))
+            zeros = np.zeros((self.samples, 2), order="F")
             anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
             self.resting_ids.add(id(anchor))
         self.know(
@@ -775,7 +775,7 @@ class _Assembler:
     def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
         ground = self.scene.links[self.scene.ground]
-        at_rest = np.zeros((self.samples, 2))
+        at_rest = np.zeros((self.samples, 2), order="F")  # (``rigid.points``)
         for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
             drawn = self.scene.drawn(p)
             self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)

@@ -13,6 +13,7 @@ from solver.kinematics.rigid import (
     PointMotion,
     Relative,
     dot,
+    omega_cross,
     perp,
     scale,
     solve_2x2,
@@ -47,9 +48,7 @@ def chord(d_vec: Array, r1: float, r2: float) -> Chord:
     squares = d_vec * d_vec
     d = np.sqrt(squares[..., 0] + squares[..., 1])
     safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
-    u = np.empty(d_vec.shape)
-    np.divide(d_vec[..., 0], safe_d, out=u[..., 0])
-    np.divide(d_vec[..., 1], safe_d, out=u[..., 1])
+    u = d_vec / safe_d[..., None]  # (both coordinates at once: ``rigid.points``)
     if safe_d is not d:
         u[d == 0.0] = (1.0, 0.0)
     a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
@@ -138,10 +137,7 @@ class CircleCircle(DyadGroup):
             h = root(cut.h2, r1**2)
             # (one branch, +1, everywhere: h itself, as h 1.0 is, to the bit)
             across = h if isinstance(sign, float) and sign == 1.0 else sign * h
-            ux, uy = cut.u[..., 0], cut.u[..., 1]
-            X = np.empty((across.size, 2))
-            np.subtract(c1.p[..., 0] + ux * cut.a, uy * across, out=X[..., 0])
-            np.add(c1.p[..., 1] + uy * cut.a, ux * across, out=X[..., 1])
+            X = c1.p + scale(cut.a, cut.u) + omega_cross(across, cut.u)
             X[known.at_drawn] = known.drawn(step.point)
             motion, sine, seen = point_rates(X, c1, c2, order, resting)
             relative = {(first.center, step.point): seen[0], (second.center, step.point): seen[1]}
@@ -174,7 +170,7 @@ def point_rates(
     if np.count_nonzero(det) < det.size:  # (counted: cheaper than det.all())
         det = np.where(det != 0.0, det, np.inf)
     rows = (g1x, g1y), (g2x, g2y)
-    v = np.empty(X.shape)
+    v = np.empty_like(X)
     solve_2x2(*rows, (dot(g1, c1.v), dot(g2, c2.v)), det, (v[..., 0], v[..., 1]))
     if order < 2:
         return PointMotion(X, v), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
@@ -185,7 +181,7 @@ def point_rates(
         dot(g1, c1.a) - dot(w1, w1),
         dot(g2, c2.a) - dot(w2, w2),
     )
-    a = np.empty(X.shape)
+    a = np.empty_like(X)
     solve_2x2(*rows, rhs, det, (a[..., 0], a[..., 1]))
     seen = Relative(g1, squares[0], w1), Relative(g2, squares[1], w2)
     return PointMotion(X, v, a), sine, seen
