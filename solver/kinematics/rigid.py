@@ -131,6 +131,13 @@ class PointMotion:
         fields = self.__dict__
         fields["p"], fields["v"], fields["a"] = p, v, a
 
+    def at(self, part: slice | Array) -> PointMotion:
+        """The same motion at the samples ``part`` only (a slice or sample indices)."""
+        v, a = self.v, self.a
+        return PointMotion(
+            self.p[part], None if v is None else v[part], None if a is None else a[part]
+        )
+
 
 @dataclass(frozen=True, init=False)
 class LinkMotion:

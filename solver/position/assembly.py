@@ -38,6 +38,7 @@ from solver.model.scene import LinkageScene
 from solver.position import groups, newton
 from solver.position.continuation import Continuation, solve_group
 from solver.position.groups import loci
+from solver.position.newton import NewtonReport
 from solver.position.topology import (
     CircleSpec,
     DriverStep,
@@ -122,7 +123,7 @@ class Motion:
     converged: Array
     gradient_sine: Array
     failures: list[str]
-    newton: list[newton.NewtonReport]
+    newton: list[NewtonReport]
     approaches: list[Approach]
     size: float
     group_margins: dict[str, Array]
@@ -138,7 +139,7 @@ class Motion:
         converged: Array,
         gradient_sine: Array,
         failures: list[str],
-        newton: list[newton.NewtonReport],
+        newton: list[NewtonReport],
         approaches: list[Approach],
         size: float,
         group_margins: dict[str, Array],
@@ -163,30 +164,25 @@ class Motion:
     def cut(self, part: slice | Array) -> Motion:
         """The same motion at the samples ``part`` only (a slice or sample indices; approaches,
         Newton reports and branch switches kept as found)."""
-        cut: dict[int, PointMotion] = {}  # (a link's anchor is a point's motion: cut once)
-
-        def point(m: PointMotion) -> PointMotion:
-            found = cut.get(id(m))
-            if found is None:
-                v, a = m.v, m.a
-                found = cut[id(m)] = PointMotion(
-                    m.p[part], None if v is None else v[part], None if a is None else a[part]
-                )
-            return found
-
+        points, cut = {}, {}  # (a link's anchor is a point's motion, by its id: cut once)
+        for k, m in self.points.items():
+            points[k] = cut[id(m)] = m.at(part)
         links = {}
-        for k, m in self.links.items():
-            omega, alpha = m.omega, m.alpha
+        for k, link in self.links.items():
+            anchor = cut.get(id(link.anchor))
+            if anchor is None:  # (a pivot that is no point of the scene's)
+                anchor = cut[id(link.anchor)] = link.anchor.at(part)
+            omega, alpha = link.omega, link.alpha
             links[k] = LinkMotion(
-                m.anchor0,
-                point(m.anchor),
-                m.theta[part],
+                link.anchor0,
+                anchor,
+                link.theta[part],
                 None if omega is None else omega[part],
                 None if alpha is None else alpha[part],
             )
         return Motion(
             links,
-            {k: point(m) for k, m in self.points.items()},
+            points,
             self.margin[part],
             self.converged[part],
             self.gradient_sine[part],
