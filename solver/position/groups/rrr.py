@@ -47,7 +47,7 @@ def chord(d_vec: Array, r1: float, r2: float) -> Chord:
     intersection of two circles (``circle_circle``) and the group's closure (``GROUP``) use it."""
     squares = d_vec * d_vec
     d = np.sqrt(squares[..., 0] + squares[..., 1])
-    safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
+    safe_d = _positive(d)
     u = d_vec / safe_d[..., None]  # (both coordinates at once: ``rigid.points``)
     if safe_d is not d:
         u[d == 0.0] = (1.0, 0.0)
@@ -147,8 +147,10 @@ class CircleCircle(DyadGroup):
 
 
 def _positive(x: Array) -> Array:
-    """np.where(x > 0, x, 1.0): ``x`` itself where every x is positive (the common case)."""
-    return x if x.min() > 0.0 else np.where(x > 0.0, x, 1.0)
+    """np.where(x > 0, x, 1.0) for x >= 0 (a length, or a product of lengths): ``x`` itself where
+    none is 0 (the common case; counted, cheaper than a reduction: a NaN, of a point not placed,
+    stays NaN, and so does all that is computed from it)."""
+    return x if np.count_nonzero(x) == x.size else np.where(x > 0.0, x, 1.0)
 
 
 def point_rates(
