@@ -400,7 +400,8 @@ def _newton_range(driven: _Driven, start: float, direction: float) -> tuple[floa
 
 
 def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
-    """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
+    """Rates at isolated singular samples from the mean of their two neighbours (in place; the
+    zeros of the ground and its points, read-only and shared, ``assembly.at_rest``, stay)."""
     n = motion.feasible.size
     rates: list[Array | None] = []
     for point in motion.points.values():
@@ -412,7 +413,7 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
         if not cyclic:
             before, after = max(k - 1, 0), min(k + 1, n - 1)
         for values in rates:
-            if values is not None:
+            if values is not None and values.flags.writeable:
                 values[k] = 0.5 * (values[before] + values[after])
 
 

@@ -770,17 +770,11 @@ class _Assembler:
 
     def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
-        ground = self.scene.links[self.scene.ground]
-        at_rest = np.zeros((self.samples, 2), order="F")  # (``rigid.points``)
-        for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            drawn = self.scene.drawn(p)
-            self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
-            self.resting_ids.add(id(self.points[p]))
-        zeros = np.zeros(self.samples)
-        anchor = ground.points[0]
-        self.links[ground.name] = LinkMotion(
-            self.scene.drawn(anchor), self.points[anchor], zeros, zeros, zeros
-        )
+        fixed, ground = at_rest(self.scene, self.samples)
+        self.points.update(fixed)
+        for motion in fixed.values():
+            self.resting_ids.add(id(motion))
+        self.links[self.scene.ground] = ground
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(index, step)
@@ -878,6 +872,25 @@ class _Assembler:
         self.converged = self.converged & report.converged
         for link, motion in solved.items():
             self.know(link, motion)
+
+
+def at_rest(scene: LinkageScene, samples: int) -> tuple[dict[str, PointMotion], LinkMotion]:
+    """The ground's points and the ground over ``samples`` samples: at rest in the drawn pose,
+    no rotation to apply, their rates zeros. Made once per scene and sample count (the last
+    count asked, kept in the scene's ``memo``) with their arrays read-only: every run at that
+    count shares them, as every caller shares ``LinkageScene.drawn``'s."""
+    kept = scene.memo.get("at_rest")
+    if kept is not None and kept[0] == samples:
+        return kept[1], kept[2]
+    ground = scene.links[scene.ground]
+    still, zeros = np.zeros((samples, 2), order="F"), np.zeros(samples)  # (``rigid.points``)
+    fixed = {p: PointMotion(repeat(scene.drawn(p), samples), still, still) for p in ground.points}
+    for array in (still, zeros, *(motion.p for motion in fixed.values())):
+        array.flags.writeable = False
+    anchor = ground.points[0]
+    link = LinkMotion(scene.drawn(anchor), fixed[anchor], zeros, zeros, zeros)
+    scene.memo["at_rest"] = (samples, fixed, link)
+    return fixed, link
 
 
 def follows_path(plan: Plan) -> bool:
