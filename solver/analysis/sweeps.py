@@ -417,9 +417,18 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
                 values[k] = 0.5 * (values[before] + values[after])
 
 
-def _revolution(samples: int, start: float, direction: float) -> Array:
-    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start)."""
-    return start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
+def _revolution(scene: LinkageScene, samples: int, start: float, direction: float) -> Array:
+    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start), once
+    per scene and (samples, start, direction): the last kept in the scene's ``memo``, read-only
+    (shared by the sweeps that ask for it, as ``assembly.at_rest``'s arrays are)."""
+    key = (samples, start, direction)
+    kept = scene.memo.get("revolution")
+    if kept is not None and kept[0] == key:
+        return kept[1]
+    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
+    turns.flags.writeable = False
+    scene.memo["revolution"] = (key, turns)
+    return turns
 
 
 def _cycle(
@@ -438,7 +447,7 @@ def _cycle(
     probe and the linkage turns fully (``_turns_fully``)."""
     if revolution is not None:
         return *revolution, None
-    turns = _revolution(samples, start, direction)
+    turns = _revolution(driven.scene, samples, start, direction)
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
     else:
@@ -479,7 +488,7 @@ def sweep(
     if driven.plan.closed_form and samples >= SELF_PROBING_SAMPLES:
         # The sweep is its own feasibility probe; a revolution that turns fully closes at its
         # first sample, the start.
-        turns = _revolution(samples, start, direction)
+        turns = _revolution(scene, samples, start, direction)
         revolution = turns, driven.run(turns, order, start)
     # The drawn pose closes by construction; a start at angle_deg must be checked.
     unchecked = revolution is None or not _turns_fully(revolution[1])
