@@ -106,9 +106,10 @@ class _Warned:
         return slider_travel(self.scene, self.motion, self.order)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Sweep(_Warned):
-    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle."""
+    """The linkage over the driver's cycle; ``driver_angle`` is the driver link's absolute angle.
+    (Frozen, its fields written at once as ``rigid.PointMotion``'s.)"""
 
     scene: LinkageScene
     driver: str
@@ -132,6 +133,31 @@ class Sweep(_Warned):
     extremes_of: Callable[[str], AngleExtremes | None] | None = field(
         default=None, repr=False, compare=False
     )
+
+    def __init__(
+        self,
+        scene: LinkageScene,
+        driver: str,
+        driver_angle: Array,
+        motion: Motion,
+        feasible: bool,
+        limits: tuple[float, ...],
+        singular_samples: Array,
+        quantities: frozenset[str],
+        joints: list[SlidingJoint],
+        poles: dict[str, tuple[Poles, Poles]],
+        close_approaches: tuple[CloseApproach, ...] = (),
+        order: int = 0,
+        stroke_of: Callable[[SliderTravel], Strokes | None] | None = None,
+        extremes_of: Callable[[str], AngleExtremes | None] | None = None,
+    ) -> None:
+        fields = self.__dict__
+        fields["scene"], fields["driver"], fields["driver_angle"] = scene, driver, driver_angle
+        fields["motion"], fields["feasible"], fields["limits"] = motion, feasible, limits
+        fields["singular_samples"], fields["quantities"] = singular_samples, quantities
+        fields["joints"], fields["poles"] = joints, poles
+        fields["close_approaches"], fields["order"] = close_approaches, order
+        fields["stroke_of"], fields["extremes_of"] = stroke_of, extremes_of
 
     def angle_extremes(self, link: str) -> AngleExtremes | None:
         """``link``'s least and greatest angle over a full revolution of the driver and the
@@ -334,7 +360,8 @@ def _midpoints(inside: float, outside: float, levels: int) -> Array:
 
 def _turns_fully(motion: Motion) -> bool:
     """Every sample closes, and no window between two samples fails to."""
-    return bool(motion.feasible.all()) and not motion.windows
+    feasible = motion.feasible
+    return np.count_nonzero(feasible) == feasible.size and not motion.windows
 
 
 def _first_failure(motion: Motion, turns: Array) -> tuple[float, float]:
@@ -373,7 +400,8 @@ def _newton_range(driven: _Driven, start: float, direction: float) -> tuple[floa
 
 
 def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> None:
-    """Rates at isolated singular samples from the mean of their two neighbours (in place)."""
+    """Rates at isolated singular samples from the mean of their two neighbours (in place; the
+    zeros of the ground and its points, read-only and shared, ``assembly.at_rest``, stay)."""
     n = motion.feasible.size
     rates: list[Array | None] = []
     for point in motion.points.values():
@@ -385,13 +413,22 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
         if not cyclic:
             before, after = max(k - 1, 0), min(k + 1, n - 1)
         for values in rates:
-            if values is not None:
+            if values is not None and values.flags.writeable:
                 values[k] = 0.5 * (values[before] + values[after])
 
 
-def _revolution(samples: int, start: float, direction: float) -> Array:
-    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start)."""
-    return start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
+def _revolution(scene: LinkageScene, samples: int, start: float, direction: float) -> Array:
+    """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start), once
+    per scene and (samples, start, direction): the last kept in the scene's ``memo``, read-only
+    (shared by the sweeps that ask for it, as ``assembly.at_rest``'s arrays are)."""
+    key = (samples, start, direction)
+    kept = scene.memo.get("revolution")
+    if kept is not None and kept[0] == key:
+        return kept[1]
+    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
+    turns.flags.writeable = False
+    scene.memo["revolution"] = (key, turns)
+    return turns
 
 
 def _cycle(
@@ -410,7 +447,7 @@ def _cycle(
     probe and the linkage turns fully (``_turns_fully``)."""
     if revolution is not None:
         return *revolution, None
-    turns = _revolution(samples, start, direction)
+    turns = _revolution(driven.scene, samples, start, direction)
     if not driven.plan.closed_form:
         span = _newton_range(driven, start, direction)
     else:
@@ -451,7 +488,7 @@ def sweep(
     if driven.plan.closed_form and samples >= SELF_PROBING_SAMPLES:
         # The sweep is its own feasibility probe; a revolution that turns fully closes at its
         # first sample, the start.
-        turns = _revolution(samples, start, direction)
+        turns = _revolution(scene, samples, start, direction)
         revolution = turns, driven.run(turns, order, start)
     # The drawn pose closes by construction; a start at angle_deg must be checked.
     unchecked = revolution is None or not _turns_fully(revolution[1])

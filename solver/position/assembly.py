@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import cast
 
@@ -38,6 +38,7 @@ from solver.model.scene import LinkageScene
 from solver.position import groups, newton
 from solver.position.continuation import Continuation, solve_group
 from solver.position.groups import loci
+from solver.position.newton import NewtonReport
 from solver.position.topology import (
     CircleSpec,
     DriverStep,
@@ -76,13 +77,18 @@ MAX_DENSE_SAMPLES = 1_000_000
 STATIONARY = 1e-9
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class DriverInput:
-    """Rotation of a driven link from its drawn pose, and its rates, per sample (N,)."""
+    """Rotation of a driven link from its drawn pose, and its rates, per sample (N,). (Frozen,
+    its fields written at once as ``rigid.PointMotion``'s.)"""
 
     theta: Array
     omega: Array
     alpha: Array
+
+    def __init__(self, theta: Array, omega: Array, alpha: Array) -> None:
+        fields = self.__dict__
+        fields["theta"], fields["omega"], fields["alpha"] = theta, omega, alpha
 
 
 @dataclass(frozen=True)
@@ -97,7 +103,7 @@ class Approach:
     margin: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Motion:
     """The solved state of a linkage over N samples.
 
@@ -108,6 +114,7 @@ class Motion:
     by the point (or slot) it locates.
     With continuation, ``approaches`` lists every close approach found between samples: branch
     switches (the branches meet), near misses, and windows where the linkage cannot close.
+    (Frozen, its fields written at once as ``rigid.PointMotion``'s.)
     """
 
     links: dict[str, LinkMotion]
@@ -115,14 +122,38 @@ class Motion:
     margin: Array
     converged: Array
     gradient_sine: Array
-    failures: list[str] = field(default_factory=list)
-    newton: list[newton.NewtonReport] = field(default_factory=list)
-    approaches: list[Approach] = field(default_factory=list)
-    size: float = 1.0
-    group_margins: dict[str, Array] = field(default_factory=dict)
+    failures: list[str]
+    newton: list[NewtonReport]
+    approaches: list[Approach]
+    size: float
+    group_margins: dict[str, Array]
     # With continuation, per two-branch step (its index in the plan): its branch sign at the first
     # sample and the fractional samples where it switches (``branches_at``).
-    flips: dict[int, tuple[float, list[float]]] = field(default_factory=dict)
+    flips: dict[int, tuple[float, list[float]]]
+
+    def __init__(
+        self,
+        links: dict[str, LinkMotion],
+        points: dict[str, PointMotion],
+        margin: Array,
+        converged: Array,
+        gradient_sine: Array,
+        failures: list[str],
+        newton: list[NewtonReport],
+        approaches: list[Approach],
+        size: float,
+        group_margins: dict[str, Array],
+        flips: dict[int, tuple[float, list[float]]],
+    ) -> None:
+        fields = self.__dict__
+        fields["links"], fields["points"], fields["margin"] = links, points, margin
+        fields["converged"], fields["gradient_sine"], fields["failures"] = (
+            converged,
+            gradient_sine,
+            failures,
+        )
+        fields["newton"], fields["approaches"], fields["size"] = newton, approaches, size
+        fields["group_margins"], fields["flips"] = group_margins, flips
 
     @property
     def feasible(self) -> Array:
@@ -133,30 +164,25 @@ class Motion:
     def cut(self, part: slice | Array) -> Motion:
         """The same motion at the samples ``part`` only (a slice or sample indices; approaches,
         Newton reports and branch switches kept as found)."""
-        cut: dict[int, PointMotion] = {}  # (a link's anchor is a point's motion: cut once)
-
-        def point(m: PointMotion) -> PointMotion:
-            found = cut.get(id(m))
-            if found is None:
-                v, a = m.v, m.a
-                found = cut[id(m)] = PointMotion(
-                    m.p[part], None if v is None else v[part], None if a is None else a[part]
-                )
-            return found
-
+        points, cut = {}, {}  # (a link's anchor is a point's motion, by its id: cut once)
+        for k, m in self.points.items():
+            points[k] = cut[id(m)] = m.at(part)
         links = {}
-        for k, m in self.links.items():
-            omega, alpha = m.omega, m.alpha
+        for k, link in self.links.items():
+            anchor = cut.get(id(link.anchor))
+            if anchor is None:  # (a pivot that is no point of the scene's)
+                anchor = cut[id(link.anchor)] = link.anchor.at(part)
+            omega, alpha = link.omega, link.alpha
             links[k] = LinkMotion(
-                m.anchor0,
-                point(m.anchor),
-                m.theta[part],
+                link.anchor0,
+                anchor,
+                link.theta[part],
                 None if omega is None else omega[part],
                 None if alpha is None else alpha[part],
             )
         return Motion(
             links,
-            {k: point(m) for k, m in self.points.items()},
+            points,
             self.margin[part],
             self.converged[part],
             self.gradient_sine[part],
@@ -225,16 +251,17 @@ def unit_rate(inputs: Sequence[DriverInput], driver: int) -> list[DriverInput]:
 
 
 def lipschitz_clear(
-    margin: Array, reaches: Sequence[Reach], path: Sequence[PathStep], size: float
+    least: float, reaches: Sequence[Reach], path: Sequence[PathStep], size: float
 ) -> bool:
-    """Whether the margin of a group measured between points of the given reaches stays above
-    WARNING_MARGIN size between every two samples, whatever its shape: m is 1-Lipschitz in those
-    points, so |dm/du| <= G = sum |P - pivot| max |delta| and m >= (m_k + m_k+1 - G) / 2 between
-    samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN size clears every interval."""
+    """Whether the margin of a group measured between points of the given reaches, ``least``
+    min(m) at the samples, stays above WARNING_MARGIN size between every two samples, whatever
+    its shape: m is 1-Lipschitz in those points, so |dm/du| <= G = sum |P - pivot| max |delta|
+    and m >= (m_k + m_k+1 - G) / 2 between samples k and k + 1; min(m) - G / 2 >= WARNING_MARGIN
+    size clears every interval."""
     bound = 0.0
     for moving, _, step in path:
         bound += step * sum(radius for driver, radius in reaches if driver == moving)
-    return bool(margin.min() - 0.5 * bound >= WARNING_MARGIN * size)
+    return bool(least - 0.5 * bound >= WARNING_MARGIN * size)
 
 
 def path_rates(sensitivities: Sequence[Array], path: Sequence[PathStep]) -> tuple[Array, Array]:
@@ -493,7 +520,8 @@ class _Assembler:
         # The smallest relative margin and gradient sine of the groups so far, per sample (1.0
         # before the first group: ``per_sample``).
         self.margin: Array | float = 1.0
-        self.converged = np.ones(self.samples, dtype=bool)
+        self.converged = np.empty(self.samples, dtype=bool)
+        self.converged.fill(True)  # (cheaper than np.ones)
         self.gradient_sine: Array | float = 1.0
         self.failures: list[str] = []
         self.reports: list[newton.NewtonReport] = []
@@ -534,11 +562,13 @@ class _Assembler:
         """Samples where every group so far closed (and every Newton group converged)."""
         return (self.margin >= -loci.COINCIDENCE_TOLERANCE) & self.converged
 
-    def close(self, margin: Array, message: Callable[[], str]) -> None:
-        """Record a group's relative margin, and its message where it newly fails to close."""
-        fails = margin < -loci.COINCIDENCE_TOLERANCE
-        if fails.any() and (fails & self.closed()).any():
-            self.failures.append(message())
+    def close(self, margin: Array, least: float, message: Callable[[], str]) -> None:
+        """Record a group's relative margin (``least`` its smallest, NaN where one is), and its
+        message where it newly fails to close (no sample fails where ``least`` does not)."""
+        if not least >= -loci.COINCIDENCE_TOLERANCE:
+            fails = margin < -loci.COINCIDENCE_TOLERANCE
+            if fails.any() and (fails & self.closed()).any():
+                self.failures.append(message())
         self.margin = np.minimum(self.margin, margin)
 
     def locus(self, spec: LocusSpec) -> loci.Locus:
@@ -560,7 +590,7 @@ class _Assembler:
         if step.pivot in self.scene.links[self.scene.ground].points:
             anchor = self.points[step.pivot]  # (at rest, as a driver's pivot is)
         else:
-            zeros = np.zeros((self.samples, 2))
+            zeros = np.zeros((self.samples, 2), order="F")
             anchor = PointMotion(repeat(pivot0, self.samples), zeros, zeros)
             self.resting_ids.add(id(anchor))
         self.know(
@@ -585,17 +615,18 @@ class _Assembler:
         point: str,
         drawn: float,
         margin: Array,
+        least: float,
         pieces: Callable[[], tuple[loci.Piece, ...]],
     ) -> Array | float:
         """The branch sign per sample: the drawn one, switched after every closest approach
         between samples where the two branches meet within rounding (a change point); one sign
-        for every sample where it does not switch."""
+        for every sample where it does not switch. ``least``: the margin's smallest value."""
         sign: Array | float = self.signs.get(index, drawn)
         if not self.continuation:
             return sign
         size = self.scene.size
         switches: list[float] = []
-        for k, piece in self.candidates(index, step, margin, pieces):
+        for k, piece in self.candidates(index, step, margin, least, pieces):
             approach = self.closest_approach(index, point, k, piece)
             if approach is None:
                 continue
@@ -618,14 +649,16 @@ class _Assembler:
         index: int,
         step: DyadStep | LeverStep,
         margin: Array,
+        least: float,
         pieces: Callable[[], tuple[loci.Piece, ...]],
     ) -> list[tuple[int, int]]:
-        """The intervals and pieces where group ``index``'s margin may dip below the warning
-        threshold (``screen``); none where it is measured between points that turn with drivers
-        and its Lipschitz bound clears the threshold (``lipschitz_clear``)."""
+        """The intervals and pieces where group ``index``'s margin (``least`` its smallest value)
+        may dip below the warning threshold (``screen``); none where it is measured between
+        points that turn with drivers and its Lipschitz bound clears the threshold
+        (``lipschitz_clear``)."""
         size = self.scene.size
         if not self.path or (
-            step.reach is not None and lipschitz_clear(margin, step.reach, self.path, size)
+            step.reach is not None and lipschitz_clear(least, step.reach, self.path, size)
         ):
             return []
         found = pieces()  # (their rates computed only here)
@@ -716,11 +749,15 @@ class _Assembler:
         """A closed-form group, asked through its type (``groups.group_of``): its margin, then
         its solution on the branch chosen for it."""
         closure = groups.group_of(step).close(step, self)
-        self.close(closure.margin / self.scene.size, closure.describe)
+        size = self.scene.size
+        least = float(closure.margin.min())  # (one reduction: the failures and the screen's)
+        self.close(closure.margin / size, least / size, closure.describe)
         self.last = closure.pieces
         if closure.two_branch:
             self.group_margins[closure.label] = closure.margin
-        sign = self.branch(index, step, closure.label, step.sign, closure.margin, closure.pieces)
+        sign = self.branch(
+            index, step, closure.label, step.sign, closure.margin, least, closure.pieces
+        )
         placed = closure.place(sign, self.computed(index))
         self.gradient_sine = np.minimum(self.gradient_sine, placed.gradient_sine)
         self.points.update(placed.points)
@@ -733,17 +770,11 @@ class _Assembler:
 
     def run_steps(self, steps: tuple[PlanStep, ...]) -> None:
         self.steps = steps
-        ground = self.scene.links[self.scene.ground]
-        at_rest = np.zeros((self.samples, 2))
-        for p in ground.points:  # fixed points: no rotation to apply, no rates to compute
-            drawn = self.scene.drawn(p)
-            self.points[p] = PointMotion(repeat(drawn, self.samples), at_rest, at_rest)
-            self.resting_ids.add(id(self.points[p]))
-        zeros = np.zeros(self.samples)
-        anchor = ground.points[0]
-        self.links[ground.name] = LinkMotion(
-            self.scene.drawn(anchor), self.points[anchor], zeros, zeros, zeros
-        )
+        fixed, ground = at_rest(self.scene, self.samples)
+        self.points.update(fixed)
+        for motion in fixed.values():
+            self.resting_ids.add(id(motion))
+        self.links[self.scene.ground] = ground
         for index, step in enumerate(steps):
             if isinstance(step, DriverStep):
                 self.drive(index, step)
@@ -841,6 +872,25 @@ class _Assembler:
         self.converged = self.converged & report.converged
         for link, motion in solved.items():
             self.know(link, motion)
+
+
+def at_rest(scene: LinkageScene, samples: int) -> tuple[dict[str, PointMotion], LinkMotion]:
+    """The ground's points and the ground over ``samples`` samples: at rest in the drawn pose,
+    no rotation to apply, their rates zeros. Made once per scene and sample count (the last
+    count asked, kept in the scene's ``memo``) with their arrays read-only: every run at that
+    count shares them, as every caller shares ``LinkageScene.drawn``'s."""
+    kept = scene.memo.get("at_rest")
+    if kept is not None and kept[0] == samples:
+        return kept[1], kept[2]
+    ground = scene.links[scene.ground]
+    still, zeros = np.zeros((samples, 2), order="F"), np.zeros(samples)  # (``rigid.points``)
+    fixed = {p: PointMotion(repeat(scene.drawn(p), samples), still, still) for p in ground.points}
+    for array in (still, zeros, *(motion.p for motion in fixed.values())):
+        array.flags.writeable = False
+    anchor = ground.points[0]
+    link = LinkMotion(scene.drawn(anchor), fixed[anchor], zeros, zeros, zeros)
+    scene.memo["at_rest"] = (samples, fixed, link)
+    return fixed, link
 
 
 def follows_path(plan: Plan) -> bool:

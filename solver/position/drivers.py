@@ -7,7 +7,7 @@ pose to ``angle_deg``), or the driver's ``angle_law``.
 from __future__ import annotations
 
 import math
-from typing import TypeVar
+from typing import TypeVar, cast
 
 import numpy as np
 
@@ -21,9 +21,15 @@ T = TypeVar("T", float, Array)
 
 
 def drawn_angle(scene: LinkageScene, link: str) -> float:
-    points = scene.links[link].points
-    d = scene.drawn(points[1]) - scene.drawn(points[0])
-    return math.atan2(d[1], d[0])
+    """The drawn angle of ``link``, atan2 of the vector from its first point to its second, once
+    per scene (kept in its ``memo``)."""
+    angles = scene.memo.setdefault("drawn_angles", {})
+    angle = angles.get(link)
+    if angle is None:
+        points = scene.links[link].points
+        d = scene.drawn(points[1]) - scene.drawn(points[0])
+        angle = angles[link] = math.atan2(d[1], d[0])
+    return cast(float, angle)
 
 
 def _start_turn(scene: LinkageScene, driver: Driver, wrap: bool = True) -> float:

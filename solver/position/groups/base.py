@@ -13,7 +13,8 @@ made known (points or links) and the sine between its constraint gradients (0 at
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Protocol
 
 from solver.kinematics.rigid import Array, LinkMotion, PointMotion, Relative
@@ -23,25 +24,42 @@ if TYPE_CHECKING:
     from solver.position.topology import DyadStep, LocusSpec
 
 
-@dataclass(frozen=True)
+# (Nothing to add to a group's answer: its mappings' default, never written.)
+NOTHING: Mapping[Any, Any] = MappingProxyType({})
+
+
+@dataclass(frozen=True, init=False)
 class Placed:
     """A group solved on its branches: the sine between its constraint gradients per sample,
     and the points and links it made known; ``relative``: a located point seen from a known
     one, (known, located) -> ``rigid.Relative``, where the group computed it (a link through
-    both takes it instead of computing it again)."""
+    both takes it instead of computing it again). (Frozen, its fields written at once as
+    ``rigid.PointMotion``'s.)"""
 
     gradient_sine: Array
-    points: Mapping[str, PointMotion] = field(default_factory=dict)
-    links: Mapping[str, LinkMotion] = field(default_factory=dict)
-    relative: Mapping[tuple[str, str], Relative] = field(default_factory=dict)
+    points: Mapping[str, PointMotion]
+    links: Mapping[str, LinkMotion]
+    relative: Mapping[tuple[str, str], Relative]
+
+    def __init__(
+        self,
+        gradient_sine: Array,
+        points: Mapping[str, PointMotion] = NOTHING,
+        links: Mapping[str, LinkMotion] = NOTHING,
+        relative: Mapping[tuple[str, str], Relative] = NOTHING,
+    ) -> None:
+        fields = self.__dict__
+        fields["gradient_sine"], fields["points"] = gradient_sine, points
+        fields["links"], fields["relative"] = links, relative
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Closure:
     """A group at the samples before its branch is chosen: its margin m (metres) and smooth
     ``pieces`` (made when called: only a branch screen needs their rates), named by ``label``
     (the point, or the slot, it locates); ``two_branch`` false where it has one solution;
-    ``place(sign, order)`` solves it on the branch ``sign`` (one per sample, or one for all)."""
+    ``place(sign, order)`` solves it on the branch ``sign`` (one per sample, or one for all).
+    (Frozen, its fields written at once as ``rigid.PointMotion``'s.)"""
 
     label: str
     margin: Array
@@ -49,6 +67,19 @@ class Closure:
     describe: Callable[[], str]
     two_branch: bool
     place: Callable[[Array | float, int], Placed]
+
+    def __init__(
+        self,
+        label: str,
+        margin: Array,
+        pieces: Callable[[], tuple[Piece, ...]],
+        describe: Callable[[], str],
+        two_branch: bool,
+        place: Callable[[Array | float, int], Placed],
+    ) -> None:
+        fields = self.__dict__
+        fields["label"], fields["margin"], fields["pieces"] = label, margin, pieces
+        fields["describe"], fields["two_branch"], fields["place"] = describe, two_branch, place
 
 
 class Known(Protocol):

@@ -19,7 +19,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.kinematics.rigid import Array, PointMotion, cross, dot, perp, scale, solve_2x2
+from solver.kinematics.rigid import (
+    Array,
+    PointMotion,
+    cross,
+    dot,
+    perp,
+    points,
+    scale,
+    solve_2x2,
+)
 from solver.position.constraints import slider_acceleration_rhs, slider_velocity_rhs
 
 EPS = float(np.finfo(float).eps)
@@ -146,9 +155,9 @@ def digits(a: float, b: float) -> int:
 
 def _solve(row1: Array, row2: Array, rhs1: Array, rhs2: Array, det: Array) -> Array:
     """[row1; row2] x = [rhs1; rhs2] per sample (``rigid.solve_2x2``), as (N, 2)."""
-    out = np.empty((det.size, 2))
-    rows = (row1[:, 0], row1[:, 1]), (row2[:, 0], row2[:, 1])
-    solve_2x2(*rows, (rhs1, rhs2), det, (out[:, 0], out[:, 1]))
+    out = points((det.size, 2))
+    rows = (row1[..., 0], row1[..., 1]), (row2[..., 0], row2[..., 1])
+    solve_2x2(*rows, (rhs1, rhs2), det, (out[..., 0], out[..., 1]))
     return out
 
 

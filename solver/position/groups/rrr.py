@@ -13,6 +13,7 @@ from solver.kinematics.rigid import (
     PointMotion,
     Relative,
     dot,
+    omega_cross,
     perp,
     scale,
     solve_2x2,
@@ -24,15 +25,19 @@ if TYPE_CHECKING:
     from solver.position.topology import CircleSpec, DyadStep
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Chord:
     """The common chord of two circles, column by column over samples (``chord``): ``u`` is
-    (N, 2), the others (N,)."""
+    (N, 2), the others (N,). (Frozen, its fields written at once as ``rigid.PointMotion``'s.)"""
 
     d: Array
     u: Array
     a: Array
     h2: Array
+
+    def __init__(self, d: Array, u: Array, a: Array, h2: Array) -> None:
+        fields = self.__dict__
+        fields["d"], fields["u"], fields["a"], fields["h2"] = d, u, a, h2
 
 
 def chord(d_vec: Array, r1: float, r2: float) -> Chord:
@@ -41,11 +46,9 @@ def chord(d_vec: Array, r1: float, r2: float) -> Chord:
     u = (1, 0): any direction (every point of the circle fits). The RRR formula, once: the
     intersection of two circles (``circle_circle``) and the group's closure (``GROUP``) use it."""
     squares = d_vec * d_vec
-    d = np.sqrt(squares[:, 0] + squares[:, 1])
-    safe_d = d if d.min() > 0.0 else np.where(d > 0.0, d, 1.0)
-    u = np.empty(d_vec.shape)
-    np.divide(d_vec[:, 0], safe_d, out=u[:, 0])
-    np.divide(d_vec[:, 1], safe_d, out=u[:, 1])
+    d = np.sqrt(squares[..., 0] + squares[..., 1])
+    safe_d = _positive(d)
+    u = d_vec / safe_d[..., None]  # (both coordinates at once: ``rigid.points``)
     if safe_d is not d:
         u[d == 0.0] = (1.0, 0.0)
     a = (r1**2 - r2**2 + d**2) / (2.0 * safe_d)
@@ -131,11 +134,10 @@ class CircleCircle(DyadGroup):
 
         def place(sign: Array | float, order: int) -> Placed:
             """X = C1 + a u + sign h (k x u), the drawn position at the drawn pose."""
-            across = sign * root(cut.h2, r1**2)
-            ux, uy = cut.u[:, 0], cut.u[:, 1]
-            X = np.empty((across.size, 2))
-            np.subtract(c1.p[:, 0] + ux * cut.a, uy * across, out=X[:, 0])
-            np.add(c1.p[:, 1] + uy * cut.a, ux * across, out=X[:, 1])
+            h = root(cut.h2, r1**2)
+            # (one branch, +1, everywhere: h itself, as h 1.0 is, to the bit)
+            across = h if isinstance(sign, float) and sign == 1.0 else sign * h
+            X = c1.p + scale(cut.a, cut.u) + omega_cross(across, cut.u)
             X[known.at_drawn] = known.drawn(step.point)
             motion, sine, seen = point_rates(X, c1, c2, order, resting)
             relative = {(first.center, step.point): seen[0], (second.center, step.point): seen[1]}
@@ -145,8 +147,10 @@ class CircleCircle(DyadGroup):
 
 
 def _positive(x: Array) -> Array:
-    """np.where(x > 0, x, 1.0): ``x`` itself where every x is positive (the common case)."""
-    return x if x.min() > 0.0 else np.where(x > 0.0, x, 1.0)
+    """np.where(x > 0, x, 1.0) for x >= 0 (a length, or a product of lengths): ``x`` itself where
+    none is 0 (the common case; counted, cheaper than a reduction: a NaN, of a point not placed,
+    stays NaN, and so does all that is computed from it)."""
+    return x if np.count_nonzero(x) == x.size else np.where(x > 0.0, x, 1.0)
 
 
 def point_rates(
@@ -158,18 +162,18 @@ def point_rates(
     rest (v_X - v_C2 is v_X). With them, X seen from C1 and from C2 (``rigid.relative``: the
     rows g_i, |g_i|^2 and, with accelerations, v_X - v_Ci)."""
     g1, g2 = X - c1.p, X - c2.p
-    g1x, g1y, g2x, g2y = g1[:, 0], g1[:, 1], g2[:, 0], g2[:, 1]
+    g1x, g1y, g2x, g2y = g1[..., 0], g1[..., 1], g2[..., 0], g2[..., 1]
     det = g1x * g2y - g1y * g2x
     squares = dot(g1, g1), dot(g2, g2)
     sine = np.abs(det) / _positive(np.sqrt(squares[0] * squares[1]))
     if order < 1:
         return PointMotion(X), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
     assert c1.v is not None and c2.v is not None
-    if not det.all():
+    if np.count_nonzero(det) < det.size:  # (counted: cheaper than det.all())
         det = np.where(det != 0.0, det, np.inf)
     rows = (g1x, g1y), (g2x, g2y)
-    v = np.empty(X.shape)
-    solve_2x2(*rows, (dot(g1, c1.v), dot(g2, c2.v)), det, (v[:, 0], v[:, 1]))
+    v = np.empty_like(X)
+    solve_2x2(*rows, (dot(g1, c1.v), dot(g2, c2.v)), det, (v[..., 0], v[..., 1]))
     if order < 2:
         return PointMotion(X, v), sine, (Relative(g1, squares[0]), Relative(g2, squares[1]))
     assert c1.a is not None and c2.a is not None
@@ -179,8 +183,8 @@ def point_rates(
         dot(g1, c1.a) - dot(w1, w1),
         dot(g2, c2.a) - dot(w2, w2),
     )
-    a = np.empty(X.shape)
-    solve_2x2(*rows, rhs, det, (a[:, 0], a[:, 1]))
+    a = np.empty_like(X)
+    solve_2x2(*rows, rhs, det, (a[..., 0], a[..., 1]))
     seen = Relative(g1, squares[0], w1), Relative(g2, squares[1], w2)
     return PointMotion(X, v, a), sine, seen
 
