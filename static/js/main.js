@@ -610,19 +610,7 @@ class App {
     const ask = (param, value) => api.analyze(S.sceneAt(scene, param, value), INSTANT).catch(() => {}); // (its error is analyzeNow's)
     const at = previous ?? instant ?? null; // the crank angle or time to be shown (null: the start)
     // (an edit is posed at a crank angle only: posedAtInstant)
-    let predrawn = false;
-    if (posed && at !== null) {
-      // Its polygons are drawn as soon as its instant's analysis comes, while the sweep is still
-      // on its way (a crank that rocks: its limit positions are searched), and analyzeNow finds
-      // them drawn: the drawing follows them by the sweep's lead.
-      ask(timeDriven ? 'time' : 'angle', at).then(async (answer) => {
-        if (!answer || seq !== this.geometrySeq || this.scene === scene || !(await plotlyReady())) return;
-        if (seq !== this.geometrySeq || this.scene === scene) return;
-        this.analysisSeq += 1; // (the shown mechanism's instant, still asked for, is not drawn)
-        const { polygons, ...analysis } = answer;
-        predrawn = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), scene, analysis, polygons, this.units);
-      });
-    }
+    if (posed && at !== null) ask(timeDriven ? 'time' : 'angle', at);
     // (a crank's turn, or a time range, starts where the first sweep starts; a rocking crank's
     // samples are the midpoints of its range's parts, which move with their number)
     let early = null; // the first sweep, shown while a finer one is asked for
@@ -652,10 +640,7 @@ class App {
       // although the scene's own instant may be fine, only costs the animation: check the
       // scene with /analyze and show it still.
       const soft = err.code === 'network' || (timeDriven && err.code !== 'invalid_expression');
-      if (!soft) {
-        if (predrawn && seq === this.geometrySeq) this.analyzeNow(); // (the shown mechanism's again)
-        throw err;
-      }
+      if (!soft) throw err;
       const probeScene = timeDriven ? S.sceneAt(scene, 'time', scene.time ?? 0) : scene;
       try {
         await api.analyze(probeScene, ['position']);

@@ -297,7 +297,6 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
 }
 
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
-const drawnFigures = new WeakMap(); // div -> its latest figure (JSON) and the div's size then
 
 /**
  * One polygon: its legend (HTML, under the figure), then its figure with its labels, drawn once
@@ -309,39 +308,19 @@ const drawnFigures = new WeakMap(); // div -> its latest figure (JSON) and the d
  * another's polygon, nor marks a detail done too early.
  */
 function drawPolygon(P, div, figure, kind, units) {
-  // The same figure again at the same size (its instant's analysis drew it before the sweep
-  // came: main.js, loadScene) is left as drawn, its legend and detail included.
-  const key = JSON.stringify(figure);
-  const last = drawnFigures.get(div);
-  if (last?.key === key && last.width === div.clientWidth && last.height === div.clientHeight) return;
   const turn = (turns.get(div) || 0) + 1;
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
   div.dataset.detail = 'pending';
   drawLegend(P, div, figure);
   const area = plotArea(div, figure.layout.margin);
-  drawnFigures.set(div, { key, width: div.clientWidth, height: div.clientHeight });
-  plot(P, div, figure.traces, labelled(figure, area))
+  P.react(div, figure.traces, labelled(figure, area), CONFIG)
     .then(() => {
       const drawn = current() && drawnArea(div);
       return drawn && !sameArea(area, drawn) && P.react(div, figure.traces, labelled(figure, drawn), CONFIG);
     })
     .then(() => current() && afterPaint())
     .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
-}
-
-/**
- * Plotly's drawing of `traces` and `layout` in `div`: a figure whose traces are those drawn
- * there, by name (another instant of the same mechanism), is updated (Plotly.react); another
- * (a new mechanism, or another choice of quantities) is drawn anew on an emptied div, which
- * takes Plotly a fifth less time than making the old figure into the new one.
- */
-function plot(P, div, traces, layout) {
-  const old = div.data;
-  const same = old && old.length === traces.length && old.every((t, i) => t.name === traces[i].name);
-  if (same) return P.react(div, traces, layout, CONFIG);
-  P.purge(div);
-  return P.newPlot(div, traces, layout, CONFIG);
 }
 
 /** The HTML legend under a polygon (its id the figure's and "-legend"). */
@@ -442,7 +421,6 @@ export function clearPolygons(...divs) {
   if (!P) return;
   for (const d of divs) {
     turns.set(d, (turns.get(d) || 0) + 1);
-    drawnFigures.delete(d);
     P.purge(d);
     legendOf(d)?.replaceChildren();
     const detail = detailOf(d);

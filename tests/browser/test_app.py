@@ -230,49 +230,6 @@ def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) 
     app.screenshot("slider-crank-edited")
 
 
-# Counts, from now on, Plotly's drawings of the two polygons (window.polygonDrawings).
-COUNT_POLYGON_DRAWINGS = """() => {
-  const P = window.Plotly;
-  window.polygonDrawings = 0;
-  for (const f of ['newPlot', 'react']) {
-    const draw = P[f];
-    P[f] = (div, ...rest) => {
-      if (div.id.endsWith('-polygon')) window.polygonDrawings++;
-      return draw.call(P, div, ...rest);
-    };
-  }
-}"""
-
-
-def test_a_new_mechanisms_polygons_are_drawn_before_its_sweep_comes_and_not_again(
-    app: AppPage,
-) -> None:
-    """With its sweep held back, a newly chosen preset's polygons are drawn from its instant's
-    analysis (asked for beside the sweep) while the drawing still shows the previous mechanism;
-    once the sweep comes and the drawing follows, the polygons are left as drawn (the same
-    figure is not drawn again)."""
-    app.open()
-    page = app.page
-    pause_and_wait(page)
-    before = plot_data(page, "velocity-polygon")
-    held: list[Any] = []
-    page.route("**/api/v1/sweep", lambda route: held.append(route))
-    page.evaluate("() => { delete document.getElementById('linkage').dataset.analysed; }")
-    page.select_option("#preset", "preset:slider_crank")
-    wait_until(lambda: plot_data(page, "velocity-polygon") != before, what="the new polygons")
-    assert held, "the sweep is held back"
-    assert page.get_attribute("#preset", "data-shown") == "preset:four_bar", "drawing still old"
-    page.evaluate(COUNT_POLYGON_DRAWINGS)
-    for route in held:
-        route.continue_()
-    page.unroute("**/api/v1/sweep")
-    page.wait_for_function(
-        "() => document.getElementById('preset').dataset.shown === 'preset:slider_crank'"
-        " && document.getElementById('linkage').dataset.analysed !== undefined"
-    )
-    assert page.evaluate("() => window.polygonDrawings") == 0, "the polygons were drawn again"
-
-
 def test_non_assemblable_length_shows_the_servers_message_beside_the_field(
     app: AppPage,
 ) -> None:
