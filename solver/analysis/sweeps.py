@@ -419,16 +419,15 @@ def _smooth_singular_samples(motion: Motion, singular: Array, cyclic: bool) -> N
 
 def _revolution(scene: LinkageScene, samples: int, start: float, direction: float) -> Array:
     """theta_k = start + direction 2 pi k / samples, k = 0 .. samples (back at the start), once
-    per scene and (samples, start, direction): the last kept in the scene's ``memo``, read-only
-    (shared by the sweeps that ask for it, as ``assembly.at_rest``'s arrays are)."""
-    key = (samples, start, direction)
-    kept = scene.memo.get("revolution")
-    if kept is not None and kept[0] == key:
-        return kept[1]
-    turns = start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
-    turns.flags.writeable = False
-    scene.memo["revolution"] = (key, turns)
-    return turns
+    per scene and (samples, start, direction): the latest kept (``LinkageScene.latest``),
+    read-only (shared by the sweeps that ask for it, as ``assembly.at_rest``'s arrays are)."""
+
+    def make() -> Array:
+        turns = start + direction * 2.0 * math.pi * np.arange(samples + 1.0) / samples
+        turns.flags.writeable = False
+        return turns
+
+    return scene.latest("revolution", (samples, start, direction), make)
 
 
 def _cycle(

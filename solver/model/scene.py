@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import difflib
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Literal
+from typing import Any, Literal, TypeVar
 
 import numpy as np
 
@@ -21,6 +21,8 @@ from solver.model.dynamics import Dynamics, parse_dynamics
 from solver.model.laws import parse_time_law
 
 JointType = Literal["revolute", "slider", "prismatic"]
+
+T = TypeVar("T")
 
 MAX_POINTS = 200
 MAX_LINKS = 100
@@ -153,6 +155,16 @@ class LinkageScene:
         by name: kept on the scene object and forgotten with it (a scene is immutable, so is all
         that is derived from it)."""
         return {}
+
+    def latest(self, name: str, key: Hashable, make: Callable[[], T]) -> T:
+        """``make()`` for ``key``, kept in ``memo`` under ``name`` for the latest key only (what
+        depends on a sweep's sample count, say: the next count asked replaces it)."""
+        kept = self.memo.get(name)
+        if kept is not None and kept[0] == key:
+            return kept[1]
+        value = make()
+        self.memo[name] = (key, value)
+        return value
 
     @cached_property
     def size(self) -> float:

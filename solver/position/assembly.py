@@ -877,20 +877,19 @@ class _Assembler:
 def at_rest(scene: LinkageScene, samples: int) -> tuple[dict[str, PointMotion], LinkMotion]:
     """The ground's points and the ground over ``samples`` samples: at rest in the drawn pose,
     no rotation to apply, their rates zeros. Made once per scene and sample count (the last
-    count asked, kept in the scene's ``memo``) with their arrays read-only: every run at that
-    count shares them, as every caller shares ``LinkageScene.drawn``'s."""
-    kept = scene.memo.get("at_rest")
-    if kept is not None and kept[0] == samples:
-        return kept[1], kept[2]
+    count asked, ``LinkageScene.latest``) with their arrays read-only: every run at that count
+    shares them, as every caller shares ``LinkageScene.drawn``'s."""
+    return scene.latest("at_rest", samples, lambda: _at_rest(scene, samples))
+
+
+def _at_rest(scene: LinkageScene, samples: int) -> tuple[dict[str, PointMotion], LinkMotion]:
     ground = scene.links[scene.ground]
     still, zeros = np.zeros((samples, 2), order="F"), np.zeros(samples)  # (``rigid.points``)
     fixed = {p: PointMotion(repeat(scene.drawn(p), samples), still, still) for p in ground.points}
     for array in (still, zeros, *(motion.p for motion in fixed.values())):
         array.flags.writeable = False
     anchor = ground.points[0]
-    link = LinkMotion(scene.drawn(anchor), fixed[anchor], zeros, zeros, zeros)
-    scene.memo["at_rest"] = (samples, fixed, link)
-    return fixed, link
+    return fixed, LinkMotion(scene.drawn(anchor), fixed[anchor], zeros, zeros, zeros)
 
 
 def follows_path(plan: Plan) -> bool:
