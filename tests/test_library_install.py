@@ -81,7 +81,10 @@ def library_venv(tmp_path_factory: pytest.TempPathFactory) -> Path:
     python = base / "venv" / "bin" / "python"
     requirements = base / "library.lock"
     requirements.write_text(locked(LIBRARY))
+    # --no-compile: the modules a test imports are compiled then (byte-compiling all of sympy
+    # and scipy up front was two thirds of the install's time).
     pip = [str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"]
+    pip.append("--no-compile")
     subprocess.run([*pip, "--require-hashes", "-r", str(requirements)], check=True)
     # A copy of the project: building it in place would leave build/ in the repository.
     source = base / "project"

@@ -697,21 +697,21 @@ class _Assembler:
         the same pose), or where another piece is lower there (the margin, the smaller of them,
         has no minimum there)."""
 
-        def evaluate(x: float) -> tuple[float, float, float]:
-            """(the piece, its rate, the margin: the smallest piece) at u = k + x."""
+        def evaluate(x: float, order: int = 0) -> tuple[float, float, float]:
+            """(the piece, its rate (0.0 at ``order`` 0: positions only), the margin: the
+            smallest piece) at u = k + x."""
             inputs = interpolated_inputs(self.inputs, k, x)
-            probe = _Assembler(self.scene, inputs, 1, False, branches_at(self.flips, k + x))
+            probe = _Assembler(self.scene, inputs, order, False, branches_at(self.flips, k + x))
             probe.run_steps(self.steps[: index + 1])
             last = probe.last()
             values, rate = last[piece]
-            assert rate is not None
             margin = min(float(other[0]) for other, _ in last)
-            return float(values[0]), float(rate[0]), margin
+            return float(values[0]), 0.0 if rate is None else float(rate[0]), margin
 
-        start, rate_low, _ = evaluate(0.0)
-        end, rate_high, _ = evaluate(1.0)
+        start, rate_low, _ = evaluate(0.0, 1)
+        end, rate_high, _ = evaluate(1.0, 1)
         if rate_low < 0.0 <= rate_high:
-            x = brentq(lambda x: evaluate(x)[1], 0.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
+            x = brentq(lambda x: evaluate(x, 1)[1], 0.0, 1.0, xtol=1e-15, rtol=4.0 * EPS)
         else:
             found = minimize_scalar(
                 lambda x: evaluate(x)[0], bounds=(0.0, 1.0), method="bounded",
