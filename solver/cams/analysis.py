@@ -82,8 +82,9 @@ def sweep_cam(scene: CamScene, samples: int = 360, warnings: list[str] | None = 
     body.update(_fields(scene, g, _finite))
     body["profile"] = g.profile
     body["contact_point"] = g.contact
-    body["diagnostics"] = diagnostics(scene)
-    body["warnings"] = [*(warnings or []), *cam_warnings(scene)]
+    revolution = g if samples == GRID else cam_geometry(scene, _grid(GRID))
+    body["diagnostics"] = diagnostics(scene, revolution)
+    body["warnings"] = [*(warnings or []), *cam_warnings(scene, revolution)]
     return body
 
 
@@ -104,14 +105,17 @@ def analyze_cam(scene: CamScene, angle_deg: float = 0.0, warnings: list[str] | N
     body.update(_fields(scene, g, one))
     body["contact_point"] = [float(x) for x in g.contact[0]]
     body["profile"] = cam_geometry(scene, _grid(PROFILE_SAMPLES)).profile
-    body["diagnostics"] = diagnostics(scene)
-    body["warnings"] = [*(warnings or []), *cam_warnings(scene)]
+    revolution = cam_geometry(scene, _grid(GRID))
+    body["diagnostics"] = diagnostics(scene, revolution)
+    body["warnings"] = [*(warnings or []), *cam_warnings(scene, revolution)]
     return body
 
 
-def diagnostics(scene: CamScene) -> JSON:
-    """The extremes over the revolution (on the grid) and where they occur, and the circles."""
-    g = cam_geometry(scene, _grid(GRID))
+def diagnostics(scene: CamScene, g: CamGeometry | None = None) -> JSON:
+    """The extremes over the revolution (on the grid of ``GRID`` cam angles: ``g``, the geometry
+    there, computed when not given) and where they occur, and the circles."""
+    if g is None:
+        g = cam_geometry(scene, _grid(GRID))
     named = _fields(scene, g, lambda values: values)
     named = {**named.pop("follower"), **named}
     extremes: JSON = {}
@@ -222,10 +226,12 @@ def tighter_than_roller(g: CamGeometry, roller_radius: float) -> np.ndarray:
     return tight
 
 
-def cam_warnings(scene: CamScene) -> list[str]:
-    """The design's faults: jumps where segments meet, too large a pressure angle,
-    undercutting (see the module)."""
-    g = cam_geometry(scene, _grid(GRID))
+def cam_warnings(scene: CamScene, g: CamGeometry | None = None) -> list[str]:
+    """The design's faults over the revolution (on the grid of ``GRID`` cam angles: ``g``, the
+    geometry there, computed when not given): jumps where segments meet, too large a pressure
+    angle, undercutting (see the module)."""
+    if g is None:
+        g = cam_geometry(scene, _grid(GRID))
     found = _boundary_jumps(scene, g)
     f = scene.follower
     if f.contact != "flat":

@@ -166,13 +166,35 @@ const STEPS_PER_TASK = 4;
 const IDLE_WAIT_MS = 500;
 const idle = () => new Promise((resolve) => requestIdleCallback(resolve, { timeout: IDLE_WAIT_MS }));
 const rendering = new WeakMap(); // a steps container -> the render under way in it
+const waiting = new WeakMap(); // a steps container -> how to release the render waiting for it
+
+/**
+ * Resolves once `stepsEl` is rendered: the later steps of a solution in a closed tab wait for the
+ * tab, so that a student who never opens it pays for its first steps only (a few instead of
+ * thousands of typeset elements after each preset or edit). A newer render into the container
+ * releases the older one's wait (which then stops: `rendering`).
+ */
+function shown(stepsEl) {
+  waiting.get(stepsEl)?.();
+  if (stepsEl.checkVisibility()) return Promise.resolve();
+  return new Promise((resolve) => {
+    const release = () => {
+      watch.disconnect();
+      waiting.delete(stepsEl);
+      resolve();
+    };
+    const watch = new ResizeObserver(() => { if (stepsEl.checkVisibility()) release(); });
+    watch.observe(stepsEl);
+    waiting.set(stepsEl, release);
+  });
+}
 
 /**
  * Render {steps, mistakes} into the two containers, with each step's values also in `units`
  * when they are not SI. With `first`, the first steps (those a reader sees first) are typeset at
- * once and the rest in later tasks, so that a long solution never holds the page for its whole
- * typesetting (without it, every step at once); a newer render into the same container stops an
- * older one. `stepsEl.dataset.typeset` is `partial` until every step is in, then `done`.
+ * once and the rest in later tasks, once the container is shown (`shown`), so that a long
+ * solution never holds the page for its whole typesetting (without it, every step at once); a
+ * newer render into the same container stops an older one. `stepsEl.dataset.typeset` is `partial` until every step is in, then `done`.
  * Resolves to the number of LaTeX failures.
  */
 export async function renderSolution(stepsEl, mistakesEl, solution, units = 'si', { first = Infinity } = {}) {
@@ -190,6 +212,7 @@ export async function renderSolution(stepsEl, mistakesEl, solution, units = 'si'
   const steps = solution.steps || [];
   for (let i = 0; i < steps.length; i++) {
     if (i >= first && (i - first) % STEPS_PER_TASK === 0) {
+      await shown(stepsEl);
       await idle();
       if (rendering.get(stepsEl) !== token) return failures;
     }
