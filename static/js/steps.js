@@ -194,7 +194,8 @@ function shown(stepsEl) {
  * when they are not SI. With `first`, the first steps (those a reader sees first) are typeset at
  * once and the rest in later tasks, once the container is shown (`shown`), so that a long
  * solution never holds the page for its whole typesetting (without it, every step at once); a
- * newer render into the same container stops an older one. `stepsEl.dataset.typeset` is `partial` until every step is in, then `done`.
+ * newer render into the same container stops an older one. `stepsEl.dataset.typeset` is
+ * `partial` until every step is in, then `done`.
  * Resolves to the number of LaTeX failures.
  */
 export async function renderSolution(stepsEl, mistakesEl, solution, units = 'si', { first = Infinity } = {}) {

@@ -181,6 +181,24 @@ def test_worked_solution_is_typeset_with_katex(app: AppPage) -> None:
     app.screenshot("worked-solution", ".solution-panel")
 
 
+def test_a_closed_solution_tab_typesets_its_first_steps_only_until_opened(app: AppPage) -> None:
+    """The worked solution of each instant comes with the analysis, but while its tab is closed
+    only its first steps are typeset (those a reader sees at once on opening it); the rest
+    follow when the tab is opened. Before, the whole solution (some ten thousand elements) was
+    typeset behind the closed tab after every preset and edit."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_selector("#steps[data-method] .step .katex", state="attached")
+    page.wait_for_timeout(1500)  # three times the idle wait of a batch of later steps
+    assert page.get_attribute("#steps", "data-typeset") == "partial"
+    first = page.locator("#steps .step").count()
+    assert first == 4
+    page.click("#tab-solution")
+    page.wait_for_selector("#steps[data-typeset='done']")
+    assert page.locator("#steps .step").count() > first
+
+
 def test_printable_page_opens_with_the_typeset_solution(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -1032,24 +1050,6 @@ def test_magnitudes_table_beside_the_polygons(app: AppPage) -> None:
 
 
 # ---- units -------------------------------------------------------------------------------------
-
-
-def test_a_closed_solution_tab_typesets_its_first_steps_only_until_opened(app: AppPage) -> None:
-    """The worked solution of each instant comes with the analysis, but while its tab is closed
-    only its first steps are typeset (those a reader sees at once on opening it); the rest
-    follow when the tab is opened. Before, the whole solution (some ten thousand elements) was
-    typeset behind the closed tab after every preset and edit."""
-    app.open()
-    page = app.page
-    pause_and_wait(page)
-    page.wait_for_selector("#steps[data-method] .step .katex", state="attached")
-    page.wait_for_timeout(1500)  # three times the idle wait of a batch of later steps
-    assert page.get_attribute("#steps", "data-typeset") == "partial"
-    first = page.locator("#steps .step").count()
-    assert first == 4
-    page.click("#tab-solution")
-    page.wait_for_selector("#steps[data-typeset='done']")
-    assert page.locator("#steps .step").count() > first
 
 
 def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
