@@ -69,7 +69,10 @@ def test_long_formulas_break_into_lines_or_scroll_in_reach(
     choose(app, "preset:quick_return")
     pause_and_wait(page)
     page.click("#tab-solution")
-    page.wait_for_selector("#steps .step-math")
+    # Every step (behind the closed tab only the first ones were typeset), and the frame after
+    # the last ones are laid out, whose resize observers narrow the blocks too wide.
+    page.wait_for_selector("#steps[data-typeset='done'] .step-math")
+    page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
     page.wait_for_function(
         "() => document.querySelectorAll('#steps .step-math[data-narrow]').length > 0"
     )
