@@ -82,9 +82,7 @@ def sweep_cam(scene: CamScene, samples: int = 360, warnings: list[str] | None = 
     body.update(_fields(scene, g, _finite))
     body["profile"] = g.profile
     body["contact_point"] = g.contact
-    revolution = g if samples == GRID else cam_geometry(scene, _grid(GRID))
-    body["diagnostics"] = diagnostics(scene, revolution)
-    body["warnings"] = [*(warnings or []), *cam_warnings(scene, revolution)]
+    body.update(_over_the_revolution(scene, g if samples == GRID else None, warnings))
     return body
 
 
@@ -105,17 +103,26 @@ def analyze_cam(scene: CamScene, angle_deg: float = 0.0, warnings: list[str] | N
     body.update(_fields(scene, g, one))
     body["contact_point"] = [float(x) for x in g.contact[0]]
     body["profile"] = cam_geometry(scene, _grid(PROFILE_SAMPLES)).profile
-    revolution = cam_geometry(scene, _grid(GRID))
-    body["diagnostics"] = diagnostics(scene, revolution)
-    body["warnings"] = [*(warnings or []), *cam_warnings(scene, revolution)]
+    body.update(_over_the_revolution(scene, None, warnings))
     return body
 
 
-def diagnostics(scene: CamScene, g: CamGeometry | None = None) -> JSON:
-    """The extremes over the revolution (on the grid of ``GRID`` cam angles: ``g``, the geometry
-    there, computed when not given) and where they occur, and the circles."""
-    if g is None:
-        g = cam_geometry(scene, _grid(GRID))
+def _over_the_revolution(
+    scene: CamScene, revolution: CamGeometry | None, warnings: list[str] | None
+) -> JSON:
+    """``diagnostics`` and ``warnings`` (the given ones, then the design's faults) from one
+    geometry on the grid of ``GRID`` cam angles (``revolution``, computed when not given)."""
+    if revolution is None:
+        revolution = cam_geometry(scene, _grid(GRID))
+    return {
+        "diagnostics": diagnostics(scene, revolution),
+        "warnings": [*(warnings or []), *cam_warnings(scene, revolution)],
+    }
+
+
+def diagnostics(scene: CamScene, g: CamGeometry) -> JSON:
+    """The extremes over the revolution (``g``: the geometry on the grid of ``GRID`` cam
+    angles) and where they occur, and the circles."""
     named = _fields(scene, g, lambda values: values)
     named = {**named.pop("follower"), **named}
     extremes: JSON = {}

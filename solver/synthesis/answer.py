@@ -86,8 +86,17 @@ def _defect_sentences(defects: JSON, checks: list[JSON], what: str) -> list[str]
     return out
 
 
-def _pivots(design: MotionDesign) -> dict[str, complex]:
+def _points(design: MotionDesign) -> dict[str, complex]:
     return {"A": design.A, "B": design.B, "C": design.C, "D": design.D, "P": design.P}
+
+
+def _construction(task: MotionTask, design: MotionDesign) -> JSON:
+    """The poles, the places of B, C and P, the choices made, the bisector offsets given."""
+    return {
+        "poles": {k: None if p is None else _xy(p) for k, p in design.poles.items()},
+        "places": {name: [_xy(t[name]) for t in design.targets] for name in ("B", "C", "P")},
+        "choices": list(design.choices),
+    } | ({} if task.bisector_offsets is None else {"bisector_offsets": [*task.bisector_offsets]})
 
 
 def designed_motion(task: MotionTask, design: MotionDesign) -> JSON:
@@ -98,19 +107,14 @@ def designed_motion(task: MotionTask, design: MotionDesign) -> JSON:
     writes the same numbers; an exercise reads its answers here before it pays for the
     verification (``solver.exercises.generation``)."""
     return {
-        "scene": {"points": {name: _xy(z) for name, z in _pivots(design).items()}},
-        "construction": {
-            "poles": {k: None if p is None else _xy(p) for k, p in design.poles.items()},
-            "places": {name: [_xy(t[name]) for t in design.targets] for name in ("B", "C", "P")},
-            "choices": list(design.choices),
-        }
-        | ({} if task.bisector_offsets is None else {"bisector_offsets": [*task.bisector_offsets]}),
+        "scene": {"points": {name: _xy(z) for name, z in _points(design).items()}},
+        "construction": _construction(task, design),
     }
 
 
 def _motion(task: MotionTask) -> JSON:
     design: MotionDesign = synthesise_motion(task)
-    points = _pivots(design)
+    points = _points(design)
     angles = [_angle(t["B"] - design.A) for t in design.targets]
     probe = four_bar_document(points, 1.0, "synthesised four-bar (motion)", True)
     found = travel(probe)
@@ -152,7 +156,7 @@ def _motion(task: MotionTask) -> JSON:
             },
             "grashof": found.grashof,
         },
-        "construction": designed_motion(task, design)["construction"],
+        "construction": _construction(task, design),
         "checks": checks,
         "defects": defects,
         "transmission_angle": {"min_deg": mu, "at_driver_angle_deg": mu_at},

@@ -104,6 +104,10 @@ export const getPresets = () => call('GET', '/presets');
 /** The presets of one family (`gear_trains`, `cams`; docs/GEARS.md). */
 export const getPresetFamily = (family) => call('GET', `/presets?family=${encodeURIComponent(family)}`);
 export const buildPreset = (name, params) => call('POST', `/presets/${encodeURIComponent(name)}`, params);
+/** A preset's scene: at its defaults (no `params`) the one its listing carries (`listed`, GET
+ * /presets: no request, a copy the caller may change), else built by the server. */
+export const presetScene = (listed, name, params = {}) =>
+  (listed && !Object.keys(params).length ? Promise.resolve(structuredClone(listed)) : buildPreset(name, params));
 export const analyze = (scene, quantities) =>
   call('POST', '/analyze', quantities ? { scene, quantities } : { scene });
 export const sweep = (scene, samples, quantities, timeRange, statics = false, speedFluctuation = null) =>

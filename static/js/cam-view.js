@@ -125,7 +125,7 @@ export class CamApp {
     this.el.title.textContent = meta?.title || 'Cam';
     let scene;
     try {
-      scene = meta?.scene ? structuredClone(meta.scene) : await api.buildPreset(name, {}); // (its defaults came with the listing)
+      scene = await api.presetScene(meta?.scene, name);
     } catch (err) {
       this.say(`The cam ${name} could not be built: ${err.detail}`);
       return;

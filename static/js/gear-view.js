@@ -225,13 +225,6 @@ export class GearTrains {
 
   // ---- the server's answers --------------------------------------------------------------------
 
-  /** The chosen preset's scene: at its defaults the listing's (GET /presets), else built. */
-  presetScene() {
-    const listed = this.presets.get(this.source.name)?.scene;
-    const defaults = !Object.keys(this.params || {}).length;
-    return listed && defaults ? structuredClone(listed) : api.buildPreset(this.source.name, this.params);
-  }
-
   /** The scene, its speeds, its sweep and its solution: true, or the server's message (null for
    * an answer overtaken by a newer request). */
   async update(given = null, time = null) {
@@ -240,7 +233,8 @@ export class GearTrains {
     let analysis;
     let sweep;
     try {
-      scene = given || (this.source.type === 'gear' ? await this.presetScene() : this.doc);
+      const listed = this.presets.get(this.source.name)?.scene;
+      scene = given || (this.source.type === 'gear' ? await api.presetScene(listed, this.source.name, this.params || {}) : this.doc);
       analysis = await api.analyze(scene);
       const fastest = Math.max(...Object.values(analysis.members).map((m) => Math.abs(m.omega)));
       this.span = fastest > 0 ? (2 * Math.PI) / fastest : 1;

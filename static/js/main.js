@@ -262,11 +262,9 @@ class App {
   async openPreset(name, params, view = null) {
     const meta = this.presets.get(name);
     this.controls.selectSource(`preset:${name}`, meta?.description || '');
-    // At its defaults a preset's scene came with the listing (GET /presets): no request.
-    const listed = meta?.scene && !Object.keys(params).length ? structuredClone(meta.scene) : null;
     let scene;
     try {
-      scene = view?.scene || listed || await api.buildPreset(name, params);
+      scene = view?.scene || await api.presetScene(meta?.scene, name, params);
     } catch (err) {
       this.status(`The preset ${name} could not be built: ${err.detail}`, 'error');
       this.reselectSource();
