@@ -70,6 +70,12 @@ else
   echo "$audit"
   exit 1
 fi
+# Python keeps the modules it compiles (__pycache__, pytest's rewritten test modules among them)
+# even where the environment says not to (PYTHONDONTWRITEBYTECODE, as in the Dockerfile): every
+# process after the first (the live servers, their workers, the subprocesses some tests start,
+# the second run) then reads them instead of compiling the solver and the server again.
+unset PYTHONDONTWRITEBYTECODE
+
 # pytest in two runs. First every test but those marked `serial`, in two processes (pytest-xdist,
 # one per core of CI's two; each test module one unit, the heaviest first, so that both run
 # browser modules, each with its own Chromium: tests/conftest.py); then the `serial` ones (timed

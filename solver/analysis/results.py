@@ -93,10 +93,13 @@ def freeze(value: Any) -> Any:
     kind = type(value)
     if kind in ATOMS:
         return value
+    # (a leaf is tested here, not in a call of its own: most of a body's values are leaves)
     if kind in SEQUENCES or (kind not in MAPPINGS and isinstance(value, list | tuple)):
-        return tuple([freeze(item) for item in value])
+        return tuple([item if type(item) in ATOMS else freeze(item) for item in value])
     if kind in MAPPINGS or isinstance(value, Mapping):
-        return MappingProxyType({key: freeze(item) for key, item in value.items()})
+        return MappingProxyType(
+            {key: item if type(item) in ATOMS else freeze(item) for key, item in value.items()}
+        )
     if isinstance(value, np.ndarray):
         copy = np.array(value, copy=True, order="C")
         copy.flags.writeable = False
@@ -110,9 +113,9 @@ def thaw(value: Any) -> Any:
     if kind in ATOMS:
         return value
     if kind is tuple or (kind not in MAPPINGS and isinstance(value, tuple)):
-        return [thaw(item) for item in value]
+        return [item if type(item) in ATOMS else thaw(item) for item in value]
     if kind in MAPPINGS or isinstance(value, Mapping):
-        return {key: thaw(item) for key, item in value.items()}
+        return {key: item if type(item) in ATOMS else thaw(item) for key, item in value.items()}
     return value
 
 
@@ -124,9 +127,9 @@ def plain(value: Any) -> Any:
     if kind in ATOMS:
         return value
     if kind in SEQUENCES or (kind not in MAPPINGS and isinstance(value, list | tuple)):
-        return [plain(item) for item in value]
+        return [item if type(item) in ATOMS else plain(item) for item in value]
     if kind in MAPPINGS or isinstance(value, Mapping):
-        return {key: plain(item) for key, item in value.items()}
+        return {key: item if type(item) in ATOMS else plain(item) for key, item in value.items()}
     if isinstance(value, np.ndarray | np.generic) and value.dtype.kind in "biuf":
         return value.tolist()
     raise TypeError(f"{kind.__name__} is no JSON value")
