@@ -9,12 +9,12 @@ from typing import Any
 
 from fastapi import FastAPI
 from fastapi.responses import FileResponse, HTMLResponse
-from fastapi.staticfiles import StaticFiles
 from starlette.middleware.gzip import GZipMiddleware
 
 from server import caching, headers, problems, schemas, workers
 from server.routes import dynamics, exercises, kinematics, presets, solution, synthesis
 from server.settings import Settings, from_environment
+from server.static_files import PrecompressedFiles
 from server.timing import ServerTiming
 
 STATIC = Path(__file__).resolve().parent.parent / "static"
@@ -132,13 +132,18 @@ def _serve_static(app: FastAPI) -> None:
     Not one mount at "/": that would answer every unknown /api path itself (a 405 for a POST,
     a 404 for the wrong method on a real route) instead of the API's own 404 and 405. The example
     scenes at /examples are the one copy in server/examples (the OpenAPI page's examples too),
-    listed for the app by /examples/index.json.
+    listed for the app by /examples/index.json. Each folder's files are gzipped once a version
+    (server.static_files), not once a client.
     """
     index = STATIC / "index.html"
     app.add_api_route(
         "/examples/index.json", _file_route(EXAMPLE_INDEX), methods=["GET"], include_in_schema=False
     )
-    app.mount("/examples", StaticFiles(directory=schemas.EXAMPLES), name="examples")
+    app.mount(
+        "/examples",
+        PrecompressedFiles(directory=schemas.EXAMPLES, minimum=GZIP_MINIMUM),
+        name="examples",
+    )
 
     @app.get("/", include_in_schema=False)
     def front_end() -> FileResponse:
@@ -146,7 +151,8 @@ def _serve_static(app: FastAPI) -> None:
 
     for entry in sorted(STATIC.iterdir()):
         if entry.is_dir():
-            app.mount(f"/{entry.name}", StaticFiles(directory=entry), name=entry.name)
+            files = PrecompressedFiles(directory=entry, minimum=GZIP_MINIMUM)
+            app.mount(f"/{entry.name}", files, name=entry.name)
         elif entry.name != "index.html":
             app.add_api_route(
                 f"/{entry.name}", _file_route(entry), methods=["GET"], include_in_schema=False

@@ -1,5 +1,6 @@
-"""Deployment (issue 28): workers from the container's CPU quota, gzip for large answers, ETag
-and Cache-Control on the deterministic GETs, the OpenAPI document's ``servers``.
+"""Deployment (issue 28): workers from the container's CPU quota, gzip for large answers (a
+static file's made once a version), ETag and Cache-Control on the deterministic GETs, the OpenAPI
+document's ``servers``.
 
 The answers that pass through the worker pool are checked over the real server on loopback
 (server.local); the rest in process.
@@ -17,10 +18,12 @@ from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
+from starlette.applications import Starlette
 
 from server.app import GZIP_MINIMUM, create_app
 from server.caching import PRIVATE, PUBLIC, weak_etag
 from server.settings import Settings, cpu_quota, from_environment, usable_cores
+from server.static_files import PrecompressedFiles, gzipped
 from tests.server.test_errors import FOUR_BAR
 from tests.server.test_serving import server
 
@@ -127,11 +130,58 @@ def test_refusals_stay_plain_problem_json_under_gzip(pooled: str) -> None:
         assert json.loads(answer)["status"] == code
 
 
-def test_a_streamed_static_file_is_gzipped_whole(client: TestClient) -> None:
+def test_a_static_file_is_gzipped_whole(client: TestClient) -> None:
     path = "/vendor/swagger-ui/swagger-ui-bundle.js"
     response = client.get(path, headers={"accept-encoding": "gzip"})
     assert response.status_code == 200 and response.headers["content-encoding"] == "gzip"
     assert response.content == (STATIC / path.lstrip("/")).read_bytes()  # decoded by httpx
+    # from the copy compressed once (PrecompressedFiles), not compressed as it streams
+    sent = _raw(client, path, **{"accept-encoding": "gzip"})[2]
+    assert sent == gzip.compress(response.content, compresslevel=9, mtime=0)
+
+
+def _raw(client: TestClient, path: str, **headers: str) -> tuple[int, dict[str, str], bytes]:
+    """(status, headers, the body as sent: not decoded)."""
+    with client.stream("GET", path, headers=headers) as response:
+        return response.status_code, dict(response.headers), b"".join(response.iter_raw())
+
+
+def test_a_static_file_is_compressed_once_a_version(tmp_path: Path) -> None:
+    """PrecompressedFiles: the gzip sent is the file's level-9 copy, made on the first request
+    and reused until the file changes; a client without gzip, a range, a small file or a font
+    get the file as it is; the weak tag of the gzip revalidates to 304."""
+    app = Starlette()
+    app.mount("/files", PrecompressedFiles(directory=tmp_path, minimum=GZIP_MINIMUM))
+    script = tmp_path / "app.js"
+    script.write_text("const x = 1;\n" * 1000)
+    (tmp_path / "small.js").write_text("const y = 2;\n")
+    (tmp_path / "font.woff2").write_bytes(bytes(range(256)) * 40)
+    client = TestClient(app)
+    made = gzipped.cache_info().misses
+    for _ in range(2):
+        status, headers, body = _raw(client, "/files/app.js", **{"accept-encoding": "gzip"})
+        assert status == 200 and headers["content-encoding"] == "gzip"
+        assert body == gzip.compress(script.read_bytes(), compresslevel=9, mtime=0)
+        assert headers["vary"] == "Accept-Encoding" and headers["etag"].startswith('W/"')
+    assert gzipped.cache_info().misses == made + 1  # compressed once for the two requests
+    again = client.get("/files/app.js", headers={"if-none-match": headers["etag"]})
+    assert again.status_code == 304 and again.content == b""
+    script.write_text("let z = 3;\n" * 2000)  # a new version: compressed in turn
+    assert _raw(client, "/files/app.js", **{"accept-encoding": "gzip"})[2] == gzip.compress(
+        script.read_bytes(), compresslevel=9, mtime=0
+    )
+    for path, headers in (
+        ("/files/app.js", {"accept-encoding": "identity"}),
+        ("/files/small.js", {"accept-encoding": "gzip"}),
+        ("/files/font.woff2", {"accept-encoding": "gzip"}),
+    ):
+        status, sent, body = _raw(client, path, **headers)
+        assert status == 200 and "content-encoding" not in sent
+        assert body == (tmp_path / path.removeprefix("/files/")).read_bytes()
+    status, sent, body = _raw(
+        client, "/files/app.js", **{"accept-encoding": "gzip", "range": "bytes=0-9"}
+    )
+    assert status == 206 and "content-encoding" not in sent and body == script.read_bytes()[:10]
 
 
 # --- ETag and Cache-Control -------------------------------------------------------------------

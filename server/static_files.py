@@ -1,0 +1,73 @@
+"""The front end's files, each gzipped once per version instead of once per request.
+
+A first visit fetches about 1.7 MB of scripts and styles; the 1.2 MB of Plotly alone cost the
+server about 0.12 s of CPU to gzip for every new client (Starlette's ``GZipMiddleware`` compresses
+a streamed file as it goes). ``PrecompressedFiles`` serves a file's gzip from a copy made the
+first time it is asked for (in a thread, off the event loop) and kept while the file's size and
+modification time stay the same: after an upgrade the new version is compressed once in turn.
+
+The copy is at level 9 (once per file, so its cost does not matter: Plotly 1.2 MB -> 0.40 MB,
+where level 1 gave 0.45 MB). What ``StaticFiles`` does otherwise is kept: the 304 to an
+``If-None-Match`` naming the file's tag (the gzip's tag is the same, weak, as the two bodies are
+one file), a ``Range`` request (answered from the file as it is), HEAD, and the files not worth
+compressing (fonts and images, already compressed, and files under the app's minimum for
+compression, ``minimum``).
+"""
+
+from __future__ import annotations
+
+import functools
+import gzip
+from pathlib import Path
+
+import anyio.to_thread
+from starlette.datastructures import Headers, MutableHeaders
+from starlette.responses import FileResponse, Response
+from starlette.staticfiles import StaticFiles
+from starlette.types import Scope
+
+COMPRESSIBLE = frozenset({".js", ".mjs", ".css", ".html", ".json", ".svg", ".txt", ".map"})
+KEPT = 256  # files whose gzip is kept (the front end has about 70)
+
+
+@functools.lru_cache(maxsize=KEPT)
+def gzipped(path: str, modified_ns: int, size: int) -> bytes:
+    """The gzip (level 9, no timestamp: the same bytes every time) of the file at ``path`` as it
+    is at ``modified_ns`` with ``size`` bytes (the key that makes an edited file compressed
+    again)."""
+    return gzip.compress(Path(path).read_bytes(), compresslevel=9, mtime=0)
+
+
+class PrecompressedFiles(StaticFiles):
+    """``StaticFiles`` that answers a GET accepting gzip from the file's compressed copy, for a
+    file of ``minimum`` bytes or more."""
+
+    def __init__(self, *, directory: Path, minimum: int) -> None:
+        super().__init__(directory=directory)
+        self.minimum = minimum
+
+    async def get_response(self, path: str, scope: Scope) -> Response:
+        response = await super().get_response(path, scope)
+        request = Headers(scope=scope)
+        if (
+            not isinstance(response, FileResponse)
+            or response.status_code != 200
+            or scope["method"] != "GET"
+            or "gzip" not in request.get("accept-encoding", "")
+            or "range" in request
+            or response.stat_result is None
+            or response.stat_result.st_size < self.minimum
+            or Path(response.path).suffix not in COMPRESSIBLE
+        ):
+            return response
+        stat = response.stat_result
+        body = await anyio.to_thread.run_sync(
+            gzipped, str(response.path), stat.st_mtime_ns, stat.st_size
+        )
+        headers = MutableHeaders(raw=list(response.raw_headers))
+        del headers["content-length"]  # (set again from the body)
+        del headers["accept-ranges"]  # (a range is served from the file, uncompressed)
+        headers["etag"] = f"W/{headers['etag']}"
+        headers["content-encoding"] = "gzip"
+        headers.add_vary_header("Accept-Encoding")
+        return Response(body, headers=dict(headers))
