@@ -203,37 +203,24 @@ class AppPage:
         return path
 
 
-@pytest.fixture(scope="session")
-def browser_context(browser: Any) -> Iterator[Any]:
-    """One browser context for the session's pages, as one student's browser opens many tabs:
-    the app keeps nothing in the browser (no storage, no cookies), so a test's page starts as
-    a new one would, while the context's HTTP cache spares each page recompiling the vendored
-    libraries (a new context a test cost about 0.1 s of CPU more a page opened)."""
-    context = browser.new_context(viewport={"width": 1440, "height": 1000})
-    try:
-        yield context
-    finally:
-        context.close()
-
-
 @pytest.fixture
-def app(browser_context: Any, live_server: str) -> Iterator[AppPage]:
+def app(browser: Any, live_server: str) -> Iterator[AppPage]:
     # The pages run under the server's Content-Security-Policy, as a student's do (a violation
     # is a console error, which fails the test). Predicates are written as functions: Playwright
     # evaluates a bare expression with eval when it polls, which the policy forbids.
-    page = browser_context.new_page()
+    context = browser.new_context(viewport={"width": 1440, "height": 1000})
+    page = context.new_page()
     page.set_default_timeout(20_000)
     log = PageLog()
     _watch(page, log)
     try:
-        yield AppPage(page=page, log=log, url=live_server, context=browser_context)
+        yield AppPage(page=page, log=log, url=live_server, context=context)
         external = log.external_requests()
         assert not external, f"requests to other hosts: {external}"
         unexpected = log.unexpected_errors()
         assert not unexpected, f"console or page errors: {unexpected}"
     finally:
-        for opened in browser_context.pages:  # the test's pages, the app's and any it opened
-            opened.close()
+        context.close()
 
 
 def pytest_terminal_summary(terminalreporter: Any) -> None:
