@@ -155,12 +155,12 @@ def _crossings_of_levels(
     def s(t: float) -> float:
         nonlocal evaluated
         evaluated += 1
-        return float(law.evaluate(t)[0])
+        return law.at(t, 0)
 
     def s_dot(t: float) -> float:
         nonlocal evaluated
         evaluated += 1
-        return float(law.evaluate(t)[1])
+        return law.at(t, 1)
 
     widest = t_max / WINDOW
     width, t = widest, 0.0

@@ -417,6 +417,16 @@ class TimeLaw:
                 return arrays
         self._raise_undefined(x, results)
 
+    def at(self, t: float, order: int) -> float:
+        """The value (``order`` 0), the rate (1) or rate_dot (2) at one ``t``: the one asked for
+        only, where ``evaluate`` computes all three (a root search asks for the value at each of
+        its steps); ``InvalidExpression`` as from ``evaluate`` where it is undefined."""
+        with np.errstate(all="ignore"):
+            x = self._functions[order](np.float64(t))
+        if math.isfinite(x):
+            return float(x)
+        return self.evaluate(t)[order]  # raises: the function asked for is undefined at t
+
     def value(self, t: float) -> float:
         """The law's value at one ``t`` without the checks of ``evaluate``: inf where it
         overflows (exp(100 t) past t = 7.1 s), nan where it is undefined (sqrt(t - 1) before

@@ -361,3 +361,29 @@ def test_value_is_inf_where_the_law_overflows() -> None:
     assert law.value(1.0) == math.exp(100.0)
     assert law.value(8.0) == math.inf
     assert math.isnan(parse_time_law("sqrt(t - 1)").value(0.0))
+
+
+@pytest.mark.parametrize(
+    "text", ["0.2*sin(400*t)", "3*t^2 + 2*pi*t", "exp(-t)*cos(5*t)", "sqrt(t + 1)", "atan(t)"]
+)
+def test_at_is_evaluate_one_function_at_a_time(text: str) -> None:
+    """``at(t, order)`` is ``evaluate(t)[order]`` to the last bit (the same compiled function)."""
+    law = parse_time_law(text)
+    for t in (0.0, 0.37, 1.5, 12.25, 1e4 / 3):
+        for order in range(3):
+            assert law.at(t, order) == law.evaluate(t)[order]
+
+
+def test_at_raises_as_evaluate_does_where_the_law_is_undefined() -> None:
+    """Where the function asked for is undefined, ``at`` raises ``evaluate``'s error, naming the
+    subexpression; the value of sqrt(t - 1) at t = 1 is defined even though its rate is not."""
+    law = parse_time_law("sqrt(t - 1)")
+    with pytest.raises(InvalidExpression) as from_evaluate:
+        law.evaluate(0.5)
+    with pytest.raises(InvalidExpression) as from_at:
+        law.at(0.5, 0)
+    assert str(from_at.value) == str(from_evaluate.value)
+    assert "t - 1" in str(from_at.value)
+    assert law.at(1.0, 0) == 0.0
+    with pytest.raises(InvalidExpression, match="not defined at t = 1"):
+        law.at(1.0, 1)
