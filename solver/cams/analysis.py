@@ -82,7 +82,7 @@ def sweep_cam(scene: CamScene, samples: int = 360, warnings: list[str] | None = 
     body.update(_fields(scene, g, _finite))
     body["profile"] = g.profile
     body["contact_point"] = g.contact
-    body.update(_over_the_revolution(scene, g if samples == GRID else None, warnings))
+    body.update(_over_the_revolution(scene, g if samples == GRID else _revolution(scene), warnings))
     return body
 
 
@@ -103,20 +103,22 @@ def analyze_cam(scene: CamScene, angle_deg: float = 0.0, warnings: list[str] | N
     body.update(_fields(scene, g, one))
     body["contact_point"] = [float(x) for x in g.contact[0]]
     body["profile"] = cam_geometry(scene, _grid(PROFILE_SAMPLES)).profile
-    body.update(_over_the_revolution(scene, None, warnings))
+    body.update(_over_the_revolution(scene, _revolution(scene), warnings))
     return body
 
 
-def _over_the_revolution(
-    scene: CamScene, revolution: CamGeometry | None, warnings: list[str] | None
-) -> JSON:
-    """``diagnostics`` and ``warnings`` (the given ones, then the design's faults) from one
-    geometry on the grid of ``GRID`` cam angles (``revolution``, computed when not given)."""
-    if revolution is None:
-        revolution = cam_geometry(scene, _grid(GRID))
+def _revolution(scene: CamScene) -> CamGeometry:
+    """The cam's geometry on the grid of ``GRID`` cam angles, from which the extremes and the
+    warnings are read."""
+    return cam_geometry(scene, _grid(GRID))
+
+
+def _over_the_revolution(scene: CamScene, g: CamGeometry, warnings: list[str] | None) -> JSON:
+    """``diagnostics`` and ``warnings`` (the given ones, then the design's faults) from the
+    geometry ``g`` on the grid of ``GRID`` cam angles (``_revolution``)."""
     return {
-        "diagnostics": diagnostics(scene, revolution),
-        "warnings": [*(warnings or []), *cam_warnings(scene, revolution)],
+        "diagnostics": diagnostics(scene, g),
+        "warnings": [*(warnings or []), *cam_warnings(scene, g)],
     }
 
 
@@ -194,7 +196,7 @@ def smallest_base_radius(scene: CamScene, cured: Callable[[CamGeometry], bool]) 
     def passes(radius: float) -> bool | None:
         trial = dataclasses.replace(scene, base_radius=radius)
         try:
-            g = cam_geometry(trial, _grid(GRID))
+            g = _revolution(trial)
         except ValueError:  # the oscillating arm no longer reaches the prime circle
             return None
         with np.errstate(invalid="ignore"):
@@ -238,7 +240,7 @@ def cam_warnings(scene: CamScene, g: CamGeometry | None = None) -> list[str]:
     geometry there, computed when not given): jumps where segments meet, too large a pressure
     angle, undercutting (see the module)."""
     if g is None:
-        g = cam_geometry(scene, _grid(GRID))
+        g = _revolution(scene)
     found = _boundary_jumps(scene, g)
     f = scene.follower
     if f.contact != "flat":

@@ -421,18 +421,22 @@ class TimeLaw:
         """The value (``order`` 0), the rate (1) or rate_dot (2) at one ``t``: the one asked for
         only, where ``evaluate`` computes all three (a root search asks for the value at each of
         its steps); ``InvalidExpression`` as from ``evaluate`` where it is undefined."""
-        with np.errstate(all="ignore"):
-            x = self._functions[order](np.float64(t))
+        x = self._unchecked(t, order)
         if math.isfinite(x):
-            return float(x)
+            return x
         return self.evaluate(t)[order]  # raises: the function asked for is undefined at t
 
     def value(self, t: float) -> float:
         """The law's value at one ``t`` without the checks of ``evaluate``: inf where it
         overflows (exp(100 t) past t = 7.1 s), nan where it is undefined (sqrt(t - 1) before
         t = 1); for a search that needs it only where finite (a root by Brent's method)."""
+        return self._unchecked(t, 0)
+
+    def _unchecked(self, t: float, order: int) -> float:
+        """The function of ``order`` (0 the value, 1 the rate, 2 rate_dot) at one ``t``, inf or
+        nan where it is not finite."""
         with np.errstate(all="ignore"):
-            return float(self._functions[0](np.float64(t)))
+            return float(self._functions[order](np.float64(t)))
 
     @functools.cached_property
     def _rate_enclosures(self) -> tuple[RangeFn, RangeFn]:
