@@ -975,10 +975,15 @@ class App {
   async requestSolution() {
     if (!this.scene) return;
     const seq = ++this.solutionSeq;
-    const target = S.isSpatial(this.scene) ? this.spatialInstant() : this.instantScene(this.analysisU ?? this.u);
+    const spatial = S.isSpatial(this.scene);
+    const u = this.analysisU ?? this.u;
+    const target = spatial ? this.spatialInstant() : this.instantScene(u);
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
-      if (seq === this.solutionSeq) this.showSolution(sol);
+      if (seq !== this.solutionSeq) return;
+      // the instant solved, as #linkage[data-analysed] marks the one analysed
+      if (!spatial) $('steps').dataset.instant = String(this.instantValue(u));
+      this.showSolution(sol);
     } catch (err) {
       if (seq === this.solutionSeq) this.solutionFailed(err);
     }

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import re
+import time
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
@@ -94,10 +95,12 @@ AXE_RUN = """async ([context, disabled]) => {
 
 @dataclass
 class PageLog:
-    """What one page did: console errors, uncaught errors, every URL it asked for."""
+    """What one page did: console errors, uncaught errors, every URL it asked for, and the
+    requests still waiting for their answer."""
 
     errors: list[str] = field(default_factory=list)
     requests: list[str] = field(default_factory=list)
+    in_flight: set[Any] = field(default_factory=set)
     allowed: list[re.Pattern[str]] = field(default_factory=list)
 
     def allow(self, pattern: str) -> None:
@@ -125,7 +128,13 @@ def _watch(page: Any, log: PageLog) -> None:
 
     page.on("console", on_console)
     page.on("pageerror", lambda err: log.errors.append(f"page error: {err}"))
-    page.on("request", lambda req: log.requests.append(req.url))
+    def on_request(req: Any) -> None:
+        log.requests.append(req.url)
+        log.in_flight.add(req)
+
+    page.on("request", on_request)
+    page.on("requestfinished", lambda req: log.in_flight.discard(req))
+    page.on("requestfailed", lambda req: log.in_flight.discard(req))
 
 
 @dataclass
@@ -170,6 +179,24 @@ class AppPage:
                 " || !document.getElementById('polygon-message').hidden"
                 ")"
             )
+
+    def wait_settled(self) -> None:
+        """Everything a planar mechanism's page asks the server for has come back: the worked
+        solution shown is the analysed instant's, the dynamics panel is drawn (or hidden) and no
+        request is in flight. (The solution is asked for once the analysed instant is painted,
+        the dynamics sweep once the plots are drawn: a test that counts the requests an action
+        makes waits for this first.)"""
+        self.page.wait_for_function(
+            """() => { const analysed = document.getElementById('linkage').dataset.analysed;
+                       return analysed !== undefined
+                         && document.getElementById('steps').dataset.instant === analysed
+                         && (document.getElementById('dynamics').hidden
+                             || document.getElementById('dynamics-hodograph').dataset.note !== undefined); }"""
+        )
+        deadline = time.monotonic() + 15
+        while self.log.in_flight:  # (Playwright hands over its events while it waits)
+            assert time.monotonic() < deadline, f"requests still in flight: {[r.url for r in self.log.in_flight]}"
+            self.page.wait_for_timeout(50)
 
     def serious_accessibility_violations(self, context: str | None = None) -> list[str]:
         """axe-core (the version bundled with axe-playwright-python, run in the page) on the

@@ -284,13 +284,15 @@ def test_units_switch_changes_the_display_only(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
+    app.wait_settled()
     assert float(page.input_value("#f-param_crank")) == pytest.approx(0.15)
     requests = len(app.log.requests)
     page.select_option("#units", "mm")
     assert float(page.input_value("#f-param_crank")) == pytest.approx(150)
     wait_until(lambda: "mm/s" in page.inner_text("#velocity-polygon"), what="mm/s in the polygon")
     assert "°" in page.inner_text("#crank-angle-value")
-    assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "units are display only"
+    asked = [u for u in app.log.requests[requests:] if "/api/v1/" in u]
+    assert not asked, f"units are display only, yet the page asked for {asked}"
 
 
 # ---- share link ----------------------------------------------------------------------------
@@ -1057,13 +1059,14 @@ def test_units_switch_reaches_the_worked_solution(app: AppPage) -> None:
     page = app.page
     pause_and_wait(page)
     page.click("#tab-solution")
-    page.wait_for_selector("#steps .katex")
+    app.wait_settled()
     assert page.locator("#steps .step-units").count() == 0
     requests = len(app.log.requests)
     page.select_option("#units", "mm")
     page.wait_for_selector("#steps .step-units")
     page.wait_for_selector("#steps[data-typeset='done']")  # every step, not only the first
-    assert not any("/api/v1/" in u for u in app.log.requests[requests:]), "no new request"
+    asked = [u for u in app.log.requests[requests:] if "/api/v1/" in u]
+    assert not asked, f"no new request, yet the page asked for {asked}"
     # textContent: the steps out of sight are not laid out (content-visibility), so not in innerText
     text = page.text_content("#steps") or ""
     assert "mm/s" in text and "rpm" in text
