@@ -128,6 +128,7 @@ def _watch(page: Any, log: PageLog) -> None:
 
     page.on("console", on_console)
     page.on("pageerror", lambda err: log.errors.append(f"page error: {err}"))
+
     def on_request(req: Any) -> None:
         log.requests.append(req.url)
         log.in_flight.add(req)
@@ -187,15 +188,16 @@ class AppPage:
         the dynamics sweep once the plots are drawn: a test that counts the requests an action
         makes waits for this first.)"""
         self.page.wait_for_function(
-            """() => { const analysed = document.getElementById('linkage').dataset.analysed;
-                       return analysed !== undefined
-                         && document.getElementById('steps').dataset.instant === analysed
-                         && (document.getElementById('dynamics').hidden
-                             || document.getElementById('dynamics-hodograph').dataset.note !== undefined); }"""
+            """() => { const $ = (id) => document.getElementById(id);
+                       const analysed = $('linkage').dataset.analysed;
+                       return analysed !== undefined && $('steps').dataset.instant === analysed
+                         && ($('dynamics').hidden
+                             || $('dynamics-hodograph').dataset.note !== undefined); }"""
         )
         deadline = time.monotonic() + 15
         while self.log.in_flight:  # (Playwright hands over its events while it waits)
-            assert time.monotonic() < deadline, f"requests still in flight: {[r.url for r in self.log.in_flight]}"
+            waiting = [r.url for r in self.log.in_flight]
+            assert time.monotonic() < deadline, f"requests still in flight: {waiting}"
             self.page.wait_for_timeout(50)
 
     def serious_accessibility_violations(self, context: str | None = None) -> list[str]:
@@ -231,11 +233,16 @@ class AppPage:
 
 
 @pytest.fixture
-def app(browser: Any, live_server: str) -> Iterator[AppPage]:
+def app(request: pytest.FixtureRequest, browser: Any, live_server: str) -> Iterator[AppPage]:
     # The pages run under the server's Content-Security-Policy, as a student's do (a violation
     # is a console error, which fails the test). Predicates are written as functions: Playwright
     # evaluates a bare expression with eval when it polls, which the policy forbids.
-    context = browser.new_context(viewport={"width": 1440, "height": 1000})
+    # They open paused, as the app opens for a student whose system asks for reduced motion
+    # (docs/FRONTEND.md): a mechanism playing costs the browser about half a core for as long as
+    # it plays (0.45-0.5 s of CPU a second, paused 0.07 s), which the other tests running beside
+    # it would pay for. A test of the animation itself is marked `moving`.
+    motion = "no-preference" if request.node.get_closest_marker("moving") else "reduce"
+    context = browser.new_context(viewport={"width": 1440, "height": 1000}, reduced_motion=motion)
     page = context.new_page()
     page.set_default_timeout(20_000)
     log = PageLog()
@@ -257,6 +264,9 @@ def pytest_terminal_summary(terminalreporter: Any) -> None:
 
 def pytest_configure(config: Any) -> None:
     config.addinivalue_line("markers", "browser: drives the page in headless Chromium")
+    config.addinivalue_line(
+        "markers", "moving: the page opens playing (the others open paused: reduced motion)"
+    )
 
 
 def shown_boxes(page: Any, selector: str) -> list[list[float]]:

@@ -82,6 +82,7 @@ def choose(app: AppPage, value: str) -> None:
 # ---- opening the page ----------------------------------------------------------------------
 
 
+@pytest.mark.moving
 def test_page_opens_on_a_moving_four_bar_without_errors(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -97,6 +98,7 @@ def test_page_opens_on_a_moving_four_bar_without_errors(app: AppPage) -> None:
     assert all(u.startswith(app.url) or u.startswith("data:") for u in app.log.requests)
 
 
+@pytest.mark.moving
 def test_linkage_svg_moves_between_frames_without_a_request_per_frame(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -391,6 +393,7 @@ def test_spatial_chain_example_renders(app: AppPage) -> None:
     assert other.input_value("#preset") == "example:S002-spatial-arm.json"
 
 
+@pytest.mark.moving
 def test_relative_motion_scene_animates_in_time(app: AppPage) -> None:
     app.open()
     page = app.page

@@ -105,6 +105,7 @@ def test_a_cam_link_opens_the_same_edited_cam_at_the_same_angle(app: AppPage) ->
     other.close()
 
 
+@pytest.mark.moving
 def test_a_gear_link_opens_the_same_train_paused_at_the_same_time(app: AppPage) -> None:
     page = open_gears(app)
     page.select_option("#units", "mm")

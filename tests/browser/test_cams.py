@@ -35,6 +35,7 @@ def _transform(page: Any) -> str:
     return value
 
 
+@pytest.mark.moving
 def test_the_cam_turns_and_the_follower_moves_without_requests(app: AppPage) -> None:
     page = open_cam(app)
     assert page.locator("#cam-app").is_visible() and not page.locator("#linkage").is_visible()
@@ -50,6 +51,7 @@ def test_the_cam_turns_and_the_follower_moves_without_requests(app: AppPage) -> 
     assert len([u for u in app.log.requests[before:] if "/api/" in u]) == 0  # played back
 
 
+@pytest.mark.moving
 def test_space_plays_and_pauses_the_cam(app: AppPage) -> None:
     """Space drives the cam shown, as it drives a linkage (not the hidden linkage view)."""
     page = open_cam(app)

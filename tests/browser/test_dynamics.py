@@ -23,6 +23,7 @@ pytestmark = pytest.mark.browser
 FRAME_FORCE = "frame force (tip of F over the cycle)"
 
 
+@pytest.mark.moving
 def test_seed004_shows_forces_energy_and_the_balanced_frame_force(app: AppPage) -> None:
     app.open()
     page = app.page
@@ -114,6 +115,7 @@ def _polar(page: object) -> dict[str, object]:
     return data
 
 
+@pytest.mark.moving
 def test_the_frame_force_is_a_polar_diagram(app: AppPage) -> None:
     """Seed 004's frame force drawn as textbooks draw it: the tip of F over the cycle from the
     marked origin O (the same vectors as /sweep gives), equal scales, magnitude circles labelled in

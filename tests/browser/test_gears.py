@@ -56,6 +56,7 @@ def unwrap(a: float) -> float:
     return (a + math.pi) % (2 * math.pi) - math.pi
 
 
+@pytest.mark.moving
 def test_planetary_train_turns_at_the_server_speeds(app: AppPage) -> None:
     page = open_gears(app)
     status, scene = app.post("/presets/planetary_ring_fixed", {})
