@@ -130,17 +130,18 @@ def flywheel_request(exercise: Exercise) -> tuple[str, int, float, float]:
 def dynamic_body(doc: Mapping[str, Any], root: str) -> Mapping[str, Any]:
     """The /analyze body with every kinematic quantity and ``forces`` and ``energy`` (root ""),
     that of the static force analysis with ``forces`` (root ``statics``), or the /sweep body
-    with ``forces`` of a ``sweep[samples=N,k=P/100]`` root."""
+    with ``forces`` of a ``sweep[samples=N,k=P/100]`` root: the result itself, read as its body
+    (its arrays kept: a path reads one number of them, so none is made a list)."""
     if not root:
         quantities = ["position", "velocity", "acceleration", "forces", "energy"]
-        return analyze_body(doc, quantities).as_dict()
+        return analyze_body(doc, quantities)
     if root == STATICS:
-        return analyze_body(doc, ["position", "velocity", "forces"], statics=True).as_dict()
+        return analyze_body(doc, ["position", "velocity", "forces"], statics=True)
     sweep = parse_sweep_root(root)
     if sweep is None:
         raise InvalidScene(f"path root {root!r}: expected sweep[samples=N,k=P/100]")
     samples, k = sweep
-    return sweep_body(doc, samples, ["forces"], speed_fluctuation=k).as_dict()
+    return sweep_body(doc, samples, ["forces"], speed_fluctuation=k)
 
 
 def _step(node: Any, part: str, path: str) -> Any:
