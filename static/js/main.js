@@ -978,11 +978,12 @@ class App {
     const spatial = S.isSpatial(this.scene);
     const u = this.analysisU ?? this.u;
     const target = spatial ? this.spatialInstant() : this.instantScene(u);
+    // the instant solved, as #linkage[data-analysed] marks the one analysed
+    const instant = spatial ? null : String(this.instantValue(u));
     try {
       const [sol] = await Promise.all([api.solution(target, this.method, 4), katexReady()]);
       if (seq !== this.solutionSeq) return;
-      // the instant solved, as #linkage[data-analysed] marks the one analysed
-      if (!spatial) $('steps').dataset.instant = String(this.instantValue(u));
+      if (instant !== null) $('steps').dataset.instant = instant;
       this.showSolution(sol);
     } catch (err) {
       if (seq === this.solutionSeq) this.solutionFailed(err);
