@@ -149,7 +149,7 @@ def _raw(client: TestClient, path: str, **headers: str) -> tuple[int, dict[str, 
 def test_a_static_file_is_compressed_once_a_version(tmp_path: Path) -> None:
     """PrecompressedFiles: the gzip sent is the file's level-9 copy, made on the first request
     and reused until the file changes; a client without gzip, a range, a small file or a font
-    get the file as it is; the weak tag of the gzip revalidates to 304."""
+    get the file as it is; the weak tag of the gzip revalidates to 304, which carries it."""
     app = Starlette()
     app.mount("/files", PrecompressedFiles(directory=tmp_path, minimum=GZIP_MINIMUM))
     script = tmp_path / "app.js"
@@ -166,6 +166,16 @@ def test_a_static_file_is_compressed_once_a_version(tmp_path: Path) -> None:
     assert gzipped.cache_info().misses == made + 1  # compressed once for the two requests
     again = client.get("/files/app.js", headers={"if-none-match": headers["etag"]})
     assert again.status_code == 304 and again.content == b""
+    # The 304 carries the tag and Vary the 200 would: the gzip's weak one, the file's own strong
+    # one to a client without gzip (RFC 9110, 15.4.5).
+    assert again.headers["etag"] == headers["etag"]
+    assert again.headers["vary"] == "Accept-Encoding"
+    strong = headers["etag"].removeprefix("W/")
+    plain = client.get(
+        "/files/app.js", headers={"if-none-match": strong, "accept-encoding": "identity"}
+    )
+    assert plain.status_code == 304 and plain.headers["etag"] == strong
+    assert "vary" not in plain.headers
     script.write_text("let z = 3;\n" * 2000)  # a new version: compressed in turn
     assert _raw(client, "/files/app.js", **{"accept-encoding": "gzip"})[2] == gzip.compress(
         script.read_bytes(), compresslevel=9, mtime=0
