@@ -244,10 +244,12 @@ export class DynamicsPanel {
     traces.push({ x, y: s.energy.equivalent_inertia, name: 'equivalent inertia', yaxis: 'y5', line: { color: '#2c3e50' } });
     const axis = (title, domain) => ({ title: { text: title, font: { size: 11 } }, domain, zeroline: true });
     const layout = {
-      margin: { l: 70, r: 16, t: 16, b: 44 },
+      // the top margin holds Plotly's toolbar (25 px, shown while the pointer is over the
+      // figure), which lay on the torque curve with 16 px
+      margin: { l: 70, r: 16, t: 32, b: 44 },
       // a phone's column stacks the legend one entry a row (~210 px): the figure grows by as much,
       // so that the axes keep their height and the legend (placed in their fractions) its place
-      height: matchMedia('(max-width: 760px)').matches ? 860 : 640,
+      height: matchMedia('(max-width: 760px)').matches ? 876 : 656,
       showlegend: true,
       // the legend's top under the x axis' title (which ends about 75 px under the axes)
       legend: { orientation: 'h', y: -0.15, yanchor: 'top' },

@@ -218,6 +218,14 @@ def test_the_panel_with_statics_and_friction_fits_every_viewport(
     legend = shown_boxes(page, "#dynamics-plots .legend")
     assert not overlapping_pairs(legend + shown_boxes(page, "#dynamics-plots .xtitle"))
     assert page.evaluate("document.documentElement.scrollWidth - window.innerWidth") <= 0
+    # Plotly's toolbar, shown while the pointer is over a figure, sits above the cycle plots'
+    # axes (it lay on the torque curve) and clear of the polar diagram's title.
+    for figure, under in (("#dynamics-plots", ".nsewdrag"), ("#dynamics-hodograph", ".gtitle")):
+        page.hover(figure)
+        page.wait_for_selector(f"{figure} .modebar")
+        toolbar = shown_boxes(page, f"{figure} .modebar")
+        covered = shown_boxes(page, f"{figure} {under}")
+        assert toolbar and covered and not overlapping_pairs(toolbar + covered), (figure, toolbar)
     page.evaluate("() => document.getElementById('dynamics').scrollIntoView()")
     app.screenshot(f"dynamics-panel-{width}x{height}", "#dynamics")
     assert app.serious_accessibility_violations("#dynamics") == []
