@@ -41,6 +41,13 @@ def gzipped(path: str, modified_ns: int, size: int) -> bytes:
     return gzip.compress(Path(path).read_bytes(), compresslevel=9, mtime=0)
 
 
+def mark_as_gzip_copy(headers: MutableHeaders) -> None:
+    """Make a file's answer headers those of its gzip copy: the file's tag made weak (the copy and
+    the file are the same version in two encodings) and ``Vary: Accept-Encoding``."""
+    headers["etag"] = f"W/{headers['etag']}"
+    headers.add_vary_header("Accept-Encoding")
+
+
 class PrecompressedFiles(StaticFiles):
     """``StaticFiles`` that answers a GET accepting gzip from the file's compressed copy, for a
     file of ``minimum`` bytes or more."""
@@ -69,8 +76,7 @@ class PrecompressedFiles(StaticFiles):
         tag and ``Vary``, as the 200 would (RFC 9110, 15.4.5)."""
         response = super().file_response(full_path, stat_result, scope, status_code)
         if response.status_code == 304 and self.compressed(Path(full_path), stat_result, scope):
-            response.headers["etag"] = f"W/{response.headers['etag']}"
-            response.headers.add_vary_header("Accept-Encoding")
+            mark_as_gzip_copy(response.headers)
         return response
 
     async def get_response(self, path: str, scope: Scope) -> Response:
@@ -89,7 +95,6 @@ class PrecompressedFiles(StaticFiles):
         headers = MutableHeaders(raw=list(response.raw_headers))
         del headers["content-length"]  # (set again from the body)
         del headers["accept-ranges"]  # (a range is served from the file, uncompressed)
-        headers["etag"] = f"W/{headers['etag']}"
+        mark_as_gzip_copy(headers)
         headers["content-encoding"] = "gzip"
-        headers.add_vary_header("Accept-Encoding")
         return Response(body, headers=dict(headers))
