@@ -7,6 +7,7 @@
 
 import { toDisplay, fromDisplay, unitLabel, kindOfUnit, fmt } from './units.js';
 import { COLOURS, LEGEND } from './theme.js';
+import { pointName } from './notation.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -438,7 +439,7 @@ export class Controls {
     const fill = (sel, selected, none) => {
       sel.replaceChildren();
       if (none) sel.appendChild(el('option', { value: '' }, none));
-      for (const n of names) sel.appendChild(el('option', { value: n }, n));
+      for (const n of names) sel.appendChild(el('option', { value: n }, pointName(n)));
       sel.value = names.includes(selected) ? selected : none ? '' : names[0] || '';
     };
     fill(this.el.trace, trace, 'none');

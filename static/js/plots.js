@@ -6,6 +6,7 @@
 // angle with its extremes). A vertical cursor marks the analysed instant; moving it is a relayout
 // of one shape, not a redraw. The series come from series.js, the same list the CSV export writes.
 
+import { pointName } from './notation.js';
 import { COLOURS } from './theme.js';
 import { linkColours } from './scene.js';
 import { unitLabel, toDisplay, fmt } from './units.js';
@@ -29,17 +30,17 @@ export function quantityChoices(series) {
   const points = [...new Set(series.filter((s) => s.key.startsWith('point:')).map((s) => s.key.split(':')[1]))];
   for (const s of series.filter((x) => x.key.startsWith('slider:') && x.key.endsWith(':s'))) {
     const p = s.key.split(':')[1];
-    choices.push({ value: `slider:${p}`, label: `slider ${p}: position, velocity, acceleration`, panels: ['s', 'v', 'a'].map((k) => [`slider:${p}:${k}`]).filter(([k]) => keys.has(k)) });
+    choices.push({ value: `slider:${p}`, label: `slider ${pointName(p)}: position, velocity, acceleration`, panels: ['s', 'v', 'a'].map((k) => [`slider:${p}:${k}`]).filter(([k]) => keys.has(k)) });
   }
   for (const s of series.filter((x) => x.key.startsWith('transmission:'))) {
     choices.push({ value: s.key, label: 'transmission angle μ', panels: [[s.key]] });
   }
   for (const p of points) {
     const has = (k) => keys.has(`point:${p}:${k}`);
-    if (has('v')) choices.push({ value: `point:${p}:velocity`, label: `${p}: velocity (vx, vy, |v|)`, panels: [[`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`]] });
-    if (has('a')) choices.push({ value: `point:${p}:acceleration`, label: `${p}: acceleration (ax, ay, |a|)`, panels: [[`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
-    if (has('x')) choices.push({ value: `point:${p}:position`, label: `${p}: position (x, y)`, panels: [[`point:${p}:x`, `point:${p}:y`]] });
-    if (has('v') && has('a')) choices.push({ value: `point:${p}:all`, label: `${p}: displacement, velocity, acceleration`, panels: [[`point:${p}:x`, `point:${p}:y`], [`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`], [`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
+    if (has('v')) choices.push({ value: `point:${p}:velocity`, label: `${pointName(p)}: velocity (vx, vy, |v|)`, panels: [[`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`]] });
+    if (has('a')) choices.push({ value: `point:${p}:acceleration`, label: `${pointName(p)}: acceleration (ax, ay, |a|)`, panels: [[`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
+    if (has('x')) choices.push({ value: `point:${p}:position`, label: `${pointName(p)}: position (x, y)`, panels: [[`point:${p}:x`, `point:${p}:y`]] });
+    if (has('v') && has('a')) choices.push({ value: `point:${p}:all`, label: `${pointName(p)}: displacement, velocity, acceleration`, panels: [[`point:${p}:x`, `point:${p}:y`], [`point:${p}:v`, `point:${p}:vx`, `point:${p}:vy`], [`point:${p}:a`, `point:${p}:ax`, `point:${p}:ay`]] });
   }
   return choices;
 }

@@ -72,7 +72,7 @@ export class PointReadout {
       this.scene = this.view.scene;
       const names = Object.keys(this.view.track?.points || {});
       if (!names.includes(this.pinned)) this.pinned = NONE;
-      select.replaceChildren(new Option('none', NONE), ...names.map((n) => new Option(n, n)));
+      select.replaceChildren(new Option('none', NONE), ...names.map((n) => new Option(pointName(n), n)));
       select.value = this.pinned;
     }
     trace.disabled = !this.pinned;

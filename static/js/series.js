@@ -10,6 +10,7 @@
 // (`sliders`), the transmission angle μ = ∠BCD of each four-bar loop (`four_bar_loops`) and a
 // ram's quick-return time ratio from its extreme positions (`sliders[].quick_return`).
 
+import { pointName } from './notation.js';
 import { groundLink, movingLinks } from './scene.js';
 import { toDisplay, unitLabel } from './units.js';
 
@@ -86,10 +87,11 @@ export function groundSliders(scene, track) {
   return (track.sliders || []).filter((s) => s.links?.[0] === ground);
 }
 
-/** "μ = ∠BCD" for the sweep's four-bar loop of these links (the server names B, C, D). */
+/** "μ = ∠BCD" for the sweep's four-bar loop of these links (the server names B, C, D; a point
+ * named by a Greek letter spelled out is written as the letter: ∠ABΓ). */
 export function transmissionName(track, links) {
   const loop = (track?.fourBarLoops || []).find((l) => JSON.stringify(l.links) === JSON.stringify(links));
-  return loop ? `μ = ∠${loop.angle_points.join('')}` : 'μ';
+  return loop ? `μ = ∠${loop.angle_points.map(pointName).join('')}` : 'μ';
 }
 
 /**
@@ -109,23 +111,23 @@ export function allSeries(scene, track, order, units) {
   }
   const comp = (arr, f) => pick(arr).map((v) => (v ? f(v) : null));
   for (const [name, q] of Object.entries(track.points)) {
-    const g = `point ${name}`;
+    const [g, shown] = [`point ${name}`, pointName(name)];
     if (Array.isArray(q.position) && q.position.length === track.n) {
-      push(`point:${name}:x`, g, `x of ${name}`, 'length', comp(q.position, (v) => v[0]));
-      push(`point:${name}:y`, g, `y of ${name}`, 'length', comp(q.position, (v) => v[1]));
+      push(`point:${name}:x`, g, `x of ${shown}`, 'length', comp(q.position, (v) => v[0]));
+      push(`point:${name}:y`, g, `y of ${shown}`, 'length', comp(q.position, (v) => v[1]));
     }
     for (const [quantity, kind, sym] of [['velocity', 'velocity', 'v'], ['acceleration', 'acceleration', 'a']]) {
       if (!Array.isArray(q[quantity])) continue;
-      push(`point:${name}:${sym}x`, g, `${sym}x of ${name}`, kind, comp(q[quantity], (v) => v[0]));
-      push(`point:${name}:${sym}y`, g, `${sym}y of ${name}`, kind, comp(q[quantity], (v) => v[1]));
-      push(`point:${name}:${sym}`, g, `|${sym}| of ${name}`, kind, comp(q[quantity], (v) => Math.hypot(v[0], v[1])));
+      push(`point:${name}:${sym}x`, g, `${sym}x of ${shown}`, kind, comp(q[quantity], (v) => v[0]));
+      push(`point:${name}:${sym}y`, g, `${sym}y of ${shown}`, kind, comp(q[quantity], (v) => v[1]));
+      push(`point:${name}:${sym}`, g, `|${sym}| of ${shown}`, kind, comp(q[quantity], (v) => Math.hypot(v[0], v[1])));
     }
   }
   for (const s of groundSliders(scene, track)) {
-    const g = `slider ${s.point}`;
-    if (s.displacement) push(`slider:${s.point}:s`, g, `position s of slider ${s.point} along its guide`, 'length', pick(s.displacement));
-    if (s.sliding_velocity) push(`slider:${s.point}:v`, g, `velocity of slider ${s.point} along its guide`, 'velocity', pick(s.sliding_velocity));
-    if (s.sliding_acceleration) push(`slider:${s.point}:a`, g, `acceleration of slider ${s.point} along its guide`, 'acceleration', pick(s.sliding_acceleration));
+    const [g, shown] = [`slider ${s.point}`, pointName(s.point)];
+    if (s.displacement) push(`slider:${s.point}:s`, g, `position s of slider ${shown} along its guide`, 'length', pick(s.displacement));
+    if (s.sliding_velocity) push(`slider:${s.point}:v`, g, `velocity of slider ${shown} along its guide`, 'velocity', pick(s.sliding_velocity));
+    if (s.sliding_acceleration) push(`slider:${s.point}:a`, g, `acceleration of slider ${shown} along its guide`, 'acceleration', pick(s.sliding_acceleration));
   }
   for (const loop of track.fourBarLoops || []) {
     const [, C] = loop.angle_points;

@@ -64,6 +64,14 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
     assert {"K", "L", "Γ"} <= set(balanced)
     legend = {t["name"] for t in json.loads(plot_data(page, "dynamics-plots"))}
     assert "|F| at Γ" in legend and "|F| at Gamma" not in legend
+    # The transmission angle names its vertex by the letter too (the loop's points A, B, Gamma,
+    # as the server names them).
+    facts = page.text_content("#mechanism-facts") or ""
+    assert "μ = ∠ABΓ" in facts, facts
+    # So do the menus of points: the plotted quantity, the traced path, the point read.
+    for menu in ("#plot-point", "#trace-point", "#readout-point"):
+        names = page.locator(f"{menu} option").all_text_contents()
+        assert any("Γ" in n for n in names) and not any("Gamma" in n for n in names), names
     for value, ready in [
         ("example:S002-spatial-arm.json", "#spatial .point-label"),
         ("design:linkage", "#syn-steps .step-figure svg text"),
