@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import re
+import tempfile
 import time
 import urllib.error
 import urllib.request
@@ -37,13 +38,15 @@ CHROMIUM_ARGS = [
 
 
 @pytest.fixture(scope="session")
-def browser(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
-    """Debian's Chromium with a profile of its own for this worker's session, every test a new
-    page of it. A profile on disk, unlike a fresh incognito context a test, keeps V8's compiled
-    code of the app's scripts between pages: from its third page on, a page parses none of them
-    again (Plotly, KaTeX, 33 modules), about 0.65 s of CPU less an opening (2.6 -> 1.9 s, the
-    app's first page at 1440x1000 and the 1.5 s after it). The app keeps nothing in the browser
-    (no cookie, no storage), so what a page carries over from the one before is that cache."""
+def chromium() -> Iterator[Any]:
+    """Debian's Chromium with a profile of its own for this worker's session (a browser context
+    on disk), every test a new page of it. Unlike a fresh incognito context a test, the profile
+    keeps V8's compiled code of the app's scripts between pages: from its third page on, a page
+    parses none of them again (Plotly, KaTeX, 33 modules), about 0.65 s of CPU less an opening
+    (2.6 -> 1.9 s, the app's first page at 1440x1000 and the 1.5 s after it). The app keeps
+    nothing in the browser (no cookie, no storage), so what a page inherits from the ones before
+    is the browser's caches only: that compiled code and the HTTP cache (the static files, and
+    the GETs the server lets be cached: the presets' listing, the examples)."""
     if not CHROMIUM.exists():
         pytest.skip(
             "Debian's Chromium is not installed at /usr/bin/chromium (tests/run.sh installs it)"
@@ -51,8 +54,9 @@ def browser(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
     from playwright.sync_api import sync_playwright
 
     pw = sync_playwright().start()
+    profile = tempfile.TemporaryDirectory(prefix="chromium-profile-")
     context = pw.chromium.launch_persistent_context(
-        tmp_path_factory.mktemp("chromium-profile"),
+        profile.name,
         executable_path=str(CHROMIUM),
         args=CHROMIUM_ARGS,
         viewport={"width": 1440, "height": 1000},
@@ -62,6 +66,7 @@ def browser(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
     finally:
         context.close()
         pw.stop()
+        profile.cleanup()
 
 
 # The axe-core rules that can only report minor or moderate violations: the rule's own impact,
@@ -244,7 +249,7 @@ class AppPage:
 
 
 @pytest.fixture
-def app(request: pytest.FixtureRequest, browser: Any, live_server: str) -> Iterator[AppPage]:
+def app(request: pytest.FixtureRequest, chromium: Any, live_server: str) -> Iterator[AppPage]:
     # The pages run under the server's Content-Security-Policy, as a student's do (a violation
     # is a console error, which fails the test). Predicates are written as functions: Playwright
     # evaluates a bare expression with eval when it polls, which the policy forbids.
@@ -253,19 +258,19 @@ def app(request: pytest.FixtureRequest, browser: Any, live_server: str) -> Itera
     # it plays (0.45-0.5 s of CPU a second, paused 0.07 s), which the other tests running beside
     # it would pay for. A test of the animation itself is marked `moving`.
     motion = "no-preference" if request.node.get_closest_marker("moving") else "reduce"
-    page = browser.new_page()
+    page = chromium.new_page()
     page.emulate_media(reduced_motion=motion)
     page.set_default_timeout(20_000)
     log = PageLog()
     _watch(page, log)
     try:
-        yield AppPage(page=page, log=log, url=live_server, context=browser)
+        yield AppPage(page=page, log=log, url=live_server, context=chromium)
         external = log.external_requests()
         assert not external, f"requests to other hosts: {external}"
         unexpected = log.unexpected_errors()
         assert not unexpected, f"console or page errors: {unexpected}"
     finally:
-        for opened in browser.pages:  # this test's pages (its own tabs, popups)
+        for opened in chromium.pages:  # this test's pages (its own tabs, popups)
             opened.close()
 
 
