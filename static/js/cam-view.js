@@ -244,7 +244,7 @@ export class CamApp {
     this.buildDrawing();
     this.draw();
     await this.renderPlots();
-    if (this.playing) renderMessage(this.el.steps, 'Pause, or pick an angle, for the worked solution at the angle shown.');
+    if (this.playing) this.solutionWhilePlaying();
     this.scheduleSolution();
     this.onChange();
     return true;
@@ -502,6 +502,8 @@ export class CamApp {
     if (!playing) {
       this.moveCursor();
       this.scheduleSolution();
+    } else if (this.scene) {
+      this.solutionWhilePlaying();
     }
     this.onChange();
   }
@@ -586,6 +588,16 @@ export class CamApp {
   }
 
   // ---- the worked solution -----------------------------------------------------------------------
+
+  /** While the cam turns no one angle is shown: the worked solution and its typical mistakes
+   * (whose numbers are those of the angle solved) give way to a message until it stops. */
+  solutionWhilePlaying() {
+    clearTimeout(this.solutionTimer);
+    this.solutionSeq += 1; // an answer on its way is for an angle no longer shown
+    delete this.el.steps.dataset.angle;
+    renderMessage(this.el.steps, 'Pause, or pick an angle, for the worked solution at the angle shown.');
+    this.el.mistakes.replaceChildren(el('p', { class: 'muted' }, 'With the worked solution, once paused.'));
+  }
 
   scheduleSolution() {
     clearTimeout(this.solutionTimer);

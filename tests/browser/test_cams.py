@@ -30,6 +30,12 @@ def open_cam(app: AppPage, value: str = ROLLER) -> Any:
     return page
 
 
+def pause_cam(page: Any) -> None:
+    """Stop the cam if it turns (a test's page opens it paused unless the test is marked moving)."""
+    if page.get_attribute("#cam-play", "aria-pressed") == "true":
+        page.click("#cam-play")
+
+
 def _transform(page: Any) -> str:
     value: str = page.get_attribute("#cam-drawing .cam", "transform")
     return value
@@ -64,11 +70,29 @@ def test_space_plays_and_pauses_the_cam(app: AppPage) -> None:
         )
 
 
+def test_while_the_cam_turns_its_worked_solution_waits_for_a_pause(app: AppPage) -> None:
+    """The worked solution is that of the angle shown: while the cam turns there is none, so a
+    message stands in its place and in the typical mistakes' (whose numbers are an angle's), not
+    the last angle's solution under a turning cam; paused again, the solution at the new angle."""
+    page = open_cam(app)
+    page.wait_for_selector("#cam-steps .step .katex", state="attached")
+    page.click("#cam-play")
+    page.wait_for_selector("#cam-steps .panel-message")
+    assert page.locator("#cam-steps .step").count() == 0
+    assert page.get_attribute("#cam-steps", "data-angle") is None
+    assert page.locator("#cam-mistakes li").count() == 0
+    page.wait_for_function("() => document.getElementById('cam-angle').value !== '0'")
+    page.click("#cam-play")
+    page.wait_for_selector("#cam-steps .step .katex", state="attached")
+    assert page.get_attribute("#cam-steps", "data-angle") == page.input_value("#cam-angle")
+    assert page.locator("#cam-mistakes li").count() > 0
+
+
 def test_paused_at_an_angle_the_drawing_plots_and_solution_agree_with_the_server(
     app: AppPage,
 ) -> None:
     page = open_cam(app)
-    page.click("#cam-play")
+    pause_cam(page)
     page.fill("#cam-angle", "60")
     page.dispatch_event("#cam-angle", "input")
     page.wait_for_function("() => document.getElementById('cam-steps').dataset.angle === '60'")
@@ -141,7 +165,7 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
 ) -> None:
     app.page.set_viewport_size({"width": width, "height": height})
     page = open_cam(app)
-    page.click("#cam-play")
+    pause_cam(page)
     page.wait_for_selector("#cam-steps .step .katex", state="attached")
     app.screenshot(f"cams-{width}x{height}")
     assert page.evaluate("() => document.documentElement.scrollWidth <= window.innerWidth + 1")

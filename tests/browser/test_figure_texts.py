@@ -13,6 +13,7 @@ import pytest
 
 from tests.browser.conftest import AppPage
 from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
+from tests.browser.test_cams import pause_cam
 
 pytestmark = pytest.mark.browser
 
@@ -81,7 +82,7 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
         assert small_texts(page) == [], value
     # The cam and the gear train, each with its worked solution's figures.
     choose(app, "cam:cam_roller_translating")
-    page.click("#cam-play")
+    pause_cam(page)
     page.wait_for_selector("#cam-steps .step")
     assert small_texts(page) == []
     choose(app, "gear:planetary_ring_fixed")
