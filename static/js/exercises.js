@@ -305,6 +305,17 @@ async function chooser() {
   describe();
 }
 
+/** The chooser set to the exercise shown (its id's type and difficulty), so that "New exercise"
+ * gives another of the same kind, not the menu's first type. */
+function chooseKindOf(id) {
+  const [type, difficulty] = id.split(':');
+  for (const [select, value] of [[$('st-type'), type], [$('st-difficulty'), difficulty]]) {
+    if (![...select.options].some((o) => o.value === value) || select.value === value) continue;
+    select.value = value;
+    select.dispatchEvent(new Event('change'));
+  }
+}
+
 function studentHome() {
   $('instructor').hidden = true;
   $('student').hidden = false;
@@ -324,8 +335,9 @@ function route() {
   if (match) {
     $('st-exercise').hidden = false;
     $('st-solution').hidden = false;
-    chooser().catch((err) => status(err.detail || String(err), true));
-    student(decodeURIComponent(match[1]));
+    const id = decodeURIComponent(match[1]);
+    chooser().then(() => chooseKindOf(id)).catch((err) => status(err.detail || String(err), true));
+    student(id);
   } else if (location.hash === '#student') studentHome();
   else instructor().catch((err) => status(err.detail || String(err), true));
 }

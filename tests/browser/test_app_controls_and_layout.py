@@ -226,6 +226,14 @@ def test_the_exercises_link_opens_student_mode_with_a_type_chooser(app: AppPage)
     assert page.locator("#st-type").is_visible(), "another exercise is one choice away"
     app.screenshot("seams-exercises-student")
     assert app.serious_accessibility_violations("#student") == []
+    # An exercise opened from its link shows its own type and difficulty in the chooser, so that
+    # "New exercise" gives another of the same kind.
+    page.goto(f"{app.url}/exercises.html#id=four_bar_acceleration:challenging:3:0")
+    page.wait_for_function(
+        "() => document.getElementById('st-type').value === 'four_bar_acceleration'"
+        " && document.getElementById('st-difficulty').value === 'challenging'"
+    )
+    assert "acceleration" in page.inner_text("#st-type-description")
     # The instructor page is one click away.
     page.click("#to-instructor")
     page.wait_for_selector("#instructor:not([hidden])")
