@@ -22,13 +22,14 @@ from solver.gears import parse_gear_train
 from solver.model.scene import Joint, ground_pivot, parse_linkage
 from solver.solutions.cam import cam_context, cam_figure
 from solver.solutions.gear_train import train_figure
-from solver.teaching.svg import Attribute, Canvas, View, element
+from solver.teaching.svg import Attribute, Canvas, View, element, text_box
 
 WIDTH, HEIGHT, MARGIN = 420.0, 300.0, 48.0
 INK = "#1f2937"
 LINK = "#2563eb"
 GUIDE = "#6b7280"
 ROTATION = "#dc2626"
+FONT: Attribute = ("font-family", "sans-serif")
 Point = tuple[float, float]
 
 
@@ -50,13 +51,39 @@ def _line(canvas: Canvas, a: Point, b: Point, color: str, width: float, dash: st
     canvas.line(canvas.px(a), canvas.px(b), style)
 
 
+PAD = 4.0  # px: a label's box stays this far inside the figure's edges
+BESIDE = ((7.0, -7.0, "start"), (-7.0, -7.0, "end"), (7.0, 16.0, "start"), (-7.0, 16.0, "end"))
+
+
+def _inside(at: Point, label: str, size: float, anchor: str) -> tuple[Point, str]:
+    """A label's place moved, just enough for its box to lie within the figure."""
+    box = text_box(at, label, size, anchor)
+    dx = max(PAD - box.left, 0.0) + min(WIDTH - PAD - box.right, 0.0)
+    dy = max(PAD - box.top, 0.0) + min(HEIGHT - PAD - box.bottom, 0.0)
+    return (at[0] + dx, at[1] + dy), anchor
+
+
 def _text(
-    canvas: Canvas, p: Point, label: str, dx: float = 7, dy: float = -7, color: str = INK
+    canvas: Canvas,
+    p: Point,
+    label: str,
+    dx: float = 7,
+    dy: float = -7,
+    color: str = INK,
+    size: float = 13,
 ) -> None:
-    """A label beside a world point, (dx, dy) pixels off it."""
+    """A label beside a world point: (dx, dy) pixels off it, else the first free one of the
+    places around it (``BESIDE``), away from the labels, bars and marks placed before
+    (``Canvas.label``) and within the figure."""
     x, y = canvas.px(p)
-    style = [("font-size", "13"), ("fill", color), ("font-family", "sans-serif")]
-    canvas.text((x + dx, y + dy), label, style)
+    offsets = [(dx, dy, "start"), *(o for o in BESIDE if o[:2] != (dx, dy))]
+    places = [_inside((x + ox, y + oy), label, size, side) for ox, oy, side in offsets]
+    canvas.label(places, label, size, [("fill", color), FONT])
+
+
+def _mark(canvas: Canvas, x: float, y: float, half_width: float, up: float, down: float) -> None:
+    """Labels keep clear of a mark drawn about (x, y) pixels: a pivot's hatching, a block."""
+    canvas.keep_clear([(x - half_width, y - up), (x + half_width, y + down)])
 
 
 def _document(canvas: Canvas, title: str) -> str:
@@ -82,6 +109,8 @@ def nice_length(target: float) -> float:
 
 
 def _scale_bar(canvas: Canvas) -> None:
+    """A bar of a round length (``nice_length``) at the bottom left, labelled; labels placed
+    afterwards keep clear of it."""
     length = nice_length(0.25 * (WIDTH - 2 * MARGIN) / canvas.view.scale)
     x, y = 12.0, HEIGHT - 14.0
     w = length * canvas.view.scale
@@ -89,12 +118,13 @@ def _scale_bar(canvas: Canvas) -> None:
         f"M{x:.1f} {y - 4:.1f}V{y:.1f}H{x + w:.1f}V{y - 4:.1f}",
         [("fill", "none"), ("stroke", INK), ("stroke-width", "1.2")],
     )
-    style = [("font-size", "11"), ("font-family", "sans-serif"), ("fill", INK)]
-    canvas.text((x + w + 6, y), f"{length:g} m", style)
+    canvas.keep_clear([(x, y - 4), (x + w, y)])
+    canvas.label([((x + w + 6, y), "start")], f"{length:g} m", 11, [("fill", INK), FONT])
 
 
 def _ground_pivot(canvas: Canvas, p: Point) -> None:
     x, y = canvas.px(p)
+    _mark(canvas, x, y, 12, 0, 20)
     ink = [("stroke", INK), ("stroke-width", "1.2")]
     canvas.path(f"M{x:.1f} {y:.1f}l-9 15h18z", [("fill", "#e5e7eb"), *ink])
     canvas.path(f"M{x - 12:.1f} {y + 15:.1f}h24", ink)
@@ -102,9 +132,9 @@ def _ground_pivot(canvas: Canvas, p: Point) -> None:
         canvas.path(f"M{x - 12 + 5 * k:.1f} {y + 15:.1f}l-4 5", [("stroke", INK)])
 
 
-def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
-    """An arc arrow of radius 22 px under ``p``, counter-clockwise when omega > 0, labelled
-    below the pivot's hatching."""
+def _rotation(canvas: Canvas, p: Point, omega: float) -> None:
+    """An arc arrow of radius 22 px under ``p``, counter-clockwise when omega > 0 (labels keep
+    clear of it)."""
     x, y = canvas.px(p)
     r, start, end = 22.0, math.radians(200), math.radians(-20)
     if omega < 0:
@@ -125,12 +155,25 @@ def _rotation(canvas: Canvas, p: Point, omega: float, label: str) -> None:
         f"L{ex - 4 * nx:.1f} {ey - 4 * ny:.1f}z",
         [("fill", ROTATION)],
     )
-    style = [("font-size", "12"), ("fill", ROTATION), ("font-family", "sans-serif")]
-    canvas.text((x - 30, y + 38), label, style)
+    _mark(canvas, x, y, r, 8, r)
+
+
+def _rotation_label(canvas: Canvas, p: Point, label: str) -> None:
+    """A driver's rates under its pivot's hatching, else beside or above the pivot where that
+    place is taken, else in a corner of the figure (in the rotation's colour)."""
+    x, y = canvas.px(p)
+    offsets = [(-30.0, 38.0, "start"), (0.0, 38.0, "middle"), (30.0, 38.0, "end")]
+    offsets += [(28.0, 4.0, "start"), (-28.0, 4.0, "end"), (0.0, -28.0, "middle")]
+    offsets += [(28.0, 22.0, "start"), (-28.0, 22.0, "end"), (28.0, -16.0, "start")]
+    offsets += [(-28.0, -16.0, "end"), (0.0, -44.0, "middle")]
+    places = [_inside((x + dx, y + dy), label, 12, side) for dx, dy, side in offsets]
+    corners = [((WIDTH - PAD, HEIGHT - 8.0), "end"), ((WIDTH - PAD, 16.0), "end")]
+    canvas.label([*places, *corners], label, 12, [("fill", ROTATION), FONT])
 
 
 def _block(canvas: Canvas, p: Point, axis: Point) -> None:
     x, y = canvas.px(p)
+    _mark(canvas, x, y, 12, 12, 12)  # the block's box whatever its guide's angle
     angle = -math.degrees(math.atan2(axis[1], axis[0]))
     canvas.add(
         element(
@@ -185,7 +228,8 @@ class _Linkage:
 
 
 def _linkage(scene: Mapping[str, Any]) -> str:
-    """Guides and paths first, then the links, then pivots, blocks, points and rotations."""
+    """The scale bar and the axes first, then guides and paths, the links, pivots, blocks,
+    points and rotations; the labels last, each where it meets no other label, bar or mark."""
     links = scene["links"]
     drawing = _Linkage(
         scene,
@@ -195,13 +239,13 @@ def _linkage(scene: Mapping[str, Any]) -> str:
     )
     arcs = _arc_paths(drawing)
     canvas = _canvas(_extent(drawing, arcs))
+    _scale_bar(canvas)
+    _axes(canvas)
     _draw_paths(canvas, drawing, arcs)
     for name, link in links.items():
         _draw_link(canvas, drawing, name, [drawing.pts[p] for p in link["points"]])
     _draw_marks(canvas, drawing)
     _slot_angles(canvas, drawing)
-    _axes(canvas)
-    _scale_bar(canvas)
     return _document(canvas, str(scene.get("title", "linkage")))
 
 
@@ -211,9 +255,10 @@ def _axes(canvas: Canvas) -> None:
     style: list[Attribute] = [("stroke", GUIDE), ("stroke-width", "1.2"), ("fill", "none")]
     canvas.path(f"M{x:.1f} {y:.1f}h34m-6 -4l6 4l-6 4", style)
     canvas.path(f"M{x:.1f} {y:.1f}v-34m-4 6l4 -6l4 6", style)
-    label = [("font-size", "11"), ("fill", GUIDE), ("font-family", "sans-serif")]
-    canvas.text((x + 37, y + 4), "x", label)
-    canvas.text((x - 4, y - 38), "y", label)
+    canvas.keep_off((x, y), (x + 34, y), 8)
+    canvas.keep_off((x, y), (x, y - 34), 8)
+    canvas.label([((x + 37, y + 4), "start")], "x", 11, [("fill", GUIDE), FONT])
+    canvas.label([((x - 4, y - 38), "start")], "y", 11, [("fill", GUIDE), FONT])
 
 
 def _slot_angles(canvas: Canvas, drawing: _Linkage) -> None:
@@ -238,12 +283,9 @@ def _slot_angles(canvas: Canvas, drawing: _Linkage) -> None:
         canvas.path(f"M{x:.1f} {y:.1f}h{r + 14:.0f}", [*style, ("stroke-dasharray", "3 3")])
         canvas.path(f"M{x + r:.1f} {y:.1f}A{r} {r} 0 {large} {sweep} {ex:.1f} {ey:.1f}", style)
         half = theta / 2
-        label = [("font-size", "12"), ("fill", INK), ("font-family", "sans-serif")]
-        canvas.text(
-            (x + (r + 8) * math.cos(half), y - (r + 8) * math.sin(half) + 4),
-            f"θ0 = {math.degrees(theta):.4g}°",
-            label,
-        )
+        label = f"θ0 = {math.degrees(theta):.4g}°"
+        at = (x + (r + 8) * math.cos(half), y - (r + 8) * math.sin(half) + 4)
+        canvas.label([_inside(at, label, 12, "start")], label, 12, [("fill", INK), FONT])
 
 
 def _arc_paths(drawing: _Linkage) -> list[tuple[Point, float]]:
@@ -288,12 +330,15 @@ def _draw_paths(canvas: Canvas, drawing: _Linkage, arcs: Sequence[tuple[Point, f
         )
         fixed = j["links"][0] == ground
         _line(canvas, a, b, GUIDE, 1.4 if fixed else 1.0, "" if fixed else "5 3")
+        canvas.keep_off(canvas.px(a), canvas.px(b), 3)
     for c, r in arcs:
         style = [("fill", "none"), ("stroke", GUIDE), ("stroke-width", "1.4")]
         canvas.circle(canvas.px(c), r * canvas.view.scale, [*style, ("stroke-dasharray", "5 3")])
     for mp in drawing.moving_points:
         if mp["path"]["type"] == "line":
-            _line(canvas, pts[mp["path"]["start"]], pts[mp["path"]["through"]], GUIDE, 6, "")
+            a, b = pts[mp["path"]["start"]], pts[mp["path"]["through"]]
+            _line(canvas, a, b, GUIDE, 6, "")
+            canvas.keep_off(canvas.px(a), canvas.px(b), 8)
 
 
 def _draw_link(canvas: Canvas, drawing: _Linkage, name: str, members: list[Point]) -> None:
@@ -319,13 +364,16 @@ def _draw_link(canvas: Canvas, drawing: _Linkage, name: str, members: list[Point
         plate = [("fill", "#dbeafe"), ("fill-opacity", "0.6"), ("stroke", LINK)]
         plate += [("stroke-width", "2.5"), ("stroke-linejoin", "round")]
         canvas.points("polygon", map(canvas.px, members), plate)
+        for a, b in pairwise([*members, members[0]]):
+            canvas.keep_off(canvas.px(a), canvas.px(b), 4)
     else:
         _line(canvas, members[0], members[1], LINK, 3.5)
+        canvas.keep_off(canvas.px(members[0]), canvas.px(members[1]), 5)
 
 
 def _draw_marks(canvas: Canvas, drawing: _Linkage) -> None:
-    """The fixed pivots hatched, the sliders' blocks, every point labelled, each moving point's
-    start, and each driver's rotation about its pivot."""
+    """The fixed pivots hatched, the sliders' blocks, each driver's rotation about its pivot,
+    then the labels: every point's name, each moving point's start, each rotation's rates."""
     pts, scene = drawing.pts, drawing.scene
     for j in scene["joints"]:
         if j["type"] == "revolute" and drawing.ground in j["links"]:
@@ -333,17 +381,21 @@ def _draw_marks(canvas: Canvas, drawing: _Linkage) -> None:
     for j in scene["joints"]:
         if j["type"] != "revolute":
             _block(canvas, pts[j["point"]], (float(j["axis"][0]), float(j["axis"][1])))
-    for name, p in pts.items():
+    for p in pts.values():
         canvas.circle(
             canvas.px(p), "3.5", [("fill", "white"), ("stroke", INK), ("stroke-width", "1.4")]
         )
+        _mark(canvas, *canvas.px(p), 4, 4, 4)
+    rotations = [(drawing.pivot(d["link"]), *_driver_label(d)) for d in scene["drivers"]]
+    for pivot, omega, _ in rotations:
+        _rotation(canvas, pivot, omega)
+    for name, p in pts.items():
         _text(canvas, p, name)
     for mp in drawing.moving_points:
         start = pts[mp["path"]["start"]]
         _text(canvas, start, f"{mp['name']} (t = 0)", dx=7, dy=16, color=ROTATION)
-    for driver in scene["drivers"]:
-        omega, label = _driver_label(driver)
-        _rotation(canvas, drawing.pivot(driver["link"]), omega, label)
+    for pivot, _, label in rotations:
+        _rotation_label(canvas, pivot, label)
 
 
 def _oblique(p: Sequence[float]) -> Point:
@@ -357,26 +409,37 @@ def _spatial(scene: Mapping[str, Any]) -> str:
     chain = [j["origin"] for j in joints] + [points[k] for k in points]
     flat = [_oblique(p) for p in chain] + [_oblique([0, 0, -0.15])]
     canvas = _canvas(flat)
+    _scale_bar(canvas)
     o = (0.0, 0.0)
-    for axis, label in (((0.3, 0, 0), "x"), ((0, 0.3, 0), "y"), ((0, 0, 0.3), "z")):
-        end = _oblique(axis)
+    axes = [
+        (_oblique(axis), label)
+        for axis, label in (((0.3, 0, 0), "x"), ((0, 0.3, 0), "y"), ((0, 0, 0.3), "z"))
+    ]
+    for end, _ in axes:
         _line(canvas, o, end, GUIDE, 1.0, "3 3")
-        _text(canvas, end, label, color=GUIDE)
     _ground_pivot(canvas, _oblique([0, 0, 0]))
     route = [_oblique(j["origin"]) for j in joints] + [_oblique(p) for p in points.values()]
     for a, b in pairwise(route):
         _line(canvas, a, b, LINK, 3.5)
-    for k, j in enumerate(joints):
-        start = j["origin"]
-        tip = [start[i] + 0.2 * j["axis"][i] for i in range(3)]
-        _line(canvas, _oblique(start), _oblique(tip), ROTATION, 1.8)
-        _text(canvas, _oblique(tip), f"ω{k + 1} = {j['rate']:g}", color=ROTATION)
-    for name, position in points.items():
+        canvas.keep_off(canvas.px(a), canvas.px(b), 5)
+    rates = []  # each joint's axis drawn from its origin, its rate at the tip
+    for k, j in enumerate(joints, start=1):
+        start = _oblique(j["origin"])
+        tip = _oblique([j["origin"][i] + 0.2 * j["axis"][i] for i in range(3)])
+        _line(canvas, start, tip, ROTATION, 1.8)
+        canvas.keep_off(canvas.px(start), canvas.px(tip), 3)
+        rates.append((tip, f"ω{k} = {j['rate']:g}"))
+    for position in points.values():
         canvas.circle(canvas.px(_oblique(position)), "3.5", [("fill", "white"), ("stroke", INK)])
+        _mark(canvas, *canvas.px(_oblique(position)), 4, 4, 4)
+    for end, label in axes:
+        _text(canvas, end, label, color=GUIDE)
+    for tip, label in rates:
+        _text(canvas, tip, label, color=ROTATION)
+    for name, position in points.items():
         _text(canvas, _oblique(position), name, dy=16)
     _text(canvas, _oblique(joints[1]["origin"]), "O2", dx=-24)
     _text(canvas, (0.0, 0.0), "O", dx=-16)
-    _scale_bar(canvas)
     return _document(canvas, str(scene.get("title", "spatial chain")))
 
 
@@ -407,6 +470,12 @@ def _motion_task(task: Mapping[str, Any]) -> str:
         for (x, y), p in zip(places, positions, strict=True)
     ]  # fmt: skip
     canvas = _canvas([*places, *heads, b1, c1])
+    _scale_bar(canvas)
+    if "bisector_offsets" in task:  # two positions: the free choice the task states, top left
+        d_a, d_d = task["bisector_offsets"]
+        lines = ["on the bisectors of B1B2, C1C2:", f"dA = {d_a:g} m, dD = {d_d:g} m"]
+        for k, line in enumerate(lines):
+            canvas.label([((PAD, 16.0 + 15 * k), "start")], line, 12, [("fill", INK), FONT])
     plate = [canvas.px(q) for q in (b1, c1, places[0])]
     canvas.points("polygon", plate, [("fill", "#dbeafe"), ("stroke", LINK), ("stroke-width", 2)])
     for k, (place, p) in enumerate(zip(places, positions, strict=True), start=1):
@@ -416,12 +485,6 @@ def _motion_task(task: Mapping[str, Any]) -> str:
     for name, q in (("B1", b1), ("C1", c1)):
         canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
         _text(canvas, q, name, dy=16)
-    if "bisector_offsets" in task:  # two positions: the free choice the task states
-        d_a, d_d = task["bisector_offsets"]
-        style = [("font-size", "12"), ("font-family", "sans-serif"), ("fill", INK)]
-        note = f"on the bisectors of B1B2, C1C2: dA = {d_a:g} m, dD = {d_d:g} m"
-        canvas.text((12.0, 18.0), note, style)  # in the top margin
-    _scale_bar(canvas)
     return _document(canvas, "coupler positions to pass through")
 
 
@@ -468,6 +531,7 @@ def _function_task(task: Mapping[str, Any]) -> str:
             for t in range(0, 360, 30)
         ]  # fmt: skip
     canvas = _canvas(extent)
+    _scale_bar(canvas)
     _line(canvas, a, dpoint, GUIDE, 1.4, "6 4")
     for centre, key, symbol in ((a, "input_range_deg", "θ2"), (dpoint, "output_range_deg", "θ4")):
         ends = task[key]
@@ -476,7 +540,6 @@ def _function_task(task: Mapping[str, Any]) -> str:
         _ground_pivot(canvas, q)
         canvas.circle(canvas.px(q), "3.5", [("fill", "white"), ("stroke", INK)])
         _text(canvas, q, name, dx=-16, dy=-6)
-    _scale_bar(canvas)
     return _document(canvas, "ground link and angle ranges of the function generator")
 
 

@@ -791,26 +791,29 @@ def train_figure(scene: GearTrainScene) -> str:
                 canvas.line(axis, canvas.px(axis_of[gear.name]),
                             [("stroke", "#b5471b"), ("stroke-width", "1.2"),
                              ("stroke-linecap", "round")], [("class", "carrier")], 3)  # fmt: skip
+                canvas.keep_off(axis, canvas.px(axis_of[gear.name]), 1.6)
         held = [g for g in gears if g.carrier == carrier]
         end = canvas.px(axis_of[held[0].name]) if held else axis
         middle = ((axis[0] + end[0]) / 2, (axis[1] + end[1]) / 2 + 3.6)
-        style = [("font-size", "3"), ("fill", "#b5471b"), ("text-anchor", "middle")]
-        canvas.text(middle, carrier, style, 2)
+        canvas.label([(middle, "middle")], carrier, 3, [("fill", "#b5471b")], 2)
     for gear in gears:
         entry = members[gear.name]
         centre = canvas.px(axis_of[gear.name])
         r = entry["pitch_radius"] / per_mm
         canvas.circle(centre, "0.8", [("fill", "#ffffff"), ink, ("stroke-width", "0.3")], 3)
         label = f"{gear.name} ({gear.teeth})"
-        # an annulus inside its rim, top left; a planet above it; a gear on the frame below it
+        # an annulus inside its rim, top left; a planet above it; a gear on the frame below it;
+        # where that place is taken (coaxial gears of one size: a differential's side gears),
+        # the next line under it, else above the gear
+        below = [((centre[0], centre[1] + r + 3.6 + 3.6 * k), "middle") for k in range(3)]
+        above = ((centre[0], centre[1] - r - 1.2), "middle")
         if gear.internal:
-            at, anchor = (centre[0] - r * 0.7, centre[1] - r * 0.72), "start"
+            places = [((centre[0] - r * 0.7, centre[1] - r * 0.72), "start"), *below]
         elif gear.carrier is not None:
-            at, anchor = (centre[0], centre[1] - r - 1.2), "middle"
+            places = [above, *below]
         else:
-            at, anchor = (centre[0], centre[1] + r + 3.6), "middle"
-        style = [("font-size", "3"), ("fill", "#000000"), ("text-anchor", anchor)]
-        canvas.text(at, label, style, 2)
+            places = [*below, above]
+        canvas.label(places, label, 3, [("fill", "#000000")], 2)
     caption = f"pitch circles to scale, {scale_text(per_mm * 10, 'm')}"
     title = f"The gear train {scene.title or ''}".strip()
     return paper_document(canvas, (x0, y0, width, height), title, caption, {})

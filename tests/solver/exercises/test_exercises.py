@@ -15,6 +15,7 @@ from solver.exercises import DIFFICULTIES, TYPES, ExerciseId, build, generate, p
 from solver.exercises.families import POLE_REACH, num, polynomial
 from solver.exercises.figures import nice_length
 from solver.exercises.solutions import worked_solution
+from solver.teaching.svg import text_box
 
 
 def test_an_id_round_trips() -> None:
@@ -91,6 +92,33 @@ def test_the_figure_is_svg_labelled_with_the_scene_points(kind: str) -> None:
     assert any(text and " m" in text for text in labels)  # the scale bar
     if e.scene.get("kind") == "linkage":
         assert any(text and ("ω" in text or "φ" in text) for text in labels)
+
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+@pytest.mark.parametrize("kind", list(TYPES))
+def test_no_two_texts_of_a_figure_overlap_and_each_lies_within_it(kind: str) -> None:
+    """Every text of an exercise's figure (a point's name, the driver's rates, the scale bar's
+    length, a note), its box estimated as the canvas estimates it (``text_box``: wider than a
+    sans-serif font sets most labels), meets no other and lies within the figure's view box.
+    Before, the rates sat on a point's name or the scale bar's length in a third of the
+    four-bar figures, and ran off the figure's right edge where the crank's pivot was at it."""
+    for difficulty, seed in itertools.product(DIFFICULTIES, range(4)):
+        e = build(ExerciseId(kind, difficulty, seed, 0))
+        root = ET.fromstring(e.statement.figure_svg)
+        left, top, width, height = (float(v) for v in root.get("viewBox", "").split())
+        boxes = []
+        for t in root.iter(f"{SVG}text"):
+            at = (float(t.get("x", "")), float(t.get("y", "")))
+            box = text_box(
+                at, t.text or "", float(t.get("font-size", "")), t.get("text-anchor", "start")
+            )
+            assert left <= box.left and box.right <= left + width, (str(e.id), t.text)
+            assert top <= box.top and box.bottom <= top + height, (str(e.id), t.text)
+            boxes.append((t.text, box))
+        for (a, box_a), (b, box_b) in itertools.combinations(boxes, 2):
+            assert not box_a.overlaps(box_b), (str(e.id), a, b)
 
 
 def test_statements_name_every_asked_symbol_in_latex() -> None:
