@@ -18,6 +18,7 @@ import {
   getExercise,
 } from './api.js';
 import { katexReady } from './vendor.js';
+import { mathBlock } from './steps.js';
 import { fmt } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -34,6 +35,19 @@ function status(message, error = false) {
   box.textContent = message;
   if (error) box.dataset.level = 'error';
   else delete box.dataset.level;
+}
+
+/** A statement's data one to a line where its rows do not fit (a phone): each row breaks after
+ * every datum (the server separates them with ",\;"). */
+const oneDatumALine = (latex) => latex.replaceAll(',\\;', ',\\\\');
+
+/** A statement's or a step's equations as a block (steps.mathBlock: narrowed where too wide,
+ * else scrolling in a group the keyboard reaches); KaTeX loaded first. */
+async function equations(latex, label, narrow = undefined) {
+  await katexReady();
+  const [math, error] = mathBlock(latex, label, narrow);
+  if (error) math.classList.add('step-error');
+  return math;
 }
 
 async function typeset(latex, target, display = true) {
@@ -100,9 +114,9 @@ function card(exercise) {
     box.appendChild(el('p', { class: 'muted small' }, 'Exam: students see only the statement; keep the seed and this key private.'));
   }
   box.appendChild(el('p', {}, exercise.statement.text));
-  // tabindex: on a phone the formulas and the figure scroll sideways, by keyboard too
-  const tex = el('div', { class: 'tex', tabindex: '0', role: 'group', 'aria-label': 'Data' });
-  typeset(exercise.statement.latex, tex);
+  // on a phone the data go one to a line, and the figure scrolls sideways, by keyboard too
+  const tex = el('div', { class: 'tex' });
+  equations(exercise.statement.latex, 'Data', oneDatumALine).then((math) => tex.replaceChildren(math));
   box.appendChild(tex);
   const fig = el('figure', { tabindex: '0' });
   figure(fig, exercise.statement.figure_svg);
@@ -249,9 +263,9 @@ function nextStep() {
   const step = steps[shown];
   const item = el('li', { class: 'step' });
   item.appendChild(el('h3', { class: 'step-title' }, step.title));
-  // a long line scrolls sideways inside its block: the keyboard reaches it
-  const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': `Equations of step ${shown + 1}` });
-  typeset(step.latex, math);
+  // a long line is broken, else scrolls sideways inside its block: the keyboard reaches it
+  const math = el('div');
+  equations(step.latex, `Equations of step ${shown + 1}`).then((block) => math.replaceWith(block));
   item.append(math, el('p', { class: 'step-text' }, step.text));
   $('st-steps').appendChild(item);
   shown += 1;
@@ -273,7 +287,7 @@ async function student(id) {
   $('st-title').textContent = current.title;
   $('st-id').textContent = current.id;
   $('st-text').textContent = current.statement.text;
-  typeset(current.statement.latex, $('st-latex'));
+  $('st-latex').replaceChildren(await equations(current.statement.latex, 'The data', oneDatumALine));
   figure($('st-figure'), current.statement.figure_svg);
   $('answer-rows').replaceChildren(...current.asked.map(answerRow));
   $('score').textContent = '';

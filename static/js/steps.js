@@ -36,21 +36,22 @@ function el(tag, attrs = {}, text = null) {
 /**
  * A step's equations as a block: typeset with KaTeX (the LaTeX as text, and the KaTeX error,
  * when it cannot be read) in a group that the keyboard reaches. Once laid out, a block wider
- * than its column is typeset again with each clause on its own line (narrowLatex, once:
- * `data-narrow` holds the width it had); what is still wider scrolls sideways inside the group. Returns [block, error
- * or null].
+ * than its column is typeset again with each clause on its own line (`narrow`, narrowLatex unless
+ * given; once: `data-narrow` holds the width it had); what is still wider scrolls sideways inside
+ * the group. Returns [block, error or null].
  */
-export function mathBlock(latex, label) {
+export function mathBlock(latex, label, narrow = narrowLatex) {
   const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': label });
   const error = typeset(latex, math);
-  if (!error && narrowLatex(latex) !== latex) {
-    sources.set(math, latex);
+  const narrowed = error ? latex : narrow(latex);
+  if (narrowed !== latex) {
+    sources.set(math, [latex, narrowed]);
     narrowing().observe(math);
   }
   return [math, error];
 }
 
-const sources = new WeakMap(); // a block waiting to be measured -> its LaTeX
+const sources = new WeakMap(); // a block waiting to be measured -> its LaTeX and its narrowed form
 let observer = null;
 
 /** The one ResizeObserver that narrows a block the first time it is laid out too wide. */
@@ -63,9 +64,9 @@ function narrowing() {
       if (wide <= target.clientWidth + 1) continue;
       // Kept only where it reads better: typeset, and no wider than before (an indented
       // relation can widen a row that holds one long matrix).
-      const latex = sources.get(target);
+      const [latex, narrowed] = sources.get(target);
       sources.delete(target);
-      if (!typeset(narrowLatex(latex), target) && target.scrollWidth <= wide) target.dataset.narrow = String(wide);
+      if (!typeset(narrowed, target) && target.scrollWidth <= wide) target.dataset.narrow = String(wide);
       else typeset(latex, target);
     }
   });

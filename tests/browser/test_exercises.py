@@ -187,6 +187,46 @@ def test_the_student_mode_checks_diagnoses_and_reveals_one_step_at_a_time(app: A
     assert other.inner_text("#st-id") == ident
 
 
+# Whether a block of formulas fits its column: its width, the width it had before it was
+# narrowed (data-narrow) or null, and whether it still scrolls sideways.
+FITS = """(selector) => [...document.querySelectorAll(selector)].map((b) => (
+  { narrow: b.dataset.narrow ?? null, scrolls: b.scrollWidth > b.clientWidth + 1 }))"""
+
+
+def test_on_a_phone_the_statement_gives_its_data_one_to_a_line(app: AppPage) -> None:
+    """At 390 px the quick-return's data (four to a row, about 560 px wide) went past the
+    column's edge; they are typeset again one datum to a line and fit, in the student mode and
+    in the instructor's preview, and the worked solution's steps are narrowed as in the app."""
+    page = app.page
+    page.set_viewport_size({"width": 390, "height": 844})
+    open_page(app, "#id=quick_return:challenging:9:0")
+    page.wait_for_selector("#st-latex .step-math[data-narrow]")
+    assert page.evaluate(FITS, "#st-latex .step-math") == [
+        {"narrow": page.get_attribute("#st-latex .step-math", "data-narrow"), "scrolls": False}
+    ]
+    assert page.locator("#st-latex .step-error").count() == 0
+    page.click("#next-step")
+    page.wait_for_selector("#st-steps .step-math .katex")
+    # Nothing scrolls sideways: the figure scales to the column, the answers' table fits it.
+    assert page.evaluate("() => document.documentElement.scrollWidth <= window.innerWidth")
+    app.screenshot("exercises-student-390")
+    assert app.serious_accessibility_violations("#student") == []
+    # The instructor's preview of the same type.
+    open_page(app, "")
+    page.wait_for_selector("#ex-type option", state="attached")
+    page.select_option("#ex-type", "quick_return")
+    page.select_option("#ex-difficulty", "challenging")
+    page.click("#ex-generate")
+    page.wait_for_selector("#preview article[data-id^='quick_return'] .tex .step-math[data-narrow]")
+    blocks = page.evaluate(FITS, "#preview .tex .step-math")
+    assert blocks and not any(b["scrolls"] for b in blocks), blocks
+    # On a laptop the rows fit as they are.
+    page.set_viewport_size({"width": 1440, "height": 900})
+    open_page(app, "#id=four_bar_acceleration:standard:3:0")
+    page.wait_for_selector("#st-latex .step-math .katex")
+    assert page.evaluate(FITS, "#st-latex .step-math") == [{"narrow": None, "scrolls": False}]
+
+
 def test_a_bad_share_link_says_why(app: AppPage) -> None:
     app.log.allow("422")
     open_page(app, "#id=not-an-id")
