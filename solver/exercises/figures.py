@@ -82,7 +82,8 @@ def _text(
 
 
 def _mark(canvas: Canvas, x: float, y: float, half_width: float, up: float, down: float) -> None:
-    """Labels keep clear of a mark drawn about (x, y) pixels: a pivot's hatching, a block."""
+    """Labels keep clear of a mark drawn about (x, y) pixels: a pivot's hatching, a block, a
+    point's circle, a rotation's arrow."""
     canvas.keep_clear([(x - half_width, y - up), (x + half_width, y + down)])
 
 
