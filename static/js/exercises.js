@@ -114,11 +114,11 @@ function card(exercise) {
     box.appendChild(el('p', { class: 'muted small' }, 'Exam: students see only the statement; keep the seed and this key private.'));
   }
   box.appendChild(el('p', {}, exercise.statement.text));
-  // on a phone the data go one to a line, and the figure scrolls sideways, by keyboard too
+  // on a phone the data go one to a line and the figure scales to the column (css)
   const tex = el('div', { class: 'tex' });
   equations(exercise.statement.latex, 'Data', oneDatumALine).then((math) => tex.replaceChildren(math));
   box.appendChild(tex);
-  const fig = el('figure', { tabindex: '0' });
+  const fig = el('figure');
   figure(fig, exercise.statement.figure_svg);
   box.appendChild(fig);
   const key = el('details');
