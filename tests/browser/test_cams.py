@@ -76,12 +76,13 @@ def test_while_the_cam_turns_its_worked_solution_waits_for_a_pause(app: AppPage)
     the last angle's solution under a turning cam; paused again, the solution at the new angle."""
     page = open_cam(app)
     page.wait_for_selector("#cam-steps .step .katex", state="attached")
+    solved = page.input_value("#cam-angle")
     page.click("#cam-play")
     page.wait_for_selector("#cam-steps .panel-message")
     assert page.locator("#cam-steps .step").count() == 0
     assert page.get_attribute("#cam-steps", "data-angle") is None
     assert page.locator("#cam-mistakes li").count() == 0
-    page.wait_for_function("() => document.getElementById('cam-angle').value !== '0'")
+    page.wait_for_function("(a) => document.getElementById('cam-angle').value !== a", arg=solved)
     page.click("#cam-play")
     page.wait_for_selector("#cam-steps .step .katex", state="attached")
     assert page.get_attribute("#cam-steps", "data-angle") == page.input_value("#cam-angle")

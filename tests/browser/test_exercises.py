@@ -187,8 +187,8 @@ def test_the_student_mode_checks_diagnoses_and_reveals_one_step_at_a_time(app: A
     assert other.inner_text("#st-id") == ident
 
 
-# Whether a block of formulas fits its column: its width, the width it had before it was
-# narrowed (data-narrow) or null, and whether it still scrolls sideways.
+# Each block of formulas: the width it had before it was narrowed to fit its column
+# (data-narrow) or null, and whether it still scrolls sideways.
 FITS = """(selector) => [...document.querySelectorAll(selector)].map((b) => (
   { narrow: b.dataset.narrow ?? null, scrolls: b.scrollWidth > b.clientWidth + 1 }))"""
 
