@@ -35,10 +35,11 @@ function el(tag, attrs = {}, text = null) {
 
 /**
  * A step's equations as a block: typeset with KaTeX (the LaTeX as text, and the KaTeX error,
- * when it cannot be read) in a group that the keyboard reaches. Once laid out, a block wider
- * than its column is typeset again with each clause on its own line (`narrow`, narrowLatex unless
- * given; once: `data-narrow` holds the width it had); what is still wider scrolls sideways inside
- * the group. Returns [block, error or null].
+ * when it cannot be read) in a group that the keyboard reaches. Once laid out wider than its
+ * column (at once, or later: a narrower window, a phone turned), a block is typeset again with
+ * each clause on its own line (`narrow`, narrowLatex unless given; once: `data-narrow` holds the
+ * width it had); what is still wider scrolls sideways inside the group. Returns [block, error
+ * or null].
  */
 export function mathBlock(latex, label, narrow = narrowLatex) {
   const math = el('div', { class: 'step-math', tabindex: '0', role: 'group', 'aria-label': label });
@@ -51,17 +52,22 @@ export function mathBlock(latex, label, narrow = narrowLatex) {
   return [math, error];
 }
 
-const sources = new WeakMap(); // a block waiting to be measured -> its LaTeX and its narrowed form
+const sources = new WeakMap(); // a block watched until it is too wide -> its LaTeX, narrowed
 let observer = null;
 
-/** The one ResizeObserver that narrows a block the first time it is laid out too wide. */
+/** The one ResizeObserver that narrows a block the first time it is laid out too wide; a block
+ * that fits is watched until it does not, or until it leaves the page. */
 function narrowing() {
   observer = observer || new ResizeObserver((entries) => {
     for (const { target } of entries) {
-      if (!target.isConnected || !target.clientWidth) continue;
-      observer.unobserve(target);
+      if (!target.isConnected) { // removed (a solution drawn again): no longer watched
+        observer.unobserve(target);
+        sources.delete(target);
+        continue;
+      }
       const wide = target.scrollWidth;
-      if (wide <= target.clientWidth + 1) continue;
+      if (!target.clientWidth || wide <= target.clientWidth + 1) continue; // hidden, or fits
+      observer.unobserve(target);
       // Kept only where it reads better: typeset, and no wider than before (an indented
       // relation can widen a row that holds one long matrix).
       const [latex, narrowed] = sources.get(target);

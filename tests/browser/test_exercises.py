@@ -220,11 +220,15 @@ def test_on_a_phone_the_statement_gives_its_data_one_to_a_line(app: AppPage) -> 
     page.wait_for_selector("#preview article[data-id^='quick_return'] .tex .step-math[data-narrow]")
     blocks = page.evaluate(FITS, "#preview .tex .step-math")
     assert blocks and not any(b["scrolls"] for b in blocks), blocks
-    # On a laptop the rows fit as they are.
+    # On a laptop the rows fit as they are; made narrow (a window, a phone turned), they give
+    # their data one to a line then.
     page.set_viewport_size({"width": 1440, "height": 900})
     open_page(app, "#id=four_bar_acceleration:standard:3:0")
     page.wait_for_selector("#st-latex .step-math .katex")
     assert page.evaluate(FITS, "#st-latex .step-math") == [{"narrow": None, "scrolls": False}]
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.wait_for_selector("#st-latex .step-math[data-narrow]")
+    assert page.evaluate(FITS, "#st-latex .step-math")[0]["scrolls"] is False
 
 
 def test_a_bad_share_link_says_why(app: AppPage) -> None:
