@@ -64,21 +64,15 @@ def _inside(at: Point, label: str, size: float, anchor: str) -> tuple[Point, str
 
 
 def _text(
-    canvas: Canvas,
-    p: Point,
-    label: str,
-    dx: float = 7,
-    dy: float = -7,
-    color: str = INK,
-    size: float = 13,
+    canvas: Canvas, p: Point, label: str, dx: float = 7, dy: float = -7, color: str = INK
 ) -> None:
-    """A label beside a world point: (dx, dy) pixels off it, else the first free one of the
-    places around it (``BESIDE``), away from the labels, bars and marks placed before
+    """A label (13 px) beside a world point: (dx, dy) pixels off it, else the first free one of
+    the places around it (``BESIDE``), away from the labels, bars and marks placed before
     (``Canvas.label``) and within the figure."""
     x, y = canvas.px(p)
     offsets = [(dx, dy, "start"), *(o for o in BESIDE if o[:2] != (dx, dy))]
-    places = [_inside((x + ox, y + oy), label, size, side) for ox, oy, side in offsets]
-    canvas.label(places, label, size, [("fill", color), FONT])
+    places = [_inside((x + ox, y + oy), label, 13, side) for ox, oy, side in offsets]
+    canvas.label(places, label, 13, [("fill", color), FONT])
 
 
 def _mark(canvas: Canvas, x: float, y: float, half_width: float, up: float, down: float) -> None:

@@ -244,7 +244,6 @@ export class CamApp {
     this.buildDrawing();
     this.draw();
     await this.renderPlots();
-    if (this.playing) this.solutionWhilePlaying();
     this.scheduleSolution();
     this.onChange();
     return true;
@@ -499,11 +498,10 @@ export class CamApp {
     this.playing = playing;
     this.el.play.textContent = playing ? 'Pause' : 'Play';
     this.el.play.setAttribute('aria-pressed', String(playing));
-    if (!playing) {
+    if (playing) this.solutionWhilePlaying();
+    else {
       this.moveCursor();
       this.scheduleSolution();
-    } else if (this.scene) {
-      this.solutionWhilePlaying();
     }
     this.onChange();
   }

@@ -43,7 +43,7 @@ const oneDatumALine = (latex) => latex.replaceAll(',\\;', ',\\\\');
 
 /** A statement's or a step's equations as a block (steps.mathBlock: narrowed where too wide,
  * else scrolling in a group the keyboard reaches); KaTeX loaded first. */
-async function equations(latex, label, narrow = undefined) {
+async function equations(latex, label, narrow) {
   await katexReady();
   const [math, error] = mathBlock(latex, label, narrow);
   if (error) math.classList.add('step-error');
