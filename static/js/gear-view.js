@@ -50,10 +50,12 @@ export class GearTrains {
     this.presets = new Map();
     this.examples = [];
     this.shown = false;
-    this.playing = !matchMedia('(prefers-reduced-motion: reduce)').matches;
     this.seq = 0;
     this.units = 'si';
     this.onChange = () => {}; // main.js keeps the share link up to date
+    // paused where the system asks for reduced motion, and the button says so (its markup says
+    // Pause: it read Pause over a still train, and a click on it started the train)
+    this.setPlaying(!matchMedia('(prefers-reduced-motion: reduce)').matches);
     this.t = 0; // display time within the playback, s
     // while playing, the display time runs at one turn of the input per TURN_SECONDS
     this.playback = new Playback(() => this.shown, (dt) => {

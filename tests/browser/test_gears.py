@@ -84,6 +84,25 @@ def test_planetary_train_turns_at_the_server_speeds(app: AppPage) -> None:
     assert "Tabular method, carrier arm" in page.inner_text("#gear-steps")
 
 
+def test_with_reduced_motion_the_train_opens_still_and_its_button_says_play(
+    app: AppPage,
+) -> None:
+    """A student whose system asks for reduced motion (every test not marked moving) gets the
+    train still and a Play button; Play then turns it. The button read Pause over a still
+    train, so that a click meant to pause it started it."""
+    page = open_gears(app)
+    assert page.get_attribute("#gear-play", "aria-pressed") == "false"
+    assert page.inner_text("#gear-play") == "Play"
+    still = page.inner_text("#gear-readout")
+    page.wait_for_timeout(300)
+    assert page.inner_text("#gear-readout") == still
+    page.click("#gear-play")
+    assert page.get_attribute("#gear-play", "aria-pressed") == "true"
+    page.wait_for_function(
+        "(t) => document.getElementById('gear-readout').textContent !== t", arg=still
+    )
+
+
 def test_a_field_edited_in_the_page_asks_the_server_again(app: AppPage) -> None:
     page = open_gears(app)
     page.fill("#gear-f-N_planet", "40")
