@@ -162,7 +162,7 @@ async function polygonImage(main, format) {
     const legend = div === main ? $(`${main.id}-legend`) : null;
     const shown = div.getBoundingClientRect().height + (legend ? legend.getBoundingClientRect().height : 0);
     const height = Math.round(shown * zoom);
-    images.push({ url: await P.toImage(legend ? withLegend(div) : div, { format, width, height, scale }), height });
+    images.push({ url: await P.toImage(legend ? withLegend(div) : { data: div.data, layout: div.layout }, { format, width, height, scale }), height });
   }
   const total = images.reduce((sum, im) => sum + im.height, 0);
   return format === 'png' ? stackPng(images, width, total, scale) : stackSvg(images, width, total);

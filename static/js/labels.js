@@ -1,4 +1,4 @@
-// labels.js: labels of a Plotly polygon placed so that no two overlap and few sit on a line.
+// labels.js: labels of a polygon (plane-figure.js) placed so that no two overlap and few sit on a line.
 //
 // On the figure's frame (its axes' ranges, at equal scales, and its plot area), each label is tried
 // at growing distances in eight directions around its anchor (the tip it names); the position
@@ -11,14 +11,16 @@
 import { overlaps, segmentHitsBox } from './boxes.js';
 
 const FONT = '600 14px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
-const HEIGHT = 17;
+/** px: the height of a label's box (its line of 14 px text). */
+export const LABEL_HEIGHT = 17;
 const PAD = 2;
 const RADII = [6, 12, 20, 30, 42, 56, 72, 90, 110, 135, 165];
 const LEADER = 42; // px: labels placed this far from their anchor get a leader line
 const DIRECTIONS = [[1, -1], [-1, -1], [1, 1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
 
 let context = null;
-function textWidth(html) {
+/** px: the width of the label `html` at 14 px (its subscripts and superscripts at 70 %). */
+export function textWidth(html) {
   context = context || document.createElement('canvas').getContext('2d');
   context.font = FONT;
   // Subscripts and superscripts are smaller: count them at 70 %.
@@ -42,30 +44,19 @@ function segmentsOf(traces, toPx) {
 
 // ---- the plot area a figure is drawn in ---------------------------------------------------------
 // A figure whose axes' ranges are given (not autoranged) maps data to pixels linearly: its labels
-// can be placed before it is drawn, so that Plotly draws it once (not once to learn its scale and
-// again with its labels). With fixed margins (no automargin, no legend in the figure: polygons.js)
-// its plot area is known before it is drawn: the div's size less the margins.
+// are placed before it is drawn. With fixed margins (polygons.js) its plot area is known before it
+// is drawn: the div's size less the margins.
 
 /**
- * The size {width, height} (px) of a figure drawn in `div` (its computed size, rounded, as Plotly
- * sizes a figure to its div) and its plot area {w, h} (px) laid out with `margin` (fixed).
- * Plotly sizes a figure to its div when first drawn, and keeps that size through later drawings:
- * the figure is given this size (a polygon's div changes height with its legend's rows).
+ * The size {width, height} (px) of a figure drawn in `div` (its computed size, rounded) and its
+ * plot area {w, h} (px) laid out with `margin` (fixed). A polygon's div changes height with its
+ * legend's rows: its figure is drawn at the size the div has once the legend is in place.
  */
 export function plotArea(div, margin) {
   const style = getComputedStyle(div);
   const [width, height] = [Math.round(parseFloat(style.width)), Math.round(parseFloat(style.height))];
   return { width, height, w: width - margin.l - margin.r, h: height - margin.t - margin.b };
 }
-
-/** The size and plot area of the drawn `div` (as plotArea), or null before a drawing. */
-export function drawnArea(div) {
-  const layout = div._fullLayout;
-  return layout?._size ? { width: layout.width, height: layout.height, w: layout._size.w, h: layout._size.h } : null;
-}
-
-/** Whether two plot areas are the same to half a pixel. */
-export const sameArea = (a, b) => !!a && !!b && Math.abs(a.w - b.w) < 0.5 && Math.abs(a.h - b.h) < 0.5;
 
 /**
  * Ranges {x, y} that show every point of `traces` and the pole (0, 0) in a plot area `area`
@@ -101,7 +92,7 @@ export function placeLabels(frame, entries, traces) {
   for (const e of entries) {
     const [ax, ay] = toPx(e.at);
     const w = textWidth(e.text) + 2 * PAD;
-    const h = HEIGHT + 2 * PAD;
+    const h = LABEL_HEIGHT + 2 * PAD;
     let best = null;
     for (const r of RADII) {
       for (const [dx, dy] of DIRECTIONS) {

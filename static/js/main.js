@@ -951,12 +951,10 @@ class App {
         this.linkage.setScene(this.scene, this.track);
       }
       this.linkage.setAnalysis(this.analysis);
-      const drawn = this.drawPolygons();
+      this.drawPolygons();
       this.mechanismFacts(this.analysis);
-      // Marked analysed once the polygons of this instant are being drawn (their details
-      // "pending"), so that a detail marked done is never the previous instant's.
-      await drawn;
-      if (seq !== this.analysisSeq) return; // a newer instant is being analysed
+      // Marked analysed once the polygons of this instant are drawn (their details "pending"),
+      // so that a detail marked done is never the previous instant's.
       $('linkage').dataset.analysed = String(this.instantValue(u));
       this.dirty = true; // the next frame draws this instant (its poles, vectors, readouts)
       // The plots' cursor is moved, and the worked solution asked for and typeset, once the
@@ -1032,12 +1030,11 @@ class App {
     }
   }
 
-  async drawPolygons() {
-    await plotlyReady();
+  drawPolygons() {
     if (!this.analysis) return;
-    const ok = renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.polygons, this.units);
+    renderPolygons($('velocity-polygon'), $('acceleration-polygon'), this.scene, this.analysis, this.polygons, this.units);
     renderMagnitudes($('polygon-table'), this.scene, this.analysis, this.polygons, this.units);
-    this.polygonMessage(ok ? '' : 'Plotly could not be loaded, so the polygons cannot be drawn.');
+    this.polygonMessage('');
     const v = this.instantValue(this.analysisU ?? this.u);
     if (this.track && !this.track.static && v !== null) {
       const label = this.track.param === 'time' ? `t = ${fmt(v)} s` : `θ = ${show('angle', v, this.units)}`;

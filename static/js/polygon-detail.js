@@ -9,14 +9,14 @@
 // It frames the shortest segment and the short ones (< L/5) next to it, grown only while the
 // frame stays under 5 s across (7 s with its margins), so that s is at least 1/7 of the
 // detail's extent. The region is marked by a dashed box in the polygon; both scales are written
-// as "1 cm = …" (a CSS centimetre, 96/2.54 px), from the pixels per unit Plotly laid out.
+// as "1 cm = …" (a CSS centimetre, 96/2.54 px), from the pixels per unit of each figure.
 
-import { placeLabels, plotArea, drawnArea, sameArea } from './labels.js';
+import { placeLabels, plotArea } from './labels.js';
 import { fmt, unitLabel } from './units.js';
+import { showFigure, setShapes, clearFigure, pixelsPerUnit } from './plane-figure.js';
 
 export const DETAIL_RULE = { negligible: 1e-3, short: 1 / 12, aspect: 5, sliver: 1 / 5, frame: 5 };
 const CM = 96 / 2.54; // CSS px in a CSS centimetre
-const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
 
 /** The drawn line segments of `traces` in data units: [[x1, y1], [x2, y2], length]. */
 function segmentsOf(traces) {
@@ -65,27 +65,19 @@ export function detailRegion(traces) {
   return { x: [frame.x0 - pad, frame.x1 + pad], y: [frame.y0 - pad, frame.y1 + pad], shortest: s, longest: L };
 }
 
-/** Pixels per data unit of a laid-out Plotly div (equal on both axes). */
-const pxPerUnit = (div) => {
-  const xa = div._fullLayout.xaxis;
-  return xa._length / (xa.range[1] - xa.range[0]);
-};
-
 /**
  * Draw `figure` (polygons.js: traces, labels, layout, and whether it is narrow) zoomed on its
- * detail region in `detail`, and mark the region in the
- * polygon `main` (already drawn with its labels, from a layout without the box); hide `detail`
- * when no detail is needed. When
- * done, `main.dataset.detail` is "shown" or "none" (polygons.js sets "pending" before drawing).
- * `current()` false: a newer drawing of `main` has begun, stop here.
+ * detail region in `detail`, and mark the region in the polygon `main` (already drawn with its
+ * labels, without the box); hide `detail` when no detail is needed. Then `main.dataset.detail` is
+ * "shown" or "none" (polygons.js sets "pending" before drawing it).
  */
-export async function renderDetail(P, main, detail, figure, kind, units, current) {
+export function renderDetail(main, detail, figure, kind, units) {
   const region = detailRegion(figure.traces);
   if (!region) {
     // `main` was just drawn from a layout without the dashed box (polygons.js): nothing to clear.
     detail.hidden = true;
-    P.purge(detail);
-    if (current()) main.dataset.detail = 'none';
+    clearFigure(detail);
+    main.dataset.detail = 'none';
     return;
   }
   detail.hidden = false;
@@ -93,40 +85,36 @@ export async function renderDetail(P, main, detail, figure, kind, units, current
     ...figure.layout,
     annotations: [],
     showlegend: false,
-    margin: { l: 44, r: 12, t: 76, b: 28 }, // (fixed: the tick labels end 17 px under the axes)
+    margin: { l: 44, r: 12, t: 76, b: 28 }, // fixed, as the polygon's (polygons.js)
     xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
     yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
   };
-  // Drawn once, with its scale and labels, on the plot area known before Plotly draws (its size
-  // less the fixed margins: labels.js, plotArea); again should Plotly have laid it out otherwise.
+  // Drawn with its scale and labels on its plot area (its size less the fixed margins: labels.js,
+  // plotArea); the region it shows fitted is marked in the polygon.
   const area = plotArea(detail, base.margin);
-  let laid = detailLayout(base, region, area, figure, main, kind, units);
-  await P.react(detail, figure.traces, laid, CONFIG);
-  if (!current()) return;
-  const drawn = drawnArea(detail);
-  if (!sameArea(area, drawn)) {
-    laid = detailLayout(base, region, drawn, figure, main, kind, units);
-    await P.react(detail, figure.traces, laid, CONFIG);
-    if (!current()) return;
-  }
-  const [x, y] = [laid.xaxis.range, laid.yaxis.range];
-  const box = { type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } };
-  await P.relayout(main, { shapes: [box] });
-  // Checked again: a newer drawing may have begun (and set "pending") while this one waited.
-  if (current()) main.dataset.detail = 'shown';
+  const scale = main.layout ? pixelsPerUnit(main.layout) : NaN;
+  const fitted = fittedRanges(region, area);
+  showFigure(detail, figure.traces, (ranges) => detailLayout(base, area, figure, scale, kind, units, ranges || fitted));
+  const { x, y } = fitted;
+  setShapes(main, [{ type: 'rect', xref: 'x', yref: 'y', x0: x[0], x1: x[1], y0: y[0], y1: y[1], line: { color: '#6b7280', width: 1, dash: 'dash' } }]);
+  main.dataset.detail = 'shown';
 }
 
-/**
- * The detail's layout at the size and plot area `area` ({width, height, w, h} px): `region`
- * centred at equal scales, the larger of the two fits' (k px per unit), its scale and the
- * polygon's in the title, and the labels of the tips inside it.
- */
-function detailLayout(base, region, area, figure, main, kind, units) {
+/** The axes' ranges {x, y} that show `region` centred in the plot area `area` at equal scales. */
+function fittedRanges(region, area) {
   const k = Math.min(area.w / (region.x[1] - region.x[0]), area.h / (region.y[1] - region.y[0]));
   const cx = (region.x[0] + region.x[1]) / 2;
   const cy = (region.y[0] + region.y[1]) / 2;
-  const x = [cx - area.w / (2 * k), cx + area.w / (2 * k)];
-  const y = [cy - area.h / (2 * k), cy + area.h / (2 * k)];
+  return { x: [cx - area.w / (2 * k), cx + area.w / (2 * k)], y: [cy - area.h / (2 * k), cy + area.h / (2 * k)] };
+}
+
+/**
+ * The detail's layout at the size and plot area `area` ({width, height, w, h} px) and the axes'
+ * `ranges` {x, y}: its scale (k px per unit) and the polygon's (`scale` px per unit) in the
+ * title, and the labels of the tips inside it.
+ */
+function detailLayout(base, area, figure, scale, kind, units, { x, y }) {
+  const k = area.w / (x[1] - x[0]);
   const u = unitLabel(kind, units);
   const inside = ([px, py]) => px >= x[0] && px <= x[1] && py >= y[0] && py <= y[1];
   const entries = figure.labels.filter(([at]) => inside(at)).map(([at, text, colour]) => ({ at, text, colour }));
@@ -135,12 +123,9 @@ function detailLayout(base, region, area, figure, main, kind, units) {
     width: area.width,
     height: area.height,
     title: {
-      text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / pxPerUnit(main))} ${u}</span>`,
-      // Under Plotly's toolbar (its top 28 px at the right: it covered the title's end): the
-      // first line from 31 px down (pad 42, as Plotly places it), the second ending 12 px above
-      // the axes (clear of y's top tick label); at 11 px in a narrow figure, so that it fits.
+      text: `${kind === 'velocity' ? 'Velocity' : 'Acceleration'} detail (dashed box): 1 cm = ${fmt(CM / k)} ${u}<br><span style="font-size:11px;color:#6b7280">polygon: 1 cm = ${fmt(CM / scale)} ${u}</span>`,
+      // Its two lines in the top margin; at 11 px in a narrow figure, so that they fit.
       font: { size: figure.narrow ? 11 : 13 }, x: 0.02, xanchor: 'left',
-      yref: 'container', y: 1, yanchor: 'top', pad: { t: 42 },
     },
     annotations: placeLabels({ x, y, w: area.w, h: area.h }, entries, figure.traces),
     xaxis: { ...base.xaxis, range: x },

@@ -1,4 +1,4 @@
-// polygons.js: the velocity and acceleration polygons (Plotly, equal axis scales).
+// polygons.js: the velocity and acceleration polygons (plane-figure.js: SVG, equal axis scales).
 //
 // Drawn as a textbook draws them: every absolute vector from the pole of the polygon, labelled
 // with the lowercase name of its point (b for B); the image of each link joins the tips of its
@@ -17,16 +17,13 @@ import { linkColours, movingLinks } from './scene.js';
 import { toDisplay, unitLabel, fmt } from './units.js';
 import { componentSources } from './track.js';
 import { imageName, pointName, POLYGON_POLE } from './notation.js';
-import { placeLabels, plotArea, drawnArea, sameArea, equalRanges } from './labels.js';
+import { placeLabels, plotArea, equalRanges } from './labels.js';
 import { renderDetail } from './polygon-detail.js';
+import { showFigure, showTraces, clearFigure, dashArray } from './plane-figure.js';
 
 const TINY = 1e-12;
 
 const lower = imageName;
-
-function plotly() {
-  return globalThis.Plotly || null;
-}
 
 /** A trace of arrows: segments [from, to, label] drawn as lines with an arrowhead at `to`. */
 function arrows(name, segments, colour, { dash = 'solid', width = 2.4, group = name, showlegend = true } = {}) {
@@ -72,24 +69,18 @@ const slidingName = (symbol, point, part) => `${symbol}<sub>${point},${part}</su
 const norm = (a) => Math.hypot(a[0], a[1]);
 
 /**
- * The layout of a polygon titled `title` in a figure `narrow` or not (NARROW), with `note`
- * (optional: {text, colour}) heading its legend.
+ * The layout of a polygon titled `title`, with `note` (optional: {text, colour}) heading its
+ * legend.
  */
-function baseLayout(title, kind, units, narrow, note = null) {
+function baseLayout(title, kind, units, note = null) {
   // The unit goes into the title: axis titles would collide with the legend under the plot.
   const u = unitLabel(kind, units);
-  // A narrow polygon (a phone's, or in a laptop's third column at 1280 wide) has no room for its
-  // title beside Plotly's toolbar (top right): the title goes under the toolbar, just above the
-  // axes and clear of y's top tick label (which reaches 7 px above them).
   return {
-    title: {
-      text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left',
-      ...(narrow ? { yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 14 } } : {}),
-    },
-    // Fixed margins (nothing pushes them: no automargin, no legend in the figure), so that the plot
-    // area is the div's size less them, known before Plotly draws (labels.js, plotArea): the x
-    // axis' tick labels end 17 px under the axes, 11 px clear of the legend under the figure.
-    margin: { l: 44, r: 12, t: narrow ? 68 : 38, b: 28 },
+    title: { text: `${title} <span style="font-size:12px;color:#6b7280">[${u}]</span>`, font: { size: 15 }, x: 0.02, xanchor: 'left' },
+    // Fixed margins, so that the plot area is the div's size less them, known before the figure
+    // is drawn (labels.js, plotArea): the x axis' tick labels end 19 px under the axes, 9 px clear
+    // of the legend under the figure.
+    margin: { l: 44, r: 12, t: 38, b: 28 },
     xaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3' },
     yaxis: { zeroline: true, zerolinecolor: '#d1d5db', gridcolor: '#eef0f3', scaleanchor: 'x', scaleratio: 1 },
     // The legend is drawn in HTML under the figure (drawLegend); this one is an exported image's
@@ -107,10 +98,8 @@ function baseLayout(title, kind, units, narrow, note = null) {
   };
 }
 
-const CONFIG = { displaylogo: false, responsive: true, modeBarButtonsToRemove: ['select2d', 'lasso2d'] };
-// px: a polygon narrower than this is "narrow": its title (up to about 210 px, from 2 % of the
-// width) and Plotly's toolbar (216 px, at the right) do not fit side by side. At 1440x900 the
-// polygons are 439 px wide (beside), at 1366 406 px and at 1280 369 px (under), on a phone 340.
+// px: a polygon narrower than this is "narrow": its detail's title is written smaller. At 1440x900
+// the polygons are 439 px wide (beside), at 1366 406 px and at 1280 369 px (under), on a phone 340.
 const NARROW = 430;
 
 /** Points of the analysis with their vectors, converted to display units. */
@@ -210,7 +199,7 @@ export function velocityFigure(scene, analysis, polygons, units, narrow) {
   traces.push(arrows('transport velocity', tr, COLOURS.transport, { dash: 'dash', width: 2 }));
   traces.push(arrows('relative velocity', rel, COLOURS.relative, { width: 2 }));
   lab.unshift([[0, 0], poleLabel(POLYGON_POLE.velocity, tips)]);
-  return { traces, labels: [...lab, ...parts], layout: baseLayout('Velocity polygon', 'velocity', units, narrow), narrow };
+  return { traces, labels: [...lab, ...parts], layout: baseLayout('Velocity polygon', 'velocity', units), narrow };
 }
 
 export function accelerationFigure(scene, analysis, polygons, units, narrow) {
@@ -278,64 +267,52 @@ export function accelerationFigure(scene, analysis, polygons, units, narrow) {
   const note = zeroCoriolis.length
     ? { text: `Coriolis = 0 at ${zeroCoriolis.join(', ')} (guide not turning)`, colour: COLOURS.coriolis }
     : null;
-  const layout = baseLayout('Acceleration polygon', 'acceleration', units, narrow, note);
+  const layout = baseLayout('Acceleration polygon', 'acceleration', units, note);
   return { traces, labels: [...lab, ...parts], layout, narrow };
 }
 
-/** Draw both polygons; returns false (and leaves a message) when Plotly is unavailable. */
+/** Draw both polygons. */
 export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units) {
-  const P = plotly();
-  if (!P) return false;
   const narrow = velDiv.clientWidth < NARROW; // the two polygons share their column
   if (analysis?.points && Object.values(analysis.points).some((q) => q.velocity)) {
-    drawPolygon(P, velDiv, velocityFigure(scene, analysis, polygons, units, narrow), 'velocity', units);
+    drawPolygon(velDiv, velocityFigure(scene, analysis, polygons, units, narrow), 'velocity', units);
   }
   if (analysis?.points && Object.values(analysis.points).some((q) => q.acceleration)) {
-    drawPolygon(P, accDiv, accelerationFigure(scene, analysis, polygons, units, narrow), 'acceleration', units);
+    drawPolygon(accDiv, accelerationFigure(scene, analysis, polygons, units, narrow), 'acceleration', units);
   }
-  return true;
 }
 
 const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
 
 /**
- * One polygon: its legend (HTML, under the figure), then its figure with its labels, drawn once
- * by Plotly on the plot area known before it draws (labels.js, plotArea: the div's size, with
- * the legend in place, less fixed margins; drawn again should Plotly have laid it out otherwise),
- * then (once painted) its detail, each step waiting for Plotly: the polygon a reader looks at
- * first is not held back by the detail. A newer drawing of the same div stops what is left of an
- * older one, so a fast series of instants never leaves one instant's labels or detail on
- * another's polygon, nor marks a detail done too early.
+ * One polygon: its legend (HTML, under the figure), then its figure with its labels, drawn on the
+ * plot area the div has with its legend in place (labels.js, plotArea), then (once painted) its
+ * detail: the polygon a reader looks at first is not held back by the detail. A newer drawing of
+ * the same div stops what is left of an older one, so a fast series of instants never leaves one
+ * instant's detail on another's polygon, nor marks a detail done too early.
  */
-function drawPolygon(P, div, figure, kind, units) {
+function drawPolygon(div, figure, kind, units) {
   const turn = (turns.get(div) || 0) + 1;
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
   div.dataset.detail = 'pending';
-  drawLegend(P, div, figure);
+  drawLegend(div, figure);
   const area = plotArea(div, figure.layout.margin);
-  P.react(div, figure.traces, labelled(figure, area), CONFIG)
-    .then(() => {
-      const drawn = current() && drawnArea(div);
-      return drawn && !sameArea(area, drawn) && P.react(div, figure.traces, labelled(figure, drawn), CONFIG);
-    })
-    .then(() => current() && afterPaint())
-    .then(() => current() && renderDetail(P, div, detailOf(div), figure, kind, units, current));
+  showFigure(div, figure.traces, (ranges) => labelled(figure, area, ranges));
+  afterPaint().then(() => current() && renderDetail(div, detailOf(div), figure, kind, units));
 }
 
 /** The HTML legend under a polygon (its id the figure's and "-legend"). */
 const legendOf = (div) => document.getElementById(`${div.id}-legend`);
 
 /**
- * The legend of `figure` drawn in `div`, in HTML under it, as Plotly's own legend read: the
- * note (the layout's legend title) first, then one entry per legend group, its first trace's
- * name and line (colour, width, dash; an arrowhead for arrows, a fill for a plate's image). An
- * entry is a button that hides or shows its group's traces (`aria-pressed`), as a click on
- * Plotly's legend did. Plotly's legend took its room from the figure once drawn (a margin it
- * reserved), so that the plot area was known only after a first drawing, and it cost a third of
- * each polygon's drawing.
+ * The legend of `figure` drawn in `div`, in HTML under it, as Plotly's own legend reads (and an
+ * exported image's, drawn by Plotly: withLegend): the note (the layout's legend title) first,
+ * then one entry per legend group, its first trace's name and line (colour, width, dash; an
+ * arrowhead for arrows, a fill for a plate's image). An entry is a button that hides or shows its
+ * group's traces (`aria-pressed`).
  */
-function drawLegend(P, div, figure) {
+function drawLegend(div, figure) {
   const note = figure.layout.legend?.title;
   const entries = figure.traces.filter((t) => t.showlegend !== false);
   const items = entries.map((t) => {
@@ -346,7 +323,7 @@ function drawLegend(P, div, figure) {
     button.addEventListener('click', () => {
       const shown = button.getAttribute('aria-pressed') !== 'true';
       button.setAttribute('aria-pressed', String(shown));
-      P.restyle(div, { visible: shown ? true : 'legendonly' }, group);
+      showTraces(div, group, shown);
     });
     const item = document.createElement('li');
     item.append(button);
@@ -364,7 +341,7 @@ const SYMBOL_WIDTH = 40; // px, as Plotly's legend draws a trace's line
 const SVG = 'http://www.w3.org/2000/svg';
 
 /** A legend entry's symbol: the trace's line across 40 px, with an arrowhead at its middle for an
- * arrow, over its fill for a plate's image (Plotly's dashes: dot d d, dash 3d 3d, d = max(width, 3)). */
+ * arrow, over its fill for a plate's image (its dashes the figure's: plane-figure.js, dashArray). */
 function legendSymbol(t) {
   const svg = document.createElementNS(SVG, 'svg');
   svg.setAttribute('width', String(SYMBOL_WIDTH));
@@ -376,8 +353,7 @@ function legendSymbol(t) {
     svg.appendChild(e);
   };
   const width = Math.min(t.line.width, 5);
-  const d = Math.max(t.line.width, 3);
-  const dash = { dot: `${d},${d}`, dash: `${3 * d},${3 * d}` }[t.line.dash] || 'none';
+  const dash = dashArray(t.line.dash, t.line.width) || 'none';
   if (t.fill === 'toself') make('rect', { x: 5, y: 1, width: 30, height: 10, fill: t.fillcolor });
   make('line', { x1: 5, y1: 6, x2: 35, y2: 6, stroke: t.line.color, 'stroke-width': width, 'stroke-dasharray': dash });
   if (t.marker?.symbol === 'arrow') make('path', { d: 'M 16 2 L 24 6 L 16 10 Z', fill: t.line.color });
@@ -386,7 +362,7 @@ function legendSymbol(t) {
 
 /**
  * The figure drawn in `div` with Plotly's legend in it (under the tick labels, headed by the
- * note), for an image of it (export.js): {data, layout}.
+ * note), for an image of it drawn by Plotly (export.js): {data, layout}.
  */
 export function withLegend(div) {
   return { data: div.data, layout: { ...div.layout, showlegend: true } };
@@ -396,12 +372,11 @@ const PAD = 24; // px between the outermost tip and the edge of the plot area (a
 
 /**
  * The layout of `figure` at the size and plot area `area` ({width, height, w, h} px: labels.js,
- * plotArea): ranges that show it whole at equal scales (fixed: Plotly would otherwise widen them
- * to fit the annotations, and a label's pixel offset would no longer match its neighbours'), and
- * the labels of the tips and poles placed on them (labels.js).
+ * plotArea): the axes' `ranges` {x, y} (zoomed: plane-figure.js), or when null ranges that show
+ * it whole at equal scales, and the labels of the tips and poles placed on them (labels.js).
  */
-function labelled(figure, area) {
-  const { x, y } = equalRanges(figure.traces, area, PAD);
+function labelled(figure, area, ranges = null) {
+  const { x, y } = ranges || equalRanges(figure.traces, area, PAD);
   const entries = figure.labels.map(([at, text, colour]) => ({ at, text, colour }));
   return {
     ...figure.layout,
@@ -417,15 +392,13 @@ function labelled(figure, area) {
 const detailOf = (div) => document.getElementById(`${div.id}-detail`);
 
 export function clearPolygons(...divs) {
-  const P = plotly();
-  if (!P) return;
   for (const d of divs) {
     turns.set(d, (turns.get(d) || 0) + 1);
-    P.purge(d);
+    clearFigure(d);
     legendOf(d)?.replaceChildren();
     const detail = detailOf(d);
     if (detail) {
-      P.purge(detail);
+      clearFigure(detail);
       detail.hidden = true;
     }
   }

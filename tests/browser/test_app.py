@@ -141,8 +141,8 @@ def test_polygons_are_drawn_head_to_tail_with_equal_axes(app: AppPage) -> None:
     app.open()
     page = app.page
     pause_and_wait(page)
-    page.wait_for_selector("#velocity-polygon .main-svg")
-    page.wait_for_selector("#acceleration-polygon .main-svg")
+    page.wait_for_selector("#velocity-polygon .plane-figure")
+    page.wait_for_selector("#acceleration-polygon .plane-figure")
     names = json.loads(
         page.evaluate(
             "JSON.stringify(document.getElementById('acceleration-polygon').data.map(t => t.name))"
@@ -428,7 +428,7 @@ def test_seed_examples_open(app: AppPage, example: str) -> None:
     )
     page.wait_for_selector("#linkage .link", state="attached")
     pause_and_wait(page)
-    page.wait_for_selector("#velocity-polygon .main-svg")
+    page.wait_for_selector("#velocity-polygon .plane-figure")
     assert page.locator("#status[data-level='error']:not(:empty)").count() == 0
 
 
@@ -704,7 +704,7 @@ def test_drawing_motion_controls_and_polygons_fit_one_laptop_screen(app: AppPage
     app.page.set_viewport_size({"width": 1440, "height": 900})
     app.open()
     page = app.page
-    page.wait_for_selector("#velocity-polygon .main-svg")
+    page.wait_for_selector("#velocity-polygon .plane-figure")
     for selector in (
         "#linkage",
         "#play",
@@ -921,14 +921,10 @@ def test_transmission_angle_with_its_extremes_and_grashof_class(app: AppPage) ->
 
 # ---- notation and readable polygons ------------------------------------------------------------
 
-LABEL_BOXES = """(id) => {
-    const div = document.getElementById(id);
-    const notes = div.layout.annotations || [];
-    return [...div.querySelectorAll('g.annotation')]
-        .filter((g) => String(notes[Number(g.dataset.index)]?.name || '').startsWith('label:'))
-        .map((g) => { const r = g.querySelector('.annotation-text-g').getBoundingClientRect();
-                      return [g.textContent, r.left, r.top, r.right, r.bottom]; });
-}"""
+# The boxes of the labels drawn in a figure (plane-figure.js: each on its box, a rect).
+LABEL_BOXES = """(id) => [...document.getElementById(id).querySelectorAll('g.figure-label')]
+    .map((g) => { const r = g.querySelector('rect').getBoundingClientRect();
+                  return [g.dataset.text, r.left, r.top, r.right, r.bottom]; })"""
 
 DETAIL_DONE = """(id) => { const d = document.getElementById(id).dataset.detail;
                           return d === 'shown' || d === 'none'; }"""
@@ -1167,7 +1163,7 @@ def test_a_four_bar_drawn_from_scratch_analyses(app: AppPage) -> None:
     assert page.locator("#editor-panel").is_hidden()
     page.wait_for_selector("#linkage .link", state="attached")
     pause_and_wait(page)
-    page.wait_for_selector("#velocity-polygon .main-svg")
+    page.wait_for_selector("#velocity-polygon .plane-figure")
     facts = wait_until(lambda: page.inner_text("#mechanism-facts"), what="Grashof class")
     assert "Grashof crank-rocker" in facts
     scene = exported_scene(page)

@@ -1,8 +1,7 @@
 """The app on a 390x844 phone (issue 30): the drawing and the polygons come first, before the
 controls, also after an input (they were ~4000 px down the page after every input, under the
-controls); screenshot, axe-core on the page; the polygons' titles, notes, tick labels and legends
-clear of one another and of Plotly's toolbar (also on a laptop and a tablet). Real server,
-Debian's Chromium."""
+controls); screenshot, axe-core on the page; the polygons' titles, tick labels and legends
+clear of one another (also on a laptop and a tablet). Real server, Debian's Chromium."""
 
 from __future__ import annotations
 
@@ -54,41 +53,19 @@ def test_on_a_phone_the_drawing_and_the_polygons_come_first(app: AppPage) -> Non
     assert app.serious_accessibility_violations() == []
 
 
-def test_on_a_phone_plotlys_toolbar_leaves_the_polygons_titles_clear(app: AppPage) -> None:
-    """Each polygon's title sits under Plotly's toolbar, not behind it (the toolbar covered
-    "[m/s]" of "Velocity polygon [m/s]" at 390 px)."""
-    page = app.page
-    page.set_viewport_size({"width": 390, "height": 844})
-    app.open()
-    pause_and_wait(page)
-    for polygon in ("#velocity-polygon", "#acceleration-polygon"):
-        page.hover(polygon)  # the toolbar shows
-        page.wait_for_selector(f"{polygon} .modebar")
-        title = shown_boxes(page, f"{polygon} .gtitle")
-        toolbar = shown_boxes(page, f"{polygon} .modebar")
-        assert title and toolbar, polygon
-        assert not overlapping_pairs(title + toolbar), (polygon, title, toolbar)
-
-
 # The boxes [left, top, right, bottom] (px) of the texts of a polygon (or its detail) around its
 # axes, by kind: its legend (a polygon's, in HTML under the figure: its note and its entries), the
-# tick labels of its axes, its title, its notes (annotations other than the labels of the vectors,
-# "label:..."), and Plotly's toolbar (laid out, transparent until the pointer is over the figure);
-# and the figure's own box (a polygon's with its legend, or the detail's).
+# tick labels of its axes and its title (plane-figure.js); and the figure's own box (a polygon's
+# with its legend, or the detail's).
 FIGURE_TEXTS = """(id) => {
     const div = document.getElementById(id);
     const legend = document.getElementById(`${id}-legend`);
-    const notes = div.layout.annotations || [];
     const box = (e) => { const r = e.getBoundingClientRect();
                          return [r.left, r.top, r.right, r.bottom]; };
     return [box(legend ? div.parentElement : div), {
         legend: legend ? [...legend.children].map(box) : [],
-        'tick label': [...div.querySelectorAll('.xtick text, .ytick text')].map(box),
-        title: [...div.querySelectorAll('.gtitle')].map(box),
-        note: [...div.querySelectorAll('g.annotation')]
-            .filter((g) => !String(notes[Number(g.dataset.index)]?.name || '').startsWith('label:'))
-            .map((g) => box(g.querySelector('.annotation-text-g'))),
-        toolbar: [...div.querySelectorAll('.modebar')].map(box),
+        'tick label': [...div.querySelectorAll('.tick-label')].map(box),
+        title: [...div.querySelectorAll('.figure-title')].map(box),
     }];
 }"""
 
@@ -111,7 +88,7 @@ def figure_texts_clear(page: Any, div: str) -> dict[str, list[list[float]]]:
     that the title and the legend are not cut at the figure's left or right edge, and that the
     tick labels and the legend lie within the figure (the tick labels take fixed margins)."""
     frame, texts = page.evaluate(FIGURE_TEXTS, div)
-    assert all(texts[k] for k in ("tick label", "title", "toolbar")), (div, texts)
+    assert all(texts[k] for k in ("tick label", "title")), (div, texts)
     assert clashes(texts) == [], (div, texts)
     whole = texts["title"] + texts["legend"]
     cut = [b for b in whole if b[0] < frame[0] - 1 or b[2] > frame[2] + 1]
@@ -128,12 +105,12 @@ def test_the_polygons_legend_tick_labels_title_and_note_never_overlap(
     app: AppPage, width: int, height: int
 ) -> None:
     """Every planar linkage in the menu, both polygons and their details: the legend, the tick
-    labels, the title, any note ("Coriolis = 0 at C (guide not turning)", wherever it is drawn)
-    and the toolbar do not overlap one another; the title and the legend are whole. On a phone
+    labels, the title and any note ("Coriolis = 0 at C (guide not turning)", in the legend) do
+    not overlap one another; the title and the legend are whole. On a phone
     the legend was drawn on the x axis' tick labels (placed at a fraction, -0.08, of the axes'
     height: 7 px there), the acceleration polygon's title on its Coriolis note and the detail's
     title cut at the right; at 1024x768 the legend touched the tick labels; at 1280x800 the titles
-    lay under the toolbar; at 1440x900 the note and the detail's title did. Screenshots
+    lay under Plotly's toolbar (the polygons were Plotly's then). Screenshots
     polygons-<preset>-<viewport>."""
     page = app.page
     page.set_viewport_size({"width": width, "height": height})

@@ -105,22 +105,28 @@ def test_slider_parts_are_labelled_and_listed(app: AppPage) -> None:
 
 # ---- a detail at its own scale for elongated polygons ------------------------------------------
 
-# Every drawn line segment of a figure, in data units and in the figure's pixels (Plotly's own
-# data-to-pixel mapping of the laid-out axes), with the axes' ranges.
+# Every drawn line segment of a figure, in data units and in the figure's pixels (read from the
+# paths drawn: each trace's stroked paths, one a run of its points between nulls), with the axes'
+# ranges and the title.
 DRAWN = """(id) => {
     const div = document.getElementById(id);
-    const xa = div._fullLayout.xaxis, ya = div._fullLayout.yaxis;
+    const runs = (points) => points.reduce((out, p) => {
+        if (p === null) out.push([]); else out[out.length - 1].push(p);
+        return out; }, [[]]).filter((r) => r.length);
     const segs = [];
-    for (const t of div.data) {
-        if (!String(t.mode || '').includes('lines')) continue;
-        for (let i = 0; i + 1 < t.x.length; i++) {
-            if (t.x[i] === null || t.x[i + 1] === null) continue;
-            segs.push([t.x[i], t.y[i], t.x[i + 1], t.y[i + 1],
-                       xa.l2p(t.x[i]), ya.l2p(t.y[i]), xa.l2p(t.x[i + 1]), ya.l2p(t.y[i + 1])]);
-        }
-    }
-    return {segs, x: xa.range, y: ya.range,
-            title: div.querySelector('.gtitle') ? div.querySelector('.gtitle').textContent : ''};
+    div.data.forEach((t, i) => {
+        if (!String(t.mode || '').includes('lines') || t.visible === 'legendonly') return;
+        const data = runs(t.x.map((x, j) => (x === null ? null : [x, t.y[j]])));
+        const drawn = [...div.querySelectorAll(`.trace[data-index="${i}"] path[fill="none"]`)]
+            .map((p) => [...p.getAttribute('d').matchAll(/[ML](-?[\\d.e-]+),(-?[\\d.e-]+)/g)]
+                .map((m) => [Number(m[1]), Number(m[2])]));
+        if (drawn.length !== data.length) throw new Error(`${id}: trace ${i} drawn in ${drawn.length} runs`);
+        data.forEach((run, r) => { for (let j = 0; j + 1 < run.length; j++) {
+            segs.push([...run[j], ...run[j + 1], ...drawn[r][j], ...drawn[r][j + 1]]); } });
+    });
+    const title = div.querySelector('.figure-title');
+    return {segs, x: div.layout.xaxis.range, y: div.layout.yaxis.range,
+            title: title ? title.textContent.replace(/\\u200b/g, '') : ''};
 }"""
 
 CSS_CM = 96 / 2.54  # CSS px
@@ -194,7 +200,7 @@ def test_an_elongated_acceleration_polygon_gets_a_readable_detail_at_its_stated_
     )
     assert inside(s_detail), "the shortest segment is in the detail"
     assert px(s_detail) >= 20 > px(s_main) * 1.4
-    # Plotly's data-to-pixel map is linear past the ranges too: every segment checks the scale.
+    # The data-to-pixel map is linear past the ranges too: every segment checks the scale.
     assert len(detail["segs"]) >= 3
     for seg in detail["segs"]:
         length = math.hypot(seg[2] - seg[0], seg[3] - seg[1])
@@ -231,14 +237,14 @@ def choose_figure(page: Any, div: str, fmt: str) -> None:
     page.select_option("#export-figure-format", fmt)
 
 
-# Whether each polygon is drawn at its div's size, on the plot area its labels were placed for.
+# Whether each polygon is drawn at its div's size (its SVG's), its detail done.
 FITTED = """() => ['velocity-polygon', 'acceleration-polygon'].every((id) => {
     const div = document.getElementById(id);
-    const full = div._fullLayout;
+    const svg = div.querySelector('svg.plane-figure');
     const style = getComputedStyle(div);
-    return full && full.width === Math.round(parseFloat(style.width))
-        && full.height === Math.round(parseFloat(style.height))
-        && full._size.w === full.width - 56 && ['shown', 'none'].includes(div.dataset.detail);
+    return svg && Number(svg.getAttribute('width')) === Math.round(parseFloat(style.width))
+        && Number(svg.getAttribute('height')) === Math.round(parseFloat(style.height))
+        && ['shown', 'none'].includes(div.dataset.detail);
 })"""
 
 
@@ -247,15 +253,15 @@ def test_the_polygons_are_drawn_again_at_their_size_when_the_window_changes(
 ) -> None:
     """A polygon is drawn at its div's size (its labels placed for that plot area): a window
     made narrower (1440 to 1024 wide, the polygons move under the drawing) draws both again at
-    their new size (Plotly keeps a figure's size from its first drawing otherwise)."""
+    their new size."""
     app.open()
     page = app.page
     pause_and_wait(page)
     page.wait_for_function(FITTED)
-    wide = page.evaluate("() => document.getElementById('velocity-polygon')._fullLayout.width")
+    wide = page.evaluate("() => document.getElementById('velocity-polygon').layout.width")
     page.set_viewport_size({"width": 1024, "height": 768})
     page.wait_for_function(
-        f"() => document.getElementById('velocity-polygon')._fullLayout.width !== {wide}"
+        f"() => document.getElementById('velocity-polygon').layout.width !== {wide}"
     )
     page.wait_for_function(FITTED)
 
@@ -282,12 +288,16 @@ def test_a_legend_entry_hides_and_shows_its_traces(app: AppPage) -> None:
     entry = page.locator("#velocity-polygon-legend button", has_text="absolute velocity")
     shown = ["velocity-polygon", "absolute velocity"]
     assert page.evaluate(VISIBILITY, shown) == [True]
+    drawn = "() => document.querySelectorAll('#velocity-polygon .trace').length"
+    before = page.evaluate(drawn)
     entry.click()
     assert entry.get_attribute("aria-pressed") == "false"
     page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === 'legendonly')", arg=shown)
+    assert page.evaluate(drawn) == before - 1, "the hidden trace is no longer drawn"
     entry.click()
     assert entry.get_attribute("aria-pressed") == "true"
     page.wait_for_function(f"(a) => ({VISIBILITY})(a).every((v) => v === true)", arg=shown)
+    assert page.evaluate(drawn) == before
 
 
 @pytest.mark.slow
@@ -326,3 +336,56 @@ def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None
         assert (scale in text) == (div == "acceleration-polygon"), (div, scale)
         legend = page.locator(f"#{div}-legend button").all_inner_texts()
         assert legend and all(name in text for name in legend), (div, legend)
+
+
+RANGES = """(id) => { const l = document.getElementById(id).layout;
+    return [l.xaxis.range, l.yaxis.range, l.width - l.margin.l - l.margin.r,
+            l.height - l.margin.t - l.margin.b]; }"""
+
+
+def test_a_polygon_zooms_pans_and_fits_again(app: AppPage) -> None:
+    """The velocity polygon (plane-figure.js): the wheel zooms about the pointer (the point under
+    it stays there, equal scales kept), a mouse drag pans by as many pixels, and 0 (the figure
+    focused) or a double click fits it again; the figure's keys leave the drawing's zoom alone.
+    Positions to 1e-9 of the span (the map is linear)."""
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    page.wait_for_function(FITTED)
+    fitted = page.evaluate(RANGES, "velocity-polygon")
+    (x0, x1), (y0, y1), w, h = fitted
+    box = page.locator("#velocity-polygon").bounding_box()
+    assert box is not None
+    margin = page.evaluate("() => document.getElementById('velocity-polygon').layout.margin")
+    # The pointer about a quarter into the plot area from its left and top (on a whole pixel:
+    # a mouse event's coordinates are whole CSS pixels).
+    at = (round(box["x"] + margin["l"] + w / 4), round(box["y"] + margin["t"] + h / 4))
+    fx = (at[0] - box["x"] - margin["l"]) / w
+    fy = (at[1] - box["y"] - margin["t"]) / h
+    under = (x0 + fx * (x1 - x0), y1 - fy * (y1 - y0))
+    page.mouse.move(*at)
+    page.mouse.wheel(0, -300)
+    page.wait_for_function(f"(id) => ({RANGES})(id)[0][1] < {x1}", arg="velocity-polygon")
+    (a0, a1), (b0, b1), _, _ = page.evaluate(RANGES, "velocity-polygon")
+    span = x1 - x0
+    assert a1 - a0 < span / 1.5, "zoomed in"
+    assert (b1 - b0) / h == pytest.approx((a1 - a0) / w, rel=1e-9), "equal scales"
+    assert a0 + fx * (a1 - a0) == pytest.approx(under[0], abs=1e-9 * span)
+    assert b1 - fy * (b1 - b0) == pytest.approx(under[1], abs=1e-9 * span)
+    # A drag 60 px right and 30 px down moves the view by as many pixels.
+    k = w / (a1 - a0)
+    page.mouse.down()
+    page.mouse.move(at[0] + 60, at[1] + 30, steps=3)
+    page.mouse.up()
+    (c0, _), (d0, _), _, _ = page.evaluate(RANGES, "velocity-polygon")
+    assert c0 == pytest.approx(a0 - 60 / k, abs=1e-9 * span)
+    assert d0 == pytest.approx(b0 + 30 / k, abs=1e-9 * span)
+    zoom = page.get_attribute("#linkage", "data-zoom")
+    page.focus("#velocity-polygon")
+    page.keyboard.press("0")
+    assert page.evaluate(RANGES, "velocity-polygon") == fitted
+    page.keyboard.press("+")
+    assert page.evaluate(RANGES, "velocity-polygon")[0][1] < x1
+    assert page.get_attribute("#linkage", "data-zoom") == zoom, "the drawing keeps its zoom"
+    page.dblclick("#velocity-polygon")
+    assert page.evaluate(RANGES, "velocity-polygon") == fitted
