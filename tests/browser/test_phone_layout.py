@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
+from tests.browser.conftest import AppPage, overlapping_pairs
 from tests.browser.test_app import DETAIL_DONE, choose, pause_and_wait
 
 pytestmark = pytest.mark.browser

@@ -120,7 +120,7 @@ DRAWN = """(id) => {
         const drawn = [...div.querySelectorAll(`.trace[data-index="${i}"] path[fill="none"]`)]
             .map((p) => [...p.getAttribute('d').matchAll(/[ML](-?[\\d.e-]+),(-?[\\d.e-]+)/g)]
                 .map((m) => [Number(m[1]), Number(m[2])]));
-        if (drawn.length !== data.length) throw new Error(`${id}: trace ${i} drawn in ${drawn.length} runs`);
+        if (drawn.length !== data.length) throw new Error(`${id}: trace ${i} drawn otherwise`);
         data.forEach((run, r) => { for (let j = 0; j + 1 < run.length; j++) {
             segs.push([...run[j], ...run[j + 1], ...drawn[r][j], ...drawn[r][j + 1]]); } });
     });
