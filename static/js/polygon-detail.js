@@ -92,6 +92,7 @@ export function renderDetail(main, detail, figure, kind, units) {
   // Drawn with its scale and labels on its plot area (its size less the fixed margins: labels.js,
   // plotArea); the region it shows fitted is marked in the polygon.
   const area = plotArea(detail, base.margin);
+  if (!(area.w > 0 && area.h > 0)) return; // not laid out (its polygon was hidden meanwhile)
   const scale = main.layout ? pixelsPerUnit(main.layout) : NaN;
   const fitted = fittedRanges(region, area);
   showFigure(detail, figure.traces, (ranges) => detailLayout(base, area, figure, scale, kind, units, ranges || fitted));

@@ -295,9 +295,10 @@ function drawPolygon(div, figure, kind, units) {
   const turn = (turns.get(div) || 0) + 1;
   turns.set(div, turn);
   const current = () => turns.get(div) === turn;
-  div.dataset.detail = 'pending';
   drawLegend(div, figure);
   const area = plotArea(div, figure.layout.margin);
+  if (!(area.w > 0 && area.h > 0)) return; // not laid out (another family's view is shown)
+  div.dataset.detail = 'pending';
   showFigure(div, figure.traces, (ranges) => labelled(figure, area, ranges));
   afterPaint().then(() => current() && renderDetail(div, detailOf(div), figure, kind, units));
 }
