@@ -7,9 +7,9 @@ from the printed sheet: the preset of the mechanism (``build_preset``) with the 
 angle and rates (``build_gear_preset`` for the trains), or the document written out (the moving
 point, the spatial arm, the cam, the synthesis tasks). It does not call the exercise's own
 generator, so a datum the statement leaves out (or prints wrong) fails here. The default run
-takes three seeds per type and difficulty (about 8 s of CPU for the 60 cases); the ``slow`` run
-takes the issue's 200 (10 to 36 s a case at a load average of 15 to 20 on 2 cores, about half an
-hour in all).
+takes three seeds per type and difficulty (seeds 0 to 2); the ``slow`` test takes the other 197
+of the issue's 200 (seeds 3 to 199), so that the whole suite checks each of the 200 once (about
+2 minutes of CPU for the 20 types' 60 cases on the 2-core development machine, 2026-11-30).
 """
 
 from __future__ import annotations
@@ -358,6 +358,9 @@ REBUILD: dict[str, Callable[[Exercise], dict[str, Any]]] = {
 }
 
 
+FIRST_SEEDS = 3  # the default run's seeds (0, 1, 2); the slow test takes the rest of 200
+
+
 def round_trip(kind: str, difficulty: str, seeds: range) -> None:
     for seed in seeds:
         e = build(ExerciseId(kind, difficulty, seed, 0))
@@ -372,14 +375,16 @@ def round_trip(kind: str, difficulty: str, seeds: range) -> None:
 @pytest.mark.parametrize("difficulty", DIFFICULTIES)
 @pytest.mark.parametrize("kind", list(REBUILD))
 def test_the_stated_numbers_rebuild_the_answers(kind: str, difficulty: str) -> None:
-    round_trip(kind, difficulty, range(3))
+    round_trip(kind, difficulty, range(FIRST_SEEDS))
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("difficulty", DIFFICULTIES)
 @pytest.mark.parametrize("kind", list(REBUILD))
-def test_the_stated_numbers_rebuild_the_answers_of_200_seeds(kind: str, difficulty: str) -> None:
-    round_trip(kind, difficulty, range(200))
+def test_the_stated_numbers_rebuild_the_answers_of_the_other_197_seeds(
+    kind: str, difficulty: str
+) -> None:
+    round_trip(kind, difficulty, range(FIRST_SEEDS, 200))
 
 
 def test_every_type_has_a_rebuild() -> None:
