@@ -57,11 +57,14 @@ export function niceTicks([a, b], px, minPx) {
   return { values, step };
 }
 
-/** A tick's label: as many decimals as the step needs, a minus sign for negatives. */
+/**
+ * A tick's label as Plotly writes it: as many decimals as the step needs, trailing zeros dropped
+ * (−1, −0.5, 0), a minus sign for negatives.
+ */
 export function tickText(value, step) {
   const decimals = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   const text = (Math.abs(value) < step * 1e-9 ? 0 : value).toFixed(decimals);
-  return text.replace(/^-/, '−');
+  return (text.includes('.') ? text.replace(/\.?0+$/, '') : text).replace(/^-/, '−');
 }
 
 /**
@@ -250,13 +253,13 @@ function render(div, data, layout) {
   for (const v of x.values) {
     const [gx] = px([v, 0]);
     svgEl('line', { x1: gx, y1: margin.t, x2: gx, y2: margin.t + h }, Math.abs(v) < x.step * 1e-9 ? zero : grid);
-    svgEl('text', { class: 'tick-label', x: gx, y: margin.t + h + 15, 'text-anchor': 'middle' }, ticks).textContent = tickText(v, x.step);
+    svgEl('text', { class: 'tick-label', 'data-axis': 'x', x: gx, y: margin.t + h + 15, 'text-anchor': 'middle' }, ticks).textContent = tickText(v, x.step);
   }
   const y = niceTicks(layout.yaxis.range, h, 40);
   for (const v of y.values) {
     const [, gy] = px([0, v]);
     svgEl('line', { x1: margin.l, y1: gy, x2: margin.l + w, y2: gy }, Math.abs(v) < y.step * 1e-9 ? zero : grid);
-    svgEl('text', { class: 'tick-label', x: margin.l - 4, y: gy, dy: '0.35em', 'text-anchor': 'end' }, ticks).textContent = tickText(v, y.step);
+    svgEl('text', { class: 'tick-label', 'data-axis': 'y', x: margin.l - 4, y: gy, dy: '0.35em', 'text-anchor': 'end' }, ticks).textContent = tickText(v, y.step);
   }
 
   // The traces, clipped to the plot area (a zoomed figure stays clear of its ticks and title).

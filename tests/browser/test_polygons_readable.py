@@ -389,3 +389,46 @@ def test_a_polygon_zooms_pans_and_fits_again(app: AppPage) -> None:
     assert page.get_attribute("#linkage", "data-zoom") == zoom, "the drawing keeps its zoom"
     page.dblclick("#velocity-polygon")
     assert page.evaluate(RANGES, "velocity-polygon") == fitted
+
+
+# The tick labels of a polygon as drawn (plane-figure.js), and as Plotly draws them for the same
+# size, margins and ranges (its own choice of ticks: the oracle the figure follows).
+TICKS = """async (id) => {
+    const div = document.getElementById(id);
+    const l = div.layout;
+    const ours = (axis) => [...div.querySelectorAll(`.tick-label[data-axis="${axis}"]`)]
+        .map((t) => t.textContent);
+    const probe = document.createElement('div');
+    probe.style.cssText = 'position: absolute; left: -5000px; top: 0';
+    document.body.append(probe);
+    await Plotly.newPlot(probe, [], {width: l.width, height: l.height, margin: l.margin,
+        xaxis: {range: l.xaxis.range}, yaxis: {range: l.yaxis.range}}, {staticPlot: true});
+    const plotly = (axis) => [...probe.querySelectorAll(`.${axis}tick text`)]
+        .map((t) => t.textContent);
+    const out = {ours: [ours('x'), ours('y')], plotly: [plotly('x'), plotly('y')]};
+    Plotly.purge(probe);
+    probe.remove();
+    return out;
+}"""
+
+
+@pytest.mark.parametrize("scene", ["preset:four_bar", "preset:quick_return"])
+def test_a_polygons_ticks_are_those_plotly_would_draw(app: AppPage, scene: str) -> None:
+    """Both polygons and a polygon zoomed in: the tick labels, values and text, are the ones
+    Plotly draws on the same axes (a step of 1, 2 or 5 times a power of ten, as many as fit)."""
+    app.open()
+    page = app.page
+    if scene != "preset:four_bar":
+        choose(app, scene)
+        page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
+    pause_and_wait(page)
+    page.wait_for_function(FITTED)
+    for div in ("velocity-polygon", "acceleration-polygon"):
+        ticks = page.evaluate(TICKS, div)
+        assert all(len(axis) >= 3 for axis in ticks["ours"]), ticks
+        assert ticks["ours"] == ticks["plotly"], (div, ticks)
+    page.focus("#acceleration-polygon")
+    for _ in range(3):
+        page.keyboard.press("+")
+    ticks = page.evaluate(TICKS, "acceleration-polygon")
+    assert ticks["ours"] == ticks["plotly"], ticks
