@@ -22,7 +22,7 @@ const TICK_SIZE = 12; // px
 const ZOOM_STEP = 1.25;
 
 /** The plot area's pixel of the data point (x, y) in `layout` (fixed margins and ranges). */
-export function toPixel(layout) {
+function toPixel(layout) {
   const { l, t } = layout.margin;
   const [w, h] = plotSize(layout);
   const [x0, x1] = layout.xaxis.range;
@@ -46,7 +46,7 @@ const plotSize = (layout) => [
  * `minPx` px (80 on x, 40 on y), 4 to 9 intervals, the step 1, 2 or 5 times a power of ten.
  * Returns {values, step}.
  */
-export function niceTicks([a, b], px, minPx) {
+function niceTicks([a, b], px, minPx) {
   const intervals = Math.min(Math.max(px / minPx, 4), 9) + 1;
   const rough = Math.abs(b - a) / intervals;
   if (!(rough > 0) || !Number.isFinite(rough)) return { values: [], step: 0 };
@@ -61,7 +61,7 @@ export function niceTicks([a, b], px, minPx) {
  * A tick's label as Plotly writes it: as many decimals as the step needs, trailing zeros dropped
  * (−1, −0.5, 0), a minus sign for negatives.
  */
-export function tickText(value, step) {
+function tickText(value, step) {
   const decimals = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   const text = (Math.abs(value) < step * 1e-9 ? 0 : value).toFixed(decimals);
   return (text.includes('.') ? text.replace(/\.?0+$/, '') : text).replace(/^-/, '−');
@@ -69,7 +69,7 @@ export function tickText(value, step) {
 
 /**
  * The text `html` (Plotly's subset: <sub>, <sup>, <br>, and <span style="font-size:…;color:…">)
- * as tspans of `text`, line after line `lineHeight` px apart. Returns the number of lines.
+ * as tspans of `text`, line after line `lineHeight` px apart.
  */
 function richText(text, html, size, lineHeight) {
   const lines = String(html).split(/<br\s*\/?>/);
@@ -101,7 +101,6 @@ function richText(text, html, size, lineHeight) {
     }
     if (shift) svgEl('tspan', { dy: -shift }, text).textContent = '\u200b';
   });
-  return lines.length;
 }
 
 /** Plotly's dashes for a line `width` px wide: dot d d, dash 3d 3d, d = max(width, 3). */
@@ -110,7 +109,7 @@ export function dashArray(dash, width) {
   return { dot: `${d},${d}`, dash: `${3 * d},${3 * d}` }[dash] || null;
 }
 
-const views = new WeakMap(); // div -> {data, layoutAt, ranges}: the figure shown and its zoom
+const views = new WeakMap(); // div -> {data, layoutAt, ranges, shapes}: the figure shown, its zoom
 
 /**
  * Show the figure (`data`, and `layoutAt(ranges)`: its layout with the axes' ranges `ranges`
