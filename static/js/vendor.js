@@ -1,9 +1,9 @@
 // vendor.js: the vendored libraries (KaTeX, Plotly), loaded on first use.
 //
 // Parsing a megabyte of Plotly takes a few hundred milliseconds of main thread on a slow
-// machine; loading it only when the first plot is drawn lets the mechanism and its polygons appear
-// first. index.html preloads both files, so the download still starts at once. A library that
-// fails to load resolves to null and the view concerned says so.
+// machine; loading it only when the first plot is drawn lets the mechanism and its polygons
+// appear first. index.html preloads both files, so the download still starts at once. A library
+// that fails to load resolves to null and the view concerned says so.
 
 const SOURCES = {
   Plotly: 'vendor/plotly/plotly-basic.min.js',
