@@ -10,8 +10,10 @@
 // drawn by Plotly (export.js). Plotly drew a polygon in 30 to 50 ms (its axes and layers, and the
 // text measures its annotations force); this draws it in a few, without reading the page's layout.
 //
-// The wheel zooms about the pointer, a drag pans, a double click (or the key 0, the figure
-// focused) fits it again; + and − zoom. A new figure in the div is shown fitted.
+// Once the figure has the focus (a click on it, or Tab), the wheel zooms it about the pointer and
+// + and − zoom it; so does a pinch on a touchpad (a wheel with Ctrl) at any time, while a wheel
+// over a figure not focused scrolls the page, as it did over Plotly's. A mouse drag pans it, a
+// double click (or 0) fits it again. A new figure in the div is shown fitted.
 
 import { svgEl, clear } from './svg.js';
 import { textWidth, LABEL_HEIGHT } from './labels.js';
@@ -189,7 +191,7 @@ function fit(div) {
 
 const watched = new WeakSet();
 
-/** The div's zoom and pan: wheel, mouse drag, double click, and + − 0 when it has the focus. */
+/** The div's zoom and pan: wheel (focused, or with Ctrl), mouse drag, double click, + − 0 (focused). */
 function watch(div) {
   if (watched.has(div)) return;
   watched.add(div);
@@ -199,7 +201,7 @@ function watch(div) {
     return [ev.clientX - r.left, ev.clientY - r.top];
   };
   div.addEventListener('wheel', (ev) => {
-    if (!views.has(div)) return;
+    if (!views.has(div) || !(ev.ctrlKey || document.activeElement === div)) return;
     ev.preventDefault();
     const lines = ev.deltaMode === 1 ? 33 : 1;
     zoomBy(div, Math.exp(-ev.deltaY * lines * 0.002), local(ev));
@@ -237,7 +239,7 @@ function render(div, data, layout) {
   const title = layout.title?.text || '';
   const svg = svgEl('svg', {
     class: 'plane-figure', width, height, viewBox: `0 0 ${width} ${height}`, role: 'img',
-    'aria-label': `${title.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').trim()}; wheel or + − to zoom, drag to pan, double click or 0 to fit`,
+    'aria-label': `${title.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').trim()}; focused, the wheel or + − zoom, a drag pans, a double click or 0 fits`,
     'font-family': FONT,
   });
   const clipId = `${div.id}-plot-area`;

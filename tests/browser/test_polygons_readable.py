@@ -344,10 +344,11 @@ RANGES = """(id) => { const l = document.getElementById(id).layout;
 
 
 def test_a_polygon_zooms_pans_and_fits_again(app: AppPage) -> None:
-    """The velocity polygon (plane-figure.js): the wheel zooms about the pointer (the point under
-    it stays there, equal scales kept), a mouse drag pans by as many pixels, and 0 (the figure
-    focused) or a double click fits it again; the figure's keys leave the drawing's zoom alone.
-    Positions to 1e-9 of the span (the map is linear)."""
+    """The velocity polygon (plane-figure.js): a wheel over it scrolls the page until it has the
+    focus; then the wheel zooms about the pointer (the point under it stays there, equal scales
+    kept), a mouse drag pans by as many pixels, and 0 or a double click fits it again; the
+    figure's keys leave the drawing's zoom alone. Positions to 1e-9 of the span (the map is
+    linear)."""
     app.open()
     page = app.page
     pause_and_wait(page)
@@ -364,6 +365,10 @@ def test_a_polygon_zooms_pans_and_fits_again(app: AppPage) -> None:
     fy = (at[1] - box["y"] - margin["t"]) / h
     under = (x0 + fx * (x1 - x0), y1 - fy * (y1 - y0))
     page.mouse.move(*at)
+    page.mouse.wheel(0, -300)  # not focused: the page's
+    page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
+    assert page.evaluate(RANGES, "velocity-polygon") == fitted
+    page.focus("#velocity-polygon")
     page.mouse.wheel(0, -300)
     page.wait_for_function(f"(id) => ({RANGES})(id)[0][1] < {x1}", arg="velocity-polygon")
     (a0, a1), (b0, b1), _, _ = page.evaluate(RANGES, "velocity-polygon")
@@ -381,7 +386,6 @@ def test_a_polygon_zooms_pans_and_fits_again(app: AppPage) -> None:
     assert c0 == pytest.approx(a0 - 60 / k, abs=1e-9 * span)
     assert d0 == pytest.approx(b0 + 30 / k, abs=1e-9 * span)
     zoom = page.get_attribute("#linkage", "data-zoom")
-    page.focus("#velocity-polygon")
     page.keyboard.press("0")
     assert page.evaluate(RANGES, "velocity-polygon") == fitted
     page.keyboard.press("+")
