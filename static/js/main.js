@@ -1053,14 +1053,14 @@ class App {
     const div = $('plots');
     const t = this.track;
     if (t?.spatial) {
-      clearPolygons(div);
+      window.Plotly.purge(div);
       await renderSpatialPlots(div, t, window.Plotly);
       $('plot-facts').replaceChildren();
       this.plotsMessage('');
       return;
     }
     if (!t || t.n < 2) {
-      clearPolygons(div);
+      window.Plotly.purge(div);
       this.plotsMessage(t ? 'No sweep from the server, so there is no cycle to plot.' : '');
       return;
     }
