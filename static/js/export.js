@@ -160,9 +160,12 @@ async function polygonImage(main, format) {
   for (const div of panels) {
     // The polygon with its legend (HTML under it on the page, Plotly's in the image, in as much room)
     const legend = div === main ? $(`${main.id}-legend`) : null;
-    const shown = div.getBoundingClientRect().height + (legend ? legend.getBoundingClientRect().height : 0);
-    const height = Math.round(shown * zoom);
-    images.push({ url: await P.toImage(legend ? withLegend(div) : { data: div.data, layout: div.layout }, { format, width, height, scale }), height });
+    const room = legend ? legend.getBoundingClientRect().height : 0;
+    const height = Math.round((div.getBoundingClientRect().height + room) * zoom);
+    // The legend's room in the image: its height on the page (Plotly's, in the wider image,
+    // wraps to as many rows at most).
+    const figure = legend ? withLegend(div, Math.round(room)) : { data: div.data, layout: div.layout };
+    images.push({ url: await P.toImage(figure, { format, width, height, scale }), height });
   }
   const total = images.reduce((sum, im) => sum + im.height, 0);
   return format === 'png' ? stackPng(images, width, total, scale) : stackSvg(images, width, total);

@@ -362,11 +362,14 @@ function legendSymbol(t) {
 }
 
 /**
- * The figure drawn in `div` with Plotly's legend in it (under the tick labels, headed by the
- * note), for an image of it drawn by Plotly (export.js): {data, layout}.
+ * The figure drawn in `div` with Plotly's legend in it, headed by the note, for an image of it
+ * drawn by Plotly (export.js): {data, layout}. The legend takes `room` px at the bottom (as much
+ * as the HTML legend takes on the page), under the tick labels: in the figure's own bottom
+ * margin it was drawn over them.
  */
-export function withLegend(div) {
-  return { data: div.data, layout: { ...div.layout, showlegend: true } };
+export function withLegend(div, room) {
+  const { margin } = div.layout;
+  return { data: div.data, layout: { ...div.layout, showlegend: true, margin: { ...margin, b: margin.b + room } } };
 }
 
 const PAD = 24; // px between the outermost tip and the edge of the plot area (arrowheads)

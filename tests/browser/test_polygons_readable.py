@@ -11,7 +11,7 @@ from xml.etree import ElementTree
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, overlapping_pairs
 from tests.browser.test_app import (
     DETAIL_DONE,
     LABELS_PLACED,
@@ -300,13 +300,31 @@ def test_a_legend_entry_hides_and_shows_its_traces(app: AppPage) -> None:
     assert page.evaluate(drawn) == before
 
 
+# The boxes of an exported SVG's x tick labels and of its legend's entries and note, as a viewer
+# shows the image (the document put in the page for the measure, then removed).
+EXPORTED_BOXES = """(svg) => {
+    const host = document.createElement('div');
+    host.style.cssText = 'position: absolute; left: 0; top: 0';
+    host.innerHTML = svg;
+    document.body.append(host);
+    const box = (e) => { const r = e.getBoundingClientRect();
+                         return [r.left, r.top, r.right, r.bottom]; };
+    const out = [[...host.querySelectorAll('.xtick text')].map(box),
+                 [...host.querySelectorAll('.legend .traces, .legend .legendtitletext')].map(box)];
+    host.remove();
+    return out;
+}"""
+
+
 @pytest.mark.slow
 def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None:
     """The quick-return at 35 % of the turn: its acceleration polygon has a detail panel. The
     polygon's PNG and SVG hold the polygon and, under it, each panel shown on the page: the PNG
     is as wide as the polygon (magnified to 640 px at least, 2 px per CSS px) and as tall as the
     panels together; the SVG nests one document per panel, the detail at the polygon's height,
-    with the detail's title and scale as the page shows them."""
+    with the detail's title and scale as the page shows them, and the polygon's legend (with the
+    acceleration polygon's Coriolis note) clear of its x axis' tick labels (it was drawn over
+    them)."""
     app.open()
     page = app.page
     choose(app, "preset:quick_return")
@@ -336,6 +354,10 @@ def test_polygon_export_includes_its_detail_panel_as_shown(app: AppPage) -> None
         assert (scale in text) == (div == "acceleration-polygon"), (div, scale)
         legend = page.locator(f"#{div}-legend button").all_inner_texts()
         assert legend and all(name in text for name in legend), (div, legend)
+        ticks, entries = page.evaluate(EXPORTED_BOXES, svg.decode())
+        assert ticks and entries, (div, ticks, entries)
+        clashes = [(t, e) for t in ticks for e in entries if overlapping_pairs([t, e])]
+        assert clashes == [], (div, clashes)
 
 
 RANGES = """(id) => { const l = document.getElementById(id).layout;
