@@ -282,7 +282,7 @@ export function renderPolygons(velDiv, accDiv, scene, analysis, polygons, units)
   }
 }
 
-const turns = new WeakMap(); // div -> number of its latest drawing (or purge)
+const turns = new WeakMap(); // div -> number of its latest drawing (or clearing)
 
 /**
  * One polygon: its legend (HTML, under the figure), then its figure with its labels, drawn on the
