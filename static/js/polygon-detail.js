@@ -86,14 +86,14 @@ export function renderDetail(main, detail, figure, kind, units) {
     annotations: [],
     showlegend: false,
     margin: { l: 44, r: 12, t: 76, b: 28 }, // fixed, as the polygon's (polygons.js)
-    xaxis: { ...figure.layout.xaxis, range: region.x, autorange: false },
-    yaxis: { ...figure.layout.yaxis, range: region.y, autorange: false },
+    xaxis: { ...figure.layout.xaxis, autorange: false },
+    yaxis: { ...figure.layout.yaxis, autorange: false },
   };
   // Drawn with its scale and labels on its plot area (its size less the fixed margins: labels.js,
   // plotArea); the region it shows fitted is marked in the polygon.
   const area = plotArea(detail, base.margin);
   if (!(area.w > 0 && area.h > 0)) return; // not laid out (its polygon was hidden meanwhile)
-  const scale = main.layout ? pixelsPerUnit(main.layout) : NaN;
+  const scale = pixelsPerUnit(main.layout); // (drawn: polygons.js calls this once it is)
   const fitted = fittedRanges(region, area);
   showFigure(detail, figure.traces, (ranges) => detailLayout(base, area, figure, scale, kind, units, ranges || fitted));
   const { x, y } = fitted;

@@ -20,6 +20,7 @@ import { imageName, pointName, POLYGON_POLE } from './notation.js';
 import { placeLabels, plotArea, equalRanges } from './labels.js';
 import { renderDetail } from './polygon-detail.js';
 import { showFigure, showTraces, clearFigure, dashArray } from './plane-figure.js';
+import { svgEl } from './svg.js';
 
 const TINY = 1e-12;
 
@@ -339,25 +340,16 @@ function drawLegend(div, figure) {
 }
 
 const SYMBOL_WIDTH = 40; // px, as Plotly's legend draws a trace's line
-const SVG = 'http://www.w3.org/2000/svg';
 
 /** A legend entry's symbol: the trace's line across 40 px, with an arrowhead at its middle for an
  * arrow, over its fill for a plate's image (its dashes the figure's: plane-figure.js, dashArray). */
 function legendSymbol(t) {
-  const svg = document.createElementNS(SVG, 'svg');
-  svg.setAttribute('width', String(SYMBOL_WIDTH));
-  svg.setAttribute('height', '12');
-  svg.setAttribute('aria-hidden', 'true');
-  const make = (name, attrs) => {
-    const e = document.createElementNS(SVG, name);
-    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
-    svg.appendChild(e);
-  };
+  const svg = svgEl('svg', { width: SYMBOL_WIDTH, height: 12, 'aria-hidden': 'true' });
   const width = Math.min(t.line.width, 5);
   const dash = dashArray(t.line.dash, t.line.width) || 'none';
-  if (t.fill === 'toself') make('rect', { x: 5, y: 1, width: 30, height: 10, fill: t.fillcolor });
-  make('line', { x1: 5, y1: 6, x2: 35, y2: 6, stroke: t.line.color, 'stroke-width': width, 'stroke-dasharray': dash });
-  if (t.marker?.symbol === 'arrow') make('path', { d: 'M 16 2 L 24 6 L 16 10 Z', fill: t.line.color });
+  if (t.fill === 'toself') svgEl('rect', { x: 5, y: 1, width: 30, height: 10, fill: t.fillcolor }, svg);
+  svgEl('line', { x1: 5, y1: 6, x2: 35, y2: 6, stroke: t.line.color, 'stroke-width': width, 'stroke-dasharray': dash }, svg);
+  if (t.marker?.symbol === 'arrow') svgEl('path', { d: 'M 16 2 L 24 6 L 16 10 Z', fill: t.line.color }, svg);
   return svg;
 }
 
