@@ -149,8 +149,10 @@ export function renderPlots(div, scene, track, { links = [], quantity = null, ax
   return { ok: true, facts };
 }
 
+/** A panel's title: its quantity and point (a Greek letter spelled out written as the letter). */
 function shortName(key) {
-  const [group, name, q] = key.split(':');
+  const [group, raw, q] = key.split(':');
+  const name = pointName(raw);
   if (group === 'slider') return { s: `s of ${name}`, v: `v of ${name}`, a: `a of ${name}` }[q];
   if (group === 'transmission') return 'μ';
   if (group === 'point') return { x: `x, y of ${name}`, y: `y of ${name}`, v: `v of ${name}`, a: `a of ${name}` }[q] || `${q} of ${name}`;

@@ -73,6 +73,16 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
     for menu in ("#plot-point", "#trace-point", "#readout-point"):
         names = page.locator(f"{menu} option").all_text_contents()
         assert any("Γ" in n for n in names) and not any("Gamma" in n for n in names), names
+    # And the cycle plots' panel titles, Γ's velocity plotted.
+    gamma = page.eval_on_selector_all(
+        "#plot-point option",
+        "(os) => os.find((o) => o.textContent.startsWith('Γ: velocity')).value",
+    )
+    page.select_option("#plot-point", gamma)
+    titles = ("() => Object.entries(document.getElementById('plots').layout)"
+              ".filter(([k]) => k.startsWith('yaxis')).map(([, a]) => a.title.text)")  # fmt: skip
+    page.wait_for_function(f"() => ({titles})().some((t) => t.includes('Γ'))")
+    assert not any("Gamma" in t for t in page.evaluate(titles)), page.evaluate(titles)
     for value, ready in [
         ("example:S002-spatial-arm.json", "#spatial .point-label"),
         ("design:linkage", "#syn-steps .step-figure svg text"),
