@@ -17,8 +17,8 @@ const OUTSIDE = 1e3; // beyond the picture's edge
 const ON_BAR = 40; // crossing a bar of the drawing
 const KEEP = 12; // px: a label moves only for a position at least this much better
 const DIRECTIONS = [[1, -1], [-1, -1], [1, 1], [-1, 1], [1, 0], [-1, 0], [0, -1], [0, 1]];
-const POINT_RADII = [4, 10, 18, 28, 40, 56];
-const LINK_RADII = [6, 14, 24, 36, 52];
+const POINT_RADII = [4, 10, 18, 28, 40, 56, 76, 100];
+const LINK_RADII = [6, 14, 24, 36, 52, 72, 96];
 const ALONG = [0.5, 0.35, 0.65, 0.22, 0.78];
 
 let context = null;

@@ -1,7 +1,8 @@
 """The names in the linkage drawing (points, links, poles) never overlap one another and never
 cover a joint (static/js/drawing-labels.js), for every preset and every planar seed example, at
-the analysed instant (poles shown) and at slider positions over the whole range. Debian's
-Chromium against the real server.
+the analysed instant (poles shown) and at slider positions over the whole range, at 1440x1000 and
+on a 390x844 phone (where the names are largest beside the links). Debian's Chromium against the
+real server.
 """
 
 from __future__ import annotations
@@ -87,7 +88,9 @@ def move_slider(page: Any, stop: int) -> str:
 
 
 @pytest.mark.slow
-def test_names_in_the_drawing_never_overlap(app: AppPage) -> None:
+@pytest.mark.parametrize("viewport", [(1440, 1000), (390, 844)], ids=["1440x1000", "390x844"])
+def test_names_in_the_drawing_never_overlap(app: AppPage, viewport: tuple[int, int]) -> None:
+    app.page.set_viewport_size({"width": viewport[0], "height": viewport[1]})
     app.open()
     page = app.page
     found: dict[str, list[str]] = {}
