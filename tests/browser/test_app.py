@@ -622,10 +622,17 @@ def test_an_edit_keeps_the_instant_exactly_and_asks_for_it_beside_the_sweep(
     app.open()
     page = app.page
     pause_and_wait(page)
+    start = page.get_attribute("#linkage", "data-analysed")
     page.focus("#crank-angle")
     for _ in range(7):
         page.keyboard.press("ArrowRight")
-    wait_analysed(page)
+    # The drawing takes the slider's angle at its next frame: until then the start is both the
+    # instant shown and the one analysed, so the wait is for another angle analysed as shown.
+    page.wait_for_function(
+        """(start) => { const d = document.getElementById('linkage').dataset;
+                       return d.analysed !== start && d.analysed === d.instant; }""",
+        arg=start,
+    )
     analysed = page.get_attribute("#linkage", "data-analysed")
     events: list[str] = []
     page.on("request", lambda r: events.append(f"ask {r.url.rsplit('/', 1)[-1]}"))
