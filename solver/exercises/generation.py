@@ -26,6 +26,7 @@ import json
 import random
 from collections.abc import Mapping
 from dataclasses import replace
+from functools import partial
 
 from solver.analysis.instant import LinkageAnalysis
 from solver.errors import InvalidScene, KinematicsError, LimitExceeded
@@ -130,7 +131,7 @@ def _candidate(kind: ExerciseType, difficulty: str, rng: random.Random) -> Exerc
     if ill_posed(draft, solved, answers) is not None:
         return None
     text = f"{draft.text} {sign_convention(draft.scene)}".rstrip()
-    statement = Statement(text, draft.latex, figure_svg(draft.scene))
+    statement = Statement(text, draft.latex, partial(figure_svg, draft.scene))
     return Exercise(PENDING, draft.title, statement, draft.scene, draft.asked, answers)
 
 

@@ -10,6 +10,7 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 from solver.errors import InvalidScene, LimitExceeded
@@ -87,9 +88,16 @@ class Asked:
 
 @dataclass(frozen=True)
 class Statement:
+    """What the student reads: the text, its data in LaTeX, and the figure (SVG), drawn by
+    ``draw`` when it is first read (a check of the key or of the text never draws it)."""
+
     text: str
     latex: str
-    figure_svg: str
+    draw: Callable[[], str] = field(repr=False, compare=False)
+
+    @cached_property
+    def figure_svg(self) -> str:
+        return self.draw()
 
 
 def is_task(doc: Mapping[str, Any]) -> bool:
