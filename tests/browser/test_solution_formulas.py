@@ -91,4 +91,4 @@ def test_long_formulas_break_into_lines_or_scroll_in_reach(
         sizes: list[float] = page.evaluate(FIGURE_TEXT)
         assert sizes and min(sizes) >= 11.0, min(sizes)
     app.screenshot(f"solution-formulas-{width}x{height}", "#solution-panel")
-    assert app.serious_accessibility_violations("#solution-panel") == []
+    assert app.serious_accessibility_violations("#solution-panel", formula_glyphs=False) == []
