@@ -295,4 +295,6 @@ def test_the_topbar_tools_fit_with_a_cam_and_a_gear_train(
         assert not page.locator("#export-instant-csv").is_visible()
         app.screenshot(f"{name}-tools-{size[0]}x{size[1]}")
         page.click("#export-menu summary")
-        assert app.serious_accessibility_violations() == []
+        # The tools (the cam's and the train's views are axe's in test_cams and test_gears, at
+        # the same sizes).
+        assert app.serious_accessibility_violations(".topbar") == []
