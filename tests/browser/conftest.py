@@ -297,6 +297,14 @@ def pytest_configure(config: Any) -> None:
     )
 
 
+def pause(page: Any, play: str = "#play") -> None:
+    """Stop the mechanism whose Play button is ``play`` if it moves (a test's page opens paused
+    unless the test is marked moving): the linkage's ``#play``, the cam's ``#cam-play``, the
+    gear train's ``#gear-play``."""
+    if page.get_attribute(play, "aria-pressed") == "true":
+        page.click(play)
+
+
 def shown_boxes(page: Any, selector: str) -> list[list[float]]:
     """The screen boxes [left, top, right, bottom] (px) of the shown elements matching
     ``selector``."""

@@ -21,7 +21,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, pause
 
 pytestmark = pytest.mark.browser
 
@@ -55,8 +55,7 @@ def plot_data(page: Any, div: str) -> str:
 
 def pause_and_wait(page: Any) -> None:
     """Pause and wait until the analysed instant is the one shown."""
-    if page.get_attribute("#play", "aria-pressed") == "true":
-        page.click("#play")
+    pause(page)
     wait_analysed(page)
 
 

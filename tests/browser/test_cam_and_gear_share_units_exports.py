@@ -20,9 +20,9 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, pause
 from tests.browser.test_app import download
-from tests.browser.test_cams import open_cam, pause_cam
+from tests.browser.test_cams import open_cam
 from tests.browser.test_gears import open_gears, table
 
 RPM = 60 / (2 * math.pi)  # rad/s -> rpm, the linkage view's factor
@@ -30,7 +30,7 @@ NUMBER = r"(-?\d+(?:\.\d+)?(?:e[-+]?\d+)?)"
 
 
 def pause_cam_at(page: Any, angle: int) -> None:
-    pause_cam(page)
+    pause(page, "#cam-play")
     page.fill("#cam-angle", str(angle))
     page.dispatch_event("#cam-angle", "input")
     page.wait_for_function(

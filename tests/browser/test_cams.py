@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage, overlapping_pairs, shown_boxes
+from tests.browser.conftest import AppPage, overlapping_pairs, pause, shown_boxes
 from tests.browser.test_app import choose
 
 ROLLER = "cam:cam_roller_translating"
@@ -28,12 +28,6 @@ def open_cam(app: AppPage, value: str = ROLLER) -> Any:
     page.wait_for_selector("#cam-drawing .cam path", state="attached")
     page.wait_for_selector("#cam-svaj .main-svg", state="attached")
     return page
-
-
-def pause_cam(page: Any) -> None:
-    """Stop the cam if it turns (a test's page opens it paused unless the test is marked moving)."""
-    if page.get_attribute("#cam-play", "aria-pressed") == "true":
-        page.click("#cam-play")
 
 
 def _transform(page: Any) -> str:
@@ -93,7 +87,7 @@ def test_paused_at_an_angle_the_drawing_plots_and_solution_agree_with_the_server
     app: AppPage,
 ) -> None:
     page = open_cam(app)
-    pause_cam(page)
+    pause(page, "#cam-play")
     page.fill("#cam-angle", "60")
     page.dispatch_event("#cam-angle", "input")
     page.wait_for_function("() => document.getElementById('cam-steps').dataset.angle === '60'")
@@ -166,7 +160,7 @@ def test_screenshots_nothing_cut_off_or_overlapping_and_axe(
 ) -> None:
     app.page.set_viewport_size({"width": width, "height": height})
     page = open_cam(app)
-    pause_cam(page)
+    pause(page, "#cam-play")
     page.wait_for_selector("#cam-steps .step .katex", state="attached")
     app.screenshot(f"cams-{width}x{height}")
     assert page.evaluate("() => document.documentElement.scrollWidth <= window.innerWidth + 1")

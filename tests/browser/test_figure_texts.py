@@ -11,9 +11,8 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, pause
 from tests.browser.test_app import choose, pause_and_wait, plot_data, wait_until
-from tests.browser.test_cams import pause_cam
 
 pytestmark = pytest.mark.browser
 
@@ -92,7 +91,7 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
         assert small_texts(page) == [], value
     # The cam and the gear train, each with its worked solution's figures.
     choose(app, "cam:cam_roller_translating")
-    pause_cam(page)
+    pause(page, "#cam-play")
     page.wait_for_selector("#cam-steps .step")
     assert small_texts(page) == []
     choose(app, "gear:planetary_ring_fixed")

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, pause
 from tests.browser.test_app import choose
 
 PLANETARY = "gear:planetary_ring_fixed"
@@ -27,12 +27,6 @@ def open_gears(app: AppPage, value: str = PLANETARY) -> Any:
     page.wait_for_selector("#gear-view .gear", state="attached")
     page.wait_for_selector("#gear-steps .step", state="attached")
     return page
-
-
-def pause_gears(page: Any) -> None:
-    """Stop the train if it turns (a test's page opens it paused unless it is marked moving)."""
-    if page.get_attribute("#gear-play", "aria-pressed") == "true":
-        page.click("#gear-play")
 
 
 def table(page: Any) -> dict[str, float]:
@@ -131,7 +125,7 @@ def test_a_field_edited_in_the_page_asks_the_server_again(app: AppPage) -> None:
 def test_screens_and_accessibility(app: AppPage, width: int, height: int) -> None:
     app.page.set_viewport_size({"width": width, "height": height})
     page = open_gears(app, "gear:two_stage_planetary")
-    pause_gears(page)  # still, for the picture
+    pause(page, "#gear-play")  # still, for the picture
     page.wait_for_timeout(300)
     app.screenshot(f"gears-{width}x{height}", None)
     # nothing wider than the screen, the drawing whole on it, no two labels on each other

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.browser.conftest import AppPage
+from tests.browser.conftest import AppPage, pause
 from tests.browser.test_app import choose
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "server" / "examples"
@@ -51,8 +51,7 @@ def open_arm(app: AppPage) -> Any:
 
 def pause_at(page: Any, slider_value: int) -> float:
     """Pause, put the time slider at `slider_value` (0..1000), and return the instant shown."""
-    if page.get_attribute("#play", "aria-pressed") == "true":
-        page.click("#play")
+    pause(page)
     page.eval_on_selector(
         "#crank-angle",
         "(s, v) => { s.value = String(v); s.dispatchEvent(new Event('input', {bubbles: true}));"
