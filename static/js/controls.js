@@ -7,7 +7,7 @@
 
 import { toDisplay, fromDisplay, unitLabel, kindOfUnit, fmt } from './units.js';
 import { COLOURS, LEGEND } from './theme.js';
-import { pointName } from './notation.js';
+import { greekPointNames, pointName } from './notation.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -128,7 +128,8 @@ export class Controls {
     }
     sel.value = value;
     // The first paragraph of a preset's description; the rest is for the API documentation.
-    this.el.description.textContent = String(description || '').split(/\n\s*\n/)[0].replace(/\s*\n\s*/g, ' ');
+    // A point named by a Greek letter spelled out is written as the letter, as in the drawing.
+    this.el.description.textContent = greekPointNames(String(description || '').split(/\n\s*\n/)[0].replace(/\s*\n\s*/g, ' '));
   }
 
   // ---- dimension fields ----------------------------------------------------------------------

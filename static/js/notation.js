@@ -53,6 +53,12 @@ export function pointName(point) {
   return found && Object.hasOwn(GREEK, found[1]) ? GREEK[found[1]] + found[2] : point;
 }
 
+/** A text for people (a preset's description) with each point name that is a capital Greek
+ * letter spelled out ('Gamma', 'Omega2') written as the letter, as `pointName` writes it. */
+export function greekPointNames(text) {
+  return text.replace(/\b([A-Z][a-z]+)([0-9]{0,2})\b/g, (name) => pointName(name));
+}
+
 /** The image of a point in a polygon: its name in lowercase (the image of Γ is γ). */
 export const imageName = (point) => pointName(point.toLowerCase());
 

@@ -68,6 +68,9 @@ def test_no_figure_text_is_under_11_px_at_1440_wide(app: AppPage) -> None:
     # as the server names them).
     facts = page.text_content("#mechanism-facts") or ""
     assert "μ = ∠ABΓ" in facts, facts
+    # And the preset's description under the menu ("its pivot Γ through B", the API's "Gamma").
+    description = page.text_content("#preset-description") or ""
+    assert "pivot Γ" in description and "Gamma" not in description, description
     # So do the menus of points: the plotted quantity, the traced path, the point read.
     for menu in ("#plot-point", "#trace-point", "#readout-point"):
         names = page.locator(f"{menu} option").all_text_contents()
