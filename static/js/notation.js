@@ -56,7 +56,7 @@ export function pointName(point) {
 /** A text for people (a preset's description) with each point name that is a capital Greek
  * letter spelled out ('Gamma', 'Omega2') written as the letter, as `pointName` writes it. */
 export function greekPointNames(text) {
-  return text.replace(/\b([A-Z][a-z]+)([0-9]{0,2})\b/g, (name) => pointName(name));
+  return text.replace(/\b[A-Z][a-z]+[0-9]{0,2}\b/g, (word) => pointName(word));
 }
 
 /** The image of a point in a polygon: its name in lowercase (the image of Γ is γ). */

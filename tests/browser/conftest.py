@@ -89,11 +89,12 @@ MINOR_RULES = """() => {
 # (a selector, or null); the serious and critical violations, each as "rule: node".
 AXE_RUN = """async ([context, disabled, skipped]) => {
   const root = context ? document.querySelector(context) : document.body;
-  const unrendered = skipped ? [...root.querySelectorAll(skipped)] : [];
+  const excluded = [];
   const walk = (element) => {
     for (const child of element.children) {
-      if (getComputedStyle(child).display === 'none') unrendered.push(child);
-      else walk(child);
+      if ((skipped && child.matches(skipped)) || getComputedStyle(child).display === 'none') {
+        excluded.push(child);
+      } else walk(child);
     }
   };
   walk(root);
@@ -101,7 +102,7 @@ AXE_RUN = """async ([context, disabled, skipped]) => {
     resultTypes: ['violations'],
     rules: Object.fromEntries(disabled.map((rule) => [rule, { enabled: false }])),
   };
-  const scope = { include: [context ? root : document], exclude: unrendered };
+  const scope = { include: [context ? root : document], exclude: excluded };
   const results = await axe.run(scope, options);
   return results.violations
     .filter((v) => v.impact === 'serious' || v.impact === 'critical')
