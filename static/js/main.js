@@ -37,6 +37,7 @@ import { LinkageDesigner } from './synthesis-view.js';
 const SAMPLES = 241;
 const CYCLE_SECONDS = 4; // one revolution at 1x (angle-driven scenes)
 const DEBOUNCE_MS = 250; // analysis after the last slider/drag movement
+const PLOTS_AFTER_MS = 150; // a new geometry's cycle plots wait this long (left out if a newer one came)
 const QUANTITIES = ['position', 'velocity', 'acceleration'];
 // An instant as drawn: the /analyze body the worked solution carries as `results`, and the
 // polygons' segments (the extension `polygons`, docs/ARCHITECTURE.md).
@@ -740,20 +741,25 @@ class App {
     this.trackMessages(track, note);
     $('plots-title').textContent = track.param === 'time' ? 'Over time' : track.feasible ? 'Over one cycle' : 'Over the feasible range';
     // What is seen first comes first: the mechanism (this frame), then its instant (the drawing
-    // and the polygons), then, a frame after that is painted, the cycle plots (Plotly, ~100 ms)
-    // while the server writes the worked solution, and last the dynamics panel (a sweep of
-    // forces, figures under the fold).
+    // and the polygons), then, PLOTS_AFTER_MS after that is painted, the cycle plots (Plotly,
+    // 50 to 100 ms of the page's time) while the server writes the worked solution, and last the
+    // dynamics panel (a sweep of forces, figures under the fold). The wait keeps the next edit
+    // from queuing behind plots of a geometry it replaces: a value stepped past with the arrow
+    // keys, the next one drawn within that time, is not plotted (the check below).
     this.drawFrame();
     this.dirty = true;
     clearTimeout(this.analysisTimer);
+    $('plots').setAttribute('aria-busy', 'true'); // the previous geometry's until drawPlots
     this.analyzeNow()
       .then(() => afterPaint())
       .then(() => final ?? track)
+      .then((swept) => new Promise((resolve) => setTimeout(() => resolve(swept), PLOTS_AFTER_MS)))
       .then((swept) => {
-        if (this.scene !== scene || this.track !== swept) return null;
+        if (this.scene !== scene) return null; // a newer geometry plots its own
+        // (the track shown: one without a sweep that analyzeNow framed anew has no cycle to plot)
         return this.drawPlots()
           .then(() => plotlyReady())
-          .then((ok) => ok && this.scene === scene && this.dynamics.show(scene, this.units, swept.n).then(() => this.drawFrame()));
+          .then((ok) => ok && this.scene === scene && this.track === swept && this.dynamics.show(scene, this.units, swept.n).then(() => this.drawFrame()));
       });
     this.saveHash();
   }
@@ -1045,7 +1051,16 @@ class App {
     }
   }
 
+  /** The cycle plots of the track shown; #plots is aria-busy from a new geometry until then. */
   async drawPlots() {
+    try {
+      await this.plotTrack();
+    } finally {
+      $('plots').removeAttribute('aria-busy');
+    }
+  }
+
+  async plotTrack() {
     if (!(await plotlyReady())) {
       this.plotsMessage('Plotly could not be loaded, so the plots cannot be drawn.');
       return;

@@ -200,14 +200,16 @@ class AppPage:
 
     def wait_settled(self) -> None:
         """Everything a planar mechanism's page asks the server for has come back: the worked
-        solution shown is the analysed instant's, the dynamics panel is drawn (or hidden) and no
-        request is in flight. (The solution is asked for once the analysed instant is painted,
-        the dynamics sweep once the plots are drawn: a test that counts the requests an action
-        makes waits for this first.)"""
+        solution shown is the analysed instant's, the cycle plots are the geometry's shown (not
+        ``aria-busy``), the dynamics panel is drawn (or hidden) and no request is in flight.
+        (The solution is asked for once the analysed instant is painted, the dynamics sweep once
+        the plots are drawn: a test that counts the requests an action makes waits for this
+        first.)"""
         self.page.wait_for_function(
             """() => { const $ = (id) => document.getElementById(id);
                        const analysed = $('linkage').dataset.analysed;
                        return analysed !== undefined && $('steps').dataset.instant === analysed
+                         && !$('plots').hasAttribute('aria-busy')
                          && ($('dynamics').hidden
                              || $('dynamics-hodograph').dataset.note !== undefined); }"""
         )
