@@ -54,9 +54,11 @@ def plot_data(page: Any, div: str) -> str:
 
 
 def pause_and_wait(page: Any) -> None:
-    """Pause and wait until the analysed instant is the one shown."""
+    """Pause and wait until the analysed instant is the one shown and the cycle plots are the
+    mechanism's shown."""
     pause(page)
     wait_analysed(page)
+    wait_plotted(page)
 
 
 def wait_analysed(page: Any) -> None:
@@ -228,14 +230,12 @@ def test_choosing_a_preset_and_editing_a_length_update_every_view(app: AppPage) 
     app.open()
     page = app.page
     pause_and_wait(page)
-    wait_plotted(page)
     before = (links_svg(page), plot_data(page, "velocity-polygon"), plot_data(page, "plots"))
     choose(app, "preset:slider_crank")
     wait_until(lambda: "slider" in page.inner_text("#view-title").lower(), what="the new title")
     page.wait_for_selector("#linkage .slider-block")
     page.wait_for_selector("#f-param_rod")
     pause_and_wait(page)
-    wait_plotted(page)
     after_preset = (links_svg(page), plot_data(page, "velocity-polygon"), plot_data(page, "plots"))
     for old, new, view in zip(before, after_preset, ("linkage", "polygon", "plots"), strict=True):
         assert old != new, f"the {view} view did not follow the preset"

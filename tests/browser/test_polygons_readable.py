@@ -19,7 +19,6 @@ from tests.browser.test_app import (
     download,
     exported_scene,
     pause_and_wait,
-    wait_plotted,
 )
 
 pytestmark = pytest.mark.browser
@@ -450,7 +449,6 @@ def test_a_polygons_ticks_are_those_plotly_would_draw(app: AppPage, scene: str) 
         page.wait_for_selector("#linkage:not([hidden]) .link", state="attached")
     pause_and_wait(page)
     page.wait_for_function(FITTED)
-    wait_plotted(page)  # (Plotly, loaded for the cycle plots, is the reference here)
     for div in ("velocity-polygon", "acceleration-polygon"):
         ticks = page.evaluate(TICKS, div)
         assert all(len(axis) >= 3 for axis in ticks["ours"]), ticks
