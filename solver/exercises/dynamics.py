@@ -2,7 +2,7 @@
 flywheel for a coefficient of speed fluctuation over a cycle, and in statics a four-bar's holding
 torque and a slider-crank's driving torque with friction.
 
-Both draw a Grashof crank-rocker (``families.four_bar_scene``) with uniform bars of a given mass
+Both draw a Grashof crank-rocker (``families.four_bar_values``) with uniform bars of a given mass
 per length and, from standard on, gravity; the torque's rocker carries a constant load moment
 from standard on, the flywheel's a resisting moment during its counter-clockwise swing (a
 working stroke, so that the mean torque is not zero). Their paths
@@ -22,8 +22,8 @@ from typing import Any
 from solver.exercises.families import (
     asked_latex,
     four_bar_check,
-    four_bar_scene,
     four_bar_text,
+    four_bar_values,
     givens_latex,
     num,
     pick,
@@ -99,7 +99,7 @@ FORCE_B = tuple(
 def four_bar_torque(rng: random.Random, difficulty: str) -> Draft:
     """The torque that drives the crank at the drawn instant (inverse dynamics); from standard on
     with weights and a load, and the pin force at B; challenging: an accelerating crank."""
-    _, v = four_bar_scene(rng, difficulty, difficulty == "challenging", False)
+    v = four_bar_values(rng, difficulty, difficulty == "challenging", False)
     masses = _bars(rng, v, difficulty != "basic")
     if difficulty == "basic":
         masses += " It carries no load."
@@ -132,7 +132,7 @@ def flywheel(rng: random.Random, difficulty: str) -> Draft:
     """The flywheel that keeps the crank's speed within a coefficient of fluctuation k over a
     revolution at constant mean speed: the energy fluctuation and I = fluctuation / (k omega^2);
     challenging: also the mean driving torque."""
-    _, v = four_bar_scene(rng, difficulty, False, False)
+    v = four_bar_values(rng, difficulty, False, False)
     masses = _bars(rng, v, difficulty != "basic")
     percent = rng.choice([2, 3, 4, 5, 8, 10])
     scene = build_preset("four_bar", v)
@@ -191,7 +191,7 @@ def holding_torque(rng: random.Random, difficulty: str) -> Draft:
     """The torque that holds a four-bar against a load moment on its rocker (statics: the masses
     count only through their weight, ``statics.drivers.0.torque``); from standard on with the
     bars' weights and the pin force at B (``statics.joints.1.force.<axis>``)."""
-    _, v = four_bar_scene(rng, difficulty, False, False)
+    v = four_bar_values(rng, difficulty, False, False)
     masses = _bars(rng, v, difficulty != "basic")
     v["load"] = pick(rng, -60.0, 60.0, 5.0) or 20.0
     masses += (

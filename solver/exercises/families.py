@@ -162,8 +162,17 @@ def rates_for(rng: random.Random, difficulty: str, accelerating: bool) -> tuple[
 def four_bar_scene(
     rng: random.Random, difficulty: str, accelerating: bool, coupler_point: bool
 ) -> tuple[dict[str, Any], dict[str, float]]:
-    """A Grashof crank-rocker drawn with rounded lengths (s + l at least 5 % of l below p + q),
-    its crank's rates and (``coupler_point``) a coupler point: the scene and its values."""
+    """The scene of ``four_bar_values`` and its values."""
+    v = four_bar_values(rng, difficulty, accelerating, coupler_point)
+    return build_preset("four_bar", v), v
+
+
+def four_bar_values(
+    rng: random.Random, difficulty: str, accelerating: bool, coupler_point: bool
+) -> dict[str, float]:
+    """The four-bar preset's values of a Grashof crank-rocker drawn with rounded lengths
+    (s + l at least 5 % of l below p + q), its crank's rates and (``coupler_point``) a coupler
+    point."""
     while True:
         v = {
             "ground": pick(rng, 0.3, 0.8, 0.05),
@@ -186,7 +195,7 @@ def four_bar_scene(
         v["coupler_point_v"] = pick(rng, -0.2, 0.2, 0.05)
     else:
         v["coupler_point_u"] = v["coupler_point_v"] = 0.0
-    return build_preset("four_bar", v), v
+    return v
 
 
 def four_bar_check(analysis: Any) -> str | None:

@@ -25,7 +25,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from solver.errors import KinematicsError
-from solver.exercises.families import asked_latex, four_bar_scene, givens_latex, num, pick
+from solver.exercises.families import asked_latex, four_bar_values, givens_latex, num, pick
 from solver.exercises.model import Asked, Draft
 from solver.kinematics.four_bar import extreme_transmission_angles, grashof_class
 from solver.synthesis import parse_task
@@ -315,11 +315,11 @@ def fixed_pivots(rng: random.Random, difficulty: str) -> Draft:
 def _poses(
     rng: random.Random, count: int
 ) -> tuple[list[dict[str, Any]], list[list[float]], tuple[complex, complex]]:
-    """``count`` poses of the coupler of a drawn Grashof crank-rocker (``four_bar_scene``, moved
+    """``count`` poses of the coupler of a drawn Grashof crank-rocker (``four_bar_values``, moved
     off the origin) at crank angles 40 to 70 deg apart: its point P (m) and the direction of BC
     (deg), rounded to millimetres and whole degrees; B, C at the first pose, rounded; and its
     fixed pivots A, D (moved, not rounded)."""
-    _, values = four_bar_scene(rng, "standard", False, False)
+    values = four_bar_values(rng, "standard", False, False)
     # P off the line BC
     values |= {"coupler_point_u": pick(rng, 0.1, 0.3, 0.05),
                "coupler_point_v": pick(rng, 0.1, 0.25, 0.05)}  # fmt: skip
