@@ -310,6 +310,31 @@ def test_edits_in_quick_succession_plot_the_last_geometry_only(app: AppPage) -> 
     assert plot_data(page, "plots") == at_013
 
 
+def test_a_mechanism_without_a_sweep_is_analysed_as_drawn_with_no_stale_plots(
+    app: AppPage,
+) -> None:
+    """A sweep that cannot be had (here /sweep unreachable, the rest of the server answering):
+    the drawn pose is analysed and the page says there is no animation, and the cycle plots
+    say there is no cycle rather than keep the previous mechanism's (main.js, commitPlanar:
+    they are drawn from the track shown, which analyzeNow framed anew)."""
+    app.log.allow(r"Failed to load resource")
+    app.open()
+    page = app.page
+    pause_and_wait(page)
+    assert plot_data(page, "plots") != "[]"
+    page.route("**/api/v1/sweep", lambda route: route.abort())
+    choose(app, "preset:slider_crank")
+    wait_plotted(page)
+    assert "No animation" in page.inner_text("#view-message")
+    assert "drawn pose is analysed" in page.inner_text("#view-message")
+    wait_analysed(page)
+    assert page.locator("#velocity-polygon").inner_text() != ""
+    message = page.locator("#plots-message")
+    assert message.is_visible()
+    assert message.inner_text() == "No sweep from the server, so there is no cycle to plot."
+    assert plot_data(page, "plots") == "[]"
+
+
 def test_non_assemblable_length_shows_the_servers_message_beside_the_field(
     app: AppPage,
 ) -> None:
