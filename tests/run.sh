@@ -40,7 +40,12 @@ fi
 
 .venv/bin/ruff check solver server tests benchmarks
 .venv/bin/ruff format --check solver server tests benchmarks
-.venv/bin/mypy
+# mypy (about 14 s of one core on a fresh clone) beside the rest of the checks and the audits
+# below, which mostly wait for the network; its report is printed, and a failure stops the run,
+# before pytest starts.
+mypy_report=$(mktemp)
+.venv/bin/mypy >"$mypy_report" 2>&1 &
+mypy_pid=$!
 .venv/bin/lint-imports
 .venv/bin/hadolint Dockerfile
 
@@ -57,7 +62,9 @@ fi
 # The same audit against PyPI's advisory service where it can be reached (it also knows the
 # GitHub advisories). Unreachable, or pinned versions it does not know (a private or local
 # package index), is reported as a warning: the offline audit above is the one that counts.
-if audit=$(.venv/bin/pip-audit -r requirements-test.lock --no-deps --progress-spinner off 2>&1); then
+# The lock pins and hashes every package, so pip-audit reads it as written (--disable-pip)
+# instead of resolving it with pip in a virtualenv of its own (5 s instead of 18 s here).
+if audit=$(.venv/bin/pip-audit -r requirements-test.lock --no-deps --disable-pip --progress-spinner off 2>&1); then
   echo "pip-audit: no known vulnerabilities in requirements-test.lock"
   if grep -q "could not be audited" <<<"$audit"; then
     echo "pip-audit: WARNING: some pinned versions are unknown to the advisory service and were"
@@ -70,6 +77,12 @@ else
   echo "$audit"
   exit 1
 fi
+mypy_status=0
+wait "$mypy_pid" || mypy_status=$?
+cat "$mypy_report"
+rm -f "$mypy_report"
+if [ "$mypy_status" != 0 ]; then exit "$mypy_status"; fi
+
 # Python keeps the modules it compiles (__pycache__, pytest's rewritten test modules among them)
 # even where the environment says not to (PYTHONDONTWRITEBYTECODE, as in the Dockerfile): every
 # process after the first (the live servers, their workers, the subprocesses some tests start,
