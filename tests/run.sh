@@ -17,8 +17,10 @@ if ! python3 -m venv .venv; then
   python3 -m venv .venv
 fi
 # The same install as the README's: the lock with its hashes (pip itself included), then the
-# project without dependencies (an editable install cannot be hashed).
-.venv/bin/python -m pip install --quiet --require-hashes -r requirements-test.lock
+# project without dependencies (an editable install cannot be hashed). Without compiling every
+# module of every package at install (--no-compile: 20 s less on a fresh clone here); Python
+# compiles those the tests import when they are first imported, and keeps them.
+.venv/bin/python -m pip install --quiet --require-hashes --no-compile -r requirements-test.lock
 .venv/bin/python -m pip install --quiet --no-deps -e .
 
 # The browser tests drive Debian's Chromium (no browser download works offline).
