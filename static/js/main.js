@@ -750,18 +750,23 @@ class App {
     this.dirty = true;
     clearTimeout(this.analysisTimer);
     $('plots').setAttribute('aria-busy', 'true'); // the previous geometry's until drawPlots
-    this.analyzeNow()
-      .then(() => afterPaint())
-      .then(() => final ?? track)
-      .then((swept) => new Promise((resolve) => setTimeout(() => resolve(swept), PLOTS_AFTER_MS)))
-      .then((swept) => {
-        if (this.scene !== scene) return null; // a newer geometry plots its own
-        // (the track shown: one without a sweep that analyzeNow framed anew has no cycle to plot)
-        return this.drawPlots()
-          .then(() => plotlyReady())
-          .then((ok) => ok && this.scene === scene && this.track === swept && this.dynamics.show(scene, this.units, swept.n).then(() => this.drawFrame()));
-      });
+    this.plotAfterInstant(scene, final ?? track);
     this.saveHash();
+  }
+
+  /** The instant of `scene` analysed and painted, then PLOTS_AFTER_MS later its cycle plots and
+   * its dynamics panel (commitPlanar); `swept`: its track, or the promise of its finer one. */
+  async plotAfterInstant(scene, swept) {
+    await this.analyzeNow();
+    await afterPaint();
+    const track = await swept;
+    await new Promise((resolve) => setTimeout(resolve, PLOTS_AFTER_MS));
+    if (this.scene !== scene) return; // a newer geometry plots its own
+    // (the track shown: one without a sweep that analyzeNow framed anew has no cycle to plot)
+    await this.drawPlots();
+    if (!(await plotlyReady()) || this.scene !== scene || this.track !== track) return;
+    await this.dynamics.show(scene, this.units, track.n);
+    this.drawFrame();
   }
 
   /** The slider's range: the track's first to last value. */
