@@ -745,7 +745,7 @@ class App {
     // 50 to 100 ms of the page's time) while the server writes the worked solution, and last the
     // dynamics panel (a sweep of forces, figures under the fold). The wait keeps the next edit
     // from queuing behind plots of a geometry it replaces: a value stepped past with the arrow
-    // keys, the next one drawn within that time, is not plotted (the check below).
+    // keys, the next one drawn within that time, is not plotted (plotAfterInstant).
     this.drawFrame();
     this.dirty = true;
     clearTimeout(this.analysisTimer);
