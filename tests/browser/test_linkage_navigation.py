@@ -130,6 +130,7 @@ def test_a_two_finger_pinch_zooms_about_the_fingers(app: AppPage) -> None:
     for spread in (50, 60, 70, 80):
         touch("touchMove", spread)
     touch("touchEnd", 80)
+    cdp.detach()
     wait_until(lambda: zoom(page) > 1.5, what="the pinch zooming")
     # The fingers spread from 80 to 160 px apart: twice the scale, about their midpoint.
     assert zoom(page) == pytest.approx(2.0, rel=0.02)
