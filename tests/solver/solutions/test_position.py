@@ -13,6 +13,7 @@ every step's checks re-evaluate and its LaTeX typesets (test_solve's machinery).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import json
 import math
@@ -22,6 +23,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from solver.analysis.instant import analyze
 from solver.model.scene import parse_linkage
 from solver.position.topology import DriverStep, DyadStep, LeverStep, LineSpec, NewtonStep
 from solver.solutions import Solution, Step, solve
@@ -95,9 +97,14 @@ def documents() -> dict[str, dict[str, Any]]:
 
 
 DOCS = documents()
-SOLUTIONS = {
-    (n, m): solve(parse_linkage(d), m) for n, d in DOCS.items() for m in ("vector", "loop")
-}
+CASES = [(n, m) for n in DOCS for m in ("vector", "loop")]
+
+
+@functools.cache
+def solution_of(name: str, method: str) -> Solution:
+    """The worked solution of ``DOCS[name]`` by ``method``, solved when a test first asks for it
+    (not when the module is collected, by every worker)."""
+    return solve(parse_linkage(DOCS[name]), method)
 
 
 def steps(solution: Solution, kind: str) -> list[Step]:
@@ -108,11 +115,9 @@ def wrapped(x: float) -> float:
     return math.remainder(x, 2 * math.pi)
 
 
-@pytest.mark.parametrize(
-    ("name", "method"), list(SOLUTIONS), ids=[f"{n}-{m}" for n, m in SOLUTIONS]
-)
+@pytest.mark.parametrize(("name", "method"), CASES, ids=[f"{n}-{m}" for n, m in CASES])
 def test_every_group_has_its_position_derived(name: str, method: str) -> None:
-    solution = SOLUTIONS[(name, method)]
+    solution = solution_of(name, method)
     kinds = [s.kind for s in solution.steps]
     for group in solution.analysis.plan.steps:
         if isinstance(group, DriverStep):
@@ -130,18 +135,15 @@ def test_every_group_has_its_position_derived(name: str, method: str) -> None:
         assert kinds.count("position.loop") == kinds.count("loop.position") > 0, name
 
 
-FOUR_BAR_LOOPS = [n for n in DOCS if SOLUTIONS[(n, "loop")].analysis.four_bar_loops]
-LEVERS = [
-    n
-    for n in DOCS
-    if any(isinstance(g, LeverStep) for g in SOLUTIONS[(n, "loop")].analysis.plan.steps)
-]
+ANALYSES = {n: analyze(parse_linkage(d)) for n, d in DOCS.items()}  # (what a solution shows)
+FOUR_BAR_LOOPS = [n for n in DOCS if ANALYSES[n].four_bar_loops]
+LEVERS = [n for n in DOCS if any(isinstance(g, LeverStep) for g in ANALYSES[n].plan.steps)]
 
 
-def four_bar_dyad(solution: Solution) -> tuple[str, str, str]:
+def four_bar_dyad(name: str, solution: Solution) -> tuple[str, str, str]:
     """(B, C, D): the coupler's centre, the joint and the rocker's fixed pivot of the first RRR
-    dyad, from the solver's plan."""
-    fixed = set(DOCS_BY_SOLUTION[id(solution)]["links"]["ground"]["points"])
+    dyad of ``DOCS[name]``, from the solver's plan."""
+    fixed = set(DOCS[name]["links"]["ground"]["points"])
     dyad = next(g for g in solution.analysis.plan.steps if isinstance(g, DyadStep))
     centres = [spec.center for spec in dyad.loci if not isinstance(spec, LineSpec)]
     rocker = next(c for c in centres if c in fixed)
@@ -149,19 +151,16 @@ def four_bar_dyad(solution: Solution) -> tuple[str, str, str]:
     return coupler, dyad.point, rocker
 
 
-DOCS_BY_SOLUTION = {id(SOLUTIONS[(n, m)]): DOCS[n] for n, m in SOLUTIONS}
-
-
 @pytest.mark.parametrize("name", FOUR_BAR_LOOPS)
 def test_four_bar_closed_form_gives_the_solver_angles(name: str) -> None:
     """theta14 = delta +- acos(C / R) from A, B, C recomputed from the shown a3, a4 and d."""
     assert {"four_bar", "S000-T1", "seed004"} <= set(FOUR_BAR_LOOPS)
-    solution = SOLUTIONS[(name, "loop")]
+    solution = solution_of(name, "loop")
     step = next(s for s in steps(solution, "position.loop") if "gamma" in s.values)
     v = {k: x.value for k, x in step.values.items()}
     a3, a4 = v["a3"], v["a4"]
     d = np.asarray(v["d"])
-    b, c, dd = four_bar_dyad(solution)
+    b, c, dd = four_bar_dyad(name, solution)
     points = solution.analysis.points
     np.testing.assert_allclose(d, points[dd].position - points[b].position, rtol=0, atol=1e-15)
     big_a, big_b = 2 * a4 * d[0], 2 * a4 * d[1]
@@ -190,7 +189,7 @@ def test_slotted_lever_closed_form_gives_the_solver_angle(name: str, method: str
     """s = +-sqrt(|w|^2 - c^2), beta = arg w - atan2(c, s): the slot's direction and the pin's
     distance from the pivot along it, as the solver has them (the lever's slot turned with it)."""
     assert {"inverted_slider_crank", "quick_return", "S000-T2", "offset_lever"} <= set(LEVERS)
-    solution = SOLUTIONS[(name, method)]
+    solution = solution_of(name, method)
     kind = "position.lever" if method == "vector" else "position.loop"
     step = next(s for s in steps(solution, kind) if "epsilon" in s.values)
     v = {k: x.value for k, x in step.values.items()}
@@ -261,13 +260,13 @@ def test_every_new_position_step_renders_in_katex() -> None:
     if NODE is None:
         pytest.skip("node is not installed")
     kinds = ("position.lever", "position.loop")
-    latex = [s.latex for sol in SOLUTIONS.values() for s in sol.steps if s.kind in kinds]
+    latex = [s.latex for n, m in CASES for s in solution_of(n, m).steps if s.kind in kinds]
     assert latex and run_katex(latex) == []
 
 
 @pytest.mark.parametrize("method", ["vector", "loop"])
 def test_offset_lever_steps_re_evaluate(method: str) -> None:
     """The one scene here not among the presets and seeds that test_steps re-evaluates."""
-    solution = SOLUTIONS[("offset_lever", method)]
+    solution = solution_of("offset_lever", method)
     assert solution.method == method
     _check_solution(solution)

@@ -19,6 +19,7 @@ tolerance of 1e-9 of the size of the terms it is made of (stricter than the disp
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import re
@@ -830,16 +831,22 @@ def solution_of(doc: dict[str, Any], method: str = "vector") -> Solution:
     return solve(scene, method)
 
 
-def all_solutions() -> list[tuple[str, Solution]]:
-    out = []
-    for method in ("vector", "loop"):
-        out += [(f"{n}-{method}", solution_of(example(n), method)) for n in SEEDS]
-        out += [(f"{n}-{method}", solution_of(build_preset(n, {}), method)) for n in PRESETS]
-    return out
+# The worked solutions read by the tests below, "<seed or preset>-<method>", each solved when a
+# test first asks for it (``solution``), not when the module is collected (by every worker).
+NAMES = [f"{n}-{method}" for method in ("vector", "loop") for n in (*SEEDS, *PRESETS)]
 
 
-SOLUTIONS = all_solutions()
-IDS = [name for name, _ in SOLUTIONS]
+@functools.cache
+def solution_named(name: str) -> Solution:
+    """The worked solution ``name`` of ``NAMES``, solved once for this module's tests."""
+    scene, method = name.rsplit("-", 1)
+    return solution_of(example(scene) if scene in SEEDS else build_preset(scene, {}), method)
+
+
+@pytest.fixture
+def solution(name: str) -> Solution:
+    """The worked solution named by the test's ``name`` parameter."""
+    return solution_named(name)
 
 
 def printed_numbers(text: str) -> list[float]:
@@ -853,7 +860,7 @@ def printed_numbers(text: str) -> list[float]:
     return out
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_no_printed_number_is_rounding_noise(name: str, solution: Solution) -> None:
     """S003-T1 printed '- 5.55·10^-31·(-0.18, 0, 0)': omega^2 of a carrier that does not turn.
     A value at the rounding level is zero and is written 0."""
@@ -991,7 +998,7 @@ def test_one_symbol_per_angle_of_a_turning_slot(name: str) -> None:
 # --- typical mistakes under their step ------------------------------------------------------------
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_every_mistake_names_an_existing_step(name: str, solution: Solution) -> None:
     for mistake in solution.mistakes:
         assert mistake.step is not None, (name, mistake.kind)
@@ -1202,7 +1209,7 @@ def test_shown_number_parses_displays() -> None:
     np.testing.assert_allclose(ulps, [10.0])
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_shown_arithmetic_recomputes_to_the_shown_digits(name: str, solution: Solution) -> None:
     """-0.03125/0.0127 must not read -2.462: each check, evaluated with its operands as they are
     displayed, gives its result as displayed (to 0.6 unit in the last digit)."""
@@ -1241,7 +1248,7 @@ def mixed_precision(step: Any) -> list[str]:
     return failures
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_the_operands_of_a_check_are_shown_at_one_precision(name: str, solution: Solution) -> None:
     """0.347195^2 beside 1.582 in one product: the factors of one piece of shown arithmetic
     (a product, a sum, a quotient) have one count of significant digits."""
@@ -1252,7 +1259,7 @@ def test_the_operands_of_a_check_are_shown_at_one_precision(name: str, solution:
 SQUARED_FACTOR = re.compile(r"(\d|\))\^\{?2\}?\s*(\\cdot|\\,|\\begin|\()")
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_omega_squared_is_a_value_of_its_own(name: str, solution: Solution) -> None:
     """'- 0.347195^2 . (0.77165, -0.21108)': no line multiplies a squared number by another;
     omega^2 is written once (omega_3^2 = 0.3472^2 = 0.1205) and that value multiplies r."""
@@ -1327,7 +1334,7 @@ def test_reading_the_answer_in_words() -> None:
     assert "M moves to the right and down" in m.text and "slowing down" in m.text
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_units_on_every_line_and_no_signed_speed(name: str, solution: Solution) -> None:
     for step in solution.steps:
         if step.kind == "reading":
@@ -1341,7 +1348,7 @@ def test_units_on_every_line_and_no_signed_speed(name: str, solution: Solution) 
 # --- new step kinds -----------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(("name", "solution"), SOLUTIONS, ids=IDS)
+@pytest.mark.parametrize("name", NAMES)
 def test_step_kinds_present(name: str, solution: Solution) -> None:
     kinds = {s.kind for s in solution.steps}
     if "spatial" in name:
