@@ -20,7 +20,7 @@ fi
 # The generated TypeScript client's test (tests/server/test_generated_clients.py) needs
 # openapi-typescript and tsc, pinned in tests/clients/package-lock.json. Without npm, or with
 # the npm registry unreachable, that one test is skipped, as said here. The install runs beside
-# pip's (each mostly waits for downloads and the disk: about 10 s less on a fresh clone); its
+# pip's (each mostly waits for downloads and the disk: about 4 s less on a fresh clone); its
 # report is printed before pytest starts.
 install_clients() {
   if ! command -v npm >/dev/null; then

@@ -1,8 +1,10 @@
 """schemathesis against the app's own OpenAPI document, in process (issue 15).
 
-Every operation gets ``SCHEMATHESIS_EXAMPLES`` generated requests (derandomised: the same cases
-in every CI run; about 2,000 in all): no 5xx, and every error is problem+json with a code. A
-longer run: ``SCHEMATHESIS_EXAMPLES=2000 .venv/bin/python -m pytest tests/server/test_schemathesis.py``
+Every operation (29, one test each) gets schemathesis' coverage cases (the boundaries and
+violations of each field the document describes, built as the tests are collected) and
+``SCHEMATHESIS_EXAMPLES`` generated requests (derandomised: the same cases in every CI run):
+about 10,000 requests in all (10,175 on 2026-12-01), no 5xx, and every error is problem+json
+with a code. A longer run: ``SCHEMATHESIS_EXAMPLES=2000 .venv/bin/python -m pytest tests/server/test_schemathesis.py``
 (about 40,000 cases).
 """  # noqa: E501
 
