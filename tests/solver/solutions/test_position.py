@@ -101,7 +101,7 @@ CASES = [(n, m) for n in DOCS for m in ("vector", "loop")]
 
 
 @functools.cache
-def solution_of(name: str, method: str) -> Solution:
+def solved(name: str, method: str) -> Solution:
     """The worked solution of ``DOCS[name]`` by ``method``, solved when a test first asks for it
     (not when the module is collected, by every worker)."""
     return solve(parse_linkage(DOCS[name]), method)
@@ -117,7 +117,7 @@ def wrapped(x: float) -> float:
 
 @pytest.mark.parametrize(("name", "method"), CASES, ids=[f"{n}-{m}" for n, m in CASES])
 def test_every_group_has_its_position_derived(name: str, method: str) -> None:
-    solution = solution_of(name, method)
+    solution = solved(name, method)
     kinds = [s.kind for s in solution.steps]
     for group in solution.analysis.plan.steps:
         if isinstance(group, DriverStep):
@@ -135,7 +135,7 @@ def test_every_group_has_its_position_derived(name: str, method: str) -> None:
         assert kinds.count("position.loop") == kinds.count("loop.position") > 0, name
 
 
-ANALYSES = {n: analyze(parse_linkage(d)) for n, d in DOCS.items()}  # (what a solution shows)
+ANALYSES = {n: analyze(parse_linkage(d)) for n, d in DOCS.items()}  # (a solution's .analysis)
 FOUR_BAR_LOOPS = [n for n in DOCS if ANALYSES[n].four_bar_loops]
 LEVERS = [n for n in DOCS if any(isinstance(g, LeverStep) for g in ANALYSES[n].plan.steps)]
 
@@ -155,7 +155,7 @@ def four_bar_dyad(name: str, solution: Solution) -> tuple[str, str, str]:
 def test_four_bar_closed_form_gives_the_solver_angles(name: str) -> None:
     """theta14 = delta +- acos(C / R) from A, B, C recomputed from the shown a3, a4 and d."""
     assert {"four_bar", "S000-T1", "seed004"} <= set(FOUR_BAR_LOOPS)
-    solution = solution_of(name, "loop")
+    solution = solved(name, "loop")
     step = next(s for s in steps(solution, "position.loop") if "gamma" in s.values)
     v = {k: x.value for k, x in step.values.items()}
     a3, a4 = v["a3"], v["a4"]
@@ -189,7 +189,7 @@ def test_slotted_lever_closed_form_gives_the_solver_angle(name: str, method: str
     """s = +-sqrt(|w|^2 - c^2), beta = arg w - atan2(c, s): the slot's direction and the pin's
     distance from the pivot along it, as the solver has them (the lever's slot turned with it)."""
     assert {"inverted_slider_crank", "quick_return", "S000-T2", "offset_lever"} <= set(LEVERS)
-    solution = solution_of(name, method)
+    solution = solved(name, method)
     kind = "position.lever" if method == "vector" else "position.loop"
     step = next(s for s in steps(solution, kind) if "epsilon" in s.values)
     v = {k: x.value for k, x in step.values.items()}
@@ -260,13 +260,13 @@ def test_every_new_position_step_renders_in_katex() -> None:
     if NODE is None:
         pytest.skip("node is not installed")
     kinds = ("position.lever", "position.loop")
-    latex = [s.latex for n, m in CASES for s in solution_of(n, m).steps if s.kind in kinds]
+    latex = [s.latex for n, m in CASES for s in solved(n, m).steps if s.kind in kinds]
     assert latex and run_katex(latex) == []
 
 
 @pytest.mark.parametrize("method", ["vector", "loop"])
 def test_offset_lever_steps_re_evaluate(method: str) -> None:
     """The one scene here not among the presets and seeds that test_steps re-evaluates."""
-    solution = solution_of("offset_lever", method)
+    solution = solved("offset_lever", method)
     assert solution.method == method
     _check_solution(solution)
