@@ -17,10 +17,13 @@ import urllib.request
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pytest
 from axe_playwright_python.sync_playwright import Axe
+
+if TYPE_CHECKING:
+    from playwright.sync_api import ViewportSize
 
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = Path("/usr/bin/chromium")
@@ -37,16 +40,21 @@ CHROMIUM_ARGS = [
 ]
 
 
+VIEWPORT: ViewportSize = {"width": 1440, "height": 1000}  # a test's page as it opens
+BLANK_TIMEOUT = 10_000  # ms for the tab to leave a test's page for about:blank
+TESTS_A_TAB = 10  # tests whose pages open in one tab before the next gets a new one (``Tab``)
+
+
 @pytest.fixture(scope="session")
 def chromium() -> Iterator[Any]:
     """Debian's Chromium with a profile of its own for this worker's session (a browser context
-    on disk), every test a new page of it. Unlike a fresh incognito context a test, the profile
-    keeps V8's compiled code of the app's scripts between pages: from its third page on, a page
-    parses none of them again (Plotly, KaTeX, 33 modules), about 0.65 s of CPU less an opening
-    (2.6 -> 1.9 s, the app's first page at 1440x1000 and the 1.5 s after it). The app keeps
-    nothing in the browser (no cookie, no storage), so what a page inherits from the ones before
-    is the browser's caches only: that compiled code and the HTTP cache (the static files, and
-    the GETs the server lets be cached: the presets' listing, the examples)."""
+    on disk). Unlike a fresh incognito context a test, the profile keeps V8's compiled code of
+    the app's scripts between pages: from its third page on, a page parses none of them again
+    (Plotly, KaTeX, 33 modules), about 0.65 s of CPU less an opening (2.6 -> 1.9 s, the app's
+    first page at 1440x1000 and the 1.5 s after it). The app keeps nothing in the browser (no
+    cookie, no storage), so what a page inherits from the ones before is the browser's caches
+    only: that compiled code and the HTTP cache (the static files, and the GETs the server lets
+    be cached: the presets' listing, the examples)."""
     if not CHROMIUM.exists():
         pytest.skip(
             "Debian's Chromium is not installed at /usr/bin/chromium (tests/run.sh installs it)"
@@ -56,10 +64,7 @@ def chromium() -> Iterator[Any]:
     pw = sync_playwright().start()
     profile = tempfile.TemporaryDirectory(prefix="chromium-profile-")
     context = pw.chromium.launch_persistent_context(
-        profile.name,
-        executable_path=str(CHROMIUM),
-        args=CHROMIUM_ARGS,
-        viewport={"width": 1440, "height": 1000},
+        profile.name, executable_path=str(CHROMIUM), args=CHROMIUM_ARGS, viewport=VIEWPORT
     )
     try:
         yield context
@@ -67,6 +72,67 @@ def chromium() -> Iterator[Any]:
         context.close()
         pw.stop()
         profile.cleanup()
+
+
+class Tab:
+    """The browser tab the tests' pages open in, one per worker's session, as a student's tab
+    goes from one page of the app to the next; a new tab every ``TESTS_A_TAB`` tests and after a
+    test that failed (whatever state it left: a mouse button held, a page that hangs).
+
+    A page opened in a tab that has shown the app before costs the browser about half the CPU
+    of one opened in a new tab (1.0-1.1 s against 1.9-2.1 s for the app's first page: a new tab
+    is a new renderer process, and Playwright attaches to it anew). The browser folder in two
+    processes, alternated on the same machine: 248 and 265 s with a new tab a test, 214 and
+    227 s with one tab for all, 214 and 223 s with a new tab every ten tests (docs/FRONTEND.md).
+
+    Between two tests the tab is emptied (``leave``): the test's listeners (``AppPage.listen``)
+    and routes are removed and it goes to about:blank, where a new tab starts, so every test
+    opens its page into a new document."""
+
+    def __init__(self, context: Any) -> None:
+        self.context = context
+        self.page: Any = None
+        self.served = 0
+
+    def take(self) -> Any:
+        """The tab for the next test: a new one when this one has served ``TESTS_A_TAB`` tests
+        or was closed (by a test, by ``leave``, by a crash)."""
+        if self.page is not None and not self.page.is_closed() and self.served >= TESTS_A_TAB:
+            self.page.close()
+        if self.page is None or self.page.is_closed():
+            self.page = self.context.new_page()
+            self.served = 0
+        self.served += 1
+        return self.page
+
+    def leave(self, failed: bool) -> None:
+        """Remove the routes a test set on the tab and go to about:blank; after a failed test,
+        or where the tab cannot leave its page (one that hangs), close it instead: the next
+        test gets a new one."""
+        if not failed:
+            try:
+                self.page.unroute_all(behavior="ignoreErrors")
+                self.page.goto("about:blank", timeout=BLANK_TIMEOUT)
+                return
+            except Exception:  # (whatever went wrong with that page, the next test's is new)
+                pass
+        self.page.close()
+
+
+@pytest.fixture(scope="session")
+def tab(chromium: Any) -> Tab:
+    return Tab(chromium)
+
+
+FAILED = pytest.StashKey[bool]()  # set on a test whose setup or call failed
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Any:
+    report = yield
+    if report.failed:
+        item.stash[FAILED] = True
+    return report
 
 
 # The axe-core rules that can only report minor or moderate violations: the rule's own impact,
@@ -137,22 +203,28 @@ def _is_local(url: str) -> bool:
     return re.match(r"^https?://127\.0\.0\.1(:\d+)?/", url) is not None
 
 
-def _watch(page: Any, log: PageLog) -> None:
+def _watch(page: Any, log: PageLog) -> list[tuple[str, Any]]:
+    """Record what ``page`` does in ``log``; the (event, handler) pairs registered."""
+
     def on_console(msg: Any) -> None:
         if msg.type == "error":
             where = (msg.location or {}).get("url", "")
             log.errors.append(f"{msg.text} [{where}]")
 
-    page.on("console", on_console)
-    page.on("pageerror", lambda err: log.errors.append(f"page error: {err}"))
-
     def on_request(req: Any) -> None:
         log.requests.append(req.url)
         log.in_flight.add(req)
 
-    page.on("request", on_request)
-    page.on("requestfinished", lambda req: log.in_flight.discard(req))
-    page.on("requestfailed", lambda req: log.in_flight.discard(req))
+    handlers = [
+        ("console", on_console),
+        ("pageerror", lambda err: log.errors.append(f"page error: {err}")),
+        ("request", on_request),
+        ("requestfinished", lambda req: log.in_flight.discard(req)),
+        ("requestfailed", lambda req: log.in_flight.discard(req)),
+    ]
+    for event, handler in handlers:
+        page.on(event, handler)
+    return handlers
 
 
 @dataclass
@@ -161,6 +233,13 @@ class AppPage:
     log: PageLog
     url: str  # the base URL of the app, http://127.0.0.1:<port>
     context: Any = None
+    handlers: list[tuple[str, Any]] = field(default_factory=list)  # on ``page``, for this test
+
+    def listen(self, event: str, handler: Any) -> None:
+        """``page.on(event, handler)`` for this test only (removed when it ends: the tab is the
+        next test's too)."""
+        self.page.on(event, handler)
+        self.handlers.append((event, handler))
 
     def post(self, path: str, body: Any) -> tuple[int, Any]:
         """POST `body` as JSON to /api/v1`path` straight to the server: (status, JSON answer)."""
@@ -263,29 +342,38 @@ class AppPage:
 
 
 @pytest.fixture
-def app(request: pytest.FixtureRequest, chromium: Any, live_server: str) -> Iterator[AppPage]:
-    # The pages run under the server's Content-Security-Policy, as a student's do (a violation
+def app(
+    request: pytest.FixtureRequest, chromium: Any, tab: Tab, live_server: str
+) -> Iterator[AppPage]:
+    # The page runs under the server's Content-Security-Policy, as a student's does (a violation
     # is a console error, which fails the test). Predicates are written as functions: Playwright
     # evaluates a bare expression with eval when it polls, which the policy forbids.
-    # They open paused, as the app opens for a student whose system asks for reduced motion
+    # It opens paused, as the app opens for a student whose system asks for reduced motion
     # (docs/FRONTEND.md): a mechanism playing costs the browser about half a core for as long as
     # it plays (0.45-0.5 s of CPU a second, paused 0.07 s), which the other tests running beside
     # it would pay for. A test of the animation itself is marked `moving`.
     motion = "no-preference" if request.node.get_closest_marker("moving") else "reduce"
-    page = chromium.new_page()
-    page.emulate_media(reduced_motion=motion)
+    page = tab.take()
+    page.set_viewport_size(VIEWPORT)
+    page.emulate_media(media="null", reduced_motion=motion)
     page.set_default_timeout(20_000)
     log = PageLog()
-    _watch(page, log)
+    opened = AppPage(page=page, log=log, url=live_server, context=chromium)
+    opened.handlers += _watch(page, log)
     try:
-        yield AppPage(page=page, log=log, url=live_server, context=chromium)
+        yield opened
         external = log.external_requests()
         assert not external, f"requests to other hosts: {external}"
         unexpected = log.unexpected_errors()
         assert not unexpected, f"console or page errors: {unexpected}"
     finally:
-        for opened in chromium.pages:  # this test's pages (its own tabs, popups)
-            opened.close()
+        if not page.is_closed():
+            for event, handler in opened.handlers:
+                page.remove_listener(event, handler)
+            tab.leave(request.node.stash.get(FAILED, False))
+        for other in chromium.pages:  # this test's own tabs and popups
+            if other is not tab.page:
+                other.close()
 
 
 def pytest_terminal_summary(terminalreporter: Any) -> None:

@@ -723,8 +723,8 @@ def test_an_edit_keeps_the_instant_exactly_and_asks_for_it_beside_the_sweep(
     )
     analysed = page.get_attribute("#linkage", "data-analysed")
     events: list[str] = []
-    page.on("request", lambda r: events.append(f"ask {r.url.rsplit('/', 1)[-1]}"))
-    page.on("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
+    app.listen("request", lambda r: events.append(f"ask {r.url.rsplit('/', 1)[-1]}"))
+    app.listen("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
     edit(page, "#f-param_crank", "0.051")
     page.wait_for_function("() => document.getElementById('linkage').dataset.edited")
     wait_analysed(page)
@@ -754,8 +754,8 @@ def test_a_mechanism_too_fine_for_its_first_sweep_is_shown_from_it_then_refined(
             samples.append(request.post_data_json["samples"])
         events.append(f"ask {name}")
 
-    page.on("request", asked)
-    page.on("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
+    app.listen("request", asked)
+    app.listen("requestfinished", lambda r: events.append(f"got {r.url.rsplit('/', 1)[-1]}"))
     choose(app, "preset:slider_guide_extension")
     page.wait_for_selector("#linkage[data-samples]", state="attached")
     wait_analysed(page)

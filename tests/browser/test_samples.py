@@ -88,7 +88,7 @@ def samples_asked(app: AppPage, width: int) -> tuple[int, float, dict[str, Any] 
             asked.append(json.loads(request.post_data))
 
     app.page.set_viewport_size({"width": width, "height": 1000})
-    app.page.on("request", on_request)
+    app.listen("request", on_request)
     if app.page.url.startswith(app.url):  # opened again: the drawn sweep's count is the new one's
         app.page.evaluate("() => { delete document.getElementById('linkage').dataset.samples; }")
     app.open(f"#s=j.{share_token(SCENE)}")
