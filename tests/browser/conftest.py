@@ -77,13 +77,10 @@ def chromium() -> Iterator[Any]:
 class Tab:
     """The browser tab the tests' pages open in, one per worker's session, as a student's tab
     goes from one page of the app to the next; a new tab every ``TESTS_A_TAB`` tests and after a
-    test that failed (whatever state it left: a mouse button held, a page that hangs).
-
-    A page opened in a tab that has shown the app before costs the browser about half the CPU
-    of one opened in a new tab (1.0-1.1 s against 1.9-2.1 s for the app's first page: a new tab
-    is a new renderer process, and Playwright attaches to it anew). The browser folder in two
-    processes, alternated on the same machine: 248 and 265 s with a new tab a test, 214 and
-    227 s with one tab for all, 214 and 223 s with a new tab every ten tests (docs/FRONTEND.md).
+    test that failed (whatever state it left: a mouse button held, a page that hangs). A page
+    opened in a tab that has shown the app costs the browser about half the CPU of one opened in
+    a new tab, a new renderer process that Playwright attaches to anew (docs/FRONTEND.md,
+    "Tests", has the measurements).
 
     Between two tests the tab is emptied (``leave``): the test's listeners (``AppPage.listen``)
     and routes are removed and it goes to about:blank, where a new tab starts, so every test
@@ -95,10 +92,8 @@ class Tab:
         self.served = 0
 
     def take(self) -> Any:
-        """The tab for the next test: a new one when this one has served ``TESTS_A_TAB`` tests
-        or was closed (by a test, by ``leave``, by a crash)."""
-        if self.page is not None and not self.page.is_closed() and self.served >= TESTS_A_TAB:
-            self.page.close()
+        """The tab for the next test, a new one where ``leave`` (or a test, or a crash) closed
+        the last."""
         if self.page is None or self.page.is_closed():
             self.page = self.context.new_page()
             self.served = 0
@@ -106,10 +101,10 @@ class Tab:
         return self.page
 
     def leave(self, failed: bool) -> None:
-        """Remove the routes a test set on the tab and go to about:blank; after a failed test,
-        or where the tab cannot leave its page (one that hangs), close it instead: the next
-        test gets a new one."""
-        if not failed:
+        """Remove the routes a test set on the tab and go to about:blank; close it instead after
+        a failed test, after its ``TESTS_A_TAB``-th test, or where it cannot leave its page (one
+        that hangs): the next test gets a new one."""
+        if not failed and self.served < TESTS_A_TAB:
             try:
                 self.page.unroute_all(behavior="ignoreErrors")
                 self.page.goto("about:blank", timeout=BLANK_TIMEOUT)
@@ -122,17 +117,6 @@ class Tab:
 @pytest.fixture(scope="session")
 def tab(chromium: Any) -> Tab:
     return Tab(chromium)
-
-
-FAILED = pytest.StashKey[bool]()  # set on a test whose setup or call failed
-
-
-@pytest.hookimpl(wrapper=True)
-def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Any:
-    report = yield
-    if report.failed:
-        item.stash[FAILED] = True
-    return report
 
 
 # The axe-core rules that can only report minor or moderate violations: the rule's own impact,
@@ -354,6 +338,7 @@ def app(
     # it would pay for. A test of the animation itself is marked `moving`.
     motion = "no-preference" if request.node.get_closest_marker("moving") else "reduce"
     page = tab.take()
+    failures = request.session.testsfailed  # (counted as each phase is reported: setup, call)
     page.set_viewport_size(VIEWPORT)
     page.emulate_media(media="null", reduced_motion=motion)
     page.set_default_timeout(20_000)
@@ -370,7 +355,7 @@ def app(
         if not page.is_closed():
             for event, handler in opened.handlers:
                 page.remove_listener(event, handler)
-            tab.leave(request.node.stash.get(FAILED, False))
+            tab.leave(request.session.testsfailed > failures)
         for other in chromium.pages:  # this test's own tabs and popups
             if other is not tab.page:
                 other.close()
